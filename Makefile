@@ -1,0 +1,72 @@
+# whirl: steady shapes and dynamics of a chain spun about the vertical axis.
+# Targets: all (default), demo, check, check-sanitize, bench, study, deps, clean.
+# BUILD=dir builds out of tree (several builds can coexist).
+
+BUILD    ?= build
+CC       ?= cc
+PKGS     := gsl nlopt inih lapacke
+OPT      ?= -O2
+CFLAGS   ?= $(OPT) -g
+WFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wno-unused-parameter
+CPPFLAGS := -Iinclude -Isrc -D_POSIX_C_SOURCE=200809L -MMD -MP
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+LDLIBS    = $(PKG_LIBS) -llapack -lblas -lpthread -lm
+ALL_CFLAGS = $(WFLAGS) $(CFLAGS) -fopenmp $(PKG_CFLAGS) $(XCFLAGS)
+ALL_LDFLAGS = -fopenmp $(LDFLAGS) $(XLDFLAGS)
+
+LIB_SRC  := $(wildcard src/*.c)
+CLI_SRC  := $(wildcard src/cli/*.c)
+TEST_SRC := $(wildcard tests/test_*.c)
+BENCH_SRC := $(wildcard tests/bench_*.c)
+LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
+CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
+TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
+
+.PHONY: all demo check check-sanitize bench study deps clean
+all: $(BUILD)/whirl $(BUILD)/libwhirl.a
+
+$(BUILD)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
+
+$(BUILD)/libwhirl.a: $(LIB_OBJ)
+	@mkdir -p $(dir $@)
+	$(AR) rcs $@ $^
+
+$(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
+	$(CC) $(ALL_LDFLAGS) $(CLI_OBJ) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@
+
+# Debian packages the build, the tests and the figures need; installed when run as root.
+deps:
+	@sh scripts/deps.sh
+
+demo: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/demo.sh $(BUILD)
+
+check: deps
+	@$(MAKE) --no-print-directory all $(TEST_BIN)
+	@sh tests/run.sh $(BUILD)
+
+# The same tests under AddressSanitizer and UndefinedBehaviorSanitizer.
+check-sanitize: deps
+	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
+	  XCFLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
+	  XLDFLAGS="-fsanitize=address,undefined" all \
+	  $(TEST_BIN:$(BUILD)/%=build-sanitize/%)
+	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize
+
+bench: deps
+	@$(MAKE) --no-print-directory all $(BENCH_BIN)
+	@sh scripts/bench.sh $(BUILD)
+
+clean:
+	rm -rf build build-* out
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

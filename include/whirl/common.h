@@ -1,0 +1,25 @@
+/* whirl: shared conventions of the library.
+ *
+ * Units: dimensionless unless a function says otherwise: chain length L = 1, total chain mass
+ * M = 1, gravity g = 1; rates in sqrt(g/L), time in sqrt(L/g), forces and tensions in M g.
+ * Axes: z points up, gravity is -g z, the pivot is the origin, the rotation axis is z.
+ * Mode k = node count k = the pivot plus k-1 crossings of the axis below it.
+ *
+ * Status: every function that can fail returns an int status with GSL's codes (GSL_SUCCESS = 0,
+ * GSL_EINVAL for bad arguments, GSL_EDOM for a mode that does not exist at a rate, GSL_ENOMEM,
+ * GSL_EMAXITER, GSL_ERANGE for a non-finite result, GSL_EFAILED otherwise) and, when it is not
+ * GSL_SUCCESS, leaves a one-line message that whirl_last_error() returns. The library never
+ * prints and never aborts on numerical trouble. It does not touch GSL's error handler: callers
+ * that do not want GSL to abort call gsl_set_error_handler_off() once (the whirl program does). */
+#ifndef WHIRL_COMMON_H
+#define WHIRL_COMMON_H
+
+#include <gsl/gsl_errno.h>
+
+/* The highest mode number the steady-shape solvers handle. */
+#define WHIRL_MODE_MAX 64
+
+/* The message of the last failure in the calling thread ("" if none). */
+const char *whirl_last_error(void);
+
+#endif

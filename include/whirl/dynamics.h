@@ -1,0 +1,127 @@
+/* whirl: time-domain dynamics of the N-link chain (point masses on massless rigid links), 2D
+ * (the x-z plane) and 3D, in the inertial frame or in the frame co-rotating at omega about z.
+ *
+ * Two formulations of the same equations of motion:
+ *  - WHIRL_FORMULATION_CARTESIAN (default): mass positions and velocities (or link vectors) with
+ *    the link tensions as Lagrange multipliers, a symmetric tridiagonal solve per evaluation:
+ *    O(N), no coordinate singularity (a chain hanging straight down works);
+ *  - WHIRL_FORMULATION_SEED: the seed document's angles theta_i (from the downward vertical) and
+ *    phi_i (azimuth from x) with its dense mass matrix: O(N^3), singular where sin(theta_i) = 0 in
+ *    3D; the reference for small N.
+ * The state vector y is the formulation's own; convert with whirl_dyn_set_state and
+ * whirl_dyn_get_state. */
+#ifndef WHIRL_DYNAMICS_H
+#define WHIRL_DYNAMICS_H
+
+#include <stddef.h>
+
+#include "whirl/chain.h"
+#include "whirl/common.h"
+
+typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
+typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
+
+/* The model: parameters only, never changed by the library. */
+typedef struct whirl_model {
+    const whirl_chain *chain;  /* the chain (not owned: must outlive the workspace) */
+    int dim;                   /* 2 (planar, x-z) or 3 */
+    whirl_frame frame;         /* frame of the state; WHIRL_FRAME_ROTATING needs dim = 3 */
+    double omega;              /* rate of the co-rotating frame and of the pivot drive [1/T] */
+    double drive_radius;       /* eps >= 0: the pivot moves on the horizontal circle
+                                  (eps cos wt, eps sin wt, 0) of the inertial frame (2D: along x,
+                                  eps cos wt); fixed at (eps, 0, 0) in the co-rotating frame */
+    double air_drag;           /* c >= 0: linear drag -c l_i v_i on mass i, v_i its inertial
+                                  velocity (c per unit length of a uniform chain) */
+    double air_drag_quadratic; /* c2 >= 0: quadratic drag -c2 l_i |v_i| v_i */
+    double internal_damping;   /* D >= 0: each joint resists the relative motion of the two
+                                  links it joins, measured in the frame co-rotating at omega, the
+                                  top joint's upper body being the drive shaft: Rayleigh function
+                                  R = D/2 sum_i |w_i - w_{i-1}|^2, w_i = du_i/dt - omega z x u_i,
+                                  u_i = unit vector of link i, w_0 = 0. Zero for the rigid
+                                  rotation at omega. */
+    const double *seed_sigma;  /* the seed's forcing and damping on the angle theta_d (2D only):
+    const double *seed_lambda;    generalized force f_d = sigma_d - lambda_d thetadot_d; arrays
+                                  of chain->n or NULL for none (eq. 25-26 of the seed) */
+} whirl_model;
+
+typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
+
+/* Allocates the workspace of model in formulation f (copies the model struct, not the chain).
+ * NULL on invalid parameters (whirl_last_error names the first) or no memory. */
+whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
+void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
+
+const whirl_model *whirl_dyn_model(const whirl_dyn *d);
+whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
+
+/* Length of the state vector y. */
+size_t whirl_dyn_size(const whirl_dyn *d);
+
+/* dy/dt at (t, y), with GSL's signature (params = the whirl_dyn *): usable as a gsl_odeiv2_system.
+ * Returns GSL_SUCCESS, or GSL_EBADFUNC if the result is not finite (or, in the seed formulation,
+ * at its 3D singularity), with a message. Allocates nothing. */
+int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn);
+
+/* State y from the positions x[3i..3i+2] and velocities v[3i..3i+2] of masses i = 1..N (x[0..2]
+ * is mass 1) given in the model's frame at time t (in 2D the y components must be 0). The
+ * positions must satisfy the link constraints to 1e-9 relative and the velocities be consistent
+ * with them; y is then projected exactly onto the constraints. GSL_EINVAL otherwise, and for the
+ * seed formulation at its 3D singularity. */
+int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v, double *y);
+
+/* Positions and velocities of the masses (3 per mass, as above) at time t in the given frame. */
+int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
+                        double *x, double *v);
+
+/* Projects y onto the constraint manifold (|x_i - x_{i-1}| = l_i and its time derivative);
+ * a no-op for the seed formulation, whose coordinates satisfy the constraints by construction. */
+int whirl_dyn_project(whirl_dyn *d, double t, double *y);
+
+/* Tensions of the links (array of chain->n, [M g] in the dimensionless units) at (t, y). */
+int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension);
+
+typedef struct whirl_dyn_diagnostics {
+    double energy;     /* kinetic + potential energy in the inertial frame */
+    double lz;         /* angular momentum about z, inertial frame */
+    double jacobi;     /* energy - omega lz: conserved in the co-rotating frame without forces */
+    double constraint; /* max over links of | |x_i - x_{i-1}| - l_i | */
+} whirl_dyn_diagnostics;
+
+int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y, whirl_dyn_diagnostics *out);
+
+/* Deviation of the positions x (3 per mass, N masses) from the reference ref: the RMS over the
+ * masses of their distance, minimised over a rotation of x about z. */
+double whirl_deviation(size_t n, const double *x, const double *ref);
+
+/* ---- integrators ----
+ * Methods: "gauss2" (2-stage Gauss-Legendre, order 4, the seed's), "gauss3" (order 6), "rk4"
+ * (classical, explicit), and GSL's steppers on the same right-hand side: "gsl-rk8pd",
+ * "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". */
+typedef struct whirl_integrator whirl_integrator;
+
+typedef struct whirl_integrator_stats {
+    unsigned long steps;      /* accepted steps */
+    unsigned long rejected;   /* rejected steps (adaptive) */
+    unsigned long rhs_evals;  /* right-hand side evaluations */
+    unsigned long iterations; /* stage-equation iterations (implicit methods) */
+} whirl_integrator_stats;
+
+/* NULL-terminated list of the method names. */
+const char *const *whirl_integrator_methods(void);
+
+/* An integrator of the given method for the dynamics d (not owned). NULL on an unknown method
+ * (message lists the known ones) or no memory. */
+whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
+void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
+
+/* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
+ * shortened); with tol > 0 adaptively (relative and absolute tolerance tol, h the first step) for
+ * the methods that allow it, GSL_EINVAL for the others. Projects onto the constraints after each
+ * step. Stops with the status of a failing right-hand side or stage solve (t, y then hold the
+ * last good state). Allocates nothing. */
+int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1, double h,
+                             double tol);
+
+whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
+
+#endif

@@ -1,0 +1,13 @@
+/* Internal: recording the message of a failure (see whirl_last_error). */
+#ifndef WHIRL_ERROR_H
+#define WHIRL_ERROR_H
+
+/* Formats the message of this thread's last failure and returns status, so that a failing
+ * function can end with: return whirl_fail(GSL_EINVAL, "omega must be > 0, got %g", omega); */
+int whirl_fail(int status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+#endif

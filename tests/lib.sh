@@ -1,0 +1,34 @@
+# Helpers for the command-line tests: TAP lines "ok N - name" / "not ok N - name".
+# $WHIRL is the program under test.
+n=0
+fails=0
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+pass() { n=$((n + 1)); echo "ok $n - $1"; }
+fail() { n=$((n + 1)); fails=$((fails + 1)); echo "not ok $n - $1"; }
+
+# expect_error NAME PATTERN ARGS...: the command must exit non-zero, print nothing on stdout,
+# print one line on stderr that matches PATTERN (grep -E), and leave no output file $tmp/out.csv.
+expect_error() {
+  name=$1; pattern=$2; shift 2
+  rm -f "$tmp/out.csv"
+  "$WHIRL" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  if [ $rc -ne 0 ] && [ ! -s "$tmp/stdout" ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
+     && grep -Eq "$pattern" "$tmp/stderr" && [ ! -e "$tmp/out.csv" ] \
+     && [ -z "$(ls "$tmp" | grep '^out.csv.')" ]; then
+    pass "$name"
+  else
+    fail "$name (rc=$rc, stderr: $(head -c 300 "$tmp/stderr"))"
+  fi
+}
+
+# expect_ok NAME ARGS...: the command must exit 0.
+expect_ok() {
+  name=$1; shift
+  if "$WHIRL" "$@" >"$tmp/stdout" 2>"$tmp/stderr"; then pass "$name"
+  else fail "$name (stderr: $(head -c 300 "$tmp/stderr"))"; fi
+}
+
+finish() { [ $fails -eq 0 ]; exit $?; }
