@@ -6,5 +6,6 @@
 #include "whirl/chain.h"
 #include "whirl/steady.h"
 #include "whirl/dynamics.h"
+#include "whirl/scene.h"
 
 #endif

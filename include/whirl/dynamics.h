@@ -9,7 +9,9 @@
  *    phi_i (azimuth from x) with its dense mass matrix: O(N^3), singular where sin(theta_i) = 0 in
  *    3D; the reference for small N.
  * The state vector y is the formulation's own; convert with whirl_dyn_set_state and
- * whirl_dyn_get_state. */
+ * whirl_dyn_get_state. It is always y = (q, qdot), two halves of equal length with dq/dt = qdot
+ * (Cartesian: the link vectors d_i = x_i - x_{i-1} and their rates in the model's frame, 3 per
+ * link in 3D, (x, z) in 2D; seed: (theta, phi, theta', phi') in 3D, (theta, theta') in 2D). */
 #ifndef WHIRL_DYNAMICS_H
 #define WHIRL_DYNAMICS_H
 
@@ -39,9 +41,10 @@ typedef struct whirl_model {
                                   R = D/2 sum_i |w_i - w_{i-1}|^2, w_i = du_i/dt - omega z x u_i,
                                   u_i = unit vector of link i, w_0 = 0. Zero for the rigid
                                   rotation at omega. */
-    const double *seed_sigma;  /* the seed's forcing and damping on the angle theta_d (2D only):
-    const double *seed_lambda;    generalized force f_d = sigma_d - lambda_d thetadot_d; arrays
-                                  of chain->n or NULL for none (eq. 25-26 of the seed) */
+    /* the seed's forcing and damping on the angle theta_d (2D only): generalized force
+       f_d = sigma_d - lambda_d thetadot_d; arrays of chain->n or NULL for none (seed eq. 25-26) */
+    const double *seed_sigma;
+    const double *seed_lambda;
 } whirl_model;
 
 typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
@@ -96,7 +99,11 @@ double whirl_deviation(size_t n, const double *x, const double *ref);
 /* ---- integrators ----
  * Methods: "gauss2" (2-stage Gauss-Legendre, order 4, the seed's), "gauss3" (order 6), "rk4"
  * (classical, explicit), and GSL's steppers on the same right-hand side: "gsl-rk8pd",
- * "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". */
+ * "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". gauss2, gauss3, rk4 take fixed steps only;
+ * the GSL steppers fixed or adaptive steps, except gsl-msbdf: adaptive only. The Gauss methods
+ * solve their stage equations by fixed-point iteration, which converges for
+ * h omega_max rho(A) < 1 (rho(A) = 0.289 gauss2, 0.215 gauss3; omega_max ~ 2 N sqrt(T_top/(M g))
+ * sqrt(g/L) for a uniform chain): a larger step fails with GSL_EMAXITER. */
 typedef struct whirl_integrator whirl_integrator;
 
 typedef struct whirl_integrator_stats {

@@ -32,22 +32,38 @@ typedef struct whirl_shape_info {
 /* ---- continuous chain ---- */
 
 /* The linear critical rate of mode k (>= 1) where it bifurcates from the hanging chain: with no
- * tip mass j_{0,k}/2; with a tip mass the k-th root of the linearised problem. */
+ * tip mass j_{0,k}/2; with a tip mass the k-th root of the linearised problem (Bessel J0/Y0
+ * determinant). GSL_EINVAL on a bad mode or tip mass. */
 int whirl_continuum_critical(int mode, double tip_mass, double *omega);
 
 /* The steady shape of mode k at omega. tip_r_guess > 0 seeds the root search (continuation);
  * 0 lets the solver bracket the root itself. GSL_EDOM (message naming omega_k) if mode k does not
- * exist at omega. Accuracy: tip_r, top_tension and depth to 1e-10 relative or better. */
+ * exist at omega; GSL_EINVAL on omega <= 0 or non-finite, mode outside 1..WHIRL_MODE_MAX or a
+ * negative tip mass. Accuracy: tip_r, top_tension and depth to 1e-10 relative or better (about
+ * 1e-13 measured), except within omega / omega_k - 1 < 1e-4 of the bifurcation, where tip_r is
+ * ill-conditioned (it grows like sqrt(omega - omega_k)): about 1e-8 at 1e-6 above omega_k. */
 int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
                           whirl_shape_info *info);
 
-/* Samples the shape with tip radius tip_r (from whirl_continuum_solve) at npts >= 2 arclengths
- * equally spaced from the pivot (s = 0) to the free end (s = 1): r, z and the tension there. */
+/* The ODE tolerance (absolute and relative, on order-one scaled variables) of the continuum. */
+#define WHIRL_CONTINUUM_TOL 1e-13
+
+/* whirl_continuum_solve with the ODE tolerance tol in (0, 1) instead of WHIRL_CONTINUUM_TOL:
+ * for convergence studies. */
+int whirl_continuum_solve_tol(double omega, int mode, double tip_mass, double tip_r_guess,
+                              double tol, whirl_shape_info *info);
+
+/* Samples the shape with tip radius tip_r in (0, 1] (from whirl_continuum_solve) at npts >= 2
+ * arclengths equally spaced from the pivot (s = 0) to the free end (s = 1): r, z (0 at the pivot)
+ * and the tension there; arrays of npts. For any tip_r it is the shot of the shooting method: r
+ * at the pivot (r[0]) vanishes only for a solution. */
 int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts, double *s,
                            double *r, double *z, double *tension);
 
 /* Follows mode k over the rates omega[0..n-1] (any order, continuation from one to the next):
- * exists[j] = 1 and info[j] filled where the mode exists, exists[j] = 0 where it does not. */
+ * exists[j] = 1 and info[j] filled where the mode exists, exists[j] = 0 where it does not. The
+ * rates are cut into contiguous blocks followed in parallel on the OpenMP threads (serially when
+ * called from inside a parallel region). */
 int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                            whirl_shape_info *info, int *exists);
 
@@ -58,7 +74,10 @@ int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *om
 int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
 
 /* The exact relative equilibrium of mode k at omega: the force balance of every mass holds to
- * round-off. tip_r_guess as for whirl_continuum_solve. GSL_EDOM if mode k does not exist. */
+ * round-off. tip_r_guess as for whirl_continuum_solve. GSL_EDOM if mode k does not exist (omega
+ * <= omega_k, or k > c->n). A coarse chain at a high rate (e.g. N = 100 at omega = 30) can have
+ * several equilibria with k - 1 crossings: without a seed the one with the smallest tip radius
+ * is returned (near omega_k the branch born there), with a seed the one nearest the seed. */
 int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
                       whirl_shape_info *info);
 
@@ -68,7 +87,7 @@ int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
 
-/* Follows mode k over omega[0..n-1] as whirl_continuum_branch does. */
+/* Follows mode k over omega[0..n-1] as whirl_continuum_branch does (the chain is only read). */
 int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
 

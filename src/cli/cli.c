@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -144,6 +145,13 @@ int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
     out->path = NULL;
     out->tmp = NULL;
     if (path == NULL || strcmp(path, "-") == 0) return 0;
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        /* A device or a pipe (say /dev/null) is written in place: it cannot be renamed over. */
+        out->fp = fopen(path, "w");
+        if (out->fp == NULL) return cli_error(cmd, "cannot write '%s': %s", path, strerror(errno));
+        return 0;
+    }
     size_t len = strlen(path);
     out->path = malloc(len + 1);
     out->tmp = malloc(len + 16);
@@ -161,6 +169,10 @@ int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
         cli_out_abort(out);
         return cli_error(cmd, "cannot write '%s': %s", path, strerror(err));
     }
+    /* mkstemp creates the file 0600: give it the mode a plain fopen would (0666 less umask). */
+    mode_t mask = umask(0);
+    umask(mask);
+    fchmod(fd, 0666 & ~mask);
     out->fp = fdopen(fd, "w");
     if (out->fp == NULL) {
         close(fd);
@@ -173,9 +185,14 @@ int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
 int cli_out_commit(const cli_command *cmd, cli_out *out)
 {
     if (out->path == NULL) {
-        if (fflush(stdout) != 0 || ferror(stdout))
-            return cli_error(cmd, "error writing standard output");
-        return 0;
+        if (out->fp == stdout) {
+            if (fflush(stdout) != 0 || ferror(stdout))
+                return cli_error(cmd, "error writing standard output");
+            return 0;
+        }
+        int bad = ferror(out->fp) | (fclose(out->fp) != 0);
+        out->fp = NULL;
+        return bad ? cli_error(cmd, "error writing the output") : 0;
     }
     int bad = ferror(out->fp);
     bad |= fclose(out->fp) != 0;

@@ -92,5 +92,10 @@ void cli_progress(const cli_command *cmd, const char *label, double fraction, in
 int cmd_critical(const cli_command *cmd, int argc, char **argv);
 int cmd_shape(const cli_command *cmd, int argc, char **argv);
 int cmd_sweep(const cli_command *cmd, int argc, char **argv);
+int cmd_stability(const cli_command *cmd, int argc, char **argv);
+int cmd_simulate(const cli_command *cmd, int argc, char **argv);
+int cmd_minimize(const cli_command *cmd, int argc, char **argv);
+int cmd_fit(const cli_command *cmd, int argc, char **argv);
+int cmd_driven(const cli_command *cmd, int argc, char **argv);
 
 #endif

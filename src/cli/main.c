@@ -13,6 +13,16 @@ static const cli_command commands[] = {
      "The steady shape of mode K at rotation rate W.", cmd_shape},
     {"sweep", "--modes LIST --omega-min A --omega-max B --steps S [--links N] [--tip-mass m] [-o FILE]",
      "Branches of steady shapes against the rotation rate, by continuation.", cmd_sweep},
+    {"stability", "--omega W --mode K | --omega-min A --omega-max B --steps S [--modes LIST] [--links N] [--periods P] [--perturb EPS] [--seed S] [--damping D] [--method M] [--dt H] [--linear] [-o FILE]",
+     "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability},
+    {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
+     "Runs a scene file (see data/scenes/): the N-link chain in time.", cmd_simulate},
+    {"minimize", "--omega W --links N [--tip-mass m] [--algorithm NAME] [--no-polish] [-o FILE]",
+     "The mode-1 shape as the minimum of the co-rotating potential (NLopt).", cmd_minimize},
+    {"fit", "--shape FILE [--links N] [--mode K] [--length L] [--gravity G] [-o FILE]",
+     "The rotation rate and mode that best explain a measured shape (NLopt).", cmd_fit},
+    {"driven", "--omega W | --omega-min A --omega-max B [--mode K] [--side S] [--eps E] [--drag C] [--drag-quadratic C2] [--links N] [--tip-mass m] [--points P] [--step H] [-o FILE]",
+     "Steady shapes with the pivot driven on a circle and air drag; branches with folds.", cmd_driven},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

@@ -1,0 +1,169 @@
+/* whirl: scenes. A scene is an INI file describing one simulation run of the N-link chain:
+ * the chain, its start, the run (frame, integrator, forces) and what to write.
+ *
+ *   [chain]  dim = 2 | 3 (required), links = N (required), lengths, masses (comma lists of N,
+ *            default equal, each summing to 1), gravity (default 1)
+ *   [start]  one of three starts:
+ *            - omega, mode (both required), perturb (default 0), seed (default 1): the exact
+ *              N-link steady shape of mode k at omega (3D only), rotating rigidly at omega, each
+ *              link direction then turned by exactly perturb radians about a random axis
+ *              perpendicular to it (GSL's MT19937 seeded with seed);
+ *            - theta (required), theta_dot, phi, phi_dot (comma lists of N, default 0): the seed's
+ *              angles [rad] and their rates [1/T] in the run's frame; theta from the downward
+ *              vertical, phi the azimuth from x; in 2D theta is signed in the x-z plane
+ *              (x = l sin theta) and phi, phi_dot are not allowed;
+ *            - hanging = true: straight down, at rest relative to the pivot.
+ *   [run]    frame = inertial | rotating (default inertial; rotating needs dim = 3),
+ *            method (default gauss2; see whirl_integrator_methods), dt > 0, t_end > 0 (both
+ *            required), formulation = default | seed (default: default), omega (rate of the
+ *            rotating frame and of the pivot drive; default the [start] omega, else 0),
+ *            drive_radius, air_drag, air_drag_quadratic, internal_damping (>= 0, default 0),
+ *            seed_sigma, seed_lambda (comma lists of N, 2D only; default none), tol (>= 0,
+ *            default 0: fixed steps of dt; > 0: adaptive with tolerance tol, dt the first step),
+ *            stop_deviation (> 0: stop once the deviation from the start's steady shape exceeds
+ *            it, checked after every step, with tol > 0 at the output times; default none)
+ *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
+ *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
+ *            deviation; t is always the first column; default all but deviation), trace (file
+ *            of every mass's position, path relative to the working directory; default none),
+ *            trace_every (> 0, default every)
+ *
+ * Syntax (inih): "key = value" lines under "[section]" headers, comment lines start with ';' or
+ * '#', " ;" starts an inline comment, an indented line continues the previous key's list.
+ * Keys may appear once. Overrides "section.key=value" replace or add keys after the file.
+ * Every problem is reported as "FILE:LINE: [section] key: problem" (LINE absent for a missing
+ * key, "FILE: --set section.key: problem" for an override). */
+#ifndef WHIRL_SCENE_H
+#define WHIRL_SCENE_H
+
+#include <stddef.h>
+
+#include "whirl/dynamics.h"
+
+/* Every key of a scene; the index of whirl_scene.line. */
+typedef enum {
+    WHIRL_KEY_CHAIN_DIM,
+    WHIRL_KEY_CHAIN_LINKS,
+    WHIRL_KEY_CHAIN_LENGTHS,
+    WHIRL_KEY_CHAIN_MASSES,
+    WHIRL_KEY_CHAIN_GRAVITY,
+    WHIRL_KEY_START_OMEGA,
+    WHIRL_KEY_START_MODE,
+    WHIRL_KEY_START_PERTURB,
+    WHIRL_KEY_START_SEED,
+    WHIRL_KEY_START_THETA,
+    WHIRL_KEY_START_PHI,
+    WHIRL_KEY_START_THETA_DOT,
+    WHIRL_KEY_START_PHI_DOT,
+    WHIRL_KEY_START_HANGING,
+    WHIRL_KEY_RUN_FRAME,
+    WHIRL_KEY_RUN_METHOD,
+    WHIRL_KEY_RUN_DT,
+    WHIRL_KEY_RUN_T_END,
+    WHIRL_KEY_RUN_FORMULATION,
+    WHIRL_KEY_RUN_OMEGA,
+    WHIRL_KEY_RUN_DRIVE_RADIUS,
+    WHIRL_KEY_RUN_AIR_DRAG,
+    WHIRL_KEY_RUN_AIR_DRAG_QUADRATIC,
+    WHIRL_KEY_RUN_INTERNAL_DAMPING,
+    WHIRL_KEY_RUN_SEED_SIGMA,
+    WHIRL_KEY_RUN_SEED_LAMBDA,
+    WHIRL_KEY_RUN_TOL,
+    WHIRL_KEY_RUN_STOP_DEVIATION,
+    WHIRL_KEY_OUTPUT_EVERY,
+    WHIRL_KEY_OUTPUT_COLUMNS,
+    WHIRL_KEY_OUTPUT_TRACE,
+    WHIRL_KEY_OUTPUT_TRACE_EVERY,
+    WHIRL_SCENE_NKEYS
+} whirl_scene_key;
+
+typedef enum {
+    WHIRL_START_STEADY = 1, /* [start] omega, mode: the N-link steady shape */
+    WHIRL_START_ANGLES,     /* [start] theta, ...: the seed's coordinates */
+    WHIRL_START_HANGING     /* [start] hanging = true */
+} whirl_start_kind;
+
+/* The output columns, in the order of their names above. */
+typedef enum {
+    WHIRL_COLUMN_T,
+    WHIRL_COLUMN_TIP_X,
+    WHIRL_COLUMN_TIP_Y,
+    WHIRL_COLUMN_TIP_Z,
+    WHIRL_COLUMN_ENERGY,
+    WHIRL_COLUMN_JACOBI,
+    WHIRL_COLUMN_LZ,
+    WHIRL_COLUMN_CONSTRAINT,
+    WHIRL_COLUMN_DEVIATION,
+    WHIRL_NCOLUMNS
+} whirl_column;
+
+/* The parsed scene with every default filled in. Arrays are owned (whirl_scene_free). */
+typedef struct whirl_scene {
+    char *path; /* the scene file, as given */
+
+    /* [chain] */
+    int dim;          /* 2 (x-z plane) or 3 */
+    size_t links;     /* N >= 1 */
+    double *length;   /* N link lengths [L] > 0; default 1/N each */
+    double *mass;     /* N masses [M] > 0; default 1/N each */
+    double gravity;   /* g > 0; default 1 */
+
+    /* [start] */
+    whirl_start_kind start;
+    double start_omega;    /* STEADY: rate of the steady shape, > 0 */
+    int mode;              /* STEADY: node count, 1..WHIRL_MODE_MAX */
+    double perturb;        /* STEADY: angle each link direction is turned by [rad], >= 0 */
+    unsigned long seed;    /* STEADY: seed of the random turns; default 1 */
+    double *theta;         /* ANGLES: N angles from the downward vertical [rad]; else NULL */
+    double *phi;           /* ANGLES: N azimuths from x [rad] (0 in 2D); else NULL */
+    double *theta_dot;     /* ANGLES: N rates [1/T], default 0; else NULL */
+    double *phi_dot;       /* ANGLES: N rates [1/T], default 0 (0 in 2D); else NULL */
+
+    /* [run] */
+    whirl_frame frame;             /* default inertial */
+    char *method;                  /* integrator name, default "gauss2" (checked when run) */
+    double dt;                     /* step, or the first step when tol > 0 [T], > 0 */
+    double t_end;                  /* end time [T], > 0 */
+    whirl_formulation formulation; /* default WHIRL_FORMULATION_CARTESIAN */
+    double omega;                  /* whirl_model.omega: default start_omega (STEADY) or 0 */
+    double drive_radius;           /* whirl_model fields, >= 0, default 0 */
+    double air_drag;
+    double air_drag_quadratic;
+    double internal_damping;
+    double *seed_sigma;            /* N values or NULL (2D only) */
+    double *seed_lambda;           /* N values or NULL (2D only) */
+    double tol;                    /* 0: fixed steps; > 0: adaptive tolerance */
+    double stop_deviation;         /* > 0: stop threshold; 0: none */
+
+    /* [output] */
+    double every;                  /* output interval [T] > 0; default dt */
+    size_t n_columns;              /* >= 1; columns[0] is always WHIRL_COLUMN_T */
+    whirl_column columns[WHIRL_NCOLUMNS];
+    int want[WHIRL_NCOLUMNS];      /* want[c] = 1 if column c is written */
+    char *trace;                   /* trace file or NULL */
+    double trace_every;            /* [T] > 0; default every */
+
+    /* where each key came from: its line (> 0), -1 for an override, 0 if absent (default) */
+    int line[WHIRL_SCENE_NKEYS];
+} whirl_scene;
+
+/* Parses and validates the scene file path with the overrides "section.key=value" applied
+ * after it (n_overrides may be 0, overrides then NULL). On success fills *scene (free it with
+ * whirl_scene_free). On failure returns GSL_EINVAL (GSL_ENOMEM, GSL_EFAILED for an unreadable
+ * file) with the one-line message "FILE:LINE: [section] key: problem" in whirl_last_error(),
+ * and leaves *scene empty (whirl_scene_free is still safe). */
+int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
+                      whirl_scene *scene);
+
+/* Frees the arrays of the scene and zeroes it; NULL is a no-op. */
+void whirl_scene_free(whirl_scene *scene);
+
+/* Writes the location of key into buf (size bytes): "FILE:LINE: [section] key",
+ * "FILE: --set section.key" or "FILE: [section] key" (not given). Returns buf. */
+const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_key key, char *buf,
+                              size_t size);
+
+/* The name of output column c ("tip_x"), or NULL. */
+const char *whirl_column_name(whirl_column c);
+
+#endif

@@ -1,0 +1,23 @@
+# Time series of a `whirl simulate` CSV: every column against t, one panel each (the
+# constraint and deviation columns on a logarithmic scale).
+# usage: gnuplot -e "csv='run.csv'; out='run.png'" plots/simulate.gp
+if (!exists("csv")) { print "usage: gnuplot -e \"csv='run.csv'; out='run.png'\" plots/simulate.gp"; exit status 1 }
+if (!exists("out")) out = csv . ".png"
+set datafile separator ","
+header = system(sprintf("grep -m 1 -v '^#' '%s'", csv))
+skip = int(system(sprintf("grep -n -m 1 -v '^#' '%s' | cut -d: -f1", csv)))
+stats csv skip skip nooutput
+ncol = STATS_columns
+set terminal png size 800, 180 * (ncol - 1) + 40
+set output out
+set multiplot layout ncol - 1, 1 margins 0.14, 0.97, 0.06, 0.98 spacing 0, 0.02
+unset key
+do for [c = 2:ncol] {
+    name = system(sprintf("echo '%s' | cut -d, -f%d", header, c))
+    set ylabel name noenhanced
+    if (name eq "constraint" || name eq "deviation") { set logscale y } else { unset logscale y }
+    if (c == ncol) { set xlabel "t"; set format x "%g" } else { unset xlabel; set format x "" }
+    plot csv skip skip using 1:c with lines lw 1.5
+}
+unset multiplot
+set output

@@ -1,0 +1,45 @@
+/* whirl critical: the linear critical rates of modes 1..K, where they bifurcate from the
+ * hanging chain (continuum: j_{0,k}/2 or the tip-mass root; --links N: the N-link chain). */
+#include "cli/steady_cli.h"
+
+int cmd_critical(const cli_command *cmd, int argc, char **argv)
+{
+    int modes = 3;
+    const char *out_path = NULL;
+    steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    const cli_option opts[] = {
+        {"--modes", NULL, CLI_INT, &modes, NULL, "K", "modes 1..K (default 3)"},
+        STEADY_CLI_MODEL_OPTIONS(m),
+        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE", "write the CSV to FILE"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
+    if (rc) return rc;
+    if (modes < 1 || modes > WHIRL_MODE_MAX)
+        return cli_error(cmd, "--modes must be between 1 and %d, got %d", WHIRL_MODE_MAX, modes);
+    if (steady_cli_model_setup(cmd, &m)) return 1;
+    if (m.chain && (size_t)modes > m.chain->n) {
+        steady_cli_model_free(&m);
+        return cli_error(cmd, "--modes %d exceeds the %d modes of a chain of %d links", modes,
+                         m.links, m.links);
+    }
+    double omega[WHIRL_MODE_MAX];
+    for (int k = 1; k <= modes; k++)
+        if (steady_cli_critical(cmd, &m, k, &omega[k - 1])) {
+            steady_cli_model_free(&m);
+            return 1;
+        }
+    cli_out out;
+    if (cli_out_open(cmd, &out, out_path)) {
+        steady_cli_model_free(&m);
+        return 1;
+    }
+    double rate = cli_units_rate(&m.units);
+    fprintf(out.fp, "# linear critical rates of the %s, tip mass %.17g; omega in %s\n",
+            m.chain ? "N-link chain" : "continuous chain", m.tip_mass,
+            m.units.gravity == 1 && m.units.length == 1 ? "sqrt(g/L)" : "rad/s");
+    if (m.chain) fprintf(out.fp, "# links=%d\n", m.links);
+    fprintf(out.fp, "mode,omega\n");
+    for (int k = 1; k <= modes; k++) fprintf(out.fp, "%d,%.17g\n", k, omega[k - 1] * rate);
+    steady_cli_model_free(&m);
+    return cli_out_commit(cmd, &out);
+}

@@ -1,0 +1,118 @@
+/* whirl minimize: the mode-1 shape of the N-link chain as the minimum of the co-rotating
+ * potential V = sum_i m_i (g z_i - omega^2 r_i^2 / 2) over the link angles, with NLopt.
+ * Output as `whirl shape --links N` (its two comment lines, then the CSV s,r,z,tension, one row
+ * per node, the pivot first), with a third comment line of the minimiser's statistics.
+ * Only mode 1 is a minimum of V: mode k >= 2 is a saddle with k-1 negative in-plane directions,
+ * so a minimiser started next to it falls to mode 1 (tests/test_optimize.c checks both). Below
+ * the first critical rate the hanging chain is the minimum and there is no shape to report. */
+#include <stdlib.h>
+#include <time.h>
+
+#include <nlopt.h>
+
+#include "cli/steady_cli.h"
+#include "whirl/optimize.h"
+
+#define MINIMIZE_MAX_LINKS 2000 /* the dense Hessian: O(N^2) memory, O(N^3) work */
+
+static double seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+int cmd_minimize(const cli_command *cmd, int argc, char **argv)
+{
+    double omega_user = 0;
+    int omega_given = 0, no_polish = 0, max_evaluations = 0;
+    const char *algorithm = "LD_LBFGS", *output = NULL;
+    steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    const cli_option opts[] = {
+        {"--omega", NULL, CLI_DOUBLE, &omega_user, &omega_given, "W",
+         "rotation rate (sqrt(g/L), or rad/s in physical units; required)"},
+        STEADY_CLI_MODEL_OPTIONS(m),
+        {"--algorithm", NULL, CLI_STRING, &algorithm, NULL, "NAME",
+         "NLopt algorithm (default LD_LBFGS; e.g. LD_TNEWTON, LN_BOBYQA)"},
+        {"--max-evaluations", NULL, CLI_INT, &max_evaluations, NULL, "E",
+         "cap on NLopt's evaluations of V (default 100000)"},
+        {"--no-polish", NULL, CLI_FLAG, &no_polish, NULL, "",
+         "skip the final Newton steps on the analytic Hessian"},
+        {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
+    if (rc) return rc;
+    if (!omega_given) return cli_error(cmd, "--omega is required");
+    if (!m.links_given) return cli_error(cmd, "--links is required (the N-link chain is minimised)");
+    if (steady_cli_check_omega(cmd, "--omega", omega_user)) return 1;
+    if (m.links > MINIMIZE_MAX_LINKS)
+        return cli_error(cmd, "--links must be at most %d, got %d", MINIMIZE_MAX_LINKS, m.links);
+    if (max_evaluations < 0)
+        return cli_error(cmd, "--max-evaluations must be >= 0, got %d", max_evaluations);
+    int alg;
+    if (whirl_minimize_algorithm(algorithm, &alg) != GSL_SUCCESS)
+        return cli_error(cmd, "%s", whirl_last_error());
+    if (steady_cli_model_setup(cmd, &m)) return 1;
+
+    const double rate = cli_units_rate(&m.units), len = m.units.length;
+    const double force = cli_units_force(&m.units), omega = omega_user / rate;
+    const size_t n = m.chain->n;
+    double *theta = malloc(n * sizeof *theta), *r = malloc(3 * (n + 1) * sizeof *r);
+    rc = 1;
+    if (theta == NULL || r == NULL) {
+        cli_error(cmd, "out of memory for %zu links", n);
+        goto done;
+    }
+    double *z = r + (n + 1), *tension = z + (n + 1);
+    whirl_minimize_options mo = whirl_minimize_options_default();
+    mo.algorithm = algorithm;
+    mo.polish = !no_polish;
+    mo.max_evaluations = max_evaluations;
+    whirl_minimize_stats st;
+    const double t0 = seconds_now();
+    const int status = whirl_minimize_shape(m.chain, omega, &mo, NULL, theta, &st);
+    const double elapsed = seconds_now() - t0;
+    if (status == GSL_EDOM) {
+        double omega_1;
+        if (steady_cli_critical(cmd, &m, 1, &omega_1) == 0)
+            cli_error(cmd, "no mode-1 shape at omega=%.17g: up to omega_1=%.17g the hanging "
+                      "chain is the minimum", omega_user, omega_1 * rate);
+        goto done;
+    }
+    if (status != GSL_SUCCESS) {
+        cli_error(cmd, "%s", whirl_last_error());
+        goto done;
+    }
+    whirl_shape_info info;
+    whirl_angles_shape(m.chain, omega, theta, r, z, tension, &info);
+
+    /* as `whirl shape --links N`, then the minimiser's statistics */
+    cli_out out;
+    if (cli_out_open(cmd, &out, output)) goto done;
+    fprintf(out.fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g depth=%.17g "
+            "nodes=", info.omega * rate, info.mode, info.tip_r * len, info.max_r * len,
+            info.top_tension * force, info.depth * len);
+    for (int k = 0; k < info.n_nodes; k++)
+        fprintf(out.fp, "%s%.17g", k ? ";" : "", info.node_s[k] * len);
+    fprintf(out.fp, "\n# N-link chain: pivot then masses 1..N; s: arclength from the pivot, r: "
+            "signed distance from the axis, z: height (pivot 0), tension: of the link above the "
+            "node\n");
+    fprintf(out.fp, "# minimum of V: algorithm=%s evaluations=%d nlopt_result=%s newton_steps=%d "
+            "potential=%.17g gradient_norm=%.3g min_curvature=%.17g seconds=%.3g\n", algorithm,
+            st.evaluations, nlopt_result_to_string((nlopt_result)st.nlopt_result),
+            st.newton_steps, st.potential * force * len, st.gradient_norm * force * len,
+            st.min_curvature * force * len, elapsed);
+    fprintf(out.fp, "s,r,z,tension\n");
+    double s = 0;
+    for (size_t i = 0; i <= n; i++) {
+        if (i > 0) s += m.chain->length[i - 1];
+        fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g\n", s * len, r[i] * len, z[i] * len,
+                tension[i] * force);
+    }
+    rc = cli_out_commit(cmd, &out);
+done:
+    free(theta);
+    free(r);
+    steady_cli_model_free(&m);
+    return rc;
+}

@@ -1,0 +1,77 @@
+/* whirl shape: the steady shape of mode K at rotation rate W, as CSV s,r,z,tension from the
+ * pivot to the free end, after a comment line summarising it. */
+#include <stdlib.h>
+
+#include "cli/steady_cli.h"
+
+int cmd_shape(const cli_command *cmd, int argc, char **argv)
+{
+    double omega_user = 0;
+    int mode = 0, points = 201, omega_given = 0, mode_given = 0;
+    const char *out_path = NULL;
+    steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    const cli_option opts[] = {
+        {"--omega", NULL, CLI_DOUBLE, &omega_user, &omega_given, "W",
+         "rotation rate (sqrt(g/L), or rad/s in physical units)"},
+        {"--mode", NULL, CLI_INT, &mode, &mode_given, "K",
+         "node count: the pivot plus K-1 axis crossings"},
+        STEADY_CLI_MODEL_OPTIONS(m),
+        {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)"},
+        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE", "write the CSV to FILE"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
+    if (rc) return rc;
+    if (!omega_given) return cli_error(cmd, "--omega is required");
+    if (!mode_given) return cli_error(cmd, "--mode is required");
+    if (steady_cli_check_omega(cmd, "--omega", omega_user)) return 1;
+    if (mode < 1 || mode > WHIRL_MODE_MAX)
+        return cli_error(cmd, "--mode must be between 1 and %d, got %d", WHIRL_MODE_MAX, mode);
+    if (points < 2) return cli_error(cmd, "--points must be >= 2, got %d", points);
+    if (steady_cli_model_setup(cmd, &m)) return 1;
+
+    double rate = cli_units_rate(&m.units), len = m.units.length, force = cli_units_force(&m.units);
+    double omega = omega_user / rate, tip_mass = steady_cli_tip_mass(&m);
+    whirl_shape_info info;
+    int status = m.chain ? whirl_nlink_solve(m.chain, omega, mode, 0, &info)
+                         : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
+    if (status != GSL_SUCCESS) {
+        steady_cli_solve_error(cmd, &m, status, mode, omega);
+        steady_cli_model_free(&m);
+        return 1;
+    }
+    size_t n = m.chain ? m.chain->n + 1 : (size_t)points;
+    double *s = malloc(4 * n * sizeof *s), *r = s + n, *z = r + n, *tension = z + n;
+    if (s == NULL) {
+        steady_cli_model_free(&m);
+        return cli_error(cmd, "out of memory for %zu points", n);
+    }
+    if (m.chain) {
+        status = whirl_nlink_positions(m.chain, omega, info.tip_r, r, z, tension);
+        s[0] = 0;
+        for (size_t i = 1; i < n; i++) s[i] = s[i - 1] + m.chain->length[i - 1];
+    } else {
+        status = whirl_continuum_sample(omega, tip_mass, info.tip_r, n, s, r, z, tension);
+    }
+    cli_out out;
+    if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
+    else rc = cli_out_open(cmd, &out, out_path);
+    if (rc == 0) {
+        fprintf(out.fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g "
+                "depth=%.17g nodes=", info.omega * rate, mode, info.tip_r * len,
+                info.max_r * len, info.top_tension * force, info.depth * len);
+        for (int j = 0; j < info.n_nodes; j++)
+            fprintf(out.fp, "%s%.17g", j ? ";" : "", info.node_s[j] * len);
+        fprintf(out.fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
+                "z: height (pivot 0), tension: %s\n",
+                m.chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
+                m.chain ? "of the link above the node" : "at that point");
+        fprintf(out.fp, "s,r,z,tension\n");
+        for (size_t i = 0; i < n; i++)
+            fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g\n", s[i] * len, r[i] * len, z[i] * len,
+                    tension[i] * force);
+        rc = cli_out_commit(cmd, &out);
+    }
+    free(s);
+    steady_cli_model_free(&m);
+    return rc;
+}

@@ -1,0 +1,324 @@
+/* whirl stability: linear stability of the steady shapes (whirl/stability.h) and its check by
+ * perturbed time-domain runs, at one rate (--omega) or over a range (--omega-min/--omega-max/
+ * --steps, the stability map). One CSV row per rate and mode:
+ *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict
+ * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
+ * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
+ * perturbed run (whirl_stability_run). With --linear no run is made: sim_growth and
+ * max_deviation are nan and the verdict is the linear one (eig_growth > 0: unstable, < 0:
+ * converging, 0: stable). Rates where a mode of the map does not exist are left out. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "whirl/stability.h"
+
+typedef struct options {
+    double omega, omega_min, omega_max, periods, perturb, damping, dt;
+    int mode, links, steps, seed, linear;
+    int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
+    cli_int_list modes;
+    const char *method, *output, *trace;
+} options;
+
+typedef struct point {
+    double omega, tip_r;
+    int mode;
+    double eig_growth, sim_growth, max_deviation;
+    whirl_verdict verdict;
+    int done;
+} point;
+
+static int method_known(const char *name)
+{
+    for (const char *const *m = whirl_integrator_methods(); *m != NULL; m++)
+        if (strcmp(*m, name) == 0) return 1;
+    return 0;
+}
+
+static int check_options(const cli_command *cmd, const options *o)
+{
+    const int map = o->min_given || o->max_given || o->steps_given;
+    if (map && o->omega_given)
+        return cli_error(cmd, "give either --omega or --omega-min/--omega-max/--steps");
+    if (!map && !o->omega_given)
+        return cli_error(cmd, "--omega is required (or --omega-min, --omega-max, --steps)");
+    if (map && !(o->min_given && o->max_given && o->steps_given))
+        return cli_error(cmd, "the map needs --omega-min, --omega-max and --steps");
+    if (!map && !o->mode_given) return cli_error(cmd, "--mode is required");
+    if (map && o->mode_given) return cli_error(cmd, "the map takes --modes LIST, not --mode");
+    if (!map && o->modes_given) return cli_error(cmd, "--modes is for the map; use --mode");
+    if (map && o->trace) return cli_error(cmd, "--trace is for a single rate (--omega)");
+    if (o->linear && o->trace) return cli_error(cmd, "--trace needs a run: drop --linear");
+    if (o->links < 2) return cli_error(cmd, "--links must be >= 2, got %d", o->links);
+    if (!(o->periods > 0)) return cli_error(cmd, "--periods must be > 0, got %g", o->periods);
+    if (!(o->perturb > 0 && o->perturb < 1))
+        return cli_error(cmd, "--perturb must be in (0, 1), got %g", o->perturb);
+    if (o->damping < 0) return cli_error(cmd, "--damping must be >= 0, got %g", o->damping);
+    if (o->dt < 0) return cli_error(cmd, "--dt must be > 0 (or 0: default), got %g", o->dt);
+    if (o->seed < 0) return cli_error(cmd, "--seed must be >= 0, got %d", o->seed);
+    if (!method_known(o->method))
+        return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
+    if (map) {
+        if (o->steps < 1) return cli_error(cmd, "--steps must be >= 1, got %d", o->steps);
+        if (!(o->omega_min > 0)) return cli_error(cmd, "--omega-min must be > 0, got %g", o->omega_min);
+        if (!(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
+            return cli_error(cmd, "--omega-max must exceed --omega-min");
+        for (int k = 0; k < o->modes.n; k++)
+            if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
+                return cli_error(cmd, "modes must be in 1..%d, got %d", WHIRL_MODE_MAX,
+                                 o->modes.v[k]);
+    } else {
+        if (!(o->omega > 0)) return cli_error(cmd, "--omega must be > 0, got %g", o->omega);
+        if (o->mode < 1 || o->mode > WHIRL_MODE_MAX)
+            return cli_error(cmd, "--mode must be in 1..%d, got %d", WHIRL_MODE_MAX, o->mode);
+    }
+    return 0;
+}
+
+/* The points of the single form or of the map (rates where the mode exists); *count of them.
+ * Returns NULL after printing an error. */
+static point *make_points(const cli_command *cmd, const options *o, const whirl_chain *c,
+                          size_t *count)
+{
+    if (o->omega_given) {
+        whirl_shape_info info;
+        if (whirl_nlink_solve(c, o->omega, o->mode, 0, &info) != GSL_SUCCESS) {
+            cli_error(cmd, "%s", whirl_last_error());
+            return NULL;
+        }
+        point *p = calloc(1, sizeof *p);
+        if (p == NULL) {
+            cli_error(cmd, "out of memory");
+            return NULL;
+        }
+        p->omega = o->omega;
+        p->mode = o->mode;
+        p->tip_r = info.tip_r;
+        *count = 1;
+        return p;
+    }
+    const size_t steps = (size_t)o->steps, nmodes = (size_t)o->modes.n;
+    double *omega = malloc(steps * sizeof *omega);
+    whirl_shape_info *info = malloc(steps * sizeof *info);
+    int *exists = malloc(steps * sizeof *exists);
+    point *p = calloc(steps * nmodes, sizeof *p);
+    size_t n = 0;
+    if (!omega || !info || !exists || !p) {
+        cli_error(cmd, "out of memory");
+        goto fail;
+    }
+    for (size_t j = 0; j < steps; j++)
+        omega[j] = steps == 1 ? o->omega_min
+                              : o->omega_min + (o->omega_max - o->omega_min) * (double)j /
+                                                   (double)(steps - 1);
+    for (size_t k = 0; k < nmodes; k++) {
+        if (whirl_nlink_branch(c, o->modes.v[k], steps, omega, info, exists) != GSL_SUCCESS) {
+            cli_error(cmd, "mode %d: %s", o->modes.v[k], whirl_last_error());
+            goto fail;
+        }
+        for (size_t j = 0; j < steps; j++)
+            if (exists[j]) {
+                p[n].omega = omega[j];
+                p[n].mode = o->modes.v[k];
+                p[n].tip_r = info[j].tip_r;
+                n++;
+            }
+    }
+    free(omega);
+    free(info);
+    free(exists);
+    *count = n;
+    return p;
+fail:
+    free(omega);
+    free(info);
+    free(exists);
+    free(p);
+    return NULL;
+}
+
+/* Each sample of a run: a row of the trace (if any); stops the run on Ctrl-C. */
+static int observe(double t, double ratio, void *data)
+{
+    FILE *trace = data;
+    if (trace != NULL) fprintf(trace, "%.17g,%.17g\n", t, ratio);
+    return cli_interrupted ? GSL_EFAILED : GSL_SUCCESS;
+}
+
+/* Linear analysis and (unless --linear) the perturbed run of one point; trace: where the samples
+ * of the run go (NULL: nowhere). */
+static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, point *p,
+                   FILE *trace)
+{
+    whirl_model m = {0};
+    m.chain = c;
+    m.dim = 3;
+    m.frame = WHIRL_FRAME_ROTATING;
+    m.omega = p->omega;
+    m.internal_damping = o->damping;
+    int status = whirl_stability_shape(w, &m, p->tip_r, &p->eig_growth);
+    if (status) return status;
+    if (o->linear) {
+        p->sim_growth = p->max_deviation = NAN;
+        p->verdict = p->eig_growth > 0   ? WHIRL_VERDICT_UNSTABLE
+                     : p->eig_growth < 0 ? WHIRL_VERDICT_CONVERGING
+                                         : WHIRL_VERDICT_STABLE;
+        return GSL_SUCCESS;
+    }
+    whirl_stability_run_params rp = whirl_stability_run_defaults();
+    rp.periods = o->periods;
+    rp.perturbation = o->perturb;
+    rp.seed = (unsigned long)o->seed;
+    rp.method = o->method;
+    rp.dt = o->dt;
+    rp.observe = observe;
+    rp.observe_data = trace;
+    whirl_stability_run_result res;
+    if (trace != NULL)
+        fprintf(trace, "# omega %.17g, mode %d, links %d, damping %.17g, eig_growth %.17g\n"
+                       "t,deviation\n", p->omega, p->mode, o->links, o->damping, p->eig_growth);
+    if ((status = whirl_stability_run(&m, p->tip_r, &rp, &res))) return status;
+    if (trace != NULL)
+        fprintf(trace, "# sim_growth %.17g fitted from t = %.17g to %.17g, verdict %s\n",
+                res.sim_growth, res.fit_from, res.fit_to, whirl_verdict_name(res.verdict));
+    p->sim_growth = res.sim_growth;
+    p->max_deviation = res.max_deviation;
+    p->verdict = res.verdict;
+    return GSL_SUCCESS;
+}
+
+int cmd_stability(const cli_command *cmd, int argc, char **argv)
+{
+    options o = {0};
+    o.links = 25;
+    o.periods = 100;
+    o.perturb = 1e-6;
+    o.seed = 1;
+    o.method = "gauss2";
+    o.modes.n = 3;
+    o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
+    const cli_option opts[] = {
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate"},
+        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count)"},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate"},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate"},
+        {"--steps", NULL, CLI_INT, &o.steps, &o.steps_given, "S", "map: number of rates"},
+        {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
+         "map: modes (default 1,2,3)"},
+        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 25)"},
+        {"--periods", NULL, CLI_DOUBLE, &o.periods, NULL, "P",
+         "run length in rotation periods (default 100)"},
+        {"--perturb", NULL, CLI_DOUBLE, &o.perturb, NULL, "EPS",
+         "turn of each link direction [rad] (default 1e-6)"},
+        {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)"},
+        {"--damping", NULL, CLI_DOUBLE, &o.damping, NULL, "D",
+         "internal damping of the joints (default 0)"},
+        {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default gauss2)"},
+        {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
+         "time step (default min(period/200, 1/(4N)))"},
+        {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
+         "eigenvalues only: no run (sim columns nan)"},
+        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
+         "single rate: the run's deviation / initial against t (CSV)"},
+        {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
+    if (rc) return rc;
+    if ((rc = check_options(cmd, &o))) return rc;
+
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
+    if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    size_t count = 0;
+    point *pts = make_points(cmd, &o, c, &count);
+    if (pts == NULL) {
+        whirl_chain_free(c);
+        return 1;
+    }
+    cli_out out, trace = {0};
+    if (cli_out_open(cmd, &out, o.output)) {
+        free(pts);
+        whirl_chain_free(c);
+        return 1;
+    }
+    if (o.trace && cli_out_open(cmd, &trace, o.trace)) {
+        cli_out_abort(&out);
+        free(pts);
+        whirl_chain_free(c);
+        return 1;
+    }
+    cli_catch_interrupts();
+    int failed = 0;
+    char message[512] = "";
+    size_t finished = 0;
+#pragma omp parallel
+    {
+        whirl_stability *w = whirl_stability_alloc((size_t)o.links);
+        if (w == NULL) {
+#pragma omp critical(stability_error)
+            if (!failed) {
+                snprintf(message, sizeof message, "%s", whirl_last_error());
+#pragma omp atomic write
+                failed = 1;
+            }
+        }
+#pragma omp for schedule(dynamic, 1)
+        for (size_t i = 0; i < count; i++) {
+            int stop;
+#pragma omp atomic read
+            stop = failed;
+            if (stop || w == NULL || cli_interrupted) continue;
+            if (analyse(&o, c, w, &pts[i], o.trace ? trace.fp : NULL) != GSL_SUCCESS) {
+                if (cli_interrupted) continue;
+#pragma omp critical(stability_error)
+                if (!failed) {
+                    snprintf(message, sizeof message, "omega %g, mode %d: %s", pts[i].omega,
+                             pts[i].mode, whirl_last_error());
+#pragma omp atomic write
+                    failed = 1;
+                }
+                continue;
+            }
+            pts[i].done = 1;
+#pragma omp critical(stability_progress)
+            cli_progress(cmd, "points", (double)++finished / (double)count, 0);
+        }
+        whirl_stability_free(w);
+    }
+    cli_progress(cmd, "points", 1, 1);
+    if (failed) {
+        cli_out_abort(&out);
+        cli_out_abort(&trace);
+        free(pts);
+        whirl_chain_free(c);
+        return cli_error(cmd, "%s", message);
+    }
+    fprintf(out.fp, "# whirl stability: %d links, damping %.17g, %s\n", o.links, o.damping,
+            o.linear ? "linear analysis only" : "linear analysis and perturbed runs");
+    if (!o.linear)
+        fprintf(out.fp, "# runs: %.17g periods, perturbation %.17g, seed %d, method %s, dt %.17g "
+                        "(0: default)\n", o.periods, o.perturb, o.seed, o.method, o.dt);
+    if (o.linear)
+        fprintf(out.fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
+                        "< 0, stable where 0\n");
+    else
+        fprintf(out.fp, "# verdict: unstable once the deviation reaches 100 times the initial "
+                        "one, converging (damping > 0) once it falls to 1/100, else stable\n");
+    fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict\n");
+    size_t written = 0;
+    for (size_t i = 0; i < count && pts[i].done; i++, written++)
+        fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s\n", pts[i].omega, pts[i].mode, o.links,
+                pts[i].eig_growth, pts[i].sim_growth, pts[i].max_deviation,
+                whirl_verdict_name(pts[i].verdict));
+    free(pts);
+    whirl_chain_free(c);
+    if (cli_out_commit(cmd, &out)) {
+        cli_out_abort(&trace);
+        return 1;
+    }
+    if (o.trace && cli_out_commit(cmd, &trace)) return 1;
+    if (written < count)
+        return cli_error(cmd, "interrupted after %zu of %zu points", written, count);
+    return 0;
+}

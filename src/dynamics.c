@@ -1,0 +1,376 @@
+/* The dynamics module's common part: the workspace, the pivot drive, the applied forces shared by
+ * both formulations, frame conversions and the diagnostics.
+ *
+ * Geometry: link i (1-based) has the vector d_i = x_i - x_{i-1}, |d_i| = l_i, x_0 = p(t) the pivot:
+ *   inertial frame, 3D: p = eps (cos wt, sin wt, 0); 2D: p = (eps cos wt, 0, 0);
+ *   co-rotating frame:  p = (eps, 0, 0) (the same circle seen from the frame turning with it).
+ * Applied forces on mass i (all in the model's frame; v_i^in = v_i + [rotating] w z x x_i is the
+ * inertial velocity expressed in that frame's basis):
+ *   air drag        F_i = -c l_i v_i^in - c2 l_i |v_i^in| v_i^in;
+ *   internal damping F = -dR/dv with R = D/2 sum_i |w_i - w_{i-1}|^2,
+ *                    w_i = (d_i' - [inertial] w z x d_i) / l_i, w_0 = 0: with J_i = D (w_i -
+ *                    w_{i-1}) (J_{N+1} = 0) and G_i = (J_i - J_{i+1}) / l_i (G_{N+1} = 0), the
+ *                    force on mass k is -(G_k - G_{k+1}), since d_k' = v_k - v_{k-1};
+ *   seed forcing (2D) the generalized force f_d = sigma_d - lambda_d thetadot_d on theta_d is the
+ *                    force pair +-(f_d / l_d) e_d on masses d and d-1, e_d = dd_d/dtheta_d / l_d =
+ *                    (-d_z, 0, d_x) / l_d (virtual work f_d dtheta_d), thetadot_d = e_d . d_d' / l_d.
+ * Gravity (0, 0, -g) and, in the co-rotating frame, the centrifugal w^2 (x, y, 0) and Coriolis
+ * -2 w z x v accelerations are added by each formulation (uniform fields: the Cartesian one uses
+ * their differences between neighbours exactly).
+ * Diagnostics: E = sum m_i (|v_i^in|^2 / 2 + g z_i), L_z = sum m_i (x_i v^in_iy - y_i v^in_ix),
+ * Jacobi = E - w L_z (conserved without dissipation in both frames, also with the drive). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dyn_internal.h"
+#include "error.h"
+
+int whirl_dyn_all_finite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+static int model_check(const whirl_model *m)
+{
+    if (m == NULL || m->chain == NULL) return whirl_fail(GSL_EINVAL, "no model or no chain");
+    const whirl_chain *c = m->chain;
+    if (c->n == 0) return whirl_fail(GSL_EINVAL, "the chain has no links");
+    for (size_t i = 0; i < c->n; i++)
+        if (!(isfinite(c->length[i]) && c->length[i] > 0 && isfinite(c->mass[i]) &&
+              c->mass[i] > 0))
+            return whirl_fail(GSL_EINVAL, "link %zu: length and mass must be positive", i + 1);
+    if (!(isfinite(c->gravity) && c->gravity > 0))
+        return whirl_fail(GSL_EINVAL, "gravity must be positive and finite, got %g", c->gravity);
+    if (m->dim != 2 && m->dim != 3)
+        return whirl_fail(GSL_EINVAL, "dim must be 2 or 3, got %d", m->dim);
+    if (m->frame != WHIRL_FRAME_INERTIAL && m->frame != WHIRL_FRAME_ROTATING)
+        return whirl_fail(GSL_EINVAL, "unknown frame %d", (int)m->frame);
+    if (m->frame == WHIRL_FRAME_ROTATING && m->dim != 3)
+        return whirl_fail(GSL_EINVAL, "the co-rotating frame needs dim = 3");
+    if (!isfinite(m->omega)) return whirl_fail(GSL_EINVAL, "omega must be finite");
+    const struct {
+        const char *name;
+        double value;
+    } nonneg[] = {{"drive radius", m->drive_radius},
+                  {"air drag", m->air_drag},
+                  {"quadratic air drag", m->air_drag_quadratic},
+                  {"internal damping", m->internal_damping}};
+    for (size_t k = 0; k < sizeof nonneg / sizeof nonneg[0]; k++)
+        if (!(isfinite(nonneg[k].value) && nonneg[k].value >= 0))
+            return whirl_fail(GSL_EINVAL, "%s must be >= 0 and finite, got %g", nonneg[k].name,
+                              nonneg[k].value);
+    if ((m->seed_sigma != NULL || m->seed_lambda != NULL) && m->dim != 2)
+        return whirl_fail(GSL_EINVAL, "the seed's forcing sigma, lambda needs dim = 2");
+    for (size_t i = 0; i < c->n; i++)
+        if ((m->seed_sigma != NULL && !isfinite(m->seed_sigma[i])) ||
+            (m->seed_lambda != NULL && !isfinite(m->seed_lambda[i])))
+            return whirl_fail(GSL_EINVAL, "seed forcing of link %zu is not finite", i + 1);
+    return GSL_SUCCESS;
+}
+
+whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f)
+{
+    if (model_check(model) != GSL_SUCCESS) return NULL;
+    if (f != WHIRL_FORMULATION_CARTESIAN && f != WHIRL_FORMULATION_SEED) {
+        whirl_fail(GSL_EINVAL, "unknown formulation %d", (int)f);
+        return NULL;
+    }
+    whirl_dyn *d = calloc(1, sizeof *d);
+    if (d == NULL) goto nomem;
+    d->model = *model;
+    d->formulation = f;
+    d->ops = f == WHIRL_FORMULATION_SEED ? &whirl_dyn_seed_ops : &whirl_dyn_cartesian_ops;
+    d->n = model->chain->n;
+    d->dim = model->dim;
+    size_t n = d->n;
+    d->mass_below = malloc(n * sizeof *d->mass_below);
+    d->inv_mass = malloc(n * sizeof *d->inv_mass);
+    d->x = malloc(3 * n * sizeof *d->x);
+    d->v = malloc(3 * n * sizeof *d->v);
+    d->force = malloc(3 * n * sizeof *d->force);
+    d->links = malloc(3 * n * sizeof *d->links);
+    d->link_rates = malloc(3 * n * sizeof *d->link_rates);
+    if (!d->mass_below || !d->inv_mass || !d->x || !d->v || !d->force || !d->links || !d->link_rates) goto nomem;
+    double below = 0;
+    for (size_t i = n; i-- > 0;) {
+        below += model->chain->mass[i];
+        d->mass_below[i] = below;
+        d->inv_mass[i] = 1.0 / model->chain->mass[i];
+    }
+    int status = d->ops->alloc(d);
+    if (status != GSL_SUCCESS) goto nomem;
+    return d;
+nomem:
+    whirl_dyn_free(d);
+    whirl_fail(GSL_ENOMEM, "out of memory for the dynamics of %zu links", model->chain->n);
+    return NULL;
+}
+
+void whirl_dyn_free(whirl_dyn *d)
+{
+    if (d == NULL) return;
+    free(d->mass_below);
+    free(d->inv_mass);
+    free(d->x);
+    free(d->v);
+    free(d->force);
+    free(d->links);
+    free(d->link_rates);
+    free(d->tri_diag);
+    free(d->tri_off);
+    free(d->tri_rhs);
+    free(d->multiplier);
+    free(d->link_acc);
+    free(d->matrix);
+    free(d->gen_force);
+    free(d->quad_acc);
+    free(d);
+}
+
+const whirl_model *whirl_dyn_model(const whirl_dyn *d) { return &d->model; }
+whirl_formulation whirl_dyn_formulation(const whirl_dyn *d) { return d->formulation; }
+size_t whirl_dyn_size(const whirl_dyn *d) { return d->size; }
+
+void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa)
+{
+    const double eps = d->model.drive_radius, w = d->model.omega;
+    for (int k = 0; k < 3; k++) p[k] = pv[k] = pa[k] = 0;
+    if (d->model.frame == WHIRL_FRAME_ROTATING) {
+        p[0] = eps;
+        return;
+    }
+    const double c = cos(w * t), s = sin(w * t);
+    p[0] = eps * c;
+    pv[0] = -eps * w * s;
+    if (d->dim == 3) {
+        p[1] = eps * s;
+        pv[1] = eps * w * c;
+    }
+    for (int k = 0; k < 3; k++) pa[k] = -w * w * p[k];
+}
+
+void whirl_dyn_masses(const whirl_dyn *d, double t, const double *y, double *x, double *v)
+{
+    double p[3], pv[3], pa[3], dv[3], dd[3];
+    whirl_dyn_pivot(d, t, p, pv, pa);
+    for (size_t i = 0; i < d->n; i++) {
+        d->ops->link(d, y, i, dv, dd);
+        for (int k = 0; k < 3; k++) {
+            p[k] += dv[k];
+            pv[k] += dd[k];
+            x[3 * i + k] = p[k];
+            v[3 * i + k] = pv[k];
+        }
+    }
+}
+
+void whirl_dyn_applied_forces(const whirl_dyn *d, double t, const double *x, const double *v,
+                              const double *links, const double *link_rates,
+                              int with_seed_forcing, double *force)
+{
+    const whirl_model *m = &d->model;
+    const double *len = m->chain->length;
+    const double w = m->omega;
+    const int rotating = m->frame == WHIRL_FRAME_ROTATING;
+    const size_t n = d->n;
+    memset(force, 0, 3 * n * sizeof *force);
+    if (m->internal_damping > 0) {
+        /* three sweeps in place: force_i <- J_i, then G_i, then -(G_i - G_{i+1}) */
+        const double D = m->internal_damping;
+        double w_prev[3] = {0, 0, 0};
+        for (size_t i = 0; i < n; i++) {
+            const double *dv = links + 3 * i, *dd = link_rates + 3 * i;
+            double w_cur[3] = {dd[0], dd[1], dd[2]};
+            if (!rotating) {
+                w_cur[0] += w * dv[1];
+                w_cur[1] -= w * dv[0];
+            }
+            for (int k = 0; k < 3; k++) {
+                w_cur[k] /= len[i];
+                force[3 * i + k] = D * (w_cur[k] - w_prev[k]);
+                w_prev[k] = w_cur[k];
+            }
+        }
+        for (size_t i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++)
+                force[3 * i + k] =
+                    (force[3 * i + k] - (i + 1 < n ? force[3 * (i + 1) + k] : 0.0)) / len[i];
+        for (size_t i = 0; i < n; i++)
+            for (int k = 0; k < 3; k++)
+                force[3 * i + k] = -(force[3 * i + k] - (i + 1 < n ? force[3 * (i + 1) + k] : 0.0));
+    }
+    if (m->air_drag > 0 || m->air_drag_quadratic > 0) {
+        for (size_t i = 0; i < n; i++) {
+            const double *xi = x + 3 * i, *vi = v + 3 * i;
+            double vin[3] = {vi[0], vi[1], vi[2]};
+            if (rotating) {
+                vin[0] -= w * xi[1];
+                vin[1] += w * xi[0];
+            }
+            const double speed = sqrt(vin[0] * vin[0] + vin[1] * vin[1] + vin[2] * vin[2]);
+            const double coef = len[i] * (m->air_drag + m->air_drag_quadratic * speed);
+            for (int k = 0; k < 3; k++) force[3 * i + k] -= coef * vin[k];
+        }
+    }
+    if (with_seed_forcing && (m->seed_sigma != NULL || m->seed_lambda != NULL)) {
+        for (size_t i = 0; i < n; i++) {
+            const double *dv = links + 3 * i, *dd = link_rates + 3 * i;
+            const double e[3] = {-dv[2] / len[i], 0, dv[0] / len[i]};
+            const double rate = (e[0] * dd[0] + e[2] * dd[2]) / len[i];
+            double f = 0;
+            if (m->seed_sigma != NULL) f += m->seed_sigma[i];
+            if (m->seed_lambda != NULL) f -= m->seed_lambda[i] * rate;
+            for (int k = 0; k < 3; k++) {
+                force[3 * i + k] += f / len[i] * e[k];
+                if (i > 0) force[3 * (i - 1) + k] -= f / len[i] * e[k];
+            }
+        }
+    }
+    if (d->dim == 2)
+        for (size_t i = 0; i < n; i++) force[3 * i + 1] = 0;
+    (void)t;
+}
+
+void whirl_dyn_prepare_forces(whirl_dyn *d, double t, const double *y, int with_seed_forcing)
+{
+    double p[3], pv[3], pa[3];
+    whirl_dyn_pivot(d, t, p, pv, pa);
+    for (size_t i = 0; i < d->n; i++) {
+        double *dv = d->links + 3 * i, *dd = d->link_rates + 3 * i;
+        d->ops->link(d, y, i, dv, dd);
+        for (int k = 0; k < 3; k++) {
+            d->x[3 * i + k] = p[k] += dv[k];
+            d->v[3 * i + k] = pv[k] += dd[k];
+        }
+    }
+    const whirl_model *m = &d->model;
+    if (m->air_drag > 0 || m->air_drag_quadratic > 0 || m->internal_damping > 0 ||
+        (with_seed_forcing && (m->seed_sigma != NULL || m->seed_lambda != NULL)))
+        whirl_dyn_applied_forces(d, t, d->x, d->v, d->links, d->link_rates, with_seed_forcing,
+                                 d->force);
+    else
+        memset(d->force, 0, 3 * d->n * sizeof *d->force);
+}
+
+int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn)
+{
+    whirl_dyn *d = dyn;
+    int status = d->ops->rhs(d, t, y, dydt);
+    if (status != GSL_SUCCESS) return status;
+    if (!whirl_dyn_all_finite(dydt, d->size))
+        return whirl_fail(GSL_EBADFUNC, "the right-hand side is not finite at t = %.17g", t);
+    return GSL_SUCCESS;
+}
+
+int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v, double *y)
+{
+    const double *len = d->model.chain->length;
+    double p[3], pv[3], pa[3];
+    whirl_dyn_pivot(d, t, p, pv, pa);
+    if (!whirl_dyn_all_finite(x, 3 * d->n) || !whirl_dyn_all_finite(v, 3 * d->n))
+        return whirl_fail(GSL_EINVAL, "positions and velocities must be finite");
+    for (size_t i = 0; i < d->n; i++) {
+        double *dv = d->links + 3 * i, *dd = d->link_rates + 3 * i;
+        double norm2 = 0, rate2 = 0, along = 0;
+        for (int k = 0; k < 3; k++) {
+            dv[k] = x[3 * i + k] - (i > 0 ? x[3 * (i - 1) + k] : p[k]);
+            dd[k] = v[3 * i + k] - (i > 0 ? v[3 * (i - 1) + k] : pv[k]);
+            norm2 += dv[k] * dv[k];
+            rate2 += dd[k] * dd[k];
+            along += dv[k] * dd[k];
+        }
+        if (d->dim == 2 && (x[3 * i + 1] != 0 || v[3 * i + 1] != 0))
+            return whirl_fail(GSL_EINVAL, "mass %zu: a planar state needs y = 0", i + 1);
+        const double norm = sqrt(norm2);
+        if (!(fabs(norm - len[i]) <= 1e-9 * len[i]))
+            return whirl_fail(GSL_EINVAL,
+                              "link %zu has length %.17g, not %.17g (relative tolerance 1e-9)",
+                              i + 1, norm, len[i]);
+        if (!(fabs(along) <= 1e-9 * norm * sqrt(rate2)))
+            return whirl_fail(GSL_EINVAL,
+                              "link %zu: the velocities stretch the link (relative rate %.3g)",
+                              i + 1, along / (norm * sqrt(rate2)));
+    }
+    return d->ops->from_links(d, d->links, d->link_rates, y);
+}
+
+int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
+                        double *x, double *v)
+{
+    if (frame != WHIRL_FRAME_INERTIAL && frame != WHIRL_FRAME_ROTATING)
+        return whirl_fail(GSL_EINVAL, "unknown frame %d", (int)frame);
+    if (frame == WHIRL_FRAME_ROTATING && d->dim != 3)
+        return whirl_fail(GSL_EINVAL, "a planar model has no co-rotating frame");
+    whirl_dyn_masses(d, t, y, x, v);
+    if (frame == d->model.frame) return GSL_SUCCESS;
+    /* rotating -> inertial: x' = R x, v' = R (v + w z x x); inertial -> rotating: the inverse */
+    const double w = d->model.omega, c = cos(w * t), s = sin(w * t);
+    for (size_t i = 0; i < d->n; i++) {
+        double *xi = x + 3 * i, *vi = v + 3 * i;
+        if (frame == WHIRL_FRAME_INERTIAL) {
+            const double vx = vi[0] - w * xi[1], vy = vi[1] + w * xi[0];
+            const double xx = c * xi[0] - s * xi[1], xy = s * xi[0] + c * xi[1];
+            vi[0] = c * vx - s * vy;
+            vi[1] = s * vx + c * vy;
+            xi[0] = xx;
+            xi[1] = xy;
+        } else {
+            const double xx = c * xi[0] + s * xi[1], xy = -s * xi[0] + c * xi[1];
+            const double vx = c * vi[0] + s * vi[1], vy = -s * vi[0] + c * vi[1];
+            vi[0] = vx + w * xy;
+            vi[1] = vy - w * xx;
+            xi[0] = xx;
+            xi[1] = xy;
+        }
+    }
+    return GSL_SUCCESS;
+}
+
+int whirl_dyn_project(whirl_dyn *d, double t, double *y)
+{
+    (void)t;
+    return d->ops->project(d, y);
+}
+
+int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension)
+{
+    return d->ops->tensions(d, t, y, tension);
+}
+
+int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y, whirl_dyn_diagnostics *out)
+{
+    const whirl_model *m = &d->model;
+    const double *len = m->chain->length, *mass = m->chain->mass, g = m->chain->gravity;
+    const double w = m->omega;
+    const int rotating = m->frame == WHIRL_FRAME_ROTATING;
+    if (!whirl_dyn_all_finite(y, d->size))
+        return whirl_fail(GSL_ERANGE, "the state is not finite at t = %.17g", t);
+    double p[3], pv[3], pa[3], dv[3], dd[3];
+    whirl_dyn_pivot(d, t, p, pv, pa);
+    double kinetic = 0, potential = 0, lz = 0, worst = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        d->ops->link(d, y, i, dv, dd);
+        for (int k = 0; k < 3; k++) {
+            p[k] += dv[k];
+            pv[k] += dd[k];
+        }
+        double vin[3] = {pv[0], pv[1], pv[2]};
+        if (rotating) {
+            vin[0] -= w * p[1];
+            vin[1] += w * p[0];
+        }
+        kinetic += 0.5 * mass[i] * (vin[0] * vin[0] + vin[1] * vin[1] + vin[2] * vin[2]);
+        potential += mass[i] * g * p[2];
+        lz += mass[i] * (p[0] * vin[1] - p[1] * vin[0]);
+        const double err = fabs(sqrt(dv[0] * dv[0] + dv[1] * dv[1] + dv[2] * dv[2]) - len[i]);
+        worst = fmax(worst, err);
+    }
+    out->energy = kinetic + potential;
+    out->lz = lz;
+    out->jacobi = out->energy - w * lz;
+    out->constraint = worst;
+    return GSL_SUCCESS;
+}

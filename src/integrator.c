@@ -1,0 +1,191 @@
+/* The integrators' common driver and the classical Runge-Kutta method.
+ *
+ * whirl_integrator_advance takes fixed steps t_k = t0 + k h (the last one ending exactly at t1)
+ * or, with tol > 0, the adaptive steps of a GSL method, and projects the state onto the
+ * constraints (whirl_dyn_project) after every step.
+ * rk4: the classical 4-stage, order-4 explicit method (Kutta 1901; Hairer, Norsett, Wanner,
+ * "Solving ODEs I", table II.1.2): k1 = f(t, y), k2 = f(t + h/2, y + h/2 k1),
+ * k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3), y += h/6 (k1 + 2 k2 + 2 k3 + k4). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dyn_internal.h"
+#include "error.h"
+#include "integrator_internal.h"
+
+int whirl_integrator_rhs(whirl_integrator *it, double t, const double *y, double *dydt)
+{
+    it->stats.rhs_evals++;
+    return whirl_dyn_rhs(t, y, dydt, it->dyn);
+}
+
+/* ---- rk4 ---- */
+
+typedef struct rk4_state {
+    double *k, *ytmp, *acc; /* k: one stage, ytmp: stage argument, acc: sum of b_i k_i */
+} rk4_state;
+
+static void rk4_free(void *state)
+{
+    rk4_state *s = state;
+    if (s == NULL) return;
+    free(s->k);
+    free(s);
+}
+
+static int rk4_alloc(whirl_integrator *it)
+{
+    rk4_state *s = calloc(1, sizeof *s);
+    if (s == NULL) return GSL_ENOMEM;
+    it->state = s;
+    s->k = malloc(3 * it->size * sizeof *s->k);
+    if (s->k == NULL) return GSL_ENOMEM;
+    s->ytmp = s->k + it->size;
+    s->acc = s->ytmp + it->size;
+    return GSL_SUCCESS;
+}
+
+static int rk4_step(whirl_integrator *it, double t, double h, double *y)
+{
+    rk4_state *s = it->state;
+    const size_t n = it->size;
+    static const double c[4] = {0, 0.5, 0.5, 1}, b[4] = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+    memset(s->acc, 0, n * sizeof *s->acc);
+    memcpy(s->ytmp, y, n * sizeof *y);
+    for (int stage = 0; stage < 4; stage++) {
+        int status = whirl_integrator_rhs(it, t + c[stage] * h, s->ytmp, s->k);
+        if (status != GSL_SUCCESS) return status;
+        for (size_t i = 0; i < n; i++) s->acc[i] += b[stage] * s->k[i];
+        if (stage < 3)
+            for (size_t i = 0; i < n; i++) s->ytmp[i] = y[i] + c[stage + 1] * h * s->k[i];
+    }
+    for (size_t i = 0; i < n; i++) y[i] += h * s->acc[i];
+    return GSL_SUCCESS;
+}
+
+static const integrator_method whirl_integrator_rk4 = {
+    .name = "rk4", .adaptive = 0, .alloc = rk4_alloc, .free = rk4_free, .step = rk4_step};
+
+/* ---- registry ---- */
+
+static const integrator_method *const methods[] = {
+    &whirl_integrator_gauss2,    &whirl_integrator_gauss3,     &whirl_integrator_rk4,
+    &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp, &whirl_integrator_gsl_msbdf,
+    &whirl_integrator_gsl_rkf45, &whirl_integrator_gsl_rk4,
+};
+#define N_METHODS (sizeof methods / sizeof methods[0])
+
+const char *const *whirl_integrator_methods(void)
+{
+    static const char *const names[] = {"gauss2",     "gauss3",    "rk4",       "gsl-rk8pd",
+                                        "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4",
+                                        NULL};
+    return names;
+}
+
+whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
+{
+    const integrator_method *m = NULL;
+    for (size_t k = 0; k < N_METHODS && method != NULL; k++)
+        if (strcmp(methods[k]->name, method) == 0) m = methods[k];
+    if (m == NULL) {
+        whirl_fail(GSL_EINVAL,
+                   "unknown integrator '%s' (known: gauss2 gauss3 rk4 gsl-rk8pd gsl-rk4imp "
+                   "gsl-msbdf gsl-rkf45 gsl-rk4)",
+                   method != NULL ? method : "(null)");
+        return NULL;
+    }
+    if (d == NULL) {
+        whirl_fail(GSL_EINVAL, "no dynamics for the integrator");
+        return NULL;
+    }
+    whirl_integrator *it = calloc(1, sizeof *it);
+    if (it == NULL) goto nomem;
+    it->method = m;
+    it->dyn = d;
+    it->size = whirl_dyn_size(d);
+    it->last_y = malloc(it->size * sizeof *it->last_y);
+    if (it->last_y == NULL) goto nomem;
+    int status = m->alloc(it);
+    if (status == GSL_ENOMEM) goto nomem;
+    if (status != GSL_SUCCESS) {
+        whirl_integrator_free(it);
+        return NULL; /* message set by the method */
+    }
+    return it;
+nomem:
+    whirl_integrator_free(it);
+    whirl_fail(GSL_ENOMEM, "out of memory for the integrator %s", method);
+    return NULL;
+}
+
+void whirl_integrator_free(whirl_integrator *it)
+{
+    if (it == NULL) return;
+    if (it->method != NULL && it->method->free != NULL) it->method->free(it->state);
+    free(it->last_y);
+    free(it);
+}
+
+whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it)
+{
+    return it->stats;
+}
+
+static int project(whirl_integrator *it, double t, double *y)
+{
+    int status = it->method->project != NULL ? it->method->project(it, t, y)
+                                              : whirl_dyn_project(it->dyn, t, y);
+    if (status != GSL_SUCCESS) return status;
+    if (!whirl_dyn_all_finite(y, it->size))
+        return whirl_fail(GSL_EBADFUNC, "the state is not finite at t = %.17g", t);
+    return GSL_SUCCESS;
+}
+
+int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1, double h,
+                             double tol)
+{
+    if (!(isfinite(*t) && isfinite(t1) && t1 >= *t))
+        return whirl_fail(GSL_EINVAL, "cannot advance from t = %g to t1 = %g", *t, t1);
+    if (!(isfinite(h) && h > 0)) return whirl_fail(GSL_EINVAL, "step h must be > 0, got %g", h);
+    if (!(isfinite(tol) && tol >= 0))
+        return whirl_fail(GSL_EINVAL, "tolerance must be >= 0, got %g", tol);
+    if (tol > 0 && !it->method->adaptive)
+        return whirl_fail(GSL_EINVAL, "the integrator %s has no adaptive step control",
+                          it->method->name);
+    /* history (stage extrapolation, compensation, multistep memory) is valid only for the state
+     * this integrator returned last */
+    if (!it->has_last || it->last_t != *t ||
+        memcmp(it->last_y, y, it->size * sizeof *y) != 0) {
+        if (it->method->restart != NULL) it->method->restart(it);
+    }
+    int status = GSL_SUCCESS;
+    const double t0 = *t;
+    if (tol == 0) {
+        const double span = t1 - t0;
+        const double count = ceil(span / h * (1 - 1e-12));
+        if (count > 1e15) return whirl_fail(GSL_EINVAL, "too many steps (%g)", count);
+        const unsigned long steps = (unsigned long)count;
+        for (unsigned long k = 0; k < steps; k++) {
+            const double ta = *t, tb = k + 1 == steps ? t1 : t0 + (double)(k + 1) * h;
+            status = it->method->step(it, ta, tb - ta, y);
+            if (status == GSL_SUCCESS) status = project(it, tb, y);
+            if (status != GSL_SUCCESS) break;
+            *t = tb;
+            it->stats.steps++;
+        }
+    } else {
+        double hh = h;
+        while (*t < t1) {
+            status = it->method->adaptive_step(it, t, t1, &hh, tol, y);
+            if (status == GSL_SUCCESS) status = project(it, *t, y);
+            if (status != GSL_SUCCESS) break;
+            it->stats.steps++;
+        }
+    }
+    memcpy(it->last_y, y, it->size * sizeof *y);
+    it->last_t = *t;
+    it->has_last = 1;
+    return status;
+}

@@ -1,0 +1,45 @@
+/* Internal: the integrator object and the interface each method family implements
+ * (integrator.c: the driver and rk4; integrator_gauss.c; integrator_gsl.c). */
+#ifndef WHIRL_INTEGRATOR_INTERNAL_H
+#define WHIRL_INTEGRATOR_INTERNAL_H
+
+#include <stddef.h>
+
+#include "whirl/dynamics.h"
+
+typedef struct integrator_method {
+    const char *name;
+    int adaptive; /* 1 if advance with tol > 0 is allowed */
+    const void *params; /* method-specific constant data (tableau, GSL step type) */
+    int (*alloc)(struct whirl_integrator *it);
+    void (*free)(void *state);
+    /* One step of size h from (t, y), y in place (unprojected). On failure y is unchanged. */
+    int (*step)(struct whirl_integrator *it, double t, double h, double *y);
+    /* One adaptive step towards t1 (tolerance tol): advances *t, may change *h. */
+    int (*adaptive_step)(struct whirl_integrator *it, double *t, double t1, double *h, double tol,
+                         double *y);
+    /* The state y was changed outside the integrator (forget history). May be NULL. */
+    void (*restart)(struct whirl_integrator *it);
+    /* Projection after a step, for methods that carry compensation terms. NULL: plain projection. */
+    int (*project)(struct whirl_integrator *it, double t, double *y);
+} integrator_method;
+
+struct whirl_integrator {
+    const integrator_method *method;
+    whirl_dyn *dyn;
+    size_t size;
+    whirl_integrator_stats stats;
+    void *state;     /* the method's workspace */
+    double *last_y;  /* the state the previous advance returned (history is valid for it) */
+    double last_t;
+    int has_last;
+};
+
+extern const integrator_method whirl_integrator_gauss2, whirl_integrator_gauss3;
+extern const integrator_method whirl_integrator_gsl_rk8pd, whirl_integrator_gsl_rk4imp,
+    whirl_integrator_gsl_msbdf, whirl_integrator_gsl_rkf45, whirl_integrator_gsl_rk4;
+
+/* Right-hand side with the evaluation counted in it->stats. */
+int whirl_integrator_rhs(struct whirl_integrator *it, double t, const double *y, double *dydt);
+
+#endif

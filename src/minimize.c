@@ -1,0 +1,295 @@
+/* The stable steady shape of the planar N-link chain as the minimum of the co-rotating potential.
+ *
+ * Angles theta_j of link j from the downward vertical; l_j, m_j link length and mass below it:
+ *     x_i = sum_{j<=i} l_j sin(theta_j),   z_i = -sum_{j<=i} l_j cos(theta_j),
+ *     V   = sum_i m_i (g z_i - omega^2 x_i^2 / 2).
+ * With the suffix sums M_j = sum_{i>=j} m_i and X_j = sum_{i>=j} m_i x_i (one backward pass):
+ *     dV/dtheta_j = l_j (g M_j sin(theta_j) - omega^2 X_j cos(theta_j)),
+ *     d2V/dtheta_j dtheta_k = -omega^2 l_j l_k cos(theta_j) cos(theta_k) M_max(j,k)   (j != k),
+ *     d2V/dtheta_j^2 = l_j (g M_j cos(theta_j) + omega^2 X_j sin(theta_j))
+ *                      - omega^2 l_j^2 M_j cos^2(theta_j).
+ * The force the masses below link j exert is F_j = (omega^2 X_j, -g M_j); at equilibrium it
+ * points along the link, dV/dtheta_j = 0 says exactly that, and the tension is its projection
+ *     T_j = g M_j cos(theta_j) + omega^2 X_j sin(theta_j)
+ * (the recursion of the shooting solver, physics notes section 4).
+ * theta = 0 (hanging) is always stationary, with Hessian K - omega^2 M (K = diag(g l_j M_j),
+ * M_jk = l_j l_k M_max(j,k)): positive definite exactly when omega is below the chain's first
+ * critical rate, where it is the minimum and no mode-1 shape exists. Above it the minimum is the
+ * mode-1 shape; mode k has k-1 negative in-plane directions of the Hessian (Kolodner 1955 for
+ * the continuum; physics notes section 7), so a minimiser never finds modes >= 2.
+ * Minimisation: NLopt (Johnson, "The NLopt nonlinear-optimization package"; LD_LBFGS by
+ * default: Nocedal 1980, Liu & Nocedal 1989), then optionally Newton steps on the analytic
+ * Hessian (Cholesky, LAPACK dpotrf/dpotrs) to bring the gradient to round-off. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <lapacke.h>
+#include <nlopt.h>
+
+#include "whirl/optimize.h"
+#include "error.h"
+
+#define MINIMIZE_START_TILT 0.1     /* [rad] start of the minimisation when none is given */
+#define MINIMIZE_MAX_EVALUATIONS 100000
+#define NEWTON_MAX_STEPS 30
+#define PI 3.14159265358979323846
+
+double whirl_potential(const whirl_chain *c, double omega, const double *theta, double *grad)
+{
+    const size_t n = c->n;
+    const double g = c->gravity, w2 = omega * omega;
+    double x = 0, z = 0, v = 0;
+    for (size_t i = 0; i < n; i++) {
+        x += c->length[i] * sin(theta[i]);
+        z -= c->length[i] * cos(theta[i]);
+        v += c->mass[i] * (g * z - 0.5 * w2 * x * x);
+        if (grad) grad[i] = x; /* x_i kept for the backward pass */
+    }
+    if (grad) {
+        double msum = 0, xsum = 0; /* M_j, X_j */
+        for (size_t j = n; j-- > 0;) {
+            msum += c->mass[j];
+            xsum += c->mass[j] * grad[j];
+            grad[j] = c->length[j] * (g * msum * sin(theta[j]) - w2 * xsum * cos(theta[j]));
+        }
+    }
+    return v;
+}
+
+void whirl_potential_hessian(const whirl_chain *c, double omega, const double *theta,
+                             double *hess)
+{
+    const size_t n = c->n;
+    const double g = c->gravity, w2 = omega * omega;
+    double x = 0;
+    for (size_t i = 0; i < n; i++) { /* x_i on the diagonal for now */
+        x += c->length[i] * sin(theta[i]);
+        hess[i * n + i] = x;
+    }
+    double msum = 0, xsum = 0;
+    for (size_t j = n; j-- > 0;) {
+        const double lj = c->length[j], cj = cos(theta[j]);
+        msum += c->mass[j];
+        xsum += c->mass[j] * hess[j * n + j];
+        hess[j * n + j] = lj * (g * msum * cj + w2 * xsum * sin(theta[j])) - w2 * lj * lj * msum * cj * cj;
+        double mk = msum - c->mass[j]; /* M_k for k = j + 1, j + 2, ... */
+        for (size_t k = j + 1; k < n; mk -= c->mass[k], k++) {
+            const double h = -w2 * lj * c->length[k] * cj * cos(theta[k]) * mk;
+            hess[j * n + k] = h;
+            hess[k * n + j] = h;
+        }
+    }
+}
+
+void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta, double *r,
+                        double *z, double *tension, whirl_shape_info *info)
+{
+    const size_t n = c->n;
+    const double g = c->gravity, w2 = omega * omega;
+    r[0] = z[0] = 0;
+    for (size_t i = 1; i <= n; i++) {
+        r[i] = r[i - 1] + c->length[i - 1] * sin(theta[i - 1]);
+        z[i] = z[i - 1] - c->length[i - 1] * cos(theta[i - 1]);
+    }
+    /* Tension of link j: T_j = g M_j cos(theta_j) + omega^2 X_j sin(theta_j), before mirroring. */
+    if (tension) {
+        double msum = 0, xsum = 0;
+        for (size_t j = n; j >= 1; j--) {
+            msum += c->mass[j - 1];
+            xsum += c->mass[j - 1] * r[j];
+            tension[j] = g * msum * cos(theta[j - 1]) + w2 * xsum * sin(theta[j - 1]);
+        }
+        tension[0] = tension[1];
+    }
+    if (r[n] < 0)
+        for (size_t i = 1; i <= n; i++) r[i] = -r[i];
+    if (info == NULL) return;
+    info->omega = omega;
+    info->tip_r = r[n];
+    info->max_r = 0;
+    info->depth = -z[n];
+    info->top_tension = tension ? tension[0] : NAN;
+    info->n_nodes = 0;
+    double s = 0, last = 0; /* arclength of node i-1; last non-zero r above */
+    for (size_t i = 1; i <= n; i++) {
+        if (fabs(r[i]) > info->max_r) info->max_r = fabs(r[i]);
+        if (r[i] != 0 && last != 0 && (r[i] > 0) != (last > 0) && info->n_nodes < WHIRL_MODE_MAX) {
+            /* crossing on link i, linear interpolation from node i-1 (r[i-1] may be 0) */
+            const double f = r[i - 1] / (r[i - 1] - r[i]);
+            info->node_s[info->n_nodes++] = s + f * c->length[i - 1];
+        }
+        if (r[i] != 0) last = r[i];
+        s += c->length[i - 1];
+    }
+    info->mode = info->n_nodes + 1;
+}
+
+whirl_minimize_options whirl_minimize_options_default(void)
+{
+    whirl_minimize_options o = {"LD_LBFGS", MINIMIZE_MAX_EVALUATIONS, 1};
+    return o;
+}
+
+int whirl_minimize_algorithm(const char *name, int *algorithm)
+{
+    nlopt_algorithm a = name ? nlopt_algorithm_from_string(name) : (nlopt_algorithm)-1;
+    if ((int)a < 0 || (int)a >= NLOPT_NUM_ALGORITHMS)
+        return whirl_fail(GSL_EINVAL, "unknown NLopt algorithm '%s' (names like LD_LBFGS, LN_BOBYQA)",
+                          name ? name : "(null)");
+    *algorithm = (int)a;
+    return GSL_SUCCESS;
+}
+
+typedef struct potential_problem {
+    const whirl_chain *chain;
+    double omega;
+    int evaluations;
+} potential_problem;
+
+static double potential_objective(unsigned n, const double *theta, double *grad, void *data)
+{
+    (void)n;
+    potential_problem *p = data;
+    p->evaluations++;
+    return whirl_potential(p->chain, p->omega, theta, grad);
+}
+
+static double max_abs(size_t n, const double *v)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (fabs(v[i]) > m) m = fabs(v[i]);
+    return m;
+}
+
+/* Newton steps H d = -grad on theta (Cholesky of the analytic Hessian), each kept only while it
+ * lowers max|grad|. work: 2n + n^2. Returns the number of steps kept. */
+static int newton_polish(const whirl_chain *c, double omega, double *theta, double *work)
+{
+    const size_t n = c->n;
+    double *grad = work, *trial = work + n, *hess = work + 2 * n;
+    whirl_potential(c, omega, theta, grad);
+    double gnorm = max_abs(n, grad);
+    int kept = 0;
+    for (int step = 0; step < NEWTON_MAX_STEPS && gnorm > 0; step++) {
+        whirl_potential_hessian(c, omega, theta, hess);
+        if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, hess, (lapack_int)n) != 0) break;
+        for (size_t i = 0; i < n; i++) trial[i] = -grad[i];
+        if (LAPACKE_dpotrs(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, 1, hess, (lapack_int)n, trial, 1) != 0)
+            break;
+        for (size_t i = 0; i < n; i++) trial[i] += theta[i];
+        whirl_potential(c, omega, trial, grad);
+        const double trial_norm = max_abs(n, grad);
+        if (!(trial_norm < gnorm)) break;
+        memcpy(theta, trial, n * sizeof *theta);
+        gnorm = trial_norm;
+        kept++;
+    }
+    return kept;
+}
+
+/* Smallest eigenvalue of the Hessian at theta (work: n^2 + n). */
+static int min_curvature(const whirl_chain *c, double omega, const double *theta, double *work,
+                         double *lambda_min)
+{
+    const size_t n = c->n;
+    double *hess = work, *eig = work + n * n;
+    whirl_potential_hessian(c, omega, theta, hess);
+    if (LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'L', (lapack_int)n, hess, (lapack_int)n, eig) != 0)
+        return whirl_fail(GSL_EFAILED, "the eigenvalues of the Hessian did not converge");
+    *lambda_min = eig[0];
+    return GSL_SUCCESS;
+}
+
+int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimize_options *opt,
+                         const double *theta, double *theta_out, whirl_minimize_stats *stats)
+{
+    if (c == NULL || theta_out == NULL)
+        return whirl_fail(GSL_EINVAL, "whirl_minimize_shape needs a chain and an output array");
+    if (!(isfinite(omega) && omega >= 0))
+        return whirl_fail(GSL_EINVAL, "omega must be >= 0 and finite, got %g", omega);
+    const whirl_minimize_options defaults = whirl_minimize_options_default();
+    if (opt == NULL) opt = &defaults;
+    int algorithm = 0;
+    int status = whirl_minimize_algorithm(opt->algorithm ? opt->algorithm : defaults.algorithm,
+                                          &algorithm);
+    if (status) return status;
+
+    const size_t n = c->n;
+    double *work = malloc((3 * n + n * n) * sizeof *work);
+    double *lower = malloc(2 * n * sizeof *lower);
+    nlopt_opt nl = nlopt_create((nlopt_algorithm)algorithm, (unsigned)n);
+    if (work == NULL || lower == NULL || nl == NULL) {
+        status = whirl_fail(GSL_ENOMEM, "out of memory minimising a chain of %zu links", n);
+        goto done;
+    }
+    double *upper = lower + n;
+
+    /* theta = 0 is the minimum (no mode-1 shape) iff K - omega^2 M is positive definite. */
+    memset(theta_out, 0, n * sizeof *theta_out);
+    whirl_potential_hessian(c, omega, theta_out, work);
+    if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, work, (lapack_int)n) == 0) {
+        double omega_1 = NAN;
+        whirl_nlink_critical(c, 1, &omega_1); /* only to name it in the message */
+        status = whirl_fail(GSL_EDOM,
+                            "no mode-1 shape at omega = %g: it is not above the chain's first "
+                            "critical rate omega_1 = %.10g, and the hanging chain is the minimum",
+                            omega, omega_1);
+        goto done;
+    }
+
+    for (size_t i = 0; i < n; i++) {
+        theta_out[i] = theta ? theta[i] : MINIMIZE_START_TILT;
+        lower[i] = -PI;
+        upper[i] = PI;
+    }
+    potential_problem problem = {c, omega, 0};
+    double v;
+    nlopt_set_min_objective(nl, potential_objective, &problem);
+    /* the angles are periodic: bounds only where an algorithm needs them (the global ones,
+     * named G...), since a local method can stall on a bound */
+    if (nlopt_algorithm_to_string((nlopt_algorithm)algorithm)[0] == 'G') {
+        nlopt_set_lower_bounds(nl, lower);
+        nlopt_set_upper_bounds(nl, upper);
+    }
+    nlopt_set_xtol_rel(nl, 1e-13);
+    nlopt_set_ftol_rel(nl, 1e-16);
+    nlopt_set_maxeval(nl, opt->max_evaluations > 0 ? opt->max_evaluations : MINIMIZE_MAX_EVALUATIONS);
+    nlopt_result res = nlopt_optimize(nl, theta_out, &v);
+    if (stats) {
+        stats->evaluations = problem.evaluations;
+        stats->nlopt_result = (int)res;
+        stats->newton_steps = 0;
+    }
+    if (res == NLOPT_INVALID_ARGS) {
+        status = whirl_fail(GSL_EINVAL, "NLopt algorithm %s cannot minimise this problem alone "
+                            "(it needs a subsidiary algorithm or other settings)",
+                            nlopt_algorithm_to_string((nlopt_algorithm)algorithm));
+        goto done;
+    }
+    if (res < 0 && res != NLOPT_ROUNDOFF_LIMITED) {
+        status = whirl_fail(GSL_EFAILED, "NLopt %s failed: %s",
+                            nlopt_algorithm_to_string((nlopt_algorithm)algorithm),
+                            nlopt_result_to_string(res));
+        goto done;
+    }
+    const int steps = opt->polish ? newton_polish(c, omega, theta_out, work) : 0;
+    double lambda_min = 0;
+    status = min_curvature(c, omega, theta_out, work, &lambda_min);
+    if (status) goto done;
+    if (stats) {
+        stats->newton_steps = steps;
+        stats->potential = whirl_potential(c, omega, theta_out, work + n * n);
+        stats->gradient_norm = max_abs(n, work + n * n);
+        stats->min_curvature = lambda_min;
+    }
+    if (!(lambda_min > 0))
+        status = whirl_fail(GSL_EFAILED, "the minimiser stopped where the Hessian has a "
+                            "non-positive eigenvalue %g: not a minimum", lambda_min);
+done:
+    nlopt_destroy(nl);
+    free(lower);
+    free(work);
+    return status;
+}

@@ -1,0 +1,53 @@
+/* Internal: the logic the continuous and the N-link steady-shape solvers share.
+ *
+ * Both are shooting problems in the tip radius a: from the free end (r = a) up to the pivot,
+ * with residual(a) = r(pivot; a) / a and crossings(a) = the number of sign changes of r from the
+ * free end to the pivot, the pivot's own sign included (a shot returns those strictly below the
+ * pivot; the pivot's flip follows from the residual's sign). For small a the shape is the
+ * linear one and crossings equals the number of critical rates below omega; as a grows the zeros
+ * leave the chain through the pivot one at a time (Kolodner 1955), and the k-th leaves at the
+ * mode-k root: crossings(a) >= k below it and <= k - 1 above it. */
+#ifndef WHIRL_STEADY_INTERNAL_H
+#define WHIRL_STEADY_INTERNAL_H
+
+#include <stddef.h>
+
+#include "whirl/steady.h"
+
+/* One shot with tip radius a: residual r(pivot)/a, and crossings = the sign changes of r from
+ * the free end down to (not including) the pivot. */
+typedef int (*steady_shot_fn)(void *ws, double a, double *residual, int *crossings);
+
+/* The mode-k root a in (0, a_max) of a shooting problem: brackets it by the crossing count,
+ * then polishes the residual's root with Brent's method to round-off. With guess > 0 the bracket
+ * grows around the guess (continuation). Otherwise with scan_ratio <= 1 it bisects the whole
+ * range (crossings known to decrease with a: the continuum), and with scan_ratio > 1 it scans
+ * a_min * scan_ratio^j upwards and takes the smallest a where crossings drop below mode (the
+ * N-link chain, whose count need not decrease monotonically at high rates). GSL_EDOM if
+ * crossings at the smallest radius tried (1e-9 a_max) is below mode: mode k does not exist at
+ * this rate. */
+int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max,
+                            double scan_ratio, double guess, double *a);
+
+/* A model for branch following: a workspace per thread and a solve with a seed. */
+typedef struct steady_model {
+    void *(*ws_alloc)(const void *params);
+    void (*ws_free)(void *ws);
+    /* GSL_EDOM when the mode does not exist at omega (not an error for a branch) */
+    int (*solve)(void *ws, double omega, int mode, double tip_r_guess, whirl_shape_info *info);
+    const void *params;
+} steady_model;
+
+/* Follows mode over omega[0..n-1] by continuation (linear prediction from the two previous
+ * solutions); the rates are split into contiguous blocks run on the OpenMP threads. */
+int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double *omega,
+                        whirl_shape_info *info, int *exists);
+
+/* The checks every solver starts with: omega > 0 and finite, 1 <= mode <= WHIRL_MODE_MAX. */
+int whirl_steady_check_args(double omega, int mode);
+
+/* Node count k to the message of a missing mode: "mode k does not exist at omega=W (it
+ * bifurcates at omega_k=...)" with GSL_EDOM. */
+int whirl_steady_fail_missing(int mode, double omega, double omega_k);
+
+#endif

@@ -1,0 +1,62 @@
+#!/bin/sh
+# Stability study (long; run by scripts/bench.sh with the output directory as $1):
+#  1. the stability map: eig_growth against omega (1..10, step 0.01) for modes 1-3 at N = 25,
+#     50 and 100 (stability_map_N*.csv, stability_map.png) and the instability windows found;
+#  2. the perturbed runs against the linear analysis at N = 25 and 50 on a coarse grid of rates
+#     plus the rate of largest growth in every window (stability_runs_N*.csv): where
+#     eig_growth > 0.01, |sim_growth / eig_growth - 1| < 5%; where eig_growth = 0, max_deviation
+#     < 100. Unstable points run long enough for the fit: P = (ln 1e4 + 6) / eig_growth periods
+#     at least (the run stops early once settled); the others 100 periods.
+out=${1:-out/bench}
+WHIRL=${WHIRL:-build/whirl}
+mkdir -p "$out"
+status=0
+
+for n in 25 50 100; do
+  start=$(date +%s)
+  "$WHIRL" stability --omega-min 1 --omega-max 10 --steps 901 --links $n --linear \
+    -o "$out/stability_map_N$n.csv" || exit 1
+  echo "map N = $n: $(( $(date +%s) - start )) s wall for $(grep -vc '^[#o]' "$out/stability_map_N$n.csv") analyses"
+  # windows: maximal runs of rates with eig_growth > 0, per mode
+  grep -v '^#' "$out/stability_map_N$n.csv" | awk -F, -v n=$n '
+    NR == 1 { next }
+    function close_window() { if (open) printf "  N = %d mode %d: unstable for omega in [%.2f, %.2f], max growth %.4g at %.2f\n", n, mode, from, to, gmax, at; open = 0 }
+    $2 != mode { close_window(); mode = $2 }
+    $4 > 0 { if (!open) { open = 1; from = $1; gmax = 0 } to = $1; if ($4 > gmax) { gmax = $4; at = $1 } next }
+    { close_window() }
+    END { close_window() }'
+done
+if command -v gnuplot >/dev/null; then
+  gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv $out/stability_map_N100.csv'; out='$out/stability_map.png'" \
+    plots/stability_map.gp 2>/dev/null && echo "figure: $out/stability_map.png"
+fi
+
+for n in 25 50; do
+  step=$([ $n -eq 25 ] && echo 0.5 || echo 1)
+  # points: "omega mode eig_growth" on the coarse grid and at the maxima of the windows (> 0.01)
+  grep -v '^#' "$out/stability_map_N$n.csv" | awk -F, -v step=$step '
+    NR == 1 { next }
+    { k = ($1 - 1) / step; if (k - int(k + 0.5) < 1e-9 && int(k + 0.5) - k < 1e-9 && $1 >= 1.5) print $1, $2, $4 }
+    $2 != mode { if (gmax > 0.01) print at, mode, gmax; mode = $2; gmax = 0 }
+    $4 > gmax { gmax = $4; at = $1 }
+    $4 == 0 && gmax > 0 { if (gmax > 0.01) print at, mode, gmax; gmax = 0 }
+    END { if (gmax > 0.01) print at, mode, gmax }' | sort -u -k2,2n -k1,1g >"$out/stability_points_N$n.txt"
+  csv="$out/stability_runs_N$n.csv"
+  echo "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict" >"$csv"
+  start=$(date +%s)
+  while read -r w k g; do
+    p=$(awk -v g="$g" -v w="$w" 'BEGIN { p = 100; if (g > 0) { q = (log(1e4) + 6) / g * w / (2 * 3.141592653589793) + 20; if (q > p) p = int(q) } print p }')
+    echo "$w $k $p"
+  done <"$out/stability_points_N$n.txt" | xargs -P 2 -L 1 sh -c \
+    '"$0" stability --omega "$1" --mode "$2" --links '$n' --periods "$3" | grep -v "^[#o]"' "$WHIRL" >>"$csv" || status=1
+  echo "runs N = $n: $(( $(date +%s) - start )) s wall for $(($(wc -l <"$csv") - 1)) runs"
+  awk -F, -v n=$n 'NR > 1 {
+      if ($4 > 0.01) { u++; e = $5 / $4 - 1; if (e < 0) e = -e; if (e > worst) { worst = e; wat = $1 " mode " $2 } if (e >= 0.05) bad_u++ }
+      else if ($4 == 0) { s++; if ($6 > dmax) { dmax = $6; dat = $1 " mode " $2 } if ($6 >= 100) bad_s++ }
+      else other++ }
+    END { printf "  N = %d: %d unstable points (eig > 0.01): worst |sim/eig - 1| = %.3g (omega %s), %d beyond 5%%\n", n, u, worst, wat, bad_u
+          printf "  N = %d: %d neutral points (eig = 0): largest max_deviation = %.3g (omega %s), %d at or beyond 100\n", n, s, dmax, dat, bad_s
+          if (other) printf "  N = %d: %d points with 0 < eig_growth <= 0.01 (not checked)\n", n, other
+          exit (bad_u + bad_s > 0) }' "$csv" || status=1
+done
+exit $status

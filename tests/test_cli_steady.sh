@@ -1,0 +1,75 @@
+#!/bin/sh
+# Command-line tests of whirl critical, shape and sweep: contract and bad input.
+. "$(dirname "$0")/lib.sh"
+
+# critical: the continuum's j0k/2 to 12 digits and more
+expect_ok "critical runs" critical --modes 4 -o "$tmp/crit.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n++; w[$1] = $2}
+     END {exit !(h == "mode,omega" && n == 4 && w[1] == "1.2024127788478853" &&
+                 (w[2] - 2.7600390551431524) ^ 2 < 1e-26)}' "$tmp/crit.csv"; then
+  pass "critical: header and j0k/2"; else fail "critical: header and j0k/2"; fi
+expect_ok "critical --links" critical --links 50 --modes 3
+expect_ok "critical --tip-mass" critical --tip-mass 0.5 --modes 3
+# physical units: rates scale with sqrt(g/L)
+"$WHIRL" critical --modes 1 --length 2 --gravity 9.81 --mass 3 >"$tmp/phys.csv"
+if awk -F, '/^#/ || /mode/ {next} {exit !(($2 / (1.2024127788478853 * sqrt(9.81 / 2)) - 1) ^ 2 < 1e-28)}' \
+     "$tmp/phys.csv"; then pass "critical: physical units"; else fail "critical: physical units"; fi
+
+# shape: comment line, header, rows from the pivot to the free end
+expect_ok "shape runs" shape --omega 6.5 --mode 3 --points 51 -o "$tmp/shape.csv"
+if head -1 "$tmp/shape.csv" | grep -Eq '^# omega=6.5 mode=3 tip_r=[0-9.e-]+ max_r=[0-9.e-]+ top_tension=[0-9.e-]+ depth=[0-9.e-]+ nodes=[0-9.e-]+;[0-9.e-]+$' \
+   && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,r,z,tension" ] \
+   && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 52 ]; then
+  pass "shape: comment, header, 51 rows"; else fail "shape: comment, header, 51 rows"; fi
+# the tip row: s = 1, r = tip_r, z = -depth
+tip=$(head -1 "$tmp/shape.csv" | sed 's/.*tip_r=\([^ ]*\).*/\1/')
+if tail -1 "$tmp/shape.csv" | awk -F, -v tip="$tip" '{exit !($1 == 1 && $2 == tip && $3 < 0)}'; then
+  pass "shape: the last row is the free end"; else fail "shape: the last row is the free end"; fi
+expect_ok "shape --links" shape --omega 6.5 --mode 3 --links 40 -o "$tmp/nl.csv"
+if [ "$(grep -vc '^#' "$tmp/nl.csv")" -eq 42 ]; then pass "shape --links: N+1 rows"
+else fail "shape --links: N+1 rows"; fi
+expect_ok "shape tip mass" shape --omega 30 --mode 6 --tip-mass 0.3
+expect_ok "shape near critical" shape --omega 4.3268683833 --mode 3
+expect_ok "shape physical units" shape --omega 20 --mode 2 --length 0.5 --gravity 9.81 --mass 0.2
+
+# sweep
+expect_ok "sweep runs" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --steps 90 -o "$tmp/sw.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n[$2]++}
+     END {exit !(h == "omega,mode,tip_r,max_r,top_tension,depth" && n[1] == 88 && n[2] == 73 && n[3] == 57)}' \
+     "$tmp/sw.csv"; then pass "sweep: a row wherever the mode exists"
+else fail "sweep: a row wherever the mode exists"; fi
+expect_ok "sweep --links --tip-mass" sweep --modes 2 --omega-min 3 --omega-max 5 --steps 10 --links 30 --tip-mass 0.2
+
+# help
+expect_ok "critical --help" critical --help
+expect_ok "shape --help" shape --help
+expect_ok "sweep --help" sweep --help
+
+# bad input
+expect_error "unknown flag" "whirl shape: unknown option '--bogus'" shape --omega 3 --mode 1 --bogus 1 -o "$tmp/out.csv"
+expect_error "missing value" "whirl shape: option --omega needs a value" shape --mode 1 -o "$tmp/out.csv" --omega
+expect_error "non-numeric" "whirl shape: option --omega needs a finite number" shape --omega abc --mode 1 -o "$tmp/out.csv"
+expect_error "NaN" "whirl shape: option --omega needs a finite number" shape --omega nan --mode 1 -o "$tmp/out.csv"
+expect_error "infinite" "whirl shape: option --omega needs a finite number" shape --omega inf --mode 1 -o "$tmp/out.csv"
+expect_error "omega missing" "whirl shape: --omega is required" shape --mode 1 -o "$tmp/out.csv"
+expect_error "omega zero" "whirl shape: --omega must be > 0" shape --omega 0 --mode 1 -o "$tmp/out.csv"
+expect_error "omega negative" "whirl shape: --omega must be > 0" shape --omega -2 --mode 1 -o "$tmp/out.csv"
+expect_error "mode zero" "whirl shape: --mode must be between" shape --omega 3 --mode 0 -o "$tmp/out.csv"
+expect_error "links zero" "whirl shape: --links must be >= 1" shape --omega 3 --mode 1 --links 0 -o "$tmp/out.csv"
+expect_error "negative tip mass" "whirl shape: --tip-mass must be >= 0" shape --omega 3 --mode 1 --tip-mass -1 -o "$tmp/out.csv"
+expect_error "points" "whirl shape: --points must be >= 2" shape --omega 3 --mode 1 --points 1 -o "$tmp/out.csv"
+expect_error "mode does not exist" "whirl shape: mode 3 does not exist at omega=4: it exists only above omega_3=4.3268" shape --omega 4 --mode 3 -o "$tmp/out.csv"
+expect_error "mode above N" "whirl shape: .*modes 1..3" shape --omega 30 --mode 4 --links 3 -o "$tmp/out.csv"
+expect_error "bad units" "whirl shape: --length must be > 0" shape --omega 3 --mode 1 --length -1 -o "$tmp/out.csv"
+expect_error "critical modes" "whirl critical: --modes must be between" critical --modes 0 -o "$tmp/out.csv"
+expect_error "critical modes above N" "whirl critical: .*exceeds" critical --modes 5 --links 4 -o "$tmp/out.csv"
+expect_error "critical tip mass" "whirl critical: --tip-mass must be >= 0" critical --tip-mass -0.5 -o "$tmp/out.csv"
+expect_error "sweep steps" "whirl sweep: --steps must be >= 1" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 0 -o "$tmp/out.csv"
+expect_error "sweep order" "whirl sweep: --omega-min .* exceeds --omega-max" sweep --modes 1 --omega-min 3 --omega-max 2 --steps 5 -o "$tmp/out.csv"
+expect_error "sweep omega-min" "whirl sweep: --omega-min must be > 0" sweep --modes 1 --omega-min 0 --omega-max 2 --steps 5 -o "$tmp/out.csv"
+expect_error "sweep modes list" "whirl sweep: option --modes needs a comma-separated list" sweep --modes 1,x --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
+expect_error "sweep mode zero" "whirl sweep: .*each mode must be between" sweep --modes 1,0 --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
+expect_error "sweep missing steps" "whirl sweep: --steps is required" sweep --modes 1 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "unwritable output" "whirl shape: cannot write" shape --omega 3 --mode 1 -o "$tmp/no/such/dir/out.csv"
+expect_error "unwritable output (sweep)" "whirl sweep: cannot write" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 2 -o "$tmp/no/such/dir/out.csv"
+finish

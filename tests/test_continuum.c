@@ -1,0 +1,302 @@
+/* Tests of the continuum steady shapes (src/continuum.c) against independent physics:
+ * - the small-amplitude limit: near omega_k the shape is r = a J0(2 omega sqrt(sigma));
+ * - Kolodner's count: exactly n shapes for omega_n < omega < omega_{n+1}, counted as the sign
+ *   changes of the pivot radius r(1; a) over a fine grid of tip radii (whirl_continuum_sample),
+ *   not with the solver's crossing counts;
+ * - convergence under tightened ODE tolerances;
+ * - the sub-chain property: below its first node a mode-k chain is a mode-(k-1) chain of length
+ *   l = 1 - s_1 at the same omega (in its own units: rate omega sqrt(l), tip mass m / l);
+ * - the N-link chain converges to it as N grows (order about 1); its critical rates too;
+ * - the critical rates with a tip mass: the mode exists just above and not just below;
+ * - modes up to 6, near-critical and high rates, tip masses, the sampled shape, the errors. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_sf_bessel.h>
+
+#include "whirl/steady.h"
+
+static const double tip_masses[] = {0, 0.0137, 0.4821, 3.7};
+#define N_TIP (sizeof tip_masses / sizeof *tip_masses)
+
+static double rel(double x, double ref) { return fabs(x / ref - 1); }
+
+static void test_small_amplitude_limit(void **state)
+{
+    (void)state;
+    enum { npts = 101 };
+    double s[npts], r[npts], z[npts], t[npts];
+    for (int k = 1; k <= 4; k++) {
+        double omega_k;
+        assert_int_equal(whirl_continuum_critical(k, 0, &omega_k), GSL_SUCCESS);
+        double worst[2];
+        double eps[2] = {1e-4, 1e-6};
+        for (int e = 0; e < 2; e++) {
+            double omega = omega_k * (1 + eps[e]);
+            whirl_shape_info info;
+            assert_int_equal(whirl_continuum_solve(omega, k, 0, 0, &info), GSL_SUCCESS);
+            assert_int_equal(whirl_continuum_sample(omega, 0, info.tip_r, npts, s, r, z, t),
+                             GSL_SUCCESS);
+            worst[e] = 0;
+            for (int j = 0; j < npts; j++) {
+                double profile = gsl_sf_bessel_J0(2 * omega_k * sqrt(1 - s[j]));
+                worst[e] = fmax(worst[e], fabs(r[j] / info.tip_r - profile));
+            }
+        }
+        /* the deviation is O(a^2) = O(omega - omega_k): 100 times smaller for eps / 100 */
+        assert_true(worst[1] < 1e-4);
+        assert_true(worst[1] < 0.03 * worst[0]);
+    }
+}
+
+/* Sign changes of r(pivot; a) over a log grid of a: the number of shapes at omega. */
+static int count_shapes(double omega, double tip_mass)
+{
+    double s[2], r[2], z[2], t[2];
+    int count = 0, sign = 0;
+    for (int j = 0; j <= 600; j++) {
+        double a = pow(10, -7 + 7.0 * j / 600);
+        if (a > 1) a = 1;
+        assert_int_equal(whirl_continuum_sample(omega, tip_mass, a, 2, s, r, z, t), GSL_SUCCESS);
+        int sg = r[0] > 0 ? 1 : -1;
+        if (sign != 0 && sg != sign) count++;
+        sign = sg;
+    }
+    return count;
+}
+
+static void test_kolodner_count(void **state)
+{
+    (void)state;
+    for (int tm = 0; tm < 2; tm++) {
+        double m = tip_masses[tm * 2];
+        double crit[6];
+        for (int k = 1; k <= 6; k++) assert_int_equal(whirl_continuum_critical(k, m, &crit[k - 1]),
+                                                      GSL_SUCCESS);
+        for (int j = 0; j < 60; j++) {
+            double omega = 0.5 + 8.5 * (j + 0.5) / 60;
+            int n = 0;
+            while (n < 6 && crit[n] < omega) n++;
+            assert_true(n < 6);
+            assert_int_equal(count_shapes(omega, m), n);
+            /* and the solver finds each of them, tip radii decreasing with the mode */
+            double previous = 2;
+            for (int k = 1; k <= n + 1; k++) {
+                whirl_shape_info info;
+                int status = whirl_continuum_solve(omega, k, m, 0, &info);
+                if (k == n + 1) {
+                    assert_int_equal(status, GSL_EDOM);
+                    break;
+                }
+                assert_int_equal(status, GSL_SUCCESS);
+                assert_int_equal(info.n_nodes, k - 1);
+                assert_true(info.tip_r < previous);
+                previous = info.tip_r;
+            }
+        }
+    }
+}
+
+static void test_tolerance_convergence(void **state)
+{
+    (void)state;
+    const double rates[] = {1.9137, 4.4411, 7.385, 29.7};
+    for (size_t t = 0; t < N_TIP; t++)
+        for (size_t i = 0; i < sizeof rates / sizeof *rates; i++)
+            for (int k = 1; k <= 6; k++) {
+                whirl_shape_info a, b;
+                int status = whirl_continuum_solve(rates[i], k, tip_masses[t], 0, &a);
+                if (status == GSL_EDOM) continue;
+                assert_int_equal(status, GSL_SUCCESS);
+                assert_int_equal(whirl_continuum_solve_tol(rates[i], k, tip_masses[t], 0, 1e-15,
+                                                           &b), GSL_SUCCESS);
+                assert_true(rel(a.tip_r, b.tip_r) < 1e-11);
+                assert_true(rel(a.top_tension, b.top_tension) < 1e-11);
+                assert_true(rel(a.depth, b.depth) < 1e-11);
+                assert_true(rel(a.max_r, b.max_r) < 1e-11);
+                for (int j = 0; j < a.n_nodes; j++)
+                    assert_true(fabs(a.node_s[j] - b.node_s[j]) < 1e-11);
+            }
+}
+
+static void test_sub_chain(void **state)
+{
+    (void)state;
+    const double rates[] = {6.1373, 11.29, 30};
+    for (size_t t = 0; t < N_TIP; t++)
+        for (size_t i = 0; i < sizeof rates / sizeof *rates; i++)
+            for (int k = 2; k <= 6; k++) {
+                whirl_shape_info whole, lower;
+                int status = whirl_continuum_solve(rates[i], k, tip_masses[t], 0, &whole);
+                if (status == GSL_EDOM) continue;
+                assert_int_equal(status, GSL_SUCCESS);
+                double l = 1 - whole.node_s[0];
+                assert_int_equal(whirl_continuum_solve(rates[i] * sqrt(l), k - 1,
+                                                       tip_masses[t] / l, 0, &lower),
+                                 GSL_SUCCESS);
+                assert_true(rel(lower.tip_r * l, whole.tip_r) < 1e-10);
+                for (int j = 0; j < lower.n_nodes; j++)
+                    assert_true(fabs(whole.node_s[0] + l * lower.node_s[j] - whole.node_s[j + 1]) <
+                                1e-10);
+            }
+}
+
+static void test_nlink_converges(void **state)
+{
+    (void)state;
+    const size_t sizes[] = {200, 400, 800};
+    for (size_t t = 0; t < 2; t++)
+        for (int k = 1; k <= 3; k++) {
+            double omega = 7.2791, m = tip_masses[2 * t];
+            whirl_shape_info cont, disc[3];
+            assert_int_equal(whirl_continuum_solve(omega, k, m, 0, &cont), GSL_SUCCESS);
+            double crit_cont, err_crit[3];
+            assert_int_equal(whirl_continuum_critical(k, m, &crit_cont), GSL_SUCCESS);
+            for (int s = 0; s < 3; s++) {
+                whirl_chain *c = whirl_chain_alloc_uniform(sizes[s], m);
+                double crit[3];
+                assert_int_equal(whirl_nlink_critical(c, 3, crit), GSL_SUCCESS);
+                err_crit[s] = fabs(crit[k - 1] - crit_cont);
+                assert_int_equal(whirl_nlink_solve(c, omega, k, 0, &disc[s]), GSL_SUCCESS);
+                whirl_chain_free(c);
+            }
+            /* relative errors of tip_r, top_tension, depth: order 1, and the Richardson
+             * extrapolation 2 x(2N) - x(N) is much closer to the continuum */
+            double cval[3] = {cont.tip_r, cont.top_tension, cont.depth};
+            for (int q = 0; q < 3; q++) {
+                double x[3], e[3];
+                for (int s = 0; s < 3; s++) {
+                    x[s] = q == 0 ? disc[s].tip_r : q == 1 ? disc[s].top_tension : disc[s].depth;
+                    e[s] = fabs(x[s] / cval[q] - 1);
+                }
+                assert_true(e[2] < 0.01);
+                double order = log2(e[1] / e[2]);
+                assert_true(order > 0.75 && order < 1.25);
+                assert_true(fabs((2 * x[2] - x[1]) / cval[q] - 1) < 0.2 * e[2]);
+            }
+            double order = log2(err_crit[1] / err_crit[2]);
+            assert_true(order > 0.9 && order < 1.1);
+        }
+}
+
+static void test_critical_with_tip_mass(void **state)
+{
+    (void)state;
+    for (size_t t = 0; t < N_TIP; t++)
+        for (int k = 1; k <= 6; k++) {
+            double omega_k;
+            assert_int_equal(whirl_continuum_critical(k, tip_masses[t], &omega_k), GSL_SUCCESS);
+            whirl_shape_info info;
+            assert_int_equal(whirl_continuum_solve(omega_k * (1 - 1e-7), k, tip_masses[t], 0,
+                                                   &info), GSL_EDOM);
+            assert_int_equal(whirl_continuum_solve(omega_k * (1 + 1e-6), k, tip_masses[t], 0,
+                                                   &info), GSL_SUCCESS);
+            assert_int_equal(info.n_nodes, k - 1);
+            assert_true(info.tip_r < 0.01);
+        }
+    /* the limits: m -> 0 gives j_{0,k}/2; a heavy tip makes mode 1 a pendulum, omega_1 -> 1 */
+    double omega;
+    assert_int_equal(whirl_continuum_critical(2, 1e-12, &omega), GSL_SUCCESS);
+    assert_true(rel(omega, 0.5 * gsl_sf_bessel_zero_J0(2)) < 1e-5);
+    assert_int_equal(whirl_continuum_critical(1, 1e4, &omega), GSL_SUCCESS);
+    assert_true(rel(omega, 1) < 1e-4);
+}
+
+static void test_sampled_shape(void **state)
+{
+    (void)state;
+    enum { npts = 2001 };
+    static double s[npts], r[npts], z[npts], t[npts];
+    for (size_t tm = 0; tm < N_TIP; tm++) {
+        double m = tip_masses[tm], omega = 8.8123;
+        for (int k = 1; k <= 4; k++) {
+            whirl_shape_info info;
+            int status = whirl_continuum_solve(omega, k, m, 0, &info);
+            if (status == GSL_EDOM) continue;
+            assert_int_equal(status, GSL_SUCCESS);
+            assert_int_equal(whirl_continuum_sample(omega, m, info.tip_r, npts, s, r, z, t),
+                             GSL_SUCCESS);
+            assert_true(s[0] == 0 && s[npts - 1] == 1);
+            assert_true(fabs(r[0]) < 1e-12);
+            assert_true(z[0] == 0);
+            assert_true(rel(r[npts - 1], info.tip_r) < 1e-14);
+            assert_true(rel(-z[npts - 1], info.depth) < 1e-11);
+            assert_true(rel(t[0], info.top_tension) < 1e-11);
+            /* the tip mass hangs on a tension m sqrt(g^2 + (omega^2 a)^2) */
+            double b = omega * omega * info.tip_r;
+            assert_true(fabs(t[npts - 1] - m * sqrt(1 + b * b)) <= 1e-15 * t[0]);
+            /* inextensible: chords of length ds minus O(ds^3) */
+            double length = 0, max_r = 0;
+            int crossings = 0;
+            for (int j = 1; j < npts; j++) {
+                length += hypot(r[j] - r[j - 1], z[j] - z[j - 1]);
+                max_r = fmax(max_r, fabs(r[j]));
+                crossings += j > 1 && (r[j] > 0) != (r[j - 1] > 0);
+                assert_true(z[j] < z[j - 1]);
+            }
+            assert_true(length < 1 && length > 1 - 1e-4);
+            assert_int_equal(crossings, k - 1);
+            assert_true(max_r <= info.max_r * (1 + 1e-12) && max_r > info.max_r * (1 - 1e-4));
+        }
+    }
+}
+
+static void test_branch_equals_fresh(void **state)
+{
+    (void)state;
+    enum { n = 160 };
+    double omega[n];
+    whirl_shape_info info[n];
+    int exists[n];
+    for (int j = 0; j < n; j++) omega[j] = 1.0 + 9.0 * j / (n - 1);
+    double crit;
+    assert_int_equal(whirl_continuum_critical(3, 0.4821, &crit), GSL_SUCCESS);
+    assert_int_equal(whirl_continuum_branch(3, 0.4821, n, omega, info, exists), GSL_SUCCESS);
+    for (int j = 0; j < n; j++) {
+        assert_int_equal(exists[j], omega[j] > crit);
+        if (!exists[j] || j % 7) continue;
+        whirl_shape_info fresh;
+        assert_int_equal(whirl_continuum_solve(omega[j], 3, 0.4821, 0, &fresh), GSL_SUCCESS);
+        assert_true(rel(info[j].tip_r, fresh.tip_r) < 1e-12);
+    }
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    whirl_shape_info info;
+    double omega, s[2], r[2], z[2], t[2];
+    assert_int_equal(whirl_continuum_solve(0, 1, 0, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(-3, 1, 0, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(INFINITY, 1, 0, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(NAN, 1, 0, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(3, 0, 0, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(3, 1, -0.1, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_critical(0, 0, &omega), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_critical(1, NAN, &omega), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_sample(3, 0, 0.5, 1, s, r, z, t), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_solve(4.3, 3, 0, 0, &info), GSL_EDOM);
+    assert_non_null(strstr(whirl_last_error(), "omega_3=4.3268"));
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_small_amplitude_limit),
+        cmocka_unit_test(test_kolodner_count),
+        cmocka_unit_test(test_tolerance_convergence),
+        cmocka_unit_test(test_sub_chain),
+        cmocka_unit_test(test_nlink_converges),
+        cmocka_unit_test(test_critical_with_tip_mass),
+        cmocka_unit_test(test_sampled_shape),
+        cmocka_unit_test(test_branch_equals_fresh),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests_name("continuum", tests, NULL, NULL);
+}

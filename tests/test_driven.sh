@@ -1,0 +1,53 @@
+#!/bin/sh
+# Command-line tests of whirl driven: one shape, a branch with its fold, bad input.
+. "$(dirname "$0")/lib.sh"
+
+# one shape of the continuum: two comment lines, the header, P rows from the pivot to the free end
+expect_ok "driven shape" driven --omega 1.6 --eps 0.05 --drag 0.05 --drag-quadratic 0.02 --points 41 -o "$tmp/shape.csv"
+if [ "$(grep -c '^#' "$tmp/shape.csv")" -eq 2 ] \
+   && grep -Eq '^# omega=1.6000000000000001 mode=1 nodes=1 tip_x=[0-9.e-]+ tip_y=-[0-9.e-]+ tip_z=-[0-9.e-]+ tip_r=[0-9.e-]+ top_tension=[0-9.e-]+ residual=[0-9.e-]+$' "$tmp/shape.csv" \
+   && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,x,y,z,tension" ] \
+   && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 42 ]; then
+  pass "driven shape: comments, header, 41 rows"; else fail "driven shape: comments, header, 41 rows"; fi
+# first row: the pivot at (eps, 0, 0); last row: the free end (s = 1, no tension) trailing (y < 0)
+if grep -v '^#' "$tmp/shape.csv" | sed -n 2p | awk -F, '{exit !($1 == 0 && ($2 - 0.05) ^ 2 < 1e-24 && $3 ^ 2 < 1e-24 && $4 == 0)}' \
+   && tail -1 "$tmp/shape.csv" | awk -F, '{exit !($1 == 1 && $3 < 0 && $4 < 0 && $5 == 0)}'; then
+  pass "driven shape: pivot first, trailing free end last"; else fail "driven shape: pivot first, trailing free end last"; fi
+
+# N-link chain with a tip mass: N + 1 rows
+expect_ok "driven --links" driven --omega 3.5 --mode 2 --side -1 --eps 0.02 --drag 0.01 --links 30 --tip-mass 0.1 -o "$tmp/nl.csv"
+if [ "$(grep -vc '^#' "$tmp/nl.csv")" -eq 32 ] && grep -q ' nodes=2 ' "$tmp/nl.csv"; then
+  pass "driven --links: N+1 rows, 2 nodes"; else fail "driven --links: N+1 rows, 2 nodes"; fi
+
+# branch: the anti-phase mode-1 branch folds once above omega_1 = 1.2024
+expect_ok "driven branch" driven --omega-min 0.8 --omega-max 2 --eps 0.02 --side -1 --step 0.05 -o "$tmp/br.csv"
+fold=$(sed -n 's/^# fold omega=//p' "$tmp/br.csv")
+if [ "$(grep -c '^# fold omega=' "$tmp/br.csv")" -eq 1 ] \
+   && awk -v f="$fold" 'BEGIN {exit !(f > 1.2024 && f < 1.4)}' \
+   && [ "$(grep -v '^#' "$tmp/br.csv" | head -1)" = "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold" ] \
+   && awk -F, -v f="$fold" '/^#/ || /^omega/ {next} $7 == 1 {n++; ok = ($1 == f)} END {exit !(n == 1 && ok)}' "$tmp/br.csv"; then
+  pass "driven branch: one fold, commented and flagged"; else fail "driven branch: one fold, commented and flagged"; fi
+# every rate of the branch stays at or above the fold
+if awk -F, -v f="$fold" '/^#/ || /^omega/ {next} $1 < f - 1e-12 {bad = 1} END {exit bad}' "$tmp/br.csv"; then
+  pass "driven branch: no shape below the fold"; else fail "driven branch: no shape below the fold"; fi
+expect_ok "driven branch in phase, up, N-link" driven --omega-min 0.5 --omega-max 2 --omega 1.5 --up --eps 0.02 --drag 0.01 --links 20
+if ! grep -q '^# fold' "$tmp/stdout" && grep -q 'left the interval' "$tmp/stdout"; then
+  pass "driven branch in phase: no fold"; else fail "driven branch in phase: no fold"; fi
+expect_ok "driven --help" driven --help
+
+# bad input
+expect_error "no rate" "whirl driven: --omega .* is required" driven --eps 0.1 -o "$tmp/out.csv"
+expect_error "half a range" "whirl driven: a branch needs both" driven --omega-min 1 -o "$tmp/out.csv"
+expect_error "inverted range" "whirl driven: need 0 < --omega-min < --omega-max" driven --omega-min 2 --omega-max 1 -o "$tmp/out.csv"
+expect_error "drag without drive" "whirl driven: air drag needs --eps > 0" driven --omega 2 --drag 0.1 -o "$tmp/out.csv"
+expect_error "negative eps" "whirl driven: --eps must be in" driven --omega 2 --eps -0.1 -o "$tmp/out.csv"
+expect_error "negative drag" "whirl driven: --drag must be >= 0" driven --omega 2 --eps 0.1 --drag -1 -o "$tmp/out.csv"
+expect_error "bad mode" "whirl driven: --mode must be between" driven --omega 2 --mode 0 -o "$tmp/out.csv"
+expect_error "bad side" "whirl driven: --side must be 1 or -1" driven --omega 2 --side 0 -o "$tmp/out.csv"
+expect_error "points with links" "whirl driven: --points applies to the continuum" driven --omega 2 --links 5 --points 9 -o "$tmp/out.csv"
+expect_error "step without branch" "whirl driven: --step, --max-points and --up apply to a branch" driven --omega 2 --step 0.1 -o "$tmp/out.csv"
+expect_error "mode below its rate" "whirl driven: .*does not exist" driven --omega 2 --mode 2 --eps 0.01 -o "$tmp/out.csv"
+expect_error "start outside range" "whirl driven: --omega 3 \(the branch's start\) is outside" driven --omega 3 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "not a number" "whirl driven: option --eps needs a finite number" driven --omega 2 --eps abc -o "$tmp/out.csv"
+expect_error "unknown option" "whirl driven: unknown option '--bogus'" driven --omega 2 --bogus 1 -o "$tmp/out.csv"
+finish

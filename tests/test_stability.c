@@ -1,0 +1,634 @@
+/* Tests of the linear stability analysis (src/stability.c) against independent results:
+ *  - the hanging chain in the rotating frame: eigenvalues +-i (nu_k +- omega), nu_k the normal-mode
+ *    frequencies of the N-pendulum from its tridiagonal (position) formulation;
+ *  - M, G, K and C against finite differences of the co-rotating Lagrangian and of the Rayleigh
+ *    function written in Cartesian form;
+ *  - the deflated spectrum against GSL's nonsymmetric eigensolver on the full first-order form;
+ *  - mode k has 2(k-1) negative directions of K (k-1 in the plane), one zero (the symmetry);
+ *  - without damping mode 1 is neutrally stable and the spectrum is Hamiltonian (-lambda too);
+ *  - with damping (Kelvin-Tait-Chetaev) the number of growing eigenvalues equals the number of
+ *    negative directions of K: mode 1 decays, modes 2 and 3 grow.
+ * Equilibria come from a shooting written here (recursion up from the tip, bisection on the tip
+ * radius), independent of the steady-shape module; that module's shapes are compared too. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_sort.h>
+#include <gsl/gsl_sort_vector.h>
+
+#include "whirl/stability.h"
+
+#define NMAX 16
+
+/* A non-uniform chain: every formula must hold for any lengths, masses and g. */
+static whirl_chain *odd_chain(size_t n)
+{
+    double len[NMAX], mass[NMAX];
+    for (size_t i = 0; i < n; i++) {
+        len[i] = 0.11 + 0.07 * sin(1.7 * (double)i + 0.3);
+        mass[i] = 0.13 + 0.05 * cos(2.3 * (double)i);
+    }
+    return whirl_chain_alloc(n, len, mass, 1.37);
+}
+
+static whirl_model model_of(const whirl_chain *c, double omega, double damping)
+{
+    whirl_model m = {0};
+    m.chain = c;
+    m.dim = 3;
+    m.frame = WHIRL_FRAME_ROTATING;
+    m.omega = omega;
+    m.internal_damping = damping;
+    return m;
+}
+
+/* ---- equilibria by shooting from the tip ---- */
+
+/* Nodes r[0..n], z[0..n] of the shape with tip radius a; returns the pivot's radius r[0]. */
+static double shoot(const whirl_chain *c, double omega, double a, double *r, double *z)
+{
+    const size_t n = c->n;
+    double px = 0, pz = 0;
+    r[n] = a;
+    z[n] = 0;
+    for (size_t j = n; j >= 1; j--) {
+        px += c->mass[j - 1] * omega * omega * r[j];
+        pz -= c->mass[j - 1] * c->gravity;
+        const double p = hypot(px, pz);
+        r[j - 1] = r[j] - c->length[j - 1] * px / p;
+        z[j - 1] = z[j] - c->length[j - 1] * pz / p;
+    }
+    const double top = z[0];
+    for (size_t i = 0; i <= n; i++) z[i] -= top;
+    return r[0];
+}
+
+static int crossings(size_t n, const double *r)
+{
+    int k = 0;
+    for (size_t i = 1; i < n; i++)
+        if ((r[i] > 0) != (r[i + 1] > 0)) k++;
+    return k;
+}
+
+/* The shape of mode k (k - 1 axis crossings below the pivot); 0 on success. */
+static int find_mode(const whirl_chain *c, double omega, int mode, double *r, double *z)
+{
+    const double total = whirl_chain_total_length(c);
+    const int grid = 4000;
+    double a0 = 1e-7 * total, f0 = shoot(c, omega, a0, r, z);
+    for (int i = 1; i <= grid; i++) {
+        double a1 = total * i / grid, f1 = shoot(c, omega, a1, r, z);
+        if ((f0 > 0) != (f1 > 0)) {
+            double lo = a0, hi = a1, flo = f0;
+            for (int it = 0; it < 200 && hi - lo > 1e-16 * hi; it++) {
+                double mid = 0.5 * (lo + hi), fm = shoot(c, omega, mid, r, z);
+                if ((fm > 0) == (flo > 0)) lo = mid, flo = fm;
+                else hi = mid;
+            }
+            shoot(c, omega, lo, r, z);
+            if (crossings(c->n, r) == mode - 1) return 0;
+        }
+        a0 = a1;
+        f0 = f1;
+    }
+    return -1;
+}
+
+/* ---- helpers ---- */
+
+static double max_abs(size_t n, const double *a)
+{
+    double m = 0;
+    for (size_t i = 0; i < n; i++) m = fmax(m, fabs(a[i]));
+    return m;
+}
+
+/* Eigenvalues of the symmetric q x q matrix a (row-major), ascending. */
+static void symmetric_eigenvalues(size_t q, const double *a, double *eval)
+{
+    gsl_matrix *m = gsl_matrix_alloc(q, q);
+    gsl_vector *e = gsl_vector_alloc(q);
+    gsl_eigen_symm_workspace *ws = gsl_eigen_symm_alloc(q);
+    memcpy(m->data, a, q * q * sizeof(double));
+    assert_int_equal(gsl_eigen_symm(m, e, ws), 0);
+    gsl_sort_vector(e);
+    memcpy(eval, e->data, q * sizeof(double));
+    gsl_eigen_symm_free(ws);
+    gsl_vector_free(e);
+    gsl_matrix_free(m);
+}
+
+static size_t count_below(size_t q, const double *eval, double level)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < q; i++) k += eval[i] < level;
+    return k;
+}
+
+/* ---- (a) the hanging chain ---- */
+
+static void test_hanging_chain(void **state)
+{
+    (void)state;
+    const size_t n = 7;
+    whirl_chain *c = odd_chain(n);
+    /* normal modes: m_i xi_i'' = T_{i+1} (xi_{i+1} - xi_i) / l_{i+1} - T_i (xi_i - xi_{i-1}) / l_i */
+    double t[NMAX + 1], s[NMAX * NMAX] = {0}, nu2[NMAX];
+    t[n] = 0;
+    for (size_t i = n; i-- > 0;) t[i] = t[i + 1] + c->gravity * c->mass[i];
+    for (size_t i = 0; i < n; i++) {
+        double k_up = t[i] / c->length[i], k_down = i + 1 < n ? t[i + 1] / c->length[i + 1] : 0;
+        s[i * n + i] = (k_up + k_down) / c->mass[i];
+        if (i + 1 < n)
+            s[i * n + i + 1] = s[(i + 1) * n + i] =
+                -k_down / sqrt(c->mass[i] * c->mass[i + 1]);
+    }
+    symmetric_eigenvalues(n, s, nu2);
+    const double omega = 0.83 * sqrt(nu2[0]);
+
+    double expected[4 * NMAX];
+    for (size_t k = 0; k < n; k++) {
+        double nu = sqrt(nu2[k]);
+        expected[4 * k] = nu + omega;
+        expected[4 * k + 1] = -(nu + omega);
+        expected[4 * k + 2] = nu - omega;
+        expected[4 * k + 3] = omega - nu;
+    }
+    gsl_sort(expected, 1, 4 * n);
+
+    double r[NMAX + 1], z[NMAX + 1];
+    r[0] = z[0] = 0;
+    for (size_t i = 1; i <= n; i++) {
+        r[i] = 0;
+        z[i] = z[i - 1] - c->length[i - 1];
+    }
+    whirl_model m = model_of(c, omega, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    assert_non_null(w);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    size_t count;
+    const double *re, *im;
+    assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+    assert_int_equal(count, 4 * n); /* no symmetry mode hanging straight down */
+    double got[4 * NMAX];
+    memcpy(got, im, count * sizeof(double));
+    gsl_sort(got, 1, count);
+    const double scale = sqrt(nu2[n - 1]) + omega;
+    for (size_t i = 0; i < count; i++) {
+        assert_true(fabs(re[i]) < 1e-12 * scale);
+        assert_true(fabs(got[i] - expected[i]) < 1e-12 * scale);
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- (b) finite differences of the Lagrangian and the Rayleigh function ---- */
+
+typedef struct {
+    const whirl_chain *c;
+    double omega, damping;
+} fd_problem;
+
+/* Unit vectors of the links and their derivatives in a and b at q = (a, b) (any b). */
+static void link_vectors(size_t n, const double *q, const double *qd, double (*u)[3],
+                         double (*ud)[3])
+{
+    for (size_t j = 0; j < n; j++) {
+        const double a = q[j], b = q[n + j];
+        const double sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);
+        u[j][0] = sa * cb, u[j][1] = sb, u[j][2] = -ca * cb;
+        const double ua[3] = {ca * cb, 0, sa * cb}, ub[3] = {-sa * sb, cb, ca * sb};
+        for (int d = 0; d < 3; d++) ud[j][d] = ua[d] * qd[j] + ub[d] * qd[n + j];
+    }
+}
+
+/* L = 1/2 sum m |x' + Omega x x|^2 - g sum m z in the co-rotating frame. */
+static double lagrangian(const fd_problem *p, const double *q, const double *qd)
+{
+    const whirl_chain *c = p->c;
+    const size_t n = c->n;
+    double u[NMAX][3], ud[NMAX][3], x[3] = {0}, v[3] = {0}, lag = 0;
+    link_vectors(n, q, qd, u, ud);
+    for (size_t i = 0; i < n; i++) {
+        for (int d = 0; d < 3; d++) {
+            x[d] += c->length[i] * u[i][d];
+            v[d] += c->length[i] * ud[i][d];
+        }
+        const double vx = v[0] - p->omega * x[1], vy = v[1] + p->omega * x[0], vz = v[2];
+        lag += 0.5 * c->mass[i] * (vx * vx + vy * vy + vz * vz) - c->mass[i] * c->gravity * x[2];
+    }
+    return lag;
+}
+
+/* R = D/2 sum |u_i' - u_{i-1}'|^2, u_0' = 0. */
+static double rayleigh(const fd_problem *p, const double *q, const double *qd)
+{
+    const size_t n = p->c->n;
+    double u[NMAX][3], ud[NMAX][3], prev[3] = {0}, sum = 0;
+    link_vectors(n, q, qd, u, ud);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            sum += (ud[i][d] - prev[d]) * (ud[i][d] - prev[d]);
+            prev[d] = ud[i][d];
+        }
+    return 0.5 * p->damping * sum;
+}
+
+typedef double (*scalar_fn)(const fd_problem *, const double *, const double *);
+
+/* Second difference of f in (x_a, y_b), x and y each either q or qd (which: 0 = q, 1 = qd). */
+static double mixed(scalar_fn f, const fd_problem *p, const double *q0, int wa, size_t a,
+                    double ha, int wb, size_t b, double hb)
+{
+    const size_t q = 2 * p->c->n;
+    double sum = 0;
+    for (int sa = -1; sa <= 1; sa += 2)
+        for (int sb = -1; sb <= 1; sb += 2) {
+            double qq[2 * NMAX], qd[2 * NMAX] = {0};
+            memcpy(qq, q0, q * sizeof(double));
+            (wa ? qd : qq)[a] += sa * ha;
+            (wb ? qd : qq)[b] += sb * hb;
+            sum += sa * sb * f(p, qq, qd);
+        }
+    return sum / (4 * ha * hb);
+}
+
+static void test_matrices_by_finite_differences(void **state)
+{
+    (void)state;
+    const size_t n = 6, q = 2 * n;
+    whirl_chain *c = odd_chain(n);
+    const double omega = 3.9, damping = 0.173;
+    double r[NMAX + 1], z[NMAX + 1], q0[2 * NMAX] = {0};
+    assert_int_equal(find_mode(c, omega, 2, r, z), 0);
+    for (size_t j = 0; j < n; j++) q0[j] = atan2(r[j + 1] - r[j], z[j] - z[j + 1]);
+
+    whirl_model m = model_of(c, omega, damping);
+    whirl_stability *w = whirl_stability_alloc(n);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    const double km = max_abs(q * q, kk), mmax = max_abs(q * q, mm), gm = max_abs(q * q, gg);
+    const double cm = max_abs(q * q, cc);
+    assert_true(km > 0 && mmax > 0 && gm > 0 && cm > 0);
+    fd_problem p = {c, omega, damping};
+    const double h = 1e-4; /* in the angles; the velocities enter quadratically: step 1 is exact */
+    double err_m = 0, err_g = 0, err_k = 0, err_c = 0;
+    for (size_t a = 0; a < q; a++)
+        for (size_t b = 0; b < q; b++) {
+            double fm = mixed(lagrangian, &p, q0, 1, a, 1.0, 1, b, 1.0);
+            double fg = mixed(lagrangian, &p, q0, 1, a, 1.0, 0, b, h) -
+                        mixed(lagrangian, &p, q0, 0, a, h, 1, b, 1.0);
+            double fk = -mixed(lagrangian, &p, q0, 0, a, h, 0, b, h);
+            double fc = mixed(rayleigh, &p, q0, 1, a, 1.0, 1, b, 1.0);
+            err_m = fmax(err_m, fabs(fm - mm[a * q + b]));
+            err_g = fmax(err_g, fabs(fg - gg[a * q + b]));
+            err_k = fmax(err_k, fabs(fk - kk[a * q + b]));
+            err_c = fmax(err_c, fabs(fc - cc[a * q + b]));
+        }
+    print_message("# finite differences: |dM| %.2g |dG| %.2g |dK| %.2g |dC| %.2g (relative)\n",
+                  err_m / mmax, err_g / gm, err_k / km, err_c / cm);
+    assert_true(err_m < 1e-12 * mmax);
+    assert_true(err_c < 1e-12 * cm);
+    assert_true(err_g < 1e-7 * gm);
+    assert_true(err_k < 1e-7 * km);
+    /* K s = 0: the rotation about z */
+    const double *s = whirl_stability_symmetry(w);
+    double ks = 0;
+    for (size_t a = 0; a < q; a++) {
+        double sum = 0;
+        for (size_t b = 0; b < q; b++) sum += kk[a * q + b] * s[b];
+        ks = fmax(ks, fabs(sum));
+    }
+    assert_true(ks < 1e-12 * km * max_abs(q, s));
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- (b') against the dynamics module's equations of motion ---- */
+
+/* Link vectors d_j = l_j u_j and rates, positions and velocities of the masses at (q, qd). */
+static void cartesian_state(const whirl_chain *c, const double *q, const double *qd, double *x,
+                            double *v)
+{
+    const size_t n = c->n;
+    double u[NMAX][3], ud[NMAX][3], px[3] = {0}, pv[3] = {0};
+    link_vectors(n, q, qd, u, ud);
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            px[d] += c->length[i] * u[i][d];
+            pv[d] += c->length[i] * ud[i][d];
+            x[3 * i + d] = px[d];
+            v[3 * i + d] = pv[d];
+        }
+}
+
+static void test_against_dynamics(void **state)
+{
+    (void)state;
+    const size_t n = 7, q = 2 * n;
+    whirl_chain *c = odd_chain(n);
+    const double omega = 4.0, damping = 0.087;
+    double r[NMAX + 1], z[NMAX + 1], q0[2 * NMAX] = {0}, dq[2 * NMAX], dqd[2 * NMAX];
+    assert_int_equal(find_mode(c, omega, 2, r, z), 0);
+    for (size_t j = 0; j < n; j++) q0[j] = atan2(r[j + 1] - r[j], z[j] - z[j + 1]);
+    for (size_t a = 0; a < q; a++) {
+        dq[a] = sin(3.7 * (double)a + 0.4);
+        dqd[a] = cos(2.9 * (double)a + 1.1);
+    }
+    whirl_model m = model_of(c, omega, damping);
+    whirl_stability *w = whirl_stability_alloc(n);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+
+    /* prediction: q'' = -M^-1 (K dq + (G + C) dqd) */
+    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    gsl_matrix *chol = gsl_matrix_alloc(q, q);
+    gsl_vector *pred = gsl_vector_alloc(q);
+    memcpy(chol->data, mm, q * q * sizeof(double));
+    assert_int_equal(gsl_linalg_cholesky_decomp1(chol), 0);
+    for (size_t a = 0; a < q; a++) {
+        double f = 0;
+        for (size_t b = 0; b < q; b++) f -= kk[a * q + b] * dq[b] + (gg[a * q + b] + cc[a * q + b]) * dqd[b];
+        gsl_vector_set(pred, a, f);
+    }
+    assert_int_equal(gsl_linalg_cholesky_svx(chol, pred), 0);
+
+    /* the dynamics module at q0 +- h dq with rates +- h dqd; the Cartesian state is
+     * (d_1..d_N, d_1'..d_N'), so the second half of dy/dt holds d_j'' = l_j u_j'' */
+    whirl_dyn *dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_non_null(dyn);
+    const size_t size = whirl_dyn_size(dyn);
+    assert_int_equal(size, 6 * n);
+    const double h = 1e-5;
+    double acc[2][2 * NMAX];
+    for (int side = 0; side < 2; side++) {
+        const double sg = side ? -h : h;
+        double qq[2 * NMAX], qqd[2 * NMAX], x[3 * NMAX], v[3 * NMAX], y[6 * NMAX], dy[6 * NMAX];
+        for (size_t a = 0; a < q; a++) {
+            qq[a] = q0[a] + sg * dq[a];
+            qqd[a] = sg * dqd[a];
+        }
+        cartesian_state(c, qq, qqd, x, v);
+        assert_int_equal(whirl_dyn_set_state(dyn, 0, x, v, y), 0);
+        assert_int_equal(whirl_dyn_rhs(0, y, dy, dyn), 0);
+        for (size_t j = 0; j < n; j++) {
+            const double *dd = dy + 3 * n + 3 * j;
+            acc[side][j] = (cos(q0[j]) * dd[0] + sin(q0[j]) * dd[2]) / c->length[j];
+            acc[side][n + j] = dd[1] / c->length[j];
+        }
+    }
+    double err = 0, scale = 0;
+    for (size_t a = 0; a < q; a++) {
+        const double fd = (acc[0][a] - acc[1][a]) / (2 * h);
+        err = fmax(err, fabs(fd - gsl_vector_get(pred, a)));
+        scale = fmax(scale, fabs(gsl_vector_get(pred, a)));
+    }
+    print_message("# against whirl_dyn_rhs: |d q''| %.2g relative\n", err / scale);
+    assert_true(err < 1e-6 * scale);
+    whirl_dyn_free(dyn);
+    gsl_vector_free(pred);
+    gsl_matrix_free(chol);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- deflation against the full spectrum ---- */
+
+/* Eigenvalues of the full first-order form, by GSL. */
+static void full_spectrum(const whirl_stability *w, size_t n, double *re, double *im)
+{
+    const size_t q = 2 * n, y = 4 * n;
+    gsl_matrix *mm = gsl_matrix_alloc(q, q), *rhs = gsl_matrix_alloc(q, y);
+    gsl_matrix *a = gsl_matrix_calloc(y, y);
+    const double *m = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+    const double *g = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+    const double *c = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+    const double *k = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    memcpy(mm->data, m, q * q * sizeof(double));
+    assert_int_equal(gsl_linalg_cholesky_decomp1(mm), 0);
+    for (size_t j = 0; j < q; j++) {
+        gsl_vector_view col_k = gsl_matrix_column(rhs, j), col_d = gsl_matrix_column(rhs, q + j);
+        for (size_t i = 0; i < q; i++) {
+            gsl_vector_set(&col_k.vector, i, k[i * q + j]);
+            gsl_vector_set(&col_d.vector, i, g[i * q + j] + c[i * q + j]);
+        }
+        assert_int_equal(gsl_linalg_cholesky_svx(mm, &col_k.vector), 0);
+        assert_int_equal(gsl_linalg_cholesky_svx(mm, &col_d.vector), 0);
+    }
+    for (size_t i = 0; i < q; i++) {
+        gsl_matrix_set(a, i, q + i, 1);
+        for (size_t j = 0; j < y; j++) gsl_matrix_set(a, q + i, j, -gsl_matrix_get(rhs, i, j));
+    }
+    gsl_vector_complex *e = gsl_vector_complex_alloc(y);
+    gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(y);
+    assert_int_equal(gsl_eigen_nonsymm(a, e, ws), 0);
+    for (size_t i = 0; i < y; i++) {
+        re[i] = GSL_REAL(gsl_vector_complex_get(e, i));
+        im[i] = GSL_IMAG(gsl_vector_complex_get(e, i));
+    }
+    gsl_eigen_nonsymm_free(ws);
+    gsl_vector_complex_free(e);
+    gsl_matrix_free(a);
+    gsl_matrix_free(rhs);
+    gsl_matrix_free(mm);
+}
+
+static void check_deflation(size_t n, int mode, double omega, double damping)
+{
+    whirl_chain *c = odd_chain(n);
+    double r[NMAX + 1], z[NMAX + 1];
+    assert_int_equal(find_mode(c, omega, mode, r, z), 0);
+    whirl_model m = model_of(c, omega, damping);
+    whirl_stability *w = whirl_stability_alloc(n);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    size_t count;
+    const double *re, *im;
+    assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+    const size_t removed = damping > 0 ? 1 : 2;
+    assert_int_equal(count, 4 * n - removed);
+    double fre[4 * NMAX], fim[4 * NMAX];
+    int used[4 * NMAX] = {0};
+    full_spectrum(w, n, fre, fim);
+    double scale = 0;
+    for (size_t i = 0; i < 4 * n; i++) scale = fmax(scale, hypot(fre[i], fim[i]));
+    /* every deflated eigenvalue is one of the full spectrum (matched one to one) */
+    double worst = 0;
+    for (size_t i = 0; i < count; i++) {
+        size_t best = 0;
+        double dist = INFINITY;
+        for (size_t j = 0; j < 4 * n; j++) {
+            double dj = hypot(re[i] - fre[j], im[i] - fim[j]);
+            if (!used[j] && dj < dist) dist = dj, best = j;
+        }
+        used[best] = 1;
+        worst = fmax(worst, dist);
+    }
+    /* and the ones left over are the zeros (a Jordan pair splits to O(sqrt(eps)) in the full) */
+    double left = 0;
+    for (size_t j = 0; j < 4 * n; j++)
+        if (!used[j]) left = fmax(left, hypot(fre[j], fim[j]));
+    print_message("# mode %d omega %g D %g: deflated vs full %.2g, removed |lambda| <= %.2g "
+                  "(scale %.3g)\n", mode, omega, damping, worst, left, scale);
+    assert_true(worst < 1e-7 * scale);
+    assert_true(left < 1e-6 * scale);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+static void test_deflation(void **state)
+{
+    (void)state;
+    check_deflation(5, 1, 2.385, 0);
+    check_deflation(6, 2, 4.1, 0);
+    check_deflation(6, 2, 4.1, 0.05);
+    check_deflation(8, 3, 6.7, 0.013);
+}
+
+/* ---- (c) negative directions of K; (d) Kelvin-Tait-Chetaev ---- */
+
+static void test_negative_directions_and_damping(void **state)
+{
+    (void)state;
+    const size_t n = 12, q = 2 * n;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const double omega = 6.3; /* above the third critical rate of the 12-link chain */
+    for (int mode = 1; mode <= 3; mode++) {
+        double r[NMAX + 1], z[NMAX + 1], eval[2 * NMAX], half[NMAX * NMAX];
+        assert_int_equal(find_mode(c, omega, mode, r, z), 0);
+        whirl_model m = model_of(c, omega, 0);
+        assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+        const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+        symmetric_eigenvalues(q, kk, eval);
+        const double tol = 1e-10 * fmax(fabs(eval[0]), fabs(eval[q - 1]));
+        assert_int_equal(count_below(q, eval, -tol), (size_t)(2 * (mode - 1)));
+        assert_int_equal(count_below(q, eval, tol) - count_below(q, eval, -tol), 1);
+        for (size_t i = 0; i < n; i++) /* the in-plane block */
+            for (size_t j = 0; j < n; j++) half[i * n + j] = kk[i * q + j];
+        symmetric_eigenvalues(n, half, eval);
+        assert_int_equal(count_below(n, eval, -tol), (size_t)(mode - 1));
+
+        /* without damping: Hamiltonian spectrum (symmetric about the imaginary axis) */
+        size_t count;
+        const double *re, *im;
+        assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+        double hi = -INFINITY, lo = INFINITY, sc = 0;
+        for (size_t i = 0; i < count; i++) {
+            hi = fmax(hi, re[i]);
+            lo = fmin(lo, re[i]);
+            sc = fmax(sc, hypot(re[i], im[i]));
+        }
+        assert_true(fabs(hi + lo) < 1e-8 * sc);
+        if (mode == 1) assert_true(hi < 1e-8 * sc); /* K >= 0: Lyapunov stable */
+
+        /* with damping: as many growing eigenvalues as negative directions of K */
+        m.internal_damping = 0.021;
+        assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+        assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+        size_t growing = 0;
+        for (size_t i = 0; i < count; i++) growing += re[i] > 0;
+        double growth;
+        assert_int_equal(whirl_stability_growth(w, &growth), 0);
+        print_message("# mode %d omega %g: conservative max Re %.3g, damped growth %.6g, %zu "
+                      "growing\n", mode, omega, hi, growth, growing);
+        assert_int_equal(growing, (size_t)(2 * (mode - 1)));
+        assert_true(mode == 1 ? growth < 0 : growth > 0);
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- the steady-shape module's shapes ---- */
+
+static void test_with_steady_module(void **state)
+{
+    (void)state;
+    const size_t n = 10;
+    whirl_chain *c = odd_chain(n);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const double omega = 5.2;
+    for (int mode = 1; mode <= 2; mode++) {
+        double r[NMAX + 1], z[NMAX + 1], own, theirs;
+        whirl_model m = model_of(c, omega, 0.031);
+        assert_int_equal(find_mode(c, omega, mode, r, z), 0);
+        assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+        assert_int_equal(whirl_stability_growth(w, &own), 0);
+        whirl_shape_info info;
+        assert_int_equal(whirl_stability_mode(w, &m, mode, 0, &info, &theirs), 0);
+        assert_int_equal(info.mode, mode);
+        assert_true(fabs(info.tip_r - r[n]) < 1e-9);
+        assert_true(fabs(own - theirs) < 1e-9 * fmax(1, fabs(own)));
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- errors ---- */
+
+static void test_errors(void **state)
+{
+    (void)state;
+    assert_null(whirl_stability_alloc(0));
+    const size_t n = 5;
+    whirl_chain *c = odd_chain(n);
+    whirl_stability *w = whirl_stability_alloc(n);
+    double r[NMAX + 1], z[NMAX + 1], growth;
+    assert_int_equal(whirl_stability_growth(w, &growth), GSL_EINVAL); /* nothing linearised */
+    assert_int_equal(find_mode(c, 2.9, 1, r, z), 0);
+    whirl_model m = model_of(c, 2.9, 0);
+    m.internal_damping = -0.1;
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    assert_true(strstr(whirl_last_error(), "damping") != NULL);
+    m = model_of(c, 2.9, 0);
+    m.air_drag = 0.2;
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    m = model_of(c, 2.9, 0);
+    m.dim = 2;
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    m = model_of(c, 3.0, 0); /* the shape of 2.9 is not an equilibrium at 3.0 */
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    assert_true(strstr(whirl_last_error(), "equilibrium") != NULL);
+    m = model_of(c, 2.9, 0);
+    z[3] += 1e-3; /* a link of the wrong length */
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    whirl_chain *other = odd_chain(n + 1);
+    m.chain = other;
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    /* a mode that does not exist */
+    m = model_of(c, 0.5, 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 1, 0, NULL, &growth), GSL_EDOM);
+    whirl_chain_free(other);
+    whirl_stability_free(w);
+    whirl_stability_free(NULL);
+    whirl_chain_free(c);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hanging_chain),
+        cmocka_unit_test(test_matrices_by_finite_differences),
+        cmocka_unit_test(test_against_dynamics),
+        cmocka_unit_test(test_deflation),
+        cmocka_unit_test(test_negative_directions_and_damping),
+        cmocka_unit_test(test_with_steady_module),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
