@@ -38,6 +38,15 @@ $(BUILD)/libwhirl.a: $(LIB_OBJ)
 $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 	$(CC) $(ALL_LDFLAGS) $(CLI_OBJ) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
 
+# --- MPI (Open MPI): with mpicc present, `whirl regime` shares a map out over the ranks of
+# `mpirun -n K`; `make MPI=0` builds the single-process program without MPI.
+MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
+ifeq ($(MPI),1)
+$(BUILD)/src/cli/cmd_regime.o: XCFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
+$(BUILD)/whirl: LDLIBS += $(shell mpicc --showme:link)
+endif
+# --- end MPI
+
 $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@

@@ -31,7 +31,7 @@
  * Projection: d_i <- l_i d_i / |d_i|, then d_i' <- d_i' - (d_i . d_i' / l_i^2) d_i, formed in long
  * double and rounded once: with the scale factor rounded to double first, the energy error of
  * gauss3 (5 links, h = 0.01) grew like t^0.62 to 7e-14 over 2 10^5 steps; rounded once, like
- * t^0.48 to 4e-14 over 10^6 steps (tests/bench_dynamics.c). */
+ * t^0.42-0.48 to 4-7e-14 over 10^6 steps (tests/bench_dynamics.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -230,7 +230,6 @@ static int cart_tensions(whirl_dyn *d, double t, const double *y, double *tensio
 }
 
 const dyn_ops whirl_dyn_cartesian_ops = {
-    .name = "cartesian",
     .link = cart_link,
     .from_links = cart_from_links,
     .rhs = cart_rhs,

@@ -12,7 +12,6 @@
 
 /* The operations one formulation provides. */
 typedef struct dyn_ops {
-    const char *name;
     /* Link vector d_i = x_i - x_{i-1} and its time derivative in the model's frame (3 components
      * each, y component 0 in 2D), i = 0..N-1. */
     void (*link)(const whirl_dyn *d, const double *y, size_t i, double *dv, double *ddot);
@@ -51,18 +50,10 @@ extern const dyn_ops whirl_dyn_seed_ops;
 /* Pivot position, velocity and acceleration in the model's frame at time t (3 components). */
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa);
 
-/* Positions x and velocities v of the masses in the model's frame (3 per mass) from y. */
-void whirl_dyn_masses(const whirl_dyn *d, double t, const double *y, double *x, double *v);
-
-/* The applied forces on the masses (3 per mass, model frame) at positions x, velocities v (model
- * frame) and link vectors/rates: linear and quadratic air drag, internal damping and, if
+/* Fills d->x, d->v (positions and velocities of the masses), d->links, d->link_rates from y and
+ * d->force with the applied forces: linear and quadratic air drag, internal damping and, if
  * with_seed_forcing, the seed's forcing f_d = sigma_d - lambda_d thetadot_d as a force pair on
  * link d (2D). Gravity and the fictitious forces of the frame are not included. */
-void whirl_dyn_applied_forces(const whirl_dyn *d, double t, const double *x, const double *v,
-                              const double *links, const double *link_rates,
-                              int with_seed_forcing, double *force);
-
-/* Fills d->x, d->v, d->links, d->link_rates from y and d->force with the applied forces. */
 void whirl_dyn_prepare_forces(whirl_dyn *d, double t, const double *y, int with_seed_forcing);
 
 /* 1 if every component of v[0..n-1] is finite. */

@@ -21,7 +21,9 @@
  * F_k = applied forces + m_k (gravity + [co-rotating] centrifugal w^2 (x, y, 0) + Coriolis
  * 2 w (v_y, -v_x, 0) - [inertial] p''(t)); the seed's forcing enters as Q_{th_d} = sigma_d -
  * lambda_d th_d' (eq. 25-26) directly. 2D reduces to the seed's eq. 16-18 (the seed's eq. 15
- * second sum and the sign pattern of eq. 23/24 are misprinted; this is derived afresh).
+ * second sum and the sign pattern of eq. 23/24 are misprinted; this is derived afresh); one link
+ * in 3D gives th'' = ph'^2 sin th cos th - (g/l) sin th, ph'' = -2 th' ph' cot th (the seed's
+ * eq. 43 prints + th' ph' cot th). Both closed forms are checked in tests/test_dynamics.c.
  * Tension of link i: T_i = u_i . sum_{k>=i} (F_k - m_k a_k), a_k relative to the pivot (force
  * balance of the part below).
  * Singular in 3D where sin th_i = 0 (the A_{ph ph} block degenerates): refused below
@@ -113,12 +115,8 @@ static int seed_from_links(whirl_dyn *d, const double *dv, const double *ddot, d
     return GSL_SUCCESS;
 }
 
-static int seed_project(whirl_dyn *d, double *y)
-{
-    (void)d;
-    (void)y;
-    return GSL_SUCCESS;
-}
+/* The angles satisfy the constraints by construction. */
+static int seed_project(whirl_dyn *d, double *y) { return GSL_SUCCESS; }
 
 /* d->force <- the total non-constraint force F_k on every mass (3 per mass). */
 static void total_forces(whirl_dyn *d, double t, const double *y)
@@ -261,7 +259,6 @@ static int seed_tensions(whirl_dyn *d, double t, const double *y, double *tensio
 }
 
 const dyn_ops whirl_dyn_seed_ops = {
-    .name = "seed",
     .link = seed_link,
     .from_links = seed_from_links,
     .rhs = seed_rhs,

@@ -13,7 +13,8 @@
  *                    force on mass k is -(G_k - G_{k+1}), since d_k' = v_k - v_{k-1};
  *   seed forcing (2D) the generalized force f_d = sigma_d - lambda_d thetadot_d on theta_d is the
  *                    force pair +-(f_d / l_d) e_d on masses d and d-1, e_d = dd_d/dtheta_d / l_d =
- *                    (-d_z, 0, d_x) / l_d (virtual work f_d dtheta_d), thetadot_d = e_d . d_d' / l_d.
+ *                    (-d_z, 0, d_x) / l_d (virtual work f_d dtheta_d),
+ *                    thetadot_d = e_d . d_d' / l_d.
  * Gravity (0, 0, -g) and, in the co-rotating frame, the centrifugal w^2 (x, y, 0) and Coriolis
  * -2 w z x v accelerations are added by each formulation (uniform fields: the Cartesian one uses
  * their differences between neighbours exactly).
@@ -93,7 +94,9 @@ whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f)
     d->force = malloc(3 * n * sizeof *d->force);
     d->links = malloc(3 * n * sizeof *d->links);
     d->link_rates = malloc(3 * n * sizeof *d->link_rates);
-    if (!d->mass_below || !d->inv_mass || !d->x || !d->v || !d->force || !d->links || !d->link_rates) goto nomem;
+    if (!d->mass_below || !d->inv_mass || !d->x || !d->v || !d->force || !d->links ||
+        !d->link_rates)
+        goto nomem;
     double below = 0;
     for (size_t i = n; i-- > 0;) {
         below += model->chain->mass[i];
@@ -152,56 +155,77 @@ void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double
     for (int k = 0; k < 3; k++) pa[k] = -w * w * p[k];
 }
 
-void whirl_dyn_masses(const whirl_dyn *d, double t, const double *y, double *x, double *v)
+/* Positions x and velocities v of the masses (3 per mass, model frame) by running sums of the
+ * links from the pivot; the link vectors and rates too if links != NULL. */
+static void masses_from_links(const whirl_dyn *d, double t, const double *y, double *x,
+                              double *v, double *links, double *link_rates)
 {
     double p[3], pv[3], pa[3], dv[3], dd[3];
     whirl_dyn_pivot(d, t, p, pv, pa);
     for (size_t i = 0; i < d->n; i++) {
         d->ops->link(d, y, i, dv, dd);
         for (int k = 0; k < 3; k++) {
-            p[k] += dv[k];
-            pv[k] += dd[k];
-            x[3 * i + k] = p[k];
-            v[3 * i + k] = pv[k];
+            x[3 * i + k] = p[k] += dv[k];
+            v[3 * i + k] = pv[k] += dd[k];
+            if (links != NULL) {
+                links[3 * i + k] = dv[k];
+                link_rates[3 * i + k] = dd[k];
+            }
         }
     }
 }
 
-void whirl_dyn_applied_forces(const whirl_dyn *d, double t, const double *x, const double *v,
-                              const double *links, const double *link_rates,
-                              int with_seed_forcing, double *force)
+/* Internal damping: force -= dR/dv, in three sweeps in place: force_i <- J_i, then G_i, then
+ * -(G_i - G_{i+1}) (the notation of the file's header). */
+static void add_internal_damping(const whirl_dyn *d, const double *links,
+                                 const double *link_rates, double *force)
+{
+    const whirl_model *m = &d->model;
+    const double *len = m->chain->length;
+    const double w = m->omega, D = m->internal_damping;
+    const int rotating = m->frame == WHIRL_FRAME_ROTATING;
+    const size_t n = d->n;
+    double w_prev[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++) {
+        const double *dv = links + 3 * i, *dd = link_rates + 3 * i;
+        double w_cur[3] = {dd[0], dd[1], dd[2]};
+        if (!rotating) {
+            w_cur[0] += w * dv[1];
+            w_cur[1] -= w * dv[0];
+        }
+        for (int k = 0; k < 3; k++) {
+            w_cur[k] /= len[i];
+            force[3 * i + k] = D * (w_cur[k] - w_prev[k]);
+            w_prev[k] = w_cur[k];
+        }
+    }
+    for (int sweep = 0; sweep < 2; sweep++) {
+        for (size_t i = 0; i < n; i++) {
+            for (int k = 0; k < 3; k++) {
+                const double next = i + 1 < n ? force[3 * (i + 1) + k] : 0.0;
+                const double diff = force[3 * i + k] - next;
+                force[3 * i + k] = sweep == 0 ? diff / len[i] : -diff;
+            }
+        }
+    }
+}
+
+/* The applied forces on the masses (3 per mass, model frame): linear and quadratic air drag,
+ * internal damping and, if with_seed_forcing, the seed's forcing as a force pair on link d (2D).
+ * Gravity and the fictitious forces of the frame are not included. */
+static void applied_forces(const whirl_dyn *d, const double *x, const double *v,
+                           const double *links, const double *link_rates, int with_seed_forcing,
+                           double *force)
 {
     const whirl_model *m = &d->model;
     const double *len = m->chain->length;
     const double w = m->omega;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
     const size_t n = d->n;
-    memset(force, 0, 3 * n * sizeof *force);
-    if (m->internal_damping > 0) {
-        /* three sweeps in place: force_i <- J_i, then G_i, then -(G_i - G_{i+1}) */
-        const double D = m->internal_damping;
-        double w_prev[3] = {0, 0, 0};
-        for (size_t i = 0; i < n; i++) {
-            const double *dv = links + 3 * i, *dd = link_rates + 3 * i;
-            double w_cur[3] = {dd[0], dd[1], dd[2]};
-            if (!rotating) {
-                w_cur[0] += w * dv[1];
-                w_cur[1] -= w * dv[0];
-            }
-            for (int k = 0; k < 3; k++) {
-                w_cur[k] /= len[i];
-                force[3 * i + k] = D * (w_cur[k] - w_prev[k]);
-                w_prev[k] = w_cur[k];
-            }
-        }
-        for (size_t i = 0; i < n; i++)
-            for (int k = 0; k < 3; k++)
-                force[3 * i + k] =
-                    (force[3 * i + k] - (i + 1 < n ? force[3 * (i + 1) + k] : 0.0)) / len[i];
-        for (size_t i = 0; i < n; i++)
-            for (int k = 0; k < 3; k++)
-                force[3 * i + k] = -(force[3 * i + k] - (i + 1 < n ? force[3 * (i + 1) + k] : 0.0));
-    }
+    if (m->internal_damping > 0)
+        add_internal_damping(d, links, link_rates, force);
+    else
+        memset(force, 0, 3 * n * sizeof *force);
     if (m->air_drag > 0 || m->air_drag_quadratic > 0) {
         for (size_t i = 0; i < n; i++) {
             const double *xi = x + 3 * i, *vi = v + 3 * i;
@@ -231,28 +255,12 @@ void whirl_dyn_applied_forces(const whirl_dyn *d, double t, const double *x, con
     }
     if (d->dim == 2)
         for (size_t i = 0; i < n; i++) force[3 * i + 1] = 0;
-    (void)t;
 }
 
 void whirl_dyn_prepare_forces(whirl_dyn *d, double t, const double *y, int with_seed_forcing)
 {
-    double p[3], pv[3], pa[3];
-    whirl_dyn_pivot(d, t, p, pv, pa);
-    for (size_t i = 0; i < d->n; i++) {
-        double *dv = d->links + 3 * i, *dd = d->link_rates + 3 * i;
-        d->ops->link(d, y, i, dv, dd);
-        for (int k = 0; k < 3; k++) {
-            d->x[3 * i + k] = p[k] += dv[k];
-            d->v[3 * i + k] = pv[k] += dd[k];
-        }
-    }
-    const whirl_model *m = &d->model;
-    if (m->air_drag > 0 || m->air_drag_quadratic > 0 || m->internal_damping > 0 ||
-        (with_seed_forcing && (m->seed_sigma != NULL || m->seed_lambda != NULL)))
-        whirl_dyn_applied_forces(d, t, d->x, d->v, d->links, d->link_rates, with_seed_forcing,
-                                 d->force);
-    else
-        memset(d->force, 0, 3 * d->n * sizeof *d->force);
+    masses_from_links(d, t, y, d->x, d->v, d->links, d->link_rates);
+    applied_forces(d, d->x, d->v, d->links, d->link_rates, with_seed_forcing, d->force);
 }
 
 int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn)
@@ -304,7 +312,7 @@ int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_fra
         return whirl_fail(GSL_EINVAL, "unknown frame %d", (int)frame);
     if (frame == WHIRL_FRAME_ROTATING && d->dim != 3)
         return whirl_fail(GSL_EINVAL, "a planar model has no co-rotating frame");
-    whirl_dyn_masses(d, t, y, x, v);
+    masses_from_links(d, t, y, x, v, NULL, NULL);
     if (frame == d->model.frame) return GSL_SUCCESS;
     /* rotating -> inertial: x' = R x, v' = R (v + w z x x); inertial -> rotating: the inverse */
     const double w = d->model.omega, c = cos(w * t), s = sin(w * t);
@@ -331,8 +339,7 @@ int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_fra
 
 int whirl_dyn_project(whirl_dyn *d, double t, double *y)
 {
-    (void)t;
-    return d->ops->project(d, y);
+    return d->ops->project(d, y); /* the constraints do not depend on t */
 }
 
 int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension)

@@ -105,8 +105,9 @@ whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
     it->method = m;
     it->dyn = d;
     it->size = whirl_dyn_size(d);
-    it->last_y = malloc(it->size * sizeof *it->last_y);
+    it->last_y = malloc(2 * it->size * sizeof *it->last_y);
     if (it->last_y == NULL) goto nomem;
+    it->backup = it->last_y + it->size;
     int status = m->alloc(it);
     if (status == GSL_ENOMEM) goto nomem;
     if (status != GSL_SUCCESS) {
@@ -133,10 +134,10 @@ whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it)
     return it->stats;
 }
 
+/* Projection after a step; a non-finite result is a failure. */
 static int project(whirl_integrator *it, double t, double *y)
 {
-    int status = it->method->project != NULL ? it->method->project(it, t, y)
-                                              : whirl_dyn_project(it->dyn, t, y);
+    int status = whirl_dyn_project(it->dyn, t, y);
     if (status != GSL_SUCCESS) return status;
     if (!whirl_dyn_all_finite(y, it->size))
         return whirl_fail(GSL_EBADFUNC, "the state is not finite at t = %.17g", t);
@@ -169,6 +170,7 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
         const unsigned long steps = (unsigned long)count;
         for (unsigned long k = 0; k < steps; k++) {
             const double ta = *t, tb = k + 1 == steps ? t1 : t0 + (double)(k + 1) * h;
+            memcpy(it->backup, y, it->size * sizeof *y);
             status = it->method->step(it, ta, tb - ta, y);
             if (status == GSL_SUCCESS) status = project(it, tb, y);
             if (status != GSL_SUCCESS) break;
@@ -178,11 +180,21 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
     } else {
         double hh = h;
         while (*t < t1) {
+            const double ta = *t;
+            memcpy(it->backup, y, it->size * sizeof *y);
             status = it->method->adaptive_step(it, t, t1, &hh, tol, y);
             if (status == GSL_SUCCESS) status = project(it, *t, y);
-            if (status != GSL_SUCCESS) break;
+            if (status != GSL_SUCCESS) {
+                *t = ta;
+                break;
+            }
             it->stats.steps++;
         }
+    }
+    if (status != GSL_SUCCESS) {
+        /* back to the last good state; the method's history does not describe it */
+        memcpy(y, it->backup, it->size * sizeof *y);
+        if (it->method->restart != NULL) it->method->restart(it);
     }
     memcpy(it->last_y, y, it->size * sizeof *y);
     it->last_t = *t;

@@ -32,7 +32,7 @@ typedef struct gsl_state {
     whirl_integrator *it;
     gsl_odeiv2_system sys;
     gsl_odeiv2_driver *driver;
-    double *f0, *f1, *ytmp, *before; /* Jacobian scratch; state before a step */
+    double *f0, *f1, *ytmp; /* Jacobian scratch */
 } gsl_state;
 
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
@@ -81,11 +81,10 @@ static int gsl_alloc_state(whirl_integrator *it)
     it->state = g;
     g->it = it;
     const size_t n = it->size;
-    g->f0 = malloc(4 * n * sizeof *g->f0);
+    g->f0 = malloc(3 * n * sizeof *g->f0);
     if (g->f0 == NULL) return GSL_ENOMEM;
     g->f1 = g->f0 + n;
     g->ytmp = g->f1 + n;
-    g->before = g->ytmp + n;
     g->sys = (gsl_odeiv2_system){gsl_rhs, gsl_jacobian, n, g};
     const gsl_odeiv2_step_type *const *type = it->method->params;
     g->driver = gsl_odeiv2_driver_alloc_y_new(&g->sys, *type, 1e-3, 1e-6, 1e-6);
@@ -114,9 +113,7 @@ static int gsl_fixed_step(whirl_integrator *it, double t, double h, double *y)
     gsl_odeiv2_driver *dr = g->driver;
     gsl_odeiv2_control_init(dr->c, GSL_FIXED_STEP_TOL, GSL_FIXED_STEP_TOL, 1, 0);
     double tt = t;
-    memcpy(g->before, y, it->size * sizeof *y);
     int status = gsl_odeiv2_evolve_apply_fixed_step(dr->e, NULL, dr->s, &g->sys, &tt, h, y);
-    if (status != GSL_SUCCESS) memcpy(y, g->before, it->size * sizeof *y);
     return gsl_status(status, t);
 }
 
@@ -127,14 +124,9 @@ static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double 
     gsl_odeiv2_driver *dr = g->driver;
     gsl_odeiv2_control_init(dr->c, tol, tol, 1, 0);
     const unsigned long failed = dr->e->failed_steps;
-    memcpy(g->before, y, it->size * sizeof *y);
     const double t0 = *t;
     int status = gsl_odeiv2_evolve_apply(dr->e, dr->c, dr->s, &g->sys, t, t1, h, y);
     it->stats.rejected += dr->e->failed_steps - failed;
-    if (status != GSL_SUCCESS) {
-        memcpy(y, g->before, it->size * sizeof *y);
-        *t = t0;
-    }
     return gsl_status(status, t0);
 }
 

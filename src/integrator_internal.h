@@ -13,15 +13,13 @@ typedef struct integrator_method {
     const void *params; /* method-specific constant data (tableau, GSL step type) */
     int (*alloc)(struct whirl_integrator *it);
     void (*free)(void *state);
-    /* One step of size h from (t, y), y in place (unprojected). On failure y is unchanged. */
+    /* One step of size h from (t, y), y in place, unprojected (the driver restores y on failure) */
     int (*step)(struct whirl_integrator *it, double t, double h, double *y);
     /* One adaptive step towards t1 (tolerance tol): advances *t, may change *h. */
     int (*adaptive_step)(struct whirl_integrator *it, double *t, double t1, double *h, double tol,
                          double *y);
     /* The state y was changed outside the integrator (forget history). May be NULL. */
     void (*restart)(struct whirl_integrator *it);
-    /* Projection after a step, for methods that carry compensation terms. NULL: plain projection. */
-    int (*project)(struct whirl_integrator *it, double t, double *y);
 } integrator_method;
 
 struct whirl_integrator {
@@ -31,6 +29,7 @@ struct whirl_integrator {
     whirl_integrator_stats stats;
     void *state;     /* the method's workspace */
     double *last_y;  /* the state the previous advance returned (history is valid for it) */
+    double *backup;  /* the state before the current step */
     double last_t;
     int has_last;
 };

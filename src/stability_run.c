@@ -8,8 +8,8 @@
  * over a rotation about z, so the symmetry's drift does not count) sampled 50 times a period.
  * While the linear regime holds, d(t) = |sum_k c_k v_k e^{lambda_k t}|: the unstable part takes
  * over once it exceeds the neutral ones, and the slope of log d then is the largest growth rate.
- * The slope is fitted by least squares over the samples from the first that reaches 30 d(0) to
- * the first that reaches 3000 d(0) or 1e-2 L (still linear: the nonlinear terms are of relative
+ * The slope is fitted by least squares over the samples from the first that reaches 100 d(0) to
+ * the first that reaches 1e4 d(0) or 1e-2 L (still linear: the nonlinear terms are of relative
  * size d / L), or to the end of the run. */
 #include <math.h>
 #include <stdlib.h>
@@ -47,6 +47,11 @@ whirl_stability_run_params whirl_stability_run_defaults(void)
 static int check_params(const whirl_model *model, const whirl_stability_run_params *p)
 {
     if (model == NULL || model->chain == NULL) return whirl_fail(GSL_EINVAL, "no model or no chain");
+    if (model->drive_radius != 0 || model->air_drag != 0 || model->air_drag_quadratic != 0)
+        return whirl_fail(GSL_EINVAL, "a steady shape needs the pivot on the axis and no air drag");
+    if (!(isfinite(model->internal_damping) && model->internal_damping >= 0))
+        return whirl_fail(GSL_EINVAL, "damping must be >= 0 and finite, got %g",
+                          model->internal_damping);
     if (!(isfinite(model->omega) && model->omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be positive, got %g", model->omega);
     if (!(isfinite(p->periods) && p->periods > 0))
@@ -110,6 +115,25 @@ static int perturbed_start(const whirl_chain *c, const double *r, const double *
     return GSL_SUCCESS;
 }
 
+/* min(period / 200, 0.7 / (nu + omega + kappa)): nu = 2 sqrt(max_j (T_j / l_j) / min m), the
+ * Gershgorin bound of the highest transverse frequency under the tensions T_j (tension[j],
+ * j = 1..N), and kappa = 4 D / (min m min l^2) that of the fastest decay of the internal damping
+ * D, so that the stage iterations of the implicit methods converge and the explicit ones are
+ * stable. */
+static double default_step(const whirl_model *m, const double *tension)
+{
+    const whirl_chain *c = m->chain;
+    double stiff = 0, light = INFINITY, shortest = INFINITY;
+    for (size_t j = 0; j < c->n; j++) {
+        stiff = fmax(stiff, tension[j + 1] / c->length[j]);
+        light = fmin(light, c->mass[j]);
+        shortest = fmin(shortest, c->length[j]);
+    }
+    const double nu = 2 * sqrt(stiff / light);
+    const double kappa = 4 * m->internal_damping / (light * shortest * shortest);
+    return fmin(2 * M_PI / m->omega / 200, 0.7 / (nu + m->omega + kappa));
+}
+
 int whirl_stability_run(const whirl_model *model, double tip_r,
                         const whirl_stability_run_params *params,
                         whirl_stability_run_result *result)
@@ -158,7 +182,7 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
         goto done;
     }
     const double period = 2 * M_PI / m.omega, t_end = params->periods * period;
-    const double h = params->dt > 0 ? params->dt : fmin(period / 200, 0.25 / (double)n);
+    const double h = params->dt > 0 ? params->dt : default_step(&m, tension);
     const double limit = LINEAR_LIMIT * whirl_chain_total_length(c);
     line_fit fit = {0};
     int fitting = 0, fit_done = 0;

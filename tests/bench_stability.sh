@@ -6,7 +6,8 @@
 #     plus the rate of largest growth in every window (stability_runs_N*.csv): where
 #     eig_growth > 0.01, |sim_growth / eig_growth - 1| < 5%; where eig_growth = 0, max_deviation
 #     < 100. Unstable points run long enough for the fit: P = (ln 1e4 + 6) / eig_growth periods
-#     at least (the run stops early once settled); the others 100 periods.
+#     at least (the run stops early once settled); the others 100 periods;
+#  3. one traced run (N = 25, omega 9, mode 2): stability_trace.csv, stability_deviation.png.
 out=${1:-out/bench}
 WHIRL=${WHIRL:-build/whirl}
 mkdir -p "$out"
@@ -29,6 +30,14 @@ done
 if command -v gnuplot >/dev/null; then
   gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv $out/stability_map_N100.csv'; out='$out/stability_map.png'" \
     plots/stability_map.gp 2>/dev/null && echo "figure: $out/stability_map.png"
+fi
+
+# one run traced: deviation against t with the predicted growth (plots/deviation.gp)
+"$WHIRL" stability --omega 9 --mode 2 --links 25 --periods 1000 --trace "$out/stability_trace.csv" \
+  -o "$out/stability_trace_row.csv" && grep -v '^[#o]' "$out/stability_trace_row.csv"
+if command -v gnuplot >/dev/null; then
+  gnuplot -e "csv='$out/stability_trace.csv'; out='$out/stability_deviation.png'" plots/deviation.gp \
+    2>/dev/null && echo "figure: $out/stability_deviation.png"
 fi
 
 for n in 25 50; do

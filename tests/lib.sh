@@ -16,7 +16,7 @@ expect_error() {
   "$WHIRL" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
   rc=$?
   if [ $rc -ne 0 ] && [ ! -s "$tmp/stdout" ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
-     && grep -Eq "$pattern" "$tmp/stderr" && [ ! -e "$tmp/out.csv" ] \
+     && grep -Eq -- "$pattern" "$tmp/stderr" && [ ! -e "$tmp/out.csv" ] \
      && [ -z "$(ls "$tmp" | grep '^out.csv.')" ]; then
     pass "$name"
   else

@@ -233,6 +233,70 @@ static void test_link_accelerations_agree(void **state)
     print_message("worst relative difference of the link accelerations: %.3g\n", worst);
 }
 
+/* Closed forms: the planar double pendulum (theta'' as in e.g. Goldstein's Lagrangian, solved
+ * for the two accelerations) and the spherical pendulum, theta'' = ph'^2 sin th cos th
+ * - (g/l) sin th, ph'' = -2 th' ph' cos th / sin th (the seed's eq. 43 misprints the latter as
+ * + th' ph' cot th). Both formulations, through the seed's angle rates. */
+static void test_analytic_limits(void **state)
+{
+    (void)state;
+    const double l1 = 0.817, l2 = 1.243, m1 = 0.731, m2 = 1.388, g = 1.385;
+    const double th1 = 0.913, th2 = -1.771, w1 = 0.537, w2 = -1.219;
+    const double dth = th1 - th2, den = 2 * m1 + m2 - m2 * cos(2 * dth);
+    const double acc1 = (-g * (2 * m1 + m2) * sin(th1) - m2 * g * sin(th1 - 2 * th2) -
+                         2 * sin(dth) * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * cos(dth))) /
+                        (l1 * den);
+    const double acc2 = 2 * sin(dth) *
+                        (w1 * w1 * l1 * (m1 + m2) + g * (m1 + m2) * cos(th1) +
+                         w2 * w2 * l2 * m2 * cos(dth)) /
+                        (l2 * den);
+    const double len[2] = {l1, l2}, mass[2] = {m1, m2};
+    whirl_chain *c = whirl_chain_alloc(2, len, mass, g);
+    const whirl_model m = {.chain = c, .dim = 2};
+    const double x[6] = {l1 * sin(th1), 0, -l1 * cos(th1), l1 * sin(th1) + l2 * sin(th2), 0,
+                         -l1 * cos(th1) - l2 * cos(th2)};
+    const double v[6] = {l1 * w1 * cos(th1), 0, l1 * w1 * sin(th1),
+                         l1 * w1 * cos(th1) + l2 * w2 * cos(th2), 0,
+                         l1 * w1 * sin(th1) + l2 * w2 * sin(th2)};
+    double y[8], f[8];
+    whirl_dyn *ds = whirl_dyn_alloc(&m, WHIRL_FORMULATION_SEED);
+    assert_int_equal(whirl_dyn_set_state(ds, 0, x, v, y), GSL_SUCCESS);
+    assert_int_equal(whirl_dyn_rhs(0, y, f, ds), GSL_SUCCESS);
+    const double scale = fmax(fabs(acc1), fabs(acc2));
+    assert_true(fabs(f[2] - acc1) < 1e-14 * scale && fabs(f[3] - acc2) < 1e-14 * scale);
+    /* Cartesian: theta_i'' = e_i . d_i'' / l_i (the centripetal part is along d_i) */
+    whirl_dyn *dc = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_int_equal(whirl_dyn_set_state(dc, 0, x, v, y), GSL_SUCCESS);
+    assert_int_equal(whirl_dyn_rhs(0, y, f, dc), GSL_SUCCESS);
+    const double c1 = (cos(th1) * f[4] + sin(th1) * f[5]) / l1;
+    const double c2 = (cos(th2) * f[6] + sin(th2) * f[7]) / l2;
+    assert_true(fabs(c1 - acc1) < 1e-14 * scale && fabs(c2 - acc2) < 1e-14 * scale);
+    whirl_dyn_free(ds);
+    whirl_dyn_free(dc);
+    whirl_chain_free(c);
+
+    /* spherical pendulum */
+    const double l = 0.917, th = 1.123, ph = 0.377, thd = -0.613, phd = 1.271;
+    whirl_chain *c1link = whirl_chain_alloc(1, &l, &m1, g);
+    const whirl_model ms = {.chain = c1link, .dim = 3};
+    whirl_dyn *d1 = whirl_dyn_alloc(&ms, WHIRL_FORMULATION_SEED);
+    const double u[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
+    const double et[3] = {cos(th) * cos(ph), cos(th) * sin(ph), sin(th)}, ep[3] = {-sin(ph),
+                                                                                  cos(ph), 0};
+    double xs[3], vs[3], ys[4], fs[4];
+    for (int k = 0; k < 3; k++) {
+        xs[k] = l * u[k];
+        vs[k] = l * (thd * et[k] + phd * sin(th) * ep[k]);
+    }
+    assert_int_equal(whirl_dyn_set_state(d1, 0, xs, vs, ys), GSL_SUCCESS);
+    assert_int_equal(whirl_dyn_rhs(0, ys, fs, d1), GSL_SUCCESS);
+    const double th_dd = phd * phd * sin(th) * cos(th) - g / l * sin(th);
+    const double ph_dd = -2 * thd * phd * cos(th) / sin(th);
+    assert_true(fabs(fs[2] - th_dd) < 1e-14 && fabs(fs[3] - ph_dd) < 1e-14);
+    whirl_dyn_free(d1);
+    whirl_chain_free(c1link);
+}
+
 /* A chain hanging straight down (singular for the seed's 3D angles) is an equilibrium of the
  * Cartesian formulation: zero accelerations, tension = weight of the masses below. */
 static void test_hanging_chain(void **state)
@@ -324,8 +388,10 @@ static void test_steady_shape_fixed_point(void **state)
 }
 
 /* dJ/dt along the flow = power of the dissipative forces: linear drag (inertial frame, fixed
- * pivot) -sum c l |v|^2, internal damping (co-rotating frame) -2R with R = D/2 sum |w_i -
- * w_{i-1}|^2, w_i = d_i'/l_i. dJ/dt by Richardson-extrapolated central differences of whirl_dyn_diagnose. */
+ * pivot) -sum c l |v|^2, quadratic drag (co-rotating frame, against the inertial velocity),
+ * internal damping (co-rotating frame) -2R with R = D/2 sum |w_i -
+ * w_{i-1}|^2, w_i = d_i'/l_i. dJ/dt by Richardson-extrapolated central differences of
+ * whirl_dyn_diagnose. */
 static double jacobi_rate(whirl_dyn *d, double t, const double *y)
 {
     const size_t size = whirl_dyn_size(d);
@@ -385,6 +451,23 @@ static void test_dissipation_power(void **state)
         print_message("%s: dJ/dt %.10g, -2R %.10g\n", form ? "seed" : "cartesian", got,
                       -2 * rayleigh);
         assert_true(fabs(got + 2 * rayleigh) < 1e-8 * rayleigh);
+        whirl_dyn_free(d);
+        /* quadratic drag only, co-rotating frame: dJ/dt = sum F_i . v_i (co-rotating velocity)
+         * with F_i = -c2 l_i |u_i| u_i, u_i = v_i + w z x x_i the inertial velocity */
+        whirl_model mq = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = 1.61,
+                          .drive_radius = 0.05, .air_drag_quadratic = 0.139};
+        d = whirl_dyn_alloc(&mq, (whirl_formulation)form);
+        assert_int_equal(whirl_dyn_set_state(d, 0, x, v, y), GSL_SUCCESS);
+        expect = 0;
+        for (size_t i = 0; i < n; i++) {
+            const double *xi = x + 3 * i, *vi = v + 3 * i;
+            const double u[3] = {vi[0] - mq.omega * xi[1], vi[1] + mq.omega * xi[0], vi[2]};
+            const double speed = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+            for (int k = 0; k < 3; k++)
+                expect -= mq.air_drag_quadratic * c->length[i] * speed * u[k] * vi[k];
+        }
+        got = jacobi_rate(d, 0, y);
+        assert_true(fabs(got - expect) < 1e-8 * fabs(expect));
         whirl_dyn_free(d);
         whirl_chain_free(c);
     }
@@ -505,6 +588,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_formulations_agree),
         cmocka_unit_test(test_link_accelerations_agree),
+        cmocka_unit_test(test_analytic_limits),
         cmocka_unit_test(test_hanging_chain),
         cmocka_unit_test(test_steady_shape_fixed_point),
         cmocka_unit_test(test_dissipation_power),

@@ -7,7 +7,9 @@
  *  - mode k has 2(k-1) negative directions of K (k-1 in the plane), one zero (the symmetry);
  *  - without damping mode 1 is neutrally stable and the spectrum is Hamiltonian (-lambda too);
  *  - with damping (Kelvin-Tait-Chetaev) the number of growing eigenvalues equals the number of
- *    negative directions of K: mode 1 decays, modes 2 and 3 grow.
+ *    negative directions of K: mode 1 decays, modes 2 and 3 grow;
+ *  - perturbed runs of the dynamics module (two integrators): the fitted growth of an unstable
+ *    shape is the largest eigenvalue's real part; with damping mode 1 converges.
  * Equilibria come from a shooting written here (recursion up from the tip, bisection on the tip
  * radius), independent of the steady-shape module; that module's shapes are compared too. */
 #include <setjmp.h>
@@ -22,6 +24,7 @@
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_math.h>
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_sort_vector.h>
 
@@ -578,6 +581,85 @@ static void test_with_steady_module(void **state)
     whirl_chain_free(c);
 }
 
+/* ---- perturbed runs ---- */
+
+typedef struct {
+    int samples, stop_after;
+    double last_t, first_ratio;
+} observation;
+
+static int count_samples(double t, double ratio, void *data)
+{
+    observation *o = data;
+    if (o->samples == 0) o->first_ratio = ratio;
+    assert_true(o->samples == 0 || t > o->last_t);
+    o->last_t = t;
+    o->samples++;
+    return (o->stop_after > 0 && o->samples >= o->stop_after) ? GSL_EFAILED : GSL_SUCCESS;
+}
+
+static void test_perturbed_runs(void **state)
+{
+    (void)state;
+    const size_t n = 12;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    whirl_model m = model_of(c, 6.3, 0);
+    whirl_shape_info info;
+    double growth;
+    /* mode 2 of the 12-link chain at 6.3 is unstable without damping (see above) */
+    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, &info, &growth), 0);
+    assert_true(growth > 0.05);
+    const char *methods[] = {"gauss2", "rk4"};
+    for (int k = 0; k < 2; k++) {
+        whirl_stability_run_params p = whirl_stability_run_defaults();
+        observation obs = {0};
+        p.method = methods[k];
+        p.perturbation = 2.3e-7;
+        p.seed = 7;
+        p.observe = count_samples;
+        p.observe_data = &obs;
+        whirl_stability_run_result r;
+        assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), 0);
+        print_message("# run %s: eig %.6g sim %.6g over [%.3g, %.3g], max %.4g, %lu steps\n",
+                      methods[k], growth, r.sim_growth, r.fit_from, r.fit_to, r.max_deviation,
+                      r.stats.steps);
+        assert_int_equal(r.verdict, WHIRL_VERDICT_UNSTABLE);
+        assert_true(fabs(r.sim_growth / growth - 1) < 0.02);
+        assert_true(r.fit_to > r.fit_from && r.max_deviation >= 1e4);
+        assert_true(r.duration < p.periods * 2 * M_PI / m.omega); /* stopped early */
+        assert_true(r.initial > 0.1 * p.perturbation && r.initial < p.perturbation);
+        assert_true(obs.first_ratio == 1.0 && obs.samples > 10);
+    }
+    /* with damping mode 1 converges */
+    m.internal_damping = 0.02;
+    assert_int_equal(whirl_stability_mode(w, &m, 1, 0, &info, &growth), 0);
+    assert_true(growth < 0);
+    whirl_stability_run_params p = whirl_stability_run_defaults();
+    whirl_stability_run_result r;
+    assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), 0);
+    assert_int_equal(r.verdict, WHIRL_VERDICT_CONVERGING);
+    assert_true(r.sim_growth == 0 && r.end_deviation <= 1e-2);
+    /* the observer stops a run; bad parameters */
+    observation obs = {0, 5, 0, 0};
+    p.observe = count_samples;
+    p.observe_data = &obs;
+    assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), GSL_EFAILED);
+    assert_int_equal(obs.samples, 5);
+    p = whirl_stability_run_defaults();
+    p.periods = 0;
+    assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), GSL_EINVAL);
+    p = whirl_stability_run_defaults();
+    p.perturbation = 1;
+    assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), GSL_EINVAL);
+    p = whirl_stability_run_defaults();
+    p.method = "euler";
+    assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), GSL_EINVAL);
+    assert_string_equal(whirl_verdict_name(WHIRL_VERDICT_STABLE), "stable");
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 /* ---- errors ---- */
 
 static void test_errors(void **state)
@@ -628,6 +710,7 @@ int main(void)
         cmocka_unit_test(test_deflation),
         cmocka_unit_test(test_negative_directions_and_damping),
         cmocka_unit_test(test_with_steady_module),
+        cmocka_unit_test(test_perturbed_runs),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

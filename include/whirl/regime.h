@@ -18,14 +18,20 @@
  *
  * Classification, from the positions of the masses in the co-rotating frame sampled once per
  * drive period T = 2 pi / omega after the ramp (a stroboscopic, Poincare-like section):
- *  - change D_k = RMS over the masses of the distance between consecutive samples; ratio
- *    q_k = D_k / D_{k-1};
- *  - SETTLED when, for settle_periods consecutive periods, q_k < 1 and the geometric estimate
- *    of the remaining distance to the fixed point, D_k / (1 - q_k), is below settle_tol. The
+ *  - change D_k = RMS over the masses of the distance between consecutive samples; block means
+ *    m0, m1 of the D_k over the last two blocks of 8 periods (8: so that an oscillating decay
+ *    counts as one), mean decay ratio per period q = (m1 / m0)^(1/8), and the geometric estimate
+ *    of the distance left to the fixed point, max(D_k, m1 / 8) / (1 - q) (infinite if q >= 1);
+ *  - SETTLED when that estimate is below settle_tol for settle_periods consecutive periods. The
  *    node count is then that of the settled shape (driven.h's definition, whirl_regime_nodes),
  *    and the shape is compared with the steady boundary-value solution with drag
  *    (whirl_driven_solve from the settled tip): shape_error = RMS distance over the masses;
- *  - otherwise at t_max, PERIODIC with period p (2 <= p <= WHIRL_REGIME_PERIOD_MAX drive
+ *  - otherwise at t_max, CONVERGING when the run is still approaching a steady shape too slowly
+ *    to settle by t_max: the estimate of the distance left above is below 0.05 L, or each of
+ *    the last five means of 4 consecutive D_k is 0.5% below the one before (20 periods of decay)
+ *    and the distance left estimated from the mean ratio q of those periods, D_k / (1 - q), is
+ *    below 0.05 L. The node count is that of the last shape;
+ *  - otherwise PERIODIC with period p (2 <= p <= WHIRL_REGIME_PERIOD_MAX drive
  *    periods) when the tip's samples repeat: |tip_k - tip_{k-p}| < periodic_tol for the last
  *    WHIRL_REGIME_PERIOD_CHECKS samples (the smallest such p). A motion locked to a period that
  *    is no multiple of T is not caught here: it is classified by the next test;
@@ -51,7 +57,8 @@ typedef enum {
     WHIRL_REGIME_PERIODIC = 1,      /* repeats after period (>= 2) drive periods */
     WHIRL_REGIME_QUASIPERIODIC = 2, /* neither, largest Lyapunov exponent <= chaos_lambda */
     WHIRL_REGIME_CHAOTIC = 3,       /* largest Lyapunov exponent > chaos_lambda */
-    WHIRL_REGIME_FAILED = 4         /* the integration failed (not a physical state) */
+    WHIRL_REGIME_FAILED = 4,        /* the integration failed (not a physical state) */
+    WHIRL_REGIME_CONVERGING = 5     /* still decaying towards a steady shape at t_max */
 } whirl_regime_state;
 
 /* Parameters of one run (never changed by the library). Units: L = M = g = 1. */
@@ -77,7 +84,9 @@ typedef struct whirl_regime_params {
     unsigned long seed;      /* seed of those turns (GSL's MT19937) */
 } whirl_regime_params;
 
-/* Defaults of every field but omega and eps (drag 0, rotating frame, "rk4", dt = 0.1 / N, ...). */
+/* Defaults of every field but omega and eps: drag 0, rotating frame, "rk4", dt = 0.1 / N,
+ * t_ramp 20, ramp_step 0.5, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
+ * lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
 void whirl_regime_params_default(whirl_regime_params *p, size_t links);
 
 /* The outcome of one run. */
@@ -87,14 +96,14 @@ typedef struct whirl_regime_result {
     int period;         /* PERIODIC: in drive periods; 1 if SETTLED; 0 otherwise */
     double t_end;       /* time the run ended (settled or t_max, plus the Lyapunov window) [T] */
     double change;      /* last per-period change D_k [L] */
-    double remaining;   /* last estimate D_k / (1 - q_k) [L] (infinite if q_k >= 1) */
+    double remaining;   /* last estimate of the distance left [L] (infinite if not decaying) */
     double shape_error; /* SETTLED: RMS distance from the boundary-value shape [L]; else NaN
                            (also NaN if Newton found no boundary-value shape from the tip) */
     int bvp_nodes;      /* node count of that boundary-value shape, or 0 */
     double lyapunov;    /* largest Lyapunov exponent estimate [1/T], NaN if not computed */
     double tip[3];      /* last tip position, co-rotating frame (pivot at (eps, 0, 0)) [L] */
     double tip_r;       /* its distance from the axis [L] */
-    unsigned long steps; /* integrator steps taken */
+    unsigned long steps; /* integrator steps taken since the start from rest */
 } whirl_regime_result;
 
 /* Called every `every` time units of a run (and at its start) with the positions of the
@@ -133,7 +142,7 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
  * weight[0..npts-2] (the link lengths; NULL: equal). */
 int whirl_regime_nodes(double eps, size_t npts, const double *pos, const double *weight);
 
-/* "settled", "periodic", "quasiperiodic", "chaotic", "failed"; NULL for another value. */
+/* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
 const char *whirl_regime_state_name(whirl_regime_state s);
 
 #endif

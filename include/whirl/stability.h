@@ -91,7 +91,10 @@ typedef struct whirl_stability_run_params {
     double perturbation; /* EPS in (0, 1): each link direction turned by EPS [rad]; 1e-6 */
     unsigned long seed;  /* seed of the random directions (GSL's mt19937); 1 */
     const char *method;  /* integrator (whirl_integrator_methods); "gauss2" */
-    double dt;           /* fixed step [T]; 0: the default, min(period / 200, 1 / (4 N)) */
+    double dt;           /* fixed step [T]; 0: the default, min(period / 200,
+                            0.7 / (nu + omega + kappa)), nu = 2 sqrt(max_j (T_j / l_j) / min m)
+                            bounding the chain's highest frequency under the shape's tensions
+                            T_j, kappa = 4 D / (min m min l^2) its fastest damping rate */
     /* Called at t = 0 and at every sample with the time and the deviation over the initial one
      * (NULL: none); a non-zero return stops the run, which then returns that status. */
     int (*observe)(double t, double ratio, void *data);
@@ -103,7 +106,7 @@ whirl_stability_run_params whirl_stability_run_defaults(void);
 
 typedef struct whirl_stability_run_result {
     double sim_growth;    /* exponential rate fitted to log(deviation) over the stretch where it
-                             grows from 30 to 3000 times the initial deviation (or to the end of
+                             grows from 100 to 1e4 times the initial deviation (or to the end of
                              the run) [1/T]; 0 unless the verdict is unstable */
     double max_deviation; /* largest deviation over the run / the initial one */
     double end_deviation; /* deviation at the end of the run / the initial one */
@@ -121,7 +124,7 @@ typedef struct whirl_stability_run_result {
  * (whirl_deviation: RMS distance of the masses, minimised over a rotation about z) 50 times per
  * period. Verdict rule: unstable as soon as the deviation reaches 100 times the initial one;
  * converging (damping > 0 only) as soon as it falls to 1/100 of it; stable otherwise. The run
- * stops early once the verdict is settled: unstable after the fitted stretch ends (3000 times or
+ * stops early once the verdict is settled: unstable after the fitted stretch ends (1e4 times or
  * 1e-2 L), converging at once. Allocates its own dynamics and integrator. */
 int whirl_stability_run(const whirl_model *model, double tip_r,
                         const whirl_stability_run_params *params,

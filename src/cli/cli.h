@@ -97,5 +97,6 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv);
 int cmd_minimize(const cli_command *cmd, int argc, char **argv);
 int cmd_fit(const cli_command *cmd, int argc, char **argv);
 int cmd_driven(const cli_command *cmd, int argc, char **argv);
+int cmd_regime(const cli_command *cmd, int argc, char **argv);
 
 #endif

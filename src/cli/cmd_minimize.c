@@ -86,29 +86,27 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     whirl_shape_info info;
     whirl_angles_shape(m.chain, omega, theta, r, z, tension, &info);
 
-    /* as `whirl shape --links N`, then the minimiser's statistics */
-    cli_out out;
-    if (cli_out_open(cmd, &out, output)) goto done;
-    fprintf(out.fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g depth=%.17g "
-            "nodes=", info.omega * rate, info.mode, info.tip_r * len, info.max_r * len,
-            info.top_tension * force, info.depth * len);
-    for (int k = 0; k < info.n_nodes; k++)
-        fprintf(out.fp, "%s%.17g", k ? ";" : "", info.node_s[k] * len);
-    fprintf(out.fp, "\n# N-link chain: pivot then masses 1..N; s: arclength from the pivot, r: "
-            "signed distance from the axis, z: height (pivot 0), tension: of the link above the "
-            "node\n");
-    fprintf(out.fp, "# minimum of V: algorithm=%s evaluations=%d nlopt_result=%s newton_steps=%d "
-            "potential=%.17g gradient_norm=%.3g min_curvature=%.17g seconds=%.3g\n", algorithm,
-            st.evaluations, nlopt_result_to_string((nlopt_result)st.nlopt_result),
-            st.newton_steps, st.potential * force * len, st.gradient_norm * force * len,
-            st.min_curvature * force * len, elapsed);
-    fprintf(out.fp, "s,r,z,tension\n");
-    double s = 0;
-    for (size_t i = 0; i <= n; i++) {
-        if (i > 0) s += m.chain->length[i - 1];
-        fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g\n", s * len, r[i] * len, z[i] * len,
-                tension[i] * force);
+    /* as `whirl shape --links N`, with the minimiser's statistics as an extra comment line */
+    char stats[512];
+    snprintf(stats, sizeof stats, "minimum of V: algorithm=%s evaluations=%d nlopt_result=%s "
+             "newton_steps=%d potential=%.17g gradient_norm=%.3g min_curvature=%.17g seconds=%.3g",
+             algorithm, st.evaluations, nlopt_result_to_string((nlopt_result)st.nlopt_result),
+             st.newton_steps, st.potential * force * len, st.gradient_norm * force * len,
+             st.min_curvature * force * len, elapsed);
+    double *s = malloc((n + 1) * sizeof *s);
+    if (s == NULL) {
+        cli_error(cmd, "out of memory for %zu links", n);
+        goto done;
     }
+    s[0] = 0;
+    for (size_t i = 1; i <= n; i++) s[i] = s[i - 1] + m.chain->length[i - 1];
+    cli_out out;
+    if (cli_out_open(cmd, &out, output)) {
+        free(s);
+        goto done;
+    }
+    steady_cli_write_shape(out.fp, &m, &info, n + 1, s, r, z, tension, stats);
+    free(s);
     rc = cli_out_commit(cmd, &out);
 done:
     free(theta);

@@ -29,8 +29,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     if (points < 2) return cli_error(cmd, "--points must be >= 2, got %d", points);
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
-    double rate = cli_units_rate(&m.units), len = m.units.length, force = cli_units_force(&m.units);
-    double omega = omega_user / rate, tip_mass = steady_cli_tip_mass(&m);
+    double omega = omega_user / cli_units_rate(&m.units), tip_mass = steady_cli_tip_mass(&m);
     whirl_shape_info info;
     int status = m.chain ? whirl_nlink_solve(m.chain, omega, mode, 0, &info)
                          : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
@@ -56,19 +55,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
     else rc = cli_out_open(cmd, &out, out_path);
     if (rc == 0) {
-        fprintf(out.fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g "
-                "depth=%.17g nodes=", info.omega * rate, mode, info.tip_r * len,
-                info.max_r * len, info.top_tension * force, info.depth * len);
-        for (int j = 0; j < info.n_nodes; j++)
-            fprintf(out.fp, "%s%.17g", j ? ";" : "", info.node_s[j] * len);
-        fprintf(out.fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
-                "z: height (pivot 0), tension: %s\n",
-                m.chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
-                m.chain ? "of the link above the node" : "at that point");
-        fprintf(out.fp, "s,r,z,tension\n");
-        for (size_t i = 0; i < n; i++)
-            fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g\n", s[i] * len, r[i] * len, z[i] * len,
-                    tension[i] * force);
+        steady_cli_write_shape(out.fp, &m, &info, n, s, r, z, tension, NULL);
         rc = cli_out_commit(cmd, &out);
     }
     free(s);

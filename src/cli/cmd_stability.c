@@ -217,7 +217,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "internal damping of the joints (default 0)"},
         {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default gauss2)"},
         {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
-         "time step (default min(period/200, 1/(4N)))"},
+         "time step (default: from the highest frequency, see stability.h)"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns nan)"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",

@@ -23,6 +23,8 @@ static const cli_command commands[] = {
      "The rotation rate and mode that best explain a measured shape (NLopt).", cmd_fit},
     {"driven", "--omega W | --omega-min A --omega-max B [--mode K] [--side S] [--eps E] [--drag C] [--drag-quadratic C2] [--links N] [--tip-mass m] [--points P] [--step H] [-o FILE]",
      "Steady shapes with the pivot driven on a circle and air drag; branches with folds.", cmd_driven},
+    {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-steps n [--eps E | --eps-min --eps-max --eps-steps m] [--sweep] [--drag C] [--drag-quadratic C2] [--links N] [--t-max T] [--resume] [--folds FILE] [-o FILE]",
+     "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.", cmd_regime},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

@@ -56,3 +56,25 @@ int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, in
     return cli_error(cmd, "mode %d does not exist at omega=%.17g: it exists only above "
                      "omega_%d=%.17g", mode, omega * rate, mode, omega_k * rate);
 }
+
+void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_shape_info *info,
+                            size_t n, const double *s, const double *r, const double *z,
+                            const double *tension, const char *extra)
+{
+    double rate = cli_units_rate(&m->units), len = m->units.length;
+    double force = cli_units_force(&m->units);
+    fprintf(fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g depth=%.17g nodes=",
+            info->omega * rate, info->mode, info->tip_r * len, info->max_r * len,
+            info->top_tension * force, info->depth * len);
+    for (int j = 0; j < info->n_nodes; j++)
+        fprintf(fp, "%s%.17g", j ? ";" : "", info->node_s[j] * len);
+    fprintf(fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
+            "z: height (pivot 0), tension: %s\n",
+            m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
+            m->chain ? "of the link above the node" : "at that point");
+    if (extra) fprintf(fp, "# %s\n", extra);
+    fprintf(fp, "s,r,z,tension\n");
+    for (size_t i = 0; i < n; i++)
+        fprintf(fp, "%.17g,%.17g,%.17g,%.17g\n", s[i] * len, r[i] * len, z[i] * len,
+                tension[i] * force);
+}

@@ -39,4 +39,11 @@ int steady_cli_check_omega(const cli_command *cmd, const char *name, double omeg
 int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status,
                            int mode, double omega);
 
+/* Writes a shape as `whirl shape` does: the summary comment line, a comment line on the columns,
+ * the comment line extra (without '#' and newline; NULL for none), then CSV s,r,z,tension of the
+ * n points, all converted to the user's units. */
+void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_shape_info *info,
+                            size_t n, const double *s, const double *r, const double *z,
+                            const double *tension, const char *extra);
+
 #endif

@@ -1,0 +1,722 @@
+/* whirl regime: which node count a chain swung by hand settles into, from rest
+ * (include/whirl/regime.h): one run, a map over (omega, eps), or a hysteresis sweep of omega.
+ *
+ * One run (--omega W --eps E): comment lines, the header and one row; --trace FILE writes the
+ * motion in the inertial frame in the format of `whirl simulate`'s trace (plots/animate.gp).
+ * A map (--omega-min A --omega-max B --omega-steps n, --eps E or --eps-min --eps-max
+ * --eps-steps m): one row per grid point, point index = i_eps n + i_omega, written to -o FILE
+ * (required) as the points finish, in index order. Each point is one independent run, seeded by
+ * --seed + index: the rows do not depend on how the points are shared out. With Open MPI
+ * (built with -DWHIRL_MPI, run by mpirun -n K) the points are dealt out in rounds: each rank
+ * takes a block of consecutive points of the round and runs them on its OpenMP threads, rank 0
+ * gathers the block results and appends them; the rows are those of the single-process run.
+ * Ctrl-C (SIGINT/SIGTERM) stops after the current round with the finished points kept (exit
+ * 130); --resume reads FILE, checks that it was written with the same parameters, drops an
+ * unfinished last line and computes only the missing points. --folds FILE writes the folds of
+ * the steady driven branches (whirl_driven_branch, modes 1-3, both sides) for every eps of the
+ * map. A sweep (--sweep, one eps): omega up from omega-min to omega-max in the steps, then back
+ * down, the state carried over (whirl_regime_sweep); jumps of the node count are listed as
+ * comment lines "# jump up|down: ...".
+ * Columns of the rows: the point (index, omega, eps or leg, omega), state (settled, converging,
+ * periodic, quasiperiodic, chaotic, failed), class (the node count if settled or converging, 0
+ * periodic, -1 quasi-periodic, -2 chaotic, -3 failed: for the heat map), the node count of the
+ * last shape, the period, t_end, change, remaining, shape_error, bvp_nodes, lyapunov, the tip
+ * in the co-rotating frame and its radius, and the integrator steps. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_math.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+#ifdef WHIRL_MPI
+#include <mpi.h>
+#endif
+
+#include "cli/cli.h"
+#include "whirl/driven.h"
+#include "whirl/regime.h"
+#include "whirl/steady.h"
+
+#define REGIME_MAX_LINKS 10000
+#define REGIME_MAX_POINTS 10000000L
+#define REGIME_LINE_MAX 4096
+#define REGIME_CRITICAL 4     /* critical rates listed in the header */
+#define RESULT_FIELDS 16      /* doubles per packed result */
+#define FOLD_MODES 3
+
+static const char *const map_columns =
+    "index,omega,eps,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,"
+    "lyapunov,tip_x,tip_y,tip_z,tip_r,steps";
+#define MAP_FIELDS 18
+static const char *const sweep_columns =
+    "leg,omega,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,lyapunov,"
+    "tip_x,tip_y,tip_z,tip_r,steps";
+
+typedef struct regime_options {
+    double omega, eps, omega_min, omega_max, eps_min, eps_max;
+    int omega_steps, eps_steps, links;
+    const char *frame, *output, *trace, *folds;
+    double trace_every, t_change;
+    int resume, sweep;
+    int omega_given, eps_given, omin_given, omax_given, osteps_given, emin_given, emax_given,
+        esteps_given, trace_every_given, t_change_given, dt_given;
+    whirl_regime_params p;
+} regime_options;
+
+typedef struct mpi_context {
+    int rank, size;
+} mpi_context;
+
+/* ---- options ---- */
+
+static int is_map(const regime_options *o) { return o->omin_given || o->omax_given || o->osteps_given; }
+
+static int check_range(const cli_command *cmd, const char *name, double lo, double hi, int steps,
+                       double lower, double upper)
+{
+    if (steps < 1 || steps > 100000)
+        return cli_error(cmd, "--%s-steps must be between 1 and 100000, got %d", name, steps);
+    if (!(lo > lower && hi < upper))
+        return cli_error(cmd, "--%s-min and --%s-max must lie in (%g, %g), got %g, %g", name,
+                         name, lower, upper, lo, hi);
+    if (steps == 1 ? lo != hi : !(lo < hi))
+        return cli_error(cmd, "need --%s-min < --%s-max (equal with --%s-steps 1), got %g, %g",
+                         name, name, name, lo, hi);
+    return 0;
+}
+
+static int check_options(const cli_command *cmd, regime_options *o)
+{
+    const int map = is_map(o);
+    if (map && !(o->omin_given && o->omax_given && o->osteps_given))
+        return cli_error(cmd, "a map or sweep needs --omega-min, --omega-max and --omega-steps");
+    if (!map && o->sweep) return cli_error(cmd, "--sweep needs --omega-min, --omega-max and "
+                                           "--omega-steps");
+    if (map && o->omega_given)
+        return cli_error(cmd, "--omega is for one run; a map or sweep takes --omega-min/max/steps");
+    if (!map && !o->omega_given)
+        return cli_error(cmd, "--omega (one run) or --omega-min, --omega-max, --omega-steps "
+                         "(a map) is required");
+    const int eps_range = o->emin_given || o->emax_given || o->esteps_given;
+    if (eps_range && !(o->emin_given && o->emax_given && o->esteps_given))
+        return cli_error(cmd, "an eps range needs --eps-min, --eps-max and --eps-steps");
+    if (eps_range && o->eps_given) return cli_error(cmd, "give --eps or an eps range, not both");
+    if (eps_range && (!map || o->sweep))
+        return cli_error(cmd, "an eps range is for a map; one run or a sweep takes --eps");
+    if (!eps_range && !o->eps_given) return cli_error(cmd, "--eps (the hand's radius) is required");
+    if (o->links < 1 || o->links > REGIME_MAX_LINKS)
+        return cli_error(cmd, "--links must be between 1 and %d, got %d", REGIME_MAX_LINKS,
+                         o->links);
+    if (!o->dt_given) o->p.dt = 0.1 / o->links;
+    if (strcmp(o->frame, "rotating") == 0) o->p.frame = WHIRL_FRAME_ROTATING;
+    else if (strcmp(o->frame, "inertial") == 0) o->p.frame = WHIRL_FRAME_INERTIAL;
+    else return cli_error(cmd, "--frame must be rotating or inertial, got '%s'", o->frame);
+    if (o->sweep && o->p.frame != WHIRL_FRAME_ROTATING)
+        return cli_error(cmd, "--sweep changes omega during the run: it needs --frame rotating");
+    if (map) {
+        int rc = check_range(cmd, "omega", o->omega_min, o->omega_max, o->omega_steps, 0, HUGE_VAL);
+        if (rc) return rc;
+        if (eps_range && (rc = check_range(cmd, "eps", o->eps_min, o->eps_max, o->eps_steps, 0, 1)))
+            return rc;
+        if (!eps_range) o->eps_min = o->eps_max = o->eps, o->eps_steps = 1;
+        if ((long)o->omega_steps * o->eps_steps > REGIME_MAX_POINTS)
+            return cli_error(cmd, "the map has more than %ld points", REGIME_MAX_POINTS);
+        o->p.omega = o->omega_min;
+        o->p.eps = o->eps_min;
+    } else {
+        o->p.omega = o->omega;
+        o->p.eps = o->eps;
+    }
+    if (whirl_regime_check(&o->p) != GSL_SUCCESS) {
+        /* the library names the field; the options are named like it */
+        char field[64] = "", *dash = field;
+        const char *msg = whirl_last_error();
+        sscanf(msg, "%63[a-z_]", field);
+        for (; *dash; dash++)
+            if (*dash == '_') *dash = '-';
+        return cli_error(cmd, "--%s: %s", field, msg);
+    }
+    const char *const *m = whirl_integrator_methods();
+    while (*m && strcmp(*m, o->p.method) != 0) m++;
+    if (*m == NULL) return cli_error(cmd, "--method: unknown integrator '%s'", o->p.method);
+    if (map && !o->sweep && o->output == NULL)
+        return cli_error(cmd, "a map needs -o FILE (it is written as the points finish)");
+    if (map && !o->sweep && strcmp(o->output, "-") == 0)
+        return cli_error(cmd, "a map needs -o FILE, not standard output");
+    if (o->resume && (!map || o->sweep)) return cli_error(cmd, "--resume applies to a map");
+    if (o->folds && (!map || o->sweep)) return cli_error(cmd, "--folds applies to a map");
+    if (o->trace && map) return cli_error(cmd, "--trace applies to one run");
+    if (o->trace && strcmp(o->trace, "-") == 0)
+        return cli_error(cmd, "--trace must be a file, not standard output");
+    if (o->trace_every_given && !o->trace)
+        return cli_error(cmd, "--trace-every applies with --trace");
+    if (!(o->trace_every > 0)) return cli_error(cmd, "--trace-every must be > 0, got %g", o->trace_every);
+    if (o->t_change_given && !o->sweep) return cli_error(cmd, "--t-change applies to --sweep");
+    if (!(o->t_change >= o->p.ramp_step))
+        return cli_error(cmd, "--t-change must be >= --ramp-step (%g), got %g", o->p.ramp_step,
+                         o->t_change);
+    return 0;
+}
+
+static double grid_value(double lo, double hi, int steps, int i)
+{
+    return steps == 1 ? lo : i == steps - 1 ? hi : lo + (hi - lo) * i / (steps - 1);
+}
+
+static void grid_point(const regime_options *o, long index, double *omega, double *eps)
+{
+    *omega = grid_value(o->omega_min, o->omega_max, o->omega_steps, (int)(index % o->omega_steps));
+    *eps = grid_value(o->eps_min, o->eps_max, o->eps_steps, (int)(index / o->omega_steps));
+}
+
+/* The parameter line: a map written with another one cannot be resumed. */
+static void write_parameters(FILE *fp, const regime_options *o)
+{
+    const whirl_regime_params *p = &o->p;
+    fprintf(fp, "# regime: links=%d drag=%.17g drag_quadratic=%.17g internal_damping=%.17g "
+            "frame=%s method=%s dt=%.17g t_ramp=%.17g ramp_step=%.17g t_max=%.17g "
+            "settle_tol=%.17g settle_periods=%d periodic_tol=%.17g lyapunov_periods=%d "
+            "chaos_lambda=%.17g perturb=%.17g seed=%lu", o->links, p->drag, p->drag_quadratic,
+            p->internal_damping, o->frame, p->method, p->dt, p->t_ramp, p->ramp_step, p->t_max,
+            p->settle_tol, p->settle_periods, p->periodic_tol, p->lyapunov_periods,
+            p->chaos_lambda, p->perturb, p->seed);
+    if (is_map(o))
+        fprintf(fp, " omega=%.17g:%.17g:%d", o->omega_min, o->omega_max, o->omega_steps);
+    else
+        fprintf(fp, " omega=%.17g", o->omega);
+    if (is_map(o) && !o->sweep)
+        fprintf(fp, " eps=%.17g:%.17g:%d\n", o->eps_min, o->eps_max, o->eps_steps);
+    else
+        fprintf(fp, " eps=%.17g\n", o->eps);
+}
+
+/* The critical rates of the free N-link chain, for comparison with the map. */
+static void write_critical(FILE *fp, const whirl_chain *chain)
+{
+    double omega[REGIME_CRITICAL];
+    if (whirl_nlink_critical(chain, REGIME_CRITICAL, omega) != GSL_SUCCESS) return;
+    fprintf(fp, "# critical rates of the free chain (modes 1..%d):", REGIME_CRITICAL);
+    for (int k = 0; k < REGIME_CRITICAL; k++) fprintf(fp, " %.17g", omega[k]);
+    fputc('\n', fp);
+}
+
+static int state_class(const whirl_regime_result *r)
+{
+    switch (r->state) {
+    case WHIRL_REGIME_SETTLED:
+    case WHIRL_REGIME_CONVERGING: return r->nodes;
+    case WHIRL_REGIME_PERIODIC: return 0;
+    case WHIRL_REGIME_QUASIPERIODIC: return -1;
+    case WHIRL_REGIME_CHAOTIC: return -2;
+    default: return -3;
+    }
+}
+
+/* The columns from state on. */
+static void write_result(FILE *fp, const whirl_regime_result *r)
+{
+    fprintf(fp, "%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%lu\n",
+            whirl_regime_state_name(r->state), state_class(r), r->nodes, r->period, r->t_end,
+            r->change, r->remaining, r->shape_error, r->bvp_nodes, r->lyapunov, r->tip[0],
+            r->tip[1], r->tip[2], r->tip_r, r->steps);
+}
+
+static void write_map_row(FILE *fp, const regime_options *o, long index,
+                          const whirl_regime_result *r)
+{
+    double omega, eps;
+    grid_point(o, index, &omega, &eps);
+    fprintf(fp, "%ld,%.17g,%.17g,", index, omega, eps);
+    write_result(fp, r);
+}
+
+/* ---- packing a result for the gather (doubles, index first; index -1: no point) ---- */
+
+static void pack(double *buf, long index, const whirl_regime_result *r)
+{
+    const double v[RESULT_FIELDS] = {(double)index, r->state, r->nodes, r->period, r->t_end,
+                                     r->change, r->remaining, r->shape_error, r->bvp_nodes,
+                                     r->lyapunov, r->tip[0], r->tip[1], r->tip[2], r->tip_r,
+                                     (double)r->steps, 0};
+    memcpy(buf, v, sizeof v);
+}
+
+static long unpack(const double *buf, whirl_regime_result *r)
+{
+    r->state = (whirl_regime_state)buf[1];
+    r->nodes = (int)buf[2];
+    r->period = (int)buf[3];
+    r->t_end = buf[4];
+    r->change = buf[5];
+    r->remaining = buf[6];
+    r->shape_error = buf[7];
+    r->bvp_nodes = (int)buf[8];
+    r->lyapunov = buf[9];
+    for (int k = 0; k < 3; k++) r->tip[k] = buf[10 + k];
+    r->tip_r = buf[13];
+    r->steps = (unsigned long)buf[14];
+    return (long)buf[0];
+}
+
+/* ---- the map file: fresh or resumed ---- */
+
+/* Reads a map file written with the same parameter line: marks its complete rows in done[],
+ * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
+ * closing comments dropped). Returns 0 or 1 after an error. */
+static int resume_map(const cli_command *cmd, const regime_options *o, char *done, long n_points,
+                      long *n_done)
+{
+    FILE *in = fopen(o->output, "r");
+    if (in == NULL)
+        return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
+    char expect[REGIME_LINE_MAX];
+    FILE *mem = fmemopen(expect, sizeof expect, "w");
+    if (mem == NULL) {
+        fclose(in);
+        return cli_error(cmd, "out of memory");
+    }
+    write_parameters(mem, o);
+    fclose(mem);
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->output) != 0) {
+        fclose(in);
+        return 1;
+    }
+    char line[REGIME_LINE_MAX];
+    int same = 0, header = 0, rc = 0;
+    *n_done = 0;
+    while (rc == 0 && fgets(line, sizeof line, in)) {
+        const size_t len = strlen(line);
+        if (line[0] == '#') {
+            if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
+            if (strncmp(line, "# regime:", 9) == 0 || strncmp(line, "# critical", 10) == 0 ||
+                strncmp(line, "# whirl regime", 14) == 0)
+                fputs(line, out.fp);
+            continue;
+        }
+        if (!header) {
+            header = 1;
+            if (!same)
+                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
+                               "parameters", o->output);
+            else if (strncmp(line, map_columns, strlen(map_columns)) != 0)
+                rc = cli_error(cmd, "--resume: '%s' has another header", o->output);
+            else
+                fputs(line, out.fp);
+            continue;
+        }
+        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
+        int fields = 1;
+        for (const char *c = line; *c; c++) fields += *c == ',';
+        char *end;
+        const long index = strtol(line, &end, 10);
+        if (fields != MAP_FIELDS || *end != ',' || index < 0 || index >= n_points) continue;
+        if (!done[index]) {
+            done[index] = 1;
+            ++*n_done;
+            fputs(line, out.fp);
+        }
+    }
+    if (rc == 0 && !header) rc = cli_error(cmd, "--resume: '%s' holds no map", o->output);
+    fclose(in);
+    if (rc != 0) {
+        cli_out_abort(&out);
+        return rc;
+    }
+    return cli_out_commit(cmd, &out);
+}
+
+static int fresh_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
+{
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->output) != 0) return 1;
+    fprintf(out.fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
+            o->omega_steps, o->eps_steps);
+    write_parameters(out.fp, o);
+    write_critical(out.fp, chain);
+    fprintf(out.fp, "%s\n", map_columns);
+    return cli_out_commit(cmd, &out);
+}
+
+/* ---- the map ---- */
+
+static double wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int max_threads(void)
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+static int thread_id(void)
+{
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+
+/* Runs the points todo[first..first+count-1] on the threads, packed results into buf. Returns 0,
+ * or 1 if a workspace could not be had or a run returned an error status. */
+static int run_block(const regime_options *o, whirl_regime **ws, const long *todo, long count,
+                     double *buf)
+{
+    int failed = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
+    for (long j = 0; j < count; j++) {
+        whirl_regime_params p = o->p;
+        grid_point(o, todo[j], &p.omega, &p.eps);
+        p.seed = o->p.seed + (unsigned long)todo[j];
+        whirl_regime_result r;
+        memset(&r, 0, sizeof r);
+        const int ok = whirl_regime_run(ws[thread_id()], &p, &r) == GSL_SUCCESS;
+        failed |= !ok;
+        pack(buf + j * RESULT_FIELDS, ok ? todo[j] : -1, &r);
+    }
+    return failed;
+}
+
+/* The folds of the steady driven branches of modes 1..FOLD_MODES, both sides, for every eps of
+ * the map (rank 0, after the map). */
+static int write_folds(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
+{
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->folds) != 0) return 1;
+    whirl_driven_curve *curve = whirl_driven_curve_alloc(20000);
+    if (curve == NULL) {
+        cli_out_abort(&out);
+        return cli_error(cmd, "out of memory");
+    }
+    fprintf(out.fp, "# folds of the steady driven branches (whirl_driven_branch), N-link chain\n");
+    write_parameters(out.fp, o);
+    fprintf(out.fp, "eps,mode,side,fold,omega\n");
+    for (int ie = 0; ie < o->eps_steps && !cli_interrupted; ie++) {
+        const double eps = grid_value(o->eps_min, o->eps_max, o->eps_steps, ie);
+        const whirl_driven_params dp = {.omega = o->omega_max, .eps = eps, .drag = o->p.drag,
+                                        .drag_quadratic = o->p.drag_quadratic};
+        for (int mode = 1; mode <= FOLD_MODES; mode++)
+            for (int side = 1; side >= -1; side -= 2) {
+                whirl_driven_info start;
+                if (whirl_driven_mode(chain, &dp, mode, side, &start) != GSL_SUCCESS) continue;
+                if (whirl_driven_branch(chain, &dp, &start, -1, o->omega_min, o->omega_max,
+                                        0.02, curve) != GSL_SUCCESS)
+                    continue;
+                for (size_t f = 0; f < curve->n_folds; f++)
+                    fprintf(out.fp, "%.17g,%d,%d,%zu,%.17g\n", eps, mode, side, f,
+                            curve->fold_omega[f]);
+            }
+    }
+    whirl_driven_curve_free(curve);
+    return cli_out_commit(cmd, &out);
+}
+
+/* Collective over the ranks: the largest of v. */
+static int all_max(const mpi_context *mc, int v)
+{
+#ifdef WHIRL_MPI
+    if (mc->size > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+#else
+    (void)mc;
+#endif
+    return v;
+}
+
+static int run_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
+                   const mpi_context *mc)
+{
+    const long n_points = (long)o->omega_steps * o->eps_steps;
+    const int threads = max_threads();
+    const long block = all_max(mc, 2 * threads); /* points per rank and round */
+    char *done = calloc((size_t)n_points, 1);
+    long *todo = malloc((size_t)n_points * sizeof *todo);
+    double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
+    whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
+    int rc = done && todo && buf && ws ? 0 : 1;
+    for (int k = 0; rc == 0 && k < threads; k++)
+        if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
+    if (rc) cli_error(cmd, "out of memory");
+    long n_done = 0;
+    FILE *fp = NULL;
+    if (mc->rank == 0 && rc == 0) {
+        rc = o->resume ? resume_map(cmd, o, done, n_points, &n_done) : fresh_map(cmd, o, chain);
+        if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
+            rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
+    }
+    rc = all_max(mc, rc);
+#ifdef WHIRL_MPI
+    if (rc == 0 && mc->size > 1) MPI_Bcast(done, (int)n_points, MPI_CHAR, 0, MPI_COMM_WORLD);
+#endif
+    long n_todo = 0;
+    for (long i = 0; rc == 0 && i < n_points; i++)
+        if (!done[i]) todo[n_todo++] = i;
+    const long already = n_points - n_todo;
+    const double start = wall_seconds();
+    cli_catch_interrupts();
+    long written = 0;
+    int stop = 0;
+    for (long first = 0; rc == 0 && first < n_todo; first += block * mc->size) {
+        const long mine = first + block * mc->rank;
+        const long count = mine >= n_todo ? 0 : GSL_MIN(block, n_todo - mine);
+        for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
+        int failed = count > 0 ? run_block(o, ws, todo + mine, count, buf) : 0;
+        if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
+#ifdef WHIRL_MPI
+        if (mc->size > 1)
+            MPI_Gather(mc->rank == 0 ? MPI_IN_PLACE : buf, (int)(block * RESULT_FIELDS),
+                       MPI_DOUBLE, buf, (int)(block * RESULT_FIELDS), MPI_DOUBLE, 0,
+                       MPI_COMM_WORLD);
+#endif
+        if (mc->rank == 0) {
+            for (long j = 0; j < block * mc->size; j++) {
+                whirl_regime_result r;
+                const long index = unpack(buf + j * RESULT_FIELDS, &r);
+                if (index < 0) continue;
+                write_map_row(fp, o, index, &r);
+                written++;
+            }
+            if (fflush(fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
+            cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 0);
+        }
+        rc = all_max(mc, failed);
+        stop = all_max(mc, cli_interrupted != 0);
+        if (stop) break;
+    }
+    const double seconds = wall_seconds() - start;
+    if (mc->rank == 0 && fp) {
+        cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 1);
+        if (rc == 0 && !stop)
+            fprintf(fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
+                    written, seconds, mc->size, threads);
+        if (fclose(fp) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o->output);
+        if (rc == 0 && stop)
+            rc = 130, cli_error(cmd, "interrupted: %ld of %ld points in '%s' (continue with "
+                                "--resume)", already + written, n_points, o->output);
+        if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
+    }
+    for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
+    free(ws);
+    free(buf);
+    free(todo);
+    free(done);
+    return rc;
+}
+
+/* ---- one run with an optional trace ---- */
+
+typedef struct trace_ctx {
+    FILE *fp;
+    unsigned long frames;
+} trace_ctx;
+
+/* One block of the trace: the pivot, then every mass, in the inertial frame. */
+static int trace_frame(void *ctx, double t, double angle, const double *pivot, const double *x,
+                       size_t n)
+{
+    trace_ctx *tc = ctx;
+    const double c = cos(angle), s = sin(angle);
+    fprintf(tc->fp, "%s# t = %.17g\n", tc->frames++ ? "\n\n" : "", t);
+    for (size_t i = 0; i <= n; i++) {
+        const double *p = i == 0 ? pivot : x + 3 * (i - 1);
+        fprintf(tc->fp, "%.17g %.17g %.17g %.17g\n", c * p[0] - s * p[1], s * p[0] + c * p[1],
+                p[2], t);
+    }
+    return GSL_SUCCESS;
+}
+
+static int run_one(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
+{
+    whirl_regime *w = whirl_regime_alloc(chain);
+    if (w == NULL) return cli_error(cmd, "out of memory");
+    cli_out out, trace;
+    int rc = cli_out_open(cmd, &out, o->output), trace_open = 0;
+    if (rc == 0 && o->trace) {
+        rc = cli_out_open(cmd, &trace, o->trace);
+        trace_open = rc == 0;
+        if (rc) cli_out_abort(&out);
+    }
+    if (rc) {
+        whirl_regime_free(w);
+        return rc;
+    }
+    trace_ctx tc = {trace_open ? trace.fp : NULL, 0};
+    if (trace_open) whirl_regime_observe(w, trace_frame, &tc, o->trace_every);
+    whirl_regime_result r;
+    const int status = whirl_regime_run(w, &o->p, &r);
+    if (status != GSL_SUCCESS) rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
+    if (rc == 0) {
+        fprintf(out.fp, "# whirl regime: one run from rest\n");
+        write_parameters(out.fp, o);
+        write_critical(out.fp, chain);
+        if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
+        fprintf(out.fp, "%s\n", map_columns);
+        fprintf(out.fp, "0,%.17g,%.17g,", o->omega, o->eps);
+        write_result(out.fp, &r);
+    }
+    if (trace_open) {
+        if (rc == 0) rc = cli_out_commit(cmd, &trace);
+        else cli_out_abort(&trace);
+    }
+    if (rc == 0) rc = cli_out_commit(cmd, &out);
+    else cli_out_abort(&out);
+    whirl_regime_free(w);
+    return rc;
+}
+
+/* ---- the hysteresis sweep ---- */
+
+static int run_sweep(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
+{
+    const size_t n_up = (size_t)o->omega_steps, n = 2 * n_up - 1;
+    double *omega = malloc(n * sizeof *omega);
+    whirl_regime_result *res = malloc(n * sizeof *res);
+    whirl_regime *w = whirl_regime_alloc(chain);
+    if (!omega || !res || !w) {
+        free(omega);
+        free(res);
+        whirl_regime_free(w);
+        return cli_error(cmd, "out of memory");
+    }
+    for (size_t j = 0; j < n; j++) /* up, then down again */
+        omega[j] = grid_value(o->omega_min, o->omega_max, o->omega_steps,
+                              (int)(j < n_up ? j : n - 1 - j));
+    int rc = 0;
+    if (whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res) != GSL_SUCCESS)
+        rc = cli_error(cmd, "the sweep failed: %s", whirl_last_error());
+    cli_out out;
+    if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
+    if (rc == 0) {
+        fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %.17g, the state "
+                "carried over, t_change = %.17g\n", o->eps, o->t_change);
+        write_parameters(out.fp, o);
+        write_critical(out.fp, chain);
+        for (size_t j = 1; j < n; j++)
+            if (state_class(&res[j]) != state_class(&res[j - 1]))
+                fprintf(out.fp, "# jump %s: between omega %.17g and %.17g: %s %d nodes -> %s %d "
+                        "nodes\n", j < n_up ? "up" : "down", omega[j - 1], omega[j],
+                        whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
+                        whirl_regime_state_name(res[j].state), res[j].nodes);
+        fprintf(out.fp, "%s\n", sweep_columns);
+        for (size_t j = 0; j < n; j++) {
+            fprintf(out.fp, "%s,%.17g,", j < n_up ? "up" : "down", omega[j]);
+            write_result(out.fp, &res[j]);
+        }
+        rc = cli_out_commit(cmd, &out);
+    }
+    free(omega);
+    free(res);
+    whirl_regime_free(w);
+    return rc;
+}
+
+/* ---- the command ---- */
+
+static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_context *mc)
+{
+    regime_options o;
+    memset(&o, 0, sizeof o);
+    o.links = 20;
+    o.frame = "rotating";
+    o.trace_every = 0.1;
+    o.t_change = 20;
+    whirl_regime_params_default(&o.p, 20);
+    double seed = 1, settle_periods = 3, lyapunov_periods = 60;
+    const cli_option opts[] = {
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rate of the hand (one run)"},
+        {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E", "radius of the hand's circle [L]"},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A", "map or sweep: lowest omega"},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B", "map or sweep: highest omega"},
+        {"--omega-steps", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "n", "map or sweep: number of rates"},
+        {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "A", "map: smallest eps"},
+        {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "B", "map: largest eps"},
+        {"--eps-steps", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "m", "map: number of radii"},
+        {"--sweep", NULL, CLI_FLAG, &o.sweep, NULL, "", "hysteresis: omega up, then down, state carried over"},
+        {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T", "sweep: time of each change of omega (default 20)"},
+        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 20)"},
+        {"--drag", NULL, CLI_DOUBLE, &o.p.drag, NULL, "C", "linear air drag per unit length (default 0)"},
+        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.p.drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
+        {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D", "damping of the joints (default 0)"},
+        {"--frame", NULL, CLI_STRING, &o.frame, NULL, "F", "rotating (default) or inertial"},
+        {"--method", NULL, CLI_STRING, &o.p.method, NULL, "M", "integrator (default rk4)"},
+        {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)"},
+        {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)"},
+        {"--ramp-step", NULL, CLI_DOUBLE, &o.p.ramp_step, NULL, "H", "staircase segment of the ramps (default 0.5)"},
+        {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T", "end of a run that has not settled (default 400)"},
+        {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D", "distance left to the steady shape [L] (default 1e-3)"},
+        {"--settle-periods", NULL, CLI_DOUBLE, &settle_periods, NULL, "K", "periods that must pass (default 3)"},
+        {"--periodic-tol", NULL, CLI_DOUBLE, &o.p.periodic_tol, NULL, "D", "repeat tolerance of the tip [L] (default 1e-3)"},
+        {"--lyapunov-periods", NULL, CLI_DOUBLE, &lyapunov_periods, NULL, "K", "Lyapunov window in periods (default 60)"},
+        {"--chaos-lambda", NULL, CLI_DOUBLE, &o.p.chaos_lambda, NULL, "L", "Lyapunov exponent above which a run is chaotic (default 0.05)"},
+        {"--perturb", NULL, CLI_DOUBLE, &o.p.perturb, NULL, "A", "random turn of each hanging link [rad] (default 1e-3)"},
+        {"--seed", NULL, CLI_DOUBLE, &seed, NULL, "S", "seed of the turns; a map's point i uses S + i (default 1)"},
+        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE", "one run: the motion (inertial frame) for plots/animate.gp"},
+        {"--trace-every", NULL, CLI_DOUBLE, &o.trace_every, &o.trace_every_given, "T", "interval of the trace (default 0.1)"},
+        {"--folds", NULL, CLI_STRING, &o.folds, NULL, "FILE", "map: the folds of the steady branches"},
+        {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "", "map: keep the points in -o FILE, compute the rest"},
+        {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output CSV (default stdout; required for a map)"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
+    if (rc) return rc;
+    const struct { const char *name; double value, max; } counts[] = {
+        {"--seed", seed, 4294967295.0}, {"--settle-periods", settle_periods, 1e6},
+        {"--lyapunov-periods", lyapunov_periods, 1e6}};
+    for (size_t k = 0; k < sizeof counts / sizeof counts[0]; k++)
+        if (!(counts[k].value >= (k ? 1 : 0) && counts[k].value <= counts[k].max &&
+              counts[k].value == floor(counts[k].value)))
+            return cli_error(cmd, "%s must be a whole number in [%d, %.0f], got %g", counts[k].name,
+                             k ? 1 : 0, counts[k].max, counts[k].value);
+    o.p.seed = (unsigned long)seed;
+    o.p.settle_periods = (int)settle_periods;
+    o.p.lyapunov_periods = (int)lyapunov_periods;
+    if ((rc = check_options(cmd, &o))) return rc;
+    if (mc->size > 1 && (!is_map(&o) || o.sweep))
+        return cli_error(cmd, "one run and a sweep run on one rank; only a map is shared out");
+    whirl_chain *chain = whirl_chain_alloc_uniform((size_t)o.links, 0);
+    if (chain == NULL) return cli_error(cmd, "cannot make the chain: %s", whirl_last_error());
+    rc = !is_map(&o) ? run_one(cmd, &o, chain)
+         : o.sweep   ? run_sweep(cmd, &o, chain)
+                     : run_map(cmd, &o, chain, mc);
+    whirl_chain_free(chain);
+    return rc;
+}
+
+int cmd_regime(const cli_command *cmd, int argc, char **argv)
+{
+    mpi_context mc = {0, 1};
+#ifdef WHIRL_MPI
+    /* MPI only when started by mpirun (Open MPI or a PMI launcher): a plain start stays a
+     * single process that never touches MPI */
+    const int launched = getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") ||
+                         getenv("PMIX_RANK");
+    if (launched) {
+        int provided;
+        MPI_Init_thread(NULL, NULL, MPI_THREAD_FUNNELED, &provided);
+        MPI_Comm_rank(MPI_COMM_WORLD, &mc.rank);
+        MPI_Comm_size(MPI_COMM_WORLD, &mc.size);
+    }
+    if (mc.rank > 0) { /* every rank checks the same options: only rank 0 speaks */
+        FILE *err = freopen("/dev/null", "w", stderr), *out = freopen("/dev/null", "w", stdout);
+        (void)err;
+        (void)out;
+    }
+#endif
+    const int rc = regime_main(cmd, argc, argv, &mc);
+#ifdef WHIRL_MPI
+    if (launched) MPI_Finalize();
+#endif
+    return rc;
+}
