@@ -7,5 +7,8 @@
 #include "whirl/steady.h"
 #include "whirl/dynamics.h"
 #include "whirl/scene.h"
+#include "whirl/stability.h"
+#include "whirl/optimize.h"
+#include "whirl/driven.h"
 
 #endif

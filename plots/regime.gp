@@ -58,7 +58,8 @@ if (exists("map")) {
          map skip skip using 2:(strcol(4) eq "converging" ? $3 : 1/0) with points pt 6 ps 1.5 \
              lc rgb "white" title "converging at t_max", \
          for [m = 1 : 3] (exists("folds") ? folds : map) skip (exists("folds") ? skip_of(folds) : skip) \
-             using (exists("folds") && $2 == m ? $5 : 1/0):1 with points pt 7 ps 1.2 lc m + 6 \
+             using (exists("folds") && $2 == m ? $5 : 1/0):1 with points pt (2 * m + 3) \
+             ps (2.4 - 0.5 * m) lw 2 lc rgb word("black magenta #00ffff", m) \
              title sprintf("fold, steady mode %d", m)
 }
 

@@ -5,7 +5,6 @@
 if (!exists("files")) { print "usage: gnuplot -e \"files='a.csv b.csv'; out='map.png'\" plots/stability_map.gp"; exit status 1 }
 if (!exists("out")) out = "stability_map.png"
 set datafile separator ","
-set datafile missing "nan"
 set terminal png size 900, 760
 set output out
 set multiplot layout 3, 1 margins 0.1, 0.97, 0.07, 0.97 spacing 0, 0.03

@@ -19,32 +19,14 @@
 #include "whirl/stability.h"
 
 #define REPEATS 7
+#define BENCH_NAME "bench_stability"
+#include "bench_util.h"
 
-static double clock_seconds(clockid_t id)
+static double cpu_now(void)
 {
     struct timespec t;
-    clock_gettime(id, &t);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static double now(void) { return clock_seconds(CLOCK_MONOTONIC); }
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *x, int n)
-{
-    qsort(x, (size_t)n, sizeof *x, cmp_double);
-    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
-static void die(const char *what)
-{
-    fprintf(stderr, "bench_stability: %s: %s\n", what, whirl_last_error());
-    exit(1);
 }
 
 /* The full first-order matrix [[0, I], [-M^-1 K, -M^-1 (G + C)]] of the last linearisation. */
@@ -72,14 +54,8 @@ static gsl_matrix *first_order(const whirl_stability *w, size_t n)
 
 int main(int argc, char **argv)
 {
-    const char *dir = argc > 1 ? argv[1] : "out/bench";
-    char path[1024];
-    snprintf(path, sizeof path, "%s/stability_timing.csv", dir);
-    FILE *fp = fopen(path, "w");
-    if (fp == NULL) {
-        fprintf(stderr, "bench_stability: cannot write %s\n", path);
-        return 1;
-    }
+    FILE *fp = bench_open_csv(argc > 1 ? argv[1] : "out/bench", "stability_timing.csv");
+    printf("load average %.2f (2 shared cores: wall times are noisy)\n", bench_load_average());
     gsl_set_error_handler_off();
     fprintf(fp, "links,mode,omega,seconds_total,cpu_seconds_total,seconds_shape,seconds_linear,"
                 "seconds_gsl_full\n");
@@ -90,7 +66,7 @@ int main(int argc, char **argv)
         const size_t n = links[s];
         whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
         whirl_stability *w = whirl_stability_alloc(n);
-        if (c == NULL || w == NULL) die("alloc");
+        if (c == NULL || w == NULL) bench_die("alloc");
         whirl_model m = {0};
         m.chain = c;
         m.dim = 3;
@@ -98,32 +74,32 @@ int main(int argc, char **argv)
         whirl_shape_info info;
         double growth, t_total[REPEATS], t_shape[REPEATS], t_lin[REPEATS], t_gsl[REPEATS];
         double t_cpu[REPEATS];
-        if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) die("warm-up");
+        if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) bench_die("warm-up");
         for (int r = 0; r < REPEATS; r++) {
-            double c0 = clock_seconds(CLOCK_PROCESS_CPUTIME_ID), t0 = now();
-            if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) die("analysis");
-            double t1 = now();
-            t_cpu[r] = clock_seconds(CLOCK_PROCESS_CPUTIME_ID) - c0;
-            if (whirl_nlink_solve(c, omega, mode, 0, &info)) die("shape");
-            double t2 = now();
-            if (whirl_stability_shape(w, &m, info.tip_r, &growth)) die("linearisation");
-            double t3 = now();
+            double c0 = cpu_now(), t0 = bench_now();
+            if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) bench_die("analysis");
+            double t1 = bench_now();
+            t_cpu[r] = cpu_now() - c0;
+            if (whirl_nlink_solve(c, omega, mode, 0, &info)) bench_die("shape");
+            double t2 = bench_now();
+            if (whirl_stability_shape(w, &m, info.tip_r, &growth)) bench_die("linearisation");
+            double t3 = bench_now();
             t_total[r] = t1 - t0;
             t_shape[r] = t2 - t1;
             t_lin[r] = t3 - t2;
             gsl_matrix *a = first_order(w, n);
             gsl_vector_complex *e = gsl_vector_complex_alloc(4 * n);
             gsl_eigen_nonsymm_workspace *ws = gsl_eigen_nonsymm_alloc(4 * n);
-            double t4 = now();
-            if (gsl_eigen_nonsymm(a, e, ws)) die("gsl_eigen_nonsymm");
-            t_gsl[r] = now() - t4;
+            double t4 = bench_now();
+            if (gsl_eigen_nonsymm(a, e, ws)) bench_die("gsl_eigen_nonsymm");
+            t_gsl[r] = bench_now() - t4;
             gsl_eigen_nonsymm_free(ws);
             gsl_vector_complex_free(e);
             gsl_matrix_free(a);
         }
-        const double mt = median(t_total, REPEATS), ms = median(t_shape, REPEATS);
-        const double ml = median(t_lin, REPEATS), mg = median(t_gsl, REPEATS);
-        const double mc = median(t_cpu, REPEATS);
+        const double mt = bench_median(t_total, REPEATS), ms = bench_median(t_shape, REPEATS);
+        const double ml = bench_median(t_lin, REPEATS), mg = bench_median(t_gsl, REPEATS);
+        const double mc = bench_median(t_cpu, REPEATS);
         fprintf(fp, "%zu,%d,%.17g,%.6g,%.6g,%.6g,%.6g,%.6g\n", n, mode, omega, mt, mc, ms, ml, mg);
         printf("N = %3zu (mode %d, omega %g, growth %.6g): analysis %.4f s wall, %.4f s cpu "
                "(shape %.4f s, linearisation + eigenvalues %.4f s); GSL nonsymm on the full "

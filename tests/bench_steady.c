@@ -19,37 +19,10 @@
 
 #include "whirl/steady.h"
 
+#define BENCH_NAME "bench_steady"
+#include "bench_util.h"
+
 #define REPEATS 5
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *x, int n)
-{
-    qsort(x, (size_t)n, sizeof *x, cmp_double);
-    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
-static FILE *open_csv(const char *dir, const char *name)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *fp = fopen(path, "w");
-    if (fp == NULL) {
-        fprintf(stderr, "bench_steady: cannot write %s\n", path);
-        exit(1);
-    }
-    return fp;
-}
-
-static void die(const char *what)
-{
-    fprintf(stderr, "bench_steady: %s: %s\n", what, whirl_last_error());
-    exit(1);
-}
 
 static double rel(double x, double ref) { return fabs(x / ref - 1); }
 
@@ -66,14 +39,14 @@ static double time_branches(int threads, const double *omega, size_t n, whirl_sh
         for (int k = 1; k <= 3; k++)
             if (whirl_continuum_branch(k, 0, n, omega, info + (size_t)(k - 1) * n,
                                        exists + (size_t)(k - 1) * n) != GSL_SUCCESS)
-                die("continuum branch");
+                bench_die("continuum branch");
         if (rep > 0) {
             t[rep - 1] = omp_get_wtime() - t0;
             c[rep - 1] = (double)(clock() - c0) / CLOCKS_PER_SEC;
         }
     }
-    *cpu = median(c, REPEATS);
-    return median(t, REPEATS);
+    *cpu = bench_median(c, REPEATS);
+    return bench_median(t, REPEATS);
 }
 
 static void bench_continuum_branches(const char *dir, FILE *summary)
@@ -98,7 +71,7 @@ static void bench_continuum_branches(const char *dir, FILE *summary)
             if (!exists[(k - 1) * n + j]) continue;
             whirl_shape_info ref;
             if (whirl_continuum_solve_tol(omega[j], k, 0, 0, 1e-15, &ref) != GSL_SUCCESS)
-                die("reference solve");
+                bench_die("reference solve");
             worst[0] = fmax(worst[0], rel(f->tip_r, ref.tip_r));
             worst[1] = fmax(worst[1], rel(f->top_tension, ref.top_tension));
             worst[2] = fmax(worst[2], rel(f->depth, ref.depth));
@@ -113,7 +86,7 @@ static void bench_continuum_branches(const char *dir, FILE *summary)
     fprintf(summary, "continuum_branches_3x1001_wall_s,%d,%.6g\n"
                      "continuum_branches_3x1001_wall_s,1,%.6g\n"
                      "continuum_branches_3x1001_cpu_s,1,%.6g\n", threads, t_all, t_one, cpu_one);
-    FILE *fp = open_csv(dir, "steady_branches.csv");
+    FILE *fp = bench_open_csv(dir, "steady_branches.csv");
     fprintf(fp, "omega,mode,tip_r,max_r,top_tension,depth\n");
     for (int k = 1; k <= 3; k++)
         for (int j = 0; j < n; j++)
@@ -129,7 +102,7 @@ static void bench_nlink_rate(FILE *summary)
 {
     whirl_chain *c = whirl_chain_alloc_uniform(100, 0);
     double crit[3];
-    if (c == NULL || whirl_nlink_critical(c, 3, crit) != GSL_SUCCESS) die("nlink setup");
+    if (c == NULL || whirl_nlink_critical(c, 3, crit) != GSL_SUCCESS) bench_die("nlink setup");
     enum { n = 300 };
     double omega[n], t[REPEATS];
     for (int j = 0; j < n; j++) omega[j] = crit[2] * 1.001 + (10 - crit[2]) * j / (n - 1);
@@ -138,10 +111,10 @@ static void bench_nlink_rate(FILE *summary)
         double t0 = omp_get_wtime();
         for (int k = 1; k <= 3; k++)
             for (int j = 0; j < n; j++)
-                if (whirl_nlink_solve(c, omega[j], k, 0, &info) != GSL_SUCCESS) die("nlink solve");
+                if (whirl_nlink_solve(c, omega[j], k, 0, &info) != GSL_SUCCESS) bench_die("nlink solve");
         if (rep > 0) t[rep - 1] = omp_get_wtime() - t0;
     }
-    double fresh = 3 * n / median(t, REPEATS);
+    double fresh = 3 * n / bench_median(t, REPEATS);
     static whirl_shape_info binfo[n];
     int exists[n];
     omp_set_num_threads(1);
@@ -149,11 +122,11 @@ static void bench_nlink_rate(FILE *summary)
         double t0 = omp_get_wtime();
         for (int k = 1; k <= 3; k++)
             if (whirl_nlink_branch(c, k, n, omega, binfo, exists) != GSL_SUCCESS)
-                die("nlink branch");
+                bench_die("nlink branch");
         if (rep > 0) t[rep - 1] = omp_get_wtime() - t0;
     }
     omp_set_num_threads(omp_get_num_procs());
-    double branch = 3 * n / median(t, REPEATS);
+    double branch = 3 * n / bench_median(t, REPEATS);
     printf("N-link N = 100, modes 1-3 at omega_3..10 (one thread): %.0f fresh shapes/s, %.0f "
            "shapes/s along a branch\n", fresh, branch);
     fprintf(summary, "nlink100_fresh_shapes_per_s,1,%.6g\nnlink100_branch_shapes_per_s,1,%.6g\n",
@@ -166,7 +139,7 @@ static void bench_convergence(const char *dir)
     const size_t sizes[] = {10, 20, 50, 100, 200, 500, 1000};
     const size_t ns = sizeof sizes / sizeof *sizes;
     const double omega = 7.2791, tip_masses[2] = {0, 0.4821};
-    FILE *fp = open_csv(dir, "steady_nlink_convergence.csv");
+    FILE *fp = bench_open_csv(dir, "steady_nlink_convergence.csv");
     fprintf(fp, "tip_mass,mode,N,err_tip_r,err_top_tension,err_depth,err_critical,"
                 "order_tip_r,order_top_tension,order_depth,order_critical\n");
     printf("N-link -> continuum at omega = %g: relative errors and observed order "
@@ -177,7 +150,7 @@ static void bench_convergence(const char *dir)
             double crit_cont;
             if (whirl_continuum_solve(omega, k, tip_masses[t], 0, &cont) != GSL_SUCCESS ||
                 whirl_continuum_critical(k, tip_masses[t], &crit_cont) != GSL_SUCCESS)
-                die("continuum reference");
+                bench_die("continuum reference");
             double prev[4] = {0, 0, 0, 0};
             printf("  tip mass %g, mode %d:\n", tip_masses[t], k);
             for (size_t s = 0; s < ns; s++) {
@@ -186,7 +159,7 @@ static void bench_convergence(const char *dir)
                 double crit[3];
                 if (whirl_nlink_solve(c, omega, k, 0, &d) != GSL_SUCCESS ||
                     whirl_nlink_critical(c, 3, crit) != GSL_SUCCESS)
-                    die("nlink solve");
+                    bench_die("nlink solve");
                 double e[4] = {rel(d.tip_r, cont.tip_r), rel(d.top_tension, cont.top_tension),
                                rel(d.depth, cont.depth), rel(crit[k - 1], crit_cont)};
                 double order[4];
@@ -219,7 +192,7 @@ static void bench_near_critical(void)
             if (whirl_continuum_solve(omega_k * (1 + eps[e]), k, 0, 0, &a) != GSL_SUCCESS ||
                 whirl_continuum_solve_tol(omega_k * (1 + eps[e]), k, 0, 0, 1e-15, &b) !=
                     GSL_SUCCESS)
-                die("near-critical solve");
+                bench_die("near-critical solve");
             printf("  eps %.0e: %.1e; %.1e, %.1e", eps[e], rel(a.tip_r, b.tip_r),
                    rel(a.top_tension, b.top_tension), rel(a.depth, b.depth));
         }
@@ -232,7 +205,7 @@ static void bench_kolodner(const char *dir)
     enum { nrates = 400, na = 800 };
     double crit[9];
     for (int k = 1; k <= 9; k++) whirl_continuum_critical(k, 0, &crit[k - 1]);
-    FILE *fp = open_csv(dir, "steady_kolodner.csv");
+    FILE *fp = bench_open_csv(dir, "steady_kolodner.csv");
     fprintf(fp, "omega,critical_below,roots\n");
     int mismatches = 0;
     double s[2], r[2], z[2], t[2];
@@ -243,7 +216,7 @@ static void bench_kolodner(const char *dir)
         int roots = 0, sign = 0;
         for (int i = 0; i <= na; i++) {
             double a = fmin(1, pow(10, -7 + 7.0 * i / na));
-            if (whirl_continuum_sample(omega, 0, a, 2, s, r, z, t) != GSL_SUCCESS) die("sample");
+            if (whirl_continuum_sample(omega, 0, a, 2, s, r, z, t) != GSL_SUCCESS) bench_die("sample");
             int sg = r[0] > 0 ? 1 : -1;
             if (sign != 0 && sg != sign) roots++;
             sign = sg;
@@ -261,12 +234,9 @@ int main(int argc, char **argv)
 {
     const char *dir = argc > 1 ? argv[1] : "out/bench";
     gsl_set_error_handler_off();
-    FILE *loadavg = fopen("/proc/loadavg", "r");
-    double load;
-    if (loadavg && fscanf(loadavg, "%lf", &load) == 1)
-        printf("load average at start (other jobs share the cores): %.2f\n", load);
-    if (loadavg) fclose(loadavg);
-    FILE *summary = open_csv(dir, "steady_timing.csv");
+    const double load = bench_load_average();
+    if (load >= 0) printf("load average at start (other jobs share the cores): %.2f\n", load);
+    FILE *summary = bench_open_csv(dir, "steady_timing.csv");
     fprintf(summary, "case,threads,value\n");
     bench_continuum_branches(dir, summary);
     bench_nlink_rate(summary);

@@ -56,7 +56,8 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --steps 7 --modes 1,2 --links 
      -o "$tmp/map.csv" 2>"$tmp/err" \
    && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, '$2 == 1' | wc -l)" -eq 7 ] \
    && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, '$2 == 2' | wc -l)" -eq 5 ] \
-   && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, 'NR > 1 && $5 != "nan"' | wc -l)" -eq 0 ]; then
+   && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, 'NR > 1 && ($5 != "" || $6 != "")' | wc -l)" -eq 0 ] \
+   && ! grep -qi nan "$tmp/map.csv"; then
   pass "map form: rows where the modes exist"
 else fail "map form: $(cat "$tmp/err" "$tmp/map.csv" 2>/dev/null | tail -3)"; fi
 

@@ -5,7 +5,7 @@
  * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
  * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
  * perturbed run (whirl_stability_run). With --linear no run is made: sim_growth and
- * max_deviation are nan and the verdict is the linear one (eig_growth > 0: unstable, < 0:
+ * max_deviation are left empty and the verdict is the linear one (eig_growth > 0: unstable, < 0:
  * converging, 0: stable). Rates where a mode of the map does not exist are left out. */
 #include <math.h>
 #include <stdlib.h>
@@ -161,7 +161,6 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     int status = whirl_stability_shape(w, &m, p->tip_r, &p->eig_growth);
     if (status) return status;
     if (o->linear) {
-        p->sim_growth = p->max_deviation = NAN;
         p->verdict = p->eig_growth > 0   ? WHIRL_VERDICT_UNSTABLE
                      : p->eig_growth < 0 ? WHIRL_VERDICT_CONVERGING
                                          : WHIRL_VERDICT_STABLE;
@@ -196,7 +195,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.periods = 100;
     o.perturb = 1e-6;
     o.seed = 1;
-    o.method = "gauss2";
+    o.method = "rk4";
     o.modes.n = 3;
     o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
     const cli_option opts[] = {
@@ -215,11 +214,11 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)"},
         {"--damping", NULL, CLI_DOUBLE, &o.damping, NULL, "D",
          "internal damping of the joints (default 0)"},
-        {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default gauss2)"},
+        {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
         {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
          "time step (default: from the highest frequency, see stability.h)"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
-         "eigenvalues only: no run (sim columns nan)"},
+         "eigenvalues only: no run (sim columns left empty)"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
          "single rate: the run's deviation / initial against t (CSV)"},
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
@@ -308,9 +307,13 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict\n");
     size_t written = 0;
     for (size_t i = 0; i < count && pts[i].done; i++, written++)
-        fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s\n", pts[i].omega, pts[i].mode, o.links,
-                pts[i].eig_growth, pts[i].sim_growth, pts[i].max_deviation,
-                whirl_verdict_name(pts[i].verdict));
+        if (o.linear)
+            fprintf(out.fp, "%.17g,%d,%d,%.17g,,,%s\n", pts[i].omega, pts[i].mode, o.links,
+                    pts[i].eig_growth, whirl_verdict_name(pts[i].verdict));
+        else
+            fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s\n", pts[i].omega, pts[i].mode,
+                    o.links, pts[i].eig_growth, pts[i].sim_growth, pts[i].max_deviation,
+                    whirl_verdict_name(pts[i].verdict));
     free(pts);
     whirl_chain_free(c);
     if (cli_out_commit(cmd, &out)) {

@@ -1,0 +1,113 @@
+/* Helpers shared by the benchmark programs (tests/bench_*.c): monotonic wall clock, median of
+ * repeats, opening a CSV under the output directory, fatal errors with the library's message.
+ * Header-only (static functions); each program defines BENCH_NAME before including it. */
+#ifndef WHIRL_BENCH_UTIL_H
+#define WHIRL_BENCH_UTIL_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "whirl/common.h"
+#include "whirl/steady.h"
+
+#ifndef BENCH_NAME
+#error "define BENCH_NAME (the program's name, for messages) before including bench_util.h"
+#endif
+
+/* Seconds on the monotonic clock. */
+static inline double bench_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static inline int bench_cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median of x[0..n-1] (sorts x in place). */
+static inline double bench_median(double *x, int n)
+{
+    qsort(x, (size_t)n, sizeof *x, bench_cmp_double);
+    return n % 2 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
+/* Prints the failure with whirl_last_error() and exits with status 1. */
+static inline void bench_die(const char *what)
+{
+    fprintf(stderr, "%s: %s: %s\n", BENCH_NAME, what, whirl_last_error());
+    exit(1);
+}
+
+/* dir/name opened for writing; exits with a message if that fails. */
+static inline FILE *bench_open_csv(const char *dir, const char *name)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *fp = fopen(path, "w");
+    if (fp == NULL) {
+        fprintf(stderr, "%s: cannot write %s\n", BENCH_NAME, path);
+        exit(1);
+    }
+    return fp;
+}
+
+/* The 1-minute load average (other jobs share the cores), or -1 if unknown. */
+static inline double bench_load_average(void)
+{
+    double load = -1;
+    FILE *fp = fopen("/proc/loadavg", "r");
+    if (fp != NULL) {
+        if (fscanf(fp, "%lf", &load) != 1) load = -1;
+        fclose(fp);
+    }
+    return load;
+}
+
+/* The N-link steady shape of mode `mode` at omega (whirl_nlink_solve) as positions x (3 per mass,
+ * relative to the pivot) in the x-z plane. */
+static inline int bench_steady_positions(const whirl_chain *c, double omega, int mode, double *x)
+{
+    const size_t n = c->n;
+    whirl_shape_info info;
+    int status = whirl_nlink_solve(c, omega, mode, 0, &info);
+    if (status != GSL_SUCCESS) return status;
+    double *r = malloc(3 * (n + 1) * sizeof *r);
+    if (r == NULL) return GSL_ENOMEM;
+    double *z = r + n + 1, *ten = z + n + 1;
+    status = whirl_nlink_positions(c, omega, info.tip_r, r, z, ten);
+    for (size_t i = 0; i < n; i++) {
+        x[3 * i] = r[i + 1] - r[0];
+        x[3 * i + 1] = 0;
+        x[3 * i + 2] = z[i + 1] - z[0];
+    }
+    free(r);
+    return status;
+}
+
+/* A smooth non-trivial state: link i at theta = 0.5 + 0.3 sin(0.7 i), phi = 0.05 i, rates
+ * 0.2 cos(i), 0.1 (positions and velocities, 3 per mass, pivot at p). */
+static inline void bench_smooth_state(const whirl_chain *c, const double *p, double *x, double *v)
+{
+    double pos[3] = {p[0], p[1], p[2]}, vel[3] = {0, 0, 0};
+    for (size_t i = 0; i < c->n; i++) {
+        const double th = 0.5 + 0.3 * sin(0.7 * (double)i), ph = 0.05 * (double)i;
+        const double thd = 0.2 * cos((double)i), phd = 0.1;
+        const double u[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
+        const double et[3] = {cos(th) * cos(ph), cos(th) * sin(ph), sin(th)};
+        const double ep[3] = {-sin(ph), cos(ph), 0};
+        for (int k = 0; k < 3; k++) {
+            pos[k] += c->length[i] * u[k];
+            vel[k] += c->length[i] * (thd * et[k] + phd * sin(th) * ep[k]);
+            x[3 * i + k] = pos[k];
+            v[3 * i + k] = vel[k];
+        }
+    }
+}
+
+#endif
