@@ -42,8 +42,8 @@ $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 # `mpirun -n K`; `make MPI=0` builds the single-process program without MPI.
 MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
 ifeq ($(MPI),1)
-$(BUILD)/src/cli/cmd_regime.o: XCFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
-$(BUILD)/whirl: LDLIBS += $(shell mpicc --showme:link)
+$(BUILD)/src/cli/cmd_regime.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
+$(BUILD)/whirl: PKG_LIBS += $(shell mpicc --showme:link)
 endif
 # --- end MPI
 

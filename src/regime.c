@@ -34,6 +34,9 @@
 #define DECAY_MAX_LEFT 0.05 /* [L]: the largest estimated distance left it accepts */
 #define DECAY_FACTOR 0.995
 #define CHANGE_HISTORY 32 /* >= 2 SETTLE_BLOCK and DECAY_BLOCK (DECAY_BLOCKS + 1) */
+_Static_assert(CHANGE_HISTORY >= 2 * SETTLE_BLOCK &&
+                   CHANGE_HISTORY >= DECAY_BLOCK * (DECAY_BLOCKS + 1),
+               "the ring buffer of changes must hold both tests' windows");
 
 struct whirl_regime {
     const whirl_chain *chain;
@@ -392,10 +395,11 @@ static int tip_period(const whirl_regime *w, double tol)
  * q over those periods, D_k / (1 - q), is below DECAY_MAX_LEFT. */
 static int decaying(const whirl_regime *w)
 {
-    if (w->n_tips < CHANGE_HISTORY) return 0;
+    const size_t span = DECAY_BLOCK * (DECAY_BLOCKS + 1);
+    if (w->n_tips < span) return 0;
     double mean[DECAY_BLOCKS + 1] = {0};
-    for (size_t j = 0; j < CHANGE_HISTORY; j++) /* block 0 is the oldest */
-        mean[j / DECAY_BLOCK] += w->changes[(w->n_tips - CHANGE_HISTORY + j) % CHANGE_HISTORY];
+    for (size_t j = 0; j < span; j++) /* block 0 is the oldest */
+        mean[j / DECAY_BLOCK] += w->changes[(w->n_tips - span + j) % CHANGE_HISTORY];
     for (int b = 1; b <= DECAY_BLOCKS; b++)
         if (!(mean[b] < DECAY_FACTOR * mean[b - 1])) return 0;
     const double q = pow(mean[DECAY_BLOCKS] / mean[0], 1.0 / (DECAY_BLOCK * DECAY_BLOCKS));
@@ -589,7 +593,8 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
             continue;
         }
         for (size_t k = 1; k <= segments && status == GSL_SUCCESS; k++) {
-            const double wk = omega[j - 1] + (omega[j] - omega[j - 1]) * (double)k / (double)segments;
+            const double u = (double)k / (double)segments;
+            const double wk = omega[j - 1] + (omega[j] - omega[j - 1]) * u;
             status = set_drive(w, p, wk, p->eps);
             if (status == GSL_SUCCESS) status = advance(w, p, h, NULL);
         }

@@ -1,11 +1,13 @@
 /* Perturbed time-domain runs about a steady shape: the nonlinear check of the linear analysis.
  *
- * Start: the exact relative equilibrium of the N-link chain (whirl_nlink_positions), every link
- * direction u_j turned by the angle eps towards a random unit vector t_j perpendicular to it,
- * u_j <- cos(eps) u_j + sin(eps) t_j, at rest in the frame co-rotating at omega. The dynamics
- * (3D, co-rotating frame, Cartesian formulation) are integrated with a fixed step and the
- * deviation d(t) (whirl_deviation: RMS over the masses of the distance to the shape, minimised
- * over a rotation about z, so the symmetry's drift does not count) sampled 50 times a period.
+ * Start: a relative equilibrium of the N-link chain (free: whirl_nlink_positions; driven, with
+ * air drag: whirl_driven_sample), every link direction u_j turned by the angle eps towards a
+ * random unit vector t_j perpendicular to it, u_j <- cos(eps) u_j + sin(eps) t_j, at rest in the
+ * frame co-rotating at omega, the pivot at (eps_drive, 0, 0). The dynamics (3D, co-rotating frame,
+ * Cartesian formulation, the model's drive, drag and damping) are integrated with a fixed step and
+ * the deviation d(t) (RMS over the masses of the distance to the shape; when rotation about z is
+ * a symmetry, without drive and drag, minimised over that rotation by whirl_deviation, so the
+ * symmetry's drift does not count) sampled 50 times a period.
  * While the linear regime holds, d(t) = |sum_k c_k v_k e^{lambda_k t}|: the unstable part takes
  * over once it exceeds the neutral ones, and the slope of log d then is the largest growth rate.
  * The slope is fitted by least squares over the samples from the first that reaches 100 d(0) to
@@ -24,7 +26,7 @@
 
 #define SAMPLES_PER_PERIOD 50
 #define RATIO_GROWN 100.0      /* verdict unstable */
-#define RATIO_CONVERGED 1e-2   /* verdict converging (damping > 0) */
+#define RATIO_CONVERGED 1e-2   /* verdict converging (dissipation > 0) */
 #define RATIO_FIT_FROM 100.0
 #define RATIO_FIT_TO 1e4
 #define LINEAR_LIMIT 1e-2      /* deviation / L beyond which the fit stops */
@@ -47,11 +49,13 @@ whirl_stability_run_params whirl_stability_run_defaults(void)
 static int check_params(const whirl_model *model, const whirl_stability_run_params *p)
 {
     if (model == NULL || model->chain == NULL) return whirl_fail(GSL_EINVAL, "no model or no chain");
-    if (model->drive_radius != 0 || model->air_drag != 0 || model->air_drag_quadratic != 0)
-        return whirl_fail(GSL_EINVAL, "a steady shape needs the pivot on the axis and no air drag");
-    if (!(isfinite(model->internal_damping) && model->internal_damping >= 0))
-        return whirl_fail(GSL_EINVAL, "damping must be >= 0 and finite, got %g",
-                          model->internal_damping);
+    const double nonneg[4] = {model->internal_damping, model->drive_radius, model->air_drag,
+                              model->air_drag_quadratic};
+    const char *names[4] = {"damping", "drive radius", "air drag", "quadratic air drag"};
+    for (int k = 0; k < 4; k++)
+        if (!(isfinite(nonneg[k]) && nonneg[k] >= 0))
+            return whirl_fail(GSL_EINVAL, "%s must be >= 0 and finite, got %g", names[k],
+                              nonneg[k]);
     if (!(isfinite(model->omega) && model->omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be positive, got %g", model->omega);
     if (!(isfinite(p->periods) && p->periods > 0))
@@ -62,6 +66,21 @@ static int check_params(const whirl_model *model, const whirl_stability_run_para
         return whirl_fail(GSL_EINVAL, "step must be >= 0 (0: default), got %g", p->dt);
     if (p->method == NULL) return whirl_fail(GSL_EINVAL, "no integrator method");
     return GSL_SUCCESS;
+}
+
+static int has_symmetry(const whirl_model *m)
+{
+    return m->drive_radius == 0 && m->air_drag == 0 && m->air_drag_quadratic == 0;
+}
+
+/* The deviation of the masses x from ref (n each, 3 per mass): modulo the rotation about z when
+ * that is a symmetry, else the plain RMS distance. */
+static double deviation(const whirl_model *m, size_t n, const double *x, const double *ref)
+{
+    if (has_symmetry(m)) return whirl_deviation(n, x, ref);
+    double sum = 0;
+    for (size_t i = 0; i < 3 * n; i++) sum += (x[i] - ref[i]) * (x[i] - ref[i]);
+    return sqrt(sum / (double)n);
 }
 
 /* Least-squares slope of the samples (t, log d) accumulated so far. */
@@ -86,21 +105,33 @@ static double fit_slope(const line_fit *f)
     return (f->n >= 2 && den > 0) ? (f->n * f->sty - f->st * f->sy) / den : 0.0;
 }
 
-/* Shape (ref) and its perturbation (x) from the nodes r, z (pivot first), 3 per mass. */
-static int perturbed_start(const whirl_chain *c, const double *r, const double *z, double eps,
-                           unsigned long seed, double *ref, double *x)
+/* Shape (ref) and its perturbation (x) from the nodes (pivot first), 3 per mass, the pivot at
+ * (eps, 0, 0). */
+static int perturbed_start(const whirl_model *m, const double *nx, const double *ny,
+                           const double *nz, double eps, unsigned long seed, double *ref,
+                           double *x)
 {
+    const whirl_chain *c = m->chain;
+    for (size_t j = 0; j < c->n; j++) {
+        const double d[3] = {nx[j + 1] - nx[j], ny[j + 1] - ny[j], nz[j + 1] - nz[j]};
+        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        if (!(isfinite(len) && fabs(len - c->length[j]) <= 1e-9 * c->length[j]))
+            return whirl_fail(GSL_EINVAL, "link %zu of the shape has length %.17g, the chain's "
+                                          "is %.17g", j + 1, len, c->length[j]);
+    }
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     if (rng == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the random generator");
     gsl_rng_set(rng, seed);
-    double base[3] = {0, 0, 0}, moved[3] = {0, 0, 0};
+    double base[3] = {m->drive_radius, 0, 0}, moved[3] = {m->drive_radius, 0, 0};
     for (size_t j = 0; j < c->n; j++) {
         const double len = c->length[j];
-        const double u[3] = {(r[j + 1] - r[j]) / len, 0, (z[j + 1] - z[j]) / len};
+        double u[3] = {nx[j + 1] - nx[j], ny[j + 1] - ny[j], nz[j + 1] - nz[j]};
+        const double un = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (int k = 0; k < 3; k++) u[k] /= un;
         double t[3], norm = 0;
         do { /* a random direction perpendicular to u */
             for (int k = 0; k < 3; k++) t[k] = gsl_ran_gaussian(rng, 1.0);
-            const double along = t[0] * u[0] + t[2] * u[2];
+            const double along = t[0] * u[0] + t[1] * u[1] + t[2] * u[2];
             for (int k = 0; k < 3; k++) t[k] -= along * u[k];
             norm = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
         } while (norm < 1e-3);
@@ -116,9 +147,11 @@ static int perturbed_start(const whirl_chain *c, const double *r, const double *
 }
 
 /* min(period / 200, f / (nu + omega + kappa)): nu = 2 sqrt(max_j (T_j / l_j) / min m), the
- * Gershgorin bound of the highest transverse frequency under the tensions T_j (tension[j],
- * j = 1..N), and kappa = 4 D / (min m min l^2) that of the fastest decay of the internal damping
- * D. For the classical rk4, f = 2: inside its stability interval on the imaginary axis
+ * Gershgorin bound of the highest transverse frequency under the tensions T_j (tension[j], link
+ * j + 1), and kappa = 4 D / (min m min l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) that
+ * of the fastest decay of the internal damping D and the air drag (the derivative of the drag
+ * force l (c + c2 |v|) v is at most l (c + 2 c2 |v|), |v| <= omega (eps + L)). For the
+ * classical rk4, f = 2: inside its stability interval on the imaginary axis
  * (|h lambda| < 2.83) and on the negative real axis (2.79); the modes that decide stability are
  * far slower and resolved (relative error (h omega)^4), the fastest ones are damped by the
  * method. For the other methods f = 0.7, so that the stage iterations of the implicit methods
@@ -127,20 +160,23 @@ static double default_step(const whirl_model *m, const double *tension, const ch
 {
     const double f = strcmp(method, "rk4") == 0 ? 2.0 : 0.7;
     const whirl_chain *c = m->chain;
-    double stiff = 0, light = INFINITY, shortest = INFINITY;
+    const double speed = m->omega * (m->drive_radius + whirl_chain_total_length(c));
+    double stiff = 0, light = INFINITY, shortest = INFINITY, drag = 0;
     for (size_t j = 0; j < c->n; j++) {
-        stiff = fmax(stiff, tension[j + 1] / c->length[j]);
+        stiff = fmax(stiff, tension[j] / c->length[j]);
         light = fmin(light, c->mass[j]);
         shortest = fmin(shortest, c->length[j]);
+        drag = fmax(drag, c->length[j] / c->mass[j] *
+                              (m->air_drag + 2 * m->air_drag_quadratic * speed));
     }
     const double nu = 2 * sqrt(stiff / light);
-    const double kappa = 4 * m->internal_damping / (light * shortest * shortest);
+    const double kappa = 4 * m->internal_damping / (light * shortest * shortest) + drag;
     return fmin(2 * M_PI / m->omega / 200, f / (nu + m->omega + kappa));
 }
 
-int whirl_stability_run(const whirl_model *model, double tip_r,
-                        const whirl_stability_run_params *params,
-                        whirl_stability_run_result *result)
+int whirl_stability_run_shape(const whirl_model *model, const double *nx, const double *ny,
+                              const double *nz, const whirl_stability_run_params *params,
+                              whirl_stability_run_result *result)
 {
     int status = check_params(model, params);
     if (status) return status;
@@ -154,15 +190,15 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
     double *buf = NULL, *y = NULL;
     memset(result, 0, sizeof *result);
 
-    buf = calloc(3 * (n + 1) + 15 * n, sizeof(double));
+    buf = calloc(n + 15 * n, sizeof(double));
     if (buf == NULL) {
         status = whirl_fail(GSL_ENOMEM, "out of memory for a run of %zu links", n);
         goto done;
     }
-    double *r = buf, *z = r + n + 1, *tension = z + n + 1, *ref = tension + n + 1;
+    double *tension = buf, *ref = tension + n;
     double *x = ref + 3 * n, *v = x + 3 * n, *x_now = v + 3 * n, *v_now = x_now + 3 * n;
-    if ((status = whirl_nlink_positions(c, m.omega, tip_r, r, z, tension))) goto done;
-    if ((status = perturbed_start(c, r, z, params->perturbation, params->seed, ref, x))) goto done;
+    if ((status = perturbed_start(&m, nx, ny, nz, params->perturbation, params->seed, ref, x)))
+        goto done;
 
     if ((dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN)) == NULL) {
         status = GSL_EINVAL; /* message set by whirl_dyn_alloc */
@@ -177,9 +213,12 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
         goto done;
     }
     double t = 0;
+    /* the tensions of the shape (for the default step), then the perturbed start */
+    if ((status = whirl_dyn_set_state(dyn, t, ref, v, y))) goto done;
+    if ((status = whirl_dyn_tensions(dyn, t, y, tension))) goto done;
     if ((status = whirl_dyn_set_state(dyn, t, x, v, y))) goto done;
     if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, x_now, v_now))) goto done;
-    const double d0 = whirl_deviation(n, x_now, ref);
+    const double d0 = deviation(&m, n, x_now, ref);
     if (!(d0 > 0)) {
         status = whirl_fail(GSL_ERANGE, "the perturbation %g gives no deviation",
                             params->perturbation);
@@ -188,6 +227,7 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
     const double period = 2 * M_PI / m.omega, t_end = params->periods * period;
     const double h = params->dt > 0 ? params->dt : default_step(&m, tension, params->method);
     const double limit = LINEAR_LIMIT * whirl_chain_total_length(c);
+    const int dissipative = m.internal_damping > 0 || m.air_drag > 0 || m.air_drag_quadratic > 0;
     line_fit fit = {0};
     int fitting = 0, fit_done = 0;
     result->initial = d0;
@@ -200,7 +240,7 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
         if ((status = whirl_integrator_advance(it, &t, y, t1, h, 0))) goto done;
         if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, x_now, v_now)))
             goto done;
-        const double d = whirl_deviation(n, x_now, ref), ratio = d / d0;
+        const double d = deviation(&m, n, x_now, ref), ratio = d / d0;
         if (!isfinite(ratio)) {
             status = whirl_fail(GSL_ERANGE, "non-finite deviation at t = %g", t);
             goto done;
@@ -216,8 +256,7 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
             fit_done = ratio >= RATIO_FIT_TO || d >= limit;
         }
         if (fit_done && result->verdict == WHIRL_VERDICT_UNSTABLE) break;
-        if (m.internal_damping > 0 && result->verdict == WHIRL_VERDICT_STABLE &&
-            ratio <= RATIO_CONVERGED) {
+        if (dissipative && result->verdict == WHIRL_VERDICT_STABLE && ratio <= RATIO_CONVERGED) {
             result->verdict = WHIRL_VERDICT_CONVERGING;
             break;
         }
@@ -233,6 +272,25 @@ done:
     free(y);
     whirl_integrator_free(it);
     whirl_dyn_free(dyn);
+    free(buf);
+    return status;
+}
+
+int whirl_stability_run(const whirl_model *model, double tip_r,
+                        const whirl_stability_run_params *params,
+                        whirl_stability_run_result *result)
+{
+    int status = check_params(model, params);
+    if (status) return status;
+    if (!has_symmetry(model))
+        return whirl_fail(GSL_EINVAL, "a free steady shape needs the pivot on the axis and no "
+                                      "air drag (see whirl_stability_run_shape)");
+    const size_t n = model->chain->n;
+    double *buf = calloc(4 * (n + 1), sizeof(double));
+    if (buf == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for a run of %zu links", n);
+    double *r = buf, *zero = r + n + 1, *z = zero + n + 1, *tension = z + n + 1;
+    status = whirl_nlink_positions(model->chain, model->omega, tip_r, r, z, tension);
+    if (!status) status = whirl_stability_run_shape(model, r, zero, z, params, result);
     free(buf);
     return status;
 }

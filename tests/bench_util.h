@@ -24,6 +24,15 @@ static inline double bench_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+/* Processor seconds of the calling thread: less sensitive than the wall clock to other jobs
+ * sharing the cores (not to their use of the caches and memory bandwidth). */
+static inline double bench_cpu_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static inline int bench_cmp_double(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;
@@ -108,6 +117,17 @@ static inline void bench_smooth_state(const whirl_chain *c, const double *p, dou
             v[3 * i + k] = vel[k];
         }
     }
+}
+
+/* Least-squares slope of log y on log x over the n points (the exponent p of y ~ x^p). */
+static inline double bench_fit_exponent(const double *x, const double *y, int n)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (int i = 0; i < n; i++) {
+        const double lx = log(x[i]), ly = log(y[i]);
+        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 #endif

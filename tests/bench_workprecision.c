@@ -1,6 +1,8 @@
 /* Work-precision benchmark of the integrators: wall time against final position error on
- * reference scenes. Usage: bench_workprecision [DIR [SCENE]] (DIR default out/bench; SCENE one
- * of the names below, default all). Writes DIR/workprecision_SCENE.csv (one row per run) and
+ * reference scenes. Usage: bench_workprecision [DIR [SCENE [PERIODS [METHOD]]]] (DIR default
+ * out/bench; SCENE one of the names below or "all", default all; PERIODS the chain scenes' rotation periods,
+ * default 20, fewer to measure within a time budget; METHOD one method only, the CSV then named
+ * workprecision_SCENE_METHOD.csv). Writes DIR/workprecision_SCENE.csv (one row per run) and
  * DIR/workprecision_summary.csv (times at equal error), and prints the figures.
  *
  * Scenes:
@@ -20,8 +22,10 @@
  * h_max / 2^k for gauss2, gauss3, rk4, gsl-rk4; tolerances 10^-3 .. 10^-13 for the adaptive GSL
  * steppers), and the seed formulation with the seed's method gauss2 and with gsl-rk8pd (N <= 10:
  * at N = 100 one seed right-hand side costs 280 Cartesian ones and a run minutes).
- * A method is refined until a run takes longer than the scene's time cap, its error reaches the
- * floor, or it fails after a success. gsl-rk4imp (dense LU of 2 x dim per Newton matrix) only at
+ * A method is refined until a run takes longer than the scene's time cap (10-15 s; 60 s at
+ * N = 1000), its error is below 1e-11 or 3 times the floor or stalls, or it fails after a
+ * success. The whole program takes about 10 minutes without chain1000, which at 20 periods runs
+ * for about an hour (PERIODS = 2: about 10 minutes). gsl-rk4imp (dense LU of 2 x dim per Newton matrix) only at
  * N <= 10, gsl-msbdf (dense LU of dim) only at N <= 100. Wall time: median of 5 (runs < 0.5 s),
  * 3 (< 3 s) or 1 repeats.
  * Equal error: for each method, log time interpolated linearly in log error between consecutive
@@ -237,9 +241,10 @@ static void run_method(const scene *sc, const start *st, const method *m, const 
                m->adaptive ? "tol" : "h  ", m->adaptive ? tol : h, err, secs, s.steps,
                s.rhs_evals);
         fflush(stdout);
-        /* refined far enough: slow, at the reference floor, or stalled at round-off */
+        /* refined far enough: slow, past the comparison levels, at the reference floor, or
+         * stalled at round-off */
         const int stalled = c->count >= 2 && err > 0.5 * c->err[c->count - 2] && err < 1e-9;
-        if (secs > sc->time_cap || err < 3 * floor_err || stalled) break;
+        if (secs > sc->time_cap || err < 3 * floor_err || err < 1e-11 || stalled) break;
     }
     free(xf);
 }
@@ -265,7 +270,7 @@ static double rhs_seconds(const start *st, whirl_formulation f, int reps)
     return bench_median(t, reps);
 }
 
-static void run_scene(const scene *sc, const char *dir, FILE *summary)
+static void run_scene(const scene *sc, const char *dir, FILE *summary, const char *only_method)
 {
     start st;
     make_start(sc, &st);
@@ -290,7 +295,8 @@ static void run_scene(const scene *sc, const char *dir, FILE *summary)
            "formulation (%.3g s): distance %.3g (floor)\n",
            h_ref, t_ref, sc->seed_ref ? "seed" : "Cartesian", t_conf, floor_err);
     char name[256];
-    snprintf(name, sizeof name, "workprecision_%s.csv", sc->name);
+    snprintf(name, sizeof name, "workprecision_%s%s%s.csv", sc->name, only_method ? "_" : "",
+             only_method ? only_method : "");
     FILE *csv = bench_open_csv(dir, name);
     fprintf(csv, "# %s: N = %zu, dim %d, %s frame, t_end %.17g; error = max_i |x_i - x_ref,i|\n",
             sc->name, n, sc->dim, sc->frame == WHIRL_FRAME_ROTATING ? "rotating" : "inertial",
@@ -304,6 +310,7 @@ static void run_scene(const scene *sc, const char *dir, FILE *summary)
     for (size_t k = 0; k < N_METHODS; k++) {
         curves[k].count = 0;
         if (methods[k].max_n != 0 && n > methods[k].max_n) continue;
+        if (only_method != NULL && strcmp(only_method, methods[k].label) != 0) continue;
         run_method(sc, &st, &methods[k], xref, floor_err, csv, &curves[k]);
     }
     fclose(csv);
@@ -359,12 +366,20 @@ int main(int argc, char **argv)
     gsl_set_error_handler_off();
     const char *dir = argc > 1 ? argv[1] : "out/bench";
     const char *only = argc > 2 ? argv[2] : NULL;
-    const double period20 = 20 * 2 * PI / 4.0;
+    const char *only_method = argc > 4 ? argv[4] : NULL;
+    /* rotation periods of the chain scenes: 20 unless argv[3] says otherwise (a shorter run to
+     * measure within a time budget) */
+    const double periods = argc > 3 ? atof(argv[3]) : 20;
+    if (!(periods > 0)) {
+        fprintf(stderr, "bench_workprecision: the number of periods must be > 0\n");
+        return 1;
+    }
+    const double period20 = periods * 2 * PI / 4.0;
     const scene scenes[] = {
         {"double_pendulum", 2, 2, WHIRL_FRAME_INERTIAL, 0, 20, 0.1, 32, 1, 10},
         {"chain10", 10, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.1, 32, 1, 10},
         {"chain100", 100, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.01, 32, 0, 15},
-        {"chain1000", 1000, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.001, 16, 0, 15},
+        {"chain1000", 1000, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.001, 16, 0, 60},
     };
     printf("load average at start (other jobs share the cores): %.2f\n", bench_load_average());
     char name[256];
@@ -375,8 +390,9 @@ int main(int argc, char **argv)
                      "seed_extrapolated,gsl_over_whirl,seed_over_whirl\n");
     int ran = 0;
     for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++) {
-        if (only != NULL && strcmp(only, scenes[k].name) != 0) continue;
-        run_scene(&scenes[k], dir, summary);
+        if (only != NULL && strcmp(only, "all") != 0 && strcmp(only, scenes[k].name) != 0)
+            continue;
+        run_scene(&scenes[k], dir, summary, only_method);
         ran++;
     }
     fclose(summary);

@@ -70,7 +70,8 @@ static void test_nodes_driven(void **state)
         assert_int_equal(whirl_driven_mode(chain, &dp, mode, 1, &info), GSL_SUCCESS);
         assert_int_equal(whirl_driven_sample(chain, &dp, info.tip, 31, NULL, x, y, z, NULL),
                          GSL_SUCCESS);
-        for (int i = 0; i < 31; i++) pos[3 * i] = x[i], pos[3 * i + 1] = y[i], pos[3 * i + 2] = z[i];
+        for (int i = 0; i < 31; i++)
+            pos[3 * i] = x[i], pos[3 * i + 1] = y[i], pos[3 * i + 2] = z[i];
         assert_int_equal(whirl_regime_nodes(dp.eps, 31, pos, chain->length), info.nodes);
         assert_int_equal(info.nodes, mode);
     }

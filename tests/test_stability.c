@@ -9,7 +9,13 @@
  *  - with damping (Kelvin-Tait-Chetaev) the number of growing eigenvalues equals the number of
  *    negative directions of K: mode 1 decays, modes 2 and 3 grow;
  *  - perturbed runs of the dynamics module (two integrators): the fitted growth of an unstable
- *    shape is the largest eigenvalue's real part; with damping mode 1 converges.
+ *    shape is the largest eigenvalue's real part; with damping mode 1 converges;
+ *  - the hand-swung chain (driven pivot, air drag; three-dimensional shapes of the driven module):
+ *    M, G, C, K against finite differences of the Lagrangian, of the Rayleigh function and of the
+ *    drag's generalised force written here in the documented chart; the linear response of the
+ *    accelerations of the dynamics module with the same drive and drag; the reduction to the
+ *    planar formulas without drive and drag (also for a shape turned about the axis); perturbed
+ *    runs: the growth of an unstable trailing shape, the convergence of a stable one.
  * Equilibria come from a shooting written here (recursion up from the tip, bisection on the tip
  * radius), independent of the steady-shape module; that module's shapes are compared too. */
 #include <setjmp.h>
@@ -660,6 +666,510 @@ static void test_perturbed_runs(void **state)
     whirl_chain_free(c);
 }
 
+/* ---- the hand-swung chain: three-dimensional shapes, drive and air drag ---- */
+
+/* A model with the pivot on a circle of radius eps and air drag c, c2. */
+static whirl_model driven_model(const whirl_chain *c, double omega, double damping, double eps,
+                                double drag, double drag2)
+{
+    whirl_model m = model_of(c, omega, damping);
+    m.drive_radius = eps;
+    m.air_drag = drag;
+    m.air_drag_quadratic = drag2;
+    return m;
+}
+
+/* The documented chart of a link of direction u: e2 along the part of y (x if |u_y| > 0.9)
+ * perpendicular to u, e1 = u x e2. */
+typedef struct {
+    double u0[3], e1[3], e2[3];
+} chart;
+
+static void make_chart(const double *u, chart *ch)
+{
+    const double r[3] = {fabs(u[1]) > 0.9, fabs(u[1]) <= 0.9, 0};
+    const double along = r[0] * u[0] + r[1] * u[1] + r[2] * u[2];
+    double e2[3], norm = 0;
+    for (int k = 0; k < 3; k++) e2[k] = r[k] - along * u[k], norm += e2[k] * e2[k];
+    for (int k = 0; k < 3; k++) {
+        ch->u0[k] = u[k];
+        ch->e2[k] = e2[k] / sqrt(norm);
+    }
+    ch->e1[0] = u[1] * ch->e2[2] - u[2] * ch->e2[1];
+    ch->e1[1] = u[2] * ch->e2[0] - u[0] * ch->e2[2];
+    ch->e1[2] = u[0] * ch->e2[1] - u[1] * ch->e2[0];
+}
+
+typedef struct {
+    const whirl_chain *c;
+    double omega, damping, eps, drag, drag2;
+    chart ch[NMAX];
+} fd3_problem;
+
+/* Charts from the nodes (pivot first). */
+static void charts_from_nodes(fd3_problem *p, const double *x, const double *y, const double *z)
+{
+    for (size_t j = 0; j < p->c->n; j++) {
+        double d[3] = {x[j + 1] - x[j], y[j + 1] - y[j], z[j + 1] - z[j]};
+        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; k++) d[k] /= len;
+        make_chart(d, &p->ch[j]);
+    }
+}
+
+/* Unit vectors u_j, du_j/da_j, du_j/db_j at q. */
+static void chart_vectors(const fd3_problem *p, const double *q, double (*u)[3], double (*ua)[3],
+                          double (*ub)[3])
+{
+    const size_t n = p->c->n;
+    for (size_t j = 0; j < n; j++) {
+        const double a = q[j], b = q[n + j], sa = sin(a), ca = cos(a), sb = sin(b), cb = cos(b);
+        const chart *h = &p->ch[j];
+        for (int k = 0; k < 3; k++) {
+            u[j][k] = ca * cb * h->u0[k] + sa * cb * h->e1[k] + sb * h->e2[k];
+            ua[j][k] = -sa * cb * h->u0[k] + ca * cb * h->e1[k];
+            ub[j][k] = -ca * sb * h->u0[k] - sa * sb * h->e1[k] + cb * h->e2[k];
+        }
+    }
+}
+
+/* Positions, co-rotating velocities of the masses and the rates u_j' at (q, qd). */
+static void chart_state(const fd3_problem *p, const double *q, const double *qd, double *x,
+                        double *v, double (*ud)[3])
+{
+    const size_t n = p->c->n;
+    double u[NMAX][3], ua[NMAX][3], ub[NMAX][3], px[3] = {p->eps, 0, 0}, pv[3] = {0};
+    chart_vectors(p, q, u, ua, ub);
+    for (size_t j = 0; j < n; j++)
+        for (int k = 0; k < 3; k++) {
+            ud[j][k] = ua[j][k] * qd[j] + ub[j][k] * qd[n + j];
+            px[k] += p->c->length[j] * u[j][k];
+            pv[k] += p->c->length[j] * ud[j][k];
+            x[3 * j + k] = px[k];
+            v[3 * j + k] = pv[k];
+        }
+}
+
+static double lagrangian3(const fd3_problem *p, const double *q, const double *qd)
+{
+    double x[3 * NMAX], v[3 * NMAX], ud[NMAX][3], lag = 0;
+    chart_state(p, q, qd, x, v, ud);
+    for (size_t i = 0; i < p->c->n; i++) {
+        const double *xi = x + 3 * i, *vi = v + 3 * i;
+        const double vx = vi[0] - p->omega * xi[1], vy = vi[1] + p->omega * xi[0], vz = vi[2];
+        lag += 0.5 * p->c->mass[i] * (vx * vx + vy * vy + vz * vz) -
+               p->c->mass[i] * p->c->gravity * xi[2];
+    }
+    return lag;
+}
+
+static double rayleigh3(const fd3_problem *p, const double *q, const double *qd)
+{
+    double x[3 * NMAX], v[3 * NMAX], ud[NMAX][3], prev[3] = {0}, sum = 0;
+    chart_state(p, q, qd, x, v, ud);
+    for (size_t i = 0; i < p->c->n; i++)
+        for (int d = 0; d < 3; d++) {
+            sum += (ud[i][d] - prev[d]) * (ud[i][d] - prev[d]);
+            prev[d] = ud[i][d];
+        }
+    return 0.5 * p->damping * sum;
+}
+
+/* Generalised force of the air drag, Q_a = sum_i f_i . dx_i/dq_a, f_i = -l_i (c + c2 |v|) v with
+ * v the inertial velocity x_i' + omega z x x_i. */
+static void drag_force(const fd3_problem *p, const double *q, const double *qd, double *out)
+{
+    const size_t n = p->c->n;
+    double x[3 * NMAX], v[3 * NMAX], ud[NMAX][3], u[NMAX][3], ua[NMAX][3], ub[NMAX][3];
+    double f[3 * NMAX];
+    chart_state(p, q, qd, x, v, ud);
+    chart_vectors(p, q, u, ua, ub);
+    for (size_t i = 0; i < n; i++) {
+        const double vin[3] = {v[3 * i] - p->omega * x[3 * i + 1],
+                               v[3 * i + 1] + p->omega * x[3 * i], v[3 * i + 2]};
+        const double speed = sqrt(vin[0] * vin[0] + vin[1] * vin[1] + vin[2] * vin[2]);
+        for (int k = 0; k < 3; k++)
+            f[3 * i + k] = -p->c->length[i] * (p->drag + p->drag2 * speed) * vin[k];
+    }
+    for (size_t j = 0; j < n; j++) { /* dx_i/da_j = l_j ua_j for i >= j */
+        double fa = 0, fb = 0;
+        for (size_t i = j; i < n; i++)
+            for (int k = 0; k < 3; k++) {
+                fa += f[3 * i + k] * p->c->length[j] * ua[j][k];
+                fb += f[3 * i + k] * p->c->length[j] * ub[j][k];
+            }
+        out[j] = fa;
+        out[n + j] = fb;
+    }
+}
+
+typedef double (*scalar3_fn)(const fd3_problem *, const double *, const double *);
+
+/* Second difference of f about q = qd = 0 in (x_a, y_b), each q (0) or qd (1). */
+static double mixed3(scalar3_fn f, const fd3_problem *p, int wa, size_t a, double ha, int wb,
+                     size_t b, double hb)
+{
+    double sum = 0;
+    for (int sa = -1; sa <= 1; sa += 2)
+        for (int sb = -1; sb <= 1; sb += 2) {
+            double qq[2 * NMAX] = {0}, qd[2 * NMAX] = {0};
+            (wa ? qd : qq)[a] += sa * ha;
+            (wb ? qd : qq)[b] += sb * hb;
+            sum += sa * sb * f(p, qq, qd);
+        }
+    return sum / (4 * ha * hb);
+}
+
+/* First difference of the drag force about q = qd = 0 in q_b (which = 0) or qd_b (1). */
+static void drag_derivative(const fd3_problem *p, int which, size_t b, double h, double *out)
+{
+    const size_t q = 2 * p->c->n;
+    double plus[2 * NMAX], minus[2 * NMAX];
+    for (int side = -1; side <= 1; side += 2) {
+        double qq[2 * NMAX] = {0}, qd[2 * NMAX] = {0};
+        (which ? qd : qq)[b] = side * h;
+        drag_force(p, qq, qd, side > 0 ? plus : minus);
+    }
+    for (size_t a = 0; a < q; a++) out[a] = (plus[a] - minus[a]) / (2 * h);
+}
+
+/* The trailing shape of mode k, side s of the odd chain and its linearisation. */
+static void driven_shape(whirl_stability *w, const whirl_model *m, int mode, int side,
+                         fd3_problem *p)
+{
+    whirl_driven_info info;
+    double growth;
+    const int status = whirl_stability_driven_mode(w, m, mode, side, &info, &growth);
+    if (status) print_message("# mode %d side %d: %s\n", mode, side, whirl_last_error());
+    assert_int_equal(status, 0);
+    assert_true(fabs(info.tip[1]) > 1e-3); /* out of the x-z plane: it trails */
+    const double *x, *y, *z;
+    whirl_stability_nodes(w, &x, &y, &z);
+    p->c = m->chain;
+    p->omega = m->omega;
+    p->damping = m->internal_damping;
+    p->eps = m->drive_radius;
+    p->drag = m->air_drag;
+    p->drag2 = m->air_drag_quadratic;
+    charts_from_nodes(p, x, y, z);
+}
+
+static void test_driven_matrices_by_finite_differences(void **state)
+{
+    (void)state;
+    const size_t n = 6, q = 2 * n;
+    whirl_chain *c = odd_chain(n);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const whirl_model m = driven_model(c, 3.1, 0.057, 0.053, 0.083, 0.041);
+    for (int side = -1; side <= 1; side += 2) {
+        fd3_problem p;
+        driven_shape(w, &m, 1, side, &p);
+        const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+        const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+        const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+        const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+        const double km = max_abs(q * q, kk), mmax = max_abs(q * q, mm), gm = max_abs(q * q, gg);
+        const double cm = max_abs(q * q, cc), h = 1e-4;
+        /* the shape is an equilibrium here too: dL/dq + Q = 0 at rest */
+        double q0[2 * NMAX] = {0}, qd0[2 * NMAX] = {0}, force[2 * NMAX], balance = 0, load = 0;
+        drag_force(&p, q0, qd0, force);
+        for (size_t a = 0; a < q; a++) {
+            double qp[2 * NMAX] = {0}, qm[2 * NMAX] = {0};
+            qp[a] = h, qm[a] = -h;
+            const double dl = (lagrangian3(&p, qp, qd0) - lagrangian3(&p, qm, qd0)) / (2 * h);
+            balance = fmax(balance, fabs(dl + force[a]));
+            load = fmax(load, fabs(force[a]));
+        }
+        double err_m = 0, err_g = 0, err_k = 0, err_c = 0, skew = 0;
+        for (size_t b = 0; b < q; b++) {
+            double dq_force[2 * NMAX], dqd_force[2 * NMAX];
+            drag_derivative(&p, 0, b, h, dq_force);
+            drag_derivative(&p, 1, b, h, dqd_force);
+            for (size_t a = 0; a < q; a++) {
+                const double fm = mixed3(lagrangian3, &p, 1, a, 1.0, 1, b, 1.0);
+                const double fg = mixed3(lagrangian3, &p, 1, a, 1.0, 0, b, h) -
+                                  mixed3(lagrangian3, &p, 0, a, h, 1, b, 1.0);
+                const double fk = -mixed3(lagrangian3, &p, 0, a, h, 0, b, h) - dq_force[a];
+                const double fc = mixed3(rayleigh3, &p, 1, a, 1.0, 1, b, 1.0) - dqd_force[a];
+                err_m = fmax(err_m, fabs(fm - mm[a * q + b]));
+                err_g = fmax(err_g, fabs(fg - gg[a * q + b]));
+                err_k = fmax(err_k, fabs(fk - kk[a * q + b]));
+                err_c = fmax(err_c, fabs(fc - cc[a * q + b]));
+                skew = fmax(skew, fabs(kk[a * q + b] - kk[b * q + a]));
+            }
+        }
+        print_message("# driven side %+d: equilibrium %.2g of %.2g; finite differences |dM| %.2g "
+                      "|dG| %.2g |dK| %.2g |dC| %.2g (relative), K skew part %.3g\n", side,
+                      balance, load, err_m / mmax, err_g / gm, err_k / km, err_c / cm, skew / km);
+        assert_true(load > 1e-3 && balance < 1e-7 * load);
+        assert_true(err_m < 1e-12 * mmax);
+        assert_true(err_g < 1e-7 * gm);
+        assert_true(err_k < 1e-7 * km);
+        assert_true(err_c < 1e-7 * cm);
+        assert_true(skew > 1e-3 * km); /* the drag's circulatory part */
+        /* no symmetry: nothing deflated */
+        size_t count;
+        const double *re, *im;
+        assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+        assert_int_equal(count, 4 * n);
+        assert_true(max_abs(q, whirl_stability_symmetry(w)) == 0);
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+static void test_driven_against_dynamics(void **state)
+{
+    (void)state;
+    const size_t n = 7, q = 2 * n;
+    whirl_chain *c = odd_chain(n);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const whirl_model m = driven_model(c, 4.4, 0.023, 0.041, 0.087, 0.113);
+    fd3_problem p;
+    driven_shape(w, &m, 2, 1, &p);
+    double dq[2 * NMAX], dqd[2 * NMAX];
+    for (size_t a = 0; a < q; a++) {
+        dq[a] = sin(3.7 * (double)a + 0.4);
+        dqd[a] = cos(2.9 * (double)a + 1.1);
+    }
+    /* prediction: q'' = -M^-1 (K dq + (G + C) dqd) */
+    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    gsl_matrix *chol = gsl_matrix_alloc(q, q);
+    gsl_vector *pred = gsl_vector_alloc(q);
+    memcpy(chol->data, mm, q * q * sizeof(double));
+    assert_int_equal(gsl_linalg_cholesky_decomp1(chol), 0);
+    for (size_t a = 0; a < q; a++) {
+        double f = 0;
+        for (size_t b = 0; b < q; b++)
+            f -= kk[a * q + b] * dq[b] + (gg[a * q + b] + cc[a * q + b]) * dqd[b];
+        gsl_vector_set(pred, a, f);
+    }
+    assert_int_equal(gsl_linalg_cholesky_svx(chol, pred), 0);
+    /* whirl_dyn_rhs at q = +-h dq, q' = +-h dqd: d_j'' projected on the chart */
+    whirl_dyn *dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_non_null(dyn);
+    const double h = 1e-5;
+    double acc[3][2 * NMAX];
+    for (int side = 0; side < 3; side++) {
+        const double sg = side == 0 ? h : side == 1 ? -h : 0;
+        double qq[2 * NMAX], qqd[2 * NMAX], x[3 * NMAX], v[3 * NMAX], ud[NMAX][3];
+        double y[6 * NMAX], dy[6 * NMAX];
+        for (size_t a = 0; a < q; a++) qq[a] = sg * dq[a], qqd[a] = sg * dqd[a];
+        chart_state(&p, qq, qqd, x, v, ud);
+        assert_int_equal(whirl_dyn_set_state(dyn, 0, x, v, y), 0);
+        assert_int_equal(whirl_dyn_rhs(0, y, dy, dyn), 0);
+        for (size_t j = 0; j < n; j++) {
+            const double *dd = dy + 3 * n + 3 * j;
+            acc[side][j] = (p.ch[j].e1[0] * dd[0] + p.ch[j].e1[1] * dd[1] +
+                            p.ch[j].e1[2] * dd[2]) / c->length[j];
+            acc[side][n + j] = (p.ch[j].e2[0] * dd[0] + p.ch[j].e2[1] * dd[1] +
+                                p.ch[j].e2[2] * dd[2]) / c->length[j];
+        }
+    }
+    double err = 0, scale = 0, rest = 0;
+    for (size_t a = 0; a < q; a++) {
+        const double fd = (acc[0][a] - acc[1][a]) / (2 * h);
+        err = fmax(err, fabs(fd - gsl_vector_get(pred, a)));
+        scale = fmax(scale, fabs(gsl_vector_get(pred, a)));
+        rest = fmax(rest, fabs(acc[2][a]));
+    }
+    print_message("# driven against whirl_dyn_rhs: |d q''| %.2g relative, at rest |q''| %.2g\n",
+                  err / scale, rest);
+    assert_true(err < 1e-6 * scale);
+    assert_true(rest < 1e-9 * scale); /* the shape is at rest in the dynamics too */
+    whirl_dyn_free(dyn);
+    gsl_vector_free(pred);
+    gsl_matrix_free(chol);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* Without drive and drag: the planar formulas (header of src/stability.c), the same spectrum
+ * for the shape turned about the axis, and the driven module's shape at eps = 0. */
+static void test_planar_reduction(void **state)
+{
+    (void)state;
+    const size_t n = 8, q = 2 * n;
+    whirl_chain *c = odd_chain(n);
+    const double omega = 4.7, damping = 0.019;
+    double r[NMAX + 1], z[NMAX + 1], t[NMAX];
+    assert_int_equal(find_mode(c, omega, 2, r, z), 0);
+    for (size_t j = 0; j < n; j++) t[j] = atan2(r[j + 1] - r[j], z[j] - z[j + 1]);
+    whirl_model m = model_of(c, omega, damping);
+    whirl_stability *w = whirl_stability_alloc(n);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    /* the planar formulas: T_j from the loads below, mu_j the masses below */
+    double expect[4][4 * NMAX * NMAX] = {{0}}, tension[NMAX], mu[NMAX];
+    double px = 0, pz = 0, msum = 0, xi[NMAX], xs = 0;
+    for (size_t j = 0; j < n; j++) xi[j] = xs += c->length[j] * sin(t[j]);
+    for (size_t j = n; j-- > 0;) {
+        px += c->mass[j] * omega * omega * xi[j];
+        pz -= c->mass[j] * c->gravity;
+        tension[j] = px * sin(t[j]) - pz * cos(t[j]);
+        mu[j] = msum += c->mass[j];
+    }
+    for (size_t j = 0; j < n; j++)
+        for (size_t k = 0; k < n; k++) {
+            const double ml = mu[j > k ? j : k] * c->length[j] * c->length[k];
+            expect[0][j * q + k] = ml * cos(t[j] - t[k]);
+            expect[0][(n + j) * q + n + k] = ml;
+            expect[1][j * q + n + k] = -2 * omega * ml * cos(t[j]);
+            expect[1][(n + k) * q + j] = 2 * omega * ml * cos(t[j]);
+            expect[3][j * q + k] = -omega * omega * ml * cos(t[j]) * cos(t[k]) +
+                                   (j == k) * tension[j] * c->length[j];
+            expect[3][(n + j) * q + n + k] = -omega * omega * ml +
+                                             (j == k) * tension[j] * c->length[j];
+            if (j == k) {
+                expect[2][j * q + j] = expect[2][(n + j) * q + n + j] = damping * (1 + (j + 1 < n));
+            } else if (k == j + 1) {
+                expect[2][j * q + k] = expect[2][k * q + j] = -damping * cos(t[k] - t[j]);
+                expect[2][(n + j) * q + n + k] = expect[2][(n + k) * q + n + j] = -damping;
+            }
+        }
+    for (int which = 0; which < 4; which++) {
+        const double *got = whirl_stability_get_matrix(w, (whirl_stability_matrix)which);
+        double err = 0;
+        for (size_t i = 0; i < q * q; i++) err = fmax(err, fabs(got[i] - expect[which][i]));
+        assert_true(err < 1e-13 * max_abs(q * q, expect[which]));
+    }
+    size_t count;
+    const double *re, *im;
+    double plane_re[4 * NMAX], plane_im[4 * NMAX];
+    assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+    assert_int_equal(count, 4 * n - 1);
+    memcpy(plane_re, re, count * sizeof(double));
+    memcpy(plane_im, im, count * sizeof(double));
+    /* turned about the axis by 0.77: a non-planar chart, the same spectrum */
+    double x[NMAX + 1], y[NMAX + 1];
+    for (size_t i = 0; i <= n; i++) x[i] = cos(0.77) * r[i], y[i] = sin(0.77) * r[i];
+    assert_int_equal(whirl_stability_linearise_3d(w, &m, x, y, z), 0);
+    size_t count2;
+    assert_int_equal(whirl_stability_eigenvalues(w, &count2, &re, &im), 0);
+    assert_int_equal(count2, count);
+    double worst = 0, scale = 0;
+    for (size_t i = 0; i < count; i++) {
+        double best = INFINITY;
+        for (size_t k = 0; k < count; k++)
+            best = fmin(best, hypot(re[i] - plane_re[k], im[i] - plane_im[k]));
+        worst = fmax(worst, best);
+        scale = fmax(scale, hypot(plane_re[i], plane_im[i]));
+    }
+    print_message("# turned shape: spectrum differs by %.2g (scale %.3g)\n", worst, scale);
+    assert_true(worst < 1e-9 * scale);
+    /* the driven module at eps = c = 0 gives the free shape and the same growth */
+    double free_growth, driven_growth;
+    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, NULL, &free_growth), 0);
+    for (int side = -1; side <= 1; side += 2) {
+        assert_int_equal(whirl_stability_driven_mode(w, &m, 2, side, NULL, &driven_growth), 0);
+        assert_true(fabs(driven_growth - free_growth) < 1e-9 * fabs(free_growth));
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* The uniform chain with linear drag only: C = c M and the drag's position term c G / 2, so
+ * q = e^{-ct/2} p turns M q'' + (G + c M) q' + (K + c G/2) q = 0 into the conservative
+ * M p'' + G p' + (K - c^2 M / 4) p = 0: the spectrum is -c/2 plus a Hamiltonian one (symmetric
+ * about the imaginary axis), and a stable shape decays at exactly c/2. */
+static void test_uniform_linear_drag_spectrum(void **state)
+{
+    (void)state;
+    const size_t n = 12;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const double drag = 0.137;
+    const whirl_model m = driven_model(c, 3.3, 0, 0.043, drag, 0);
+    for (int side = -1; side <= 1; side += 2) {
+        double growth;
+        assert_int_equal(whirl_stability_driven_mode(w, &m, 1, side, NULL, &growth), 0);
+        size_t count;
+        const double *re, *im;
+        assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+        double worst = 0, scale = 0;
+        for (size_t i = 0; i < count; i++) { /* -(lambda + c/2) - c/2 is an eigenvalue too */
+            const double mre = -re[i] - drag, mim = -im[i];
+            double best = INFINITY;
+            for (size_t k = 0; k < count; k++) best = fmin(best, hypot(re[k] - mre, im[k] - mim));
+            worst = fmax(worst, best);
+            scale = fmax(scale, hypot(re[i], im[i]));
+        }
+        print_message("# uniform chain, linear drag %g, mode 1 side %+d: growth %.15g, mirror "
+                      "about -c/2 within %.2g (scale %.3g)\n", drag, side, growth, worst, scale);
+        assert_true(worst < 1e-9 * scale);
+        if (side > 0) assert_true(fabs(growth + drag / 2) < 1e-9);
+        else assert_true(growth > 0.01);
+    }
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+/* Records the run's samples (t, log ratio) for a decay fit. */
+typedef struct {
+    size_t count;
+    double t[4096], y[4096];
+} record;
+
+static int record_samples(double t, double ratio, void *data)
+{
+    record *r = data;
+    if (r->count < 4096) r->t[r->count] = t, r->y[r->count++] = log(ratio);
+    return GSL_SUCCESS;
+}
+
+/* Perturbed runs of trailing shapes (12 links, eps 0.05): the far-side mode 1 grows as predicted
+ * (linear and quadratic drag); the near-side mode 1 converges (linear drag: every mode decays at
+ * c/2, see above, so the fitted decay of the whole run is the predicted rate). */
+static void test_driven_runs(void **state)
+{
+    (void)state;
+    const size_t n = 12;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    const whirl_model m = driven_model(c, 3.0, 0, 0.05, 0.1, 0.05);
+    double growth;
+    const double *x, *y, *z;
+    whirl_stability_run_result r;
+    whirl_stability_run_params p = whirl_stability_run_defaults();
+    p.method = "rk4";
+    assert_int_equal(whirl_stability_driven_mode(w, &m, 1, -1, NULL, &growth), 0);
+    whirl_stability_nodes(w, &x, &y, &z);
+    assert_int_equal(whirl_stability_run_shape(&m, x, y, z, &p, &r), 0);
+    print_message("# driven mode 1 far side: eig %.6g sim %.6g over [%.3g, %.3g]\n", growth,
+                  r.sim_growth, r.fit_from, r.fit_to);
+    assert_true(growth > 0.01);
+    assert_int_equal(r.verdict, WHIRL_VERDICT_UNSTABLE);
+    assert_true(fabs(r.sim_growth / growth - 1) < 0.05);
+
+    static record rec;
+    rec.count = 0;
+    p.observe = record_samples;
+    p.observe_data = &rec;
+    const whirl_model linear = driven_model(c, 3.0, 0, 0.05, 0.1, 0);
+    assert_int_equal(whirl_stability_driven_mode(w, &linear, 1, 1, NULL, &growth), 0);
+    whirl_stability_nodes(w, &x, &y, &z);
+    assert_int_equal(whirl_stability_run_shape(&linear, x, y, z, &p, &r), 0);
+    double st = 0, sy = 0, stt = 0, sty = 0, k = (double)rec.count;
+    for (size_t i = 0; i < rec.count; i++) {
+        st += rec.t[i], sy += rec.y[i], stt += rec.t[i] * rec.t[i], sty += rec.t[i] * rec.y[i];
+    }
+    const double decay = (k * sty - st * sy) / (k * stt - st * st);
+    print_message("# driven mode 1 near side: eig %.6g, fitted decay %.6g, verdict %s at t = "
+                  "%.3g\n", growth, decay, whirl_verdict_name(r.verdict), r.duration);
+    assert_true(growth < -0.01);
+    assert_int_equal(r.verdict, WHIRL_VERDICT_CONVERGING);
+    assert_true(r.end_deviation <= 1e-2 && r.sim_growth == 0);
+    assert_true(fabs(decay / growth - 1) < 0.1);
+    /* the free-shape entry point refuses a drive */
+    p = whirl_stability_run_defaults();
+    assert_int_equal(whirl_stability_run(&m, 0.5, &p, &r), GSL_EINVAL);
+    assert_int_equal(whirl_stability_shape(w, &m, 0.5, &growth), GSL_EINVAL);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 /* ---- errors ---- */
 
 static void test_errors(void **state)
@@ -677,8 +1187,15 @@ static void test_errors(void **state)
     assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
     assert_true(strstr(whirl_last_error(), "damping") != NULL);
     m = model_of(c, 2.9, 0);
-    m.air_drag = 0.2;
+    m.air_drag = 0.2; /* the free shape is no equilibrium under drag */
     assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    assert_true(strstr(whirl_last_error(), "equilibrium") != NULL);
+    assert_int_equal(whirl_stability_driven_mode(w, &m, 1, 1, NULL, &growth), GSL_EDOM);
+    m.drive_radius = 0.05;
+    assert_int_equal(whirl_stability_driven_mode(w, &m, 1, 2, NULL, &growth), GSL_EINVAL);
+    m.drive_radius = -0.05;
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
+    assert_true(strstr(whirl_last_error(), "drive") != NULL);
     m = model_of(c, 2.9, 0);
     m.dim = 2;
     assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
@@ -711,6 +1228,11 @@ int main(void)
         cmocka_unit_test(test_negative_directions_and_damping),
         cmocka_unit_test(test_with_steady_module),
         cmocka_unit_test(test_perturbed_runs),
+        cmocka_unit_test(test_driven_matrices_by_finite_differences),
+        cmocka_unit_test(test_driven_against_dynamics),
+        cmocka_unit_test(test_planar_reduction),
+        cmocka_unit_test(test_uniform_linear_drag_spectrum),
+        cmocka_unit_test(test_driven_runs),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,7 +1,8 @@
 #!/bin/sh
 # whirl stability: bad input, the CSV, the agreement of the perturbed runs with the linear
 # analysis (growth within 5%; a neutral shape stays within 100 times the perturbation; with
-# damping mode 1 converges and mode 2 grows), and the map form.
+# damping mode 1 converges and mode 2 grows), the map form, and the hand-swung chain (driven
+# pivot, air drag: an unstable trailing shape grows as predicted, a stable one converges).
 . "$(dirname "$0")/lib.sh"
 
 expect_error "mode absent at omega" "mode 3.*(exist|omega)" stability --omega 2 --mode 3 -o "$tmp/out.csv"
@@ -16,6 +17,12 @@ expect_error "no rate" "omega" stability --mode 1 -o "$tmp/out.csv"
 expect_error "rate and map" "either" stability --omega 2 --omega-min 1 --omega-max 3 --steps 5 -o "$tmp/out.csv"
 expect_error "map without steps" "steps" stability --omega-min 1 --omega-max 3 -o "$tmp/out.csv"
 expect_error "non-number" "omega" stability --omega fast --mode 1 -o "$tmp/out.csv"
+expect_error "bad side" "side" stability --omega 3 --mode 1 --eps 0.05 --side 2 -o "$tmp/out.csv"
+expect_error "eps too large" "eps" stability --omega 3 --mode 1 --eps 1 -o "$tmp/out.csv"
+expect_error "negative drag" "drag" stability --omega 3 --mode 1 --eps 0.05 --drag -0.1 -o "$tmp/out.csv"
+expect_error "negative quadratic drag" "drag-quadratic" stability --omega 3 --mode 1 --eps 0.05 --drag-quadratic -1 -o "$tmp/out.csv"
+expect_error "drag without eps" "eps" stability --omega 3 --mode 1 --drag 0.1 -o "$tmp/out.csv"
+expect_error "driven mode absent" "mode 3|exist|omega" stability --omega 2 --mode 3 --eps 0.05 --drag 0.1 -o "$tmp/out.csv"
 expect_ok "help" stability --help
 
 # csv_field FILE COLUMN: the value of COLUMN in the first data row
@@ -60,5 +67,44 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --steps 7 --modes 1,2 --links 
    && ! grep -qi nan "$tmp/map.csv"; then
   pass "map form: rows where the modes exist"
 else fail "map form: $(cat "$tmp/err" "$tmp/map.csv" 2>/dev/null | tail -3)"; fi
+
+# Hand-swung chain: mode 1 on the far side of the axis from the pivot trails and is unstable; the
+# run's growth agrees with the eigenvalue within 5% (linear and quadratic drag).
+driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,tip_x,tip_y,nodes"
+if "$WHIRL" stability --omega 3 --mode 1 --side -1 --links 12 --eps 0.05 --drag 0.1 \
+     --drag-quadratic 0.05 -o "$tmp/du.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/du.csv" | head -1)" = "$driven_header" ] \
+   && [ "$(csv_field "$tmp/du.csv" verdict)" = unstable ] \
+   && [ "$(csv_field "$tmp/du.csv" nodes)" = 1 ] \
+   && awk -v y="$(csv_field "$tmp/du.csv" tip_y)" 'BEGIN { exit !(y < -0.1) }' \
+   && awk -v e="$(csv_field "$tmp/du.csv" eig_growth)" -v s="$(csv_field "$tmp/du.csv" sim_growth)" \
+        'BEGIN { exit !(e > 0.01 && s > 0 && (s - e) / e < 0.05 && (e - s) / e < 0.05) }'; then
+  pass "driven mode 1, far side: trails, sim_growth within 5% of eig_growth"
+else fail "driven mode 1, far side: $(cat "$tmp/err" "$tmp/du.csv" 2>/dev/null | tail -2)"; fi
+
+# Mode 2 with its upper lobe on the pivot's side is stable under drag: eig_growth < 0 (-c/2 for
+# the uniform chain with linear drag) and the run converges; also with quadratic drag.
+if "$WHIRL" stability --omega 3.5 --mode 2 --side -1 --links 12 --eps 0.05 --drag 0.2 \
+     -o "$tmp/ds.csv" 2>"$tmp/err" \
+   && [ "$(csv_field "$tmp/ds.csv" verdict)" = converging ] \
+   && [ "$(csv_field "$tmp/ds.csv" nodes)" = 2 ] \
+   && awk -v e="$(csv_field "$tmp/ds.csv" eig_growth)" 'BEGIN { exit !(e > -0.1 - 1e-9 && e < -0.1 + 1e-9) }' \
+   && "$WHIRL" stability --omega 3.5 --mode 2 --side -1 --links 12 --eps 0.05 --drag 0.1 \
+        --drag-quadratic 0.1 -o "$tmp/ds2.csv" 2>"$tmp/err" \
+   && [ "$(csv_field "$tmp/ds2.csv" verdict)" = converging ] \
+   && awk -v e="$(csv_field "$tmp/ds2.csv" eig_growth)" 'BEGIN { exit !(e < -0.01) }'; then
+  pass "driven mode 2, upper lobe on the pivot's side: converging"
+else fail "driven mode 2: $(cat "$tmp/err" "$tmp/ds.csv" "$tmp/ds2.csv" 2>/dev/null | tail -3)"; fi
+
+# The driven map: rows where the shapes exist, with the tip columns.
+if "$WHIRL" stability --omega-min 2 --omega-max 5 --steps 4 --modes 1,2 --links 10 --eps 0.03 \
+     --drag 0.1 --linear -o "$tmp/dmap.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | head -1)" = "$driven_header" ] \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 1' | wc -l)" -ge 3 ] \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 2' | wc -l)" -ge 1 ] \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, 'NR > 1 && NF != 10' | wc -l)" -eq 0 ] \
+   && ! grep -qi nan "$tmp/dmap.csv"; then
+  pass "driven map form"
+else fail "driven map form: $(cat "$tmp/err" "$tmp/dmap.csv" 2>/dev/null | tail -3)"; fi
 
 finish

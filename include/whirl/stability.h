@@ -1,19 +1,30 @@
 /* whirl: linear stability of the steady shapes of the N-link chain, and perturbed runs.
  *
- * A steady shape is a planar relative equilibrium: at rest in the x-z plane of the frame
- * co-rotating at omega about z. Its linearisation in that frame, in the coordinates
- * q = (alpha_1..alpha_N, beta_1..beta_N) (in-plane and out-of-plane angle of each link, beta = 0
- * at the equilibrium), is
+ * A steady shape is a relative equilibrium: at rest in the frame co-rotating at omega about z.
+ * Free shapes (whirl/steady.h) are planar; with a driven pivot (fixed at (eps, 0, 0) in that
+ * frame) and inertial-frame air drag (whirl/driven.h) they are three-dimensional: the chain
+ * trails. The linearisation in the co-rotating frame uses, per link j, the angles (a_j, b_j)
+ * about the equilibrium direction u0_j of the link (the chart below; a = b = 0 at the shape),
+ * q = (a_1..a_N, b_1..b_N), and reads
  *     M q'' + (G + C) q' + K q = 0,
- * M the mass matrix, G the skew gyroscopic (Coriolis) matrix, C the internal damping matrix and
- * K the Hessian of the effective potential (gravity minus centrifugal). Rotation about z is a
- * symmetry: the first-order form (size 4N) always has zero eigenvalues (a Jordan pair without
- * damping, a single zero with damping); they are removed exactly by deflation and the growth
- * rate is the largest real part of the remaining eigenvalues.
+ * M the mass matrix, G the skew gyroscopic (Coriolis) matrix, C the damping matrix (internal
+ * damping and the velocity part of the air drag: symmetric positive semidefinite) and K the
+ * stiffness: the Hessian of the effective potential (gravity minus centrifugal) plus, with air
+ * drag, the non-symmetric position part of the drag (the drag depends on where a mass is, through
+ * its inertial velocity omega z x x_i).
+ * Chart of link j: u_j = cos a cos b u0_j + sin a cos b e1_j + sin b e2_j, with e2_j the unit
+ * vector along the part of r = y (r = x if |u0_j . y| > 0.9) perpendicular to u0_j and
+ * e1_j = u0_j x e2_j. For a shape in the x-z plane a_j is the in-plane and b_j the out-of-plane
+ * angle (e2_j = y, e1_j = (cos t_j, 0, sin t_j), t_j the angle of the link from the downward
+ * vertical towards +x).
+ * Rotation about z is a symmetry only with the pivot on the axis and no air drag (eps = c = c2 =
+ * 0): then the first-order form (size 4N) has zero eigenvalues (a Jordan pair without damping, a
+ * single zero with damping), removed exactly by deflation; the growth rate is the largest real
+ * part of the remaining eigenvalues. With a drive or drag there is no symmetry and nothing is
+ * removed.
  *
- * Model: whirl_model of whirl/dynamics.h with dim = 3, drive_radius = 0 and no air drag (a planar
- * shape is not a relative equilibrium under inertial-frame drag: drag exerts a torque about the
- * axis that a pivot on the axis cannot balance); internal_damping D >= 0; frame is ignored (the
+ * Model: whirl_model of whirl/dynamics.h with dim = 3; drive_radius eps >= 0, air_drag c >= 0,
+ * air_drag_quadratic c2 >= 0 and internal_damping D >= 0 as there; frame is ignored (the
  * linearisation is always in the co-rotating frame). */
 #ifndef WHIRL_STABILITY_H
 #define WHIRL_STABILITY_H
@@ -22,6 +33,7 @@
 
 #include "whirl/chain.h"
 #include "whirl/common.h"
+#include "whirl/driven.h"
 #include "whirl/dynamics.h"
 #include "whirl/steady.h"
 
@@ -31,31 +43,48 @@ typedef struct whirl_stability whirl_stability; /* workspace of the linear analy
 whirl_stability *whirl_stability_alloc(size_t n);
 void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
 
-/* Forms M, G, C, K about the planar shape with masses at (r[i], 0, z[i]), i = 0..N (i = 0: the
- * pivot; as from whirl_nlink_positions), rotating at model->omega. GSL_EINVAL if the model is not
- * supported (see above), the links' lengths differ from the chain's by more than 1e-9 relative, or
- * the shape is not an equilibrium (the force on some link has a component across it larger than
- * 1e-8 of the chain's weight plus its centrifugal scale). */
+/* Forms M, G, C, K about the shape with nodes (x[i], y[i], z[i]), i = 0..N in the co-rotating
+ * frame (i = 0: the pivot; as from whirl_driven_sample), rotating at model->omega. Only the
+ * differences of the nodes are used: the link directions u0_j; the pivot is put at
+ * (model->drive_radius, 0, 0) and mass i at the pivot plus sum_{j<=i} l_j u0_j. GSL_EINVAL if the
+ * model is not supported (see above), the links' lengths differ from the chain's by more than
+ * 1e-9 relative, or the shape is not an equilibrium (the load below some link has a component
+ * across it larger than 1e-8 of M (g + omega^2 L) + (c + c2 omega L) omega L^2). */
+int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, const double *x,
+                                 const double *y, const double *z);
+
+/* whirl_stability_linearise_3d for the shape in the x-z plane with nodes (r[i], 0, z[i]),
+ * i = 0..N (as from whirl_nlink_positions). */
 int whirl_stability_linearise(whirl_stability *w, const whirl_model *model, const double *r,
                               const double *z);
 
 typedef enum {
     WHIRL_STABILITY_MASS = 0,      /* M, symmetric positive definite */
     WHIRL_STABILITY_GYROSCOPIC,    /* G, skew */
-    WHIRL_STABILITY_DAMPING,       /* C, symmetric positive semidefinite (0 without damping) */
-    WHIRL_STABILITY_STIFFNESS      /* K, symmetric, K s = 0 for the symmetry direction s */
+    WHIRL_STABILITY_DAMPING,       /* C, symmetric positive semidefinite (0 without internal
+                                      damping and air drag) */
+    WHIRL_STABILITY_STIFFNESS      /* K, symmetric without air drag; K s = 0 for the symmetry
+                                      direction s */
 } whirl_stability_matrix;
 
 /* The 2N x 2N matrix (row-major, rows and columns ordered as q) of the last linearisation. */
 const double *whirl_stability_get_matrix(const whirl_stability *w, whirl_stability_matrix which);
 
-/* The symmetry direction s of the last linearisation (2N): beta_j = sin(alpha_j), alpha = 0, the
- * infinitesimal rotation about z; all zero for a chain hanging straight down. */
+/* The symmetry direction s of the last linearisation (2N): the infinitesimal rotation about z,
+ * (a_j, b_j) = (e1_j, e2_j) . (z x u0_j) (for a shape in the x-z plane a_j = 0, b_j = sin t_j);
+ * all zero for a chain hanging straight down and for a model without the symmetry (drive or air
+ * drag). */
 const double *whirl_stability_symmetry(const whirl_stability *w);
+
+/* The nodes of the last linearisation (N + 1 each, pivot first): the pivot at (eps, 0, 0), mass i
+ * at the pivot plus sum_{j<=i} l_j u0_j (valid until the next linearisation). */
+void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
+                           const double **z);
 
 /* Eigenvalues of the last linearisation with the symmetry's zero eigenvalues removed: *count
  * (4N - 2 without damping, 4N - 1 with damping, 4N for a hanging chain, which has no symmetry
- * mode), real and imaginary parts (pointers into the workspace, valid until the next call), in
+ * mode, and for a model with a drive or air drag, which has no symmetry), real and imaginary
+ * parts (pointers into the workspace, valid until the next call), in
  * the chain's units of 1/time (sqrt(g/L) for the dimensionless chain). */
 int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
                                 const double **im);
@@ -66,21 +95,32 @@ int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double 
 int whirl_stability_growth(whirl_stability *w, double *growth);
 
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
- * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth. */
+ * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
+ * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. */
 int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
                           double *growth);
 
 /* The steady shape of mode k at model->omega (whirl_nlink_solve, tip_r_guess as there), its
- * linearisation and growth rate. info may be NULL. GSL_EDOM if the mode does not exist. */
+ * linearisation and growth rate. info may be NULL. GSL_EDOM if the mode does not exist;
+ * GSL_EINVAL with a drive or air drag (see whirl_stability_driven_mode). */
 int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
                          double tip_r_guess, whirl_shape_info *info, double *growth);
+
+/* The shape of the hand-swung chain of mode k at model->omega with the pivot's circle
+ * model->drive_radius and the air drag of the model (whirl_driven_mode with side = +1 / -1: the
+ * seed's tip on the pivot's side of the axis or opposite), its linearisation and growth rate.
+ * info may be NULL. GSL_EDOM if the mode does not exist or its continuation fails (see
+ * whirl_driven_mode). The nodes are then available from whirl_stability_nodes. */
+int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode, int side,
+                                whirl_driven_info *info, double *growth);
 
 /* ---- perturbed time-domain runs (src/stability_run.c) ---- */
 
 typedef enum {
     WHIRL_VERDICT_STABLE = 0,    /* the deviation stayed below 100 times the initial one */
     WHIRL_VERDICT_UNSTABLE = 1,  /* the deviation grew to 100 times the initial one */
-    WHIRL_VERDICT_CONVERGING = 2 /* (damping > 0) it fell to 1/100 of the initial one */
+    WHIRL_VERDICT_CONVERGING = 2 /* (dissipation: internal damping or air drag) it fell to
+                                    1/100 of the initial one */
 } whirl_verdict;
 
 /* "stable", "unstable", "converging". */
@@ -92,9 +132,11 @@ typedef struct whirl_stability_run_params {
     unsigned long seed;  /* seed of the random directions (GSL's mt19937); 1 */
     const char *method;  /* integrator (whirl_integrator_methods); "gauss2" */
     double dt;           /* fixed step [T]; 0: the default, min(period / 200,
-                            0.7 / (nu + omega + kappa)), nu = 2 sqrt(max_j (T_j / l_j) / min m)
-                            bounding the chain's highest frequency under the shape's tensions
-                            T_j, kappa = 4 D / (min m min l^2) its fastest damping rate */
+                            f / (nu + omega + kappa)), f = 2 for rk4, else 0.7,
+                            nu = 2 sqrt(max_j (T_j / l_j) / min m) bounding the chain's highest
+                            frequency under the shape's tensions T_j, kappa = 4 D / (min m min
+                            l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) its fastest
+                            damping rate */
     /* Called at t = 0 and at every sample with the time and the deviation over the initial one
      * (NULL: none); a non-zero return stops the run, which then returns that status. */
     int (*observe)(double t, double ratio, void *data);
@@ -117,15 +159,26 @@ typedef struct whirl_stability_run_result {
     whirl_integrator_stats stats;
 } whirl_stability_run_result;
 
-/* Runs the dynamics (3D, co-rotating frame, Cartesian formulation, model's damping) from the
- * steady shape with tip radius tip_r (as for whirl_stability_shape) with every link direction
- * turned by params->perturbation towards a random perpendicular direction, at rest in the
- * co-rotating frame, for params->periods rotation periods, sampling the deviation from the shape
- * (whirl_deviation: RMS distance of the masses, minimised over a rotation about z) 50 times per
- * period. Verdict rule: unstable as soon as the deviation reaches 100 times the initial one;
- * converging (damping > 0 only) as soon as it falls to 1/100 of it; stable otherwise. The run
- * stops early once the verdict is settled: unstable after the fitted stretch ends (1e4 times or
- * 1e-2 L), converging at once. Allocates its own dynamics and integrator. */
+/* Runs the dynamics (3D, co-rotating frame, Cartesian formulation, the model's drive, air drag
+ * and internal damping) from the steady shape with nodes (x[i], y[i], z[i]), i = 0..N (as for
+ * whirl_stability_linearise_3d: only the link directions are used, the pivot is at (eps, 0, 0))
+ * with every link direction turned by params->perturbation towards a random perpendicular
+ * direction, at rest in the co-rotating frame, for params->periods rotation periods, sampling the
+ * deviation from the shape 50 times per period: the RMS over the masses of their distance to
+ * it, minimised over a rotation about z when that is a symmetry (eps = c = c2 = 0:
+ * whirl_deviation), plain otherwise. Verdict rule: unstable as soon as the deviation reaches 100
+ * times the initial one; converging (internal damping or air drag > 0 only) as soon as it falls
+ * to 1/100 of it; stable otherwise. The run stops early once the verdict is settled: unstable
+ * after the fitted stretch ends (1e4 times or 1e-2 L), converging at once. GSL_EINVAL on bad
+ * parameters or links of the wrong length (1e-9 relative). Allocates its own dynamics and
+ * integrator. The shape is not checked to be an equilibrium. */
+int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,
+                              const double *z, const whirl_stability_run_params *params,
+                              whirl_stability_run_result *result);
+
+/* whirl_stability_run_shape from the free steady shape with tip radius tip_r (as for
+ * whirl_stability_shape; whirl_nlink_positions at model->omega). The model must have no drive
+ * and no air drag (GSL_EINVAL). */
 int whirl_stability_run(const whirl_model *model, double tip_r,
                         const whirl_stability_run_params *params,
                         whirl_stability_run_result *result);

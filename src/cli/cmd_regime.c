@@ -7,9 +7,11 @@
  * --eps-steps m): one row per grid point, point index = i_eps n + i_omega, written to -o FILE
  * (required) as the points finish, in index order. Each point is one independent run, seeded by
  * --seed + index: the rows do not depend on how the points are shared out. With Open MPI
- * (built with -DWHIRL_MPI, run by mpirun -n K) the points are dealt out in rounds: each rank
- * takes a block of consecutive points of the round and runs them on its OpenMP threads, rank 0
- * gathers the block results and appends them; the rows are those of the single-process run.
+ * (built with -DWHIRL_MPI, run by mpirun -n K) the points are dealt out in rounds of
+ * 4 x threads points per rank: rank r takes the points r, r + K, r + 2K, ... of the round (so
+ * that neighbours on the grid, of similar cost, are spread over the ranks) and runs them on its
+ * OpenMP threads; rank 0 gathers the results and appends them in index order. The rows are those
+ * of the single-process run.
  * Ctrl-C (SIGINT/SIGTERM) stops after the current round with the finished points kept (exit
  * 130); --resume reads FILE, checks that it was written with the same parameters, drops an
  * unfinished last line and computes only the missing points. --folds FILE writes the folds of
@@ -75,7 +77,10 @@ typedef struct mpi_context {
 
 /* ---- options ---- */
 
-static int is_map(const regime_options *o) { return o->omin_given || o->omax_given || o->osteps_given; }
+static int is_map(const regime_options *o)
+{
+    return o->omin_given || o->omax_given || o->osteps_given;
+}
 
 static int check_range(const cli_command *cmd, const char *name, double lo, double hi, int steps,
                        double lower, double upper)
@@ -156,7 +161,8 @@ static int check_options(const cli_command *cmd, regime_options *o)
         return cli_error(cmd, "--trace must be a file, not standard output");
     if (o->trace_every_given && !o->trace)
         return cli_error(cmd, "--trace-every applies with --trace");
-    if (!(o->trace_every > 0)) return cli_error(cmd, "--trace-every must be > 0, got %g", o->trace_every);
+    if (!(o->trace_every > 0))
+        return cli_error(cmd, "--trace-every must be > 0, got %g", o->trace_every);
     if (o->t_change_given && !o->sweep) return cli_error(cmd, "--t-change applies to --sweep");
     if (!(o->t_change >= o->p.ramp_step))
         return cli_error(cmd, "--t-change must be >= --ramp-step (%g), got %g", o->p.ramp_step,
@@ -441,12 +447,13 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
 {
     const long n_points = (long)o->omega_steps * o->eps_steps;
     const int threads = max_threads();
-    const long block = all_max(mc, 2 * threads); /* points per rank and round */
+    const long block = all_max(mc, 4 * threads); /* points per rank and round */
     char *done = calloc((size_t)n_points, 1);
     long *todo = malloc((size_t)n_points * sizeof *todo);
+    long *mine = malloc((size_t)block * sizeof *mine);
     double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
     whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
-    int rc = done && todo && buf && ws ? 0 : 1;
+    int rc = done && todo && mine && buf && ws ? 0 : 1;
     for (int k = 0; rc == 0 && k < threads; k++)
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
@@ -470,10 +477,11 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
     long written = 0;
     int stop = 0;
     for (long first = 0; rc == 0 && first < n_todo; first += block * mc->size) {
-        const long mine = first + block * mc->rank;
-        const long count = mine >= n_todo ? 0 : GSL_MIN(block, n_todo - mine);
+        const long round = GSL_MIN(block * mc->size, n_todo - first);
+        long count = 0;
+        for (long k = mc->rank; k < round; k += mc->size) mine[count++] = todo[first + k];
         for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
-        int failed = count > 0 ? run_block(o, ws, todo + mine, count, buf) : 0;
+        int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
         if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
 #ifdef WHIRL_MPI
         if (mc->size > 1)
@@ -482,9 +490,10 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
                        MPI_COMM_WORLD);
 #endif
         if (mc->rank == 0) {
-            for (long j = 0; j < block * mc->size; j++) {
+            for (long k = 0; k < round; k++) { /* point k of the round: rank k % K, its k / K */
                 whirl_regime_result r;
-                const long index = unpack(buf + j * RESULT_FIELDS, &r);
+                const long slot = (k % mc->size) * block + k / mc->size;
+                const long index = unpack(buf + slot * RESULT_FIELDS, &r);
                 if (index < 0) continue;
                 write_map_row(fp, o, index, &r);
                 written++;
@@ -511,6 +520,7 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
     for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
     free(ws);
     free(buf);
+    free(mine);
     free(todo);
     free(done);
     return rc;

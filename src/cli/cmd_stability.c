@@ -4,9 +4,15 @@
  *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict
  * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
  * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
- * perturbed run (whirl_stability_run). With --linear no run is made: sim_growth and
+ * perturbed run (whirl_stability_run_shape). With --linear no run is made: sim_growth and
  * max_deviation are left empty and the verdict is the linear one (eig_growth > 0: unstable, < 0:
- * converging, 0: stable). Rates where a mode of the map does not exist are left out. */
+ * converging, 0: stable). Rates where a mode of the map does not exist are left out.
+ * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
+ * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
+ * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
+ * three-dimensional and have no rotation symmetry. Three columns are added:
+ *   ...,verdict,tip_x,tip_y,nodes
+ * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,9 +21,10 @@
 #include "whirl/stability.h"
 
 typedef struct options {
-    double omega, omega_min, omega_max, periods, perturb, damping, dt;
-    int mode, links, steps, seed, linear;
+    double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
+    int mode, links, steps, seed, linear, side;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
+    int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
     const char *method, *output, *trace;
 } options;
@@ -26,9 +33,18 @@ typedef struct point {
     double omega, tip_r;
     int mode;
     double eig_growth, sim_growth, max_deviation;
+    double tip[2]; /* driven: the tip's horizontal position */
+    int nodes;     /* driven: node count */
     whirl_verdict verdict;
     int done;
+    int absent;    /* driven map: the mode has no shape at this rate */
 } point;
+
+/* The hand-swung chain: any of its options given. */
+static int driven(const options *o)
+{
+    return o->eps_given || o->drag_given || o->drag2_given || o->side_given;
+}
 
 static int method_known(const char *name)
 {
@@ -58,6 +74,15 @@ static int check_options(const cli_command *cmd, const options *o)
     if (o->damping < 0) return cli_error(cmd, "--damping must be >= 0, got %g", o->damping);
     if (o->dt < 0) return cli_error(cmd, "--dt must be > 0 (or 0: default), got %g", o->dt);
     if (o->seed < 0) return cli_error(cmd, "--seed must be >= 0, got %d", o->seed);
+    if (!(o->eps >= 0 && o->eps < 1))
+        return cli_error(cmd, "--eps must be in [0, 1), got %g", o->eps);
+    if (o->drag < 0) return cli_error(cmd, "--drag must be >= 0, got %g", o->drag);
+    if (o->drag2 < 0) return cli_error(cmd, "--drag-quadratic must be >= 0, got %g", o->drag2);
+    if (o->side != 1 && o->side != -1)
+        return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
+    if (o->eps == 0 && (o->drag > 0 || o->drag2 > 0))
+        return cli_error(cmd, "air drag needs --eps > 0 (with the pivot on the axis only the "
+                         "hanging chain is steady)");
     if (!method_known(o->method))
         return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
     if (map) {
@@ -83,8 +108,8 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
                           size_t *count)
 {
     if (o->omega_given) {
-        whirl_shape_info info;
-        if (whirl_nlink_solve(c, o->omega, o->mode, 0, &info) != GSL_SUCCESS) {
+        whirl_shape_info info = {0};
+        if (!driven(o) && whirl_nlink_solve(c, o->omega, o->mode, 0, &info) != GSL_SUCCESS) {
             cli_error(cmd, "%s", whirl_last_error());
             return NULL;
         }
@@ -113,7 +138,13 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
         omega[j] = steps == 1 ? o->omega_min
                               : o->omega_min + (o->omega_max - o->omega_min) * (double)j /
                                                    (double)(steps - 1);
-    for (size_t k = 0; k < nmodes; k++) {
+    for (size_t k = 0; k < nmodes && driven(o); k++) /* shapes found in analyse() */
+        for (size_t j = 0; j < steps; j++) {
+            p[n].omega = omega[j];
+            p[n].mode = o->modes.v[k];
+            n++;
+        }
+    for (size_t k = 0; k < nmodes && !driven(o); k++) {
         if (whirl_nlink_branch(c, o->modes.v[k], steps, omega, info, exists) != GSL_SUCCESS) {
             cli_error(cmd, "mode %d: %s", o->modes.v[k], whirl_last_error());
             goto fail;
@@ -148,7 +179,7 @@ static int observe(double t, double ratio, void *data)
 }
 
 /* Linear analysis and (unless --linear) the perturbed run of one point; trace: where the samples
- * of the run go (NULL: nowhere). */
+ * of the run go (NULL: nowhere). A driven map point whose shape does not exist is marked absent. */
 static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, point *p,
                    FILE *trace)
 {
@@ -158,7 +189,24 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     m.frame = WHIRL_FRAME_ROTATING;
     m.omega = p->omega;
     m.internal_damping = o->damping;
-    int status = whirl_stability_shape(w, &m, p->tip_r, &p->eig_growth);
+    int status;
+    if (driven(o)) {
+        m.drive_radius = o->eps;
+        m.air_drag = o->drag;
+        m.air_drag_quadratic = o->drag2;
+        whirl_driven_info info;
+        status = whirl_stability_driven_mode(w, &m, p->mode, o->side, &info, &p->eig_growth);
+        if (status == GSL_EDOM && !o->omega_given) {
+            p->absent = 1;
+            return GSL_SUCCESS;
+        }
+        p->tip[0] = info.tip[0];
+        p->tip[1] = info.tip[1];
+        p->tip_r = info.tip_r;
+        p->nodes = info.nodes;
+    } else {
+        status = whirl_stability_shape(w, &m, p->tip_r, &p->eig_growth);
+    }
     if (status) return status;
     if (o->linear) {
         p->verdict = p->eig_growth > 0   ? WHIRL_VERDICT_UNSTABLE
@@ -176,9 +224,13 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     rp.observe_data = trace;
     whirl_stability_run_result res;
     if (trace != NULL)
-        fprintf(trace, "# omega %.17g, mode %d, links %d, damping %.17g, eig_growth %.17g\n"
-                       "t,deviation\n", p->omega, p->mode, o->links, o->damping, p->eig_growth);
-    if ((status = whirl_stability_run(&m, p->tip_r, &rp, &res))) return status;
+        fprintf(trace, "# omega %.17g, mode %d, links %d, damping %.17g, eps %.17g, drag "
+                       "%.17g, drag_quadratic %.17g, eig_growth %.17g\nt,deviation\n",
+                p->omega, p->mode, o->links, o->damping, m.drive_radius, m.air_drag,
+                m.air_drag_quadratic, p->eig_growth);
+    const double *x, *y, *z;
+    whirl_stability_nodes(w, &x, &y, &z);
+    if ((status = whirl_stability_run_shape(&m, x, y, z, &rp, &res))) return status;
     if (trace != NULL)
         fprintf(trace, "# sim_growth %.17g fitted from t = %.17g to %.17g, verdict %s\n",
                 res.sim_growth, res.fit_from, res.fit_to, whirl_verdict_name(res.verdict));
@@ -198,6 +250,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.method = "rk4";
     o.modes.n = 3;
     o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
+    o.side = 1;
     const cli_option opts[] = {
         {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate"},
         {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count)"},
@@ -217,6 +270,14 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
         {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
          "time step (default: from the highest frequency, see stability.h)"},
+        {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E",
+         "hand-swung: radius of the pivot's circle (default 0)"},
+        {"--drag", NULL, CLI_DOUBLE, &o.drag, &o.drag_given, "C",
+         "hand-swung: linear air drag per unit length (default 0)"},
+        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.drag2, &o.drag2_given, "C2",
+         "hand-swung: quadratic air drag per unit length (default 0)"},
+        {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
+         "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
@@ -295,6 +356,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     fprintf(out.fp, "# whirl stability: %d links, damping %.17g, %s\n", o.links, o.damping,
             o.linear ? "linear analysis only" : "linear analysis and perturbed runs");
+    if (driven(&o))
+        fprintf(out.fp, "# hand-swung: eps %.17g, drag %.17g, drag_quadratic %.17g, side %d\n",
+                o.eps, o.drag, o.drag2, o.side);
     if (!o.linear)
         fprintf(out.fp, "# runs: %.17g periods, perturbation %.17g, seed %d, method %s, dt %.17g "
                         "(0: default)\n", o.periods, o.perturb, o.seed, o.method, o.dt);
@@ -303,17 +367,24 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
                         "< 0, stable where 0\n");
     else
         fprintf(out.fp, "# verdict: unstable once the deviation reaches 100 times the initial "
-                        "one, converging (damping > 0) once it falls to 1/100, else stable\n");
-    fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict\n");
+                        "one, converging (damping or drag > 0) once it falls to 1/100, else "
+                        "stable\n");
+    fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
+            driven(&o) ? ",tip_x,tip_y,nodes" : "");
     size_t written = 0;
-    for (size_t i = 0; i < count && pts[i].done; i++, written++)
+    for (size_t i = 0; i < count && pts[i].done; i++, written++) {
+        if (pts[i].absent) continue;
         if (o.linear)
-            fprintf(out.fp, "%.17g,%d,%d,%.17g,,,%s\n", pts[i].omega, pts[i].mode, o.links,
+            fprintf(out.fp, "%.17g,%d,%d,%.17g,,,%s", pts[i].omega, pts[i].mode, o.links,
                     pts[i].eig_growth, whirl_verdict_name(pts[i].verdict));
         else
-            fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s\n", pts[i].omega, pts[i].mode,
+            fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s", pts[i].omega, pts[i].mode,
                     o.links, pts[i].eig_growth, pts[i].sim_growth, pts[i].max_deviation,
                     whirl_verdict_name(pts[i].verdict));
+        if (driven(&o))
+            fprintf(out.fp, ",%.17g,%.17g,%d", pts[i].tip[0], pts[i].tip[1], pts[i].nodes);
+        fputc('\n', out.fp);
+    }
     free(pts);
     whirl_chain_free(c);
     if (cli_out_commit(cmd, &out)) {

@@ -13,7 +13,7 @@ static const cli_command commands[] = {
      "The steady shape of mode K at rotation rate W.", cmd_shape},
     {"sweep", "--modes LIST --omega-min A --omega-max B --steps S [--links N] [--tip-mass m] [-o FILE]",
      "Branches of steady shapes against the rotation rate, by continuation.", cmd_sweep},
-    {"stability", "--omega W --mode K | --omega-min A --omega-max B --steps S [--modes LIST] [--links N] [--periods P] [--perturb EPS] [--seed S] [--damping D] [--method M] [--dt H] [--linear] [--trace FILE] [-o FILE]",
+    {"stability", "--omega W --mode K | --omega-min A --omega-max B --steps S [--modes LIST] [--links N] [--periods P] [--perturb EPS] [--seed S] [--damping D] [--eps E] [--drag C] [--drag-quadratic C2] [--side S] [--method M] [--dt H] [--linear] [--trace FILE] [-o FILE]",
      "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability},
     {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
      "Runs a scene file (see data/scenes/): the N-link chain in time.", cmd_simulate},

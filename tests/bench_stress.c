@@ -1,0 +1,256 @@
+/* Long numerical stress runs of the dynamics (the quick versions are tests/test_stress.c).
+ * Writes argv[1]/stress.csv (default out/bench) and prints one line per case: the conserved
+ * quantity's drift (energy in the inertial frame, the Jacobi constant E - omega L_z in the
+ * co-rotating one; no forces act, so both are exact invariants), the constraint residual, and
+ * whether the stated bound is met, or the failure status and its message. A case "passes" if
+ * it meets its bound or stops with a failure status and a message, and never leaves a
+ * non-finite number; the program exits 1 otherwise.
+ *  - long: 10^7 gauss3 steps (h = 0.01, 5 links, 3D, inertial): |dE| <= 1e-12 |E|, and the
+ *    exponent of the growth of max |dE| over the last three decades (Brouwer's law: 0.5);
+ *  - N = 10^5: the hanging chain kicked sideways, 200 gauss2 steps of h = 5e-6;
+ *  - omega = 30: N = 100, mode-2 steady shape turned by 1e-3, 20 periods, gauss2 h = 2e-4;
+ *  - heavy tip: N = 100 with a tip mass 100, mode 1 at omega = 4 turned by 1e-3, gauss3 h = 1e-4
+ *    (the top tension ~ 10^3 M g puts the fastest mode near 2 N sqrt(10^3) ~ 6000), t = 2;
+ *  - folded: 20 links in a near-vertical zig-zag (each turned 1e-2 from the axis, alternately up
+ *    and down), released: gauss3 h = 1e-4, t = 2;
+ *  - through the vertical: N = 100 hanging, kicked along x, gauss2 h = 1e-3, t = 20 (the chain
+ *    swings through the vertical over and over);
+ *  - near critical: N = 100 at omega = omega_2 (1 + 1e-6), hanging with a 1e-6 kick, co-rotating,
+ *    gauss2 h = 5e-3, t = 200;
+ *  - tolerance at round-off: gsl-rk8pd at tol 1e-16 on the omega = 30 case, t = 1. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "whirl/dynamics.h"
+#include "whirl/steady.h"
+
+#define BENCH_NAME "bench_stress"
+#include "bench_util.h"
+
+#define PI 3.14159265358979323846
+
+typedef struct stress_case {
+    const char *name;
+    const char *method;
+    double h, tol, t_end;
+    double bound; /* on |drift of the invariant| / scale */
+} stress_case;
+
+static int all_finite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
+static double invariant(const whirl_dyn *d, double t, const double *y)
+{
+    whirl_dyn_diagnostics g;
+    whirl_dyn_diagnose(d, t, y, &g);
+    return whirl_dyn_model(d)->frame == WHIRL_FRAME_ROTATING ? g.jacobi : g.energy;
+}
+
+/* Runs the case from (x, v) in model m; the invariant's drift is divided by scale (its size, or
+ * the kinetic energy given when the invariant is near zero). Returns 1 if the case passes. */
+static int run_case(FILE *csv, const stress_case *sc, const whirl_model *m, const double *x,
+                    const double *v, double scale)
+{
+    whirl_dyn *d = whirl_dyn_alloc(m, WHIRL_FORMULATION_CARTESIAN);
+    if (d == NULL) bench_die("dyn alloc");
+    const size_t size = whirl_dyn_size(d);
+    double *y = malloc(size * sizeof *y);
+    whirl_integrator *it = whirl_integrator_alloc(sc->method, d);
+    if (y == NULL || it == NULL) bench_die("alloc");
+    if (whirl_dyn_set_state(d, 0, x, v, y) != GSL_SUCCESS) bench_die(sc->name);
+    const double i0 = invariant(d, 0, y);
+    double t = 0, drift = 0, worst_c = 0;
+    const double t0 = bench_now();
+    int status = GSL_SUCCESS;
+    const int chunks = 100;
+    for (int k = 1; k <= chunks && status == GSL_SUCCESS; k++) {
+        status = whirl_integrator_advance(it, &t, y, sc->t_end * k / chunks, sc->h, sc->tol);
+        whirl_dyn_diagnostics g;
+        whirl_dyn_diagnose(d, t, y, &g);
+        drift = fmax(drift, fabs(invariant(d, t, y) - i0) / scale);
+        worst_c = fmax(worst_c, g.constraint);
+    }
+    const double secs = bench_now() - t0;
+    const whirl_integrator_stats s = whirl_integrator_get_stats(it);
+    const int finite = all_finite(y, size);
+    const int meets = status == GSL_SUCCESS && drift <= sc->bound;
+    const int pass = finite && (meets || status != GSL_SUCCESS);
+    const char *verdict = !finite ? "NON-FINITE" : status != GSL_SUCCESS ? "stopped"
+                          : meets ? "meets bound" : "EXCEEDS BOUND";
+    fprintf(csv, "%s,%s,%g,%g,%g,%d,%.3g,%.3g,%.3g,%lu,%.3g,%s\n", sc->name, sc->method, sc->h,
+            sc->tol, t, status, drift, sc->bound, worst_c, s.steps, secs, verdict);
+    fflush(csv);
+    printf("  %-22s %-9s t = %-8.4g %9lu steps %7.1f s: invariant drift %.2e (bound %.0e), "
+           "constraint %.1e: %s%s%s\n",
+           sc->name, sc->method, t, s.steps, secs, drift, sc->bound, worst_c, verdict,
+           status != GSL_SUCCESS ? ": " : "", status != GSL_SUCCESS ? whirl_last_error() : "");
+    fflush(stdout);
+    whirl_integrator_free(it);
+    whirl_dyn_free(d);
+    free(y);
+    return pass;
+}
+
+/* The mode-k steady shape at omega with every link turned by `turn` rad about y (in-plane);
+ * velocities 0 (rigid rotation in the co-rotating frame). */
+static void turned_steady(const whirl_chain *c, double omega, int mode, double turn, double *x,
+                          double *v)
+{
+    const size_t n = c->n;
+    if (bench_steady_positions(c, omega, mode, x) != GSL_SUCCESS) bench_die("steady shape");
+    double prev[3] = {0, 0, 0}, pos[3] = {0, 0, 0};
+    for (size_t i = 0; i < n; i++) {
+        const double dx = x[3 * i] - prev[0], dz = x[3 * i + 2] - prev[2];
+        prev[0] = x[3 * i], prev[2] = x[3 * i + 2];
+        const double a = turn * sin(2.385 * (double)i);
+        pos[0] += cos(a) * dx + sin(a) * dz;
+        pos[2] += -sin(a) * dx + cos(a) * dz;
+        x[3 * i] = pos[0], x[3 * i + 1] = 0, x[3 * i + 2] = pos[2];
+    }
+    memset(v, 0, 3 * n * sizeof *v);
+}
+
+/* Long gauss3 run: energy error at log-spaced times and the growth exponent. */
+static int long_run(FILE *csv)
+{
+    const size_t n = 5;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    const whirl_model m = {.chain = c, .dim = 3};
+    whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    whirl_integrator *it = whirl_integrator_alloc("gauss3", d);
+    double x[15], v[15], y[30];
+    const double p[3] = {0, 0, 0}, h = 0.01;
+    bench_smooth_state(c, p, x, v);
+    if (whirl_dyn_set_state(d, 0, x, v, y) != GSL_SUCCESS) bench_die("long run");
+    whirl_dyn_diagnostics g0, g;
+    whirl_dyn_diagnose(d, 0, y, &g0);
+    const long steps = 10000000;
+    double t = 0, running = 0, ts[200], es[200];
+    int ns = 0, status = GSL_SUCCESS;
+    const double t0 = bench_now();
+    for (double target = 10; status == GSL_SUCCESS; target *= pow(10, 0.1)) {
+        const long k = (long)fmin(round(target), (double)steps);
+        status = whirl_integrator_advance(it, &t, y, (double)k * h, h, 0);
+        whirl_dyn_diagnose(d, t, y, &g);
+        running = fmax(running, fabs(g.energy - g0.energy));
+        if (ns < 200 && running > 0) ts[ns] = t, es[ns] = running, ns++;
+        if (k == steps) break;
+    }
+    const double secs = bench_now() - t0;
+    int first = 0;
+    while (first < ns && ts[first] < t / 1000) first++;
+    const double slope = bench_fit_exponent(ts + first, es + first, ns - first);
+    const double rel = running / fabs(g0.energy);
+    const int finite = all_finite(y, 30);
+    const int meets = status == GSL_SUCCESS && rel <= 1e-12;
+    fprintf(csv, "long_1e7_steps,gauss3,%g,0,%g,%d,%.3g,1e-12,%.3g,%ld,%.3g,%s (growth exponent "
+                 "%.2f)\n",
+            h, t, status, rel, g.constraint, steps, secs, meets ? "meets bound" : "EXCEEDS BOUND",
+            slope);
+    printf("  %-22s %-9s t = %-8.4g %9ld steps %7.1f s: max |dE|/|E| %.2e (bound 1e-12), growth "
+           "exponent %.2f over the last 3 decades (Brouwer: 0.5), constraint %.1e: %s\n",
+           "long (10^7 steps)", "gauss3", t, steps, secs, rel, slope, g.constraint,
+           meets ? "meets bound" : status != GSL_SUCCESS ? whirl_last_error() : "EXCEEDS BOUND");
+    whirl_integrator_free(it);
+    whirl_dyn_free(d);
+    whirl_chain_free(c);
+    return finite && (meets || status != GSL_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    const char *dir = argc > 1 ? argv[1] : "out/bench";
+    const char *only = argc > 2 ? argv[2] : NULL;
+    FILE *csv = bench_open_csv(dir, "stress.csv");
+    fprintf(csv, "case,method,h,tol,t_reached,status,invariant_drift,bound,max_constraint,steps,"
+                 "seconds,verdict\n");
+    printf("stress runs (load average %.2f):\n", bench_load_average());
+    int ok = 1;
+#define WANT(name) (only == NULL || strcmp(only, name) == 0)
+    if (WANT("long")) ok &= long_run(csv);
+    if (WANT("large")) { /* N = 10^5 hanging, kicked */
+        const size_t n = 100000;
+        whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+        const whirl_model m = {.chain = c, .dim = 3};
+        double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
+        for (size_t i = 0; i < n; i++) x[3 * i + 2] = -(double)(i + 1) / (double)n;
+        for (size_t i = n / 2; i < n; i++) v[3 * i] = 0.01 * (double)(i - n / 2) / (double)n;
+        const double kinetic = 0.5 * 0.5 * 0.005 * 0.005 / 3; /* ~ sum m v^2 / 2 */
+        const stress_case sc = {"N=1e5 kicked", "gauss2", 5e-6, 0, 1e-3, 1e-8};
+        ok &= run_case(csv, &sc, &m, x, v, kinetic);
+        free(x), free(v);
+        whirl_chain_free(c);
+    }
+    const size_t n = 100;
+    double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    if (WANT("omega30") || WANT("roundoff")) {
+        const double omega = 30;
+        const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
+        turned_steady(c, omega, 2, 1e-3, x, v);
+        const double scale = 0.5 * omega * omega * 0.3; /* ~ |Jacobi constant| */
+        const stress_case fast = {"omega=30", "gauss2", 2e-4, 0, 20 * 2 * PI / omega, 1e-10};
+        const stress_case tight = {"tol=1e-16", "gsl-rk8pd", 1e-4, 1e-16, 1, 1e-10};
+        if (WANT("omega30")) ok &= run_case(csv, &fast, &m, x, v, scale);
+        if (WANT("roundoff")) ok &= run_case(csv, &tight, &m, x, v, scale);
+    }
+    if (WANT("heavytip")) {
+        whirl_chain *ct = whirl_chain_alloc_uniform(n, 100);
+        const whirl_model m = {.chain = ct, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = 4};
+        turned_steady(ct, 4, 1, 1e-3, x, v);
+        const stress_case sc = {"tip mass 100", "gauss3", 1e-4, 0, 2, 1e-10};
+        ok &= run_case(csv, &sc, &m, x, v, 101 * 1.0);
+        whirl_chain_free(ct);
+    }
+    if (WANT("folded")) {
+        const size_t nf = 20;
+        whirl_chain *cf = whirl_chain_alloc_uniform(nf, 0);
+        const whirl_model m = {.chain = cf, .dim = 3};
+        double pos[3] = {0, 0, 0};
+        for (size_t i = 0; i < nf; i++) {
+            const double th = (i % 2 == 0 ? 0.01 : PI - 0.01), ph = 2.385 * (double)i;
+            pos[0] += cf->length[i] * sin(th) * cos(ph);
+            pos[1] += cf->length[i] * sin(th) * sin(ph);
+            pos[2] -= cf->length[i] * cos(th);
+            x[3 * i] = pos[0], x[3 * i + 1] = pos[1], x[3 * i + 2] = pos[2];
+        }
+        memset(v, 0, 3 * nf * sizeof *v);
+        const stress_case sc = {"folded zig-zag", "gauss3", 1e-4, 0, 2, 1e-10};
+        ok &= run_case(csv, &sc, &m, x, v, 0.5); /* |E| ~ the potential energy scale */
+        whirl_chain_free(cf);
+    }
+    if (WANT("vertical")) {
+        const whirl_model m = {.chain = c, .dim = 3};
+        for (size_t i = 0; i < n; i++) {
+            x[3 * i] = x[3 * i + 1] = 0, x[3 * i + 2] = -(double)(i + 1) / (double)n;
+            v[3 * i] = 0.8 * (double)(i + 1) / (double)n, v[3 * i + 1] = v[3 * i + 2] = 0;
+        }
+        const stress_case sc = {"through the vertical", "gauss2", 1e-3, 0, 20, 1e-10};
+        ok &= run_case(csv, &sc, &m, x, v, 0.5);
+    }
+    if (WANT("critical")) {
+        double crit[2];
+        if (whirl_nlink_critical(c, 2, crit) != GSL_SUCCESS) bench_die("critical rates");
+        const double omega = crit[1] * (1 + 1e-6);
+        const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
+        for (size_t i = 0; i < n; i++) {
+            x[3 * i] = x[3 * i + 1] = 0, x[3 * i + 2] = -(double)(i + 1) / (double)n;
+            v[3 * i] = 1e-6 * sin(PI * (double)(i + 1) / (double)n), v[3 * i + 1] = v[3 * i + 2] = 0;
+        }
+        const stress_case sc = {"omega_2 (1 + 1e-6)", "gauss2", 5e-3, 0, 200, 1e-12};
+        ok &= run_case(csv, &sc, &m, x, v, 0.5);
+    }
+    whirl_chain_free(c);
+    free(x), free(v);
+    fclose(csv);
+    printf("stress runs: %s\n", ok ? "every case met its bound or stopped with a message"
+                                   : "A CASE FAILED (non-finite state or bound exceeded)");
+    return ok ? 0 : 1;
+}
