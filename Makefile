@@ -75,6 +75,11 @@ bench: deps
 	@$(MAKE) --no-print-directory all $(BENCH_BIN)
 	@sh scripts/bench.sh $(BUILD)
 
+# The studies behind the figures: stability maps and the regime map (several minutes).
+study: deps
+	@$(MAKE) --no-print-directory all
+	@sh scripts/study.sh all out/study $(BUILD)
+
 clean:
 	rm -rf build build-* out
 

@@ -31,7 +31,7 @@ ten = dir . "/scaling_tension.csv"
 # columns: n, then whirl and plain double for the hanging, smooth and mode-2 states (0 = exact,
 # drawn at 1e-17)
 states = "hanging smooth mode2"
-fl(v) = v > 0 ? v : 1e-17
+fl(v) = v > 0 ? v : (v == 0 ? 1e-17 : NaN)
 plot for [k = 1:3] ten skip 2 using 1:(fl(column(2 * k))) \
          with linespoints lw 2 pt k lc k title "whirl, " . word(states, k), \
      for [k = 1:3] ten skip 2 using 1:(fl(column(2 * k + 1))) \

@@ -27,3 +27,41 @@ done
 gnuplot -e "dir='$out'" plots/shapes.gp
 gnuplot -e "dir='$out'" plots/branches.gp
 echo "demo: wrote $out/shapes.png $out/branches.png"
+
+# ---- dynamics: the 100-link chain seeded with its mode-2 shape, animated; the seed's double pendulum ----
+echo "demo: dynamics"
+"$whirl" simulate data/scenes/mode2.ini --set run.t_end=6 --set output.trace="$out/mode2.dat" \
+  --set output.trace_every=0.1 -o "$out/mode2.csv"
+gnuplot -e "trace='$out/mode2.dat'; out='$out/mode2.gif'" plots/animate.gp
+"$whirl" simulate data/scenes/double_pendulum.ini --set run.t_end=20 -o "$out/double_pendulum.csv"
+gnuplot -e "csv='$out/double_pendulum.csv'; out='$out/double_pendulum.png'" plots/simulate.gp
+echo "demo: wrote $out/mode2.gif $out/double_pendulum.png"
+
+# ---- stability: the map (linear analysis) at N = 25 and 50, and two perturbed runs ----
+echo "demo: stability"
+for n in 25 50; do
+  "$whirl" stability --omega-min 1 --omega-max 10 --steps 181 --links $n --linear \
+    -o "$out/stability_map_N$n.csv"
+done
+gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'; out='$out/stability_map.png'" \
+  plots/stability_map.gp
+"$whirl" stability --omega 9 --mode 2 --links 25 --periods 1000 --trace "$out/unstable_trace.csv" \
+  -o "$out/unstable_row.csv"
+gnuplot -e "csv='$out/unstable_trace.csv'; out='$out/deviation_unstable.png'" plots/deviation.gp
+"$whirl" stability --omega 2 --mode 1 --links 25 --damping 0.01 --perturb 0.01 \
+  --trace "$out/damped_trace.csv" -o "$out/damped_row.csv"
+gnuplot -e "csv='$out/damped_trace.csv'; out='$out/deviation_damped.png'" plots/deviation.gp
+echo "demo: wrote $out/stability_map.png $out/deviation_unstable.png $out/deviation_damped.png"
+
+# ---- the hand-swung chain: mode-1 branches with the pivot on a circle, and a trailing shape ----
+echo "demo: driven pivot and air drag"
+for e in 0.01 0.05; do
+  for side in 1 -1; do
+    "$whirl" driven --omega-min 0.6 --omega-max 2.2 --eps $e --drag 0.01 --side $side \
+      -o "$out/driven_eps${e}_side$side.csv"
+  done
+done
+gnuplot -e "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'; out='$out/driven_branches.png'" plots/driven.gp
+"$whirl" driven --omega 1.6 --eps 0.05 --drag 0.05 -o "$out/driven_shape.csv"
+gnuplot -e "shape='$out/driven_shape.csv'; out='$out/driven_shape.png'" plots/driven.gp
+echo "demo: wrote $out/driven_branches.png $out/driven_shape.png"

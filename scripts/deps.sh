@@ -1,6 +1,6 @@
 #!/bin/sh
 # Installs the Debian packages whirl needs when run as root; otherwise prints the command.
-pkgs="build-essential pkg-config libgsl-dev libnlopt-dev libinih-dev liblapacke-dev libcmocka-dev gnuplot-nox"
+pkgs="build-essential pkg-config libgsl-dev libnlopt-dev libinih-dev liblapacke-dev libcmocka-dev gnuplot-nox libopenmpi-dev openmpi-bin"
 missing=""
 for p in $pkgs; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

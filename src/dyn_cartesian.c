@@ -30,8 +30,12 @@
  * 4.3e-15, 2.6e-14; all in long double: 9e-17, 1e-16, 2e-16 at twice the cost).
  * Projection: d_i <- l_i d_i / |d_i|, then d_i' <- d_i' - (d_i . d_i' / l_i^2) d_i, formed in long
  * double and rounded once: with the scale factor rounded to double first, the energy error of
- * gauss3 (5 links, h = 0.01) grew like t^0.62 to 7e-14 over 2 10^5 steps; rounded once, like
- * t^0.42-0.48 to 4-7e-14 over 10^6 steps (tests/bench_dynamics.c). */
+ * gauss3 (5 links, h = 0.01) grew like t^0.62 to 7e-14 over 2 10^5 steps; rounded once, to
+ * 4.8e-14 over 10^6 steps (tests/bench_dynamics.c). The projection is not symmetric, so the
+ * Gauss step followed by it is not symplectic: at h = 0.01 the energy error of that run later
+ * grows about linearly (8.6e-11 at 6 10^6 steps, 9.4e-10 at 10^7, once the chaotic motion
+ * speeds up); at h = 0.0025 it stays at round-off, 4.6e-14 after 10^7 steps, growing like
+ * t^0.56 (tests/bench_stress.c, case "long"). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -13,24 +13,7 @@ WHIRL=${WHIRL:-build/whirl}
 mkdir -p "$out"
 status=0
 
-for n in 25 50 100; do
-  start=$(date +%s)
-  "$WHIRL" stability --omega-min 1 --omega-max 10 --steps 901 --links $n --linear \
-    -o "$out/stability_map_N$n.csv" || exit 1
-  echo "map N = $n: $(( $(date +%s) - start )) s wall for $(grep -vc '^[#o]' "$out/stability_map_N$n.csv") analyses"
-  # windows: maximal runs of rates with eig_growth > 0, per mode
-  grep -v '^#' "$out/stability_map_N$n.csv" | awk -F, -v n=$n '
-    NR == 1 { next }
-    function close_window() { if (open) printf "  N = %d mode %d: unstable for omega in [%.2f, %.2f], max growth %.4g at %.2f\n", n, mode, from, to, gmax, at; open = 0 }
-    $2 != mode { close_window(); mode = $2 }
-    $4 > 0 { if (!open) { open = 1; from = $1; gmax = 0 } to = $1; if ($4 > gmax) { gmax = $4; at = $1 } next }
-    { close_window() }
-    END { close_window() }'
-done
-if command -v gnuplot >/dev/null; then
-  gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv $out/stability_map_N100.csv'; out='$out/stability_map.png'" \
-    plots/stability_map.gp 2>/dev/null && echo "figure: $out/stability_map.png"
-fi
+WHIRL="$WHIRL" sh scripts/study.sh stability "$out" || exit 1
 
 # one run traced: deviation against t with the predicted growth (plots/deviation.gp)
 "$WHIRL" stability --omega 9 --mode 2 --links 25 --periods 1000 --trace "$out/stability_trace.csv" \

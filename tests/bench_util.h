@@ -1,5 +1,6 @@
-/* Helpers shared by the benchmark programs (tests/bench_*.c): monotonic wall clock, median of
- * repeats, opening a CSV under the output directory, fatal errors with the library's message.
+/* Helpers shared by the benchmark programs (tests/bench_*.c) and tests/test_stress.c: monotonic
+ * wall clock, median of repeats, opening a CSV under the output directory, fatal errors with the
+ * library's message, steady shapes as positions.
  * Header-only (static functions); each program defines BENCH_NAME before including it. */
 #ifndef WHIRL_BENCH_UTIL_H
 #define WHIRL_BENCH_UTIL_H

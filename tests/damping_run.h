@@ -19,8 +19,9 @@
  * Deviation: whirl_deviation from the mode-1 shape (RMS distance of the masses, minimised over a
  * rotation about z). Decay rate: least-squares slope of log(deviation) against t over the
  * exponential stretch, the samples after the last one at or above d_hi (the linear regime: the
- * nonlinear terms are of relative size d / L) up to the first one below d_lo (above the
- * round-off floor), cut into blocks of whole periods 2 pi / Im(lambda) of the slowest
+ * nonlinear terms are of relative size d / L) up to the first sample that ends a block (of the
+ * length below) of RMS below d_lo (above the round-off floor; a single sample can dip far below
+ * the trend), cut into blocks of whole periods 2 pi / Im(lambda) of the slowest
  * eigenvalue lambda: a complex mode makes the squared deviation oscillate at 2 Im(lambda) about
  * its exponential trend, so the fit takes the block means of d^2, log(d) = log(mean d^2) / 2.
  * Two modes of close rates (the slowest, oscillating, and a real one at omega = 2) make the
@@ -34,7 +35,6 @@
 #define WHIRL_DAMPING_RUN_H
 
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,14 +45,14 @@
 
 #include "whirl/stability.h"
 
-/* The fixed step: the rule of whirl_stability_run's default (src/stability_run.c),
- * min(period / 200, f / (nu + omega + kappa)), nu = 2 sqrt(max_j (T_j / l_j) / min m)
- * (T_j = tension[j], j = 1..N, as from whirl_nlink_positions), f = 2 for rk4 and 0.7 for the
- * other methods, but with kappa = 16 D / (min m min l^2) instead of 4 D / (min m min l^2): the
- * fastest decay rate of the damping is an eigenvalue of M^-1 C, and Gershgorin bounds both
- * factors by 4 (C by 4 D, M^-1 by 4 / (m l^2) for a uniform chain); the damped linearisation
- * measures 15.6 D N^3 for the uniform chain of N = 25 links (4 D N^3 would put the rk4 step at
- * h |lambda| = 4.9, outside its stability interval 2.79 on the negative real axis). */
+/* The fixed step min(period / 200, f / (nu + omega + kappa)): nu = 2 sqrt(max_j (T_j / l_j) /
+ * min m) bounds the highest transverse frequency under the tensions T_j (tension[j], j = 1..N,
+ * as from whirl_nlink_positions), kappa = 16 D / (min m min l^2) the fastest decay rate of the
+ * damping, an eigenvalue of M^-1 C (Gershgorin bounds C by 4 D and M^-1 by 4 / (m l^2) for a
+ * uniform chain; the damped linearisation measures 15.6 D N^3 at N = 25); f = 2 for rk4 (inside
+ * its stability intervals, 2.83 on the imaginary and 2.79 on the negative real axis) and 0.7 for
+ * the other methods (convergence of the implicit stages). For rk4 this is within a factor 2 of
+ * whirl_stability_run's default step. */
 static inline double damping_step(const whirl_model *m, const double *tension, const char *method)
 {
     const double f = strcmp(method, "rk4") == 0 ? 2.0 : 0.7;
@@ -169,7 +169,8 @@ static inline void damping_two_rate_fit(const damping_blocks *b, double s1, doub
                                         double *slow, double *fast)
 {
     *slow = *fast = NAN;
-    gsl_multimin_fminimizer *mm = gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, 2);
+    gsl_multimin_fminimizer *mm =
+        gsl_multimin_fminimizer_alloc(gsl_multimin_fminimizer_nmsimplex2, 2);
     gsl_vector *x = gsl_vector_alloc(2), *step = gsl_vector_alloc(2);
     gsl_multimin_function f = {damping_two_rate_residual, 2, (void *)b};
     if (mm && x && step) {
@@ -179,7 +180,8 @@ static inline void damping_two_rate_fit(const damping_blocks *b, double s1, doub
         gsl_multimin_fminimizer_set(mm, &f, x, step);
         for (int k = 0; k < 2000; k++)
             if (gsl_multimin_fminimizer_iterate(mm) ||
-                gsl_multimin_test_size(gsl_multimin_fminimizer_size(mm), 1e-9 * fabs(s1)) != GSL_CONTINUE)
+                gsl_multimin_test_size(gsl_multimin_fminimizer_size(mm), 1e-9 * fabs(s1)) !=
+                    GSL_CONTINUE)
                 break;
         const double r1 = gsl_vector_get(mm->x, 0), r2 = gsl_vector_get(mm->x, 1);
         *slow = fmax(r1, r2);
@@ -199,7 +201,6 @@ typedef struct damping_run_params {
     size_t block;       /* samples per block of the fit (>= 1; see above) */
     double sigma;       /* the predicted decay rate (< 0), for the length of the tail */
     double tail_factor; /* > 1: the tail after d_lo (see above); 0: stop at d_lo */
-    FILE *trace;        /* rows "t,deviation" of every sample, or NULL */
 } damping_run_params;
 
 typedef struct damping_run_result {
@@ -211,9 +212,17 @@ typedef struct damping_run_result {
     size_t fit_samples;      /* blocks in it */
     double final_error;      /* the floor (see above), or the deviation at the end [L] */
     double duration;         /* time integrated [T] */
-    int reached;             /* 1 if the deviation fell below d_lo */
+    int reached;             /* 1 if the deviation fell below d_lo (block RMS) */
     whirl_integrator_stats stats;
 } damping_run_result;
+
+/* Root mean square of d[0..n-1]. */
+static inline double block_rms(const double *d, size_t n)
+{
+    double sum = 0;
+    for (size_t i = 0; i < n; i++) sum += d[i] * d[i];
+    return sqrt(sum / (double)n);
+}
 
 /* Integrates the model (co-rotating frame, Cartesian formulation) from (x0, v0) and measures
  * the deviation from ref (3 per mass). Returns the status of the library (message in
@@ -228,6 +237,7 @@ static inline int damping_run(const whirl_model *model, const double *ref, const
     m.dim = 3;
     m.frame = WHIRL_FRAME_ROTATING;
     memset(res, 0, sizeof *res);
+    res->rate_slow = res->rate_fast = NAN;
     int status = GSL_ENOMEM;
     whirl_dyn *dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
     whirl_integrator *it = dyn ? whirl_integrator_alloc(p->method, dyn) : NULL;
@@ -239,13 +249,14 @@ static inline int damping_run(const whirl_model *model, const double *ref, const
     double t = 0;
     if ((status = whirl_dyn_set_state(dyn, t, x0, v0, y))) goto done;
     if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, x, v))) goto done;
+    const size_t block = p->block > 0 ? p->block : 1;
     size_t count = 0, first_low = 0;
     double t_stop = p->t_max;
     ts[count] = t;
     ds[count++] = res->initial = res->peak = whirl_deviation(n, x, ref);
     for (size_t k = 1; count < cap && t < t_stop; k++) {
-        if ((status = whirl_integrator_advance(it, &t, y, fmin((double)k * p->sample, t_stop), p->dt, 0)))
-            goto done;
+        const double t1 = fmin((double)k * p->sample, t_stop);
+        if ((status = whirl_integrator_advance(it, &t, y, t1, p->dt, 0))) goto done;
         if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, x, v))) goto done;
         const double d = whirl_deviation(n, x, ref);
         if (!isfinite(d)) {
@@ -254,9 +265,8 @@ static inline int damping_run(const whirl_model *model, const double *ref, const
         }
         ts[count] = t;
         ds[count++] = d;
-        if (p->trace) fprintf(p->trace, "%.17g,%.17g\n", t, d);
         res->peak = fmax(res->peak, d);
-        if (!res->reached && d < p->d_lo) {
+        if (!res->reached && count >= block && block_rms(ds + count - block, block) < p->d_lo) {
             res->reached = 1;
             first_low = count - 1;
             t_stop = p->tail_factor > 1 ? fmin(p->t_max, t + log(p->tail_factor) / fabs(p->sigma))
@@ -276,7 +286,6 @@ static inline int damping_run(const whirl_model *model, const double *ref, const
     size_t start = 0; /* after the last sample at or above d_hi before the first below d_lo */
     for (size_t i = 0; i < first_low; i++)
         if (ds[i] >= p->d_hi) start = i + 1;
-    const size_t block = p->block > 0 ? p->block : 1;
     size_t nb = 0; /* block means, stored over the samples (i advances by block >= 1) */
     double sn = 0, st = 0, sy = 0, stt = 0, sty = 0;
     for (size_t i = start; i + block <= first_low + 1; i += block, nb++) {
@@ -291,7 +300,6 @@ static inline int damping_run(const whirl_model *model, const double *ref, const
         sn += 1, st += mean_t, sy += ly, stt += mean_t * mean_t, sty += mean_t * ly;
     }
     const double den = sn * stt - st * st;
-    res->rate_slow = res->rate_fast = NAN;
     if (sn >= 2 && den > 0) {
         res->fit_from = ts[0];
         res->fit_to = ts[nb - 1];

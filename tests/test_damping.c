@@ -87,7 +87,7 @@ static damping_run_result run_to_floor(const fixture *f, const double *x0, const
     const double sigma = f->rates[0];
     const damping_run_params p = {"rk4", damping_step(&f->model, f->tension, "rk4"),
                                   2 * M_PI / f->freq / 16, 80 / fabs(sigma) + 2000,
-                                  1e-4, 1e-10, 16, sigma, 1e3, NULL};
+                                  1e-4, 1e-10, 16, sigma, 1e3};
     damping_run_result res;
     assert_int_equal(damping_run(&f->model, f->ref, x0, v0, &p, &res), 0);
     print_message("# peak %.3g, fit %.8g over [%.0f, %.0f] (%zu blocks), two-rate %.8g %.8g, "

@@ -48,7 +48,7 @@ if "$WHIRL" stability --omega 4.5 --mode 2 --links 12 --periods 60 -o "$tmp/s.cs
 else fail "stabilised mode 2: $(cat "$tmp/err" "$tmp/s.csv" 2>/dev/null | tail -2)"; fi
 
 # Kelvin-Tait-Chetaev: with damping, mode 1 converges and mode 2 (stable without) grows.
-if "$WHIRL" stability --omega 4.5 --mode 1 --links 12 --damping 0.01 -o "$tmp/d1.csv" 2>"$tmp/err" \
+if "$WHIRL" stability --omega 4.5 --mode 1 --links 12 --damping 0.01 --periods 300 -o "$tmp/d1.csv" 2>"$tmp/err" \
    && [ "$(csv_field "$tmp/d1.csv" verdict)" = converging ] \
    && awk -v e="$(csv_field "$tmp/d1.csv" eig_growth)" 'BEGIN { exit !(e < 0) }' \
    && "$WHIRL" stability --omega 4.5 --mode 2 --links 12 --damping 0.01 -o "$tmp/d2.csv" 2>"$tmp/err" \

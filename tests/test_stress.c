@@ -28,30 +28,14 @@
 #include "whirl/dynamics.h"
 #include "whirl/steady.h"
 
+#define BENCH_NAME "test_stress"
+#include "bench_util.h" /* bench_steady_positions */
+
 static int all_finite(const double *v, size_t n)
 {
     for (size_t i = 0; i < n; i++)
         if (!isfinite(v[i])) return 0;
     return 1;
-}
-
-/* The N-link steady shape of mode k at omega as positions (3 per mass) in the x-z plane. */
-static int steady_positions(const whirl_chain *c, double omega, int mode, double *x)
-{
-    const size_t n = c->n;
-    whirl_shape_info info;
-    int status = whirl_nlink_solve(c, omega, mode, 0, &info);
-    if (status != GSL_SUCCESS) return status;
-    double *r = malloc(3 * (n + 1) * sizeof *r);
-    assert_non_null(r);
-    status = whirl_nlink_positions(c, omega, info.tip_r, r, r + n + 1, r + 2 * (n + 1));
-    for (size_t i = 0; i < n; i++) {
-        x[3 * i] = r[i + 1] - r[0];
-        x[3 * i + 1] = 0;
-        x[3 * i + 2] = r[n + 1 + i + 1] - r[n + 1];
-    }
-    free(r);
-    return status;
 }
 
 /* Max over the masses of the distance between x and ref (3 per mass). */
@@ -93,7 +77,7 @@ static void test_fast_spin(void **unused)
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
     double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
     double *x0 = malloc(3 * n * sizeof *x0), *y = malloc(6 * n * sizeof *y);
-    assert_int_equal(steady_positions(c, omega, 2, x), GSL_SUCCESS);
+    assert_int_equal(bench_steady_positions(c, omega, 2, x), GSL_SUCCESS);
     memcpy(x0, x, 3 * n * sizeof *x);
     const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
     whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
@@ -253,7 +237,7 @@ static void test_near_critical(void **unused)
     const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
     whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
     double x[90] = {0}, v[90] = {0}, y[180], dy[180];
-    assert_int_equal(steady_positions(c, omega, 2, x), GSL_SUCCESS);
+    assert_int_equal(bench_steady_positions(c, omega, 2, x), GSL_SUCCESS);
     assert_int_equal(whirl_dyn_set_state(d, 0, x, v, y), GSL_SUCCESS);
     assert_int_equal(whirl_dyn_rhs(0, y, dy, d), GSL_SUCCESS);
     for (size_t k = 0; k < 90; k++) assert_true(fabs(dy[90 + k]) < 1e-9);

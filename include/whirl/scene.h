@@ -9,10 +9,12 @@
  *              link direction then turned by exactly perturb radians about a random axis
  *              perpendicular to it (GSL's MT19937 seeded with seed);
  *            - theta (required), theta_dot, phi, phi_dot (comma lists of N, default 0): the seed's
- *              angles [rad] and their rates [1/T] in the run's frame; theta from the downward
+ *              angles [rad] and their rates [1/T] as seen in the inertial frame (zero rates:
+ *              at rest in the inertial frame, whatever the run's frame); theta from the downward
  *              vertical, phi the azimuth from x; in 2D theta is signed in the x-z plane
  *              (x = l sin theta) and phi, phi_dot are not allowed;
- *            - hanging = true: straight down, at rest relative to the pivot.
+ *            - hanging = true: straight down, moving with the pivot (at rest in the inertial
+ *              frame when the pivot is fixed).
  *   [run]    frame = inertial | rotating (default inertial; rotating needs dim = 3),
  *            method (default gauss2; see whirl_integrator_methods), dt > 0, t_end > 0 (both
  *            required), formulation = default | seed (default: default), omega (rate of the

@@ -131,12 +131,12 @@ typedef struct whirl_stability_run_params {
     double perturbation; /* EPS in (0, 1): each link direction turned by EPS [rad]; 1e-6 */
     unsigned long seed;  /* seed of the random directions (GSL's mt19937); 1 */
     const char *method;  /* integrator (whirl_integrator_methods); "gauss2" */
-    double dt;           /* fixed step [T]; 0: the default, min(period / 200,
-                            f / (nu + omega + kappa)), f = 2 for rk4, else 0.7,
-                            nu = 2 sqrt(max_j (T_j / l_j) / min m) bounding the chain's highest
-                            frequency under the shape's tensions T_j, kappa = 4 D / (min m min
-                            l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) its fastest
-                            damping rate */
+    double dt;           /* fixed step [T]; 0: the default, min(period / 200, 2 / (nu + omega),
+                            2 / kappa) for rk4, min(period / 200, 0.7 / (nu + omega + kappa))
+                            for the other methods, nu = 2 sqrt(max_j (T_j / l_j) / min m)
+                            bounding the chain's highest frequency under the shape's tensions
+                            T_j, kappa = 16 D / (min m min l^2) + max_i (l_i / m_i) (c + 2 c2
+                            omega (eps + L)) its fastest damping rate */
     /* Called at t = 0 and at every sample with the time and the deviation over the initial one
      * (NULL: none); a non-zero return stops the run, which then returns that status. */
     int (*observe)(double t, double ratio, void *data);
@@ -167,8 +167,9 @@ typedef struct whirl_stability_run_result {
  * deviation from the shape 50 times per period: the RMS over the masses of their distance to
  * it, minimised over a rotation about z when that is a symmetry (eps = c = c2 = 0:
  * whirl_deviation), plain otherwise. Verdict rule: unstable as soon as the deviation reaches 100
- * times the initial one; converging (internal damping or air drag > 0 only) as soon as it falls
- * to 1/100 of it; stable otherwise. The run stops early once the verdict is settled: unstable
+ * times the initial one; converging (internal damping or air drag > 0 only) as soon as its
+ * largest value over a whole rotation period is at most 1/100 of it, or if over the last period
+ * of the run it is at most 1/10 of it; stable otherwise. The run stops early once the verdict is settled: unstable
  * after the fitted stretch ends (1e4 times or 1e-2 L), converging at once. GSL_EINVAL on bad
  * parameters or links of the wrong length (1e-9 relative). Allocates its own dynamics and
  * integrator. The shape is not checked to be an equilibrium. */

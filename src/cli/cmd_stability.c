@@ -367,8 +367,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
                         "< 0, stable where 0\n");
     else
         fprintf(out.fp, "# verdict: unstable once the deviation reaches 100 times the initial "
-                        "one, converging (damping or drag > 0) once it falls to 1/100, else "
-                        "stable\n");
+                        "one, converging (damping or drag > 0) once its largest value over a "
+                        "period falls to 1/100 (or to 1/10 by the end), else stable\n");
     fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
             driven(&o) ? ",tip_x,tip_y,nodes" : "");
     size_t written = 0;
