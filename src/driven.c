@@ -467,22 +467,21 @@ static int sample_shape(problem *pb, const double *u, size_t npts, double *s, do
     return GSL_SUCCESS;
 }
 
-/* Node count (definition in driven.h) of the sampled shape pos[0..npts-1] (pivot first). */
-static int count_nodes(const problem *pb, size_t npts, const double *pos)
+int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight)
 {
     double mxx = 0, mxy = 0, myy = 0;
-    for (size_t i = 1; i < npts; i++) {
-        const double dx = pos[3 * i] - pb->p.eps, dy = pos[3 * i + 1];
-        const double w = pb->chain ? pb->chain->length[i - 1] : 1;
+    for (size_t i = 1; i < npts; i++) { /* weighted moments of d = (x - eps, y) */
+        const double dx = pos[3 * i] - eps, dy = pos[3 * i + 1];
+        const double w = weight ? weight[i - 1] : 1;
         mxx += w * dx * dx, mxy += w * dx * dy, myy += w * dy * dy;
     }
-    const double angle = 0.5 * atan2(2 * mxy, mxx - myy);
+    const double angle = 0.5 * atan2(2 * mxy, mxx - myy); /* principal direction e */
     double e[2] = {cos(angle), sin(angle)};
     const double *tip = pos + 3 * (npts - 1);
-    if ((tip[0] - pb->p.eps) * e[0] + tip[1] * e[1] < 0) e[0] = -e[0], e[1] = -e[1];
+    if ((tip[0] - eps) * e[0] + tip[1] * e[1] < 0) e[0] = -e[0], e[1] = -e[1];
     int nodes = 1, last_sign = 0;
-    for (size_t i = 1; i < npts; i++) {
-        const double proj = (pos[3 * i] - pb->p.eps) * e[0] + pos[3 * i + 1] * e[1];
+    for (size_t i = 1; i < npts; i++) { /* sign changes of d.e below the pivot */
+        const double proj = (pos[3 * i] - eps) * e[0] + pos[3 * i + 1] * e[1];
         const int sign = (proj > 0) - (proj < 0);
         if (sign != 0 && last_sign != 0 && sign != last_sign) nodes++;
         if (sign != 0) last_sign = sign;
@@ -507,7 +506,8 @@ static int describe(problem *pb, const double *u, int iterations, whirl_driven_i
     memcpy(info->top_force, F, sizeof F);
     info->top_tension = sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
     info->fold_function = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    info->nodes = count_nodes(pb, pb->npos, pb->pos);
+    info->nodes = whirl_driven_nodes(pb->p.eps, pb->npos, pb->pos,
+                                     pb->chain ? pb->chain->length : NULL);
     info->residual = hypot(r[0] - pb->p.eps, r[1]);
     info->iterations = iterations;
     return GSL_SUCCESS;

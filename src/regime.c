@@ -180,28 +180,6 @@ void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx, d
     w->observe_every = f && every > 0 ? every : 0;
 }
 
-int whirl_regime_nodes(double eps, size_t npts, const double *pos, const double *weight)
-{
-    double mxx = 0, mxy = 0, myy = 0;
-    for (size_t i = 1; i < npts; i++) { /* arclength-weighted moments of d = (x - eps, y) */
-        const double dx = pos[3 * i] - eps, dy = pos[3 * i + 1];
-        const double wgt = weight ? weight[i - 1] : 1;
-        mxx += wgt * dx * dx, mxy += wgt * dx * dy, myy += wgt * dy * dy;
-    }
-    const double angle = 0.5 * atan2(2 * mxy, mxx - myy);
-    double e[2] = {cos(angle), sin(angle)};
-    const double *tip = pos + 3 * (npts - 1);
-    if ((tip[0] - eps) * e[0] + tip[1] * e[1] < 0) e[0] = -e[0], e[1] = -e[1];
-    int nodes = 1, last_sign = 0;
-    for (size_t i = 1; i < npts; i++) { /* sign changes of d.e below the pivot */
-        const double proj = (pos[3 * i] - eps) * e[0] + pos[3 * i + 1] * e[1];
-        const int sign = (proj > 0) - (proj < 0);
-        if (sign != 0 && last_sign != 0 && sign != last_sign) nodes++;
-        if (sign != 0) last_sign = sign;
-    }
-    return nodes;
-}
-
 /* ---- the model of a segment ---- */
 
 /* Makes (omega, eps) the drive of the following integration. The state carries over; with a new
@@ -348,7 +326,7 @@ static int shape_nodes(whirl_regime *w)
     w->poly[0] = eps;
     w->poly[1] = w->poly[2] = 0;
     memcpy(w->poly + 3, w->x, 3 * w->n * sizeof *w->x);
-    return whirl_regime_nodes(eps, w->n + 1, w->poly, w->chain->length);
+    return whirl_driven_nodes(eps, w->n + 1, w->poly, w->chain->length);
 }
 
 /* The settled shape in w->x against the boundary-value shape with drag found from its tip. */

@@ -131,4 +131,16 @@ static inline double bench_fit_exponent(const double *x, const double *y, int n)
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+/* Max over the n masses of the distance between x and ref (3 per mass). */
+static inline double bench_max_distance(size_t n, const double *x, const double *ref)
+{
+    double worst = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double dx = x[3 * i] - ref[3 * i], dy = x[3 * i + 1] - ref[3 * i + 1],
+                     dz = x[3 * i + 2] - ref[3 * i + 2];
+        worst = fmax(worst, sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    return worst;
+}
+
 #endif

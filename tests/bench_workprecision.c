@@ -167,17 +167,6 @@ static double run_once(const scene *sc, const start *st, const method *m, double
     return secs;
 }
 
-static double position_error(size_t n, const double *x, const double *ref)
-{
-    double worst = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double dx = x[3 * i] - ref[3 * i], dy = x[3 * i + 1] - ref[3 * i + 1],
-                     dz = x[3 * i + 2] - ref[3 * i + 2];
-        worst = fmax(worst, sqrt(dx * dx + dy * dy + dz * dz));
-    }
-    return worst;
-}
-
 /* The runs of one method on one scene. */
 typedef struct curve {
     int count;
@@ -227,7 +216,7 @@ static void run_method(const scene *sc, const start *st, const method *m, const 
         double t[5] = {secs};
         for (int r = 1; r < reps; r++) t[r] = run_once(sc, st, m, h, tol, xf, &s);
         secs = bench_median(t, reps);
-        const double err = position_error(sc->n, xf, xref);
+        const double err = bench_max_distance(sc->n, xf, xref);
         fprintf(csv, "%s,%.6g,%.6g,%.6g,%.6g,%d,%lu,%lu,%s\n", m->label, h, tol, err, secs, reps,
                 s.steps, s.rhs_evals, err < 3 * floor_err ? "below_floor" : "ok");
         fflush(csv);
@@ -291,7 +280,7 @@ static void run_scene(const scene *sc, const char *dir, FILE *summary, const cha
     if (t_ref < 0) bench_die("reference run");
     const double t_conf = run_once(sc, &st, &conf, 0, 1e-13, xconf, &s);
     if (t_conf < 0) bench_die("confirmation run");
-    const double floor_err = position_error(n, xconf, xref);
+    const double floor_err = bench_max_distance(n, xconf, xref);
     printf("  reference gauss3 h = %.4g (%.3g s); confirmed by gsl-rk8pd tol 1e-13 on the %s "
            "formulation (%.3g s): distance %.3g (floor)\n",
            h_ref, t_ref, sc->seed_ref ? "seed" : "Cartesian", t_conf, floor_err);

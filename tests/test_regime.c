@@ -53,7 +53,7 @@ static void test_nodes_polyline(void **state)
             pos[3 * i + 1] = r * sin(tilt);
             pos[3 * i + 2] = -s;
         }
-        assert_int_equal(whirl_regime_nodes(eps, NPTS, pos, NULL), k);
+        assert_int_equal(whirl_driven_nodes(eps, NPTS, pos, NULL), k);
     }
 }
 
@@ -72,7 +72,7 @@ static void test_nodes_driven(void **state)
                          GSL_SUCCESS);
         for (int i = 0; i < 31; i++)
             pos[3 * i] = x[i], pos[3 * i + 1] = y[i], pos[3 * i + 2] = z[i];
-        assert_int_equal(whirl_regime_nodes(dp.eps, 31, pos, chain->length), info.nodes);
+        assert_int_equal(whirl_driven_nodes(dp.eps, 31, pos, chain->length), info.nodes);
         assert_int_equal(info.nodes, mode);
     }
     whirl_chain_free(chain);

@@ -344,6 +344,28 @@ static void cartesian_state(const whirl_chain *c, const double *q, const double 
         }
 }
 
+/* The accelerations the linearisation in w predicts at (dq, dqd):
+ * pred = q'' = -M^-1 (K dq + (G + C) dqd), q = 2N coordinates. */
+static void linear_prediction(const whirl_stability *w, size_t q, const double *dq,
+                              const double *dqd, gsl_vector *pred)
+{
+    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
+    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
+    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
+    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    gsl_matrix *chol = gsl_matrix_alloc(q, q);
+    memcpy(chol->data, mm, q * q * sizeof(double));
+    assert_int_equal(gsl_linalg_cholesky_decomp1(chol), 0);
+    for (size_t a = 0; a < q; a++) {
+        double f = 0;
+        for (size_t b = 0; b < q; b++)
+            f -= kk[a * q + b] * dq[b] + (gg[a * q + b] + cc[a * q + b]) * dqd[b];
+        gsl_vector_set(pred, a, f);
+    }
+    assert_int_equal(gsl_linalg_cholesky_svx(chol, pred), 0);
+    gsl_matrix_free(chol);
+}
+
 static void test_against_dynamics(void **state)
 {
     (void)state;
@@ -361,21 +383,8 @@ static void test_against_dynamics(void **state)
     whirl_stability *w = whirl_stability_alloc(n);
     assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
 
-    /* prediction: q'' = -M^-1 (K dq + (G + C) dqd) */
-    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
-    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
-    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
-    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
-    gsl_matrix *chol = gsl_matrix_alloc(q, q);
     gsl_vector *pred = gsl_vector_alloc(q);
-    memcpy(chol->data, mm, q * q * sizeof(double));
-    assert_int_equal(gsl_linalg_cholesky_decomp1(chol), 0);
-    for (size_t a = 0; a < q; a++) {
-        double f = 0;
-        for (size_t b = 0; b < q; b++) f -= kk[a * q + b] * dq[b] + (gg[a * q + b] + cc[a * q + b]) * dqd[b];
-        gsl_vector_set(pred, a, f);
-    }
-    assert_int_equal(gsl_linalg_cholesky_svx(chol, pred), 0);
+    linear_prediction(w, q, dq, dqd, pred);
 
     /* the dynamics module at q0 +- h dq with rates +- h dqd; the Cartesian state is
      * (d_1..d_N, d_1'..d_N'), so the second half of dy/dt holds d_j'' = l_j u_j'' */
@@ -411,7 +420,6 @@ static void test_against_dynamics(void **state)
     assert_true(err < 1e-6 * scale);
     whirl_dyn_free(dyn);
     gsl_vector_free(pred);
-    gsl_matrix_free(chol);
     whirl_stability_free(w);
     whirl_chain_free(c);
 }
@@ -932,22 +940,8 @@ static void test_driven_against_dynamics(void **state)
         dq[a] = sin(3.7 * (double)a + 0.4);
         dqd[a] = cos(2.9 * (double)a + 1.1);
     }
-    /* prediction: q'' = -M^-1 (K dq + (G + C) dqd) */
-    const double *mm = whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS);
-    const double *gg = whirl_stability_get_matrix(w, WHIRL_STABILITY_GYROSCOPIC);
-    const double *cc = whirl_stability_get_matrix(w, WHIRL_STABILITY_DAMPING);
-    const double *kk = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
-    gsl_matrix *chol = gsl_matrix_alloc(q, q);
     gsl_vector *pred = gsl_vector_alloc(q);
-    memcpy(chol->data, mm, q * q * sizeof(double));
-    assert_int_equal(gsl_linalg_cholesky_decomp1(chol), 0);
-    for (size_t a = 0; a < q; a++) {
-        double f = 0;
-        for (size_t b = 0; b < q; b++)
-            f -= kk[a * q + b] * dq[b] + (gg[a * q + b] + cc[a * q + b]) * dqd[b];
-        gsl_vector_set(pred, a, f);
-    }
-    assert_int_equal(gsl_linalg_cholesky_svx(chol, pred), 0);
+    linear_prediction(w, q, dq, dqd, pred);
     /* whirl_dyn_rhs at q = +-h dq, q' = +-h dqd: d_j'' projected on the chart */
     whirl_dyn *dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
     assert_non_null(dyn);
@@ -982,7 +976,6 @@ static void test_driven_against_dynamics(void **state)
     assert_true(rest < 1e-9 * scale); /* the shape is at rest in the dynamics too */
     whirl_dyn_free(dyn);
     gsl_vector_free(pred);
-    gsl_matrix_free(chol);
     whirl_stability_free(w);
     whirl_chain_free(c);
 }

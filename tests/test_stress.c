@@ -38,18 +38,6 @@ static int all_finite(const double *v, size_t n)
     return 1;
 }
 
-/* Max over the masses of the distance between x and ref (3 per mass). */
-static double max_distance(size_t n, const double *x, const double *ref)
-{
-    double worst = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double dx = x[3 * i] - ref[3 * i], dy = x[3 * i + 1] - ref[3 * i + 1],
-                     dz = x[3 * i + 2] - ref[3 * i + 2];
-        worst = fmax(worst, sqrt(dx * dx + dy * dy + dz * dz));
-    }
-    return worst;
-}
-
 /* Runs method from (x, v) at t = 0 to t1 (fixed step h, or tol > 0); final positions in x, v.
  * Returns the status; y must hold whirl_dyn_size(d) doubles. */
 static int run(whirl_dyn *d, const char *method, double *x, double *v, double *y, double t1,
@@ -83,7 +71,7 @@ static void test_fast_spin(void **unused)
     whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
     assert_non_null(d);
     assert_int_equal(run(d, "gauss2", x, v, y, 0.04, 2e-4, 0), GSL_SUCCESS);
-    assert_true(max_distance(n, x, x0) < 1e-9);
+    assert_true(bench_max_distance(n, x, x0) < 1e-9);
     memcpy(x, x0, 3 * n * sizeof *x);
     memset(v, 0, 3 * n * sizeof *v);
     v[3 * (n - 1) + 1] = 0.01; /* a kick, so that the stages have something to solve */
@@ -155,7 +143,7 @@ static void test_folded(void **unused)
         assert_true(fabs(ten[i] / expected - 1) < 1e-14);
     }
     assert_int_equal(run(d, "gauss2", x, v, y, 1, 0.01, 0), GSL_SUCCESS);
-    assert_true(max_distance(n, x, x0) < 1e-14);
+    assert_true(bench_max_distance(n, x, x0) < 1e-14);
     /* the seed's angles are singular at sin(theta) = 0: a clear refusal */
     whirl_dyn *s = whirl_dyn_alloc(&m, WHIRL_FORMULATION_SEED);
     assert_non_null(s);
@@ -205,7 +193,7 @@ static void test_through_vertical(void **unused)
     double ys[16];
     const int status = run(s, "gauss3", xs, vs, ys, 4, 1e-3, 0);
     if (status == GSL_SUCCESS) {
-        assert_true(max_distance(n, xs, x) < 1e-6);
+        assert_true(bench_max_distance(n, xs, x) < 1e-6);
     } else {
         assert_true(status == GSL_EBADFUNC || status == GSL_EMAXITER);
         assert_true(strlen(whirl_last_error()) > 0);
@@ -247,7 +235,7 @@ static void test_near_critical(void **unused)
     memcpy(x0, x, sizeof x);
     assert_int_equal(run(d, "gauss2", x, v, y, 5, 0.01, 0), GSL_SUCCESS);
     for (size_t i = 0; i < n; i++) assert_true(x[3 * i] == 0 && x[3 * i + 1] == 0);
-    assert_true(max_distance(n, x, x0) < 1e-14);
+    assert_true(bench_max_distance(n, x, x0) < 1e-14);
     whirl_dyn_free(d);
     whirl_chain_free(c);
 }
@@ -286,7 +274,7 @@ static void test_roundoff_tolerance(void **unused)
         memcpy(v, vs, sizeof v);
         const int status = run(d, "gsl-rk8pd", x, v, y, 2, 1e-3, tols[k]);
         if (status == GSL_SUCCESS) {
-            assert_true(max_distance(n, x, xr) < 1e-11);
+            assert_true(bench_max_distance(n, x, xr) < 1e-11);
         } else {
             assert_true(strlen(whirl_last_error()) > 0);
             print_message("gsl-rk8pd at tol %g: %s\n", tols[k], whirl_last_error());

@@ -73,6 +73,11 @@ typedef struct whirl_driven_info {
     int iterations;        /* Newton iterations of the last solve */
 } whirl_driven_info;
 
+/* Node count (the definition above) of the polyline pos (3 per point, npts >= 2 points, the
+ * pivot first, at (eps, 0, *) in the co-rotating frame), the points below the pivot weighted by
+ * weight[0..npts-2] (the link lengths; NULL: equal weights, the continuum's equal samples). */
+int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight);
+
 /* The steady shape whose tip is near guess = (X, Y) (Newton from there). GSL_EINVAL on bad
  * parameters, GSL_EDOM for eps = 0 with drag, GSL_EMAXITER if Newton does not converge (the
  * message says how far it got). On success info describes the shape. */

@@ -23,7 +23,7 @@
  *    counts as one), mean decay ratio per period q = (m1 / m0)^(1/8), and the geometric estimate
  *    of the distance left to the fixed point, max(D_k, m1 / 8) / (1 - q) (infinite if q >= 1);
  *  - SETTLED when that estimate is below settle_tol for settle_periods consecutive periods. The
- *    node count is then that of the settled shape (driven.h's definition, whirl_regime_nodes),
+ *    node count is then that of the settled shape (driven.h's definition, whirl_driven_nodes),
  *    and the shape is compared with the steady boundary-value solution with drag
  *    (whirl_driven_solve from the settled tip): shape_error = RMS distance over the masses;
  *  - otherwise at t_max, CONVERGING when the run is still approaching a steady shape too slowly
@@ -136,11 +136,6 @@ int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p, whirl_regime
  * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED). */
 int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
                        size_t n, double t_change, whirl_regime_result *res);
-
-/* Node count (driven.h's definition) of the polyline pos (3 per point, npts >= 2 points, the
- * pivot first, at (eps, 0, *) in the co-rotating frame), the points below the pivot weighted by
- * weight[0..npts-2] (the link lengths; NULL: equal). */
-int whirl_regime_nodes(double eps, size_t npts, const double *pos, const double *weight);
 
 /* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
 const char *whirl_regime_state_name(whirl_regime_state s);
