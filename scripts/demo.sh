@@ -65,3 +65,14 @@ gnuplot -e "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'; out='$out
 "$whirl" driven --omega 1.6 --eps 0.05 --drag 0.05 -o "$out/driven_shape.csv"
 gnuplot -e "shape='$out/driven_shape.csv'; out='$out/driven_shape.png'" plots/driven.gp
 echo "demo: wrote $out/driven_branches.png $out/driven_shape.png"
+
+# ---- from rest: spin-ups into 1, 2 and 3 nodes (strong linear drag, so that they settle fast) ----
+echo "demo: spin-ups from rest"
+for c in "1 2.0 0.10" "2 3.0 0.05" "3 5.0 0.05"; do
+  set -- $c
+  "$whirl" regime --omega $2 --eps $3 --drag 0.2 --trace "$out/spinup_$1.dat" --trace-every 0.25 \
+    -o "$out/spinup_$1.csv"
+  gnuplot -e "trace='$out/spinup_$1.dat'; out='$out/spinup_$1.gif'; step=2; delay=5; width=480" \
+    plots/animate.gp
+done
+echo "demo: wrote $out/spinup_1.gif $out/spinup_2.gif $out/spinup_3.gif"

@@ -23,7 +23,8 @@
  * periodic, quasiperiodic, chaotic, failed), class (the node count if settled or converging, 0
  * periodic, -1 quasi-periodic, -2 chaotic, -3 failed: for the heat map), the node count of the
  * last shape, the period, t_end, change, remaining, shape_error, bvp_nodes, lyapunov, the tip
- * in the co-rotating frame and its radius, and the integrator steps. */
+ * in the co-rotating frame and its radius, and the integrator steps; a value not computed (the
+ * Lyapunov exponent of a settled run, the shape error without a steady shape) is left empty. */
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -224,13 +225,27 @@ static int state_class(const whirl_regime_result *r)
     }
 }
 
+/* A value and a comma; a value that was not computed (not finite) is left empty. */
+static void put_value(FILE *fp, double x)
+{
+    if (isfinite(x)) fprintf(fp, "%.17g", x);
+    fputc(',', fp);
+}
+
 /* The columns from state on. */
 static void write_result(FILE *fp, const whirl_regime_result *r)
 {
-    fprintf(fp, "%s,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%lu\n",
-            whirl_regime_state_name(r->state), state_class(r), r->nodes, r->period, r->t_end,
-            r->change, r->remaining, r->shape_error, r->bvp_nodes, r->lyapunov, r->tip[0],
-            r->tip[1], r->tip[2], r->tip_r, r->steps);
+    fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), state_class(r), r->nodes,
+            r->period);
+    put_value(fp, r->t_end);
+    put_value(fp, r->change);
+    put_value(fp, r->remaining);
+    put_value(fp, r->shape_error);
+    fprintf(fp, "%d,", r->bvp_nodes);
+    put_value(fp, r->lyapunov);
+    for (int k = 0; k < 3; k++) put_value(fp, r->tip[k]);
+    put_value(fp, r->tip_r);
+    fprintf(fp, "%lu\n", r->steps);
 }
 
 static void write_map_row(FILE *fp, const regime_options *o, long index,
