@@ -57,6 +57,7 @@ static const struct {
     [WHIRL_KEY_OUTPUT_COLUMNS] = {3, "columns"},
     [WHIRL_KEY_OUTPUT_TRACE] = {3, "trace"},
     [WHIRL_KEY_OUTPUT_TRACE_EVERY] = {3, "trace_every"},
+    [WHIRL_KEY_OUTPUT_REFERENCE_MODE] = {3, "reference_mode"},
 };
 
 static const char *const column_names[WHIRL_NCOLUMNS] = {
@@ -489,8 +490,8 @@ static int convert_chain(const convert *v)
     return get_bounded(v, WHIRL_KEY_CHAIN_GRAVITY, 1, 0, 1, &s->gravity);
 }
 
-static const whirl_scene_key steady_keys[] = {WHIRL_KEY_START_OMEGA, WHIRL_KEY_START_MODE,
-                                              WHIRL_KEY_START_PERTURB, WHIRL_KEY_START_SEED};
+static const whirl_scene_key steady_keys[] = {WHIRL_KEY_START_OMEGA, WHIRL_KEY_START_MODE};
+static const whirl_scene_key perturb_keys[] = {WHIRL_KEY_START_PERTURB, WHIRL_KEY_START_SEED};
 static const whirl_scene_key angle_keys[] = {WHIRL_KEY_START_THETA, WHIRL_KEY_START_PHI,
                                              WHIRL_KEY_START_THETA_DOT, WHIRL_KEY_START_PHI_DOT};
 
@@ -506,7 +507,7 @@ static int get_bool(const convert *v, whirl_scene_key key, int *out)
 static int convert_start(const convert *v)
 {
     whirl_scene *s = v->scene;
-    int steady = first_given(v, steady_keys, 4), angles = first_given(v, angle_keys, 4);
+    int steady = first_given(v, steady_keys, 2), angles = first_given(v, angle_keys, 4);
     int hanging = 0;
     TRY(get_bool(v, WHIRL_KEY_START_HANGING, &hanging));
     if (given(v, WHIRL_KEY_START_HANGING) && !hanging)
@@ -530,12 +531,20 @@ static int convert_start(const convert *v)
     if (first < 0)
         return key_error(v, WHIRL_KEY_START_MODE,
                          "missing: give one start (omega and mode, theta, or hanging = true)");
+    const int perturbed = first_given(v, perturb_keys, 2);
+    if (perturbed >= 0 && angles >= 0)
+        return key_error(v, (whirl_scene_key)perturbed,
+                         "applies to the steady and the hanging start, not to theta");
+    long seed;
+    TRY(get_bounded(v, WHIRL_KEY_START_PERTURB, 0, 0, 0, &s->perturb));
+    TRY(get_integer(v, WHIRL_KEY_START_SEED, 1, 0, 2147483647L, &seed));
+    s->seed = (unsigned long)seed;
     if (hanging) {
         s->start = WHIRL_START_HANGING;
         return GSL_SUCCESS;
     }
     if (steady >= 0) {
-        long mode, seed;
+        long mode;
         s->start = WHIRL_START_STEADY;
         TRY(require(v, WHIRL_KEY_START_MODE, "(the steady start needs omega and mode)"));
         TRY(require(v, WHIRL_KEY_START_OMEGA, "(the steady start needs omega and mode)"));
@@ -545,9 +554,6 @@ static int convert_start(const convert *v)
         TRY(get_integer(v, WHIRL_KEY_START_MODE, 1, 1, WHIRL_MODE_MAX, &mode));
         s->mode = (int)mode;
         TRY(get_bounded(v, WHIRL_KEY_START_OMEGA, 0, 0, 1, &s->start_omega));
-        TRY(get_bounded(v, WHIRL_KEY_START_PERTURB, 0, 0, 0, &s->perturb));
-        TRY(get_integer(v, WHIRL_KEY_START_SEED, 1, 0, 2147483647L, &seed));
-        s->seed = (unsigned long)seed;
         return GSL_SUCCESS;
     }
     s->start = WHIRL_START_ANGLES;
@@ -601,13 +607,15 @@ static int convert_run(const convert *v)
     return GSL_SUCCESS;
 }
 
-/* The deviation needs a steady reference: the steady start or the hanging chain. */
+/* The deviation needs a reference: [output] reference_mode, the steady start or the hanging
+ * chain. */
 static int check_reference(const convert *v, whirl_scene_key key)
 {
-    if (v->scene->start != WHIRL_START_ANGLES) return GSL_SUCCESS;
+    if (v->scene->start != WHIRL_START_ANGLES || v->scene->reference_mode > 0)
+        return GSL_SUCCESS;
     return key_error(v, key,
-                     "the deviation needs a steady start ([start] omega and mode, or hanging); "
-                     "the theta start is not one");
+                     "the deviation needs a reference: [output] reference_mode, or a steady "
+                     "start ([start] omega and mode, or hanging); the theta start is not one");
 }
 
 static int convert_columns(const convert *v)
@@ -657,6 +665,17 @@ static int convert_output(const convert *v)
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_EVERY, s->dt, 0, 1, &s->every));
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, s->every, 0, 1, &s->trace_every));
     TRY(convert_columns(v));
+    if (given(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE)) {
+        long mode;
+        TRY(get_integer(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, 1, 1, WHIRL_MODE_MAX, &mode));
+        if (s->dim != 3)
+            return key_error(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, "needs [chain] dim = 3, got %d",
+                             s->dim);
+        if (!(s->omega > 0))
+            return key_error(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE,
+                             "needs [run] omega > 0 (the rate of the reference shape)");
+        s->reference_mode = (int)mode;
+    }
     if (s->want[WHIRL_COLUMN_DEVIATION]) TRY(check_reference(v, WHIRL_KEY_OUTPUT_COLUMNS));
     if (s->stop_deviation > 0) TRY(check_reference(v, WHIRL_KEY_RUN_STOP_DEVIATION));
     if (given(v, WHIRL_KEY_OUTPUT_TRACE)) {

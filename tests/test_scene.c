@@ -144,6 +144,33 @@ static void test_default_columns_and_angles(void **state)
 
 /* Lists longer than inih's 200-character line, on one line and continued over indented lines;
  * the line numbers stay right. */
+/* The hanging start takes perturb and seed; reference_mode lets any start have a deviation. */
+static void test_perturbed_hanging_and_reference(void **state)
+{
+    (void)state;
+    whirl_scene s;
+    assert_int_equal(parse("[chain]\ndim = 3\nlinks = 5\n[start]\nhanging = yes\nperturb = 0.0125\n"
+                           "seed = 17\n[run]\ndt = 0.01\nt_end = 1\nomega = 2.385\n"
+                           "[output]\ncolumns = deviation\nreference_mode = 1\n",
+                           NULL, 0, &s),
+                     GSL_SUCCESS);
+    assert_int_equal(s.start, WHIRL_START_HANGING);
+    assert_true(s.perturb == 0.0125);
+    assert_int_equal(s.seed, 17);
+    assert_int_equal(s.reference_mode, 1);
+    assert_true(s.want[WHIRL_COLUMN_DEVIATION]);
+    whirl_scene_free(&s);
+    assert_int_equal(parse("[chain]\ndim = 3\nlinks = 2\n[start]\ntheta = 0.1, 0.2\n[run]\n"
+                           "dt = 0.01\nt_end = 1\nomega = 3\n[output]\ncolumns = deviation\n"
+                           "reference_mode = 2\n",
+                           NULL, 0, &s),
+                     GSL_SUCCESS);
+    assert_int_equal(s.start, WHIRL_START_ANGLES);
+    assert_int_equal(s.reference_mode, 2);
+    assert_true(s.perturb == 0);
+    whirl_scene_free(&s);
+}
+
 static void test_long_lists(void **state)
 {
     (void)state;
@@ -224,7 +251,10 @@ static const bad_case bad_cases[] = {
     {CHAIN3 "[start]\nmode = 2\n" RUN, NULL,
      ": [start] omega: missing (the steady start needs omega and mode)"},
     {CHAIN3 "[start]\nperturb = 0.1\n" RUN, NULL,
-     ": [start] mode: missing (the steady start needs omega and mode)"},
+     ": [start] mode: missing: give one start (omega and mode, theta, or hanging = true)"},
+    {CHAIN3 "[start]\ntheta = 0.1, 0.2\nperturb = 0.1\n" RUN, NULL,
+     ":6: [start] perturb: applies to the steady and the hanging start, not to theta"},
+    {CHAIN3 HANG "perturb = -1\n" RUN, NULL, ":6: [start] perturb: must be >= 0, got -1"},
     {CHAIN3 "[start]\ntheta_dot = 0.1, 0.2\n" RUN, NULL,
      ": [start] theta: missing (the angle start needs theta)"},
     {CHAIN3 "[start]\nomega = 2\nmode = 1\ntheta = 0.1, 0.2\n" RUN, NULL,
@@ -296,11 +326,17 @@ static const bad_case bad_cases[] = {
     {CHAIN3 HANG RUN "tol = -1e-9\n", NULL, ":9: [run] tol: must be >= 0, got -1e-9"},
     {CHAIN3 HANG RUN "stop_deviation = 0\n", NULL, ":9: [run] stop_deviation: must be > 0, got 0"},
     {CHAIN3 "[start]\ntheta = 0.1, 0.2\n" RUN "stop_deviation = 0.1\n", NULL,
-     ":9: [run] stop_deviation: the deviation needs a steady start ([start] omega and mode, or "
-     "hanging); the theta start is not one"},
+     ":9: [run] stop_deviation: the deviation needs a reference: [output] reference_mode, or a "
+     "steady start ([start] omega and mode, or hanging); the theta start is not one"},
     {CHAIN3 "[start]\ntheta = 0.1, 0.2\n" RUN "[output]\ncolumns = t, deviation\n", NULL,
-     ":10: [output] columns: the deviation needs a steady start ([start] omega and mode, or "
-     "hanging); the theta start is not one"},
+     ":10: [output] columns: the deviation needs a reference: [output] reference_mode, or a "
+     "steady start ([start] omega and mode, or hanging); the theta start is not one"},
+    {CHAIN2 "[start]\ntheta = 0.1, 0.2\n" RUN "omega = 2\n[output]\nreference_mode = 1\n", NULL,
+     ":11: [output] reference_mode: needs [chain] dim = 3, got 2"},
+    {CHAIN3 HANG RUN "[output]\nreference_mode = 1\n", NULL,
+     ":10: [output] reference_mode: needs [run] omega > 0 (the rate of the reference shape)"},
+    {CHAIN3 HANG RUN "omega = 2\n[output]\nreference_mode = 0\n", NULL,
+     ":11: [output] reference_mode: must be in 1..64, got 0"},
     {CHAIN3 HANG RUN "[output]\ncolumns = t, energy, tipx\n", NULL,
      ":10: [output] columns: unknown column 'tipx' (known: t, tip_x, tip_y, tip_z, energy, "
      "jacobi, lz, constraint, deviation)"},
@@ -372,6 +408,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_values_and_defaults),
         cmocka_unit_test(test_default_columns_and_angles),
+        cmocka_unit_test(test_perturbed_hanging_and_reference),
         cmocka_unit_test(test_long_lists),
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_input),

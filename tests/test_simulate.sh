@@ -150,7 +150,7 @@ expect_error "non-positive mass" "$bad: --set chain.masses: value 2 must be > 0,
 expect_error "unknown key" "$bad: --set run.damping: unknown key" \
   simulate "$bad" --set run.damping=1 -o "$tmp/out.csv"
 expect_error "deviation of a start that is not steady" \
-  "$bad: --set output.columns: the deviation needs a steady start" \
+  "$bad: --set output.columns: the deviation needs a reference" \
   simulate "$bad" --set run.dt=0.1 --set output.columns=deviation -o "$tmp/out.csv"
 printf '[chain]\ndim = 3\nlinks = 2\n[strat]\n' >"$tmp/bad2.ini"
 expect_error "unknown section" "$tmp/bad2.ini:4: \[strat\]: unknown section" \

@@ -4,17 +4,18 @@
  *   [chain]  dim = 2 | 3 (required), links = N (required), lengths, masses (comma lists of N,
  *            default equal, each summing to 1), gravity (default 1)
  *   [start]  one of three starts:
- *            - omega, mode (both required), perturb (default 0), seed (default 1): the exact
- *              N-link steady shape of mode k at omega (3D only), rotating rigidly at omega, each
- *              link direction then turned by exactly perturb radians about a random axis
- *              perpendicular to it (GSL's MT19937 seeded with seed);
+ *            - omega, mode (both required): the exact N-link steady shape of mode k at omega
+ *              (3D only), rotating rigidly at omega;
  *            - theta (required), theta_dot, phi, phi_dot (comma lists of N, default 0): the seed's
  *              angles [rad] and their rates [1/T] as seen in the inertial frame (zero rates:
  *              at rest in the inertial frame, whatever the run's frame); theta from the downward
  *              vertical, phi the azimuth from x; in 2D theta is signed in the x-z plane
  *              (x = l sin theta) and phi, phi_dot are not allowed;
  *            - hanging = true: straight down, moving with the pivot (at rest in the inertial
- *              frame when the pivot is fixed).
+ *              frame when the pivot is fixed);
+ *            and, for the steady and the hanging start, perturb (default 0), seed (default 1):
+ *            each link direction turned by exactly perturb radians about a random axis
+ *            perpendicular to it (GSL's MT19937 seeded with seed), lengths kept.
  *   [run]    frame = inertial | rotating (default inertial; rotating needs dim = 3),
  *            method (default gauss2; see whirl_integrator_methods), dt > 0, t_end > 0 (both
  *            required), formulation = default | seed (default: default), omega (rate of the
@@ -28,7 +29,9 @@
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
  *            of every mass's position, path relative to the working directory; default none),
- *            trace_every (> 0, default every)
+ *            trace_every (> 0, default every), reference_mode (K >= 1: the deviation is
+ *            measured from the N-link steady shape of mode K at the [run] omega, 3D only;
+ *            default: from the start's unperturbed steady or hanging shape)
  *
  * Syntax (inih): "key = value" lines under "[section]" headers, comment lines start with ';' or
  * '#', " ;" starts an inline comment, an indented line continues the previous key's list.
@@ -76,6 +79,7 @@ typedef enum {
     WHIRL_KEY_OUTPUT_COLUMNS,
     WHIRL_KEY_OUTPUT_TRACE,
     WHIRL_KEY_OUTPUT_TRACE_EVERY,
+    WHIRL_KEY_OUTPUT_REFERENCE_MODE,
     WHIRL_SCENE_NKEYS
 } whirl_scene_key;
 
@@ -114,8 +118,8 @@ typedef struct whirl_scene {
     whirl_start_kind start;
     double start_omega;    /* STEADY: rate of the steady shape, > 0 */
     int mode;              /* STEADY: node count, 1..WHIRL_MODE_MAX */
-    double perturb;        /* STEADY: angle each link direction is turned by [rad], >= 0 */
-    unsigned long seed;    /* STEADY: seed of the random turns; default 1 */
+    double perturb;        /* STEADY, HANGING: angle each link direction is turned by [rad] */
+    unsigned long seed;    /* STEADY, HANGING: seed of the random turns; default 1 */
     double *theta;         /* ANGLES: N angles from the downward vertical [rad]; else NULL */
     double *phi;           /* ANGLES: N azimuths from x [rad] (0 in 2D); else NULL */
     double *theta_dot;     /* ANGLES: N rates [1/T], default 0; else NULL */
@@ -144,6 +148,8 @@ typedef struct whirl_scene {
     int want[WHIRL_NCOLUMNS];      /* want[c] = 1 if column c is written */
     char *trace;                   /* trace file or NULL */
     double trace_every;            /* [T] > 0; default every */
+    int reference_mode;            /* K >= 1: deviation from the mode-K shape at omega; 0: from
+                                      the start's shape (default) */
 
     /* where each key came from: its line (> 0), -1 for an override, 0 if absent (default) */
     int line[WHIRL_SCENE_NKEYS];

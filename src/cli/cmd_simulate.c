@@ -10,10 +10,10 @@
  *    frame and 0 in the inertial one (the rigid rotation at omega_s);
  *  - angles: link unit vectors u_i = (sin th cos ph, sin th sin ph, -cos th) (2D: (sin th, 0,
  *    -cos th)), x_i = sum_{k<=i} l_k u_k, velocities p0' + sum l_k du_k/dt;
- *  - hanging: u_i = -z, velocity p0'.
+ *  - hanging: u_i = -z, velocity p0', its link vectors turned by perturb as for the steady start.
  * Output rows at t = k every and at t_end; positions in the inertial frame; energy, jacobi, lz
  * and constraint from whirl_dyn_diagnose; deviation = whirl_deviation from the unperturbed
- * steady (or hanging) shape. Fixed steps are taken one call at a time, so that the stop
+ * steady (or hanging) shape, or from the mode-K shape at omega with [output] reference_mode. Fixed steps are taken one call at a time, so that the stop
  * condition and Ctrl-C are checked after every step; adaptive runs check at the output times.
  * Exit status: 0 (also when the stop condition ends the run, with a note on stderr); 1 on bad
  * input (nothing written) or a failed run (the rows so far kept); 130 after Ctrl-C (rows kept). */
@@ -97,47 +97,45 @@ static void turn_randomly(double *d, double p, gsl_rng *rng)
         d[k] = len * (c * u[k] + s * (cos(psi) * e1[k] + sin(psi) * e2[k]));
 }
 
-/* The steady start: x (relative to the pivot), the reference shape and the spin rate. */
-static int steady_start(run *r, double *spin)
+/* The link vectors d (3 per link) of the N-link steady shape of mode k at omega, in the x-z
+ * plane; key names the scene key to blame if there is none. 0, or 1 after an error. */
+static int mode_links(run *r, double omega, int mode, whirl_scene_key key, double *d)
 {
-    const whirl_scene *s = &r->scene;
     const size_t n = r->n;
     whirl_shape_info info;
     char msg[600];
-    if (whirl_nlink_solve(r->chain, s->start_omega, s->mode, 0, &info) != GSL_SUCCESS) {
+    if (whirl_nlink_solve(r->chain, omega, mode, 0, &info) != GSL_SUCCESS) {
         snprintf(msg, sizeof msg, "no steady shape: %s", whirl_last_error());
-        return key_error(r, WHIRL_KEY_START_MODE, msg);
+        return key_error(r, key, msg);
     }
-    double *rr = malloc((n + 1) * sizeof *rr), *zz = malloc((n + 1) * sizeof *zz);
-    double *tension = malloc((n + 1) * sizeof *tension);
-    int status = rr && zz && tension ? GSL_SUCCESS : GSL_ENOMEM;
+    double *rr = malloc(3 * (n + 1) * sizeof *rr), *zz = rr + n + 1, *tension = zz + n + 1;
+    int status = rr ? whirl_nlink_positions(r->chain, omega, info.tip_r, rr, zz, tension)
+                    : GSL_ENOMEM;
     if (status == GSL_SUCCESS)
-        status = whirl_nlink_positions(r->chain, s->start_omega, info.tip_r, rr, zz, tension);
-    if (status == GSL_SUCCESS)
-        for (size_t i = 0; i < n; i++) { /* link vectors in the x-z plane */
-            r->x[3 * i] = rr[i + 1] - rr[i];
-            r->x[3 * i + 1] = 0;
-            r->x[3 * i + 2] = zz[i + 1] - zz[i];
+        for (size_t i = 0; i < n; i++) {
+            d[3 * i] = rr[i + 1] - rr[i];
+            d[3 * i + 1] = 0;
+            d[3 * i + 2] = zz[i + 1] - zz[i];
         }
     free(rr);
-    free(zz);
-    free(tension);
     if (status != GSL_SUCCESS) {
         snprintf(msg, sizeof msg, "steady shape: %s",
                  status == GSL_ENOMEM ? "out of memory" : whirl_last_error());
-        return key_error(r, WHIRL_KEY_START_MODE, msg);
+        return key_error(r, key, msg);
     }
-    memcpy(r->ref, r->x, 3 * n * sizeof *r->x);
-    accumulate(n, r->ref);
-    if (s->perturb > 0) {
-        gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-        if (rng == NULL) return cli_error(r->cmd, "out of memory");
-        gsl_rng_set(rng, s->seed);
-        for (size_t i = 0; i < n; i++) turn_randomly(r->x + 3 * i, s->perturb, rng);
-        gsl_rng_free(rng);
-    }
-    accumulate(n, r->x);
-    *spin = s->start_omega;
+    return 0;
+}
+
+/* Turns every link vector d_i of x by [start] perturb at random (seeded). 0, or 1 (error). */
+static int perturb_links(run *r)
+{
+    const whirl_scene *s = &r->scene;
+    if (!(s->perturb > 0)) return 0;
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    if (rng == NULL) return cli_error(r->cmd, "out of memory");
+    gsl_rng_set(rng, s->seed);
+    for (size_t i = 0; i < r->n; i++) turn_randomly(r->x + 3 * i, s->perturb, rng);
+    gsl_rng_free(rng);
     return 0;
 }
 
@@ -169,21 +167,28 @@ static int start_state(run *r)
     double p0[3], pv0[3], spin = 0;
     pivot_start(&r->model, p0, pv0);
     memset(r->v, 0, 3 * n * sizeof *r->v);
-    switch (s->start) {
-    case WHIRL_START_STEADY:
-        if (steady_start(r, &spin) != 0) return 1;
-        break;
-    case WHIRL_START_ANGLES:
+    if (s->start == WHIRL_START_ANGLES) {
         angle_start(r);
-        break;
-    case WHIRL_START_HANGING:
-        for (size_t i = 0; i < n; i++) {
-            r->x[3 * i] = r->x[3 * i + 1] = 0;
-            r->x[3 * i + 2] = -s->length[i];
+    } else { /* link vectors of the steady or the hanging shape, the reference, the turns */
+        if (s->start == WHIRL_START_STEADY) {
+            if (mode_links(r, s->start_omega, s->mode, WHIRL_KEY_START_MODE, r->x) != 0) return 1;
+            spin = s->start_omega;
+        } else {
+            for (size_t i = 0; i < n; i++) {
+                r->x[3 * i] = r->x[3 * i + 1] = 0;
+                r->x[3 * i + 2] = -s->length[i];
+            }
         }
-        accumulate(n, r->x);
         memcpy(r->ref, r->x, 3 * n * sizeof *r->x);
-        break;
+        accumulate(n, r->ref);
+        if (perturb_links(r) != 0) return 1;
+        accumulate(n, r->x);
+    }
+    if (s->reference_mode > 0) {
+        if (mode_links(r, s->omega, s->reference_mode, WHIRL_KEY_OUTPUT_REFERENCE_MODE,
+                       r->ref) != 0)
+            return 1;
+        accumulate(n, r->ref);
     }
     /* the rigid rotation at spin seen from the run's frame, plus the pivot's motion */
     const double w = spin - (r->model.frame == WHIRL_FRAME_ROTATING ? r->model.omega : 0);
@@ -193,7 +198,7 @@ static int start_state(run *r)
         v[1] += pv0[1] + w * x[0];
         v[2] += pv0[2];
         for (int k = 0; k < 3; k++) x[k] += p0[k];
-        if (s->start != WHIRL_START_ANGLES)
+        if (s->start != WHIRL_START_ANGLES || s->reference_mode > 0)
             for (int k = 0; k < 3; k++) r->ref[3 * i + k] += p0[k];
     }
     if (whirl_dyn_set_state(r->dyn, 0, r->x, r->v, r->y) != GSL_SUCCESS)
