@@ -7,19 +7,45 @@
  * horizontal load per unit mass q = H / (sigma + m), T = (sigma + m) sqrt(1 + q^2) and
  *     dr/dsigma = -q / sqrt(1 + q^2),  dz/dsigma = 1 / sqrt(1 + q^2),
  *     dq/dsigma = (omega^2 r - q) / (sigma + m),     r(0) = a, q(0) = omega^2 a, z(0) = 0.
- * Integrated in the scaled variables R = r / a, Q = q / (omega^2 a) (order one for every a),
- *     R' = -omega^2 Q / sqrt(1 + b^2 Q^2), Q' = (R - Q) / (sigma + m), z' = 1 / sqrt(1 + b^2 Q^2),
- * b = omega^2 a, by GSL's rk8pd (Prince & Dormand 1981, J. Comp. Appl. Math. 7:67) with
- * tolerance 1e-13. For m = 0 the free end is a regular singular point (0/0 in Q'); the
- * integration starts at sigma_0 = 1e-4 / (1 + omega^2) from the Taylor series there, whose
- * coefficients follow from sigma q' + q = omega^2 r, i.e. q_n = omega^2 r_n / (n + 1), and
- * (n + 1) r_{n+1} = [f(q)]_n, (n + 1) z_{n+1} = [g(q)]_n, f = -q (1+q^2)^(-1/2),
- * g = (1+q^2)^(-1/2) (to order sigma^4; the remainder is ~ (omega^2 sigma_0)^5 ~ 1e-20).
- * Shooting: the pivot on the axis, r(1; a) = 0, see steady_shoot.c.
+ * In the scaled variables R = r / a, Q = q / (omega^2 a) (order one for every a), with
+ * b = omega^2 a and S = sqrt(1 + b^2 Q^2),
+ *     R' = -omega^2 Q / S,  Q' = (R - Q) / (sigma + m),  z' = 1 / S,  R(0) = Q(0) = 1.
  *
- * Linear critical rates: (T r')' + omega^2 r = 0 with T = sigma + m. With x = 2 omega
- * sqrt(sigma + m) this is Bessel's equation of order 0, r = A J0(x) + B Y0(x). The free end
- * (x0 = 2 omega sqrt(m)) balances the tip mass, T r' = -m omega^2 r, i.e.
+ * Linear part split off. Near a critical rate the pivot's radius R(1) is a small difference
+ * (the linear part, ~ omega - omega_k, minus a nonlinear part ~ b^2): integrated whole, its
+ * absolute error ~ tol would cost tip_r about tol / (omega / omega_k - 1) relative. So
+ * R = R0 + beta D, Q = Q0 + beta E with beta = b^2 / (1 + b^2), where (R0, Q0) is the linear
+ * (b = 0) solution with the same start, and
+ *     R0' = -omega^2 Q0,  Q0' = (R0 - Q0) / (sigma + m),
+ *     D' = -omega^2 (E + F),  E' = (D - E) / (sigma + m),
+ *     F = (Q / S - Q) / beta = -(1 + b^2) Q^3 / (S (1 + S))   (no cancellation),
+ * D(0) = E(0) = 0; (D, E) are order one for every b, so their error ~ tol enters R(1) times beta.
+ * The residual is R(1) = R0(1) + beta D(1), with the linear part R0(1) (and Q0(1)) computed
+ * once per rate to ~1e-18 by the Taylor-series method in long double: around sigma_c with
+ * t = sigma_c + m, (n + 1) R0_{n+1} = -omega^2 Q0_n and t (n + 1) Q0_{n+1} = R0_n - (n + 1) Q0_n
+ * (t = 0, the free end without tip mass: Q0_n = R0_n / (n + 1)), each step as long as the last
+ * two terms stay below 1e-21. (The closed form R0 = A J0(x) + B Y0(x), see below, evaluated in
+ * double loses up to 2e-13 with a heavy tip, where |A|, |B| reach ~1e3 and the phases of J0, Y0
+ * carry the roundings of x: 3e-10 in tip_r at 1e-6 above omega_k for m = 3.7.)
+ * (R0, Q0) are also integrated alongside by the ODE solver, as Q in F needs them (their error
+ * enters D times beta).
+ * The split is used only for b <= 1: beyond, it gains nothing (beta > 1/2) and costs steps, as
+ * the linear solution oscillates where the shape does not (right-hand sides per solve, mode 1:
+ * 36198 split against 12652 whole at omega = 10, 92332 against 25730 at omega = 30), so there
+ * the whole state (R, Q, z) is integrated, kept in the slots of (D, E, z) with beta = 1.
+ * The ODE is integrated by GSL's rk8pd (Prince & Dormand 1981, J. Comp. Appl. Math. 7:67) with
+ * tolerance 1e-13 on the state.
+ * For m = 0 the free end is a regular singular point (0/0 in Q'): the integration starts at
+ * sigma_0 = 1e-4 / (1 + omega^2) from the Taylor series there (to order sigma^4; remainder
+ * ~ (omega^2 sigma_0)^5 ~ 1e-20): sigma Q0' + Q0 = R0 gives Q0_n = R0_n / (n + 1) and
+ * R0_n = (-omega^2)^n / (n!)^2 (the J0 series); likewise E_n = D_n / (n + 1),
+ * (n + 1) D_{n+1} = -omega^2 (E_n + F_n), (n + 1) z_{n+1} = [1/S]_n, with F_n, [1/S]_n by
+ * power-series arithmetic on Q = Q0 + beta E (whole: (n + 1) R_{n+1} = -omega^2 [Q / S]_n).
+ * Shooting: the pivot on the axis, R(1; a) = 0, see steady_shoot.c.
+ *
+ * Linear critical rates, where R0(1) = 0: (T r')' + omega^2 r = 0 with T = sigma + m. With
+ * x = 2 omega sqrt(sigma + m) this is Bessel's equation of order 0, r = A J0(x) + B Y0(x). The
+ * free end (x0 = 2 omega sqrt(m)) balances the tip mass, T r' = -m omega^2 r, i.e.
  * A (J1(x0) - x0/2 J0(x0)) + B (Y1(x0) - x0/2 Y0(x0)) = 0; the pivot (x1 = 2 omega sqrt(1 + m))
  * is on the axis, A J0(x1) + B Y0(x1) = 0. The critical rates are the roots of the determinant;
  * with m = 0, B = 0 and omega_k = j_{0,k} / 2.
@@ -37,33 +63,116 @@
 #include "steady_internal.h"
 
 #define START_SIGMA 1e-4  /* sigma_0 (1 + omega^2) of the series start, tip mass 0 */
+#define SERIES_TERMS 5    /* Taylor coefficients of sigma^0 .. sigma^4 at the free end */
 #define STEP_MAX 100000   /* ODE steps per shot */
 #define REFINE_MAX 100    /* iterations locating a node, an extremum or a critical rate */
+#define SPLIT_B_MAX 1     /* the linear part is split off for b = omega^2 a <= this */
+#define LINEAR_TERMS 30   /* Taylor terms per step of the linear solution (long double) */
+#define LINEAR_TOL 1e-21L /* the bound on the last two terms of each step */
+
+/* The state: (D, E) (split: R = R0 + beta D, Q = Q0 + beta E; whole: R = D, Q = E), the height
+ * z, then (R0, Q0), integrated only when split. */
+enum { Y_D, Y_E, Y_Z, Y_R0, Y_Q0, N_STATE };
+enum { N_WHOLE = Y_R0 };                 /* the components of the whole formulation */
+enum { SHAPE_R = Y_D, SHAPE_Q = Y_E };   /* which of R, Q shape_value() returns */
 
 typedef struct continuum_params {
     double tip_mass;
-    double tol; /* ODE tolerance, absolute and relative on (R, Q, z) */
+    double tol; /* ODE tolerance, absolute and relative on the state */
 } continuum_params;
 
 typedef struct continuum_ws {
     continuum_params p;
-    double omega, a; /* the current shot */
-    gsl_odeiv2_system sys;
-    gsl_odeiv2_step *step;
-    gsl_odeiv2_control *control;
-    gsl_odeiv2_evolve *evolve;
-    gsl_odeiv2_driver *driver;   /* short integrations when locating nodes and extrema */
+    double omega, w2;          /* the rate and omega^2 */
+    double r0_pivot, q0_pivot; /* R0(1), Q0(1) */
+    double a, b2;              /* the current shot: tip radius, b^2 = (omega^2 a)^2 */
+    int split;                 /* b <= SPLIT_B_MAX: the linear part split off */
+    double beta;               /* split: b^2 / (1 + b^2); whole: 1 */
+    struct continuum_ode {     /* the integrators of the whole [0] and the split [1] state */
+        gsl_odeiv2_system sys;
+        gsl_odeiv2_step *step;
+        gsl_odeiv2_control *control;
+        gsl_odeiv2_evolve *evolve;
+        gsl_odeiv2_driver *driver; /* short integrations when locating nodes and extrema */
+    } ode[2];
 } continuum_ws;
 
-/* The right-hand side in the scaled variables y = (R, Q, z). */
-static int rhs(double sigma, const double y[], double dy[], void *params)
+/* The linear solution at the pivot, R0(1) and Q0(1), by the Taylor-series method in long
+ * double from the free end (see the header comment). */
+static void linear_pivot(double omega, double m, double *r0_pivot, double *q0_pivot)
+{
+    const long double w2 = (long double)omega * omega;
+    long double sigma = 0, r0 = 1, q0 = 1;
+    while (sigma < 1) {
+        long double r[LINEAR_TERMS], q[LINEAR_TERMS], t = sigma + m;
+        r[0] = r0, q[0] = q0;
+        for (int n = 1; n < LINEAR_TERMS; n++) {
+            r[n] = -w2 * q[n - 1] / n;
+            q[n] = t > 0 ? (r[n - 1] - n * q[n - 1]) / (t * n) : r[n] / (n + 1);
+        }
+        /* the step: the last two terms below LINEAR_TOL (its length needs no long double) */
+        long double h = 1 - sigma;
+        for (int n = LINEAR_TERMS - 2; n < LINEAR_TERMS; n++) {
+            long double c = fmaxl(fabsl(r[n]), fabsl(q[n]));
+            if (c > 0) h = fminl(h, pow((double)(LINEAR_TOL / c), 1.0 / n));
+        }
+        r0 = 0, q0 = 0;
+        for (int n = LINEAR_TERMS - 1; n >= 0; n--) {
+            r0 = r0 * h + r[n];
+            q0 = q0 * h + q[n];
+        }
+        sigma = h == 1 - sigma ? 1 : sigma + h;
+    }
+    *r0_pivot = (double)r0;
+    *q0_pivot = (double)q0;
+}
+
+/* The rate of the following shots: omega^2 and the linear solution at the pivot. */
+static void set_rate(continuum_ws *w, double omega)
+{
+    w->omega = omega;
+    w->w2 = omega * omega;
+    linear_pivot(omega, w->p.tip_mass, &w->r0_pivot, &w->q0_pivot);
+}
+
+/* The tip radius of the following shots, and the formulation. */
+static void set_tip_radius(continuum_ws *w, double a)
+{
+    double b = w->w2 * a;
+    w->a = a;
+    w->b2 = b * b;
+    w->split = b <= SPLIT_B_MAX;
+    w->beta = w->split ? w->b2 / (1 + w->b2) : 1;
+}
+
+/* R (c = SHAPE_R) or Q (c = SHAPE_Q) from the state y, or their derivatives from y'. */
+static double shape_value(const continuum_ws *w, int c, const double y[])
+{
+    return w->split ? y[c + (Y_R0 - Y_D)] + w->beta * y[c] : y[c];
+}
+
+/* The right-hand sides (see the header comment): the whole state (R, Q, z) ... */
+static int rhs_whole(double sigma, const double y[], double dy[], void *params)
 {
     const continuum_ws *w = params;
-    double w2 = w->omega * w->omega, b = w2 * w->a;
-    double inv = 1 / sqrt(1 + b * b * y[1] * y[1]);
-    dy[0] = -w2 * y[1] * inv;
-    dy[1] = (y[0] - y[1]) / (sigma + w->p.tip_mass);
-    dy[2] = inv;
+    double q = y[Y_E], inv_s = 1 / sqrt(1 + w->b2 * q * q);
+    dy[Y_D] = -w->w2 * q * inv_s;
+    dy[Y_E] = (y[Y_D] - q) / (sigma + w->p.tip_mass);
+    dy[Y_Z] = inv_s;
+    return GSL_SUCCESS;
+}
+
+/* ... and the split one (D, E, z, R0, Q0). */
+static int rhs_split(double sigma, const double y[], double dy[], void *params)
+{
+    const continuum_ws *w = params;
+    double t = sigma + w->p.tip_mass;
+    double q = y[Y_Q0] + w->beta * y[Y_E], s = sqrt(1 + w->b2 * q * q), inv_s = 1 / s;
+    dy[Y_D] = -w->w2 * (y[Y_E] - (1 + w->b2) * q * q * q * inv_s / (1 + s));
+    dy[Y_E] = (y[Y_D] - y[Y_E]) / t;
+    dy[Y_Z] = inv_s;
+    dy[Y_R0] = -w->w2 * y[Y_Q0];
+    dy[Y_Q0] = (y[Y_R0] - y[Y_Q0]) / t;
     return GSL_SUCCESS;
 }
 
@@ -71,10 +180,13 @@ static void continuum_ws_free(void *ws)
 {
     continuum_ws *w = ws;
     if (w == NULL) return;
-    if (w->step) gsl_odeiv2_step_free(w->step);
-    if (w->control) gsl_odeiv2_control_free(w->control);
-    if (w->evolve) gsl_odeiv2_evolve_free(w->evolve);
-    if (w->driver) gsl_odeiv2_driver_free(w->driver);
+    for (int i = 0; i < 2; i++) {
+        struct continuum_ode *o = &w->ode[i];
+        if (o->step) gsl_odeiv2_step_free(o->step);
+        if (o->control) gsl_odeiv2_control_free(o->control);
+        if (o->evolve) gsl_odeiv2_evolve_free(o->evolve);
+        if (o->driver) gsl_odeiv2_driver_free(o->driver);
+    }
     free(w);
 }
 
@@ -83,13 +195,17 @@ static void *continuum_ws_alloc(const void *params)
     continuum_ws *w = calloc(1, sizeof *w);
     if (w == NULL) goto fail;
     w->p = *(const continuum_params *)params;
-    w->sys = (gsl_odeiv2_system){rhs, NULL, 3, w};
-    w->step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, 3);
-    w->control = gsl_odeiv2_control_y_new(w->p.tol, w->p.tol);
-    w->evolve = gsl_odeiv2_evolve_alloc(3);
-    w->driver = gsl_odeiv2_driver_alloc_y_new(&w->sys, gsl_odeiv2_step_rk8pd, 1e-6, w->p.tol,
-                                              w->p.tol);
-    if (!(w->step && w->control && w->evolve && w->driver)) goto fail;
+    for (int i = 0; i < 2; i++) {
+        struct continuum_ode *o = &w->ode[i];
+        size_t dim = i ? N_STATE : N_WHOLE;
+        o->sys = (gsl_odeiv2_system){i ? rhs_split : rhs_whole, NULL, dim, w};
+        o->step = gsl_odeiv2_step_alloc(gsl_odeiv2_step_rk8pd, dim);
+        o->control = gsl_odeiv2_control_y_new(w->p.tol, w->p.tol);
+        o->evolve = gsl_odeiv2_evolve_alloc(dim);
+        o->driver = gsl_odeiv2_driver_alloc_y_new(&o->sys, gsl_odeiv2_step_rk8pd, 1e-6, w->p.tol,
+                                                  w->p.tol);
+        if (!(o->step && o->control && o->evolve && o->driver)) goto fail;
+    }
     return w;
 fail:
     continuum_ws_free(w);
@@ -97,44 +213,101 @@ fail:
     return NULL;
 }
 
-/* The start of the integration: sigma and y there (the tip, or the series point for m = 0). */
-static double start_state(const continuum_ws *w, double y[3])
+/* Truncated power series of n terms: c = x y, c = x / y (y[0] != 0), c = sqrt(x) (x[0] > 0). */
+static void series_mul(const double *x, const double *y, int n, double *c)
 {
-    double w2 = w->omega * w->omega, a = w->a;
-    if (w->p.tip_mass > 0) {
-        y[0] = 1, y[1] = 1, y[2] = 0;
-        return 0;
+    for (int k = 0; k < n; k++) {
+        c[k] = 0;
+        for (int j = 0; j <= k; j++) c[k] += x[j] * y[k - j];
     }
-    /* Taylor coefficients r_n, q_n, z_n of the unscaled r, q, z at sigma = 0 */
-    double r[5], q[5], z[5];
-    r[0] = a, q[0] = w2 * a, z[0] = 0;
-    double q0 = q[0], p = 1 + q0 * q0, sp = sqrt(p);
-    double f0 = -q0 / sp, f1 = -1 / (p * sp), f2 = 3 * q0 / (p * p * sp),
-           f3 = 3 / (p * p * sp) - 15 * q0 * q0 / (p * p * p * sp);
-    double g0 = 1 / sp, g1 = -q0 / (p * sp), g2 = (2 * q0 * q0 - 1) / (p * p * sp),
-           g3 = 4 * q0 / (p * p * sp) - 5 * q0 * (2 * q0 * q0 - 1) / (p * p * p * sp);
-    r[1] = f0, z[1] = g0, q[1] = w2 * r[1] / 2;
-    r[2] = f1 * q[1] / 2, z[2] = g1 * q[1] / 2, q[2] = w2 * r[2] / 3;
-    r[3] = (f1 * q[2] + f2 * q[1] * q[1] / 2) / 3;
-    z[3] = (g1 * q[2] + g2 * q[1] * q[1] / 2) / 3;
-    q[3] = w2 * r[3] / 4;
-    r[4] = (f1 * q[3] + f2 * q[1] * q[2] + f3 * q[1] * q[1] * q[1] / 6) / 4;
-    z[4] = (g1 * q[3] + g2 * q[1] * q[2] + g3 * q[1] * q[1] * q[1] / 6) / 4;
-    q[4] = w2 * r[4] / 5;
-    double s = START_SIGMA / (1 + w2), rs = 0, qs = 0, zs = 0;
-    for (int n = 4; n >= 0; n--) {
-        rs = rs * s + r[n];
-        qs = qs * s + q[n];
-        zs = zs * s + z[n];
-    }
-    y[0] = rs / a, y[1] = qs / (w2 * a), y[2] = zs;
-    return s;
 }
 
+static void series_div(const double *x, const double *y, int n, double *c)
+{
+    for (int k = 0; k < n; k++) {
+        double t = x[k];
+        for (int j = 0; j < k; j++) t -= c[j] * y[k - j];
+        c[k] = t / y[0];
+    }
+}
+
+static void series_sqrt(const double *x, int n, double *c)
+{
+    c[0] = sqrt(x[0]);
+    for (int k = 1; k < n; k++) {
+        double t = x[k];
+        for (int j = 1; j < k; j++) t -= c[j] * c[k - j];
+        c[k] = t / (2 * c[0]);
+    }
+}
+
+/* The first n Taylor coefficients of 1/S and of g = D' / (-omega^2) (split: E + F, whole:
+ * Q / S) from those of Q and E (see the header comment). */
+static void nonlinear_series(const continuum_ws *w, const double *q, const double *e, int n,
+                             double *g, double *inv_s)
+{
+    double q2[SERIES_TERMS], q3[SERIES_TERMS], u[SERIES_TERMS], s[SERIES_TERMS],
+           one_s[SERIES_TERMS], den[SERIES_TERMS], one[SERIES_TERMS];
+    series_mul(q, q, n, q2);
+    series_mul(q2, q, n, q3);
+    for (int k = 0; k < n; k++) {
+        u[k] = w->b2 * q2[k] + (k == 0);      /* S^2 = 1 + b^2 Q^2 */
+        q3[k] *= -(1 + w->b2);
+        one[k] = k == 0;
+    }
+    series_sqrt(u, n, s);
+    for (int k = 0; k < n; k++) one_s[k] = s[k] + (k == 0);
+    series_div(one, s, n, inv_s);
+    if (w->split) {
+        series_mul(s, one_s, n, den);
+        series_div(q3, den, n, g);
+        for (int k = 0; k < n; k++) g[k] += e[k];
+    } else {
+        series_mul(q, inv_s, n, g);
+    }
+}
+
+/* The state at the free end: R = Q = 1, z = 0. */
+static void tip_state(const continuum_ws *w, double y[N_STATE])
+{
+    y[Y_D] = y[Y_E] = !w->split;
+    y[Y_Z] = 0;
+    y[Y_R0] = y[Y_Q0] = 1;
+}
+
+/* The start of the integration: sigma and the state there (the tip, or the series point for
+ * m = 0). */
+static double start_state(const continuum_ws *w, double y[N_STATE])
+{
+    double tip[N_STATE];
+    tip_state(w, tip);
+    for (int i = 0; i < N_STATE; i++) y[i] = tip[i];
+    if (w->p.tip_mass > 0) return 0;
+    /* Taylor coefficients of the scaled state at sigma = 0 */
+    double c[N_STATE][SERIES_TERMS] = {{0}}, q[SERIES_TERMS], g[SERIES_TERMS],
+           inv_s[SERIES_TERMS];
+    for (int i = 0; i < N_STATE; i++) c[i][0] = tip[i];
+    for (int n = 0; n + 1 < SERIES_TERMS; n++) {
+        c[Y_R0][n + 1] = -w->w2 * c[Y_R0][n] / ((n + 1) * (n + 1));
+        c[Y_Q0][n + 1] = c[Y_R0][n + 1] / (n + 2);
+        for (int k = 0; k <= n; k++)
+            q[k] = w->split ? c[Y_Q0][k] + w->beta * c[Y_E][k] : c[Y_E][k];
+        nonlinear_series(w, q, c[Y_E], n + 1, g, inv_s);
+        c[Y_D][n + 1] = -w->w2 * g[n] / (n + 1);
+        c[Y_E][n + 1] = c[Y_D][n + 1] / (n + 2);
+        c[Y_Z][n + 1] = inv_s[n] / (n + 1);
+    }
+    double s = START_SIGMA / (1 + w->w2);
+    for (int i = 0; i < N_STATE; i++) {
+        y[i] = 0;
+        for (int n = SERIES_TERMS - 1; n >= 0; n--) y[i] = y[i] * s + c[i][n];
+    }
+    return s;
+}
 /* What one integration from the tip to the pivot records. */
 typedef struct continuum_run {
     int crossings;           /* sign changes of r at the steps below the pivot */
-    double y_pivot[3];       /* (R, Q, z) at sigma = 1 */
+    double r_pivot, q_pivot, z_pivot; /* R, Q, z at sigma = 1 */
     int locate;              /* also locate the nodes and the extrema: */
     int n_nodes;             /* nodes found, node_sigma[] increasing */
     double node_sigma[WHIRL_MODE_MAX];
@@ -142,37 +315,40 @@ typedef struct continuum_run {
 } continuum_run;
 
 /* y(sigma) integrated from (sigma_a, y_a) with first step h. */
-static int state_at(continuum_ws *w, double sigma_a, const double y_a[3], double h, double sigma,
-                    double y[3])
+static int state_at(continuum_ws *w, double sigma_a, const double y_a[N_STATE], double h,
+                    double sigma, double y[N_STATE])
 {
     double t = sigma_a;
-    for (int i = 0; i < 3; i++) y[i] = y_a[i];
+    for (int i = 0; i < N_STATE; i++) y[i] = y_a[i];
     if (sigma <= t) return GSL_SUCCESS;
-    gsl_odeiv2_driver_reset_hstart(w->driver, h);
-    return gsl_odeiv2_driver_apply(w->driver, &t, sigma, y);
+    gsl_odeiv2_driver *driver = w->ode[w->split].driver;
+    gsl_odeiv2_driver_reset_hstart(driver, h);
+    return gsl_odeiv2_driver_apply(driver, &t, sigma, y);
 }
 
-/* The zero of component c within the step [sigma_a, sigma_b] (y_a, y_b of opposite signs in
- * c), to tol in sigma, by Newton's method on y_c(sigma) with dy_c/dsigma from the right-hand
- * side, kept inside the shrinking bracket (bisection when a step leaves it); y receives the
- * state at the last point evaluated. */
-static int locate_zero(continuum_ws *w, int c, double sigma_a, const double y_a[3],
-                       double sigma_b, const double y_b[3], double tol, double *sigma,
-                       double y[3])
+/* The zero of v = R (c = SHAPE_R) or Q (c = SHAPE_Q) within the step [sigma_a, sigma_b] (v of
+ * opposite signs at y_a and y_b), to tol in sigma, by Newton's method on v(sigma) with
+ * dv/dsigma from the right-hand side, kept inside the shrinking bracket (bisection when a step
+ * leaves it); y receives the state at the last point evaluated. */
+static int locate_zero(continuum_ws *w, int c, double sigma_a, const double y_a[N_STATE],
+                       double sigma_b, const double y_b[N_STATE], double tol, double *sigma,
+                       double y[N_STATE])
 {
     double lo = sigma_a, hi = sigma_b, h = sigma_b - sigma_a;
-    double s = sigma_a + h * y_a[c] / (y_a[c] - y_b[c]); /* the secant's zero */
+    double v_a = shape_value(w, c, y_a), v_b = shape_value(w, c, y_b);
+    double s = sigma_a + h * v_a / (v_a - v_b); /* the secant's zero */
     for (int iter = 0; iter < REFINE_MAX; iter++) {
-        double dy[3];
+        double dy[N_STATE];
         int status = state_at(w, sigma_a, y_a, h, s, y);
         if (status != GSL_SUCCESS)
             return whirl_fail(status, "ODE integration failed locating a zero of the shape");
-        rhs(s, y, dy, w);
-        if ((y[c] > 0) == (y_a[c] > 0)) lo = s;
+        w->ode[w->split].sys.function(s, y, dy, w);
+        double v = shape_value(w, c, y), dv = shape_value(w, c, dy);
+        if ((v > 0) == (v_a > 0)) lo = s;
         else hi = s;
-        double next = dy[c] != 0 ? s - y[c] / dy[c] : 0.5 * (lo + hi);
+        double next = dv != 0 ? s - v / dv : 0.5 * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        if (fabs(next - s) <= tol || y[c] == 0) {
+        if (fabs(next - s) <= tol || v == 0) {
             *sigma = s;
             return GSL_SUCCESS;
         }
@@ -185,11 +361,12 @@ static int locate_zero(continuum_ws *w, int c, double sigma_a, const double y_a[
 /* Integrates the shape with tip radius w->a from the tip to the pivot. */
 static int integrate(continuum_ws *w, continuum_run *run)
 {
-    double y[3], y_prev[3];
+    double y[N_STATE], y_prev[N_STATE];
     double sigma = start_state(w, y);
     double h = START_SIGMA / (1 + w->omega * w->omega);
-    gsl_odeiv2_step_reset(w->step);
-    gsl_odeiv2_evolve_reset(w->evolve);
+    struct continuum_ode *o = &w->ode[w->split];
+    gsl_odeiv2_step_reset(o->step);
+    gsl_odeiv2_evolve_reset(o->evolve);
     run->crossings = 0;
     run->n_nodes = 0;
     run->max_abs_r = w->a;
@@ -198,30 +375,36 @@ static int integrate(continuum_ws *w, continuum_run *run)
             return whirl_fail(GSL_EMAXITER, "more than %d ODE steps (omega=%g, a=%g)", STEP_MAX,
                               w->omega, w->a);
         double sigma_prev = sigma;
-        for (int i = 0; i < 3; i++) y_prev[i] = y[i];
-        int status = gsl_odeiv2_evolve_apply(w->evolve, w->control, w->step, &w->sys, &sigma, 1,
+        for (int i = 0; i < N_STATE; i++) y_prev[i] = y[i];
+        int status = gsl_odeiv2_evolve_apply(o->evolve, o->control, o->step, &o->sys, &sigma, 1,
                                              &h, y);
         if (status != GSL_SUCCESS)
             return whirl_fail(status, "ODE integration failed at sigma=%g (omega=%g, a=%g)",
                               sigma, w->omega, w->a);
-        if (sigma < 1 && (y[0] > 0) != (y_prev[0] > 0)) {
+        if (sigma < 1 && (shape_value(w, SHAPE_R, y) > 0) !=
+                             (shape_value(w, SHAPE_R, y_prev) > 0)) {
             run->crossings++;
             if (run->locate && run->n_nodes < WHIRL_MODE_MAX) {
-                double s_node, y_node[3];
-                status = locate_zero(w, 0, sigma_prev, y_prev, sigma, y, 1e-15, &s_node, y_node);
+                double s_node, y_node[N_STATE];
+                status = locate_zero(w, SHAPE_R, sigma_prev, y_prev, sigma, y, 1e-15, &s_node,
+                                     y_node);
                 if (status != GSL_SUCCESS) return status;
                 run->node_sigma[run->n_nodes++] = s_node;
             }
         }
-        if (run->locate && (y[1] > 0) != (y_prev[1] > 0)) {
+        if (run->locate &&
+            (shape_value(w, SHAPE_Q, y) > 0) != (shape_value(w, SHAPE_Q, y_prev) > 0)) {
             /* an extremum of r where the horizontal load q vanishes */
-            double s_ext, y_ext[3];
-            status = locate_zero(w, 1, sigma_prev, y_prev, sigma, y, 1e-9, &s_ext, y_ext);
+            double s_ext, y_ext[N_STATE];
+            status = locate_zero(w, SHAPE_Q, sigma_prev, y_prev, sigma, y, 1e-9, &s_ext, y_ext);
             if (status != GSL_SUCCESS) return status;
-            run->max_abs_r = fmax(run->max_abs_r, w->a * fabs(y_ext[0]));
+            run->max_abs_r = fmax(run->max_abs_r, w->a * fabs(shape_value(w, SHAPE_R, y_ext)));
         }
     }
-    for (int i = 0; i < 3; i++) run->y_pivot[i] = y[i];
+    /* split: the linear part at the pivot in closed form, R(1) to ~1e-16 + beta tol */
+    run->r_pivot = w->split ? w->r0_pivot + w->beta * y[Y_D] : y[Y_D];
+    run->q_pivot = w->split ? w->q0_pivot + w->beta * y[Y_E] : y[Y_E];
+    run->z_pivot = y[Y_Z];
     return GSL_SUCCESS;
 }
 
@@ -229,9 +412,9 @@ static int continuum_shot(void *ws, double a, double *residual, int *crossings)
 {
     continuum_ws *w = ws;
     continuum_run run = {0};
-    w->a = a;
+    set_tip_radius(w, a);
     int status = integrate(w, &run);
-    *residual = run.y_pivot[0];
+    *residual = run.r_pivot;
     *crossings = run.crossings;
     return status;
 }
@@ -294,7 +477,7 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     continuum_ws *w = ws;
     int status = whirl_steady_check_args(omega, mode);
     if (status != GSL_SUCCESS) return status;
-    w->omega = omega;
+    set_rate(w, omega);
     double a;
     status = whirl_steady_shoot_root(continuum_shot, w, mode, 1, 0, tip_r_guess, &a);
     if (status == GSL_EDOM) {
@@ -306,18 +489,17 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     if (status != GSL_SUCCESS) return status;
     continuum_run run = {0};
     run.locate = 1;
-    w->a = a;
+    set_tip_radius(w, a);
     if ((status = integrate(w, &run)) != GSL_SUCCESS) return status;
     if (run.n_nodes != mode - 1)
         return whirl_fail(GSL_EFAILED, "mode %d at omega=%g: found %d axis crossings", mode,
                           omega, run.n_nodes);
-    double b = omega * omega * a;
     info->omega = omega;
     info->mode = mode;
     info->tip_r = a;
     info->max_r = run.max_abs_r;
-    info->top_tension = (1 + w->p.tip_mass) * sqrt(1 + b * b * run.y_pivot[1] * run.y_pivot[1]);
-    info->depth = run.y_pivot[2];
+    info->top_tension = (1 + w->p.tip_mass) * sqrt(1 + w->b2 * run.q_pivot * run.q_pivot);
+    info->depth = run.z_pivot;
     info->n_nodes = run.n_nodes;
     for (int j = 0; j < run.n_nodes; j++) info->node_s[j] = 1 - run.node_sigma[run.n_nodes - 1 - j];
     return GSL_SUCCESS;
@@ -365,31 +547,34 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
     continuum_params p = {tip_mass, WHIRL_CONTINUUM_TOL};
     continuum_ws *w = continuum_ws_alloc(&p);
     if (w == NULL) return GSL_ENOMEM;
-    w->omega = omega;
-    w->a = tip_r;
-    double y0[3], y[3];
-    double sigma0 = start_state(w, y0), b = omega * omega * tip_r;
+    set_rate(w, omega);
+    set_tip_radius(w, tip_r);
+    double y_tip[N_STATE], y0[N_STATE], y[N_STATE];
+    tip_state(w, y_tip);
+    double sigma0 = start_state(w, y0);
     double t = sigma0;
-    for (int i = 0; i < 3; i++) y[i] = y0[i];
-    gsl_odeiv2_driver_reset(w->driver);
+    for (int i = 0; i < N_STATE; i++) y[i] = y0[i];
+    gsl_odeiv2_driver *driver = w->ode[w->split].driver;
+    gsl_odeiv2_driver_reset(driver);
     /* from the free end (j = npts - 1, sigma = 0) up to the pivot (j = 0, sigma = 1) */
     for (size_t k = 0; k < npts && status == GSL_SUCCESS; k++) {
         size_t j = npts - 1 - k;
         double sigma = (double)k / (double)(npts - 1);
         if (k == npts - 1) sigma = 1;
-        double yj[3];
+        double yj[N_STATE];
         if (sigma <= sigma0) {
             /* within the series start: linear between the tip and sigma_0 (error ~ sigma_0^2) */
             double f = sigma0 > 0 ? sigma / sigma0 : 0;
-            yj[0] = 1 + f * (y0[0] - 1), yj[1] = 1 + f * (y0[1] - 1), yj[2] = f * y0[2];
+            for (int i = 0; i < N_STATE; i++) yj[i] = y_tip[i] + f * (y0[i] - y_tip[i]);
         } else {
-            status = gsl_odeiv2_driver_apply(w->driver, &t, sigma, y);
-            for (int i = 0; i < 3; i++) yj[i] = y[i];
+            status = gsl_odeiv2_driver_apply(driver, &t, sigma, y);
+            for (int i = 0; i < N_STATE; i++) yj[i] = y[i];
         }
+        double q = shape_value(w, SHAPE_Q, yj);
         s[j] = 1 - sigma;
-        r[j] = tip_r * yj[0];
-        z[j] = yj[2];
-        tension[j] = (sigma + tip_mass) * sqrt(1 + b * b * yj[1] * yj[1]);
+        r[j] = tip_r * shape_value(w, SHAPE_R, yj);
+        z[j] = yj[Y_Z];
+        tension[j] = (sigma + tip_mass) * sqrt(1 + w->b2 * q * q);
     }
     if (status != GSL_SUCCESS)
         status = whirl_fail(status, "ODE integration failed sampling the shape (omega=%g)", omega);

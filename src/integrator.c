@@ -1,7 +1,7 @@
 /* The integrators' common driver and the classical Runge-Kutta method.
  *
  * whirl_integrator_advance takes fixed steps t_k = t0 + k h (the last one ending exactly at t1)
- * or, with tol > 0, the adaptive steps of a GSL method, and projects the state onto the
+ * or, with tol > 0, the adaptive steps of rk8 or a GSL method, and projects the state onto the
  * constraints (whirl_dyn_project) after every step.
  * rk4: the classical 4-stage, order-4 explicit method (Kutta 1901; Hairer, Norsett, Wanner,
  * "Solving ODEs I", table II.1.2): k1 = f(t, y), k2 = f(t + h/2, y + h/2 k1),
@@ -70,16 +70,17 @@ static const integrator_method whirl_integrator_rk4 = {
 /* ---- registry ---- */
 
 static const integrator_method *const methods[] = {
-    &whirl_integrator_gauss2,    &whirl_integrator_gauss3,     &whirl_integrator_rk4,
-    &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp, &whirl_integrator_gsl_msbdf,
-    &whirl_integrator_gsl_rkf45, &whirl_integrator_gsl_rk4,
+    &whirl_integrator_gauss2,     &whirl_integrator_gauss3,    &whirl_integrator_rk4,
+    &whirl_integrator_rk8,        &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp,
+    &whirl_integrator_gsl_msbdf,  &whirl_integrator_gsl_rkf45, &whirl_integrator_gsl_rk4,
 };
 #define N_METHODS (sizeof methods / sizeof methods[0])
 
 const char *const *whirl_integrator_methods(void)
 {
-    static const char *const names[] = {"gauss2",     "gauss3",    "rk4",       "gsl-rk8pd",
-                                        "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4",
+    static const char *const names[] = {"gauss2",    "gauss3",     "rk4",
+                                        "rk8",       "gsl-rk8pd",  "gsl-rk4imp",
+                                        "gsl-msbdf", "gsl-rkf45",  "gsl-rk4",
                                         NULL};
     return names;
 }
@@ -91,7 +92,7 @@ whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
         if (strcmp(methods[k]->name, method) == 0) m = methods[k];
     if (m == NULL) {
         whirl_fail(GSL_EINVAL,
-                   "unknown integrator '%s' (known: gauss2 gauss3 rk4 gsl-rk8pd gsl-rk4imp "
+                   "unknown integrator '%s' (known: gauss2 gauss3 rk4 rk8 gsl-rk8pd gsl-rk4imp "
                    "gsl-msbdf gsl-rkf45 gsl-rk4)",
                    method != NULL ? method : "(null)");
         return NULL;

@@ -1,5 +1,5 @@
 /* Internal: the integrator object and the interface each method family implements
- * (integrator.c: the driver and rk4; integrator_gauss.c; integrator_gsl.c). */
+ * (integrator.c: the driver and rk4; integrator_gauss.c; integrator_rk8.c; integrator_gsl.c). */
 #ifndef WHIRL_INTEGRATOR_INTERNAL_H
 #define WHIRL_INTEGRATOR_INTERNAL_H
 
@@ -34,7 +34,8 @@ struct whirl_integrator {
     int has_last;
 };
 
-extern const integrator_method whirl_integrator_gauss2, whirl_integrator_gauss3;
+extern const integrator_method whirl_integrator_gauss2, whirl_integrator_gauss3,
+    whirl_integrator_rk8;
 extern const integrator_method whirl_integrator_gsl_rk8pd, whirl_integrator_gsl_rk4imp,
     whirl_integrator_gsl_msbdf, whirl_integrator_gsl_rkf45, whirl_integrator_gsl_rk4;
 

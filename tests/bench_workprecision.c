@@ -19,9 +19,10 @@
  * N = 10), on the Cartesian formulation at N = 100 and 1000. Their distance is the reference floor:
  * errors below 3 times it are not resolved and are left out of the equal-error comparison.
  * Runs: every method of whirl_integrator_methods() on the Cartesian formulation (fixed steps
- * h_max / 2^k for gauss2, gauss3, rk4, gsl-rk4; tolerances 10^-3 .. 10^-13 for the adaptive GSL
- * steppers), and the seed formulation with the seed's method gauss2 and with gsl-rk8pd (N <= 10:
- * at N = 100 one seed right-hand side costs 280 Cartesian ones and a run minutes).
+ * h_max / 2^k for gauss2, gauss3, rk4, gsl-rk4; tolerances 10^-3 .. 10^-13 for rk8 and the
+ * adaptive GSL steppers), and the seed formulation with the seed's method gauss2 and with
+ * gsl-rk8pd (N <= 10: at N = 100 one seed right-hand side costs 280 Cartesian ones and a run
+ * minutes).
  * A method is refined until a run takes longer than the scene's time cap (10-15 s; at N = 1000
  * 30 s per simulated period, so that the refinement reaches 1e-10), its error is below 1e-11 or
  * 3 times the floor or stalls, or it fails after a success. The program takes about 10 minutes
@@ -30,10 +31,10 @@
  * N <= 10, gsl-msbdf (dense LU of dim) only at N <= 100. Wall time: median of 5 (runs < 0.5 s),
  * 3 (< 3 s) or 1 repeats.
  * Equal error: for each method, log time interpolated linearly in log error between consecutive
- * runs that bracket the level; per level the best whirl method (gauss2, gauss3, rk4), the best GSL
- * stepper and the best seed-formulation run; where the seed formulation was not run (N > 10) its
- * time is extrapolated as the fastest Cartesian method's time times the measured cost ratio of
- * one right-hand side (printed next to the direct value at N = 2, 10 as a check). */
+ * runs that bracket the level; per level the best whirl method (gauss2, gauss3, rk4, rk8), the
+ * best GSL stepper and the best seed-formulation run; where the seed formulation was not run
+ * (N > 10) its time is extrapolated as the fastest Cartesian method's time times the measured
+ * cost ratio of one right-hand side (printed next to the direct value at N = 2, 10 as a check). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -75,6 +76,7 @@ static const method methods[] = {
     {"gauss2", "gauss2", WHIRL_FORMULATION_CARTESIAN, 0, 0, 0},
     {"gauss3", "gauss3", WHIRL_FORMULATION_CARTESIAN, 0, 0, 0},
     {"rk4", "rk4", WHIRL_FORMULATION_CARTESIAN, 0, 0, 0},
+    {"rk8", "rk8", WHIRL_FORMULATION_CARTESIAN, 1, 0, 0},
     {"gsl-rk8pd", "gsl-rk8pd", WHIRL_FORMULATION_CARTESIAN, 1, 0, 1},
     {"gsl-rkf45", "gsl-rkf45", WHIRL_FORMULATION_CARTESIAN, 1, 0, 1},
     {"gsl-rk4", "gsl-rk4", WHIRL_FORMULATION_CARTESIAN, 0, 0, 1},

@@ -8,6 +8,8 @@
  *   l = 1 - s_1 at the same omega (in its own units: rate omega sqrt(l), tip mass m / l);
  * - the N-link chain converges to it as N grows (order about 1); its critical rates too;
  * - the critical rates with a tip mass: the mode exists just above and not just below;
+ * - near-critical tip radii against a long-double Taylor-series integration of the unsplit
+ *   equations;
  * - modes up to 6, near-critical and high rates, tip masses, the sampled shape, the errors. */
 #include <math.h>
 #include <setjmp.h>
@@ -266,6 +268,100 @@ static void test_branch_equals_fresh(void **state)
     }
 }
 
+/* ---- reference for the near-critical tip radius ----
+ * The whole (not split) scaled equations of src/continuum.c, R' = -omega^2 Q / S,
+ * (sigma + m) Q' = R - Q, S = sqrt(1 + b^2 Q^2), R(0) = Q(0) = 1, integrated from the free end
+ * by the Taylor-series method in long double (64-bit mantissa): at each centre sigma_c the
+ * coefficients follow from (n + 1) R_{n+1} = -omega^2 [Q / S]_n and
+ * (sigma_c + m) (n + 1) Q_{n+1} + n Q_n = R_n - Q_n (for sigma_c + m = 0: (n + 1) Q_n = R_n, the
+ * regular singular free end needs no special start); the step is the largest for which the last
+ * two terms are below taylor_tol. Root of R(1; a) by the secant method in long double. With
+ * R(1) to ~1e-18, tip_r is good to ~1e-18 / (omega / omega_k - 1) relative. */
+#define TAYLOR_TERMS 30
+
+/* R(1) for the tip radius a, rate omega, tip mass m. */
+static long double reference_pivot_radius(long double omega, long double m, long double a,
+                                          long double taylor_tol)
+{
+    const long double w2 = omega * omega, b2 = w2 * a * w2 * a;
+    long double sigma = 0, r0 = 1, q0 = 1;
+    for (int steps = 0; sigma < 1; steps++) {
+        assert_true(steps < 100000);
+        long double r[TAYLOR_TERMS], q[TAYLOR_TERMS], s[TAYLOR_TERMS], p[TAYLOR_TERMS],
+            q2[TAYLOR_TERMS];
+        long double t = sigma + m;
+        r[0] = r0;
+        q[0] = q0;
+        for (int n = 0; n < TAYLOR_TERMS; n++) {
+            if (n > 0) {
+                r[n] = -w2 * p[n - 1] / n;
+                q[n] = t > 0 ? (r[n - 1] - n * q[n - 1]) / (t * n) : r[n] / (n + 1);
+            }
+            q2[n] = 0;
+            for (int j = 0; j <= n; j++) q2[n] += q[j] * q[n - j];
+            /* S^2 = 1 + b^2 Q^2, then P = Q / S */
+            long double u = b2 * q2[n] + (n == 0);
+            if (n == 0) s[0] = sqrtl(u);
+            else {
+                for (int j = 1; j < n; j++) u -= s[j] * s[n - j];
+                s[n] = u / (2 * s[0]);
+            }
+            long double v = q[n];
+            for (int j = 0; j < n; j++) v -= p[j] * s[n - j];
+            p[n] = v / s[0];
+        }
+        long double h = 1 - sigma;
+        for (int n = TAYLOR_TERMS - 2; n < TAYLOR_TERMS; n++) {
+            long double c = fmaxl(fabsl(r[n]), fabsl(q[n]));
+            if (c > 0) h = fminl(h, powl(taylor_tol / c, 1.0L / n));
+        }
+        if (sigma + h >= 1) h = 1 - sigma;
+        r0 = 0, q0 = 0;
+        for (int n = TAYLOR_TERMS - 1; n >= 0; n--) {
+            r0 = r0 * h + r[n];
+            q0 = q0 * h + q[n];
+        }
+        sigma = h == 1 - sigma ? 1 : sigma + h;
+    }
+    return r0;
+}
+
+/* The root of R(1; a) near a_guess. */
+static long double reference_tip_radius(double omega, double tip_mass, double a_guess,
+                                        long double taylor_tol)
+{
+    long double a0 = a_guess, a1 = a_guess * (1 + 1e-7L);
+    long double f0 = reference_pivot_radius(omega, tip_mass, a0, taylor_tol);
+    long double f1 = reference_pivot_radius(omega, tip_mass, a1, taylor_tol);
+    for (int iter = 0; iter < 30 && f1 != f0; iter++) {
+        long double a2 = a1 - f1 * (a1 - a0) / (f1 - f0);
+        a0 = a1, f0 = f1;
+        a1 = a2, f1 = reference_pivot_radius(omega, tip_mass, a1, taylor_tol);
+        if (fabsl(a1 - a0) <= 1e-19L * a1) break;
+    }
+    return a1;
+}
+
+/* Near a critical rate tip_r ~ sqrt(omega - omega_k) is ill-conditioned (d ln a / d ln omega =
+ * 1 / (2 eps)); at eps = omega / omega_k - 1 = 1e-6 it must still match the long-double
+ * reference (at the same double omega) to 1e-10, whose own Taylor truncation is checked. */
+static void test_near_critical_reference(void **state)
+{
+    (void)state;
+    for (size_t t = 0; t < N_TIP; t++)
+        for (int k = 1; k <= 6; k++) {
+            double omega_k, m = tip_masses[t];
+            assert_int_equal(whirl_continuum_critical(k, m, &omega_k), GSL_SUCCESS);
+            double omega = omega_k * (1 + 1e-6);
+            whirl_shape_info info;
+            assert_int_equal(whirl_continuum_solve(omega, k, m, 0, &info), GSL_SUCCESS);
+            long double ref = reference_tip_radius(omega, m, info.tip_r, 1e-22L);
+            long double finer = reference_tip_radius(omega, m, info.tip_r, 1e-25L);
+            assert_true(fabsl(finer / ref - 1) < 1e-12L);
+            assert_true(fabsl(info.tip_r / ref - 1) < 1e-10L);
+        }
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -296,6 +392,7 @@ int main(void)
         cmocka_unit_test(test_critical_with_tip_mass),
         cmocka_unit_test(test_sampled_shape),
         cmocka_unit_test(test_branch_equals_fresh),
+        cmocka_unit_test(test_near_critical_reference),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("continuum", tests, NULL, NULL);
