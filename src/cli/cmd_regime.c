@@ -392,22 +392,22 @@ static int thread_id(void)
 #endif
 }
 
-/* Runs the points todo[first..first+count-1] on the threads, packed results into buf. Returns 0,
+/* Runs the points pending[first..first+count-1] on the threads, packed results into buf. Returns 0,
  * or 1 if a workspace could not be had or a run returned an error status. */
-static int run_block(const regime_options *o, whirl_regime **ws, const long *todo, long count,
+static int run_block(const regime_options *o, whirl_regime **ws, const long *pending, long count,
                      double *buf)
 {
     int failed = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
     for (long j = 0; j < count; j++) {
         whirl_regime_params p = o->p;
-        grid_point(o, todo[j], &p.omega, &p.eps);
-        p.seed = o->p.seed + (unsigned long)todo[j];
+        grid_point(o, pending[j], &p.omega, &p.eps);
+        p.seed = o->p.seed + (unsigned long)pending[j];
         whirl_regime_result r;
         memset(&r, 0, sizeof r);
         const int ok = whirl_regime_run(ws[thread_id()], &p, &r) == GSL_SUCCESS;
         failed |= !ok;
-        pack(buf + j * RESULT_FIELDS, ok ? todo[j] : -1, &r);
+        pack(buf + j * RESULT_FIELDS, ok ? pending[j] : -1, &r);
     }
     return failed;
 }
@@ -464,11 +464,11 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
     const int threads = max_threads();
     const long block = all_max(mc, 4 * threads); /* points per rank and round */
     char *done = calloc((size_t)n_points, 1);
-    long *todo = malloc((size_t)n_points * sizeof *todo);
+    long *pending = malloc((size_t)n_points * sizeof *pending);
     long *mine = malloc((size_t)block * sizeof *mine);
     double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
     whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
-    int rc = done && todo && mine && buf && ws ? 0 : 1;
+    int rc = done && pending && mine && buf && ws ? 0 : 1;
     for (int k = 0; rc == 0 && k < threads; k++)
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
@@ -483,18 +483,18 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
 #ifdef WHIRL_MPI
     if (rc == 0 && mc->size > 1) MPI_Bcast(done, (int)n_points, MPI_CHAR, 0, MPI_COMM_WORLD);
 #endif
-    long n_todo = 0;
+    long n_pending = 0;
     for (long i = 0; rc == 0 && i < n_points; i++)
-        if (!done[i]) todo[n_todo++] = i;
-    const long already = n_points - n_todo;
+        if (!done[i]) pending[n_pending++] = i;
+    const long already = n_points - n_pending;
     const double start = wall_seconds();
     cli_catch_interrupts();
     long written = 0;
     int stop = 0;
-    for (long first = 0; rc == 0 && first < n_todo; first += block * mc->size) {
-        const long round = GSL_MIN(block * mc->size, n_todo - first);
+    for (long first = 0; rc == 0 && first < n_pending; first += block * mc->size) {
+        const long round = GSL_MIN(block * mc->size, n_pending - first);
         long count = 0;
-        for (long k = mc->rank; k < round; k += mc->size) mine[count++] = todo[first + k];
+        for (long k = mc->rank; k < round; k += mc->size) mine[count++] = pending[first + k];
         for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
         int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
         if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
@@ -536,7 +536,7 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
     free(ws);
     free(buf);
     free(mine);
-    free(todo);
+    free(pending);
     free(done);
     return rc;
 }
