@@ -162,15 +162,16 @@ static void bench_convergence(const char *dir)
                     bench_die("nlink solve");
                 double e[4] = {rel(d.tip_r, cont.tip_r), rel(d.top_tension, cont.top_tension),
                                rel(d.depth, cont.depth), rel(crit[k - 1], crit_cont)};
-                double order[4];
-                double ratio = s ? (double)sizes[s] / (double)sizes[s - 1] : 0;
-                for (int q = 0; q < 4; q++) order[q] = s ? log(prev[q] / e[q]) / log(ratio) : NAN;
-                fprintf(fp, "%g,%d,%zu,%.6e,%.6e,%.6e,%.6e,%.4f,%.4f,%.4f,%.4f\n", tip_masses[t],
-                        k, sizes[s], e[0], e[1], e[2], e[3], order[0], order[1], order[2],
-                        order[3]);
-                printf("    N=%4zu  tip_r %.3e (%5.2f)  top_tension %.3e (%5.2f)  depth %.3e "
-                       "(%5.2f)  omega_k %.3e (%5.2f)\n", sizes[s], e[0], order[0], e[1], order[1],
-                       e[2], order[2], e[3], order[3]);
+                /* observed order against the previous N (none for the first: left empty) */
+                char order[4][16] = {"", "", "", ""};
+                const double ratio = s ? (double)sizes[s] / (double)sizes[s - 1] : 0;
+                for (int q = 0; s && q < 4; q++)
+                    snprintf(order[q], sizeof order[q], "%.4f", log(prev[q] / e[q]) / log(ratio));
+                fprintf(fp, "%g,%d,%zu,%.6e,%.6e,%.6e,%.6e,%s,%s,%s,%s\n", tip_masses[t], k,
+                        sizes[s], e[0], e[1], e[2], e[3], order[0], order[1], order[2], order[3]);
+                printf("    N=%4zu  tip_r %.3e (%6.6s)  top_tension %.3e (%6.6s)  depth %.3e "
+                       "(%6.6s)  omega_k %.3e (%6.6s)\n", sizes[s], e[0], order[0], e[1],
+                       order[1], e[2], order[2], e[3], order[3]);
                 memcpy(prev, e, sizeof prev);
                 whirl_chain_free(c);
             }
