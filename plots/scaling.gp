@@ -5,7 +5,6 @@
 # usage: gnuplot -e "dir='out/bench'" plots/scaling.gp
 if (!exists("dir")) dir = "out/bench"
 set datafile separator ","
-set datafile missing "nan"
 set terminal png size 1200, 520
 set output dir . "/scaling.png"
 set multiplot layout 1, 2

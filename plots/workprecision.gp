@@ -4,7 +4,6 @@
 # usage: gnuplot -e "dir='out/bench'" plots/workprecision.gp
 if (!exists("dir")) dir = "out/bench"
 set datafile separator ","
-set datafile missing "nan"
 set terminal png size 900, 620
 set logscale xy
 set format x "10^{%L}"

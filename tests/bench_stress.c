@@ -185,7 +185,7 @@ static int long_run(FILE *csv)
     const double rel = running / fabs(g0.energy);
     const int finite = all_finite(y, 30);
     const int meets = status == GSL_SUCCESS && rel <= 1e-12;
-    fprintf(csv, "long_1e7_steps,gauss3,%g,0,%g,%d,%.3g,nan,1e-12,%.3g,%ld,%.3g,%s (growth "
+    fprintf(csv, "long_1e7_steps,gauss3,%g,0,%g,%d,%.3g,,1e-12,%.3g,%ld,%.3g,%s (growth "
                  "exponent %.2f)\n",
             h, t, status, rel, g.constraint, steps, secs, meets ? "meets bound" : "EXCEEDS BOUND",
             slope);

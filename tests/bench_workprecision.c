@@ -208,7 +208,7 @@ static void run_method(const scene *sc, const start *st, const method *m, const 
         whirl_integrator_stats s;
         double secs = run_once(sc, st, m, h, tol, xf, &s);
         if (secs < 0) {
-            fprintf(csv, "%s,%.6g,%.6g,nan,nan,0,%lu,%lu,failed\n", m->label, h, tol, s.steps,
+            fprintf(csv, "%s,%.6g,%.6g,,,0,%lu,%lu,failed\n", m->label, h, tol, s.steps,
                     s.rhs_evals);
             if (succeeded) break;
             continue;
@@ -337,9 +337,16 @@ static void run_scene(const scene *sc, const char *dir, FILE *summary, const cha
         }
         const int seed_direct = !isnan(best[2]);
         if (!seed_direct) best[2] = extrapolated, who[2] = extrapolated_from;
-        fprintf(summary, "%s,%zu,%.0e,%s,%.6g,%s,%.6g,%s,%.6g,%d,%.4g,%.4g\n", sc->name, n, e,
-                who[0], best[0], who[1], best[1], who[2], best[2], !seed_direct,
-                best[1] / best[0], best[2] / best[0]);
+        /* a level some family did not reach is left empty */
+        char cell[5][32];
+        const double values[5] = {best[0], best[1], best[2], best[1] / best[0],
+                                  best[2] / best[0]};
+        for (int q = 0; q < 5; q++) {
+            cell[q][0] = '\0';
+            if (isfinite(values[q])) snprintf(cell[q], sizeof cell[q], "%.6g", values[q]);
+        }
+        fprintf(summary, "%s,%zu,%.0e,%s,%s,%s,%s,%s,%s,%d,%s,%s\n", sc->name, n, e, who[0],
+                cell[0], who[1], cell[1], who[2], cell[2], !seed_direct, cell[3], cell[4]);
         printf("  error %.0e: best whirl %s %.3g s; best GSL %s %.3g s (ratio %.3g); seed %s%s "
                "%.3g s (ratio %.3g)\n",
                e, who[0], best[0], who[1], best[1], best[1] / best[0], who[2],

@@ -11,7 +11,7 @@ valid_csv() {
   awk -F, '/^#/ { next }
     !h { h = NF; ok = ($1 == "t"); next }
     { rows++; if (NF != h) ok = 0
-      for (i = 1; i <= NF; i++) if ($i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/ && $i != "nan") ok = 0 }
+      for (i = 1; i <= NF; i++) if ($i !~ /^-?[0-9.]+(e[-+]?[0-9]+)?$/) ok = 0 }
     END { exit !(ok && rows > 0) }' "$1"
 }
 # column FILE NAME: the values of column NAME, one a line.
