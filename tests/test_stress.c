@@ -250,23 +250,11 @@ static void test_roundoff_tolerance(void **unused)
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
     const whirl_model m = {.chain = c, .dim = 3};
     whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
-    double x[15], v[15], xr[15], vr[15], y[30];
-    double pos[3] = {0, 0, 0}, vel[3] = {0, 0, 0};
-    for (size_t i = 0; i < n; i++) {
-        const double th = 0.4 + 0.2 * (double)i, ph = 0.3 * (double)i, thd = 0.5, phd = 0.7;
-        const double u[3] = {sin(th) * cos(ph), sin(th) * sin(ph), -cos(th)};
-        const double et[3] = {cos(th) * cos(ph), cos(th) * sin(ph), sin(th)};
-        const double ep[3] = {-sin(ph), cos(ph), 0};
-        for (int k = 0; k < 3; k++) {
-            pos[k] += c->length[i] * u[k];
-            vel[k] += c->length[i] * (thd * et[k] + phd * sin(th) * ep[k]);
-            xr[3 * i + k] = x[3 * i + k] = pos[k];
-            vr[3 * i + k] = vel[k];
-        }
-    }
-    double xs[15], vs[15];
-    memcpy(xs, xr, sizeof xs);
-    memcpy(vs, vr, sizeof vs);
+    double x[15], v[15], xr[15], vr[15], y[30], xs[15], vs[15];
+    const double pivot[3] = {0, 0, 0};
+    bench_smooth_state(c, pivot, xs, vs);
+    memcpy(xr, xs, sizeof xr);
+    memcpy(vr, vs, sizeof vr);
     assert_int_equal(run(d, "gauss3", xr, vr, y, 2, 2.5e-3, 0), GSL_SUCCESS);
     const double tols[2] = {1e-15, 1e-16};
     for (int k = 0; k < 2; k++) {
