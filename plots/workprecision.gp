@@ -13,9 +13,9 @@ set xlabel "final position error max_i |x_i - x_{ref,i}| [L]"
 set ylabel "wall time [s]"
 set key outside right top noenhanced
 set grid
-methods = "gauss2 gauss3 rk4 gsl-rk8pd gsl-rkf45 gsl-rk4 gsl-msbdf gsl-rk4imp seed-gauss2 seed-gsl-rk8pd"
-dashes = "1 1 1 2 2 2 2 2 3 3"
-colors = "#1f77b4 #d62728 #2ca02c #ff7f0e #9467bd #8c564b #e377c2 #7f7f7f #000000 #17becf"
+methods = "gauss2 gauss3 rk4 rk8 gsl-rk8pd gsl-rkf45 gsl-rk4 gsl-msadams gsl-msbdf gsl-rk4imp seed-gauss2 seed-gsl-rk8pd"
+dashes = "1 1 1 1 2 2 2 2 2 2 3 3"
+colors = "#1f77b4 #d62728 #2ca02c #000080 #ff7f0e #9467bd #8c564b #bcbd22 #e377c2 #7f7f7f #000000 #17becf"
 do for [scene in "double_pendulum chain10 chain100 chain1000"] {
     csv = dir . "/workprecision_" . scene . ".csv"
     if (system(sprintf("test -f '%s' && echo 1 || echo 0", csv)) eq "1") {

@@ -72,16 +72,16 @@ static const integrator_method whirl_integrator_rk4 = {
 static const integrator_method *const methods[] = {
     &whirl_integrator_gauss2,     &whirl_integrator_gauss3,    &whirl_integrator_rk4,
     &whirl_integrator_rk8,        &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp,
-    &whirl_integrator_gsl_msbdf,  &whirl_integrator_gsl_rkf45, &whirl_integrator_gsl_rk4,
+    &whirl_integrator_gsl_msadams, &whirl_integrator_gsl_msbdf, &whirl_integrator_gsl_rkf45,
+    &whirl_integrator_gsl_rk4,
 };
 #define N_METHODS (sizeof methods / sizeof methods[0])
 
 const char *const *whirl_integrator_methods(void)
 {
-    static const char *const names[] = {"gauss2",    "gauss3",     "rk4",
-                                        "rk8",       "gsl-rk8pd",  "gsl-rk4imp",
-                                        "gsl-msbdf", "gsl-rkf45",  "gsl-rk4",
-                                        NULL};
+    static const char *const names[] = {"gauss2",    "gauss3",     "rk4",         "rk8",
+                                        "gsl-rk8pd", "gsl-rk4imp", "gsl-msadams", "gsl-msbdf",
+                                        "gsl-rkf45", "gsl-rk4",    NULL};
     return names;
 }
 
@@ -93,7 +93,7 @@ whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
     if (m == NULL) {
         whirl_fail(GSL_EINVAL,
                    "unknown integrator '%s' (known: gauss2 gauss3 rk4 rk8 gsl-rk8pd gsl-rk4imp "
-                   "gsl-msbdf gsl-rkf45 gsl-rk4)",
+                   "gsl-msadams gsl-msbdf gsl-rkf45 gsl-rk4)",
                    method != NULL ? method : "(null)");
         return NULL;
     }

@@ -1,16 +1,19 @@
 /* GSL's ODE steppers (ode-initval2) on the dynamics' right-hand side: gsl-rk8pd (Prince-Dormand
  * 8(9)), gsl-rk4imp (the 2-stage Gauss method, modified Newton with a dense LU of 2 x dim, error
- * by step doubling), gsl-msbdf (variable-order BDF, Nordsieck form), gsl-rkf45, gsl-rk4. A
+ * by step doubling), gsl-msadams (variable-order Adams, orders 1-12, functional iteration,
+ * Nordsieck form), gsl-msbdf (variable-order BDF, Nordsieck form), gsl-rkf45, gsl-rk4. A
  * reference path, not a fast one.
  *
- * Fixed steps (all but msbdf, whose BDF corrector is tied to its step control):
+ * Fixed steps (all but the multistep msadams and msbdf, whose correctors are tied to their step
+ * control):
  * gsl_odeiv2_evolve_apply_fixed_step without step rejection; the implicit steppers
- * still iterate their stage (rk4imp) or corrector (msbdf) equations to the driver's control,
+ * still iterate their stage (rk4imp) equations to the driver's control,
  * set to GSL_FIXED_STEP_TOL. Adaptive steps: gsl_odeiv2_evolve_apply with the standard control
  * on y (relative = absolute = tol).
- * After every step the driver (integrator.c) projects the state onto the constraints. msbdf
- * continues from its own Nordsieck history (GSL reads y only on its first step), so for it the
- * projection affects the output only, and its constraint drift is bounded by its tolerance.
+ * After every step the driver (integrator.c) projects the state onto the constraints. msadams
+ * and msbdf continue from their own Nordsieck history (GSL reads y only on their first step), so
+ * for them the projection affects the output only, and their constraint drift is bounded by
+ * their tolerance.
  * Jacobian (rk4imp, msbdf need one): forward differences, column j with the increment
  * sqrt(eps) max(|y_j|, 1e-3), and df/dt likewise; dim + 2 right-hand sides, in scratch vectors
  * allocated once with the integrator. */
@@ -108,8 +111,9 @@ static int gsl_status(int status, double t)
 static int gsl_fixed_step(whirl_integrator *it, double t, double h, double *y)
 {
     gsl_state *g = it->state;
-    if (it->method == &whirl_integrator_gsl_msbdf)
-        return whirl_fail(GSL_EINVAL, "gsl-msbdf takes adaptive steps only (give a tolerance)");
+    if (it->method == &whirl_integrator_gsl_msbdf || it->method == &whirl_integrator_gsl_msadams)
+        return whirl_fail(GSL_EINVAL, "%s takes adaptive steps only (give a tolerance)",
+                          it->method->name);
     gsl_odeiv2_driver *dr = g->driver;
     gsl_odeiv2_control_init(dr->c, GSL_FIXED_STEP_TOL, GSL_FIXED_STEP_TOL, 1, 0);
     double tt = t;
@@ -142,6 +146,7 @@ static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double 
 
 GSL_METHOD(whirl_integrator_gsl_rk8pd, "gsl-rk8pd", gsl_odeiv2_step_rk8pd);
 GSL_METHOD(whirl_integrator_gsl_rk4imp, "gsl-rk4imp", gsl_odeiv2_step_rk4imp);
+GSL_METHOD(whirl_integrator_gsl_msadams, "gsl-msadams", gsl_odeiv2_step_msadams);
 GSL_METHOD(whirl_integrator_gsl_msbdf, "gsl-msbdf", gsl_odeiv2_step_msbdf);
 GSL_METHOD(whirl_integrator_gsl_rkf45, "gsl-rkf45", gsl_odeiv2_step_rkf45);
 GSL_METHOD(whirl_integrator_gsl_rk4, "gsl-rk4", gsl_odeiv2_step_rk4);

@@ -1,15 +1,15 @@
-/* Scaling of the dynamics in the number of links N. Writes CSV under argv[1] (default out/bench)
- * and prints the figures:
- *  - cost against N = 10 .. 10^5 (3D, Cartesian formulation, the smooth state of bench_util.h):
+/* Scaling of the dynamics in the number of links N. Usage: bench_scaling [DIR [PART]]. Writes CSV
+ * under DIR (default out/bench) and prints the figures of every part, or of PART only:
+ *  - cost: against N = 10 .. 10^5 (3D, Cartesian formulation, the smooth state of bench_util.h):
  *    ns per right-hand side (plain inertial model; co-rotating with every force; the seed
  *    formulation up to N = 100), per rk4 step and per gauss2 step (h = 0.05 / N, below the
  *    fixed-point bound), medians of 7 repeats (wall clock; the right-hand side also in processor
  *    time of the thread, less sensitive to other jobs on shared cores); the exponent p of
  *    time ~ N^p fitted by least squares of log time on log N over 10 .. 10^5 (scaling.csv);
- *  - peak memory (getrusage ru_maxrss of a forked child that allocates the chain, the dynamics,
+ *  - memory: the peak (getrusage ru_maxrss of a forked child that allocates the chain, the dynamics,
  *    a gauss2 integrator and the state, and takes one step) at N = 10^5 and 10^6, less that of a
  *    child that only starts (scaling_memory.csv);
- *  - round-off of the tensions against N = 10 .. 10^6 (scaling_tension.csv): relative error
+ *  - tension: round-off of the tensions against N = 10 .. 10^6 (scaling_tension.csv): relative error
  *    max_i |T_i / T_i,ref - 1| of whirl_dyn_tensions for (a) the hanging chain,
  *    T_i,ref = the exact weight below link i, (b) the smooth moving 3D state and (c) the mode-2
  *    steady shape at omega = 4 in the co-rotating frame, T_ref from the same tridiagonal system
@@ -300,10 +300,8 @@ static void bench_tension(const char *dir)
             } else if (state == 1) {
                 const double p[3] = {0, 0, 0};
                 bench_smooth_state(c, p, x, v);
-            } else if (n > 10000 || bench_steady_positions(c, w, 2, x) != GSL_SUCCESS) {
-                fprintf(fp, ",,"); /* not measured: the shooting is O(N^2) per shot */
-                printf(" %22s", "-");
-                continue;
+            } else if (bench_steady_positions(c, w, 2, x) != GSL_SUCCESS) {
+                bench_die("mode-2 shape");
             }
             whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
             if (d == NULL || whirl_dyn_set_state(d, 0, x, v, y) != GSL_SUCCESS)
@@ -333,9 +331,15 @@ int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     const char *dir = argc > 1 ? argv[1] : "out/bench";
+    const char *only = argc > 2 ? argv[2] : NULL; /* one part: tension, memory or cost */
+    if (only != NULL && strcmp(only, "tension") != 0 && strcmp(only, "memory") != 0 &&
+        strcmp(only, "cost") != 0) {
+        fprintf(stderr, "bench_scaling: unknown part '%s' (tension, memory, cost)\n", only);
+        return 1;
+    }
     printf("load average at start (other jobs share the cores): %.2f\n", bench_load_average());
-    bench_tension(dir);
-    bench_memory(dir);
-    bench_cost(dir);
+    if (only == NULL || strcmp(only, "tension") == 0) bench_tension(dir);
+    if (only == NULL || strcmp(only, "memory") == 0) bench_memory(dir);
+    if (only == NULL || strcmp(only, "cost") == 0) bench_cost(dir);
     return 0;
 }

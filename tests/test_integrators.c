@@ -199,7 +199,7 @@ static void test_rk8_adaptive(void **state)
 
 /* Every method of whirl_integrator_methods(): refuses bad arguments; takes a tolerance if and
  * only if it is adaptive (gauss2, gauss3, rk4 are not); leaves the state on the constraints to
- * 1e-12 after a run (fixed steps, or adaptive for gsl-msbdf); stops with a status on a
+ * 1e-12 after a run (fixed steps, or adaptive for gsl-msadams and gsl-msbdf); stops with a status on a
  * non-finite state, t unchanged, and runs again from a good state. */
 static void test_every_method(void **state)
 {
@@ -215,7 +215,7 @@ static void test_every_method(void **state)
         assert_non_null(it);
         const int fixed_only = strcmp(*p, "gauss2") == 0 || strcmp(*p, "gauss3") == 0 ||
                                strcmp(*p, "rk4") == 0;
-        const int adaptive_only = strcmp(*p, "gsl-msbdf") == 0;
+        const int adaptive_only = strcmp(*p, "gsl-msbdf") == 0 || strcmp(*p, "gsl-msadams") == 0;
         double t = 0;
         memcpy(y, y0, sizeof y);
         assert_int_equal(whirl_integrator_advance(it, &t, y, -1, 1e-3, 0), GSL_EINVAL);
@@ -333,7 +333,8 @@ static void test_through_vertical(void **state)
     whirl_chain_free(c);
 }
 
-/* Every GSL stepper, fixed and adaptive, converges to the reference; msbdf is adaptive only, and
+/* Every GSL stepper, fixed and adaptive, converges to the reference; the multistep msadams and
+ * msbdf are adaptive only, and
  * the own methods refuse a tolerance. */
 static void test_gsl_steppers(void **state)
 {
@@ -343,10 +344,11 @@ static void test_gsl_steppers(void **state)
     const double t1 = 2.0;
     double ref[9], x[9];
     assert_int_equal(run(&m, WHIRL_FORMULATION_SEED, "gauss3", t1, 1e-3, 0, ref), 0);
-    const char *const names[] = {"gsl-rk8pd", "gsl-rk4imp", "gsl-msbdf", "gsl-rkf45", "gsl-rk4"};
-    for (size_t k = 0; k < 5; k++) {
+    const char *const names[] = {"gsl-rk8pd", "gsl-rk4imp", "gsl-msadams",
+                                 "gsl-msbdf", "gsl-rkf45",  "gsl-rk4"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
         const int fixed = run(&m, WHIRL_FORMULATION_CARTESIAN, names[k], t1, 2e-3, 0, x);
-        if (strcmp(names[k], "gsl-msbdf") == 0) {
+        if (strcmp(names[k], "gsl-msbdf") == 0 || strcmp(names[k], "gsl-msadams") == 0) {
             assert_int_equal(fixed, GSL_EINVAL);
         } else {
             assert_int_equal(fixed, GSL_SUCCESS);
@@ -499,7 +501,7 @@ static void test_api(void **state)
         assert_non_null(it);
         whirl_integrator_free(it);
     }
-    assert_int_equal(count, 9);
+    assert_int_equal(count, 10);
     whirl_integrator_free(NULL);
     whirl_integrator *it = whirl_integrator_alloc("gauss2", d);
     double x[6], v[6], y[8], t = 1;
