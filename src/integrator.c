@@ -156,6 +156,9 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
     if (tol > 0 && !it->method->adaptive)
         return whirl_fail(GSL_EINVAL, "the integrator %s has no adaptive step control",
                           it->method->name);
+    if (tol == 0 && it->method->step == NULL)
+        return whirl_fail(GSL_EINVAL, "the integrator %s takes adaptive steps only (give a "
+                          "tolerance)", it->method->name);
     /* history (stage extrapolation, compensation, multistep memory) is valid only for the state
      * this integrator returned last */
     if (!it->has_last || it->last_t != *t ||

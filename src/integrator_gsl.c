@@ -111,9 +111,6 @@ static int gsl_status(int status, double t)
 static int gsl_fixed_step(whirl_integrator *it, double t, double h, double *y)
 {
     gsl_state *g = it->state;
-    if (it->method == &whirl_integrator_gsl_msbdf || it->method == &whirl_integrator_gsl_msadams)
-        return whirl_fail(GSL_EINVAL, "%s takes adaptive steps only (give a tolerance)",
-                          it->method->name);
     gsl_odeiv2_driver *dr = g->driver;
     gsl_odeiv2_control_init(dr->c, GSL_FIXED_STEP_TOL, GSL_FIXED_STEP_TOL, 1, 0);
     double tt = t;
@@ -134,19 +131,20 @@ static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double 
     return gsl_status(status, t0);
 }
 
-#define GSL_METHOD(var, label, type)                                                          \
+/* fixed_step: gsl_fixed_step, or NULL for the multistep methods (adaptive steps only) */
+#define GSL_METHOD(var, label, type, fixed_step)                                              \
     const integrator_method var = {.name = label,                                            \
                                    .adaptive = 1,                                            \
                                    .params = &type,                                          \
                                    .alloc = gsl_alloc_state,                                 \
                                    .free = gsl_free_state,                                   \
-                                   .step = gsl_fixed_step,                                   \
+                                   .step = fixed_step,                                       \
                                    .adaptive_step = gsl_adaptive_step,                       \
                                    .restart = gsl_restart}
 
-GSL_METHOD(whirl_integrator_gsl_rk8pd, "gsl-rk8pd", gsl_odeiv2_step_rk8pd);
-GSL_METHOD(whirl_integrator_gsl_rk4imp, "gsl-rk4imp", gsl_odeiv2_step_rk4imp);
-GSL_METHOD(whirl_integrator_gsl_msadams, "gsl-msadams", gsl_odeiv2_step_msadams);
-GSL_METHOD(whirl_integrator_gsl_msbdf, "gsl-msbdf", gsl_odeiv2_step_msbdf);
-GSL_METHOD(whirl_integrator_gsl_rkf45, "gsl-rkf45", gsl_odeiv2_step_rkf45);
-GSL_METHOD(whirl_integrator_gsl_rk4, "gsl-rk4", gsl_odeiv2_step_rk4);
+GSL_METHOD(whirl_integrator_gsl_rk8pd, "gsl-rk8pd", gsl_odeiv2_step_rk8pd, gsl_fixed_step);
+GSL_METHOD(whirl_integrator_gsl_rk4imp, "gsl-rk4imp", gsl_odeiv2_step_rk4imp, gsl_fixed_step);
+GSL_METHOD(whirl_integrator_gsl_msadams, "gsl-msadams", gsl_odeiv2_step_msadams, NULL);
+GSL_METHOD(whirl_integrator_gsl_msbdf, "gsl-msbdf", gsl_odeiv2_step_msbdf, NULL);
+GSL_METHOD(whirl_integrator_gsl_rkf45, "gsl-rkf45", gsl_odeiv2_step_rkf45, gsl_fixed_step);
+GSL_METHOD(whirl_integrator_gsl_rk4, "gsl-rk4", gsl_odeiv2_step_rk4, gsl_fixed_step);

@@ -13,7 +13,8 @@ typedef struct integrator_method {
     const void *params; /* method-specific constant data (tableau, GSL step type) */
     int (*alloc)(struct whirl_integrator *it);
     void (*free)(void *state);
-    /* One step of size h from (t, y), y in place, unprojected (the driver restores y on failure) */
+    /* One step of size h from (t, y), y in place, unprojected (the driver restores y on
+     * failure). NULL: adaptive steps only. */
     int (*step)(struct whirl_integrator *it, double t, double h, double *y);
     /* One adaptive step towards t1 (tolerance tol): advances *t, may change *h. */
     int (*adaptive_step)(struct whirl_integrator *it, double *t, double t1, double *h, double tol,

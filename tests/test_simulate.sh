@@ -164,6 +164,9 @@ expect_error "unknown method" "mode2.ini: --set run.method: .*gauss2" \
   simulate "$scenes/mode2.ini" --set run.method=euler -o "$tmp/out.csv"
 expect_error "tolerance for a fixed-step method" "mode2.ini: --set run.tol: .*gauss2.* adaptive" \
   simulate "$scenes/mode2.ini" --set run.tol=1e-9 -o "$tmp/out.csv"
+expect_error "multistep method without a tolerance" \
+  "mode2.ini:[0-9]+: \[run\] dt: the integrator gsl-msadams takes adaptive steps only" \
+  simulate "$scenes/mode2.ini" --set run.method=gsl-msadams -o "$tmp/out.csv"
 expect_error "mode that does not exist at omega" "mode3.ini:[0-9]+: \[start\] mode: no steady shape" \
   simulate "$scenes/mode3.ini" --set start.omega=3 -o "$tmp/out.csv"
 expect_error "missing scene file" "none.ini: cannot read" simulate "$tmp/none.ini" -o "$tmp/out.csv"
