@@ -24,10 +24,10 @@
  * gsl-rk8pd (N <= 10: at N = 100 one seed right-hand side costs 280 Cartesian ones and a run
  * minutes).
  * A method is refined until a run takes longer than the scene's time cap (10-15 s; at N = 1000
- * 10 s per simulated period, so that the refinement reaches 1e-10), its error is below 1e-11 or
+ * 10 s per simulated period: rk8 reaches the reference floor), its error is below 1e-11 or
  * 3 times the floor or stalls, or it fails after a success. The program takes about 10 minutes
- * without chain1000; chain1000 takes about 10 minutes at PERIODS = 2 and, at its full 20
- * periods, about ten times as long. gsl-rk4imp (dense LU of 2 x dim per Newton matrix) only at
+ * without chain1000; chain1000 over its 20 periods about 100 minutes (its reference 11, the
+ * confirmation 2.5). gsl-rk4imp (dense LU of 2 x dim per Newton matrix) only at
  * N <= 10, gsl-msbdf (dense LU of dim) only at N <= 100. Wall time: median of 5 (runs < 0.5 s),
  * 3 (< 3 s) or 1 repeats.
  * Equal error: for each method, log time interpolated linearly in log error between consecutive
