@@ -171,6 +171,16 @@ typedef struct long_result {
     char message[256];              /* whirl_last_error() of a failed run */
 } long_result;
 
+/* Exponent p of |value| ~ t^p fitted over the samples from t_from on with a non-zero value. */
+static double tail_exponent(const double *ts, const double *value, int n, double t_from)
+{
+    double lt[LONG_SAMPLES], lv[LONG_SAMPLES];
+    int used = 0;
+    for (int k = 0; k < n; k++)
+        if (ts[k] >= t_from && value[k] != 0) lt[used] = ts[k], lv[used++] = fabs(value[k]);
+    return bench_fit_exponent(lt, lv, used);
+}
+
 static long_result long_run(const char *dir, double h)
 {
     const size_t n = 5;
@@ -232,19 +242,8 @@ static long_result long_run(const char *dir, double h)
     for (int k = 0; k < ns; k++)
         fprintf(series, "%.6g,%.0f,%.6g,%.6g,%.6g\n", ts[k], ts[k] / h, mean[k], spread[k], rms[k]);
     fclose(series);
-    /* exponents over the last three decades (points with a non-zero value) */
-    double lt[LONG_SAMPLES], lm[LONG_SAMPLES], ls[LONG_SAMPLES];
-    int nm = 0, nsd = 0;
-    for (int k = 0; k < ns; k++) {
-        if (ts[k] < t / 1000) continue;
-        if (mean[k] != 0) lt[nm] = ts[k], lm[nm++] = fabs(mean[k]);
-    }
-    const double mean_exponent = bench_fit_exponent(lt, lm, nm);
-    for (int k = 0; k < ns; k++) {
-        if (ts[k] < t / 1000) continue;
-        if (spread[k] > 0) lt[nsd] = ts[k], ls[nsd++] = spread[k];
-    }
-    const double spread_exponent = bench_fit_exponent(lt, ls, nsd);
+    const double mean_exponent = tail_exponent(ts, mean, ns, t / 1000);
+    const double spread_exponent = tail_exponent(ts, spread, ns, t / 1000);
     whirl_integrator_free(it);
     whirl_dyn_free(d);
     whirl_chain_free(c);
