@@ -6,9 +6,8 @@
  *
  * Fixed steps (all but the multistep msadams and msbdf, whose correctors are tied to their step
  * control):
- * gsl_odeiv2_evolve_apply_fixed_step without step rejection; the implicit steppers
- * still iterate their stage (rk4imp) equations to the driver's control,
- * set to GSL_FIXED_STEP_TOL. Adaptive steps: gsl_odeiv2_evolve_apply with the standard control
+ * gsl_odeiv2_evolve_apply_fixed_step without step rejection; the implicit rk4imp still iterates
+ * its stage equations to the driver's control, set to GSL_FIXED_STEP_TOL. Adaptive steps: gsl_odeiv2_evolve_apply with the standard control
  * on y (relative = absolute = tol).
  * After every step the driver (integrator.c) projects the state onto the constraints. msadams
  * and msbdf continue from their own Nordsieck history (GSL reads y only on their first step), so

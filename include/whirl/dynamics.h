@@ -102,10 +102,10 @@ double whirl_deviation(size_t n, const double *x, const double *ref);
  * GSL's standard step control), and GSL's steppers on the same right-hand side: "gsl-rk8pd",
  * "gsl-rk4imp", "gsl-msadams", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". gauss2, gauss3, rk4 take
  * fixed steps only; rk8 and the GSL steppers fixed or adaptive steps, except the multistep
- * gsl-msadams and gsl-msbdf: adaptive only. The Gauss
- * methods solve their stage equations by fixed-point iteration, which converges for
- * h omega_max rho(A) < 1 (rho(A) = 0.289 gauss2, 0.215 gauss3; omega_max ~ 2 N sqrt(T_top/(M g))
- * sqrt(g/L) for a uniform chain): a larger step fails with GSL_EMAXITER. */
+ * gsl-msadams and gsl-msbdf: adaptive only. The Gauss methods solve their stage equations by
+ * fixed-point iteration, which converges for h omega_max rho(A) < 1 (rho(A) = 0.289 gauss2,
+ * 0.215 gauss3; omega_max ~ 2 N sqrt(T_top/(M g)) sqrt(g/L) for a uniform chain): a larger step
+ * fails with GSL_EMAXITER. */
 typedef struct whirl_integrator whirl_integrator;
 
 typedef struct whirl_integrator_stats {
