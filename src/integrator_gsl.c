@@ -7,8 +7,8 @@
  * Fixed steps (all but the multistep msadams and msbdf, whose correctors are tied to their step
  * control):
  * gsl_odeiv2_evolve_apply_fixed_step without step rejection; the implicit rk4imp still iterates
- * its stage equations to the driver's control, set to GSL_FIXED_STEP_TOL. Adaptive steps: gsl_odeiv2_evolve_apply with the standard control
- * on y (relative = absolute = tol).
+ * its stage equations to the driver's control, set to GSL_FIXED_STEP_TOL. Adaptive steps:
+ * gsl_odeiv2_evolve_apply with the standard control on y (relative = absolute = tol).
  * After every step the driver (integrator.c) projects the state onto the constraints. msadams
  * and msbdf continue from their own Nordsieck history (GSL reads y only on their first step), so
  * for them the projection affects the output only, and their constraint drift is bounded by

@@ -38,7 +38,8 @@ struct whirl_integrator {
 extern const integrator_method whirl_integrator_gauss2, whirl_integrator_gauss3,
     whirl_integrator_rk8;
 extern const integrator_method whirl_integrator_gsl_rk8pd, whirl_integrator_gsl_rk4imp,
-    whirl_integrator_gsl_msadams, whirl_integrator_gsl_msbdf, whirl_integrator_gsl_rkf45, whirl_integrator_gsl_rk4;
+    whirl_integrator_gsl_msadams, whirl_integrator_gsl_msbdf, whirl_integrator_gsl_rkf45,
+    whirl_integrator_gsl_rk4;
 
 /* Right-hand side with the evaluation counted in it->stats. */
 int whirl_integrator_rhs(struct whirl_integrator *it, double t, const double *y, double *dydt);

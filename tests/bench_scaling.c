@@ -6,11 +6,11 @@
  *    fixed-point bound), medians of 7 repeats (wall clock; the right-hand side also in processor
  *    time of the thread, less sensitive to other jobs on shared cores); the exponent p of
  *    time ~ N^p fitted by least squares of log time on log N over 10 .. 10^5 (scaling.csv);
- *  - memory: the peak (getrusage ru_maxrss of a forked child that allocates the chain, the dynamics,
- *    a gauss2 integrator and the state, and takes one step) at N = 10^5 and 10^6, less that of a
- *    child that only starts (scaling_memory.csv);
- *  - tension: round-off of the tensions against N = 10 .. 10^6 (scaling_tension.csv): relative error
- *    max_i |T_i / T_i,ref - 1| of whirl_dyn_tensions for (a) the hanging chain,
+ *  - memory: the peak (getrusage ru_maxrss of a forked child that allocates the chain, the
+ *    dynamics, a gauss2 integrator and the state, and takes one step) at N = 10^5 and 10^6,
+ *    less that of a child that only starts (scaling_memory.csv);
+ *  - tension: round-off of the tensions against N = 10 .. 10^6 (scaling_tension.csv): relative
+ *    error max_i |T_i / T_i,ref - 1| of whirl_dyn_tensions for (a) the hanging chain,
  *    T_i,ref = the exact weight below link i, (b) the smooth moving 3D state and (c) the mode-2
  *    steady shape at omega = 4 in the co-rotating frame, T_ref from the same tridiagonal system
  *    re-solved in binary128 (__float128, coefficients formed from the same double link vectors);

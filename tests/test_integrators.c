@@ -199,8 +199,8 @@ static void test_rk8_adaptive(void **state)
 
 /* Every method of whirl_integrator_methods(): refuses bad arguments; takes a tolerance if and
  * only if it is adaptive (gauss2, gauss3, rk4 are not); leaves the state on the constraints to
- * 1e-12 after a run (fixed steps, or adaptive for gsl-msadams and gsl-msbdf); stops with a status on a
- * non-finite state, t unchanged, and runs again from a good state. */
+ * 1e-12 after a run (fixed steps, or adaptive for gsl-msadams and gsl-msbdf); stops with a
+ * status on a non-finite state, t unchanged, and runs again from a good state. */
 static void test_every_method(void **state)
 {
     (void)state;
