@@ -282,7 +282,7 @@ static int long_report(FILE *csv, const long_result *r, int count)
                 r[k].h, r[k].t, r[k].status, r[k].worst, r[k].constraint,
                 r[k].steps * LONG_MEMBERS, r[k].secs, verdict, LONG_MEMBERS, r[k].mean_end,
                 r[k].mean_exponent, r[k].std_end, r[k].std_exponent);
-        printf("  %-22s %-9s h %-7.2g t %-8.4g %d x %ld steps %6.1f s: max |dE|/|E| %.2e (bound "
+        printf("  %-22s %-9s h %-7g t %-8.4g %d x %ld steps %6.1f s: max |dE|/|E| %.2e (bound "
                "1e-12); at the end mean %.2e (growing like t^%.2f), std %.2e (like t^%.2f; "
                "Brouwer: 0.5), constraint %.1e: %s%s%s\n",
                "long (10^7 steps)", "gauss3", r[k].h, r[k].t, LONG_MEMBERS, r[k].steps,
