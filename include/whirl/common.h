@@ -22,4 +22,25 @@
 /* The message of the last failure in the calling thread ("" if none). */
 const char *whirl_last_error(void);
 
+/* ---- stopping long work ----
+ * One stop request per process, because the signals that raise it (SIGINT, SIGTERM) are
+ * process-wide. Every long loop of the library (integrations, sweeps, maps, fits, root scans)
+ * polls it at least every ~0.1 s of work, inside steps, and then returns WHIRL_EINTERRUPTED with
+ * a message saying how far it got; what it computed until then stays valid. The request stays
+ * set until whirl_stop_clear(). C and Python callers can raise it themselves (a GUI button, a
+ * time limit) or let whirl_stop_catch_signals() raise it on Ctrl-C. */
+#define WHIRL_EINTERRUPTED 1000 /* status of work stopped by a stop request */
+
+/* Requests a stop. Async-signal-safe: may be called from a signal handler or another thread. */
+void whirl_stop_request(void);
+/* Non-zero once a stop was requested and not cleared. */
+int whirl_stop_requested(void);
+/* Clears the request, so that new work runs to its end. */
+void whirl_stop_clear(void);
+/* Installs SIGINT and SIGTERM handlers that call whirl_stop_request(), keeping the previous
+ * handlers for whirl_stop_restore_signals(). Returns GSL_SUCCESS or GSL_EFAILED. */
+int whirl_stop_catch_signals(void);
+/* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
+void whirl_stop_restore_signals(void);
+
 #endif

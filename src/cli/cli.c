@@ -10,8 +10,6 @@
 
 #include "cli/cli.h"
 
-volatile sig_atomic_t cli_interrupted = 0;
-
 int cli_error(const cli_command *cmd, const char *fmt, ...)
 {
     va_list ap;
@@ -230,21 +228,7 @@ int cli_units_check(const cli_command *cmd, const cli_units *u)
 double cli_units_rate(const cli_units *u) { return sqrt(u->gravity / u->length); }
 double cli_units_force(const cli_units *u) { return u->mass * u->gravity; }
 
-static void on_interrupt(int sig)
-{
-    (void)sig;
-    cli_interrupted = 1;
-}
-
-void cli_catch_interrupts(void)
-{
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_interrupt;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-}
+void cli_catch_interrupts(void) { whirl_stop_catch_signals(); }
 
 void cli_progress(const cli_command *cmd, const char *label, double fraction, int done)
 {

@@ -6,6 +6,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "whirl/common.h"
+
 /* ---- options ---- */
 typedef enum {
     CLI_DOUBLE,   /* finite double */
@@ -82,8 +84,9 @@ double cli_units_rate(const cli_units *u);    /* sqrt(g/L): one dimensionless ra
 double cli_units_force(const cli_units *u);   /* M g */
 
 /* ---- long runs ---- */
-/* Set by SIGINT/SIGTERM once cli_catch_interrupts() ran: a long loop stops and keeps its output. */
-extern volatile sig_atomic_t cli_interrupted;
+/* SIGINT/SIGTERM raise the library's stop request (whirl_stop_request) once
+ * cli_catch_interrupts() ran: a long loop stops and keeps its output. */
+#define cli_interrupted whirl_stop_requested()
 void cli_catch_interrupts(void);
 /* Progress on a terminal only: "whirl CMD: label 42%" rewritten in place; done != 0 ends it. */
 void cli_progress(const cli_command *cmd, const char *label, double fraction, int done);
