@@ -1,5 +1,5 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
-# Targets: all (default), demo, check, check-sanitize, bench, study, deps, clean.
+# Targets: all (default), demo, check, check-clang, check-sanitize, bench, study, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
@@ -24,7 +24,7 @@ CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all demo check check-sanitize bench study deps clean
+.PHONY: all demo check check-clang check-sanitize bench study deps clean
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a
 
 $(BUILD)/%.o: %.c
@@ -59,11 +59,19 @@ demo: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/demo.sh $(BUILD)
 
-# The tests, then the same tests under AddressSanitizer and UndefinedBehaviorSanitizer.
+# The tests, a clang -Werror compile of the library and the program, then the same tests under
+# AddressSanitizer and UndefinedBehaviorSanitizer.
 check: deps
 	@$(MAKE) --no-print-directory all $(TEST_BIN)
 	@sh tests/run.sh $(BUILD)
+	@$(MAKE) --no-print-directory check-clang
 	@$(MAKE) --no-print-directory check-sanitize
+
+# The library and the program compiled (not linked) by clang with warnings as errors.
+check-clang: deps
+	@$(MAKE) --no-print-directory BUILD=build-clang CC=clang XCFLAGS=-Werror \
+	  $(LIB_OBJ:$(BUILD)/%=build-clang/%) $(CLI_OBJ:$(BUILD)/%=build-clang/%)
+	@echo "clang -Werror: library and program compile cleanly"
 
 check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
@@ -84,4 +92,4 @@ study: deps
 clean:
 	rm -rf build build-* out
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)

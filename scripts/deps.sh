@@ -1,18 +1,49 @@
 #!/bin/sh
-# Installs the Debian packages whirl needs when run as root; otherwise prints the command.
-pkgs="build-essential pkg-config libgsl-dev libnlopt-dev libinih-dev liblapacke-dev libcmocka-dev gnuplot-nox libopenmpi-dev openmpi-bin"
+# Checks that what whirl needs is present (commands, pkg-config modules, headers) and installs the
+# Debian packages that provide what is missing, when run as root; otherwise prints the command.
+# When nothing is missing it needs neither dpkg nor apt.
+
+have_cmd() { command -v "$1" >/dev/null 2>&1; }
+have_pc() { have_cmd pkg-config && pkg-config --exists "$1"; }
+# have_header COMPILER HEADER [FLAGS]: the compiler finds the header
+have_header() { have_cmd "$1" && echo "#include <$2>" | "$1" $3 -E -xc - >/dev/null 2>&1; }
+
+# Each line: Debian package, then the check that it is present.
+checks='
+build-essential  have_cmd cc && have_cmd make && have_cmd ar && have_cmd nm
+pkg-config       have_cmd pkg-config
+libgsl-dev       have_pc gsl
+libnlopt-dev     have_pc nlopt
+libinih-dev      have_pc inih
+liblapacke-dev   have_pc lapacke
+libcmocka-dev    have_pc cmocka
+gnuplot-nox      have_cmd gnuplot
+libopenmpi-dev   have_cmd mpicc
+openmpi-bin      have_cmd mpirun
+clang            have_cmd clang
+libomp-dev       have_header clang omp.h -fopenmp
+'
+
 missing=""
-for p in $pkgs; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
+what=""
+while read -r pkg check; do
+  [ -n "$pkg" ] || continue
+  if ! eval "$check"; then
+    missing="$missing $pkg"
+    what="$what
+  $pkg (failed: $check)"
+  fi
+done <<EOF
+$checks
+EOF
 [ -z "$missing" ] && exit 0
-if [ "$(id -u)" = 0 ]; then
-  echo "whirl: installing Debian packages:$missing"
+echo "whirl: missing:$what" >&2
+if [ "$(id -u)" = 0 ] && have_cmd apt-get; then
+  echo "whirl: installing Debian packages:$missing" >&2
   export DEBIAN_FRONTEND=noninteractive
   { apt-get install -y -q $missing || { apt-get update -q && apt-get install -y -q $missing; }; } >&2 || {
     echo "whirl: apt-get install failed for:$missing" >&2; exit 1; }
 else
-  echo "whirl: missing Debian packages:$missing" >&2
   echo "whirl: install them with: sudo apt-get install -y$missing" >&2
   exit 1
 fi

@@ -1,4 +1,6 @@
-# Helpers for the command-line tests: TAP lines "ok N - name" / "not ok N - name".
+# Helpers for the command-line tests: TAP lines "ok N - name" / "not ok N - name", and the plan
+# "1..N" printed by finish at the end (a test that dies before finish has no plan: tests/run.sh
+# counts it as failed).
 # $WHIRL is the program under test.
 n=0
 fails=0
@@ -31,4 +33,4 @@ expect_ok() {
   else fail "$name (stderr: $(head -c 300 "$tmp/stderr"))"; fi
 }
 
-finish() { [ $fails -eq 0 ]; exit $?; }
+finish() { echo "1..$n"; [ $fails -eq 0 ]; exit $?; }

@@ -1,22 +1,74 @@
 #!/bin/sh
-# Runs every test program (cmocka, TAP output) and every shell test in tests/,
-# then prints the closing line "N passed, N failed".
+# Runs the tests and prints the closing line "tests: N passed, N failed"; exits non-zero unless
+# every test program passed. Usage: run.sh [BUILD [TEST...]]: without TEST, every test program
+# BUILD/tests/test_* and every shell test tests/test_*.sh; a TEST ending in .sh runs under sh
+# with WHIRL=BUILD/whirl, any other is executed.
+#
+# A test program passes only if it exits with status 0 (not by a signal), prints exactly one TAP
+# plan "1..N" (first or last), exactly N result lines "ok ..." / "not ok ...", no "not ok" and
+# no skip ("# SKIP" / "# skip" after a result). The closing line counts the "not ok" lines, plus
+# one for a test program that went wrong otherwise (signal, status, plan, skip).
 build=${1:-build}
-log=$(mktemp)
-trap 'rm -f "$log"' EXIT
+[ $# -gt 0 ] && shift
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
 export CMOCKA_MESSAGE_OUTPUT=TAP
-status=0
-for t in "$build"/tests/test_*; do
-  [ -x "$t" ] || continue
+passed=0
+failed=0
+
+# run_one TEST: runs it, copying its output, then judges the output and the exit status.
+run_one() {
+  t=$1
   echo "== $t"
-  "$t" 2>&1 | tee -a "$log" || status=1
-done
-for t in tests/test_*.sh; do
-  [ -f "$t" ] || continue
-  echo "== $t"
-  WHIRL="$build/whirl" sh "$t" 2>&1 | tee -a "$log" || status=1
-done
-passed=$(grep -c '^ok ' "$log")
-failed=$(grep -c '^not ok ' "$log")
+  case $t in
+    *.sh) { WHIRL="$build/whirl" sh "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
+    *) { "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
+  esac
+  rc=$(cat "$tmp/rc")
+  ok=$(grep -Ec '^ok( |$)' "$tmp/out")
+  notok=$(grep -Ec '^not ok( |$)' "$tmp/out")
+  skips_ok=$(grep -Eic '^ok( [^#]*)?#[[:space:]]*skip' "$tmp/out")
+  skips_notok=$(grep -Eic '^not ok( [^#]*)?#[[:space:]]*skip' "$tmp/out")
+  skips=$((skips_ok + skips_notok))
+  results=$((ok + notok))
+  notok=$((notok - skips_notok))
+  plans=$(grep -Ec '^1\.\.[0-9]+[[:space:]]*$' "$tmp/out")
+  plan=$(grep -E '^1\.\.[0-9]+[[:space:]]*$' "$tmp/out" | head -n 1 | sed 's/^1\.\.//; s/[[:space:]]//g')
+  why=""
+  if [ "$rc" -gt 128 ]; then why="$why; killed by signal $((rc - 128))"
+  elif [ "$rc" -ne 0 ] && [ "$notok" -eq 0 ]; then why="$why; exit status $rc after no failure"
+  fi
+  if [ "$plans" -eq 0 ]; then why="$why; no plan 1..N"
+  elif [ "$plans" -gt 1 ]; then why="$why; $plans plans"
+  elif [ "$results" -ne "$plan" ]; then why="$why; $results results for plan 1..$plan"
+  fi
+  [ "$skips" -gt 0 ] && why="$why; $skips skipped"
+  # one failure for whatever went wrong besides the "not ok" lines
+  passed=$((passed + ok - skips_ok))
+  failed=$((failed + notok))
+  [ -n "$why" ] && failed=$((failed + 1))
+  [ "$notok" -gt 0 ] && why="$why; $notok not ok"
+  if [ -n "$why" ] || [ "$rc" -ne 0 ]; then
+    why="${why#; }"
+    echo "== FAILED $t: ${why:-exit status $rc}"
+    echo "$t: ${why:-exit status $rc}" >>"$tmp/failures"
+  fi
+}
+
+if [ $# -gt 0 ]; then
+  for t in "$@"; do run_one "$t"; done
+else
+  for t in "$build"/tests/test_*; do
+    case $t in *.d) continue ;; esac
+    [ -x "$t" ] && run_one "$t"
+  done
+  for t in tests/test_*.sh; do
+    [ -f "$t" ] && run_one "$t"
+  done
+fi
+if [ -s "$tmp/failures" ]; then
+  echo "== failed:"
+  sed 's/^/   /' "$tmp/failures"
+fi
 echo "tests: $passed passed, $failed failed"
-[ "$failed" -eq 0 ] && [ "$status" -eq 0 ] && [ "$passed" -gt 0 ]
+[ "$failed" -eq 0 ] && [ "$passed" -gt 0 ] && [ ! -s "$tmp/failures" ]

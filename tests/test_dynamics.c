@@ -348,10 +348,8 @@ static void test_steady_shape_fixed_point(void **state)
         const size_t n = cases[k].n;
         whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
         whirl_shape_info info;
-        if (whirl_nlink_solve(c, cases[k].omega, cases[k].mode, 0, &info) != GSL_SUCCESS) {
-            whirl_chain_free(c);
-            skip();
-        }
+        assert_int_equal(whirl_nlink_solve(c, cases[k].omega, cases[k].mode, 0, &info),
+                         GSL_SUCCESS);
         double *r = malloc((n + 1) * sizeof *r), *zz = malloc((n + 1) * sizeof *zz),
                *ten = malloc((n + 1) * sizeof *ten);
         assert_int_equal(whirl_nlink_positions(c, cases[k].omega, info.tip_r, r, zz, ten),
