@@ -57,18 +57,19 @@ if [ "$(rows "$tmp/big.csv" | cut -d, -f1 | tr '\n' ' ')" = "$(seq 0 39 | tr '\n
 expect_error "resume with other parameters" "whirl regime: --resume: .* not written by a map with these parameters" \
   regime $big --drag 0.3 -o "$tmp/big.csv" --resume
 
-# 2 MPI ranks: the same rows as the single process
-if command -v mpirun >/dev/null 2>&1 && ldd "$WHIRL" 2>/dev/null | grep -q libmpi \
-   && [ -z "$WHIRL_SANITIZE" ]; then
+# 2 MPI ranks: the same rows as the single process (under the sanitizers without leak detection:
+# Open MPI's plugins keep allocations past exit); a program built without MPI ran the map on 1 rank
+if command -v mpirun >/dev/null 2>&1 && ldd "$WHIRL" 2>/dev/null | grep -q libmpi; then
   [ "$(id -u)" = 0 ] && export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-  if mpirun --oversubscribe -n 2 "$WHIRL" regime $map -o "$tmp/map2.csv" >"$tmp/mpi.out" 2>&1 \
+  if ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
+     mpirun --oversubscribe -n 2 "$WHIRL" regime $map -o "$tmp/map2.csv" >"$tmp/mpi.out" 2>&1 \
      && [ "$(rows "$tmp/map2.csv")" = "$(rows "$tmp/map.csv")" ] \
      && grep -q '^# computed 8 points in .* on 2 rank' "$tmp/map2.csv"; then
     pass "mpirun -n 2: the rows of the single process"
   else fail "mpirun -n 2: the rows of the single process ($(head -c 300 "$tmp/mpi.out"))"; fi
-else
-  echo "ok $((n + 1)) - mpirun -n 2 # SKIP not built with MPI (or sanitizer run)"; n=$((n + 1))
-fi
+elif grep -q '^# computed 8 points in .* on 1 rank' "$tmp/map.csv"; then
+  pass "built without MPI: the map ran on 1 rank"
+else fail "built without MPI: the map ran on 1 rank"; fi
 
 # hysteresis: omega up then down, 2n - 1 rows
 expect_ok "sweep" regime --sweep --omega-min 2 --omega-max 3 --omega-steps 3 --eps 0.06 $fast --t-change 5 -o "$tmp/sweep.csv"
