@@ -24,7 +24,7 @@ CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all demo check check-clang check-sanitize bench study deps clean
+.PHONY: all objects demo check check-clang check-sanitize bench study deps clean
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a
 
 $(BUILD)/%.o: %.c
@@ -69,9 +69,11 @@ check: deps
 
 # The library and the program compiled (not linked) by clang with warnings as errors.
 check-clang: deps
-	@$(MAKE) --no-print-directory BUILD=build-clang CC=clang XCFLAGS=-Werror \
-	  $(LIB_OBJ:$(BUILD)/%=build-clang/%) $(CLI_OBJ:$(BUILD)/%=build-clang/%)
+	@$(MAKE) --no-print-directory BUILD=build-clang CC=clang XCFLAGS=-Werror objects
 	@echo "clang -Werror: library and program compile cleanly"
+
+objects: $(LIB_OBJ) $(CLI_OBJ)
+	@:
 
 check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
