@@ -58,10 +58,7 @@ whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass)
         whirl_fail(GSL_EINVAL, "a chain needs at least one link");
         return NULL;
     }
-    if (!(isfinite(tip_mass) && tip_mass >= 0)) {
-        whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", tip_mass);
-        return NULL;
-    }
+    if (whirl_check_tip_mass(tip_mass) != GSL_SUCCESS) return NULL;
     whirl_chain *c = chain_new(n);
     if (c == NULL) return NULL;
     for (size_t i = 0; i < n; i++) {

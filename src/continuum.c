@@ -434,8 +434,8 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega)
     if (mode < 1 || mode > WHIRL_MODE_MAX)
         return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", WHIRL_MODE_MAX,
                           mode);
-    if (!(isfinite(tip_mass) && tip_mass >= 0))
-        return whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", tip_mass);
+    int status = whirl_check_tip_mass(tip_mass);
+    if (status != GSL_SUCCESS) return status;
     if (tip_mass == 0) {
         *omega = 0.5 * gsl_sf_bessel_zero_J0((unsigned)mode);
         return GSL_SUCCESS;
@@ -502,20 +502,14 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     info->depth = run.z_pivot;
     info->n_nodes = run.n_nodes;
     for (int j = 0; j < run.n_nodes; j++) info->node_s[j] = 1 - run.node_sigma[run.n_nodes - 1 - j];
-    return GSL_SUCCESS;
+    return whirl_steady_check_info(info);
 }
 
-static int check_tip_mass(double tip_mass)
-{
-    if (!(isfinite(tip_mass) && tip_mass >= 0))
-        return whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", tip_mass);
-    return GSL_SUCCESS;
-}
 
 int whirl_continuum_solve_tol(double omega, int mode, double tip_mass, double tip_r_guess,
                               double tol, whirl_shape_info *info)
 {
-    int status = check_tip_mass(tip_mass);
+    int status = whirl_check_tip_mass(tip_mass);
     if (status != GSL_SUCCESS) return status;
     if (!(tol > 0 && tol < 1))
         return whirl_fail(GSL_EINVAL, "tolerance must be in (0, 1), got %g", tol);
@@ -537,7 +531,7 @@ int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_
 int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts, double *s,
                            double *r, double *z, double *tension)
 {
-    int status = check_tip_mass(tip_mass);
+    int status = whirl_check_tip_mass(tip_mass);
     if (status != GSL_SUCCESS) return status;
     if (!(isfinite(omega) && omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
@@ -580,6 +574,7 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
         status = whirl_fail(status, "ODE integration failed sampling the shape (omega=%g)", omega);
     else
         for (size_t j = npts; j-- > 0;) z[j] -= z[0]; /* heights relative to the pivot */
+    if (status == GSL_SUCCESS) status = whirl_steady_check_samples(omega, npts, r, z, tension);
     continuum_ws_free(w);
     return status;
 }
@@ -587,7 +582,7 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
 int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                            whirl_shape_info *info, int *exists)
 {
-    int status = check_tip_mass(tip_mass);
+    int status = whirl_check_tip_mass(tip_mass);
     if (status != GSL_SUCCESS) return status;
     continuum_params p = {tip_mass, WHIRL_CONTINUUM_TOL};
     steady_model m = {continuum_ws_alloc, continuum_ws_free, continuum_solve_ws, &p};

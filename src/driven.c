@@ -391,8 +391,7 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
     if (!(isfinite(p->drag_quadratic) && p->drag_quadratic >= 0))
         return whirl_fail(GSL_EINVAL, "quadratic drag must be >= 0 and finite, got %g",
                           p->drag_quadratic);
-    if (!(isfinite(p->tip_mass) && p->tip_mass >= 0))
-        return whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", p->tip_mass);
+    if (whirl_check_tip_mass(p->tip_mass) != GSL_SUCCESS) return GSL_EINVAL;
     if (chain && p->tip_mass != 0)
         return whirl_fail(GSL_EINVAL, "tip mass must be 0 with an N-link chain (add it to the "
                           "chain's last mass)");

@@ -1,4 +1,5 @@
 /* The last failure's message, one per thread so that sweeps can run threads. */
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 
@@ -8,6 +9,17 @@
 static _Thread_local char last_error[512];
 
 const char *whirl_last_error(void) { return last_error; }
+
+int whirl_check_tip_mass(double m)
+{
+    if (!(isfinite(m) && m >= 0))
+        return whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", m);
+    if (m > WHIRL_TIP_MASS_MAX)
+        return whirl_fail(GSL_EINVAL, "tip mass %g exceeds %g chain masses: the chain's own "
+                          "weight would be lost in the rounding of the tension", m,
+                          WHIRL_TIP_MASS_MAX);
+    return GSL_SUCCESS;
+}
 
 int whirl_fail(int status, const char *fmt, ...)
 {

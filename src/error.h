@@ -10,4 +10,8 @@ int whirl_fail(int status, const char *fmt, ...)
 #endif
     ;
 
+/* GSL_SUCCESS if the tip mass m (in chain masses) is in [0, WHIRL_TIP_MASS_MAX], else GSL_EINVAL
+ * with the message. */
+int whirl_check_tip_mass(double m);
+
 #endif

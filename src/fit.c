@@ -20,6 +20,7 @@
  * equal variance; isotropic measurement noise of standard deviation sigma per coordinate gives
  * normal distances of standard deviation sigma, so s estimates sigma. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,6 +35,7 @@
 #define FIT_NEWTON_STEPS 12
 #define FIT_DIFF_STEP 1e-6       /* relative step of the central differences in omega */
 #define FIT_CROSSING_LEVEL 0.05  /* |r| below this fraction of max |r| is not a side */
+#define FIT_AXIS_R 1e-9          /* |r| up to this [L] is a point on the axis (no information) */
 
 whirl_fit_model whirl_fit_model_default(void)
 {
@@ -180,6 +182,14 @@ static double fit_residuals_now(const fit_ws *w, int mirrored, double *e)
     return ssr;
 }
 
+static int by_coordinates(const void *a, const void *b)
+{
+    const double *p = a, *q = b;
+    if (p[0] != q[0]) return (p[0] > q[0]) - (p[0] < q[0]);
+    return (p[1] > q[1]) - (p[1] < q[1]);
+}
+
+/* The data: at least FIT_MIN_POINTS, all finite, and that many distinct points off the axis. */
 static int check_points(size_t n, const double *r, const double *z)
 {
     if (n < FIT_MIN_POINTS)
@@ -188,13 +198,28 @@ static int check_points(size_t n, const double *r, const double *z)
         if (!(isfinite(r[i]) && isfinite(z[i])))
             return whirl_fail(GSL_EINVAL, "point %zu is not finite (r = %g, z = %g)", i + 1, r[i],
                               z[i]);
+    /* a rate is determined only by points off the axis, and only by distinct ones */
+    double(*p)[2] = malloc(n * sizeof *p);
+    if (p == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu points", n);
+    size_t off = 0, distinct = 0;
+    for (size_t i = 0; i < n; i++)
+        if (fabs(r[i]) > FIT_AXIS_R) {
+            p[off][0] = r[i];
+            p[off++][1] = z[i];
+        }
+    qsort(p, off, sizeof *p, by_coordinates);
+    for (size_t i = 0; i < off; i++)
+        distinct += i == 0 || p[i][0] != p[i - 1][0] || p[i][1] != p[i - 1][1];
+    free(p);
+    if (distinct < FIT_MIN_POINTS)
+        return whirl_fail(GSL_EINVAL, "a fit needs at least %d distinct points off the axis "
+                          "(|r| > %g L), got %zu of %zu", FIT_MIN_POINTS, FIT_AXIS_R, distinct, n);
     return GSL_SUCCESS;
 }
 
 static int check_model(const whirl_fit_model *m)
 {
-    if (!(isfinite(m->tip_mass) && m->tip_mass >= 0))
-        return whirl_fail(GSL_EINVAL, "tip mass must be >= 0 and finite, got %g", m->tip_mass);
+    if (whirl_check_tip_mass(m->tip_mass) != GSL_SUCCESS) return GSL_EINVAL;
     if (!(isfinite(m->omega_max) && m->omega_max > 0))
         return whirl_fail(GSL_EINVAL, "omega_max must be > 0 and finite, got %g", m->omega_max);
     if (m->links == 0 && m->samples < 2)
@@ -335,7 +360,10 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     status = gauss_newton(&f, &omega, &ssr, &jj);
     if (status) return status;
     res->omega = omega;
-    res->omega_err = jj > 0 ? sqrt(ssr / (double)(w->n - 1) / jj) : HUGE_VAL;
+    res->omega_err = sqrt(ssr / (double)(w->n - 1) / jj);
+    if (!(jj > 0 && isfinite(res->omega_err)))
+        return whirl_fail(GSL_EFAILED, "mode %d: the fit is ill-conditioned: the residuals do "
+                          "not change with omega near %g", mode, omega);
     res->mode = mode;
     res->rms_residual = sqrt(ssr / (double)w->n);
     res->mirrored = f.mirrored;
@@ -397,11 +425,18 @@ int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double 
     fit_ws w;
     status = fit_ws_init(&w, m, n, r, z);
     if (status) return status;
-    int found = 0;
+    int found = 0, other = GSL_SUCCESS;
+    char other_msg[512] = "";
     for (int k = first; k <= last; k++) {
         whirl_fit_result res;
         const int st = fit_one_mode(&w, k, &res);
-        if (st && mode == 0) continue; /* no shape of this mode below omega_max */
+        if (st && st != WHIRL_EINTERRUPTED && mode == 0) {
+            if (st != GSL_EDOM && other == GSL_SUCCESS) { /* kept in case no mode fits */
+                other = st;
+                snprintf(other_msg, sizeof other_msg, "%s", whirl_last_error());
+            }
+            continue; /* no shape of this mode below omega_max, or no fit of it */
+        }
         if (st) {
             status = st;
             goto done;
@@ -409,7 +444,9 @@ int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double 
         if (!found || res.rms_residual < result->rms_residual) *result = res;
         found = 1;
     }
-    if (!found)
+    if (!found && other != GSL_SUCCESS)
+        status = whirl_fail(other, "%s", other_msg);
+    else if (!found)
         status = whirl_fail(GSL_EDOM, "no mode from %d to %d has a shape below omega = %g",
                             first, last, m->omega_max);
 done:

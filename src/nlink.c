@@ -157,7 +157,7 @@ int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, doub
     if (!(isfinite(tip_r) && tip_r >= 0))
         return whirl_fail(GSL_EINVAL, "tip radius must be >= 0 and finite, got %g", tip_r);
     nlink_recurse(c, omega, tip_r, r, z, tension);
-    return GSL_SUCCESS;
+    return whirl_steady_check_samples(omega, c->n + 1, r, z, tension);
 }
 
 /* The summary of the shape in w (positions of the solution). */
@@ -212,7 +212,7 @@ static int nlink_solve_ws(void *ws, double omega, int mode, double tip_r_guess,
     if (info->n_nodes != mode - 1)
         return whirl_fail(GSL_EFAILED, "mode %d at omega=%g: found %d axis crossings", mode,
                           omega, info->n_nodes);
-    return GSL_SUCCESS;
+    return whirl_steady_check_info(info);
 }
 
 int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,

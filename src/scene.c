@@ -157,6 +157,10 @@ static char *read_line(char *str, int num, void *stream)
     free(c->long_value);
     c->long_value = NULL;
 
+    if (strlen(c->line) != (size_t)len) {
+        collect_error(c, "NUL byte at column %zu (a binary file?)", strlen(c->line) + 1);
+        return NULL;
+    }
     char *start = c->line;
     while (*start == ' ' || *start == '\t') start++;
     int blank = *start == '\0' || *start == '\n' || *start == '\r';
@@ -171,6 +175,12 @@ static char *read_line(char *str, int num, void *stream)
                 collect_error(c, "[%s]: unknown section (known: chain, start, run, output)",
                               trim(start + 1));
             *end = ']';
+            /* inih would drop the rest of a header line: only a comment may follow */
+            const char *rest = end + 1;
+            while (*rest == ' ' || *rest == '\t') rest++;
+            if (*rest != '\0' && *rest != '\n' && *rest != '\r' && *rest != ';' && *rest != '#')
+                collect_error(c, "text after the section header: '%.40s' (put each key on a "
+                              "line of its own)", trim(end + 1));
         }
     }
     if (len < num - 1) {
@@ -690,16 +700,13 @@ static int convert_output(const convert *v)
 
 /* ---- driver ---- */
 
-static int collect_file(collect *c, const char *path)
+static int collect_stream(collect *c, FILE *fp, const char *path)
 {
     c->path = path;
-    c->fp = fopen(path, "r");
-    if (c->fp == NULL)
-        return whirl_fail(GSL_EFAILED, "%s: cannot read: %s", path, strerror(errno));
+    c->fp = fp;
     int rc = ini_parse_stream(read_line, c, on_key, c);
     if (ferror(c->fp) && c->status == GSL_SUCCESS)
         c->status = whirl_fail(GSL_EFAILED, "%s: read error", path);
-    fclose(c->fp);
     c->fp = NULL;
     /* inih's own (syntax) error, unless ours came first */
     if (rc > 0 && (c->status == GSL_SUCCESS || rc < c->error_line))
@@ -710,13 +717,13 @@ static int collect_file(collect *c, const char *path)
     return c->status;
 }
 
-int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
-                      whirl_scene *scene)
+int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
+                             size_t n_overrides, whirl_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
     collect c;
     memset(&c, 0, sizeof c);
-    int status = collect_file(&c, path);
+    int status = collect_stream(&c, fp, path);
     for (size_t i = 0; i < n_overrides && status == GSL_SUCCESS; i++)
         status = apply_override(&c, overrides[i]);
     if (status == GSL_SUCCESS && (scene->path = copy_string(path)) == NULL)
@@ -733,6 +740,18 @@ int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_o
     free(c.line);
     free(c.long_value);
     if (status != GSL_SUCCESS) whirl_scene_free(scene);
+    return status;
+}
+
+int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
+                      whirl_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    FILE *fp = fopen(path, "r");
+    if (fp == NULL)
+        return whirl_fail(GSL_EFAILED, "%s: cannot read: %s", path, strerror(errno));
+    int status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
+    fclose(fp);
     return status;
 }
 

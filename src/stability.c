@@ -432,6 +432,13 @@ int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double 
     if (!status) status = deflate(w);
     if (status) return status;
     const size_t k = (size_t)w->deflated, m = 4 * w->n - k, tda = w->a->tda;
+    /* LAPACK is handed finite numbers only (a NaN or inf would make it fail, or print) */
+    for (size_t i = k; i < k + m; i++)
+        for (size_t j = k; j < k + m; j++)
+            if (!isfinite(w->a->data[i * tda + j]))
+                return whirl_fail(GSL_ERANGE, "the linearised matrix is not finite (entry %zu,%zu "
+                                  "= %g): the damping %g or the rate is too large", i - k, j - k,
+                                  w->a->data[i * tda + j], w->damping);
     /* the trailing block read as column-major is its transpose: same eigenvalues */
     lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)m,
                                          w->a->data + k * tda + k, (lapack_int)tda, w->re, w->im,

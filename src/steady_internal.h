@@ -45,6 +45,12 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
 
 /* The checks every solver starts with: omega > 0 and finite, 1 <= mode <= WHIRL_MODE_MAX. */
 int whirl_steady_check_args(double omega, int mode);
+/* GSL_SUCCESS if every number of the solved shape is finite, else GSL_ERANGE naming the first
+ * that is not (a rate or tip mass too large for doubles). */
+int whirl_steady_check_info(const whirl_shape_info *info);
+/* The same for n samples of a shape (any of the arrays may be NULL). */
+int whirl_steady_check_samples(double omega, size_t n, const double *r, const double *z,
+                               const double *tension);
 
 /* Node count k to the message of a missing mode: "mode k does not exist at omega=W (it
  * bifurcates at omega_k=...)" with GSL_EDOM. */

@@ -31,6 +31,39 @@ int whirl_steady_check_args(double omega, int mode)
     return GSL_SUCCESS;
 }
 
+int whirl_steady_check_info(const whirl_shape_info *info)
+{
+    const struct {
+        const char *name;
+        double value;
+    } q[] = {{"tip_r", info->tip_r}, {"max_r", info->max_r},
+             {"top_tension", info->top_tension}, {"depth", info->depth}};
+    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++)
+        if (!isfinite(q[i].value))
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: %s is not finite (%g): the rate "
+                              "or the tip mass is too large", info->mode, info->omega, q[i].name,
+                              q[i].value);
+    for (int j = 0; j < info->n_nodes; j++)
+        if (!isfinite(info->node_s[j]))
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: node %d is not finite",
+                              info->mode, info->omega, j + 1);
+    return GSL_SUCCESS;
+}
+
+int whirl_steady_check_samples(double omega, size_t n, const double *r, const double *z,
+                               const double *tension)
+{
+    const double *a[3] = {r, z, tension};
+    static const char *const name[3] = {"r", "z", "tension"};
+    for (int k = 0; k < 3; k++)
+        for (size_t i = 0; a[k] != NULL && i < n; i++)
+            if (!isfinite(a[k][i]))
+                return whirl_fail(GSL_ERANGE, "the shape at omega=%g: %s of point %zu is not "
+                                  "finite (%g): the rate or the tip mass is too large", omega,
+                                  name[k], i, a[k][i]);
+    return GSL_SUCCESS;
+}
+
 typedef struct shot_call {
     steady_shot_fn shot;
     void *ws;

@@ -19,6 +19,11 @@
 /* The highest mode number the steady-shape solvers handle. */
 #define WHIRL_MODE_MAX 64
 
+/* The heaviest tip mass, in chain masses, of every model: beyond it the chain's weight (1) is
+ * below the round-off of the tip's in the tension (sigma + m), and results would depend on the
+ * rounding rather than the chain. */
+#define WHIRL_TIP_MASS_MAX 1e12
+
 /* The message of the last failure in the calling thread ("" if none). */
 const char *whirl_last_error(void);
 

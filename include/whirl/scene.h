@@ -42,6 +42,7 @@
 #define WHIRL_SCENE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "whirl/dynamics.h"
 
@@ -162,6 +163,11 @@ typedef struct whirl_scene {
  * and leaves *scene empty (whirl_scene_free is still safe). */
 int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                       whirl_scene *scene);
+
+/* whirl_scene_parse reading the open stream fp (not closed here; path names it in messages
+ * and in scene->path). */
+int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
+                             size_t n_overrides, whirl_scene *scene);
 
 /* Frees the arrays of the scene and zeroes it; NULL is a no-op. */
 void whirl_scene_free(whirl_scene *scene);

@@ -143,6 +143,7 @@ int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
     out->path = NULL;
     out->tmp = NULL;
     if (path == NULL || strcmp(path, "-") == 0) return 0;
+    if (path[0] == '\0') return cli_error(cmd, "empty output file name");
     struct stat st;
     if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
         /* A device or a pipe (say /dev/null) is written in place: it cannot be renamed over. */
@@ -219,9 +220,15 @@ void cli_out_abort(cli_out *out)
 
 int cli_units_check(const cli_command *cmd, const cli_units *u)
 {
-    if (!(u->length > 0)) return cli_error(cmd, "--length must be > 0, got %g", u->length);
-    if (!(u->mass > 0)) return cli_error(cmd, "--mass must be > 0, got %g", u->mass);
-    if (!(u->gravity > 0)) return cli_error(cmd, "--gravity must be > 0, got %g", u->gravity);
+    const struct {
+        const char *name;
+        double value;
+    } unit[3] = {{"--length", u->length}, {"--mass", u->mass}, {"--gravity", u->gravity}};
+    for (int i = 0; i < 3; i++)
+        if (!(unit[i].value >= CLI_UNIT_MIN && unit[i].value <= CLI_UNIT_MAX))
+            return cli_error(cmd, "%s must be between %g and %g, got %g (results in these units "
+                             "would overflow)", unit[i].name, CLI_UNIT_MIN, CLI_UNIT_MAX,
+                             unit[i].value);
     return 0;
 }
 

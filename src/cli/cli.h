@@ -78,7 +78,13 @@ typedef struct cli_units {
     {"--length", NULL, CLI_DOUBLE, &(u).length, NULL, "L", "chain length in metres (physical units)"}, \
     {"--mass", NULL, CLI_DOUBLE, &(u).mass, NULL, "M", "chain mass in kg (physical units)"},          \
     {"--gravity", NULL, CLI_DOUBLE, &(u).gravity, NULL, "G", "gravity in m/s^2 (physical units)"}
-/* Checks the units (positive). Returns 0, or 1 after printing an error. */
+/* The range of each unit: wide enough for any physical chain, narrow enough that results (rates,
+ * tensions, lengths of order 1e-100 to 1e100 in the dimensionless units) times the products of
+ * units in them stay finite. */
+#define CLI_UNIT_MIN 1e-30
+#define CLI_UNIT_MAX 1e30
+/* Checks the units (each in [CLI_UNIT_MIN, CLI_UNIT_MAX]). Returns 0, or 1 after printing an
+ * error. */
 int cli_units_check(const cli_command *cmd, const cli_units *u);
 double cli_units_rate(const cli_units *u);    /* sqrt(g/L): one dimensionless rate in 1/s */
 double cli_units_force(const cli_units *u);   /* M g */
@@ -87,6 +93,7 @@ double cli_units_force(const cli_units *u);   /* M g */
 /* SIGINT/SIGTERM raise the library's stop request (whirl_stop_request) once
  * cli_catch_interrupts() ran: a long loop stops and keeps its output. */
 #define cli_interrupted whirl_stop_requested()
+#define CLI_EXIT_INTERRUPTED 130 /* exit status after SIGINT/SIGTERM (128 + SIGINT) */
 void cli_catch_interrupts(void);
 /* Progress on a terminal only: "whirl CMD: label 42%" rewritten in place; done != 0 ends it. */
 void cli_progress(const cli_command *cmd, const char *label, double fraction, int done);

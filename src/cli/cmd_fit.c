@@ -11,129 +11,10 @@
 #include <string.h>
 
 #include "cli/steady_cli.h"
+#include "cli/points_csv.h"
 #include "whirl/optimize.h"
 
 #define FIT_MAX_LINKS 2000
-#define FIT_LINE_MAX 4096
-
-/* The points read from the file. */
-typedef struct points {
-    size_t n, cap;
-    double *r, *z;
-} points;
-
-static int points_push(points *p, double r, double z)
-{
-    if (p->n == p->cap) {
-        const size_t cap = p->cap ? 2 * p->cap : 64;
-        double *nr = realloc(p->r, cap * sizeof *nr);
-        if (nr == NULL) return -1;
-        p->r = nr;
-        double *nz = realloc(p->z, cap * sizeof *nz);
-        if (nz == NULL) return -1;
-        p->z = nz;
-        p->cap = cap;
-    }
-    p->r[p->n] = r;
-    p->z[p->n] = z;
-    p->n++;
-    return 0;
-}
-
-/* Cuts the next comma-separated field off *line (NULL when none is left), without the blanks
- * and double quotes around it. */
-static char *next_field(char **line)
-{
-    if (*line == NULL) return NULL;
-    char *f = *line, *comma = strchr(f, ',');
-    if (comma) {
-        *comma = '\0';
-        *line = comma + 1;
-    } else {
-        *line = NULL;
-    }
-    while (*f == ' ' || *f == '\t') f++;
-    char *end = f + strlen(f);
-    while (end > f && (end[-1] == ' ' || end[-1] == '\t' || end[-1] == '\r' || end[-1] == '\n'))
-        *--end = '\0';
-    if (end - f >= 2 && f[0] == '"' && end[-1] == '"') {
-        end[-1] = '\0';
-        f++;
-    }
-    return f;
-}
-
-static int is_blank_or_comment(const char *s)
-{
-    while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n') s++;
-    return *s == '\0' || *s == '#';
-}
-
-/* Reads the r and z columns of path. Returns 0, or 1 after printing an error. */
-static int read_points(const cli_command *cmd, const char *path, points *p)
-{
-    FILE *fp = strcmp(path, "-") == 0 ? stdin : fopen(path, "r");
-    if (fp == NULL) return cli_error(cmd, "cannot read '%s': %s", path, strerror(errno));
-    char line[FIT_LINE_MAX];
-    long lineno = 0, col_r = -1, col_z = -1;
-    int rc = 0, header_seen = 0;
-    while (fgets(line, sizeof line, fp)) {
-        lineno++;
-        if (strchr(line, '\n') == NULL && !feof(fp)) {
-            rc = cli_error(cmd, "%s:%ld: line longer than %d characters", path, lineno, FIT_LINE_MAX - 1);
-            break;
-        }
-        if (is_blank_or_comment(line)) continue;
-        char *rest = line, *f;
-        if (!header_seen) { /* the first line that is not a comment */
-            header_seen = 1;
-            for (long col = 0; (f = next_field(&rest)) != NULL; col++) {
-                if (strcmp(f, "r") == 0 && col_r < 0) col_r = col;
-                if (strcmp(f, "z") == 0 && col_z < 0) col_z = col;
-            }
-            if (col_r < 0 || col_z < 0) {
-                rc = cli_error(cmd, "%s:%ld: the header has no column '%s' (columns r and z are required)",
-                               path, lineno, col_r < 0 ? "r" : "z");
-                break;
-            }
-            continue;
-        }
-        double v[2] = {NAN, NAN};
-        int have[2] = {0, 0};
-        for (long col = 0; (f = next_field(&rest)) != NULL; col++) {
-            const int which = col == col_r ? 0 : (col == col_z ? 1 : -1);
-            if (which < 0) continue;
-            char *end;
-            errno = 0;
-            v[which] = strtod(f, &end);
-            if (*f == '\0' || *end != '\0') {
-                rc = cli_error(cmd, "%s:%ld: %s = '%s' is not a number", path, lineno,
-                               which ? "z" : "r", f);
-                goto done;
-            }
-            if (!isfinite(v[which])) {
-                rc = cli_error(cmd, "%s:%ld: %s = '%s' is not finite", path, lineno,
-                               which ? "z" : "r", f);
-                goto done;
-            }
-            have[which] = 1;
-        }
-        if (!have[0] || !have[1]) {
-            rc = cli_error(cmd, "%s:%ld: no value in column '%s'", path, lineno, have[0] ? "z" : "r");
-            break;
-        }
-        if (points_push(p, v[0], v[1]) != 0) {
-            rc = cli_error(cmd, "out of memory reading '%s'", path);
-            break;
-        }
-    }
-    if (rc == 0 && ferror(fp)) rc = cli_error(cmd, "error reading '%s'", path);
-    if (rc == 0 && !header_seen) rc = cli_error(cmd, "%s: no header line (columns r and z are required)", path);
-done:
-    if (fp != stdin) fclose(fp);
-    return rc;
-}
-
 int cmd_fit(const cli_command *cmd, int argc, char **argv)
 {
     const char *shape = NULL, *output = NULL;
@@ -168,8 +49,8 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     model.tip_mass = steady_cli_tip_mass(&m);
     if (omega_max_given) model.omega_max = omega_max_user / rate;
 
-    points p = {0, 0, NULL, NULL};
-    rc = read_points(cmd, shape, &p);
+    points_csv p = {0, 0, NULL, NULL};
+    rc = points_csv_read_path(cmd, shape, &p);
     if (rc) goto done;
     rc = 1;
     if (p.n < 3) {
@@ -202,8 +83,7 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
             res.omega_err * rate, res.mode, res.rms_residual * len);
     rc = cli_out_commit(cmd, &out);
 done:
-    free(p.r);
-    free(p.z);
+    points_csv_free(&p);
     steady_cli_model_free(&m);
     return rc;
 }

@@ -392,7 +392,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         return 1;
     }
     if (o.trace && cli_out_commit(cmd, &trace)) return 1;
-    if (written < count)
-        return cli_error(cmd, "interrupted after %zu of %zu points", written, count);
+    if (written < count) {
+        cli_error(cmd, "interrupted after %zu of %zu points", written, count);
+        return CLI_EXIT_INTERRUPTED;
+    }
     return 0;
 }
