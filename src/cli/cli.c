@@ -225,7 +225,9 @@ int cli_units_check(const cli_command *cmd, const cli_units *u)
         double value;
     } unit[3] = {{"--length", u->length}, {"--mass", u->mass}, {"--gravity", u->gravity}};
     for (int i = 0; i < 3; i++)
-        if (!(unit[i].value >= CLI_UNIT_MIN && unit[i].value <= CLI_UNIT_MAX))
+        if (!(unit[i].value > 0))
+            return cli_error(cmd, "%s must be > 0, got %g", unit[i].name, unit[i].value);
+        else if (!(unit[i].value >= CLI_UNIT_MIN && unit[i].value <= CLI_UNIT_MAX))
             return cli_error(cmd, "%s must be between %g and %g, got %g (results in these units "
                              "would overflow)", unit[i].name, CLI_UNIT_MIN, CLI_UNIT_MAX,
                              unit[i].value);
