@@ -1,6 +1,6 @@
 # Stability map: eig_growth (largest real part of the linearisation about the steady shape, in
 # sqrt(g/L)) against omega, one panel per mode, one line per chain (CSVs of
-# `whirl stability --omega-min A --omega-max B --steps S --linear`).
+# `whirl stability --omega-min A --omega-max B --omega-count N --linear`).
 # usage: gnuplot -e "files='map_N25.csv map_N50.csv map_N100.csv'; out='map.png'" plots/stability_map.gp
 if (!exists("files")) { print "usage: gnuplot -e \"files='a.csv b.csv'; out='map.png'\" plots/stability_map.gp"; exit status 1 }
 if (!exists("out")) out = "stability_map.png"

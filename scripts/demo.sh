@@ -11,8 +11,8 @@ mkdir -p "$out"
 # ---- steady shapes: branches of modes 1-3 for omega 1..10, shapes at a few rates ----
 echo "demo: steady shapes"
 "$whirl" critical --modes 3 -o "$out/critical.csv"
-"$whirl" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --steps 900 -o "$out/branches.csv"
-"$whirl" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --steps 90 --links 10 \
+"$whirl" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --omega-count 901 -o "$out/branches.csv"
+"$whirl" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --omega-count 91 --links 10 \
   -o "$out/branches_n10.csv"
 # each mode at three rates above its critical rate (the middle one also with 12 links)
 shape_rates() { case $1 in 1) echo "1.3 2 5" ;; 2) echo "3 4.5 8" ;; 3) echo "4.6 6.5 10" ;; esac; }
@@ -40,7 +40,7 @@ echo "demo: wrote $out/mode2.gif $out/double_pendulum.png"
 # ---- stability: the map (linear analysis) at N = 25 and 50, and two perturbed runs ----
 echo "demo: stability"
 for n in 25 50; do
-  "$whirl" stability --omega-min 1 --omega-max 10 --steps 181 --links $n --linear \
+  "$whirl" stability --omega-min 1 --omega-max 10 --omega-count 181 --links $n --linear \
     -o "$out/stability_map_N$n.csv"
 done
 gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'; out='$out/stability_map.png'" \

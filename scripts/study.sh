@@ -16,7 +16,7 @@ mkdir -p "$out"
 stability() {
   for n in 25 50 100; do
     start=$(date +%s)
-    "$WHIRL" stability --omega-min 1 --omega-max 10 --steps 901 --links $n --linear \
+    "$WHIRL" stability --omega-min 1 --omega-max 10 --omega-count 901 --links $n --linear \
       -o "$out/stability_map_N$n.csv"
     echo "map N = $n: $(( $(date +%s) - start )) s wall for $(grep -vc '^[#o]' "$out/stability_map_N$n.csv") analyses"
     # windows: maximal runs of rates with eig_growth > 0, per mode
@@ -40,8 +40,8 @@ regime() {
     run="mpirun --oversubscribe -n 2 $WHIRL"
   fi
   start=$(date +%s)
-  $run regime --omega-min 1.4 --omega-max 5.6 --omega-steps 15 --eps-min 0.04 --eps-max 0.10 \
-    --eps-steps 4 --drag-quadratic 0.0144 --t-max 3000 -o "$out/regime_map.csv" \
+  $run regime --omega-min 1.4 --omega-max 5.6 --omega-count 15 --eps-min 0.04 --eps-max 0.10 \
+    --eps-count 4 --drag-quadratic 0.0144 --t-max 3000 -o "$out/regime_map.csv" \
     --folds "$out/regime_folds.csv"
   echo "regime map: $(( $(date +%s) - start )) s wall ($run)"
   gnuplot -e "map='$out/regime_map.csv'; folds='$out/regime_folds.csv'; out='$out/regime.png'" \

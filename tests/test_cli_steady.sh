@@ -33,12 +33,12 @@ expect_ok "shape near critical" shape --omega 4.3268683833 --mode 3
 expect_ok "shape physical units" shape --omega 20 --mode 2 --length 0.5 --gravity 9.81 --mass 0.2
 
 # sweep
-expect_ok "sweep runs" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --steps 90 -o "$tmp/sw.csv"
+expect_ok "sweep runs" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --omega-count 91 -o "$tmp/sw.csv"
 if awk -F, '/^#/ {next} !h {h = $0; next} {n[$2]++}
      END {exit !(h == "omega,mode,tip_r,max_r,top_tension,depth" && n[1] == 88 && n[2] == 73 && n[3] == 57)}' \
      "$tmp/sw.csv"; then pass "sweep: a row wherever the mode exists"
 else fail "sweep: a row wherever the mode exists"; fi
-expect_ok "sweep --links --tip-mass" sweep --modes 2 --omega-min 3 --omega-max 5 --steps 10 --links 30 --tip-mass 0.2
+expect_ok "sweep --links --tip-mass" sweep --modes 2 --omega-min 3 --omega-max 5 --omega-count 11 --links 30 --tip-mass 0.2
 
 # help
 expect_ok "critical --help" critical --help
@@ -57,19 +57,20 @@ expect_error "omega negative" "whirl shape: --omega must be > 0" shape --omega -
 expect_error "mode zero" "whirl shape: --mode must be between" shape --omega 3 --mode 0 -o "$tmp/out.csv"
 expect_error "links zero" "whirl shape: --links must be >= 1" shape --omega 3 --mode 1 --links 0 -o "$tmp/out.csv"
 expect_error "negative tip mass" "whirl shape: --tip-mass must be >= 0" shape --omega 3 --mode 1 --tip-mass -1 -o "$tmp/out.csv"
-expect_error "points" "whirl shape: --points must be >= 2" shape --omega 3 --mode 1 --points 1 -o "$tmp/out.csv"
-expect_error "mode does not exist" "whirl shape: mode 3 does not exist at omega=4: it exists only above omega_3=4.3268" shape --omega 4 --mode 3 -o "$tmp/out.csv"
+expect_error "points" "whirl shape: --points must be between 2 and" shape --omega 3 --mode 1 --points 1 -o "$tmp/out.csv"
+expect_error "mode does not exist" "whirl shape: mode 3 does not exist at omega=4 sqrt\\(g/L\\): it exists only above omega_3=4.3268" shape --omega 4 --mode 3 -o "$tmp/out.csv"
 expect_error "mode above N" "whirl shape: .*modes 1..3" shape --omega 30 --mode 4 --links 3 -o "$tmp/out.csv"
 expect_error "bad units" "whirl shape: --length must be > 0" shape --omega 3 --mode 1 --length -1 -o "$tmp/out.csv"
 expect_error "critical modes" "whirl critical: --modes must be between" critical --modes 0 -o "$tmp/out.csv"
 expect_error "critical modes above N" "whirl critical: .*exceeds" critical --modes 5 --links 4 -o "$tmp/out.csv"
 expect_error "critical tip mass" "whirl critical: --tip-mass must be >= 0" critical --tip-mass -0.5 -o "$tmp/out.csv"
-expect_error "sweep steps" "whirl sweep: --steps must be >= 1" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 0 -o "$tmp/out.csv"
-expect_error "sweep order" "whirl sweep: --omega-min .* exceeds --omega-max" sweep --modes 1 --omega-min 3 --omega-max 2 --steps 5 -o "$tmp/out.csv"
-expect_error "sweep omega-min" "whirl sweep: --omega-min must be > 0" sweep --modes 1 --omega-min 0 --omega-max 2 --steps 5 -o "$tmp/out.csv"
-expect_error "sweep modes list" "whirl sweep: option --modes needs a comma-separated list" sweep --modes 1,x --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
-expect_error "sweep mode zero" "whirl sweep: .*each mode must be between" sweep --modes 1,0 --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
-expect_error "sweep missing steps" "whirl sweep: --steps is required" sweep --modes 1 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "sweep count" "whirl sweep: --omega-count must be between 1 and" sweep --modes 1 --omega-min 1 --omega-max 2 --omega-count 0 -o "$tmp/out.csv"
+expect_error "sweep order" "whirl sweep: need --omega-min < --omega-max" sweep --modes 1 --omega-min 3 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
+expect_error "sweep old --steps" "whirl sweep: unknown option '--steps'" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
+expect_error "sweep omega-min" "whirl sweep: --omega-min must be > 0" sweep --modes 1 --omega-min 0 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
+expect_error "sweep modes list" "whirl sweep: option --modes needs a comma-separated list" sweep --modes 1,x --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
+expect_error "sweep mode zero" "whirl sweep: --modes: each entry must be between 1 and 64" sweep --modes 1,0 --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
+expect_error "sweep missing count" "whirl sweep: --omega-count is required" sweep --modes 1 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "unwritable output" "whirl shape: cannot write" shape --omega 3 --mode 1 -o "$tmp/no/such/dir/out.csv"
-expect_error "unwritable output (sweep)" "whirl sweep: cannot write" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 2 -o "$tmp/no/such/dir/out.csv"
+expect_error "unwritable output (sweep)" "whirl sweep: cannot write" sweep --modes 1 --omega-min 1 --omega-max 2 --omega-count 2 -o "$tmp/no/such/dir/out.csv"
 finish

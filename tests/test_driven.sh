@@ -2,10 +2,10 @@
 # Command-line tests of whirl driven: one shape, a branch with its fold, bad input.
 . "$(dirname "$0")/lib.sh"
 
-# one shape of the continuum: two comment lines, the header, P rows from the pivot to the free end
+# one shape of the continuum: three comment lines (parameters, units, summary), the header, P rows from the pivot to the free end
 expect_ok "driven shape" driven --omega 1.6 --eps 0.05 --drag 0.05 --drag-quadratic 0.02 --points 41 -o "$tmp/shape.csv"
-if [ "$(grep -c '^#' "$tmp/shape.csv")" -eq 2 ] \
-   && grep -Eq '^# omega=1.6000000000000001 mode=1 nodes=1 tip_x=[0-9.e-]+ tip_y=-[0-9.e-]+ tip_z=-[0-9.e-]+ tip_r=[0-9.e-]+ top_tension=[0-9.e-]+ residual=[0-9.e-]+$' "$tmp/shape.csv" \
+if [ "$(grep -c '^#' "$tmp/shape.csv")" -eq 3 ] \
+   && grep -Eq '^# omega=1.6 mode=1 nodes=1 tip_x=[0-9.e-]+ tip_y=-[0-9.e-]+ tip_z=-[0-9.e-]+ tip_r=[0-9.e-]+ top_tension=[0-9.e-]+ residual=[0-9.e-]+$' "$tmp/shape.csv" \
    && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,x,y,z,tension" ] \
    && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 42 ]; then
   pass "driven shape: comments, header, 41 rows"; else fail "driven shape: comments, header, 41 rows"; fi
@@ -20,7 +20,7 @@ if [ "$(grep -vc '^#' "$tmp/nl.csv")" -eq 32 ] && grep -q ' nodes=2 ' "$tmp/nl.c
   pass "driven --links: N+1 rows, 2 nodes"; else fail "driven --links: N+1 rows, 2 nodes"; fi
 
 # branch: the anti-phase mode-1 branch folds once above omega_1 = 1.2024
-expect_ok "driven branch" driven --omega-min 0.8 --omega-max 2 --eps 0.02 --side -1 --step 0.05 -o "$tmp/br.csv"
+expect_ok "driven branch" driven --omega-min 0.8 --omega-max 2 --eps 0.02 --side -1 --arc-step 0.05 -o "$tmp/br.csv"
 fold=$(sed -n 's/^# fold omega=//p' "$tmp/br.csv")
 if [ "$(grep -c '^# fold omega=' "$tmp/br.csv")" -eq 1 ] \
    && awk -v f="$fold" 'BEGIN {exit !(f > 1.2024 && f < 1.4)}' \
@@ -37,17 +37,17 @@ expect_ok "driven --help" driven --help
 
 # bad input
 expect_error "no rate" "whirl driven: --omega .* is required" driven --eps 0.1 -o "$tmp/out.csv"
-expect_error "half a range" "whirl driven: a branch needs both" driven --omega-min 1 -o "$tmp/out.csv"
-expect_error "inverted range" "whirl driven: need 0 < --omega-min < --omega-max" driven --omega-min 2 --omega-max 1 -o "$tmp/out.csv"
+expect_error "half a range" "whirl driven: --omega-min needs --omega-max" driven --omega-min 1 -o "$tmp/out.csv"
+expect_error "inverted range" "whirl driven: need --omega-min < --omega-max" driven --omega-min 2 --omega-max 1 -o "$tmp/out.csv"
 expect_error "drag without drive" "whirl driven: air drag needs --eps > 0" driven --omega 2 --drag 0.1 -o "$tmp/out.csv"
 expect_error "negative eps" "whirl driven: --eps must be in" driven --omega 2 --eps -0.1 -o "$tmp/out.csv"
 expect_error "negative drag" "whirl driven: --drag must be >= 0" driven --omega 2 --eps 0.1 --drag -1 -o "$tmp/out.csv"
 expect_error "bad mode" "whirl driven: --mode must be between" driven --omega 2 --mode 0 -o "$tmp/out.csv"
 expect_error "bad side" "whirl driven: --side must be 1 or -1" driven --omega 2 --side 0 -o "$tmp/out.csv"
-expect_error "points with links" "whirl driven: --points applies to the continuum" driven --omega 2 --links 5 --points 9 -o "$tmp/out.csv"
-expect_error "step without branch" "whirl driven: --step, --max-points and --up apply to a branch" driven --omega 2 --step 0.1 -o "$tmp/out.csv"
+expect_error "points with links" "whirl driven: --points cannot be given with --links" driven --omega 2 --links 5 --points 9 -o "$tmp/out.csv"
+expect_error "step without branch" "whirl driven: --arc-step needs --omega-min" driven --omega 2 --arc-step 0.1 -o "$tmp/out.csv"
 expect_error "mode below its rate" "whirl driven: .*does not exist" driven --omega 2 --mode 2 --eps 0.01 -o "$tmp/out.csv"
-expect_error "start outside range" "whirl driven: --omega 3 \(the branch's start\) is outside" driven --omega 3 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "start outside range" "whirl driven: --omega \(the branch's start\) is outside" driven --omega 3 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "not a number" "whirl driven: option --eps needs a finite number" driven --omega 2 --eps abc -o "$tmp/out.csv"
 expect_error "unknown option" "whirl driven: unknown option '--bogus'" driven --omega 2 --bogus 1 -o "$tmp/out.csv"
 finish

@@ -69,7 +69,7 @@ else fail "fit --links: omega to 1e-9, mode 2"; fi
 # continuum, shuffled, on the side r < 0, with an extra column first, read from stdin
 "$WHIRL" shape --omega 4.1 --mode 2 --points 37 |
   awk -F, '/^#/ {print; next} !h {h = 1; print "id,z,r"; next} {print NR "," $3 "," (-$2)}' |
-  awk 'NR <= 3 {print; next} {print (NR * 7919) % 101 "\t" $0}' | sort -n | cut -f2- >"$tmp/c2.csv"
+  awk 'NR <= 4 {print; next} {print (NR * 7919) % 101 "\t" $0}' | sort -n | cut -f2- >"$tmp/c2.csv"
 if "$WHIRL" fit --shape - <"$tmp/c2.csv" >"$tmp/fit2.csv" && close "$(fit_value "$tmp/fit2.csv" 1)" 4.1 1e-6 &&
    [ "$(fit_value "$tmp/fit2.csv" 3)" = 2 ] && grep -q 'side=r<0' "$tmp/fit2.csv"; then
   pass "fit: continuum mode 2, shuffled, mirrored, stdin: omega to 1e-6"
@@ -110,7 +110,7 @@ expect_error "fit: too few points" "^whirl fit: .*two.csv has 2 points; a fit ne
 : >"$tmp/empty.csv"
 expect_error "fit: empty file" "^whirl fit: .*empty.csv: no header line" fit --shape "$tmp/empty.csv" -o "$tmp/out.csv"
 expect_error "fit: no such file" "^whirl fit: cannot read '.*nosuch.csv'" fit --shape "$tmp/nosuch.csv" -o "$tmp/out.csv"
-expect_error "fit: --shape missing" "^whirl fit: --shape FILE is required" fit -o "$tmp/out.csv"
+expect_error "fit: --shape missing" "^whirl fit: --shape is required" fit -o "$tmp/out.csv"
 expect_error "fit: mode zero" "^whirl fit: --mode must be between 1 and" fit --shape "$example" --mode 0 -o "$tmp/out.csv"
 expect_error "fit: links zero" "^whirl fit: --links must be >= 1" fit --shape "$example" --links 0 -o "$tmp/out.csv"
 expect_error "fit: bad length" "^whirl fit: --length must be > 0" fit --shape "$example" --length -1 -o "$tmp/out.csv"

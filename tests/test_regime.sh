@@ -23,7 +23,7 @@ if awk -v b="$blocks" -v t="$t_end" 'BEGIN {exit !(b == int(t / 0.5 + 1e-9) + 1)
   pass "trace: blocks every 0.5 of 9 points"; else fail "trace: blocks every 0.5 of 9 points ($blocks, t_end $t_end)"; fi
 
 # a map: rows in index order, omega fastest
-map="--omega-min 1 --omega-max 4 --omega-steps 4 --eps-min 0.04 --eps-max 0.08 --eps-steps 2 $fast"
+map="--omega-min 1 --omega-max 4 --omega-count 4 --eps-min 0.04 --eps-max 0.08 --eps-count 2 $fast"
 expect_ok "map" regime $map -o "$tmp/map.csv" --folds "$tmp/folds.csv"
 if [ "$(rows "$tmp/map.csv" | cut -d, -f1 | tr '\n' ' ')" = "0 1 2 3 4 5 6 7 " ] \
    && rows "$tmp/map.csv" | awk -F, 'NR == 6 {exit !($2 == 2 && $3 == 0.08)}' \
@@ -40,7 +40,7 @@ if [ "$(rows "$tmp/cut.csv")" = "$(rows "$tmp/map.csv")" ] && grep -q '^# comput
   pass "resume: 5 points computed, same rows"; else fail "resume: 5 points computed, same rows"; fi
 
 # an interrupted map keeps its rows (exit 130) and --resume completes it
-big="--omega-min 1 --omega-max 4 --omega-steps 40 --eps 0.05 $fast"
+big="--omega-min 1 --omega-max 4 --omega-count 40 --eps 0.05 $fast"
 "$WHIRL" regime $big -o "$tmp/big.csv" 2>"$tmp/int.err" &
 pid=$!
 i=0
@@ -72,7 +72,7 @@ elif grep -q '^# computed 8 points in .* on 1 rank' "$tmp/map.csv"; then
 else fail "built without MPI: the map ran on 1 rank"; fi
 
 # hysteresis: omega up then down, 2n - 1 rows
-expect_ok "sweep" regime --sweep --omega-min 2 --omega-max 3 --omega-steps 3 --eps 0.06 $fast --t-change 5 -o "$tmp/sweep.csv"
+expect_ok "sweep" regime --sweep --omega-min 2 --omega-max 3 --omega-count 3 --eps 0.06 $fast --t-change 5 -o "$tmp/sweep.csv"
 if [ "$(rows "$tmp/sweep.csv" | cut -d, -f1 | tr '\n' ' ')" = "up up up down down " ] \
    && [ "$(grep -v '^#' "$tmp/sweep.csv" | head -1 | cut -d, -f1-3)" = "leg,omega,state" ]; then
   pass "sweep: up and down rows"; else fail "sweep: up and down rows"; fi
@@ -95,16 +95,16 @@ expect_error "seed" "whirl regime: --seed must be a whole number" regime --omega
 expect_error "links" "whirl regime: --links must be between" regime --omega 2 --eps 0.1 --links 0 $o
 expect_error "frame" "whirl regime: --frame must be rotating or inertial" regime --omega 2 --eps 0.1 --frame lab $o
 expect_error "method" "whirl regime: --method: unknown integrator 'euler'" regime --omega 2 --eps 0.1 --method euler $o
-expect_error "half a range" "whirl regime: a map or sweep needs --omega-min, --omega-max and --omega-steps" regime --omega-min 1 --eps 0.1 $o
-expect_error "inverted range" "whirl regime: need --omega-min < --omega-max" regime --omega-min 3 --omega-max 1 --omega-steps 3 --eps 0.1 $o
-expect_error "eps range" "whirl regime: --eps-min and --eps-max must lie in" regime --omega-min 1 --omega-max 2 --omega-steps 3 --eps-min 0 --eps-max 0.1 --eps-steps 2 $o
-expect_error "steps" "whirl regime: --omega-steps must be between" regime --omega-min 1 --omega-max 2 --omega-steps 0 --eps 0.1 $o
-expect_error "map to stdout" "whirl regime: a map needs -o FILE" regime --omega-min 1 --omega-max 2 --omega-steps 2 --eps 0.1
+expect_error "half a range" "whirl regime: a map or sweep needs --omega-min, --omega-max and --omega-count" regime --omega-min 1 --eps 0.1 $o
+expect_error "inverted range" "whirl regime: need --omega-min < --omega-max" regime --omega-min 3 --omega-max 1 --omega-count 3 --eps 0.1 $o
+expect_error "eps range" "whirl regime: --eps-min and --eps-max must lie in" regime --omega-min 1 --omega-max 2 --omega-count 3 --eps-min 0 --eps-max 0.1 --eps-count 2 $o
+expect_error "steps" "whirl regime: --omega-count must be between" regime --omega-min 1 --omega-max 2 --omega-count 0 --eps 0.1 $o
+expect_error "map to stdout" "whirl regime: a map needs -o FILE" regime --omega-min 1 --omega-max 2 --omega-count 2 --eps 0.1
 expect_error "resume one run" "whirl regime: --resume applies to a map" regime --omega 2 --eps 0.1 --resume $o
-expect_error "resume missing file" "whirl regime: --resume: cannot read" regime --omega-min 1 --omega-max 2 --omega-steps 2 --eps 0.1 --resume -o "$tmp/none.csv"
-expect_error "sweep inertial" "whirl regime: --sweep .* needs --frame rotating" regime --sweep --omega-min 1 --omega-max 2 --omega-steps 2 --eps 0.1 --frame inertial $o
-expect_error "sweep eps range" "whirl regime: an eps range is for a map" regime --sweep --omega-min 1 --omega-max 2 --omega-steps 2 --eps-min 0.1 --eps-max 0.2 --eps-steps 2 $o
-expect_error "trace on a map" "whirl regime: --trace applies to one run" regime --omega-min 1 --omega-max 2 --omega-steps 2 --eps 0.1 --trace "$tmp/t.dat" $o
+expect_error "resume missing file" "whirl regime: --resume: cannot read" regime --omega-min 1 --omega-max 2 --omega-count 2 --eps 0.1 --resume -o "$tmp/none.csv"
+expect_error "sweep inertial" "whirl regime: --sweep .* needs --frame rotating" regime --sweep --omega-min 1 --omega-max 2 --omega-count 2 --eps 0.1 --frame inertial $o
+expect_error "sweep eps range" "whirl regime: an eps range is for a map" regime --sweep --omega-min 1 --omega-max 2 --omega-count 2 --eps-min 0.1 --eps-max 0.2 --eps-count 2 $o
+expect_error "trace on a map" "whirl regime: --trace applies to one run" regime --omega-min 1 --omega-max 2 --omega-count 2 --eps 0.1 --trace "$tmp/t.dat" $o
 expect_error "not a number" "whirl regime: option --eps needs a finite number" regime --omega 2 --eps abc $o
 expect_error "unknown option" "whirl regime: unknown option '--bogus'" regime --omega 2 --eps 0.1 --bogus 1 $o
 finish

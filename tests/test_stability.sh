@@ -14,8 +14,8 @@ expect_error "perturbation 1" "perturb" stability --omega 2 --mode 1 --perturb 1
 expect_error "negative damping" "damping" stability --omega 2 --mode 1 --damping -0.1 -o "$tmp/out.csv"
 expect_error "unknown method" "method" stability --omega 2 --mode 1 --method euler -o "$tmp/out.csv"
 expect_error "no rate" "omega" stability --mode 1 -o "$tmp/out.csv"
-expect_error "rate and map" "either" stability --omega 2 --omega-min 1 --omega-max 3 --steps 5 -o "$tmp/out.csv"
-expect_error "map without steps" "steps" stability --omega-min 1 --omega-max 3 -o "$tmp/out.csv"
+expect_error "rate and map" "cannot be given with" stability --omega 2 --omega-min 1 --omega-max 3 --omega-count 5 -o "$tmp/out.csv"
+expect_error "map without count" "--omega-min needs --omega-max --omega-count|needs --omega-count" stability --omega-min 1 --omega-max 3 -o "$tmp/out.csv"
 expect_error "non-number" "omega" stability --omega fast --mode 1 -o "$tmp/out.csv"
 expect_error "bad side" "side" stability --omega 3 --mode 1 --eps 0.05 --side 2 -o "$tmp/out.csv"
 expect_error "eps too large" "eps" stability --omega 3 --mode 1 --eps 1 -o "$tmp/out.csv"
@@ -59,7 +59,7 @@ if "$WHIRL" stability --omega 4.5 --mode 1 --links 12 --damping 0.01 --periods 3
 else fail "damping: $(cat "$tmp/err" "$tmp/d1.csv" "$tmp/d2.csv" 2>/dev/null | tail -3)"; fi
 
 # The map: one row per rate where the mode exists (mode 2 starts at its critical rate ~2.7).
-if "$WHIRL" stability --omega-min 2 --omega-max 5 --steps 7 --modes 1,2 --links 10 --linear \
+if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 7 --modes 1,2 --links 10 --linear \
      -o "$tmp/map.csv" 2>"$tmp/err" \
    && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, '$2 == 1' | wc -l)" -eq 7 ] \
    && [ "$(grep -v '^#' "$tmp/map.csv" | awk -F, '$2 == 2' | wc -l)" -eq 5 ] \
@@ -97,7 +97,7 @@ if "$WHIRL" stability --omega 3.5 --mode 2 --side -1 --links 12 --eps 0.05 --dra
 else fail "driven mode 2: $(cat "$tmp/err" "$tmp/ds.csv" "$tmp/ds2.csv" 2>/dev/null | tail -3)"; fi
 
 # The driven map: rows where the shapes exist, with the tip columns.
-if "$WHIRL" stability --omega-min 2 --omega-max 5 --steps 4 --modes 1,2 --links 10 --eps 0.03 \
+if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --links 10 --eps 0.03 \
      --drag 0.1 --linear -o "$tmp/dmap.csv" 2>"$tmp/err" \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | head -1)" = "$driven_header" ] \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 1' | wc -l)" -ge 3 ] \

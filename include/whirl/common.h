@@ -48,4 +48,12 @@ int whirl_stop_catch_signals(void);
 /* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
 void whirl_stop_restore_signals(void);
 
+/* ---- numbers as text ----
+ * whirl_format_double writes x in the shortest of %.15g, %.16g, %.17g that strtod reads back
+ * to the same double (17 digits always do), so 4.39 prints as 4.39 and not 4.3900000000000006,
+ * and nothing is lost. Non-finite values print as "nan", "inf", "-inf". buf holds at least
+ * WHIRL_FORMAT_MAX chars; returns buf. Thread-safe. */
+#define WHIRL_FORMAT_MAX 32
+char *whirl_format_double(char *buf, double x);
+
 #endif

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -21,26 +22,46 @@ int cli_error(const cli_command *cmd, const char *fmt, ...)
     return 1;
 }
 
-static void print_help(const cli_command *cmd, const cli_option *opts, size_t nopts)
+/* ---- the option table: units, ranges, help ---- */
+
+/* A physical value with an optional unit suffix ("4Hz", "60cm"): the number and the factor
+ * that turns it into the option's SI unit (rad/s, m, kg). Returns -1 for an unknown suffix. */
+typedef struct suffix {
+    const char *text;
+    double factor;
+} suffix;
+
+static const suffix rate_suffixes[] = {
+    {"rad/s", 1}, {"Hz", 6.283185307179586476925286766559}, {"hz", 6.283185307179586476925286766559},
+    {"rpm", 0.10471975511965977461542144610932}, {NULL, 0}};
+static const suffix length_suffixes[] = {{"m", 1}, {"cm", 0.01}, {"mm", 0.001}, {NULL, 0}};
+static const suffix mass_suffixes[] = {{"kg", 1}, {"g", 0.001}, {NULL, 0}};
+
+static const suffix *suffixes_of(cli_unit kind)
 {
-    printf("usage: whirl %s %s\n%s\n\noptions:\n", cmd->name, cmd->synopsis, cmd->summary);
-    for (size_t i = 0; i < nopts; i++) {
-        char left[64];
-        snprintf(left, sizeof left, "%s%s%s %s", opts[i].alias ? opts[i].alias : "",
-                 opts[i].alias ? ", " : "", opts[i].name,
-                 opts[i].type == CLI_FLAG ? "" : opts[i].meta);
-        printf("  %-26s %s\n", left, opts[i].help);
+    switch (kind) {
+    case CLI_UNIT_RATE: return rate_suffixes;
+    case CLI_UNIT_LENGTH:
+    case CLI_UNIT_SET_LENGTH: return length_suffixes;
+    case CLI_UNIT_MASS:
+    case CLI_UNIT_SET_MASS: return mass_suffixes;
+    default: return NULL;
     }
-    printf("  %-26s %s\n", "--help", "print this help");
 }
 
-/* A finite double, the whole string. */
-static int parse_double(const char *s, double *out)
+/* A finite double, the whole string; for a physical kind an optional unit suffix, applied. */
+static int parse_double(const char *s, cli_unit kind, double *out)
 {
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end != '\0' || errno == ERANGE || !isfinite(v)) return -1;
+    if (end == s || errno == ERANGE || !isfinite(v)) return -1;
+    if (*end != '\0') {
+        const suffix *u = suffixes_of(kind);
+        while (u && u->text && strcmp(u->text, end) != 0) u++;
+        if (u == NULL || u->text == NULL) return -1;
+        v *= u->factor;
+    }
     *out = v;
     return 0;
 }
@@ -61,7 +82,7 @@ static int parse_value(const cli_option *o, const char *text)
     const char *end;
     switch (o->type) {
     case CLI_DOUBLE:
-        return parse_double(text, o->value);
+        return parse_double(text, o->unit, o->value);
     case CLI_INT:
         return (parse_int(text, &end, o->value) == 0 && *end == '\0') ? 0 : -1;
     case CLI_STRING:
@@ -86,20 +107,329 @@ static int parse_value(const cli_option *o, const char *text)
     return -1;
 }
 
-static const char *type_words(cli_type t)
+static const char *type_words(const cli_option *o)
 {
-    switch (t) {
-    case CLI_DOUBLE: return "a finite number";
+    switch (o->type) {
+    case CLI_DOUBLE:
+        switch (o->unit) {
+        case CLI_UNIT_RATE: return "a finite number (optionally with rad/s, Hz or rpm)";
+        case CLI_UNIT_LENGTH:
+        case CLI_UNIT_SET_LENGTH: return "a finite number (optionally with m, cm or mm)";
+        case CLI_UNIT_MASS:
+        case CLI_UNIT_SET_MASS: return "a finite number (optionally with kg or g)";
+        default: return "a finite number";
+        }
     case CLI_INT: return "an integer";
     case CLI_INT_LIST: return "a comma-separated list of integers";
     default: return "a value";
     }
 }
 
+/* An interval "(0, inf)", "[1, 64]", "[0, 1)": ends, and whether each is included. */
+typedef struct interval {
+    double lo, hi;
+    int lo_in, hi_in;
+} interval;
+
+static int parse_range(const char *text, interval *r)
+{
+    char open, close;
+    char lo[32], hi[32];
+    if (sscanf(text, " %c %31[^, ] , %31[^])] %c", &open, lo, hi, &close) != 4) return -1;
+    if ((open != '(' && open != '[') || (close != ')' && close != ']')) return -1;
+    r->lo = strcmp(lo, "-inf") == 0 ? -HUGE_VAL : strtod(lo, NULL);
+    r->hi = strcmp(hi, "inf") == 0 ? HUGE_VAL : strtod(hi, NULL);
+    r->lo_in = open == '[';
+    r->hi_in = close == ']';
+    return 0;
+}
+
+static int in_range(const interval *r, double x)
+{
+    return (r->lo_in ? x >= r->lo : x > r->lo) && (r->hi_in ? x <= r->hi : x < r->hi);
+}
+
+/* "must be > 0", "must be between 1 and 64", "must be in [0, 1)". */
+static void range_words(const interval *r, char *buf, size_t size)
+{
+    char lo[WHIRL_FORMAT_MAX], hi[WHIRL_FORMAT_MAX];
+    whirl_format_double(lo, r->lo);
+    whirl_format_double(hi, r->hi);
+    if (isinf(r->hi) && isinf(r->lo)) snprintf(buf, size, "must be finite");
+    else if (isinf(r->hi)) snprintf(buf, size, "must be %s %s", r->lo_in ? ">=" : ">", lo);
+    else if (isinf(r->lo)) snprintf(buf, size, "must be %s %s", r->hi_in ? "<=" : "<", hi);
+    else if (r->lo_in && r->hi_in) snprintf(buf, size, "must be between %s and %s", lo, hi);
+    else snprintf(buf, size, "must be in %c%s, %s%c", r->lo_in ? '[' : '(', lo, hi,
+                  r->hi_in ? ']' : ')');
+}
+
+static const char *const si_names[] = {"", "rad/s", "m", "kg", "s", "N", "kg/(m s)", "kg/m^2",
+                                       "kg m^2/s", "m", "kg", "m/s^2"};
+static const char *const unit_names[] = {"", "sqrt(g/L)", "L", "M", "sqrt(L/g)", "M g",
+                                         "M sqrt(g/L)/L", "M/L^2", "M L^2 sqrt(g/L)", "m", "kg",
+                                         "m/s^2"};
+
+double cli_units_scale(const cli_units *u, cli_unit kind)
+{
+    const double rate = cli_units_rate(u);
+    switch (kind) {
+    case CLI_UNIT_RATE: return rate;
+    case CLI_UNIT_LENGTH: return u->length;
+    case CLI_UNIT_MASS: return u->mass;
+    case CLI_UNIT_TIME: return 1 / rate;
+    case CLI_UNIT_FORCE: return u->mass * u->gravity;
+    case CLI_UNIT_DRAG: return u->mass * rate / u->length;
+    case CLI_UNIT_DRAG2: return u->mass / (u->length * u->length);
+    case CLI_UNIT_DAMPING: return u->mass * u->length * u->length * rate;
+    default: return 1;
+    }
+}
+
+const char *cli_units_name(const cli_units *u, cli_unit kind)
+{
+    if ((size_t)kind >= sizeof si_names / sizeof *si_names) return "";
+    return u->physical ? si_names[kind] : unit_names[kind];
+}
+
+void cli_units_comment(FILE *fp, const cli_units *u)
+{
+    if (u->physical)
+        fprintf(fp, "# units: length=m mass=kg time=s rate=rad/s force=N L=%s M=%s g=%s\n",
+                CLI_NUM(u->length), CLI_NUM(u->mass), CLI_NUM(u->gravity));
+    else
+        fprintf(fp, "# units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), "
+                    "force M g)\n");
+}
+
+int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2)
+{
+    (void)cmd;
+    if (air->cd > 0)
+        *drag2 = 0.5 * air->density * air->cd * air->diameter /
+                 cli_units_scale(air->units, CLI_UNIT_DRAG2);
+    return 0;
+}
+
+void cli_put_num(FILE *fp, double x)
+{
+    char buf[WHIRL_FORMAT_MAX];
+    fputs(whirl_format_double(buf, x), fp);
+}
+
+double cli_grid(double lo, double hi, int count, int i)
+{
+    if (count <= 1 || i <= 0) return lo;
+    if (i >= count - 1) return hi;
+    return lo + (hi - lo) * (double)i / (double)(count - 1);
+}
+
+/* The option of the table named name (up to len chars), or NULL. */
+static const cli_option *find_option(const cli_option *opts, size_t nopts, const char *name,
+                                     size_t len)
+{
+    for (size_t k = 0; k < nopts; k++)
+        if ((strlen(opts[k].name) == len && strncmp(opts[k].name, name, len) == 0) ||
+            (opts[k].alias && strlen(opts[k].alias) == len && strncmp(opts[k].alias, name, len) == 0))
+            return &opts[k];
+    return NULL;
+}
+
+/* The first option of the space-separated list that was given (want 1) or not (want 0), or
+ * NULL; options of the list missing from the table count as not given. */
+static const char *first_in_list(const cli_option *opts, size_t nopts, const char *given,
+                                 const char *list, int want, char *buf, size_t size)
+{
+    for (const char *p = list; p && *p;) {
+        while (*p == ' ') p++;
+        size_t len = strcspn(p, " ");
+        if (len == 0) break;
+        const cli_option *o = find_option(opts, nopts, p, len);
+        int is_given = o ? given[o - opts] : 0;
+        if (is_given == want) {
+            snprintf(buf, size, "%.*s", (int)len, p);
+            return buf;
+        }
+        p += len;
+    }
+    return NULL;
+}
+
+static void option_left(const cli_option *o, char *buf, size_t size)
+{
+    snprintf(buf, size, "%s%s%s%s%s", o->alias ? o->alias : "", o->alias ? ", " : "", o->name,
+             o->type == CLI_FLAG ? "" : " ", o->type == CLI_FLAG ? "" : o->meta);
+}
+
+/* The synopsis from the table: required options bare, alternatives "(--a A | --b B)", the
+ * others in brackets. */
+static void print_synopsis(FILE *fp, const cli_command *cmd, const cli_option *opts, size_t nopts)
+{
+    if (cmd->synopsis) {
+        fprintf(fp, "%s", cmd->synopsis);
+        return;
+    }
+    const char *sep = "";
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        char left[96];
+        snprintf(left, sizeof left, "%s%s%s", o->name, o->type == CLI_FLAG ? "" : " ",
+                 o->type == CLI_FLAG ? "" : o->meta);
+        if (o->required && o->required[0] == '\0') fprintf(fp, "%s%s", sep, left);
+        else if (o->required) {
+            /* an alternative: printed once, at its first member */
+            int first = 1;
+            for (size_t k = 0; k < i; k++)
+                if (opts[k].required && opts[k].required[0] && strstr(o->required, opts[k].name))
+                    first = 0;
+            if (!first) continue;
+            fprintf(fp, "%s(%s", sep, left);
+            for (size_t k = i + 1; k < nopts; k++)
+                if (opts[k].required && strstr(o->required, opts[k].name) &&
+                    strcmp(opts[k].name, o->name) != 0)
+                    fprintf(fp, " | %s%s%s", opts[k].name, opts[k].type == CLI_FLAG ? "" : " ",
+                            opts[k].type == CLI_FLAG ? "" : opts[k].meta);
+            fputc(')', fp);
+        } else fprintf(fp, "%s[%s]", sep, left);
+        sep = " ";
+    }
+}
+
+static void print_help(const cli_command *cmd, const cli_option *opts, size_t nopts)
+{
+    printf("usage: whirl %s ", cmd->name);
+    print_synopsis(stdout, cmd, opts, nopts);
+    printf("\n%s\n", cmd->summary);
+    int has_units = 0;
+    for (size_t i = 0; i < nopts; i++) has_units |= opts[i].unit == CLI_UNIT_SET_LENGTH;
+    if (has_units)
+        printf("Units: dimensionless (length L, mass M, time sqrt(L/g)) unless --length, --mass "
+               "or --gravity is given; then SI (m, kg, s, rad/s, N). Rates also as 4Hz or "
+               "240rpm.\n");
+    printf("\noptions:\n");
+    const cli_units dimensionless = {1, 1, 1, 0}, si = {1, 1, 1, 1};
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        char left[96];
+        option_left(o, left, sizeof left);
+        printf("  %-26s %s", left, o->help);
+        if (o->unit != CLI_UNIT_NONE && o->unit < CLI_UNIT_SET_LENGTH)
+            printf(" [%s; %s]", cli_units_name(&dimensionless, o->unit),
+                   cli_units_name(&si, o->unit));
+        if (o->range) printf(" (range %s)", o->range);
+        if (o->required && o->required[0] == '\0') printf(" (required)");
+        putchar('\n');
+    }
+    printf("  %-26s %s\n", "-h, --help", "print this help");
+    if (cmd->example) printf("\nexample:\n  %s\n", cmd->example);
+}
+
+static int check_ranges(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                        const char *given, int units_only);
+
+/* The table's checks, after parsing; given[i]: option i appeared. */
+static int check_table(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                       const char *given)
+{
+    char name[64];
+    /* conflicts first (they say most about what was meant), then what is missing */
+    for (size_t i = 0; i < nopts; i++)
+        if (given[i] && first_in_list(opts, nopts, given, opts[i].excludes, 1, name, sizeof name))
+            return cli_error(cmd, "%s cannot be given with %s", opts[i].name, name);
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        if (!o->required || given[i]) continue;
+        if (o->required[0] == '\0') return cli_error(cmd, "%s is required", o->name);
+        if (first_in_list(opts, nopts, given, o->required, 1, name, sizeof name) == NULL)
+            return cli_error(cmd, "%s or %s is required", o->name, o->required);
+    }
+    for (size_t i = 0; i < nopts; i++)
+        if (given[i] && first_in_list(opts, nopts, given, opts[i].needs, 0, name, sizeof name))
+            return cli_error(cmd, "%s needs %s", opts[i].name, name);
+    return check_ranges(cmd, opts, nopts, given, 0);
+}
+
+/* The ranges of the options given (units_only: of the unit options only). */
+static int check_ranges(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                        const char *given, int units_only)
+{
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        interval r;
+        char words[96];
+        if (o->range == NULL || !given[i]) continue;
+        if (units_only && o->unit < CLI_UNIT_SET_LENGTH) continue;
+        if (parse_range(o->range, &r) != 0)
+            return cli_error(cmd, "%s: bad range '%s' in the option table", o->name, o->range);
+        range_words(&r, words, sizeof words);
+        if (o->type == CLI_DOUBLE) {
+            double x = *(double *)o->value;
+            if (!in_range(&r, x)) {
+                if (o->unit != CLI_UNIT_NONE && o->unit < CLI_UNIT_SET_LENGTH)
+                    return cli_error(cmd, "%s %s (in %s), got %s", o->name, words,
+                                     cli_units_name(&(cli_units){1, 1, 1, 0}, o->unit),
+                                     CLI_NUM(x));
+                return cli_error(cmd, "%s %s, got %s", o->name, words, CLI_NUM(x));
+            }
+        } else if (o->type == CLI_INT) {
+            int x = *(int *)o->value;
+            if (!in_range(&r, x)) return cli_error(cmd, "%s %s, got %d", o->name, words, x);
+        } else if (o->type == CLI_INT_LIST) {
+            const cli_int_list *l = o->value;
+            for (int k = 0; k < l->n; k++)
+                if (!in_range(&r, l->v[k]))
+                    return cli_error(cmd, "%s: each entry %s, got %d", o->name, words, l->v[k]);
+        }
+    }
+    return 0;
+}
+
+/* The unit options' values (before any default gravity is filled in). */
+static cli_units given_units(const cli_option *opts, size_t nopts)
+{
+    cli_units u = {1, 1, 1, 0};
+    for (size_t i = 0; i < nopts; i++) {
+        const double *v = opts[i].value;
+        if (opts[i].unit == CLI_UNIT_SET_LENGTH) u.length = *v;
+        if (opts[i].unit == CLI_UNIT_SET_MASS) u.mass = *v;
+        if (opts[i].unit == CLI_UNIT_SET_GRAVITY) u.gravity = *v;
+    }
+    return u;
+}
+
+/* Converts the physical values given to dimensionless ones. */
+static void convert_units(const cli_option *opts, size_t nopts, const char *given)
+{
+    cli_units u = {1, 1, 1, 0};
+    double *gravity = NULL;
+    int gravity_given = 0;
+    for (size_t i = 0; i < nopts; i++) {
+        double *v = opts[i].value;
+        switch (opts[i].unit) {
+        case CLI_UNIT_SET_LENGTH: u.length = *v, u.physical |= given[i]; break;
+        case CLI_UNIT_SET_MASS: u.mass = *v, u.physical |= given[i]; break;
+        case CLI_UNIT_SET_GRAVITY:
+            gravity = v, gravity_given = given[i], u.physical |= given[i];
+            break;
+        default: break;
+        }
+    }
+    if (u.physical && gravity && !gravity_given) *gravity = CLI_STANDARD_GRAVITY;
+    if (gravity) u.gravity = *gravity;
+    else if (u.physical) u.gravity = CLI_STANDARD_GRAVITY;
+    for (size_t i = 0; i < nopts; i++)
+        if (given[i] && opts[i].type == CLI_DOUBLE && opts[i].unit != CLI_UNIT_NONE &&
+            opts[i].unit < CLI_UNIT_SET_LENGTH)
+            *(double *)opts[i].value /= cli_units_scale(&u, opts[i].unit);
+}
+
+#define CLI_MAX_OPTIONS 256
+
 int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *opts, size_t nopts,
               const char **positional, size_t npos)
 {
     size_t npos_seen = 0;
+    char given[CLI_MAX_OPTIONS] = {0};
+    if (nopts > CLI_MAX_OPTIONS) return cli_error(cmd, "too many options in the table");
     for (size_t k = 0; k < npos; k++) positional[k] = NULL;
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
@@ -115,14 +445,9 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         /* --name=value or --name value */
         const char *eq = strchr(arg, '=');
         size_t name_len = eq ? (size_t)(eq - arg) : strlen(arg);
-        const cli_option *o = NULL;
-        for (size_t k = 0; k < nopts && o == NULL; k++) {
-            if ((strlen(opts[k].name) == name_len && strncmp(opts[k].name, arg, name_len) == 0) ||
-                (opts[k].alias && strlen(opts[k].alias) == name_len &&
-                 strncmp(opts[k].alias, arg, name_len) == 0))
-                o = &opts[k];
-        }
+        const cli_option *o = find_option(opts, nopts, arg, name_len);
         if (o == NULL) return cli_error(cmd, "unknown option '%.*s' (see --help)", (int)name_len, arg);
+        given[o - opts] = 1;
         if (o->given) *o->given = 1;
         if (o->type == CLI_FLAG) {
             if (eq) return cli_error(cmd, "option %s takes no value", o->name);
@@ -132,9 +457,14 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         const char *text = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
         if (text == NULL) return cli_error(cmd, "option %s needs a value (%s)", o->name, o->meta);
         if (parse_value(o, text) != 0)
-            return cli_error(cmd, "option %s needs %s, got '%s'", o->name, type_words(o->type), text);
+            return cli_error(cmd, "option %s needs %s, got '%s'", o->name, type_words(o), text);
     }
-    return 0;
+    /* the units before they are used */
+    if (check_ranges(cmd, opts, nopts, given, 1)) return 1;
+    const cli_units u = given_units(opts, nopts);
+    if (cli_units_check(cmd, &u)) return 1;
+    convert_units(opts, nopts, given);
+    return check_table(cmd, opts, nopts, given);
 }
 
 int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
@@ -238,6 +568,55 @@ double cli_units_rate(const cli_units *u) { return sqrt(u->gravity / u->length);
 double cli_units_force(const cli_units *u) { return u->mass * u->gravity; }
 
 void cli_catch_interrupts(void) { whirl_stop_catch_signals(); }
+
+double cli_wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+void cli_progress_begin(cli_progress_state *p, const cli_command *cmd, const char *label,
+                        long total, long already)
+{
+    p->cmd = cmd;
+    p->label = label;
+    p->total = total;
+    p->already = already;
+    p->start = cli_wall_seconds();
+    p->shown = -HUGE_VAL;
+    p->tty = isatty(STDERR_FILENO);
+}
+
+/* "1h02m", "3m05s", "12s". */
+static void duration_words(double seconds, char *buf, size_t size)
+{
+    long s = seconds > 0 && seconds < 1e9 ? (long)(seconds + 0.5) : 0;
+    if (s >= 3600) snprintf(buf, size, "%ldh%02ldm", s / 3600, s / 60 % 60);
+    else if (s >= 60) snprintf(buf, size, "%ldm%02lds", s / 60, s % 60);
+    else snprintf(buf, size, "%lds", s);
+}
+
+void cli_progress_update(cli_progress_state *p, long done, int final)
+{
+    const double now = cli_wall_seconds();
+    if (!p->tty || (!final && now - p->shown < 0.2)) return;
+    p->shown = now;
+    char elapsed[32], left[48] = "";
+    duration_words(now - p->start, elapsed, sizeof elapsed);
+    const long run_done = done - p->already;
+    if (!final && run_done > 0 && done < p->total) {
+        char eta[32];
+        duration_words((now - p->start) / (double)run_done * (double)(p->total - done), eta,
+                       sizeof eta);
+        snprintf(left, sizeof left, ", about %s left", eta);
+    }
+    fprintf(stderr, "\rwhirl %s: %s %ld/%ld (%.0f%%), %s elapsed%s\033[K", p->cmd->name,
+            p->label, done, p->total, p->total > 0 ? 100.0 * (double)done / (double)p->total : 100.0,
+            elapsed, left);
+    if (final) fputc('\n', stderr);
+    fflush(stderr);
+}
 
 void cli_progress(const cli_command *cmd, const char *label, double fraction, int done)
 {

@@ -23,6 +23,36 @@ typedef struct cli_int_list {
     int v[CLI_LIST_MAX];
 } cli_int_list;
 
+/* Physical kind of a double option, for units (see cli_units below). A value given on the
+ * command line is converted to the library's dimensionless units right after parsing, so the
+ * command sees dimensionless numbers; defaults are dimensionless already and left alone. */
+typedef enum {
+    CLI_UNIT_NONE = 0,  /* a pure number */
+    CLI_UNIT_RATE,      /* 1/T: sqrt(g/L); rad/s with units; suffix Hz or rpm (e.g. 4Hz, 240rpm) */
+    CLI_UNIT_LENGTH,    /* L; m with units (suffix cm, mm accepted) */
+    CLI_UNIT_MASS,      /* M; kg with units (suffix g accepted) */
+    CLI_UNIT_TIME,      /* sqrt(L/g); s with units */
+    CLI_UNIT_FORCE,     /* M g; N with units */
+    CLI_UNIT_DRAG,      /* linear drag per unit length, M sqrt(g/L) / L; kg/(m s) with units */
+    CLI_UNIT_DRAG2,     /* quadratic drag per unit length, M / L^2; kg/m^2 with units */
+    CLI_UNIT_DAMPING,   /* joint damping (Rayleigh), M L^2 sqrt(g/L); kg m^2/s with units */
+    CLI_UNIT_SET_LENGTH,  /* the option that sets L [m] (--length; suffix cm, mm accepted) */
+    CLI_UNIT_SET_MASS,    /* the option that sets M [kg] (--mass; suffix g accepted) */
+    CLI_UNIT_SET_GRAVITY  /* the option that sets g [m/s^2] (--gravity) */
+} cli_unit;
+
+/* One option. The first seven fields are the parser's; the rest, zero when left out, declare
+ * the checks cli_parse makes after reading the whole command line, in this order:
+ *   required  NULL: optional; "": must be given; "--a --b": must be given unless one of the
+ *             listed options is (an alternative form of the command);
+ *   needs     options that must be given with this one ("--omega-max --omega-count");
+ *   excludes  options that cannot be given with this one;
+ *   range     the accepted values of an int, int list (each entry) or double, checked on the
+ *             dimensionless value (after the unit conversion) when given (defaults are trusted):
+ *             "(0, inf)", "[1, 64]", "[0, 1)"; an interval, ends "inf"/"-inf" allowed;
+ *   unit      the physical kind of a double (CLI_UNIT_NONE: a pure number).
+ * Option names in these lists are separated by spaces. Help and synopsis are generated from
+ * the table (cli_parse --help): one line per option, "  NAME META  help [unit] (range)". */
 typedef struct cli_option {
     const char *name;  /* "--omega" */
     const char *alias; /* "-o" or NULL */
@@ -31,18 +61,31 @@ typedef struct cli_option {
     int *given;        /* set to 1 when the option appears (may be NULL) */
     const char *meta;  /* value's name in the help, e.g. "W" */
     const char *help;  /* one line */
+    const char *range;    /* accepted values, e.g. "(0, inf)"; NULL: any */
+    const char *needs;    /* options required with this one; NULL: none */
+    const char *excludes; /* options not allowed with this one; NULL: none */
+    const char *required; /* NULL: optional, "": required, "--x ...": required unless one given */
+    cli_unit unit;        /* physical kind (doubles); CLI_UNIT_NONE: a number */
 } cli_option;
 
 typedef struct cli_command {
     const char *name;     /* "shape" */
-    const char *synopsis; /* "--omega W --mode K [--links N] ..." */
+    const char *synopsis; /* NULL: generated from the option table; else used as given */
     const char *summary;  /* one sentence */
     int (*run)(const struct cli_command *cmd, int argc, char **argv);
+    const char *example;  /* one command line shown by --help, e.g. "whirl shape --omega 3 ..." */
 } cli_command;
 
-/* Parses argv[1..argc-1] (argv[0] is the command name) into opts[0..nopts-1]. Positional
- * arguments go to positional[0..npos-1] (NULL if absent; more than npos is an error). Returns
- * 0 on success, 1 after printing a one-line error, 2 after printing the help (--help). */
+/* Rate grids, the same in every command: --omega-min A --omega-max B --omega-count N are the N
+ * equally spaced rates A, A + (B - A)/(N - 1), ..., B, both ends included (N = 1: A alone, and
+ * then B must equal A); likewise --eps-min/--eps-max/--eps-count. cli_grid gives entry i. */
+double cli_grid(double lo, double hi, int count, int i);
+
+/* Parses argv[1..argc-1] (argv[0] is the command name) into opts[0..nopts-1], converts the
+ * physical values to dimensionless ones and makes the table's checks (required, needs,
+ * excludes, range). Positional arguments go to positional[0..npos-1] (NULL if absent; more
+ * than npos is an error). Returns 0 on success, 1 after printing a one-line error, 2 after
+ * printing the help (--help). */
 int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *opts, size_t nopts,
               const char **positional, size_t npos);
 
@@ -68,26 +111,88 @@ int cli_out_commit(const cli_command *cmd, cli_out *out);
 /* Removes the temporary file: nothing is left behind. */
 void cli_out_abort(cli_out *out);
 
-/* ---- units: dimensionless by default (L = M = g = 1) ---- */
+/* ---- units: dimensionless by default (L = M = g = 1) ----
+ * With any of --length, --mass, --gravity the command works in SI units: lengths in m, masses
+ * in kg, times in s, rates in rad/s (or Hz, rpm with a suffix), forces in N; the ones not given
+ * default to L = 1 m, M = 1 kg, g = 9.80665 m/s^2. Outputs then say so on a comment line
+ *   # units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=9.81
+ * and, dimensionless, on
+ *   # units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), force M g)
+ * (cli_units_comment); plots/ read that line for their axis labels. */
 typedef struct cli_units {
-    double length;  /* L [m], --length */
-    double mass;    /* M [kg], --mass */
-    double gravity; /* g [m/s^2], --gravity */
+    double length;  /* L [m], --length (default 1) */
+    double mass;    /* M [kg], --mass (default 1) */
+    double gravity; /* g [m/s^2], --gravity (default 1; 9.80665 once a unit option is given) */
+    int physical;   /* set by cli_parse: 1 if any of the three was given */
 } cli_units;
-#define CLI_UNITS_OPTIONS(u)                                                                    \
-    {"--length", NULL, CLI_DOUBLE, &(u).length, NULL, "L", "chain length in metres (physical units)"}, \
-    {"--mass", NULL, CLI_DOUBLE, &(u).mass, NULL, "M", "chain mass in kg (physical units)"},          \
-    {"--gravity", NULL, CLI_DOUBLE, &(u).gravity, NULL, "G", "gravity in m/s^2 (physical units)"}
+#define CLI_UNITS_INIT {1, 1, 1, 0}
+#define CLI_STANDARD_GRAVITY 9.80665 /* m/s^2, g when SI units are on and --gravity is not given */
+#define CLI_UNITS_OPTIONS(u)                                                                   \
+    {"--length", NULL, CLI_DOUBLE, &(u).length, &(u).physical, "L",                             \
+     "chain length: switches to SI units (m; e.g. 0.6 or 60cm)", "(0, inf)", NULL, NULL, NULL,  \
+     CLI_UNIT_SET_LENGTH},                                                                      \
+    {"--mass", NULL, CLI_DOUBLE, &(u).mass, &(u).physical, "M",                                 \
+     "chain mass: switches to SI units (kg; e.g. 0.05 or 50g)", "(0, inf)", NULL, NULL, NULL,   \
+     CLI_UNIT_SET_MASS},                                                                        \
+    {"--gravity", NULL, CLI_DOUBLE, &(u).gravity, &(u).physical, "G",                           \
+     "gravity: switches to SI units (m/s^2; default 9.80665 then)", "(0, inf)", NULL, NULL, NULL,  \
+     CLI_UNIT_SET_GRAVITY}
 /* The range of each unit: wide enough for any physical chain, narrow enough that results (rates,
  * tensions, lengths of order 1e-100 to 1e100 in the dimensionless units) times the products of
  * units in them stay finite. */
 #define CLI_UNIT_MIN 1e-30
 #define CLI_UNIT_MAX 1e30
-/* Checks the units (each in [CLI_UNIT_MIN, CLI_UNIT_MAX]). Returns 0, or 1 after printing an
- * error. */
+/* Checks the units (each in [CLI_UNIT_MIN, CLI_UNIT_MAX]); cli_parse calls it for the unit
+ * options. Returns 0, or 1 after printing an error. */
 int cli_units_check(const cli_command *cmd, const cli_units *u);
 double cli_units_rate(const cli_units *u);    /* sqrt(g/L): one dimensionless rate in 1/s */
 double cli_units_force(const cli_units *u);   /* M g */
+/* The size of one dimensionless unit of the kind in the user's units (1 when dimensionless):
+ * a dimensionless value times this is the value to print. */
+double cli_units_scale(const cli_units *u, cli_unit kind);
+/* The name of the user's unit of the kind: "m", "rad/s", ... or "L", "sqrt(g/L)", ... */
+const char *cli_units_name(const cli_units *u, cli_unit kind);
+/* Writes the "# units: ..." comment line. */
+void cli_units_comment(FILE *fp, const cli_units *u);
+
+/* ---- the hand-swung chain: the pivot's circle and air drag, the same flags everywhere ----
+ * --eps E (radius of the pivot's circle), --drag C (force -C v per unit length), --drag-quadratic
+ * C2 (force -C2 |v| v per unit length), or C2 from a physical description: --drag-cd CD with
+ * --diameter D [m] and --air-density RHO [kg/m^3, default 1.204: air at 20 C], for which
+ * C2 = RHO CD D / 2 [kg/m^2] (the drag of a cylinder across the flow, per unit length); that
+ * needs SI units (--length, --mass). The given pointers may be NULL. */
+typedef struct cli_air {
+    double cd;       /* drag coefficient, --drag-cd (0: not given) */
+    double diameter; /* chain diameter [m], --diameter */
+    double density;  /* air density [kg/m^3], --air-density (default 1.204) */
+    const cli_units *units; /* the command's units, for the conversion of C2 */
+} cli_air;
+#define CLI_AIR_INIT(u) {0, 0, 1.204, &(u)}
+#define CLI_DRAG_OPTIONS(eps, eps_given, drag, drag_given, drag2, drag2_given, air)             \
+    {"--eps", NULL, CLI_DOUBLE, &(eps), eps_given, "E",                                          \
+     "radius of the pivot's circle (default 0)", "[0, 1)", NULL, NULL, NULL, CLI_UNIT_LENGTH},  \
+    {"--drag", NULL, CLI_DOUBLE, &(drag), drag_given, "C",                                       \
+     "linear air drag: force -C v per unit length (default 0)", "[0, inf)", NULL, NULL, NULL,   \
+     CLI_UNIT_DRAG},                                                                            \
+    {"--drag-quadratic", NULL, CLI_DOUBLE, &(drag2), drag2_given, "C2",                          \
+     "quadratic air drag: force -C2 |v| v per unit length (default 0)", "[0, inf)", NULL,       \
+     "--drag-cd", NULL, CLI_UNIT_DRAG2},                                                        \
+    {"--drag-cd", NULL, CLI_DOUBLE, &(air).cd, drag2_given, "CD",                                \
+     "drag coefficient of the chain (about 1.2): C2 = RHO CD D / 2", "(0, inf)",                \
+     "--diameter --length --mass"},                                                             \
+    {"--diameter", NULL, CLI_DOUBLE, &(air).diameter, NULL, "D",                                 \
+     "chain diameter for --drag-cd [m]", "(0, inf)", "--drag-cd"},                              \
+    {"--air-density", NULL, CLI_DOUBLE, &(air).density, NULL, "RHO",                             \
+     "air density for --drag-cd [kg/m^3] (default 1.204)", "(0, inf)", "--drag-cd"}
+/* With --drag-cd given, sets *drag2 (dimensionless) from the description. Returns 0. */
+int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
+
+/* ---- numbers in text and CSV: the shortest round-trip form (whirl_format_double) ----
+ * CLI_NUM(x) is a string valid to the end of the enclosing full expression's block, for use as
+ * a "%s" argument: fprintf(fp, "%s,%s\n", CLI_NUM(a), CLI_NUM(b)). */
+#define CLI_NUM(x) whirl_format_double((char[WHIRL_FORMAT_MAX]){0}, (x))
+/* Writes x (shortest round-trip form) to fp. */
+void cli_put_num(FILE *fp, double x);
 
 /* ---- long runs ---- */
 /* SIGINT/SIGTERM raise the library's stop request (whirl_stop_request) once
@@ -95,7 +200,27 @@ double cli_units_force(const cli_units *u);   /* M g */
 #define cli_interrupted whirl_stop_requested()
 #define CLI_EXIT_INTERRUPTED 130 /* exit status after SIGINT/SIGTERM (128 + SIGINT) */
 void cli_catch_interrupts(void);
-/* Progress on a terminal only: "whirl CMD: label 42%" rewritten in place; done != 0 ends it. */
+/* Progress of a long loop over a known number of items, on a terminal only:
+ *   whirl CMD: points 42/120 (35%), 1m02s elapsed, about 1m55s left
+ * rewritten in place, at most every 0.2 s; the estimate comes from the items done in this run
+ * (already: items done before it, say from a resumed file, counted but not timed). */
+typedef struct cli_progress_state {
+    const cli_command *cmd;
+    const char *label; /* "points" */
+    long total;        /* items in all */
+    long already;      /* items done before this run started */
+    double start;      /* wall clock at cli_progress_begin [s] */
+    double shown;      /* wall clock of the last line [s] */
+    int tty;           /* standard error is a terminal */
+} cli_progress_state;
+void cli_progress_begin(cli_progress_state *p, const cli_command *cmd, const char *label,
+                        long total, long already);
+/* done: items done so far, including the already ones; final != 0 prints the last line and a
+ * newline. */
+void cli_progress_update(cli_progress_state *p, long done, int final);
+/* Seconds on the monotonic clock. */
+double cli_wall_seconds(void);
+/* The old one-line form: "whirl CMD: label 42%" rewritten in place; done != 0 ends it. */
 void cli_progress(const cli_command *cmd, const char *label, double fraction, int done);
 
 /* ---- the commands ---- */

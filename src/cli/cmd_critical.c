@@ -8,14 +8,13 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--modes", NULL, CLI_INT, &modes, NULL, "K", "modes 1..K (default 3)"},
+        {"--modes", NULL, CLI_INT, &modes, NULL, "K", "modes 1..K (default 3)", "[1, 64]"},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE", "write the CSV to FILE"},
+        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;
-    if (modes < 1 || modes > WHIRL_MODE_MAX)
-        return cli_error(cmd, "--modes must be between 1 and %d, got %d", WHIRL_MODE_MAX, modes);
     if (steady_cli_model_setup(cmd, &m)) return 1;
     if (m.chain && (size_t)modes > m.chain->n) {
         steady_cli_model_free(&m);
@@ -34,12 +33,14 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         return 1;
     }
     double rate = cli_units_rate(&m.units);
-    fprintf(out.fp, "# linear critical rates of the %s, tip mass %.17g; omega in %s\n",
-            m.chain ? "N-link chain" : "continuous chain", m.tip_mass,
-            m.units.gravity == 1 && m.units.length == 1 ? "sqrt(g/L)" : "rad/s");
+    fprintf(out.fp, "# linear critical rates of the %s, tip mass %s %s; omega in %s\n",
+            m.chain ? "N-link chain" : "continuous chain",
+            CLI_NUM(m.tip_mass * m.units.mass), cli_units_name(&m.units, CLI_UNIT_MASS),
+            cli_units_name(&m.units, CLI_UNIT_RATE));
     if (m.chain) fprintf(out.fp, "# links=%d\n", m.links);
+    cli_units_comment(out.fp, &m.units);
     fprintf(out.fp, "mode,omega\n");
-    for (int k = 1; k <= modes; k++) fprintf(out.fp, "%d,%.17g\n", k, omega[k - 1] * rate);
+    for (int k = 1; k <= modes; k++) fprintf(out.fp, "%d,%s\n", k, CLI_NUM(omega[k - 1] * rate));
     steady_cli_model_free(&m);
     return cli_out_commit(cmd, &out);
 }

@@ -11,10 +11,11 @@
 #include "cli/cli.h"
 #include "whirl/driven.h"
 
-#define DRIVEN_MAX_LINKS 100000
 
 typedef struct driven_options {
     double omega, omega_min, omega_max, eps, drag, drag_quadratic, tip_mass, step;
+    cli_units units;
+    cli_air air;
     int mode, side, links, points, max_points, up;
     int omega_given, min_given, max_given, points_given, step_given, max_points_given,
         up_given;
@@ -24,54 +25,33 @@ typedef struct driven_options {
 static int check_options(const cli_command *cmd, const driven_options *o)
 {
     const int branch = o->min_given || o->max_given;
-    if (branch && !(o->min_given && o->max_given))
-        return cli_error(cmd, "a branch needs both --omega-min and --omega-max");
-    if (!branch && !o->omega_given)
-        return cli_error(cmd, "--omega (one shape) or --omega-min and --omega-max (a branch) "
-                         "is required");
-    if (!branch && (o->step_given || o->max_points_given || o->up_given))
-        return cli_error(cmd, "--step, --max-points and --up apply to a branch only");
-    if (branch && o->points_given) return cli_error(cmd, "--points applies to one shape only");
-    if (o->omega_given && !(o->omega > 0))
-        return cli_error(cmd, "--omega must be > 0, got %g", o->omega);
-    if (branch && !(o->omega_min > 0 && o->omega_min < o->omega_max))
-        return cli_error(cmd, "need 0 < --omega-min < --omega-max, got %g, %g", o->omega_min,
-                         o->omega_max);
+    if (branch && !(o->omega_min < o->omega_max))
+        return cli_error(cmd, "need --omega-min < --omega-max");
     if (branch && o->omega_given && !(o->omega >= o->omega_min && o->omega <= o->omega_max))
-        return cli_error(cmd, "--omega %g (the branch's start) is outside [%g, %g]", o->omega,
-                         o->omega_min, o->omega_max);
-    if (o->mode < 1 || o->mode > WHIRL_MODE_MAX)
-        return cli_error(cmd, "--mode must be between 1 and %d, got %d", WHIRL_MODE_MAX, o->mode);
+        return cli_error(cmd, "--omega (the branch's start) is outside [--omega-min, --omega-max]");
     if (o->side != 1 && o->side != -1)
         return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
-    if (!(o->eps >= 0 && o->eps < 1))
-        return cli_error(cmd, "--eps must be in [0, 1) (the chain's length is 1), got %g", o->eps);
-    if (!(o->drag >= 0)) return cli_error(cmd, "--drag must be >= 0, got %g", o->drag);
-    if (!(o->drag_quadratic >= 0))
-        return cli_error(cmd, "--drag-quadratic must be >= 0, got %g", o->drag_quadratic);
     if (o->eps == 0 && (o->drag > 0 || o->drag_quadratic > 0))
         return cli_error(cmd, "air drag needs --eps > 0: with the pivot on the axis nothing "
                          "balances the drag's torque");
-    if (!(o->tip_mass >= 0)) return cli_error(cmd, "--tip-mass must be >= 0, got %g", o->tip_mass);
-    if (o->links < 0 || o->links > DRIVEN_MAX_LINKS)
-        return cli_error(cmd, "--links must be between 0 (continuum) and %d, got %d",
-                         DRIVEN_MAX_LINKS, o->links);
-    if (o->links > 0 && o->points_given)
-        return cli_error(cmd, "--points applies to the continuum (the N-link chain prints its "
-                         "N + 1 nodes)");
-    if (o->points < 2 || o->points > 1000000)
-        return cli_error(cmd, "--points must be between 2 and 1000000, got %d", o->points);
-    if (!(o->step > 0 && o->step <= 1)) return cli_error(cmd, "--step must be in (0, 1], got %g", o->step);
-    if (o->max_points < 2 || o->max_points > 10000000)
-        return cli_error(cmd, "--max-points must be between 2 and 10000000, got %d", o->max_points);
     return 0;
+}
+
+/* A dimensionless value of the kind in the user's units. */
+static double user(const driven_options *o, cli_unit kind, double x)
+{
+    return x * cli_units_scale(&o->units, kind);
 }
 
 static void print_parameters(FILE *fp, const driven_options *o)
 {
-    fprintf(fp, "# driven: mode=%d side=%d eps=%.17g drag=%.17g drag_quadratic=%.17g tip_mass=%.17g "
-            "links=%d%s\n", o->mode, o->side, o->eps, o->drag, o->drag_quadratic, o->tip_mass,
-            o->links, o->links ? "" : " (continuum)");
+    fprintf(fp, "# driven: mode=%d side=%d eps=%s drag=%s drag_quadratic=%s tip_mass=%s "
+            "links=%d%s\n", o->mode, o->side, CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)),
+            CLI_NUM(user(o, CLI_UNIT_DRAG, o->drag)),
+            CLI_NUM(user(o, CLI_UNIT_DRAG2, o->drag_quadratic)),
+            CLI_NUM(user(o, CLI_UNIT_MASS, o->tip_mass)), o->links,
+            o->links ? "" : " (continuum)");
+    cli_units_comment(fp, &o->units);
 }
 
 /* One shape: summary and samples. */
@@ -93,12 +73,17 @@ static int run_shape(const cli_command *cmd, const driven_options *o, const whir
     cli_out out;
     if (cli_out_open(cmd, &out, o->output)) goto done;
     print_parameters(out.fp, o);
-    fprintf(out.fp, "# omega=%.17g mode=%d nodes=%d tip_x=%.17g tip_y=%.17g tip_z=%.17g tip_r=%.17g "
-            "top_tension=%.17g residual=%.3g\n", info.omega, o->mode, info.nodes, info.tip[0],
-            info.tip[1], info.tip[2], info.tip_r, info.top_tension, info.residual);
+    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
+    const double force = cli_units_scale(&o->units, CLI_UNIT_FORCE);
+    fprintf(out.fp, "# omega=%s mode=%d nodes=%d tip_x=%s tip_y=%s tip_z=%s tip_r=%s "
+            "top_tension=%s residual=%.3g\n", CLI_NUM(user(o, CLI_UNIT_RATE, info.omega)), o->mode,
+            info.nodes, CLI_NUM(info.tip[0] * len), CLI_NUM(info.tip[1] * len),
+            CLI_NUM(info.tip[2] * len), CLI_NUM(info.tip_r * len), CLI_NUM(info.top_tension * force),
+            info.residual);
     fprintf(out.fp, "s,x,y,z,tension\n");
     for (size_t i = 0; i < n; i++)
-        fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g,%.17g\n", s[i], x[i], y[i], z[i], tension[i]);
+        fprintf(out.fp, "%s,%s,%s,%s,%s\n", CLI_NUM(s[i] * len), CLI_NUM(x[i] * len),
+                CLI_NUM(y[i] * len), CLI_NUM(z[i] * len), CLI_NUM(tension[i] * force));
     rc = cli_out_commit(cmd, &out);
 done:
     free(buf);
@@ -112,7 +97,9 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     whirl_driven_info start;
     p->omega = o->omega_given ? o->omega : o->omega_max;
     if (whirl_driven_mode(chain, p, o->mode, o->side, &start) != GSL_SUCCESS)
-        return cli_error(cmd, "start at omega %g: %s", p->omega, whirl_last_error());
+        return cli_error(cmd, "start at omega %s %s: %s",
+                         CLI_NUM(user(o, CLI_UNIT_RATE, p->omega)),
+                         cli_units_name(&o->units, CLI_UNIT_RATE), whirl_last_error());
     whirl_driven_curve *curve = whirl_driven_curve_alloc((size_t)o->max_points);
     if (curve == NULL) return cli_error(cmd, "%s", whirl_last_error());
     int rc = 1;
@@ -124,16 +111,19 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     cli_out out;
     if (cli_out_open(cmd, &out, o->output)) goto done;
     print_parameters(out.fp, o);
-    fprintf(out.fp, "# branch from omega=%.17g towards %s omega, %zu points, %s\n", p->omega,
+    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
+    const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
+    fprintf(out.fp, "# branch from omega=%s towards %s omega, %zu points, %s\n", CLI_NUM(p->omega * rate),
             o->up ? "larger" : "smaller", curve->n,
             curve->complete ? "left the interval" : "stopped early (capacity or no convergence)");
     for (size_t k = 0; k < curve->n_folds; k++)
-        fprintf(out.fp, "# fold omega=%.17g\n", curve->fold_omega[k]);
+        fprintf(out.fp, "# fold omega=%s\n", CLI_NUM(curve->fold_omega[k] * rate));
     fprintf(out.fp, "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold\n");
     for (size_t j = 0; j < curve->n; j++) {
         const whirl_driven_info *q = &curve->point[j];
-        fprintf(out.fp, "%.17g,%.17g,%.17g,%.17g,%.17g,%d,%d\n", q->omega, q->tip[0], q->tip[1],
-                q->tip_r, q->top_tension, q->nodes, curve->fold[j]);
+        fprintf(out.fp, "%s,%s,%s,%s,%s,%d,%d\n", CLI_NUM(q->omega * rate), CLI_NUM(q->tip[0] * len),
+                CLI_NUM(q->tip[1] * len), CLI_NUM(q->tip_r * len),
+                CLI_NUM(user(o, CLI_UNIT_FORCE, q->top_tension)), q->nodes, curve->fold[j]);
     }
     rc = cli_out_commit(cmd, &out);
 done:
@@ -144,26 +134,42 @@ done:
 int cmd_driven(const cli_command *cmd, int argc, char **argv)
 {
     driven_options o = {0};
+    o.units = (cli_units)CLI_UNITS_INIT;
+    o.air = (cli_air)CLI_AIR_INIT(o.units);
     o.mode = 1, o.side = 1, o.points = 201, o.step = 0.02, o.max_points = 100000;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate [sqrt(g/L)] (one shape; a branch's start)"},
-        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "branch: lower end of the rates"},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "branch: upper end (default start)"},
-        {"--mode", NULL, CLI_INT, &o.mode, NULL, "K", "seed: the free shape of mode K (default 1)"},
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W",
+         "rotation rate (one shape; a branch's start)", "(0, inf)", NULL, NULL, "--omega-min",
+         CLI_UNIT_RATE},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A",
+         "branch: lower end of the rates", "(0, inf)", "--omega-max", NULL, "--omega", CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B",
+         "branch: upper end (default start)", "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
+        {"--mode", NULL, CLI_INT, &o.mode, NULL, "K", "seed: the free shape of mode K (default 1)",
+         "[1, 64]"},
         {"--side", NULL, CLI_INT, &o.side, NULL, "S", "seed's tip on the pivot's side (1, default) or opposite (-1)"},
-        {"--eps", NULL, CLI_DOUBLE, &o.eps, NULL, "E", "radius of the pivot's circle [L] (default 0)"},
-        {"--drag", NULL, CLI_DOUBLE, &o.drag, NULL, "C", "linear air drag per unit length (default 0)"},
-        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
-        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "N-link chain (default 0: the continuum)"},
-        {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m", "point mass at the free end [M] (default 0)"},
-        {"--points", NULL, CLI_INT, &o.points, &o.points_given, "P", "continuum samples from the pivot (default 201)"},
-        {"--step", NULL, CLI_DOUBLE, &o.step, &o.step_given, "H", "branch: largest arclength step (default 0.02)"},
-        {"--max-points", NULL, CLI_INT, &o.max_points, &o.max_points_given, "M", "branch: most points (default 100000)"},
-        {"--up", NULL, CLI_FLAG, &o.up, &o.up_given, "", "branch: leave the start towards larger omega"},
-        {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "write to FILE (atomically) instead of stdout"},
+        CLI_DRAG_OPTIONS(o.eps, NULL, o.drag, NULL, o.drag_quadratic, NULL, o.air),
+        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "N-link chain (default 0: the continuum)",
+         "[0, 100000]"},
+        {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m", "point mass at the free end (default 0)",
+         "[0, inf)", NULL, NULL, NULL, CLI_UNIT_MASS},
+        {"--points", NULL, CLI_INT, &o.points, &o.points_given, "P",
+         "continuum samples from the pivot (default 201)", "[2, 1000000]", NULL,
+         "--omega-min --omega-max --links"},
+        {"--arc-step", NULL, CLI_DOUBLE, &o.step, &o.step_given, "H",
+         "branch: largest step of the continuation's arclength (default 0.02)", "(0, 1]",
+         "--omega-min"},
+        {"--max-points", NULL, CLI_INT, &o.max_points, &o.max_points_given, "M",
+         "branch: most points (default 100000)", "[2, 10000000]", "--omega-min"},
+        {"--up", NULL, CLI_FLAG, &o.up, &o.up_given, "", "branch: leave the start towards larger omega",
+         NULL, "--omega-min"},
+        CLI_UNITS_OPTIONS(o.units),
+        {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
+    if ((rc = cli_drag_apply(cmd, &o.air, &o.drag_quadratic))) return rc;
     if ((rc = check_options(cmd, &o))) return rc;
     whirl_chain *chain = NULL;
     if (o.links > 0 && (chain = whirl_chain_alloc_uniform((size_t)o.links, o.tip_mass)) == NULL)

@@ -19,35 +19,33 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
 {
     const char *shape = NULL, *output = NULL;
     int mode = 0, mode_given = 0, omega_max_given = 0;
-    double omega_max_user = 0, max_residual = 0.02;
+    double omega_max = 0, max_residual = 0.02;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
         {"--shape", NULL, CLI_STRING, &shape, NULL, "FILE",
-         "CSV of measured points with columns r and z, lengths in the units of --length (required; - reads stdin)"},
-        {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)"},
+         "CSV of measured points with columns r and z, lengths in the units of --length (- reads stdin)",
+         NULL, NULL, NULL, ""},
+        {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)",
+         "[1, 64]"},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--omega-max", NULL, CLI_DOUBLE, &omega_max_user, &omega_max_given, "W",
-         "highest rate tried (default 50 sqrt(g/L))"},
+        {"--omega-max", NULL, CLI_DOUBLE, &omega_max, &omega_max_given, "W",
+         "highest rate tried (default 50 sqrt(g/L))", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
         {"--max-residual", NULL, CLI_DOUBLE, &max_residual, NULL, "F",
-         "largest rms residual accepted, as a fraction of L (default 0.02)"},
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE"},
+         "largest rms residual accepted, as a fraction of L (default 0.02)", "(0, inf)"},
+        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
-    if (shape == NULL) return cli_error(cmd, "--shape FILE is required");
-    if (mode_given && (mode < 1 || mode > WHIRL_MODE_MAX))
-        return cli_error(cmd, "--mode must be between 1 and %d, got %d", WHIRL_MODE_MAX, mode);
     if (m.links_given && m.links > FIT_MAX_LINKS)
         return cli_error(cmd, "--links must be at most %d, got %d", FIT_MAX_LINKS, m.links);
-    if (omega_max_given && steady_cli_check_omega(cmd, "--omega-max", omega_max_user)) return 1;
-    if (!(max_residual > 0)) return cli_error(cmd, "--max-residual must be > 0, got %g", max_residual);
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
     whirl_fit_model model = whirl_fit_model_default();
     model.links = m.links_given ? (size_t)m.links : 0;
     model.tip_mass = steady_cli_tip_mass(&m);
-    if (omega_max_given) model.omega_max = omega_max_user / rate;
+    if (omega_max_given) model.omega_max = omega_max;
 
     points_csv p = {0, 0, NULL, NULL};
     rc = points_csv_read_path(cmd, shape, &p);
@@ -79,8 +77,9 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     fprintf(out.fp, "# model=%s points=%zu side=%s evaluations=%d solver_failures=%d\n",
             m.links_given ? "n-link" : "continuum", p.n, res.mirrored ? "r<0" : "r>0",
             res.evaluations, res.failures);
-    fprintf(out.fp, "omega,omega_err,mode,rms_residual\n%.17g,%.17g,%d,%.17g\n", res.omega * rate,
-            res.omega_err * rate, res.mode, res.rms_residual * len);
+    cli_units_comment(out.fp, &m.units);
+    fprintf(out.fp, "omega,omega_err,mode,rms_residual\n%s,%s,%d,%s\n", CLI_NUM(res.omega * rate),
+            CLI_NUM(res.omega_err * rate), res.mode, CLI_NUM(res.rms_residual * len));
     rc = cli_out_commit(cmd, &out);
 done:
     points_csv_free(&p);

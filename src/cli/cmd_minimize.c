@@ -24,38 +24,35 @@ static double seconds_now(void)
 
 int cmd_minimize(const cli_command *cmd, int argc, char **argv)
 {
-    double omega_user = 0;
+    double omega = 0;
     int omega_given = 0, no_polish = 0, max_evaluations = 0;
     const char *algorithm = "LD_LBFGS", *output = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &omega_user, &omega_given, "W",
-         "rotation rate (sqrt(g/L), or rad/s in physical units; required)"},
+        {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
+         NULL, NULL, "", CLI_UNIT_RATE},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--algorithm", NULL, CLI_STRING, &algorithm, NULL, "NAME",
          "NLopt algorithm (default LD_LBFGS; e.g. LD_TNEWTON, LN_BOBYQA)"},
         {"--max-evaluations", NULL, CLI_INT, &max_evaluations, NULL, "E",
-         "cap on NLopt's evaluations of V (default 100000)"},
+         "cap on NLopt's evaluations of V (default 100000)", "[0, inf)"},
         {"--no-polish", NULL, CLI_FLAG, &no_polish, NULL, "",
          "skip the final Newton steps on the analytic Hessian"},
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE"},
+        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
-    if (!omega_given) return cli_error(cmd, "--omega is required");
     if (!m.links_given) return cli_error(cmd, "--links is required (the N-link chain is minimised)");
-    if (steady_cli_check_omega(cmd, "--omega", omega_user)) return 1;
     if (m.links > MINIMIZE_MAX_LINKS)
         return cli_error(cmd, "--links must be at most %d, got %d", MINIMIZE_MAX_LINKS, m.links);
-    if (max_evaluations < 0)
-        return cli_error(cmd, "--max-evaluations must be >= 0, got %d", max_evaluations);
     int alg;
     if (whirl_minimize_algorithm(algorithm, &alg) != GSL_SUCCESS)
         return cli_error(cmd, "%s", whirl_last_error());
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
-    const double force = cli_units_force(&m.units), omega = omega_user / rate;
+    const double force = cli_units_force(&m.units);
     const size_t n = m.chain->n;
     double *theta = malloc(n * sizeof *theta), *r = malloc(3 * (n + 1) * sizeof *r);
     rc = 1;
@@ -75,8 +72,8 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     if (status == GSL_EDOM) {
         double omega_1;
         if (steady_cli_critical(cmd, &m, 1, &omega_1) == 0)
-            cli_error(cmd, "no mode-1 shape at omega=%.17g: up to omega_1=%.17g the hanging "
-                      "chain is the minimum", omega_user, omega_1 * rate);
+            cli_error(cmd, "no mode-1 shape at omega=%s: up to omega_1=%s the hanging "
+                      "chain is the minimum", CLI_NUM(omega * rate), CLI_NUM(omega_1 * rate));
         goto done;
     }
     if (status != GSL_SUCCESS) {
@@ -89,10 +86,10 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     /* as `whirl shape --links N`, with the minimiser's statistics as an extra comment line */
     char stats[512];
     snprintf(stats, sizeof stats, "minimum of V: algorithm=%s evaluations=%d nlopt_result=%s "
-             "newton_steps=%d potential=%.17g gradient_norm=%.3g min_curvature=%.17g seconds=%.3g",
+             "newton_steps=%d potential=%s gradient_norm=%.3g min_curvature=%s seconds=%.3g",
              algorithm, st.evaluations, nlopt_result_to_string((nlopt_result)st.nlopt_result),
-             st.newton_steps, st.potential * force * len, st.gradient_norm * force * len,
-             st.min_curvature * force * len, elapsed);
+             st.newton_steps, CLI_NUM(st.potential * force * len), st.gradient_norm * force * len,
+             CLI_NUM(st.min_curvature * force * len), elapsed);
     double *s = malloc((n + 1) * sizeof *s);
     if (s == NULL) {
         cli_error(cmd, "out of memory for %zu links", n);

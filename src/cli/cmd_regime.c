@@ -3,8 +3,8 @@
  *
  * One run (--omega W --eps E): comment lines, the header and one row; --trace FILE writes the
  * motion in the inertial frame in the format of `whirl simulate`'s trace (plots/animate.gp).
- * A map (--omega-min A --omega-max B --omega-steps n, --eps E or --eps-min --eps-max
- * --eps-steps m): one row per grid point, point index = i_eps n + i_omega, written to -o FILE
+ * A map (--omega-min A --omega-max B --omega-count n, --eps E or --eps-min --eps-max
+ * --eps-count m): one row per grid point, point index = i_eps n + i_omega, written to -o FILE
  * (required) as the points finish, in index order. Each point is one independent run, seeded by
  * --seed + index: the rows do not depend on how the points are shared out. With Open MPI
  * (built with -DWHIRL_MPI, run by mpirun -n K) the points are dealt out in rounds of
@@ -87,12 +87,12 @@ static int check_range(const cli_command *cmd, const char *name, double lo, doub
                        double lower, double upper)
 {
     if (steps < 1 || steps > 100000)
-        return cli_error(cmd, "--%s-steps must be between 1 and 100000, got %d", name, steps);
+        return cli_error(cmd, "--%s-count must be between 1 and 100000, got %d", name, steps);
     if (!(lo > lower && hi < upper))
         return cli_error(cmd, "--%s-min and --%s-max must lie in (%g, %g), got %g, %g", name,
                          name, lower, upper, lo, hi);
     if (steps == 1 ? lo != hi : !(lo < hi))
-        return cli_error(cmd, "need --%s-min < --%s-max (equal with --%s-steps 1), got %g, %g",
+        return cli_error(cmd, "need --%s-min < --%s-max (equal with --%s-count 1), got %g, %g",
                          name, name, name, lo, hi);
     return 0;
 }
@@ -101,17 +101,17 @@ static int check_options(const cli_command *cmd, regime_options *o)
 {
     const int map = is_map(o);
     if (map && !(o->omin_given && o->omax_given && o->osteps_given))
-        return cli_error(cmd, "a map or sweep needs --omega-min, --omega-max and --omega-steps");
+        return cli_error(cmd, "a map or sweep needs --omega-min, --omega-max and --omega-count");
     if (!map && o->sweep) return cli_error(cmd, "--sweep needs --omega-min, --omega-max and "
-                                           "--omega-steps");
+                                           "--omega-count");
     if (map && o->omega_given)
-        return cli_error(cmd, "--omega is for one run; a map or sweep takes --omega-min/max/steps");
+        return cli_error(cmd, "--omega is for one run; a map or sweep takes --omega-min/max/count");
     if (!map && !o->omega_given)
-        return cli_error(cmd, "--omega (one run) or --omega-min, --omega-max, --omega-steps "
+        return cli_error(cmd, "--omega (one run) or --omega-min, --omega-max, --omega-count "
                          "(a map) is required");
     const int eps_range = o->emin_given || o->emax_given || o->esteps_given;
     if (eps_range && !(o->emin_given && o->emax_given && o->esteps_given))
-        return cli_error(cmd, "an eps range needs --eps-min, --eps-max and --eps-steps");
+        return cli_error(cmd, "an eps range needs --eps-min, --eps-max and --eps-count");
     if (eps_range && o->eps_given) return cli_error(cmd, "give --eps or an eps range, not both");
     if (eps_range && (!map || o->sweep))
         return cli_error(cmd, "an eps range is for a map; one run or a sweep takes --eps");
@@ -171,36 +171,31 @@ static int check_options(const cli_command *cmd, regime_options *o)
     return 0;
 }
 
-static double grid_value(double lo, double hi, int steps, int i)
-{
-    return steps == 1 ? lo : i == steps - 1 ? hi : lo + (hi - lo) * i / (steps - 1);
-}
-
 static void grid_point(const regime_options *o, long index, double *omega, double *eps)
 {
-    *omega = grid_value(o->omega_min, o->omega_max, o->omega_steps, (int)(index % o->omega_steps));
-    *eps = grid_value(o->eps_min, o->eps_max, o->eps_steps, (int)(index / o->omega_steps));
+    *omega = cli_grid(o->omega_min, o->omega_max, o->omega_steps, (int)(index % o->omega_steps));
+    *eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, (int)(index / o->omega_steps));
 }
 
 /* The parameter line: a map written with another one cannot be resumed. */
 static void write_parameters(FILE *fp, const regime_options *o)
 {
     const whirl_regime_params *p = &o->p;
-    fprintf(fp, "# regime: links=%d drag=%.17g drag_quadratic=%.17g internal_damping=%.17g "
-            "frame=%s method=%s dt=%.17g t_ramp=%.17g ramp_step=%.17g t_max=%.17g "
-            "settle_tol=%.17g settle_periods=%d periodic_tol=%.17g lyapunov_periods=%d "
-            "chaos_lambda=%.17g perturb=%.17g seed=%lu", o->links, p->drag, p->drag_quadratic,
-            p->internal_damping, o->frame, p->method, p->dt, p->t_ramp, p->ramp_step, p->t_max,
-            p->settle_tol, p->settle_periods, p->periodic_tol, p->lyapunov_periods,
-            p->chaos_lambda, p->perturb, p->seed);
+    fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
+            "frame=%s method=%s dt=%s t_ramp=%s ramp_step=%s t_max=%s "
+            "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
+            "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->drag), CLI_NUM(p->drag_quadratic),
+            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->ramp_step), CLI_NUM(p->t_max),
+            CLI_NUM(p->settle_tol), p->settle_periods, CLI_NUM(p->periodic_tol), p->lyapunov_periods,
+            CLI_NUM(p->chaos_lambda), CLI_NUM(p->perturb), p->seed);
     if (is_map(o))
-        fprintf(fp, " omega=%.17g:%.17g:%d", o->omega_min, o->omega_max, o->omega_steps);
+        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(o->omega_min), CLI_NUM(o->omega_max), o->omega_steps);
     else
-        fprintf(fp, " omega=%.17g", o->omega);
+        fprintf(fp, " omega=%s", CLI_NUM(o->omega));
     if (is_map(o) && !o->sweep)
-        fprintf(fp, " eps=%.17g:%.17g:%d\n", o->eps_min, o->eps_max, o->eps_steps);
+        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(o->eps_min), CLI_NUM(o->eps_max), o->eps_steps);
     else
-        fprintf(fp, " eps=%.17g\n", o->eps);
+        fprintf(fp, " eps=%s\n", CLI_NUM(o->eps));
 }
 
 /* The critical rates of the free N-link chain, for comparison with the map. */
@@ -209,7 +204,7 @@ static void write_critical(FILE *fp, const whirl_chain *chain)
     double omega[REGIME_CRITICAL];
     if (whirl_nlink_critical(chain, REGIME_CRITICAL, omega) != GSL_SUCCESS) return;
     fprintf(fp, "# critical rates of the free chain (modes 1..%d):", REGIME_CRITICAL);
-    for (int k = 0; k < REGIME_CRITICAL; k++) fprintf(fp, " %.17g", omega[k]);
+    for (int k = 0; k < REGIME_CRITICAL; k++) fprintf(fp, " %s", CLI_NUM(omega[k]));
     fputc('\n', fp);
 }
 
@@ -228,7 +223,7 @@ static int state_class(const whirl_regime_result *r)
 /* A value and a comma; a value that was not computed (not finite) is left empty. */
 static void put_value(FILE *fp, double x)
 {
-    if (isfinite(x)) fprintf(fp, "%.17g", x);
+    if (isfinite(x)) fprintf(fp, "%s", CLI_NUM(x));
     fputc(',', fp);
 }
 
@@ -253,7 +248,7 @@ static void write_map_row(FILE *fp, const regime_options *o, long index,
 {
     double omega, eps;
     grid_point(o, index, &omega, &eps);
-    fprintf(fp, "%ld,%.17g,%.17g,", index, omega, eps);
+    fprintf(fp, "%ld,%s,%s,", index, CLI_NUM(omega), CLI_NUM(eps));
     write_result(fp, r);
 }
 
@@ -427,7 +422,7 @@ static int write_folds(const cli_command *cmd, const regime_options *o, const wh
     write_parameters(out.fp, o);
     fprintf(out.fp, "eps,mode,side,fold,omega\n");
     for (int ie = 0; ie < o->eps_steps && !cli_interrupted; ie++) {
-        const double eps = grid_value(o->eps_min, o->eps_max, o->eps_steps, ie);
+        const double eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, ie);
         const whirl_driven_params dp = {.omega = o->omega_max, .eps = eps, .drag = o->p.drag,
                                         .drag_quadratic = o->p.drag_quadratic};
         for (int mode = 1; mode <= FOLD_MODES; mode++)
@@ -438,8 +433,8 @@ static int write_folds(const cli_command *cmd, const regime_options *o, const wh
                                         0.02, curve) != GSL_SUCCESS)
                     continue;
                 for (size_t f = 0; f < curve->n_folds; f++)
-                    fprintf(out.fp, "%.17g,%d,%d,%zu,%.17g\n", eps, mode, side, f,
-                            curve->fold_omega[f]);
+                    fprintf(out.fp, "%s,%d,%d,%zu,%s\n", CLI_NUM(eps), mode, side, f,
+                            CLI_NUM(curve->fold_omega[f]));
             }
     }
     whirl_driven_curve_free(curve);
@@ -554,11 +549,11 @@ static int trace_frame(void *ctx, double t, double angle, const double *pivot, c
 {
     trace_ctx *tc = ctx;
     const double c = cos(angle), s = sin(angle);
-    fprintf(tc->fp, "%s# t = %.17g\n", tc->frames++ ? "\n\n" : "", t);
+    fprintf(tc->fp, "%s# t = %s\n", tc->frames++ ? "\n\n" : "", CLI_NUM(t));
     for (size_t i = 0; i <= n; i++) {
         const double *p = i == 0 ? pivot : x + 3 * (i - 1);
-        fprintf(tc->fp, "%.17g %.17g %.17g %.17g\n", c * p[0] - s * p[1], s * p[0] + c * p[1],
-                p[2], t);
+        fprintf(tc->fp, "%s %s %s %s\n", CLI_NUM(c * p[0] - s * p[1]), CLI_NUM(s * p[0] + c * p[1]),
+                CLI_NUM(p[2]), CLI_NUM(t));
     }
     return GSL_SUCCESS;
 }
@@ -589,7 +584,7 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         write_critical(out.fp, chain);
         if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
         fprintf(out.fp, "%s\n", map_columns);
-        fprintf(out.fp, "0,%.17g,%.17g,", o->omega, o->eps);
+        fprintf(out.fp, "0,%s,%s,", CLI_NUM(o->omega), CLI_NUM(o->eps));
         write_result(out.fp, &r);
     }
     if (trace_open) {
@@ -617,7 +612,7 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
         return cli_error(cmd, "out of memory");
     }
     for (size_t j = 0; j < n; j++) /* up, then down again */
-        omega[j] = grid_value(o->omega_min, o->omega_max, o->omega_steps,
+        omega[j] = cli_grid(o->omega_min, o->omega_max, o->omega_steps,
                               (int)(j < n_up ? j : n - 1 - j));
     int rc = 0;
     if (whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res) != GSL_SUCCESS)
@@ -625,19 +620,19 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     cli_out out;
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
     if (rc == 0) {
-        fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %.17g, the state "
-                "carried over, t_change = %.17g\n", o->eps, o->t_change);
+        fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %s, the state "
+                "carried over, t_change = %s\n", CLI_NUM(o->eps), CLI_NUM(o->t_change));
         write_parameters(out.fp, o);
         write_critical(out.fp, chain);
         for (size_t j = 1; j < n; j++)
             if (state_class(&res[j]) != state_class(&res[j - 1]))
-                fprintf(out.fp, "# jump %s: between omega %.17g and %.17g: %s %d nodes -> %s %d "
-                        "nodes\n", j < n_up ? "up" : "down", omega[j - 1], omega[j],
+                fprintf(out.fp, "# jump %s: between omega %s and %s: %s %d nodes -> %s %d "
+                        "nodes\n", j < n_up ? "up" : "down", CLI_NUM(omega[j - 1]), CLI_NUM(omega[j]),
                         whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
                         whirl_regime_state_name(res[j].state), res[j].nodes);
         fprintf(out.fp, "%s\n", sweep_columns);
         for (size_t j = 0; j < n; j++) {
-            fprintf(out.fp, "%s,%.17g,", j < n_up ? "up" : "down", omega[j]);
+            fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down", CLI_NUM(omega[j]));
             write_result(out.fp, &res[j]);
         }
         rc = cli_out_commit(cmd, &out);
@@ -665,10 +660,10 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
         {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E", "radius of the hand's circle [L]"},
         {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A", "map or sweep: lowest omega"},
         {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B", "map or sweep: highest omega"},
-        {"--omega-steps", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "n", "map or sweep: number of rates"},
+        {"--omega-count", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "N", "map or sweep: number of rates, both ends included"},
         {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "A", "map: smallest eps"},
         {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "B", "map: largest eps"},
-        {"--eps-steps", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "m", "map: number of radii"},
+        {"--eps-count", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "M", "map: number of radii, both ends included"},
         {"--sweep", NULL, CLI_FLAG, &o.sweep, NULL, "", "hysteresis: omega up, then down, state carried over"},
         {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T", "sweep: time of each change of omega (default 20)"},
         {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 20)"},

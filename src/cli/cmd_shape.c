@@ -6,30 +6,26 @@
 
 int cmd_shape(const cli_command *cmd, int argc, char **argv)
 {
-    double omega_user = 0;
+    double omega = 0;
     int mode = 0, points = 201, omega_given = 0, mode_given = 0;
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &omega_user, &omega_given, "W",
-         "rotation rate (sqrt(g/L), or rad/s in physical units)"},
+        {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
+         NULL, NULL, "", CLI_UNIT_RATE},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K",
-         "node count: the pivot plus K-1 axis crossings"},
+         "node count: the pivot plus K-1 axis crossings", "[1, 64]", NULL, NULL, ""},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)"},
-        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE", "write the CSV to FILE"},
+        {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)",
+         "[2, 10000000]", NULL, "--links"},
+        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;
-    if (!omega_given) return cli_error(cmd, "--omega is required");
-    if (!mode_given) return cli_error(cmd, "--mode is required");
-    if (steady_cli_check_omega(cmd, "--omega", omega_user)) return 1;
-    if (mode < 1 || mode > WHIRL_MODE_MAX)
-        return cli_error(cmd, "--mode must be between 1 and %d, got %d", WHIRL_MODE_MAX, mode);
-    if (points < 2) return cli_error(cmd, "--points must be >= 2, got %d", points);
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
-    double omega = omega_user / cli_units_rate(&m.units), tip_mass = steady_cli_tip_mass(&m);
+    double tip_mass = steady_cli_tip_mass(&m);
     whirl_shape_info info;
     int status = m.chain ? whirl_nlink_solve(m.chain, omega, mode, 0, &info)
                          : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);

@@ -263,15 +263,15 @@ static void write_header(run *r)
     const whirl_scene *s = &r->scene;
     FILE *fp = r->csv.fp;
     fprintf(fp, "# whirl simulate %s\n", s->path);
-    fprintf(fp, "# N = %zu, dim = %d, frame = %s, omega = %.17g, method = %s, formulation = %s, "
-                "dt = %.17g, tol = %.17g, t_end = %.17g\n",
-            s->links, s->dim, frame_name(s->frame), s->omega, s->method,
-            s->formulation == WHIRL_FORMULATION_SEED ? "seed" : "default", s->dt, s->tol,
-            s->t_end);
+    fprintf(fp, "# N = %zu, dim = %d, frame = %s, omega = %s, method = %s, formulation = %s, "
+                "dt = %s, tol = %s, t_end = %s\n",
+            s->links, s->dim, frame_name(s->frame), CLI_NUM(s->omega), s->method,
+            s->formulation == WHIRL_FORMULATION_SEED ? "seed" : "default", CLI_NUM(s->dt), CLI_NUM(s->tol),
+            CLI_NUM(s->t_end));
     switch (s->start) {
     case WHIRL_START_STEADY:
-        fprintf(fp, "# start: steady mode %d at omega %.17g, perturb %.17g (seed %lu)\n", s->mode,
-                s->start_omega, s->perturb, s->seed);
+        fprintf(fp, "# start: steady mode %d at omega %s, perturb %s (seed %lu)\n", s->mode,
+                CLI_NUM(s->start_omega), CLI_NUM(s->perturb), s->seed);
         break;
     case WHIRL_START_ANGLES: fprintf(fp, "# start: theta, phi and their rates\n"); break;
     case WHIRL_START_HANGING: fprintf(fp, "# start: hanging\n"); break;
@@ -313,7 +313,7 @@ static int write_row(run *r, double t)
         value[WHIRL_COLUMN_CONSTRAINT] = diag.constraint;
     }
     for (size_t c = 0; c < s->n_columns; c++)
-        fprintf(r->csv.fp, "%s%.17g", c ? "," : "", value[s->columns[c]]);
+        fprintf(r->csv.fp, "%s%s", c ? "," : "", CLI_NUM(value[s->columns[c]]));
     fputc('\n', r->csv.fp);
     r->rows++;
     return GSL_SUCCESS;
@@ -326,11 +326,11 @@ static int write_frame(run *r, double t)
     const whirl_model *m = &r->model;
     const double eps = m->drive_radius, wt = m->omega * t;
     FILE *fp = r->trace.fp;
-    fprintf(fp, "%s# t = %.17g\n%.17g %.17g %.17g %.17g\n", r->frames ? "\n\n" : "", t,
-            eps * cos(wt), m->dim == 3 ? eps * sin(wt) : 0.0, 0.0, t);
+    fprintf(fp, "%s# t = %s\n%s %s %s %s\n", r->frames ? "\n\n" : "", CLI_NUM(t),
+            CLI_NUM(eps * cos(wt)), CLI_NUM(m->dim == 3 ? eps * sin(wt) : 0.0), CLI_NUM(0.0), CLI_NUM(t));
     for (size_t i = 0; i < r->n; i++)
-        fprintf(fp, "%.17g %.17g %.17g %.17g\n", r->x[3 * i], r->x[3 * i + 1], r->x[3 * i + 2],
-                t);
+        fprintf(fp, "%s %s %s %s\n", CLI_NUM(r->x[3 * i]), CLI_NUM(r->x[3 * i + 1]), CLI_NUM(r->x[3 * i + 2]),
+                CLI_NUM(t));
     r->frames++;
     return GSL_SUCCESS;
 }
@@ -370,7 +370,7 @@ static void end_progress(run *r, double fraction)
 static int fail_at(run *r, double t)
 {
     end_progress(r, t / r->scene.t_end);
-    return cli_error(r->cmd, "%s: at t = %.17g: %s", r->scene.path, t, whirl_last_error());
+    return cli_error(r->cmd, "%s: at t = %s: %s", r->scene.path, CLI_NUM(t), whirl_last_error());
 }
 
 /* The time loop. Returns the exit status: 0 (also after a stop condition), 1 after a failure,
@@ -401,7 +401,7 @@ static int simulate(run *r)
         if (t >= s->t_end) break;
         if (cli_interrupted) {
             end_progress(r, t / s->t_end);
-            cli_error(r->cmd, "interrupted at t = %.17g: %lu rows kept", t, r->rows);
+            cli_error(r->cmd, "interrupted at t = %s: %lu rows kept", CLI_NUM(t), r->rows);
             failed = 130;
             break;
         }
@@ -415,8 +415,8 @@ static int simulate(run *r)
         if (status != GSL_SUCCESS || !all_finite(r->y, size)) {
             whirl_integrator_stats st = whirl_integrator_get_stats(r->integrator);
             end_progress(r, t / s->t_end);
-            cli_error(r->cmd, "%s: the run failed after t = %.17g (step %lu): %s; %lu rows kept",
-                      s->path, t, st.steps + 1,
+            cli_error(r->cmd, "%s: the run failed after t = %s (step %lu): %s; %lu rows kept",
+                      s->path, CLI_NUM(t), st.steps + 1,
                       status != GSL_SUCCESS ? whirl_last_error() : "the state is not finite",
                       r->rows);
             failed = 1;
@@ -432,8 +432,8 @@ static int simulate(run *r)
                 /* the row at the stop (rows at t are otherwise written on the next pass) */
                 if (write_row(r, t) != GSL_SUCCESS) failed = fail_at(r, t);
                 end_progress(r, t / s->t_end);
-                fprintf(stderr, "whirl %s: stopped at t = %.17g: deviation %.6g > %.6g\n",
-                        r->cmd->name, t, dev, s->stop_deviation);
+                fprintf(stderr, "whirl %s: stopped at t = %s: deviation %.6g > %.6g\n",
+                        r->cmd->name, CLI_NUM(t), dev, s->stop_deviation);
                 break;
             }
         }

@@ -1,6 +1,6 @@
 /* whirl stability: linear stability of the steady shapes (whirl/stability.h) and its check by
  * perturbed time-domain runs, at one rate (--omega) or over a range (--omega-min/--omega-max/
- * --steps, the stability map). One CSV row per rate and mode:
+ * --omega-count, the stability map). One CSV row per rate and mode:
  *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict
  * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
  * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
@@ -27,6 +27,8 @@ typedef struct options {
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
     const char *method, *output, *trace;
+    cli_units units;
+    cli_air air;
 } options;
 
 typedef struct point {
@@ -55,29 +57,8 @@ static int method_known(const char *name)
 
 static int check_options(const cli_command *cmd, const options *o)
 {
-    const int map = o->min_given || o->max_given || o->steps_given;
-    if (map && o->omega_given)
-        return cli_error(cmd, "give either --omega or --omega-min/--omega-max/--steps");
-    if (!map && !o->omega_given)
-        return cli_error(cmd, "--omega is required (or --omega-min, --omega-max, --steps)");
-    if (map && !(o->min_given && o->max_given && o->steps_given))
-        return cli_error(cmd, "the map needs --omega-min, --omega-max and --steps");
-    if (!map && !o->mode_given) return cli_error(cmd, "--mode is required");
-    if (map && o->mode_given) return cli_error(cmd, "the map takes --modes LIST, not --mode");
-    if (!map && o->modes_given) return cli_error(cmd, "--modes is for the map; use --mode");
-    if (map && o->trace) return cli_error(cmd, "--trace is for a single rate (--omega)");
-    if (o->linear && o->trace) return cli_error(cmd, "--trace needs a run: drop --linear");
-    if (o->links < 2) return cli_error(cmd, "--links must be >= 2, got %d", o->links);
-    if (!(o->periods > 0)) return cli_error(cmd, "--periods must be > 0, got %g", o->periods);
-    if (!(o->perturb > 0 && o->perturb < 1))
-        return cli_error(cmd, "--perturb must be in (0, 1), got %g", o->perturb);
-    if (o->damping < 0) return cli_error(cmd, "--damping must be >= 0, got %g", o->damping);
-    if (o->dt < 0) return cli_error(cmd, "--dt must be > 0 (or 0: default), got %g", o->dt);
-    if (o->seed < 0) return cli_error(cmd, "--seed must be >= 0, got %d", o->seed);
-    if (!(o->eps >= 0 && o->eps < 1))
-        return cli_error(cmd, "--eps must be in [0, 1), got %g", o->eps);
-    if (o->drag < 0) return cli_error(cmd, "--drag must be >= 0, got %g", o->drag);
-    if (o->drag2 < 0) return cli_error(cmd, "--drag-quadratic must be >= 0, got %g", o->drag2);
+    if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
+        return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
     if (o->side != 1 && o->side != -1)
         return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
     if (o->eps == 0 && (o->drag > 0 || o->drag2 > 0))
@@ -85,20 +66,6 @@ static int check_options(const cli_command *cmd, const options *o)
                          "hanging chain is steady)");
     if (!method_known(o->method))
         return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
-    if (map) {
-        if (o->steps < 1) return cli_error(cmd, "--steps must be >= 1, got %d", o->steps);
-        if (!(o->omega_min > 0)) return cli_error(cmd, "--omega-min must be > 0, got %g", o->omega_min);
-        if (!(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
-            return cli_error(cmd, "--omega-max must exceed --omega-min");
-        for (int k = 0; k < o->modes.n; k++)
-            if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
-                return cli_error(cmd, "modes must be in 1..%d, got %d", WHIRL_MODE_MAX,
-                                 o->modes.v[k]);
-    } else {
-        if (!(o->omega > 0)) return cli_error(cmd, "--omega must be > 0, got %g", o->omega);
-        if (o->mode < 1 || o->mode > WHIRL_MODE_MAX)
-            return cli_error(cmd, "--mode must be in 1..%d, got %d", WHIRL_MODE_MAX, o->mode);
-    }
     return 0;
 }
 
@@ -135,9 +102,7 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
         goto fail;
     }
     for (size_t j = 0; j < steps; j++)
-        omega[j] = steps == 1 ? o->omega_min
-                              : o->omega_min + (o->omega_max - o->omega_min) * (double)j /
-                                                   (double)(steps - 1);
+        omega[j] = cli_grid(o->omega_min, o->omega_max, o->steps, (int)j);
     for (size_t k = 0; k < nmodes && driven(o); k++) /* shapes found in analyse() */
         for (size_t j = 0; j < steps; j++) {
             p[n].omega = omega[j];
@@ -170,11 +135,19 @@ fail:
     return NULL;
 }
 
+/* The size of one dimensionless unit of the kind in the user's units. */
+static double unit(const options *o, cli_unit kind) { return cli_units_scale(&o->units, kind); }
+
+typedef struct trace_sink {
+    FILE *fp;
+    double time; /* the user's time unit in dimensionless ones */
+} trace_sink;
+
 /* Each sample of a run: a row of the trace (if any); stops the run on Ctrl-C. */
 static int observe(double t, double ratio, void *data)
 {
-    FILE *trace = data;
-    if (trace != NULL) fprintf(trace, "%.17g,%.17g\n", t, ratio);
+    const trace_sink *trace = data;
+    if (trace->fp != NULL) fprintf(trace->fp, "%s,%s\n", CLI_NUM(t * trace->time), CLI_NUM(ratio));
     return cli_interrupted ? GSL_EFAILED : GSL_SUCCESS;
 }
 
@@ -221,19 +194,26 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     rp.method = o->method;
     rp.dt = o->dt;
     rp.observe = observe;
-    rp.observe_data = trace;
+    trace_sink sink = {trace, unit(o, CLI_UNIT_TIME)};
+    rp.observe_data = &sink;
     whirl_stability_run_result res;
     if (trace != NULL)
-        fprintf(trace, "# omega %.17g, mode %d, links %d, damping %.17g, eps %.17g, drag "
-                       "%.17g, drag_quadratic %.17g, eig_growth %.17g\nt,deviation\n",
-                p->omega, p->mode, o->links, o->damping, m.drive_radius, m.air_drag,
-                m.air_drag_quadratic, p->eig_growth);
+        fprintf(trace, "# omega %s, mode %d, links %d, damping %s, eps %s, drag "
+                       "%s, drag_quadratic %s, eig_growth %s\nt,deviation\n",
+                CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), p->mode, o->links,
+                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)),
+                CLI_NUM(m.drive_radius * unit(o, CLI_UNIT_LENGTH)),
+                CLI_NUM(m.air_drag * unit(o, CLI_UNIT_DRAG)),
+                CLI_NUM(m.air_drag_quadratic * unit(o, CLI_UNIT_DRAG2)),
+                CLI_NUM(p->eig_growth * unit(o, CLI_UNIT_RATE)));
     const double *x, *y, *z;
     whirl_stability_nodes(w, &x, &y, &z);
     if ((status = whirl_stability_run_shape(&m, x, y, z, &rp, &res))) return status;
     if (trace != NULL)
-        fprintf(trace, "# sim_growth %.17g fitted from t = %.17g to %.17g, verdict %s\n",
-                res.sim_growth, res.fit_from, res.fit_to, whirl_verdict_name(res.verdict));
+        fprintf(trace, "# sim_growth %s fitted from t = %s to %s, verdict %s\n",
+                CLI_NUM(res.sim_growth * unit(o, CLI_UNIT_RATE)),
+                CLI_NUM(res.fit_from * unit(o, CLI_UNIT_TIME)),
+                CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
     p->sim_growth = res.sim_growth;
     p->max_deviation = res.max_deviation;
     p->verdict = res.verdict;
@@ -251,41 +231,50 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.modes.n = 3;
     o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
     o.side = 1;
+    o.units = (cli_units)CLI_UNITS_INIT;
+    o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate"},
-        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count)"},
-        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate"},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate"},
-        {"--steps", NULL, CLI_INT, &o.steps, &o.steps_given, "S", "map: number of rates"},
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate (one point)",
+         "(0, inf)", "--mode", "--omega-min --modes", "--omega-min", CLI_UNIT_RATE},
+        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count) at --omega",
+         "[1, 64]", "--omega"},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
+         "(0, inf)", "--omega-max --omega-count", "--trace", "--omega", CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate",
+         "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
+         "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
         {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
-         "map: modes (default 1,2,3)"},
-        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 25)"},
+         "map: modes (default 1,2,3)", "[1, 64]", "--omega-min"},
+        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 25)",
+         "[2, 100000]"},
         {"--periods", NULL, CLI_DOUBLE, &o.periods, NULL, "P",
-         "run length in rotation periods (default 100)"},
+         "run length in rotation periods (default 100)", "(0, inf)"},
         {"--perturb", NULL, CLI_DOUBLE, &o.perturb, NULL, "EPS",
-         "turn of each link direction [rad] (default 1e-6)"},
-        {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)"},
+         "turn of each link direction [rad] (default 1e-6)", "(0, 1)"},
+        {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)",
+         "[0, inf)"},
         {"--damping", NULL, CLI_DOUBLE, &o.damping, NULL, "D",
-         "internal damping of the joints (default 0)"},
+         "internal damping of the joints (default 0)", "[0, inf)", NULL, NULL, NULL,
+         CLI_UNIT_DAMPING},
         {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
         {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
-         "time step (default: from the highest frequency, see stability.h)"},
-        {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E",
-         "hand-swung: radius of the pivot's circle (default 0)"},
-        {"--drag", NULL, CLI_DOUBLE, &o.drag, &o.drag_given, "C",
-         "hand-swung: linear air drag per unit length (default 0)"},
-        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.drag2, &o.drag2_given, "C2",
-         "hand-swung: quadratic air drag per unit length (default 0)"},
+         "time step (default: from the highest frequency, see stability.h)", "[0, inf)", NULL,
+         NULL, NULL, CLI_UNIT_TIME},
+        CLI_DRAG_OPTIONS(o.eps, &o.eps_given, o.drag, &o.drag_given, o.drag2, &o.drag2_given,
+                         o.air),
         {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
          "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
-         "eigenvalues only: no run (sim columns left empty)"},
+         "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
-         "single rate: the run's deviation / initial against t (CSV)"},
+         "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
+        CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
+    if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
     if ((rc = check_options(cmd, &o))) return rc;
 
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
@@ -354,14 +343,18 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         whirl_chain_free(c);
         return cli_error(cmd, "%s", message);
     }
-    fprintf(out.fp, "# whirl stability: %d links, damping %.17g, %s\n", o.links, o.damping,
+    const double rate = unit(&o, CLI_UNIT_RATE), len = unit(&o, CLI_UNIT_LENGTH);
+    fprintf(out.fp, "# whirl stability: %d links, damping %s, %s\n", o.links,
+            CLI_NUM(o.damping * unit(&o, CLI_UNIT_DAMPING)),
             o.linear ? "linear analysis only" : "linear analysis and perturbed runs");
     if (driven(&o))
-        fprintf(out.fp, "# hand-swung: eps %.17g, drag %.17g, drag_quadratic %.17g, side %d\n",
-                o.eps, o.drag, o.drag2, o.side);
+        fprintf(out.fp, "# hand-swung: eps %s, drag %s, drag_quadratic %s, side %d\n",
+                CLI_NUM(o.eps * len), CLI_NUM(o.drag * unit(&o, CLI_UNIT_DRAG)),
+                CLI_NUM(o.drag2 * unit(&o, CLI_UNIT_DRAG2)), o.side);
     if (!o.linear)
-        fprintf(out.fp, "# runs: %.17g periods, perturbation %.17g, seed %d, method %s, dt %.17g "
-                        "(0: default)\n", o.periods, o.perturb, o.seed, o.method, o.dt);
+        fprintf(out.fp, "# runs: %s periods, perturbation %s, seed %d, method %s, dt %s "
+                        "(0: default)\n", CLI_NUM(o.periods), CLI_NUM(o.perturb), o.seed, o.method,
+                CLI_NUM(o.dt * unit(&o, CLI_UNIT_TIME)));
     if (o.linear)
         fprintf(out.fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
                         "< 0, stable where 0\n");
@@ -369,20 +362,23 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         fprintf(out.fp, "# verdict: unstable once the deviation reaches 100 times the initial "
                         "one, converging (damping or drag > 0) once its largest value over a "
                         "period falls to 1/100 (or to 1/10 by the end), else stable\n");
+    cli_units_comment(out.fp, &o.units);
     fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
             driven(&o) ? ",tip_x,tip_y,nodes" : "");
     size_t written = 0;
     for (size_t i = 0; i < count && pts[i].done; i++, written++) {
         if (pts[i].absent) continue;
         if (o.linear)
-            fprintf(out.fp, "%.17g,%d,%d,%.17g,,,%s", pts[i].omega, pts[i].mode, o.links,
-                    pts[i].eig_growth, whirl_verdict_name(pts[i].verdict));
+            fprintf(out.fp, "%s,%d,%d,%s,,,%s", CLI_NUM(pts[i].omega * rate), pts[i].mode, o.links,
+                    CLI_NUM(pts[i].eig_growth * rate), whirl_verdict_name(pts[i].verdict));
         else
-            fprintf(out.fp, "%.17g,%d,%d,%.17g,%.17g,%.17g,%s", pts[i].omega, pts[i].mode,
-                    o.links, pts[i].eig_growth, pts[i].sim_growth, pts[i].max_deviation,
+            fprintf(out.fp, "%s,%d,%d,%s,%s,%s,%s", CLI_NUM(pts[i].omega * rate), pts[i].mode,
+                    o.links, CLI_NUM(pts[i].eig_growth * rate), CLI_NUM(pts[i].sim_growth * rate),
+                    CLI_NUM(pts[i].max_deviation),
                     whirl_verdict_name(pts[i].verdict));
         if (driven(&o))
-            fprintf(out.fp, ",%.17g,%.17g,%d", pts[i].tip[0], pts[i].tip[1], pts[i].nodes);
+            fprintf(out.fp, ",%s,%s,%d", CLI_NUM(pts[i].tip[0] * len), CLI_NUM(pts[i].tip[1] * len),
+                    pts[i].nodes);
         fputc('\n', out.fp);
     }
     free(pts);

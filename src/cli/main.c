@@ -6,25 +6,32 @@
 
 #include "cli/cli.h"
 
+/* Synopses are generated from each command's option table (cli_parse --help). */
 static const cli_command commands[] = {
-    {"critical", "[--modes K] [--links N] [--tip-mass m] [-o FILE]",
-     "Linear critical rates where modes 1..K bifurcate from the hanging chain.", cmd_critical},
-    {"shape", "--omega W --mode K [--links N] [--tip-mass m] [--points P] [-o FILE]",
-     "The steady shape of mode K at rotation rate W.", cmd_shape},
-    {"sweep", "--modes LIST --omega-min A --omega-max B --steps S [--links N] [--tip-mass m] [-o FILE]",
-     "Branches of steady shapes against the rotation rate, by continuation.", cmd_sweep},
-    {"stability", "--omega W --mode K | --omega-min A --omega-max B --steps S [--modes LIST] [--links N] [--periods P] [--perturb EPS] [--seed S] [--damping D] [--eps E] [--drag C] [--drag-quadratic C2] [--side S] [--method M] [--dt H] [--linear] [--trace FILE] [-o FILE]",
-     "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability},
+    {"critical", NULL,
+     "Linear critical rates where modes 1..K bifurcate from the hanging chain.", cmd_critical,
+     "whirl critical --modes 4 --length 0.6 --mass 0.05"},
+    {"shape", NULL, "The steady shape of mode K at rotation rate W.", cmd_shape,
+     "whirl shape --omega 4Hz --mode 2 --length 0.6 -o shape.csv"},
+    {"sweep", NULL, "Branches of steady shapes against the rotation rate, by continuation.",
+     cmd_sweep, "whirl sweep --modes 1,2,3 --omega-min 0.5 --omega-max 8 --omega-count 151"},
+    {"stability", "--omega W --mode K | --omega-min A --omega-max B --omega-count N [--modes LIST] [OPTIONS]",
+     "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability,
+     "whirl stability --omega-min 1 --omega-max 8 --omega-count 29 --links 20 --linear -o map.csv"},
     {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
-     "Runs a scene file (see data/scenes/): the N-link chain in time.", cmd_simulate},
-    {"minimize", "--omega W --links N [--tip-mass m] [--algorithm NAME] [--no-polish] [-o FILE]",
-     "The mode-1 shape as the minimum of the co-rotating potential (NLopt).", cmd_minimize},
-    {"fit", "--shape FILE [--links N] [--mode K] [--length L] [--gravity G] [-o FILE]",
-     "The rotation rate and mode that best explain a measured shape (NLopt).", cmd_fit},
-    {"driven", "--omega W | --omega-min A --omega-max B [--mode K] [--side S] [--eps E] [--drag C] [--drag-quadratic C2] [--links N] [--tip-mass m] [--points P] [--step H] [-o FILE]",
-     "Steady shapes with the pivot driven on a circle and air drag; branches with folds.", cmd_driven},
-    {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-steps n [--eps E | --eps-min --eps-max --eps-steps m] [--sweep] [--drag C] [--drag-quadratic C2] [--links N] [--t-max T] [--resume] [--folds FILE] [-o FILE]",
-     "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.", cmd_regime},
+     "Runs a scene file (see data/scenes/): the N-link chain in time.", cmd_simulate,
+     "whirl simulate data/scenes/mode2.ini --set run.t_end=20 -o run.csv"},
+    {"minimize", NULL,
+     "The mode-1 shape as the minimum of the co-rotating potential (NLopt).", cmd_minimize,
+     "whirl minimize --omega 3 --links 40 -o min.csv"},
+    {"fit", NULL, "The rotation rate and mode that best explain a measured shape (NLopt).",
+     cmd_fit, "whirl fit --shape data/fit_example.csv --length 1.2"},
+    {"driven", "--omega W | --omega-min A --omega-max B [--mode K] [OPTIONS]",
+     "Steady shapes with the pivot driven on a circle and air drag; branches with folds.",
+     cmd_driven, "whirl driven --omega-min 1 --omega-max 6 --mode 2 --eps 0.05 --drag-quadratic 0.015"},
+    {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-count N (--eps E | --eps-min C --eps-max D --eps-count M) [OPTIONS]",
+     "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.",
+     cmd_regime, "whirl regime --omega 4Hz --eps 3cm --length 0.5 --mass 50g --drag-quadratic 0.0029"},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 
@@ -32,7 +39,10 @@ static void usage(FILE *fp)
 {
     fprintf(fp, "usage: whirl COMMAND [OPTIONS]   (whirl COMMAND --help for its options)\n\n"
                 "whirl computes the steady shapes, dynamics and stability of a chain spun about\n"
-                "the vertical axis. Dimensionless units: L = M = g = 1.\n\ncommands:\n");
+                "the vertical axis. Units: dimensionless (L = M = g = 1) unless --length,\n"
+                "--mass or --gravity is given, then SI; rates also as 4Hz or 240rpm.\n"
+                "Rate grids: --omega-min A --omega-max B --omega-count N, N rates, both ends.\n\n"
+                "commands:\n");
     for (size_t i = 0; i < n_commands; i++)
         fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
 }

@@ -5,11 +5,8 @@
 
 int steady_cli_model_setup(const cli_command *cmd, steady_cli_model *m)
 {
-    if (cli_units_check(cmd, &m->units)) return 1;
-    if (!(m->tip_mass >= 0)) return cli_error(cmd, "--tip-mass must be >= 0, got %g", m->tip_mass);
     m->chain = NULL;
     if (!m->links_given) return 0;
-    if (m->links < 1) return cli_error(cmd, "--links must be >= 1, got %d", m->links);
     m->chain = whirl_chain_alloc_uniform((size_t)m->links, steady_cli_tip_mass(m));
     if (m->chain == NULL) return cli_error(cmd, "%s", whirl_last_error());
     return 0;
@@ -21,7 +18,7 @@ void steady_cli_model_free(steady_cli_model *m)
     m->chain = NULL;
 }
 
-double steady_cli_tip_mass(const steady_cli_model *m) { return m->tip_mass / m->units.mass; }
+double steady_cli_tip_mass(const steady_cli_model *m) { return m->tip_mass; }
 
 int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int mode,
                         double *omega)
@@ -41,20 +38,16 @@ int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int m
     return 0;
 }
 
-int steady_cli_check_omega(const cli_command *cmd, const char *name, double omega)
-{
-    if (!(omega > 0)) return cli_error(cmd, "%s must be > 0, got %g", name, omega);
-    return 0;
-}
-
 int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status,
                            int mode, double omega)
 {
     if (status != GSL_EDOM) return cli_error(cmd, "%s", whirl_last_error());
     double omega_k, rate = cli_units_rate(&m->units);
     if (steady_cli_critical(cmd, m, mode, &omega_k)) return 1;
-    return cli_error(cmd, "mode %d does not exist at omega=%.17g: it exists only above "
-                     "omega_%d=%.17g", mode, omega * rate, mode, omega_k * rate);
+    return cli_error(cmd, "mode %d does not exist at omega=%s %s: it exists only above "
+                     "omega_%d=%s %s", mode, CLI_NUM(omega * rate),
+                     cli_units_name(&m->units, CLI_UNIT_RATE), mode, CLI_NUM(omega_k * rate),
+                     cli_units_name(&m->units, CLI_UNIT_RATE));
 }
 
 void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_shape_info *info,
@@ -63,18 +56,20 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
 {
     double rate = cli_units_rate(&m->units), len = m->units.length;
     double force = cli_units_force(&m->units);
-    fprintf(fp, "# omega=%.17g mode=%d tip_r=%.17g max_r=%.17g top_tension=%.17g depth=%.17g nodes=",
-            info->omega * rate, info->mode, info->tip_r * len, info->max_r * len,
-            info->top_tension * force, info->depth * len);
+    fprintf(fp, "# omega=%s mode=%d tip_r=%s max_r=%s top_tension=%s depth=%s nodes=",
+            CLI_NUM(info->omega * rate), info->mode, CLI_NUM(info->tip_r * len),
+            CLI_NUM(info->max_r * len), CLI_NUM(info->top_tension * force),
+            CLI_NUM(info->depth * len));
     for (int j = 0; j < info->n_nodes; j++)
-        fprintf(fp, "%s%.17g", j ? ";" : "", info->node_s[j] * len);
+        fprintf(fp, "%s%s", j ? ";" : "", CLI_NUM(info->node_s[j] * len));
     fprintf(fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
             "z: height (pivot 0), tension: %s\n",
             m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
             m->chain ? "of the link above the node" : "at that point");
     if (extra) fprintf(fp, "# %s\n", extra);
+    cli_units_comment(fp, &m->units);
     fprintf(fp, "s,r,z,tension\n");
     for (size_t i = 0; i < n; i++)
-        fprintf(fp, "%.17g,%.17g,%.17g,%.17g\n", s[i] * len, r[i] * len, z[i] * len,
-                tension[i] * force);
+        fprintf(fp, "%s,%s,%s,%s\n", CLI_NUM(s[i] * len), CLI_NUM(r[i] * len),
+                CLI_NUM(z[i] * len), CLI_NUM(tension[i] * force));
 }
