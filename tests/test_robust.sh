@@ -6,7 +6,7 @@ out="$tmp/out.csv"
 
 # ---- numbers that would not be finite ----
 expect_error "sweep: a tip mass of 1e308 is refused" "tip mass 1e\+308 exceeds 1e\+12 chain masses" \
-  sweep --modes 1 --omega-min 2 --omega-max 3 --steps 2 --tip-mass 1e308 -o "$out"
+  sweep --modes 1 --omega-min 2 --omega-max 3 --omega-count 3 --tip-mass 1e308 -o "$out"
 expect_error "shape --links: a tip mass of 1e308 is refused" "tip mass 1e\+308 exceeds" \
   shape --omega 2 --mode 1 --links 4 --tip-mass 1e308 -o "$out"
 expect_error "critical: a rate unit sqrt(g/L) that overflows is refused" \
