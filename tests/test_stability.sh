@@ -107,4 +107,36 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --
   pass "driven map form"
 else fail "driven map form: $(cat "$tmp/err" "$tmp/dmap.csv" 2>/dev/null | tail -3)"; fi
 
+# --windows: bad input, the CSV, and each edge against the linear map just outside and inside.
+R="--omega-min 1 --omega-max 10"
+expect_error "windows with --omega" "omega" stability --windows --omega 3 -o "$tmp/out.csv"
+expect_error "windows without a range" "omega-min" stability --windows -o "$tmp/out.csv"
+expect_error "windows with --mode" "mode" stability --windows $R --mode 2 -o "$tmp/out.csv"
+expect_error "windows with damping" "damping" stability --windows $R --damping 0.1 -o "$tmp/out.csv"
+expect_error "windows with a run option" "periods" stability --windows $R --periods 5 -o "$tmp/out.csv"
+expect_error "windows with a count" "omega-count" stability --windows $R --omega-count 5 -o "$tmp/out.csv"
+expect_error "windows tolerance 0" "tol" stability --windows $R --tol 0 -o "$tmp/out.csv"
+expect_error "windows tolerance above the step" "tol" stability --windows $R --tol 0.5 -o "$tmp/out.csv"
+expect_error "windows scan step" "scan-step" stability --windows $R --scan-step -1 -o "$tmp/out.csv"
+expect_error "scan step without windows" "windows" stability --omega 3 --mode 2 --scan-step 0.1 -o "$tmp/out.csv"
+expect_error "windows mode above N" "modes" stability --windows $R --links 10 --modes 11 -o "$tmp/out.csv"
+expect_error "windows below birth" "mode 3.*omega_3" stability --windows --links 10 --modes 3 --omega-min 1 --omega-max 4 -o "$tmp/out.csv"
+expect_error "windows reversed range" "omega-max" stability --windows --omega-min 5 --omega-max 4 -o "$tmp/out.csv"
+if "$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 5 -o "$tmp/w.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/w.csv" | head -1)" = "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at" ] \
+   && [ "$(grep -v '^#' "$tmp/w.csv" | wc -l)" -eq 2 ] \
+   && grep -q '^# mode 2: .*eigen-solves' "$tmp/w.csv"; then
+  from=$(csv_field "$tmp/w.csv" from); to=$(csv_field "$tmp/w.csv" to)
+  ok=1
+  for w in "$from -1e-6 0" "$from 1e-6 1" "$to -1e-6 1" "$to 1e-6 0"; do
+    set -- $w
+    at=$(awk -v a="$1" -v d="$2" 'BEGIN { printf "%.12f", a + d }')
+    g=$("$WHIRL" stability --omega "$at" --mode 2 --links 10 --linear | grep -v '^[#o]' | cut -d, -f4)
+    awk -v g="$g" -v u="$3" 'BEGIN { exit !((g > 0) == u) }' || ok=0
+  done
+  if [ $ok -eq 1 ] && awk -v a="$from" -v b="$to" 'BEGIN { exit !(a > 4.2 && b < 4.5 && a < b) }'; then
+    pass "windows: mode 2 (N = 10) edges [$from, $to] change the linear verdict within 1e-6"
+  else fail "windows: the edges [$from, $to] disagree with the linear map"; fi
+else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; fi
+
 finish

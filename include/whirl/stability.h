@@ -184,4 +184,86 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
                         const whirl_stability_run_params *params,
                         whirl_stability_run_result *result);
 
+/* ---- exact stability windows of the free shapes (src/stability_windows.c) ----
+ * For the conservative chain (no damping, drag or drive) about a planar shape, the linearisation
+ * splits into in-plane and out-of-plane blocks coupled only by the Coriolis force, and
+ * mu = lambda^2 solves a real eigenproblem of size 2N (half the first-order form's 4N): the
+ * shape is neutrally stable when every mu is real and negative. Window edges are located as the
+ * roots of the discriminant of the two mu that collide there (Krein collision). */
+
+typedef struct whirl_windows whirl_windows; /* workspace of the window search for N links */
+
+/* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
+whirl_windows *whirl_windows_alloc(size_t n);
+void whirl_windows_free(whirl_windows *w); /* NULL is a no-op */
+
+/* The linearisation workspace inside w (owned by w): whirl_windows_find leaves the last
+ * linearisation of its search there. */
+whirl_stability *whirl_windows_linearisation(whirl_windows *w);
+
+typedef struct whirl_spectrum {
+    size_t count;          /* number of mu: 2N - 1 (2N for a chain hanging straight down) */
+    const double *re, *im; /* mu = lambda^2 [1/T^2] (pointers into the workspace, valid until its
+                              next use), complex ones in conjugate pairs */
+    const int *signature;  /* per mu: the Krein signature, +1 / -1 the sign of the mode's energy
+                              for a neutral mu (real negative, or a pair split by round-off), 0
+                              otherwise; NULL unless asked for */
+    double growth;         /* max Re sqrt(mu) [1/T]; 0 if neutral (values <= level count as 0) */
+    double level;          /* round-off level of the growth: 1e-10 sqrt(max |mu|) [1/T] */
+} whirl_spectrum;
+
+/* The squared eigenvalues of the last linearisation in lin, which must be of a free planar shape
+ * of the conservative chain (GSL_EINVAL otherwise: damping or drag, or the in-plane and
+ * out-of-plane blocks coupled), with the rotation's zero removed. signatures != 0 computes the
+ * eigenvectors too (about 2.5 times the work) and the signatures. */
+int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
+                           whirl_spectrum *out);
+
+typedef struct whirl_windows_params {
+    double omega_min, omega_max; /* the range of rates [sqrt(g/L)]; examined from
+                                    max(omega_min, omega_k (1 + 1e-6)) to omega_max; 1, 10 */
+    double scan_step;            /* spacing of the scan with signatures [sqrt(g/L)]; 0.25 */
+    double tol;                  /* edges located to this in omega [sqrt(g/L)]; 1e-9 */
+    int krylov;                  /* 1: near an edge only the colliding pair, by shift-and-invert
+                                    Arnoldi (full solve if it does not converge); 0: every
+                                    evaluation a full solve; 1 */
+} whirl_windows_params;
+
+/* The defaults above. */
+whirl_windows_params whirl_windows_defaults(void);
+
+typedef struct whirl_window {
+    double from, to;           /* the interval of rates where the mode is unstable [sqrt(g/L)] */
+    int open_from, open_to;    /* 1: that end is the end of the range examined, not an edge */
+    double freq_from, freq_to; /* frequency |Im lambda| where the pair meets at each edge [1/T]
+                                  (0 at an open end or where a mu passes through 0) */
+    double max_growth;         /* largest growth rate inside [1/T] */
+    double at;                 /* the rate where it occurs [sqrt(g/L)] (to about 1e-6) */
+} whirl_window;
+
+typedef struct whirl_windows_stats {
+    double omega_from, omega_to; /* the range examined [sqrt(g/L)] */
+    size_t scan;           /* scan points */
+    size_t shapes;         /* steady shapes solved */
+    size_t solves_vectors; /* full eigen-solves with eigenvectors (scan, bisection) */
+    size_t solves_values;  /* full eigen-solves, eigenvalues only */
+    size_t solves_krylov;  /* shift-and-invert solves of the colliding pair */
+    size_t approaches;     /* unstable rates found between scan points by minimising the
+                              discriminant of a pair of opposite signatures that approach */
+    size_t unresolved;     /* collisions of opposite signature narrower than tol without an
+                              unstable rate found (touching, not opening) */
+} whirl_windows_stats;
+
+/* The windows of instability of mode k of the chain c (c->n links, as w) over the range of p,
+ * in increasing omega, into windows[0..max-1], their number into *count (GSL_EINVAL if more
+ * than max). The shapes are those of the branch born at omega_k (whirl_nlink_branch over the
+ * scan, whirl_nlink_solve seeded from it in between). Windows that open and close between two
+ * scan points are found when the pair that collides swaps its order in frequency (the ranks of
+ * the stability.c header comment); a window nested between two others of the same pair less than
+ * scan_step / 16 apart is not separated from them. GSL_EDOM if the mode does not exist in the
+ * range, WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
+int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
+                       const whirl_windows_params *p, whirl_window *windows, size_t max,
+                       size_t *count, whirl_windows_stats *stats);
+
 #endif

@@ -12,17 +12,25 @@
  * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
  * three-dimensional and have no rotation symmetry. Three columns are added:
  *   ...,verdict,tip_x,tip_y,nodes
- * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h. */
+ * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
+ * --windows: the intervals of omega in --omega-min..--omega-max where each mode of --modes is
+ * linearly unstable, edges located by root-finding on the collision of two eigenvalues
+ * (whirl_windows_find), one row per window:
+ *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at
+ * and a comment line per mode with the eigen-solves used and those of a grid of equal
+ * resolution. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "cli/cli.h"
 #include "whirl/stability.h"
 
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    int mode, links, steps, seed, linear, side;
+    double scan_step, tol;
+    int mode, links, steps, seed, linear, side, windows, full;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
@@ -57,6 +65,16 @@ static int method_known(const char *name)
 
 static int check_options(const cli_command *cmd, const options *o)
 {
+    if (o->windows) {
+        if (!(o->tol < o->scan_step))
+            return cli_error(cmd, "--tol must be smaller than --scan-step");
+        for (int k = 0; k < o->modes.n; k++)
+            if (o->modes.v[k] > o->links)
+                return cli_error(cmd, "--modes must be at most --links (%d), got %d", o->links,
+                                 o->modes.v[k]);
+    } else if (o->min_given && !o->steps_given) {
+        return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
+    }
     if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
     if (o->side != 1 && o->side != -1)
@@ -220,6 +238,90 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     return GSL_SUCCESS;
 }
 
+#define WINDOWS_MAX 256
+
+static double wall_seconds(void)
+{
+    struct timespec t;
+    timespec_get(&t, TIME_UTC);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* --windows: every mode of the list, one per thread. */
+static int run_windows(const cli_command *cmd, const options *o)
+{
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
+    if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    const size_t nmodes = (size_t)o->modes.n;
+    whirl_window *win = calloc(nmodes * WINDOWS_MAX, sizeof *win);
+    size_t *count = calloc(nmodes, sizeof *count);
+    whirl_windows_stats *stats = calloc(nmodes, sizeof *stats);
+    double *seconds = calloc(nmodes, sizeof *seconds);
+    int *status = calloc(nmodes, sizeof *status);
+    char (*message)[256] = calloc(nmodes, sizeof *message);
+    int rc = 0;
+    if (!win || !count || !stats || !seconds || !status || !message)
+        rc = cli_error(cmd, "out of memory");
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = o->omega_min;
+    p.omega_max = o->omega_max;
+    p.scan_step = o->scan_step;
+    p.tol = o->tol;
+    p.krylov = !o->full;
+    cli_catch_interrupts();
+#pragma omp parallel for schedule(dynamic, 1)
+    for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
+        const double t0 = wall_seconds();
+        whirl_windows *w = whirl_windows_alloc((size_t)o->links);
+        status[k] = w ? whirl_windows_find(w, c, o->modes.v[k], &p, win + k * WINDOWS_MAX,
+                                           WINDOWS_MAX, &count[k], &stats[k])
+                      : GSL_ENOMEM;
+        if (status[k]) snprintf(message[k], sizeof message[k], "%s", whirl_last_error());
+        whirl_windows_free(w);
+        seconds[k] = wall_seconds() - t0;
+    }
+    for (size_t k = 0; k < nmodes && !rc; k++)
+        if (status[k]) {
+            cli_error(cmd, "%s", message[k]);
+            rc = status[k] == WHIRL_EINTERRUPTED ? CLI_EXIT_INTERRUPTED : 1;
+        }
+    cli_out out;
+    if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
+    if (!rc) {
+        const double rate = unit(o, CLI_UNIT_RATE);
+        fprintf(out.fp, "# whirl stability --windows: %d links, omega %s..%s, scan step %s, edges "
+                        "to %s, refinement %s\n", o->links, CLI_NUM(o->omega_min * rate),
+                CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
+                o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
+        for (size_t k = 0; k < nmodes; k++) {
+            const whirl_windows_stats *st = &stats[k];
+            fprintf(out.fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
+                            "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
+                            "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
+                    o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
+                    count[k], st->scan,
+                    st->solves_vectors + st->solves_values + st->solves_krylov,
+                    st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes,
+                    seconds[k], CLI_NUM(o->tol * rate),
+                    (st->omega_to - st->omega_from) / o->tol + 1);
+        }
+        cli_units_comment(out.fp, &o->units);
+        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at\n");
+        for (size_t k = 0; k < nmodes; k++)
+            for (size_t i = 0; i < count[k]; i++) {
+                const whirl_window *x = win + k * WINDOWS_MAX + i;
+                fprintf(out.fp, "%d,%d,%s,%s,%d,%d,%s,%s,%s,%s\n", o->modes.v[k], o->links,
+                        CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
+                        CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
+                        CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
+            }
+        if (cli_out_commit(cmd, &out)) rc = 1;
+    }
+    free(win), free(count), free(stats), free(seconds), free(status), free(message);
+    whirl_chain_free(c);
+    return rc;
+}
+
 int cmd_stability(const cli_command *cmd, int argc, char **argv)
 {
     options o = {0};
@@ -231,6 +333,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.modes.n = 3;
     o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
     o.side = 1;
+    o.scan_step = 0.25;
+    o.tol = 1e-9;
     o.units = (cli_units)CLI_UNITS_INIT;
     o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
@@ -239,7 +343,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count) at --omega",
          "[1, 64]", "--omega"},
         {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
-         "(0, inf)", "--omega-max --omega-count", "--trace", "--omega", CLI_UNIT_RATE},
+         "(0, inf)", "--omega-max", "--trace", "--omega", CLI_UNIT_RATE},
         {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate",
          "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
         {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
@@ -265,6 +369,19 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
                          o.air),
         {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
          "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
+        {"--windows", NULL, CLI_FLAG, &o.windows, NULL, "",
+         "the intervals of omega where each mode is unstable, edges located exactly", NULL,
+         "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
+         "--damping --linear --eps --drag --drag-quadratic --drag-cd --side"},
+        {"--scan-step", NULL, CLI_DOUBLE, &o.scan_step, NULL, "H",
+         "windows: spacing of the scan (default 0.25)", "(0, inf)", "--windows", NULL, NULL,
+         CLI_UNIT_RATE},
+        {"--tol", NULL, CLI_DOUBLE, &o.tol, NULL, "T",
+         "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
+         NULL, NULL, CLI_UNIT_RATE},
+        {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
+         "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
+         "--windows"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
@@ -276,6 +393,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     if (rc) return rc;
     if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
     if ((rc = check_options(cmd, &o))) return rc;
+    if (o.windows) return run_windows(cmd, &o);
 
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
