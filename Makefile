@@ -1,11 +1,13 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
-# Targets: all (default), demo, check, check-clang, check-sanitize, bench, study, deps, clean.
+# Targets: all (default), demo, check, check-clang, check-sanitize, bench, study, python, deps,
+# clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
 CC       ?= cc
 PKGS     := gsl nlopt inih lapacke
 OPT      ?= -O2
+PYTHON   ?= /usr/bin/python3
 CFLAGS   ?= $(OPT) -g
 # -Wno-missing-field-initializers: option tables (src/cli/cli.h) leave trailing fields out on
 # purpose; they are zero, which means "not used".
@@ -23,11 +25,12 @@ CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/test_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
+PIC_OBJ  := $(LIB_SRC:%.c=$(BUILD)/pic/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
 
-.PHONY: all objects demo check check-clang check-sanitize bench study deps clean
+.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a
 
 $(BUILD)/%.o: %.c
@@ -37,6 +40,14 @@ $(BUILD)/%.o: %.c
 $(BUILD)/libwhirl.a: $(LIB_OBJ)
 	@mkdir -p $(dir $@)
 	$(AR) rcs $@ $^
+
+$(BUILD)/pic/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -fPIC -c $< -o $@
+
+# The shared library, for the Python package (python/).
+$(BUILD)/libwhirl.so: $(PIC_OBJ)
+	$(CC) -shared $(ALL_LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 	$(CC) $(ALL_LDFLAGS) $(CLI_OBJ) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
@@ -65,7 +76,7 @@ demo: deps
 # The tests, a clang -Werror compile of the library and the program, then the same tests under
 # AddressSanitizer and UndefinedBehaviorSanitizer.
 check: deps
-	@$(MAKE) --no-print-directory all $(TEST_BIN)
+	@$(MAKE) --no-print-directory all $(TEST_BIN) $(BUILD)/libwhirl.so
 	@sh tests/run.sh $(BUILD)
 	@$(MAKE) --no-print-directory check-clang
 	@$(MAKE) --no-print-directory check-sanitize
@@ -86,7 +97,7 @@ check-sanitize: deps
 	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize
 
 bench: deps
-	@$(MAKE) --no-print-directory all $(BENCH_BIN)
+	@$(MAKE) --no-print-directory all $(BENCH_BIN) $(BUILD)/libwhirl.so
 	@sh scripts/bench.sh $(BUILD)
 
 # The studies behind the figures: stability maps and the regime map (several minutes).
@@ -94,7 +105,17 @@ study: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/study.sh all out/study $(BUILD)
 
+# The Python package (python/) with the shared library copied into it, installed by pip without
+# network access. As root on Debian pip installs into /usr/local/lib/python3.*/dist-packages,
+# apart from apt's packages, once told to (--break-system-packages: Debian marks its Python as
+# managed by apt). Inside a venv: make python PYTHON=venv/bin/python PIP_FLAGS=
+PIP_FLAGS ?= --break-system-packages
+python: deps
+	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
+	cp $(BUILD)/libwhirl.so python/whirl/libwhirl.so
+	$(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
+
 clean:
 	rm -rf build build-* out
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)
+-include $(LIB_OBJ:.o=.d) $(PIC_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)

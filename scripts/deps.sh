@@ -7,6 +7,8 @@ have_cmd() { command -v "$1" >/dev/null 2>&1; }
 have_pc() { have_cmd pkg-config && pkg-config --exists "$1"; }
 # have_header COMPILER HEADER [FLAGS]: the compiler finds the header
 have_header() { have_cmd "$1" && echo "#include <$2>" | "$1" $3 -E -xc - >/dev/null 2>&1; }
+# have_py MODULE: Debian's Python 3 imports the module (the Python package and its tests)
+have_py() { [ -x /usr/bin/python3 ] && /usr/bin/python3 -c "import $1" >/dev/null 2>&1; }
 
 # Each line: Debian package, then the check that it is present.
 checks='
@@ -22,6 +24,18 @@ libopenmpi-dev   have_cmd mpicc
 openmpi-bin      have_cmd mpirun
 clang            have_cmd clang
 libomp-dev       have_header clang omp.h -fopenmp
+python3          test -x /usr/bin/python3
+python3-cffi     have_py cffi
+python3-numpy    have_py numpy
+python3-scipy    have_py scipy
+python3-pytest   have_py pytest
+python3-matplotlib have_py matplotlib
+python3-nbformat have_py nbformat
+python3-nbclient have_py nbclient
+python3-ipykernel have_py ipykernel
+python3-pip      have_py pip
+python3-setuptools have_py setuptools
+python3-wheel    have_py wheel
 '
 
 missing=""

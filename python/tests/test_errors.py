@@ -1,0 +1,113 @@
+"""Bad input from Python: a Python exception with a message naming the problem (TypeError,
+ValueError, or whirl.Error carrying the library's message), never a crash."""
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import whirl
+
+
+@pytest.mark.parametrize("call,exc,match", [
+    (lambda: whirl.critical("3"), TypeError, "modes"),
+    (lambda: whirl.critical(-1), ValueError, "modes"),
+    (lambda: whirl.critical(3, links=2), ValueError, "modes 1..2"),
+    (lambda: whirl.critical(3, tip_mass=float("nan")), ValueError, "tip_mass"),
+    (lambda: whirl.shape(float("nan"), 1), ValueError, "omega"),
+    (lambda: whirl.shape(-2.0, 1), ValueError, "omega"),
+    (lambda: whirl.shape(3.0, 1.5), TypeError, "mode"),
+    (lambda: whirl.shape(3.0, 0), ValueError, "mode"),
+    (lambda: whirl.shape(3.0, 1, points=1), ValueError, "points"),
+    (lambda: whirl.shape(3.0, 1, links=-4), ValueError, "links"),
+    (lambda: whirl.shape(3.0, 1, length=0), ValueError, "length"),
+    (lambda: whirl.sweep([1], [[1.0, 2.0]]), ValueError, "one-dimensional"),
+    (lambda: whirl.sweep([1], ["a"]), TypeError, "omega"),
+    (lambda: whirl.sweep([1], [1.0, np.nan]), ValueError, "finite"),
+    (lambda: whirl.sweep(["x"], [1.0]), TypeError, "mode"),
+    (lambda: whirl.Chain(lengths=[0.5, 0.5], masses=[0.5]), ValueError, "shape"),
+    (lambda: whirl.Chain(lengths=[0.5, -0.5], masses=[0.5, 0.5]), ValueError, "lengths"),
+    (lambda: whirl.Chain(0), ValueError, "links"),
+    (lambda: whirl.Simulation(3, frame="sideways"), ValueError, "frame"),
+    (lambda: whirl.Simulation(3, method=5), TypeError, "method"),
+    (lambda: whirl.Simulation(3).set_state(np.zeros((2, 3)), np.zeros((2, 3))), ValueError, "x"),
+    (lambda: whirl.Simulation(3).run(1.0, 0.1), RuntimeError, "start"),
+    (lambda: whirl.stability(3.0, 1, 10, side=0), ValueError, "side"),
+    (lambda: whirl.fit([0.1, 0.2], [-0.5, -0.9]), ValueError, "3 points"),
+    (lambda: whirl.fit([0.1, 0.2, 0.3], [-0.5, -0.9]), ValueError, "shape"),
+    (lambda: whirl.spin_up(3.0, 0.05, 5, bogus=1), TypeError, "bogus"),
+])
+def test_python_side_checks(call, exc, match):
+    with pytest.raises(exc, match=match):
+        call()
+
+
+def _library_error(call, name, match):
+    with pytest.raises(whirl.Error, match=match) as e:
+        call()
+    assert e.value.status_name == name
+    assert e.value.message == str(e.value)
+    assert e.value.message and "\n" not in e.value.message
+
+
+def test_mode_that_does_not_exist():
+    _library_error(lambda: whirl.shape(2.0, 3), "EDOM", "omega_3=4.32686395")
+    _library_error(lambda: whirl.shape(2.0, 3, links=20), "EDOM", "mode 3")
+    _library_error(lambda: whirl.stability(2.0, 2, 10), "EDOM", "")
+
+
+def test_library_rejects_bad_model_and_state():
+    # an _alloc function returns NULL and leaves its message: EFAILED
+    _library_error(lambda: whirl.Simulation(3, dim=4), "EFAILED", "dim")
+    _library_error(lambda: whirl.Simulation(3, dim=2, frame="rotating"), "EFAILED", "")
+    _library_error(lambda: whirl.Simulation(3, method="euler"), "EFAILED", "gauss2")
+    sim = whirl.Simulation(3)
+    x = np.array([[0, 0, -0.3], [0, 0, -0.6], [0, 0, -0.9]])  # links of 0.3, not 1/3
+    _library_error(lambda: sim.set_state(x, np.zeros((3, 3))), "EINVAL", "")
+
+
+def test_integrator_errors():
+    sim = whirl.Simulation(3, method="gauss2")
+    sim.set_hanging()
+    _library_error(lambda: sim.run(1.0, 0.1, tol=1e-8), "EINVAL", "adaptive")
+    stiff = whirl.Simulation(200, method="gauss2", omega=4.0)
+    stiff.set_steady(1)
+    # far beyond the fixed-point iteration's convergence: the stage solve fails
+    _library_error(lambda: stiff.run(1.0, 0.5), "EMAXITER", "")
+
+
+def test_driven_fit_and_spin_up_errors():
+    _library_error(lambda: whirl.driven(3.0, 1, 0.0, air_drag=0.1), "EDOM", "")
+    _library_error(lambda: whirl.spin_up(3.0, 0.05, 5, t_ramp=0.0), "EINVAL", "t_ramp")
+    r = np.linspace(0.1, 0.3, 5)
+    _library_error(lambda: whirl.fit(r, -r, mode=3, omega_max=2.0), "EDOM", "")
+
+
+def test_ctrl_c_interrupts_a_long_run_and_restores_python_handler():
+    handler = signal.getsignal(signal.SIGINT)
+    sim = whirl.Simulation(400, omega=3.0, method="rk4")
+    sim.set_steady(2)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        sim.run(1e4, 1e-4, every=1e4, positions=False)  # hours if not interrupted
+    assert time.monotonic() - start < 5
+    assert 0 < sim.t < 1e4
+    assert signal.getsignal(signal.SIGINT) is handler
+    assert not whirl.stop_requested()
+    # Python's own handler is back: SIGINT outside a library call is Python's KeyboardInterrupt
+    with pytest.raises(KeyboardInterrupt):
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(1)
+
+
+def test_ctrl_c_interrupts_a_spin_up():
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        whirl.spin_up(4.0, 0.05, 200, air_drag=0.05, t_max=1e6)
+    assert time.monotonic() - start < 5

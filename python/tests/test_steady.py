@@ -1,0 +1,99 @@
+"""Steady shapes from Python against independent results: Bessel zeros, analytic pendulum
+frequencies, and the command line's CSV."""
+import subprocess
+
+import numpy as np
+import pytest
+from scipy.special import jn_zeros
+
+import whirl
+
+
+def test_critical_continuum_is_half_the_bessel_zeros():
+    # omega_k = j_{0,k} / 2 for the uniform chain without a tip mass
+    np.testing.assert_allclose(whirl.critical(12), jn_zeros(0, 12) / 2, rtol=1e-12, atol=0)
+
+
+def test_critical_physical_units_scale_by_sqrt_g_over_l():
+    L, g = 0.6, 9.81
+    np.testing.assert_allclose(whirl.critical(5, length=L, mass=0.05, gravity=g),
+                               jn_zeros(0, 5) / 2 * np.sqrt(g / L), rtol=1e-12, atol=0)
+
+
+def test_critical_double_pendulum_analytic():
+    # two equal masses 1/2 on links 1/2: omega^2 = (g / l) (2 -+ sqrt 2)
+    w = whirl.critical(2, links=2)
+    np.testing.assert_allclose(w, np.sqrt(2 * np.array([2 - np.sqrt(2), 2 + np.sqrt(2)])),
+                               rtol=1e-13)
+    np.testing.assert_allclose(whirl.critical(1, links=1), [1.0], rtol=1e-14)
+
+
+def test_critical_nlink_converges_to_continuum_at_first_order():
+    exact = jn_zeros(0, 3) / 2
+    e1 = np.abs(whirl.critical(3, links=100) - exact)
+    e2 = np.abs(whirl.critical(3, links=200) - exact)
+    np.testing.assert_allclose(e1 / e2, 2.0, rtol=0.05)
+
+
+def _read_cli(path):
+    summary = {}
+    with open(path) as f:
+        first = f.readline()
+    for item in first[1:].split():
+        k, v = item.split("=")
+        summary[k] = v
+    with open(path) as f:
+        rows = [line for line in f if not line.startswith("#")]
+    assert rows[0].strip() == "s,r,z,tension"
+    data = np.loadtxt(rows[1:], delimiter=",")
+    return summary, data
+
+
+@pytest.mark.parametrize("args,kwargs", [
+    (["--omega", "3.5", "--mode", "2"], dict(omega=3.5, mode=2)),
+    (["--omega", "5.2", "--mode", "3", "--links", "40"], dict(omega=5.2, mode=3, links=40)),
+    (["--omega", "21", "--mode", "1", "--length", "0.5", "--mass", "0.05", "--gravity", "9.81",
+      "--tip-mass", "0.01", "--points", "57"],
+     dict(omega=21, mode=1, length=0.5, mass=0.05, gravity=9.81, tip_mass=0.01, points=57)),
+])
+def test_shape_matches_the_command_line_csv(tmp_path, whirl_program, args, kwargs):
+    out = tmp_path / "shape.csv"
+    subprocess.run([whirl_program, "shape", *args, "-o", str(out)], check=True)
+    summary, data = _read_cli(out)
+    s = whirl.shape(**kwargs)
+    # the same library computation printed with %.17g: equal to round-off of the unit scaling
+    for name, col in (("s", 0), ("r", 1), ("z", 2), ("tension", 3)):
+        np.testing.assert_allclose(getattr(s, name), data[:, col], rtol=1e-15, atol=1e-16,
+                                   err_msg=name)
+    for name in ("tip_r", "max_r", "top_tension", "depth"):
+        assert getattr(s, name) == pytest.approx(float(summary[name]), rel=1e-15, abs=1e-16)
+    nodes = [float(v) for v in summary["nodes"].split(";") if v]
+    np.testing.assert_allclose(s.nodes, nodes, rtol=1e-15)
+    assert s.mode == int(summary["mode"])
+
+
+def test_shape_physics_nodes_and_tension():
+    s = whirl.shape(4.9, 3)
+    assert len(s.nodes) == 2 and s.r[-1] > 0 and s.z[-1] < 0
+    # r changes sign at the reported nodes
+    for node in s.nodes:
+        i = np.searchsorted(s.s, node)
+        assert s.r[i - 1] * s.r[i] <= 0
+    # the vertical force balance at the pivot: T cos(angle) = weight (dimensionless: 1)
+    ds = s.s[1] - s.s[0]
+    dz_ds = (-3 * s.z[0] + 4 * s.z[1] - s.z[2]) / (2 * ds)  # second order, error O(ds^2)
+    assert s.top_tension * (-dz_ds) == pytest.approx(1.0, rel=1e-4)
+    assert s.critical == pytest.approx(jn_zeros(0, 3)[-1] / 2, rel=1e-12)
+
+
+def test_sweep_agrees_with_single_shapes():
+    omega = np.linspace(1.0, 6.0, 26)
+    b = whirl.sweep([1, 2], omega, links=30)
+    assert set(b) == {1, 2}
+    crit = whirl.critical(2, links=30)
+    for k in (1, 2):
+        np.testing.assert_array_equal(b[k]["omega"], omega[omega > crit[k - 1]])
+        for row in b[k][::5]:
+            s = whirl.shape(row["omega"], k, links=30)
+            assert row["tip_r"] == pytest.approx(s.tip_r, rel=1e-9)
+            assert row["top_tension"] == pytest.approx(s.top_tension, rel=1e-9)

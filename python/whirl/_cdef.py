@@ -1,0 +1,254 @@
+"""The C declarations of libwhirl that the package calls (cffi ABI mode).
+
+They mirror include/whirl/*.h; tests/test_layout.py compiles a C program against those headers
+and checks that every struct declared here has the same size and field offsets."""
+
+CDEF = r"""
+#define WHIRL_MODE_MAX 64
+#define WHIRL_EINTERRUPTED 1000
+#define WHIRL_DRIVEN_FOLD_MAX 32
+
+typedef void gsl_error_handler_t(const char *reason, const char *file, int line, int gsl_errno);
+gsl_error_handler_t *gsl_set_error_handler_off(void);
+
+const char *whirl_last_error(void);
+void whirl_stop_request(void);
+int whirl_stop_requested(void);
+void whirl_stop_clear(void);
+int whirl_stop_catch_signals(void);
+void whirl_stop_restore_signals(void);
+
+typedef struct whirl_chain {
+    size_t n;
+    double *length;
+    double *mass;
+    double gravity;
+} whirl_chain;
+whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass);
+whirl_chain *whirl_chain_alloc(size_t n, const double *length, const double *mass, double g);
+void whirl_chain_free(whirl_chain *c);
+double whirl_chain_total_length(const whirl_chain *c);
+double whirl_chain_total_mass(const whirl_chain *c);
+
+typedef struct whirl_shape_info {
+    double omega;
+    int mode;
+    double tip_r;
+    double max_r;
+    double top_tension;
+    double depth;
+    int n_nodes;
+    double node_s[64];
+} whirl_shape_info;
+int whirl_continuum_critical(int mode, double tip_mass, double *omega);
+int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
+                          whirl_shape_info *info);
+int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts, double *s,
+                           double *r, double *z, double *tension);
+int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
+                           whirl_shape_info *info, int *exists);
+int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
+int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
+                      whirl_shape_info *info);
+int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
+                          double *tension);
+int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
+                       whirl_shape_info *info, int *exists);
+
+typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
+typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
+typedef struct whirl_model {
+    const whirl_chain *chain;
+    int dim;
+    whirl_frame frame;
+    double omega;
+    double drive_radius;
+    double air_drag;
+    double air_drag_quadratic;
+    double internal_damping;
+    const double *seed_sigma;
+    const double *seed_lambda;
+} whirl_model;
+typedef struct whirl_dyn whirl_dyn;
+whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
+void whirl_dyn_free(whirl_dyn *d);
+size_t whirl_dyn_size(const whirl_dyn *d);
+int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v, double *y);
+int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
+                        double *x, double *v);
+int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension);
+typedef struct whirl_dyn_diagnostics {
+    double energy;
+    double lz;
+    double jacobi;
+    double constraint;
+} whirl_dyn_diagnostics;
+int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y, whirl_dyn_diagnostics *out);
+double whirl_deviation(size_t n, const double *x, const double *ref);
+
+typedef struct whirl_integrator whirl_integrator;
+typedef struct whirl_integrator_stats {
+    unsigned long steps;
+    unsigned long rejected;
+    unsigned long rhs_evals;
+    unsigned long iterations;
+} whirl_integrator_stats;
+const char *const *whirl_integrator_methods(void);
+whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
+void whirl_integrator_free(whirl_integrator *it);
+int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1, double h,
+                             double tol);
+whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
+
+typedef struct whirl_stability whirl_stability;
+whirl_stability *whirl_stability_alloc(size_t n);
+void whirl_stability_free(whirl_stability *w);
+int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
+                                const double **im);
+int whirl_stability_growth(whirl_stability *w, double *growth);
+int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
+                          double *growth);
+void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
+                           const double **z);
+typedef enum {
+    WHIRL_VERDICT_STABLE = 0,
+    WHIRL_VERDICT_UNSTABLE = 1,
+    WHIRL_VERDICT_CONVERGING = 2
+} whirl_verdict;
+const char *whirl_verdict_name(whirl_verdict v);
+typedef struct whirl_stability_run_params {
+    double periods;
+    double perturbation;
+    unsigned long seed;
+    const char *method;
+    double dt;
+    int (*observe)(double t, double ratio, void *data);
+    void *observe_data;
+} whirl_stability_run_params;
+whirl_stability_run_params whirl_stability_run_defaults(void);
+typedef struct whirl_stability_run_result {
+    double sim_growth;
+    double max_deviation;
+    double end_deviation;
+    double initial;
+    double duration;
+    double fit_from, fit_to;
+    whirl_verdict verdict;
+    whirl_integrator_stats stats;
+} whirl_stability_run_result;
+int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,
+                              const double *z, const whirl_stability_run_params *params,
+                              whirl_stability_run_result *result);
+
+typedef struct whirl_driven_params {
+    double omega;
+    double eps;
+    double drag;
+    double drag_quadratic;
+    double tip_mass;
+} whirl_driven_params;
+typedef struct whirl_driven_info {
+    double omega;
+    double tip[3];
+    double tip_r;
+    double top_force[3];
+    double top_tension;
+    double fold_function;
+    int nodes;
+    double residual;
+    int iterations;
+} whirl_driven_info;
+int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *params, int mode,
+                      int side, whirl_driven_info *info);
+int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *params,
+                        const double tip_xy[2], size_t npts, double *s, double *x, double *y,
+                        double *z, double *tension);
+int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode, int side,
+                                whirl_driven_info *info, double *growth);
+
+typedef struct whirl_fit_model {
+    size_t links;
+    double tip_mass;
+    double omega_max;
+    size_t samples;
+} whirl_fit_model;
+typedef struct whirl_fit_result {
+    double omega;
+    double omega_err;
+    int mode;
+    double rms_residual;
+    int mirrored;
+    int evaluations;
+    int failures;
+} whirl_fit_result;
+whirl_fit_model whirl_fit_model_default(void);
+int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z, int mode,
+              whirl_fit_result *result);
+
+typedef enum {
+    WHIRL_REGIME_SETTLED = 0,
+    WHIRL_REGIME_PERIODIC = 1,
+    WHIRL_REGIME_QUASIPERIODIC = 2,
+    WHIRL_REGIME_CHAOTIC = 3,
+    WHIRL_REGIME_FAILED = 4,
+    WHIRL_REGIME_CONVERGING = 5
+} whirl_regime_state;
+typedef struct whirl_regime_params {
+    double omega;
+    double eps;
+    double drag;
+    double drag_quadratic;
+    double internal_damping;
+    whirl_frame frame;
+    const char *method;
+    double dt;
+    double t_ramp;
+    double ramp_step;
+    double t_max;
+    double settle_tol;
+    int settle_periods;
+    double periodic_tol;
+    int lyapunov_periods;
+    double chaos_lambda;
+    double perturb;
+    unsigned long seed;
+} whirl_regime_params;
+typedef struct whirl_regime_result {
+    whirl_regime_state state;
+    int nodes;
+    int period;
+    double t_end;
+    double change;
+    double remaining;
+    double shape_error;
+    int bvp_nodes;
+    double lyapunov;
+    double tip[3];
+    double tip_r;
+    unsigned long steps;
+} whirl_regime_result;
+typedef int (*whirl_regime_observer)(void *ctx, double t, double frame_angle, const double *pivot,
+                                     const double *x, size_t n);
+typedef struct whirl_regime whirl_regime;
+whirl_regime *whirl_regime_alloc(const whirl_chain *chain);
+void whirl_regime_free(whirl_regime *w);
+void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx, double every);
+void whirl_regime_params_default(whirl_regime_params *p, size_t links);
+int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p, whirl_regime_result *res);
+const char *whirl_regime_state_name(whirl_regime_state s);
+"""
+
+# The structs whose layout tests/test_layout.py checks against the C headers.
+STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_model", "whirl_dyn_diagnostics",
+           "whirl_integrator_stats", "whirl_stability_run_params", "whirl_stability_run_result",
+           "whirl_driven_params", "whirl_driven_info", "whirl_fit_model", "whirl_fit_result",
+           "whirl_regime_params", "whirl_regime_result"]
+
+CDEF += r"""
+int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
+                         double tip_r_guess, whirl_shape_info *info, double *growth);
+"""
+
+CDEF += r"""
+int whirl_regime_check(const whirl_regime_params *p);
+"""

@@ -1,0 +1,149 @@
+"""Stability of the steady shapes of the N-link chain (whirl/stability.h, ``whirl stability``):
+the linearisation in the co-rotating frame (M q'' + (G + C) q' + K q = 0) and a perturbed run.
+Dimensionless units: rates in sqrt(g/L), growth rates in sqrt(g/L)."""
+import numpy as np
+
+from . import _lib
+from ._lib import ffi, lib, check, as_int, as_float, as_array
+from .steady import Chain, _mode
+
+
+class StabilityResult:
+    """One shape's stability: ``eig_growth`` (largest real part of the linearisation's
+    eigenvalues, the rotation symmetry's zeros removed [1/T]), ``eigenvalues`` (complex array),
+    and, unless linear, the perturbed run's ``sim_growth`` (fitted exponential rate, 0 unless
+    unstable), ``max_deviation`` (largest deviation / the initial one), ``duration`` [T] and
+    ``stats``; ``verdict``: "stable", "unstable" or "converging" (linear: the sign of
+    eig_growth). ``tip_r``, ``nodes``: the shape's tip radius and node count."""
+
+    def __repr__(self):
+        return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s)" % (
+            self.omega, self.mode, self.eig_growth, self.verdict)
+
+
+def _model(chain, omega, damping, drive_radius, air_drag, air_drag_quadratic):
+    m = ffi.new("whirl_model *")
+    m.chain = chain._c
+    m.dim = 3
+    m.frame = 1
+    m.omega = omega
+    m.internal_damping = as_float(damping, "damping", nonnegative=True)
+    m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True)
+    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True)
+    m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True)
+    return m
+
+
+def _eigenvalues(w):
+    count = ffi.new("size_t *")
+    re = ffi.new("const double **")
+    im = ffi.new("const double **")
+    check(lib.whirl_stability_eigenvalues(w, count, re, im))
+    n = count[0]
+    r = np.frombuffer(ffi.buffer(re[0], 8 * n), dtype=np.float64)
+    i = np.frombuffer(ffi.buffer(im[0], 8 * n), dtype=np.float64)
+    return r + 1j * i
+
+
+@ffi.callback("int(double, double, void *)")
+def _observe_stop(t, ratio, data):
+    """The perturbed run's observer: stops it (WHIRL_EINTERRUPTED) once a stop is requested."""
+    return lib.WHIRL_EINTERRUPTED if lib.whirl_stop_requested() else 0
+
+
+def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, perturb=1e-6,
+              method="rk4", seed=1, dt=0.0, drive_radius=0.0, air_drag=0.0,
+              air_drag_quadratic=0.0, side=1):
+    """The stability of the steady shape of ``mode`` at ``omega`` [sqrt(g/L)] of the N-link
+    chain ``links`` (N or a Chain), as ``whirl stability --omega W --mode K --links N``.
+
+    damping: internal damping D; linear=True: eigenvalues only (no run); otherwise a run of
+    ``periods`` rotation periods from the shape with every link turned by ``perturb`` [rad]
+    (``seed`` of the random directions) with ``method`` (default rk4) and step ``dt`` (0: the
+    library's default). With drive_radius > 0 (and air_drag, air_drag_quadratic) the shape is
+    the hand-swung chain's trailing shape on ``side`` +1 or -1. Returns a StabilityResult;
+    whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
+    chain = links if isinstance(links, Chain) else Chain(links)
+    w = as_float(omega, "omega", positive=True)
+    mode = _mode(mode)
+    side = as_int(side, "side")
+    if side not in (1, -1):
+        raise ValueError("side must be 1 or -1, got %d" % side)
+    m = _model(chain, w, damping, drive_radius, air_drag, air_drag_quadratic)
+    ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
+    growth = ffi.new("double *")
+    res = StabilityResult()
+    res.omega, res.mode = w, mode
+    if m.drive_radius > 0 or m.air_drag > 0 or m.air_drag_quadratic > 0:
+        info = ffi.new("whirl_driven_info *")
+        check(lib.whirl_stability_driven_mode(ws, m, mode, side, info, growth))
+        res.tip_r, res.nodes = info.tip_r, info.nodes
+    else:
+        info = ffi.new("whirl_shape_info *")
+        check(lib.whirl_stability_mode(ws, m, mode, 0.0, info, growth))
+        res.tip_r, res.nodes = info.tip_r, info.n_nodes + 1
+    res.eig_growth = growth[0]
+    res.eigenvalues = _eigenvalues(ws)
+    res.sim_growth = res.max_deviation = res.duration = None
+    res.stats = None
+    if linear:
+        g = res.eig_growth
+        res.verdict = "unstable" if g > 0 else "converging" if g < 0 else "stable"
+        return res
+    p = ffi.new("whirl_stability_run_params *", lib.whirl_stability_run_defaults())
+    p.periods = as_float(periods, "periods", positive=True)
+    p.perturbation = as_float(perturb, "perturb", positive=True)
+    p.seed = as_int(seed, "seed", minimum=0)
+    if not isinstance(method, str):
+        raise TypeError("method must be a string, got %r" % (method,))
+    name = ffi.new("char[]", method.encode())
+    p.method = name
+    p.dt = as_float(dt, "dt", nonnegative=True)
+    p.observe = _observe_stop
+    x, y, z = (ffi.new("const double **") for _ in range(3))
+    lib.whirl_stability_nodes(ws, x, y, z)
+    out = ffi.new("whirl_stability_run_result *")
+    with _lib.interruptible():
+        status = lib.whirl_stability_run_shape(m, x[0], y[0], z[0], p, out)
+    check(status)
+    res.sim_growth = out.sim_growth
+    res.max_deviation = out.max_deviation
+    res.duration = out.duration
+    res.verdict = ffi.string(lib.whirl_verdict_name(out.verdict)).decode()
+    s = out.stats
+    res.stats = {"steps": s.steps, "rejected": s.rejected, "rhs_evals": s.rhs_evals,
+                 "iterations": s.iterations}
+    return res
+
+
+MAP_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("growth", "f8")])
+
+
+def stability_map(omega, mode, links, damping=0.0):
+    """The linear growth rate of ``mode`` of the N-link chain over the rates ``omega`` (array,
+    [sqrt(g/L)]), the branch followed by continuation, as ``whirl stability --omega-min ...
+    --linear``. Returns a structured array (omega, tip_r, growth [1/T]) with one row per rate
+    where the mode exists; growth > 0: unstable. Ctrl-C raises KeyboardInterrupt."""
+    chain = links if isinstance(links, Chain) else Chain(links)
+    mode = _mode(mode)
+    w = as_array(omega, "omega", positive=True)
+    n = w.size
+    info = ffi.new("whirl_shape_info[]", n)
+    exists = np.zeros(n, dtype=np.intc)
+    with _lib.interruptible():
+        status = lib.whirl_nlink_branch(chain._c, mode, n, _lib.dptr(w), info,
+                                        ffi.cast("int *", ffi.from_buffer(exists)))
+    check(status, "mode %d" % mode)
+    ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
+    growth = ffi.new("double *")
+    rows = np.flatnonzero(exists)
+    out = np.empty(rows.size, dtype=MAP_DTYPE)
+    with _lib.interruptible():
+        for i, j in enumerate(rows):
+            m = _model(chain, w[j], damping, 0.0, 0.0, 0.0)
+            check(lib.whirl_stability_shape(ws, m, info[j].tip_r, growth),
+                  "omega %.17g" % w[j])
+            out[i] = (w[j], info[j].tip_r, growth[0])
+            if _lib.stop_requested():
+                break
+    return out
