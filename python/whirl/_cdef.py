@@ -252,3 +252,8 @@ int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
 CDEF += r"""
 int whirl_regime_check(const whirl_regime_params *p);
 """
+
+CDEF += r"""
+int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *params,
+                       const double guess[2], whirl_driven_info *info);
+"""

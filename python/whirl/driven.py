@@ -32,15 +32,18 @@ def _params(omega, drive_radius, air_drag, air_drag_quadratic, tip_mass):
 
 
 def driven(omega, mode, drive_radius, air_drag=0.0, air_drag_quadratic=0.0, side=1,
-           links=None, tip_mass=0.0, points=201):
+           links=None, tip_mass=0.0, points=201, tip_guess=None):
     """The steady shape of the hand-swung chain of ``mode`` at ``omega`` [sqrt(g/L)] with the
     pivot on a circle of radius ``drive_radius`` [L] and air drag (linear ``air_drag``,
     quadratic ``air_drag_quadratic``, per unit length), its tip on the pivot's side of the axis
     (side = 1) or opposite (-1), as ``whirl driven``. links=None: the continuum sampled at
     ``points`` arclengths (tip_mass [M] at its end); links=N or a Chain: the N-link chain.
+    tip_guess=(X, Y): instead, the shape whose tip is found by Newton's method from that
+    horizontal tip position (``mode`` may then be None; the result has its own node count).
     Returns a DrivenShape; whirl.Error (EDOM) if the shape does not exist or cannot be reached
-    by continuation."""
-    mode = _mode(mode)
+    by continuation, EMAXITER if Newton does not converge from tip_guess."""
+    if tip_guess is None or mode is not None:
+        mode = _mode(mode)
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
@@ -50,12 +53,16 @@ def driven(omega, mode, drive_radius, air_drag=0.0, air_drag_quadratic=0.0, side
         raise ValueError("tip_mass applies to the continuum; an N-link chain carries its masses")
     c = ffi.NULL if chain is None else chain._c
     info = ffi.new("whirl_driven_info *")
-    check(lib.whirl_driven_mode(c, p, mode, side, info))
+    if tip_guess is None:
+        check(lib.whirl_driven_mode(c, p, mode, side, info))
+    else:
+        guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,))
+        check(lib.whirl_driven_solve(c, p, _lib.dptr(guess), info))
     n = as_int(points, "points", minimum=2) if chain is None else chain.n + 1
     s, x, y, z, t = (np.empty(n) for _ in range(5))
     check(lib.whirl_driven_sample(c, p, info.tip, n, *(_lib.dptr(a) for a in (s, x, y, z, t))))
     out = DrivenShape()
-    out.omega, out.mode = info.omega, mode
+    out.omega, out.mode = info.omega, info.nodes
     out.s, out.x, out.y, out.z, out.tension = s, x, y, z, t
     out.tip = np.array(list(info.tip))
     out.tip_r = info.tip_r
