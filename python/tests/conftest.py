@@ -9,8 +9,9 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.abspath(os.path.join(HERE, os.pardir, os.pardir))
 sys.path.insert(0, os.path.join(REPO, "python"))
 BUILD = os.path.abspath(os.environ.get("WHIRL_BUILD", os.path.join(REPO, "build")))
-if "WHIRL_LIBRARY" not in os.environ:
-    os.environ["WHIRL_LIBRARY"] = os.path.join(BUILD, "libwhirl.so")
+# absolute, for the notebooks' kernels, which run in python/examples
+os.environ["WHIRL_LIBRARY"] = os.path.abspath(
+    os.environ.get("WHIRL_LIBRARY", os.path.join(BUILD, "libwhirl.so")))
 
 
 @pytest.fixture(scope="session")
