@@ -137,9 +137,10 @@ def as_int(value, name, minimum=None, maximum=None):
 
 
 def as_float(value, name, positive=False, nonnegative=False):
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError("%s must be a real number, got %r" % (name, value))
-    value = float(value)
+    if type(value) is not float:  # the common case skips the abstract-class checks
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError("%s must be a real number, got %r" % (name, value))
+        value = float(value)
     if not math.isfinite(value):
         raise ValueError("%s must be finite, got %r" % (name, value))
     if positive and not value > 0:
@@ -171,7 +172,7 @@ def as_array(values, name, shape=None, positive=False, allow_empty=False):
 
 def dptr(a):
     """The double * of a C-contiguous float64 array (which must outlive the call)."""
-    return ffi.cast("double *", ffi.from_buffer(a))
+    return ffi.from_buffer("double[]", a)
 
 
 def methods():
