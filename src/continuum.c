@@ -69,6 +69,7 @@
 #define SPLIT_B_MAX 1     /* the linear part is split off for b = omega^2 a <= this */
 #define LINEAR_TERMS 30   /* Taylor terms per step of the linear solution (long double) */
 #define LINEAR_TOL 1e-21L /* the bound on the last two terms of each step */
+#define LINEAR_STEP_MAX 1000000 /* Taylor steps of the linear solution (about omega / 3 needed) */
 
 /* The state: (D, E) (split: R = R0 + beta D, Q = Q0 + beta E; whole: R = D, Q = E), the height
  * z, then (R0, Q0), integrated only when split. */
@@ -99,11 +100,14 @@ typedef struct continuum_ws {
 
 /* The linear solution at the pivot, R0(1) and Q0(1), by the Taylor-series method in long
  * double from the free end (see the header comment). */
-static void linear_pivot(double omega, double m, double *r0_pivot, double *q0_pivot)
+static int linear_pivot(double omega, double m, double *r0_pivot, double *q0_pivot)
 {
     const long double w2 = (long double)omega * omega;
     long double sigma = 0, r0 = 1, q0 = 1;
-    while (sigma < 1) {
+    for (long step = 0; sigma < 1; step++) {
+        if (step == LINEAR_STEP_MAX)
+            return whirl_fail(GSL_EMAXITER, "more than %d Taylor steps for the linear solution "
+                              "(omega=%g): lower the rate", LINEAR_STEP_MAX, omega);
         long double r[LINEAR_TERMS], q[LINEAR_TERMS], t = sigma + m;
         r[0] = r0, q[0] = q0;
         for (int n = 1; n < LINEAR_TERMS; n++) {
@@ -125,14 +129,30 @@ static void linear_pivot(double omega, double m, double *r0_pivot, double *q0_pi
     }
     *r0_pivot = (double)r0;
     *q0_pivot = (double)q0;
+    return GSL_SUCCESS;
+}
+
+/* The rates the shooting resolves: above WHIRL_CONTINUUM_OMEGA_MAX it is refused. */
+static int check_rate(double omega)
+{
+    if (!(isfinite(omega) && omega > 0))
+        return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
+    if (omega > WHIRL_CONTINUUM_OMEGA_MAX)
+        return whirl_fail(GSL_EINVAL, "omega=%g is above %g, the highest rate the continuum "
+                          "shooting resolves (its ODE would need more than %d steps per shot); "
+                          "use the N-link chain (--links) there", omega,
+                          WHIRL_CONTINUUM_OMEGA_MAX, STEP_MAX);
+    return GSL_SUCCESS;
 }
 
 /* The rate of the following shots: omega^2 and the linear solution at the pivot. */
-static void set_rate(continuum_ws *w, double omega)
+static int set_rate(continuum_ws *w, double omega)
 {
+    int status = check_rate(omega);
+    if (status != GSL_SUCCESS) return status;
     w->omega = omega;
     w->w2 = omega * omega;
-    linear_pivot(omega, w->p.tip_mass, &w->r0_pivot, &w->q0_pivot);
+    return linear_pivot(omega, w->p.tip_mass, &w->r0_pivot, &w->q0_pivot);
 }
 
 /* The tip radius of the following shots, and the formulation. */
@@ -371,6 +391,8 @@ static int integrate(continuum_ws *w, continuum_run *run)
     run->n_nodes = 0;
     run->max_abs_r = w->a;
     for (int n = 0; sigma < 1; n++) {
+        if (n % 256 == 255 && whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
         if (n == STEP_MAX)
             return whirl_fail(GSL_EMAXITER, "more than %d ODE steps (omega=%g, a=%g)", STEP_MAX,
                               w->omega, w->a);
@@ -477,7 +499,7 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     continuum_ws *w = ws;
     int status = whirl_steady_check_args(omega, mode);
     if (status != GSL_SUCCESS) return status;
-    set_rate(w, omega);
+    if ((status = set_rate(w, omega)) != GSL_SUCCESS) return status;
     double a;
     status = whirl_steady_shoot_root(continuum_shot, w, mode, 1, 0, tip_r_guess, &a);
     if (status == GSL_EDOM) {
@@ -533,15 +555,17 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
 {
     int status = whirl_check_tip_mass(tip_mass);
     if (status != GSL_SUCCESS) return status;
-    if (!(isfinite(omega) && omega > 0))
-        return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
+    if ((status = check_rate(omega)) != GSL_SUCCESS) return status;
     if (!(isfinite(tip_r) && tip_r > 0 && tip_r <= 1))
         return whirl_fail(GSL_EINVAL, "tip radius must be in (0, 1], got %g", tip_r);
     if (npts < 2) return whirl_fail(GSL_EINVAL, "need at least 2 points, got %zu", npts);
     continuum_params p = {tip_mass, WHIRL_CONTINUUM_TOL};
     continuum_ws *w = continuum_ws_alloc(&p);
     if (w == NULL) return GSL_ENOMEM;
-    set_rate(w, omega);
+    if ((status = set_rate(w, omega)) != GSL_SUCCESS) {
+        continuum_ws_free(w);
+        return status;
+    }
     set_tip_radius(w, tip_r);
     double y_tip[N_STATE], y0[N_STATE], y[N_STATE];
     tip_state(w, y_tip);

@@ -60,6 +60,9 @@
 #define BRANCH_MAX_CORRECTOR 8         /* corrector iterations before a step is refused */
 #define BRANCH_MIN_STEP_RATIO 1e-7     /* smallest step as a fraction of the largest */
 #define FOLD_TOL 1e-12                 /* arclength tolerance of the fold location */
+#define ODE_STEP_MAX 200000            /* ODE steps of one continuum shape (also polls the stop
+                                          request every ODE_POLL steps) */
+#define ODE_POLL 256
 
 /* The problem being solved: the model, the parameters (omega comes from u[2]) and scratch. */
 typedef struct problem {
@@ -193,9 +196,15 @@ static int continuum_integrate(problem *pb, const double *u, size_t nsample, dou
     continuum_start(pb, u, sigma0, y);
     gsl_odeiv2_step_reset(pb->step);
     gsl_odeiv2_evolve_reset(pb->evolve);
+    long steps = 0;
     for (size_t j = 0; j < nsample || sigma < 1; j++) {
         const double target = j < nsample ? (double)j / (double)(nsample - 1) : 1.0;
         while (sigma < target) {
+            if (++steps > ODE_STEP_MAX)
+                return whirl_fail(GSL_EMAXITER, "the shape's integration needs more than %d "
+                                  "steps (omega=%g): lower the rate", ODE_STEP_MAX, pb->omega);
+            if (steps % ODE_POLL == 0 && whirl_stop_requested())
+                return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
             int status = gsl_odeiv2_evolve_apply(pb->evolve, pb->control, pb->step, &sys, &sigma,
                                                  target, &h, y);
             if (status != GSL_SUCCESS)
@@ -384,6 +393,7 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
 {
     if (!(isfinite(p->omega) && p->omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be positive and finite, got %g", p->omega);
+    if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
     if (!(isfinite(p->eps) && p->eps >= 0))
         return whirl_fail(GSL_EINVAL, "eps must be >= 0 and finite, got %g", p->eps);
     if (!(isfinite(p->drag) && p->drag >= 0))
@@ -761,6 +771,10 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
     status = branch_tangent(&pb, u, NULL, direction, tau, &D);
     if (status == GSL_SUCCESS) status = curve_append(&pb, curve, u, start->iterations, 0);
     while (status == GSL_SUCCESS && curve->n < curve->capacity) {
+        if (whirl_stop_requested()) {
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega = %g", u[2]);
+            break;
+        }
         if (branch_step(&pb, u, tau, h, unew, &iterations) != GSL_SUCCESS ||
             iterations > BRANCH_MAX_CORRECTOR ||
             branch_tangent(&pb, unew, tau, direction, taunew, &Dnew) != GSL_SUCCESS) {

@@ -21,6 +21,14 @@ int whirl_check_tip_mass(double m)
     return GSL_SUCCESS;
 }
 
+int whirl_check_omega_max(double omega)
+{
+    if (omega > WHIRL_OMEGA_MAX)
+        return whirl_fail(GSL_EINVAL, "omega=%g is above %g: the centrifugal forces ~ omega^2 "
+                          "would overflow", omega, WHIRL_OMEGA_MAX);
+    return GSL_SUCCESS;
+}
+
 int whirl_fail(int status, const char *fmt, ...)
 {
     va_list ap;

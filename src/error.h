@@ -13,5 +13,8 @@ int whirl_fail(int status, const char *fmt, ...)
 /* GSL_SUCCESS if the tip mass m (in chain masses) is in [0, WHIRL_TIP_MASS_MAX], else GSL_EINVAL
  * with the message. */
 int whirl_check_tip_mass(double m);
+/* GSL_SUCCESS if the rate omega (already checked positive and finite) is at most
+ * WHIRL_OMEGA_MAX, else GSL_EINVAL with the message. */
+int whirl_check_omega_max(double omega);
 
 #endif

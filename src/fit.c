@@ -35,6 +35,8 @@
 #define FIT_NEWTON_STEPS 12
 #define FIT_DIFF_STEP 1e-6       /* relative step of the central differences in omega */
 #define FIT_CROSSING_LEVEL 0.05  /* |r| below this fraction of max |r| is not a side */
+#define FIT_MAX_POINTS 20000    /* more points are refused: every model evaluation measures the
+                                    distance of each point, ~50 evaluations per mode */
 #define FIT_AXIS_R 1e-9          /* |r| up to this [L] is a point on the axis (no information) */
 
 whirl_fit_model whirl_fit_model_default(void)
@@ -176,6 +178,7 @@ static double fit_residuals_now(const fit_ws *w, int mirrored, double *e)
     const double side = mirrored ? -1.0 : 1.0;
     double ssr = 0;
     for (size_t i = 0; i < w->n; i++) {
+        if (i % 1024 == 1023 && whirl_stop_requested()) return HUGE_VAL;
         e[i] = polyline_distance(w, side * w->r[i], w->z[i]);
         ssr += e[i] * e[i];
     }
@@ -194,6 +197,11 @@ static int check_points(size_t n, const double *r, const double *z)
 {
     if (n < FIT_MIN_POINTS)
         return whirl_fail(GSL_EINVAL, "a fit needs at least %d points, got %zu", FIT_MIN_POINTS, n);
+    if (n > FIT_MAX_POINTS)
+        return whirl_fail(GSL_EINVAL, "a fit takes at most %d points, got %zu: thin the data "
+                          "(every %zu-th point); the cost grows with the points, and a few "
+                          "thousand determine omega far below the noise of a measurement",
+                          FIT_MAX_POINTS, n, (n + FIT_MAX_POINTS - 1) / FIT_MAX_POINTS);
     for (size_t i = 0; i < n; i++)
         if (!(isfinite(r[i]) && isfinite(z[i])))
             return whirl_fail(GSL_EINVAL, "point %zu is not finite (r = %g, z = %g)", i + 1, r[i],
@@ -250,9 +258,16 @@ typedef struct mode_fit {
     int mode;
     double omega_crit; /* omega_k */
     int mirrored;
+    nlopt_opt nl;      /* stopped when a stop is requested */
 } mode_fit;
 
 static double omega_of_u(const mode_fit *f, double u) { return f->omega_crit * (1 + exp(u)); }
+
+/* The status of a fit stopped by request. */
+static int stopped(int mode)
+{
+    return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request while fitting mode %d", mode);
+}
 
 /* S at omega for the fixed side; HUGE_VAL where the model has no shape (the mode does not
  * exist, or the solver failed: counted in ws->failures). */
@@ -267,6 +282,7 @@ static double bobyqa_objective(unsigned nu, const double *u, double *grad, void 
     (void)nu;
     (void)grad;
     mode_fit *f = data;
+    if (whirl_stop_requested()) nlopt_force_stop(f->nl);
     return mode_ssr(f, omega_of_u(f, u[0]), f->ws->e);
 }
 
@@ -307,7 +323,7 @@ static int gauss_newton(mode_fit *f, double *omega, double *ssr, double *jj)
  * below omega_max. */
 static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
 {
-    mode_fit f = {w, mode, 0, 0};
+    mode_fit f = {w, mode, 0, 0, NULL};
     int status = fit_critical(w, mode, &f.omega_crit);
     if (status) return status;
     const double u_max = log(w->model->omega_max / f.omega_crit - 1);
@@ -331,6 +347,7 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
             }
         }
     }
+    if (whirl_stop_requested()) return stopped(mode);
     if (best < 0)
         return whirl_fail(GSL_EDOM, "mode %d has no shape between omega_%d = %g and %g", mode,
                           mode, f.omega_crit, w->model->omega_max);
@@ -341,6 +358,7 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     double u = u_grid[best], s_min = best_ssr;
     nlopt_opt nl = nlopt_create(NLOPT_LN_BOBYQA, 1);
     if (nl == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for NLopt");
+    f.nl = nl;
     nlopt_set_min_objective(nl, bobyqa_objective, &f);
     nlopt_set_lower_bounds(nl, &lower);
     nlopt_set_upper_bounds(nl, &upper);
@@ -350,6 +368,7 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     w->tip_r_guess = 0;
     const nlopt_result nres = nlopt_optimize(nl, &u, &s_min);
     nlopt_destroy(nl);
+    if (whirl_stop_requested()) return stopped(mode);
     if (nres < 0 && nres != NLOPT_ROUNDOFF_LIMITED)
         return whirl_fail(GSL_EFAILED, "NLopt LN_BOBYQA failed on mode %d: %s", mode,
                           nlopt_result_to_string(nres));
@@ -358,6 +377,7 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     if (!isfinite(ssr))
         return whirl_fail(GSL_EFAILED, "mode %d has no shape at omega = %g", mode, omega);
     status = gauss_newton(&f, &omega, &ssr, &jj);
+    if (whirl_stop_requested()) return stopped(mode);
     if (status) return status;
     res->omega = omega;
     res->omega_err = sqrt(ssr / (double)(w->n - 1) / jj);

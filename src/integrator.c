@@ -3,9 +3,14 @@
  * whirl_integrator_advance takes fixed steps t_k = t0 + k h (the last one ending exactly at t1)
  * or, with tol > 0, the adaptive steps of rk8 or a GSL method, and projects the state onto the
  * constraints (whirl_dyn_project) after every step.
+ * Bounds: a tolerance below WHIRL_TOL_MIN is refused (it lies below the round-off of the state);
+ * an adaptive step below WHIRL_STEP_MIN_ULPS units of round-off of t (64 eps max(|t|, 1)) stops
+ * the run, as t would no longer advance by a representable amount; every right-hand side polls
+ * the stop request (WHIRL_EINTERRUPTED).
  * rk4: the classical 4-stage, order-4 explicit method (Kutta 1901; Hairer, Norsett, Wanner,
  * "Solving ODEs I", table II.1.2): k1 = f(t, y), k2 = f(t + h/2, y + h/2 k1),
  * k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3), y += h/6 (k1 + 2 k2 + 2 k3 + k4). */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +21,9 @@
 
 int whirl_integrator_rhs(whirl_integrator *it, double t, const double *y, double *dydt)
 {
+    /* the stop request, polled inside every step (one right-hand side is far below 0.1 s) */
+    if (whirl_stop_requested())
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at t = %.17g", t);
     it->stats.rhs_evals++;
     return whirl_dyn_rhs(t, y, dydt, it->dyn);
 }
@@ -153,6 +161,9 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
     if (!(isfinite(h) && h > 0)) return whirl_fail(GSL_EINVAL, "step h must be > 0, got %g", h);
     if (!(isfinite(tol) && tol >= 0))
         return whirl_fail(GSL_EINVAL, "tolerance must be >= 0, got %g", tol);
+    if (tol > 0 && tol < WHIRL_TOL_MIN)
+        return whirl_fail(GSL_EINVAL, "tolerance %g is below the round-off of doubles: use a "
+                          "tolerance >= %g", tol, WHIRL_TOL_MIN);
     if (tol > 0 && !it->method->adaptive)
         return whirl_fail(GSL_EINVAL, "the integrator %s has no adaptive step control",
                           it->method->name);
@@ -188,6 +199,13 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
             memcpy(it->backup, y, it->size * sizeof *y);
             status = it->method->adaptive_step(it, t, t1, &hh, tol, y);
             if (status == GSL_SUCCESS) status = project(it, *t, y);
+            const double h_min = WHIRL_STEP_MIN_ULPS * DBL_EPSILON * fmax(fabs(ta), 1);
+            if (status == GSL_SUCCESS && *t < t1 && (*t - ta < h_min || hh < h_min))
+                status = whirl_fail(GSL_EFAILED, "%s: the adaptive step fell to %g at t = %.17g, "
+                                    "below %d units of round-off of t: the tolerance %g cannot "
+                                    "be met here (raise it, or use an implicit method for a stiff "
+                                    "run)", it->method->name, fmin(*t - ta, hh), ta,
+                                    WHIRL_STEP_MIN_ULPS, tol);
             if (status != GSL_SUCCESS) {
                 *t = ta;
                 break;

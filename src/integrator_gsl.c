@@ -35,12 +35,20 @@ typedef struct gsl_state {
     gsl_odeiv2_system sys;
     gsl_odeiv2_driver *driver;
     double *f0, *f1, *ytmp; /* Jacobian scratch */
+    int interrupted;        /* a right-hand side saw the stop request */
 } gsl_state;
 
+/* GSL retries a step with a smaller one after any status but GSL_EBADFUNC: a stop request is
+ * handed to it as GSL_EBADFUNC, so that it returns at once, and translated back in gsl_status. */
 static int gsl_rhs(double t, const double y[], double dydt[], void *params)
 {
     gsl_state *g = params;
-    return whirl_integrator_rhs(g->it, t, y, dydt);
+    int status = whirl_integrator_rhs(g->it, t, y, dydt);
+    if (status == WHIRL_EINTERRUPTED) {
+        g->interrupted = 1;
+        return GSL_EBADFUNC;
+    }
+    return status;
 }
 
 static int gsl_jacobian(double t, const double y[], double *dfdy, double dfdt[], void *params)
@@ -100,8 +108,12 @@ static void gsl_restart(whirl_integrator *it)
     gsl_odeiv2_driver_reset(g->driver);
 }
 
-static int gsl_status(int status, double t)
+static int gsl_status(gsl_state *g, int status, double t)
 {
+    if (g->interrupted) {
+        g->interrupted = 0;
+        return WHIRL_EINTERRUPTED; /* message from the right-hand side */
+    }
     if (status == GSL_SUCCESS) return GSL_SUCCESS;
     if (status == GSL_EBADFUNC) return status; /* message from the right-hand side */
     return whirl_fail(status, "the GSL stepper failed at t = %.17g (%s)", t, gsl_strerror(status));
@@ -114,7 +126,7 @@ static int gsl_fixed_step(whirl_integrator *it, double t, double h, double *y)
     gsl_odeiv2_control_init(dr->c, GSL_FIXED_STEP_TOL, GSL_FIXED_STEP_TOL, 1, 0);
     double tt = t;
     int status = gsl_odeiv2_evolve_apply_fixed_step(dr->e, NULL, dr->s, &g->sys, &tt, h, y);
-    return gsl_status(status, t);
+    return gsl_status(g, status, t);
 }
 
 static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double *h, double tol,
@@ -127,7 +139,7 @@ static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double 
     const double t0 = *t;
     int status = gsl_odeiv2_evolve_apply(dr->e, dr->c, dr->s, &g->sys, t, t1, h, y);
     it->stats.rejected += dr->e->failed_steps - failed;
-    return gsl_status(status, t0);
+    return gsl_status(g, status, t0);
 }
 
 /* fixed_step: gsl_fixed_step, or NULL for the multistep methods (adaptive steps only) */

@@ -145,12 +145,14 @@ typedef struct potential_problem {
     const whirl_chain *chain;
     double omega;
     int evaluations;
+    nlopt_opt nl; /* stopped when a stop is requested */
 } potential_problem;
 
 static double potential_objective(unsigned n, const double *theta, double *grad, void *data)
 {
     (void)n;
     potential_problem *p = data;
+    if (whirl_stop_requested()) nlopt_force_stop(p->nl);
     p->evaluations++;
     return whirl_potential(p->chain, p->omega, theta, grad);
 }
@@ -209,6 +211,7 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
         return whirl_fail(GSL_EINVAL, "whirl_minimize_shape needs a chain and an output array");
     if (!(isfinite(omega) && omega >= 0))
         return whirl_fail(GSL_EINVAL, "omega must be >= 0 and finite, got %g", omega);
+    if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
     const whirl_minimize_options defaults = whirl_minimize_options_default();
     if (opt == NULL) opt = &defaults;
     int algorithm = 0;
@@ -244,7 +247,7 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
         lower[i] = -PI;
         upper[i] = PI;
     }
-    potential_problem problem = {c, omega, 0};
+    potential_problem problem = {c, omega, 0, nl};
     double v;
     nlopt_set_min_objective(nl, potential_objective, &problem);
     /* the angles are periodic: bounds only where an algorithm needs them (the global ones,
@@ -261,6 +264,11 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
         stats->evaluations = problem.evaluations;
         stats->nlopt_result = (int)res;
         stats->newton_steps = 0;
+    }
+    if (res == NLOPT_FORCED_STOP && whirl_stop_requested()) {
+        status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request after %d evaluations",
+                            problem.evaluations);
+        goto done;
     }
     if (res == NLOPT_INVALID_ARGS) {
         status = whirl_fail(GSL_EINVAL, "NLopt algorithm %s cannot minimise this problem alone "

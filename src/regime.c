@@ -30,6 +30,7 @@
 #define LYAPUNOV_DELTA0 1e-8
 #define SETTLE_BLOCK WHIRL_REGIME_PERIOD_MAX /* periods averaged in the settling test */
 #define DECAY_BLOCK 4   /* periods averaged in the CONVERGING test */
+#define REGIME_PERIODS_MIN (2 * SETTLE_BLOCK) /* drive periods t_max - t_ramp must hold */
 #define DECAY_BLOCKS 5  /* successive decreasing block means it needs */
 #define DECAY_MAX_LEFT 0.05 /* [L]: the largest estimated distance left it accepts */
 #define DECAY_FACTOR 0.995
@@ -90,6 +91,7 @@ int whirl_regime_check(const whirl_regime_params *p)
 {
     if (!(p->omega > 0 && isfinite(p->omega)))
         return whirl_fail(GSL_EINVAL, "omega must be > 0, got %g", p->omega);
+    if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
     if (!(p->eps > 0 && p->eps < 1))
         return whirl_fail(GSL_EINVAL, "eps must be in (0, 1), got %g", p->eps);
     const struct { const char *name; double value; } nonneg[] = {
@@ -113,6 +115,15 @@ int whirl_regime_check(const whirl_regime_params *p)
         return whirl_fail(GSL_EINVAL, "t_max (%g) must exceed t_ramp (%g)", p->t_max, p->t_ramp);
     if (p->settle_periods < 1 || p->lyapunov_periods < 1)
         return whirl_fail(GSL_EINVAL, "settle_periods and lyapunov_periods must be >= 1");
+    /* the classification samples once per drive period: t_max - t_ramp must hold enough of
+     * them (else the run would end unclassified, and the Lyapunov window of lyapunov_periods
+     * periods after it could be far longer than t_max) */
+    const double period = 2 * M_PI / p->omega, need = REGIME_PERIODS_MIN * period;
+    if (p->t_max - p->t_ramp < need)
+        return whirl_fail(GSL_EINVAL, "t_max - t_ramp = %g holds %.3g drive periods (2 pi/omega "
+                          "= %g); the classification needs %d: raise t_max to %.6g or omega",
+                          p->t_max - p->t_ramp, (p->t_max - p->t_ramp) / period, period,
+                          REGIME_PERIODS_MIN, p->t_ramp + need);
     if (p->frame != WHIRL_FRAME_INERTIAL && p->frame != WHIRL_FRAME_ROTATING)
         return whirl_fail(GSL_EINVAL, "unknown frame %d", (int)p->frame);
     if (p->method == NULL) return whirl_fail(GSL_EINVAL, "no integration method");
@@ -241,9 +252,10 @@ static int all_finite(const double *v, size_t n)
     return 1;
 }
 
-/* Integration failure: GSL_EFAILED, with the message set. */
+/* Integration failure: GSL_EFAILED, with the message set (a stop request is passed on). */
 static int integration_failed(whirl_regime *w, int status)
 {
+    if (status == WHIRL_EINTERRUPTED) return status;
     if (status == GSL_SUCCESS)
         return whirl_fail(GSL_EFAILED, "the state is not finite at t = %.6g", w->t);
     return whirl_fail(GSL_EFAILED, "integration failed after t = %.6g: %s", w->t,

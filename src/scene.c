@@ -612,6 +612,14 @@ static int convert_run(const convert *v)
     TRY(get_list(v, WHIRL_KEY_RUN_SEED_SIGMA, s->links, 0, &s->seed_sigma));
     TRY(get_list(v, WHIRL_KEY_RUN_SEED_LAMBDA, s->links, 0, &s->seed_lambda));
     TRY(get_bounded(v, WHIRL_KEY_RUN_TOL, 0, 0, 0, &s->tol));
+    if (s->tol > 0 && s->tol < WHIRL_TOL_MIN)
+        return key_error(v, WHIRL_KEY_RUN_TOL, "%g is below the round-off of doubles: use a "
+                         "tolerance >= %g", s->tol, WHIRL_TOL_MIN);
+    const double work = (double)s->links * s->t_end / s->dt;
+    if (s->tol == 0 && work > WHIRL_SCENE_WORK_MAX)
+        return key_error(v, WHIRL_KEY_RUN_T_END, "links x t_end / dt = %.3g link-steps exceeds the "
+                         "budget of %g (hours of work): shorten t_end, raise dt or use fewer "
+                         "links", work, WHIRL_SCENE_WORK_MAX);
     if (given(v, WHIRL_KEY_RUN_STOP_DEVIATION))
         TRY(get_bounded(v, WHIRL_KEY_RUN_STOP_DEVIATION, 0, 0, 1, &s->stop_deviation));
     return GSL_SUCCESS;

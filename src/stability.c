@@ -161,6 +161,7 @@ static int check_model(const whirl_stability *w, const whirl_model *m)
         return whirl_fail(GSL_EINVAL, "chain of %zu links, workspace of %zu", m->chain->n, w->n);
     if (m->dim != 3) return whirl_fail(GSL_EINVAL, "the linear analysis is 3D, got dim %d", m->dim);
     if (!isfinite(m->omega)) return whirl_fail(GSL_EINVAL, "omega must be finite");
+    if (whirl_check_omega_max(fabs(m->omega)) != GSL_SUCCESS) return GSL_EINVAL;
     if (!nonnegative(m->internal_damping))
         return whirl_fail(GSL_EINVAL, "damping must be >= 0 and finite, got %g",
                           m->internal_damping);

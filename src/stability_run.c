@@ -59,6 +59,7 @@ static int check_params(const whirl_model *model, const whirl_stability_run_para
                               nonneg[k]);
     if (!(isfinite(model->omega) && model->omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be positive, got %g", model->omega);
+    if (whirl_check_omega_max(model->omega) != GSL_SUCCESS) return GSL_EINVAL;
     if (!(isfinite(p->periods) && p->periods > 0))
         return whirl_fail(GSL_EINVAL, "periods must be > 0, got %g", p->periods);
     if (!(p->perturbation > 0 && p->perturbation < 1))

@@ -25,6 +25,7 @@ int whirl_steady_check_args(double omega, int mode)
 {
     if (!(isfinite(omega) && omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
+    if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
     if (mode < 1 || mode > WHIRL_MODE_MAX)
         return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", WHIRL_MODE_MAX,
                           mode);
@@ -129,6 +130,8 @@ typedef struct shot_point {
 static int take_shot(steady_shot_fn shot, void *ws, double a, shot_point *p)
 {
     p->a = a;
+    p->res = 0, p->below = p->total = 0;
+    if (whirl_stop_requested()) return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
     int status = shot(ws, a, &p->res, &p->below);
     /* after `below` changes from r > 0 the sign is (-1)^below; the pivot adds one if it differs */
     int pivot_flips = p->res != 0 && (p->res > 0) != (p->below % 2 == 0);

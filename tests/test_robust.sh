@@ -57,4 +57,69 @@ if [ -z "$(ls -A "$tmp" | grep -v -e '\.ini$' -e '\.csv$' -e '^stdout$' -e '^std
 else fail "no temporary file left by the refused runs: $(ls -A "$tmp")"; fi
 expect_error "shape: -o '' is refused" "empty output file name" shape --omega 2 --mode 1 -o ''
 
+# ---- work without a bound is refused up front or capped ----
+expect_error "shape: omega 1e7 is refused by the continuum (was minutes)" \
+  "omega=1e\+07 is above 5000, the highest rate the continuum shooting resolves" \
+  shape --omega 1e7 --mode 2 -o "$out"
+expect_error "shape: omega 1e300 is refused (was endless)" "omega=1e\+300 is above 1e\+100" \
+  shape --omega 1e300 --mode 2 -o "$out"
+expect_error "shape --links: omega 1e300 is refused" "omega=1e\+300 is above 1e\+100" \
+  shape --omega 1e300 --mode 2 --links 10 -o "$out"
+expect_error "sweep: a branch reaching omega 1e7 is refused" "omega=2.5e\+06 is above 5000" \
+  sweep --modes 1 --omega-min 1 --omega-max 1e7 --steps 4 -o "$out"
+expect_error "driven: omega 1e7 is refused" "omega=1e\+07 is above 5000" \
+  driven --omega 1e7 --eps 0.01 -o "$out"
+scenes="$(dirname "$0")/../data/scenes"
+expect_error "simulate: rk8 at tol 1e-87 is refused (was endless)" \
+  "run.tol: 1e-87 is below the round-off of doubles: use a tolerance >= 1e-16" \
+  simulate "$scenes/mode2.ini" --set run.method=rk8 --set run.tol=1e-87 -o "$out"
+expect_error "simulate: gsl-rk4imp at tol 1e-87 is refused" "below the round-off of doubles" \
+  simulate "$scenes/mode2.ini" --set run.method=gsl-rk4imp --set run.tol=1e-87 \
+  --set run.air_drag=1e12 -o "$out"
+expect_error "simulate: links x t_end / dt beyond the budget is refused with the estimate" \
+  "run.t_end: links x t_end / dt = 5e\+13 link-steps exceeds the budget of 1e\+10" \
+  simulate "$scenes/mode2.ini" --set run.t_end=1e9 -o "$out"
+expect_error "regime: omega 1e-8 within t_max 50 is refused (was far past t_max)" \
+  "t_max - t_ramp = 30 holds 4.77e-08 drive periods .*the classification needs 16" \
+  regime --omega 1e-8 --eps 0.1 --t-max 50 -o "$out"
+"$WHIRL" shape --omega 3.3 --mode 2 --points 20001 -o "$tmp/many.csv"
+expect_error "fit: more than 20000 points are refused" "a fit takes at most 20000 points, got 20001" \
+  fit --shape "$tmp/many.csv" -o "$out"
+
+# ---- interrupts: SIGINT or SIGTERM ends every long command with exit 130, rows kept where the
+# command keeps rows, no temporary file left ----
+# interrupt NAME SIGNAL ROWS ARGS...: runs `whirl ARGS -o $tmp/int/out.csv`, sends SIGNAL after
+# 1 s; ROWS = keep: the output must then hold a header and at least one row; none: no output.
+interrupt() {
+  name=$1; sig=$2; rows=$3; shift 3
+  rm -rf "$tmp/int"; mkdir "$tmp/int"
+  "$WHIRL" "$@" -o "$tmp/int/out.csv" >"$tmp/int.stdout" 2>"$tmp/int.stderr" &
+  pid=$!
+  sleep 1
+  kill -"$sig" $pid
+  wait $pid
+  rc=$?
+  left=$(ls -A "$tmp/int" | grep -v '^out.csv$')
+  kept=$( [ -f "$tmp/int/out.csv" ] && grep -cv '^#' "$tmp/int/out.csv" || echo 0)
+  if [ "$rows" = keep ]; then [ "$kept" -ge 2 ]; else [ ! -e "$tmp/int/out.csv" ]; fi
+  output_ok=$?
+  if [ $rc -eq 130 ] && [ -z "$left" ] && [ $output_ok -eq 0 ]; then
+    pass "interrupt ($sig): $name"
+  else
+    fail "interrupt ($sig): $name (rc=$rc, left: '$left', lines: $kept, stderr: $(head -c 200 "$tmp/int.stderr"))"
+  fi
+}
+"$WHIRL" shape --omega 3.3 --mode 2 --points 10000 -o "$tmp/p10000.csv"
+interrupt "simulate, adaptive gsl-rk4imp with extreme drag (stopped inside a step)" INT keep \
+  simulate "$scenes/mode2.ini" --set run.method=gsl-rk4imp --set run.tol=1e-8 \
+  --set run.air_drag=1e12 --set chain.links=10
+interrupt "simulate, adaptive rk8" TERM keep simulate "$scenes/mode2.ini" --set run.method=rk8 \
+  --set run.tol=1e-16 --set run.t_end=1000 --set run.stop_deviation=1e9
+interrupt "regime, one run" INT none regime --omega 3 --eps 0.1 --t-max 100000
+interrupt "regime, one run" TERM none regime --omega 3 --eps 0.1 --t-max 100000
+interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --steps 400 --links 20
+interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --steps 30000
+interrupt "driven branch" INT none driven --omega-min 1 --omega-max 4000 --eps 0.05
+interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2
+
 finish

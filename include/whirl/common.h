@@ -24,6 +24,10 @@
  * rounding rather than the chain. */
 #define WHIRL_TIP_MASS_MAX 1e12
 
+/* The highest rotation rate any model accepts: forces ~ omega^2 (up to 1e200) times masses and
+ * units stay finite. (The continuous chain has a lower limit, WHIRL_CONTINUUM_OMEGA_MAX.) */
+#define WHIRL_OMEGA_MAX 1e100
+
 /* The message of the last failure in the calling thread ("" if none). */
 const char *whirl_last_error(void);
 

@@ -123,11 +123,18 @@ const char *const *whirl_integrator_methods(void);
 whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
 void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
 
+/* The smallest adaptive tolerance: finer relative accuracy is below the round-off of doubles. */
+#define WHIRL_TOL_MIN 1e-16
+/* The smallest adaptive step, in units of round-off of t (DBL_EPSILON max(|t|, 1)). */
+#define WHIRL_STEP_MIN_ULPS 64
+
 /* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
  * shortened); with tol > 0 adaptively (relative and absolute tolerance tol, h the first step) for
  * the methods that allow it, GSL_EINVAL for the others. Projects onto the constraints after each
  * step. Stops with the status of a failing right-hand side or stage solve (t, y then hold the
- * last good state). Allocates nothing. */
+ * last good state); GSL_EINVAL for tol in (0, WHIRL_TOL_MIN); GSL_EFAILED when an adaptive step
+ * falls below WHIRL_STEP_MIN_ULPS units of round-off of t; WHIRL_EINTERRUPTED once a stop is
+ * requested (polled in every right-hand side). Allocates nothing. */
 int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1, double h,
                              double tol);
 

@@ -112,9 +112,11 @@ int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mode, int mi
  * omega_err = sqrt(s^2 / J^T J) with J = d(resid)/d(omega) by central differences and
  * s^2 = SSR / (n - 1): the linearised standard error, which assumes independent errors of equal
  * variance normal to the curve (validated against Monte-Carlo scatter in tests/test_optimize.c);
- * it means little when omega ends on a bound. Needs n >= 3 finite points (GSL_EINVAL
- * otherwise). GSL_EDOM if no mode has a shape in the range. result->rms_residual says how well
- * it fits; judging it is up to the caller. */
+ * it means little when omega ends on a bound. Needs 3 to 20000 finite points, at least 3 of
+ * them distinct and off the axis (|r| > 1e-9) (GSL_EINVAL otherwise); GSL_EFAILED when the
+ * residuals do not change with omega (an ill-conditioned fit). GSL_EDOM if no mode has a shape
+ * in the range. WHIRL_EINTERRUPTED once a stop is requested (polled every 1024 distances).
+ * result->rms_residual says how well it fits; judging it is up to the caller. */
 int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z, int mode,
               whirl_fit_result *result);
 

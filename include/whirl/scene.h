@@ -46,6 +46,10 @@
 
 #include "whirl/dynamics.h"
 
+/* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): about an hour
+ * of work with the implicit methods; larger runs are refused when the scene is read. */
+#define WHIRL_SCENE_WORK_MAX 1e10
+
 /* Every key of a scene; the index of whirl_scene.line. */
 typedef enum {
     WHIRL_KEY_CHAIN_DIM,

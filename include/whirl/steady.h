@@ -49,6 +49,11 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega);
 int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
                           whirl_shape_info *info);
 
+/* The highest rate of the continuum solvers: beyond about 8000 the shooting's ODE needs more
+ * than its cap of 100000 steps per shot (the shape varies on a scale ~ 1/omega); higher rates are
+ * refused with GSL_EINVAL (the N-link chain has no such limit). */
+#define WHIRL_CONTINUUM_OMEGA_MAX 5000.0
+
 /* The ODE tolerance (absolute and relative, on order-one scaled variables) of the continuum. */
 #define WHIRL_CONTINUUM_TOL 1e-13
 

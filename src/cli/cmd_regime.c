@@ -400,8 +400,8 @@ static int run_block(const regime_options *o, whirl_regime **ws, const long *pen
         p.seed = o->p.seed + (unsigned long)pending[j];
         whirl_regime_result r;
         memset(&r, 0, sizeof r);
-        const int ok = whirl_regime_run(ws[thread_id()], &p, &r) == GSL_SUCCESS;
-        failed |= !ok;
+        const int status = whirl_regime_run(ws[thread_id()], &p, &r), ok = status == GSL_SUCCESS;
+        failed |= !ok && status != WHIRL_EINTERRUPTED; /* a stopped point is left to --resume */
         pack(buf + j * RESULT_FIELDS, ok ? pending[j] : -1, &r);
     }
     return failed;
@@ -577,7 +577,10 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
     if (trace_open) whirl_regime_observe(w, trace_frame, &tc, o->trace_every);
     whirl_regime_result r;
     const int status = whirl_regime_run(w, &o->p, &r);
-    if (status != GSL_SUCCESS) rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
+    if (status == WHIRL_EINTERRUPTED)
+        rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
+    else if (status != GSL_SUCCESS)
+        rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime: one run from rest\n");
         write_parameters(out.fp, o);
@@ -615,7 +618,10 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
         omega[j] = cli_grid(o->omega_min, o->omega_max, o->omega_steps,
                               (int)(j < n_up ? j : n - 1 - j));
     int rc = 0;
-    if (whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res) != GSL_SUCCESS)
+    const int status = whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res);
+    if (status == WHIRL_EINTERRUPTED)
+        rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
+    else if (status != GSL_SUCCESS)
         rc = cli_error(cmd, "the sweep failed: %s", whirl_last_error());
     cli_out out;
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
@@ -707,6 +713,7 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
         return cli_error(cmd, "one run and a sweep run on one rank; only a map is shared out");
     whirl_chain *chain = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (chain == NULL) return cli_error(cmd, "cannot make the chain: %s", whirl_last_error());
+    cli_catch_interrupts();
     rc = !is_map(&o) ? run_one(cmd, &o, chain)
          : o.sweep   ? run_sweep(cmd, &o, chain)
                      : run_map(cmd, &o, chain, mc);

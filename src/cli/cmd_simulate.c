@@ -14,7 +14,7 @@
  * Output rows at t = k every and at t_end; positions in the inertial frame; energy, jacobi, lz
  * and constraint from whirl_dyn_diagnose; deviation = whirl_deviation from the unperturbed
  * steady (or hanging) shape, or from the mode-K shape at omega with [output] reference_mode. Fixed steps are taken one call at a time, so that the stop
- * condition and Ctrl-C are checked after every step; adaptive runs check at the output times.
+ * condition is checked after every step; Ctrl-C stops the integrator inside a step.
  * Exit status: 0 (also when the stop condition ends the run, with a note on stderr); 1 on bad
  * input (nothing written) or a failed run (the rows so far kept); 130 after Ctrl-C (rows kept). */
 #include <math.h>
@@ -402,7 +402,7 @@ static int simulate(run *r)
         if (cli_interrupted) {
             end_progress(r, t / s->t_end);
             cli_error(r->cmd, "interrupted at t = %s: %lu rows kept", CLI_NUM(t), r->rows);
-            failed = 130;
+            failed = CLI_EXIT_INTERRUPTED;
             break;
         }
         /* advance to the next output, one step at a time with fixed steps (for the checks
@@ -412,6 +412,7 @@ static int simulate(run *r)
                                                           s->t_end) : HUGE_VAL);
         const double t1 = s->tol > 0 || t + s->dt * (1 + 1e-9) >= target ? target : t + s->dt;
         const int status = whirl_integrator_advance(r->integrator, &t, r->y, t1, s->dt, s->tol);
+        if (status == WHIRL_EINTERRUPTED) continue; /* reported above, at the last good state */
         if (status != GSL_SUCCESS || !all_finite(r->y, size)) {
             whirl_integrator_stats st = whirl_integrator_get_stats(r->integrator);
             end_progress(r, t / s->t_end);
