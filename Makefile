@@ -29,8 +29,13 @@ PIC_OBJ  := $(LIB_SRC:%.c=$(BUILD)/pic/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
+# fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
+FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
+FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o)
+REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 
-.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean
+.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean fuzz
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a
 
 $(BUILD)/%.o: %.c
@@ -65,6 +70,34 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@
 
+$(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_CLI_OBJ) $(BUILD)/libwhirl.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) -Itests/fuzz $(ALL_CFLAGS) $< tests/fuzz/replay.c $(FUZZ_CLI_OBJ) \
+	  $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -o $@
+
+# libFuzzer campaigns (clang, ASan, UBSan), FUZZ_TIME seconds per harness: new inputs go to
+# out/fuzz/NAME, crashes to out/fuzz/artifacts; the committed corpus tests/fuzz/corpus/NAME seeds
+# them. See tests/fuzz/README.md.
+FUZZ_TIME ?= 60
+FUZZ_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+fuzz: deps
+	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 MPI=0 \
+	  XCFLAGS="$(FUZZ_FLAGS) -fsanitize=fuzzer-no-link" XLDFLAGS="$(FUZZ_FLAGS)" \
+	  build-fuzz/libwhirl.a $(FUZZ_CLI_OBJ:$(BUILD)/%=build-fuzz/%)
+	@mkdir -p out/fuzz/artifacts
+	@for f in $(FUZZ_NAMES); do \
+	  clang $(CPPFLAGS) -Itests/fuzz $(WFLAGS) -O1 -g -fopenmp $(PKG_CFLAGS) $(FUZZ_FLAGS) \
+	    -fsanitize=fuzzer tests/fuzz/fuzz_$$f.c $(FUZZ_CLI_OBJ:$(BUILD)/%=build-fuzz/%) \
+	    build-fuzz/libwhirl.a $(LDLIBS) -o build-fuzz/fuzz_$$f || exit 1; \
+	  mkdir -p out/fuzz/$$f; \
+	  echo "fuzz_$$f: $(FUZZ_TIME) s"; \
+	  build-fuzz/fuzz_$$f -max_total_time=$(FUZZ_TIME) -timeout=10 -rss_limit_mb=2048 \
+	    -dict=tests/fuzz/$$f.dict -artifact_prefix=out/fuzz/artifacts/$$f- -print_final_stats=1 \
+	    out/fuzz/$$f tests/fuzz/corpus/$$f >out/fuzz/$$f.log 2>&1; rc=$$?; \
+	  grep -E 'INITED|DONE|ERROR|SUMMARY|Test unit written|number_of_executed|new_units' \
+	    out/fuzz/$$f.log; [ $$rc -eq 0 ] || exit 1; \
+	done
+
 # Debian packages the build, the tests and the figures need; installed when run as root.
 deps:
 	@sh scripts/deps.sh
@@ -76,7 +109,7 @@ demo: deps
 # The tests, a clang -Werror compile of the library and the program, then the same tests under
 # AddressSanitizer and UndefinedBehaviorSanitizer.
 check: deps
-	@$(MAKE) --no-print-directory all $(TEST_BIN) $(BUILD)/libwhirl.so
+	@$(MAKE) --no-print-directory all $(TEST_BIN) $(REPLAY_BIN) $(BUILD)/libwhirl.so
 	@sh tests/run.sh $(BUILD)
 	@$(MAKE) --no-print-directory check-clang
 	@$(MAKE) --no-print-directory check-sanitize
@@ -93,7 +126,7 @@ check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
 	  XCFLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
 	  XLDFLAGS="-fsanitize=address,undefined" all \
-	  $(TEST_BIN:$(BUILD)/%=build-sanitize/%)
+	  $(TEST_BIN:$(BUILD)/%=build-sanitize/%) $(REPLAY_BIN:$(BUILD)/%=build-sanitize/%)
 	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize
 
 bench: deps

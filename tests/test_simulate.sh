@@ -184,7 +184,7 @@ else fail "non-finite state: message, rows kept (rc=$rc, $(cat "$tmp/stderr"))";
 
 # ---- Ctrl-C ends a run cleanly with its rows ----
 rm -f "$tmp/out.csv"
-"$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=1e6 -o "$tmp/out.csv" 2>"$tmp/stderr" &
+"$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=1e5 -o "$tmp/out.csv" 2>"$tmp/stderr" &
 pid=$!
 i=0
 while [ $i -lt 100 ]; do  # until some rows are written (at most 10 s)
