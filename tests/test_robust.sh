@@ -66,7 +66,7 @@ expect_error "shape: omega 1e300 is refused (was endless)" "omega=1e\+300 is abo
 expect_error "shape --links: omega 1e300 is refused" "omega=1e\+300 is above 1e\+100" \
   shape --omega 1e300 --mode 2 --links 10 -o "$out"
 expect_error "sweep: a branch reaching omega 1e7 is refused" "omega=2.5e\+06 is above 5000" \
-  sweep --modes 1 --omega-min 1 --omega-max 1e7 --steps 4 -o "$out"
+  sweep --modes 1 --omega-min 1 --omega-max 1e7 --omega-count 5 -o "$out"
 expect_error "driven: omega 1e7 is refused" "omega=1e\+07 is above 5000" \
   driven --omega 1e7 --eps 0.01 -o "$out"
 scenes="$(dirname "$0")/../data/scenes"
@@ -118,9 +118,9 @@ interrupt "simulate, adaptive rk8" TERM keep simulate "$scenes/mode2.ini" --set 
   --set run.tol=1e-16 --set run.t_end=1000 --set run.stop_deviation=1e9
 interrupt "regime, one run" INT none regime --omega 3 --eps 0.1 --t-max 100000
 interrupt "regime, one run" TERM none regime --omega 3 --eps 0.1 --t-max 100000
-interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --steps 400 --links 8 \
+interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --omega-count 401 --links 8 \
   --periods 20
-interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --steps 30000
+interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
 interrupt "driven branch" INT none driven --omega-min 1 --omega-max 4000 --eps 0.05
 interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2
 
