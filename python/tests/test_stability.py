@@ -40,3 +40,18 @@ def test_driven_shape_trails_and_counts_its_node():
     assert d.x[0] == pytest.approx(0.05) and d.z[-1] < 0
     free = whirl.driven(3.0, 1, 0.0)
     assert free.tip_r == pytest.approx(whirl.shape(3.0, 1).tip_r, rel=1e-9)
+
+
+def test_windows_edges_agree_with_the_full_linearisation():
+    windows, stats = whirl.stability_windows(2, 20, 3.0, 6.0)
+    assert len(windows) >= 1 and stats["shapes"] > 0
+    for w in windows:
+        # the reduced (lambda^2) eigenproblem's edges against the full first-order one
+        inside = whirl.stability(0.5 * (w["from"] + w["to"]), 2, 20, linear=True)
+        assert inside.eig_growth > 0
+        best = whirl.stability(w["at"], 2, 20, linear=True)
+        assert best.eig_growth == pytest.approx(w["max_growth"], rel=1e-6)
+        for edge, outside in ((w["from"], w["from"] - 1e-4), (w["to"], w["to"] + 1e-4)):
+            assert whirl.stability(outside, 2, 20, linear=True).eig_growth == 0
+    with pytest.raises(whirl.Error):
+        whirl.stability_windows(3, 20, 1.0, 2.0)  # mode 3 is born at 4.3

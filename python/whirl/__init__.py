@@ -9,11 +9,11 @@ Ctrl-C during a long call raises KeyboardInterrupt."""
 from ._lib import Error, LIBRARY_PATH, methods, stop_requested
 from .steady import Units, Chain, Shape, critical, shape, sweep
 from .dynamics import Simulation, Trajectory
-from .stability import StabilityResult, stability, stability_map
+from .stability import StabilityResult, stability, stability_map, stability_windows
 from .driven import DrivenShape, SpinUp, driven, spin_up
 from .fit import FitResult, fit
 
 __all__ = ["Error", "LIBRARY_PATH", "methods", "stop_requested", "Units", "Chain", "Shape",
            "critical", "shape", "sweep", "Simulation", "Trajectory", "StabilityResult",
-           "stability", "stability_map", "DrivenShape", "SpinUp", "driven", "spin_up",
+           "stability", "stability_map", "stability_windows", "DrivenShape", "SpinUp", "driven", "spin_up",
            "FitResult", "fit"]

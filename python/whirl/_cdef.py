@@ -257,3 +257,37 @@ CDEF += r"""
 int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *params,
                        const double guess[2], whirl_driven_info *info);
 """
+
+CDEF += r"""
+typedef struct whirl_windows whirl_windows;
+whirl_windows *whirl_windows_alloc(size_t n);
+void whirl_windows_free(whirl_windows *w);
+typedef struct whirl_windows_params {
+    double omega_min, omega_max;
+    double scan_step;
+    double tol;
+    int krylov;
+} whirl_windows_params;
+whirl_windows_params whirl_windows_defaults(void);
+typedef struct whirl_window {
+    double from, to;
+    int open_from, open_to;
+    double freq_from, freq_to;
+    double max_growth;
+    double at;
+} whirl_window;
+typedef struct whirl_windows_stats {
+    double omega_from, omega_to;
+    size_t scan;
+    size_t shapes;
+    size_t solves_vectors;
+    size_t solves_values;
+    size_t solves_krylov;
+    size_t approaches;
+    size_t unresolved;
+} whirl_windows_stats;
+int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
+                       const whirl_windows_params *p, whirl_window *windows, size_t max,
+                       size_t *count, whirl_windows_stats *stats);
+"""
+STRUCTS += ["whirl_windows_params", "whirl_window", "whirl_windows_stats"]

@@ -2,9 +2,9 @@
 
 The shared library is looked for, in this order:
   1. the file named by the environment variable WHIRL_LIBRARY;
-  2. libwhirl.so inside the installed package (``make python`` copies it there);
-  3. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
-     so that ``PYTHONPATH=python`` works straight after ``make``;
+  2. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
+     so that ``PYTHONPATH=python`` uses the library just built;
+  3. libwhirl.so inside the installed package (``make python`` copies it there);
   4. the system's libwhirl (an installed prefix known to the dynamic linker).
 """
 import contextlib
@@ -29,8 +29,8 @@ def _candidates():
     env = os.environ.get("WHIRL_LIBRARY")
     if env:
         return [env]
-    found = [os.path.join(_HERE, "libwhirl.so"),
-             os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so")]
+    found = [os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so"),
+             os.path.join(_HERE, "libwhirl.so")]
     system = ctypes.util.find_library("whirl")
     found += [system] if system else []
     return found + ["libwhirl.so"]

@@ -147,3 +147,49 @@ def stability_map(omega, mode, links, damping=0.0):
             if _lib.stop_requested():
                 break
     return out
+
+
+WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
+                         ("freq_from", "f8"), ("freq_to", "f8"), ("max_growth", "f8"),
+                         ("at", "f8")])
+
+
+def stability_windows(mode, links, omega_min=1.0, omega_max=10.0, scan_step=0.25, tol=1e-9,
+                      krylov=True, max_windows=1024):
+    """The windows of instability of ``mode`` of the conservative N-link chain (``links``: N or
+    a Chain) for rates in [omega_min, omega_max] [sqrt(g/L)], as ``whirl stability --windows``:
+    the edges are the rates where two eigenvalues collide (Krein collision), located to ``tol``
+    after a scan with spacing ``scan_step``. Returns (windows, stats): a structured array with
+    fields from, to (the unstable interval), open_from, open_to (True: that end is the end of
+    the range, not an edge), freq_from, freq_to (|Im lambda| where the pair meets [1/T]),
+    max_growth [1/T] and at (where it occurs), in increasing omega; stats a dict of the search's
+    counters. whirl.Error (EDOM) if the mode does not exist in the range; Ctrl-C raises
+    KeyboardInterrupt."""
+    chain = links if isinstance(links, Chain) else Chain(links)
+    mode = _mode(mode)
+    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
+    p.omega_min = as_float(omega_min, "omega_min", positive=True)
+    p.omega_max = as_float(omega_max, "omega_max", positive=True)
+    if not p.omega_min < p.omega_max:
+        raise ValueError("omega_min must be < omega_max, got %g and %g" % (p.omega_min,
+                                                                          p.omega_max))
+    p.scan_step = as_float(scan_step, "scan_step", positive=True)
+    p.tol = as_float(tol, "tol", positive=True)
+    p.krylov = 1 if krylov else 0
+    cap = as_int(max_windows, "max_windows", minimum=1)
+    ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
+    found = ffi.new("whirl_window[]", cap)
+    count = ffi.new("size_t *")
+    st = ffi.new("whirl_windows_stats *")
+    with _lib.interruptible():
+        status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
+    check(status, "mode %d" % mode)
+    out = np.empty(count[0], dtype=WINDOW_DTYPE)
+    for i in range(count[0]):
+        f = found[i]
+        out[i] = (getattr(f, "from"), f.to, bool(f.open_from), bool(f.open_to), f.freq_from, f.freq_to,
+                  f.max_growth, f.at)
+    stats = {k: getattr(st, k) for k in ("omega_from", "omega_to", "scan", "shapes",
+                                          "solves_vectors", "solves_values", "solves_krylov",
+                                          "approaches", "unresolved")}
+    return out, stats
