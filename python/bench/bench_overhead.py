@@ -59,7 +59,7 @@ def c_shape():
 
 
 c, py, py_int = medians([c_shape, lambda: whirl.shape(OMEGA, MODE, links=chain),
-                         lambda: whirl.shape(OMEGA, MODE, links=N)], 50, 9)
+                         lambda: whirl.shape(OMEGA, MODE, links=N)], 20, 31)
 prog, = medians([lambda: subprocess.run(
     [os.path.join(build, "whirl"), "shape", "--omega", str(OMEGA), "--mode", str(MODE),
      "--links", str(N), "-o", os.devnull], check=True)], 5, 3)
@@ -69,6 +69,22 @@ print("CPU time. whirl.shape N = 100: C %.1f us, Python %.1f us (Chain given), %
       "overhead %.2f us = %.2f%% (%.2f us = %.2f%%); the whirl program %.0f us per run"
       % (c * 1e6, py * 1e6, py_int * 1e6, (py - c) * 1e6, 100 * (py - c) / c,
          (py_int - c) * 1e6, 100 * (py_int - c) / c, prog * 1e6))
+
+# ---- the wrapper alone: the same at N = 2, where the C work is a few microseconds ----
+small = whirl.Chain(2)
+r2, z2, t2 = (np.empty(3) for _ in range(3))
+rp2, zp2, tp2 = (ffi.cast("double *", ffi.from_buffer(a)) for a in (r2, z2, t2))
+
+
+def c_small():
+    lib.whirl_nlink_solve(small._c, OMEGA, MODE, 0.0, info)
+    lib.whirl_nlink_positions(small._c, OMEGA, info.tip_r, rp2, zp2, tp2)
+
+
+c2, py2 = medians([c_small, lambda: whirl.shape(OMEGA, MODE, links=small)], 200, 31)
+rows.append(("shape_N2", c2, py2, py2 - c2, (py2 - c2) / c2))
+print("whirl.shape N = 2: C %.1f us, Python %.1f us: the wrapper's own cost %.1f us per call"
+      % (c2 * 1e6, py2 * 1e6, (py2 - c2) * 1e6))
 
 # ---- 10^4 steps of the mode-2 scene's chain (N = 100, gauss2, rotating frame) ----
 STEPS, DT = 10000, 0.002
