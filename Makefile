@@ -14,6 +14,10 @@ CFLAGS   ?= $(OPT) -g
 WFLAGS   := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wno-unused-parameter \
             -Wno-missing-field-initializers
 CPPFLAGS := -Iinclude -Isrc -D_POSIX_C_SOURCE=200809L -MMD -MP
+# The version, from include/whirl/version.h; the shared library's SONAME carries MAJOR.
+version_part = $(shell awk '$$2 == "WHIRL_VERSION_$(1)" { print $$3 }' include/whirl/version.h)
+MAJOR    := $(call version_part,MAJOR)
+VERSION  := $(MAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 LDLIBS    = $(PKG_LIBS) -llapack -lblas -lpthread -lm
@@ -25,7 +29,6 @@ CLI_SRC  := $(wildcard src/cli/*.c)
 TEST_SRC := $(wildcard tests/test_*.c)
 BENCH_SRC := $(wildcard tests/bench_*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
-PIC_OBJ  := $(LIB_SRC:%.c=$(BUILD)/pic/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
@@ -35,24 +38,61 @@ FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
 FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o)
 REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 
-.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean fuzz
-all: $(BUILD)/whirl $(BUILD)/libwhirl.a
+SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
+
+.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean fuzz \
+  install uninstall
+all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $(LIB_FLAGS) -c $< -o $@
+
+# Objects are rebuilt when the compiler or its flags change (recorded in $(BUILD)/flags).
+FLAGS_NOW := $(CC) $(CPPFLAGS) $(ALL_CFLAGS)
+ifneq ($(MAKECMDGOALS),clean)
+$(shell mkdir -p $(BUILD) && echo '$(FLAGS_NOW)' | cmp -s - $(BUILD)/flags || echo '$(FLAGS_NOW)' >$(BUILD)/flags)
+endif
+$(LIB_OBJ) $(CLI_OBJ): $(BUILD)/flags
+
+# The library's objects serve the static and the shared library: position independent, and only
+# the functions marked WHIRL_API (include/whirl/common.h) visible outside the shared library.
+$(LIB_OBJ): LIB_FLAGS := -fPIC -fvisibility=hidden
 
 $(BUILD)/libwhirl.a: $(LIB_OBJ)
 	@mkdir -p $(dir $@)
+	rm -f $@
 	$(AR) rcs $@ $^
 
-$(BUILD)/pic/%.o: %.c
-	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -fPIC -c $< -o $@
+$(SHLIB): $(LIB_OBJ)
+	$(CC) -shared -Wl,-soname,libwhirl.so.$(MAJOR) -Wl,--no-undefined $(ALL_LDFLAGS) $^ \
+	  $(LDLIBS) -o $@
+	ln -sf libwhirl.so.$(VERSION) $(BUILD)/libwhirl.so.$(MAJOR)
+	ln -sf libwhirl.so.$(MAJOR) $(BUILD)/libwhirl.so
 
-# The shared library, for the Python package (python/).
-$(BUILD)/libwhirl.so: $(PIC_OBJ)
-	$(CC) -shared $(ALL_LDFLAGS) $^ $(LDLIBS) -o $@
+# The unversioned name, for the linker's -lwhirl and the Python package (python/).
+$(BUILD)/libwhirl.so: $(SHLIB)
+	ln -sf libwhirl.so.$(MAJOR) $@
+
+# The manual page, generated from the program's --help (scripts/man.sh).
+$(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh
+	sh scripts/man.sh $(BUILD)/whirl >$@.tmp && mv $@.tmp $@
+
+# make install PREFIX=/usr/local DESTDIR=: the program, libwhirl.a and libwhirl.so, the headers,
+# whirl.pc for pkg-config, the manual page. make uninstall removes them.
+PREFIX     ?= /usr/local
+BINDIR     ?= $(PREFIX)/bin
+LIBDIR     ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+MANDIR     ?= $(PREFIX)/share/man
+PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+INSTALL_VARS = BUILD='$(BUILD)' VERSION='$(VERSION)' MAJOR='$(MAJOR)' DESTDIR='$(DESTDIR)' \
+  PREFIX='$(PREFIX)' BINDIR='$(BINDIR)' LIBDIR='$(LIBDIR)' INCLUDEDIR='$(INCLUDEDIR)' \
+  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)'
+install: all
+	@$(INSTALL_VARS) sh scripts/install.sh install
+uninstall:
+	@$(INSTALL_VARS) sh scripts/install.sh uninstall
 
 $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 	$(CC) $(ALL_LDFLAGS) $(CLI_OBJ) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
@@ -106,11 +146,12 @@ demo: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/demo.sh $(BUILD)
 
-# The tests, a clang -Werror compile of the library and the program, then the same tests under
-# AddressSanitizer and UndefinedBehaviorSanitizer.
+# The tests and the installed library's (tests/install.sh: a temporary prefix, the examples built
+# with pkg-config), a clang -Werror compile of the library and the program, then the same tests
+# under AddressSanitizer and UndefinedBehaviorSanitizer.
 check: deps
-	@$(MAKE) --no-print-directory all $(TEST_BIN) $(REPLAY_BIN) $(BUILD)/libwhirl.so
-	@sh tests/run.sh $(BUILD)
+	@$(MAKE) --no-print-directory all $(TEST_BIN) $(REPLAY_BIN)
+	@sh tests/run.sh $(BUILD) --also tests/install.sh
 	@$(MAKE) --no-print-directory check-clang
 	@$(MAKE) --no-print-directory check-sanitize
 
@@ -151,4 +192,4 @@ python: deps
 clean:
 	rm -rf build build-* out
 
--include $(LIB_OBJ:.o=.d) $(PIC_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)

@@ -1,8 +1,10 @@
-/* whirl: steady shapes, dynamics and stability of a chain spun about the vertical axis. */
+/* whirl: steady shapes, dynamics and stability of a chain spun about the vertical axis. Includes
+ * every public header of the library (tests/test_install.sh checks it). */
 #ifndef WHIRL_H
 #define WHIRL_H
 
 #include "whirl/common.h"
+#include "whirl/version.h"
 #include "whirl/chain.h"
 #include "whirl/steady.h"
 #include "whirl/dynamics.h"
@@ -10,5 +12,6 @@
 #include "whirl/stability.h"
 #include "whirl/optimize.h"
 #include "whirl/driven.h"
+#include "whirl/regime.h"
 
 #endif

@@ -1,8 +1,9 @@
 #!/bin/sh
 # Runs the tests and prints the closing line "tests: N passed, N failed"; exits non-zero unless
-# every test program passed. Usage: run.sh [BUILD [TEST...]]: without TEST, every test program
-# BUILD/tests/test_* and every shell test tests/test_*.sh; a TEST ending in .sh runs under sh
-# with WHIRL=BUILD/whirl, any other is executed.
+# every test program passed. Usage: run.sh [BUILD [TEST...]] or run.sh BUILD --also TEST...:
+# without TEST, every test program BUILD/tests/test_* and every shell test tests/test_*.sh; with
+# --also, those and the TESTs. A TEST ending in .sh runs under sh with WHIRL=BUILD/whirl, any
+# other is executed.
 #
 # A test program passes only if it exits with status 0 (not by a signal), prints exactly one TAP
 # plan "1..N" (first or last), exactly N result lines "ok ..." / "not ok ...", no "not ok" and
@@ -55,9 +56,10 @@ run_one() {
   fi
 }
 
-if [ $# -gt 0 ]; then
+if [ $# -gt 0 ] && [ "$1" != --also ]; then
   for t in "$@"; do run_one "$t"; done
 else
+  [ $# -gt 0 ] && shift
   for t in "$build"/tests/test_*; do
     case $t in *.d) continue ;; esac
     [ -x "$t" ] && run_one "$t"
@@ -65,6 +67,7 @@ else
   for t in tests/test_*.sh; do
     [ -f "$t" ] && run_one "$t"
   done
+  for t in "$@"; do run_one "$t"; done
 fi
 if [ -s "$tmp/failures" ]; then
   echo "== failed:"

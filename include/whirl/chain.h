@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#include "whirl/common.h"
+
 typedef struct whirl_chain {
     size_t n;       /* number of links = number of point masses, >= 1 */
     double *length; /* length[i-1]: length of link i [L], > 0 */
@@ -15,17 +17,18 @@ typedef struct whirl_chain {
 /* A chain of n equal links and equal masses, total length 1 and total mass 1, g = 1, with
  * tip_mass (>= 0) added to the last mass: the discrete model of the uniform chain.
  * Returns NULL on n = 0, a negative or non-finite tip mass, or no memory (whirl_last_error). */
-whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass);
+WHIRL_API whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass);
 
 /* A chain of n links with the given lengths and masses (copied), gravity g. NULL on bad input
  * (non-positive or non-finite values: whirl_last_error names the first) or no memory. */
-whirl_chain *whirl_chain_alloc(size_t n, const double *length, const double *mass, double g);
+WHIRL_API whirl_chain *whirl_chain_alloc(size_t n, const double *length, const double *mass,
+                                         double g);
 
 /* Frees the chain; NULL is a no-op. */
-void whirl_chain_free(whirl_chain *c);
+WHIRL_API void whirl_chain_free(whirl_chain *c);
 
 /* Sum of the link lengths and of the masses. */
-double whirl_chain_total_length(const whirl_chain *c);
-double whirl_chain_total_mass(const whirl_chain *c);
+WHIRL_API double whirl_chain_total_length(const whirl_chain *c);
+WHIRL_API double whirl_chain_total_mass(const whirl_chain *c);
 
 #endif

@@ -16,6 +16,14 @@
 
 #include <gsl/gsl_errno.h>
 
+/* WHIRL_API marks the library's public functions. The shared library is compiled with
+ * -fvisibility=hidden and exports these alone, so every symbol it exports starts with whirl_. */
+#if defined(__GNUC__)
+#define WHIRL_API __attribute__((visibility("default")))
+#else
+#define WHIRL_API
+#endif
+
 /* The highest mode number the steady-shape solvers handle. */
 #define WHIRL_MODE_MAX 64
 
@@ -29,7 +37,7 @@
 #define WHIRL_OMEGA_MAX 1e100
 
 /* The message of the last failure in the calling thread ("" if none). */
-const char *whirl_last_error(void);
+WHIRL_API const char *whirl_last_error(void);
 
 /* ---- stopping long work ----
  * One stop request per process, because the signals that raise it (SIGINT, SIGTERM) are
@@ -41,16 +49,16 @@ const char *whirl_last_error(void);
 #define WHIRL_EINTERRUPTED 1000 /* status of work stopped by a stop request */
 
 /* Requests a stop. Async-signal-safe: may be called from a signal handler or another thread. */
-void whirl_stop_request(void);
+WHIRL_API void whirl_stop_request(void);
 /* Non-zero once a stop was requested and not cleared. */
-int whirl_stop_requested(void);
+WHIRL_API int whirl_stop_requested(void);
 /* Clears the request, so that new work runs to its end. */
-void whirl_stop_clear(void);
+WHIRL_API void whirl_stop_clear(void);
 /* Installs SIGINT and SIGTERM handlers that call whirl_stop_request(), keeping the previous
  * handlers for whirl_stop_restore_signals(). Returns GSL_SUCCESS or GSL_EFAILED. */
-int whirl_stop_catch_signals(void);
+WHIRL_API int whirl_stop_catch_signals(void);
 /* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
-void whirl_stop_restore_signals(void);
+WHIRL_API void whirl_stop_restore_signals(void);
 
 /* ---- numbers as text ----
  * whirl_format_double writes x in the shortest of %.15g, %.16g, %.17g that strtod reads back
@@ -58,6 +66,6 @@ void whirl_stop_restore_signals(void);
  * and nothing is lost. Non-finite values print as "nan", "inf", "-inf". buf holds at least
  * WHIRL_FORMAT_MAX chars; returns buf. Thread-safe. */
 #define WHIRL_FORMAT_MAX 32
-char *whirl_format_double(char *buf, double x);
+WHIRL_API char *whirl_format_double(char *buf, double x);
 
 #endif

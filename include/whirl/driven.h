@@ -76,13 +76,13 @@ typedef struct whirl_driven_info {
 /* Node count (the definition above) of the polyline pos (3 per point, npts >= 2 points, the
  * pivot first, at (eps, 0, *) in the co-rotating frame), the points below the pivot weighted by
  * weight[0..npts-2] (the link lengths; NULL: equal weights, the continuum's equal samples). */
-int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight);
+WHIRL_API int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight);
 
 /* The steady shape whose tip is near guess = (X, Y) (Newton from there). GSL_EINVAL on bad
  * parameters, GSL_EDOM for eps = 0 with drag, GSL_EMAXITER if Newton does not converge (the
  * message says how far it got). On success info describes the shape. */
-int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *params,
-                       const double guess[2], whirl_driven_info *info);
+WHIRL_API int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *params,
+                                 const double guess[2], whirl_driven_info *info);
 
 /* The shape of mode k (1 <= k <= WHIRL_MODE_MAX) at params: seeded by the free shape of mode k
  * at params->omega (whirl_continuum_solve or whirl_nlink_solve) with its tip on the pivot's side
@@ -92,17 +92,17 @@ int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *para
  * the shape disappears at a fold on the way, in eps (small shapes near omega_k) or in the drag
  * (the support's torque eps F_y(top) must equal the drag's omega int (c + c2 omega rho) rho^2 ds,
  * rho the distance from the axis, so a small eps cannot carry a wide shape against much drag). */
-int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *params, int mode,
-                      int side, whirl_driven_info *info);
+WHIRL_API int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *params,
+                                int mode, int side, whirl_driven_info *info);
 
 /* Samples the shape whose tip is at tip_xy (from a solve) from the pivot to the free end:
  * arclength s from the pivot, position (x, y, z) (z from the pivot) and tension there. Continuum:
  * npts >= 2 points equally spaced in s; N-link chain: npts must be chain->n + 1 (the pivot and
  * the masses; tension[i] of link i, tension[0] = tension[1]). The pivot point is where the
  * integration ends: it lands on (eps, 0, 0) only for a solution. */
-int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *params,
-                        const double tip_xy[2], size_t npts, double *s, double *x, double *y,
-                        double *z, double *tension);
+WHIRL_API int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *params,
+                                  const double tip_xy[2], size_t npts, double *s, double *x,
+                                  double *y, double *z, double *tension);
 
 /* A branch of shapes against omega (whirl_driven_branch). */
 typedef struct whirl_driven_curve {
@@ -117,8 +117,8 @@ typedef struct whirl_driven_curve {
 } whirl_driven_curve;
 
 /* A curve with room for capacity (>= 2) points. NULL on no memory or capacity < 2. */
-whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity);
-void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a no-op */
+WHIRL_API whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity);
+WHIRL_API void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a no-op */
 
 /* Follows the branch through the shape start (a solution at params->omega, e.g. from
  * whirl_driven_mode) by pseudo-arclength continuation in (X, Y, omega), leaving start in the
@@ -128,8 +128,8 @@ void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a no-op */
  * changes sign, where fold_function changes sign) is refined to the point where fold_function
  * vanishes and inserted as a point with fold = 1. GSL_EINVAL on bad arguments; a step that fails
  * to converge even at the smallest step ends the branch with complete = 0 and GSL_SUCCESS. */
-int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
-                        const whirl_driven_info *start, int direction, double omega_min,
-                        double omega_max, double step, whirl_driven_curve *curve);
+WHIRL_API int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
+                                  const whirl_driven_info *start, int direction, double omega_min,
+                                  double omega_max, double step, whirl_driven_curve *curve);
 
 #endif

@@ -51,37 +51,38 @@ typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one righ
 
 /* Allocates the workspace of model in formulation f (copies the model struct, not the chain).
  * NULL on invalid parameters (whirl_last_error names the first) or no memory. */
-whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
-void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
+WHIRL_API whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
+WHIRL_API void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
 
-const whirl_model *whirl_dyn_model(const whirl_dyn *d);
-whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
+WHIRL_API const whirl_model *whirl_dyn_model(const whirl_dyn *d);
+WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 
 /* Length of the state vector y. */
-size_t whirl_dyn_size(const whirl_dyn *d);
+WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);
 
 /* dy/dt at (t, y), with GSL's signature (params = the whirl_dyn *): usable as a gsl_odeiv2_system.
  * Returns GSL_SUCCESS, or GSL_EBADFUNC if the result is not finite (or, in the seed formulation,
  * at its 3D singularity), with a message. Allocates nothing. */
-int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn);
+WHIRL_API int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn);
 
 /* State y from the positions x[3i..3i+2] and velocities v[3i..3i+2] of masses i = 1..N (x[0..2]
  * is mass 1) given in the model's frame at time t (in 2D the y components must be 0). The
  * positions must satisfy the link constraints to 1e-9 relative and the velocities be consistent
  * with them; y is then projected exactly onto the constraints. GSL_EINVAL otherwise, and for the
  * seed formulation at its 3D singularity. */
-int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v, double *y);
+WHIRL_API int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v,
+                                  double *y);
 
 /* Positions and velocities of the masses (3 per mass, as above) at time t in the given frame. */
-int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
-                        double *x, double *v);
+WHIRL_API int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
+                                  double *x, double *v);
 
 /* Projects y onto the constraint manifold (|x_i - x_{i-1}| = l_i and its time derivative);
  * a no-op for the seed formulation, whose coordinates satisfy the constraints by construction. */
-int whirl_dyn_project(whirl_dyn *d, double t, double *y);
+WHIRL_API int whirl_dyn_project(whirl_dyn *d, double t, double *y);
 
 /* Tensions of the links (array of chain->n, [M g] in the dimensionless units) at (t, y). */
-int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension);
+WHIRL_API int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension);
 
 typedef struct whirl_dyn_diagnostics {
     double energy;     /* kinetic + potential energy in the inertial frame */
@@ -90,11 +91,12 @@ typedef struct whirl_dyn_diagnostics {
     double constraint; /* max over links of | |x_i - x_{i-1}| - l_i | */
 } whirl_dyn_diagnostics;
 
-int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y, whirl_dyn_diagnostics *out);
+WHIRL_API int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y,
+                                 whirl_dyn_diagnostics *out);
 
 /* Deviation of the positions x (3 per mass, N masses) from the reference ref: the RMS over the
  * masses of their distance, minimised over a rotation of x about z. */
-double whirl_deviation(size_t n, const double *x, const double *ref);
+WHIRL_API double whirl_deviation(size_t n, const double *x, const double *ref);
 
 /* ---- integrators ----
  * Methods: "gauss2" (2-stage Gauss-Legendre, order 4, the seed's), "gauss3" (order 6), "rk4"
@@ -116,12 +118,12 @@ typedef struct whirl_integrator_stats {
 } whirl_integrator_stats;
 
 /* NULL-terminated list of the method names. */
-const char *const *whirl_integrator_methods(void);
+WHIRL_API const char *const *whirl_integrator_methods(void);
 
 /* An integrator of the given method for the dynamics d (not owned). NULL on an unknown method
  * (message lists the known ones) or no memory. */
-whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
-void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
+WHIRL_API whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
+WHIRL_API void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
 
 /* The smallest adaptive tolerance: finer relative accuracy is below the round-off of doubles. */
 #define WHIRL_TOL_MIN 1e-16
@@ -135,9 +137,9 @@ void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
  * last good state); GSL_EINVAL for tol in (0, WHIRL_TOL_MIN); GSL_EFAILED when an adaptive step
  * falls below WHIRL_STEP_MIN_ULPS units of round-off of t; WHIRL_EINTERRUPTED once a stop is
  * requested (polled in every right-hand side). Allocates nothing. */
-int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1, double h,
-                             double tol);
+WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
+                                       double h, double tol);
 
-whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
+WHIRL_API whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
 
 #endif

@@ -25,19 +25,20 @@
 
 /* V(theta) of the chain c (theta: c->n link angles [rad]); if grad != NULL also dV/dtheta_j
  * (n values, the analytic gradient, O(n)). */
-double whirl_potential(const whirl_chain *c, double omega, const double *theta, double *grad);
+WHIRL_API double whirl_potential(const whirl_chain *c, double omega, const double *theta,
+                                 double *grad);
 
 /* The analytic Hessian d2V/dtheta_j dtheta_k into hess (n x n, row-major). Always succeeds. */
-void whirl_potential_hessian(const whirl_chain *c, double omega, const double *theta,
-                             double *hess);
+WHIRL_API void whirl_potential_hessian(const whirl_chain *c, double omega, const double *theta,
+                                       double *hess);
 
 /* The shape of the angles theta: r[i], z[i] of node i (i = 0 the pivot, arrays of n + 1),
  * tension[i] of link i from the force balance of the masses below it, projected on the link
  * (tension[0] = tension[1]), and its summary (mode = 1 + sign changes of r). If the free end
  * has r < 0 the shape is mirrored so that it has r > 0. r and z are required; tension and info may be NULL (then
  * info->top_tension is NaN). */
-void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta, double *r,
-                        double *z, double *tension, whirl_shape_info *info);
+WHIRL_API void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
+                                  double *r, double *z, double *tension, whirl_shape_info *info);
 
 /* Options of whirl_minimize_shape. */
 typedef struct whirl_minimize_options {
@@ -59,19 +60,20 @@ typedef struct whirl_minimize_stats {
 } whirl_minimize_stats;
 
 /* Defaults: LD_LBFGS, 100000 evaluations, polish on. */
-whirl_minimize_options whirl_minimize_options_default(void);
+WHIRL_API whirl_minimize_options whirl_minimize_options_default(void);
 
 /* The NLopt algorithm called name (as nlopt_algorithm_from_string), into *algorithm (an
  * nlopt_algorithm). GSL_EINVAL naming it if unknown. */
-int whirl_minimize_algorithm(const char *name, int *algorithm);
+WHIRL_API int whirl_minimize_algorithm(const char *name, int *algorithm);
 
 /* Minimises V over the angles from theta (n values; NULL: a small uniform tilt), writing the
  * minimum to theta_out (n values). GSL_EDOM if omega is at or below the chain's first critical
  * rate (the hanging chain theta = 0 is then the minimum: there is no mode-1 shape), GSL_EINVAL
  * for bad arguments or an unknown algorithm, GSL_EFAILED if NLopt fails or the result is not a
  * minimum. stats may be NULL. */
-int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimize_options *opt,
-                         const double *theta, double *theta_out, whirl_minimize_stats *stats);
+WHIRL_API int whirl_minimize_shape(const whirl_chain *c, double omega,
+                                   const whirl_minimize_options *opt, const double *theta,
+                                   double *theta_out, whirl_minimize_stats *stats);
 
 /* ---- fitting omega and the mode to a measured shape ---- */
 
@@ -84,7 +86,7 @@ typedef struct whirl_fit_model {
 } whirl_fit_model;
 
 /* Defaults: the continuum, no tip mass, omega_max 50, 4001 samples. */
-whirl_fit_model whirl_fit_model_default(void);
+WHIRL_API whirl_fit_model whirl_fit_model_default(void);
 
 /* The result of a fit. */
 typedef struct whirl_fit_result {
@@ -100,8 +102,8 @@ typedef struct whirl_fit_result {
 /* Signed distances (positive on one side) of the points (r[i], z[i]), i < n, dimensionless
  * (lengths / L), to the curve of mode k at omega (mirrored in r if mirrored != 0), into resid.
  * GSL_EDOM if the mode does not exist at omega. */
-int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mode, int mirrored, size_t n,
-                        const double *r, const double *z, double *resid);
+WHIRL_API int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mode, int mirrored,
+                                  size_t n, const double *r, const double *z, double *resid);
 
 /* Least squares over omega in (omega_k, omega_max] of the distances of the n points to the
  * curve of mode k (mode >= 1), or (mode = 0) of every mode from 1 to c + 3, c the sign changes
@@ -117,7 +119,7 @@ int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mode, int mi
  * residuals do not change with omega (an ill-conditioned fit). GSL_EDOM if no mode has a shape
  * in the range. WHIRL_EINTERRUPTED once a stop is requested (polled every 1024 distances).
  * result->rms_residual says how well it fits; judging it is up to the caller. */
-int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z, int mode,
-              whirl_fit_result *result);
+WHIRL_API int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z,
+                        int mode, whirl_fit_result *result);
 
 #endif

@@ -87,7 +87,7 @@ typedef struct whirl_regime_params {
 /* Defaults of every field but omega and eps: drag 0, rotating frame, "rk4", dt = 0.1 / N,
  * t_ramp 20, ramp_step 0.5, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
  * lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
-void whirl_regime_params_default(whirl_regime_params *p, size_t links);
+WHIRL_API void whirl_regime_params_default(whirl_regime_params *p, size_t links);
 
 /* The outcome of one run. */
 typedef struct whirl_regime_result {
@@ -116,28 +116,30 @@ typedef int (*whirl_regime_observer)(void *ctx, double t, double frame_angle, co
 typedef struct whirl_regime whirl_regime; /* workspace of one chain */
 
 /* A workspace for runs of chain (not owned: must outlive it). NULL on no memory. */
-whirl_regime *whirl_regime_alloc(const whirl_chain *chain);
-void whirl_regime_free(whirl_regime *w); /* NULL is a no-op */
+WHIRL_API whirl_regime *whirl_regime_alloc(const whirl_chain *chain);
+WHIRL_API void whirl_regime_free(whirl_regime *w); /* NULL is a no-op */
 
 /* Sets (or clears, with NULL) the observer called every `every` > 0 time units. */
-void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx, double every);
+WHIRL_API void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx,
+                                    double every);
 
 /* Checks p: GSL_SUCCESS, or GSL_EINVAL naming the first bad field. */
-int whirl_regime_check(const whirl_regime_params *p);
+WHIRL_API int whirl_regime_check(const whirl_regime_params *p);
 
 /* One run from rest (see above). GSL_EINVAL on bad parameters; the status of the observer if it
  * stopped the run; GSL_SUCCESS otherwise, also when the integration failed (state FAILED, the
  * reason in whirl_last_error()). */
-int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p, whirl_regime_result *res);
+WHIRL_API int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p,
+                               whirl_regime_result *res);
 
 /* Hysteresis: a run from rest at omega[0] (p->omega is ignored), then omega changed linearly to
  * each next omega[j] over t_change (in segments of p->ramp_step) and the run continued until it
  * settles (or for t_max - t_ramp), res[j] the outcome there. Rotating frame only (GSL_EINVAL
  * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED). */
-int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
-                       size_t n, double t_change, whirl_regime_result *res);
+WHIRL_API int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
+                                 size_t n, double t_change, whirl_regime_result *res);
 
 /* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
-const char *whirl_regime_state_name(whirl_regime_state s);
+WHIRL_API const char *whirl_regime_state_name(whirl_regime_state s);
 
 #endif

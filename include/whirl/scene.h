@@ -44,6 +44,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "whirl/common.h"
 #include "whirl/dynamics.h"
 
 /* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): about an hour
@@ -165,23 +166,23 @@ typedef struct whirl_scene {
  * whirl_scene_free). On failure returns GSL_EINVAL (GSL_ENOMEM, GSL_EFAILED for an unreadable
  * file) with the one-line message "FILE:LINE: [section] key: problem" in whirl_last_error(),
  * and leaves *scene empty (whirl_scene_free is still safe). */
-int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
-                      whirl_scene *scene);
+WHIRL_API int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
+                                whirl_scene *scene);
 
 /* whirl_scene_parse reading the open stream fp (not closed here; path names it in messages
  * and in scene->path). */
-int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
-                             size_t n_overrides, whirl_scene *scene);
+WHIRL_API int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
+                                       size_t n_overrides, whirl_scene *scene);
 
 /* Frees the arrays of the scene and zeroes it; NULL is a no-op. */
-void whirl_scene_free(whirl_scene *scene);
+WHIRL_API void whirl_scene_free(whirl_scene *scene);
 
 /* Writes the location of key into buf (size bytes): "FILE:LINE: [section] key",
  * "FILE: --set section.key" or "FILE: [section] key" (not given). Returns buf. */
-const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_key key, char *buf,
-                              size_t size);
+WHIRL_API const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_key key, char *buf,
+                                        size_t size);
 
 /* The name of output column c ("tip_x"), or NULL. */
-const char *whirl_column_name(whirl_column c);
+WHIRL_API const char *whirl_column_name(whirl_column c);
 
 #endif

@@ -40,8 +40,8 @@
 typedef struct whirl_stability whirl_stability; /* workspace of the linear analysis of N links */
 
 /* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
-whirl_stability *whirl_stability_alloc(size_t n);
-void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
+WHIRL_API whirl_stability *whirl_stability_alloc(size_t n);
+WHIRL_API void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
 
 /* Forms M, G, C, K about the shape with nodes (x[i], y[i], z[i]), i = 0..N in the co-rotating
  * frame (i = 0: the pivot; as from whirl_driven_sample), rotating at model->omega. Only the
@@ -50,13 +50,13 @@ void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
  * model is not supported (see above), the links' lengths differ from the chain's by more than
  * 1e-9 relative, or the shape is not an equilibrium (the load below some link has a component
  * across it larger than 1e-8 of M (g + omega^2 L) + (c + c2 omega L) omega L^2). */
-int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, const double *x,
-                                 const double *y, const double *z);
+WHIRL_API int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model,
+                                           const double *x, const double *y, const double *z);
 
 /* whirl_stability_linearise_3d for the shape in the x-z plane with nodes (r[i], 0, z[i]),
  * i = 0..N (as from whirl_nlink_positions). */
-int whirl_stability_linearise(whirl_stability *w, const whirl_model *model, const double *r,
-                              const double *z);
+WHIRL_API int whirl_stability_linearise(whirl_stability *w, const whirl_model *model,
+                                        const double *r, const double *z);
 
 typedef enum {
     WHIRL_STABILITY_MASS = 0,      /* M, symmetric positive definite */
@@ -68,51 +68,52 @@ typedef enum {
 } whirl_stability_matrix;
 
 /* The 2N x 2N matrix (row-major, rows and columns ordered as q) of the last linearisation. */
-const double *whirl_stability_get_matrix(const whirl_stability *w, whirl_stability_matrix which);
+WHIRL_API const double *whirl_stability_get_matrix(const whirl_stability *w,
+                                                   whirl_stability_matrix which);
 
 /* The symmetry direction s of the last linearisation (2N): the infinitesimal rotation about z,
  * (a_j, b_j) = (e1_j, e2_j) . (z x u0_j) (for a shape in the x-z plane a_j = 0, b_j = sin t_j);
  * all zero for a chain hanging straight down and for a model without the symmetry (drive or air
  * drag). */
-const double *whirl_stability_symmetry(const whirl_stability *w);
+WHIRL_API const double *whirl_stability_symmetry(const whirl_stability *w);
 
 /* The nodes of the last linearisation (N + 1 each, pivot first): the pivot at (eps, 0, 0), mass i
  * at the pivot plus sum_{j<=i} l_j u0_j (valid until the next linearisation). */
-void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
-                           const double **z);
+WHIRL_API void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
+                                     const double **z);
 
 /* Eigenvalues of the last linearisation with the symmetry's zero eigenvalues removed: *count
  * (4N - 2 without damping, 4N - 1 with damping, 4N for a hanging chain, which has no symmetry
  * mode, and for a model with a drive or air drag, which has no symmetry), real and imaginary
  * parts (pointers into the workspace, valid until the next call), in
  * the chain's units of 1/time (sqrt(g/L) for the dimensionless chain). */
-int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
-                                const double **im);
+WHIRL_API int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
+                                          const double **im);
 
 /* The largest real part among those eigenvalues (growth rate, 1/time). A value within round-off
  * of zero (|growth| <= 1e-10 max |lambda|: neutral stability of the conservative chain, whose
  * eigenvalues lie on the imaginary axis) is returned as exactly 0. */
-int whirl_stability_growth(whirl_stability *w, double *growth);
+WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
 
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
  * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
  * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. */
-int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
-                          double *growth);
+WHIRL_API int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
+                                    double *growth);
 
 /* The steady shape of mode k at model->omega (whirl_nlink_solve, tip_r_guess as there), its
  * linearisation and growth rate. info may be NULL. GSL_EDOM if the mode does not exist;
  * GSL_EINVAL with a drive or air drag (see whirl_stability_driven_mode). */
-int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
-                         double tip_r_guess, whirl_shape_info *info, double *growth);
+WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
+                                   double tip_r_guess, whirl_shape_info *info, double *growth);
 
 /* The shape of the hand-swung chain of mode k at model->omega with the pivot's circle
  * model->drive_radius and the air drag of the model (whirl_driven_mode with side = +1 / -1: the
  * seed's tip on the pivot's side of the axis or opposite), its linearisation and growth rate.
  * info may be NULL. GSL_EDOM if the mode does not exist or its continuation fails (see
  * whirl_driven_mode). The nodes are then available from whirl_stability_nodes. */
-int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode, int side,
-                                whirl_driven_info *info, double *growth);
+WHIRL_API int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode,
+                                          int side, whirl_driven_info *info, double *growth);
 
 /* ---- perturbed time-domain runs (src/stability_run.c) ---- */
 
@@ -124,7 +125,7 @@ typedef enum {
 } whirl_verdict;
 
 /* "stable", "unstable", "converging". */
-const char *whirl_verdict_name(whirl_verdict v);
+WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
 
 typedef struct whirl_stability_run_params {
     double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100 */
@@ -144,7 +145,7 @@ typedef struct whirl_stability_run_params {
 } whirl_stability_run_params;
 
 /* The defaults above. */
-whirl_stability_run_params whirl_stability_run_defaults(void);
+WHIRL_API whirl_stability_run_params whirl_stability_run_defaults(void);
 
 typedef struct whirl_stability_run_result {
     double sim_growth;    /* exponential rate fitted to log(deviation) over the stretch where it
@@ -173,16 +174,16 @@ typedef struct whirl_stability_run_result {
  * after the fitted stretch ends (1e4 times or 1e-2 L), converging at once. GSL_EINVAL on bad
  * parameters or links of the wrong length (1e-9 relative). Allocates its own dynamics and
  * integrator. The shape is not checked to be an equilibrium. */
-int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,
-                              const double *z, const whirl_stability_run_params *params,
-                              whirl_stability_run_result *result);
+WHIRL_API int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,
+                                        const double *z, const whirl_stability_run_params *params,
+                                        whirl_stability_run_result *result);
 
 /* whirl_stability_run_shape from the free steady shape with tip radius tip_r (as for
  * whirl_stability_shape; whirl_nlink_positions at model->omega). The model must have no drive
  * and no air drag (GSL_EINVAL). */
-int whirl_stability_run(const whirl_model *model, double tip_r,
-                        const whirl_stability_run_params *params,
-                        whirl_stability_run_result *result);
+WHIRL_API int whirl_stability_run(const whirl_model *model, double tip_r,
+                                  const whirl_stability_run_params *params,
+                                  whirl_stability_run_result *result);
 
 /* ---- exact stability windows of the free shapes (src/stability_windows.c) ----
  * For the conservative chain (no damping, drag or drive) about a planar shape, the linearisation
@@ -194,12 +195,12 @@ int whirl_stability_run(const whirl_model *model, double tip_r,
 typedef struct whirl_windows whirl_windows; /* workspace of the window search for N links */
 
 /* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
-whirl_windows *whirl_windows_alloc(size_t n);
-void whirl_windows_free(whirl_windows *w); /* NULL is a no-op */
+WHIRL_API whirl_windows *whirl_windows_alloc(size_t n);
+WHIRL_API void whirl_windows_free(whirl_windows *w); /* NULL is a no-op */
 
 /* The linearisation workspace inside w (owned by w): whirl_windows_find leaves the last
  * linearisation of its search there. */
-whirl_stability *whirl_windows_linearisation(whirl_windows *w);
+WHIRL_API whirl_stability *whirl_windows_linearisation(whirl_windows *w);
 
 typedef struct whirl_spectrum {
     size_t count;          /* number of mu: 2N - 1 (2N for a chain hanging straight down) */
@@ -216,8 +217,8 @@ typedef struct whirl_spectrum {
  * of the conservative chain (GSL_EINVAL otherwise: damping or drag, or the in-plane and
  * out-of-plane blocks coupled), with the rotation's zero removed. signatures != 0 computes the
  * eigenvectors too (about 2.5 times the work) and the signatures. */
-int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
-                           whirl_spectrum *out);
+WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
+                                     whirl_spectrum *out);
 
 typedef struct whirl_windows_params {
     double omega_min, omega_max; /* the range of rates [sqrt(g/L)]; examined from
@@ -230,7 +231,7 @@ typedef struct whirl_windows_params {
 } whirl_windows_params;
 
 /* The defaults above. */
-whirl_windows_params whirl_windows_defaults(void);
+WHIRL_API whirl_windows_params whirl_windows_defaults(void);
 
 typedef struct whirl_window {
     double from, to;           /* the interval of rates where the mode is unstable [sqrt(g/L)] */
@@ -262,8 +263,8 @@ typedef struct whirl_windows_stats {
  * the stability.c header comment); a window nested between two others of the same pair less than
  * scan_step / 16 apart is not separated from them. GSL_EDOM if the mode does not exist in the
  * range, WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
-int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
-                       const whirl_windows_params *p, whirl_window *windows, size_t max,
-                       size_t *count, whirl_windows_stats *stats);
+WHIRL_API int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
+                                 const whirl_windows_params *p, whirl_window *windows, size_t max,
+                                 size_t *count, whirl_windows_stats *stats);
 
 #endif

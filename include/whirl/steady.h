@@ -34,7 +34,7 @@ typedef struct whirl_shape_info {
 /* The linear critical rate of mode k (>= 1) where it bifurcates from the hanging chain: with no
  * tip mass j_{0,k}/2; with a tip mass the k-th root of the linearised problem (Bessel J0/Y0
  * determinant). GSL_EINVAL on a bad mode or tip mass. */
-int whirl_continuum_critical(int mode, double tip_mass, double *omega);
+WHIRL_API int whirl_continuum_critical(int mode, double tip_mass, double *omega);
 
 /* The steady shape of mode k at omega. tip_r_guess > 0 seeds the root search (continuation);
  * 0 lets the solver bracket the root itself. GSL_EDOM (message naming omega_k) if mode k does not
@@ -46,8 +46,8 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega);
  * 1e-16 / eps (2e-11 at eps = 1e-6 without a tip mass); with a tip mass the Bessel combination
  * of the linear part loses digits (up to 1.3e-10 for m = 0.48, 3.4e-10 for m = 3.7 at eps = 1e-6,
  * modes 1-6). */
-int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
-                          whirl_shape_info *info);
+WHIRL_API int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
+                                    whirl_shape_info *info);
 
 /* The highest rate of the continuum solvers: beyond about 8000 the shooting's ODE needs more
  * than its cap of 100000 steps per shot (the shape varies on a scale ~ 1/omega); higher rates are
@@ -59,45 +59,45 @@ int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_
 
 /* whirl_continuum_solve with the ODE tolerance tol in (0, 1) instead of WHIRL_CONTINUUM_TOL:
  * for convergence studies. */
-int whirl_continuum_solve_tol(double omega, int mode, double tip_mass, double tip_r_guess,
-                              double tol, whirl_shape_info *info);
+WHIRL_API int whirl_continuum_solve_tol(double omega, int mode, double tip_mass, double tip_r_guess,
+                                        double tol, whirl_shape_info *info);
 
 /* Samples the shape with tip radius tip_r in (0, 1] (from whirl_continuum_solve) at npts >= 2
  * arclengths equally spaced from the pivot (s = 0) to the free end (s = 1): r, z (0 at the pivot)
  * and the tension there; arrays of npts. For any tip_r it is the shot of the shooting method: r
  * at the pivot (r[0]) vanishes only for a solution. */
-int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts, double *s,
-                           double *r, double *z, double *tension);
+WHIRL_API int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts,
+                                     double *s, double *r, double *z, double *tension);
 
 /* Follows mode k over the rates omega[0..n-1] (any order, continuation from one to the next):
  * exists[j] = 1 and info[j] filled where the mode exists, exists[j] = 0 where it does not. The
  * rates are cut into contiguous blocks followed in parallel on the OpenMP threads (serially when
  * called from inside a parallel region). */
-int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
-                           whirl_shape_info *info, int *exists);
+WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
+                                     whirl_shape_info *info, int *exists);
 
 /* ---- N-link chain ---- */
 
 /* The first nmodes (<= c->n) linear critical rates of the chain, ascending: the normal-mode
  * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem). */
-int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
+WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
 
 /* The exact relative equilibrium of mode k at omega: the force balance of every mass holds to
  * round-off. tip_r_guess as for whirl_continuum_solve. GSL_EDOM if mode k does not exist (omega
  * <= omega_k, or k > c->n). A coarse chain at a high rate (e.g. N = 100 at omega = 30) can have
  * several equilibria with k - 1 crossings: without a seed the one with the smallest tip radius
  * is returned (near omega_k the branch born there), with a seed the one nearest the seed. */
-int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info);
+WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
+                                whirl_shape_info *info);
 
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
  * arrays of c->n + 1. */
-int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
-                          double *tension);
+WHIRL_API int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r,
+                                    double *z, double *tension);
 
 /* Follows mode k over omega[0..n-1] as whirl_continuum_branch does (the chain is only read). */
-int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
-                       whirl_shape_info *info, int *exists);
+WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
+                                 whirl_shape_info *info, int *exists);
 
 #endif

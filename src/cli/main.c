@@ -5,6 +5,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli/cli.h"
+#include "whirl/version.h"
 
 /* Synopses are generated from each command's option table (cli_parse --help). */
 static const cli_command commands[] = {
@@ -37,7 +38,8 @@ static const size_t n_commands = sizeof commands / sizeof commands[0];
 
 static void usage(FILE *fp)
 {
-    fprintf(fp, "usage: whirl COMMAND [OPTIONS]   (whirl COMMAND --help for its options)\n\n"
+    fprintf(fp, "usage: whirl COMMAND [OPTIONS]   (whirl COMMAND --help for its options)\n"
+                "       whirl --version           (the program's and the library's version)\n\n"
                 "whirl computes the steady shapes, dynamics and stability of a chain spun about\n"
                 "the vertical axis. Units: dimensionless (L = M = g = 1) unless --length,\n"
                 "--mass or --gravity is given, then SI; rates also as 4Hz or 240rpm.\n"
@@ -57,6 +59,10 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {
         usage(stdout);
+        return 0;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("whirl %s (library %s)\n", WHIRL_VERSION, whirl_version());
         return 0;
     }
     for (size_t i = 0; i < n_commands; i++)

@@ -1,0 +1,76 @@
+#!/bin/sh
+# Writes the manual page whirl(1) on stdout, generated from the program's own help: the overview
+# of `whirl --help`, then for every command the usage line, summary and options of
+# `whirl CMD --help`, so the page cannot drift from the program. Usage: man.sh PROGRAM
+set -e
+whirl=${1:?usage: man.sh PROGRAM}
+version=$("$whirl" --version | sed -n 's/^whirl \([^ ]*\).*/\1/p')
+[ -n "$version" ] || { echo "man.sh: no version from $whirl --version" >&2; exit 1; }
+"$whirl" --help >/dev/null
+
+# roff: backslashes, leading dots and quotes, and hyphens escaped
+esc() { sed -e 's/\\/\\e/g' -e "s/^\\([.']\\)/\\\\\\&\\1/" -e 's/-/\\-/g'; }
+
+cat <<END
+.TH WHIRL 1 "" "whirl $version" "User Commands"
+.SH NAME
+whirl \\- steady shapes, dynamics and stability of a chain spun about the vertical axis
+.SH SYNOPSIS
+.B whirl
+.I COMMAND
+.RI [ OPTIONS ]
+.br
+.B whirl
+.I COMMAND
+.B \\-\\-help
+.br
+.B whirl \\-\\-version
+.SH DESCRIPTION
+END
+# the overview: the lines of `whirl --help` between the usage lines and "commands:"
+"$whirl" --help | sed -n '/^$/,/^commands:/p' | sed '/^commands:/d; /^$/d' | esc
+cat <<'END'
+.PP
+Every command takes \fB\-o\fR \fIFILE\fR (written atomically: a failed run leaves no file) and
+\fB\-\-help\fR; bad input gives a one\-line error naming the problem and a non\-zero exit.
+.SH COMMANDS
+END
+"$whirl" --help | sed -n '/^commands:/,$p' | sed 1d | while read -r cmd summary; do
+  [ -n "$cmd" ] || continue
+  echo ".SS whirl $cmd"
+  help=$("$whirl" "$cmd" --help)
+  echo ".nf"
+  printf '%s\n' "$help" | sed -n 's/^usage: //p' | esc
+  echo ".fi"
+  printf '%s\n' "$summary" | esc
+  printf '%s\n' "$help" | sed -n '/^options:/,$p' | sed 1d | while IFS= read -r line; do
+    case $line in
+      "  "-*)
+        left=$(printf '%s\n' "$line" | cut -c3-28 | sed 's/ *$//')
+        text=$(printf '%s\n' "$line" | cut -c30- | sed 's/^ *//')
+        echo ".TP"
+        # option names bold, their arguments italic
+        printf '%s\n' "$left" | esc | awk '{
+          for (i = 1; i <= NF; i++) printf "%s\\f%s%s\\fR", (i > 1 ? " " : ""),
+            (substr($i, 1, 2) == "\\-" ? "B" : "I"), $i; print "" }'
+        printf '%s\n' "$text" | esc ;;
+      "") ;;
+      *) printf '%s\n' "$line" | sed 's/^ *//' | esc ;;
+    esac
+  done
+done
+cat <<'END'
+.SH UNITS
+Dimensionless unless a command says otherwise: chain length L = 1, chain mass M = 1, gravity
+g = 1; rates in sqrt(g/L), times in sqrt(L/g), tensions in M g. z points up; the pivot is the
+origin, on the rotation axis. Mode k has k nodes: the pivot plus k\-1 crossings of the axis.
+.SH OUTPUT
+CSV: comment lines start with #, the first other line is the header, numbers with full
+precision.
+.SH EXIT STATUS
+0 on success, 130 when interrupted (Ctrl\-C; the rows written so far are kept), non\-zero on
+any error.
+.SH SEE ALSO
+The C library libwhirl (\fBpkg\-config \-\-cflags \-\-libs whirl\fR, header \fI<whirl.h>\fR)
+and the README of the source tree.
+END
