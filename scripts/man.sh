@@ -1,7 +1,7 @@
 #!/bin/sh
 # Writes the manual page whirl(1) on stdout, generated from the program's own help: the overview
-# of `whirl --help`, then for every command the usage line, summary and options of
-# `whirl CMD --help`, so the page cannot drift from the program. Usage: man.sh PROGRAM
+# of `whirl --help`, then for every command its `whirl CMD --help` (usage line, description,
+# options, examples), so the page cannot drift from the program. Usage: man.sh PROGRAM
 set -e
 whirl=${1:?usage: man.sh PROGRAM}
 version=$("$whirl" --version | sed -n 's/^whirl \([^ ]*\).*/\1/p')
@@ -38,26 +38,21 @@ END
 "$whirl" --help | sed -n '/^commands:/,$p' | sed 1d | while read -r cmd summary; do
   [ -n "$cmd" ] || continue
   echo ".SS whirl $cmd"
-  help=$("$whirl" "$cmd" --help)
-  echo ".nf"
-  printf '%s\n' "$help" | sed -n 's/^usage: //p' | esc
-  echo ".fi"
-  printf '%s\n' "$summary" | esc
-  printf '%s\n' "$help" | sed -n '/^options:/,$p' | sed 1d | while IFS= read -r line; do
-    case $line in
-      "  "-*)
-        left=$(printf '%s\n' "$line" | cut -c3-28 | sed 's/ *$//')
-        text=$(printf '%s\n' "$line" | cut -c30- | sed 's/^ *//')
-        echo ".TP"
-        # option names bold, their arguments italic
-        printf '%s\n' "$left" | esc | awk '{
-          for (i = 1; i <= NF; i++) printf "%s\\f%s%s\\fR", (i > 1 ? " " : ""),
-            (substr($i, 1, 2) == "\\-" ? "B" : "I"), $i; print "" }'
-        printf '%s\n' "$text" | esc ;;
-      "") ;;
-      *) printf '%s\n' "$line" | sed 's/^ *//' | esc ;;
-    esac
-  done
+  # the help: "usage: ..." first, prose, then sections "NAME:" at the margin; in "options:" the
+  # lines "  OPTION ARG   text" (text from column 30), in other sections indented lines verbatim
+  "$whirl" "$cmd" --help | esc | awk '
+    NR == 1 { sub(/^usage: /, ""); print ".nf"; print; print ".fi"; next }
+    /^$/ { next }
+    /^[^ ].*:$/ { section = $0; print ".PP"; print "\\fB" $0 "\\fR"; next }
+    section == "options:" && /^  \\-/ {
+      left = substr($0, 3, 26); sub(/ +$/, "", left); text = substr($0, 30); sub(/^ +/, "", text)
+      n = split(left, w, " "); line = ""
+      # option names bold, their arguments italic
+      for (i = 1; i <= n; i++)
+        line = line (i > 1 ? " " : "") "\\f" (substr(w[i], 1, 2) == "\\-" ? "B" : "I") w[i] "\\fR"
+      print ".TP"; print line; print text; next }
+    section != "" && section != "options:" && /^ / { sub(/^ +/, ""); print ".nf"; print "  " $0; print ".fi"; next }
+    { sub(/^ +/, ""); print; print ".br" }'
 done
 cat <<'END'
 .SH UNITS
