@@ -894,6 +894,7 @@ static int compare_edges(const void *x, const void *y)
 }
 
 #define SAMPLES 8 /* full solves across a window before the maximum is refined */
+#define WINDOWS_SCAN_MAX 100000 /* scan points of one mode (each a full eigen-solve) */
 
 /* The largest growth in the window win (growth 0 at its edges; at an open end the growth of the
  * scan point there, end_from / end_to): SAMPLES full solves across it (the window may be the
@@ -981,8 +982,12 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
     w->stats = stats;
     stats->omega_from = from;
     stats->omega_to = p->omega_max;
-    const size_t steps = (size_t)ceil((p->omega_max - from) / p->scan_step - 1e-9);
-    const size_t npts = steps + 1;
+    const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
+    if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
+        return whirl_fail(GSL_EINVAL, "mode %d: a scan of %g..%g in steps of %g has %.3g points, "
+                          "more than %d: raise the scan step or narrow the range", mode, from,
+                          p->omega_max, p->scan_step, scan_steps + 1, WINDOWS_SCAN_MAX);
+    const size_t steps = (size_t)scan_steps, npts = steps + 1;
     double *omega = malloc(npts * sizeof *omega);
     whirl_shape_info *info = malloc(npts * sizeof *info);
     int *exists = malloc(npts * sizeof *exists);

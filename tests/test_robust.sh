@@ -82,6 +82,9 @@ expect_error "simulate: links x t_end / dt beyond the budget is refused with the
 expect_error "regime: omega 1e-8 within t_max 50 is refused (was far past t_max)" \
   "t_max - t_ramp = 30 holds 4.77e-08 drive periods .*the classification needs 16" \
   regime --omega 1e-8 --eps 0.1 --t-max 50 -o "$out"
+expect_error "stability --windows: a scan of 4e6 points is refused (was half a minute to stop)" \
+  "a scan of 1.14796..1e\+06 in steps of 0.25 has 4e\+06 points, more than 100000" \
+  stability --windows --links 5 --omega-min 1 --omega-max 1e6 -o "$out"
 "$WHIRL" shape --omega 3.3 --mode 2 --points 20001 -o "$tmp/many.csv"
 expect_error "fit: more than 20000 points are refused" "a fit takes at most 20000 points, got 20001" \
   fit --shape "$tmp/many.csv" -o "$out"

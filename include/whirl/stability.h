@@ -223,7 +223,8 @@ WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *li
 typedef struct whirl_windows_params {
     double omega_min, omega_max; /* the range of rates [sqrt(g/L)]; examined from
                                     max(omega_min, omega_k (1 + 1e-6)) to omega_max; 1, 10 */
-    double scan_step;            /* spacing of the scan with signatures [sqrt(g/L)]; 0.25 */
+    double scan_step;            /* spacing of the scan with signatures [sqrt(g/L)]; 0.25; at most
+                                    100000 scan points (GSL_EINVAL beyond) */
     double tol;                  /* edges located to this in omega [sqrt(g/L)]; 1e-9 */
     int krylov;                  /* 1: near an edge only the colliding pair, by shift-and-invert
                                     Arnoldi (full solve if it does not converge); 0: every
