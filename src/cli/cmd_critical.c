@@ -23,9 +23,9 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     }
     double omega[WHIRL_MODE_MAX];
     for (int k = 1; k <= modes; k++)
-        if (steady_cli_critical(cmd, &m, k, &omega[k - 1])) {
+        if (cli_interrupted || steady_cli_critical(cmd, &m, k, &omega[k - 1])) {
             steady_cli_model_free(&m);
-            return 1;
+            return cli_interrupted ? cli_error(cmd, "interrupted at mode %d", k) : 1;
         }
     cli_out out;
     if (cli_out_open(cmd, &out, out_path)) {
