@@ -63,6 +63,7 @@
 #define ODE_STEP_MAX 200000            /* ODE steps of one continuum shape (also polls the stop
                                           request every ODE_POLL steps) */
 #define ODE_POLL 256
+#define DRAG_MAX 1e6                   /* largest drag coefficient accepted (either kind) */
 
 /* The problem being solved: the model, the parameters (omega comes from u[2]) and scratch. */
 typedef struct problem {
@@ -400,6 +401,11 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
         return whirl_fail(GSL_EINVAL, "drag must be >= 0 and finite, got %g", p->drag);
     if (!(isfinite(p->drag_quadratic) && p->drag_quadratic >= 0))
         return whirl_fail(GSL_EINVAL, "quadratic drag must be >= 0 and finite, got %g",
+                          p->drag_quadratic);
+    if (p->drag > DRAG_MAX || p->drag_quadratic > DRAG_MAX)
+        return whirl_fail(GSL_EINVAL, "drag coefficients above %g are refused (got %g, %g): the "
+                          "continuation from the drag-free shape takes ever longer and is lost "
+                          "far below (near 1.5e3 at omega 3, eps 0.01)", DRAG_MAX, p->drag,
                           p->drag_quadratic);
     if (whirl_check_tip_mass(p->tip_mass) != GSL_SUCCESS) return GSL_EINVAL;
     if (chain && p->tip_mass != 0)

@@ -564,6 +564,10 @@ static int convert_start(const convert *v)
         TRY(get_integer(v, WHIRL_KEY_START_MODE, 1, 1, WHIRL_MODE_MAX, &mode));
         s->mode = (int)mode;
         TRY(get_bounded(v, WHIRL_KEY_START_OMEGA, 0, 0, 1, &s->start_omega));
+        if (!(s->start_omega <= WHIRL_OMEGA_MAX))
+            return key_error(v, WHIRL_KEY_START_OMEGA, "must be at most %g (the centrifugal "
+                             "forces ~ omega^2 would overflow), got %g", WHIRL_OMEGA_MAX,
+                             s->start_omega);
         return GSL_SUCCESS;
     }
     s->start = WHIRL_START_ANGLES;
@@ -600,6 +604,9 @@ static int convert_run(const convert *v)
     s->formulation = word == 1 ? WHIRL_FORMULATION_SEED : WHIRL_FORMULATION_CARTESIAN;
     TRY(get_double(v, WHIRL_KEY_RUN_OMEGA, s->start == WHIRL_START_STEADY ? s->start_omega : 0,
                    &s->omega));
+    if (!(fabs(s->omega) <= WHIRL_OMEGA_MAX))
+        return key_error(v, WHIRL_KEY_RUN_OMEGA, "|omega| must be at most %g (the centrifugal "
+                         "forces ~ omega^2 would overflow), got %g", WHIRL_OMEGA_MAX, s->omega);
     TRY(get_bounded(v, WHIRL_KEY_RUN_DRIVE_RADIUS, 0, 0, 0, &s->drive_radius));
     TRY(get_bounded(v, WHIRL_KEY_RUN_AIR_DRAG, 0, 0, 0, &s->air_drag));
     TRY(get_bounded(v, WHIRL_KEY_RUN_AIR_DRAG_QUADRATIC, 0, 0, 0, &s->air_drag_quadratic));

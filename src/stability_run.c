@@ -29,6 +29,7 @@
 #define RATIO_CONVERGED 1e-2   /* verdict converging (dissipation > 0), the run stops */
 #define RATIO_DECAYED 1e-1     /* verdict converging at the end of the run */
 #define RATIO_FIT_FROM 100.0
+#define RUN_STEPS_MAX 1e9      /* time steps of one run: more are refused up front */
 #define RATIO_FIT_TO 1e4
 #define LINEAR_LIMIT 1e-2      /* deviation / L beyond which the fit stops */
 
@@ -233,6 +234,12 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
     }
     const double period = 2 * M_PI / m.omega, t_end = params->periods * period;
     const double h = params->dt > 0 ? params->dt : default_step(&m, tension, params->method);
+    if (!(t_end / h <= RUN_STEPS_MAX)) {
+        status = whirl_fail(GSL_EINVAL, "%g periods in steps of %g are %.3g steps, more than %g: "
+                            "fewer periods or a larger step", params->periods, h, t_end / h,
+                            RUN_STEPS_MAX);
+        goto done;
+    }
     const double limit = LINEAR_LIMIT * whirl_chain_total_length(c);
     const int dissipative = m.internal_damping > 0 || m.air_drag > 0 || m.air_drag_quadratic > 0;
     line_fit fit = {0};

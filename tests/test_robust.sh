@@ -85,6 +85,15 @@ expect_error "regime: omega 1e-8 within t_max 50 is refused (was far past t_max)
 expect_error "stability --windows: a scan of 4e6 points is refused (was half a minute to stop)" \
   "a scan of 1.14796..1e\+06 in steps of 0.25 has 4e\+06 points, more than 100000" \
   stability --windows --links 5 --omega-min 1 --omega-max 1e6 -o "$out"
+expect_error "driven: a drag of 1e100 is refused (was more than 30 s)" \
+  "drag coefficients above 1e\+06 are refused \(got 1e\+100, 0\)" \
+  driven --omega 3 --eps 0.01 --drag 1e100 -o "$out"
+expect_error "stability: 1e300 periods are refused up front (was endless)" \
+  "1e\+300 periods in steps of .* more than 1e\+09" \
+  stability --omega 2 --mode 1 --links 5 --periods 1e300 -o "$out"
+expect_error "simulate: a drive rate of 1e308 is refused (wrote inf)" \
+  "run.omega: \|omega\| must be at most 1e\+100" \
+  simulate "$scenes/hand_swung.ini" --set run.omega=1e308 --set chain.links=5 -o "$out"
 "$WHIRL" shape --omega 3.3 --mode 2 --points 20001 -o "$tmp/many.csv"
 expect_error "fit: more than 20000 points are refused" "a fit takes at most 20000 points, got 20001" \
   fit --shape "$tmp/many.csv" -o "$out"

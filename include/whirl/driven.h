@@ -54,8 +54,9 @@
 typedef struct whirl_driven_params {
     double omega;          /* rotation rate of the hand and of the frame [sqrt(g/L)], > 0 */
     double eps;            /* radius of the pivot's circle [L], >= 0 */
-    double drag;           /* c >= 0: linear air drag per unit length [M/(L T)]: -c ds v */
-    double drag_quadratic; /* c2 >= 0: quadratic air drag per unit length [M/L^2]: -c2 ds |v| v */
+    double drag;           /* c in [0, 1e6]: linear air drag per unit length [M/(L T)]: -c ds v */
+    double drag_quadratic; /* c2 in [0, 1e6]: quadratic air drag per unit length [M/L^2]:
+                              -c2 ds |v| v */
     double tip_mass;       /* continuum only: point mass at the free end [M], >= 0; must be 0
                               with an N-link chain */
 } whirl_driven_params;

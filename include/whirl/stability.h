@@ -128,7 +128,8 @@ typedef enum {
 WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
 
 typedef struct whirl_stability_run_params {
-    double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100 */
+    double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100; at
+                            most 1e9 time steps in all (GSL_EINVAL beyond) */
     double perturbation; /* EPS in (0, 1): each link direction turned by EPS [rad]; 1e-6 */
     unsigned long seed;  /* seed of the random directions (GSL's mt19937); 1 */
     const char *method;  /* integrator (whirl_integrator_methods); "gauss2" */
