@@ -17,11 +17,14 @@ typedef struct dyn_ops {
     void (*link)(const whirl_dyn *d, const double *y, size_t i, double *dv, double *ddot);
     /* y from link vectors and their derivatives (3 per link, model frame), then projected. */
     int (*from_links)(whirl_dyn *d, const double *dv, const double *ddot, double *y);
+    /* dydt at (t, y); GSL_EBADFUNC with a message if it is not finite */
     int (*rhs)(whirl_dyn *d, double t, const double *y, double *dydt);
     int (*project)(whirl_dyn *d, double *y);
     int (*tensions)(whirl_dyn *d, double t, const double *y, double *tension);
     int (*alloc)(whirl_dyn *d); /* the formulation's own scratch (fields below) */
 } dyn_ops;
+
+enum { WHIRL_DYN_COEFS = 6 };
 
 struct whirl_dyn {
     whirl_model model;
@@ -36,9 +39,11 @@ struct whirl_dyn {
      * (drag, internal damping, seed forcing; not gravity nor the frame's fictitious forces) */
     double *x, *v, *force;
     double *links, *link_rates; /* 3 per link */
-    /* Cartesian: tridiagonal system of the multipliers, in long double */
-    long double *tri_diag, *tri_off, *tri_rhs;
-    double *multiplier, *link_acc; /* multipliers; differences of the neighbours' accelerations */
+    /* Cartesian: the multipliers and the per-link coefficients of their elimination
+     * (dyn_cartesian.c), WHIRL_DYN_COEFS arrays of n in one block `coef` */
+    double *multiplier, *coef;
+    double *co_k, *co_e, *co_b, *co_g, *co_q, *co_z;
+    size_t *rescaled; /* links where the elimination was rescaled (n / 512 + 1) */
     /* seed: dense mass matrix (k x k, k = N in 2D, 2N in 3D), right-hand side, quadratic
      * accelerations (3 per mass) */
     double *matrix, *gen_force, *quad_acc;

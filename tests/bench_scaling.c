@@ -28,10 +28,10 @@
 
 #define BENCH_NAME "bench_scaling"
 #include "bench_util.h"
+#include "tension_ref.h"
 
 #define REPEATS 7
 
-__extension__ typedef __float128 quad;
 
 /* The start of every timing: the smooth state (pivot at the origin) in the model's frame. */
 static whirl_dyn *smooth_dyn(const whirl_model *m, whirl_formulation f, double **y)
@@ -215,51 +215,6 @@ static void bench_memory(const char *dir)
     fclose(fp);
 }
 
-/* The multiplier system of dyn_cartesian.c for a 3D state y = (d, d') with the pivot fixed at
- * the origin, rotating frame at w (w = 0: inertial):
- *   lambda_i |d_i|^2 (1/m_i + 1/m_{i-1}) - lambda_{i+1} (d_i . d_{i+1}) / m_i
- *     - lambda_{i-1} (d_i . d_{i-1}) / m_{i-1} = d_i . (g_i - g_{i-1}) + |d_i'|^2,
- * g_i - g_{i-1} = w^2 (d_x, d_y, 0) + 2 w (d_y', -d_x', 0) - g z [i = 0 only], 1/m_{-1} = 0.
- * Tensions T_i = lambda_i |d_i|. Both solvers below eliminate from the top (Thomas). */
-#define DEFINE_TENSION_SOLVER(name, real)                                                    \
-    static void name(const whirl_chain *c, double w, const double *y, double *tension,      \
-                     real *work)                                                             \
-    {                                                                                        \
-        const size_t n = c->n;                                                               \
-        const double *q = y, *qd = y + 3 * n;                                                \
-        real *diag = work, *rhs = work + n, *off = work + 2 * n; /* off_i: (i, i+1) entry */ \
-        for (size_t i = 0; i < n; i++) {                                                     \
-            const double *d = q + 3 * i, *r = qd + 3 * i;                                    \
-            const real dd = (real)d[0] * d[0] + (real)d[1] * d[1] + (real)d[2] * d[2];       \
-            const real inv_up = i > 0 ? 1 / (real)c->mass[i - 1] : 0;                        \
-            diag[i] = dd * (1 / (real)c->mass[i] + inv_up);                                  \
-            const real a[3] = {(real)w * w * d[0] + 2 * (real)w * r[1],                      \
-                               (real)w * w * d[1] - 2 * (real)w * r[0],                      \
-                               i == 0 ? -(real)c->gravity : 0};                              \
-            rhs[i] = (real)d[0] * a[0] + (real)d[1] * a[1] + (real)d[2] * a[2] +             \
-                     (real)r[0] * r[0] + (real)r[1] * r[1] + (real)r[2] * r[2];              \
-            if (i + 1 < n) {                                                                 \
-                const double *e = q + 3 * (i + 1);                                           \
-                off[i] = -((real)d[0] * e[0] + (real)d[1] * e[1] + (real)d[2] * e[2]) /      \
-                         (real)c->mass[i];                                                   \
-            }                                                                                \
-        }                                                                                    \
-        for (size_t i = 1; i < n; i++) {                                                     \
-            const real f = off[i - 1] / diag[i - 1];                                         \
-            diag[i] -= f * off[i - 1];                                                       \
-            rhs[i] -= f * rhs[i - 1];                                                        \
-        }                                                                                    \
-        real lam = rhs[n - 1] / diag[n - 1];                                                 \
-        for (size_t i = n; i-- > 0;) {                                                       \
-            if (i + 1 < n) lam = (rhs[i] - off[i] * lam) / diag[i];                          \
-            const double *d = q + 3 * i;                                                     \
-            const real len = (real)sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);            \
-            tension[i] = (double)(lam * len);                                                \
-        }                                                                                    \
-    }
-
-DEFINE_TENSION_SOLVER(tensions_quad, quad)
-DEFINE_TENSION_SOLVER(tensions_double, double)
 
 static double rel_error(size_t n, const double *t, const double *ref)
 {
@@ -283,7 +238,7 @@ static void bench_tension(const char *dir)
         double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
         double *y = malloc(6 * n * sizeof *y), *ten = malloc(n * sizeof *ten);
         double *ref = malloc(n * sizeof *ref), *plain = malloc(n * sizeof *plain);
-        quad *work = malloc(3 * n * sizeof *work);
+        real128 *work = malloc(3 * n * sizeof *work);
         double *dwork = malloc(3 * n * sizeof *dwork);
         if (!c || !x || !v || !y || !ten || !ref || !plain || !work || !dwork) bench_die("alloc");
         printf("  %8zu", n);

@@ -16,6 +16,10 @@
 #include "whirl/dynamics.h"
 #include "whirl/steady.h"
 
+#define BENCH_NAME "test_dynamics"
+#include "bench_util.h"
+#include "tension_ref.h"
+
 static uint64_t rng_state = 0x2545F4914F6CDD1DULL;
 static double uniform(double a, double b)
 {
@@ -325,13 +329,85 @@ static void test_hanging_chain(void **state)
                 below += (long double)c->mass[i] * c->gravity;
                 worst = fmax(worst, (double)fabsl((tension[i] - below) / below));
             }
-            assert_true(worst < 1e-15);
             if (n == 1000) print_message("hanging chain N = 1000: tension error %.3g\n", worst);
+            assert_true(worst < 1e-15);
             free(x), free(v), free(y), free(f), free(tension);
             whirl_dyn_free(d);
             whirl_chain_free(c);
         }
     }
+}
+
+/* The multipliers of the Cartesian right-hand side against the same tridiagonal system solved by
+ * plain Thomas elimination in binary128 (tests/tension_ref.h), at N = 3000 for the hanging chain,
+ * a moving 3D state and the mode-2 shape at omega = 4 (co-rotating): the tensions to 1e-13
+ * relative (their round-off grows with N; about 1e-14 here) and the link accelerations, formed
+ * in binary128 from the reference multipliers, to 1e-13 of the largest of them, of g and of the
+ * constraint terms lambda_i |d_i| (1/m_i + 1/m_{i-1}) that cancel in them. */
+static void test_multipliers_binary128(void **state)
+{
+    (void)state;
+    const size_t n = 3000;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
+    double *y = malloc(6 * n * sizeof *y), *f = malloc(6 * n * sizeof *f);
+    double *ten = malloc(n * sizeof *ten), *ref = malloc(n * sizeof *ref);
+    real128 *work = malloc(3 * n * sizeof *work);
+    assert_true(c && x && v && y && f && ten && ref && work);
+    for (int kind = 0; kind < 3; kind++) {
+        const double w = kind == 2 ? 4.0 : 0.0;
+        const whirl_model m = {.chain = c,
+                               .dim = 3,
+                               .frame = kind == 2 ? WHIRL_FRAME_ROTATING : WHIRL_FRAME_INERTIAL,
+                               .omega = w};
+        memset(x, 0, 3 * n * sizeof *x);
+        memset(v, 0, 3 * n * sizeof *v);
+        if (kind == 0) {
+            for (size_t i = 0; i < n; i++) x[3 * i + 2] = -(double)(i + 1) / (double)n;
+        } else if (kind == 1) {
+            const double p[3] = {0, 0, 0};
+            bench_smooth_state(c, p, x, v);
+        } else {
+            assert_int_equal(bench_steady_positions(c, w, 2, x), GSL_SUCCESS);
+        }
+        whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+        assert_non_null(d);
+        assert_int_equal(whirl_dyn_set_state(d, 0, x, v, y), GSL_SUCCESS);
+        assert_int_equal(whirl_dyn_tensions(d, 0, y, ten), GSL_SUCCESS);
+        assert_int_equal(whirl_dyn_rhs(0, y, f, d), GSL_SUCCESS);
+        tensions_quad(c, w, y, ref, work);
+        double worst_t = 0, worst_a = 0, scale = c->gravity;
+        for (size_t i = 0; i < n; i++) worst_t = fmax(worst_t, fabs(ten[i] / ref[i] - 1));
+        const real128 *lam = work + n;
+        double acc[3 * 3000];
+        for (size_t i = 0; i < n; i++) {
+            const double *di = y + 3 * i, *ri = y + 3 * n + 3 * i;
+            const real128 inv_m = 1 / (real128)c->mass[0]; /* uniform chain */
+            const real128 field[3] = {(real128)w * w * di[0] + 2 * (real128)w * ri[1],
+                                   (real128)w * w * di[1] - 2 * (real128)w * ri[0],
+                                   i == 0 ? -(real128)c->gravity : 0};
+            for (int k = 0; k < 3; k++) {
+                real128 a = field[k] - lam[i] * (i > 0 ? 2 : 1) * inv_m * di[k];
+                if (i + 1 < n) a += lam[i + 1] * inv_m * y[3 * (i + 1) + k];
+                if (i > 0) a += lam[i - 1] * inv_m * y[3 * (i - 1) + k];
+                acc[3 * i + k] = (double)a;
+                scale = fmax(scale, fabs(acc[3 * i + k]));
+            }
+            /* the size of the terms that cancel in a steady state */
+            scale = fmax(scale, (double)(lam[i] * (i > 0 ? 2 : 1) * inv_m) *
+                                    sqrt(di[0] * di[0] + di[1] * di[1] + di[2] * di[2]));
+        }
+        for (size_t k = 0; k < 3 * n; k++) worst_a = fmax(worst_a, fabs(f[3 * n + k] - acc[k]));
+        worst_a /= scale;
+        print_message("N = %zu, %s: tensions %.3g, accelerations %.3g relative\n", n,
+                      kind == 0 ? "hanging" : kind == 1 ? "moving 3D" : "mode 2", worst_t,
+                      worst_a);
+        assert_true(worst_t < 1e-13);
+        assert_true(worst_a < 1e-13);
+        whirl_dyn_free(d);
+    }
+    free(x), free(v), free(y), free(f), free(ten), free(ref), free(work);
+    whirl_chain_free(c);
 }
 
 /* The steady shape of whirl_nlink_solve is a fixed point in the co-rotating frame (both
@@ -588,6 +664,7 @@ int main(void)
         cmocka_unit_test(test_link_accelerations_agree),
         cmocka_unit_test(test_analytic_limits),
         cmocka_unit_test(test_hanging_chain),
+        cmocka_unit_test(test_multipliers_binary128),
         cmocka_unit_test(test_steady_shape_fixed_point),
         cmocka_unit_test(test_dissipation_power),
         cmocka_unit_test(test_frames),

@@ -196,12 +196,16 @@ static int watch(void *ctx, double t, double angle, const double *pivot, const d
     return GSL_SUCCESS;
 }
 
-/* Driven hard near omega_4 with a wide circle, the chain flails: chaotic, lambda > 0. */
+/* Driven hard near omega_4 with a wide circle, the chain flails: chaotic, lambda > 0. The
+ * finite-time exponent over 30 periods depends on the perturbation and on the round-off of the
+ * right-hand side: with drag 0.05 it ranged 0.06-3 over perturbation seeds (transient chaos
+ * settling into quasi-periodic motion), with drag 0.02 0.13-0.53, hence drag 0.02 and a margin
+ * of 2 over the classification's threshold. */
 static void test_chaotic_and_observer(void **state)
 {
     (void)state;
     whirl_chain *chain = whirl_chain_alloc_uniform(LINKS, 0);
-    whirl_regime_params p = params(5.8, 0.1, 0.05);
+    whirl_regime_params p = params(5.8, 0.1, 0.02);
     p.t_max = 100;
     p.lyapunov_periods = 30;
     whirl_regime *w = whirl_regime_alloc(chain);
@@ -210,7 +214,7 @@ static void test_chaotic_and_observer(void **state)
     whirl_regime_result r;
     assert_int_equal(whirl_regime_run(w, &p, &r), GSL_SUCCESS);
     assert_int_equal(r.state, WHIRL_REGIME_CHAOTIC);
-    assert_true(r.lyapunov > 10 * p.chaos_lambda);
+    assert_true(r.lyapunov > 2 * p.chaos_lambda);
     assert_true(isnan(r.shape_error));
     assert_int_equal(s.calls, (int)floor(r.t_end / 0.25 + 1e-9) + 1);
     assert_true(s.max_angle_error < 1e-9 * r.t_end * 5.8);
