@@ -21,7 +21,7 @@ for n in 25 50; do
   start=$(date +%s)
   # "edge side omega mode": 1% of the width inside and outside each closed edge
   grep -v '^#' "$csv" | awk -F, 'NR > 1 {
-      d = 0.01 * ($4 - $3)
+      d = 0.01 * ($4 - $3); OFMT = "%.12g"
       if (!$5) { print $3, "outside", $3 - d, $1; print $3, "inside", $3 + d, $1 }
       if (!$6) { print $4, "inside", $4 - d, $1; print $4, "outside", $4 + d, $1 } }' |
   while read -r e side w k; do
