@@ -225,8 +225,8 @@ WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *li
  * step), into mu_re[0..1], mu_im[0..1], nearest first; the rotation's mu = 0 is not removed.
  * Converged when both Ritz residuals are below 1e-13 of |1 / (mu - sigma)|; GSL_CONTINUE if not
  * within 40 steps (or sigma is an eigenvalue), GSL_EINVAL as whirl_windows_spectrum. */
-int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma, double *mu_re,
-                       double *mu_im);
+WHIRL_API int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma,
+                                 double *mu_re, double *mu_im);
 
 typedef struct whirl_windows_params {
     double omega_min, omega_max; /* the range of rates [sqrt(g/L)]; examined from
