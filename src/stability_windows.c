@@ -625,6 +625,17 @@ static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu
     return GSL_CONTINUE;
 }
 
+int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma, double *mu_re,
+                       double *mu_im)
+{
+    int status = split_blocks(w, lin);
+    if (status) return status;
+    if (krylov_pair(w, sigma, mu_re, mu_im) != GSL_SUCCESS)
+        return whirl_fail(GSL_CONTINUE, "the Arnoldi iteration at sigma = %g did not converge in "
+                                        "%d steps", sigma, KRYLOV_MAX);
+    return GSL_SUCCESS;
+}
+
 typedef struct root_args {
     whirl_windows *w;
     const whirl_windows_params *p;

@@ -118,6 +118,23 @@ static void test_reduced_spectrum(void **state)
                 assert_true(best <= 1e-9 * big);
             }
             assert_true(fabs(sp.growth - g4) <= 1e-8 * sqrt(big));
+            /* the two mu nearest a shift by Arnoldi: those of the full solve */
+            const double sigma = sp.re[sp.count / 3] + 0.0123;
+            size_t near[2] = {0, 0};
+            double dist[2] = {INFINITY, INFINITY};
+            for (size_t i = 0; i < sp.count; i++) {
+                const double d = hypot(sp.re[i] - sigma, sp.im[i]);
+                if (d < dist[0])
+                    dist[1] = dist[0], near[1] = near[0], dist[0] = d, near[0] = i;
+                else if (d < dist[1])
+                    dist[1] = d, near[1] = i;
+            }
+            double pre[2], pim[2], sre[2], sim[2];
+            for (int t = 0; t < 2; t++) sre[t] = sp.re[near[t]], sim[t] = sp.im[near[t]];
+            assert_int_equal(whirl_windows_pair(w, lin, sigma, pre, pim), 0);
+            for (int t = 0; t < 2; t++)
+                assert_true(hypot(pre[t] - sre[t], fabs(pim[t]) - fabs(sim[t])) <= 1e-9 * big);
+            assert_int_equal(whirl_windows_spectrum(w, lin, 1, &sp), 0);
             /* Krein signatures: k - 1 modes of negative energy when neutral (K has 2(k - 1)
              * negative directions), fewer when a pair has left the axis */
             int negative = 0, unsigned_neutral = 0;

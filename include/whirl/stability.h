@@ -221,6 +221,14 @@ typedef struct whirl_spectrum {
 WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
                                      whirl_spectrum *out);
 
+/* The two mu of the last linearisation in lin nearest the real shift sigma [1/T^2], by the
+ * Arnoldi method on (A' - sigma)^-1 = -(K' + sigma B)^-1 B (one LU factorisation, O(N^2) per
+ * step), into mu_re[0..1], mu_im[0..1], nearest first; the rotation's mu = 0 is not removed.
+ * Converged when both Ritz residuals are below 1e-13 of |1 / (mu - sigma)|; GSL_CONTINUE if not
+ * within 40 steps (or sigma is an eigenvalue), GSL_EINVAL as whirl_windows_spectrum. */
+WHIRL_API int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma,
+                                 double *mu_re, double *mu_im);
+
 typedef struct whirl_windows_params {
     double omega_min, omega_max; /* the range of rates [sqrt(g/L)]; examined from
                                     max(omega_min, omega_k (1 + 1e-6)) to omega_max; 1, 10 */
