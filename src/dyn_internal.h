@@ -50,6 +50,10 @@ extern const dyn_ops whirl_dyn_seed_ops;
 /* Pivot position, velocity and acceleration in the model's frame at time t (3 components). */
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa);
 
+/* The drive at time t: radius eps, rate omega and phase (the angle of the pivot about z in the
+ * inertial frame, the integral of omega). */
+void whirl_dyn_drive(const whirl_dyn *d, double t, double *eps, double *omega, double *phase);
+
 /* Fills d->x, d->v (positions and velocities of the masses), d->links, d->link_rates from y and
  * d->force with the applied forces: linear and quadratic air drag, internal damping and, if
  * with_seed_forcing, the seed's forcing f_d = sigma_d - lambda_d thetadot_d as a force pair on

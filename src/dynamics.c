@@ -137,6 +137,13 @@ const whirl_model *whirl_dyn_model(const whirl_dyn *d) { return &d->model; }
 whirl_formulation whirl_dyn_formulation(const whirl_dyn *d) { return d->formulation; }
 size_t whirl_dyn_size(const whirl_dyn *d) { return d->size; }
 
+void whirl_dyn_drive(const whirl_dyn *d, double t, double *eps, double *omega, double *phase)
+{
+    *eps = d->model.drive_radius;
+    *omega = d->model.omega;
+    *phase = d->model.omega * t;
+}
+
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa)
 {
     const double eps = d->model.drive_radius, w = d->model.omega;

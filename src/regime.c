@@ -92,10 +92,10 @@ int whirl_regime_check(const whirl_regime_params *p)
     if (!(p->omega > 0 && isfinite(p->omega)))
         return whirl_fail(GSL_EINVAL, "omega must be > 0, got %g", p->omega);
     if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
-    if (!(p->eps > 0 && p->eps < 1))
-        return whirl_fail(GSL_EINVAL, "eps must be in (0, 1), got %g", p->eps);
+    if (!(p->drive_radius > 0 && p->drive_radius < 1))
+        return whirl_fail(GSL_EINVAL, "drive_radius must be in (0, 1), got %g", p->drive_radius);
     const struct { const char *name; double value; } nonneg[] = {
-        {"drag", p->drag}, {"drag_quadratic", p->drag_quadratic},
+        {"air_drag", p->air_drag}, {"air_drag_quadratic", p->air_drag_quadratic},
         {"internal_damping", p->internal_damping}, {"perturb", p->perturb}};
     for (size_t k = 0; k < sizeof nonneg / sizeof nonneg[0]; k++)
         if (!(nonneg[k].value >= 0 && isfinite(nonneg[k].value)))
@@ -210,8 +210,8 @@ static int set_drive(whirl_regime *w, const whirl_regime_params *p, double omega
                              .frame = p->frame,
                              .omega = omega,
                              .drive_radius = eps,
-                             .air_drag = p->drag,
-                             .air_drag_quadratic = p->drag_quadratic,
+                             .air_drag = p->air_drag,
+                             .air_drag_quadratic = p->air_drag_quadratic,
                              .internal_damping = p->internal_damping};
     w->dyn = whirl_dyn_alloc(&w->model, WHIRL_FORMULATION_CARTESIAN);
     if (w->dyn == NULL) return GSL_EINVAL;
@@ -290,30 +290,17 @@ static int advance(whirl_regime *w, const whirl_regime_params *p, double dt_tota
     return GSL_SUCCESS;
 }
 
-/* The hanging chain at rest in the inertial frame, each link turned by p->perturb about a random
- * horizontal axis; the pivot at its place at t = 0 of the first segment, moving with the hand. */
+/* The hanging chain at rest in the inertial frame, each link turned by p->perturb
+ * (whirl_perturb_links); the pivot at its place at time w->t, moving with the hand. */
 static int start_from_rest(whirl_regime *w, const whirl_regime_params *p)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    gsl_rng_set(rng, p->seed);
-    const double eps = w->model.drive_radius, omega = w->model.omega;
-    const int rotating = p->frame == WHIRL_FRAME_ROTATING;
-    double r[3] = {eps, 0, 0};
     for (size_t i = 0; i < w->n; i++) {
-        const double l = w->chain->length[i], psi = 2 * M_PI * gsl_rng_uniform(rng);
-        const double d[3] = {l * sin(p->perturb) * cos(psi), l * sin(p->perturb) * sin(psi),
-                             -l * cos(p->perturb)};
-        for (int k = 0; k < 3; k++) r[k] += d[k];
-        double *x = w->x + 3 * i, *v = w->v + 3 * i;
-        memcpy(x, r, sizeof r);
-        /* inertial velocity omega z x pivot for every mass; relative to the frame in rotating */
-        v[0] = rotating ? omega * x[1] : 0;
-        v[1] = rotating ? -omega * (x[0] - eps) : omega * eps;
-        v[2] = 0;
+        w->x[3 * i] = w->x[3 * i + 1] = 0;
+        w->x[3 * i + 2] = -w->chain->length[i];
     }
-    gsl_rng_free(rng);
-    return whirl_dyn_set_state(w->dyn, w->t, w->x, w->v, w->y);
+    int status = whirl_perturb_links(w->n, w->x, p->perturb, p->seed);
+    if (status) return status;
+    return whirl_dyn_state_from_shape(w->dyn, w->t, w->x, 0, w->y);
 }
 
 /* RMS over the masses of |a_i - b_i| (3 per mass). */
@@ -345,8 +332,8 @@ static int shape_nodes(whirl_regime *w)
 static void compare_with_steady(whirl_regime *w, const whirl_regime_params *p,
                                 whirl_regime_result *res)
 {
-    const whirl_driven_params dp = {.omega = w->model.omega, .eps = w->model.drive_radius,
-                                    .drag = p->drag, .drag_quadratic = p->drag_quadratic};
+    whirl_driven_params dp;
+    whirl_driven_params_from_model(&dp, &w->model);
     whirl_driven_info info;
     res->shape_error = NAN;
     res->bvp_nodes = 0;
@@ -532,7 +519,7 @@ static int from_rest(whirl_regime *w, const whirl_regime_params *p, double omega
     w->next_observe = 0;
     const size_t segments = (size_t)ceil(p->t_ramp / p->ramp_step * (1 - 1e-12));
     const double h = p->t_ramp / (double)segments;
-    int status = set_drive(w, p, omega, p->eps * smooth_step(0.5 / (double)segments));
+    int status = set_drive(w, p, omega, p->drive_radius * smooth_step(0.5 / (double)segments));
     if (status == GSL_SUCCESS) status = start_from_rest(w, p);
     if (status) return status;
     if (w->observer) {
@@ -541,10 +528,10 @@ static int from_rest(whirl_regime *w, const whirl_regime_params *p, double omega
         if (status) return status;
     }
     for (size_t k = 0; k < segments && status == GSL_SUCCESS; k++) {
-        status = set_drive(w, p, omega, p->eps * smooth_step((k + 0.5) / (double)segments));
+        status = set_drive(w, p, omega, p->drive_radius * smooth_step((k + 0.5) / (double)segments));
         if (status == GSL_SUCCESS) status = advance(w, p, h, NULL);
     }
-    if (status == GSL_SUCCESS) status = set_drive(w, p, omega, p->eps);
+    if (status == GSL_SUCCESS) status = set_drive(w, p, omega, p->drive_radius);
     if (status == GSL_SUCCESS) status = settle(w, p, p->t_max - p->t_ramp, res);
     return status;
 }
@@ -585,7 +572,7 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
         for (size_t k = 1; k <= segments && status == GSL_SUCCESS; k++) {
             const double u = (double)k / (double)segments;
             const double wk = omega[j - 1] + (omega[j] - omega[j - 1]) * u;
-            status = set_drive(w, p, wk, p->eps);
+            status = set_drive(w, p, wk, p->drive_radius);
             if (status == GSL_SUCCESS) status = advance(w, p, h, NULL);
         }
         if (status == GSL_SUCCESS) status = settle(w, p, p->t_max - p->t_ramp, &res[j]);

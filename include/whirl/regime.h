@@ -63,11 +63,14 @@ typedef enum {
 
 /* Parameters of one run (never changed by the library). Units: L = M = g = 1. */
 typedef struct whirl_regime_params {
-    double omega;            /* rate of the hand [sqrt(g/L)], > 0 */
-    double eps;              /* radius of the hand's circle [L], 0 < eps < 1 */
-    double drag;             /* linear air drag per unit length (whirl_model.air_drag), >= 0 */
-    double drag_quadratic;   /* quadratic air drag per unit length, >= 0 */
-    double internal_damping; /* whirl_model.internal_damping, >= 0 (default 0) */
+    /* omega, drive_radius, air_drag, air_drag_quadratic, internal_damping and frame are
+       whirl_model's (dynamics.h), with the same names, meaning and units */
+    double omega;              /* rate of the hand [sqrt(g/L)], > 0 */
+    double drive_radius;       /* eps: radius of the hand's circle at the end of the ramp [L],
+                                  0 < eps < 1 */
+    double air_drag;           /* linear air drag per unit length, >= 0 (default 0) */
+    double air_drag_quadratic; /* quadratic air drag per unit length, >= 0 (default 0) */
+    double internal_damping;   /* >= 0 (default 0) */
     whirl_frame frame;       /* frame of the integration (default rotating) */
     const char *method;      /* integrator (dynamics.h), e.g. "rk4" or "gauss2" */
     double dt;               /* fixed step [T], > 0 */
@@ -84,7 +87,7 @@ typedef struct whirl_regime_params {
     unsigned long seed;      /* seed of those turns (GSL's MT19937) */
 } whirl_regime_params;
 
-/* Defaults of every field but omega and eps: drag 0, rotating frame, "rk4", dt = 0.1 / N,
+/* Defaults of every field but omega and drive_radius: drag 0, rotating frame, "rk4", dt = 0.1 / N,
  * t_ramp 20, ramp_step 0.5, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
  * lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
 WHIRL_API void whirl_regime_params_default(whirl_regime_params *p, size_t links);

@@ -23,7 +23,6 @@
 #include <time.h>
 
 #include <gsl/gsl_math.h>
-#include <gsl/gsl_rng.h>
 
 #include "cli/cli.h"
 #include "whirl/chain.h"
@@ -73,30 +72,6 @@ static void accumulate(size_t n, double *d)
         for (int k = 0; k < 3; k++) d[3 * i + k] += d[3 * (i - 1) + k];
 }
 
-/* Turns the vector d by angle p about an axis perpendicular to it chosen uniformly at random. */
-static void turn_randomly(double *d, double p, gsl_rng *rng)
-{
-    const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    const double u[3] = {d[0] / len, d[1] / len, d[2] / len};
-    /* e1: u x (the coordinate axis least aligned with u), normalised; e2 = u x e1 */
-    int axis = 0;
-    for (int k = 1; k < 3; k++)
-        if (fabs(u[k]) < fabs(u[axis])) axis = k;
-    double a[3] = {0, 0, 0}, e1[3], e2[3];
-    a[axis] = 1;
-    e1[0] = u[1] * a[2] - u[2] * a[1];
-    e1[1] = u[2] * a[0] - u[0] * a[2];
-    e1[2] = u[0] * a[1] - u[1] * a[0];
-    const double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-    for (int k = 0; k < 3; k++) e1[k] /= n1;
-    e2[0] = u[1] * e1[2] - u[2] * e1[1];
-    e2[1] = u[2] * e1[0] - u[0] * e1[2];
-    e2[2] = u[0] * e1[1] - u[1] * e1[0];
-    const double psi = 2 * M_PI * gsl_rng_uniform(rng), c = cos(p), s = sin(p);
-    for (int k = 0; k < 3; k++)
-        d[k] = len * (c * u[k] + s * (cos(psi) * e1[k] + sin(psi) * e2[k]));
-}
-
 /* The link vectors d (3 per link) of the N-link steady shape of mode k at omega, in the x-z
  * plane; key names the scene key to blame if there is none. 0, or 1 after an error. */
 static int mode_links(run *r, double omega, int mode, whirl_scene_key key, double *d)
@@ -126,16 +101,13 @@ static int mode_links(run *r, double omega, int mode, whirl_scene_key key, doubl
     return 0;
 }
 
-/* Turns every link vector d_i of x by [start] perturb at random (seeded). 0, or 1 (error). */
+/* Turns every link vector d_i of x by [start] perturb (whirl_perturb_links). 0, or 1 (error). */
 static int perturb_links(run *r)
 {
     const whirl_scene *s = &r->scene;
     if (!(s->perturb > 0)) return 0;
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return cli_error(r->cmd, "out of memory");
-    gsl_rng_set(rng, s->seed);
-    for (size_t i = 0; i < r->n; i++) turn_randomly(r->x + 3 * i, s->perturb, rng);
-    gsl_rng_free(rng);
+    if (whirl_perturb_links(r->n, r->x, s->perturb, s->seed) != GSL_SUCCESS)
+        return cli_error(r->cmd, "%s", whirl_last_error());
     return 0;
 }
 
