@@ -8,7 +8,8 @@
  * Equations (Baraff 1996, "Linear-time dynamics using Lagrange multipliers", SIGGRAPH): with
  * multipliers lambda_i (tension T_i = lambda_i l_i) and the per-mass acceleration
  * g_i = gvec + a_field(x_i, v_i) + f_i / m_i (gravity, in the co-rotating frame the centrifugal
- * w^2 (x, y, 0) and Coriolis 2 w (v_y, -v_x, 0) fields, applied forces f_i),
+ * w^2 (x, y, 0), Coriolis 2 w (v_y, -v_x, 0) and, with a rate w(t) that changes, Euler
+ * w' (y, -x, 0) fields, applied forces f_i),
  *   m_i a_i = m_i g_i - lambda_i d_i + lambda_{i+1} d_{i+1}      (lambda_{N+1} = 0),
  *   d_i'' = a_i - a_{i-1},  a_0 = p''(t) the pivot's prescribed acceleration.
  * The second derivative of |d_i|^2 = l_i^2, d_i . d_i'' = -|d_i'|^2, gives the symmetric
@@ -132,9 +133,12 @@ static void solve_multipliers(whirl_dyn *d, double t, const double *y)
 {
     const whirl_model *m = &d->model;
     const double *mass = m->chain->mass, *inv_mass = d->inv_mass;
-    const double w = m->omega, g = m->chain->gravity;
+    const double g = m->chain->gravity;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
     const size_t n = d->n;
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    const double w = dr.omega, dw = dr.domega;
     whirl_dyn_prepare_forces(d, t, y, 1);
     double p[3], pv[3], pa[3];
     whirl_dyn_pivot(d, t, p, pv, pa);
@@ -150,6 +154,10 @@ static void solve_multipliers(whirl_dyn *d, double t, const double *y)
         if (rotating) {
             acc[0] += w * w * xr[0] + 2 * w * vr[1];
             acc[1] += w * w * xr[1] - 2 * w * vr[0];
+            if (dw != 0) { /* Euler: -w' z x x */
+                acc[0] += dw * xr[1];
+                acc[1] -= dw * xr[0];
+            }
         }
         if (i == 0) {
             acc[2] -= g;

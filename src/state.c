@@ -96,9 +96,10 @@ int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, doub
     const whirl_model *m = &d->model;
     const size_t n = d->n;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
-    double eps, omega, phase;
-    whirl_dyn_drive(d, t, &eps, &omega, &phase);
-    const double a = rotating || d->dim == 2 ? 0 : phase, w = spin - (rotating ? omega : 0);
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    const double a = rotating || d->dim == 2 ? 0 : dr.phase;
+    const double w = spin - (rotating ? dr.omega : 0);
     if (d->dim == 2 && spin != 0)
         return whirl_fail(GSL_EINVAL, "a planar model cannot hold a shape spinning at %g", spin);
     double *x = malloc(6 * n * sizeof *x);

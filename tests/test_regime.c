@@ -174,7 +174,8 @@ static void test_sweep(void **state)
     p.frame = WHIRL_FRAME_INERTIAL;
     assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res), GSL_EINVAL);
     p.frame = WHIRL_FRAME_ROTATING;
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0.1, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, NAN, res), GSL_EINVAL);
     whirl_regime_free(w);
     whirl_chain_free(chain);
 }
@@ -196,14 +197,15 @@ static int watch(void *ctx, double t, double angle, const double *pivot, const d
     return GSL_SUCCESS;
 }
 
-/* Driven hard between omega_3 and omega_4 on a wide circle, the chain flails: chaotic,
- * lambda > 0. The 30-period estimate depends on the random start: over the seeds 1..8 it was
- * 0.25..0.49 here (at omega 5.8, eps 0.1 it ranged over 0.06..2.9, too close to the threshold). */
+/* Driven hard between omega_3 and omega_4 on a wide circle with little drag, the chain flails:
+ * chaotic, lambda > 0. The 30-period estimate depends on the random start: over the seeds 1..8
+ * it was 0.29..0.86 here (at omega 5.8, eps 0.1, drag 0.05 it ranged over 0.06..2.9, and the
+ * threshold 10 chaos_lambda was met by some seeds only). */
 static void test_chaotic_and_observer(void **state)
 {
     (void)state;
     whirl_chain *chain = whirl_chain_alloc_uniform(LINKS, 0);
-    whirl_regime_params p = params(4.0, 0.15, 0.05);
+    whirl_regime_params p = params(4.0, 0.15, 0.02);
     p.t_max = 100;
     p.lyapunov_periods = 30;
     whirl_regime *w = whirl_regime_alloc(chain);
@@ -212,7 +214,7 @@ static void test_chaotic_and_observer(void **state)
     whirl_regime_result r;
     assert_int_equal(whirl_regime_run(w, &p, &r), GSL_SUCCESS);
     assert_int_equal(r.state, WHIRL_REGIME_CHAOTIC);
-    assert_true(r.lyapunov > 4 * p.chaos_lambda);
+    assert_true(r.lyapunov > 5 * p.chaos_lambda);
     assert_true(isnan(r.shape_error));
     assert_int_equal(s.calls, (int)floor(r.t_end / 0.25 + 1e-9) + 1);
     assert_true(s.max_angle_error < 1e-9 * r.t_end * 4.0);
@@ -242,7 +244,6 @@ static void test_errors(void **state)
     BAD(internal_damping, INFINITY);
     BAD(dt, 0);
     BAD(t_ramp, -1);
-    BAD(ramp_step, 30);
     BAD(t_max, 10);
     BAD(settle_tol, 0);
     BAD(settle_periods, 0);

@@ -23,6 +23,17 @@
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
 
+/* A quantity ramped in time by a C1 smooth step: from before t_start, to after t_end and
+ * from + (to - from) s(u) between, u = (t - t_start) / (t_end - t_start), s(u) = u^2 (3 - 2 u)
+ * (continuous with its first derivative; the second jumps at t_start and t_end). A ramp with
+ * all four fields 0 is inactive (the default); an active one needs t_end > t_start, all finite. */
+typedef struct whirl_ramp {
+    double from;    /* value up to t_start */
+    double to;      /* value from t_end on */
+    double t_start; /* start of the ramp [T] */
+    double t_end;   /* end of the ramp [T], > t_start */
+} whirl_ramp;
+
 /* The model: parameters only, never changed by the library. */
 typedef struct whirl_model {
     const whirl_chain *chain;  /* the chain (not owned: must outlive the workspace) */
@@ -45,6 +56,12 @@ typedef struct whirl_model {
        f_d = sigma_d - lambda_d thetadot_d; arrays of chain->n or NULL for none (seed eq. 25-26) */
     const double *seed_sigma;
     const double *seed_lambda;
+    /* A drive that depends on time (default: both inactive, the constant drive above). When
+       active, a ramp replaces the constant: eps(t) for drive_radius (from, to >= 0), omega(t)
+       for omega (the drive's rate and, WHIRL_FRAME_ROTATING, the frame's: its angle, the
+       drive's phase, is phi(t) = int_0^t omega, and the Euler force -omega' z x x acts). */
+    whirl_ramp drive_radius_ramp;
+    whirl_ramp omega_ramp;
 } whirl_model;
 
 typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
@@ -55,6 +72,21 @@ WHIRL_API whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation
 WHIRL_API void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
 
 WHIRL_API const whirl_model *whirl_dyn_model(const whirl_dyn *d);
+
+/* The drive at time t: radius eps(t) [L], rate omega(t) [1/T] and phase phi(t) [rad] (the
+ * pivot's angle about z in the inertial frame and the co-rotating frame's angle, int_0^t omega;
+ * omega t for a constant drive). Any output may be NULL. */
+WHIRL_API void whirl_dyn_drive_at(const whirl_dyn *d, double t, double *radius, double *omega,
+                        double *phase);
+
+/* Replaces the model's drive_radius_ramp and omega_ramp (NULL: keep that one) of d at time t,
+ * e.g. to change the rate in the middle of a run; allocates nothing. The phase phi stays
+ * continuous at t (from t on it is phi(t) plus the integral of the new omega(t) from t). The
+ * state vector keeps its meaning (in the co-rotating frame: rates relative to the frame); for
+ * the motion to stay smooth the new ramps should start from the drive's values at t. GSL_EINVAL
+ * on an invalid ramp or t (d is then unchanged). */
+WHIRL_API int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
+                        const whirl_ramp *omega);
 WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 
 /* Length of the state vector y. */

@@ -174,9 +174,8 @@ static int check_options(const cli_command *cmd, regime_options *o)
     if (!(o->trace_every > 0))
         return cli_error(cmd, "--trace-every must be > 0, got %g", o->trace_every);
     if (o->t_change_given && !o->sweep) return cli_error(cmd, "--t-change applies to --sweep");
-    if (!(o->t_change >= o->p.ramp_step))
-        return cli_error(cmd, "--t-change must be >= --ramp-step (%g), got %g", o->p.ramp_step,
-                         o->t_change);
+    if (!(o->t_change > 0 && isfinite(o->t_change)))
+        return cli_error(cmd, "--t-change must be > 0, got %g", o->t_change);
     return 0;
 }
 
@@ -191,10 +190,10 @@ static void write_parameters(FILE *fp, const regime_options *o)
 {
     const whirl_regime_params *p = &o->p;
     fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
-            "frame=%s method=%s dt=%s t_ramp=%s ramp_step=%s t_max=%s "
+            "frame=%s method=%s dt=%s t_ramp=%s t_max=%s "
             "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
             "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->air_drag), CLI_NUM(p->air_drag_quadratic),
-            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->ramp_step), CLI_NUM(p->t_max),
+            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->t_max),
             CLI_NUM(p->settle_tol), p->settle_periods, CLI_NUM(p->periodic_tol), p->lyapunov_periods,
             CLI_NUM(p->chaos_lambda), CLI_NUM(p->perturb), p->seed);
     if (is_map(o))
@@ -599,9 +598,12 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         fprintf(out.fp, "0,%s,%s,", CLI_NUM(o->omega), CLI_NUM(o->eps));
         write_result(out.fp, &r);
     }
-    if (trace_open) {
-        if (rc == 0) rc = cli_out_commit(cmd, &trace);
-        else cli_out_abort(&trace);
+    if (trace_open) { /* an interrupted run keeps its trace so far */
+        if (rc == 0 || rc == CLI_EXIT_INTERRUPTED) {
+            if (cli_out_commit(cmd, &trace) != 0 && rc == 0) rc = 1;
+        } else {
+            cli_out_abort(&trace);
+        }
     }
     if (rc == 0) rc = cli_out_commit(cmd, &out);
     else cli_out_abort(&out);
@@ -689,7 +691,6 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
         {"--method", NULL, CLI_STRING, &o.p.method, NULL, "M", "integrator (default rk4)"},
         {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)"},
         {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)"},
-        {"--ramp-step", NULL, CLI_DOUBLE, &o.p.ramp_step, NULL, "H", "staircase segment of the ramps (default 0.5)"},
         {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T", "end of a run that has not settled (default 400)"},
         {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D", "distance left to the steady shape [L] (default 1e-3)"},
         {"--settle-periods", NULL, CLI_DOUBLE, &settle_periods, NULL, "K", "periods that must pass (default 3)"},
