@@ -462,6 +462,23 @@ int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_fra
     return GSL_SUCCESS;
 }
 
+static int system_project(double t, double y[], void *params)
+{
+    return whirl_dyn_project(params, t, y);
+}
+
+int whirl_dyn_system(whirl_dyn *d, whirl_system *sys)
+{
+    if (d == NULL || sys == NULL) return whirl_fail(GSL_EINVAL, "whirl_dyn_system: needs d, sys");
+    *sys = (whirl_system){.rhs = whirl_dyn_rhs,
+                          .project = system_project,
+                          .size = d->size,
+                          .params = d,
+                          .second_order = 1,
+                          .acceleration_scale = d->model.chain->gravity};
+    return GSL_SUCCESS;
+}
+
 int whirl_dyn_project(whirl_dyn *d, double t, double *y)
 {
     return d->ops->project(d, y); /* the constraints do not depend on t */

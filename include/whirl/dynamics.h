@@ -19,6 +19,7 @@
 
 #include "whirl/chain.h"
 #include "whirl/common.h"
+#include "whirl/integrator.h"
 
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
@@ -165,48 +166,19 @@ int whirl_default_step(const whirl_model *m, const double *tension, const char *
  * masses of their distance, minimised over a rotation of x about z. */
 WHIRL_API double whirl_deviation(size_t n, const double *x, const double *ref);
 
-/* ---- integrators ----
- * Methods: "gauss2" (2-stage Gauss-Legendre, order 4, the seed's), "gauss3" (order 6), "rk4"
- * (classical, explicit), "rk8" (Prince-Dormand RK8(7)13M, explicit, 13 evaluations per step,
- * GSL's standard step control), and GSL's steppers on the same right-hand side: "gsl-rk8pd",
- * "gsl-rk4imp", "gsl-msadams", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". gauss2, gauss3, rk4 take
- * fixed steps only; rk8 and the GSL steppers fixed or adaptive steps, except the multistep
- * gsl-msadams and gsl-msbdf: adaptive only. The Gauss methods solve their stage equations by
- * fixed-point iteration, which converges for h omega_max rho(A) < 1 (rho(A) = 0.289 gauss2,
- * 0.215 gauss3; omega_max ~ 2 N sqrt(T_top/(M g)) sqrt(g/L) for a uniform chain): a larger step
- * fails with GSL_EMAXITER. */
-typedef struct whirl_integrator whirl_integrator;
+/* ---- integrators (whirl/integrator.h) on the dynamics ----
+ * The Gauss methods' fixed-point stage iteration converges for h omega_max rho(A) < 1 with
+ * omega_max ~ 2 N sqrt(T_top/(M g)) sqrt(g/L) for a uniform chain (whirl_default_step keeps
+ * below it). */
 
-typedef struct whirl_integrator_stats {
-    unsigned long steps;      /* accepted steps */
-    unsigned long rejected;   /* rejected steps (adaptive) */
-    unsigned long rhs_evals;  /* right-hand side evaluations */
-    unsigned long iterations; /* stage-equation iterations (implicit methods) */
-} whirl_integrator_stats;
+/* sys <- the dynamics d as a general system: rhs whirl_dyn_rhs, project whirl_dyn_project,
+ * size whirl_dyn_size(d), params d, second order, acceleration scale the chain's gravity.
+ * GSL_EINVAL on NULL arguments. */
+WHIRL_API int whirl_dyn_system(whirl_dyn *d, whirl_system *sys);
 
-/* NULL-terminated list of the method names. */
-WHIRL_API const char *const *whirl_integrator_methods(void);
-
-/* An integrator of the given method for the dynamics d (not owned). NULL on an unknown method
- * (message lists the known ones) or no memory. */
+/* An integrator of the method called method (whirl_integrator_methods) for the dynamics d (not
+ * owned): whirl_integrator_alloc_system on whirl_dyn_system(d). NULL on an unknown method (the
+ * message lists the known ones), d NULL or no memory. */
 WHIRL_API whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
-WHIRL_API void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
-
-/* The smallest adaptive tolerance: finer relative accuracy is below the round-off of doubles. */
-#define WHIRL_TOL_MIN 1e-16
-/* The smallest adaptive step, in units of round-off of t (DBL_EPSILON max(|t|, 1)). */
-#define WHIRL_STEP_MIN_ULPS 64
-
-/* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
- * shortened); with tol > 0 adaptively (relative and absolute tolerance tol, h the first step) for
- * the methods that allow it, GSL_EINVAL for the others. Projects onto the constraints after each
- * step. Stops with the status of a failing right-hand side or stage solve (t, y then hold the
- * last good state); GSL_EINVAL for tol in (0, WHIRL_TOL_MIN); GSL_EFAILED when an adaptive step
- * falls below WHIRL_STEP_MIN_ULPS units of round-off of t; WHIRL_EINTERRUPTED once a stop is
- * requested (polled in every right-hand side). Allocates nothing. */
-WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
-                                       double h, double tol);
-
-WHIRL_API whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
 
 #endif
