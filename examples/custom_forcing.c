@@ -10,7 +10,7 @@
  *   tan(phi) = 2 zeta w W / (w^2 - W^2).
  * Check (exit 1 on failure): at t = 200 (transient down by exp(-zeta w 200) = 4e-11) both
  * methods give x and v within 1e-8 A (resp. 1e-8 A W) of the steady response. Prints both
- * errors and the integrators' statistics. */
+ * end states, the steady response and the integrators' step counts. */
 #include <math.h>
 #include <stdio.h>
 
@@ -54,13 +54,12 @@ int main(void)
         }
         const double ex = fabs(y[0] - xs) / A, ev = fabs(y[1] - vs) / (A * p.W);
         const whirl_integrator_stats st = whirl_integrator_get_stats(it);
-        printf("%-6s x %.12f v %.12f: relative errors %.2g %.2g; %lu steps, %lu rejected, "
-               "%lu right-hand sides\n",
-               whirl_integrator_type_name(runs[k].type), y[0], y[1], ex, ev, st.steps,
-               st.rejected, st.rhs_evals);
+        printf("%-6s x %.9f v %.9f: errors below 1e-8 A: %s; %lu steps, %lu rejected\n",
+               whirl_integrator_type_name(runs[k].type), y[0], y[1],
+               ex < 1e-8 && ev < 1e-8 ? "yes" : "no", st.steps, st.rejected);
         ok = ok && ex < 1e-8 && ev < 1e-8;
         whirl_integrator_free(it);
     }
-    printf("steady response: x %.12f v %.12f (A %.12f)\n%s\n", xs, vs, A, ok ? "PASS" : "FAIL");
+    printf("steady response: x %.9f v %.9f (A %.9f)\n%s\n", xs, vs, A, ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }

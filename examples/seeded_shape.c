@@ -15,7 +15,8 @@
  * solver and the dynamics are two formulations of the same equilibrium); the perturbed run's
  * deviation stays below 20 times its start over 20 periods; the Jacobi integral E - omega L_z,
  * conserved in the co-rotating frame without dissipation, drifts by less than 1e-9 relative.
- * Prints t, deviation of both runs, and the integrator's statistics. */
+ * Prints the perturbed run's deviation every 5 periods, the checks, and the integrator's
+ * statistics. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,14 +54,13 @@ static int run(const whirl_chain *chain, double omega, const double *links, doub
         if (status) break;
         const double dev = whirl_deviation(N, x, ref);
         if (dev > *worst) *worst = dev;
-        if (k % 20 == 0) printf("%s %8.3f %.6e\n", angle > 0 ? "perturbed" : "exact", t, dev);
+        if (k % 20 == 0 && angle > 0) printf("perturbed %8.3f %.3e\n", t, dev);
     }
     if (!status) status = whirl_dyn_diagnose(dyn, t, y, &d1);
     *drift = status ? 0 : fabs(d1.jacobi - d0.jacobi) / fabs(d0.jacobi);
     if (!status) {
         whirl_integrator_stats st = whirl_integrator_get_stats(it);
-        printf("# %s: step %.4g, %lu steps, %lu right-hand sides, %lu stage iterations\n",
-               angle > 0 ? "perturbed" : "exact", h, st.steps, st.rhs_evals, st.iterations);
+        printf("# %s: step %.4g, %lu steps\n", angle > 0 ? "perturbed" : "exact", h, st.steps);
     } else {
         fprintf(stderr, "seeded_shape: %s\n", whirl_last_error());
     }
@@ -87,16 +87,18 @@ int main(void)
         ref[3 * i + 1] = 0;
         ref[3 * i + 2] = z[i + 1];
     }
-    printf("# mode 1 at omega %g: tip radius %.10f\n", omega, info.tip_r);
+    printf("# mode 1 at omega %g: tip radius %.8f\n", omega, info.tip_r);
     double worst0, start0, drift0, worst1, start1, drift1; /* start0 is 0 */
     if (run(chain, omega, links, 0, ref, 20, &worst0, &start0, &drift0) ||
         run(chain, omega, links, 1e-4, ref, 20, &worst1, &start1, &drift1))
         return 1;
     whirl_chain_free(chain);
-    printf("# exact start: largest deviation %.3g; perturbed: start %.3g, largest %.3g (x%.2f); "
-           "Jacobi drift %.2g, %.2g\n",
-           worst0, start1, worst1, worst1 / start1, drift0, drift1);
     int ok = worst0 < 1e-10 && worst1 < 20 * start1 && drift0 < 1e-9 && drift1 < 1e-9;
+    printf("# exact start: largest deviation below 1e-10: %s\n", worst0 < 1e-10 ? "yes" : "no");
+    printf("# perturbed: start %.3e, largest %.3e, below 20 times the start: %s\n", start1, worst1,
+           worst1 < 20 * start1 ? "yes" : "no");
+    printf("# Jacobi drift below 1e-9 in both runs: %s\n",
+           drift0 < 1e-9 && drift1 < 1e-9 ? "yes" : "no");
     printf("%s\n", ok ? "PASS" : "FAIL");
     return ok ? 0 : 1;
 }

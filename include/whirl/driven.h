@@ -66,7 +66,7 @@ typedef struct whirl_driven_params {
 
 /* p <- the drive and drag of the model m (omega, drive_radius, air_drag, air_drag_quadratic;
  * tip_mass 0). The model's internal damping, frame and dimension play no part in a steady shape. */
-void whirl_driven_params_from_model(whirl_driven_params *p, const whirl_model *m);
+WHIRL_API void whirl_driven_params_from_model(whirl_driven_params *p, const whirl_model *m);
 
 /* One steady shape. */
 typedef struct whirl_driven_info {

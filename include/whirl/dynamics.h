@@ -133,14 +133,14 @@ WHIRL_API int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y,
  * first) are (nx, ny, nz) (ny NULL: a planar shape, y = 0), e.g. the r, z of
  * whirl_nlink_positions or the x, y, z of whirl_driven_sample. GSL_EINVAL on NULL arrays,
  * n = 0 or a node that is not finite. */
-int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
+WHIRL_API int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
                       double *links);
 
 /* The one perturbation rule of the library: each of the n link vectors (3 per link, in place)
  * turned by angle [rad] (>= 0) towards a random direction perpendicular to it, uniform on the
  * circle of such directions (GSL's MT19937 seeded with seed); lengths kept. GSL_EINVAL on NULL,
  * n = 0, a bad angle or a zero link; GSL_ENOMEM. */
-int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
+WHIRL_API int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
 
 /* y <- the state of d at time t (length whirl_dyn_size) of the shape whose link vectors are
  * links (3 per link, the shape's own frame: pivot first, z up) turning rigidly at the rate spin
@@ -151,7 +151,7 @@ int whirl_perturb_links(size_t n, double *links, double angle, unsigned long see
  * A planar model (dim 2) needs spin = 0. The links must have the chain's lengths (to 1e-9
  * relative, whirl_dyn_set_state). GSL_EINVAL with a message on NULL or inconsistent
  * arguments; GSL_ENOMEM (allocates 6 N doubles of scratch and frees them). */
-int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
+WHIRL_API int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
                                double *y);
 
 /* *h <- the library's default fixed step for a run of the model m with the integrator method
@@ -159,7 +159,7 @@ int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, doub
  * period 2 pi / omega, the stability limit of the fastest transverse wave under the tensions
  * and those of the damping and the air drag (src/state.c gives the bounds). GSL_EINVAL on NULL
  * arguments, omega <= 0 or a negative tension. */
-int whirl_default_step(const whirl_model *m, const double *tension, const char *method,
+WHIRL_API int whirl_default_step(const whirl_model *m, const double *tension, const char *method,
                        double *h);
 
 /* Deviation of the positions x (3 per mass, N masses) from the reference ref: the RMS over the

@@ -222,32 +222,32 @@ typedef struct whirl_scene_result {
  * must outlive the result). NULL on failure, with the message "FILE:LINE: [section] key:
  * problem" naming the key to blame (no steady shape of the mode, unknown method, a step the
  * method cannot take, ...). */
-whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *scene);
-void whirl_scene_work_free(whirl_scene_work *w); /* NULL is a no-op */
+WHIRL_API whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *scene);
+WHIRL_API void whirl_scene_work_free(whirl_scene_work *w); /* NULL is a no-op */
 
 /* The run's dynamics and its current state (whirl_dyn_size values). */
-const whirl_dyn *whirl_scene_work_dyn(const whirl_scene_work *w);
-const double *whirl_scene_work_state(const whirl_scene_work *w);
+WHIRL_API const whirl_dyn *whirl_scene_work_dyn(const whirl_scene_work *w);
+WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
 
 /* Runs from t = 0 to t_end (once per workspace), reporting through out. GSL_SUCCESS (also when
  * stop_deviation ended the run: res->stopped), WHIRL_EINTERRUPTED after a stop request, the
  * status of a callback that stopped it, or the integration's failure ("the run failed after t =
  * ..."); res describes how far it got in every case (the rows reported so far are valid). */
-int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
+WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res);
 
 /* CSV: the header (comment lines, then the column names), one row (the scene's columns of
  * value[WHIRL_NCOLUMNS]), one trace frame ("# t = T", then "x y z t" of the pivot and of every
  * mass; blocks after the first (index > 0) begin with two empty lines). GSL_EFAILED if fp has
  * an error. */
-int whirl_scene_write_header(FILE *fp, const whirl_scene *scene);
-int whirl_scene_write_row(FILE *fp, const whirl_scene *scene, const double *value);
-int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, const double *pivot,
+WHIRL_API int whirl_scene_write_header(FILE *fp, const whirl_scene *scene);
+WHIRL_API int whirl_scene_write_row(FILE *fp, const whirl_scene *scene, const double *value);
+WHIRL_API int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, const double *pivot,
                             const double *x, size_t n);
 
 /* The whole run: whirl_scene_work_alloc, the header and every row to csv, the frames to trace
  * (NULL: none), whirl_scene_work_free. Returns as whirl_scene_work_run (or the allocation's
  * failure). */
-int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
+WHIRL_API int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
 
 #endif
