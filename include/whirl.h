@@ -8,6 +8,7 @@
 #include "whirl/chain.h"
 #include "whirl/steady.h"
 #include "whirl/dynamics.h"
+#include "whirl/integrator.h"
 #include "whirl/scene.h"
 #include "whirl/stability.h"
 #include "whirl/optimize.h"

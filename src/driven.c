@@ -87,7 +87,7 @@ typedef struct problem {
 static void load(const problem *pb, double wm, double wl, const double *r, double *b,
                  double db[3][3], double *dbw)
 {
-    const double w = pb->omega, c = pb->p.drag, c2 = pb->p.drag_quadratic;
+    const double w = pb->omega, c = pb->p.air_drag, c2 = pb->p.air_drag_quadratic;
     const double x = r[0], y = r[1];
     const double rho = hypot(x, y);
     const double k = wl * w * (c + c2 * w * rho);          /* wl omega (c + c2 omega rho) */
@@ -289,7 +289,7 @@ static int shoot(problem *pb, const double *u, double *r, double *F, double dr[3
  * Y = 0 then replaces the second equation (whose Jacobian vanishes at eps = 0). */
 static int planar(const problem *pb)
 {
-    return pb->p.drag == 0 && pb->p.drag_quadratic == 0;
+    return pb->p.air_drag == 0 && pb->p.air_drag_quadratic == 0;
 }
 
 /* The pivot miss R (2) and dR/du (J rows 0, 1) at u. */
@@ -298,7 +298,7 @@ static int pivot_miss(problem *pb, const double *u, double *R, double J[3][3])
     double r[3], F[3], dr[3][3];
     int status = shoot(pb, u, r, F, dr);
     if (status) return status;
-    R[0] = r[0] - pb->p.eps;
+    R[0] = r[0] - pb->p.drive_radius;
     R[1] = r[1];
     for (int k = 0; k < NPAR; k++) J[0][k] = dr[0][k], J[1][k] = dr[1][k];
     if (planar(pb)) {
@@ -395,27 +395,27 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
     if (!(isfinite(p->omega) && p->omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be positive and finite, got %g", p->omega);
     if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
-    if (!(isfinite(p->eps) && p->eps >= 0))
-        return whirl_fail(GSL_EINVAL, "eps must be >= 0 and finite, got %g", p->eps);
-    if (!(isfinite(p->drag) && p->drag >= 0))
-        return whirl_fail(GSL_EINVAL, "drag must be >= 0 and finite, got %g", p->drag);
-    if (!(isfinite(p->drag_quadratic) && p->drag_quadratic >= 0))
+    if (!(isfinite(p->drive_radius) && p->drive_radius >= 0))
+        return whirl_fail(GSL_EINVAL, "eps must be >= 0 and finite, got %g", p->drive_radius);
+    if (!(isfinite(p->air_drag) && p->air_drag >= 0))
+        return whirl_fail(GSL_EINVAL, "drag must be >= 0 and finite, got %g", p->air_drag);
+    if (!(isfinite(p->air_drag_quadratic) && p->air_drag_quadratic >= 0))
         return whirl_fail(GSL_EINVAL, "quadratic drag must be >= 0 and finite, got %g",
-                          p->drag_quadratic);
-    if (p->drag > DRAG_MAX || p->drag_quadratic > DRAG_MAX)
+                          p->air_drag_quadratic);
+    if (p->air_drag > DRAG_MAX || p->air_drag_quadratic > DRAG_MAX)
         return whirl_fail(GSL_EINVAL, "drag coefficients above %g are refused (got %g, %g): the "
                           "continuation from the drag-free shape takes ever longer and is lost "
-                          "far below (near 1.5e3 at omega 3, eps 0.01)", DRAG_MAX, p->drag,
-                          p->drag_quadratic);
+                          "far below (near 1.5e3 at omega 3, eps 0.01)", DRAG_MAX, p->air_drag,
+                          p->air_drag_quadratic);
     if (whirl_check_tip_mass(p->tip_mass) != GSL_SUCCESS) return GSL_EINVAL;
     if (chain && p->tip_mass != 0)
         return whirl_fail(GSL_EINVAL, "tip mass must be 0 with an N-link chain (add it to the "
                           "chain's last mass)");
-    if (p->eps == 0 && (p->drag > 0 || p->drag_quadratic > 0))
+    if (p->drive_radius == 0 && (p->air_drag > 0 || p->air_drag_quadratic > 0))
         return whirl_fail(GSL_EDOM, "with eps = 0 the pivot cannot balance the torque of the air "
                           "drag: only the hanging chain is steady");
-    if (p->eps >= 1)
-        return whirl_fail(GSL_EINVAL, "eps must be smaller than the chain length, got %g", p->eps);
+    if (p->drive_radius >= 1)
+        return whirl_fail(GSL_EINVAL, "eps must be smaller than the chain length, got %g", p->drive_radius);
     return GSL_SUCCESS;
 }
 
@@ -482,6 +482,14 @@ static int sample_shape(problem *pb, const double *u, size_t npts, double *s, do
     return GSL_SUCCESS;
 }
 
+void whirl_driven_params_from_model(whirl_driven_params *p, const whirl_model *m)
+{
+    *p = (whirl_driven_params){.omega = m->omega,
+                               .drive_radius = m->drive_radius,
+                               .air_drag = m->air_drag,
+                               .air_drag_quadratic = m->air_drag_quadratic};
+}
+
 int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight)
 {
     double mxx = 0, mxy = 0, myy = 0;
@@ -521,9 +529,9 @@ static int describe(problem *pb, const double *u, int iterations, whirl_driven_i
     memcpy(info->top_force, F, sizeof F);
     info->top_tension = sqrt(F[0] * F[0] + F[1] * F[1] + F[2] * F[2]);
     info->fold_function = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    info->nodes = whirl_driven_nodes(pb->p.eps, pb->npos, pb->pos,
+    info->nodes = whirl_driven_nodes(pb->p.drive_radius, pb->npos, pb->pos,
                                      pb->chain ? pb->chain->length : NULL);
-    info->residual = hypot(r[0] - pb->p.eps, r[1]);
+    info->residual = hypot(r[0] - pb->p.drive_radius, r[1]);
     info->iterations = iterations;
     return GSL_SUCCESS;
 }
@@ -537,7 +545,7 @@ int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *para
     double u[3] = {guess[0], guess[1], params->omega}, rnorm;
     int iterations = 0;
     if (planar(&pb)) { /* rotate the guess into the plane y = 0 (eps = 0) or project on it */
-        u[0] = params->eps == 0 ? copysign(hypot(guess[0], guess[1]), guess[0]) : guess[0];
+        u[0] = params->drive_radius == 0 ? copysign(hypot(guess[0], guess[1]), guess[0]) : guess[0];
         u[1] = 0;
     }
     status = newton(&pb, u, NULL, &iterations, &rnorm);
@@ -549,7 +557,7 @@ int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *para
 /* Natural continuation of the solution u from pb's (eps, c, c2) to the target values. */
 static int homotopy(problem *pb, double *u, double eps, double c, double c2)
 {
-    const double from[3] = {pb->p.eps, pb->p.drag, pb->p.drag_quadratic};
+    const double from[3] = {pb->p.drive_radius, pb->p.air_drag, pb->p.air_drag_quadratic};
     const double to[3] = {eps, c, c2};
     double lambda = 0, dl = 1, u_prev[3], dl_prev = 0, rnorm;
     int iterations;
@@ -559,9 +567,9 @@ static int homotopy(problem *pb, double *u, double eps, double c, double c2)
         double utry[3];
         for (int k = 0; k < 3; k++) /* secant predictor */
             utry[k] = u[k] + (dl_prev > 0 ? (u[k] - u_prev[k]) * (next - lambda) / dl_prev : 0);
-        pb->p.eps = from[0] + next * (to[0] - from[0]);
-        pb->p.drag = from[1] + next * (to[1] - from[1]);
-        pb->p.drag_quadratic = from[2] + next * (to[2] - from[2]);
+        pb->p.drive_radius = from[0] + next * (to[0] - from[0]);
+        pb->p.air_drag = from[1] + next * (to[1] - from[1]);
+        pb->p.air_drag_quadratic = from[2] + next * (to[2] - from[2]);
         double upred[3];
         memcpy(upred, utry, sizeof upred);
         if (newton(pb, utry, NULL, &iterations, &rnorm) == GSL_SUCCESS &&
@@ -575,7 +583,7 @@ static int homotopy(problem *pb, double *u, double eps, double c, double c2)
         } else if ((dl *= 0.5) < HOMOTOPY_MIN_STEP) {
             return whirl_fail(GSL_EDOM, "the shape could not be followed from the free one to "
                               "eps = %g, drag = %g, %g (lost at eps = %g, drag = %g, %g)", eps, c,
-                              c2, pb->p.eps, pb->p.drag, pb->p.drag_quadratic);
+                              c2, pb->p.drive_radius, pb->p.air_drag, pb->p.air_drag_quadratic);
         }
     }
     return GSL_SUCCESS;
@@ -598,11 +606,11 @@ int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *param
     int iterations = 0;
     if (status == GSL_SUCCESS) {
         /* the free shape in this module's own formulation, then drive it, then add the drag */
-        pb.p.eps = pb.p.drag = pb.p.drag_quadratic = 0;
+        pb.p.drive_radius = pb.p.air_drag = pb.p.air_drag_quadratic = 0;
         status = newton(&pb, u, NULL, &iterations, &rnorm);
-        if (status == GSL_SUCCESS && params->eps > 0) status = homotopy(&pb, u, params->eps, 0, 0);
+        if (status == GSL_SUCCESS && params->drive_radius > 0) status = homotopy(&pb, u, params->drive_radius, 0, 0);
         if (status == GSL_SUCCESS)
-            status = homotopy(&pb, u, params->eps, params->drag, params->drag_quadratic);
+            status = homotopy(&pb, u, params->drive_radius, params->air_drag, params->air_drag_quadratic);
         if (status == GSL_SUCCESS) status = newton(&pb, u, NULL, &iterations, &rnorm);
         if (status == GSL_SUCCESS) status = describe(&pb, u, iterations, info);
     }

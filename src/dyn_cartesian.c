@@ -8,7 +8,8 @@
  * Equations (Baraff 1996, "Linear-time dynamics using Lagrange multipliers", SIGGRAPH): with
  * multipliers lambda_i (tension T_i = lambda_i l_i) and the per-mass acceleration
  * g_i = gvec + a_field(x_i, v_i) + f_i / m_i (gravity, in the co-rotating frame the centrifugal
- * w^2 (x, y, 0) and Coriolis 2 w (v_y, -v_x, 0) fields, applied forces f_i),
+ * w^2 (x, y, 0), Coriolis 2 w (v_y, -v_x, 0) and, with a rate w(t) that changes, Euler
+ * w' (y, -x, 0) fields, applied forces f_i),
  *   m_i a_i = m_i g_i - lambda_i d_i + lambda_{i+1} d_{i+1}      (lambda_{N+1} = 0),
  *   d_i'' = a_i - a_{i-1},  a_0 = p''(t) the pivot's prescribed acceleration.
  * The second derivative of |d_i|^2 = l_i^2, d_i . d_i'' = -|d_i'|^2, gives the symmetric
@@ -167,6 +168,7 @@ LINK_INLINE double dot3(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b
  * pivot's motion and the applied forces. */
 typedef struct field {
     double w2, w2x; /* omega^2 and 2 omega in the co-rotating frame, else 0 */
+    double dw;      /* omega' (Euler field) in the co-rotating frame, else 0 */
     double base[3]; /* link 1 only: g_1 - p'' less the part linear in d_1, d_1' */
     double *fdiff;  /* f_i / m_i - f_{i-1} / m_{i-1} (3 per link; f_0 = 0), NULL without forces */
 } field;
@@ -175,21 +177,26 @@ typedef struct field {
  * applied forces and link 1's base. */
 LINK_INLINE vec3 frame_diff(const field *f, vec3 di, vec3 ri)
 {
-    return (vec3){f->w2 * di.x + f->w2x * ri.y, f->w2 * di.y - f->w2x * ri.x, 0.0};
+    return (vec3){f->w2 * di.x + f->w2x * ri.y + f->dw * di.y,
+                  f->w2 * di.y - f->w2x * ri.x - f->dw * di.x, 0.0};
 }
 
 static void field_prepare(whirl_dyn *d, double t, const double *y, field *f)
 {
     const whirl_model *m = &d->model;
-    const double w = m->omega, g = m->chain->gravity, *inv_mass = d->inv_mass;
+    const double g = m->chain->gravity, *inv_mass = d->inv_mass;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
+    dyn_drive dr; /* the rate omega(t) and its derivative (ramps) */
+    whirl_dyn_drive(d, t, &dr);
+    const double w = dr.omega;
     double p[3], pv[3], pa[3];
     whirl_dyn_pivot(d, t, p, pv, pa);
     f->w2 = rotating ? w * w : 0.0;
     f->w2x = rotating ? 2 * w : 0.0;
+    f->dw = rotating ? dr.domega : 0.0;
     /* link 1: the whole field at x_1 = p + d_1, v_1 = p' + d_1', less p'' */
-    f->base[0] = f->w2 * p[0] + f->w2x * pv[1] - pa[0];
-    f->base[1] = f->w2 * p[1] - f->w2x * pv[0] - pa[1];
+    f->base[0] = f->w2 * p[0] + f->w2x * pv[1] + f->dw * p[1] - pa[0];
+    f->base[1] = f->w2 * p[1] - f->w2x * pv[0] - f->dw * p[0] - pa[1];
     f->base[2] = -g - pa[2];
     f->fdiff = NULL;
     if (m->air_drag > 0 || m->air_drag_quadratic > 0 || m->internal_damping > 0 ||

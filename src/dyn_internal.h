@@ -28,6 +28,8 @@ enum { WHIRL_DYN_COEFS = 6 };
 
 struct whirl_dyn {
     whirl_model model;
+    int ramped; /* 1 if a ramp of the model is active (else the constant drive, exactly) */
+    double phase_offset; /* added to the phase: keeps it continuous across whirl_dyn_set_ramps */
     whirl_formulation formulation;
     const dyn_ops *ops;
     size_t n;    /* links */
@@ -54,6 +56,16 @@ extern const dyn_ops whirl_dyn_seed_ops;
 
 /* Pivot position, velocity and acceleration in the model's frame at time t (3 components). */
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa);
+
+/* The drive at time t: radius eps and its first two derivatives, rate omega and its derivative,
+ * phase (the angle of the pivot about z in the inertial frame, the integral of omega from 0). */
+typedef struct dyn_drive {
+    double eps, deps, ddeps;
+    double omega, domega;
+    double phase;
+} dyn_drive;
+
+void whirl_dyn_drive(const whirl_dyn *d, double t, dyn_drive *out);
 
 /* Fills d->x, d->v (positions and velocities of the masses), d->links, d->link_rates from y and
  * d->force with the applied forces: linear and quadratic air drag, internal damping and, if

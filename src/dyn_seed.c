@@ -19,7 +19,7 @@
  *   (J^T G)_{th_i} = l_i e_th_i . S_i, (J^T G)_{ph_i} = l_i sin th_i e_ph_i . S_i,
  *   S_i = sum_{k>=i} G_k.
  * F_k = applied forces + m_k (gravity + [co-rotating] centrifugal w^2 (x, y, 0) + Coriolis
- * 2 w (v_y, -v_x, 0) - [inertial] p''(t)); the seed's forcing enters as Q_{th_d} = sigma_d -
+ * 2 w (v_y, -v_x, 0) + Euler w' (y, -x, 0) - p''(t)); the seed's forcing enters as Q_{th_d} = sigma_d -
  * lambda_d th_d' (eq. 25-26) directly. 2D reduces to the seed's eq. 16-18 (the seed's eq. 15
  * second sum and the sign pattern of eq. 23/24 are misprinted; this is derived afresh); one link
  * in 3D gives th'' = ph'^2 sin th cos th - (g/l) sin th, ph'' = -2 th' ph' cot th (the seed's
@@ -123,8 +123,11 @@ static void total_forces(whirl_dyn *d, double t, const double *y)
 {
     const whirl_model *m = &d->model;
     const double *mass = m->chain->mass;
-    const double w = m->omega, g = m->chain->gravity;
+    const double g = m->chain->gravity;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    const double w = dr.omega, dw = dr.domega;
     whirl_dyn_prepare_forces(d, t, y, 0);
     double p[3], pv[3], pa[3];
     whirl_dyn_pivot(d, t, p, pv, pa);
@@ -132,8 +135,8 @@ static void total_forces(whirl_dyn *d, double t, const double *y)
         double acc[3] = {-pa[0], -pa[1], -g - pa[2]};
         const double *xi = d->x + 3 * i, *vi = d->v + 3 * i;
         if (rotating) {
-            acc[0] += w * w * xi[0] + 2 * w * vi[1];
-            acc[1] += w * w * xi[1] - 2 * w * vi[0];
+            acc[0] += w * w * xi[0] + 2 * w * vi[1] + dw * xi[1];
+            acc[1] += w * w * xi[1] - 2 * w * vi[0] - dw * xi[0];
         }
         if (d->dim == 2) acc[1] = 0;
         for (int k = 0; k < 3; k++) d->force[3 * i + k] += mass[i] * acc[k];

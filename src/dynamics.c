@@ -4,6 +4,11 @@
  * Geometry: link i (1-based) has the vector d_i = x_i - x_{i-1}, |d_i| = l_i, x_0 = p(t) the pivot:
  *   inertial frame, 3D: p = eps (cos wt, sin wt, 0); 2D: p = (eps cos wt, 0, 0);
  *   co-rotating frame:  p = (eps, 0, 0) (the same circle seen from the frame turning with it).
+ * A drive that depends on time (whirl_ramp: eps(t), w(t) as C1 smooth steps) replaces wt by the
+ * phase phi(t) = int_0^t w: inertial p = eps (cos phi, sin phi, 0), p' = eps' (c, s) + eps w (-s, c),
+ * p'' = (eps'' - eps w^2) (c, s) + (2 eps' w + eps w') (-s, c); co-rotating (the frame turns by
+ * phi) p = (eps, 0, 0), p' = (eps', 0, 0), p'' = (eps'', 0, 0), plus the Euler field w' (y, -x, 0)
+ * added by each formulation. The integral of s(u) = u^2 (3 - 2 u) is u^3 - u^4 / 2.
  * Applied forces on mass i (all in the model's frame; v_i^in = v_i + [rotating] w z x x_i is the
  * inertial velocity expressed in that frame's basis):
  *   air drag        F_i = -c l_i v_i^in - c2 l_i |v_i^in| v_i^in;
@@ -38,6 +43,25 @@ int whirl_dyn_all_finite(const double *v, size_t n)
     return !isnan(s[0] + s[1] + s[2] + s[3]);
 }
 
+static int ramp_active(const whirl_ramp *r)
+{
+    return r->from != 0 || r->to != 0 || r->t_start != 0 || r->t_end != 0;
+}
+
+static int ramp_check(const whirl_ramp *r, const char *name, int nonnegative)
+{
+    if (!ramp_active(r)) return GSL_SUCCESS;
+    if (!(isfinite(r->from) && isfinite(r->to) && isfinite(r->t_start) && isfinite(r->t_end)))
+        return whirl_fail(GSL_EINVAL, "%s: every field must be finite", name);
+    if (!(r->t_end > r->t_start))
+        return whirl_fail(GSL_EINVAL, "%s: t_end (%g) must exceed t_start (%g)", name, r->t_end,
+                          r->t_start);
+    if (nonnegative && !(r->from >= 0 && r->to >= 0))
+        return whirl_fail(GSL_EINVAL, "%s: from and to must be >= 0, got %g, %g", name, r->from,
+                          r->to);
+    return GSL_SUCCESS;
+}
+
 static int model_check(const whirl_model *m)
 {
     if (m == NULL || m->chain == NULL) return whirl_fail(GSL_EINVAL, "no model or no chain");
@@ -67,6 +91,9 @@ static int model_check(const whirl_model *m)
         if (!(isfinite(nonneg[k].value) && nonneg[k].value >= 0))
             return whirl_fail(GSL_EINVAL, "%s must be >= 0 and finite, got %g", nonneg[k].name,
                               nonneg[k].value);
+    int status = ramp_check(&m->drive_radius_ramp, "drive_radius_ramp", 1);
+    if (status == GSL_SUCCESS) status = ramp_check(&m->omega_ramp, "omega_ramp", 0);
+    if (status) return status;
     if ((m->seed_sigma != NULL || m->seed_lambda != NULL) && m->dim != 2)
         return whirl_fail(GSL_EINVAL, "the seed's forcing sigma, lambda needs dim = 2");
     for (size_t i = 0; i < c->n; i++)
@@ -86,6 +113,7 @@ whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f)
     whirl_dyn *d = calloc(1, sizeof *d);
     if (d == NULL) goto nomem;
     d->model = *model;
+    d->ramped = ramp_active(&model->drive_radius_ramp) || ramp_active(&model->omega_ramp);
     d->formulation = f;
     d->ops = f == WHIRL_FORMULATION_SEED ? &whirl_dyn_seed_ops : &whirl_dyn_cartesian_ops;
     d->n = model->chain->n;
@@ -139,22 +167,116 @@ const whirl_model *whirl_dyn_model(const whirl_dyn *d) { return &d->model; }
 whirl_formulation whirl_dyn_formulation(const whirl_dyn *d) { return d->formulation; }
 size_t whirl_dyn_size(const whirl_dyn *d) { return d->size; }
 
+/* The integral of the ramp's smooth-step part from -infinity (where it is 0) to t. */
+static double ramp_step_integral(const whirl_ramp *r, double t)
+{
+    const double span = r->t_end - r->t_start, u = (t - r->t_start) / span;
+    if (u <= 0) return 0;
+    if (u >= 1) return span / 2 + (t - r->t_end);
+    return span * u * u * u * (1 - u / 2);
+}
+
+/* Value, first and second derivative and integral from 0 to t of an active ramp. */
+static void ramp_eval(const whirl_ramp *r, double t, double *v, double *dv, double *ddv,
+                      double *integral)
+{
+    const double span = r->t_end - r->t_start, jump = r->to - r->from;
+    const double u = (t - r->t_start) / span;
+    if (u <= 0 || u >= 1) {
+        *v = u <= 0 ? r->from : r->to;
+        *dv = *ddv = 0;
+    } else {
+        *v = r->from + jump * u * u * (3 - 2 * u);
+        *dv = jump * 6 * u * (1 - u) / span;
+        *ddv = jump * (6 - 12 * u) / (span * span);
+    }
+    *integral = r->from * t + jump * (ramp_step_integral(r, t) - ramp_step_integral(r, 0));
+}
+
+void whirl_dyn_drive(const whirl_dyn *d, double t, dyn_drive *out)
+{
+    const whirl_model *m = &d->model;
+    double unused;
+    *out = (dyn_drive){.eps = m->drive_radius, .omega = m->omega,
+                       .phase = m->omega * t + d->phase_offset};
+    if (!d->ramped) return;
+    if (ramp_active(&m->drive_radius_ramp))
+        ramp_eval(&m->drive_radius_ramp, t, &out->eps, &out->deps, &out->ddeps, &unused);
+    if (ramp_active(&m->omega_ramp))
+    {
+        ramp_eval(&m->omega_ramp, t, &out->omega, &out->domega, &unused, &out->phase);
+        out->phase += d->phase_offset;
+    }
+}
+
+void whirl_dyn_drive_at(const whirl_dyn *d, double t, double *radius, double *omega,
+                        double *phase)
+{
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    if (radius) *radius = dr.eps;
+    if (omega) *omega = dr.omega;
+    if (phase) *phase = dr.phase;
+}
+
+int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
+                        const whirl_ramp *omega)
+{
+    if (d == NULL) return whirl_fail(GSL_EINVAL, "whirl_dyn_set_ramps: no dynamics");
+    if (!isfinite(t)) return whirl_fail(GSL_EINVAL, "whirl_dyn_set_ramps: t must be finite");
+    int status = radius ? ramp_check(radius, "drive_radius_ramp", 1) : GSL_SUCCESS;
+    if (status == GSL_SUCCESS && omega) status = ramp_check(omega, "omega_ramp", 0);
+    if (status) return status;
+    dyn_drive before, after;
+    whirl_dyn_drive(d, t, &before);
+    if (radius) d->model.drive_radius_ramp = *radius;
+    if (omega) d->model.omega_ramp = *omega;
+    d->ramped = ramp_active(&d->model.drive_radius_ramp) || ramp_active(&d->model.omega_ramp);
+    whirl_dyn_drive(d, t, &after);
+    d->phase_offset += before.phase - after.phase;
+    return GSL_SUCCESS;
+}
+
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa)
 {
-    const double eps = d->model.drive_radius, w = d->model.omega;
     for (int k = 0; k < 3; k++) p[k] = pv[k] = pa[k] = 0;
-    if (d->model.frame == WHIRL_FRAME_ROTATING) {
-        p[0] = eps;
+    if (!d->ramped) { /* the constant drive */
+        const double eps = d->model.drive_radius, w = d->model.omega;
+        if (d->model.frame == WHIRL_FRAME_ROTATING) {
+            p[0] = eps;
+            return;
+        }
+        const double c = cos(w * t), s = sin(w * t);
+        p[0] = eps * c;
+        pv[0] = -eps * w * s;
+        if (d->dim == 3) {
+            p[1] = eps * s;
+            pv[1] = eps * w * c;
+        }
+        for (int k = 0; k < 3; k++) pa[k] = -w * w * p[k];
         return;
     }
-    const double c = cos(w * t), s = sin(w * t);
-    p[0] = eps * c;
-    pv[0] = -eps * w * s;
-    if (d->dim == 3) {
-        p[1] = eps * s;
-        pv[1] = eps * w * c;
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    if (d->model.frame == WHIRL_FRAME_ROTATING) {
+        p[0] = dr.eps;
+        pv[0] = dr.deps;
+        pa[0] = dr.ddeps;
+        return;
     }
-    for (int k = 0; k < 3; k++) pa[k] = -w * w * p[k];
+    /* p = eps (c, s): p' = eps' (c, s) + eps w (-s, c),
+       p'' = (eps'' - eps w^2) (c, s) + (2 eps' w + eps w') (-s, c) */
+    const double c = cos(dr.phase), s = sin(dr.phase), w = dr.omega;
+    const double radial = dr.ddeps - dr.eps * w * w;
+    const double along = 2 * dr.deps * w + dr.eps * dr.domega;
+    p[0] = dr.eps * c;
+    pv[0] = dr.deps * c - dr.eps * w * s;
+    pa[0] = radial * c - along * s;
+    if (d->dim == 3) {
+        p[1] = dr.eps * s;
+        pv[1] = dr.deps * s + dr.eps * w * c;
+        pa[1] = radial * s + along * c;
+    }
 }
 
 /* Positions x and velocities v of the masses (3 per mass, model frame) by running sums of the
@@ -179,12 +301,12 @@ static void masses_from_links(const whirl_dyn *d, double t, const double *y, dou
 
 /* Internal damping: force -= dR/dv, in three sweeps in place: force_i <- J_i, then G_i, then
  * -(G_i - G_{i+1}) (the notation of the file's header). */
-static void add_internal_damping(const whirl_dyn *d, const double *links,
+static void add_internal_damping(const whirl_dyn *d, double w, const double *links,
                                  const double *link_rates, double *force)
 {
     const whirl_model *m = &d->model;
     const double *len = m->chain->length;
-    const double w = m->omega, D = m->internal_damping;
+    const double D = m->internal_damping;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
     const size_t n = d->n;
     double w_prev[3] = {0, 0, 0};
@@ -215,17 +337,16 @@ static void add_internal_damping(const whirl_dyn *d, const double *links,
 /* The applied forces on the masses (3 per mass, model frame): linear and quadratic air drag,
  * internal damping and, if with_seed_forcing, the seed's forcing as a force pair on link d (2D).
  * Gravity and the fictitious forces of the frame are not included. */
-static void applied_forces(const whirl_dyn *d, const double *x, const double *v,
+static void applied_forces(const whirl_dyn *d, double w, const double *x, const double *v,
                            const double *links, const double *link_rates, int with_seed_forcing,
                            double *force)
 {
     const whirl_model *m = &d->model;
     const double *len = m->chain->length;
-    const double w = m->omega;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
     const size_t n = d->n;
     if (m->internal_damping > 0)
-        add_internal_damping(d, links, link_rates, force);
+        add_internal_damping(d, w, links, link_rates, force);
     else
         memset(force, 0, 3 * n * sizeof *force);
     if (m->air_drag > 0 || m->air_drag_quadratic > 0) {
@@ -262,7 +383,9 @@ static void applied_forces(const whirl_dyn *d, const double *x, const double *v,
 void whirl_dyn_prepare_forces(whirl_dyn *d, double t, const double *y, int with_seed_forcing)
 {
     masses_from_links(d, t, y, d->x, d->v, d->links, d->link_rates);
-    applied_forces(d, d->x, d->v, d->links, d->link_rates, with_seed_forcing, d->force);
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    applied_forces(d, dr.omega, d->x, d->v, d->links, d->link_rates, with_seed_forcing, d->force);
 }
 
 int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn)
@@ -313,7 +436,9 @@ int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_fra
     masses_from_links(d, t, y, x, v, NULL, NULL);
     if (frame == d->model.frame) return GSL_SUCCESS;
     /* rotating -> inertial: x' = R x, v' = R (v + w z x x); inertial -> rotating: the inverse */
-    const double w = d->model.omega, c = cos(w * t), s = sin(w * t);
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    const double w = dr.omega, c = cos(dr.phase), s = sin(dr.phase);
     for (size_t i = 0; i < d->n; i++) {
         double *xi = x + 3 * i, *vi = v + 3 * i;
         if (frame == WHIRL_FRAME_INERTIAL) {
@@ -335,6 +460,23 @@ int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_fra
     return GSL_SUCCESS;
 }
 
+static int system_project(double t, double y[], void *params)
+{
+    return whirl_dyn_project(params, t, y);
+}
+
+int whirl_dyn_system(whirl_dyn *d, whirl_system *sys)
+{
+    if (d == NULL || sys == NULL) return whirl_fail(GSL_EINVAL, "whirl_dyn_system: needs d, sys");
+    *sys = (whirl_system){.rhs = whirl_dyn_rhs,
+                          .project = system_project,
+                          .size = d->size,
+                          .params = d,
+                          .second_order = 1,
+                          .acceleration_scale = d->model.chain->gravity};
+    return GSL_SUCCESS;
+}
+
 int whirl_dyn_project(whirl_dyn *d, double t, double *y)
 {
     return d->ops->project(d, y); /* the constraints do not depend on t */
@@ -349,7 +491,9 @@ int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y, whirl_dyn_
 {
     const whirl_model *m = &d->model;
     const double *len = m->chain->length, *mass = m->chain->mass, g = m->chain->gravity;
-    const double w = m->omega;
+    dyn_drive dr;
+    whirl_dyn_drive(d, t, &dr);
+    const double w = dr.omega;
     const int rotating = m->frame == WHIRL_FRAME_ROTATING;
     if (!whirl_dyn_all_finite(y, d->size))
         return whirl_fail(GSL_ERANGE, "the state is not finite at t = %.17g", t);

@@ -2,7 +2,7 @@
  *
  * whirl_integrator_advance takes fixed steps t_k = t0 + k h (the last one ending exactly at t1)
  * or, with tol > 0, the adaptive steps of rk8 or a GSL method, and projects the state onto the
- * constraints (whirl_dyn_project) after every step.
+ * constraints (the system's projection, if any) after every step.
  * Bounds: a tolerance below WHIRL_TOL_MIN is refused (it lies below the round-off of the state);
  * an adaptive step below WHIRL_STEP_MIN_ULPS units of round-off of t (64 eps max(|t|, 1)) stops
  * the run, as t would no longer advance by a representable amount; every right-hand side polls
@@ -12,10 +12,12 @@
  * k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3), y += h/6 (k1 + 2 k2 + 2 k3 + k4). */
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "dyn_internal.h"
+#include "whirl/dynamics.h"
 #include "error.h"
 #include "integrator_internal.h"
 
@@ -25,7 +27,7 @@ int whirl_integrator_rhs(whirl_integrator *it, double t, const double *y, double
     if (whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at t = %.17g", t);
     it->stats.rhs_evals++;
-    return whirl_dyn_rhs(t, y, dydt, it->dyn);
+    return it->sys.rhs(t, y, dydt, it->sys.params);
 }
 
 /* ---- rk4 ---- */
@@ -72,52 +74,89 @@ static int rk4_step(whirl_integrator *it, double t, double h, double *y)
     return GSL_SUCCESS;
 }
 
-static const integrator_method whirl_integrator_rk4 = {
+static const whirl_integrator_type rk4_type = {
     .name = "rk4", .adaptive = 0, .alloc = rk4_alloc, .free = rk4_free, .step = rk4_step};
+const whirl_integrator_type *const whirl_integrator_rk4 = &rk4_type;
 
-/* ---- registry ---- */
+/* ---- registry: the one list of the methods, their names and the unknown-name message ---- */
 
-static const integrator_method *const methods[] = {
-    &whirl_integrator_gauss2,     &whirl_integrator_gauss3,    &whirl_integrator_rk4,
-    &whirl_integrator_rk8,        &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp,
+static const whirl_integrator_type *const *const registry[] = {
+    &whirl_integrator_gauss2,      &whirl_integrator_gauss3,    &whirl_integrator_rk4,
+    &whirl_integrator_rk8,         &whirl_integrator_gsl_rk8pd, &whirl_integrator_gsl_rk4imp,
     &whirl_integrator_gsl_msadams, &whirl_integrator_gsl_msbdf, &whirl_integrator_gsl_rkf45,
     &whirl_integrator_gsl_rk4,
 };
-#define N_METHODS (sizeof methods / sizeof methods[0])
+#define N_METHODS (sizeof registry / sizeof registry[0])
+
+/* The names, filled from the registry once (pthread_once: callers may be threads). */
+static const char *names[N_METHODS + 1];
+static pthread_once_t names_once = PTHREAD_ONCE_INIT;
+
+static void fill_names(void)
+{
+    for (size_t k = 0; k < N_METHODS; k++) names[k] = (*registry[k])->name;
+    names[N_METHODS] = NULL;
+}
 
 const char *const *whirl_integrator_methods(void)
 {
-    static const char *const names[] = {"gauss2",    "gauss3",     "rk4",         "rk8",
-                                        "gsl-rk8pd", "gsl-rk4imp", "gsl-msadams", "gsl-msbdf",
-                                        "gsl-rkf45", "gsl-rk4",    NULL};
+    pthread_once(&names_once, fill_names);
     return names;
 }
 
-whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
+const whirl_integrator_type *whirl_integrator_type_find(const char *name)
 {
-    const integrator_method *m = NULL;
-    for (size_t k = 0; k < N_METHODS && method != NULL; k++)
-        if (strcmp(methods[k]->name, method) == 0) m = methods[k];
-    if (m == NULL) {
-        whirl_fail(GSL_EINVAL,
-                   "unknown integrator '%s' (known: gauss2 gauss3 rk4 rk8 gsl-rk8pd gsl-rk4imp "
-                   "gsl-msadams gsl-msbdf gsl-rkf45 gsl-rk4)",
-                   method != NULL ? method : "(null)");
+    for (size_t k = 0; k < N_METHODS && name != NULL; k++)
+        if (strcmp((*registry[k])->name, name) == 0) return *registry[k];
+    char known[256] = "";
+    size_t used = 0;
+    for (size_t k = 0; k < N_METHODS && used < sizeof known; k++)
+        used += (size_t)snprintf(known + used, sizeof known - used, "%s%s", k ? " " : "",
+                                 (*registry[k])->name);
+    whirl_fail(GSL_EINVAL, "unknown integrator '%s' (known: %s)", name ? name : "(null)", known);
+    return NULL;
+}
+
+const char *whirl_integrator_type_name(const whirl_integrator_type *type)
+{
+    return type ? type->name : NULL;
+}
+
+int whirl_integrator_type_adaptive(const whirl_integrator_type *type)
+{
+    return type && type->adaptive;
+}
+
+int whirl_integrator_type_fixed(const whirl_integrator_type *type)
+{
+    return type && type->step != NULL;
+}
+
+const whirl_integrator_type *whirl_integrator_type_of(const whirl_integrator *it)
+{
+    return it ? it->method : NULL;
+}
+
+whirl_integrator *whirl_integrator_alloc_system(const whirl_integrator_type *type,
+                                                const whirl_system *sys)
+{
+    if (type == NULL || sys == NULL) {
+        whirl_fail(GSL_EINVAL, "whirl_integrator_alloc_system: needs a method and a system");
         return NULL;
     }
-    if (d == NULL) {
-        whirl_fail(GSL_EINVAL, "no dynamics for the integrator");
+    if (sys->rhs == NULL || sys->size == 0) {
+        whirl_fail(GSL_EINVAL, "the system needs a right-hand side and a size >= 1");
         return NULL;
     }
     whirl_integrator *it = calloc(1, sizeof *it);
     if (it == NULL) goto nomem;
-    it->method = m;
-    it->dyn = d;
-    it->size = whirl_dyn_size(d);
+    it->method = type;
+    it->sys = *sys;
+    it->size = sys->size;
     it->last_y = malloc(2 * it->size * sizeof *it->last_y);
     if (it->last_y == NULL) goto nomem;
     it->backup = it->last_y + it->size;
-    int status = m->alloc(it);
+    int status = type->alloc(it);
     if (status == GSL_ENOMEM) goto nomem;
     if (status != GSL_SUCCESS) {
         whirl_integrator_free(it);
@@ -126,8 +165,17 @@ whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
     return it;
 nomem:
     whirl_integrator_free(it);
-    whirl_fail(GSL_ENOMEM, "out of memory for the integrator %s", method);
+    whirl_fail(GSL_ENOMEM, "out of memory for the integrator %s", type->name);
     return NULL;
+}
+
+whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
+{
+    const whirl_integrator_type *type = whirl_integrator_type_find(method);
+    if (type == NULL) return NULL;
+    whirl_system sys;
+    if (whirl_dyn_system(d, &sys) != GSL_SUCCESS) return NULL;
+    return whirl_integrator_alloc_system(type, &sys);
 }
 
 void whirl_integrator_free(whirl_integrator *it)
@@ -143,12 +191,19 @@ whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it)
     return it->stats;
 }
 
+static int all_finite(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i])) return 0;
+    return 1;
+}
+
 /* Projection after a step; a non-finite result is a failure. */
 static int project(whirl_integrator *it, double t, double *y)
 {
-    int status = whirl_dyn_project(it->dyn, t, y);
+    int status = it->sys.project ? it->sys.project(t, y, it->sys.params) : GSL_SUCCESS;
     if (status != GSL_SUCCESS) return status;
-    if (!whirl_dyn_all_finite(y, it->size))
+    if (!all_finite(y, it->size))
         return whirl_fail(GSL_EBADFUNC, "the state is not finite at t = %.17g", t);
     return GSL_SUCCESS;
 }

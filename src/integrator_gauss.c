@@ -12,7 +12,7 @@
  *                5/36 + sqrt(15)/24, 2/9, 5/36 - sqrt(15)/24;
  *                5/36 + sqrt(15)/30, 2/9 + sqrt(15)/15, 5/36].
  *
- * Second-order form: the state is y = (q, v) with q' = v exactly (dyn_internal.h), so the stage
+ * Second-order form: the state is y = (q, v) with q' = v exactly (whirl_system.second_order), so the stage
  * equations reduce to the stage accelerations K_i (half the unknowns):
  *   Q_i = q + c_i h v + h^2 sum_j (A^2)_ij K_j,  V_i = v + h sum_j a_ij K_j,
  *   K_i = a(t + c_i h, Q_i, V_i),
@@ -29,7 +29,8 @@
  * fastest frequency, rho(A) = 0.2887 (gauss2), 0.2153 (gauss3): the second-order form squares the
  * first-order form's factor h omega rho(A). It stops when the increment max|K^(k) - K^(k-1)|
  * is zero or stops decreasing (Antonana, Makazaga, Murua 2017, Numer. Algor.), i.e. at round-off
- * (a stall counts as convergence below 1e-8 of the acceleration scale max|K| + g); GSL_EMAXITER
+ * (a stall counts as convergence below 1e-8 of the acceleration scale max|K| + a, a the
+ * system's acceleration_scale: gravity g for the chain); GSL_EMAXITER
  * if the increments grow to 1e3 times their smallest value (the step is too large for the fastest
  * mode: h omega_max rho(A) >= 1) or after 400 sweeps.
  * Choice against Newton: a Newton step needs the Jacobian of the constrained accelerations,
@@ -44,7 +45,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dyn_internal.h"
 #include "error.h"
 #include "integrator_internal.h"
 
@@ -103,6 +103,12 @@ static void gauss_free(void *state)
 static int gauss_alloc(whirl_integrator *it)
 {
     const gauss_tableau *tab = it->method->params;
+    if (!it->sys.second_order || it->size % 2 != 0)
+        return whirl_fail(GSL_EINVAL, "%s needs a second-order system (y = (q, v), dq/dt = v)",
+                          it->method->name);
+    if (!(isfinite(it->sys.acceleration_scale) && it->sys.acceleration_scale > 0))
+        return whirl_fail(GSL_EINVAL, "%s needs the system's acceleration_scale > 0, got %g",
+                          it->method->name, it->sys.acceleration_scale);
     gauss_state *g = calloc(1, sizeof *g);
     if (g == NULL) return GSL_ENOMEM;
     it->state = g;
@@ -209,7 +215,7 @@ static int gauss_step(whirl_integrator *it, double t, double h, double *y)
     g->has_prev = 0;
     /* fixed-point iteration until the increments stop decreasing (at round-off); a transient
      * rise is tolerated, growth to 1e3 times the smallest increment is divergence */
-    const double g_scale = whirl_dyn_model(it->dyn)->chain->gravity;
+    const double g_scale = it->sys.acceleration_scale;
     double prev = INFINITY, best = INFINITY;
     int converged = 0;
     for (int iter = 0; iter < GAUSS_MAX_ITER; iter++) {
@@ -258,7 +264,7 @@ static int gauss_step(whirl_integrator *it, double t, double h, double *y)
     return GSL_SUCCESS;
 }
 
-const integrator_method whirl_integrator_gauss2 = {
+static const whirl_integrator_type gauss2_type = {
     .name = "gauss2",
     .adaptive = 0,
     .params = &gauss2_tableau,
@@ -268,7 +274,7 @@ const integrator_method whirl_integrator_gauss2 = {
     .restart = gauss_restart,
 };
 
-const integrator_method whirl_integrator_gauss3 = {
+static const whirl_integrator_type gauss3_type = {
     .name = "gauss3",
     .adaptive = 0,
     .params = &gauss3_tableau,
@@ -277,3 +283,6 @@ const integrator_method whirl_integrator_gauss3 = {
     .step = gauss_step,
     .restart = gauss_restart,
 };
+
+const whirl_integrator_type *const whirl_integrator_gauss2 = &gauss2_type;
+const whirl_integrator_type *const whirl_integrator_gauss3 = &gauss3_type;

@@ -144,14 +144,15 @@ static int gsl_adaptive_step(whirl_integrator *it, double *t, double t1, double 
 
 /* fixed_step: gsl_fixed_step, or NULL for the multistep methods (adaptive steps only) */
 #define GSL_METHOD(var, label, type, fixed_step)                                              \
-    const integrator_method var = {.name = label,                                            \
+    static const whirl_integrator_type var##_type = {.name = label,                          \
                                    .adaptive = 1,                                            \
                                    .params = &type,                                          \
                                    .alloc = gsl_alloc_state,                                 \
                                    .free = gsl_free_state,                                   \
                                    .step = fixed_step,                                       \
                                    .adaptive_step = gsl_adaptive_step,                       \
-                                   .restart = gsl_restart}
+                                   .restart = gsl_restart};                                  \
+    const whirl_integrator_type *const var = &var##_type
 
 GSL_METHOD(whirl_integrator_gsl_rk8pd, "gsl-rk8pd", gsl_odeiv2_step_rk8pd, gsl_fixed_step);
 GSL_METHOD(whirl_integrator_gsl_rk4imp, "gsl-rk4imp", gsl_odeiv2_step_rk4imp, gsl_fixed_step);

@@ -5,9 +5,10 @@
 
 #include <stddef.h>
 
-#include "whirl/dynamics.h"
+#include "whirl/integrator.h"
 
-typedef struct integrator_method {
+/* A method (the public whirl_integrator_type). */
+struct whirl_integrator_type {
     const char *name;
     int adaptive; /* 1 if advance with tol > 0 is allowed */
     const void *params; /* method-specific constant data (tableau, GSL step type) */
@@ -21,11 +22,12 @@ typedef struct integrator_method {
                          double *y);
     /* The state y was changed outside the integrator (forget history). May be NULL. */
     void (*restart)(struct whirl_integrator *it);
-} integrator_method;
+};
+typedef struct whirl_integrator_type integrator_method;
 
 struct whirl_integrator {
     const integrator_method *method;
-    whirl_dyn *dyn;
+    whirl_system sys; /* a copy of the caller's */
     size_t size;
     whirl_integrator_stats stats;
     void *state;     /* the method's workspace */
@@ -34,12 +36,6 @@ struct whirl_integrator {
     double last_t;
     int has_last;
 };
-
-extern const integrator_method whirl_integrator_gauss2, whirl_integrator_gauss3,
-    whirl_integrator_rk8;
-extern const integrator_method whirl_integrator_gsl_rk8pd, whirl_integrator_gsl_rk4imp,
-    whirl_integrator_gsl_msadams, whirl_integrator_gsl_msbdf, whirl_integrator_gsl_rkf45,
-    whirl_integrator_gsl_rk4;
 
 /* Right-hand side with the evaluation counted in it->stats. */
 int whirl_integrator_rhs(struct whirl_integrator *it, double t, const double *y, double *dydt);

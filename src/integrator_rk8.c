@@ -303,7 +303,7 @@ static int rk8_adaptive_step(whirl_integrator *it, double *t, double t1, double 
     }
 }
 
-const integrator_method whirl_integrator_rk8 = {
+static const whirl_integrator_type rk8_type = {
     .name = "rk8",
     .adaptive = 1,
     .alloc = rk8_alloc,
@@ -312,3 +312,5 @@ const integrator_method whirl_integrator_rk8 = {
     .adaptive_step = rk8_adaptive_step,
     .restart = rk8_restart,
 };
+
+const whirl_integrator_type *const whirl_integrator_rk8 = &rk8_type;

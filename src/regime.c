@@ -1,10 +1,10 @@
 /* The hand-swung chain from rest: ramp, settling and classification (include/whirl/regime.h).
  *
  * Equations: those of dynamics.h (the N-link chain, Cartesian formulation) with the pivot on the
- * circle of radius eps(t) at rate omega and air drag on the inertial velocities; eps(t) follows
- * the smooth step eps u^2 (3 - 2 u), u = t / t_ramp, as a staircase of constant segments.
- * A change of omega in the co-rotating frame keeps the inertial rates of the link vectors:
- * d_i' (new frame) = d_i' (old frame) + (omega_old - omega_new) z x d_i.
+ * circle of radius eps(t) at rate omega(t) and air drag on the inertial velocities; eps(t) follows
+ * the smooth step eps u^2 (3 - 2 u), u = t / t_ramp (whirl_model.drive_radius_ramp), a change
+ * of omega the same step over t_change (whirl_model.omega_ramp, set with whirl_dyn_set_ramps):
+ * one model, one workspace and one integrator for the whole run.
  * Settling: stroboscopic samples once per drive period T = 2 pi / omega, change D_k between
  * consecutive samples (RMS over the masses), mean decay ratio q per period from block means of
  * D_k, and the geometric series estimate of the distance left, sum_{j>k} D_j <= D_k / (1 - q).
@@ -42,10 +42,11 @@ _Static_assert(CHANGE_HISTORY >= 2 * SETTLE_BLOCK &&
 struct whirl_regime {
     const whirl_chain *chain;
     size_t n;             /* links */
-    whirl_model model;    /* the model of the current segment */
+    whirl_model model;    /* the model of the run (the ramps in the workspace may differ) */
     whirl_dyn *dyn;       /* its workspace, or NULL */
     whirl_integrator *it; /* its integrator */
-    unsigned long steps;  /* steps of the integrators already freed */
+    whirl_integrator *twin; /* the Lyapunov twin's integrator */
+    gsl_rng *rng;         /* the twin's random offset */
     double t;             /* time of the run */
     double angle;         /* angle of the co-rotating frame in the inertial frame */
     double *y, *y2;       /* state and Lyapunov twin */
@@ -76,7 +77,6 @@ void whirl_regime_params_default(whirl_regime_params *p, size_t links)
     p->method = "rk4";
     p->dt = 0.1 / (double)(links > 0 ? links : 1);
     p->t_ramp = 20;
-    p->ramp_step = 0.5;
     p->t_max = 400;
     p->settle_tol = 1e-3;
     p->settle_periods = 3;
@@ -92,25 +92,22 @@ int whirl_regime_check(const whirl_regime_params *p)
     if (!(p->omega > 0 && isfinite(p->omega)))
         return whirl_fail(GSL_EINVAL, "omega must be > 0, got %g", p->omega);
     if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
-    if (!(p->eps > 0 && p->eps < 1))
-        return whirl_fail(GSL_EINVAL, "eps must be in (0, 1), got %g", p->eps);
+    if (!(p->drive_radius > 0 && p->drive_radius < 1))
+        return whirl_fail(GSL_EINVAL, "drive_radius must be in (0, 1), got %g", p->drive_radius);
     const struct { const char *name; double value; } nonneg[] = {
-        {"drag", p->drag}, {"drag_quadratic", p->drag_quadratic},
+        {"air_drag", p->air_drag}, {"air_drag_quadratic", p->air_drag_quadratic},
         {"internal_damping", p->internal_damping}, {"perturb", p->perturb}};
     for (size_t k = 0; k < sizeof nonneg / sizeof nonneg[0]; k++)
         if (!(nonneg[k].value >= 0 && isfinite(nonneg[k].value)))
             return whirl_fail(GSL_EINVAL, "%s must be >= 0, got %g", nonneg[k].name,
                               nonneg[k].value);
     const struct { const char *name; double value; } pos[] = {
-        {"dt", p->dt}, {"t_ramp", p->t_ramp}, {"ramp_step", p->ramp_step},
+        {"dt", p->dt}, {"t_ramp", p->t_ramp},
         {"settle_tol", p->settle_tol}, {"periodic_tol", p->periodic_tol},
         {"chaos_lambda", p->chaos_lambda}};
     for (size_t k = 0; k < sizeof pos / sizeof pos[0]; k++)
         if (!(pos[k].value > 0 && isfinite(pos[k].value)))
             return whirl_fail(GSL_EINVAL, "%s must be > 0, got %g", pos[k].name, pos[k].value);
-    if (p->ramp_step > p->t_ramp)
-        return whirl_fail(GSL_EINVAL, "ramp_step (%g) must not exceed t_ramp (%g)", p->ramp_step,
-                          p->t_ramp);
     if (!(p->t_max > p->t_ramp && isfinite(p->t_max)))
         return whirl_fail(GSL_EINVAL, "t_max (%g) must exceed t_ramp (%g)", p->t_max, p->t_ramp);
     if (p->settle_periods < 1 || p->lyapunov_periods < 1)
@@ -150,7 +147,9 @@ whirl_regime *whirl_regime_alloc(const whirl_chain *chain)
     w->bx = malloc((n + 1) * sizeof *w->bx);
     w->by = malloc((n + 1) * sizeof *w->by);
     w->bz = malloc((n + 1) * sizeof *w->bz);
-    if (!w->y || !w->y2 || !w->x || !w->v || !w->prev || !w->poly || !w->bx || !w->by || !w->bz)
+    w->rng = gsl_rng_alloc(gsl_rng_mt19937);
+    if (!w->y || !w->y2 || !w->x || !w->v || !w->prev || !w->poly || !w->bx || !w->by || !w->bz ||
+        !w->rng)
         goto fail;
     return w;
 fail:
@@ -161,10 +160,10 @@ fail:
 
 static void release_model(whirl_regime *w)
 {
-    if (w->it) w->steps += whirl_integrator_get_stats(w->it).steps;
+    whirl_integrator_free(w->twin);
     whirl_integrator_free(w->it);
     whirl_dyn_free(w->dyn);
-    w->it = NULL;
+    w->twin = w->it = NULL;
     w->dyn = NULL;
 }
 
@@ -181,6 +180,7 @@ void whirl_regime_free(whirl_regime *w)
     free(w->bx);
     free(w->by);
     free(w->bz);
+    gsl_rng_free(w->rng);
     free(w);
 }
 
@@ -191,44 +191,44 @@ void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx, d
     w->observe_every = f && every > 0 ? every : 0;
 }
 
-/* ---- the model of a segment ---- */
+/* ---- the model of a run ---- */
 
-/* Makes (omega, eps) the drive of the following integration. The state carries over; with a new
- * omega in the co-rotating frame the link rates change by (omega_old - omega_new) z x d_i. */
-static int set_drive(whirl_regime *w, const whirl_regime_params *p, double omega, double eps)
+/* The model of a run at omega from rest: eps ramped from 0 over [0, t_ramp]; its workspace and
+ * the integrators of the run and of the Lyapunov twin (the only allocations of a run). */
+static int start_model(whirl_regime *w, const whirl_regime_params *p, double omega)
 {
-    if (w->dyn && w->model.omega == omega && w->model.drive_radius == eps) return GSL_SUCCESS;
-    const double omega_old = w->model.omega;
-    const int convert = w->dyn && omega != omega_old && p->frame == WHIRL_FRAME_ROTATING;
-    int status = GSL_SUCCESS;
-    if (convert) status = whirl_dyn_get_state(w->dyn, w->t, w->y, p->frame, w->x, w->v);
-    if (status) return status;
-    const double p_old = w->model.drive_radius;
     release_model(w);
     w->model = (whirl_model){.chain = w->chain,
                              .dim = 3,
                              .frame = p->frame,
                              .omega = omega,
-                             .drive_radius = eps,
-                             .air_drag = p->drag,
-                             .air_drag_quadratic = p->drag_quadratic,
-                             .internal_damping = p->internal_damping};
+                             .drive_radius = p->drive_radius,
+                             .air_drag = p->air_drag,
+                             .air_drag_quadratic = p->air_drag_quadratic,
+                             .internal_damping = p->internal_damping,
+                             .drive_radius_ramp = {0, p->drive_radius, 0, p->t_ramp}};
     w->dyn = whirl_dyn_alloc(&w->model, WHIRL_FORMULATION_CARTESIAN);
     if (w->dyn == NULL) return GSL_EINVAL;
     w->it = whirl_integrator_alloc(p->method, w->dyn);
     if (w->it == NULL) return GSL_EINVAL;
-    if (convert) { /* positions relative to the old pivot -> the new one, rates converted */
-        const double dw = omega_old - omega;
-        for (size_t i = 0; i < w->n; i++) {
-            double *x = w->x + 3 * i, *v = w->v + 3 * i;
-            x[0] += eps - p_old;
-            const double rx = x[0] - eps, ry = x[1]; /* z x (x_i - pivot) */
-            v[0] += -dw * ry;
-            v[1] += dw * rx;
-        }
-        status = whirl_dyn_set_state(w->dyn, w->t, w->x, w->v, w->y);
-    }
-    return status;
+    w->twin = whirl_integrator_alloc(p->method, w->dyn);
+    if (w->twin == NULL) return GSL_ENOMEM;
+    return GSL_SUCCESS;
+}
+
+/* The drive now: radius and rate. */
+static double drive_radius_now(const whirl_regime *w)
+{
+    double eps;
+    whirl_dyn_drive_at(w->dyn, w->t, &eps, NULL, NULL);
+    return eps;
+}
+
+static double omega_now(const whirl_regime *w)
+{
+    double omega;
+    whirl_dyn_drive_at(w->dyn, w->t, NULL, &omega, NULL);
+    return omega;
 }
 
 /* Positions of the masses in the co-rotating frame into w->x. */
@@ -239,7 +239,7 @@ static int corotating_positions(whirl_regime *w, const double *y)
 
 static int observe(whirl_regime *w)
 {
-    const double pivot[3] = {w->model.drive_radius, 0, 0};
+    const double pivot[3] = {drive_radius_now(w), 0, 0};
     int status = corotating_positions(w, w->y);
     if (status) return status;
     return w->observer(w->observer_ctx, w->t, w->angle, pivot, w->x, w->n);
@@ -270,17 +270,21 @@ static int advance(whirl_regime *w, const whirl_regime_params *p, double dt_tota
 {
     const double t_end = w->t + dt_total;
     while (w->t < t_end) {
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped at t = %.6g of the run", w->t);
         double t1 = t_end;
         if (w->observe_every > 0 && w->next_observe < t1) t1 = w->next_observe;
         const double t0 = w->t;
         int status = whirl_integrator_advance(w->it, &w->t, w->y, t1, p->dt, 0);
+        if (status == WHIRL_EINTERRUPTED) return status;
         if (status || !all_finite(w->y, 6 * w->n)) return integration_failed(w, status);
         if (twin) {
             double t2 = t0;
             status = whirl_integrator_advance(twin, &t2, w->y2, t1, p->dt, 0);
+            if (status == WHIRL_EINTERRUPTED) return status;
             if (status || !all_finite(w->y2, 6 * w->n)) return integration_failed(w, status);
         }
-        w->angle += w->model.omega * (w->t - t0);
+        whirl_dyn_drive_at(w->dyn, w->t, NULL, NULL, &w->angle);
         if (w->observe_every > 0 && w->t >= w->next_observe) {
             status = observe(w);
             if (status) return status;
@@ -290,30 +294,17 @@ static int advance(whirl_regime *w, const whirl_regime_params *p, double dt_tota
     return GSL_SUCCESS;
 }
 
-/* The hanging chain at rest in the inertial frame, each link turned by p->perturb about a random
- * horizontal axis; the pivot at its place at t = 0 of the first segment, moving with the hand. */
+/* The hanging chain at rest in the inertial frame, each link turned by p->perturb
+ * (whirl_perturb_links); the pivot at its place at time w->t, moving with the hand. */
 static int start_from_rest(whirl_regime *w, const whirl_regime_params *p)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    gsl_rng_set(rng, p->seed);
-    const double eps = w->model.drive_radius, omega = w->model.omega;
-    const int rotating = p->frame == WHIRL_FRAME_ROTATING;
-    double r[3] = {eps, 0, 0};
     for (size_t i = 0; i < w->n; i++) {
-        const double l = w->chain->length[i], psi = 2 * M_PI * gsl_rng_uniform(rng);
-        const double d[3] = {l * sin(p->perturb) * cos(psi), l * sin(p->perturb) * sin(psi),
-                             -l * cos(p->perturb)};
-        for (int k = 0; k < 3; k++) r[k] += d[k];
-        double *x = w->x + 3 * i, *v = w->v + 3 * i;
-        memcpy(x, r, sizeof r);
-        /* inertial velocity omega z x pivot for every mass; relative to the frame in rotating */
-        v[0] = rotating ? omega * x[1] : 0;
-        v[1] = rotating ? -omega * (x[0] - eps) : omega * eps;
-        v[2] = 0;
+        w->x[3 * i] = w->x[3 * i + 1] = 0;
+        w->x[3 * i + 2] = -w->chain->length[i];
     }
-    gsl_rng_free(rng);
-    return whirl_dyn_set_state(w->dyn, w->t, w->x, w->v, w->y);
+    int status = whirl_perturb_links(w->n, w->x, p->perturb, p->seed);
+    if (status) return status;
+    return whirl_dyn_state_from_shape(w->dyn, w->t, w->x, 0, w->y);
 }
 
 /* RMS over the masses of |a_i - b_i| (3 per mass). */
@@ -334,7 +325,7 @@ static double state_distance(size_t size, const double *a, const double *b)
 /* The node count of the shape in w->x (co-rotating) with the pivot in front. */
 static int shape_nodes(whirl_regime *w)
 {
-    const double eps = w->model.drive_radius;
+    const double eps = drive_radius_now(w);
     w->poly[0] = eps;
     w->poly[1] = w->poly[2] = 0;
     memcpy(w->poly + 3, w->x, 3 * w->n * sizeof *w->x);
@@ -345,8 +336,10 @@ static int shape_nodes(whirl_regime *w)
 static void compare_with_steady(whirl_regime *w, const whirl_regime_params *p,
                                 whirl_regime_result *res)
 {
-    const whirl_driven_params dp = {.omega = w->model.omega, .eps = w->model.drive_radius,
-                                    .drag = p->drag, .drag_quadratic = p->drag_quadratic};
+    whirl_driven_params dp;
+    whirl_driven_params_from_model(&dp, &w->model);
+    dp.omega = omega_now(w);
+    dp.drive_radius = drive_radius_now(w);
     whirl_driven_info info;
     res->shape_error = NAN;
     res->bvp_nodes = 0;
@@ -401,12 +394,11 @@ static int decaying(const whirl_regime *w)
 static int lyapunov(whirl_regime *w, const whirl_regime_params *p, double period, double *lambda)
 {
     const size_t size = 6 * w->n;
-    whirl_integrator *twin = whirl_integrator_alloc(p->method, w->dyn);
-    if (twin == NULL) return GSL_ENOMEM;
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    int status = rng ? GSL_SUCCESS : GSL_ENOMEM;
+    whirl_integrator *twin = w->twin;
+    gsl_rng *rng = w->rng;
+    int status = GSL_SUCCESS;
     double sum = 0, d0 = 0;
-    if (rng) {
+    {
         gsl_rng_set(rng, p->seed + 1);
         for (size_t i = 0; i < size; i++) w->y2[i] = w->y[i] + (gsl_rng_uniform(rng) - 0.5);
         const double d = state_distance(size, w->y, w->y2);
@@ -426,9 +418,6 @@ static int lyapunov(whirl_regime *w, const whirl_regime_params *p, double period
         d0 = state_distance(size, w->y, w->y2);
     }
     *lambda = sum / (p->lyapunov_periods * period);
-    w->steps += whirl_integrator_get_stats(twin).steps;
-    whirl_integrator_free(twin);
-    gsl_rng_free(rng);
     return status;
 }
 
@@ -451,7 +440,7 @@ static double distance_left(const whirl_regime *w)
 static int settle(whirl_regime *w, const whirl_regime_params *p, double duration,
                   whirl_regime_result *res)
 {
-    const double period = 2 * M_PI / w->model.omega, t_stop = w->t + duration;
+    const double period = 2 * M_PI / omega_now(w), t_stop = w->t + duration;
     int status = corotating_positions(w, w->y), good = 0;
     if (status) return status;
     memcpy(w->prev, w->x, 3 * w->n * sizeof *w->x);
@@ -495,8 +484,6 @@ static int settle(whirl_regime *w, const whirl_regime_params *p, double duration
     return GSL_SUCCESS;
 }
 
-static double smooth_step(double u) { return u <= 0 ? 0 : u >= 1 ? 1 : u * u * (3 - 2 * u); }
-
 static void result_failed(whirl_regime_result *res, const whirl_regime *w)
 {
     memset(res, 0, sizeof *res);
@@ -507,6 +494,13 @@ static void result_failed(whirl_regime_result *res, const whirl_regime *w)
     res->tip_r = NAN;
 }
 
+/* Steps of the run's integrators so far. */
+static unsigned long run_steps(const whirl_regime *w)
+{
+    return (w->it ? whirl_integrator_get_stats(w->it).steps : 0) +
+           (w->twin ? whirl_integrator_get_stats(w->twin).steps : 0);
+}
+
 /* Ends a run or a sweep point: a failed integration is a result, other statuses are returned. */
 static int finish(whirl_regime *w, int status, whirl_regime_result *res)
 {
@@ -514,11 +508,11 @@ static int finish(whirl_regime *w, int status, whirl_regime_result *res)
         char message[512];
         snprintf(message, sizeof message, "%s", whirl_last_error());
         result_failed(res, w);
-        res->steps = w->steps + (w->it ? whirl_integrator_get_stats(w->it).steps : 0);
+        res->steps = run_steps(w);
         whirl_fail(GSL_EFAILED, "%s", message);
         return GSL_SUCCESS;
     }
-    res->steps = w->steps + (w->it ? whirl_integrator_get_stats(w->it).steps : 0);
+    res->steps = run_steps(w);
     return status;
 }
 
@@ -526,13 +520,9 @@ static int finish(whirl_regime *w, int status, whirl_regime_result *res)
 static int from_rest(whirl_regime *w, const whirl_regime_params *p, double omega,
                      whirl_regime_result *res)
 {
-    release_model(w);
-    w->steps = 0;
     w->t = w->angle = 0;
     w->next_observe = 0;
-    const size_t segments = (size_t)ceil(p->t_ramp / p->ramp_step * (1 - 1e-12));
-    const double h = p->t_ramp / (double)segments;
-    int status = set_drive(w, p, omega, p->eps * smooth_step(0.5 / (double)segments));
+    int status = start_model(w, p, omega);
     if (status == GSL_SUCCESS) status = start_from_rest(w, p);
     if (status) return status;
     if (w->observer) {
@@ -540,11 +530,7 @@ static int from_rest(whirl_regime *w, const whirl_regime_params *p, double omega
         w->next_observe = w->observe_every;
         if (status) return status;
     }
-    for (size_t k = 0; k < segments && status == GSL_SUCCESS; k++) {
-        status = set_drive(w, p, omega, p->eps * smooth_step((k + 0.5) / (double)segments));
-        if (status == GSL_SUCCESS) status = advance(w, p, h, NULL);
-    }
-    if (status == GSL_SUCCESS) status = set_drive(w, p, omega, p->eps);
+    status = advance(w, p, p->t_ramp, NULL);
     if (status == GSL_SUCCESS) status = settle(w, p, p->t_max - p->t_ramp, res);
     return status;
 }
@@ -563,9 +549,8 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
     if (p->frame != WHIRL_FRAME_ROTATING)
         return whirl_fail(GSL_EINVAL, "a sweep of omega needs the rotating frame");
     if (n < 1) return whirl_fail(GSL_EINVAL, "a sweep needs at least one rate");
-    if (!(t_change >= p->ramp_step && isfinite(t_change)))
-        return whirl_fail(GSL_EINVAL, "t_change (%g) must be >= ramp_step (%g)", t_change,
-                          p->ramp_step);
+    if (!(t_change > 0 && isfinite(t_change)))
+        return whirl_fail(GSL_EINVAL, "t_change must be > 0, got %g", t_change);
     whirl_regime_params q = *p;
     for (size_t j = 0; j < n; j++) {
         q.omega = omega[j];
@@ -575,19 +560,14 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
     int status = from_rest(w, p, omega[0], &res[0]);
     status = finish(w, status, &res[0]);
     if (status) return status;
-    const size_t segments = (size_t)ceil(t_change / p->ramp_step * (1 - 1e-12));
-    const double h = t_change / (double)segments;
     for (size_t j = 1; j < n; j++) {
         if (res[j - 1].state == WHIRL_REGIME_FAILED) {
             result_failed(&res[j], w);
             continue;
         }
-        for (size_t k = 1; k <= segments && status == GSL_SUCCESS; k++) {
-            const double u = (double)k / (double)segments;
-            const double wk = omega[j - 1] + (omega[j] - omega[j - 1]) * u;
-            status = set_drive(w, p, wk, p->eps);
-            if (status == GSL_SUCCESS) status = advance(w, p, h, NULL);
-        }
+        const whirl_ramp change = {omega[j - 1], omega[j], w->t, w->t + t_change};
+        status = whirl_dyn_set_ramps(w->dyn, w->t, NULL, &change);
+        if (status == GSL_SUCCESS) status = advance(w, p, t_change, NULL);
         if (status == GSL_SUCCESS) status = settle(w, p, p->t_max - p->t_ramp, &res[j]);
         status = finish(w, status, &res[j]);
         if (status) return status;

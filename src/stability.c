@@ -501,8 +501,8 @@ int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, in
     w->linearised = 0;
     int status = check_model(w, model);
     if (status) return status;
-    const whirl_driven_params p = {model->omega, model->drive_radius, model->air_drag,
-                                   model->air_drag_quadratic, 0};
+    whirl_driven_params p;
+    whirl_driven_params_from_model(&p, model);
     whirl_driven_info local;
     whirl_driven_info *out = info ? info : &local;
     status = whirl_driven_mode(model->chain, &p, mode, side, out);

@@ -1,9 +1,9 @@
 /* Perturbed time-domain runs about a steady shape: the nonlinear check of the linear analysis.
  *
  * Start: a relative equilibrium of the N-link chain (free: whirl_nlink_positions; driven, with
- * air drag: whirl_driven_sample), every link direction u_j turned by the angle eps towards a
- * random unit vector t_j perpendicular to it, u_j <- cos(eps) u_j + sin(eps) t_j, at rest in the
- * frame co-rotating at omega, the pivot at (eps_drive, 0, 0). The dynamics (3D, co-rotating frame,
+ * air drag: whirl_driven_sample), every link turned by the angle eps (whirl_perturb_links), at
+ * rest in the frame co-rotating at omega, the pivot at (eps_drive, 0, 0)
+ * (whirl_dyn_state_from_shape). The step: whirl_default_step unless one is given. The dynamics (3D, co-rotating frame,
  * Cartesian formulation, the model's drive, drag and damping) are integrated with a fixed step and
  * the deviation d(t) (RMS over the masses of the distance to the shape; when rotation about z is
  * a symmetry, without drive and drag, minimised over that rotation by whirl_deviation, so the
@@ -18,8 +18,6 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <gsl/gsl_randist.h>
-#include <gsl/gsl_rng.h>
 
 #include "whirl/stability.h"
 #include "error.h"
@@ -108,80 +106,6 @@ static double fit_slope(const line_fit *f)
     return (f->n >= 2 && den > 0) ? (f->n * f->sty - f->st * f->sy) / den : 0.0;
 }
 
-/* Shape (ref) and its perturbation (x) from the nodes (pivot first), 3 per mass, the pivot at
- * (eps, 0, 0). */
-static int perturbed_start(const whirl_model *m, const double *nx, const double *ny,
-                           const double *nz, double eps, unsigned long seed, double *ref,
-                           double *x)
-{
-    const whirl_chain *c = m->chain;
-    for (size_t j = 0; j < c->n; j++) {
-        const double d[3] = {nx[j + 1] - nx[j], ny[j + 1] - ny[j], nz[j + 1] - nz[j]};
-        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        if (!(isfinite(len) && fabs(len - c->length[j]) <= 1e-9 * c->length[j]))
-            return whirl_fail(GSL_EINVAL, "link %zu of the shape has length %.17g, the chain's "
-                                          "is %.17g", j + 1, len, c->length[j]);
-    }
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the random generator");
-    gsl_rng_set(rng, seed);
-    double base[3] = {m->drive_radius, 0, 0}, moved[3] = {m->drive_radius, 0, 0};
-    for (size_t j = 0; j < c->n; j++) {
-        const double len = c->length[j];
-        double u[3] = {nx[j + 1] - nx[j], ny[j + 1] - ny[j], nz[j + 1] - nz[j]};
-        const double un = sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-        for (int k = 0; k < 3; k++) u[k] /= un;
-        double t[3], norm = 0;
-        do { /* a random direction perpendicular to u */
-            for (int k = 0; k < 3; k++) t[k] = gsl_ran_gaussian(rng, 1.0);
-            const double along = t[0] * u[0] + t[1] * u[1] + t[2] * u[2];
-            for (int k = 0; k < 3; k++) t[k] -= along * u[k];
-            norm = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-        } while (norm < 1e-3);
-        for (int k = 0; k < 3; k++) {
-            base[k] += len * u[k];
-            moved[k] += len * (cos(eps) * u[k] + sin(eps) * t[k] / norm);
-            ref[3 * j + k] = base[k];
-            x[3 * j + k] = moved[k];
-        }
-    }
-    gsl_rng_free(rng);
-    return GSL_SUCCESS;
-}
-
-/* The step of a perturbed run: nu = 2 sqrt(max_j (T_j / l_j) / min m) is the Gershgorin bound
- * of the highest transverse frequency under the tensions T_j (tension[j], link j + 1), and
- * kappa = 16 D / (min m min l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) that of the
- * fastest decay of the internal damping D and the air drag (the derivative of the drag force
- * l (c + c2 |v|) v is at most l (c + 2 c2 |v|), |v| <= omega (eps + L)); the damping's term is
- * 4 D / (m l^2) for one joint, times 4 for the chain's mass matrix (measured: 15.6 D N^3 for the
- * uniform chain of N = 25, from the eigenvalues of the damped linearisation).
- * - classical rk4: min(period / 200, 2 / (nu + omega), 2 / kappa): inside its stability
- *   interval on the imaginary axis (|h lambda| < 2.83) and on the negative real axis (2.79); the
- *   modes that decide stability are far slower and resolved (relative error (h omega)^4), the
- *   fastest ones are damped by the method;
- * - the other methods: min(period / 200, 0.7 / (nu + omega + kappa)), so that the stage
- *   iterations of the implicit methods converge and the other explicit ones are stable. */
-static double default_step(const whirl_model *m, const double *tension, const char *method)
-{
-    const whirl_chain *c = m->chain;
-    const double speed = m->omega * (m->drive_radius + whirl_chain_total_length(c));
-    double stiff = 0, light = INFINITY, shortest = INFINITY, drag = 0;
-    for (size_t j = 0; j < c->n; j++) {
-        stiff = fmax(stiff, tension[j] / c->length[j]);
-        light = fmin(light, c->mass[j]);
-        shortest = fmin(shortest, c->length[j]);
-        drag = fmax(drag, c->length[j] / c->mass[j] *
-                              (m->air_drag + 2 * m->air_drag_quadratic * speed));
-    }
-    const double nu = 2 * sqrt(stiff / light);
-    const double kappa = 16 * m->internal_damping / (light * shortest * shortest) + drag;
-    const double period_step = 2 * M_PI / m->omega / 200;
-    if (strcmp(method, "rk4") == 0)
-        return fmin(period_step, fmin(2 / (nu + m->omega), 2 / kappa));
-    return fmin(period_step, 0.7 / (nu + m->omega + kappa));
-}
-
 int whirl_stability_run_shape(const whirl_model *model, const double *nx, const double *ny,
                               const double *nz, const whirl_stability_run_params *params,
                               whirl_stability_run_result *result)
@@ -204,9 +128,11 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
         goto done;
     }
     double *tension = buf, *ref = tension + n;
-    double *x = ref + 3 * n, *v = x + 3 * n, *x_now = v + 3 * n, *v_now = x_now + 3 * n;
-    if ((status = perturbed_start(&m, nx, ny, nz, params->perturbation, params->seed, ref, x)))
-        goto done;
+    double *links = ref + 3 * n, *turned = links + 3 * n, *x_now = turned + 3 * n;
+    double *v_now = x_now + 3 * n;
+    if ((status = whirl_shape_links(n, nx, ny, nz, links))) goto done;
+    memcpy(turned, links, 3 * n * sizeof *links);
+    if ((status = whirl_perturb_links(n, turned, params->perturbation, params->seed))) goto done;
 
     if ((dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN)) == NULL) {
         status = GSL_EINVAL; /* message set by whirl_dyn_alloc */
@@ -221,10 +147,12 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
         goto done;
     }
     double t = 0;
-    /* the tensions of the shape (for the default step), then the perturbed start */
-    if ((status = whirl_dyn_set_state(dyn, t, ref, v, y))) goto done;
+    /* the shape at rest in the co-rotating frame: its positions and tensions (for the default
+       step), then the perturbed start */
+    if ((status = whirl_dyn_state_from_shape(dyn, t, links, m.omega, y))) goto done;
+    if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, ref, v_now))) goto done;
     if ((status = whirl_dyn_tensions(dyn, t, y, tension))) goto done;
-    if ((status = whirl_dyn_set_state(dyn, t, x, v, y))) goto done;
+    if ((status = whirl_dyn_state_from_shape(dyn, t, turned, m.omega, y))) goto done;
     if ((status = whirl_dyn_get_state(dyn, t, y, WHIRL_FRAME_ROTATING, x_now, v_now))) goto done;
     const double d0 = deviation(&m, n, x_now, ref);
     if (!(d0 > 0)) {
@@ -232,8 +160,9 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
                             params->perturbation);
         goto done;
     }
+    double h = params->dt;
+    if (!(h > 0) && (status = whirl_default_step(&m, tension, params->method, &h))) goto done;
     const double period = 2 * M_PI / m.omega, t_end = params->periods * period;
-    const double h = params->dt > 0 ? params->dt : default_step(&m, tension, params->method);
     if (!(t_end / h <= RUN_STEPS_MAX)) {
         status = whirl_fail(GSL_EINVAL, "%g periods in steps of %g are %.3g steps, more than %g: "
                             "fewer periods or a larger step", params->periods, h, t_end / h,

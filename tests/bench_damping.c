@@ -110,7 +110,7 @@ static double part_a_row(FILE *fp, const converge_case *k)
     double *buf = malloc((5 * (n + 1) + 16 * n) * sizeof *buf);
     if (c == NULL || w == NULL || buf == NULL) bench_die("alloc");
     double *r = buf, *z = r + n + 1, *tension = z + n + 1, *ref = tension + n + 1;
-    double *u = ref + 3 * n, *x0 = u + 3 * n, *v0 = x0 + 3 * n, *hr = v0 + 3 * n, *hz = hr + n + 1;
+    double *x0 = ref + 3 * n, *v0 = x0 + 3 * n, *hr = v0 + 3 * n, *hz = hr + n + 1;
     double *rates = hz + n + 1; /* 4 N */
     whirl_model m = {0};
     m.chain = c;
@@ -131,8 +131,8 @@ static double part_a_row(FILE *fp, const converge_case *k)
     distinct_rates(w, rates, &count, &freq);
     const double sigma = rates[0], sigma2 = rates[1];
     if (k->hanging) {
-        if (damping_start_hanging(c, k->omega, TURN_HANGING, 1, u, x0, v0)) bench_die("start");
-    } else if (damping_start_turned(c, r, z, TURN_MODE1, 1, u, x0, v0))
+        if (damping_start_hanging(c, k->omega, TURN_HANGING, 1, x0, v0)) bench_die("start");
+    } else if (damping_start_turned(c, r, z, TURN_MODE1, 1, x0, v0))
         bench_die("start");
     const double osc = freq > 0 ? freq : k->omega; /* the blocks: periods of the slowest mode */
     damping_run_params p = {"rk4", damping_step(&m, tension, "rk4"),

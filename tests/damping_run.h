@@ -11,8 +11,8 @@
  * Starts (positions x and velocities v of the masses, 3 per mass, co-rotating frame):
  *  - damping_start_turned: the steady shape with nodes r, z (pivot first, as from
  *    whirl_nlink_positions), every link direction u_j turned by the angle eps towards a random
- *    unit vector t_j perpendicular to it, u_j <- cos(eps) u_j + sin(eps) t_j (GSL's mt19937,
- *    the rule of whirl_stability_run), at rest in the co-rotating frame;
+ *    unit vector t_j perpendicular to it (the library's rule, whirl_perturb_links), at rest in
+ *    the co-rotating frame;
  *  - damping_start_hanging: the chain hanging straight down with every link turned the same way
  *    by eps (the exactly hanging chain is an equilibrium and would never leave), at rest in the
  *    inertial frame: v_i = -omega z x x_i in the co-rotating frame.
@@ -45,91 +45,51 @@
 
 #include "whirl/stability.h"
 
-/* The fixed step min(period / 200, f / (nu + omega + kappa)): nu = 2 sqrt(max_j (T_j / l_j) /
- * min m) bounds the highest transverse frequency under the tensions T_j (tension[j], j = 1..N,
- * as from whirl_nlink_positions), kappa = 16 D / (min m min l^2) the fastest decay rate of the
- * damping, an eigenvalue of M^-1 C (Gershgorin bounds C by 4 D and M^-1 by 4 / (m l^2) for a
- * uniform chain; the damped linearisation measures 15.6 D N^3 at N = 25); f = 2 for rk4 (inside
- * its stability intervals, 2.83 on the imaginary and 2.79 on the negative real axis) and 0.7 for
- * the other methods (convergence of the implicit stages). For rk4 this is within a factor 2 of
- * whirl_stability_run's default step. */
+/* The library's default fixed step (whirl_default_step) for the tensions T_j of links j = 1..N
+ * given as tension[1..N] (as from whirl_nlink_positions); NAN if it fails. */
 static inline double damping_step(const whirl_model *m, const double *tension, const char *method)
 {
-    const double f = strcmp(method, "rk4") == 0 ? 2.0 : 0.7;
-    const whirl_chain *c = m->chain;
-    double stiff = 0, light = INFINITY, shortest = INFINITY;
-    for (size_t j = 0; j < c->n; j++) {
-        stiff = fmax(stiff, tension[j + 1] / c->length[j]);
-        light = fmin(light, c->mass[j]);
-        shortest = fmin(shortest, c->length[j]);
-    }
-    const double nu = 2 * sqrt(stiff / light);
-    const double kappa = 16 * m->internal_damping / (light * shortest * shortest);
-    return fmin(2 * M_PI / m->omega / 200, f / (nu + m->omega + kappa));
+    double h;
+    return whirl_default_step(m, tension + 1, method, &h) == GSL_SUCCESS ? h : NAN;
 }
 
-/* Positions x (3 per mass) of the links u (3 per link) laid end to end from the pivot, each
- * u_j first turned by eps towards a random perpendicular unit vector (rng). */
-static inline void damping_turn_links(const whirl_chain *c, const double *u, double eps,
-                                      gsl_rng *rng, double *x)
+/* x_i = sum of the link vectors 1..i (3 per link), in place: positions from a pivot at 0. */
+static inline void damping_accumulate(size_t n, double *x)
 {
-    double tip[3] = {0, 0, 0};
-    for (size_t j = 0; j < c->n; j++) {
-        const double *uj = u + 3 * j;
-        double t[3], norm = 0;
-        do { /* a random direction perpendicular to u_j */
-            double along = 0;
-            for (int k = 0; k < 3; k++) t[k] = gsl_ran_gaussian(rng, 1.0);
-            for (int k = 0; k < 3; k++) along += t[k] * uj[k];
-            for (int k = 0; k < 3; k++) t[k] -= along * uj[k];
-            norm = sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
-        } while (norm < 1e-3);
-        for (int k = 0; k < 3; k++) {
-            tip[k] += c->length[j] * (cos(eps) * uj[k] + sin(eps) * t[k] / norm);
-            x[3 * j + k] = tip[k];
-        }
-    }
+    for (size_t i = 1; i < n; i++)
+        for (int k = 0; k < 3; k++) x[3 * i + k] += x[3 * (i - 1) + k];
 }
 
-/* The turned steady shape (nodes r, z; pivot first) at rest in the co-rotating frame. u: scratch
- * of 3 N. GSL_ENOMEM if the random generator cannot be allocated. */
+/* The turned steady shape (nodes r, z; pivot first) at rest in the co-rotating frame: the links
+ * turned by eps (whirl_perturb_links). */
 static inline int damping_start_turned(const whirl_chain *c, const double *r, const double *z,
-                                       double eps, unsigned long seed, double *u, double *x,
-                                       double *v)
+                                       double eps, unsigned long seed, double *x, double *v)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return GSL_ENOMEM;
-    gsl_rng_set(rng, seed);
-    for (size_t j = 0; j < c->n; j++) {
-        u[3 * j] = (r[j + 1] - r[j]) / c->length[j];
-        u[3 * j + 1] = 0;
-        u[3 * j + 2] = (z[j + 1] - z[j]) / c->length[j];
-    }
-    damping_turn_links(c, u, eps, rng, x);
+    int status = whirl_shape_links(c->n, r, NULL, z, x);
+    if (status == GSL_SUCCESS) status = whirl_perturb_links(c->n, x, eps, seed);
+    if (status != GSL_SUCCESS) return status;
+    damping_accumulate(c->n, x);
     memset(v, 0, 3 * c->n * sizeof *v);
-    gsl_rng_free(rng);
     return GSL_SUCCESS;
 }
 
 /* The turned hanging chain at rest in the inertial frame, seen from the frame co-rotating at
- * omega. u: scratch of 3 N. */
+ * omega. */
 static inline int damping_start_hanging(const whirl_chain *c, double omega, double eps,
-                                        unsigned long seed, double *u, double *x, double *v)
+                                        unsigned long seed, double *x, double *v)
 {
-    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
-    if (rng == NULL) return GSL_ENOMEM;
-    gsl_rng_set(rng, seed);
     for (size_t j = 0; j < c->n; j++) {
-        u[3 * j] = u[3 * j + 1] = 0;
-        u[3 * j + 2] = -1;
+        x[3 * j] = x[3 * j + 1] = 0;
+        x[3 * j + 2] = -c->length[j];
     }
-    damping_turn_links(c, u, eps, rng, x);
+    const int status = whirl_perturb_links(c->n, x, eps, seed);
+    if (status != GSL_SUCCESS) return status;
+    damping_accumulate(c->n, x);
     for (size_t i = 0; i < c->n; i++) { /* v = -omega z x x */
         v[3 * i] = omega * x[3 * i + 1];
         v[3 * i + 1] = -omega * x[3 * i];
         v[3 * i + 2] = 0;
     }
-    gsl_rng_free(rng);
     return GSL_SUCCESS;
 }
 

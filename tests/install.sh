@@ -41,8 +41,11 @@ other=$(grep -v '^whirl_' "$tmp/exported" | tr '\n' ' ')
 if [ -s "$tmp/exported" ] && [ -z "$other" ]; then
   pass "nm -D: all $(wc -l <"$tmp/exported") exported symbols start with whirl_"
 else fail "nm -D: exported symbols not whirl_*: $other"; fi
-# every function declared WHIRL_API in the installed headers is exported, and nothing else
-sed -n 's/^WHIRL_API[^(]*[ *]\(whirl_[a-z0-9_]*\)(.*/\1/p' "$prefix"/include/whirl/*.h | sort -u >"$tmp/declared"
+# every function and object declared WHIRL_API in the installed headers is exported, and
+# nothing else
+sed -n -e 's/^WHIRL_API[^(]*[ *]\(whirl_[a-z0-9_]*\)(.*/\1/p' \
+  -e 's/^extern WHIRL_API .*[ *]\(whirl_[a-z0-9_]*\);.*/\1/p' "$prefix"/include/whirl/*.h |
+  sort -u >"$tmp/declared"
 if [ "$(wc -l <"$tmp/declared")" -ge 80 ] && cmp -s "$tmp/declared" "$tmp/exported"; then
   pass "nm -D: exactly the $(wc -l <"$tmp/declared") functions declared WHIRL_API"
 else fail "declared vs exported: $(diff "$tmp/declared" "$tmp/exported" | grep '^[<>]' | head -5 | tr '\n' ' ')"; fi

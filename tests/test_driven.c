@@ -27,7 +27,8 @@
 
 static whirl_driven_params params(double omega, double eps, double c, double c2, double tip_mass)
 {
-    whirl_driven_params p = {omega, eps, c, c2, tip_mass};
+    whirl_driven_params p = {.omega = omega, .drive_radius = eps, .air_drag = c,
+                             .air_drag_quadratic = c2, .tip_mass = tip_mass};
     return p;
 }
 
@@ -164,9 +165,9 @@ static void test_fixed_point_of_dynamics(void **state)
             model.dim = 3;
             model.frame = WHIRL_FRAME_ROTATING;
             model.omega = p.omega;
-            model.drive_radius = p.eps;
-            model.air_drag = p.drag;
-            model.air_drag_quadratic = p.drag_quadratic;
+            model.drive_radius = p.drive_radius;
+            model.air_drag = p.air_drag;
+            model.air_drag_quadratic = p.air_drag_quadratic;
             whirl_dyn *d = whirl_dyn_alloc(&model, f ? WHIRL_FORMULATION_SEED
                                                      : WHIRL_FORMULATION_CARTESIAN);
             assert_non_null(d);

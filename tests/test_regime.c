@@ -31,8 +31,8 @@ static whirl_regime_params params(double omega, double eps, double drag)
     whirl_regime_params p;
     whirl_regime_params_default(&p, LINKS);
     p.omega = omega;
-    p.eps = eps;
-    p.drag = drag;
+    p.drive_radius = eps;
+    p.air_drag = drag;
     p.t_max = 300;
     return p;
 }
@@ -64,15 +64,15 @@ static void test_nodes_driven(void **state)
     whirl_chain *chain = whirl_chain_alloc_uniform(30, 0);
     double x[31], y[31], z[31], pos[3 * 31];
     for (int mode = 1; mode <= 3; mode++) {
-        const whirl_driven_params dp = {.omega = 5.1, .eps = 0.013, .drag = 0.021,
-                                        .drag_quadratic = 0.0144};
+        const whirl_driven_params dp = {.omega = 5.1, .drive_radius = 0.013, .air_drag = 0.021,
+                                        .air_drag_quadratic = 0.0144};
         whirl_driven_info info;
         assert_int_equal(whirl_driven_mode(chain, &dp, mode, 1, &info), GSL_SUCCESS);
         assert_int_equal(whirl_driven_sample(chain, &dp, info.tip, 31, NULL, x, y, z, NULL),
                          GSL_SUCCESS);
         for (int i = 0; i < 31; i++)
             pos[3 * i] = x[i], pos[3 * i + 1] = y[i], pos[3 * i + 2] = z[i];
-        assert_int_equal(whirl_driven_nodes(dp.eps, 31, pos, chain->length), info.nodes);
+        assert_int_equal(whirl_driven_nodes(dp.drive_radius, 31, pos, chain->length), info.nodes);
         assert_int_equal(info.nodes, mode);
     }
     whirl_chain_free(chain);
@@ -174,7 +174,8 @@ static void test_sweep(void **state)
     p.frame = WHIRL_FRAME_INERTIAL;
     assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res), GSL_EINVAL);
     p.frame = WHIRL_FRAME_ROTATING;
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0.1, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, NAN, res), GSL_EINVAL);
     whirl_regime_free(w);
     whirl_chain_free(chain);
 }
@@ -192,20 +193,19 @@ static int watch(void *ctx, double t, double angle, const double *pivot, const d
     (void)n;
     s->calls++;
     s->last_t = t;
-    s->max_angle_error = fmax(s->max_angle_error, fabs(angle - 5.8 * t));
+    s->max_angle_error = fmax(s->max_angle_error, fabs(angle - 4.0 * t));
     return GSL_SUCCESS;
 }
 
-/* Driven hard near omega_4 with a wide circle, the chain flails: chaotic, lambda > 0. The
- * finite-time exponent over 30 periods depends on the perturbation and on the round-off of the
- * right-hand side: with drag 0.05 it ranged 0.06-3 over perturbation seeds (transient chaos
- * settling into quasi-periodic motion), with drag 0.02 0.13-0.53, hence drag 0.02 and a margin
- * of 2 over the classification's threshold. */
+/* Driven hard between omega_3 and omega_4 on a wide circle with little drag, the chain flails:
+ * chaotic, lambda > 0. The 30-period estimate depends on the random start: over the seeds 1..8
+ * it was 0.29..0.86 here (at omega 5.8, eps 0.1, drag 0.05 it ranged over 0.06..2.9, and the
+ * threshold 10 chaos_lambda was met by some seeds only). */
 static void test_chaotic_and_observer(void **state)
 {
     (void)state;
     whirl_chain *chain = whirl_chain_alloc_uniform(LINKS, 0);
-    whirl_regime_params p = params(5.8, 0.1, 0.02);
+    whirl_regime_params p = params(4.0, 0.15, 0.02);
     p.t_max = 100;
     p.lyapunov_periods = 30;
     whirl_regime *w = whirl_regime_alloc(chain);
@@ -214,10 +214,10 @@ static void test_chaotic_and_observer(void **state)
     whirl_regime_result r;
     assert_int_equal(whirl_regime_run(w, &p, &r), GSL_SUCCESS);
     assert_int_equal(r.state, WHIRL_REGIME_CHAOTIC);
-    assert_true(r.lyapunov > 2 * p.chaos_lambda);
+    assert_true(r.lyapunov > 5 * p.chaos_lambda);
     assert_true(isnan(r.shape_error));
     assert_int_equal(s.calls, (int)floor(r.t_end / 0.25 + 1e-9) + 1);
-    assert_true(s.max_angle_error < 1e-9 * r.t_end * 5.8);
+    assert_true(s.max_angle_error < 1e-9 * r.t_end * 4.0);
     whirl_regime_free(w);
     whirl_chain_free(chain);
 }
@@ -237,14 +237,13 @@ static void test_errors(void **state)
     } while (0)
     BAD(omega, 0);
     BAD(omega, NAN);
-    BAD(eps, 0);
-    BAD(eps, 1);
-    BAD(drag, -0.1);
-    BAD(drag_quadratic, -1e-3);
+    BAD(drive_radius, 0);
+    BAD(drive_radius, 1);
+    BAD(air_drag, -0.1);
+    BAD(air_drag_quadratic, -1e-3);
     BAD(internal_damping, INFINITY);
     BAD(dt, 0);
     BAD(t_ramp, -1);
-    BAD(ramp_step, 30);
     BAD(t_max, 10);
     BAD(settle_tol, 0);
     BAD(settle_periods, 0);

@@ -44,6 +44,7 @@
 
 #include "whirl/chain.h"
 #include "whirl/common.h"
+#include "whirl/dynamics.h"
 
 /* Samples of the continuum's shape used to count its nodes. */
 #define WHIRL_DRIVEN_NODE_SAMPLES 1024
@@ -52,14 +53,20 @@
 
 /* The parameters of the driven problem (never changed by the library). */
 typedef struct whirl_driven_params {
-    double omega;          /* rotation rate of the hand and of the frame [sqrt(g/L)], > 0 */
-    double eps;            /* radius of the pivot's circle [L], >= 0 */
-    double drag;           /* c in [0, 1e6]: linear air drag per unit length [M/(L T)]: -c ds v */
-    double drag_quadratic; /* c2 in [0, 1e6]: quadratic air drag per unit length [M/L^2]:
-                              -c2 ds |v| v */
-    double tip_mass;       /* continuum only: point mass at the free end [M], >= 0; must be 0
-                              with an N-link chain */
+    /* omega, drive_radius, air_drag and air_drag_quadratic are whirl_model's (dynamics.h), with
+       the same names, meaning and units */
+    double omega;              /* rotation rate of the hand and of the frame [sqrt(g/L)], > 0 */
+    double drive_radius;       /* eps: radius of the pivot's circle [L], >= 0 */
+    double air_drag;           /* c in [0, 1e6]: linear air drag per unit length [M/(L T)]: -c ds v */
+    double air_drag_quadratic; /* c2 in [0, 1e6]: quadratic air drag per unit length [M/L^2]:
+                                  -c2 ds |v| v */
+    double tip_mass;           /* continuum only: point mass at the free end [M], >= 0; must be
+                                  0 with an N-link chain */
 } whirl_driven_params;
+
+/* p <- the drive and drag of the model m (omega, drive_radius, air_drag, air_drag_quadratic;
+ * tip_mass 0). The model's internal damping, frame and dimension play no part in a steady shape. */
+WHIRL_API void whirl_driven_params_from_model(whirl_driven_params *p, const whirl_model *m);
 
 /* One steady shape. */
 typedef struct whirl_driven_info {
@@ -88,7 +95,7 @@ WHIRL_API int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_pa
 /* The shape of mode k (1 <= k <= WHIRL_MODE_MAX) at params: seeded by the free shape of mode k
  * at params->omega (whirl_continuum_solve or whirl_nlink_solve) with its tip on the pivot's side
  * of the axis (side = +1) or on the opposite side (side = -1), then followed by natural
- * continuation from eps = 0 to params->eps (no drag), then from no drag to params' drag.
+ * continuation from eps = 0 to params->drive_radius (no drag), then from no drag to params' drag.
  * GSL_EDOM if mode k has no free shape at params->omega, or if the continuation breaks down:
  * the shape disappears at a fold on the way, in eps (small shapes near omega_k) or in the drag
  * (the support's torque eps F_y(top) must equal the drag's omega int (c + c2 omega rho) rho^2 ds,

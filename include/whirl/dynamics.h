@@ -19,9 +19,21 @@
 
 #include "whirl/chain.h"
 #include "whirl/common.h"
+#include "whirl/integrator.h"
 
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
+
+/* A quantity ramped in time by a C1 smooth step: from before t_start, to after t_end and
+ * from + (to - from) s(u) between, u = (t - t_start) / (t_end - t_start), s(u) = u^2 (3 - 2 u)
+ * (continuous with its first derivative; the second jumps at t_start and t_end). A ramp with
+ * all four fields 0 is inactive (the default); an active one needs t_end > t_start, all finite. */
+typedef struct whirl_ramp {
+    double from;    /* value up to t_start */
+    double to;      /* value from t_end on */
+    double t_start; /* start of the ramp [T] */
+    double t_end;   /* end of the ramp [T], > t_start */
+} whirl_ramp;
 
 /* The model: parameters only, never changed by the library. */
 typedef struct whirl_model {
@@ -45,6 +57,12 @@ typedef struct whirl_model {
        f_d = sigma_d - lambda_d thetadot_d; arrays of chain->n or NULL for none (seed eq. 25-26) */
     const double *seed_sigma;
     const double *seed_lambda;
+    /* A drive that depends on time (default: both inactive, the constant drive above). When
+       active, a ramp replaces the constant: eps(t) for drive_radius (from, to >= 0), omega(t)
+       for omega (the drive's rate and, WHIRL_FRAME_ROTATING, the frame's: its angle, the
+       drive's phase, is phi(t) = int_0^t omega, and the Euler force -omega' z x x acts). */
+    whirl_ramp drive_radius_ramp;
+    whirl_ramp omega_ramp;
 } whirl_model;
 
 typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
@@ -55,6 +73,21 @@ WHIRL_API whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation
 WHIRL_API void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
 
 WHIRL_API const whirl_model *whirl_dyn_model(const whirl_dyn *d);
+
+/* The drive at time t: radius eps(t) [L], rate omega(t) [1/T] and phase phi(t) [rad] (the
+ * pivot's angle about z in the inertial frame and the co-rotating frame's angle, int_0^t omega;
+ * omega t for a constant drive). Any output may be NULL. */
+WHIRL_API void whirl_dyn_drive_at(const whirl_dyn *d, double t, double *radius, double *omega,
+                        double *phase);
+
+/* Replaces the model's drive_radius_ramp and omega_ramp (NULL: keep that one) of d at time t,
+ * e.g. to change the rate in the middle of a run; allocates nothing. The phase phi stays
+ * continuous at t (from t on it is phi(t) plus the integral of the new omega(t) from t). The
+ * state vector keeps its meaning (in the co-rotating frame: rates relative to the frame); for
+ * the motion to stay smooth the new ramps should start from the drive's values at t. GSL_EINVAL
+ * on an invalid ramp or t (d is then unchanged). */
+WHIRL_API int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
+                        const whirl_ramp *omega);
 WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 
 /* Length of the state vector y. */
@@ -94,52 +127,58 @@ typedef struct whirl_dyn_diagnostics {
 WHIRL_API int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y,
                                  whirl_dyn_diagnostics *out);
 
+/* ---- start states (src/state.c) ---- */
+
+/* links[3 i..3 i + 2] <- the link vector of link i + 1 of the shape whose n + 1 nodes (the pivot
+ * first) are (nx, ny, nz) (ny NULL: a planar shape, y = 0), e.g. the r, z of
+ * whirl_nlink_positions or the x, y, z of whirl_driven_sample. GSL_EINVAL on NULL arrays,
+ * n = 0 or a node that is not finite. */
+WHIRL_API int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
+                      double *links);
+
+/* The one perturbation rule of the library: each of the n link vectors (3 per link, in place)
+ * turned by angle [rad] (>= 0) towards a random direction perpendicular to it, uniform on the
+ * circle of such directions (GSL's MT19937 seeded with seed); lengths kept. GSL_EINVAL on NULL,
+ * n = 0, a bad angle or a zero link; GSL_ENOMEM. */
+WHIRL_API int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
+
+/* y <- the state of d at time t (length whirl_dyn_size) of the shape whose link vectors are
+ * links (3 per link, the shape's own frame: pivot first, z up) turning rigidly at the rate spin
+ * [1/T] about the vertical through the pivot, which moves with the drive. In the co-rotating
+ * frame the shape is placed as given, the pivot at (drive_radius, 0, 0); in the inertial frame
+ * (3D) it is turned about z by the drive's phase at t, so that a steady shape at the model's
+ * omega (from whirl_nlink_positions or whirl_driven_sample) is an equilibrium in either frame.
+ * A planar model (dim 2) needs spin = 0. The links must have the chain's lengths (to 1e-9
+ * relative, whirl_dyn_set_state). GSL_EINVAL with a message on NULL or inconsistent
+ * arguments; GSL_ENOMEM (allocates 6 N doubles of scratch and frees them). */
+WHIRL_API int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
+                               double *y);
+
+/* *h <- the library's default fixed step for a run of the model m with the integrator method
+ * near a shape with the link tensions tension[0..N-1] [M g]: the smallest of a 200th of the
+ * period 2 pi / omega, the stability limit of the fastest transverse wave under the tensions
+ * and those of the damping and the air drag (src/state.c gives the bounds). GSL_EINVAL on NULL
+ * arguments, omega <= 0 or a negative tension. */
+WHIRL_API int whirl_default_step(const whirl_model *m, const double *tension, const char *method,
+                       double *h);
+
 /* Deviation of the positions x (3 per mass, N masses) from the reference ref: the RMS over the
  * masses of their distance, minimised over a rotation of x about z. */
 WHIRL_API double whirl_deviation(size_t n, const double *x, const double *ref);
 
-/* ---- integrators ----
- * Methods: "gauss2" (2-stage Gauss-Legendre, order 4, the seed's), "gauss3" (order 6), "rk4"
- * (classical, explicit), "rk8" (Prince-Dormand RK8(7)13M, explicit, 13 evaluations per step,
- * GSL's standard step control), and GSL's steppers on the same right-hand side: "gsl-rk8pd",
- * "gsl-rk4imp", "gsl-msadams", "gsl-msbdf", "gsl-rkf45", "gsl-rk4". gauss2, gauss3, rk4 take
- * fixed steps only; rk8 and the GSL steppers fixed or adaptive steps, except the multistep
- * gsl-msadams and gsl-msbdf: adaptive only. The Gauss methods solve their stage equations by
- * fixed-point iteration, which converges for h omega_max rho(A) < 1 (rho(A) = 0.289 gauss2,
- * 0.215 gauss3; omega_max ~ 2 N sqrt(T_top/(M g)) sqrt(g/L) for a uniform chain): a larger step
- * fails with GSL_EMAXITER. */
-typedef struct whirl_integrator whirl_integrator;
+/* ---- integrators (whirl/integrator.h) on the dynamics ----
+ * The Gauss methods' fixed-point stage iteration converges for h omega_max rho(A) < 1 with
+ * omega_max ~ 2 N sqrt(T_top/(M g)) sqrt(g/L) for a uniform chain (whirl_default_step keeps
+ * below it). */
 
-typedef struct whirl_integrator_stats {
-    unsigned long steps;      /* accepted steps */
-    unsigned long rejected;   /* rejected steps (adaptive) */
-    unsigned long rhs_evals;  /* right-hand side evaluations */
-    unsigned long iterations; /* stage-equation iterations (implicit methods) */
-} whirl_integrator_stats;
+/* sys <- the dynamics d as a general system: rhs whirl_dyn_rhs, project whirl_dyn_project,
+ * size whirl_dyn_size(d), params d, second order, acceleration scale the chain's gravity.
+ * GSL_EINVAL on NULL arguments. */
+WHIRL_API int whirl_dyn_system(whirl_dyn *d, whirl_system *sys);
 
-/* NULL-terminated list of the method names. */
-WHIRL_API const char *const *whirl_integrator_methods(void);
-
-/* An integrator of the given method for the dynamics d (not owned). NULL on an unknown method
- * (message lists the known ones) or no memory. */
+/* An integrator of the method called method (whirl_integrator_methods) for the dynamics d (not
+ * owned): whirl_integrator_alloc_system on whirl_dyn_system(d). NULL on an unknown method (the
+ * message lists the known ones), d NULL or no memory. */
 WHIRL_API whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
-WHIRL_API void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
-
-/* The smallest adaptive tolerance: finer relative accuracy is below the round-off of doubles. */
-#define WHIRL_TOL_MIN 1e-16
-/* The smallest adaptive step, in units of round-off of t (DBL_EPSILON max(|t|, 1)). */
-#define WHIRL_STEP_MIN_ULPS 64
-
-/* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
- * shortened); with tol > 0 adaptively (relative and absolute tolerance tol, h the first step) for
- * the methods that allow it, GSL_EINVAL for the others. Projects onto the constraints after each
- * step. Stops with the status of a failing right-hand side or stage solve (t, y then hold the
- * last good state); GSL_EINVAL for tol in (0, WHIRL_TOL_MIN); GSL_EFAILED when an adaptive step
- * falls below WHIRL_STEP_MIN_ULPS units of round-off of t; WHIRL_EINTERRUPTED once a stop is
- * requested (polled in every right-hand side). Allocates nothing. */
-WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
-                                       double h, double tol);
-
-WHIRL_API whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
 
 #endif

@@ -5,12 +5,9 @@
  * smooth step s(u) = u^2 (3 - 2 u), while air drag acts in the inertial frame. The run goes on
  * until the shape seen in the frame co-rotating at omega stops changing, or t_max.
  *
- * Ramp (dynamics.h's whirl_model has a constant drive radius and rate): a staircase of
- * piecewise-constant segments of length ramp_step, each integrated with a model of its own
- * (eps at the segment's midpoint). The state (link vectors and their rates) carries over
- * unchanged, since in the Cartesian formulation it does not involve the pivot's position. A
- * change of omega (whirl_regime_sweep, rotating frame) keeps the inertial velocities: the rates
- * relative to the frame change by (omega_old - omega_new) z x d_i.
+ * Ramp: the model's drive_radius_ramp (dynamics.h), so the whole run is one integration with one
+ * workspace; a change of omega (whirl_regime_sweep, rotating frame) is the same smooth step of
+ * the model's omega_ramp over t_change, with the Euler force of the frame's changing rate.
  *
  * Frame: WHIRL_FRAME_ROTATING (default) integrates the same equations in the co-rotating frame,
  * where the problem is autonomous and a steady shape is an exact fixed point of the integrator;
@@ -63,16 +60,18 @@ typedef enum {
 
 /* Parameters of one run (never changed by the library). Units: L = M = g = 1. */
 typedef struct whirl_regime_params {
-    double omega;            /* rate of the hand [sqrt(g/L)], > 0 */
-    double eps;              /* radius of the hand's circle [L], 0 < eps < 1 */
-    double drag;             /* linear air drag per unit length (whirl_model.air_drag), >= 0 */
-    double drag_quadratic;   /* quadratic air drag per unit length, >= 0 */
-    double internal_damping; /* whirl_model.internal_damping, >= 0 (default 0) */
+    /* omega, drive_radius, air_drag, air_drag_quadratic, internal_damping and frame are
+       whirl_model's (dynamics.h), with the same names, meaning and units */
+    double omega;              /* rate of the hand [sqrt(g/L)], > 0 */
+    double drive_radius;       /* eps: radius of the hand's circle at the end of the ramp [L],
+                                  0 < eps < 1 */
+    double air_drag;           /* linear air drag per unit length, >= 0 (default 0) */
+    double air_drag_quadratic; /* quadratic air drag per unit length, >= 0 (default 0) */
+    double internal_damping;   /* >= 0 (default 0) */
     whirl_frame frame;       /* frame of the integration (default rotating) */
     const char *method;      /* integrator (dynamics.h), e.g. "rk4" or "gauss2" */
     double dt;               /* fixed step [T], > 0 */
     double t_ramp;           /* ramp time of eps [T], > 0; e.g. 20 */
-    double ramp_step;        /* length of a staircase segment [T], 0 < ramp_step <= t_ramp */
     double t_max;            /* end of the run if it has not settled [T], > t_ramp */
     double settle_tol;       /* [L], > 0: remaining distance below which a run has settled */
     int settle_periods;      /* >= 1: consecutive periods that must pass the test, e.g. 3 */
@@ -84,8 +83,8 @@ typedef struct whirl_regime_params {
     unsigned long seed;      /* seed of those turns (GSL's MT19937) */
 } whirl_regime_params;
 
-/* Defaults of every field but omega and eps: drag 0, rotating frame, "rk4", dt = 0.1 / N,
- * t_ramp 20, ramp_step 0.5, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
+/* Defaults of every field but omega and drive_radius: drag 0, rotating frame, "rk4", dt = 0.1 / N,
+ * t_ramp 20, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
  * lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
 WHIRL_API void whirl_regime_params_default(whirl_regime_params *p, size_t links);
 
@@ -132,8 +131,8 @@ WHIRL_API int whirl_regime_check(const whirl_regime_params *p);
 WHIRL_API int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p,
                                whirl_regime_result *res);
 
-/* Hysteresis: a run from rest at omega[0] (p->omega is ignored), then omega changed linearly to
- * each next omega[j] over t_change (in segments of p->ramp_step) and the run continued until it
+/* Hysteresis: a run from rest at omega[0] (p->omega is ignored), then omega changed to each next
+ * omega[j] by a smooth step over t_change (> 0) and the run continued until it
  * settles (or for t_max - t_ramp), res[j] the outcome there. Rotating frame only (GSL_EINVAL
  * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED). */
 WHIRL_API int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,

@@ -185,4 +185,69 @@ WHIRL_API const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_ke
 /* The name of output column c ("tip_x"), or NULL. */
 WHIRL_API const char *whirl_column_name(whirl_column c);
 
+/* ---- running a scene (src/scene_run.c) ----
+ * The start state, in the run's frame at t = 0, the pivot at (drive_radius, 0, 0) moving with
+ * the drive: steady: the N-link shape of mode k at [start] omega turning rigidly at that rate
+ * (whirl_dyn_state_from_shape), each link turned by perturb (whirl_perturb_links); angles: the
+ * seed's angles and rates (zero rates: at rest in the inertial frame but for the pivot's
+ * motion); hanging: straight down, moving with the pivot, turned like the steady start.
+ * Rows at t = k every and at t_end, the columns of the scene (positions in the inertial frame;
+ * energy, jacobi, lz, constraint of whirl_dyn_diagnose; deviation by whirl_deviation from the
+ * unperturbed start shape or the reference_mode shape). Fixed steps are taken one at a time: the
+ * stop condition and the stop request are checked after every step. */
+
+typedef struct whirl_scene_work whirl_scene_work; /* chain, model, dynamics, integrator, state */
+
+/* What a run reports, through callbacks (any may be NULL; ctx is passed to each). A non-zero
+ * return stops the run with that status. */
+typedef struct whirl_scene_output {
+    /* a row: value[WHIRL_NCOLUMNS] indexed by whirl_column (those not wanted are 0) */
+    int (*row)(void *ctx, const double *value);
+    /* a trace frame at t: the pivot (3) and the masses x (3 per mass, n) in the inertial frame,
+       every [output] trace_every */
+    int (*frame)(void *ctx, double t, const double *pivot, const double *x, size_t n);
+    int (*progress)(void *ctx, double t); /* after every step (fixed) or output time */
+    void *ctx;
+} whirl_scene_output;
+
+typedef struct whirl_scene_result {
+    double t;                     /* time reached [T] */
+    unsigned long rows, frames;   /* rows and frames reported */
+    int stopped;                  /* 1 if [run] stop_deviation ended the run */
+    double deviation;             /* the deviation that stopped it */
+    whirl_integrator_stats stats; /* of the run's integrator */
+} whirl_scene_result;
+
+/* Builds the chain, the model, the dynamics, the integrator and the start state of scene (which
+ * must outlive the result). NULL on failure, with the message "FILE:LINE: [section] key:
+ * problem" naming the key to blame (no steady shape of the mode, unknown method, a step the
+ * method cannot take, ...). */
+WHIRL_API whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *scene);
+WHIRL_API void whirl_scene_work_free(whirl_scene_work *w); /* NULL is a no-op */
+
+/* The run's dynamics and its current state (whirl_dyn_size values). */
+WHIRL_API const whirl_dyn *whirl_scene_work_dyn(const whirl_scene_work *w);
+WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
+
+/* Runs from t = 0 to t_end (once per workspace), reporting through out. GSL_SUCCESS (also when
+ * stop_deviation ended the run: res->stopped), WHIRL_EINTERRUPTED after a stop request, the
+ * status of a callback that stopped it, or the integration's failure ("the run failed after t =
+ * ..."); res describes how far it got in every case (the rows reported so far are valid). */
+WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
+                         whirl_scene_result *res);
+
+/* CSV: the header (comment lines, then the column names), one row (the scene's columns of
+ * value[WHIRL_NCOLUMNS]), one trace frame ("# t = T", then "x y z t" of the pivot and of every
+ * mass; blocks after the first (index > 0) begin with two empty lines). GSL_EFAILED if fp has
+ * an error. */
+WHIRL_API int whirl_scene_write_header(FILE *fp, const whirl_scene *scene);
+WHIRL_API int whirl_scene_write_row(FILE *fp, const whirl_scene *scene, const double *value);
+WHIRL_API int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, const double *pivot,
+                            const double *x, size_t n);
+
+/* The whole run: whirl_scene_work_alloc, the header and every row to csv, the frames to trace
+ * (NULL: none), whirl_scene_work_free. Returns as whirl_scene_work_run (or the allocation's
+ * failure). */
+WHIRL_API int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
+
 #endif

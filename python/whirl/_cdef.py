@@ -57,6 +57,12 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
 
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
+typedef struct whirl_ramp {
+    double from;
+    double to;
+    double t_start;
+    double t_end;
+} whirl_ramp;
 typedef struct whirl_model {
     const whirl_chain *chain;
     int dim;
@@ -68,6 +74,8 @@ typedef struct whirl_model {
     double internal_damping;
     const double *seed_sigma;
     const double *seed_lambda;
+    whirl_ramp drive_radius_ramp;
+    whirl_ramp omega_ramp;
 } whirl_model;
 typedef struct whirl_dyn whirl_dyn;
 whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
@@ -142,9 +150,9 @@ int whirl_stability_run_shape(const whirl_model *model, const double *x, const d
 
 typedef struct whirl_driven_params {
     double omega;
-    double eps;
-    double drag;
-    double drag_quadratic;
+    double drive_radius;
+    double air_drag;
+    double air_drag_quadratic;
     double tip_mass;
 } whirl_driven_params;
 typedef struct whirl_driven_info {
@@ -195,15 +203,14 @@ typedef enum {
 } whirl_regime_state;
 typedef struct whirl_regime_params {
     double omega;
-    double eps;
-    double drag;
-    double drag_quadratic;
+    double drive_radius;
+    double air_drag;
+    double air_drag_quadratic;
     double internal_damping;
     whirl_frame frame;
     const char *method;
     double dt;
     double t_ramp;
-    double ramp_step;
     double t_max;
     double settle_tol;
     int settle_periods;
@@ -239,7 +246,7 @@ const char *whirl_regime_state_name(whirl_regime_state s);
 """
 
 # The structs whose layout tests/test_layout.py checks against the C headers.
-STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_model", "whirl_dyn_diagnostics",
+STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_ramp", "whirl_model", "whirl_dyn_diagnostics",
            "whirl_integrator_stats", "whirl_stability_run_params", "whirl_stability_run_result",
            "whirl_driven_params", "whirl_driven_info", "whirl_fit_model", "whirl_fit_result",
            "whirl_regime_params", "whirl_regime_result"]

@@ -24,9 +24,9 @@ class DrivenShape:
 def _params(omega, drive_radius, air_drag, air_drag_quadratic, tip_mass):
     p = ffi.new("whirl_driven_params *")
     p.omega = as_float(omega, "omega", positive=True)
-    p.eps = as_float(drive_radius, "drive_radius", nonnegative=True)
-    p.drag = as_float(air_drag, "air_drag", nonnegative=True)
-    p.drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True)
+    p.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True)
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True)
+    p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True)
     p.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True)
     return p
 
@@ -87,7 +87,7 @@ class SpinUp:
 
 
 _PARAM_NAMES = {"internal_damping": "internal_damping", "dt": "dt", "t_ramp": "t_ramp",
-                "ramp_step": "ramp_step", "t_max": "t_max", "settle_tol": "settle_tol",
+                "t_max": "t_max", "settle_tol": "settle_tol",
                 "settle_periods": "settle_periods", "periodic_tol": "periodic_tol",
                 "lyapunov_periods": "lyapunov_periods", "chaos_lambda": "chaos_lambda",
                 "perturb": "perturb", "seed": "seed"}
@@ -100,7 +100,7 @@ def spin_up(omega, drive_radius, links, air_drag=0.0, air_drag_quadratic=0.0, me
     to the circle of radius ``drive_radius`` [L] at rate ``omega`` [sqrt(g/L)] over t_ramp, with
     air drag, until the shape in the co-rotating frame stops changing or t_max.
     Further parameters (defaults from whirl_regime_params_default): internal_damping, dt,
-    t_ramp, ramp_step, t_max, settle_tol, settle_periods, periodic_tol, lyapunov_periods,
+    t_ramp, t_max, settle_tol, settle_periods, periodic_tol, lyapunov_periods,
     chaos_lambda, perturb, seed; method (default rk4), frame ("rotating" or "inertial").
     every > 0: record the masses every ``every`` time units. Returns a SpinUp. Ctrl-C raises
     KeyboardInterrupt."""
@@ -108,9 +108,9 @@ def spin_up(omega, drive_radius, links, air_drag=0.0, air_drag_quadratic=0.0, me
     p = ffi.new("whirl_regime_params *")
     lib.whirl_regime_params_default(p, chain.n)
     p.omega = as_float(omega, "omega", positive=True)
-    p.eps = as_float(drive_radius, "drive_radius", positive=True)
-    p.drag = as_float(air_drag, "air_drag", nonnegative=True)
-    p.drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True)
+    p.drive_radius = as_float(drive_radius, "drive_radius", positive=True)
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True)
+    p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True)
     p.frame = _choice(frame, "frame", _FRAMES)
     keep = []
     if method is not None:

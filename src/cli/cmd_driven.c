@@ -174,7 +174,11 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv)
     whirl_chain *chain = NULL;
     if (o.links > 0 && (chain = whirl_chain_alloc_uniform((size_t)o.links, o.tip_mass)) == NULL)
         return cli_error(cmd, "%s", whirl_last_error());
-    whirl_driven_params p = {o.omega, o.eps, o.drag, o.drag_quadratic, chain ? 0 : o.tip_mass};
+    whirl_driven_params p = {.omega = o.omega,
+                             .drive_radius = o.eps,
+                             .air_drag = o.drag,
+                             .air_drag_quadratic = o.drag_quadratic,
+                             .tip_mass = chain ? 0 : o.tip_mass};
     rc = (o.min_given || o.max_given) ? run_branch(cmd, &o, chain, &p) : run_shape(cmd, &o, chain, &p);
     whirl_chain_free(chain);
     return rc;

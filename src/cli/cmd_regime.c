@@ -119,7 +119,11 @@ static int check_options(const cli_command *cmd, regime_options *o)
     if (o->links < 1 || o->links > REGIME_MAX_LINKS)
         return cli_error(cmd, "--links must be between 1 and %d, got %d", REGIME_MAX_LINKS,
                          o->links);
-    if (!o->dt_given) o->p.dt = 0.1 / o->links;
+    if (!o->dt_given) { /* the library's default for the chain of --links */
+        whirl_regime_params d;
+        whirl_regime_params_default(&d, (size_t)o->links);
+        o->p.dt = d.dt;
+    }
     if (strcmp(o->frame, "rotating") == 0) o->p.frame = WHIRL_FRAME_ROTATING;
     else if (strcmp(o->frame, "inertial") == 0) o->p.frame = WHIRL_FRAME_INERTIAL;
     else return cli_error(cmd, "--frame must be rotating or inertial, got '%s'", o->frame);
@@ -134,16 +138,21 @@ static int check_options(const cli_command *cmd, regime_options *o)
         if ((long)o->omega_steps * o->eps_steps > REGIME_MAX_POINTS)
             return cli_error(cmd, "the map has more than %ld points", REGIME_MAX_POINTS);
         o->p.omega = o->omega_min;
-        o->p.eps = o->eps_min;
+        o->p.drive_radius = o->eps_min;
     } else {
         o->p.omega = o->omega;
-        o->p.eps = o->eps;
+        o->p.drive_radius = o->eps;
     }
     if (whirl_regime_check(&o->p) != GSL_SUCCESS) {
-        /* the library names the field; the options are named like it */
+        /* the library names the field; the options are named like it but for these */
+        static const char *const renamed[][2] = {{"drive_radius", "eps"},
+                                                 {"air_drag", "drag"},
+                                                 {"air_drag_quadratic", "drag_quadratic"}};
         char field[64] = "", *dash = field;
         const char *msg = whirl_last_error();
         sscanf(msg, "%63[a-z_]", field);
+        for (size_t k = 0; k < sizeof renamed / sizeof renamed[0]; k++)
+            if (strcmp(field, renamed[k][0]) == 0) snprintf(field, sizeof field, "%s", renamed[k][1]);
         for (; *dash; dash++)
             if (*dash == '_') *dash = '-';
         return cli_error(cmd, "--%s: %s", field, msg);
@@ -165,9 +174,8 @@ static int check_options(const cli_command *cmd, regime_options *o)
     if (!(o->trace_every > 0))
         return cli_error(cmd, "--trace-every must be > 0, got %g", o->trace_every);
     if (o->t_change_given && !o->sweep) return cli_error(cmd, "--t-change applies to --sweep");
-    if (!(o->t_change >= o->p.ramp_step))
-        return cli_error(cmd, "--t-change must be >= --ramp-step (%g), got %g", o->p.ramp_step,
-                         o->t_change);
+    if (!(o->t_change > 0 && isfinite(o->t_change)))
+        return cli_error(cmd, "--t-change must be > 0, got %g", o->t_change);
     return 0;
 }
 
@@ -182,10 +190,10 @@ static void write_parameters(FILE *fp, const regime_options *o)
 {
     const whirl_regime_params *p = &o->p;
     fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
-            "frame=%s method=%s dt=%s t_ramp=%s ramp_step=%s t_max=%s "
+            "frame=%s method=%s dt=%s t_ramp=%s t_max=%s "
             "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
-            "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->drag), CLI_NUM(p->drag_quadratic),
-            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->ramp_step), CLI_NUM(p->t_max),
+            "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->air_drag), CLI_NUM(p->air_drag_quadratic),
+            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->t_max),
             CLI_NUM(p->settle_tol), p->settle_periods, CLI_NUM(p->periodic_tol), p->lyapunov_periods,
             CLI_NUM(p->chaos_lambda), CLI_NUM(p->perturb), p->seed);
     if (is_map(o))
@@ -396,7 +404,7 @@ static int run_block(const regime_options *o, whirl_regime **ws, const long *pen
 #pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
     for (long j = 0; j < count; j++) {
         whirl_regime_params p = o->p;
-        grid_point(o, pending[j], &p.omega, &p.eps);
+        grid_point(o, pending[j], &p.omega, &p.drive_radius);
         p.seed = o->p.seed + (unsigned long)pending[j];
         whirl_regime_result r;
         memset(&r, 0, sizeof r);
@@ -423,8 +431,8 @@ static int write_folds(const cli_command *cmd, const regime_options *o, const wh
     fprintf(out.fp, "eps,mode,side,fold,omega\n");
     for (int ie = 0; ie < o->eps_steps && !cli_interrupted; ie++) {
         const double eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, ie);
-        const whirl_driven_params dp = {.omega = o->omega_max, .eps = eps, .drag = o->p.drag,
-                                        .drag_quadratic = o->p.drag_quadratic};
+        const whirl_driven_params dp = {.omega = o->omega_max, .drive_radius = eps, .air_drag = o->p.air_drag,
+                                        .air_drag_quadratic = o->p.air_drag_quadratic};
         for (int mode = 1; mode <= FOLD_MODES; mode++)
             for (int side = 1; side >= -1; side -= 2) {
                 whirl_driven_info start;
@@ -590,9 +598,12 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         fprintf(out.fp, "0,%s,%s,", CLI_NUM(o->omega), CLI_NUM(o->eps));
         write_result(out.fp, &r);
     }
-    if (trace_open) {
-        if (rc == 0) rc = cli_out_commit(cmd, &trace);
-        else cli_out_abort(&trace);
+    if (trace_open) { /* an interrupted run keeps its trace so far */
+        if (rc == 0 || rc == CLI_EXIT_INTERRUPTED) {
+            if (cli_out_commit(cmd, &trace) != 0 && rc == 0) rc = 1;
+        } else {
+            cli_out_abort(&trace);
+        }
     }
     if (rc == 0) rc = cli_out_commit(cmd, &out);
     else cli_out_abort(&out);
@@ -673,14 +684,13 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
         {"--sweep", NULL, CLI_FLAG, &o.sweep, NULL, "", "hysteresis: omega up, then down, state carried over"},
         {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T", "sweep: time of each change of omega (default 20)"},
         {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 20)"},
-        {"--drag", NULL, CLI_DOUBLE, &o.p.drag, NULL, "C", "linear air drag per unit length (default 0)"},
-        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.p.drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
+        {"--drag", NULL, CLI_DOUBLE, &o.p.air_drag, NULL, "C", "linear air drag per unit length (default 0)"},
+        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.p.air_drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
         {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D", "damping of the joints (default 0)"},
         {"--frame", NULL, CLI_STRING, &o.frame, NULL, "F", "rotating (default) or inertial"},
         {"--method", NULL, CLI_STRING, &o.p.method, NULL, "M", "integrator (default rk4)"},
         {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)"},
         {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)"},
-        {"--ramp-step", NULL, CLI_DOUBLE, &o.p.ramp_step, NULL, "H", "staircase segment of the ramps (default 0.5)"},
         {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T", "end of a run that has not settled (default 400)"},
         {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D", "distance left to the steady shape [L] (default 1e-3)"},
         {"--settle-periods", NULL, CLI_DOUBLE, &settle_periods, NULL, "K", "periods that must pass (default 3)"},
