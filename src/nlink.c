@@ -7,8 +7,14 @@
  *     H_i = sum_{j >= i} m_j omega^2 r_j,  V_i = g sum_{j >= i} m_j,  T_i = |(H_i, V_i)|,
  * and points along it: r_{i-1} = r_i - l_i H_i / T_i, z_{i-1} = z_i + l_i V_i / T_i.
  * Given the tip radius a = r_N this recursion up from the tip fixes the whole chain; the shape is
- * an equilibrium when the pivot lands on the axis, r_0(a) = 0 (shooting, steady_shoot.c).
- * Every mass's force balance then holds by construction to round-off.
+ * an equilibrium when the pivot lands on the axis, r_0(a) = 0; the branches of such shapes are
+ * followed from their birth by pseudo-arclength continuation (nlink_path.c). Every mass's force
+ * balance then holds by construction to round-off.
+ *
+ * Pivot-end shooting (a second formulation, for checks): V_1 = g sum m_j is known, so the top
+ * link's angle theta_1 fixes H_1 = V_1 tan(theta_1); going down, r_i = r_{i-1} + l_i H_i / T_i,
+ * H_{i+1} = H_i - m_i omega^2 r_i, and the shape is an equilibrium when H_{N+1} = 0 (no force
+ * below the tip). H_{N+1} / H_1 is finite at theta_1 = 0 (the linear shot from the top).
  *
  * Linear critical rates: the small horizontal displacements x_i of the hanging chain satisfy
  *     m_i omega^2 x_i = K x, K_ii = T_i/l_i + T_{i+1}/l_{i+1}, K_{i,i+1} = -T_{i+1}/l_{i+1},
@@ -19,16 +25,11 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_math.h>
 #include <lapacke.h>
 
 #include "error.h"
 #include "steady_internal.h"
-
-/* The scan for a fresh solve: a coarse chain at a high rate (e.g. N = 100 at omega = 30) has
- * several equilibria with k - 1 crossings (its crossing count is not monotone in the tip
- * radius); a fresh solve returns the one with the smallest tip radius, which near omega_k is the
- * branch born there. Continuation (a seed) stays on the seed's branch. */
-#define SCAN_RATIO 1.1
 
 typedef struct nlink_ws {
     const whirl_chain *c;
@@ -80,26 +81,6 @@ static void nlink_recurse(const whirl_chain *c, double omega, double tip_r, doub
     tension[0] = tension[1];
     double z_pivot = z[0];
     for (size_t i = 0; i <= n; i++) z[i] -= z_pivot;
-}
-
-/* Sign changes of r[n], r[n-1], ..., r[1], from the tip (r > 0) up to below the pivot. */
-static int nlink_sign_changes(const double *r, size_t n)
-{
-    int count = 0, sign = 1;
-    for (size_t k = 0; k < n; k++) {
-        int s = (r[n - k] > 0) - (r[n - k] < 0);
-        if (s != 0 && s != sign) count++, sign = s;
-    }
-    return count;
-}
-
-static int nlink_shot(void *ws, double a, double *residual, int *crossings)
-{
-    nlink_ws *w = ws;
-    nlink_recurse(w->c, w->omega, a, w->r, w->z, w->tension);
-    *residual = w->r[0] / a;
-    *crossings = nlink_sign_changes(w->r, w->c->n);
-    return GSL_SUCCESS;
 }
 
 static int check_chain(const whirl_chain *c)
@@ -160,78 +141,60 @@ int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, doub
     return whirl_steady_check_samples(omega, c->n + 1, r, z, tension);
 }
 
-/* The summary of the shape in w (positions of the solution). */
-static void nlink_info(const nlink_ws *w, double omega, int mode, whirl_shape_info *info)
+/* The summary of the shape with nodes r, z and tensions t (an equilibrium). */
+static void nlink_info(const whirl_chain *c, const double *r, const double *z, const double *t,
+                       double omega, int mode, whirl_shape_info *info)
 {
-    const whirl_chain *c = w->c;
     size_t n = c->n;
     info->omega = omega;
     info->mode = mode;
-    info->tip_r = w->r[n];
-    info->top_tension = w->tension[1];
-    info->depth = -w->z[n];
+    info->tip_r = r[n];
+    info->top_tension = t[1];
+    info->depth = -z[n];
     info->max_r = 0;
     info->n_nodes = 0;
     double s = 0; /* arclength of mass i-1 from the pivot */
     for (size_t i = 1; i <= n; i++) {
-        info->max_r = fmax(info->max_r, fabs(w->r[i]));
+        info->max_r = fmax(info->max_r, fabs(r[i]));
         /* a crossing on link i (below the pivot: the pivot itself is not counted) */
-        if (i >= 2 && ((w->r[i - 1] > 0 && w->r[i] <= 0) || (w->r[i - 1] < 0 && w->r[i] >= 0)) &&
+        if (i >= 2 && ((r[i - 1] > 0 && r[i] <= 0) || (r[i - 1] < 0 && r[i] >= 0)) &&
             info->n_nodes < WHIRL_MODE_MAX)
-            info->node_s[info->n_nodes++] =
-                s + c->length[i - 1] * w->r[i - 1] / (w->r[i - 1] - w->r[i]);
+            info->node_s[info->n_nodes++] = s + c->length[i - 1] * r[i - 1] / (r[i - 1] - r[i]);
         s += c->length[i - 1];
     }
 }
 
-static int nlink_solve_ws(void *ws, double omega, int mode, double tip_r_guess,
-                          whirl_shape_info *info)
+int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
+                     whirl_shape_info *info)
 {
-    nlink_ws *w = ws;
-    const whirl_chain *c = w->c;
-    int status = whirl_steady_check_args(omega, mode);
-    if (status != GSL_SUCCESS) return status;
-    w->omega = omega;
-    double a = 0;
-    if ((size_t)mode <= c->n)
-        status = whirl_steady_shoot_root(nlink_shot, w, mode, whirl_chain_total_length(c),
-                                         SCAN_RATIO, tip_r_guess, &a);
-    else
-        status = GSL_EDOM;
-    if (status == GSL_EDOM) {
-        if ((size_t)mode > c->n)
-            return whirl_fail(GSL_EDOM, "mode %d does not exist: a chain of %zu links has modes "
-                              "1..%zu", mode, c->n, c->n);
-        double crit[WHIRL_MODE_MAX];
-        if (whirl_nlink_critical(c, (size_t)mode, crit) != GSL_SUCCESS) return GSL_EDOM;
-        return whirl_steady_fail_missing(mode, omega, crit[mode - 1]);
-    }
-    if (status != GSL_SUCCESS) return status;
-    nlink_recurse(c, omega, a, w->r, w->z, w->tension);
-    nlink_info(w, omega, mode, info);
-    if (info->n_nodes != mode - 1)
-        return whirl_fail(GSL_EFAILED, "mode %d at omega=%g: found %d axis crossings", mode,
-                          omega, info->n_nodes);
-    return whirl_steady_check_info(info);
-}
-
-int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info)
-{
-    int status = check_chain(c);
-    if (status != GSL_SUCCESS) return status;
     nlink_ws *w = nlink_ws_alloc(c);
     if (w == NULL) return GSL_ENOMEM;
-    status = nlink_solve_ws(w, omega, mode, tip_r_guess, info);
+    int status = whirl_nlink_positions(c, omega, tip_r, w->r, w->z, w->tension);
+    if (status == GSL_SUCCESS) {
+        nlink_info(c, w->r, w->z, w->tension, omega, mode, info);
+        status = whirl_steady_check_info(info);
+    }
     nlink_ws_free(w);
     return status;
 }
 
-int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
-                       whirl_shape_info *info, int *exists)
+int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
+                               double *residual, double *tip_r)
 {
     int status = check_chain(c);
     if (status != GSL_SUCCESS) return status;
-    steady_model m = {nlink_ws_alloc, nlink_ws_free, nlink_solve_ws, c};
-    return whirl_steady_branch(&m, mode, n, omega, info, exists);
+    if (!(isfinite(omega) && omega > 0 && fabs(theta_1) < M_PI_2))
+        return whirl_fail(GSL_EINVAL, "pivot shooting needs omega > 0 and |theta_1| < pi/2");
+    /* everything divided by H_1: eta_i = H_i / H_1, x_i = r_i / H_1 */
+    double v = 0;
+    for (size_t i = 0; i < c->n; i++) v += c->mass[i] * c->gravity;
+    double h1 = v * tan(theta_1), eta = 1, x = 0, w2 = omega * omega;
+    for (size_t i = 1; i <= c->n; i++) {
+        x += c->length[i - 1] * eta / hypot(h1 * eta, v);
+        eta -= c->mass[i - 1] * w2 * x;
+        v -= c->mass[i - 1] * c->gravity;
+    }
+    *residual = eta;
+    if (tip_r) *tip_r = h1 * x;
+    return GSL_SUCCESS;
 }

@@ -17,7 +17,7 @@ if awk -F, '/^#/ || /mode/ {next} {exit !(($2 / (1.2024127788478853 * sqrt(9.81 
 
 # shape: comment line, header, rows from the pivot to the free end
 expect_ok "shape runs" shape --omega 6.5 --mode 3 --points 51 -o "$tmp/shape.csv"
-if head -1 "$tmp/shape.csv" | grep -Eq '^# omega=6.5 mode=3 tip_r=[0-9.e-]+ max_r=[0-9.e-]+ top_tension=[0-9.e-]+ depth=[0-9.e-]+ nodes=[0-9.e-]+;[0-9.e-]+$' \
+if head -1 "$tmp/shape.csv" | grep -Eq '^# omega=6.5 mode=3 node_count=3 tip_r=[0-9.e-]+ max_r=[0-9.e-]+ top_tension=[0-9.e-]+ depth=[0-9.e-]+ nodes=[0-9.e-]+;[0-9.e-]+$' \
    && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,r,z,tension" ] \
    && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 52 ]; then
   pass "shape: comment, header, 51 rows"; else fail "shape: comment, header, 51 rows"; fi
@@ -35,10 +35,22 @@ expect_ok "shape physical units" shape --omega 20 --mode 2 --length 0.5 --gravit
 # sweep
 expect_ok "sweep runs" sweep --modes 1,2,3 --omega-min 1 --omega-max 10 --omega-count 91 -o "$tmp/sw.csv"
 if awk -F, '/^#/ {next} !h {h = $0; next} {n[$2]++}
-     END {exit !(h == "omega,mode,tip_r,max_r,top_tension,depth" && n[1] == 88 && n[2] == 73 && n[3] == 57)}' \
+     END {exit !(h == "omega,mode,tip_r,max_r,top_tension,depth,nodes" && n[1] == 88 && n[2] == 73 && n[3] == 57)}' \
      "$tmp/sw.csv"; then pass "sweep: a row wherever the mode exists"
 else fail "sweep: a row wherever the mode exists"; fi
 expect_ok "sweep --links --tip-mass" sweep --modes 2 --omega-min 3 --omega-max 5 --omega-count 11 --links 30 --tip-mass 0.2
+# the 7-link chain's mode-4 branch is S-shaped: two folds, rates 6.9 and 7.0 crossed three times
+expect_ok "sweep through folds" sweep --modes 4 --links 7 --omega-min 5 --omega-max 8 --omega-count 31 \
+  --events "$tmp/ev.csv" -o "$tmp/s7.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n[$1]++} END {exit !(n["6.9"] == 3 && n["7"] == 3)}' "$tmp/s7.csv" \
+   && [ "$(grep -c '^# fold: mode=4 omega=' "$tmp/s7.csv")" -eq 2 ] \
+   && awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($1 == 4 && $2 == "fold")}
+        END {exit !(h == "mode,kind,omega,tip_r,arclength,nodes" && n == 2 && ok == 2)}' "$tmp/ev.csv"; then
+  pass "sweep: through the folds, each listed"; else fail "sweep: through the folds, each listed"; fi
+# mode N of N near omega_N (omega_15 = 26.8401): found, with its node count
+expect_ok "shape mode N" shape --links 15 --mode 15 --omega 26.85 -o "$tmp/m15.csv"
+if head -1 "$tmp/m15.csv" | grep -q ' mode=15 node_count=15 '; then pass "shape mode N: 15 nodes"
+else fail "shape mode N: 15 nodes"; fi
 
 # help
 expect_ok "critical --help" critical --help
@@ -72,5 +84,10 @@ expect_error "sweep modes list" "whirl sweep: option --modes needs a comma-separ
 expect_error "sweep mode zero" "whirl sweep: --modes: each entry must be between 1 and 64" sweep --modes 1,0 --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
 expect_error "sweep missing count" "whirl sweep: --omega-count is required" sweep --modes 1 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "unwritable output" "whirl shape: cannot write" shape --omega 3 --mode 1 -o "$tmp/no/such/dir/out.csv"
+expect_error "mode above N" "whirl shape: mode 6 does not exist: a chain of 5 links has modes 1..5" shape --omega 30 --mode 6 --links 5 -o "$tmp/out.csv"
+expect_error "below the birth" "whirl shape: mode 15 does not exist at omega=26.8 .*: it exists only above omega_15=26.84" shape --links 15 --mode 15 --omega 26.8 -o "$tmp/out.csv"
+expect_error "sweep mode above N" "whirl sweep: mode 6 does not exist: a chain of 5 links has modes 1..5" sweep --modes 2,6 --links 5 --omega-min 1 --omega-max 9 --omega-count 9 -o "$tmp/out.csv"
+expect_error "events without links" "whirl sweep: --events needs --links" sweep --modes 2 --omega-min 1 --omega-max 9 --omega-count 9 --events "$tmp/ev2.csv" -o "$tmp/out.csv"
+if [ -e "$tmp/ev2.csv" ]; then fail "no events file after an error"; else pass "no events file after an error"; fi
 expect_error "unwritable output (sweep)" "whirl sweep: cannot write" sweep --modes 1 --omega-min 1 --omega-max 2 --omega-count 2 -o "$tmp/no/such/dir/out.csv"
 finish

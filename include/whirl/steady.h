@@ -13,6 +13,7 @@
 #define WHIRL_STEADY_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "whirl/chain.h"
 #include "whirl/common.h"
@@ -25,7 +26,9 @@ typedef struct whirl_shape_info {
     double max_r;       /* max over the chain of |r| [L] */
     double top_tension; /* tension at the pivot [M g] */
     double depth;       /* height of the pivot above the free end [L] */
-    int n_nodes;        /* axis crossings below the pivot: mode - 1 */
+    int n_nodes;        /* axis crossings below the pivot (sign changes of r along the masses
+                         * for the N-link chain): mode - 1 for the continuum; on a coarse N-link
+                         * chain the branch of mode k can have another count at high rates */
     double node_s[WHIRL_MODE_MAX]; /* their arclengths from the pivot [L], increasing */
 } whirl_shape_info;
 
@@ -82,13 +85,18 @@ WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const 
  * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem). */
 WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
 
-/* The exact relative equilibrium of mode k at omega: the force balance of every mass holds to
- * round-off. tip_r_guess as for whirl_continuum_solve. GSL_EDOM if mode k does not exist (omega
- * <= omega_k, or k > c->n). A coarse chain at a high rate (e.g. N = 100 at omega = 30) can have
- * several equilibria with k - 1 crossings: without a seed the one with the smallest tip radius
- * is returned (near omega_k the branch born there), with a seed the one nearest the seed. */
+/* The exact relative equilibrium of mode k at omega: the point of the branch born at omega_k
+ * (the k-th critical rate) that its pseudo-arclength continuation from the birth reaches first
+ * (whirl_nlink_path). The force balance of every mass holds to round-off. info->n_nodes is
+ * the shape's own crossing count, which on a coarse chain at a high rate can differ from k - 1
+ * (several equilibria then share a node count; the branch decides which one is mode k).
+ * tip_r_guess is not used (kept for the continuum's signature). GSL_EDOM with a message naming
+ * the rates the branch reaches if it does not reach omega (omega below its lowest rate, which
+ * is omega_k unless the branch first turns to lower rates; or k > c->n); GSL_EFAILED if the
+ * continuation fails (the message names the rate reached); WHIRL_EINTERRUPTED on a stop
+ * request. */
 WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                                whirl_shape_info *info);
+                      whirl_shape_info *info);
 
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
@@ -96,8 +104,132 @@ WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, do
 WHIRL_API int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r,
                                     double *z, double *tension);
 
-/* Follows mode k over omega[0..n-1] as whirl_continuum_branch does (the chain is only read). */
+/* Follows mode k over omega[0..n-1] (any order): one pseudo-arclength continuation from the
+ * birth, info[j] the point where the branch first reaches omega[j] (as whirl_nlink_solve),
+ * exists[j] = 0 where it does not. Errors as whirl_nlink_solve. */
 WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
-                                 whirl_shape_info *info, int *exists);
+                       whirl_shape_info *info, int *exists);
+
+/* ---- N-link chain: branches by pseudo-arclength continuation ----
+ * The relative equilibria of the N-link chain are the zeros of one function of two variables,
+ * G(omega, a) = r_0 / |r|: the pivot's radius, divided by the norm of the radii of all the nodes,
+ * when the shape is built up from the tip with tip radius a (src/nlink_path.c). G depends on a only through a^2 and is finite at a = 0,
+ * where its zeros in omega are the critical rates: a branch is a curve of G = 0 in the
+ * (omega, a) plane, born at (omega_k, 0). whirl_nlink_path follows such a curve with arclength
+ * measured in (ln omega, link angles): ds^2 = (d omega / omega)^2 + the mean over the links of
+ * d theta_i^2, so that a step of ds changes no link angle by much more than ds. */
+
+/* What happens on a branch between two continuation points. */
+typedef enum whirl_event_kind {
+    WHIRL_EVENT_FOLD = 1,         /* omega has an extremum: the branch turns back */
+    WHIRL_EVENT_BRANCH_POINT = 2, /* grad G vanishes: another curve of equilibria crosses */
+    WHIRL_EVENT_RETURN = 3        /* a = 0: the branch returns to the hanging chain */
+} whirl_event_kind;
+
+typedef struct whirl_branch_event {
+    whirl_event_kind kind;
+    double omega;     /* where [sqrt(g/L)], located by Brent's method to ~1e-14 relative */
+    double tip_r;     /* signed tip radius there [L] (positive on a branch from its birth) */
+    double arclength; /* from the start of the path, in the metric above */
+    int n_nodes;      /* axis crossings below the pivot there */
+} whirl_branch_event;
+
+#define WHIRL_PATH_EVENTS_MAX 4 /* events one step can hold */
+
+/* A path along a branch: alloc, start (at a birth or an equilibrium), step, free. The fields
+ * are read-only for the caller. */
+typedef struct whirl_nlink_path {
+    const whirl_chain *chain; /* read, not owned */
+    int mode;         /* the branch's mode when started at a birth, 0 from an equilibrium */
+    double omega_birth; /* its birth rate omega_k [sqrt(g/L)] (0 from an equilibrium) */
+    double omega;     /* current point: rate [sqrt(g/L)] */
+    double tip_r;     /* current point: signed tip radius [L] */
+    double t_omega, t_tip; /* unit tangent (direction of travel) in the metric above */
+    double arclength; /* travelled since the start */
+    double ds;        /* the next step's length; adapted to the Newton convergence and the
+                       * turning of the tangent */
+    double omega_lo, omega_hi; /* the lowest and highest rates reached since the start */
+    long steps;       /* accepted steps */
+    long rejected;    /* rejected trial steps (step halved) */
+    long shots;       /* evaluations of G and its derivatives */
+    int n_events;     /* events in the last step, in the order met */
+    whirl_branch_event event[WHIRL_PATH_EVENTS_MAX];
+    int ended;        /* 1 once the path returned to the hanging chain (a = 0) */
+    /* workspace */
+    double metric[3]; /* at the current point: g_ww, g_wa, g_aa */
+    int raw_sign;     /* orientation of the tangent against (G_a, -G_w) */
+    double *theta;    /* link angles at the current point, c->n */
+    double *theta_trial;
+    double *embed;    /* the tangent in (ln omega, theta / sqrt(N)), c->n + 1 (+ c->n scratch) */
+    double *embed_trial;
+    double *work;     /* the block the arrays point into */
+    int have_last;    /* the last step below is set (cleared by a start or a reversal) */
+    struct {
+        double m0[3], w0, a0, t_w, t_a, ds; /* its start: metric, point, tangent; its length */
+        int raw_sign;
+    } last;
+} whirl_nlink_path;
+
+/* NULL (with whirl_last_error) on no memory or a chain of no links. */
+WHIRL_API whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c);
+WHIRL_API void whirl_nlink_path_free(whirl_nlink_path *p); /* NULL is a no-op */
+
+/* Starts at the birth of mode k (1 <= k <= N): the k-th critical rate polished by Newton's
+ * method on G(omega, 0), tip radius 0, heading into a > 0. GSL_EINVAL if k is out of range. */
+WHIRL_API int whirl_nlink_path_birth(whirl_nlink_path *p, int mode);
+
+/* Starts at an equilibrium near (omega, tip_r) (polished by Newton's method at fixed omega),
+ * heading where omega increases (direction > 0) or decreases (direction < 0). GSL_EFAILED if
+ * Newton's method does not converge there. */
+WHIRL_API int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int direction);
+
+/* Reverses the direction of travel. */
+WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
+
+/* One accepted step: predictor along the tangent, Newton corrector on the arclength hyperplane.
+ * A trial step is rejected and halved when Newton needs many iterations, the tangent turns by
+ * more than 0.2 rad or a link angle changes by more than 0.2 rad. Events between the old and
+ * the new point are located and listed in p->event. GSL_EFAILED (message naming the rate
+ * reached) if the step falls below its minimum; GSL_EDOM once the path has ended;
+ * WHIRL_EINTERRUPTED on a stop request. */
+WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
+
+/* Where the last step crossed the rate omega (between the previous and the current point; the
+ * step is cut at its folds, so it can cross a rate more than once): the tip radii of the first
+ * max crossings, in the order of travel, into tip_r[], each located by Brent's method on the
+ * step's arclength and polished at fixed omega. Returns their number (0: no crossing), or minus
+ * a status on failure. */
+WHIRL_API int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
+
+/* What whirl_nlink_follow reports: a crossing of the rate omega[j] (event NULL) or an event
+ * (j = SIZE_MAX), with the shape there in info (mode: the branch's; n_nodes: the shape's own).
+ * Returns 0 to go on, WHIRL_VISIT_STOP to stop with success, or a status to stop with. */
+typedef int (*whirl_nlink_visit_fn)(void *ctx, size_t j, const whirl_shape_info *info,
+                                    const whirl_branch_event *event);
+#define WHIRL_VISIT_STOP (-100)
+
+/* Follows the branch of mode k from its birth until its rate first exceeds omega_max or it
+ * returns to the hanging chain, calling visit at every crossing of one of the rates
+ * omega[0..n-1] (a rate crossed several times, through folds, is reported each time) and at every
+ * event, in the order met (a step's events before its crossings). Errors as
+ * whirl_nlink_path_step, or visit's status. */
+WHIRL_API int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
+                       const double *omega, whirl_nlink_visit_fn visit, void *ctx);
+
+/* The shape summary at rate omega and tip radius tip_r (an equilibrium): mode is copied. */
+WHIRL_API int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
+                     whirl_shape_info *info);
+
+/* G(omega, a) = r_0 / |r| and its partial derivatives (forward differentiation of the recursion):
+ * for tests and the completeness scan. */
+WHIRL_API int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,
+                         double *g_omega, double *g_tip);
+
+/* Pivot-end shooting, a second formulation: the top link's angle theta_1 in (-pi/2, pi/2) fixes
+ * the horizontal force H_1 = V_1 tan(theta_1) at the pivot; the recursion down the chain gives
+ * the force H_{N+1} left over below the tip, zero for an equilibrium. Returns H_{N+1} / H_1
+ * (finite at theta_1 = 0), and the tip radius in *tip_r (may be NULL). */
+WHIRL_API int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
+                               double *residual, double *tip_r);
 
 #endif

@@ -1,16 +1,76 @@
-/* whirl sweep: the branches of the listed modes over S+1 equally spaced rates, each followed by
- * continuation (whirl_continuum_branch / whirl_nlink_branch, on all OpenMP threads). */
+/* whirl sweep: the branches of the listed modes over a grid of rates. The continuum's by
+ * continuation in omega (whirl_continuum_branch, on all OpenMP threads); the N-link chain's by
+ * pseudo-arclength continuation from each mode's birth (whirl_nlink_follow): a row at every
+ * crossing of a grid rate, in the order along the branch (through folds a rate is crossed more
+ * than once), and the folds, branch points and returns to the hanging chain as comment lines
+ * and, with --events FILE, as CSV. */
+#include <stdint.h>
 #include <stdlib.h>
 
 #include "cli/steady_cli.h"
+
+/* Rows and events of the N-link branches, grown as they come. */
+typedef struct sweep_rows {
+    int mode;
+    size_t n, cap;
+    whirl_shape_info *info;
+    size_t ne, cap_e;
+    whirl_branch_event *event;
+    int *event_mode;
+} sweep_rows;
+
+static int sweep_visit(void *ctx, size_t j, const whirl_shape_info *info,
+                       const whirl_branch_event *event)
+{
+    sweep_rows *rows = ctx;
+    (void)j;
+    if (event) {
+        if (rows->ne == rows->cap_e) {
+            size_t cap = rows->cap_e ? 2 * rows->cap_e : 16;
+            whirl_branch_event *e = realloc(rows->event, cap * sizeof *e);
+            if (e == NULL) return GSL_ENOMEM;
+            rows->event = e;
+            int *m = realloc(rows->event_mode, cap * sizeof *m);
+            if (m == NULL) return GSL_ENOMEM;
+            rows->event_mode = m;
+            rows->cap_e = cap;
+        }
+        rows->event_mode[rows->ne] = rows->mode;
+        rows->event[rows->ne++] = *event;
+        return 0;
+    }
+    if (rows->n == rows->cap) {
+        size_t cap = rows->cap ? 2 * rows->cap : 256;
+        whirl_shape_info *f = realloc(rows->info, cap * sizeof *f);
+        if (f == NULL) return GSL_ENOMEM;
+        rows->info = f;
+        rows->cap = cap;
+    }
+    rows->info[rows->n++] = *info;
+    return 0;
+}
+
+static const char *event_name(whirl_event_kind kind)
+{
+    switch (kind) {
+    case WHIRL_EVENT_FOLD:
+        return "fold";
+    case WHIRL_EVENT_BRANCH_POINT:
+        return "branch_point";
+    case WHIRL_EVENT_RETURN:
+        return "return";
+    }
+    return "?";
+}
 
 int cmd_sweep(const cli_command *cmd, int argc, char **argv)
 {
     cli_int_list modes = {0, {0}};
     double omega_min = 0, omega_max = 0;
     int count = 0;
-    const char *out_path = NULL;
+    const char *out_path = NULL, *events_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    sweep_rows rows = {0};
     const cli_option opts[] = {
         {"--modes", NULL, CLI_INT_LIST, &modes, NULL, "LIST", "modes, e.g. 1,2,3", "[1, 64]",
          NULL, NULL, ""},
@@ -21,6 +81,9 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         {"--omega-count", NULL, CLI_INT, &count, NULL, "N",
          "N equally spaced rates, both ends included", "[1, 10000000]", NULL, NULL, ""},
         STEADY_CLI_MODEL_OPTIONS(m),
+        {"--events", NULL, CLI_STRING, &events_path, NULL, "FILE",
+         "write the folds, branch points and returns of the N-link branches to FILE (CSV)", NULL,
+         "--links", NULL, NULL},
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
     };
@@ -30,46 +93,93 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
+    cli_catch_interrupts();
     double rate = cli_units_rate(&m.units), len = m.units.length, force = cli_units_force(&m.units);
+    const char *rate_unit = cli_units_name(&m.units, CLI_UNIT_RATE);
+    const char *len_unit = cli_units_name(&m.units, CLI_UNIT_LENGTH);
     size_t n = (size_t)count;
     double *omega = malloc(n * sizeof *omega);
-    whirl_shape_info *info = malloc(n * (size_t)modes.n * sizeof *info);
-    int *exists = malloc(n * (size_t)modes.n * sizeof *exists);
-    if (omega == NULL || info == NULL || exists == NULL) {
+    whirl_shape_info *info = m.chain ? NULL : malloc(n * (size_t)modes.n * sizeof *info);
+    int *exists = m.chain ? NULL : malloc(n * (size_t)modes.n * sizeof *exists);
+    if (omega == NULL || (!m.chain && (info == NULL || exists == NULL))) {
         rc = cli_error(cmd, "out of memory for %zu rates", n);
         goto done;
     }
     for (size_t j = 0; j < n; j++)
         omega[j] = cli_grid(omega_min, omega_max, count, (int)j);
     for (int i = 0; i < modes.n && rc == 0; i++) {
-        int status = m.chain ? whirl_nlink_branch(m.chain, modes.v[i], n, omega, info + i * n,
-                                                  exists + i * n)
-                             : whirl_continuum_branch(modes.v[i], steady_cli_tip_mass(&m), n,
-                                                      omega, info + i * n, exists + i * n);
-        if (status != GSL_SUCCESS)
-            rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
-    }
-    cli_out out;
-    if (rc == 0 && (rc = cli_out_open(cmd, &out, out_path)) == 0) {
-        fprintf(out.fp, "# branches of the %s, tip mass %s %s; rows where the mode exists\n",
-                m.chain ? "N-link chain" : "continuous chain", CLI_NUM(m.tip_mass * m.units.mass),
-                cli_units_name(&m.units, CLI_UNIT_MASS));
-        cli_units_comment(out.fp, &m.units);
-        fprintf(out.fp, "omega,mode,tip_r,max_r,top_tension,depth\n");
-        for (int i = 0; i < modes.n; i++)
-            for (size_t j = 0; j < n; j++) {
-                const whirl_shape_info *f = &info[i * n + j];
-                if (!exists[i * n + j]) continue;
-                fprintf(out.fp, "%s,%d,%s,%s,%s,%s\n", CLI_NUM(omega[j] * rate), modes.v[i],
-                        CLI_NUM(f->tip_r * len), CLI_NUM(f->max_r * len),
-                        CLI_NUM(f->top_tension * force), CLI_NUM(f->depth * len));
+        int status;
+        if (m.chain) {
+            rows.mode = modes.v[i];
+            if ((size_t)modes.v[i] > m.chain->n) {
+                rc = cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
+                               modes.v[i], m.links, m.links);
+                break;
             }
+            status = whirl_nlink_follow(m.chain, modes.v[i], omega[n - 1], n, omega, sweep_visit,
+                                        &rows);
+        } else {
+            status = whirl_continuum_branch(modes.v[i], steady_cli_tip_mass(&m), n, omega,
+                                            info + i * n, exists + i * n);
+        }
+        if (status == WHIRL_EINTERRUPTED) {
+            cli_error(cmd, "interrupted, nothing written: mode %d %s", modes.v[i],
+                      whirl_last_error());
+            rc = 130;
+        } else if (status != GSL_SUCCESS) {
+            rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
+        }
+    }
+    cli_out out, ev;
+    if (rc == 0 && events_path && (rc = cli_out_open(cmd, &ev, events_path)) == 0) {
+        fprintf(ev.fp, "# events on the branches of the N-link chain (%d links), tip mass %s %s; "
+                "arclength in (ln omega, link angles) from the birth\n", m.links,
+                CLI_NUM(m.tip_mass * m.units.mass), cli_units_name(&m.units, CLI_UNIT_MASS));
+        cli_units_comment(ev.fp, &m.units);
+        fprintf(ev.fp, "mode,kind,omega,tip_r,arclength,nodes\n");
+        for (size_t e = 0; e < rows.ne; e++)
+            fprintf(ev.fp, "%d,%s,%s,%s,%s,%d\n", rows.event_mode[e],
+                    event_name(rows.event[e].kind), CLI_NUM(rows.event[e].omega * rate),
+                    CLI_NUM(rows.event[e].tip_r * len), CLI_NUM(rows.event[e].arclength),
+                    rows.event[e].n_nodes + 1);
+        rc = cli_out_commit(cmd, &ev);
+    }
+    if (rc == 0 && (rc = cli_out_open(cmd, &out, out_path)) == 0) {
+        if (m.chain) {
+            fprintf(out.fp, "# branches of the N-link chain (%d links), tip mass %s %s: each mode "
+                    "followed from its birth by pseudo-arclength continuation, a row at every "
+                    "crossing of a grid rate, in the order along the branch; nodes: the shape's "
+                    "node count\n", m.links, CLI_NUM(m.tip_mass * m.units.mass),
+                    cli_units_name(&m.units, CLI_UNIT_MASS));
+            for (size_t e = 0; e < rows.ne; e++)
+                fprintf(out.fp, "# %s: mode=%d omega=%s %s tip_r=%s %s nodes=%d\n",
+                        event_name(rows.event[e].kind), rows.event_mode[e],
+                        CLI_NUM(rows.event[e].omega * rate), rate_unit,
+                        CLI_NUM(rows.event[e].tip_r * len), len_unit, rows.event[e].n_nodes + 1);
+        } else {
+            fprintf(out.fp, "# branches of the continuous chain, tip mass %s %s; rows where the "
+                    "mode exists\n", CLI_NUM(m.tip_mass * m.units.mass),
+                    cli_units_name(&m.units, CLI_UNIT_MASS));
+        }
+        cli_units_comment(out.fp, &m.units);
+        fprintf(out.fp, "omega,mode,tip_r,max_r,top_tension,depth,nodes\n");
+        size_t total = m.chain ? rows.n : n * (size_t)modes.n;
+        for (size_t j = 0; j < total; j++) {
+            const whirl_shape_info *f = m.chain ? &rows.info[j] : &info[j];
+            if (!m.chain && !exists[j]) continue;
+            fprintf(out.fp, "%s,%d,%s,%s,%s,%s,%d\n", CLI_NUM(f->omega * rate), f->mode,
+                    CLI_NUM(f->tip_r * len), CLI_NUM(f->max_r * len),
+                    CLI_NUM(f->top_tension * force), CLI_NUM(f->depth * len), f->n_nodes + 1);
+        }
         rc = cli_out_commit(cmd, &out);
     }
 done:
     free(omega);
     free(info);
     free(exists);
+    free(rows.info);
+    free(rows.event);
+    free(rows.event_mode);
     steady_cli_model_free(&m);
     return rc;
 }

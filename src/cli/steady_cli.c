@@ -26,8 +26,8 @@ int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int m
     int status;
     if (m->chain) {
         if ((size_t)mode > m->chain->n)
-            return cli_error(cmd, "a chain of %d links has modes 1..%d, asked for mode %d",
-                             m->links, m->links, mode);
+            return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
+                             mode, m->links, m->links);
         double crit[WHIRL_MODE_MAX];
         status = whirl_nlink_critical(m->chain, (size_t)mode, crit);
         *omega = crit[mode - 1];
@@ -44,6 +44,8 @@ int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, in
     if (status != GSL_EDOM) return cli_error(cmd, "%s", whirl_last_error());
     double omega_k, rate = cli_units_rate(&m->units);
     if (steady_cli_critical(cmd, m, mode, &omega_k)) return 1;
+    /* an N-link branch that turns back or ends says so itself (dimensionless rates) */
+    if (m->chain && omega >= omega_k) return cli_error(cmd, "%s", whirl_last_error());
     return cli_error(cmd, "mode %d does not exist at omega=%s %s: it exists only above "
                      "omega_%d=%s %s", mode, CLI_NUM(omega * rate),
                      cli_units_name(&m->units, CLI_UNIT_RATE), mode, CLI_NUM(omega_k * rate),
@@ -56,8 +58,9 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
 {
     double rate = cli_units_rate(&m->units), len = m->units.length;
     double force = cli_units_force(&m->units);
-    fprintf(fp, "# omega=%s mode=%d tip_r=%s max_r=%s top_tension=%s depth=%s nodes=",
-            CLI_NUM(info->omega * rate), info->mode, CLI_NUM(info->tip_r * len),
+    fprintf(fp, "# omega=%s mode=%d node_count=%d tip_r=%s max_r=%s top_tension=%s depth=%s "
+            "nodes=", CLI_NUM(info->omega * rate), info->mode, info->n_nodes + 1,
+            CLI_NUM(info->tip_r * len),
             CLI_NUM(info->max_r * len), CLI_NUM(info->top_tension * force),
             CLI_NUM(info->depth * len));
     for (int j = 0; j < info->n_nodes; j++)
@@ -66,6 +69,10 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
             "z: height (pivot 0), tension: %s\n",
             m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
             m->chain ? "of the link above the node" : "at that point");
+    if (info->n_nodes + 1 != info->mode)
+        fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes at this rate: on a "
+                "coarse chain a branch can change its node count\n", info->mode, info->mode,
+                info->n_nodes + 1);
     if (extra) fprintf(fp, "# %s\n", extra);
     cli_units_comment(fp, &m->units);
     fprintf(fp, "s,r,z,tension\n");
