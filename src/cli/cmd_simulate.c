@@ -326,6 +326,11 @@ static int write_frame(run *r, double t)
     const whirl_model *m = &r->model;
     const double eps = m->drive_radius, wt = m->omega * t;
     FILE *fp = r->trace.fp;
+    if (r->frames == 0) {
+        const cli_units dimensionless = CLI_UNITS_INIT;
+        cli_trace_header(fp, &dimensionless, "whirl simulate", m->omega, eps, m->air_drag,
+                         m->air_drag_quadratic, (int)r->n);
+    }
     fprintf(fp, "%s# t = %s\n%s %s %s %s\n", r->frames ? "\n\n" : "", CLI_NUM(t),
             CLI_NUM(eps * cos(wt)), CLI_NUM(m->dim == 3 ? eps * sin(wt) : 0.0), CLI_NUM(0.0), CLI_NUM(t));
     for (size_t i = 0; i < r->n; i++)
