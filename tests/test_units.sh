@@ -96,4 +96,16 @@ same "driven: shape in SI units" "$tmp/a.csv" "$tmp/b.csv" "$L $L $L $L $F"
   --points 21 $units -o "$tmp/b.csv"
 same "driven: --drag-cd --diameter = the quadratic drag rho CD d / 2" "$tmp/a.csv" "$tmp/b.csv" \
   "$L $L $L $L $F"
+# regime: one run from rest with its trace (eps in cm, times in s)
+"$WHIRL" regime --omega 3 --eps 0.06 --links 6 --t-max 60 --drag 0.2 --trace "$tmp/a.dat" \
+  --trace-every 5 -o "$tmp/a.csv"
+"$WHIRL" regime --omega "$(val "3 * R")" --eps "$(val "0.06 * L * 100")cm" --links 6 \
+  --t-max "$(val "60 / R")" --drag "$(val "0.2 * $C1")" --trace "$tmp/b.dat" --trace-every "$(val "5 / R")" \
+  $units -o "$tmp/b.csv"
+same "regime: one run in SI units" "$tmp/a.csv" "$tmp/b.csv" \
+  "- $R $L - - - - $T $L $L $L - $R $L $L $L $L -"
+grep -v '^#' "$tmp/a.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/a.rows.csv"
+grep -v '^#' "$tmp/b.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/b.rows.csv"
+same "regime: its trace in m and s" "$tmp/a.rows.csv" "$tmp/b.rows.csv" "$L $L $L $T"
+
 finish

@@ -67,6 +67,8 @@ typedef struct regime_options {
     const char *frame, *output, *trace, *folds;
     double trace_every, t_change;
     int resume, sweep;
+    cli_units units; /* the user's units (outputs converted back into them) */
+    cli_air air;
     int omega_given, eps_given, omin_given, omax_given, osteps_given, emin_given, emax_given,
         esteps_given, trace_every_given, t_change_given, dt_given;
     whirl_regime_params p;
@@ -75,6 +77,12 @@ typedef struct regime_options {
 typedef struct mpi_context {
     int rank, size;
 } mpi_context;
+
+/* A dimensionless value of the kind in the user's units. */
+static double user(const regime_options *o, cli_unit kind, double x)
+{
+    return x * cli_units_scale(&o->units, kind);
+}
 
 /* ---- options ---- */
 
@@ -184,27 +192,37 @@ static void write_parameters(FILE *fp, const regime_options *o)
     fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
             "frame=%s method=%s dt=%s t_ramp=%s ramp_step=%s t_max=%s "
             "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
-            "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->drag), CLI_NUM(p->drag_quadratic),
-            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->ramp_step), CLI_NUM(p->t_max),
-            CLI_NUM(p->settle_tol), p->settle_periods, CLI_NUM(p->periodic_tol), p->lyapunov_periods,
-            CLI_NUM(p->chaos_lambda), CLI_NUM(p->perturb), p->seed);
+            "chaos_lambda=%s perturb=%s seed=%lu", o->links,
+            CLI_NUM(user(o, CLI_UNIT_DRAG, p->drag)),
+            CLI_NUM(user(o, CLI_UNIT_DRAG2, p->drag_quadratic)),
+            CLI_NUM(user(o, CLI_UNIT_DAMPING, p->internal_damping)), o->frame, p->method,
+            CLI_NUM(user(o, CLI_UNIT_TIME, p->dt)), CLI_NUM(user(o, CLI_UNIT_TIME, p->t_ramp)),
+            CLI_NUM(user(o, CLI_UNIT_TIME, p->ramp_step)),
+            CLI_NUM(user(o, CLI_UNIT_TIME, p->t_max)),
+            CLI_NUM(user(o, CLI_UNIT_LENGTH, p->settle_tol)), p->settle_periods,
+            CLI_NUM(user(o, CLI_UNIT_LENGTH, p->periodic_tol)), p->lyapunov_periods,
+            CLI_NUM(user(o, CLI_UNIT_RATE, p->chaos_lambda)), CLI_NUM(p->perturb), p->seed);
     if (is_map(o))
-        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(o->omega_min), CLI_NUM(o->omega_max), o->omega_steps);
+        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega_min)),
+                CLI_NUM(user(o, CLI_UNIT_RATE, o->omega_max)), o->omega_steps);
     else
-        fprintf(fp, " omega=%s", CLI_NUM(o->omega));
+        fprintf(fp, " omega=%s", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega)));
     if (is_map(o) && !o->sweep)
-        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(o->eps_min), CLI_NUM(o->eps_max), o->eps_steps);
+        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps_min)),
+                CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps_max)), o->eps_steps);
     else
-        fprintf(fp, " eps=%s\n", CLI_NUM(o->eps));
+        fprintf(fp, " eps=%s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)));
+    cli_units_comment(fp, &o->units);
 }
 
 /* The critical rates of the free N-link chain, for comparison with the map. */
-static void write_critical(FILE *fp, const whirl_chain *chain)
+static void write_critical(FILE *fp, const regime_options *o, const whirl_chain *chain)
 {
     double omega[REGIME_CRITICAL];
     if (whirl_nlink_critical(chain, REGIME_CRITICAL, omega) != GSL_SUCCESS) return;
     fprintf(fp, "# critical rates of the free chain (modes 1..%d):", REGIME_CRITICAL);
-    for (int k = 0; k < REGIME_CRITICAL; k++) fprintf(fp, " %s", CLI_NUM(omega[k]));
+    for (int k = 0; k < REGIME_CRITICAL; k++)
+        fprintf(fp, " %s", CLI_NUM(user(o, CLI_UNIT_RATE, omega[k])));
     fputc('\n', fp);
 }
 
@@ -223,23 +241,25 @@ static int state_class(const whirl_regime_result *r)
 /* A value and a comma; a value that was not computed (not finite) is left empty. */
 static void put_value(FILE *fp, double x)
 {
+    /* (x is already in the user's units) */
     if (isfinite(x)) fprintf(fp, "%s", CLI_NUM(x));
     fputc(',', fp);
 }
 
 /* The columns from state on. */
-static void write_result(FILE *fp, const whirl_regime_result *r)
+static void write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r)
 {
+    const double len = user(o, CLI_UNIT_LENGTH, 1);
     fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), state_class(r), r->nodes,
             r->period);
-    put_value(fp, r->t_end);
-    put_value(fp, r->change);
-    put_value(fp, r->remaining);
-    put_value(fp, r->shape_error);
+    put_value(fp, user(o, CLI_UNIT_TIME, r->t_end));
+    put_value(fp, r->change * len);
+    put_value(fp, r->remaining * len);
+    put_value(fp, r->shape_error * len);
     fprintf(fp, "%d,", r->bvp_nodes);
-    put_value(fp, r->lyapunov);
-    for (int k = 0; k < 3; k++) put_value(fp, r->tip[k]);
-    put_value(fp, r->tip_r);
+    put_value(fp, user(o, CLI_UNIT_RATE, r->lyapunov));
+    for (int k = 0; k < 3; k++) put_value(fp, r->tip[k] * len);
+    put_value(fp, r->tip_r * len);
     fprintf(fp, "%lu\n", r->steps);
 }
 
@@ -248,8 +268,9 @@ static void write_map_row(FILE *fp, const regime_options *o, long index,
 {
     double omega, eps;
     grid_point(o, index, &omega, &eps);
-    fprintf(fp, "%ld,%s,%s,", index, CLI_NUM(omega), CLI_NUM(eps));
-    write_result(fp, r);
+    fprintf(fp, "%ld,%s,%s,", index, CLI_NUM(user(o, CLI_UNIT_RATE, omega)),
+            CLI_NUM(user(o, CLI_UNIT_LENGTH, eps)));
+    write_result(fp, o, r);
 }
 
 /* ---- packing a result for the gather (doubles, index first; index -1: no point) ---- */
@@ -299,6 +320,7 @@ static int resume_map(const cli_command *cmd, const regime_options *o, char *don
     }
     write_parameters(mem, o);
     fclose(mem);
+    expect[strcspn(expect, "\n") + 1] = '\0'; /* the parameter line only */
     cli_out out;
     if (cli_out_open(cmd, &out, o->output) != 0) {
         fclose(in);
@@ -312,7 +334,7 @@ static int resume_map(const cli_command *cmd, const regime_options *o, char *don
         if (line[0] == '#') {
             if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
             if (strncmp(line, "# regime:", 9) == 0 || strncmp(line, "# critical", 10) == 0 ||
-                strncmp(line, "# whirl regime", 14) == 0)
+                strncmp(line, "# whirl regime", 14) == 0 || strncmp(line, "# units:", 8) == 0)
                 fputs(line, out.fp);
             continue;
         }
@@ -355,7 +377,7 @@ static int fresh_map(const cli_command *cmd, const regime_options *o, const whir
     fprintf(out.fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
             o->omega_steps, o->eps_steps);
     write_parameters(out.fp, o);
-    write_critical(out.fp, chain);
+    write_critical(out.fp, o, chain);
     fprintf(out.fp, "%s\n", map_columns);
     return cli_out_commit(cmd, &out);
 }
@@ -433,8 +455,8 @@ static int write_folds(const cli_command *cmd, const regime_options *o, const wh
                                         0.02, curve) != GSL_SUCCESS)
                     continue;
                 for (size_t f = 0; f < curve->n_folds; f++)
-                    fprintf(out.fp, "%s,%d,%d,%zu,%s\n", CLI_NUM(eps), mode, side, f,
-                            CLI_NUM(curve->fold_omega[f]));
+                    fprintf(out.fp, "%s,%d,%d,%zu,%s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, eps)),
+                            mode, side, f, CLI_NUM(user(o, CLI_UNIT_RATE, curve->fold_omega[f])));
             }
     }
     whirl_driven_curve_free(curve);
@@ -541,6 +563,7 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
 typedef struct trace_ctx {
     FILE *fp;
     unsigned long frames;
+    double len, time; /* the user's units of length and time, in dimensionless ones */
 } trace_ctx;
 
 /* One block of the trace: the pivot, then every mass, in the inertial frame. */
@@ -549,11 +572,12 @@ static int trace_frame(void *ctx, double t, double angle, const double *pivot, c
 {
     trace_ctx *tc = ctx;
     const double c = cos(angle), s = sin(angle);
-    fprintf(tc->fp, "%s# t = %s\n", tc->frames++ ? "\n\n" : "", CLI_NUM(t));
+    fprintf(tc->fp, "%s# t = %s\n", tc->frames++ ? "\n\n" : "", CLI_NUM(t * tc->time));
     for (size_t i = 0; i <= n; i++) {
         const double *p = i == 0 ? pivot : x + 3 * (i - 1);
-        fprintf(tc->fp, "%s %s %s %s\n", CLI_NUM(c * p[0] - s * p[1]), CLI_NUM(s * p[0] + c * p[1]),
-                CLI_NUM(p[2]), CLI_NUM(t));
+        fprintf(tc->fp, "%s %s %s %s\n", CLI_NUM(tc->len * (c * p[0] - s * p[1])),
+                CLI_NUM(tc->len * (s * p[0] + c * p[1])), CLI_NUM(tc->len * p[2]),
+                CLI_NUM(t * tc->time));
     }
     return GSL_SUCCESS;
 }
@@ -573,7 +597,11 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         whirl_regime_free(w);
         return rc;
     }
-    trace_ctx tc = {trace_open ? trace.fp : NULL, 0};
+    trace_ctx tc = {trace_open ? trace.fp : NULL, 0, user(o, CLI_UNIT_LENGTH, 1),
+                    user(o, CLI_UNIT_TIME, 1)};
+    if (trace_open)
+        cli_trace_header(trace.fp, &o->units, "whirl regime, one run from rest", o->p.omega,
+                         o->p.eps, o->p.drag, o->p.drag_quadratic, o->links);
     if (trace_open) whirl_regime_observe(w, trace_frame, &tc, o->trace_every);
     whirl_regime_result r;
     const int status = whirl_regime_run(w, &o->p, &r);
@@ -584,11 +612,12 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime: one run from rest\n");
         write_parameters(out.fp, o);
-        write_critical(out.fp, chain);
+        write_critical(out.fp, o, chain);
         if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
         fprintf(out.fp, "%s\n", map_columns);
-        fprintf(out.fp, "0,%s,%s,", CLI_NUM(o->omega), CLI_NUM(o->eps));
-        write_result(out.fp, &r);
+        fprintf(out.fp, "0,%s,%s,", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega)),
+                CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)));
+        write_result(out.fp, o, &r);
     }
     if (trace_open) {
         if (rc == 0) rc = cli_out_commit(cmd, &trace);
@@ -627,19 +656,23 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %s, the state "
-                "carried over, t_change = %s\n", CLI_NUM(o->eps), CLI_NUM(o->t_change));
+                "carried over, t_change = %s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)),
+                CLI_NUM(user(o, CLI_UNIT_TIME, o->t_change)));
         write_parameters(out.fp, o);
-        write_critical(out.fp, chain);
+        write_critical(out.fp, o, chain);
         for (size_t j = 1; j < n; j++)
             if (state_class(&res[j]) != state_class(&res[j - 1]))
                 fprintf(out.fp, "# jump %s: between omega %s and %s: %s %d nodes -> %s %d "
-                        "nodes\n", j < n_up ? "up" : "down", CLI_NUM(omega[j - 1]), CLI_NUM(omega[j]),
+                        "nodes\n", j < n_up ? "up" : "down",
+                        CLI_NUM(user(o, CLI_UNIT_RATE, omega[j - 1])),
+                        CLI_NUM(user(o, CLI_UNIT_RATE, omega[j])),
                         whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
                         whirl_regime_state_name(res[j].state), res[j].nodes);
         fprintf(out.fp, "%s\n", sweep_columns);
         for (size_t j = 0; j < n; j++) {
-            fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down", CLI_NUM(omega[j]));
-            write_result(out.fp, &res[j]);
+            fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down",
+                    CLI_NUM(user(o, CLI_UNIT_RATE, omega[j])));
+            write_result(out.fp, o, &res[j]);
         }
         rc = cli_out_commit(cmd, &out);
     }
@@ -660,39 +693,59 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
     o.trace_every = 0.1;
     o.t_change = 20;
     whirl_regime_params_default(&o.p, 20);
+    o.units = (cli_units)CLI_UNITS_INIT;
+    o.air = (cli_air)CLI_AIR_INIT(o.units);
     double seed = 1, settle_periods = 3, lyapunov_periods = 60;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rate of the hand (one run)"},
-        {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E", "radius of the hand's circle [L]"},
-        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A", "map or sweep: lowest omega"},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B", "map or sweep: highest omega"},
-        {"--omega-count", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "N", "map or sweep: number of rates, both ends included"},
-        {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "A", "map: smallest eps"},
-        {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "B", "map: largest eps"},
-        {"--eps-count", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "M", "map: number of radii, both ends included"},
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rate of the hand (one run)",
+         "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A",
+         "map or sweep: lowest omega", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B",
+         "map or sweep: highest omega", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-count", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "N",
+         "map or sweep: number of rates, both ends included"},
+        {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "C", "map: smallest eps",
+         NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
+        {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "D", "map: largest eps",
+         NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
+        {"--eps-count", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "M",
+         "map: number of radii, both ends included"},
+        CLI_DRAG_OPTIONS(o.eps, &o.eps_given, o.p.drag, NULL, o.p.drag_quadratic, NULL, o.air),
         {"--sweep", NULL, CLI_FLAG, &o.sweep, NULL, "", "hysteresis: omega up, then down, state carried over"},
-        {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T", "sweep: time of each change of omega (default 20)"},
+        {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T",
+         "sweep: time of each change of omega (default 20)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
         {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 20)"},
-        {"--drag", NULL, CLI_DOUBLE, &o.p.drag, NULL, "C", "linear air drag per unit length (default 0)"},
-        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.p.drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
-        {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D", "damping of the joints (default 0)"},
+        {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D",
+         "damping of the joints (default 0)", NULL, NULL, NULL, NULL, CLI_UNIT_DAMPING},
         {"--frame", NULL, CLI_STRING, &o.frame, NULL, "F", "rotating (default) or inertial"},
         {"--method", NULL, CLI_STRING, &o.p.method, NULL, "M", "integrator (default rk4)"},
-        {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)"},
-        {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)"},
-        {"--ramp-step", NULL, CLI_DOUBLE, &o.p.ramp_step, NULL, "H", "staircase segment of the ramps (default 0.5)"},
-        {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T", "end of a run that has not settled (default 400)"},
-        {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D", "distance left to the steady shape [L] (default 1e-3)"},
+        {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)", NULL,
+         NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)",
+         NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--ramp-step", NULL, CLI_DOUBLE, &o.p.ramp_step, NULL, "H",
+         "staircase segment of the ramps (default 0.5)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T",
+         "end of a run that has not settled (default 400)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D",
+         "distance left to the steady shape (default 1e-3)", NULL, NULL, NULL, NULL,
+         CLI_UNIT_LENGTH},
         {"--settle-periods", NULL, CLI_DOUBLE, &settle_periods, NULL, "K", "periods that must pass (default 3)"},
-        {"--periodic-tol", NULL, CLI_DOUBLE, &o.p.periodic_tol, NULL, "D", "repeat tolerance of the tip [L] (default 1e-3)"},
+        {"--periodic-tol", NULL, CLI_DOUBLE, &o.p.periodic_tol, NULL, "D",
+         "repeat tolerance of the tip (default 1e-3)", NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
         {"--lyapunov-periods", NULL, CLI_DOUBLE, &lyapunov_periods, NULL, "K", "Lyapunov window in periods (default 60)"},
-        {"--chaos-lambda", NULL, CLI_DOUBLE, &o.p.chaos_lambda, NULL, "L", "Lyapunov exponent above which a run is chaotic (default 0.05)"},
+        {"--chaos-lambda", NULL, CLI_DOUBLE, &o.p.chaos_lambda, NULL, "L",
+         "Lyapunov exponent above which a run is chaotic (default 0.05)", NULL, NULL, NULL, NULL,
+         CLI_UNIT_RATE},
         {"--perturb", NULL, CLI_DOUBLE, &o.p.perturb, NULL, "A", "random turn of each hanging link [rad] (default 1e-3)"},
         {"--seed", NULL, CLI_DOUBLE, &seed, NULL, "S", "seed of the turns; a map's point i uses S + i (default 1)"},
-        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE", "one run: the motion (inertial frame) for plots/animate.gp"},
-        {"--trace-every", NULL, CLI_DOUBLE, &o.trace_every, &o.trace_every_given, "T", "interval of the trace (default 0.1)"},
+        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE", "one run: the motion (inertial frame) for whirl view or plots/animate.gp"},
+        {"--trace-every", NULL, CLI_DOUBLE, &o.trace_every, &o.trace_every_given, "T",
+         "interval of the trace (default 0.1)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
         {"--folds", NULL, CLI_STRING, &o.folds, NULL, "FILE", "map: the folds of the steady branches"},
         {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "", "map: keep the points in -o FILE, compute the rest"},
+        CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output CSV (default stdout; required for a map)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
@@ -705,6 +758,7 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
               counts[k].value == floor(counts[k].value)))
             return cli_error(cmd, "%s must be a whole number in [%d, %.0f], got %g", counts[k].name,
                              k ? 1 : 0, counts[k].max, counts[k].value);
+    if ((rc = cli_drag_apply(cmd, &o.air, &o.p.drag_quadratic))) return rc;
     o.p.seed = (unsigned long)seed;
     o.p.settle_periods = (int)settle_periods;
     o.p.lyapunov_periods = (int)lyapunov_periods;
