@@ -384,13 +384,6 @@ static int fresh_map(const cli_command *cmd, const regime_options *o, const whir
 
 /* ---- the map ---- */
 
-static double wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static int max_threads(void)
 {
 #ifdef _OPENMP
@@ -504,7 +497,9 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
     for (long i = 0; rc == 0 && i < n_points; i++)
         if (!done[i]) pending[n_pending++] = i;
     const long already = n_points - n_pending;
-    const double start = wall_seconds();
+    const double start = cli_wall_seconds();
+    cli_progress_state progress;
+    cli_progress_begin(&progress, cmd, "points", n_points, already);
     cli_catch_interrupts();
     long written = 0;
     int stop = 0;
@@ -531,15 +526,15 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
                 written++;
             }
             if (fflush(fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
-            cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 0);
+            cli_progress_update(&progress, already + written, 0);
         }
         rc = all_max(mc, failed);
         stop = all_max(mc, cli_interrupted != 0);
         if (stop) break;
     }
-    const double seconds = wall_seconds() - start;
+    const double seconds = cli_wall_seconds() - start;
     if (mc->rank == 0 && fp) {
-        cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 1);
+        cli_progress_update(&progress, already + written, 1);
         if (rc == 0 && !stop)
             fprintf(fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
                     written, seconds, mc->size, threads);
