@@ -11,11 +11,11 @@
 if (!exists("trace")) { print "usage: gnuplot -e \"trace='run.dat'; out='run.gif'\" plots/animate.gp"; exit status 1 }
 load system("dirname '".ARG0."'")."/style.gp"
 set datafile separator whitespace
-if (!exists("out")) out = trace . ".gif"
-if (!exists("step")) step = 1
-if (!exists("delay")) delay = 4
-if (!exists("width")) width = 640
-if (!exists("view")) view = "70,30"
+if (!exists("out")) { out = trace . ".gif" }
+if (!exists("step")) { step = 1 }
+if (!exists("delay")) { delay = 4 }
+if (!exists("width")) { width = 640 }
+if (!exists("view")) { view = "70,30" }
 
 max(a, b) = a > b ? a : b
 omega = meta(trace, "omega"); eps_s = meta(trace, "eps"); links = meta(trace, "links")

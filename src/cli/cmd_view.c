@@ -229,12 +229,15 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
             physical ? "s" : "sqrt(L/g)");
     fprintf(fp, "\"extent\": {\"r\": %.7g, \"zmin\": %.7g, \"zmax\": %.7g, \"len\": %.7g},\n", r,
             zmin, zmax, len > 0 ? len : 1);
-    /* the summary: each file's line that names omega (else its first comment line) */
+    /* the summary: each file's line that names omega (else its first comment line), of a trace
+     * line only the parameters */
     char summary[1024] = "";
     for (int k = 0; k < nsrc; k++) {
         const char *pick = src[k].n_info ? src[k].info[0] : "";
         for (int i = src[k].n_info - 1; i >= 0; i--)
             if (strstr(src[k].info[i], "omega=")) pick = src[k].info[i];
+        const char *tail = strrchr(pick, ';'); /* a trace line: its parameters, after the ';' */
+        if (tail && tail[1] == ' ') pick = tail + 2;
         size_t used = strlen(summary);
         snprintf(summary + used, sizeof summary - used, "%s%s", k ? " | " : "", pick);
     }
