@@ -117,6 +117,7 @@ $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
 ifeq ($(MPI),1)
 $(BUILD)/src/cli/cmd_regime.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
+$(BUILD)/src/cli/regime_map.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
 $(BUILD)/whirl: PKG_LIBS += $(shell mpicc --showme:link)
 endif
 # --- end MPI

@@ -1,5 +1,6 @@
 /* whirl regime: which node count a chain swung by hand settles into, from rest
  * (include/whirl/regime.h): one run, a map over (omega, eps), or a hysteresis sweep of omega.
+ * The map, its file and its sharing over threads and MPI ranks are in regime_map.c.
  *
  * One run (--omega W --eps E): comment lines, the header and one row; --trace FILE writes the
  * motion in the inertial frame in the format of `whirl simulate`'s trace (plots/animate.gp).
@@ -41,52 +42,30 @@
 #include <mpi.h>
 #endif
 
-#include "cli/cli.h"
+#include "cli/regime_cli.h"
 #include "whirl/driven.h"
 #include "whirl/regime.h"
 #include "whirl/steady.h"
 
-#define REGIME_MAX_LINKS 10000
-#define REGIME_MAX_POINTS 10000000L
-#define REGIME_LINE_MAX 4096
 #define REGIME_CRITICAL 4     /* critical rates listed in the header */
-#define RESULT_FIELDS 16      /* doubles per packed result */
-#define FOLD_MODES 3
 
-static const char *const map_columns =
+const char *const regime_cli_map_columns =
     "index,omega,eps,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,"
     "lyapunov,tip_x,tip_y,tip_z,tip_r,steps";
-#define MAP_FIELDS 18
 static const char *const sweep_columns =
     "leg,omega,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,lyapunov,"
     "tip_x,tip_y,tip_z,tip_r,steps";
 
-typedef struct regime_options {
-    double omega, eps, omega_min, omega_max, eps_min, eps_max;
-    int omega_steps, eps_steps, links;
-    const char *frame, *output, *trace, *folds;
-    double trace_every, t_change;
-    int resume, sweep;
-    cli_units units; /* the user's units (outputs converted back into them) */
-    cli_air air;
-    int omega_given, eps_given, omin_given, omax_given, osteps_given, emin_given, emax_given,
-        esteps_given, trace_every_given, t_change_given, dt_given;
-    whirl_regime_params p;
-} regime_options;
 
-typedef struct mpi_context {
-    int rank, size;
-} mpi_context;
 
-/* A dimensionless value of the kind in the user's units. */
-static double user(const regime_options *o, cli_unit kind, double x)
+double regime_cli_user(const regime_options *o, cli_unit kind, double x)
 {
     return x * cli_units_scale(&o->units, kind);
 }
 
 /* ---- options ---- */
 
-static int is_map(const regime_options *o)
+int regime_cli_is_map(const regime_options *o)
 {
     return o->omin_given || o->omax_given || o->osteps_given;
 }
@@ -107,7 +86,7 @@ static int check_range(const cli_command *cmd, const char *name, double lo, doub
 
 static int check_options(const cli_command *cmd, regime_options *o)
 {
-    const int map = is_map(o);
+    const int map = regime_cli_is_map(o);
     if (map && !(o->omin_given && o->omax_given && o->osteps_given))
         return cli_error(cmd, "a map or sweep needs --omega-min, --omega-max and --omega-count");
     if (!map && o->sweep) return cli_error(cmd, "--sweep needs --omega-min, --omega-max and "
@@ -179,50 +158,44 @@ static int check_options(const cli_command *cmd, regime_options *o)
     return 0;
 }
 
-static void grid_point(const regime_options *o, long index, double *omega, double *eps)
-{
-    *omega = cli_grid(o->omega_min, o->omega_max, o->omega_steps, (int)(index % o->omega_steps));
-    *eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, (int)(index / o->omega_steps));
-}
-
 /* The parameter line: a map written with another one cannot be resumed. */
-static void write_parameters(FILE *fp, const regime_options *o)
+void regime_cli_write_parameters(FILE *fp, const regime_options *o)
 {
     const whirl_regime_params *p = &o->p;
     fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
             "frame=%s method=%s dt=%s t_ramp=%s ramp_step=%s t_max=%s "
             "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
             "chaos_lambda=%s perturb=%s seed=%lu", o->links,
-            CLI_NUM(user(o, CLI_UNIT_DRAG, p->drag)),
-            CLI_NUM(user(o, CLI_UNIT_DRAG2, p->drag_quadratic)),
-            CLI_NUM(user(o, CLI_UNIT_DAMPING, p->internal_damping)), o->frame, p->method,
-            CLI_NUM(user(o, CLI_UNIT_TIME, p->dt)), CLI_NUM(user(o, CLI_UNIT_TIME, p->t_ramp)),
-            CLI_NUM(user(o, CLI_UNIT_TIME, p->ramp_step)),
-            CLI_NUM(user(o, CLI_UNIT_TIME, p->t_max)),
-            CLI_NUM(user(o, CLI_UNIT_LENGTH, p->settle_tol)), p->settle_periods,
-            CLI_NUM(user(o, CLI_UNIT_LENGTH, p->periodic_tol)), p->lyapunov_periods,
-            CLI_NUM(user(o, CLI_UNIT_RATE, p->chaos_lambda)), CLI_NUM(p->perturb), p->seed);
-    if (is_map(o))
-        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega_min)),
-                CLI_NUM(user(o, CLI_UNIT_RATE, o->omega_max)), o->omega_steps);
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DRAG, p->drag)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DRAG2, p->drag_quadratic)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DAMPING, p->internal_damping)), o->frame, p->method,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->dt)), CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->t_ramp)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->ramp_step)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->t_max)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, p->settle_tol)), p->settle_periods,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, p->periodic_tol)), p->lyapunov_periods,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, p->chaos_lambda)), CLI_NUM(p->perturb), p->seed);
+    if (regime_cli_is_map(o))
+        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega_min)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega_max)), o->omega_steps);
     else
-        fprintf(fp, " omega=%s", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega)));
-    if (is_map(o) && !o->sweep)
-        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps_min)),
-                CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps_max)), o->eps_steps);
+        fprintf(fp, " omega=%s", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega)));
+    if (regime_cli_is_map(o) && !o->sweep)
+        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps_min)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps_max)), o->eps_steps);
     else
-        fprintf(fp, " eps=%s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)));
+        fprintf(fp, " eps=%s\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
     cli_units_comment(fp, &o->units);
 }
 
 /* The critical rates of the free N-link chain, for comparison with the map. */
-static void write_critical(FILE *fp, const regime_options *o, const whirl_chain *chain)
+void regime_cli_write_critical(FILE *fp, const regime_options *o, const whirl_chain *chain)
 {
     double omega[REGIME_CRITICAL];
     if (whirl_nlink_critical(chain, REGIME_CRITICAL, omega) != GSL_SUCCESS) return;
     fprintf(fp, "# critical rates of the free chain (modes 1..%d):", REGIME_CRITICAL);
     for (int k = 0; k < REGIME_CRITICAL; k++)
-        fprintf(fp, " %s", CLI_NUM(user(o, CLI_UNIT_RATE, omega[k])));
+        fprintf(fp, " %s", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[k])));
     fputc('\n', fp);
 }
 
@@ -247,310 +220,20 @@ static void put_value(FILE *fp, double x)
 }
 
 /* The columns from state on. */
-static void write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r)
+void regime_cli_write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r)
 {
-    const double len = user(o, CLI_UNIT_LENGTH, 1);
+    const double len = regime_cli_user(o, CLI_UNIT_LENGTH, 1);
     fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), state_class(r), r->nodes,
             r->period);
-    put_value(fp, user(o, CLI_UNIT_TIME, r->t_end));
+    put_value(fp, regime_cli_user(o, CLI_UNIT_TIME, r->t_end));
     put_value(fp, r->change * len);
     put_value(fp, r->remaining * len);
     put_value(fp, r->shape_error * len);
     fprintf(fp, "%d,", r->bvp_nodes);
-    put_value(fp, user(o, CLI_UNIT_RATE, r->lyapunov));
+    put_value(fp, regime_cli_user(o, CLI_UNIT_RATE, r->lyapunov));
     for (int k = 0; k < 3; k++) put_value(fp, r->tip[k] * len);
     put_value(fp, r->tip_r * len);
     fprintf(fp, "%lu\n", r->steps);
-}
-
-static void write_map_row(FILE *fp, const regime_options *o, long index,
-                          const whirl_regime_result *r)
-{
-    double omega, eps;
-    grid_point(o, index, &omega, &eps);
-    fprintf(fp, "%ld,%s,%s,", index, CLI_NUM(user(o, CLI_UNIT_RATE, omega)),
-            CLI_NUM(user(o, CLI_UNIT_LENGTH, eps)));
-    write_result(fp, o, r);
-}
-
-/* ---- packing a result for the gather (doubles, index first; index -1: no point) ---- */
-
-static void pack(double *buf, long index, const whirl_regime_result *r)
-{
-    const double v[RESULT_FIELDS] = {(double)index, r->state, r->nodes, r->period, r->t_end,
-                                     r->change, r->remaining, r->shape_error, r->bvp_nodes,
-                                     r->lyapunov, r->tip[0], r->tip[1], r->tip[2], r->tip_r,
-                                     (double)r->steps, 0};
-    memcpy(buf, v, sizeof v);
-}
-
-static long unpack(const double *buf, whirl_regime_result *r)
-{
-    r->state = (whirl_regime_state)buf[1];
-    r->nodes = (int)buf[2];
-    r->period = (int)buf[3];
-    r->t_end = buf[4];
-    r->change = buf[5];
-    r->remaining = buf[6];
-    r->shape_error = buf[7];
-    r->bvp_nodes = (int)buf[8];
-    r->lyapunov = buf[9];
-    for (int k = 0; k < 3; k++) r->tip[k] = buf[10 + k];
-    r->tip_r = buf[13];
-    r->steps = (unsigned long)buf[14];
-    return (long)buf[0];
-}
-
-/* ---- the map file: fresh or resumed ---- */
-
-/* Reads a map file written with the same parameter line: marks its complete rows in done[],
- * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
- * closing comments dropped). Returns 0 or 1 after an error. */
-static int resume_map(const cli_command *cmd, const regime_options *o, char *done, long n_points,
-                      long *n_done)
-{
-    FILE *in = fopen(o->output, "r");
-    if (in == NULL)
-        return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
-    char expect[REGIME_LINE_MAX];
-    FILE *mem = fmemopen(expect, sizeof expect, "w");
-    if (mem == NULL) {
-        fclose(in);
-        return cli_error(cmd, "out of memory");
-    }
-    write_parameters(mem, o);
-    fclose(mem);
-    expect[strcspn(expect, "\n") + 1] = '\0'; /* the parameter line only */
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) {
-        fclose(in);
-        return 1;
-    }
-    char line[REGIME_LINE_MAX];
-    int same = 0, header = 0, rc = 0;
-    *n_done = 0;
-    while (rc == 0 && fgets(line, sizeof line, in)) {
-        const size_t len = strlen(line);
-        if (line[0] == '#') {
-            if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
-            if (strncmp(line, "# regime:", 9) == 0 || strncmp(line, "# critical", 10) == 0 ||
-                strncmp(line, "# whirl regime", 14) == 0 || strncmp(line, "# units:", 8) == 0)
-                fputs(line, out.fp);
-            continue;
-        }
-        if (!header) {
-            header = 1;
-            if (!same)
-                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
-                               "parameters", o->output);
-            else if (strncmp(line, map_columns, strlen(map_columns)) != 0)
-                rc = cli_error(cmd, "--resume: '%s' has another header", o->output);
-            else
-                fputs(line, out.fp);
-            continue;
-        }
-        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
-        int fields = 1;
-        for (const char *c = line; *c; c++) fields += *c == ',';
-        char *end;
-        const long index = strtol(line, &end, 10);
-        if (fields != MAP_FIELDS || *end != ',' || index < 0 || index >= n_points) continue;
-        if (!done[index]) {
-            done[index] = 1;
-            ++*n_done;
-            fputs(line, out.fp);
-        }
-    }
-    if (rc == 0 && !header) rc = cli_error(cmd, "--resume: '%s' holds no map", o->output);
-    fclose(in);
-    if (rc != 0) {
-        cli_out_abort(&out);
-        return rc;
-    }
-    return cli_out_commit(cmd, &out);
-}
-
-static int fresh_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
-{
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) return 1;
-    fprintf(out.fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
-            o->omega_steps, o->eps_steps);
-    write_parameters(out.fp, o);
-    write_critical(out.fp, o, chain);
-    fprintf(out.fp, "%s\n", map_columns);
-    return cli_out_commit(cmd, &out);
-}
-
-/* ---- the map ---- */
-
-static int max_threads(void)
-{
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-}
-
-static int thread_id(void)
-{
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-
-/* Runs the points pending[first..first+count-1] on the threads, packed results into buf. Returns 0,
- * or 1 if a workspace could not be had or a run returned an error status. */
-static int run_block(const regime_options *o, whirl_regime **ws, const long *pending, long count,
-                     double *buf)
-{
-    int failed = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
-    for (long j = 0; j < count; j++) {
-        whirl_regime_params p = o->p;
-        grid_point(o, pending[j], &p.omega, &p.eps);
-        p.seed = o->p.seed + (unsigned long)pending[j];
-        whirl_regime_result r;
-        memset(&r, 0, sizeof r);
-        const int status = whirl_regime_run(ws[thread_id()], &p, &r), ok = status == GSL_SUCCESS;
-        failed |= !ok && status != WHIRL_EINTERRUPTED; /* a stopped point is left to --resume */
-        pack(buf + j * RESULT_FIELDS, ok ? pending[j] : -1, &r);
-    }
-    return failed;
-}
-
-/* The folds of the steady driven branches of modes 1..FOLD_MODES, both sides, for every eps of
- * the map (rank 0, after the map). */
-static int write_folds(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
-{
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->folds) != 0) return 1;
-    whirl_driven_curve *curve = whirl_driven_curve_alloc(20000);
-    if (curve == NULL) {
-        cli_out_abort(&out);
-        return cli_error(cmd, "out of memory");
-    }
-    fprintf(out.fp, "# folds of the steady driven branches (whirl_driven_branch), N-link chain\n");
-    write_parameters(out.fp, o);
-    fprintf(out.fp, "eps,mode,side,fold,omega\n");
-    for (int ie = 0; ie < o->eps_steps && !cli_interrupted; ie++) {
-        const double eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, ie);
-        const whirl_driven_params dp = {.omega = o->omega_max, .eps = eps, .drag = o->p.drag,
-                                        .drag_quadratic = o->p.drag_quadratic};
-        for (int mode = 1; mode <= FOLD_MODES; mode++)
-            for (int side = 1; side >= -1; side -= 2) {
-                whirl_driven_info start;
-                if (whirl_driven_mode(chain, &dp, mode, side, &start) != GSL_SUCCESS) continue;
-                if (whirl_driven_branch(chain, &dp, &start, -1, o->omega_min, o->omega_max,
-                                        0.02, curve) != GSL_SUCCESS)
-                    continue;
-                for (size_t f = 0; f < curve->n_folds; f++)
-                    fprintf(out.fp, "%s,%d,%d,%zu,%s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, eps)),
-                            mode, side, f, CLI_NUM(user(o, CLI_UNIT_RATE, curve->fold_omega[f])));
-            }
-    }
-    whirl_driven_curve_free(curve);
-    return cli_out_commit(cmd, &out);
-}
-
-/* Collective over the ranks: the largest of v. */
-static int all_max(const mpi_context *mc, int v)
-{
-#ifdef WHIRL_MPI
-    if (mc->size > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-#else
-    (void)mc;
-#endif
-    return v;
-}
-
-static int run_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
-                   const mpi_context *mc)
-{
-    const long n_points = (long)o->omega_steps * o->eps_steps;
-    const int threads = max_threads();
-    const long block = all_max(mc, 4 * threads); /* points per rank and round */
-    char *done = calloc((size_t)n_points, 1);
-    long *pending = malloc((size_t)n_points * sizeof *pending);
-    long *mine = malloc((size_t)block * sizeof *mine);
-    double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
-    whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
-    int rc = done && pending && mine && buf && ws ? 0 : 1;
-    for (int k = 0; rc == 0 && k < threads; k++)
-        if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
-    if (rc) cli_error(cmd, "out of memory");
-    long n_done = 0;
-    FILE *fp = NULL;
-    if (mc->rank == 0 && rc == 0) {
-        rc = o->resume ? resume_map(cmd, o, done, n_points, &n_done) : fresh_map(cmd, o, chain);
-        if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
-            rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
-    }
-    rc = all_max(mc, rc);
-#ifdef WHIRL_MPI
-    if (rc == 0 && mc->size > 1) MPI_Bcast(done, (int)n_points, MPI_CHAR, 0, MPI_COMM_WORLD);
-#endif
-    long n_pending = 0;
-    for (long i = 0; rc == 0 && i < n_points; i++)
-        if (!done[i]) pending[n_pending++] = i;
-    const long already = n_points - n_pending;
-    const double start = cli_wall_seconds();
-    cli_progress_state progress;
-    cli_progress_begin(&progress, cmd, "points", n_points, already);
-    cli_catch_interrupts();
-    long written = 0;
-    int stop = 0;
-    for (long first = 0; rc == 0 && first < n_pending; first += block * mc->size) {
-        const long round = GSL_MIN(block * mc->size, n_pending - first);
-        long count = 0;
-        for (long k = mc->rank; k < round; k += mc->size) mine[count++] = pending[first + k];
-        for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
-        int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
-        if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
-#ifdef WHIRL_MPI
-        if (mc->size > 1)
-            MPI_Gather(mc->rank == 0 ? MPI_IN_PLACE : buf, (int)(block * RESULT_FIELDS),
-                       MPI_DOUBLE, buf, (int)(block * RESULT_FIELDS), MPI_DOUBLE, 0,
-                       MPI_COMM_WORLD);
-#endif
-        if (mc->rank == 0) {
-            for (long k = 0; k < round; k++) { /* point k of the round: rank k % K, its k / K */
-                whirl_regime_result r;
-                const long slot = (k % mc->size) * block + k / mc->size;
-                const long index = unpack(buf + slot * RESULT_FIELDS, &r);
-                if (index < 0) continue;
-                write_map_row(fp, o, index, &r);
-                written++;
-            }
-            if (fflush(fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
-            cli_progress_update(&progress, already + written, 0);
-        }
-        rc = all_max(mc, failed);
-        stop = all_max(mc, cli_interrupted != 0);
-        if (stop) break;
-    }
-    const double seconds = cli_wall_seconds() - start;
-    if (mc->rank == 0 && fp) {
-        cli_progress_update(&progress, already + written, 1);
-        if (rc == 0 && !stop)
-            fprintf(fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
-                    written, seconds, mc->size, threads);
-        if (fclose(fp) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o->output);
-        if (rc == 0 && stop)
-            rc = 130, cli_error(cmd, "interrupted: %ld of %ld points in '%s' (continue with "
-                                "--resume)", already + written, n_points, o->output);
-        if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
-    }
-    for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
-    free(ws);
-    free(buf);
-    free(mine);
-    free(pending);
-    free(done);
-    return rc;
 }
 
 /* ---- one run with an optional trace ---- */
@@ -592,8 +275,8 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         whirl_regime_free(w);
         return rc;
     }
-    trace_ctx tc = {trace_open ? trace.fp : NULL, 0, user(o, CLI_UNIT_LENGTH, 1),
-                    user(o, CLI_UNIT_TIME, 1)};
+    trace_ctx tc = {trace_open ? trace.fp : NULL, 0, regime_cli_user(o, CLI_UNIT_LENGTH, 1),
+                    regime_cli_user(o, CLI_UNIT_TIME, 1)};
     if (trace_open)
         cli_trace_header(trace.fp, &o->units, "whirl regime, one run from rest", o->p.omega,
                          o->p.eps, o->p.drag, o->p.drag_quadratic, o->links);
@@ -606,13 +289,13 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime: one run from rest\n");
-        write_parameters(out.fp, o);
-        write_critical(out.fp, o, chain);
+        regime_cli_write_parameters(out.fp, o);
+        regime_cli_write_critical(out.fp, o, chain);
         if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
-        fprintf(out.fp, "%s\n", map_columns);
-        fprintf(out.fp, "0,%s,%s,", CLI_NUM(user(o, CLI_UNIT_RATE, o->omega)),
-                CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)));
-        write_result(out.fp, o, &r);
+        fprintf(out.fp, "%s\n", regime_cli_map_columns);
+        fprintf(out.fp, "0,%s,%s,", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
+        regime_cli_write_result(out.fp, o, &r);
     }
     if (trace_open) {
         if (rc == 0) rc = cli_out_commit(cmd, &trace);
@@ -651,23 +334,23 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %s, the state "
-                "carried over, t_change = %s\n", CLI_NUM(user(o, CLI_UNIT_LENGTH, o->eps)),
-                CLI_NUM(user(o, CLI_UNIT_TIME, o->t_change)));
-        write_parameters(out.fp, o);
-        write_critical(out.fp, o, chain);
+                "carried over, t_change = %s\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, o->t_change)));
+        regime_cli_write_parameters(out.fp, o);
+        regime_cli_write_critical(out.fp, o, chain);
         for (size_t j = 1; j < n; j++)
             if (state_class(&res[j]) != state_class(&res[j - 1]))
                 fprintf(out.fp, "# jump %s: between omega %s and %s: %s %d nodes -> %s %d "
                         "nodes\n", j < n_up ? "up" : "down",
-                        CLI_NUM(user(o, CLI_UNIT_RATE, omega[j - 1])),
-                        CLI_NUM(user(o, CLI_UNIT_RATE, omega[j])),
+                        CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j - 1])),
+                        CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j])),
                         whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
                         whirl_regime_state_name(res[j].state), res[j].nodes);
         fprintf(out.fp, "%s\n", sweep_columns);
         for (size_t j = 0; j < n; j++) {
             fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down",
-                    CLI_NUM(user(o, CLI_UNIT_RATE, omega[j])));
-            write_result(out.fp, o, &res[j]);
+                    CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j])));
+            regime_cli_write_result(out.fp, o, &res[j]);
         }
         rc = cli_out_commit(cmd, &out);
     }
@@ -758,14 +441,14 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
     o.p.settle_periods = (int)settle_periods;
     o.p.lyapunov_periods = (int)lyapunov_periods;
     if ((rc = check_options(cmd, &o))) return rc;
-    if (mc->size > 1 && (!is_map(&o) || o.sweep))
+    if (mc->size > 1 && (!regime_cli_is_map(&o) || o.sweep))
         return cli_error(cmd, "one run and a sweep run on one rank; only a map is shared out");
     whirl_chain *chain = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (chain == NULL) return cli_error(cmd, "cannot make the chain: %s", whirl_last_error());
     cli_catch_interrupts();
-    rc = !is_map(&o) ? run_one(cmd, &o, chain)
+    rc = !regime_cli_is_map(&o) ? run_one(cmd, &o, chain)
          : o.sweep   ? run_sweep(cmd, &o, chain)
-                     : run_map(cmd, &o, chain, mc);
+                     : regime_cli_run_map(cmd, &o, chain, mc);
     whirl_chain_free(chain);
     return rc;
 }
