@@ -11,27 +11,31 @@ if (!exists("branch") && !exists("shape")) {
     print "   or: gnuplot -e \"shape='shape.csv'; out='shape.png'\" plots/driven.gp"
     exit status 1
 }
-set datafile separator ","
-# lines of comments and header before the data of a CSV
-skip_of(f) = int(system(sprintf("grep -n -m 1 -v '^#' '%s' | cut -d: -f1", f)))
+load system("dirname '".ARG0."'")."/style.gp"
+# a branch's legend: its eps and side, from its "# driven:" line
+branch_title(f) = sprintf("eps = %s %s, %s", meta(f, "eps"), u_len(f), \
+    meta(f, "side") eq "1" ? "tip on the pivot's side" : "tip opposite the pivot")
 
 if (exists("branch")) {
     if (!exists("out")) { out = word(branch, 1) . ".png" }
-    set terminal png size 900, 700
+    f1 = word(branch, 1)
+    set terminal @term size 900, 760
     set output out
-    set multiplot layout 2, 1 margins 0.1, 0.97, 0.08, 0.97 spacing 0, 0.04
-    set key top left noenhanced
+    set multiplot layout 2, 1 margins 0.1, 0.97, 0.08, 0.92 spacing 0, 0.04 \
+        title sprintf("Hand-swung chain, mode-%s branches (drag C = %s): folds as black dots", \
+                      meta(f1, "mode"), meta(f1, "drag"))
+    set key top left
     set grid
     unset xlabel
     set format x ""
-    set ylabel "tip distance from the axis [L]"
-    plot for [f in branch] f skip skip_of(f) using 1:4 with lines lw 1.5 title f, \
+    set ylabel "tip distance from the axis [".u_len(f1)."]"
+    plot for [f in branch] f skip skip_of(f) using 1:4 with lines lw 2 title branch_title(f), \
          for [f in branch] f skip skip_of(f) using 1:($7 == 1 ? $4 : 1/0) with points pt 7 ps 1.2 lc rgb "black" notitle
-    set xlabel "omega [sqrt(g/L)]"
+    set xlabel "omega [".u_rate(f1)."]"
     set format x "%g"
-    set ylabel "tip x (pivot at +eps) [L]"
+    set ylabel "tip x (pivot at +eps) [".u_len(f1)."]"
     unset key
-    plot for [f in branch] f skip skip_of(f) using 1:2 with lines lw 1.5, \
+    plot for [f in branch] f skip skip_of(f) using 1:2 with lines lw 2, \
          for [f in branch] f skip skip_of(f) using 1:($7 == 1 ? $2 : 1/0) with points pt 7 ps 1.2 lc rgb "black"
     unset multiplot
     set output
@@ -45,21 +49,32 @@ if (exists("shape")) {
     stats shape skip skip using 3 nooutput
     rmax = 1.05 * abs(STATS_min) > rmax ? 1.05 * abs(STATS_min) : rmax
     rmax = 1.05 * abs(STATS_max) > rmax ? 1.05 * abs(STATS_max) : rmax
-    set terminal png size 1100, 520
+    ul = u_len(shape)
+    eps = real(meta(shape, "eps"))
+    set print $circle
+    do for [k = 0:64] { print sprintf("%.6g,%.6g,0", eps * cos(2 * pi * k / 64), eps * sin(2 * pi * k / 64)) }
+    set print
+    set terminal @term size 1100, 560
     set output out
-    set multiplot layout 1, 2
+    set multiplot layout 1, 2 title sprintf("Hand-swung chain: mode %s, omega = %s %s, eps = %s %s, drag C = %s, C2 = %s (co-rotating frame)", \
+        meta(shape, "mode"), meta(shape, "omega"), u_rate(shape), meta(shape, "eps"), ul, \
+        meta(shape, "drag"), meta(shape, "drag_quadratic"))
     unset key
-    set xlabel "x"; set ylabel "y"; set zlabel "z"
+    set xlabel "x [".ul."]"; set ylabel "y [".ul."]"; set zlabel "z [".ul."]" rotate parallel
     set xrange [-rmax:rmax]; set yrange [-rmax:rmax]
     set view 65, 30
+    set view equal xyz
     set ticslevel 0
-    splot shape skip skip using 2:3:4 with lines lw 2, \
-          shape skip skip using (0):(0):4 with lines dt 2 lc rgb "gray"
+    set title "true to scale; dashed: the rotation axis; orange: the pivot's circle"
+    splot shape skip skip using 2:3:4 with lines lt 1, \
+          shape skip skip using (0):(0):4 with lines dt 2 lc rgb "gray", \
+          $circle using 1:2:3 with lines lc rgb "#e67e22"
     set title "from above (rotation counter-clockwise)"
     set size ratio -1
-    set grid
-    plot shape skip skip using 2:3 with lines lw 2, \
+    set view map
+    plot shape skip skip using 2:3 with lines lt 1, \
          shape skip skip every ::0::0 using 2:3 with points pt 7 ps 1.5 lc rgb "black", \
+         $circle using 1:2 with lines lc rgb "#e67e22", \
          "+" using (0):(0) with points pt 2 ps 2 lc rgb "gray"
     unset multiplot
     set output

@@ -1,8 +1,8 @@
 # The example measurement data/fit_example.csv (a 120 cm chain, 40 points with 1.2 mm noise) and
 # the continuum shape whirl fit finds for it, drawn by whirl shape. From the repository root:
 # usage: gnuplot -e "whirl='build/whirl'; out='fit_example.png'" plots/fit_example.gp
-if (!exists("whirl")) whirl = 'build/whirl'
-if (!exists("out")) out = 'fit_example.png'
+if (!exists("whirl")) { whirl = 'build/whirl' }
+if (!exists("out")) { out = 'fit_example.png' }
 units = '--length 120 --gravity 981'
 fit = system(whirl.' fit --shape data/fit_example.csv '.units.' | grep -v "^#" | tail -1 | tr , " "')
 omega = real(word(fit, 1))

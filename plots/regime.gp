@@ -14,8 +14,7 @@ if (!exists("map") && !exists("sweep")) {
     print "   or: gnuplot -e \"sweep='sweep.csv'; out='sweep.png'\" plots/regime.gp"
     exit status 1
 }
-set datafile separator ","
-skip_of(f) = int(system(sprintf("grep -n -m 1 -v '^#' '%s' | cut -d: -f1", f)))
+load system("dirname '".ARG0."'")."/style.gp"
 # the class column: node count (1, 2, 3, ...), 0 periodic, -1 quasi-periodic, -2 chaotic, -3 failed
 set palette defined (-3 "black", -2 "#d7301f", -1 "#fc8d59", 0 "#fee08b", \
                      1 "#91bfdb", 2 "#4575b4", 3 "#1a9850", 4 "#762a83", 5 "#999999")
@@ -37,11 +36,12 @@ if (exists("map")) {
     dw = n_omega > 1 ? (wmax - wmin) / (n_omega - 1) : 0.1
     de = n_eps > 1 ? (emax - emin) / (n_eps - 1) : 0.01
     crit = system(sprintf("sed -n 's/^# critical rates of the free chain (modes 1..[0-9]*)://p' '%s'", map))
-    set terminal png size 1000, 560
+    set terminal @term size 1000, 600
     set output out
-    set title title_text noenhanced
-    set xlabel "omega [sqrt(g/L)]"
-    set ylabel "eps [L]"
+    set tmargin 4
+    set title title_text noenhanced offset 0, 1
+    set xlabel "omega [".u_rate(map)."]"
+    set ylabel "eps [".u_len(map)."]"
     set xrange [wmin - dw / 2 : wmax + dw / 2]
     set yrange [emin - de / 2 : emax + de / 2]
     set key outside right top noenhanced
@@ -49,14 +49,14 @@ if (exists("map")) {
         w = 0 + word(crit, k)
         if (w > wmin - dw / 2 && w < wmax + dw / 2) {
             set arrow from w, graph 0 to w, graph 1 nohead dt 2 lw 2 lc rgb "black" front
-            set label sprintf("omega_%d", k) at w, graph 1.02 center noenhanced
+            set label sprintf("omega_%d", k) at w, graph 1.03 center noenhanced
         }
     }
     set colorbox user origin 0.8, 0.12 size 0.025, 0.5
     plot map skip skip using 2:3:(dw / 2):(de / 2):5 with boxxyerror fs solid 1.0 noborder \
              lc palette notitle, \
-         map skip skip using 2:(strcol(4) eq "converging" ? $3 : 1/0) with points pt 6 ps 1.5 \
-             lc rgb "white" title "converging at t_max", \
+         map skip skip using 2:(strcol(4) eq "converging" ? $3 : 1/0) with points pt 6 ps 1.6 \
+             lw 2 lc rgb "black" title "still converging at t_max", \
          for [m = 1 : 3] (exists("folds") ? folds : map) skip (exists("folds") ? skip_of(folds) : skip) \
              using (exists("folds") && $2 == m ? $5 : 1/0):1 with points pt (2 * m + 3) \
              ps (2.4 - 0.5 * m) lw 2 lc rgb word("black magenta #00ffff", m) \
@@ -66,10 +66,10 @@ if (exists("map")) {
 if (exists("sweep")) {
     if (!exists("out")) { out = sweep . ".png" }
     skip = skip_of(sweep)
-    set terminal png size 900, 420
+    set terminal @term size 900, 420
     set output out
     set title title_text noenhanced
-    set xlabel "omega [sqrt(g/L)]"
+    set xlabel "omega [".u_rate(sweep)."]"
     set ylabel "settled state"
     set yrange [-3.5:4.5]
     set ytics ("failed" -3, "chaotic" -2, "quasi-per." -1, "periodic" 0, "1 node" 1, "2 nodes" 2, \

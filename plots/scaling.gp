@@ -3,7 +3,7 @@
 # right, the relative round-off of the tensions against N (whirl against plain double Thomas
 # elimination), written to dir/scaling.png.
 # usage: gnuplot -e "dir='out/bench'" plots/scaling.gp
-if (!exists("dir")) dir = "out/bench"
+if (!exists("dir")) { dir = "out/bench" }
 set datafile separator ","
 set terminal png size 1200, 520
 set output dir . "/scaling.png"

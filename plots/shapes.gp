@@ -1,7 +1,7 @@
 # Steady shapes of modes 1-3 side by side (whirl shape): each mode at three rates (continuum)
 # and the 12-link chain at the middle rate (points). Reads the rate from each file's comment
 # line. Usage: gnuplot -e "dir='out/demo'" plots/shapes.gp
-if (!exists("dir")) dir = 'out/demo'
+if (!exists("dir")) { dir = 'out/demo' }
 set terminal pngcairo size 1500,680 font ",12"
 set output dir.'/shapes.png'
 set datafile separator ','

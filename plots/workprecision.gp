@@ -2,7 +2,7 @@
 # error, log-log, one curve per method (whirl's solid, GSL's dashed, the seed formulation's
 # dotted), one PNG per scene found in dir (workprecision_SCENE.csv -> workprecision_SCENE.png).
 # usage: gnuplot -e "dir='out/bench'" plots/workprecision.gp
-if (!exists("dir")) dir = "out/bench"
+if (!exists("dir")) { dir = "out/bench" }
 set datafile separator ","
 set terminal png size 900, 620
 set logscale xy

@@ -7,6 +7,15 @@ build=${1:-build}
 whirl=$build/whirl
 out=out/demo
 mkdir -p "$out"
+# gnuplot, with any message on its standard error (a warning) stopping the demo; gif's count of
+# frames is not a warning
+plot() {
+  gnuplot "$@" 2>"$out/gnuplot.err" || { cat "$out/gnuplot.err" >&2; exit 1; }
+  if grep -v 'frames in animation sequence' "$out/gnuplot.err" | grep -q .; then
+    echo "demo: gnuplot printed warnings for $*:" >&2; cat "$out/gnuplot.err" >&2; exit 1
+  fi
+  rm -f "$out/gnuplot.err"
+}
 
 # ---- steady shapes: branches of modes 1-3 for omega 1..10, shapes at a few rates ----
 echo "demo: steady shapes"
@@ -24,18 +33,19 @@ for k in 1 2 3; do
     [ $i -eq 2 ] && "$whirl" shape --omega $w --mode $k --links 12 -o "$out/shape_k${k}_n12.csv"
   done
 done
-gnuplot -e "dir='$out'" plots/shapes.gp
-gnuplot -e "dir='$out'" plots/branches.gp
+plot -e "dir='$out'" plots/shapes.gp
+plot -e "dir='$out'" plots/branches.gp
 echo "demo: wrote $out/shapes.png $out/branches.png"
 
 # ---- dynamics: the 100-link chain seeded with its mode-2 shape, animated; the seed's double pendulum ----
 echo "demo: dynamics"
 "$whirl" simulate data/scenes/mode2.ini --set run.t_end=6 --set output.trace="$out/mode2.dat" \
   --set output.trace_every=0.1 -o "$out/mode2.csv"
-gnuplot -e "trace='$out/mode2.dat'; out='$out/mode2.gif'" plots/animate.gp
+plot -e "trace='$out/mode2.dat'; out='$out/mode2.gif'; mp4='$out/mode2.mp4'" plots/animate.gp
+"$whirl" view "$out/mode2.dat" -o "$out/mode2.html"
 "$whirl" simulate data/scenes/double_pendulum.ini --set run.t_end=20 -o "$out/double_pendulum.csv"
-gnuplot -e "csv='$out/double_pendulum.csv'; out='$out/double_pendulum.png'" plots/simulate.gp
-echo "demo: wrote $out/mode2.gif $out/double_pendulum.png"
+plot -e "csv='$out/double_pendulum.csv'; out='$out/double_pendulum.png'" plots/simulate.gp
+echo "demo: wrote $out/mode2.gif $out/mode2.mp4 $out/mode2.html $out/double_pendulum.png"
 
 # ---- stability: the map (linear analysis) at N = 25 and 50, and two perturbed runs ----
 echo "demo: stability"
@@ -43,14 +53,14 @@ for n in 25 50; do
   "$whirl" stability --omega-min 1 --omega-max 10 --omega-count 181 --links $n --linear \
     -o "$out/stability_map_N$n.csv"
 done
-gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'; out='$out/stability_map.png'" \
+plot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'; out='$out/stability_map.png'" \
   plots/stability_map.gp
 "$whirl" stability --omega 9 --mode 2 --links 25 --periods 1000 --trace "$out/unstable_trace.csv" \
   -o "$out/unstable_row.csv"
-gnuplot -e "csv='$out/unstable_trace.csv'; out='$out/deviation_unstable.png'" plots/deviation.gp
+plot -e "csv='$out/unstable_trace.csv'; out='$out/deviation_unstable.png'" plots/deviation.gp
 "$whirl" stability --omega 2 --mode 1 --links 25 --damping 0.01 --perturb 0.01 \
   --trace "$out/damped_trace.csv" -o "$out/damped_row.csv"
-gnuplot -e "csv='$out/damped_trace.csv'; out='$out/deviation_damped.png'" plots/deviation.gp
+plot -e "csv='$out/damped_trace.csv'; out='$out/deviation_damped.png'" plots/deviation.gp
 echo "demo: wrote $out/stability_map.png $out/deviation_unstable.png $out/deviation_damped.png"
 
 # ---- the hand-swung chain: mode-1 branches with the pivot on a circle, and a trailing shape ----
@@ -61,9 +71,9 @@ for e in 0.01 0.05; do
       -o "$out/driven_eps${e}_side$side.csv"
   done
 done
-gnuplot -e "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'; out='$out/driven_branches.png'" plots/driven.gp
+plot -e "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'; out='$out/driven_branches.png'" plots/driven.gp
 "$whirl" driven --omega 1.6 --eps 0.05 --drag 0.05 -o "$out/driven_shape.csv"
-gnuplot -e "shape='$out/driven_shape.csv'; out='$out/driven_shape.png'" plots/driven.gp
+plot -e "shape='$out/driven_shape.csv'; out='$out/driven_shape.png'" plots/driven.gp
 echo "demo: wrote $out/driven_branches.png $out/driven_shape.png"
 
 # ---- from rest: spin-ups into 1, 2 and 3 nodes (strong linear drag, so that they settle fast) ----
@@ -72,7 +82,7 @@ for c in "1 2.0 0.10" "2 3.0 0.05" "3 5.0 0.05"; do
   set -- $c
   "$whirl" regime --omega $2 --eps $3 --drag 0.2 --trace "$out/spinup_$1.dat" --trace-every 0.25 \
     -o "$out/spinup_$1.csv"
-  gnuplot -e "trace='$out/spinup_$1.dat'; out='$out/spinup_$1.gif'; step=2; delay=5; width=480" \
+  plot -e "trace='$out/spinup_$1.dat'; out='$out/spinup_$1.gif'; step=2; delay=5; width=480" \
     plots/animate.gp
 done
 echo "demo: wrote $out/spinup_1.gif $out/spinup_2.gif $out/spinup_3.gif"

@@ -82,10 +82,10 @@ expect_ok "regime --help" regime --help
 o="-o $tmp/out.csv"
 expect_error "nothing" "whirl regime: --omega \(one run\) or" regime --eps 0.1 $o
 expect_error "no eps" "whirl regime: --eps .* is required" regime --omega 2 $o
-expect_error "eps too big" "whirl regime: --eps: drive_radius must be in \(0, 1\)" regime --omega 2 --eps 1.5 $o
-expect_error "negative omega" "whirl regime: --omega: omega must be > 0" regime --omega -2 --eps 0.1 $o
-expect_error "negative drag" "whirl regime: --drag: air_drag must be >= 0" regime --omega 2 --eps 0.1 --drag -1 $o
-expect_error "negative quadratic drag" "whirl regime: --drag-quadratic: air_drag_quadratic must be >= 0" regime --omega 2 --eps 0.1 --drag-quadratic -1 $o
+expect_error "eps too big" "whirl regime: --eps must be in \[0, 1\) \(in L\), got 1.5" regime --omega 2 --eps 1.5 $o
+expect_error "negative omega" "whirl regime: --omega must be > 0 \(in sqrt\(g/L\)\), got -2" regime --omega -2 --eps 0.1 $o
+expect_error "negative drag" "whirl regime: --drag must be >= 0" regime --omega 2 --eps 0.1 --drag -1 $o
+expect_error "negative quadratic drag" "whirl regime: --drag-quadratic must be >= 0" regime --omega 2 --eps 0.1 --drag-quadratic -1 $o
 expect_error "zero dt" "whirl regime: --dt: dt must be > 0" regime --omega 2 --eps 0.1 --dt 0 $o
 expect_error "t-max below ramp" "whirl regime: --t-max: t_max .* must exceed t_ramp" regime --omega 2 --eps 0.1 --t-max 5 $o
 expect_error "settle tol" "whirl regime: --settle-tol: settle_tol must be > 0" regime --omega 2 --eps 0.1 --settle-tol 0 $o

@@ -102,7 +102,7 @@ check "only the asked columns" "\"$(grep -v '^#' "$tmp/rows.csv" | head -n 1)\" 
 "$WHIRL" simulate "$scenes/driven.ini" --set run.t_end=1 --set output.trace="$tmp/trace.dat" \
   --set output.trace_every=0.25 -o "$tmp/driven.csv"
 check "trace: 5 blocks of 51 points" \
-  "$(grep -c '^# t' "$tmp/trace.dat") == 5 && $(grep -c '^[-0-9]' "$tmp/trace.dat") == 255"
+  "$(grep -c '^# t = ' "$tmp/trace.dat") == 5 && $(grep -c '^[-0-9]' "$tmp/trace.dat") == 255"
 check "trace: pivot on the circle of radius 0.05 at omega = 3.5, links of length 1/50" \
   "$(awk '/^# t/ { k = 0; next }
        NF == 4 && k == 0 { px = $1 - 0.05 * cos(3.5 * $4); py = $2 - 0.05 * sin(3.5 * $4)

@@ -139,4 +139,29 @@ if "$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 5
   else fail "windows: the edges [$from, $to] disagree with the linear map"; fi
 else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; fi
 
+# ---- a map stopped by Ctrl-C: exit 130, the finished rows kept, no temporary file; --resume
+# computes the rest, and the file equals that of a run without a stop ----
+map="--omega-min 2 --omega-max 6 --omega-count 8 --modes 1,2 --links 10 --periods 300"
+"$WHIRL" stability $map -o "$tmp/full.csv"
+"$WHIRL" stability $map -o "$tmp/part.csv" 2>"$tmp/err" &
+pid=$!
+sleep 1
+kill -INT $pid
+wait $pid
+rc=$?
+if [ $rc -eq 130 ] && [ -z "$(ls "$tmp" | grep '^part.csv.')" ] &&
+   grep -q "interrupted: [0-9]* of 14 points in '.*part.csv' (continue with --resume)" "$tmp/err" &&
+   [ "$(grep -vc '^#' "$tmp/part.csv")" -lt 15 ]; then
+  pass "map interrupted: exit 130, $(($(grep -vc '^#' "$tmp/part.csv") - 1)) rows kept, no temporary file"
+else fail "map interrupted: exit 130, rows kept, no temporary file (rc=$rc, $(cat "$tmp/err"))"; fi
+if "$WHIRL" stability $map -o "$tmp/part.csv" --resume && cmp -s "$tmp/part.csv" "$tmp/full.csv"; then
+  pass "--resume completes the map: the file of a run without a stop"
+else fail "--resume completes the map: the file of a run without a stop"; fi
+"$WHIRL" stability --omega-min 2 --omega-max 6 --omega-count 9 --modes 1,2 --links 10 --periods 300 \
+  -o "$tmp/full.csv" --resume 2>"$tmp/err"
+if [ $? -eq 1 ] && grep -q "was not written by a map with these options" "$tmp/err"; then
+  pass "--resume refuses a map of other options"
+else fail "--resume refuses a map of other options ($(cat "$tmp/err"))"; fi
+expect_error "resume to stdout" "whirl stability: --resume needs --output|--resume needs -o FILE" stability $map --resume
+
 finish

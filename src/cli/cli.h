@@ -163,7 +163,7 @@ void cli_units_comment(FILE *fp, const cli_units *u);
  * needs SI units (--length, --mass). The given pointers may be NULL. */
 typedef struct cli_air {
     double cd;       /* drag coefficient, --drag-cd (0: not given) */
-    double diameter; /* chain diameter [m], --diameter */
+    double diameter; /* chain diameter [L] (given in m; converted by cli_parse), --diameter */
     double density;  /* air density [kg/m^3], --air-density (default 1.204) */
     const cli_units *units; /* the command's units, for the conversion of C2 */
 } cli_air;
@@ -181,11 +181,21 @@ typedef struct cli_air {
      "drag coefficient of the chain (about 1.2): C2 = RHO CD D / 2", "(0, inf)",                \
      "--diameter --length --mass"},                                                             \
     {"--diameter", NULL, CLI_DOUBLE, &(air).diameter, NULL, "D",                                 \
-     "chain diameter for --drag-cd [m]", "(0, inf)", "--drag-cd"},                              \
+     "chain diameter for --drag-cd (e.g. 4mm)", "(0, inf)", "--drag-cd", NULL, NULL,            \
+     CLI_UNIT_LENGTH},                                                                          \
     {"--air-density", NULL, CLI_DOUBLE, &(air).density, NULL, "RHO",                             \
      "air density for --drag-cd [kg/m^3] (default 1.204)", "(0, inf)", "--drag-cd"}
 /* With --drag-cd given, sets *drag2 (dimensionless) from the description. Returns 0. */
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
+
+/* ---- traces: every mass's position over time (plots/animate.gp, whirl view) ----
+ * Blocks "x y z t" (the pivot, then masses 1..N), in the inertial frame, one per time, blocks
+ * separated by two blank lines, each after a "# t = T" line. The file opens with
+ *   # trace: WHAT; inertial frame ...; omega=W eps=E drag=C drag_quadratic=C2 links=N
+ * and the "# units:" line; cli_trace_header writes both (values dimensionless in, printed in
+ * the user's units). */
+void cli_trace_header(FILE *fp, const cli_units *u, const char *what, double omega, double eps,
+                      double drag, double drag2, int links);
 
 /* ---- numbers in text and CSV: the shortest round-trip form (whirl_format_double) ----
  * CLI_NUM(x) is a string valid to the end of the enclosing full expression's block, for use as
@@ -233,5 +243,6 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv);
 int cmd_fit(const cli_command *cmd, int argc, char **argv);
 int cmd_driven(const cli_command *cmd, int argc, char **argv);
 int cmd_regime(const cli_command *cmd, int argc, char **argv);
+int cmd_view(const cli_command *cmd, int argc, char **argv);
 
 #endif

@@ -6,7 +6,6 @@
  * so a minimiser started next to it falls to mode 1 (tests/test_optimize.c checks both). Below
  * the first critical rate the hanging chain is the minimum and there is no shape to report. */
 #include <stdlib.h>
-#include <time.h>
 
 #include <nlopt.h>
 
@@ -14,13 +13,6 @@
 #include "whirl/optimize.h"
 
 #define MINIMIZE_MAX_LINKS 2000 /* the dense Hessian: O(N^2) memory, O(N^3) work */
-
-static double seconds_now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 int cmd_minimize(const cli_command *cmd, int argc, char **argv)
 {
@@ -66,9 +58,9 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     mo.polish = !no_polish;
     mo.max_evaluations = max_evaluations;
     whirl_minimize_stats st;
-    const double t0 = seconds_now();
+    const double t0 = cli_wall_seconds();
     const int status = whirl_minimize_shape(m.chain, omega, &mo, NULL, theta, &st);
-    const double elapsed = seconds_now() - t0;
+    const double elapsed = cli_wall_seconds() - t0;
     if (status == GSL_EDOM) {
         double omega_1;
         if (steady_cli_critical(cmd, &m, 1, &omega_1) == 0)

@@ -1,5 +1,6 @@
 /* whirl regime: which node count a chain swung by hand settles into, from rest
  * (include/whirl/regime.h): one run, a map over (omega, eps), or a hysteresis sweep of omega.
+ * The map, its file and its sharing over threads and MPI ranks are in regime_map.c.
  *
  * One run (--omega W --eps E): comment lines, the header and one row; --trace FILE writes the
  * motion in the inertial frame in the format of `whirl simulate`'s trace (plots/animate.gp).
@@ -41,44 +42,30 @@
 #include <mpi.h>
 #endif
 
-#include "cli/cli.h"
+#include "cli/regime_cli.h"
 #include "whirl/driven.h"
 #include "whirl/regime.h"
 #include "whirl/steady.h"
 
-#define REGIME_MAX_LINKS 10000
-#define REGIME_MAX_POINTS 10000000L
-#define REGIME_LINE_MAX 4096
 #define REGIME_CRITICAL 4     /* critical rates listed in the header */
-#define RESULT_FIELDS 16      /* doubles per packed result */
-#define FOLD_MODES 3
 
-static const char *const map_columns =
+const char *const regime_cli_map_columns =
     "index,omega,eps,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,"
     "lyapunov,tip_x,tip_y,tip_z,tip_r,steps";
-#define MAP_FIELDS 18
 static const char *const sweep_columns =
     "leg,omega,state,class,nodes,period,t_end,change,remaining,shape_error,bvp_nodes,lyapunov,"
     "tip_x,tip_y,tip_z,tip_r,steps";
 
-typedef struct regime_options {
-    double omega, eps, omega_min, omega_max, eps_min, eps_max;
-    int omega_steps, eps_steps, links;
-    const char *frame, *output, *trace, *folds;
-    double trace_every, t_change;
-    int resume, sweep;
-    int omega_given, eps_given, omin_given, omax_given, osteps_given, emin_given, emax_given,
-        esteps_given, trace_every_given, t_change_given, dt_given;
-    whirl_regime_params p;
-} regime_options;
 
-typedef struct mpi_context {
-    int rank, size;
-} mpi_context;
+
+double regime_cli_user(const regime_options *o, cli_unit kind, double x)
+{
+    return x * cli_units_scale(&o->units, kind);
+}
 
 /* ---- options ---- */
 
-static int is_map(const regime_options *o)
+int regime_cli_is_map(const regime_options *o)
 {
     return o->omin_given || o->omax_given || o->osteps_given;
 }
@@ -99,7 +86,7 @@ static int check_range(const cli_command *cmd, const char *name, double lo, doub
 
 static int check_options(const cli_command *cmd, regime_options *o)
 {
-    const int map = is_map(o);
+    const int map = regime_cli_is_map(o);
     if (map && !(o->omin_given && o->omax_given && o->osteps_given))
         return cli_error(cmd, "a map or sweep needs --omega-min, --omega-max and --omega-count");
     if (!map && o->sweep) return cli_error(cmd, "--sweep needs --omega-min, --omega-max and "
@@ -179,40 +166,43 @@ static int check_options(const cli_command *cmd, regime_options *o)
     return 0;
 }
 
-static void grid_point(const regime_options *o, long index, double *omega, double *eps)
-{
-    *omega = cli_grid(o->omega_min, o->omega_max, o->omega_steps, (int)(index % o->omega_steps));
-    *eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, (int)(index / o->omega_steps));
-}
-
 /* The parameter line: a map written with another one cannot be resumed. */
-static void write_parameters(FILE *fp, const regime_options *o)
+void regime_cli_write_parameters(FILE *fp, const regime_options *o)
 {
     const whirl_regime_params *p = &o->p;
     fprintf(fp, "# regime: links=%d drag=%s drag_quadratic=%s internal_damping=%s "
             "frame=%s method=%s dt=%s t_ramp=%s t_max=%s "
             "settle_tol=%s settle_periods=%d periodic_tol=%s lyapunov_periods=%d "
-            "chaos_lambda=%s perturb=%s seed=%lu", o->links, CLI_NUM(p->air_drag), CLI_NUM(p->air_drag_quadratic),
-            CLI_NUM(p->internal_damping), o->frame, p->method, CLI_NUM(p->dt), CLI_NUM(p->t_ramp), CLI_NUM(p->t_max),
-            CLI_NUM(p->settle_tol), p->settle_periods, CLI_NUM(p->periodic_tol), p->lyapunov_periods,
-            CLI_NUM(p->chaos_lambda), CLI_NUM(p->perturb), p->seed);
-    if (is_map(o))
-        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(o->omega_min), CLI_NUM(o->omega_max), o->omega_steps);
+            "chaos_lambda=%s perturb=%s seed=%lu", o->links,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DRAG, p->air_drag)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DRAG2, p->air_drag_quadratic)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_DAMPING, p->internal_damping)), o->frame, p->method,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->dt)), CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->t_ramp)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, p->t_max)),
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, p->settle_tol)), p->settle_periods,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, p->periodic_tol)), p->lyapunov_periods,
+            CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, p->chaos_lambda)), CLI_NUM(p->perturb), p->seed);
+    if (regime_cli_is_map(o))
+        fprintf(fp, " omega=%s:%s:%d", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega_min)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega_max)), o->omega_steps);
     else
-        fprintf(fp, " omega=%s", CLI_NUM(o->omega));
-    if (is_map(o) && !o->sweep)
-        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(o->eps_min), CLI_NUM(o->eps_max), o->eps_steps);
+        fprintf(fp, " omega=%s", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega)));
+    if (regime_cli_is_map(o) && !o->sweep)
+        fprintf(fp, " eps=%s:%s:%d\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps_min)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps_max)), o->eps_steps);
     else
-        fprintf(fp, " eps=%s\n", CLI_NUM(o->eps));
+        fprintf(fp, " eps=%s\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
+    cli_units_comment(fp, &o->units);
 }
 
 /* The critical rates of the free N-link chain, for comparison with the map. */
-static void write_critical(FILE *fp, const whirl_chain *chain)
+void regime_cli_write_critical(FILE *fp, const regime_options *o, const whirl_chain *chain)
 {
     double omega[REGIME_CRITICAL];
     if (whirl_nlink_critical(chain, REGIME_CRITICAL, omega) != GSL_SUCCESS) return;
     fprintf(fp, "# critical rates of the free chain (modes 1..%d):", REGIME_CRITICAL);
-    for (int k = 0; k < REGIME_CRITICAL; k++) fprintf(fp, " %s", CLI_NUM(omega[k]));
+    for (int k = 0; k < REGIME_CRITICAL; k++)
+        fprintf(fp, " %s", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[k])));
     fputc('\n', fp);
 }
 
@@ -231,317 +221,26 @@ static int state_class(const whirl_regime_result *r)
 /* A value and a comma; a value that was not computed (not finite) is left empty. */
 static void put_value(FILE *fp, double x)
 {
+    /* (x is already in the user's units) */
     if (isfinite(x)) fprintf(fp, "%s", CLI_NUM(x));
     fputc(',', fp);
 }
 
 /* The columns from state on. */
-static void write_result(FILE *fp, const whirl_regime_result *r)
+void regime_cli_write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r)
 {
+    const double len = regime_cli_user(o, CLI_UNIT_LENGTH, 1);
     fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), state_class(r), r->nodes,
             r->period);
-    put_value(fp, r->t_end);
-    put_value(fp, r->change);
-    put_value(fp, r->remaining);
-    put_value(fp, r->shape_error);
+    put_value(fp, regime_cli_user(o, CLI_UNIT_TIME, r->t_end));
+    put_value(fp, r->change * len);
+    put_value(fp, r->remaining * len);
+    put_value(fp, r->shape_error * len);
     fprintf(fp, "%d,", r->bvp_nodes);
-    put_value(fp, r->lyapunov);
-    for (int k = 0; k < 3; k++) put_value(fp, r->tip[k]);
-    put_value(fp, r->tip_r);
+    put_value(fp, regime_cli_user(o, CLI_UNIT_RATE, r->lyapunov));
+    for (int k = 0; k < 3; k++) put_value(fp, r->tip[k] * len);
+    put_value(fp, r->tip_r * len);
     fprintf(fp, "%lu\n", r->steps);
-}
-
-static void write_map_row(FILE *fp, const regime_options *o, long index,
-                          const whirl_regime_result *r)
-{
-    double omega, eps;
-    grid_point(o, index, &omega, &eps);
-    fprintf(fp, "%ld,%s,%s,", index, CLI_NUM(omega), CLI_NUM(eps));
-    write_result(fp, r);
-}
-
-/* ---- packing a result for the gather (doubles, index first; index -1: no point) ---- */
-
-static void pack(double *buf, long index, const whirl_regime_result *r)
-{
-    const double v[RESULT_FIELDS] = {(double)index, r->state, r->nodes, r->period, r->t_end,
-                                     r->change, r->remaining, r->shape_error, r->bvp_nodes,
-                                     r->lyapunov, r->tip[0], r->tip[1], r->tip[2], r->tip_r,
-                                     (double)r->steps, 0};
-    memcpy(buf, v, sizeof v);
-}
-
-static long unpack(const double *buf, whirl_regime_result *r)
-{
-    r->state = (whirl_regime_state)buf[1];
-    r->nodes = (int)buf[2];
-    r->period = (int)buf[3];
-    r->t_end = buf[4];
-    r->change = buf[5];
-    r->remaining = buf[6];
-    r->shape_error = buf[7];
-    r->bvp_nodes = (int)buf[8];
-    r->lyapunov = buf[9];
-    for (int k = 0; k < 3; k++) r->tip[k] = buf[10 + k];
-    r->tip_r = buf[13];
-    r->steps = (unsigned long)buf[14];
-    return (long)buf[0];
-}
-
-/* ---- the map file: fresh or resumed ---- */
-
-/* Reads a map file written with the same parameter line: marks its complete rows in done[],
- * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
- * closing comments dropped). Returns 0 or 1 after an error. */
-static int resume_map(const cli_command *cmd, const regime_options *o, char *done, long n_points,
-                      long *n_done)
-{
-    FILE *in = fopen(o->output, "r");
-    if (in == NULL)
-        return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
-    char expect[REGIME_LINE_MAX];
-    FILE *mem = fmemopen(expect, sizeof expect, "w");
-    if (mem == NULL) {
-        fclose(in);
-        return cli_error(cmd, "out of memory");
-    }
-    write_parameters(mem, o);
-    fclose(mem);
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) {
-        fclose(in);
-        return 1;
-    }
-    char line[REGIME_LINE_MAX];
-    int same = 0, header = 0, rc = 0;
-    *n_done = 0;
-    while (rc == 0 && fgets(line, sizeof line, in)) {
-        const size_t len = strlen(line);
-        if (line[0] == '#') {
-            if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
-            if (strncmp(line, "# regime:", 9) == 0 || strncmp(line, "# critical", 10) == 0 ||
-                strncmp(line, "# whirl regime", 14) == 0)
-                fputs(line, out.fp);
-            continue;
-        }
-        if (!header) {
-            header = 1;
-            if (!same)
-                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
-                               "parameters", o->output);
-            else if (strncmp(line, map_columns, strlen(map_columns)) != 0)
-                rc = cli_error(cmd, "--resume: '%s' has another header", o->output);
-            else
-                fputs(line, out.fp);
-            continue;
-        }
-        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
-        int fields = 1;
-        for (const char *c = line; *c; c++) fields += *c == ',';
-        char *end;
-        const long index = strtol(line, &end, 10);
-        if (fields != MAP_FIELDS || *end != ',' || index < 0 || index >= n_points) continue;
-        if (!done[index]) {
-            done[index] = 1;
-            ++*n_done;
-            fputs(line, out.fp);
-        }
-    }
-    if (rc == 0 && !header) rc = cli_error(cmd, "--resume: '%s' holds no map", o->output);
-    fclose(in);
-    if (rc != 0) {
-        cli_out_abort(&out);
-        return rc;
-    }
-    return cli_out_commit(cmd, &out);
-}
-
-static int fresh_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
-{
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) return 1;
-    fprintf(out.fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
-            o->omega_steps, o->eps_steps);
-    write_parameters(out.fp, o);
-    write_critical(out.fp, chain);
-    fprintf(out.fp, "%s\n", map_columns);
-    return cli_out_commit(cmd, &out);
-}
-
-/* ---- the map ---- */
-
-static double wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int max_threads(void)
-{
-#ifdef _OPENMP
-    return omp_get_max_threads();
-#else
-    return 1;
-#endif
-}
-
-static int thread_id(void)
-{
-#ifdef _OPENMP
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-}
-
-/* Runs the points pending[first..first+count-1] on the threads, packed results into buf. Returns 0,
- * or 1 if a workspace could not be had or a run returned an error status. */
-static int run_block(const regime_options *o, whirl_regime **ws, const long *pending, long count,
-                     double *buf)
-{
-    int failed = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
-    for (long j = 0; j < count; j++) {
-        whirl_regime_params p = o->p;
-        grid_point(o, pending[j], &p.omega, &p.drive_radius);
-        p.seed = o->p.seed + (unsigned long)pending[j];
-        whirl_regime_result r;
-        memset(&r, 0, sizeof r);
-        const int status = whirl_regime_run(ws[thread_id()], &p, &r), ok = status == GSL_SUCCESS;
-        failed |= !ok && status != WHIRL_EINTERRUPTED; /* a stopped point is left to --resume */
-        pack(buf + j * RESULT_FIELDS, ok ? pending[j] : -1, &r);
-    }
-    return failed;
-}
-
-/* The folds of the steady driven branches of modes 1..FOLD_MODES, both sides, for every eps of
- * the map (rank 0, after the map). */
-static int write_folds(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
-{
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->folds) != 0) return 1;
-    whirl_driven_curve *curve = whirl_driven_curve_alloc(20000);
-    if (curve == NULL) {
-        cli_out_abort(&out);
-        return cli_error(cmd, "out of memory");
-    }
-    fprintf(out.fp, "# folds of the steady driven branches (whirl_driven_branch), N-link chain\n");
-    write_parameters(out.fp, o);
-    fprintf(out.fp, "eps,mode,side,fold,omega\n");
-    for (int ie = 0; ie < o->eps_steps && !cli_interrupted; ie++) {
-        const double eps = cli_grid(o->eps_min, o->eps_max, o->eps_steps, ie);
-        const whirl_driven_params dp = {.omega = o->omega_max, .drive_radius = eps, .air_drag = o->p.air_drag,
-                                        .air_drag_quadratic = o->p.air_drag_quadratic};
-        for (int mode = 1; mode <= FOLD_MODES; mode++)
-            for (int side = 1; side >= -1; side -= 2) {
-                whirl_driven_info start;
-                if (whirl_driven_mode(chain, &dp, mode, side, &start) != GSL_SUCCESS) continue;
-                if (whirl_driven_branch(chain, &dp, &start, -1, o->omega_min, o->omega_max,
-                                        0.02, curve) != GSL_SUCCESS)
-                    continue;
-                for (size_t f = 0; f < curve->n_folds; f++)
-                    fprintf(out.fp, "%s,%d,%d,%zu,%s\n", CLI_NUM(eps), mode, side, f,
-                            CLI_NUM(curve->fold_omega[f]));
-            }
-    }
-    whirl_driven_curve_free(curve);
-    return cli_out_commit(cmd, &out);
-}
-
-/* Collective over the ranks: the largest of v. */
-static int all_max(const mpi_context *mc, int v)
-{
-#ifdef WHIRL_MPI
-    if (mc->size > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-#else
-    (void)mc;
-#endif
-    return v;
-}
-
-static int run_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
-                   const mpi_context *mc)
-{
-    const long n_points = (long)o->omega_steps * o->eps_steps;
-    const int threads = max_threads();
-    const long block = all_max(mc, 4 * threads); /* points per rank and round */
-    char *done = calloc((size_t)n_points, 1);
-    long *pending = malloc((size_t)n_points * sizeof *pending);
-    long *mine = malloc((size_t)block * sizeof *mine);
-    double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
-    whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
-    int rc = done && pending && mine && buf && ws ? 0 : 1;
-    for (int k = 0; rc == 0 && k < threads; k++)
-        if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
-    if (rc) cli_error(cmd, "out of memory");
-    long n_done = 0;
-    FILE *fp = NULL;
-    if (mc->rank == 0 && rc == 0) {
-        rc = o->resume ? resume_map(cmd, o, done, n_points, &n_done) : fresh_map(cmd, o, chain);
-        if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
-            rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
-    }
-    rc = all_max(mc, rc);
-#ifdef WHIRL_MPI
-    if (rc == 0 && mc->size > 1) MPI_Bcast(done, (int)n_points, MPI_CHAR, 0, MPI_COMM_WORLD);
-#endif
-    long n_pending = 0;
-    for (long i = 0; rc == 0 && i < n_points; i++)
-        if (!done[i]) pending[n_pending++] = i;
-    const long already = n_points - n_pending;
-    const double start = wall_seconds();
-    cli_catch_interrupts();
-    long written = 0;
-    int stop = 0;
-    for (long first = 0; rc == 0 && first < n_pending; first += block * mc->size) {
-        const long round = GSL_MIN(block * mc->size, n_pending - first);
-        long count = 0;
-        for (long k = mc->rank; k < round; k += mc->size) mine[count++] = pending[first + k];
-        for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
-        int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
-        if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
-#ifdef WHIRL_MPI
-        if (mc->size > 1)
-            MPI_Gather(mc->rank == 0 ? MPI_IN_PLACE : buf, (int)(block * RESULT_FIELDS),
-                       MPI_DOUBLE, buf, (int)(block * RESULT_FIELDS), MPI_DOUBLE, 0,
-                       MPI_COMM_WORLD);
-#endif
-        if (mc->rank == 0) {
-            for (long k = 0; k < round; k++) { /* point k of the round: rank k % K, its k / K */
-                whirl_regime_result r;
-                const long slot = (k % mc->size) * block + k / mc->size;
-                const long index = unpack(buf + slot * RESULT_FIELDS, &r);
-                if (index < 0) continue;
-                write_map_row(fp, o, index, &r);
-                written++;
-            }
-            if (fflush(fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
-            cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 0);
-        }
-        rc = all_max(mc, failed);
-        stop = all_max(mc, cli_interrupted != 0);
-        if (stop) break;
-    }
-    const double seconds = wall_seconds() - start;
-    if (mc->rank == 0 && fp) {
-        cli_progress(cmd, "points", (double)(already + written) / (double)n_points, 1);
-        if (rc == 0 && !stop)
-            fprintf(fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
-                    written, seconds, mc->size, threads);
-        if (fclose(fp) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o->output);
-        if (rc == 0 && stop)
-            rc = 130, cli_error(cmd, "interrupted: %ld of %ld points in '%s' (continue with "
-                                "--resume)", already + written, n_points, o->output);
-        if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
-    }
-    for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
-    free(ws);
-    free(buf);
-    free(mine);
-    free(pending);
-    free(done);
-    return rc;
 }
 
 /* ---- one run with an optional trace ---- */
@@ -549,6 +248,7 @@ static int run_map(const cli_command *cmd, const regime_options *o, const whirl_
 typedef struct trace_ctx {
     FILE *fp;
     unsigned long frames;
+    double len, time; /* the user's units of length and time, in dimensionless ones */
 } trace_ctx;
 
 /* One block of the trace: the pivot, then every mass, in the inertial frame. */
@@ -557,11 +257,12 @@ static int trace_frame(void *ctx, double t, double angle, const double *pivot, c
 {
     trace_ctx *tc = ctx;
     const double c = cos(angle), s = sin(angle);
-    fprintf(tc->fp, "%s# t = %s\n", tc->frames++ ? "\n\n" : "", CLI_NUM(t));
+    fprintf(tc->fp, "%s# t = %s\n", tc->frames++ ? "\n\n" : "", CLI_NUM(t * tc->time));
     for (size_t i = 0; i <= n; i++) {
         const double *p = i == 0 ? pivot : x + 3 * (i - 1);
-        fprintf(tc->fp, "%s %s %s %s\n", CLI_NUM(c * p[0] - s * p[1]), CLI_NUM(s * p[0] + c * p[1]),
-                CLI_NUM(p[2]), CLI_NUM(t));
+        fprintf(tc->fp, "%s %s %s %s\n", CLI_NUM(tc->len * (c * p[0] - s * p[1])),
+                CLI_NUM(tc->len * (s * p[0] + c * p[1])), CLI_NUM(tc->len * p[2]),
+                CLI_NUM(t * tc->time));
     }
     return GSL_SUCCESS;
 }
@@ -581,7 +282,11 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         whirl_regime_free(w);
         return rc;
     }
-    trace_ctx tc = {trace_open ? trace.fp : NULL, 0};
+    trace_ctx tc = {trace_open ? trace.fp : NULL, 0, regime_cli_user(o, CLI_UNIT_LENGTH, 1),
+                    regime_cli_user(o, CLI_UNIT_TIME, 1)};
+    if (trace_open)
+        cli_trace_header(trace.fp, &o->units, "whirl regime, one run from rest", o->p.omega,
+                         o->p.drive_radius, o->p.air_drag, o->p.air_drag_quadratic, o->links);
     if (trace_open) whirl_regime_observe(w, trace_frame, &tc, o->trace_every);
     whirl_regime_result r;
     const int status = whirl_regime_run(w, &o->p, &r);
@@ -591,12 +296,13 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
         rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime: one run from rest\n");
-        write_parameters(out.fp, o);
-        write_critical(out.fp, chain);
+        regime_cli_write_parameters(out.fp, o);
+        regime_cli_write_critical(out.fp, o, chain);
         if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
-        fprintf(out.fp, "%s\n", map_columns);
-        fprintf(out.fp, "0,%s,%s,", CLI_NUM(o->omega), CLI_NUM(o->eps));
-        write_result(out.fp, &r);
+        fprintf(out.fp, "%s\n", regime_cli_map_columns);
+        fprintf(out.fp, "0,%s,%s,", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
+        regime_cli_write_result(out.fp, o, &r);
     }
     if (trace_open) { /* an interrupted run keeps its trace so far */
         if (rc == 0 || rc == CLI_EXIT_INTERRUPTED) {
@@ -638,19 +344,23 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %s, the state "
-                "carried over, t_change = %s\n", CLI_NUM(o->eps), CLI_NUM(o->t_change));
-        write_parameters(out.fp, o);
-        write_critical(out.fp, chain);
+                "carried over, t_change = %s\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, o->t_change)));
+        regime_cli_write_parameters(out.fp, o);
+        regime_cli_write_critical(out.fp, o, chain);
         for (size_t j = 1; j < n; j++)
             if (state_class(&res[j]) != state_class(&res[j - 1]))
                 fprintf(out.fp, "# jump %s: between omega %s and %s: %s %d nodes -> %s %d "
-                        "nodes\n", j < n_up ? "up" : "down", CLI_NUM(omega[j - 1]), CLI_NUM(omega[j]),
+                        "nodes\n", j < n_up ? "up" : "down",
+                        CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j - 1])),
+                        CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j])),
                         whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
                         whirl_regime_state_name(res[j].state), res[j].nodes);
         fprintf(out.fp, "%s\n", sweep_columns);
         for (size_t j = 0; j < n; j++) {
-            fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down", CLI_NUM(omega[j]));
-            write_result(out.fp, &res[j]);
+            fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down",
+                    CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j])));
+            regime_cli_write_result(out.fp, o, &res[j]);
         }
         rc = cli_out_commit(cmd, &out);
     }
@@ -671,38 +381,57 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
     o.trace_every = 0.1;
     o.t_change = 20;
     whirl_regime_params_default(&o.p, 20);
+    o.units = (cli_units)CLI_UNITS_INIT;
+    o.air = (cli_air)CLI_AIR_INIT(o.units);
     double seed = 1, settle_periods = 3, lyapunov_periods = 60;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rate of the hand (one run)"},
-        {"--eps", NULL, CLI_DOUBLE, &o.eps, &o.eps_given, "E", "radius of the hand's circle [L]"},
-        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A", "map or sweep: lowest omega"},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B", "map or sweep: highest omega"},
-        {"--omega-count", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "N", "map or sweep: number of rates, both ends included"},
-        {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "A", "map: smallest eps"},
-        {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "B", "map: largest eps"},
-        {"--eps-count", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "M", "map: number of radii, both ends included"},
+        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rate of the hand (one run)",
+         "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.omin_given, "A",
+         "map or sweep: lowest omega", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.omax_given, "B",
+         "map or sweep: highest omega", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+        {"--omega-count", NULL, CLI_INT, &o.omega_steps, &o.osteps_given, "N",
+         "map or sweep: number of rates, both ends included"},
+        {"--eps-min", NULL, CLI_DOUBLE, &o.eps_min, &o.emin_given, "C", "map: smallest eps",
+         NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
+        {"--eps-max", NULL, CLI_DOUBLE, &o.eps_max, &o.emax_given, "D", "map: largest eps",
+         NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
+        {"--eps-count", NULL, CLI_INT, &o.eps_steps, &o.esteps_given, "M",
+         "map: number of radii, both ends included"},
+        CLI_DRAG_OPTIONS(o.eps, &o.eps_given, o.p.air_drag, NULL, o.p.air_drag_quadratic, NULL, o.air),
         {"--sweep", NULL, CLI_FLAG, &o.sweep, NULL, "", "hysteresis: omega up, then down, state carried over"},
-        {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T", "sweep: time of each change of omega (default 20)"},
+        {"--t-change", NULL, CLI_DOUBLE, &o.t_change, &o.t_change_given, "T",
+         "sweep: time of each change of omega (default 20)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
         {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 20)"},
-        {"--drag", NULL, CLI_DOUBLE, &o.p.air_drag, NULL, "C", "linear air drag per unit length (default 0)"},
-        {"--drag-quadratic", NULL, CLI_DOUBLE, &o.p.air_drag_quadratic, NULL, "C2", "quadratic air drag per unit length (default 0)"},
-        {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D", "damping of the joints (default 0)"},
+        {"--internal-damping", NULL, CLI_DOUBLE, &o.p.internal_damping, NULL, "D",
+         "damping of the joints (default 0)", NULL, NULL, NULL, NULL, CLI_UNIT_DAMPING},
         {"--frame", NULL, CLI_STRING, &o.frame, NULL, "F", "rotating (default) or inertial"},
         {"--method", NULL, CLI_STRING, &o.p.method, NULL, "M", "integrator (default rk4)"},
-        {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)"},
-        {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)"},
-        {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T", "end of a run that has not settled (default 400)"},
-        {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D", "distance left to the steady shape [L] (default 1e-3)"},
+        {"--dt", NULL, CLI_DOUBLE, &o.p.dt, &o.dt_given, "H", "time step (default 0.1/N)", NULL,
+         NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--t-ramp", NULL, CLI_DOUBLE, &o.p.t_ramp, NULL, "T", "ramp time of eps (default 20)",
+         NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--t-max", NULL, CLI_DOUBLE, &o.p.t_max, NULL, "T",
+         "end of a run that has not settled (default 400)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
+        {"--settle-tol", NULL, CLI_DOUBLE, &o.p.settle_tol, NULL, "D",
+         "distance left to the steady shape (default 1e-3)", NULL, NULL, NULL, NULL,
+         CLI_UNIT_LENGTH},
         {"--settle-periods", NULL, CLI_DOUBLE, &settle_periods, NULL, "K", "periods that must pass (default 3)"},
-        {"--periodic-tol", NULL, CLI_DOUBLE, &o.p.periodic_tol, NULL, "D", "repeat tolerance of the tip [L] (default 1e-3)"},
+        {"--periodic-tol", NULL, CLI_DOUBLE, &o.p.periodic_tol, NULL, "D",
+         "repeat tolerance of the tip (default 1e-3)", NULL, NULL, NULL, NULL, CLI_UNIT_LENGTH},
         {"--lyapunov-periods", NULL, CLI_DOUBLE, &lyapunov_periods, NULL, "K", "Lyapunov window in periods (default 60)"},
-        {"--chaos-lambda", NULL, CLI_DOUBLE, &o.p.chaos_lambda, NULL, "L", "Lyapunov exponent above which a run is chaotic (default 0.05)"},
+        {"--chaos-lambda", NULL, CLI_DOUBLE, &o.p.chaos_lambda, NULL, "L",
+         "Lyapunov exponent above which a run is chaotic (default 0.05)", NULL, NULL, NULL, NULL,
+         CLI_UNIT_RATE},
         {"--perturb", NULL, CLI_DOUBLE, &o.p.perturb, NULL, "A", "random turn of each hanging link [rad] (default 1e-3)"},
         {"--seed", NULL, CLI_DOUBLE, &seed, NULL, "S", "seed of the turns; a map's point i uses S + i (default 1)"},
-        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE", "one run: the motion (inertial frame) for plots/animate.gp"},
-        {"--trace-every", NULL, CLI_DOUBLE, &o.trace_every, &o.trace_every_given, "T", "interval of the trace (default 0.1)"},
+        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE", "one run: the motion (inertial frame) for whirl view or plots/animate.gp"},
+        {"--trace-every", NULL, CLI_DOUBLE, &o.trace_every, &o.trace_every_given, "T",
+         "interval of the trace (default 0.1)", NULL, NULL, NULL, NULL, CLI_UNIT_TIME},
         {"--folds", NULL, CLI_STRING, &o.folds, NULL, "FILE", "map: the folds of the steady branches"},
         {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "", "map: keep the points in -o FILE, compute the rest"},
+        CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output CSV (default stdout; required for a map)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
@@ -715,18 +444,19 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
               counts[k].value == floor(counts[k].value)))
             return cli_error(cmd, "%s must be a whole number in [%d, %.0f], got %g", counts[k].name,
                              k ? 1 : 0, counts[k].max, counts[k].value);
+    if ((rc = cli_drag_apply(cmd, &o.air, &o.p.air_drag_quadratic))) return rc;
     o.p.seed = (unsigned long)seed;
     o.p.settle_periods = (int)settle_periods;
     o.p.lyapunov_periods = (int)lyapunov_periods;
     if ((rc = check_options(cmd, &o))) return rc;
-    if (mc->size > 1 && (!is_map(&o) || o.sweep))
+    if (mc->size > 1 && (!regime_cli_is_map(&o) || o.sweep))
         return cli_error(cmd, "one run and a sweep run on one rank; only a map is shared out");
     whirl_chain *chain = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (chain == NULL) return cli_error(cmd, "cannot make the chain: %s", whirl_last_error());
     cli_catch_interrupts();
-    rc = !is_map(&o) ? run_one(cmd, &o, chain)
+    rc = !regime_cli_is_map(&o) ? run_one(cmd, &o, chain)
          : o.sweep   ? run_sweep(cmd, &o, chain)
-                     : run_map(cmd, &o, chain, mc);
+                     : regime_cli_run_map(cmd, &o, chain, mc);
     whirl_chain_free(chain);
     return rc;
 }

@@ -47,6 +47,12 @@ static int on_row(void *ctx, const double *value)
 static int on_frame(void *ctx, double t, const double *pivot, const double *x, size_t n)
 {
     run *r = ctx;
+    if (r->frames == 0) { /* the trace opens with its parameters and units */
+        const cli_units dimensionless = CLI_UNITS_INIT;
+        const whirl_scene *s = &r->scene;
+        cli_trace_header(r->trace.fp, &dimensionless, "whirl simulate", s->omega, s->drive_radius,
+                         s->air_drag, s->air_drag_quadratic, (int)s->links);
+    }
     return whirl_scene_write_frame(r->trace.fp, r->frames++, t, pivot, x, n);
 }
 

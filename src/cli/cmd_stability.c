@@ -18,8 +18,15 @@
  * (whirl_windows_find), one row per window:
  *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at
  * and a comment line per mode with the eigen-solves used and those of a grid of equal
- * resolution. */
+ * resolution.
+ * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
+ * within a run (the library polls the stop request): the rows of the points finished are
+ * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
+ * (which must begin with the comment lines and header this map writes) and computes only the
+ * missing points. */
+#include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -30,7 +37,7 @@
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
     double scan_step, tol;
-    int mode, links, steps, seed, linear, side, windows, full;
+    int mode, links, steps, seed, linear, side, windows, full, resume;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
@@ -82,6 +89,8 @@ static int check_options(const cli_command *cmd, const options *o)
     if (o->eps == 0 && (o->drag > 0 || o->drag2 > 0))
         return cli_error(cmd, "air drag needs --eps > 0 (with the pivot on the axis only the "
                          "hanging chain is steady)");
+    if (o->resume && strcmp(o->output, "-") == 0)
+        return cli_error(cmd, "--resume needs -o FILE, not standard output");
     if (!method_known(o->method))
         return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
     return 0;
@@ -240,13 +249,6 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
 
 #define WINDOWS_MAX 256
 
-static double wall_seconds(void)
-{
-    struct timespec t;
-    timespec_get(&t, TIME_UTC);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 /* --windows: every mode of the list, one per thread. */
 static int run_windows(const cli_command *cmd, const options *o)
 {
@@ -271,14 +273,14 @@ static int run_windows(const cli_command *cmd, const options *o)
     cli_catch_interrupts();
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
-        const double t0 = wall_seconds();
+        const double t0 = cli_wall_seconds();
         whirl_windows *w = whirl_windows_alloc((size_t)o->links);
         status[k] = w ? whirl_windows_find(w, c, o->modes.v[k], &p, win + k * WINDOWS_MAX,
                                            WINDOWS_MAX, &count[k], &stats[k])
                       : GSL_ENOMEM;
         if (status[k]) snprintf(message[k], sizeof message[k], "%s", whirl_last_error());
         whirl_windows_free(w);
-        seconds[k] = wall_seconds() - t0;
+        seconds[k] = cli_wall_seconds() - t0;
     }
     for (size_t k = 0; k < nmodes && !rc; k++)
         if (status[k]) {
@@ -319,6 +321,120 @@ static int run_windows(const cli_command *cmd, const options *o)
     }
     free(win), free(count), free(stats), free(seconds), free(status), free(message);
     whirl_chain_free(c);
+    return rc;
+}
+
+/* The comment lines and the header of the output: a map resumes only a file that starts with
+ * exactly these lines. */
+static void write_header(FILE *fp, const options *o)
+{
+    const double len = unit(o, CLI_UNIT_LENGTH);
+    fprintf(fp, "# whirl stability: %d links, damping %s, %s\n", o->links,
+            CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)),
+            o->linear ? "linear analysis only" : "linear analysis and perturbed runs");
+    if (o->min_given)
+        fprintf(fp, "# map: omega %s to %s, %d rates, modes", 
+                CLI_NUM(o->omega_min * unit(o, CLI_UNIT_RATE)),
+                CLI_NUM(o->omega_max * unit(o, CLI_UNIT_RATE)), o->steps);
+    for (int k = 0; o->min_given && k < o->modes.n; k++)
+        fprintf(fp, "%s%d", k ? "," : " ", o->modes.v[k]);
+    if (o->min_given) fputc('\n', fp);
+    if (driven(o))
+        fprintf(fp, "# hand-swung: eps %s, drag %s, drag_quadratic %s, side %d\n",
+                CLI_NUM(o->eps * len), CLI_NUM(o->drag * unit(o, CLI_UNIT_DRAG)),
+                CLI_NUM(o->drag2 * unit(o, CLI_UNIT_DRAG2)), o->side);
+    if (!o->linear)
+        fprintf(fp, "# runs: %s periods, perturbation %s, seed %d, method %s, dt %s "
+                    "(0: default)\n", CLI_NUM(o->periods), CLI_NUM(o->perturb), o->seed, o->method,
+                CLI_NUM(o->dt * unit(o, CLI_UNIT_TIME)));
+    if (o->linear)
+        fprintf(fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
+                    "< 0, stable where 0\n");
+    else
+        fprintf(fp, "# verdict: unstable once the deviation reaches 100 times the initial "
+                    "one, converging (damping or drag > 0) once its largest value over a "
+                    "period falls to 1/100 (or to 1/10 by the end), else stable\n");
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
+            driven(o) ? ",tip_x,tip_y,nodes" : "");
+}
+
+static void write_row(FILE *fp, const options *o, const point *p)
+{
+    const double rate = unit(o, CLI_UNIT_RATE), len = unit(o, CLI_UNIT_LENGTH);
+    if (o->linear)
+        fprintf(fp, "%s,%d,%d,%s,,,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
+                CLI_NUM(p->eig_growth * rate), whirl_verdict_name(p->verdict));
+    else
+        fprintf(fp, "%s,%d,%d,%s,%s,%s,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
+                CLI_NUM(p->eig_growth * rate), CLI_NUM(p->sim_growth * rate),
+                CLI_NUM(p->max_deviation), whirl_verdict_name(p->verdict));
+    if (driven(o))
+        fprintf(fp, ",%s,%s,%d", CLI_NUM(p->tip[0] * len), CLI_NUM(p->tip[1] * len), p->nodes);
+    fputc('\n', fp);
+}
+
+static void free_kept(char **kept, size_t count)
+{
+    for (size_t i = 0; kept && i < count; i++) free(kept[i]);
+    free(kept);
+}
+
+#define STABILITY_LINE_MAX 1024
+
+/* --resume: reads the map in o->output, which must start with the lines write_header writes
+ * for these options; each complete row whose rate and mode are those of a point of the map is
+ * kept (kept[i], the line as read) and its point marked done; an unfinished last line is
+ * dropped. *already: the points kept. Returns 0, or 1 after printing an error. */
+static int resume(const cli_command *cmd, const options *o, point *pts, size_t count, char **kept,
+                  size_t *already)
+{
+    char *expect = NULL;
+    size_t expect_len = 0;
+    FILE *mem = open_memstream(&expect, &expect_len);
+    if (mem == NULL) return cli_error(cmd, "out of memory");
+    write_header(mem, o);
+    fclose(mem);
+    FILE *in = fopen(o->output, "r");
+    if (in == NULL) {
+        free(expect);
+        return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
+    }
+    char line[STABILITY_LINE_MAX];
+    size_t pos = 0;
+    int rc = 0;
+    *already = 0;
+    while (rc == 0 && fgets(line, sizeof line, in)) {
+        const size_t len = strlen(line);
+        if (pos < expect_len) { /* the header block, line by line */
+            if (strncmp(expect + pos, line, len) != 0)
+                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
+                               "options (line '%.*s')", o->output, (int)strcspn(line, "\n"), line);
+            pos += len;
+            continue;
+        }
+        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
+        char rate[64];
+        int mode;
+        if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) continue;
+        for (size_t i = 0; i < count; i++) {
+            if (pts[i].done || pts[i].mode != mode ||
+                strcmp(CLI_NUM(pts[i].omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
+                continue;
+            if ((kept[i] = malloc(len + 1)) == NULL) {
+                rc = cli_error(cmd, "out of memory");
+                break;
+            }
+            memcpy(kept[i], line, len + 1);
+            pts[i].done = 1;
+            ++*already;
+            break;
+        }
+    }
+    if (rc == 0 && pos < expect_len)
+        rc = cli_error(cmd, "--resume: '%s' holds no map of these options", o->output);
+    fclose(in);
+    free(expect);
     return rc;
 }
 
@@ -386,6 +502,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
          "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
+        {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "",
+         "map: keep the rows already in -o FILE, compute the rest", NULL, "--omega-min --output",
+         "--windows"},
         CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
     };
@@ -403,22 +522,25 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         whirl_chain_free(c);
         return 1;
     }
-    cli_out out, trace = {0};
-    if (cli_out_open(cmd, &out, o.output)) {
+    char **kept = calloc(count, sizeof *kept); /* rows read back by --resume */
+    size_t already = 0;
+    if (kept == NULL) rc = cli_error(cmd, "out of memory");
+    else if (o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
+    cli_out out = {0}, trace = {0};
+    if (rc == 0) rc = cli_out_open(cmd, &out, o.output);
+    if (rc == 0 && o.trace && (rc = cli_out_open(cmd, &trace, o.trace))) cli_out_abort(&out);
+    if (rc) {
+        free_kept(kept, count);
         free(pts);
         whirl_chain_free(c);
-        return 1;
-    }
-    if (o.trace && cli_out_open(cmd, &trace, o.trace)) {
-        cli_out_abort(&out);
-        free(pts);
-        whirl_chain_free(c);
-        return 1;
+        return rc;
     }
     cli_catch_interrupts();
     int failed = 0;
     char message[512] = "";
-    size_t finished = 0;
+    long finished = (long)already;
+    cli_progress_state progress;
+    cli_progress_begin(&progress, cmd, "points", (long)count, (long)already);
 #pragma omp parallel
     {
         whirl_stability *w = whirl_stability_alloc((size_t)o.links);
@@ -435,13 +557,14 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
             int stop;
 #pragma omp atomic read
             stop = failed;
-            if (stop || w == NULL || cli_interrupted) continue;
+            if (stop || w == NULL || cli_interrupted || pts[i].done) continue;
             if (analyse(&o, c, w, &pts[i], o.trace ? trace.fp : NULL) != GSL_SUCCESS) {
                 if (cli_interrupted) continue;
 #pragma omp critical(stability_error)
                 if (!failed) {
-                    snprintf(message, sizeof message, "omega %g, mode %d: %s", pts[i].omega,
-                             pts[i].mode, whirl_last_error());
+                    snprintf(message, sizeof message, "omega %s, mode %d: %s",
+                             CLI_NUM(pts[i].omega * unit(&o, CLI_UNIT_RATE)), pts[i].mode,
+                             whirl_last_error());
 #pragma omp atomic write
                     failed = 1;
                 }
@@ -449,56 +572,27 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
             }
             pts[i].done = 1;
 #pragma omp critical(stability_progress)
-            cli_progress(cmd, "points", (double)++finished / (double)count, 0);
+            cli_progress_update(&progress, ++finished, 0);
         }
         whirl_stability_free(w);
     }
-    cli_progress(cmd, "points", 1, 1);
+    cli_progress_update(&progress, finished, 1);
     if (failed) {
         cli_out_abort(&out);
         cli_out_abort(&trace);
+        free_kept(kept, count);
         free(pts);
         whirl_chain_free(c);
         return cli_error(cmd, "%s", message);
     }
-    const double rate = unit(&o, CLI_UNIT_RATE), len = unit(&o, CLI_UNIT_LENGTH);
-    fprintf(out.fp, "# whirl stability: %d links, damping %s, %s\n", o.links,
-            CLI_NUM(o.damping * unit(&o, CLI_UNIT_DAMPING)),
-            o.linear ? "linear analysis only" : "linear analysis and perturbed runs");
-    if (driven(&o))
-        fprintf(out.fp, "# hand-swung: eps %s, drag %s, drag_quadratic %s, side %d\n",
-                CLI_NUM(o.eps * len), CLI_NUM(o.drag * unit(&o, CLI_UNIT_DRAG)),
-                CLI_NUM(o.drag2 * unit(&o, CLI_UNIT_DRAG2)), o.side);
-    if (!o.linear)
-        fprintf(out.fp, "# runs: %s periods, perturbation %s, seed %d, method %s, dt %s "
-                        "(0: default)\n", CLI_NUM(o.periods), CLI_NUM(o.perturb), o.seed, o.method,
-                CLI_NUM(o.dt * unit(&o, CLI_UNIT_TIME)));
-    if (o.linear)
-        fprintf(out.fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
-                        "< 0, stable where 0\n");
-    else
-        fprintf(out.fp, "# verdict: unstable once the deviation reaches 100 times the initial "
-                        "one, converging (damping or drag > 0) once its largest value over a "
-                        "period falls to 1/100 (or to 1/10 by the end), else stable\n");
-    cli_units_comment(out.fp, &o.units);
-    fprintf(out.fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
-            driven(&o) ? ",tip_x,tip_y,nodes" : "");
+    write_header(out.fp, &o);
     size_t written = 0;
-    for (size_t i = 0; i < count && pts[i].done; i++, written++) {
-        if (pts[i].absent) continue;
-        if (o.linear)
-            fprintf(out.fp, "%s,%d,%d,%s,,,%s", CLI_NUM(pts[i].omega * rate), pts[i].mode, o.links,
-                    CLI_NUM(pts[i].eig_growth * rate), whirl_verdict_name(pts[i].verdict));
-        else
-            fprintf(out.fp, "%s,%d,%d,%s,%s,%s,%s", CLI_NUM(pts[i].omega * rate), pts[i].mode,
-                    o.links, CLI_NUM(pts[i].eig_growth * rate), CLI_NUM(pts[i].sim_growth * rate),
-                    CLI_NUM(pts[i].max_deviation),
-                    whirl_verdict_name(pts[i].verdict));
-        if (driven(&o))
-            fprintf(out.fp, ",%s,%s,%d", CLI_NUM(pts[i].tip[0] * len), CLI_NUM(pts[i].tip[1] * len),
-                    pts[i].nodes);
-        fputc('\n', out.fp);
+    for (size_t i = 0; i < count; i++) {
+        if (kept[i]) fputs(kept[i], out.fp);
+        else if (pts[i].done && !pts[i].absent) write_row(out.fp, &o, &pts[i]);
+        written += kept[i] || pts[i].done;
     }
+    free_kept(kept, count);
     free(pts);
     whirl_chain_free(c);
     if (cli_out_commit(cmd, &out)) {
@@ -507,7 +601,11 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     if (o.trace && cli_out_commit(cmd, &trace)) return 1;
     if (written < count) {
-        cli_error(cmd, "interrupted after %zu of %zu points", written, count);
+        if (o.min_given && o.output && strcmp(o.output, "-") != 0)
+            cli_error(cmd, "interrupted: %zu of %zu points in '%s' (continue with --resume)",
+                      written, count, o.output);
+        else
+            cli_error(cmd, "interrupted after %zu of %zu points", written, count);
         return CLI_EXIT_INTERRUPTED;
     }
     return 0;

@@ -33,6 +33,9 @@ static const cli_command commands[] = {
     {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-count N (--eps E | --eps-min C --eps-max D --eps-count M) [OPTIONS]",
      "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.",
      cmd_regime, "whirl regime --omega 4Hz --eps 3cm --length 0.5 --mass 50g --drag-quadratic 0.0029"},
+    {"view", "TRACE | SHAPE... [--camera AZ,EL] [--omega W] [--eps E] [-o FILE]",
+     "One self-contained HTML page showing a trace or shapes in 3D (rotatable, animated).",
+     cmd_view, "whirl view run.dat -o run.html"},
 };
 static const size_t n_commands = sizeof commands / sizeof commands[0];
 

@@ -1,0 +1,27 @@
+# The style every figure of plots/ shares: pngcairo, one palette, a light grid, and the units of
+# a CSV or trace read from its "# units:" comment line (written by every whirl command):
+#   # units: dimensionless (length L, ...)          -> L, sqrt(g/L), sqrt(L/g), M g
+#   # units: length=m mass=kg time=s rate=rad/s ...  -> m, rad/s, s, N
+# A script loads it with: load system("dirname '".ARG0."'")."/style.gp"
+# and opens its output with: set terminal @term size W, H
+term = 'pngcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white"'
+set linetype 1 lc rgb "#1f4e9c" lw 2 pt 7
+set linetype 2 lc rgb "#c0392b" lw 2 pt 5
+set linetype 3 lc rgb "#1e8449" lw 2 pt 9
+set linetype 4 lc rgb "#7d3c98" lw 2 pt 11
+set linetype 5 lc rgb "#b9770e" lw 2 pt 13
+set linetype 6 lc rgb "#117a8b" lw 2 pt 15
+set linetype cycle 6
+set grid lc rgb "#dddddd" lw 1
+set datafile separator ","
+set key noenhanced
+# units of a file (f: its path)
+physical(f) = int(system(sprintf("grep -c -m 1 '^# units: length=m' '%s'", f))) > 0
+u_rate(f) = physical(f) ? "rad/s" : "sqrt(g/L)"
+u_len(f) = physical(f) ? "m" : "L"
+u_time(f) = physical(f) ? "s" : "sqrt(L/g)"
+u_force(f) = physical(f) ? "N" : "M g"
+# lines of comments and header before the first data row of a CSV
+skip_of(f) = int(system(sprintf("grep -n -m 1 -v '^#' '%s' | cut -d: -f1", f)))
+# the value of key=... on the first comment line that has it ("" if none)
+meta(f, key) = system(sprintf("grep -m 1 -o '[ #]%s=[^ ,;]*' '%s' | head -1 | cut -d= -f2", key, f))

@@ -1,0 +1,346 @@
+/* whirl view: one self-contained HTML file (no network; plain JavaScript on a canvas) that shows
+ * the chain in 3D, rotatable with the mouse, from
+ *   - a trace (`whirl simulate` [output] trace, `whirl regime --trace`): blocks of lines
+ *     "x y z t", the pivot first, in the inertial frame, blocks separated by blank lines; its
+ *     "# trace: ..." line gives omega and eps (for the co-rotating view and the pivot's circle);
+ *   - or one or more shapes (`whirl shape`, `whirl minimize`, `whirl driven --omega`): CSV with
+ *     columns r and z (a planar shape, in the co-rotating frame) or x, y and z; the comment
+ *     line "# omega=..." gives the rate at which it turns in the inertial view.
+ * The page plays the motion (play/pause, speed), in the inertial or the co-rotating frame, and
+ * lists the files' comment lines (the parameters). The page's template is src/cli/view.html; the
+ * Makefile turns it into the string table cli_view_html. */
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+#define VIEW_LINE_MAX 4096
+#define VIEW_INFO_MAX 24   /* comment lines shown per file */
+#define VIEW_FILES_MAX 16
+
+extern const char *const cli_view_html[]; /* the template, one line per entry, NULL-terminated */
+
+/* A growing array of doubles. */
+typedef struct vec {
+    double *v;
+    size_t n, cap;
+} vec;
+
+static int vec_push(vec *a, double x)
+{
+    if (a->n == a->cap) {
+        size_t cap = a->cap ? 2 * a->cap : 1024;
+        double *v = realloc(a->v, cap * sizeof *v);
+        if (v == NULL) return -1;
+        a->v = v;
+        a->cap = cap;
+    }
+    a->v[a->n++] = x;
+    return 0;
+}
+
+/* One file read: its comment lines, omega/eps if stated, and its points (x, y, z triples) with
+ * their frame boundaries (a trace) or as one frame (a shape). */
+typedef struct source {
+    const char *path;
+    int trace;            /* 1: a trace, 0: a shape */
+    double omega, eps;    /* NAN when not stated */
+    int physical;         /* the units line says SI */
+    char info[VIEW_INFO_MAX][256];
+    int n_info;
+    vec xyz;              /* points */
+    vec start, time;      /* trace: first point of each frame (as a double) and its time */
+} source;
+
+/* The value of key=... in a comment line, or NAN. */
+static double meta_value(const char *line, const char *key)
+{
+    size_t len = strlen(key);
+    for (const char *p = strstr(line, key); p; p = strstr(p + 1, key))
+        if ((p == line || p[-1] == ' ' || p[-1] == '#') && p[len] == '=') {
+            char *end;
+            double v = strtod(p + len + 1, &end);
+            if (end != p + len + 1) return v;
+        }
+    return NAN;
+}
+
+/* Column index of name in the CSV header (comma separated), or -1. */
+static int column(const char *header, const char *name)
+{
+    int k = 0;
+    size_t len = strlen(name);
+    for (const char *p = header;; k++) {
+        size_t n = strcspn(p, ",\r\n");
+        if (n == len && strncmp(p, name, len) == 0) return k;
+        if (p[n] != ',') return -1;
+        p += n + 1;
+    }
+}
+
+static int read_source(const cli_command *cmd, source *s)
+{
+    FILE *fp = fopen(s->path, "r");
+    if (fp == NULL) return cli_error(cmd, "cannot read '%s': %s", s->path, strerror(errno));
+    char line[VIEW_LINE_MAX];
+    int rc = 0, header = 0, cx = -1, cy = -1, cz = -1, cr = -1, ncols = 0;
+    long lineno = 0;
+    int block_open = 0;
+    s->omega = s->eps = NAN;
+    s->trace = -1;
+    while (rc == 0 && fgets(line, sizeof line, fp)) {
+        lineno++;
+        if (line[0] == '#') {
+            double w = meta_value(line, "omega"), e = meta_value(line, "eps");
+            if (isnan(s->omega) && isfinite(w)) s->omega = w;
+            if (isnan(s->eps) && isfinite(e)) s->eps = e;
+            if (strncmp(line, "# units: length=m", 17) == 0) s->physical = 1;
+            if (strncmp(line, "# t = ", 6) != 0 && s->n_info < VIEW_INFO_MAX) {
+                snprintf(s->info[s->n_info], sizeof s->info[0], "%s", line + 1 + (line[1] == ' '));
+                s->info[s->n_info][strcspn(s->info[s->n_info], "\r\n")] = '\0';
+                s->n_info++;
+            }
+            continue;
+        }
+        const char *p = line;
+        while (isspace((unsigned char)*p)) p++;
+        if (*p == '\0') { /* a blank line ends a trace's block */
+            block_open = 0;
+            continue;
+        }
+        if (s->trace < 0) s->trace = strchr(line, ',') == NULL;
+        if (!s->trace) {
+            if (!header) { /* the CSV header */
+                header = 1;
+                cx = column(line, "x"), cy = column(line, "y"), cz = column(line, "z");
+                cr = column(line, "r");
+                for (const char *c = line; *c; c++) ncols += *c == ',';
+                ncols++;
+                if (cz < 0 || (cr < 0 && cx < 0))
+                    rc = cli_error(cmd, "%s:%ld: a shape needs columns r and z, or x, y and z",
+                                   s->path, lineno);
+                continue;
+            }
+            double v[64];
+            int n = 0;
+            char *q = line, *end;
+            while (n < 64 && n < ncols) {
+                v[n++] = strtod(q, &end);
+                if (end == q) break;
+                q = end;
+                if (*q != ',') break;
+                q++;
+            }
+            const int need = (cx > cr ? cx : cr) > cz ? (cx > cr ? cx : cr) : cz;
+            if (n <= need || (cy >= 0 && n <= cy)) {
+                rc = cli_error(cmd, "%s:%ld: too few values", s->path, lineno);
+                continue;
+            }
+            double x = cx >= 0 ? v[cx] : v[cr], y = cx >= 0 && cy >= 0 ? v[cy] : 0, z = v[cz];
+            if (!isfinite(x) || !isfinite(y) || !isfinite(z)) {
+                rc = cli_error(cmd, "%s:%ld: a value is not finite", s->path, lineno);
+                continue;
+            }
+            if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
+                rc = cli_error(cmd, "out of memory");
+            continue;
+        }
+        double x, y, z, t;
+        if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !isfinite(x) || !isfinite(y) ||
+            !isfinite(z) || !isfinite(t)) {
+            rc = cli_error(cmd, "%s:%ld: a trace line needs four finite numbers x y z t", s->path,
+                           lineno);
+            continue;
+        }
+        if (!block_open) {
+            block_open = 1;
+            if (vec_push(&s->start, (double)(s->xyz.n / 3)) || vec_push(&s->time, t))
+                rc = cli_error(cmd, "out of memory");
+        }
+        if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
+            rc = cli_error(cmd, "out of memory");
+    }
+    if (rc == 0 && ferror(fp)) rc = cli_error(cmd, "error reading '%s'", s->path);
+    fclose(fp);
+    if (rc == 0 && s->xyz.n < 6) rc = cli_error(cmd, "%s: no chain in it (at least two points)", s->path);
+    if (rc == 0 && s->trace) { /* every frame must have the same number of points */
+        size_t per = s->start.n > 1 ? (size_t)s->start.v[1] : s->xyz.n / 3;
+        for (size_t k = 0; k < s->start.n; k++) {
+            size_t end = k + 1 < s->start.n ? (size_t)s->start.v[k + 1] : s->xyz.n / 3;
+            if (end - (size_t)s->start.v[k] != per)
+                return cli_error(cmd, "%s: frame %zu has %zu points, the first %zu", s->path,
+                                 k + 1, end - (size_t)s->start.v[k], per);
+        }
+    }
+    return rc;
+}
+
+/* A JSON string. */
+static void put_string(FILE *fp, const char *s)
+{
+    fputc('"', fp);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(fp, "\\%c", c);
+        else if (c < 0x20) fprintf(fp, "\\u%04x", c);
+        else if (c == '<') fputs("\\u003c", fp); /* no "</script>" inside the page */
+        else fputc(c, fp);
+    }
+    fputc('"', fp);
+}
+
+/* A point list as a JSON array, 7 significant digits (far below a pixel). */
+static void put_points(FILE *fp, const double *v, size_t n)
+{
+    fputc('[', fp);
+    for (size_t i = 0; i < n; i++) fprintf(fp, "%s%.7g", i ? "," : "", v[i]);
+    fputc(']', fp);
+}
+
+static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], double omega,
+                       double eps)
+{
+    /* extent: radius from the axis, heights, and the chain's length (first frame) */
+    double r = eps > 0 ? eps : 0, zmin = 0, zmax = 0, len = 0;
+    int physical = 0;
+    for (int k = 0; k < nsrc; k++) {
+        const vec *a = &src[k].xyz;
+        for (size_t i = 0; i < a->n; i += 3) {
+            r = fmax(r, hypot(a->v[i], a->v[i + 1]));
+            zmin = fmin(zmin, a->v[i + 2]);
+            zmax = fmax(zmax, a->v[i + 2]);
+        }
+        size_t per = src[k].trace && src[k].start.n > 1 ? (size_t)src[k].start.v[1] : a->n / 3;
+        double l = 0;
+        for (size_t i = 1; i < per; i++)
+            l += sqrt(pow(a->v[3 * i] - a->v[3 * i - 3], 2) + pow(a->v[3 * i + 1] - a->v[3 * i - 2], 2) +
+                      pow(a->v[3 * i + 2] - a->v[3 * i - 1], 2));
+        len = fmax(len, l);
+        physical |= src[k].physical;
+    }
+    if (!(r > 0)) r = 0.05 * (len > 0 ? len : 1);
+    fprintf(fp, "var WHIRL = {\"kind\": \"%s\", \"camera\": [%.7g, %.7g], ",
+            src[0].trace ? "trace" : "shapes", camera[0], camera[1]);
+    fprintf(fp, "\"omega\": %.17g, \"eps\": %.17g, \"time_unit_seconds\": 1,\n", omega, eps);
+    fprintf(fp, "\"units\": {\"length\": \"%s\", \"time\": \"%s\"},\n", physical ? "m" : "L",
+            physical ? "s" : "sqrt(L/g)");
+    fprintf(fp, "\"extent\": {\"r\": %.7g, \"zmin\": %.7g, \"zmax\": %.7g, \"len\": %.7g},\n", r,
+            zmin, zmax, len > 0 ? len : 1);
+    /* the summary: each file's line that names omega (else its first comment line), of a trace
+     * line only the parameters */
+    char summary[1024] = "";
+    for (int k = 0; k < nsrc; k++) {
+        const char *pick = src[k].n_info ? src[k].info[0] : "";
+        for (int i = src[k].n_info - 1; i >= 0; i--)
+            if (strstr(src[k].info[i], "omega=")) pick = src[k].info[i];
+        const char *tail = strrchr(pick, ';'); /* a trace line: its parameters, after the ';' */
+        if (tail && tail[1] == ' ') pick = tail + 2;
+        size_t used = strlen(summary);
+        snprintf(summary + used, sizeof summary - used, "%s%s", k ? " | " : "", pick);
+    }
+    fprintf(fp, "\"summary\": ");
+    put_string(fp, summary);
+    fprintf(fp, ",\n\"info\": [");
+    int first = 1;
+    for (int k = 0; k < nsrc; k++) {
+        char head[300];
+        snprintf(head, sizeof head, "%s:", src[k].path);
+        if (!first) fputs(", ", fp);
+        put_string(fp, head);
+        first = 0;
+        for (int i = 0; i < src[k].n_info; i++) {
+            fputs(", ", fp);
+            put_string(fp, src[k].info[i]);
+        }
+    }
+    fprintf(fp, "],\n");
+    if (src[0].trace) {
+        const source *s = &src[0];
+        fprintf(fp, "\"frames\": [\n");
+        for (size_t f = 0; f < s->start.n; f++) {
+            size_t a = (size_t)s->start.v[f], b = f + 1 < s->start.n ? (size_t)s->start.v[f + 1]
+                                                                   : s->xyz.n / 3;
+            fprintf(fp, "%s{\"t\": %.17g, \"p\": ", f ? ",\n" : "", s->time.v[f]);
+            put_points(fp, s->xyz.v + 3 * a, 3 * (b - a));
+            fputc('}', fp);
+        }
+        fprintf(fp, "]};\n");
+    } else {
+        fprintf(fp, "\"shapes\": [\n");
+        for (int k = 0; k < nsrc; k++) {
+            char label[64] = "";
+            if (isfinite(src[k].omega))
+                snprintf(label, sizeof label, "omega %s", CLI_NUM(src[k].omega));
+            fprintf(fp, "%s{\"label\": ", k ? ",\n" : "");
+            put_string(fp, nsrc > 1 ? label : "");
+            fprintf(fp, ", \"omega\": %.17g, \"p\": ", isfinite(src[k].omega) ? src[k].omega : 0);
+            put_points(fp, src[k].xyz.v, src[k].xyz.n);
+            fputc('}', fp);
+        }
+        fprintf(fp, "]};\n");
+    }
+}
+
+int cmd_view(const cli_command *cmd, int argc, char **argv)
+{
+    const char *output = NULL, *camera_text = "30,15";
+    double omega = 0, eps = 0;
+    int omega_given = 0, eps_given = 0;
+    const cli_option opts[] = {
+        {"--camera", NULL, CLI_STRING, &camera_text, NULL, "AZ,EL",
+         "first view: azimuth and elevation in degrees (default 30,15; 0,0 looks along +y)"},
+        {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W",
+         "rate of the co-rotating view, in the file's rate unit (default: from the file)",
+         "[0, inf)"},
+        {"--eps", NULL, CLI_DOUBLE, &eps, &eps_given, "E",
+         "radius of the pivot's circle, in the file's length unit (default: from the file)",
+         "[0, inf)"},
+        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
+         "write the HTML page to FILE (default: standard output)"},
+    };
+    const char *files[VIEW_FILES_MAX + 1];
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], files,
+                       VIEW_FILES_MAX + 1);
+    if (rc) return rc;
+    int nsrc = 0;
+    while (nsrc <= VIEW_FILES_MAX && files[nsrc]) nsrc++;
+    if (nsrc == 0) return cli_error(cmd, "give a trace or shape files (see --help)");
+    if (nsrc > VIEW_FILES_MAX) return cli_error(cmd, "at most %d files", VIEW_FILES_MAX);
+    double camera[2];
+    char tail;
+    if (sscanf(camera_text, "%lf,%lf%c", &camera[0], &camera[1], &tail) != 2 ||
+        !isfinite(camera[0]) || !(camera[1] >= -90 && camera[1] <= 90))
+        return cli_error(cmd, "--camera needs AZ,EL in degrees (EL in [-90, 90]), got '%s'",
+                         camera_text);
+    source *src = calloc((size_t)nsrc, sizeof *src);
+    if (src == NULL) return cli_error(cmd, "out of memory");
+    for (int k = 0; k < nsrc && rc == 0; k++) {
+        src[k].path = files[k];
+        rc = read_source(cmd, &src[k]);
+    }
+    for (int k = 1; k < nsrc && rc == 0; k++)
+        if (src[k].trace || src[0].trace)
+            rc = cli_error(cmd, "one trace, or any number of shapes: not both");
+    if (rc == 0) {
+        if (!omega_given) omega = isfinite(src[0].omega) ? src[0].omega : 0;
+        if (!eps_given) eps = isfinite(src[0].eps) ? src[0].eps : 0;
+        cli_out out;
+        if ((rc = cli_out_open(cmd, &out, output)) == 0) {
+            for (const char *const *l = cli_view_html; *l; l++) {
+                if (strncmp(*l, "/*WHIRL_DATA*/", 14) == 0) write_data(out.fp, src, nsrc, camera, omega, eps);
+                else fputs(*l, out.fp);
+            }
+            rc = cli_out_commit(cmd, &out);
+        }
+    }
+    for (int k = 0; k < nsrc; k++) {
+        free(src[k].xyz.v);
+        free(src[k].start.v);
+        free(src[k].time.v);
+    }
+    free(src);
+    return rc;
+}

@@ -1,0 +1,111 @@
+#!/bin/sh
+# Physical units end to end: for every command that takes or prints a physical quantity, a run
+# in SI units (L = 0.6 m, M = 0.05 kg, g = 9.81 m/s^2, inputs given in Hz, rpm, cm, g, ...)
+# equals the dimensionless run after conversion (each column divided by its unit), to 1e-9
+# relative. The conversions are written out here, independently of the program's: rate
+# sqrt(g/L), time sqrt(L/g), force M g, linear drag M sqrt(g/L) / L, quadratic drag M / L^2,
+# joint damping M L^2 sqrt(g/L).
+. "$(dirname "$0")/lib.sh"
+
+L=0.6 M=0.05 G=9.81
+units="--length 60cm --mass 50g --gravity $G"
+val() { awk "BEGIN { L = $L; M = $M; G = $G; R = sqrt(G / L); pi = 4 * atan2(1, 1); printf \"%.17g\", $1 }"; }
+R=$(val R) T=$(val "1 / R") F=$(val "M * G") C1=$(val "M * R / L") C2=$(val "M / (L * L)")
+D=$(val "M * L * L * R")
+
+# same NAME DIMLESS PHYSICAL SCALES: the data rows (after the header) of the two CSV files agree
+# column by column once the physical one is divided by the scale of its column (SCALES: one per
+# column, "-" for a text column compared as is, "0" for a column not compared).
+same() {
+  name=$1; a=$2; b=$3; scales=$4
+  if [ ! -s "$a" ] || [ ! -s "$b" ]; then fail "$name (no output)"; return; fi
+  grep -v '^#' "$a" | tail -n +2 >"$tmp/a.rows"
+  grep -v '^#' "$b" | tail -n +2 >"$tmp/b.rows"
+  if [ "$(wc -l <"$tmp/a.rows")" -gt 0 ] && [ "$(wc -l <"$tmp/a.rows")" -eq "$(wc -l <"$tmp/b.rows")" ] &&
+     paste -d'|' "$tmp/a.rows" "$tmp/b.rows" | awk -F'|' -v scales="$scales" '
+       BEGIN { ns = split(scales, s, " ") }
+       { na = split($1, x, ","); nb = split($2, y, ",")
+         if (na != nb || na != ns) { print "# columns: " na " " nb " " ns; bad = 1; exit }
+         for (i = 1; i <= na; i++) {
+           if (s[i] == "0") continue
+           if (s[i] == "-") { if (x[i] != y[i]) { print "# row " NR " col " i ": " x[i] " " y[i]; bad = 1 }; continue }
+           if (x[i] == "" && y[i] == "") continue
+           u = y[i] / s[i]; d = u - x[i]; if (d < 0) d = -d
+           m = x[i] < 0 ? -x[i] : x[i]
+           if (d > 1e-9 * m + 1e-12) { print "# row " NR " col " i ": " x[i] " vs " u; bad = 1 }
+         } }
+       END { exit bad }'; then pass "$name"
+  else fail "$name"; fi
+}
+
+# critical (g defaults to standard gravity once --length is given)
+"$WHIRL" critical --modes 3 --links 20 -o "$tmp/a.csv"
+"$WHIRL" critical --modes 3 --links 20 --length 0.6 --mass 0.05 -o "$tmp/b.csv"
+same "critical: rad/s = sqrt(9.80665/L) x dimensionless" "$tmp/a.csv" "$tmp/b.csv" \
+  "- $(awk 'BEGIN { printf "%.17g", sqrt(9.80665 / 0.6) }')"
+grep -q '^# units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=9.80665$' "$tmp/b.csv" &&
+  grep -q '^# units: dimensionless' "$tmp/a.csv" && pass "critical: the units line" || fail "critical: the units line"
+
+# shape, the rate in Hz
+"$WHIRL" shape --omega 3 --mode 2 --points 41 -o "$tmp/a.csv"
+"$WHIRL" shape --omega "$(val "3 * R / (2 * pi)")Hz" --mode 2 --points 41 $units -o "$tmp/b.csv"
+same "shape: --omega in Hz, lengths in m, tension in N" "$tmp/a.csv" "$tmp/b.csv" "$L $L $L $F"
+
+# sweep, the rates in rpm
+"$WHIRL" sweep --modes 1,2 --omega-min 2 --omega-max 5 --omega-count 7 -o "$tmp/a.csv"
+"$WHIRL" sweep --modes 1,2 --omega-min "$(val "2 * R * 30 / pi")rpm" \
+  --omega-max "$(val "5 * R * 30 / pi")rpm" --omega-count 7 $units -o "$tmp/b.csv"
+same "sweep: rates in rpm" "$tmp/a.csv" "$tmp/b.csv" "$R - $L $L $F $L"
+
+# minimize, with a tip mass in g
+"$WHIRL" minimize --omega 3 --links 12 --tip-mass 0.2 -o "$tmp/a.csv"
+"$WHIRL" minimize --omega "$(val "3 * R")" --links 12 --tip-mass "$(val "0.2 * M * 1000")g" $units \
+  -o "$tmp/b.csv"
+same "minimize: rad/s, tip mass in g" "$tmp/a.csv" "$tmp/b.csv" "$L $L $L $F"
+
+# fit: a shape written in SI units, fitted in SI units
+"$WHIRL" shape --omega 4.1 --mode 2 --points 37 -o "$tmp/s.csv"
+"$WHIRL" shape --omega "$(val "4.1 * R")" --mode 2 --points 37 $units -o "$tmp/sp.csv"
+"$WHIRL" fit --shape "$tmp/s.csv" -o "$tmp/a.csv"
+"$WHIRL" fit --shape "$tmp/sp.csv" $units -o "$tmp/b.csv"
+same "fit: omega in rad/s" "$tmp/a.csv" "$tmp/b.csv" "$R 0 - 0"
+
+# stability: linear analysis with joint damping, one rate
+"$WHIRL" stability --omega 2.5 --mode 1 --links 10 --damping 0.01 --linear -o "$tmp/a.csv"
+"$WHIRL" stability --omega "$(val "2.5 * R")" --mode 1 --links 10 --damping "$(val "0.01 * $D")" \
+  --linear $units -o "$tmp/b.csv"
+same "stability: growth rates in 1/s, damping in kg m^2/s" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 -"
+
+# stability: the hand-swung map, eps in cm, linear drag in kg/(m s)
+"$WHIRL" stability --omega-min 2 --omega-max 3 --omega-count 2 --modes 1 --links 8 --eps 0.03 \
+  --drag 0.1 --linear -o "$tmp/a.csv"
+"$WHIRL" stability --omega-min "$(val "2 * R")" --omega-max "$(val "3 * R")" --omega-count 2 \
+  --modes 1 --links 8 --eps "$(val "0.03 * L * 100")cm" --drag "$(val "0.1 * $C1")" --linear $units \
+  -o "$tmp/b.csv"
+same "stability --eps --drag: map in SI units" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 - $L $L -"
+
+# driven: one shape with both drags
+"$WHIRL" driven --omega 1.6 --eps 0.05 --drag 0.05 --drag-quadratic 0.02 --points 21 -o "$tmp/a.csv"
+"$WHIRL" driven --omega "$(val "1.6 * R")" --eps "$(val "0.05 * L")" --drag "$(val "0.05 * $C1")" \
+  --drag-quadratic "$(val "0.02 * $C2")" --points 21 $units -o "$tmp/b.csv"
+same "driven: shape in SI units" "$tmp/a.csv" "$tmp/b.csv" "$L $L $L $L $F"
+# the drag from the chain's description: C2 = rho CD d / 2 [kg/m^2]
+"$WHIRL" driven --omega 1.6 --eps 0.05 --drag-quadratic "$(val "0.5 * 1.204 * 1.2 * 0.004 / $C2")" \
+  --points 21 -o "$tmp/a.csv"
+"$WHIRL" driven --omega "$(val "1.6 * R")" --eps "$(val "0.05 * L")" --drag-cd 1.2 --diameter 4mm \
+  --points 21 $units -o "$tmp/b.csv"
+same "driven: --drag-cd --diameter = the quadratic drag rho CD d / 2" "$tmp/a.csv" "$tmp/b.csv" \
+  "$L $L $L $L $F"
+# regime: one run from rest with its trace (eps in cm, times in s)
+"$WHIRL" regime --omega 3 --eps 0.06 --links 6 --t-max 60 --drag 0.2 --trace "$tmp/a.dat" \
+  --trace-every 5 -o "$tmp/a.csv"
+"$WHIRL" regime --omega "$(val "3 * R")" --eps "$(val "0.06 * L * 100")cm" --links 6 \
+  --t-max "$(val "60 / R")" --drag "$(val "0.2 * $C1")" --trace "$tmp/b.dat" --trace-every "$(val "5 / R")" \
+  $units -o "$tmp/b.csv"
+same "regime: one run in SI units" "$tmp/a.csv" "$tmp/b.csv" \
+  "- $R $L - - - - $T $L $L $L - $R $L $L $L $L -"
+grep -v '^#' "$tmp/a.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/a.rows.csv"
+grep -v '^#' "$tmp/b.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/b.rows.csv"
+same "regime: its trace in m and s" "$tmp/a.rows.csv" "$tmp/b.rows.csv" "$L $L $L $T"
+
+finish
