@@ -55,7 +55,7 @@ same "shape: --omega in Hz, lengths in m, tension in N" "$tmp/a.csv" "$tmp/b.csv
 "$WHIRL" sweep --modes 1,2 --omega-min 2 --omega-max 5 --omega-count 7 -o "$tmp/a.csv"
 "$WHIRL" sweep --modes 1,2 --omega-min "$(val "2 * R * 30 / pi")rpm" \
   --omega-max "$(val "5 * R * 30 / pi")rpm" --omega-count 7 $units -o "$tmp/b.csv"
-same "sweep: rates in rpm" "$tmp/a.csv" "$tmp/b.csv" "$R - $L $L $F $L"
+same "sweep: rates in rpm" "$tmp/a.csv" "$tmp/b.csv" "$R - $L $L $F $L -"
 
 # minimize, with a tip mass in g
 "$WHIRL" minimize --omega 3 --links 12 --tip-mass 0.2 -o "$tmp/a.csv"
