@@ -130,7 +130,7 @@ interrupt "simulate, adaptive rk8" TERM keep simulate "$scenes/mode2.ini" --set 
   --set run.tol=1e-16 --set run.t_end=1000 --set run.stop_deviation=1e9
 interrupt "regime, one run" INT none regime --omega 3 --eps 0.1 --t-max 100000
 interrupt "regime, one run" TERM none regime --omega 3 --eps 0.1 --t-max 100000
-interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --omega-count 401 --links 8 \
+interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 \
   --periods 20
 interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
 interrupt "driven branch" INT none driven --omega-min 1 --omega-max 4000 --eps 0.05
