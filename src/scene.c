@@ -18,46 +18,52 @@
 #include "whirl/common.h"
 #include "error.h"
 
-static const char *const section_names[] = {"chain", "start", "run", "output"};
+static const char *const section_names[] = {"chain", "start", "run", "output", "units"};
 enum { N_SECTIONS = sizeof section_names / sizeof section_names[0] };
 
+/* Every key: its section, its name and the kind of quantity its numbers are (the unit suffixes
+ * they may carry). */
 static const struct {
     int section; /* index into section_names */
     const char *name;
+    whirl_quantity kind;
 } key_names[WHIRL_SCENE_NKEYS] = {
     [WHIRL_KEY_CHAIN_DIM] = {0, "dim"},
     [WHIRL_KEY_CHAIN_LINKS] = {0, "links"},
-    [WHIRL_KEY_CHAIN_LENGTHS] = {0, "lengths"},
-    [WHIRL_KEY_CHAIN_MASSES] = {0, "masses"},
+    [WHIRL_KEY_CHAIN_LENGTHS] = {0, "lengths", WHIRL_QUANTITY_LENGTH},
+    [WHIRL_KEY_CHAIN_MASSES] = {0, "masses", WHIRL_QUANTITY_MASS},
+    [WHIRL_KEY_CHAIN_LENGTH] = {0, "length", WHIRL_QUANTITY_LENGTH},
+    [WHIRL_KEY_CHAIN_MASS] = {0, "mass", WHIRL_QUANTITY_MASS},
     [WHIRL_KEY_CHAIN_GRAVITY] = {0, "gravity"},
-    [WHIRL_KEY_START_OMEGA] = {1, "omega"},
+    [WHIRL_KEY_START_OMEGA] = {1, "omega", WHIRL_QUANTITY_RATE},
     [WHIRL_KEY_START_MODE] = {1, "mode"},
     [WHIRL_KEY_START_PERTURB] = {1, "perturb"},
     [WHIRL_KEY_START_SEED] = {1, "seed"},
     [WHIRL_KEY_START_THETA] = {1, "theta"},
     [WHIRL_KEY_START_PHI] = {1, "phi"},
-    [WHIRL_KEY_START_THETA_DOT] = {1, "theta_dot"},
-    [WHIRL_KEY_START_PHI_DOT] = {1, "phi_dot"},
+    [WHIRL_KEY_START_THETA_DOT] = {1, "theta_dot", WHIRL_QUANTITY_RATE},
+    [WHIRL_KEY_START_PHI_DOT] = {1, "phi_dot", WHIRL_QUANTITY_RATE},
     [WHIRL_KEY_START_HANGING] = {1, "hanging"},
     [WHIRL_KEY_RUN_FRAME] = {2, "frame"},
     [WHIRL_KEY_RUN_METHOD] = {2, "method"},
-    [WHIRL_KEY_RUN_DT] = {2, "dt"},
-    [WHIRL_KEY_RUN_T_END] = {2, "t_end"},
+    [WHIRL_KEY_RUN_DT] = {2, "dt", WHIRL_QUANTITY_TIME},
+    [WHIRL_KEY_RUN_T_END] = {2, "t_end", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_RUN_FORMULATION] = {2, "formulation"},
-    [WHIRL_KEY_RUN_OMEGA] = {2, "omega"},
-    [WHIRL_KEY_RUN_DRIVE_RADIUS] = {2, "drive_radius"},
+    [WHIRL_KEY_RUN_OMEGA] = {2, "omega", WHIRL_QUANTITY_RATE},
+    [WHIRL_KEY_RUN_DRIVE_RADIUS] = {2, "drive_radius", WHIRL_QUANTITY_LENGTH},
     [WHIRL_KEY_RUN_AIR_DRAG] = {2, "air_drag"},
     [WHIRL_KEY_RUN_AIR_DRAG_QUADRATIC] = {2, "air_drag_quadratic"},
     [WHIRL_KEY_RUN_INTERNAL_DAMPING] = {2, "internal_damping"},
     [WHIRL_KEY_RUN_SEED_SIGMA] = {2, "seed_sigma"},
     [WHIRL_KEY_RUN_SEED_LAMBDA] = {2, "seed_lambda"},
     [WHIRL_KEY_RUN_TOL] = {2, "tol"},
-    [WHIRL_KEY_RUN_STOP_DEVIATION] = {2, "stop_deviation"},
-    [WHIRL_KEY_OUTPUT_EVERY] = {3, "every"},
+    [WHIRL_KEY_RUN_STOP_DEVIATION] = {2, "stop_deviation", WHIRL_QUANTITY_LENGTH},
+    [WHIRL_KEY_OUTPUT_EVERY] = {3, "every", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_OUTPUT_COLUMNS] = {3, "columns"},
     [WHIRL_KEY_OUTPUT_TRACE] = {3, "trace"},
-    [WHIRL_KEY_OUTPUT_TRACE_EVERY] = {3, "trace_every"},
+    [WHIRL_KEY_OUTPUT_TRACE_EVERY] = {3, "trace_every", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_OUTPUT_REFERENCE_MODE] = {3, "reference_mode"},
+    [WHIRL_KEY_UNITS_SYSTEM] = {4, "system"},
 };
 
 static const char *const column_names[WHIRL_NCOLUMNS] = {
@@ -344,15 +350,19 @@ static int require(const convert *v, whirl_scene_key key, const char *why)
 }
 
 /* A finite number, the whole text. */
-static int parse_number(const char *text, double *out)
+static int parse_number(const char *text, whirl_quantity kind, double *out)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(text, &end);
-    while (*end == ' ' || *end == '\t') end++;
-    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(x)) return -1;
-    *out = x;
-    return 0;
+    return whirl_parse_quantity(text, kind, out, NULL);
+}
+
+/* What the numbers of key may look like, for messages: "a finite number (optionally with
+ * m, cm or mm)". */
+static const char *number_words(whirl_scene_key key, char *buf, size_t size)
+{
+    const whirl_quantity kind = key_names[key].kind;
+    if (kind == WHIRL_QUANTITY_NUMBER) return "a finite number";
+    snprintf(buf, size, "a finite number (optionally with %s)", whirl_quantity_suffixes(kind));
+    return buf;
 }
 
 /* The number of key, or dflt if absent. */
@@ -360,8 +370,10 @@ static int get_double(const convert *v, whirl_scene_key key, double dflt, double
 {
     *out = dflt;
     if (!given(v, key)) return GSL_SUCCESS;
-    if (parse_number(v->raw[key], out) != 0)
-        return key_error(v, key, "must be a finite number, got '%s'", v->raw[key]);
+    char words[80];
+    if (parse_number(v->raw[key], key_names[key].kind, out) != 0)
+        return key_error(v, key, "must be %s, got '%s'", number_words(key, words, sizeof words),
+                         v->raw[key]);
     return GSL_SUCCESS;
 }
 
@@ -417,8 +429,10 @@ static int get_list(const convert *v, whirl_scene_key key, size_t n, int positiv
         char *comma = strchr(p, ',');
         if (comma) *comma = '\0';
         char *t = trim(p);
-        if (parse_number(t, &x[i]) != 0)
-            status = key_error(v, key, "value %zu must be a finite number, got '%s'", i + 1, t);
+        char words[80];
+        if (parse_number(t, key_names[key].kind, &x[i]) != 0)
+            status = key_error(v, key, "value %zu must be %s, got '%s'", i + 1,
+                               number_words(key, words, sizeof words), t);
         else if (positive && !(x[i] > 0))
             status = key_error(v, key, "value %zu must be > 0, got %s", i + 1, t);
         p = comma ? comma + 1 : p;
@@ -466,14 +480,21 @@ static int get_list_or_zero(const convert *v, whirl_scene_key key, size_t n, dou
     return GSL_SUCCESS;
 }
 
-/* Equal values summing to 1 when key is absent. */
-static int get_weights(const convert *v, whirl_scene_key key, size_t n, double **out)
+/* The list of key (N values > 0), or, when it is absent, N equal values summing to total. The
+ * sum of the values into *sum. */
+static int get_weights(const convert *v, whirl_scene_key key, size_t n, double total,
+                       double **out, double *sum)
 {
     TRY(get_list(v, key, n, 1, out));
     if (*out == NULL) {
         if ((*out = malloc(n * sizeof **out)) == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-        for (size_t i = 0; i < n; i++) (*out)[i] = 1.0 / (double)n;
+        for (size_t i = 0; i < n; i++) (*out)[i] = total / (double)n;
+        *sum = total; /* as given, not as summed */
+        return GSL_SUCCESS;
     }
+    *sum = 0;
+    for (size_t i = 0; i < n; i++) *sum += (*out)[i];
+    if (!isfinite(*sum)) return key_error(v, key, "the sum of the values overflows");
     return GSL_SUCCESS;
 }
 
@@ -485,19 +506,40 @@ static int first_given(const convert *v, const whirl_scene_key *keys, size_t n)
     return -1;
 }
 
+static int convert_units(const convert *v)
+{
+    static const char *const systems[] = {"dimensionless", "SI"};
+    return get_word(v, WHIRL_KEY_UNITS_SYSTEM, systems, 2, 0, &v->scene->physical);
+}
+
+/* The scalar key or the list key of the chain, not both. */
+static int one_of(const convert *v, whirl_scene_key scalar, whirl_scene_key list)
+{
+    if (given(v, scalar) && given(v, list))
+        return key_error(v, scalar, "conflicts with [chain] %s: give the chain's %s or the list "
+                         "of N values", key_names[list].name, key_names[scalar].name);
+    return GSL_SUCCESS;
+}
+
 static int convert_chain(const convert *v)
 {
     whirl_scene *s = v->scene;
     long dim, links;
+    double length, mass;
     TRY(require(v, WHIRL_KEY_CHAIN_DIM, NULL));
     TRY(require(v, WHIRL_KEY_CHAIN_LINKS, NULL));
     TRY(get_integer(v, WHIRL_KEY_CHAIN_DIM, 3, 2, 3, &dim));
     TRY(get_integer(v, WHIRL_KEY_CHAIN_LINKS, 1, 1, 1000000, &links));
     s->dim = (int)dim;
     s->links = (size_t)links;
-    TRY(get_weights(v, WHIRL_KEY_CHAIN_LENGTHS, s->links, &s->length));
-    TRY(get_weights(v, WHIRL_KEY_CHAIN_MASSES, s->links, &s->mass));
-    return get_bounded(v, WHIRL_KEY_CHAIN_GRAVITY, 1, 0, 1, &s->gravity);
+    TRY(one_of(v, WHIRL_KEY_CHAIN_LENGTH, WHIRL_KEY_CHAIN_LENGTHS));
+    TRY(one_of(v, WHIRL_KEY_CHAIN_MASS, WHIRL_KEY_CHAIN_MASSES));
+    TRY(get_bounded(v, WHIRL_KEY_CHAIN_LENGTH, 1, 0, 1, &length));
+    TRY(get_bounded(v, WHIRL_KEY_CHAIN_MASS, 1, 0, 1, &mass));
+    TRY(get_weights(v, WHIRL_KEY_CHAIN_LENGTHS, s->links, length, &s->length, &s->chain_length));
+    TRY(get_weights(v, WHIRL_KEY_CHAIN_MASSES, s->links, mass, &s->mass, &s->chain_mass));
+    return get_bounded(v, WHIRL_KEY_CHAIN_GRAVITY, s->physical ? WHIRL_STANDARD_GRAVITY : 1, 0, 1,
+                       &s->gravity);
 }
 
 static const whirl_scene_key steady_keys[] = {WHIRL_KEY_START_OMEGA, WHIRL_KEY_START_MODE};
@@ -746,7 +788,8 @@ int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *over
     if (status == GSL_SUCCESS) {
         memcpy(scene->line, c.line_of, sizeof scene->line);
         convert v = {scene, c.raw};
-        status = convert_chain(&v);
+        status = convert_units(&v);
+        if (status == GSL_SUCCESS) status = convert_chain(&v);
         if (status == GSL_SUCCESS) status = convert_start(&v);
         if (status == GSL_SUCCESS) status = convert_run(&v);
         if (status == GSL_SUCCESS) status = convert_output(&v);

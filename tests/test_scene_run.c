@@ -94,7 +94,7 @@ static void test_pendulum(void **state)
     }
     fclose(fp);
     assert_int_equal(header, 1);
-    assert_int_equal(lines, 3 + 1 + 13);
+    assert_int_equal(lines, 4 + 1 + 13); /* 4 comment lines (the last: units), names, rows */
     whirl_scene_free(&s);
 }
 

@@ -141,7 +141,7 @@ t_end = 1
 EOF
 expect_error "dt <= 0: file, line and key" "^whirl simulate: $bad:7: \[run\] dt: must be > 0, got -1\$" \
   simulate "$bad" -o "$tmp/out.csv"
-expect_error "NaN" "^whirl simulate: $bad: --set run.t_end: must be a finite number, got 'nan'\$" \
+expect_error "NaN" "^whirl simulate: $bad: --set run.t_end: must be a finite number \(optionally with s or ms\), got 'nan'\$" \
   simulate "$bad" --set run.dt=0.1 --set run.t_end=nan -o "$tmp/out.csv"
 expect_error "list of the wrong length" "$bad: --set chain.lengths: expected 2 values \(links = 2\), got 3\$" \
   simulate "$bad" --set run.dt=0.1 --set chain.lengths=1,1,1 -o "$tmp/out.csv"

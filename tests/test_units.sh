@@ -108,4 +108,69 @@ grep -v '^#' "$tmp/a.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/a.r
 grep -v '^#' "$tmp/b.dat" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/b.rows.csv"
 same "regime: its trace in m and s" "$tmp/a.rows.csv" "$tmp/b.rows.csv" "$L $L $L $T"
 
+# simulate: a scene in SI ([units] system = SI, the chain's length and mass as scalars, values with
+# unit suffixes) against the dimensionless scene with every value converted here
+cat >"$tmp/si.ini" <<EOF
+[units]
+system = SI
+[chain]
+dim = 3
+links = 12
+length = 60cm
+mass = 50g
+gravity = $G
+[start]
+omega = $(val "3.2 * R / (2 * pi)")Hz
+mode = 2
+perturb = 0.01
+[run]
+dt = $(val "0.01 / R * 1000")ms
+t_end = $(val "4 / R")
+air_drag = $(val "0.05 * $C1")
+drive_radius = $(val "0.01 * L * 100")cm
+[output]
+every = $(val "0.5 / R")
+columns = t, tip_x, tip_y, tip_z, energy, lz, deviation
+trace = $tmp/b.trace
+trace_every = $(val "1 / R")
+EOF
+cat >"$tmp/dimless.ini" <<EOF
+[chain]
+dim = 3
+links = 12
+[start]
+omega = 3.2
+mode = 2
+perturb = 0.01
+[run]
+dt = 0.01
+t_end = 4
+air_drag = 0.05
+drive_radius = 0.01
+[output]
+every = 0.5
+columns = t, tip_x, tip_y, tip_z, energy, lz, deviation
+trace = $tmp/a.trace
+trace_every = 1
+EOF
+"$WHIRL" simulate "$tmp/dimless.ini" -o "$tmp/a.csv"
+"$WHIRL" simulate "$tmp/si.ini" -o "$tmp/b.csv"
+same "simulate: a scene in SI units (60cm, 50g, Hz, ms)" "$tmp/a.csv" "$tmp/b.csv" \
+  "$T $L $L $L $(val "M * G * L") $(val "M * L * L * R") $L"
+grep -q "^# units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=$G\$" "$tmp/b.csv" &&
+  grep -q '^# units: dimensionless' "$tmp/a.csv" && pass "simulate: the units line" ||
+  fail "simulate: the units line"
+grep -v '^#' "$tmp/a.trace" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/a.rows.csv"
+grep -v '^#' "$tmp/b.trace" | awk 'NF' | sed 's/ /,/g; 1s/^/x,y,z,t\n/' >"$tmp/b.rows.csv"
+same "simulate: its trace in m and s" "$tmp/a.rows.csv" "$tmp/b.rows.csv" "$L $L $L $T"
+grep -q "^# units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=$G\$" "$tmp/b.trace" &&
+  pass "simulate: the trace's units line" || fail "simulate: the trace's units line"
+# the scalar and the list of the same thing, and an unknown unit system
+printf '[chain]\ndim = 3\nlinks = 2\nlength = 1\nlengths = 0.5, 0.5\n' >"$tmp/both.ini"
+expect_error "simulate: length and lengths together" "conflicts with \[chain\] lengths" \
+  simulate "$tmp/both.ini"
+printf '[units]\nsystem = imperial\n' >"$tmp/imperial.ini"
+expect_error "simulate: an unknown unit system" "must be one of dimensionless, SI, got 'imperial'" \
+  simulate "$tmp/imperial.ini"
+
 finish

@@ -15,6 +15,7 @@
 #define WHIRL_COMMON_H
 
 #include <gsl/gsl_errno.h>
+#include <stdio.h>
 
 /* WHIRL_API marks the library's public functions. The shared library is compiled with
  * -fvisibility=hidden and exports these alone, so every symbol it exports starts with whirl_. */
@@ -67,5 +68,36 @@ WHIRL_API void whirl_stop_restore_signals(void);
  * WHIRL_FORMAT_MAX chars; returns buf. Thread-safe. */
 #define WHIRL_FORMAT_MAX 32
 WHIRL_API char *whirl_format_double(char *buf, double x);
+
+/* ---- quantities with units ----
+ * The physical kinds a number given as text may carry a unit suffix for, and the SI unit it is
+ * converted to: rate rad/s (suffixes rad/s, Hz = 2 pi rad/s, rpm = 2 pi/60 rad/s), length m
+ * (m, cm, mm), mass kg (kg, g), time s (s, ms). */
+typedef enum {
+    WHIRL_QUANTITY_NUMBER, /* a pure number: no suffix */
+    WHIRL_QUANTITY_RATE,
+    WHIRL_QUANTITY_LENGTH,
+    WHIRL_QUANTITY_MASS,
+    WHIRL_QUANTITY_TIME
+} whirl_quantity;
+
+/* Standard gravity [m/s^2] (CGPM 1901): g when SI units are chosen and no gravity is given. */
+#define WHIRL_STANDARD_GRAVITY 9.80665
+
+/* Reads text, all of it: a finite double, optionally followed (no space needed) by one of the
+ * kind's suffixes, which multiplies it by the suffix's factor. Returns 0 and sets *value (and
+ * *suffixed to whether a suffix was given, if suffixed is not NULL), or -1 for anything else:
+ * no number, trailing text that is not a suffix of the kind, overflow, inf, nan. */
+WHIRL_API int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value,
+                                   int *suffixed);
+/* The suffixes of the kind, as words for a message: "rad/s, Hz or rpm" ("" for a number). */
+WHIRL_API const char *whirl_quantity_suffixes(whirl_quantity kind);
+
+/* Writes the line that states the units of a file, the same in every file whirl writes:
+ *   # units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=9.80665
+ * when physical (SI; L, M, g the chain's length, mass and gravity), else
+ *   # units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), force M g) */
+WHIRL_API void whirl_write_units_line(FILE *fp, int physical, double length, double mass,
+                                      double gravity);
 
 #endif

@@ -1,8 +1,15 @@
 /* whirl: scenes. A scene is an INI file describing one simulation run of the N-link chain:
  * the chain, its start, the run (frame, integrator, forces) and what to write.
  *
- *   [chain]  dim = 2 | 3 (required), links = N (required), lengths, masses (comma lists of N,
- *            default equal, each summing to 1), gravity (default 1)
+ *   [units]  system = dimensionless | SI (default dimensionless): the units of every value in
+ *            the scene and of the output. Dimensionless: lengths in L, masses in M, time in
+ *            sqrt(L/g), rates in sqrt(g/L) (whirl's units when length, mass and gravity are 1).
+ *            SI: m, kg, s, rad/s, N; gravity defaults to 9.80665 m/s^2. Either way a value of a
+ *            physical kind may carry a unit suffix (whirl_parse_quantity: 60cm, 50g, 4Hz, 240rpm,
+ *            5ms), which multiplies it by the suffix's factor to m, kg, rad/s or s.
+ *   [chain]  dim = 2 | 3 (required), links = N (required), length (the chain's length, equal
+ *            links; default 1) or lengths (comma list of N), mass (the chain's mass, equal
+ *            masses; default 1) or masses (comma list of N), gravity (default 1, SI 9.80665)
  *   [start]  one of three starts:
  *            - omega, mode (both required): the exact N-link steady shape of mode k at omega
  *              (3D only), rotating rigidly at omega;
@@ -55,7 +62,9 @@
 typedef enum {
     WHIRL_KEY_CHAIN_DIM,
     WHIRL_KEY_CHAIN_LINKS,
+    WHIRL_KEY_CHAIN_LENGTH,
     WHIRL_KEY_CHAIN_LENGTHS,
+    WHIRL_KEY_CHAIN_MASS,
     WHIRL_KEY_CHAIN_MASSES,
     WHIRL_KEY_CHAIN_GRAVITY,
     WHIRL_KEY_START_OMEGA,
@@ -86,6 +95,7 @@ typedef enum {
     WHIRL_KEY_OUTPUT_TRACE,
     WHIRL_KEY_OUTPUT_TRACE_EVERY,
     WHIRL_KEY_OUTPUT_REFERENCE_MODE,
+    WHIRL_KEY_UNITS_SYSTEM,
     WHIRL_SCENE_NKEYS
 } whirl_scene_key;
 
@@ -113,12 +123,17 @@ typedef enum {
 typedef struct whirl_scene {
     char *path; /* the scene file, as given */
 
+    /* [units] */
+    int physical;     /* 1: SI (m, kg, s, rad/s, N); 0: dimensionless (default) */
+
     /* [chain] */
-    int dim;          /* 2 (x-z plane) or 3 */
-    size_t links;     /* N >= 1 */
-    double *length;   /* N link lengths [L] > 0; default 1/N each */
-    double *mass;     /* N masses [M] > 0; default 1/N each */
-    double gravity;   /* g > 0; default 1 */
+    int dim;              /* 2 (x-z plane) or 3 */
+    size_t links;         /* N >= 1 */
+    double *length;       /* N link lengths > 0; default chain_length/N each */
+    double *mass;         /* N masses > 0; default chain_mass/N each */
+    double chain_length;  /* the sum of length[] [L or m]; [chain] length, default 1 */
+    double chain_mass;    /* the sum of mass[] [M or kg]; [chain] mass, default 1 */
+    double gravity;       /* g > 0; default 1, with SI units 9.80665 [m/s^2] */
 
     /* [start] */
     whirl_start_kind start;
@@ -236,7 +251,8 @@ WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
 WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res);
 
-/* CSV: the header (comment lines, then the column names), one row (the scene's columns of
+/* CSV: the header (comment lines, the last the units line of whirl_write_units_line, then the
+ * column names), one row (the scene's columns of
  * value[WHIRL_NCOLUMNS]), one trace frame ("# t = T", then "x y z t" of the pivot and of every
  * mass; blocks after the first (index > 0) begin with two empty lines). GSL_EFAILED if fp has
  * an error. */

@@ -1,5 +1,5 @@
 """The package's C declarations against the library's headers: every struct it declares has the
-size and field offsets the C compiler gives it."""
+size and field offsets the C compiler gives it, every constant its value."""
 import os
 import shutil
 import subprocess
@@ -7,7 +7,7 @@ import subprocess
 import pytest
 
 from whirl import _cdef
-from whirl._lib import ffi
+from whirl._lib import ffi, lib
 
 
 def test_struct_layout_matches_the_headers(tmp_path, repo):
@@ -15,6 +15,9 @@ def test_struct_layout_matches_the_headers(tmp_path, repo):
     if cc is None:
         pytest.fail("no C compiler")
     expected, lines = [], []
+    for name in _cdef.CONSTANTS:
+        expected.append("%s %d" % (name, getattr(lib, name)))
+        lines.append('printf("%s %%d\\n", (int)(%s));' % (name, name))
     for name in _cdef.STRUCTS:
         t = ffi.typeof(name)
         expected.append("%s %d" % (name, ffi.sizeof(t)))

@@ -298,3 +298,85 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
                        size_t *count, whirl_windows_stats *stats);
 """
 STRUCTS += ["whirl_windows_params", "whirl_window", "whirl_windows_stats"]
+
+CDEF += r"""
+int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
+                      double *links);
+int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
+int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
+                               double *y);
+"""
+
+CDEF += r"""
+#define WHIRL_SCENE_NKEYS 36
+#define WHIRL_NCOLUMNS 9
+typedef struct whirl_scene {
+    char *path;
+    int physical;
+    int dim;
+    size_t links;
+    double *length;
+    double *mass;
+    double chain_length;
+    double chain_mass;
+    double gravity;
+    int start;
+    double start_omega;
+    int mode;
+    double perturb;
+    unsigned long seed;
+    double *theta;
+    double *phi;
+    double *theta_dot;
+    double *phi_dot;
+    whirl_frame frame;
+    char *method;
+    double dt;
+    double t_end;
+    whirl_formulation formulation;
+    double omega;
+    double drive_radius;
+    double air_drag;
+    double air_drag_quadratic;
+    double internal_damping;
+    double *seed_sigma;
+    double *seed_lambda;
+    double tol;
+    double stop_deviation;
+    double every;
+    size_t n_columns;
+    int columns[9];
+    int want[9];
+    char *trace;
+    double trace_every;
+    int reference_mode;
+    int line[36];
+} whirl_scene;
+int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
+                      whirl_scene *scene);
+void whirl_scene_free(whirl_scene *scene);
+const char *whirl_column_name(int c);
+typedef struct whirl_scene_work whirl_scene_work;
+typedef struct whirl_scene_output {
+    int (*row)(void *ctx, const double *value);
+    int (*frame)(void *ctx, double t, const double *pivot, const double *x, size_t n);
+    int (*progress)(void *ctx, double t);
+    void *ctx;
+} whirl_scene_output;
+typedef struct whirl_scene_result {
+    double t;
+    unsigned long rows, frames;
+    int stopped;
+    double deviation;
+    whirl_integrator_stats stats;
+} whirl_scene_result;
+whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *scene);
+void whirl_scene_work_free(whirl_scene_work *w);
+int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
+                         whirl_scene_result *res);
+"""
+STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
+
+# The constants whose values tests/test_layout.py checks against the C headers.
+CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
+             "WHIRL_NCOLUMNS"]

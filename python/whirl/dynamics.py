@@ -112,27 +112,38 @@ class Simulation:
         self._t[0] = t
         self._ref = self._inertial()
 
-    def set_steady(self, mode, omega=None):
+    def set_steady(self, mode, omega=None, perturb=0.0, seed=1):
         """Starts from the exact steady shape of ``mode`` at ``omega`` (default: the model's
-        omega) in the x-z plane, rotating rigidly at omega about z (3D, pivot on the axis)."""
+        omega) in the x-z plane, turning rigidly at omega about z (3D), placed as the library
+        places it (whirl_dyn_state_from_shape: the pivot at (drive_radius, 0, 0), in the
+        inertial frame turned by the drive's phase at t = 0).
+
+        perturb: each link direction turned by this angle [rad] towards a random direction
+        perpendicular to it (the library's one perturbation rule, whirl_perturb_links: GSL's
+        MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
+        The deviation is measured from the unperturbed shape."""
         w = self.omega if omega is None else as_float(omega, "omega", positive=True)
         mode = _mode(mode)
+        perturb = as_float(perturb, "perturb", nonnegative=True)
+        seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
         if self._model.dim != 3:
             raise ValueError("a steady start needs dim = 3")
-        if self._model.drive_radius != 0:
-            raise ValueError("a steady start needs the pivot on the axis (drive_radius = 0)")
         info = ffi.new("whirl_shape_info *")
         check(lib.whirl_nlink_solve(self.chain._c, w, mode, 0.0, info))
         r, z, tension = (np.empty(self.n + 1) for _ in range(3))
         check(lib.whirl_nlink_positions(self.chain._c, w, info.tip_r, _lib.dptr(r),
                                         _lib.dptr(z), _lib.dptr(tension)))
-        x = np.zeros((self.n, 3))
-        x[:, 0], x[:, 2] = r[1:], z[1:]
-        # rigid rotation at w seen from the model's frame (rotating at the model's omega)
-        spin = w - (self.omega if self._model.frame == 1 else 0.0)
-        v = np.zeros((self.n, 3))
-        v[:, 1] = spin * x[:, 0]
-        self.set_state(x, v)
+        links = np.empty(3 * self.n)
+        check(lib.whirl_shape_links(self.n, _lib.dptr(r), ffi.NULL, _lib.dptr(z),
+                                    _lib.dptr(links)))
+        check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
+                                             _lib.dptr(self._y)))
+        self._t[0] = 0.0
+        self._ref = self._inertial()
+        if perturb > 0:
+            check(lib.whirl_perturb_links(self.n, _lib.dptr(links), perturb, seed))
+            check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
+                                                 _lib.dptr(self._y)))
 
     def set_hanging(self):
         """Starts from the chain hanging straight down at rest (pivot on the axis)."""

@@ -24,46 +24,18 @@ int cli_error(const cli_command *cmd, const char *fmt, ...)
 
 /* ---- the option table: units, ranges, help ---- */
 
-/* A physical value with an optional unit suffix ("4Hz", "60cm"): the number and the factor
- * that turns it into the option's SI unit (rad/s, m, kg). Returns -1 for an unknown suffix. */
-typedef struct suffix {
-    const char *text;
-    double factor;
-} suffix;
-
-static const suffix rate_suffixes[] = {
-    {"rad/s", 1}, {"Hz", 6.283185307179586476925286766559}, {"hz", 6.283185307179586476925286766559},
-    {"rpm", 0.10471975511965977461542144610932}, {NULL, 0}};
-static const suffix length_suffixes[] = {{"m", 1}, {"cm", 0.01}, {"mm", 0.001}, {NULL, 0}};
-static const suffix mass_suffixes[] = {{"kg", 1}, {"g", 0.001}, {NULL, 0}};
-
-static const suffix *suffixes_of(cli_unit kind)
+/* The library's kind of quantity for a unit kind: the unit suffixes it accepts. */
+static whirl_quantity quantity_of(cli_unit kind)
 {
     switch (kind) {
-    case CLI_UNIT_RATE: return rate_suffixes;
+    case CLI_UNIT_RATE: return WHIRL_QUANTITY_RATE;
     case CLI_UNIT_LENGTH:
-    case CLI_UNIT_SET_LENGTH: return length_suffixes;
+    case CLI_UNIT_SET_LENGTH: return WHIRL_QUANTITY_LENGTH;
     case CLI_UNIT_MASS:
-    case CLI_UNIT_SET_MASS: return mass_suffixes;
-    default: return NULL;
+    case CLI_UNIT_SET_MASS: return WHIRL_QUANTITY_MASS;
+    case CLI_UNIT_TIME: return WHIRL_QUANTITY_TIME;
+    default: return WHIRL_QUANTITY_NUMBER;
     }
-}
-
-/* A finite double, the whole string; for a physical kind an optional unit suffix, applied. */
-static int parse_double(const char *s, cli_unit kind, double *out)
-{
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || errno == ERANGE || !isfinite(v)) return -1;
-    if (*end != '\0') {
-        const suffix *u = suffixes_of(kind);
-        while (u && u->text && strcmp(u->text, end) != 0) u++;
-        if (u == NULL || u->text == NULL) return -1;
-        v *= u->factor;
-    }
-    *out = v;
-    return 0;
 }
 
 static int parse_int(const char *s, const char **end_out, int *out)
@@ -82,7 +54,7 @@ static int parse_value(const cli_option *o, const char *text)
     const char *end;
     switch (o->type) {
     case CLI_DOUBLE:
-        return parse_double(text, o->unit, o->value);
+        return whirl_parse_quantity(text, quantity_of(o->unit), o->value, NULL);
     case CLI_INT:
         return (parse_int(text, &end, o->value) == 0 && *end == '\0') ? 0 : -1;
     case CLI_STRING:
@@ -107,18 +79,16 @@ static int parse_value(const cli_option *o, const char *text)
     return -1;
 }
 
-static const char *type_words(const cli_option *o)
+/* What option o takes, in words (buf: room for the longest, 80 chars). */
+static const char *type_words(const cli_option *o, char *buf, size_t size)
 {
     switch (o->type) {
-    case CLI_DOUBLE:
-        switch (o->unit) {
-        case CLI_UNIT_RATE: return "a finite number (optionally with rad/s, Hz or rpm)";
-        case CLI_UNIT_LENGTH:
-        case CLI_UNIT_SET_LENGTH: return "a finite number (optionally with m, cm or mm)";
-        case CLI_UNIT_MASS:
-        case CLI_UNIT_SET_MASS: return "a finite number (optionally with kg or g)";
-        default: return "a finite number";
-        }
+    case CLI_DOUBLE: {
+        const whirl_quantity q = quantity_of(o->unit);
+        if (q == WHIRL_QUANTITY_NUMBER) return "a finite number";
+        snprintf(buf, size, "a finite number (optionally with %s)", whirl_quantity_suffixes(q));
+        return buf;
+    }
     case CLI_INT: return "an integer";
     case CLI_INT_LIST: return "a comma-separated list of integers";
     default: return "a value";
@@ -193,12 +163,7 @@ const char *cli_units_name(const cli_units *u, cli_unit kind)
 
 void cli_units_comment(FILE *fp, const cli_units *u)
 {
-    if (u->physical)
-        fprintf(fp, "# units: length=m mass=kg time=s rate=rad/s force=N L=%s M=%s g=%s\n",
-                CLI_NUM(u->length), CLI_NUM(u->mass), CLI_NUM(u->gravity));
-    else
-        fprintf(fp, "# units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), "
-                    "force M g)\n");
+    whirl_write_units_line(fp, u->physical, u->length, u->mass, u->gravity);
 }
 
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2)
@@ -468,8 +433,10 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         }
         const char *text = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
         if (text == NULL) return cli_error(cmd, "option %s needs a value (%s)", o->name, o->meta);
+        char words[80];
         if (parse_value(o, text) != 0)
-            return cli_error(cmd, "option %s needs %s, got '%s'", o->name, type_words(o), text);
+            return cli_error(cmd, "option %s needs %s, got '%s'", o->name,
+                             type_words(o, words, sizeof words), text);
     }
     /* the units before they are used */
     if (check_ranges(cmd, opts, nopts, given, 1)) return 1;
@@ -630,12 +597,3 @@ void cli_progress_update(cli_progress_state *p, long done, int final)
     fflush(stderr);
 }
 
-void cli_progress(const cli_command *cmd, const char *label, double fraction, int done)
-{
-    static int tty = -1;
-    if (tty < 0) tty = isatty(STDERR_FILENO);
-    if (!tty) return;
-    fprintf(stderr, "\rwhirl %s: %s %3.0f%%", cmd->name, label, 100 * fraction);
-    if (done) fputc('\n', stderr);
-    fflush(stderr);
-}

@@ -31,7 +31,7 @@ typedef enum {
     CLI_UNIT_RATE,      /* 1/T: sqrt(g/L); rad/s with units; suffix Hz or rpm (e.g. 4Hz, 240rpm) */
     CLI_UNIT_LENGTH,    /* L; m with units (suffix cm, mm accepted) */
     CLI_UNIT_MASS,      /* M; kg with units (suffix g accepted) */
-    CLI_UNIT_TIME,      /* sqrt(L/g); s with units */
+    CLI_UNIT_TIME,      /* sqrt(L/g); s with units (suffix ms accepted) */
     CLI_UNIT_FORCE,     /* M g; N with units */
     CLI_UNIT_DRAG,      /* linear drag per unit length, M sqrt(g/L) / L; kg/(m s) with units */
     CLI_UNIT_DRAG2,     /* quadratic drag per unit length, M / L^2; kg/m^2 with units */
@@ -126,7 +126,7 @@ typedef struct cli_units {
     int physical;   /* set by cli_parse: 1 if any of the three was given */
 } cli_units;
 #define CLI_UNITS_INIT {1, 1, 1, 0}
-#define CLI_STANDARD_GRAVITY 9.80665 /* m/s^2, g when SI units are on and --gravity is not given */
+#define CLI_STANDARD_GRAVITY WHIRL_STANDARD_GRAVITY /* g when SI units are on and no --gravity */
 #define CLI_UNITS_OPTIONS(u)                                                                   \
     {"--length", NULL, CLI_DOUBLE, &(u).length, &(u).physical, "L",                             \
      "chain length: switches to SI units (m; e.g. 0.6 or 60cm)", "(0, inf)", NULL, NULL, NULL,  \
@@ -230,8 +230,6 @@ void cli_progress_begin(cli_progress_state *p, const cli_command *cmd, const cha
 void cli_progress_update(cli_progress_state *p, long done, int final);
 /* Seconds on the monotonic clock. */
 double cli_wall_seconds(void);
-/* The old one-line form: "whirl CMD: label 42%" rewritten in place; done != 0 ends it. */
-void cli_progress(const cli_command *cmd, const char *label, double fraction, int done);
 
 /* ---- the commands ---- */
 int cmd_critical(const cli_command *cmd, int argc, char **argv);

@@ -6,7 +6,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "cli/cli.h"
 #include "whirl/scene.h"
@@ -18,9 +17,8 @@ typedef struct run {
     whirl_scene_work *work;
     cli_out csv, trace;
     int csv_open, trace_open;
-    unsigned long frames; /* written so far */
-    int progress;         /* the progress line is showing */
-    double shown;         /* wall clock of the last progress line [s] */
+    unsigned long frames;       /* written so far */
+    cli_progress_state progress; /* output intervals done of all, time left */
 } run;
 
 /* "WHERE: message" for a key of the scene, as the one-line error of the command. */
@@ -29,13 +27,6 @@ static int key_error(const run *r, whirl_scene_key key, const char *message)
     char where[512];
     return cli_error(r->cmd, "%s: %s", whirl_scene_where(&r->scene, key, where, sizeof where),
                      message);
-}
-
-static double wall_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static int on_row(void *ctx, const double *value)
@@ -47,23 +38,29 @@ static int on_row(void *ctx, const double *value)
 static int on_frame(void *ctx, double t, const double *pivot, const double *x, size_t n)
 {
     run *r = ctx;
-    if (r->frames == 0) { /* the trace opens with its parameters and units */
-        const cli_units dimensionless = CLI_UNITS_INIT;
+    if (r->frames == 0) { /* the trace opens with its parameters and units (the scene's) */
         const whirl_scene *s = &r->scene;
-        cli_trace_header(r->trace.fp, &dimensionless, "whirl simulate", s->omega, s->drive_radius,
-                         s->air_drag, s->air_drag_quadratic, (int)s->links);
+        const cli_units si = {s->chain_length, s->chain_mass, s->gravity, 1};
+        const cli_units dimensionless = CLI_UNITS_INIT, u = s->physical ? si : dimensionless;
+        cli_trace_header(r->trace.fp, &u, "whirl simulate", s->omega / cli_units_scale(&u, CLI_UNIT_RATE),
+                         s->drive_radius / cli_units_scale(&u, CLI_UNIT_LENGTH),
+                         s->air_drag / cli_units_scale(&u, CLI_UNIT_DRAG),
+                         s->air_drag_quadratic / cli_units_scale(&u, CLI_UNIT_DRAG2), (int)s->links);
     }
     return whirl_scene_write_frame(r->trace.fp, r->frames++, t, pivot, x, n);
+}
+
+/* The output intervals [0, every], ... up to t_end, all of them and those done at t. */
+static long intervals(const whirl_scene *s, double t)
+{
+    const double k = ceil(t / s->every - 1e-9);
+    return k < 1 ? 0 : k > 1e15 ? 1000000000000000L : (long)k;
 }
 
 static int on_progress(void *ctx, double t)
 {
     run *r = ctx;
-    if (wall_seconds() - r->shown > 0.25) {
-        cli_progress(r->cmd, "t", t / r->scene.t_end, 0);
-        r->progress = 1;
-        r->shown = wall_seconds();
-    }
+    cli_progress_update(&r->progress, intervals(&r->scene, t) - (t < r->scene.t_end), 0);
     return GSL_SUCCESS;
 }
 
@@ -78,10 +75,10 @@ static int simulate(run *r)
                                     .ctx = r};
     whirl_scene_result res;
     cli_catch_interrupts();
-    r->shown = wall_seconds();
+    cli_progress_begin(&r->progress, r->cmd, "intervals", intervals(s, s->t_end), 0);
     int status = whirl_scene_write_header(r->csv.fp, s);
     if (status == GSL_SUCCESS) status = whirl_scene_work_run(r->work, &out, &res);
-    if (r->progress) cli_progress(r->cmd, "t", res.t / s->t_end, 1);
+    cli_progress_update(&r->progress, intervals(s, res.t), 1);
     if (status == WHIRL_EINTERRUPTED) {
         cli_error(r->cmd, "%s: %lu rows kept", whirl_last_error(), res.rows);
         return CLI_EXIT_INTERRUPTED;

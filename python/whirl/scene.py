@@ -1,0 +1,121 @@
+"""Scenes (whirl/scene.h): one configured run of the N-link chain from an INI file, the same file
+``whirl simulate`` runs, with the same overrides, returned as numpy arrays instead of CSV.
+
+Units: the scene's own ([units] system = dimensionless or SI; SceneRun.units says which)."""
+import os
+
+import numpy as np
+
+from . import _lib
+from ._lib import ffi, lib, check
+
+
+class SceneRun:
+    """The output of run_scene.
+
+    ``columns``: the names of the scene's [output] columns, in order ("t" first);
+    ``data``: a dict of one array per column over the output rows (``run["tip_x"]`` is
+    ``run.data["tip_x"]``); ``trace_t`` and ``trace_x`` (shape (frames, N + 1, 3): the pivot, then
+    masses 1..N, in the inertial frame) when the run was asked for its trace, else None;
+    ``t`` the time reached; ``stopped`` (and ``deviation``) when [run] stop_deviation ended it;
+    ``stats`` the integrator's counters; ``units`` a dict: physical (bool), length, mass,
+    gravity (the chain's, in the scene's units)."""
+
+    def __init__(self, columns, rows, trace_t, trace_x, res, units):
+        self.columns = columns
+        table = np.array(rows, dtype=np.float64).reshape(-1, len(columns))
+        self.data = {name: table[:, k].copy() for k, name in enumerate(columns)}
+        self.trace_t = trace_t
+        self.trace_x = trace_x
+        self.t = res.t
+        self.stopped = bool(res.stopped)
+        self.deviation = res.deviation if res.stopped else None
+        self.stats = {k: getattr(res.stats, k)
+                      for k in ("steps", "rejected", "rhs_evals", "iterations")}
+        self.units = units
+
+    def __getitem__(self, name):
+        return self.data[name]
+
+    def __repr__(self):
+        return "SceneRun(%d rows of %s, t = %g%s)" % (
+            len(self.data["t"]), ", ".join(self.columns), self.t,
+            ", stopped" if self.stopped else "")
+
+
+def _overrides(set):
+    if set is None:
+        return []
+    if isinstance(set, dict):
+        items = ["%s=%s" % (k, v) for k, v in set.items()]
+    elif isinstance(set, str):
+        items = [set]
+    else:
+        items = list(set)
+    for item in items:
+        if not isinstance(item, str) or "=" not in item:
+            raise ValueError("an override is 'section.key=value', got %r" % (item,))
+    return items
+
+
+def run_scene(path, set=None, trace=False):
+    """Runs the scene file ``path`` (see include/whirl/scene.h and the README for its keys) and
+    returns a SceneRun.
+
+    set: overrides applied after the file, as ``whirl simulate --set`` takes them: a dict
+      {"run.t_end": 5, "start.omega": "4Hz"}, a list of "section.key=value" strings, or one;
+    trace: True to collect every mass's position every [output] trace_every (default: at
+      every output row), or a number: the interval between frames in the scene's time unit;
+      no file is written (the scene's [output] trace names none here).
+    A bad scene raises whirl.Error with the library's message ("FILE:LINE: [section] key:
+    problem"); a failed run raises whirl.Error too; Ctrl-C raises KeyboardInterrupt."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError("path must be a file name, got %r" % (path,))
+    path = os.fspath(path)
+    items = _overrides(set)
+    every = None
+    if trace is not True and trace is not False:
+        every = _lib.as_float(trace, "trace", positive=True)
+    keep = [ffi.new("char[]", s.encode()) for s in items]
+    over = ffi.new("char *[]", keep) if keep else ffi.NULL
+    scene = ffi.new("whirl_scene *")
+    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene))
+    work = ffi.NULL
+    try:
+        if every is not None:
+            scene.trace_every = every
+        work = _lib.check_ptr(lib.whirl_scene_work_alloc(scene))
+        columns = [ffi.string(lib.whirl_column_name(scene.columns[c])).decode()
+                   for c in range(scene.n_columns)]
+        index = [scene.columns[c] for c in range(scene.n_columns)]
+        rows, frames_t, frames_x = [], [], []
+
+        @ffi.callback("int(void *, const double *)")
+        def on_row(ctx, value):
+            rows.extend(value[i] for i in index)
+            return 0
+
+        @ffi.callback("int(void *, double, const double *, const double *, size_t)")
+        def on_frame(ctx, t, pivot, x, n):
+            frame = np.empty((n + 1, 3))
+            frame[0] = ffi.unpack(pivot, 3)
+            frame[1:] = np.frombuffer(ffi.buffer(x, 3 * n * 8), dtype=np.float64).reshape(n, 3)
+            frames_t.append(t)
+            frames_x.append(frame)
+            return 0
+
+        out = ffi.new("whirl_scene_output *")
+        out.row = on_row
+        out.frame = on_frame if trace is not False else ffi.NULL
+        res = ffi.new("whirl_scene_result *")
+        with _lib.interruptible():
+            status = lib.whirl_scene_work_run(work, out, res)
+        check(status)
+        units = {"physical": bool(scene.physical), "length": scene.chain_length,
+                 "mass": scene.chain_mass, "gravity": scene.gravity}
+        trace_t = np.array(frames_t) if trace is not False else None
+        trace_x = np.array(frames_x) if trace is not False else None
+        return SceneRun(columns, rows, trace_t, trace_x, res, units)
+    finally:
+        lib.whirl_scene_work_free(work)  # the work refers to the scene: freed first
+        lib.whirl_scene_free(scene)
