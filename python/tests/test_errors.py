@@ -111,3 +111,16 @@ def test_ctrl_c_interrupts_a_spin_up():
     with pytest.raises(KeyboardInterrupt):
         whirl.spin_up(4.0, 0.05, 200, air_drag=0.05, t_max=1e6)
     assert time.monotonic() - start < 5
+
+
+def test_ctrl_c_interrupts_a_scene(tmp_path):
+    scene = tmp_path / "long.ini"
+    scene.write_text("[chain]\ndim = 3\nlinks = 100\n[start]\nomega = 3\nmode = 2\n"
+                     "[run]\ndt = 0.001\nt_end = 50000\n[output]\nevery = 1000\n")
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        whirl.run_scene(scene)  # hours if not interrupted
+    assert time.monotonic() - start < 5
+    assert not whirl.stop_requested()
