@@ -267,6 +267,38 @@ static int trace_frame(void *ctx, double t, double angle, const double *pivot, c
     return GSL_SUCCESS;
 }
 
+/* The observer of a single run or a sweep: the trace's frame (if any) and the progress line,
+ * the time reached against the latest the run can reach, both in the user's time unit. */
+typedef struct observe_ctx {
+    trace_ctx *trace;             /* NULL: no trace */
+    cli_progress_state progress;  /* total: the bound below, in the user's time unit */
+    double bound;                 /* the latest time the run can reach [T] */
+    double time;                  /* the user's time unit in dimensionless ones */
+    double t;                     /* the time reached [T] */
+} observe_ctx;
+
+static int observe(void *ctx, double t, double angle, const double *pivot, const double *x,
+                   size_t n)
+{
+    observe_ctx *oc = ctx;
+    oc->t = fmin(t, oc->bound);
+    cli_progress_update(&oc->progress, (long)(oc->t * oc->time), 0);
+    return oc->trace ? trace_frame(oc->trace, t, angle, pivot, x, n) : GSL_SUCCESS;
+}
+
+/* Observes the runs of w: frames every trace_every when tc is given, else the progress alone
+ * once per time unit; bound: the latest time the runs can reach. */
+static void observe_begin(const cli_command *cmd, const regime_options *o, whirl_regime *w,
+                          observe_ctx *oc, trace_ctx *tc, const char *label, double bound)
+{
+    oc->trace = tc;
+    oc->bound = bound;
+    oc->t = 0;
+    oc->time = regime_cli_user(o, CLI_UNIT_TIME, 1);
+    cli_progress_begin(&oc->progress, cmd, label, (long)ceil(bound * oc->time), 0);
+    whirl_regime_observe(w, observe, oc, tc ? o->trace_every : fmin(1.0, bound / 100));
+}
+
 static int run_one(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
 {
     whirl_regime *w = whirl_regime_alloc(chain);
@@ -287,9 +319,11 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
     if (trace_open)
         cli_trace_header(trace.fp, &o->units, "whirl regime, one run from rest", o->p.omega,
                          o->p.drive_radius, o->p.air_drag, o->p.air_drag_quadratic, o->links);
-    if (trace_open) whirl_regime_observe(w, trace_frame, &tc, o->trace_every);
+    observe_ctx oc;
+    observe_begin(cmd, o, w, &oc, trace_open ? &tc : NULL, "time", o->p.t_max);
     whirl_regime_result r;
     const int status = whirl_regime_run(w, &o->p, &r);
+    cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
     if (status == WHIRL_EINTERRUPTED)
         rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
     else if (status != GSL_SUCCESS)
@@ -335,7 +369,12 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
         omega[j] = cli_grid(o->omega_min, o->omega_max, o->omega_steps,
                               (int)(j < n_up ? j : n - 1 - j));
     int rc = 0;
+    /* every point after the first: the change of rate, then at most t_max - t_ramp */
+    observe_ctx oc;
+    observe_begin(cmd, o, w, &oc, NULL, "time (of the longest possible)",
+                  o->p.t_max + (double)(n - 1) * (o->t_change + o->p.t_max - o->p.t_ramp));
     const int status = whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res);
+    cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
     if (status == WHIRL_EINTERRUPTED)
         rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
     else if (status != GSL_SUCCESS)
