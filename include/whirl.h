@@ -11,6 +11,7 @@
 #include "whirl/integrator.h"
 #include "whirl/scene.h"
 #include "whirl/stability.h"
+#include "whirl/continuum_stability.h"
 #include "whirl/optimize.h"
 #include "whirl/driven.h"
 #include "whirl/regime.h"

@@ -53,6 +53,7 @@
 
 #include "whirl/stability.h"
 #include "error.h"
+#include "windows_internal.h"
 
 #define KRYLOV_MAX 40 /* largest Arnoldi dimension before the fall-back */
 
@@ -78,6 +79,7 @@ struct whirl_windows {
     double *r, *z, *tension; /* nodes of a shape (N + 1) */
     const whirl_chain *chain; /* of the current search */
     int mode;
+    double lin_omega;      /* the rate of the linearisation in lin (NAN: none) */
     const double *scan_omega, *scan_tip; /* the scan's rates and tip radii, for the seeds */
     size_t nscan;
     whirl_windows_stats *stats;
@@ -365,7 +367,7 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
 /* ---- the search ---- */
 
 typedef struct point {
-    double omega, tip_r, growth;
+    double omega, growth;
     int unstable;
     size_t ncomplex; /* non-neutral mu */
     int *rank;       /* for each neutral mode with E < 0 (by frequency), the modes with E > 0
@@ -399,8 +401,10 @@ static double seed_of(const whirl_windows *w, double omega)
 }
 
 /* The shape of the mode at omega (the seed tip_r: the one nearest it), then the linearisation. */
-static int linearise_at(whirl_windows *w, double omega, double seed, double *tip_r)
+static int linearise_at(whirl_windows *w, double omega, double seed)
 {
+    if (omega == w->lin_omega) return GSL_SUCCESS;
+    w->lin_omega = NAN;
     whirl_shape_info info;
     int status = whirl_nlink_solve(w->chain, omega, w->mode, seed, &info);
     if (status) return status;
@@ -412,31 +416,49 @@ static int linearise_at(whirl_windows *w, double omega, double seed, double *tip
     status = whirl_nlink_positions(w->chain, omega, info.tip_r, w->r, w->z, w->tension);
     if (!status) status = whirl_stability_linearise(w->lin, &m, w->r, w->z);
     w->stats->shapes++;
-    *tip_r = info.tip_r;
+    if (!status) w->lin_omega = omega;
     return status;
 }
 
-static int stop_check(const whirl_windows *w, double omega)
+static int stop_check(const windows_source *src, double omega)
 {
     if (whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "window search of mode %d interrupted at omega = "
-                                              "%.10g", w->mode, omega);
+                                              "%.10g", src->mode, omega);
     return GSL_SUCCESS;
 }
 
-/* A full evaluation: every mu, and with signatures the ranks. */
-static int evaluate(whirl_windows *w, double omega, int signatures, point *p)
+/* The N-link chain as a source of spectra: the shape seeded from the scan, its linearisation. */
+static int nlink_spectrum(void *data, double omega, int signatures, whirl_spectrum *out)
 {
-    const double seed = w->nscan ? seed_of(w, omega) : p->tip_r;
-    int status = stop_check(w, omega);
-    if (!status) status = linearise_at(w, omega, seed, &p->tip_r);
+    whirl_windows *w = data;
+    int status = linearise_at(w, omega, seed_of(w, omega));
+    if (!status) status = whirl_windows_spectrum(w, w->lin, signatures, out);
+    return status;
+}
+
+static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu_im);
+
+static int nlink_pair(void *data, double omega, double sigma, double *mu_re, double *mu_im)
+{
+    whirl_windows *w = data;
+    int status = linearise_at(w, omega, seed_of(w, omega));
+    if (!status) status = split_blocks(w, w->lin);
+    if (!status) status = krylov_pair(w, sigma, mu_re, mu_im);
+    return status;
+}
+
+/* A full evaluation: every mu, and with signatures the ranks. */
+static int evaluate(const windows_source *src, double omega, int signatures, point *p)
+{
+    int status = stop_check(src, omega);
     whirl_spectrum sp;
-    if (!status) status = whirl_windows_spectrum(w, w->lin, signatures, &sp);
+    if (!status) status = src->spectrum(src->data, omega, signatures, &sp);
     if (status) return status;
     if (signatures)
-        w->stats->solves_vectors++;
+        src->stats->solves_vectors++;
     else
-        w->stats->solves_values++;
+        src->stats->solves_values++;
     p->omega = omega;
     p->growth = sp.growth;
     p->unstable = sp.growth > 0;
@@ -454,7 +476,8 @@ static int evaluate(whirl_windows *w, double omega, int signatures, point *p)
     if (!signatures) return GSL_SUCCESS;
     /* neutral modes by frequency */
     size_t m = 0;
-    int *order = (int *)w->ipiv; /* scratch of 2N */
+    int *order = malloc((sp.count + 1) * sizeof *order);
+    if (order == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
     for (size_t i = 0; i < sp.count; i++)
         if (root_re(sp.re[i], sp.im[i]) <= sp.level) order[m++] = (int)i;
     for (size_t i = 1; i < m; i++) /* insertion sort by frequency (mu decreasing) */
@@ -466,7 +489,10 @@ static int evaluate(whirl_windows *w, double omega, int signatures, point *p)
     p->rank = malloc((m + 1) * sizeof *p->rank);
     p->gap = malloc(2 * (m + 1) * sizeof *p->gap);
     p->gap_mu = malloc(2 * (m + 1) * sizeof *p->gap_mu);
-    if (!p->rank || !p->gap || !p->gap_mu) return whirl_fail(GSL_ENOMEM, "out of memory");
+    if (!p->rank || !p->gap || !p->gap_mu) {
+        free(order);
+        return whirl_fail(GSL_ENOMEM, "out of memory");
+    }
     size_t positive = 0;
     for (size_t i = 0; i < m; i++) {
         const int s = sp.signature[order[i]];
@@ -486,6 +512,7 @@ static int evaluate(whirl_windows *w, double omega, int signatures, point *p)
         }
         p->rank[p->nrank++] = (int)positive;
     }
+    free(order);
     return GSL_SUCCESS;
 }
 
@@ -637,7 +664,7 @@ int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigm
 }
 
 typedef struct root_args {
-    whirl_windows *w;
+    const windows_source *src;
     const whirl_windows_params *p;
     double mu_c;
     int divergence;
@@ -651,35 +678,39 @@ typedef struct root_args {
 static double pair_function(double omega, void *data)
 {
     root_args *r = data;
-    whirl_windows *w = r->w;
+    const windows_source *src = r->src;
     if (r->status) return NAN;
     for (int i = 0; i < r->cached; i++)
         if (omega == r->cache_omega[i]) return r->cache_value[i];
-    double tip_r;
-    int status = stop_check(w, omega);
-    if (!status) status = linearise_at(w, omega, seed_of(w, omega), &tip_r);
-    if (!status) status = split_blocks(w, w->lin);
+    int status = stop_check(src, omega);
     if (status) {
         r->status = status;
         return NAN;
     }
     double mu_re[2], mu_im[2];
-    if (r->p->krylov && !r->divergence && krylov_pair(w, r->mu_c, mu_re, mu_im) == GSL_SUCCESS) {
-        w->stats->solves_krylov++;
-        if (r->growth_sign != 0) {
-            const double g = fmax(root_re(mu_re[0], mu_im[0]), root_re(mu_re[1], mu_im[1]));
-            r->mu_c = mu_re[0];
-            return -g;
+    if (r->p->krylov && src->pair && !r->divergence) {
+        status = src->pair(src->data, omega, r->mu_c, mu_re, mu_im);
+        if (status == GSL_SUCCESS) {
+            src->stats->solves_krylov++;
+            if (r->growth_sign != 0) {
+                const double g = fmax(root_re(mu_re[0], mu_im[0]), root_re(mu_re[1], mu_im[1]));
+                r->mu_c = mu_re[0];
+                return -g;
+            }
+            return discriminant(mu_re, mu_im, 2, 0, 0, &r->mu_c);
         }
-        return discriminant(mu_re, mu_im, 2, 0, 0, &r->mu_c);
+        if (status != GSL_CONTINUE) {
+            r->status = status;
+            return NAN;
+        }
     }
     whirl_spectrum sp;
-    status = whirl_windows_spectrum(w, w->lin, 0, &sp);
+    status = src->spectrum(src->data, omega, 0, &sp);
     if (status) {
         r->status = status;
         return NAN;
     }
-    w->stats->solves_values++;
+    src->stats->solves_values++;
     if (r->growth_sign != 0) { /* the growth of the mu nearest mu_c */
         size_t best = 0;
         for (size_t i = 1; i < sp.count; i++)
@@ -697,7 +728,7 @@ typedef struct edge {
 } edge;
 
 typedef struct search {
-    whirl_windows *w;
+    const windows_source *src;
     const whirl_windows_params *p;
     edge *edges;
     size_t nedges, cap;
@@ -725,7 +756,7 @@ static int explore(search *s, point *a, point *b, int depth);
 static int locate(search *s, point *a, point *b, int depth)
 {
     const point *un = a->unstable ? a : b;
-    root_args r = {s->w, s->p, un->mu_c, 0, 0, 0, {0, 0}, {0, 0}, 0};
+    root_args r = {s->src, s->p, un->mu_c, 0, 0, 0, {0, 0}, {0, 0}, 0};
     r.divergence = un->mu_c_im == 0 && un->mu_c > 0;
     gsl_function f = {pair_function, &r};
     double lo = a->omega, hi = b->omega;
@@ -764,13 +795,13 @@ static int locate(search *s, point *a, point *b, int depth)
         if (status) {
             gsl_root_fsolver_free(solver);
             return whirl_fail(status, "mode %d: the window edge between omega = %.10g and %.10g "
-                                      "was not located", s->w->mode, a->omega, b->omega);
+                                      "was not located", s->src->mode, a->omega, b->omega);
         }
     } else { /* the discriminant does not bracket (several pairs): bisect on the stability */
         point mid = {0};
         while (hi - lo > s->p->tol) {
             const double m = (lo + hi) / 2;
-            status = evaluate(s->w, m, 0, &mid);
+            status = evaluate(s->src, m, 0, &mid);
             if (status) {
                 gsl_root_fsolver_free(solver);
                 return status;
@@ -788,8 +819,8 @@ static int locate(search *s, point *a, point *b, int depth)
     if (omega - d <= a->omega || omega + d >= b->omega) /* too close to check: trust the pair */
         return add_edge(s, omega, freq, !a->unstable);
     point left = {0}, right = {0};
-    status = evaluate(s->w, omega - d, 1, &left);
-    if (!status) status = evaluate(s->w, omega + d, 1, &right);
+    status = evaluate(s->src, omega - d, 1, &left);
+    if (!status) status = evaluate(s->src, omega + d, 1, &right);
     if (!status && left.unstable != right.unstable)
         status = add_edge(s, omega, freq, !left.unstable);
     if (!status) status = explore(s, a, &left, depth + 1);
@@ -810,13 +841,13 @@ static int explore(search *s, point *a, point *b, int depth)
     const double width = b->omega - a->omega;
     if (a->unstable && width < s->p->scan_step / 16) return GSL_SUCCESS;
     if (!a->unstable && width < s->p->tol) {
-        s->w->stats->unresolved++;
+        s->src->stats->unresolved++;
         return GSL_SUCCESS;
     }
     if (depth > 64) return GSL_SUCCESS;
     point mid = {0};
     const double m = (a->omega + b->omega) / 2;
-    int status = evaluate(s->w, m, 1, &mid);
+    int status = evaluate(s->src, m, 1, &mid);
     if (!status) status = explore(s, a, &mid, depth + 1);
     if (!status) status = explore(s, &mid, b, depth + 1);
     point_free(&mid);
@@ -841,7 +872,7 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
     const double g = c->gap[idx];
     if (isnan(g) || (!l && !r)) return GSL_SUCCESS;
     if ((l && !(g < l->gap[idx])) || (r && !(g < r->gap[idx]))) return GSL_SUCCESS;
-    root_args ra = {s->w, s->p, c->gap_mu[idx], 0, 0, 0, {0, 0}, {0, 0}, 0};
+    root_args ra = {s->src, s->p, c->gap_mu[idx], 0, 0, 0, {0, 0}, {0, 0}, 0};
     gsl_function fn = {pair_function, &ra};
     double x = c->omega, fx = g, lo, flo, hi, fhi;
     if (l && r) {
@@ -857,7 +888,7 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
     }
     if (fx < 0) {
         *hit = 1;
-        return evaluate(s->w, x, 1, found);
+        return evaluate(s->src, x, 1, found);
     }
     gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
@@ -877,7 +908,7 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
     gsl_min_fminimizer_free(m);
     if (ra.status) return ra.status;
     /* GSL's Brent may stop on a flat D (GSL_FAILURE): no window there */
-    if (*hit) return evaluate(s->w, x, 1, found);
+    if (*hit) return evaluate(s->src, x, 1, found);
     return GSL_SUCCESS;
 }
 
@@ -923,7 +954,7 @@ static int largest_growth(search *s, const point *end_from, const point *end_to,
         if (i <= SAMPLES) {
             point pt = {0};
             x[i] = win->from + (win->to - win->from) * ((double)i - 0.5) / SAMPLES;
-            int status = evaluate(s->w, x[i], 0, &pt);
+            int status = evaluate(s->src, x[i], 0, &pt);
             if (status) return status;
             f[i] = -pt.growth, mu[i] = pt.mu_c;
         }
@@ -933,9 +964,9 @@ static int largest_growth(search *s, const point *end_from, const point *end_to,
     win->at = x[best];
     if (!(f[best] < 0))
         return whirl_fail(GSL_EFAILED, "mode %d: no growth inside the window (%.10g, %.10g)",
-                          s->w->mode, win->from, win->to);
+                          s->src->mode, win->from, win->to);
     if (best == 0 || best == SAMPLES + 1) return GSL_SUCCESS; /* at an end of the range */
-    root_args r = {s->w, s->p, mu[best], 0, 0, -1, {0, 0}, {0, 0}, 0};
+    root_args r = {s->src, s->p, mu[best], 0, 0, -1, {0, 0}, {0, 0}, 0};
     gsl_function fn = {pair_function, &r};
     gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
@@ -954,73 +985,58 @@ static int largest_growth(search *s, const point *end_from, const point *end_to,
     if (r.status) return r.status;
     if (status)
         return whirl_fail(status, "mode %d: the largest growth in (%.10g, %.10g) was not found",
-                          s->w->mode, win->from, win->to);
+                          s->src->mode, win->from, win->to);
     /* a full solve there: the largest growth of all pairs */
     point check = {0};
-    status = evaluate(s->w, at, 0, &check);
+    status = evaluate(s->src, at, 0, &check);
     if (!status && check.growth > win->max_growth) win->max_growth = check.growth, win->at = at;
     return status;
 }
 
-int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
-                       const whirl_windows_params *p, whirl_window *windows, size_t max,
-                       size_t *count, whirl_windows_stats *stats)
+int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, double **omega,
+                        size_t *npts)
 {
-    *count = 0;
-    memset(stats, 0, sizeof *stats);
-    if (c->n != w->n)
-        return whirl_fail(GSL_EINVAL, "the chain has %zu links, the workspace %zu", c->n, w->n);
-    if (mode < 1 || (size_t)mode > c->n)
-        return whirl_fail(GSL_EINVAL, "mode %d of a %zu-link chain does not exist", mode, c->n);
+    *omega = NULL;
+    *npts = 0;
     if (!(p->omega_min > 0 && p->omega_max > p->omega_min && isfinite(p->omega_max)))
         return whirl_fail(GSL_EINVAL, "the range of rates must have 0 < omega_min < omega_max, "
                                       "got %g, %g", p->omega_min, p->omega_max);
     if (!(p->scan_step > 0) || !(p->tol > 0) || !(p->tol < p->scan_step))
         return whirl_fail(GSL_EINVAL, "the scan step and the tolerance must be > 0 (tol < step), "
                                       "got %g, %g", p->scan_step, p->tol);
-    double *critical = malloc((size_t)mode * sizeof *critical);
-    if (critical == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    int status = whirl_nlink_critical(c, (size_t)mode, critical);
-    const double birth = critical[mode - 1];
-    free(critical);
-    if (status) return status;
     const double from = fmax(p->omega_min, birth * (1 + 1e-6));
     if (!(from < p->omega_max))
         return whirl_fail(GSL_EDOM, "mode %d exists only above omega_%d = %.10g, beyond the "
                                     "range's end %g", mode, mode, birth, p->omega_max);
-    w->chain = c;
-    w->mode = mode;
-    w->stats = stats;
-    stats->omega_from = from;
-    stats->omega_to = p->omega_max;
     const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
     if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
         return whirl_fail(GSL_EINVAL, "mode %d: a scan of %g..%g in steps of %g has %.3g points, "
                           "more than %d: raise the scan step or narrow the range", mode, from,
                           p->omega_max, p->scan_step, scan_steps + 1, WINDOWS_SCAN_MAX);
-    const size_t steps = (size_t)scan_steps, npts = steps + 1;
-    double *omega = malloc(npts * sizeof *omega);
-    whirl_shape_info *info = malloc(npts * sizeof *info);
-    int *exists = malloc(npts * sizeof *exists);
-    double *tip = malloc(npts * sizeof *tip);
+    const size_t steps = (size_t)scan_steps, n = steps + 1;
+    double *om = malloc(n * sizeof *om);
+    if (om == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    for (size_t j = 0; j < n; j++) om[j] = j == steps ? p->omega_max : from + (double)j * p->scan_step;
+    *omega = om;
+    *npts = n;
+    return GSL_SUCCESS;
+}
+
+int whirl_windows_search(const windows_source *src, const whirl_windows_params *p,
+                         const double *omega, size_t npts, whirl_window *windows, size_t max,
+                         size_t *count)
+{
+    const int mode = src->mode;
+    whirl_windows_stats *stats = src->stats;
+    const double from = omega[0];
+    stats->omega_from = from;
+    stats->omega_to = p->omega_max;
+    *count = 0;
     point *pts = calloc(npts, sizeof *pts);
-    search s = {w, p, NULL, 0, 0};
-    status = (!omega || !info || !exists || !tip || !pts) ? whirl_fail(GSL_ENOMEM, "out of memory")
-                                                          : 0;
-    for (size_t j = 0; j < npts && !status; j++)
-        omega[j] = j == steps ? p->omega_max : from + (double)j * p->scan_step;
-    if (!status) status = whirl_nlink_branch(c, mode, npts, omega, info, exists);
+    search s = {src, p, NULL, 0, 0};
+    int status = pts ? GSL_SUCCESS : whirl_fail(GSL_ENOMEM, "out of memory");
     for (size_t j = 0; j < npts && !status; j++) {
-        tip[j] = info[j].tip_r;
-        if (!exists[j])
-            status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = %g on its branch", mode,
-                                omega[j]);
-    }
-    w->scan_omega = omega;
-    w->scan_tip = tip;
-    w->nscan = status ? 0 : npts;
-    for (size_t j = 0; j < npts && !status; j++) {
-        status = evaluate(w, omega[j], 1, &pts[j]);
+        status = evaluate(src, omega[j], 1, &pts[j]);
         stats->scan++;
     }
     /* unstable rates between scan points from approaching pairs, merged into the scan */
@@ -1077,13 +1093,56 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
     }
     for (size_t j = 0; pts && j < nall; j++) point_free(&pts[j]);
     free(pts);
+    free(s.edges);
+    if (!status && *count > max)
+        return whirl_fail(GSL_EINVAL, "mode %d has %zu windows, room for %zu", mode, *count, max);
+    return status;
+}
+
+int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
+                       const whirl_windows_params *p, whirl_window *windows, size_t max,
+                       size_t *count, whirl_windows_stats *stats)
+{
+    *count = 0;
+    memset(stats, 0, sizeof *stats);
+    if (c->n != w->n)
+        return whirl_fail(GSL_EINVAL, "the chain has %zu links, the workspace %zu", c->n, w->n);
+    if (mode < 1 || (size_t)mode > c->n)
+        return whirl_fail(GSL_EINVAL, "mode %d of a %zu-link chain does not exist", mode, c->n);
+    double *critical = malloc((size_t)mode * sizeof *critical);
+    if (critical == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    int status = whirl_nlink_critical(c, (size_t)mode, critical);
+    const double birth = critical[mode - 1];
+    free(critical);
+    if (status) return status;
+    double *omega;
+    size_t npts;
+    if ((status = whirl_windows_range(p, mode, birth, &omega, &npts))) return status;
+    w->chain = c;
+    w->mode = mode;
+    w->stats = stats;
+    w->lin_omega = NAN;
+    whirl_shape_info *info = malloc(npts * sizeof *info);
+    int *exists = malloc(npts * sizeof *exists);
+    double *tip = malloc(npts * sizeof *tip);
+    status = (!info || !exists || !tip) ? whirl_fail(GSL_ENOMEM, "out of memory") : 0;
+    if (!status) status = whirl_nlink_branch(c, mode, npts, omega, info, exists);
+    for (size_t j = 0; j < npts && !status; j++) {
+        tip[j] = info[j].tip_r;
+        if (!exists[j])
+            status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = %g on its branch", mode,
+                                omega[j]);
+    }
+    w->scan_omega = omega;
+    w->scan_tip = tip;
+    w->nscan = status ? 0 : npts;
+    windows_source src = {nlink_spectrum, p->krylov ? nlink_pair : NULL, w, mode, stats};
+    if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
+    w->nscan = 0;
+    w->lin_omega = NAN;
     free(omega);
     free(info);
     free(exists);
     free(tip);
-    free(s.edges);
-    w->nscan = 0;
-    if (!status && *count > max)
-        return whirl_fail(GSL_EINVAL, "mode %d has %zu windows, room for %zu", mode, *count, max);
     return status;
 }

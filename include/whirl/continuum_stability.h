@@ -1,0 +1,64 @@
+/* whirl: linear stability of the steady shapes of the continuous chain, computed in the
+ * continuum (no N-link chain): the string equations linearised about the steady shape in the
+ * co-rotating frame and discretised by Chebyshev collocation on elements in arclength
+ * (src/continuum_stability.c states the equations). The chain is the uniform one of
+ * whirl/steady.h (length 1, mass 1, g = 1) with an optional point mass at its free end.
+ * Eigenvalues are returned as mu = lambda^2 (the whirl_spectrum of whirl/stability.h): the shape
+ * is neutrally stable when every mu is real and negative. */
+#ifndef WHIRL_CONTINUUM_STABILITY_H
+#define WHIRL_CONTINUUM_STABILITY_H
+
+#include <stddef.h>
+
+#include "whirl/common.h"
+#include "whirl/stability.h"
+#include "whirl/steady.h"
+
+typedef struct whirl_cstab whirl_cstab; /* workspace of the continuum's linear analysis */
+
+typedef struct whirl_cstab_params {
+    int degree;       /* Chebyshev degree p of every element (p + 1 points each); 16; 6..64 */
+    double tip_mass;  /* point mass at the free end [M]; 0; 0..WHIRL_TIP_MASS_MAX */
+    double shape_tol; /* elements are halved until the last two Chebyshev coefficients of the
+                         shape (r and the load ratio q) on each are at most shape_tol times their
+                         largest value; 1e-11; in [1e-14, 1e-3] */
+    double freq_max;  /* eigenvalues with |mu| <= freq_max^2 are kept, the rest (unresolved
+                         frequencies and the constraint's infinite eigenvalues) dropped
+                         [sqrt(g/L)]; 30; > 0 */
+} whirl_cstab_params;
+
+/* The defaults above. */
+WHIRL_API whirl_cstab_params whirl_cstab_defaults(void);
+
+/* A workspace with the parameters p (copied). NULL (whirl_last_error) on bad parameters or no
+ * memory. */
+WHIRL_API whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p);
+WHIRL_API void whirl_cstab_free(whirl_cstab *w); /* NULL is a no-op */
+
+/* Linearises about the steady shape of mode k >= 1 at omega (whirl_continuum_solve from
+ * tip_r_guess, 0: its own bracket; then the shape re-solved by collocation on elements refined
+ * until shape_tol is met), or with mode 0 about the hanging chain (omega >= 0). *tip_r (may be
+ * NULL) receives the collocation's tip radius [L]. GSL_EDOM if the mode does not exist at omega,
+ * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 64 elements or
+ * its Newton iteration does not converge. */
+WHIRL_API int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
+                                    double *tip_r);
+
+/* The elements and collocation points of the last linearisation. */
+WHIRL_API void whirl_cstab_grid(const whirl_cstab *w, size_t *elements, size_t *points);
+
+/* The mu of the last linearisation with |mu| <= freq_max^2, the rotation's mu = 0 removed
+ * (a shape of mode >= 1), signatures as in whirl/stability.h when asked (eigenvectors: about
+ * twice the work). Pointers into the workspace, valid until its next use. */
+WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out);
+
+/* The windows of instability of mode k of the continuous chain over the range of p (scan step,
+ * tolerance and range as for whirl_windows_find; krylov is ignored: every evaluation is a full
+ * solve), in increasing omega, into windows[0..max-1], their number into *count (GSL_EINVAL if
+ * more than max). GSL_EDOM if the mode does not exist in the range, WHIRL_EINTERRUPTED on a stop
+ * request (between eigen-solves). */
+WHIRL_API int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
+                                  whirl_window *windows, size_t max, size_t *count,
+                                  whirl_windows_stats *stats);
+
+#endif
