@@ -752,6 +752,7 @@ typedef struct cstab_search {
     whirl_cstab *w;
     const double *scan, *tip; /* the branch's tip radii at the scan's rates, for the seeds */
     size_t nscan;
+    whirl_windows_stats *stats;
 } cstab_search;
 
 static int cstab_source_spectrum(void *data, double omega, int signatures, whirl_spectrum *out)
@@ -760,6 +761,7 @@ static int cstab_source_spectrum(void *data, double omega, int signatures, whirl
     size_t j = 0; /* the seed: the tip radius of the nearest scan rate below */
     while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
     int status = whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
+    c->stats->shapes++;
     if (!status) status = whirl_cstab_spectrum(c->w, signatures, out);
     return status;
 }
@@ -794,7 +796,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                                 omega[j]);
     }
     w->mode = mode;
-    cstab_search c = {w, omega, tip, npts};
+    cstab_search c = {w, omega, tip, npts, stats};
     windows_source src = {cstab_source_spectrum, NULL, &c, mode, stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
     free(omega);

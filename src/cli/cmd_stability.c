@@ -14,11 +14,13 @@
  *   ...,verdict,tip_x,tip_y,nodes
  * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
  * --windows: the intervals of omega in --omega-min..--omega-max where each mode of --modes is
- * linearly unstable, edges located by root-finding on the collision of two eigenvalues
- * (whirl_windows_find), one row per window:
+ * linearly unstable, edges located by root-finding on the collision of two eigenvalues, of the
+ * N-link chain with --links N (whirl_windows_find) or else of the continuous chain
+ * (whirl_cstab_windows: the string equations by collocation, --degree, --tip-mass), one row per
+ * window:
  *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at
- * and a comment line per mode with the eigen-solves used and those of a grid of equal
- * resolution.
+ * (links "inf" for the continuum) and a comment line per mode with the eigen-solves used and
+ * those of a grid of equal resolution.
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
  * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
@@ -32,12 +34,13 @@
 #include <time.h>
 
 #include "cli/cli.h"
+#include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    double scan_step, tol;
-    int mode, links, steps, seed, linear, side, windows, full, resume;
+    double scan_step, tol, tip_mass;
+    int mode, links, steps, seed, linear, side, windows, full, resume, degree, links_given;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
@@ -75,7 +78,7 @@ static int check_options(const cli_command *cmd, const options *o)
     if (o->windows) {
         if (!(o->tol < o->scan_step))
             return cli_error(cmd, "--tol must be smaller than --scan-step");
-        for (int k = 0; k < o->modes.n; k++)
+        for (int k = 0; k < o->modes.n && o->links_given; k++)
             if (o->modes.v[k] > o->links)
                 return cli_error(cmd, "--modes must be at most --links (%d), got %d", o->links,
                                  o->modes.v[k]);
@@ -249,11 +252,35 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
 
 #define WINDOWS_MAX 256
 
+/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL). */
+static int find_windows(const options *o, const whirl_chain *c, int mode,
+                        const whirl_windows_params *p, whirl_window *win, size_t *count,
+                        whirl_windows_stats *stats)
+{
+    int status;
+    if (c) {
+        whirl_windows *w = whirl_windows_alloc((size_t)o->links);
+        status = w ? whirl_windows_find(w, c, mode, p, win, WINDOWS_MAX, count, stats)
+                   : GSL_ENOMEM;
+        whirl_windows_free(w);
+    } else {
+        whirl_cstab_params cp = whirl_cstab_defaults();
+        cp.degree = o->degree;
+        cp.tip_mass = o->tip_mass;
+        whirl_cstab *w = whirl_cstab_alloc(&cp);
+        status = w ? whirl_cstab_windows(w, mode, p, win, WINDOWS_MAX, count, stats)
+                   : GSL_ENOMEM;
+        whirl_cstab_free(w);
+    }
+    return status;
+}
+
 /* --windows: every mode of the list, one per thread. */
 static int run_windows(const cli_command *cmd, const options *o)
 {
-    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
-    if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    whirl_chain *c = NULL;
+    if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, 0)) == NULL)
+        return cli_error(cmd, "%s", whirl_last_error());
     const size_t nmodes = (size_t)o->modes.n;
     whirl_window *win = calloc(nmodes * WINDOWS_MAX, sizeof *win);
     size_t *count = calloc(nmodes, sizeof *count);
@@ -274,12 +301,9 @@ static int run_windows(const cli_command *cmd, const options *o)
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
         const double t0 = cli_wall_seconds();
-        whirl_windows *w = whirl_windows_alloc((size_t)o->links);
-        status[k] = w ? whirl_windows_find(w, c, o->modes.v[k], &p, win + k * WINDOWS_MAX,
-                                           WINDOWS_MAX, &count[k], &stats[k])
-                      : GSL_ENOMEM;
+        status[k] = find_windows(o, c, o->modes.v[k], &p, win + k * WINDOWS_MAX, &count[k],
+                                 &stats[k]);
         if (status[k]) snprintf(message[k], sizeof message[k], "%s", whirl_last_error());
-        whirl_windows_free(w);
         seconds[k] = cli_wall_seconds() - t0;
     }
     for (size_t k = 0; k < nmodes && !rc; k++)
@@ -291,10 +315,21 @@ static int run_windows(const cli_command *cmd, const options *o)
     if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
     if (!rc) {
         const double rate = unit(o, CLI_UNIT_RATE);
-        fprintf(out.fp, "# whirl stability --windows: %d links, omega %s..%s, scan step %s, edges "
-                        "to %s, refinement %s\n", o->links, CLI_NUM(o->omega_min * rate),
+        char chain[160], links[16];
+        if (c) {
+            snprintf(chain, sizeof chain, "%d links", o->links);
+            snprintf(links, sizeof links, "%d", o->links);
+        } else {
+            snprintf(chain, sizeof chain, "continuous chain, tip mass %s (Chebyshev collocation "
+                     "of degree %d on elements)", CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)),
+                     o->degree);
+            snprintf(links, sizeof links, "inf");
+        }
+        fprintf(out.fp, "# whirl stability --windows: %s, omega %s..%s, scan step %s, edges "
+                        "to %s, refinement %s\n", chain, CLI_NUM(o->omega_min * rate),
                 CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
-                o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
+                !c ? "full eigen-solves (dense collocation)"
+                   : o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
         for (size_t k = 0; k < nmodes; k++) {
             const whirl_windows_stats *st = &stats[k];
             fprintf(out.fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
@@ -312,7 +347,7 @@ static int run_windows(const cli_command *cmd, const options *o)
         for (size_t k = 0; k < nmodes; k++)
             for (size_t i = 0; i < count[k]; i++) {
                 const whirl_window *x = win + k * WINDOWS_MAX + i;
-                fprintf(out.fp, "%d,%d,%s,%s,%d,%d,%s,%s,%s,%s\n", o->modes.v[k], o->links,
+                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s\n", o->modes.v[k], links,
                         CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
                         CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
                         CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
@@ -451,6 +486,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.side = 1;
     o.scan_step = 0.25;
     o.tol = 1e-9;
+    o.degree = whirl_cstab_defaults().degree;
     o.units = (cli_units)CLI_UNITS_INIT;
     o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
@@ -466,7 +502,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
         {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
          "map: modes (default 1,2,3)", "[1, 64]", "--omega-min"},
-        {"--links", NULL, CLI_INT, &o.links, NULL, "N", "links of the chain (default 25)",
+        {"--links", NULL, CLI_INT, &o.links, &o.links_given, "N",
+         "links of the chain (default 25; with --windows the continuous chain unless given)",
          "[2, 100000]"},
         {"--periods", NULL, CLI_DOUBLE, &o.periods, NULL, "P",
          "run length in rotation periods (default 100)", "(0, inf)"},
@@ -496,8 +533,14 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
          NULL, NULL, CLI_UNIT_RATE},
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
-         "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
-         "--windows"},
+         "windows of N links: full eigen-solves near the edges (default: shift-and-invert "
+         "Arnoldi)", NULL, "--windows --links"},
+        {"--degree", NULL, CLI_INT, &o.degree, NULL, "P",
+         "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
+         "--windows", "--links"},
+        {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m",
+         "windows of the continuum: point mass at the free end (default 0)", "[0, 1e12]",
+         "--windows", "--links", NULL, CLI_UNIT_MASS},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",

@@ -1,0 +1,307 @@
+/* Tests of the continuum's linear stability (src/continuum_stability.c) against independent
+ * results:
+ *  - the hanging chain: its frequencies against the zeros of J0 (j_{0,n} / 2, GSL), shifted by
+ *    +-omega in the co-rotating frame; with a tip mass against the roots of the J0/Y0 determinant
+ *    (whirl_continuum_critical); the Krein signatures against the frequencies (negative energy
+ *    exactly for the co-rotating modes slower than the frame);
+ *  - spectral convergence: on four fixed elements the mu of the mode-2 shape converge
+ *    geometrically in the degree, to the values of the refined elements; the collocation's tip
+ *    radius against the shooting's;
+ *  - the Krein signatures of modes 2 and 3 against the N-link chain's (whirl_windows_spectrum);
+ *  - the window of mode 2 near omega = 4.4-4.6 against the N-link chain's edges extrapolated to
+ *    N -> infinity, and each edge against the growth just inside and outside;
+ *  - bad input and the stop request. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_sf_bessel.h>
+
+#include "whirl/continuum_stability.h"
+
+/* Sorts mu by decreasing real part (increasing frequency). */
+static void sort_mu(size_t n, double *re, double *im, int *sig)
+{
+    for (size_t i = 1; i < n; i++)
+        for (size_t j = i; j > 0 && re[j - 1] < re[j]; j--) {
+            double t = re[j], u = im[j];
+            re[j] = re[j - 1], im[j] = im[j - 1];
+            re[j - 1] = t, im[j - 1] = u;
+            if (sig) {
+                int s = sig[j];
+                sig[j] = sig[j - 1], sig[j - 1] = s;
+            }
+        }
+}
+
+/* The first k mu of the last linearisation, sorted, and their signatures (sig may be NULL). */
+static size_t lowest(whirl_cstab *w, int signatures, size_t k, double *re, double *im, int *sig,
+                     double *growth)
+{
+    whirl_spectrum sp;
+    assert_int_equal(whirl_cstab_spectrum(w, signatures, &sp), 0);
+    double *r = malloc(sp.count * sizeof *r), *m = malloc(sp.count * sizeof *m);
+    int *s = malloc(sp.count * sizeof *s);
+    for (size_t i = 0; i < sp.count; i++) {
+        r[i] = sp.re[i], m[i] = sp.im[i];
+        s[i] = signatures ? sp.signature[i] : 0;
+    }
+    sort_mu(sp.count, r, m, s);
+    const size_t n = k < sp.count ? k : sp.count;
+    for (size_t i = 0; i < n; i++) {
+        re[i] = r[i], im[i] = m[i];
+        if (sig) sig[i] = s[i];
+    }
+    if (growth) *growth = sp.growth;
+    free(r), free(m), free(s);
+    return n;
+}
+
+static void test_hanging(void **state)
+{
+    (void)state;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    whirl_cstab *w = whirl_cstab_alloc(&p);
+    assert_non_null(w);
+    /* at rest: every frequency twice (in and out of the plane), j_{0,n} / 2 */
+    double re[40], im[40], freq[12];
+    int sig[40];
+    assert_int_equal(whirl_cstab_linearise(w, 0, 0, 0, NULL), 0);
+    assert_int_equal(lowest(w, 1, 12, re, im, sig, NULL), 12);
+    double worst = 0;
+    for (int n = 1; n <= 6; n++) {
+        const double f = gsl_sf_bessel_zero_J0((unsigned)n) / 2;
+        for (int k = 0; k < 2; k++) {
+            worst = fmax(worst, fabs(sqrt(-re[2 * (n - 1) + k]) / f - 1));
+            assert_true(im[2 * (n - 1) + k] == 0);
+            assert_int_equal(sig[2 * (n - 1) + k], 1);
+        }
+    }
+    print_message("# hanging chain at rest: frequencies 1-6 against j_{0,n}/2 to %.2g\n", worst);
+    assert_true(worst < 1e-10);
+    /* co-rotating at omega between the first two: mu = -(j_{0,n}/2 -+ omega)^2, negative energy
+     * for the one mode slower than the frame */
+    const double omega = 1.7234;
+    assert_int_equal(whirl_cstab_linearise(w, omega, 0, 0, NULL), 0);
+    assert_int_equal(lowest(w, 1, 12, re, im, sig, NULL), 12);
+    for (int n = 1; n <= 6; n++) {
+        const double f = gsl_sf_bessel_zero_J0((unsigned)n) / 2;
+        freq[2 * (n - 1)] = fabs(f - omega), freq[2 * n - 1] = f + omega;
+    }
+    for (size_t i = 1; i < 12; i++) /* ascending */
+        for (size_t j = i; j > 0 && freq[j - 1] > freq[j]; j--) {
+            double t = freq[j];
+            freq[j] = freq[j - 1], freq[j - 1] = t;
+        }
+    worst = 0;
+    int negative = 0;
+    for (size_t i = 0; i < 8; i++) {
+        worst = fmax(worst, fabs(sqrt(-re[i]) - freq[i]));
+        negative += sig[i] < 0;
+        if (fabs(sqrt(-re[i]) - (omega - gsl_sf_bessel_zero_J0(1) / 2)) < 1e-6)
+            assert_int_equal(sig[i], -1);
+    }
+    print_message("# hanging chain at omega = %g: |j_{0,n}/2 -+ omega| to %.2g, %d mode of "
+                  "negative energy\n", omega, worst, negative);
+    assert_true(worst < 1e-9);
+    assert_int_equal(negative, 1);
+    whirl_cstab_free(w);
+    /* with a tip mass: the roots of the J0/Y0 determinant */
+    p.tip_mass = 0.37;
+    w = whirl_cstab_alloc(&p);
+    assert_int_equal(whirl_cstab_linearise(w, 0, 0, 0, NULL), 0);
+    assert_int_equal(lowest(w, 0, 12, re, im, NULL, NULL), 12);
+    worst = 0;
+    for (int n = 1; n <= 5; n++) {
+        double f;
+        assert_int_equal(whirl_continuum_critical(n, p.tip_mass, &f), 0);
+        worst = fmax(worst, fabs(sqrt(-re[2 * (n - 1)]) / f - 1));
+        worst = fmax(worst, fabs(sqrt(-re[2 * n - 1]) / f - 1));
+    }
+    print_message("# hanging chain with tip mass 0.37: frequencies 1-5 against the J0/Y0 roots "
+                  "to %.2g\n", worst);
+    assert_true(worst < 1e-10);
+    whirl_cstab_free(w);
+}
+
+/* On the four starting elements (shape_tol loose) the error of the 8 lowest mu and of the growth
+ * against the reference (degree 32, refined elements) falls geometrically with the degree. */
+static void test_convergence(void **state)
+{
+    (void)state;
+    const double omega = 4.4567;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    p.degree = 32; /* the reference: degree 32 on elements refined to the shape */
+    whirl_cstab *w = whirl_cstab_alloc(&p);
+    double ref_re[8], ref_im[8], ref_g, tip;
+    assert_int_equal(whirl_cstab_linearise(w, omega, 2, 0, &tip), 0);
+    assert_int_equal(lowest(w, 0, 8, ref_re, ref_im, NULL, &ref_g), 8);
+    whirl_shape_info info;
+    assert_int_equal(whirl_continuum_solve(omega, 2, 0, 0, &info), 0);
+    print_message("# mode 2 at %g: collocation tip radius %.15g, shooting %.15g\n", omega, tip,
+                  info.tip_r);
+    assert_true(fabs(tip - info.tip_r) < 1e-11);
+    assert_true(ref_g > 0.03);
+    whirl_cstab_free(w);
+    const int degree[] = {8, 12, 16, 20, 24};
+    double err[5];
+    for (int k = 0; k < 5; k++) {
+        p.degree = degree[k];
+        p.shape_tol = 1e-3;
+        w = whirl_cstab_alloc(&p);
+        double re[8], im[8], g;
+        assert_int_equal(whirl_cstab_linearise(w, omega, 2, 0, NULL), 0);
+        size_t ne, np;
+        whirl_cstab_grid(w, &ne, &np);
+        assert_int_equal(ne, 4);
+        assert_int_equal(lowest(w, 0, 8, re, im, NULL, &g), 8);
+        err[k] = fabs(g - ref_g);
+        for (int i = 0; i < 8; i++) err[k] = fmax(err[k], hypot(re[i] - ref_re[i], fabs(im[i]) - fabs(ref_im[i])));
+        print_message("# degree %2d, %3zu points: largest error of the 8 lowest mu and the growth "
+                      "%.2g\n", degree[k], np, err[k]);
+        whirl_cstab_free(w);
+    }
+    /* geometric: each step of 4 in the degree gains a factor 5 at least until round-off */
+    for (int k = 0; k + 1 < 5; k++) assert_true(err[k + 1] < fmax(err[k] / 5, 1e-7));
+    assert_true(err[0] > 1e-4); /* the coarsest is really coarse */
+    assert_true(err[4] < 1e-7);
+}
+
+/* The signatures against the N-link chain's at N = 40 (two neutral rates of modes 2 and 3). */
+static void test_signatures(void **state)
+{
+    (void)state;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    whirl_cstab *w = whirl_cstab_alloc(&p);
+    const size_t n = 40;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_windows *nw = whirl_windows_alloc(n);
+    whirl_stability *lin = whirl_stability_alloc(n);
+    const struct { double omega; int mode, negative; } cases[] = {{4.3, 2, 1}, {5.3, 3, 2}};
+    for (int k = 0; k < 2; k++) {
+        double re[40], im[40], g;
+        int sig[40];
+        assert_int_equal(whirl_cstab_linearise(w, cases[k].omega, cases[k].mode, 0, NULL), 0);
+        const size_t m = lowest(w, 1, 40, re, im, sig, &g);
+        int negative = 0;
+        for (size_t i = 0; i < m; i++) negative += sig[i] < 0;
+        whirl_model mod = {0};
+        mod.chain = c, mod.dim = 3, mod.frame = WHIRL_FRAME_ROTATING, mod.omega = cases[k].omega;
+        double gn;
+        assert_int_equal(whirl_stability_mode(lin, &mod, cases[k].mode, 0, NULL, &gn), 0);
+        whirl_spectrum sp;
+        assert_int_equal(whirl_windows_spectrum(nw, lin, 1, &sp), 0);
+        int nneg = 0;
+        for (size_t i = 0; i < sp.count; i++) nneg += sp.signature[i] < 0;
+        print_message("# mode %d at %g: %d modes of negative energy (N = 40: %d), growth %g\n",
+                      cases[k].mode, cases[k].omega, negative, nneg, g);
+        assert_true(g == 0 && gn == 0);
+        assert_int_equal(negative, cases[k].negative);
+        assert_int_equal(nneg, cases[k].negative);
+    }
+    whirl_stability_free(lin);
+    whirl_windows_free(nw);
+    whirl_chain_free(c);
+    whirl_cstab_free(w);
+}
+
+/* The growth of mode 2 at omega by a full solve. */
+static double growth_at(whirl_cstab *w, double omega)
+{
+    double re[2], im[2], g;
+    assert_int_equal(whirl_cstab_linearise(w, omega, 2, 0, NULL), 0);
+    lowest(w, 0, 2, re, im, NULL, &g);
+    return g;
+}
+
+static void test_window(void **state)
+{
+    (void)state;
+    whirl_cstab_params cp = whirl_cstab_defaults();
+    whirl_cstab *w = whirl_cstab_alloc(&cp);
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = 4.3, p.omega_max = 4.65;
+    whirl_window win[4];
+    size_t count;
+    whirl_windows_stats st;
+    assert_int_equal(whirl_cstab_windows(w, 2, &p, win, 4, &count, &st), 0);
+    assert_int_equal(count, 1);
+    print_message("# mode 2: window [%.10f, %.10f], growth %.6g at %.6f (%zu solves); N-link "
+                  "chain extrapolated [4.403221 +- 2e-6, 4.567784 +- 4e-7]\n", win[0].from,
+                  win[0].to, win[0].max_growth, win[0].at,
+                  st.solves_vectors + st.solves_values);
+    /* the README's Richardson extrapolation of N = 100, 200, 400, with its error estimate: an
+     * independent computation (no continuum equations) */
+    assert_true(fabs(win[0].from - 4.403221) < 2e-6 + 5e-7);
+    assert_true(fabs(win[0].to - 4.567784) < 4e-7 + 5e-7);
+    assert_true(!win[0].open_from && !win[0].open_to);
+    /* the edges against the growth 1e-7 inside and outside */
+    assert_true(growth_at(w, win[0].from - 1e-7) == 0);
+    assert_true(growth_at(w, win[0].from + 1e-7) > 0);
+    assert_true(growth_at(w, win[0].to - 1e-7) > 0);
+    assert_true(growth_at(w, win[0].to + 1e-7) == 0);
+    whirl_cstab_free(w);
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    p.degree = 5;
+    assert_null(whirl_cstab_alloc(&p));
+    assert_non_null(strstr(whirl_last_error(), "degree"));
+    p = whirl_cstab_defaults();
+    p.tip_mass = -1;
+    assert_null(whirl_cstab_alloc(&p));
+    p = whirl_cstab_defaults();
+    p.shape_tol = 0;
+    assert_null(whirl_cstab_alloc(&p));
+    p = whirl_cstab_defaults();
+    p.freq_max = NAN;
+    assert_null(whirl_cstab_alloc(&p));
+    p = whirl_cstab_defaults();
+    whirl_cstab *w = whirl_cstab_alloc(&p);
+    whirl_spectrum sp;
+    assert_int_equal(whirl_cstab_spectrum(w, 0, &sp), GSL_EINVAL);
+    assert_int_equal(whirl_cstab_linearise(w, 3, 3, 0, NULL), GSL_EDOM);
+    assert_int_equal(whirl_cstab_linearise(w, 0, 2, 0, NULL), GSL_EINVAL);
+    assert_int_equal(whirl_cstab_linearise(w, NAN, 2, 0, NULL), GSL_EINVAL);
+    assert_int_equal(whirl_cstab_linearise(w, 3, -1, 0, NULL), GSL_EINVAL);
+    whirl_window win[2];
+    size_t count;
+    whirl_windows_stats st;
+    whirl_windows_params wp = whirl_windows_defaults();
+    wp.omega_min = 1, wp.omega_max = 4;
+    assert_int_equal(whirl_cstab_windows(w, 3, &wp, win, 2, &count, &st), GSL_EDOM);
+    assert_non_null(strstr(whirl_last_error(), "mode 3"));
+    assert_int_equal(whirl_cstab_windows(w, 0, &wp, win, 2, &count, &st), GSL_EINVAL);
+    wp.omega_max = 1e4;
+    assert_int_equal(whirl_cstab_windows(w, 2, &wp, win, 2, &count, &st), GSL_EINVAL);
+    wp = whirl_windows_defaults();
+    wp.omega_min = 4.3, wp.omega_max = 4.65;
+    whirl_stop_request();
+    assert_int_equal(whirl_cstab_windows(w, 2, &wp, win, 2, &count, &st), WHIRL_EINTERRUPTED);
+    whirl_stop_clear();
+    whirl_cstab_free(NULL);
+    whirl_cstab_free(w);
+}
+
+int main(void)
+{
+    gsl_set_error_handler_off();
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hanging),
+        cmocka_unit_test(test_convergence),
+        cmocka_unit_test(test_signatures),
+        cmocka_unit_test(test_window),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
