@@ -114,6 +114,7 @@ struct whirl_cstab {
     int *sig_out;
     double *row_a, *row_b;    /* one row of the pencil (4 np) */
     double *ls, *lr, *lq;     /* samples of the shooting (CS_SAMPLES each) */
+    windows_arnoldi kr;       /* the window search's Arnoldi iteration (3 np) */
 };
 
 whirl_cstab_params whirl_cstab_defaults(void)
@@ -148,6 +149,7 @@ void whirl_cstab_free(whirl_cstab *w)
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->ipiv);
     free(w->sig_out);
+    whirl_windows_arnoldi_release(&w->kr);
     free(w);
 }
 
@@ -653,8 +655,66 @@ static double mode_energy(const whirl_cstab *w, const double *xr, const double *
     return e;
 }
 
-/* Re sqrt(mu) >= 0. */
-static double root_re(double re, double im) { return sqrt(fmax(0, (hypot(re, im) + re) / 2)); }
+/* The energy of kept mode k of the last eigen-solve (its eigenvector in w->vr). */
+static double cstab_energy(void *data, size_t k)
+{
+    whirl_cstab *w = data;
+    const size_t ny = N_DYNAMIC * w->np, i = (size_t)w->ipiv[k];
+    const double *xr = w->vr + i * ny, *xi = NULL;
+    if (w->alphai[i] > 0) xi = w->vr + (i + 1) * ny;
+    if (w->alphai[i] < 0) xr = w->vr + (i - 1) * ny, xi = w->vr + i * ny;
+    return mode_energy(w, xr, xi, -w->mu_re[k]);
+}
+
+/* The LU factors of R (A - s B) into w->a (pivots w->ipiv), R the row equilibration (w->row_a):
+ * s = shift, or if that is an eigenvalue shift 1.7^k (k < tries). */
+static int shifted_lu(whirl_cstab *w, double shift, int tries)
+{
+    const size_t n = N_FIELDS * w->np;
+    lapack_int info = 1;
+    for (int k = 0; k < tries && info != 0; k++) { /* s an eigenvalue: another s */
+        w->shift = shift * pow(1.7, k);
+        for (size_t i = 0; i < n * n; i++) w->a[i] = w->a0[i] - w->shift * w->b0[i];
+        /* rows equilibrated (the rows of the second derivatives on short elements are ~1e8
+         * times those of the conditions): the same solutions, less round-off */
+        for (size_t i = 0; i < n; i++) w->row_a[i] = 0;
+        for (size_t j = 0; j < n; j++)
+            for (size_t i = 0; i < n; i++) w->row_a[i] = fmax(w->row_a[i], fabs(w->a[i + j * n]));
+        for (size_t i = 0; i < n; i++) w->row_a[i] = w->row_a[i] > 0 ? 1 / w->row_a[i] : 1;
+        for (size_t j = 0; j < n; j++)
+            for (size_t i = 0; i < n; i++) w->a[i + j * n] *= w->row_a[i];
+        info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, w->a,
+                                   (lapack_int)n, w->ipiv);
+    }
+    if (info != 0)
+        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgetrf info %d)",
+                          (int)info);
+    return GSL_SUCCESS;
+}
+
+/* y = the (u, w, vh) rows of (A - s B)^-1 B x, x = (u, w, vh) (3 np): one step of the Arnoldi
+ * iteration on the block of shifted_eigen, with the factors of shifted_lu. */
+static int cstab_apply(void *data, const double *x, double *y)
+{
+    whirl_cstab *w = data;
+    const size_t np = w->np, n = N_FIELDS * np;
+    const size_t col[N_DYNAMIC] = {F_U, F_W, F_V};
+    double *b = w->row_b;
+    for (size_t i = 0; i < n; i++) b[i] = 0;
+    for (size_t k = 0; k < N_DYNAMIC; k++)
+        for (size_t j = 0; j < np; j++) {
+            const double xj = x[k * np + j];
+            if (xj == 0) continue;
+            const double *c = w->b0 + (col[k] * np + j) * n;
+            for (size_t i = 0; i < n; i++) b[i] += c[i] * xj;
+        }
+    for (size_t i = 0; i < n; i++) b[i] *= w->row_a[i];
+    lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 1, w->a,
+                                          (lapack_int)n, w->ipiv, b, (lapack_int)n);
+    if (info != 0) return GSL_CONTINUE;
+    for (size_t k = 0; k < N_DYNAMIC; k++) memcpy(y + k * np, b + col[k] * np, np * sizeof(double));
+    return GSL_SUCCESS;
+}
 
 /* The finite eigenvalues of the pencil A x = mu B x through theta = 1 / (mu - s), the eigenvalues
  * of (A - s B)^-1 B: B's columns of tau are zero, so only the block of the rows and columns of
@@ -665,19 +725,14 @@ static int shifted_eigen(whirl_cstab *w, int vectors)
 {
     const size_t np = w->np, n = N_FIELDS * np, ny = N_DYNAMIC * np;
     const size_t col[N_DYNAMIC] = {F_U, F_W, F_V}; /* field of block k of y */
-    lapack_int info = 1;
-    for (int tries = 0; tries < 4 && info != 0; tries++) { /* s an eigenvalue: another s */
-        w->shift = CS_SHIFT * pow(1.7, tries);
-        for (size_t i = 0; i < n * n; i++) w->a[i] = w->a0[i] - w->shift * w->b0[i];
-        info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, w->a,
-                                   (lapack_int)n, w->ipiv);
-    }
-    if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgetrf info %d)",
-                          (int)info);
+    int status = shifted_lu(w, CS_SHIFT, 4);
+    if (status) return status;
+    lapack_int info;
     double *x = w->b; /* n x ny: B's columns of (u, w, vh), then solved */
     for (size_t k = 0; k < N_DYNAMIC; k++)
         memcpy(x + k * np * n, w->b0 + col[k] * np * n, np * n * sizeof(double));
+    for (size_t j = 0; j < ny; j++)
+        for (size_t i = 0; i < n; i++) x[i + j * n] *= w->row_a[i];
     info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)ny, w->a,
                                (lapack_int)n, w->ipiv, x, (lapack_int)n);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgetrs info %d", (int)info);
@@ -724,25 +779,8 @@ int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
         }
     }
     const double level = 1e-8 * sqrt(big);
-    double growth = 0;
-    for (size_t k = 0; k < count; k++) {
-        const double g = root_re(w->mu_re[k], w->mu_im[k]);
-        if (g > level) growth = fmax(growth, g);
-        w->sig_out[k] = 0;
-        if (!signatures || g > level) continue;
-        const size_t i = (size_t)w->ipiv[k];
-        const double *xr = w->vr + i * ny, *xi = NULL;
-        if (w->alphai[i] > 0) xi = w->vr + (i + 1) * ny;
-        if (w->alphai[i] < 0) xr = w->vr + (i - 1) * ny, xi = w->vr + i * ny;
-        const double e = mode_energy(w, xr, xi, -w->mu_re[k]);
-        w->sig_out[k] = e > 0 ? 1 : e < 0 ? -1 : 0;
-    }
-    out->count = count;
-    out->re = w->mu_re;
-    out->im = w->mu_im;
-    out->signature = signatures ? w->sig_out : NULL;
-    out->growth = growth;
-    out->level = level;
+    whirl_windows_classify(out, count, w->mu_re, w->mu_im, level, signatures ? w->sig_out : NULL,
+                           cstab_energy, w);
     return GSL_SUCCESS;
 }
 
@@ -764,6 +802,24 @@ static int cstab_source_spectrum(void *data, double omega, int signatures, whirl
     c->stats->shapes++;
     if (!status) status = whirl_cstab_spectrum(c->w, signatures, out);
     return status;
+}
+
+/* The two mu nearest sigma at omega by shift-and-invert Arnoldi on the block of shifted_eigen. */
+static int cstab_source_pair(void *data, double omega, double sigma, double *mu_re, double *mu_im)
+{
+    cstab_search *c = data;
+    size_t j = 0;
+    while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
+    int status = whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
+    c->stats->shapes++;
+    if (status) return status;
+    if (shifted_lu(c->w, sigma, 1)) return GSL_CONTINUE; /* sigma is an eigenvalue */
+    if (c->w->kr.q != N_DYNAMIC * c->w->np) {
+        whirl_windows_arnoldi_release(&c->w->kr);
+        if (whirl_windows_arnoldi_init(&c->w->kr, N_DYNAMIC * c->w->np))
+            return whirl_fail(GSL_ENOMEM, "out of memory for the Arnoldi iteration");
+    }
+    return whirl_windows_arnoldi_pair(&c->w->kr, cstab_apply, c->w, sigma, mu_re, mu_im);
 }
 
 int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
@@ -797,7 +853,8 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     }
     w->mode = mode;
     cstab_search c = {w, omega, tip, npts, stats};
-    windows_source src = {cstab_source_spectrum, NULL, &c, mode, stats};
+    windows_source src = {cstab_source_spectrum, p->krylov ? cstab_source_pair : NULL, &c, mode,
+                          stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
     free(omega);
     free(info);

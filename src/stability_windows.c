@@ -55,7 +55,6 @@
 #include "error.h"
 #include "windows_internal.h"
 
-#define KRYLOV_MAX 40 /* largest Arnoldi dimension before the fall-back */
 
 struct whirl_windows {
     size_t n;              /* links N */
@@ -72,10 +71,7 @@ struct whirl_windows {
     double *work;          /* dgeev workspace */
     lapack_int lwork;
     lapack_int *ipiv;      /* LU pivots (2N) */
-    double *basis;         /* Arnoldi basis (2N x (KRYLOV_MAX + 1)), column j at j * 2N */
-    double *hess;          /* Arnoldi Hessenberg ((KRYLOV_MAX + 1) x KRYLOV_MAX, column-major) */
-    double *hcopy, *hre, *him, *hvec, *hwork; /* its eigen-solve */
-    lapack_int hlwork;
+    windows_arnoldi kr;    /* the Arnoldi iteration's workspace (vectors of 2N) */
     double *r, *z, *tension; /* nodes of a shape (N + 1) */
     const whirl_chain *chain; /* of the current search */
     int mode;
@@ -91,7 +87,7 @@ whirl_windows *whirl_windows_alloc(size_t n)
         whirl_fail(GSL_EINVAL, "the window search needs at least one link");
         return NULL;
     }
-    const size_t q = 2 * n, km = KRYLOV_MAX;
+    const size_t q = 2 * n;
     whirl_windows *w = calloc(1, sizeof *w);
     if (w == NULL) goto fail;
     w->n = n;
@@ -109,18 +105,12 @@ whirl_windows *whirl_windows_alloc(size_t n)
     w->vl = malloc(q * q * sizeof(double));
     w->x = malloc(2 * q * sizeof(double));
     w->ipiv = malloc(q * sizeof(lapack_int));
-    w->basis = malloc(q * (km + 1) * sizeof(double));
-    w->hess = malloc((km + 1) * km * sizeof(double));
-    w->hcopy = malloc(km * km * sizeof(double));
-    w->hre = malloc(km * sizeof(double));
-    w->him = malloc(km * sizeof(double));
-    w->hvec = malloc(km * km * sizeof(double));
     w->r = malloc((n + 1) * sizeof(double));
     w->z = malloc((n + 1) * sizeof(double));
     w->tension = malloc((n + 1) * sizeof(double));
     if (!w->lin || !w->ma || !w->mb || !w->ka || !w->kb || !w->gab || !w->a || !w->hv || !w->re ||
-        !w->im || !w->sig || !w->vl || !w->x || !w->ipiv || !w->basis || !w->hess || !w->hcopy ||
-        !w->hre || !w->him || !w->hvec || !w->r || !w->z || !w->tension)
+        !w->im || !w->sig || !w->vl || !w->x || !w->ipiv || !w->r || !w->z || !w->tension ||
+        whirl_windows_arnoldi_init(&w->kr, q))
         goto fail;
     double size;
     if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)q, w->a, (lapack_int)q, w->re,
@@ -128,12 +118,7 @@ whirl_windows *whirl_windows_alloc(size_t n)
         goto fail;
     w->lwork = (lapack_int)size;
     w->work = malloc((size_t)w->lwork * sizeof(double));
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->hcopy, (lapack_int)km,
-                           w->hre, w->him, NULL, 1, w->hvec, (lapack_int)km, &size, -1) != 0)
-        goto fail;
-    w->hlwork = (lapack_int)size;
-    w->hwork = malloc((size_t)w->hlwork * sizeof(double));
-    if (w->work == NULL || w->hwork == NULL) goto fail;
+    if (w->work == NULL) goto fail;
     return w;
 fail:
     whirl_windows_free(w);
@@ -146,11 +131,11 @@ void whirl_windows_free(whirl_windows *w)
     if (w == NULL) return;
     whirl_stability_free(w->lin);
     double *arrays[] = {w->ma, w->mb, w->ka, w->kb, w->gab, w->a, w->hv, w->re, w->im, w->vl,
-                        w->x, w->basis, w->hess, w->hcopy, w->hre, w->him, w->hvec, w->work,
-                        w->hwork, w->r, w->z, w->tension};
+                        w->x, w->work, w->r, w->z, w->tension};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->sig);
     free(w->ipiv);
+    whirl_windows_arnoldi_release(&w->kr);
     free(w);
 }
 
@@ -321,6 +306,40 @@ static double mode_energy(whirl_windows *w, const double *yr, const double *yi, 
     return energy;
 }
 
+void whirl_windows_classify(whirl_spectrum *out, size_t count, const double *re, const double *im,
+                            double level, int *sig, double (*energy)(void *data, size_t i),
+                            void *data)
+{
+    double growth = 0;
+    for (size_t i = 0; i < count; i++) {
+        const double g = root_re(re[i], im[i]);
+        if (g > level) growth = fmax(growth, g);
+        if (sig == NULL) continue;
+        sig[i] = 0;
+        if (g > level) continue;
+        /* neutral: a real mu, or one of a pair of nearly equal ones split by round-off */
+        const double e = energy(data, i);
+        sig[i] = e > 0 ? 1 : e < 0 ? -1 : 0;
+    }
+    out->count = count;
+    out->re = re;
+    out->im = im;
+    out->signature = sig;
+    out->growth = growth;
+    out->level = level;
+}
+
+/* The energy of neutral mode i of the last dgeev (its left eigenvectors in w->vl). */
+static double nlink_energy(void *data, size_t i)
+{
+    whirl_windows *w = data;
+    const size_t m = 2 * w->n - w->deflated;
+    const double *yr = w->vl + i * m, *yi = NULL;
+    if (w->im[i] > 0) yi = w->vl + (i + 1) * m;
+    if (w->im[i] < 0) yr = w->vl + (i - 1) * m, yi = w->vl + i * m;
+    return mode_energy(w, yr, yi, -w->re[i]);
+}
+
 int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
                            whirl_spectrum *out)
 {
@@ -341,26 +360,8 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
         if (!isfinite(w->re[i]) || !isfinite(w->im[i]))
             return whirl_fail(GSL_ERANGE, "non-finite eigenvalue");
     const double level = neutral_level(w->re, w->im, m);
-    double growth = 0;
-    for (size_t i = 0; i < m; i++) {
-        const double g = root_re(w->re[i], w->im[i]);
-        if (g > level) growth = fmax(growth, g);
-        w->sig[i] = 0;
-        if (!signatures || g > level) continue;
-        /* neutral: a real mu, or one of a pair of nearly equal ones split by round-off */
-        const double w2 = -w->re[i];
-        const double *yr = w->vl + i * m, *yi = NULL;
-        if (w->im[i] > 0) yi = w->vl + (i + 1) * m;
-        if (w->im[i] < 0) yr = w->vl + (i - 1) * m, yi = w->vl + i * m;
-        const double e = mode_energy(w, yr, yi, w2);
-        w->sig[i] = e > 0 ? 1 : e < 0 ? -1 : 0;
-    }
-    out->count = m;
-    out->re = w->re;
-    out->im = w->im;
-    out->signature = signatures ? w->sig : NULL;
-    out->growth = growth;
-    out->level = level;
+    whirl_windows_classify(out, m, w->re, w->im, level, signatures ? w->sig : NULL, nlink_energy,
+                           w);
     return GSL_SUCCESS;
 }
 
@@ -550,6 +551,133 @@ static double discriminant(const double *re, const double *im, size_t count, dou
     return dr * dr - di * di;
 }
 
+int whirl_windows_arnoldi_init(windows_arnoldi *k, size_t q)
+{
+    const size_t km = WINDOWS_KRYLOV_MAX;
+    memset(k, 0, sizeof *k);
+    k->q = q;
+    k->basis = malloc(q * (km + 1) * sizeof(double));
+    k->hess = malloc((km + 1) * km * sizeof(double));
+    k->hcopy = malloc(km * km * sizeof(double));
+    k->hre = malloc(km * sizeof(double));
+    k->him = malloc(km * sizeof(double));
+    k->hvec = malloc(km * km * sizeof(double));
+    if (!k->basis || !k->hess || !k->hcopy || !k->hre || !k->him || !k->hvec) return GSL_ENOMEM;
+    double size;
+    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, k->hcopy, (lapack_int)km,
+                           k->hre, k->him, NULL, 1, k->hvec, (lapack_int)km, &size, -1) != 0)
+        return GSL_EFAILED;
+    k->hlwork = (int)size;
+    k->hwork = malloc((size_t)k->hlwork * sizeof(double));
+    return k->hwork ? GSL_SUCCESS : GSL_ENOMEM;
+}
+
+void whirl_windows_arnoldi_release(windows_arnoldi *k)
+{
+    double *arrays[] = {k->basis, k->hess, k->hcopy, k->hre, k->him, k->hvec, k->hwork};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
+    memset(k, 0, sizeof *k);
+}
+
+int whirl_windows_arnoldi_pair(windows_arnoldi *k,
+                               int (*apply)(void *data, const double *x, double *y), void *data,
+                               double sigma, double *mu_re, double *mu_im)
+{
+    lapack_int info;
+    const size_t km = WINDOWS_KRYLOV_MAX, q = k->q;
+    double *v = k->basis, *h = k->hess;
+    memset(h, 0, (km + 1) * km * sizeof(double));
+    double norm = 0;
+    for (size_t i = 0; i < q; i++) {
+        v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
+        norm = hypot(norm, v[i]);
+    }
+    for (size_t i = 0; i < q; i++) v[i] /= norm;
+    for (size_t step = 0; step < km; step++) {
+        const double *x = v + step * q;
+        double *y = v + (step + 1) * q;
+        if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
+        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
+            for (size_t j = 0; j <= step; j++) {
+                double dot = 0;
+                for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
+                for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
+                h[j + step * (km + 1)] += dot;
+            }
+        norm = 0;
+        for (size_t i = 0; i < q; i++) norm = hypot(norm, y[i]);
+        h[step + 1 + step * (km + 1)] = norm;
+        if (norm > 0)
+            for (size_t i = 0; i < q; i++) y[i] /= norm;
+        const size_t m = step + 1;
+        if (m < 4 && norm > 0) continue;
+        for (size_t j = 0; j < m; j++)
+            for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = h[i + j * (km + 1)];
+        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy,
+                                  (lapack_int)m, k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m,
+                                  k->hwork, (lapack_int)k->hlwork);
+        if (info != 0) return GSL_CONTINUE;
+        /* the two Ritz values of largest modulus and their residuals |h_{m+1,m} e_m^T s| / |s| */
+        size_t best[2] = {0, 0};
+        double big[2] = {-1, -1};
+        for (size_t i = 0; i < m; i++) {
+            const double mod = hypot(k->hre[i], k->him[i]);
+            if (mod > big[0]) {
+                big[1] = big[0], best[1] = best[0];
+                big[0] = mod, best[0] = i;
+            } else if (mod > big[1]) {
+                big[1] = mod, best[1] = i;
+            }
+        }
+        int converged = big[1] > 0;
+        for (int t = 0; t < 2 && converged; t++) {
+            const size_t i = best[t];
+            /* eigenvector columns: real i, or (re, im) at (i, i + 1) / (i - 1, i) */
+            size_t cr = i, ci = i;
+            int cplx = k->him[i] != 0;
+            if (cplx && k->him[i] > 0) ci = i + 1;
+            if (cplx && k->him[i] < 0) cr = i - 1;
+            double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
+            double len = 0;
+            for (size_t r = 0; r < m; r++)
+                len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
+            const double resid = norm * last / len;
+            if (!(resid <= 1e-13 * big[t])) converged = 0;
+        }
+        if (converged || norm == 0) {
+            if (!converged) return GSL_CONTINUE;
+            for (int t = 0; t < 2; t++) {
+                const double tr = k->hre[best[t]], ti = k->him[best[t]], t2 = tr * tr + ti * ti;
+                mu_re[t] = sigma + tr / t2;
+                mu_im[t] = -ti / t2;
+            }
+            return GSL_SUCCESS;
+        }
+    }
+    return GSL_CONTINUE;
+}
+
+
+/* y = (A' - sigma)^-1 x = -(K' + sigma B)^-1 B x, B x = (Ma x_a, -Gab^T x_a + Mb x_c), with the LU
+ * factors of K' + sigma B in w->a. */
+static int nlink_apply(void *data, const double *x, double *y)
+{
+    whirl_windows *w = data;
+    const size_t n = w->n, q = 2 * n;
+    for (size_t i = 0; i < n; i++) {
+        double s1 = 0, s2 = 0;
+        for (size_t j = 0; j < n; j++) {
+            s1 += w->ma[i * n + j] * x[j];
+            s2 += w->mb[i * n + j] * x[n + j] - w->gab[j * n + i] * x[j];
+        }
+        y[i] = -s1;
+        y[n + i] = -s2;
+    }
+    lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, w->a,
+                                          (lapack_int)q, w->ipiv, y, (lapack_int)q);
+    return info == 0 ? GSL_SUCCESS : GSL_CONTINUE;
+}
+
 /* The eigenvalues of A' nearest the real shift sigma by shift-and-invert Arnoldi: the two of
  * largest |theta| among the eigenvalues theta of (A' - sigma)^-1 = -(K' + sigma B)^-1 B,
  * mu = sigma + 1 / theta, into mu_re[0..1], mu_im[0..1]. GSL_CONTINUE if they did not converge. */
@@ -567,89 +695,7 @@ static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu
     lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)q, (lapack_int)q, a,
                                           (lapack_int)q, w->ipiv);
     if (info != 0) return GSL_CONTINUE; /* sigma is an eigenvalue: use the full solve */
-    const size_t km = KRYLOV_MAX;
-    double *v = w->basis, *h = w->hess;
-    memset(h, 0, (km + 1) * km * sizeof(double));
-    double norm = 0;
-    for (size_t i = 0; i < q; i++) {
-        v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
-        norm = hypot(norm, v[i]);
-    }
-    for (size_t i = 0; i < q; i++) v[i] /= norm;
-    for (size_t k = 0; k < km; k++) {
-        const double *x = v + k * q;
-        double *y = v + (k + 1) * q;
-        /* y = -(K' + sigma B)^-1 B x, B x = (Ma x_a, -Gab^T x_a + Mb x_c) */
-        for (size_t i = 0; i < n; i++) {
-            double s1 = 0, s2 = 0;
-            for (size_t j = 0; j < n; j++) {
-                s1 += w->ma[i * n + j] * x[j];
-                s2 += w->mb[i * n + j] * x[n + j] - w->gab[j * n + i] * x[j];
-            }
-            y[i] = -s1;
-            y[n + i] = -s2;
-        }
-        info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, a, (lapack_int)q,
-                                   w->ipiv, y, (lapack_int)q);
-        if (info != 0) return GSL_CONTINUE;
-        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
-            for (size_t j = 0; j <= k; j++) {
-                double dot = 0;
-                for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
-                for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
-                h[j + k * (km + 1)] += dot;
-            }
-        norm = 0;
-        for (size_t i = 0; i < q; i++) norm = hypot(norm, y[i]);
-        h[k + 1 + k * (km + 1)] = norm;
-        if (norm > 0)
-            for (size_t i = 0; i < q; i++) y[i] /= norm;
-        const size_t m = k + 1;
-        if (m < 4 && norm > 0) continue;
-        for (size_t j = 0; j < m; j++)
-            for (size_t i = 0; i < m; i++) w->hcopy[i + j * m] = h[i + j * (km + 1)];
-        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, w->hcopy,
-                                  (lapack_int)m, w->hre, w->him, NULL, 1, w->hvec, (lapack_int)m,
-                                  w->hwork, w->hlwork);
-        if (info != 0) return GSL_CONTINUE;
-        /* the two Ritz values of largest modulus and their residuals |h_{m+1,m} e_m^T s| / |s| */
-        size_t best[2] = {0, 0};
-        double big[2] = {-1, -1};
-        for (size_t i = 0; i < m; i++) {
-            const double mod = hypot(w->hre[i], w->him[i]);
-            if (mod > big[0]) {
-                big[1] = big[0], best[1] = best[0];
-                big[0] = mod, best[0] = i;
-            } else if (mod > big[1]) {
-                big[1] = mod, best[1] = i;
-            }
-        }
-        int converged = big[1] > 0;
-        for (int t = 0; t < 2 && converged; t++) {
-            const size_t i = best[t];
-            /* eigenvector columns: real i, or (re, im) at (i, i + 1) / (i - 1, i) */
-            size_t cr = i, ci = i;
-            int cplx = w->him[i] != 0;
-            if (cplx && w->him[i] > 0) ci = i + 1;
-            if (cplx && w->him[i] < 0) cr = i - 1;
-            double last = hypot(w->hvec[m - 1 + cr * m], cplx ? w->hvec[m - 1 + ci * m] : 0);
-            double len = 0;
-            for (size_t r = 0; r < m; r++)
-                len = hypot(len, hypot(w->hvec[r + cr * m], cplx ? w->hvec[r + ci * m] : 0));
-            const double resid = norm * last / len;
-            if (!(resid <= 1e-13 * big[t])) converged = 0;
-        }
-        if (converged || norm == 0) {
-            if (!converged) return GSL_CONTINUE;
-            for (int t = 0; t < 2; t++) {
-                const double tr = w->hre[best[t]], ti = w->him[best[t]], t2 = tr * tr + ti * ti;
-                mu_re[t] = sigma + tr / t2;
-                mu_im[t] = -ti / t2;
-            }
-            return GSL_SUCCESS;
-        }
-    }
-    return GSL_CONTINUE;
+    return whirl_windows_arnoldi_pair(&w->kr, nlink_apply, w, sigma, mu_re, mu_im);
 }
 
 int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma, double *mu_re,
@@ -659,7 +705,7 @@ int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigm
     if (status) return status;
     if (krylov_pair(w, sigma, mu_re, mu_im) != GSL_SUCCESS)
         return whirl_fail(GSL_CONTINUE, "the Arnoldi iteration at sigma = %g did not converge in "
-                                        "%d steps", sigma, KRYLOV_MAX);
+                                        "%d steps", sigma, WINDOWS_KRYLOV_MAX);
     return GSL_SUCCESS;
 }
 

@@ -20,6 +20,36 @@ typedef struct windows_source {
     whirl_windows_stats *stats;  /* counts of the search (the source counts its shapes) */
 } windows_source;
 
+/* Fills out with the count mu (re, im; kept as pointers), the round-off level of the growth, the
+ * growth max Re sqrt(mu) (values <= level counted as 0) and, with sig (count, else NULL), the
+ * Krein signatures: the sign of energy(data, i) for each neutral mu i, 0 for the others. */
+void whirl_windows_classify(whirl_spectrum *out, size_t count, const double *re, const double *im,
+                            double level, int *sig, double (*energy)(void *data, size_t i),
+                            void *data);
+
+/* Shift-and-invert Arnoldi for the two eigenvalues mu nearest a real shift (Saad 2011, ch. 7): the
+ * workspace for vectors of length q, at most WINDOWS_KRYLOV_MAX steps. */
+#define WINDOWS_KRYLOV_MAX 40
+typedef struct windows_arnoldi {
+    size_t q;                   /* vector length */
+    double *basis;              /* q x (WINDOWS_KRYLOV_MAX + 1), column j at j * q */
+    double *hess;               /* (WINDOWS_KRYLOV_MAX + 1) x WINDOWS_KRYLOV_MAX, column-major */
+    double *hcopy, *hre, *him, *hvec, *hwork; /* its eigen-solve */
+    int hlwork;
+} windows_arnoldi;
+
+/* Allocates the arrays of k for vectors of length q (GSL_ENOMEM; release frees what was got). */
+int whirl_windows_arnoldi_init(windows_arnoldi *k, size_t q);
+void whirl_windows_arnoldi_release(windows_arnoldi *k);
+
+/* The two eigenvalues mu = sigma + 1 / theta nearest sigma, theta the eigenvalues of largest
+ * modulus of the operator apply(data, x, y): y = (A - sigma)^-1 x (returns GSL_SUCCESS, else
+ * GSL_CONTINUE), into mu_re[0..1], mu_im[0..1], nearest first. Converged when both Ritz residuals
+ * are below 1e-13 |theta|; GSL_CONTINUE if not within WINDOWS_KRYLOV_MAX steps. */
+int whirl_windows_arnoldi_pair(windows_arnoldi *k,
+                               int (*apply)(void *data, const double *x, double *y), void *data,
+                               double sigma, double *mu_re, double *mu_im);
+
 /* The scan's rates for mode k born at birth: from max(omega_min, birth (1 + 1e-6)) to omega_max
  * in steps of p->scan_step, both ends included; *omega malloc'ed (caller frees). GSL_EINVAL on
  * bad parameters, GSL_EDOM if the range ends before the birth. */

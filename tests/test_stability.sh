@@ -139,6 +139,24 @@ if "$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 5
   else fail "windows: the edges [$from, $to] disagree with the linear map"; fi
 else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; fi
 
+# --windows without --links: the continuous chain (collocation of the string equations)
+expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
+expect_error "continuum windows: degree with --links" "degree.*links|links.*degree" stability --windows $R --links 10 --degree 12 -o "$tmp/out.csv"
+expect_error "continuum windows: --full" "full" stability --windows $R --full -o "$tmp/out.csv"
+expect_error "tip mass without windows" "windows" stability --omega 3 --mode 2 --tip-mass 0.1 -o "$tmp/out.csv"
+expect_error "continuum windows: negative tip mass" "tip-mass" stability --windows $R --tip-mass -1 -o "$tmp/out.csv"
+expect_error "continuum windows below birth" "mode 3.*omega_3" stability --windows --modes 3 --omega-min 1 --omega-max 4 -o "$tmp/out.csv"
+if "$WHIRL" stability --windows --modes 2 --omega-min 4.38 --omega-max 4.42 --scan-step 0.05 --tol 1e-7 \
+     -o "$tmp/cw.csv" 2>"$tmp/err" \
+   && grep -q '^# whirl stability --windows: continuous chain' "$tmp/cw.csv" \
+   && [ "$(grep -v '^#' "$tmp/cw.csv" | wc -l)" -eq 2 ] \
+   && [ "$(csv_field "$tmp/cw.csv" links)" = inf ] && [ "$(csv_field "$tmp/cw.csv" open_to)" = 1 ]; then
+  from=$(csv_field "$tmp/cw.csv" from)
+  if awk -v a="$from" 'BEGIN { exit !(a > 4.4032203 && a < 4.4032209) }'; then
+    pass "continuum windows: mode 2 opens at $from (N-link chain extrapolated: 4.403221 +- 2e-6)"
+  else fail "continuum windows: mode 2 opens at $from"; fi
+else fail "continuum windows CSV: $(cat "$tmp/err" "$tmp/cw.csv" 2>/dev/null | tail -3)"; fi
+
 # ---- a map stopped by Ctrl-C: exit 130, the finished rows kept, no temporary file; --resume
 # computes the rest, and the file equals that of a run without a stop ----
 # The stop comes at half the time the whole map took, so that it finds the map running on a
