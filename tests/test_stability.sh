@@ -142,7 +142,6 @@ else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; f
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
 expect_error "continuum windows: degree with --links" "degree.*links|links.*degree" stability --windows $R --links 10 --degree 12 -o "$tmp/out.csv"
-expect_error "continuum windows: --full" "full" stability --windows $R --full -o "$tmp/out.csv"
 expect_error "tip mass without windows" "windows" stability --omega 3 --mode 2 --tip-mass 0.1 -o "$tmp/out.csv"
 expect_error "continuum windows: negative tip mass" "tip-mass" stability --windows $R --tip-mass -1 -o "$tmp/out.csv"
 expect_error "continuum windows below birth" "mode 3.*omega_3" stability --windows --modes 3 --omega-min 1 --omega-max 4 -o "$tmp/out.csv"

@@ -52,11 +52,13 @@ WHIRL_API void whirl_cstab_grid(const whirl_cstab *w, size_t *elements, size_t *
  * twice the work). Pointers into the workspace, valid until its next use. */
 WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out);
 
-/* The windows of instability of mode k of the continuous chain over the range of p (scan step,
- * tolerance and range as for whirl_windows_find; krylov is ignored: every evaluation is a full
- * solve), in increasing omega, into windows[0..max-1], their number into *count (GSL_EINVAL if
- * more than max). GSL_EDOM if the mode does not exist in the range, WHIRL_EINTERRUPTED on a stop
- * request (between eigen-solves). */
+/* The windows of instability of mode k of the continuous chain over the range of p (as for
+ * whirl_windows_find: scan step, tolerance, range, and krylov: near the edges the colliding pair
+ * by shift-and-invert Arnoldi on the collocation's pencil), the shapes those of the branch
+ * (whirl_continuum_branch over the scan), in increasing omega, into windows[0..max-1], their
+ * number into *count (GSL_EINVAL if more than max). GSL_EDOM if the mode does not exist in the
+ * range, GSL_EINVAL beyond WHIRL_CONTINUUM_OMEGA_MAX, WHIRL_EINTERRUPTED on a stop request
+ * (between eigen-solves). */
 WHIRL_API int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                                   whirl_window *windows, size_t max, size_t *count,
                                   whirl_windows_stats *stats);

@@ -328,8 +328,7 @@ static int run_windows(const cli_command *cmd, const options *o)
         fprintf(out.fp, "# whirl stability --windows: %s, omega %s..%s, scan step %s, edges "
                         "to %s, refinement %s\n", chain, CLI_NUM(o->omega_min * rate),
                 CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
-                !c ? "full eigen-solves (dense collocation)"
-                   : o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
+                o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
         for (size_t k = 0; k < nmodes; k++) {
             const whirl_windows_stats *st = &stats[k];
             fprintf(out.fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
@@ -533,8 +532,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
          NULL, NULL, CLI_UNIT_RATE},
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
-         "windows of N links: full eigen-solves near the edges (default: shift-and-invert "
-         "Arnoldi)", NULL, "--windows --links"},
+         "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
+         "--windows"},
         {"--degree", NULL, CLI_INT, &o.degree, NULL, "P",
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
          "--windows", "--links"},
