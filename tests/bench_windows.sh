@@ -8,7 +8,11 @@
 #  2. the stability maps of bench_stability.sh (step 0.01, the first-order form's eigenvalues),
 #     when present: every map point of modes 2 and 3 is unstable exactly when it lies inside a
 #     window (window edges from bench_windows);
-#  3. the figure windows_continuum.png: the edges against 1/N with their extrapolation.
+#  3. the continuous chain's own windows (whirl stability --windows without --links: the string
+#     equations linearised and solved by collocation, no N-link chain) against every extrapolated
+#     edge of windows_continuum.csv: each within its error estimate (windows_collocation.csv);
+#  4. the figure windows_continuum.png: the edges against 1/N with their extrapolation and the
+#     collocation's values.
 out=${1:-out/bench}
 WHIRL=${WHIRL:-build/whirl}
 status=0
@@ -52,8 +56,30 @@ for n in 25 50 100; do
     END { printf "  map N = %d: %d points of modes 2-3, %d disagree with the windows\n", n, total, bad; exit (bad > 0) }' || status=1
 done
 
+coll="$out/windows_collocation.csv"
+if [ -f "$out/windows_continuum.csv" ]; then
+  start=$(date +%s)
+  if "$WHIRL" stability --windows --omega-min 1 --omega-max 10 --modes 2,3 -o "$coll"; then
+    echo "continuum windows by collocation, modes 2-3 over 1..10: $(( $(date +%s) - start )) s wall"
+    # every extrapolated edge against the collocation's edge of the same mode and side nearest it
+    grep -v '^#' "$coll" | awk -F, 'NR > 1 { print $1, "from", $3, $5; print $1, "to", $4, $6 }' \
+      >"$out/windows_collocation_edges.txt"
+    awk -F, -v list="$out/windows_collocation_edges.txt" '
+      BEGIN { while ((getline l < list) > 0) { split(l, f, " "); if (f[4] == 0) { k++; m[k] = f[1]; side[k] = f[2]; e[k] = f[3] } } }
+      NR > 1 && $10 != "" {
+        best = -1; for (i = 1; i <= k; i++) if (m[i] == $1 && side[i] == $3) { d = e[i] - $10; if (d < 0) d = -d; if (best < 0 || d < best) { best = d; v = e[i] } }
+        err = $11 == "" ? 0 : $11
+        ok = best >= 0 && best <= err + 1e-8
+        printf "  mode %d window %d %s: extrapolated %.9g +- %s, collocation %.10g, difference %.2g%s\n", $1, $2, $3, $10, err, v, best, ok ? "" : " (outside the error)"
+        if (!ok) bad++ }
+      END { exit (bad > 0) }' "$out/windows_continuum.csv" || status=1
+  else
+    status=1
+  fi
+fi
+
 if command -v gnuplot >/dev/null 2>&1 && [ -f "$out/windows_continuum.csv" ]; then
-  gnuplot -e "csv='$out/windows_continuum.csv'; out='$out/windows_continuum.png'" plots/windows.gp \
+  gnuplot -e "csv='$out/windows_continuum.csv'; coll='$coll'; out='$out/windows_continuum.png'" plots/windows.gp \
     && echo "figure: $out/windows_continuum.png" || status=1
 fi
 exit $status
