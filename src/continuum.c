@@ -612,3 +612,25 @@ int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *om
     steady_model m = {continuum_ws_alloc, continuum_ws_free, continuum_solve_ws, &p};
     return whirl_steady_branch(&m, mode, n, omega, info, exists);
 }
+
+int whirl_continuum_shots(double omega, double tip_mass, size_t n, const double *a,
+                          double *residual, int *crossings)
+{
+    int status = whirl_check_tip_mass(tip_mass);
+    if (status != GSL_SUCCESS) return status;
+    if ((status = check_rate(omega)) != GSL_SUCCESS) return status;
+    continuum_params p = {tip_mass, WHIRL_CONTINUUM_TOL};
+    continuum_ws *w = continuum_ws_alloc(&p);
+    if (w == NULL) return GSL_ENOMEM;
+    status = set_rate(w, omega);
+    for (size_t i = 0; i < n && status == GSL_SUCCESS; i++) {
+        if (whirl_stop_requested())
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped after %zu of %zu shots", i, n);
+        else if (!(isfinite(a[i]) && a[i] > 0 && a[i] <= 1))
+            status = whirl_fail(GSL_EINVAL, "tip radius must be in (0, 1], got %g", a[i]);
+        else
+            status = continuum_shot(w, a[i], &residual[i], &crossings[i]);
+    }
+    continuum_ws_free(w);
+    return status;
+}

@@ -164,6 +164,13 @@ static void nlink_info(const whirl_chain *c, const double *r, const double *z, c
     }
 }
 
+void whirl_nlink_info_nodes(const whirl_chain *c, const double *r, const double *z,
+                            const double *tension, double omega, int mode,
+                            whirl_shape_info *info)
+{
+    nlink_info(c, r, z, tension, omega, mode, info);
+}
+
 int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
                      whirl_shape_info *info)
 {
@@ -178,6 +185,30 @@ int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
     return status;
 }
 
+int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, double *residual,
+                           double *d_residual, double *tip_r, double *theta)
+{
+    /* everything divided by H_1: eta_i = H_i / H_1, x_i = r_i / H_1; the primed quantities are
+     * their derivatives with respect to theta_1 (forward differentiation, exact) */
+    double v = 0;
+    for (size_t i = 0; i < c->n; i++) v += c->mass[i] * c->gravity;
+    double h1 = v * tan(theta_1), h1_d = v / (cos(theta_1) * cos(theta_1));
+    double eta = 1, x = 0, eta_d = 0, x_d = 0, w2 = omega * omega;
+    for (size_t i = 1; i <= c->n; i++) {
+        double he = h1 * eta, t = hypot(he, v);
+        if (theta) theta[i - 1] = atan2(he, v);
+        x += c->length[i - 1] * eta / t;
+        x_d += c->length[i - 1] * (eta_d / t - eta * he * (h1_d * eta + h1 * eta_d) / (t * t * t));
+        eta -= c->mass[i - 1] * w2 * x;
+        eta_d -= c->mass[i - 1] * w2 * x_d;
+        v -= c->mass[i - 1] * c->gravity;
+    }
+    *residual = eta;
+    if (d_residual) *d_residual = eta_d;
+    if (tip_r) *tip_r = h1 * x;
+    return GSL_SUCCESS;
+}
+
 int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
                                double *residual, double *tip_r)
 {
@@ -185,16 +216,5 @@ int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_
     if (status != GSL_SUCCESS) return status;
     if (!(isfinite(omega) && omega > 0 && fabs(theta_1) < M_PI_2))
         return whirl_fail(GSL_EINVAL, "pivot shooting needs omega > 0 and |theta_1| < pi/2");
-    /* everything divided by H_1: eta_i = H_i / H_1, x_i = r_i / H_1 */
-    double v = 0;
-    for (size_t i = 0; i < c->n; i++) v += c->mass[i] * c->gravity;
-    double h1 = v * tan(theta_1), eta = 1, x = 0, w2 = omega * omega;
-    for (size_t i = 1; i <= c->n; i++) {
-        x += c->length[i - 1] * eta / hypot(h1 * eta, v);
-        eta -= c->mass[i - 1] * w2 * x;
-        v -= c->mass[i - 1] * c->gravity;
-    }
-    *residual = eta;
-    if (tip_r) *tip_r = h1 * x;
-    return GSL_SUCCESS;
+    return whirl_nlink_pivot_shot(c, omega, theta_1, residual, NULL, tip_r, NULL);
 }

@@ -56,4 +56,22 @@ int whirl_steady_check_samples(double omega, size_t n, const double *r, const do
  * bifurcates at omega_k=...)" with GSL_EDOM. */
 int whirl_steady_fail_missing(int mode, double omega, double omega_k);
 
+/* The pivot-end shot of whirl_nlink_pivot_residual without its argument checks, with the
+ * derivative of the residual with respect to theta_1 in *d_residual and the link angles from
+ * the downward vertical in theta[0..N-1] (each may be NULL). */
+int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, double *residual,
+                           double *d_residual, double *tip_r, double *theta);
+
+/* The summary of the N-link shape with nodes r, z (pivot first, z relative to the pivot) and
+ * link tensions (tension[i] of link i), as whirl_nlink_info. */
+void whirl_nlink_info_nodes(const whirl_chain *c, const double *r, const double *z,
+                            const double *tension, double omega, int mode,
+                            whirl_shape_info *info);
+
+/* n shots of the continuous chain at omega (one workspace): the residual r(pivot) / a and the
+ * axis crossings below the pivot for the tip radii a[0..n-1] in (0, 1]. Polls the stop request
+ * (WHIRL_EINTERRUPTED). */
+int whirl_continuum_shots(double omega, double tip_mass, size_t n, const double *a,
+                          double *residual, int *crossings);
+
 #endif

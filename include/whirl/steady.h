@@ -232,4 +232,84 @@ WHIRL_API int whirl_nlink_residual(const whirl_chain *c, double omega, double ti
 WHIRL_API int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
                                double *residual, double *tip_r);
 
+/* ---- every planar relative equilibrium at a rate (src/equilibria.c) ----
+ * On a coarse N-link chain at a high rate there are many more equilibria than modes born below
+ * the rate: besides the branches born at the critical rates, curves of equilibria that never
+ * touch the hanging chain (born in pairs at folds). whirl_equilibria_find lists all of them at
+ * one rate, each with the branch it lies on; the completeness argument is in src/equilibria.c. */
+
+typedef struct whirl_equilibrium {
+    whirl_shape_info info; /* the shape (info.mode: branch, 0 when isolated or unidentified) */
+    int branch;      /* k: on the curve born at omega_k from the hanging chain (reached by
+                      * continuation); 0: isolated (its curve, followed both ways up to the
+                      * continuation's limit, meets no birth); -1: not identified (the
+                      * continuation failed before it met a birth, a closure or the limit) */
+    double born_at;  /* omega_k for a branch; for an isolated curve the rate of its lowest fold
+                      * found, where it appears as a pair of equilibria [sqrt(g/L)]; NaN if
+                      * unidentified or no fold was found */
+    double eig_growth; /* largest real part of the linearisation's eigenvalues [sqrt(g/L)]
+                        * (whirl_stability_shape); NaN for the continuum or when not asked */
+} whirl_equilibrium;
+
+typedef struct whirl_equilibria_params {
+    int stability;        /* 1: compute eig_growth for each N-link equilibrium; default 1 */
+    double follow_factor; /* curves are followed up to follow_factor * omega, > 1; default 2 */
+    long shot_budget;     /* most residual evaluations of one scan, >= 1000; default 2e7 */
+} whirl_equilibria_params;
+
+WHIRL_API whirl_equilibria_params whirl_equilibria_defaults(void);
+
+/* The result: the equilibria in increasing tip radius, and the evidence of completeness. */
+typedef struct whirl_equilibria {
+    double omega;         /* the rate [sqrt(g/L)] */
+    size_t n_links;       /* N, 0 for the continuum */
+    size_t count;         /* equilibria found (the union of the methods below) */
+    whirl_equilibrium *eq; /* count of them, increasing tip_r */
+    int born;             /* critical rates below omega (Kolodner: the continuum's count) */
+    /* method 1: sign changes of the pivot's radius over the tip radius (both chains) */
+    size_t tip_roots;     /* roots found */
+    double tip_floor;     /* smallest tip radius scanned [L] (below it the shot is linear) */
+    long tip_shots;       /* residual evaluations of the final level */
+    int tip_levels;       /* refinement levels until the count repeated (>= 2) */
+    size_t tip_unresolved; /* intervals left at the resolution limit, not proven monotone */
+    /* method 2, N-link: the same scan of the pivot-end shooting over the top link's angle;
+     * continuum: the solve of modes 1..born by bracketing the crossing count */
+    size_t check_roots;   /* roots found */
+    long check_shots;     /* residual evaluations (N-link: of the final level) */
+    int check_levels;
+    size_t matched;       /* equilibria both methods found (tip radii within 1e-8 relative) */
+    /* method 3, N-link: continuation of every curve through the roots (and of every branch
+     * from its birth) up to follow_factor * omega, counting its crossings of omega */
+    size_t crossings;     /* crossings found, each matched against the scans' roots */
+    size_t missed;        /* crossings no scan found (added to eq) */
+    size_t isolated;      /* equilibria on curves that meet no birth */
+    size_t unidentified;  /* equilibria whose curve's continuation failed */
+    long path_steps;      /* continuation steps in all */
+    size_t cut_short;     /* curves' directions whose continuation failed above omega (before
+                           * follow_factor * omega): their crossings of omega are all seen */
+    double balance;       /* N-link: the largest force across a link over its tension among
+                           * the polished equilibria (round-off: ~1e-16) */
+} whirl_equilibria;
+
+/* Every planar relative equilibrium (up to the mirror image r -> -r) of the N-link chain c at
+ * omega, or of the continuous chain with tip mass tip_mass when c is NULL. params may be NULL
+ * (the defaults). On success *out holds a result to free with whirl_equilibria_free. Errors:
+ * GSL_EINVAL on omega not in (0, WHIRL_EQUILIBRIA_OMEGA_MAX] (the continuum: below
+ * WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX), a chain of more than WHIRL_EQUILIBRIA_LINKS_MAX links
+ * or bad params; GSL_EDOM when omega is within 1e-10 relative of a critical rate (a branch is
+ * born there: its equilibrium is not separated from the hanging chain); GSL_EMAXITER when a
+ * scan needs more than shot_budget evaluations or does not settle; GSL_ERANGE when the shot
+ * overflows (the radii of a shape span more than ~1e150); WHIRL_EINTERRUPTED on a stop
+ * request. */
+WHIRL_API int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
+                                    const whirl_equilibria_params *params,
+                                    whirl_equilibria **out);
+WHIRL_API void whirl_equilibria_free(whirl_equilibria *e); /* NULL is a no-op */
+
+#define WHIRL_EQUILIBRIA_OMEGA_MAX 1000.0 /* N-link: above it the mode-1 tip radius is within
+                                           * ~1e-12 of the chain's length, beyond the scan */
+#define WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX 50.0 /* continuum: 31 shapes, each shot an ODE */
+#define WHIRL_EQUILIBRIA_LINKS_MAX 200 /* the budget: scans of O(N) shots, dense Newton
+                                       * steps O(N^3) and eigen-solves O((4N)^3) per shape */
+
 #endif

@@ -234,6 +234,7 @@ double cli_wall_seconds(void);
 /* ---- the commands ---- */
 int cmd_critical(const cli_command *cmd, int argc, char **argv);
 int cmd_shape(const cli_command *cmd, int argc, char **argv);
+int cmd_equilibria(const cli_command *cmd, int argc, char **argv);
 int cmd_sweep(const cli_command *cmd, int argc, char **argv);
 int cmd_stability(const cli_command *cmd, int argc, char **argv);
 int cmd_simulate(const cli_command *cmd, int argc, char **argv);

@@ -1,0 +1,89 @@
+/* whirl equilibria: every planar relative equilibrium at one rate W, with its node count, the
+ * branch it lies on, its summary and its linear verdict (whirl_equilibria_find). */
+#include <math.h>
+
+#include "cli/steady_cli.h"
+
+int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
+{
+    double omega = 0;
+    int no_stability = 0;
+    const char *out_path = NULL;
+    steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    const cli_option opts[] = {
+        {"--omega", NULL, CLI_DOUBLE, &omega, NULL, "W", "rotation rate", "(0, inf)", NULL, NULL,
+         "", CLI_UNIT_RATE},
+        STEADY_CLI_MODEL_OPTIONS(m),
+        {"--no-stability", NULL, CLI_FLAG, &no_stability, NULL, NULL,
+         "N-link: leave eig_growth and verdict empty (faster on long chains)", NULL,
+         "--links"},
+        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
+         "write the CSV to FILE (default: standard output)"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
+    if (rc) return rc;
+    if (steady_cli_model_setup(cmd, &m)) return 1;
+    whirl_equilibria_params par = whirl_equilibria_defaults();
+    par.stability = !no_stability;
+    whirl_equilibria *e = NULL;
+    if (whirl_equilibria_find(m.chain, steady_cli_tip_mass(&m), omega, &par, &e)) {
+        steady_cli_model_free(&m);
+        return cli_error(cmd, "%s", whirl_last_error());
+    }
+    cli_out out;
+    if (cli_out_open(cmd, &out, out_path)) {
+        whirl_equilibria_free(e);
+        steady_cli_model_free(&m);
+        return 1;
+    }
+    double rate = cli_units_rate(&m.units), len = m.units.length;
+    double force = cli_units_force(&m.units);
+    const char *rate_unit = cli_units_name(&m.units, CLI_UNIT_RATE);
+    FILE *fp = out.fp;
+    fprintf(fp, "# equilibria: omega=%s %s, %s, tip mass %s %s: %zu equilibria (mirror images "
+            "r -> -r not counted), %d modes born below omega\n", CLI_NUM(omega * rate),
+            rate_unit, m.chain ? "N-link chain" : "continuous chain",
+            CLI_NUM(m.tip_mass * m.units.mass), cli_units_name(&m.units, CLI_UNIT_MASS),
+            e->count, e->born);
+    if (m.chain) {
+        fprintf(fp, "# links=%d; tip scan: %zu roots (%d levels, %ld shots, floor %s %s, %zu "
+                "cells unresolved); pivot scan: %zu roots (%d levels, %ld shots); both: %zu\n",
+                m.links, e->tip_roots, e->tip_levels, e->tip_shots, CLI_NUM(e->tip_floor * len),
+                cli_units_name(&m.units, CLI_UNIT_LENGTH), e->tip_unresolved, e->check_roots,
+                e->check_levels, e->check_shots, e->matched);
+        fprintf(fp, "# continuation: %zu crossings of omega, %zu missed by the scans, %zu "
+                "isolated, %zu unidentified, %zu cut short above omega, %ld steps; largest "
+                "force across a link / tension %s\n", e->crossings, e->missed, e->isolated,
+                e->unidentified, e->cut_short, e->path_steps, CLI_NUM(e->balance));
+        fprintf(fp, "# branch: the mode k whose birth (born_at = omega_k) the equilibrium is "
+                "connected to by continuation; isolated: on a curve that meets no birth, "
+                "born_at its lowest fold; unidentified: the continuation failed\n");
+    } else {
+        fprintf(fp, "# sign changes of the pivot's radius over the tip radius: %zu (%d levels, "
+                "%ld shots); shapes solved mode by mode: %zu, each alone in a sign change: %zu "
+                "(Kolodner: exactly one shape per mode born)\n", e->tip_roots, e->tip_levels,
+                e->tip_shots, e->check_roots, e->matched);
+        fprintf(fp, "# branch: the mode; born_at: its critical rate; eig_growth, verdict: not "
+                "computed for the continuum (use --links N)\n");
+    }
+    cli_units_comment(fp, &m.units);
+    fprintf(fp, "nodes,branch,born_at,tip_r,max_r,depth,top_tension,eig_growth,verdict\n");
+    for (size_t i = 0; i < e->count; i++) {
+        const whirl_equilibrium *q = &e->eq[i];
+        char branch[32];
+        if (q->branch > 0) snprintf(branch, sizeof branch, "%d", q->branch);
+        else snprintf(branch, sizeof branch, "%s", q->branch == 0 ? "isolated" : "unidentified");
+        fprintf(fp, "%d,%s,%s,%s,%s,%s,%s,", q->info.n_nodes + 1, branch,
+                isfinite(q->born_at) ? CLI_NUM(q->born_at * rate) : "",
+                CLI_NUM(q->info.tip_r * len), CLI_NUM(q->info.max_r * len),
+                CLI_NUM(q->info.depth * len), CLI_NUM(q->info.top_tension * force));
+        if (isfinite(q->eig_growth))
+            fprintf(fp, "%s,%s\n", CLI_NUM(q->eig_growth * rate),
+                    q->eig_growth > 0 ? "unstable" : "stable");
+        else
+            fprintf(fp, ",\n");
+    }
+    whirl_equilibria_free(e);
+    steady_cli_model_free(&m);
+    return cli_out_commit(cmd, &out);
+}

@@ -1,0 +1,254 @@
+/* Tests of every equilibrium at a rate (src/equilibria.c):
+ * - N = 5 at omega = 11.62: 1, 1, 3, 5, 7 equilibria with 1..5 nodes; the three methods agree
+ *   (tip scan, pivot scan, continuation: nothing missed, every root identified); every shape
+ *   balances each link to round-off; the equilibrium on branch k is the one whirl_nlink_solve
+ *   returns for mode k; a plain uniform scan of the tip shot on 2^17 points (no refinement, no
+ *   derivatives) finds the same tip radii;
+ * - the isolated ones are born in pairs at their folds: just above each reported fold rate
+ *   there are exactly two more equilibria than just below it, and they are the pair;
+ * - N = 7 at omega = 21.1: a cluster of 103 equilibria, 11 of them with four nodes, the two scans
+ *   in agreement, the count settled;
+ * - the continuum: Kolodner's count, exactly n shapes for omega_n < omega < omega_{n+1}, just
+ *   above and just below the critical rates, with and without a tip mass;
+ * - linear verdicts: the mode-1 shape is stable (eig_growth 0), as whirl_stability_mode says;
+ * - the error paths. */
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "whirl/stability.h"
+#include "whirl/steady.h"
+
+static whirl_equilibria *find(const whirl_chain *c, double tip_mass, double omega, int stability)
+{
+    whirl_equilibria_params p = whirl_equilibria_defaults();
+    p.stability = stability;
+    whirl_equilibria *e = NULL;
+    int status = whirl_equilibria_find(c, tip_mass, omega, &p, &e);
+    if (status) print_error("omega=%g: %s\n", omega, whirl_last_error());
+    assert_int_equal(status, GSL_SUCCESS);
+    assert_non_null(e);
+    return e;
+}
+
+/* The methods agree: both scans found every equilibrium, the continuation missed none of them
+ * and identified every one. */
+static void assert_agreement(const whirl_equilibria *e)
+{
+    assert_int_equal(e->tip_roots, e->count);
+    assert_int_equal(e->check_roots, e->count);
+    assert_int_equal(e->matched, e->count);
+    assert_int_equal(e->missed, 0);
+    assert_int_equal(e->unidentified, 0);
+    assert_int_equal(e->tip_unresolved, 0);
+    assert_true(e->tip_levels >= 2 && e->check_levels >= 2);
+    assert_true(e->balance < 1e-13);
+    for (size_t i = 1; i < e->count; i++) assert_true(e->eq[i].info.tip_r > e->eq[i - 1].info.tip_r);
+}
+
+static void test_five_links(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
+    double omega = 11.62;
+    whirl_equilibria *e = find(c, 0, omega, 1);
+    assert_agreement(e);
+    int by_nodes[6] = {0};
+    for (size_t i = 0; i < e->count; i++) by_nodes[e->eq[i].info.n_nodes + 1]++;
+    const int expected[6] = {0, 1, 1, 3, 5, 7};
+    for (int k = 1; k <= 5; k++) assert_int_equal(by_nodes[k], expected[k]);
+    assert_int_equal(e->count, 17);
+    assert_int_equal(e->born, 5);
+    /* one equilibrium per branch here, the one whirl_nlink_solve returns */
+    int on_branch[6] = {0};
+    for (size_t i = 0; i < e->count; i++) {
+        const whirl_equilibrium *q = &e->eq[i];
+        assert_true(q->branch >= 0 && q->branch <= 5);
+        if (q->branch == 0) {
+            assert_true(q->born_at > 1 && q->born_at < omega);
+            continue;
+        }
+        on_branch[q->branch]++;
+        whirl_shape_info info;
+        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, 0, &info), GSL_SUCCESS);
+        assert_true(fabs(info.tip_r - q->info.tip_r) <= 1e-9 * q->info.tip_r);
+        double crit[5];
+        assert_int_equal(whirl_nlink_critical(c, 5, crit), GSL_SUCCESS);
+        assert_true(fabs(q->born_at - crit[q->branch - 1]) <= 1e-12 * crit[q->branch - 1]);
+        /* the shape's pivot lands on the axis: the tip shot's residual at round-off */
+        double g;
+        assert_int_equal(whirl_nlink_residual(c, omega, q->info.tip_r, &g, NULL, NULL),
+                         GSL_SUCCESS);
+        assert_true(fabs(g) < 1e-9);
+    }
+    for (int k = 1; k <= 5; k++) assert_int_equal(on_branch[k], 1);
+    assert_int_equal(e->isolated, 12);
+    /* a plain uniform scan in ln a (2^17 points, no refinement): the same roots */
+    size_t m = 1 << 17, found = 0;
+    double la = log(1e-12), prev = 0, a_prev = 0;
+    for (size_t i = 0; i <= m; i++) {
+        double a = exp(la * (1 - (double)i / (double)m)), g;
+        if (a >= 1) a = 1 - 1e-15;
+        assert_int_equal(whirl_nlink_residual(c, omega, a, &g, NULL, NULL), GSL_SUCCESS);
+        if (i > 0 && (g > 0) != (prev > 0)) {
+            /* exactly one equilibrium of the list in [a_prev, a] */
+            int inside = 0;
+            for (size_t j = 0; j < e->count; j++)
+                inside += e->eq[j].info.tip_r >= a_prev * (1 - 1e-12) &&
+                          e->eq[j].info.tip_r <= a * (1 + 1e-12);
+            assert_int_equal(inside, 1);
+            found++;
+        }
+        prev = g;
+        a_prev = a;
+    }
+    assert_int_equal(found, e->count);
+    /* mode 1 is stable, as the stability module says for the shape of mode 1 */
+    whirl_stability *w = whirl_stability_alloc(5);
+    whirl_model model = {0};
+    model.chain = c;
+    model.dim = 3;
+    model.frame = WHIRL_FRAME_ROTATING;
+    model.omega = omega;
+    for (size_t i = 0; i < e->count; i++) {
+        if (e->eq[i].branch != 1 && e->eq[i].branch != 2) continue;
+        double growth;
+        assert_int_equal(whirl_stability_mode(w, &model, e->eq[i].branch, 0, NULL, &growth),
+                         GSL_SUCCESS);
+        assert_true(fabs(growth - e->eq[i].eig_growth) <= 1e-8 * (1 + fabs(growth)));
+        if (e->eq[i].branch == 1) assert_true(e->eq[i].eig_growth == 0);
+    }
+    whirl_stability_free(w);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
+/* Each isolated curve's fold: two equilibria more just above it than just below, and the two
+ * new ones are the closest pair to each other among the new list at the fold. */
+static void test_fold_pairs(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
+    whirl_equilibria *e = find(c, 0, 11.62, 0);
+    double folds[32];
+    int nf = 0;
+    for (size_t i = 0; i < e->count; i++) {
+        if (e->eq[i].branch != 0) continue;
+        int seen = 0;
+        for (int j = 0; j < nf; j++) seen |= folds[j] == e->eq[i].born_at;
+        if (!seen) folds[nf++] = e->eq[i].born_at;
+    }
+    assert_int_equal(nf, 6);
+    for (int j = 0; j < nf; j++) {
+        whirl_equilibria *below = find(c, 0, folds[j] * (1 - 1e-7), 0);
+        whirl_equilibria *above = find(c, 0, folds[j] * (1 + 1e-7), 0);
+        assert_agreement(below);
+        assert_agreement(above);
+        assert_int_equal(above->count, below->count + 2);
+        /* the new pair is isolated and born at this fold */
+        int at_fold = 0;
+        for (size_t i = 0; i < above->count; i++)
+            at_fold += above->eq[i].branch == 0 &&
+                       fabs(above->eq[i].born_at - folds[j]) <= 1e-9 * folds[j];
+        assert_int_equal(at_fold, 2);
+        whirl_equilibria_free(below);
+        whirl_equilibria_free(above);
+    }
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
+static void test_seven_links_cluster(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(7, 0);
+    whirl_equilibria *e = find(c, 0, 21.1, 0);
+    assert_agreement(e);
+    assert_int_equal(e->count, 103);
+    int four = 0;
+    for (size_t i = 0; i < e->count; i++) four += e->eq[i].info.n_nodes + 1 == 4;
+    assert_int_equal(four, 11);
+    /* the roots of the cluster near a = 0.07 are 1e-5 apart or closer, and distinct */
+    double closest = INFINITY;
+    for (size_t i = 1; i < e->count; i++)
+        closest = fmin(closest, e->eq[i].info.tip_r / e->eq[i - 1].info.tip_r - 1);
+    assert_true(closest < 1e-4 && closest > 1e-7);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
+/* Kolodner: exactly n shapes for omega_n < omega < omega_{n+1}. */
+static void test_kolodner(void **state)
+{
+    (void)state;
+    const double tip_mass[2] = {0, 0.37};
+    for (int t = 0; t < 2; t++) {
+        double crit[8];
+        for (int k = 1; k <= 7; k++)
+            assert_int_equal(whirl_continuum_critical(k, tip_mass[t], &crit[k - 1]), GSL_SUCCESS);
+        for (int n = 1; n <= 6; n++) {
+            const double rates[2] = {crit[n - 1] * (1 + 1e-6), crit[n] * (1 - 1e-6)};
+            for (int j = 0; j < 2; j++) {
+                whirl_equilibria *e = find(NULL, tip_mass[t], rates[j], 0);
+                assert_int_equal(e->count, n);
+                assert_int_equal(e->born, n);
+                assert_int_equal(e->tip_roots, n);
+                assert_int_equal(e->matched, n);
+                for (size_t i = 0; i < e->count; i++) {
+                    /* increasing tip radius: mode n first */
+                    assert_int_equal(e->eq[i].branch, n - (int)i);
+                    assert_int_equal(e->eq[i].info.n_nodes, n - 1 - (int)i);
+                    assert_true(isnan(e->eq[i].eig_growth));
+                }
+                whirl_equilibria_free(e);
+            }
+        }
+    }
+}
+
+static void test_errors(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
+    whirl_equilibria *e = (whirl_equilibria *)&e;
+    assert_int_equal(whirl_equilibria_find(c, 0, 0, NULL, &e), GSL_EINVAL);
+    assert_null(e);
+    assert_int_equal(whirl_equilibria_find(c, 0, NAN, NULL, &e), GSL_EINVAL);
+    assert_int_equal(whirl_equilibria_find(c, 0, 1001, NULL, &e), GSL_EINVAL);
+    assert_int_equal(whirl_equilibria_find(NULL, 0, 51, NULL, &e), GSL_EINVAL);
+    double crit[5];
+    assert_int_equal(whirl_nlink_critical(c, 5, crit), GSL_SUCCESS);
+    assert_int_equal(whirl_equilibria_find(c, 0, crit[2], NULL, &e), GSL_EDOM);
+    assert_non_null(strstr(whirl_last_error(), "critical rate of mode 3"));
+    double j02;
+    assert_int_equal(whirl_continuum_critical(2, 0, &j02), GSL_SUCCESS);
+    assert_int_equal(whirl_equilibria_find(NULL, 0, j02, NULL, &e), GSL_EDOM);
+    whirl_equilibria_params p = whirl_equilibria_defaults();
+    p.follow_factor = 1;
+    assert_int_equal(whirl_equilibria_find(c, 0, 3, &p, &e), GSL_EINVAL);
+    p = whirl_equilibria_defaults();
+    p.shot_budget = 2000;
+    assert_int_equal(whirl_equilibria_find(c, 0, 11.62, &p, &e), GSL_EMAXITER);
+    assert_null(e);
+    whirl_chain *big = whirl_chain_alloc_uniform(WHIRL_EQUILIBRIA_LINKS_MAX + 1, 0);
+    assert_int_equal(whirl_equilibria_find(big, 0, 3, NULL, &e), GSL_EINVAL);
+    whirl_chain_free(big);
+    whirl_equilibria_free(NULL);
+    whirl_chain_free(c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_five_links), cmocka_unit_test(test_fold_pairs),
+        cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_kolodner),
+        cmocka_unit_test(test_errors),
+    };
+    return cmocka_run_group_tests_name("equilibria", tests, NULL, NULL);
+}
