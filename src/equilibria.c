@@ -31,8 +31,10 @@
  *    nontrivial equilibrium has theta_1 != 0, and theta_1 > 0 for one of the mirror pair) fixes
  *    the horizontal force at the pivot; going down the chain the force left below the tip,
  *    H_{N+1} / H_1, vanishes for an equilibrium (whirl_nlink_pivot_residual). Scanned the same
- *    way in y = ln(theta_1 / (pi/2 - theta_1)) from its own linear floor. Its roots, converted to
- *    tip radii, must be those of method 1 (matched to 1e-8 relative).
+ *    way in y = ln(theta_1 / (pi/2 - theta_1)) from its own linear floor. Its roots must be those
+ *    of method 1. Every root of either scan is polished by Newton's method on all link angles
+ *    (below), started from its own shot's angles, and two are the same equilibrium when every
+ *    link angle agrees to 1e-8 rad.
  * 3. Continuation (whirl_nlink_path): every branch born at a critical rate below
  *    follow_factor * omega is followed from its birth, and the curve through every root not on
  *    one of them is followed both ways, each up to follow_factor * omega, until it returns to

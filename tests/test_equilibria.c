@@ -10,7 +10,9 @@
  *   in agreement, the count settled;
  * - the continuum: Kolodner's count, exactly n shapes for omega_n < omega < omega_{n+1}, just
  *   above and just below the critical rates, with and without a tip mass;
- * - linear verdicts: the mode-1 shape is stable (eig_growth 0), as whirl_stability_mode says;
+ * - linear verdicts: those of the shapes of modes 1 and 2 as whirl_stability_mode gives them,
+ *   mode 1 stable (eig_growth 0);
+ * - the pivot scan's derivative against central differences;
  * - the error paths. */
 #include <float.h>
 #include <math.h>
@@ -22,6 +24,7 @@
 
 #include <cmocka.h>
 
+#include "steady_internal.h"
 #include "whirl/stability.h"
 #include "whirl/steady.h"
 
@@ -212,6 +215,36 @@ static void test_kolodner(void **state)
     }
 }
 
+/* The pivot scan's derivative (forward differentiation) against central differences, and its
+ * link angles against the tip shot of the same shape. */
+static void test_pivot_derivative(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(9, 0.23);
+    const double rates[3] = {2.385, 7.1, 15.3}, angles[3] = {1e-3, 0.41, 1.37};
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double g, d, gp, gm, tip, h = 1e-5 * angles[j], theta[9];
+            assert_int_equal(whirl_nlink_pivot_shot(c, rates[i], angles[j], &g, &d, &tip, theta),
+                             GSL_SUCCESS);
+            /* central differences at h and h/2, extrapolated (error O(h^4)) */
+            double fd2[2];
+            for (int k = 0; k < 2; k++) {
+                double hk = k ? h / 2 : h;
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] + hk, &gp, NULL, NULL, NULL);
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] - hk, &gm, NULL, NULL, NULL);
+                fd2[k] = (gp - gm) / (2 * hk);
+            }
+            double fd = (4 * fd2[1] - fd2[0]) / 3;
+            assert_true(fabs(fd - d) <= 1e-6 * (fabs(d) + fabs(g) / angles[j]));
+            assert_true(fabs(theta[0] - angles[j]) <= 1e-15);
+            double r = whirl_nlink_pivot_residual(c, rates[i], angles[j], &gp, NULL);
+            assert_int_equal(r, GSL_SUCCESS);
+            assert_true(gp == g);
+        }
+    whirl_chain_free(c);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -248,6 +281,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_five_links), cmocka_unit_test(test_fold_pairs),
         cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_kolodner),
+        cmocka_unit_test(test_pivot_derivative),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("equilibria", tests, NULL, NULL);

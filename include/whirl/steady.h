@@ -277,7 +277,9 @@ typedef struct whirl_equilibria {
     size_t check_roots;   /* roots found */
     long check_shots;     /* residual evaluations (N-link: of the final level) */
     int check_levels;
-    size_t matched;       /* equilibria both methods found (tip radii within 1e-8 relative) */
+    size_t matched;       /* equilibria both methods found (N-link: every link angle of the
+                           * polished shapes within 1e-8 rad; continuum: each solved shape
+                           * alone in a sign change of the scan) */
     /* method 3, N-link: continuation of every curve through the roots (and of every branch
      * from its birth) up to follow_factor * omega, counting its crossings of omega */
     size_t crossings;     /* crossings found, each matched against the scans' roots */
