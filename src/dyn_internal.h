@@ -35,6 +35,7 @@ struct whirl_dyn {
     size_t n;    /* links */
     int dim;     /* 2 or 3 */
     size_t size; /* length of y */
+    int threads; /* threads of the per-link passes (whirl_dyn_set_threads), >= 1 */
     double *mass_below; /* M_i = sum_{k >= i} m_k (seed formulation) */
     double *inv_mass;   /* 1 / m_i */
     /* shared scratch, 3 per mass: positions and velocities in the model's frame, applied forces

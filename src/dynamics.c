@@ -118,6 +118,7 @@ whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f)
     d->ops = f == WHIRL_FORMULATION_SEED ? &whirl_dyn_seed_ops : &whirl_dyn_cartesian_ops;
     d->n = model->chain->n;
     d->dim = model->dim;
+    d->threads = 1;
     size_t n = d->n;
     d->mass_below = malloc(n * sizeof *d->mass_below);
     d->inv_mass = malloc(n * sizeof *d->inv_mass);
@@ -166,6 +167,15 @@ void whirl_dyn_free(whirl_dyn *d)
 const whirl_model *whirl_dyn_model(const whirl_dyn *d) { return &d->model; }
 whirl_formulation whirl_dyn_formulation(const whirl_dyn *d) { return d->formulation; }
 size_t whirl_dyn_size(const whirl_dyn *d) { return d->size; }
+
+int whirl_dyn_set_threads(whirl_dyn *d, int threads)
+{
+    if (d == NULL || threads < 1 || threads > WHIRL_DYN_THREADS_MAX)
+        return whirl_fail(GSL_EINVAL, "threads must be 1..%d, got %d", WHIRL_DYN_THREADS_MAX,
+                          threads);
+    d->threads = threads;
+    return GSL_SUCCESS;
+}
 
 /* The integral of the ramp's smooth-step part from -infinity (where it is 0) to t. */
 static double ramp_step_integral(const whirl_ramp *r, double t)

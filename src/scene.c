@@ -58,6 +58,7 @@ static const struct {
     [WHIRL_KEY_RUN_SEED_LAMBDA] = {2, "seed_lambda"},
     [WHIRL_KEY_RUN_TOL] = {2, "tol"},
     [WHIRL_KEY_RUN_STOP_DEVIATION] = {2, "stop_deviation", WHIRL_QUANTITY_LENGTH},
+    [WHIRL_KEY_RUN_THREADS] = {2, "threads"},
     [WHIRL_KEY_OUTPUT_EVERY] = {3, "every", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_OUTPUT_COLUMNS] = {3, "columns"},
     [WHIRL_KEY_OUTPUT_TRACE] = {3, "trace"},
@@ -671,6 +672,9 @@ static int convert_run(const convert *v)
                          "links", work, WHIRL_SCENE_WORK_MAX);
     if (given(v, WHIRL_KEY_RUN_STOP_DEVIATION))
         TRY(get_bounded(v, WHIRL_KEY_RUN_STOP_DEVIATION, 0, 0, 1, &s->stop_deviation));
+    long threads;
+    TRY(get_integer(v, WHIRL_KEY_RUN_THREADS, 1, 1, WHIRL_DYN_THREADS_MAX, &threads));
+    s->threads = (int)threads;
     return GSL_SUCCESS;
 }
 

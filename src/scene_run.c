@@ -194,6 +194,10 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
         whirl_fail(GSL_EINVAL, "%s: [run]: %s", s->path, whirl_last_error());
         goto fail;
     }
+    if (whirl_dyn_set_threads(w->dyn, s->threads > 0 ? s->threads : 1) != GSL_SUCCESS) {
+        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_THREADS, whirl_last_error());
+        goto fail;
+    }
     w->integrator = whirl_integrator_alloc(s->method, w->dyn);
     if (w->integrator == NULL) {
         key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_METHOD, whirl_last_error());

@@ -656,6 +656,65 @@ static void test_errors(void **state)
     whirl_chain_free(c);
 }
 
+/* Two threads on one chain (whirl_dyn_set_threads) compute every value as one thread does: the
+ * right-hand sides are bitwise equal, 3D with every force in the co-rotating frame and 2D. */
+static void test_threads(void **state)
+{
+    (void)state;
+    const size_t n = WHIRL_DYN_THREADS_MIN_LINKS + 905;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.1);
+    assert_non_null(c);
+    for (int dim = 2; dim <= 3; dim++) {
+        const whirl_model m = {.chain = c,
+                               .dim = dim,
+                               .frame = dim == 3 ? WHIRL_FRAME_ROTATING : WHIRL_FRAME_INERTIAL,
+                               .omega = 3.1,
+                               .drive_radius = 0.02,
+                               .air_drag = 0.1,
+                               .air_drag_quadratic = 0.05,
+                               .internal_damping = 0.01};
+        whirl_dyn *one = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+        whirl_dyn *two = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+        assert_non_null(one);
+        assert_non_null(two);
+        assert_int_equal(whirl_dyn_set_threads(two, 2), GSL_SUCCESS);
+        const size_t size = whirl_dyn_size(one);
+        double *x = malloc(6 * n * sizeof *x), *y = malloc(size * sizeof *y);
+        double *f1 = malloc(size * sizeof *f1), *f2 = malloc(size * sizeof *f2);
+        assert_true(x && y && f1 && f2);
+        double p[3] = {0.02, 0, 0};
+        if (dim == 3)
+            bench_smooth_state(c, p, x, x + 3 * n);
+        else { /* the x-z plane: theta_i = 0.5 + 0.3 sin(0.7 i), rates 0.2 cos(i) */
+            double px = p[0], pz = 0, vx = 0, vz = 0;
+            for (size_t i = 0; i < n; i++) {
+                const double th = 0.5 + 0.3 * sin(0.7 * (double)i), thd = 0.2 * cos((double)i);
+                const double l = c->length[i];
+                px += l * sin(th), pz -= l * cos(th), vx += l * thd * cos(th), vz += l * thd * sin(th);
+                x[3 * i] = px, x[3 * i + 1] = 0, x[3 * i + 2] = pz;
+                x[3 * n + 3 * i] = vx, x[3 * n + 3 * i + 1] = 0, x[3 * n + 3 * i + 2] = vz;
+            }
+        }
+        assert_int_equal(whirl_dyn_set_state(one, 0, x, x + 3 * n, y), GSL_SUCCESS);
+        assert_int_equal(whirl_dyn_rhs(0.3, y, f1, one), GSL_SUCCESS);
+        assert_int_equal(whirl_dyn_rhs(0.3, y, f2, two), GSL_SUCCESS);
+        assert_memory_equal(f1, f2, size * sizeof *f1);
+        free(x);
+        free(y);
+        free(f1);
+        free(f2);
+        whirl_dyn_free(one);
+        whirl_dyn_free(two);
+    }
+    whirl_model m = {.chain = c, .dim = 3};
+    whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_int_equal(whirl_dyn_set_threads(d, 0), GSL_EINVAL);
+    assert_non_null(strstr(whirl_last_error(), "threads must be 1.."));
+    assert_int_equal(whirl_dyn_set_threads(d, WHIRL_DYN_THREADS_MAX + 1), GSL_EINVAL);
+    whirl_dyn_free(d);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -669,6 +728,7 @@ int main(void)
         cmocka_unit_test(test_dissipation_power),
         cmocka_unit_test(test_frames),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -93,6 +93,17 @@ WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 /* Length of the state vector y. */
 WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);
 
+/* One chain on several cores: the Cartesian formulation's per-link passes of every right-hand
+ * side (the coefficients and the accelerations, see src/dyn_cartesian.c) run on up to threads
+ * OpenMP threads when N >= WHIRL_DYN_THREADS_MIN_LINKS; the two recursions between them stay
+ * serial. Every value is computed as with one thread: results are bitwise the same. Default 1
+ * (opt-in: each right-hand side then forks and joins twice, which pays only on idle cores; see
+ * the README's measurements). GSL_EINVAL outside 1..WHIRL_DYN_THREADS_MAX. Calls from inside an
+ * OpenMP parallel region run on one thread (nested parallelism is off). */
+#define WHIRL_DYN_THREADS_MIN_LINKS 4096
+#define WHIRL_DYN_THREADS_MAX 256
+WHIRL_API int whirl_dyn_set_threads(whirl_dyn *d, int threads);
+
 /* dy/dt at (t, y), with GSL's signature (params = the whirl_dyn *): usable as a gsl_odeiv2_system.
  * Returns GSL_SUCCESS, or GSL_EBADFUNC if the result is not finite (or, in the seed formulation,
  * at its 3D singularity), with a message. Allocates nothing. */

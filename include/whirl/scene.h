@@ -31,7 +31,9 @@
  *            seed_sigma, seed_lambda (comma lists of N, 2D only; default none), tol (>= 0,
  *            default 0: fixed steps of dt; > 0: adaptive with tolerance tol, dt the first step),
  *            stop_deviation (> 0: stop once the deviation from the start's steady shape exceeds
- *            it, checked after every step, with tol > 0 at the output times; default none)
+ *            it, checked after every step, with tol > 0 at the output times; default none),
+ *            threads (the cores one right-hand side of a long chain may use, default 1; see
+ *            whirl_dyn_set_threads)
  *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
@@ -90,6 +92,7 @@ typedef enum {
     WHIRL_KEY_RUN_SEED_LAMBDA,
     WHIRL_KEY_RUN_TOL,
     WHIRL_KEY_RUN_STOP_DEVIATION,
+    WHIRL_KEY_RUN_THREADS,
     WHIRL_KEY_OUTPUT_EVERY,
     WHIRL_KEY_OUTPUT_COLUMNS,
     WHIRL_KEY_OUTPUT_TRACE,
@@ -161,6 +164,8 @@ typedef struct whirl_scene {
     double *seed_lambda;           /* N values or NULL (2D only) */
     double tol;                    /* 0: fixed steps; > 0: adaptive tolerance */
     double stop_deviation;         /* > 0: stop threshold; 0: none */
+    int threads;                   /* threads of one right-hand side (whirl_dyn_set_threads),
+                                      1..WHIRL_DYN_THREADS_MAX; default 1 */
 
     /* [output] */
     double every;                  /* output interval [T] > 0; default dt */

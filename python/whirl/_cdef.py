@@ -308,7 +308,7 @@ int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, doub
 """
 
 CDEF += r"""
-#define WHIRL_SCENE_NKEYS 36
+#define WHIRL_SCENE_NKEYS 37
 #define WHIRL_NCOLUMNS 9
 typedef struct whirl_scene {
     char *path;
@@ -343,6 +343,7 @@ typedef struct whirl_scene {
     double *seed_lambda;
     double tol;
     double stop_deviation;
+    int threads;
     double every;
     size_t n_columns;
     int columns[9];
@@ -350,7 +351,7 @@ typedef struct whirl_scene {
     char *trace;
     double trace_every;
     int reference_mode;
-    int line[36];
+    int line[37];
 } whirl_scene;
 int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                       whirl_scene *scene);
