@@ -77,3 +77,15 @@ def test_seed_formulation_agrees_with_default():
         sim.set_state(x, np.zeros((4, 3)))
         out.append(sim.run(2.0, 0.001, every=2.0).x[-1])
     np.testing.assert_allclose(out[0], out[1], atol=1e-9)
+
+
+def test_two_threads_give_the_same_run():
+    runs = []
+    for threads in (1, 2):
+        sim = whirl.Simulation(5000, omega=3.0, method="rk4", threads=threads)
+        sim.set_steady(2, perturb=0.01)
+        runs.append(sim.run(1e-4, 2e-5, every=5e-5))
+    np.testing.assert_array_equal(runs[0].x, runs[1].x)
+    np.testing.assert_array_equal(runs[0].energy, runs[1].energy)
+    with pytest.raises(whirl.Error, match="threads must be"):
+        whirl.Simulation(10, threads=1000)

@@ -305,6 +305,7 @@ int whirl_shape_links(size_t n, const double *nx, const double *ny, const double
 int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
 int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
                                double *y);
+int whirl_dyn_set_threads(whirl_dyn *d, int threads);
 """
 
 CDEF += r"""

@@ -50,7 +50,8 @@ class Simulation:
     """An N-link chain in the time domain (``whirl simulate``'s engine).
 
     Simulation(chain, dim=3, frame="inertial", omega=0, drive_radius=0, air_drag=0,
-    air_drag_quadratic=0, internal_damping=0, formulation="default", method="gauss2")
+    air_drag_quadratic=0, internal_damping=0, formulation="default", method="gauss2",
+    threads=1)
       chain: a Chain or a link count N (the uniform chain);
       dim: 2 (planar, x-z) or 3; frame: "inertial" or "rotating" (co-rotating at omega, 3D);
       omega: rate of the rotating frame and of the pivot drive [1/T];
@@ -58,12 +59,14 @@ class Simulation:
       air_drag, air_drag_quadratic: linear and quadratic drag per unit length;
       internal_damping: joint damping in the co-rotating frame;
       formulation: "default" (link vectors and tensions, O(N)) or "seed" (angles, O(N^3));
-      method: any of whirl.methods() (gauss2, gauss3, rk4, rk8, gsl-...).
+      method: any of whirl.methods() (gauss2, gauss3, rk4, rk8, gsl-...);
+      threads: cores for one right-hand side of a long chain (N >= 4096; whirl_dyn_set_threads:
+        the same numbers, faster only on idle cores).
     Start it with set_steady, set_hanging or set_state, then run()."""
 
     def __init__(self, chain, dim=3, frame="inertial", omega=0.0, drive_radius=0.0,
                  air_drag=0.0, air_drag_quadratic=0.0, internal_damping=0.0,
-                 formulation="default", method="gauss2"):
+                 formulation="default", method="gauss2", threads=1):
         self.chain = chain if isinstance(chain, Chain) else Chain(chain)
         self._model = ffi.new("whirl_model *")
         m = self._model
@@ -78,6 +81,7 @@ class Simulation:
         m.internal_damping = as_float(internal_damping, "internal_damping", nonnegative=True)
         f = _choice(formulation, "formulation", _FORMULATIONS)
         self._dyn = _lib.check_ptr(lib.whirl_dyn_alloc(m, f), lib.whirl_dyn_free)
+        check(lib.whirl_dyn_set_threads(self._dyn, as_int(threads, "threads", minimum=1)))
         if not isinstance(method, str):
             raise TypeError("method must be a string, got %r" % (method,))
         self.method = method
