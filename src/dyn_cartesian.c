@@ -342,22 +342,56 @@ static void solve_recursions(whirl_dyn *d)
     }
 }
 
+/* Pass 1 over links lo..hi-1, vectorised. */
+static void coef_block(whirl_dyn *d, const field *f, const double *y, size_t lo, size_t hi)
+{
+    if (d->dim == 3) {
+#pragma omp simd
+        for (size_t i = lo; i < hi; i++) coef_link(d, f, y, i, 3);
+    } else {
+#pragma omp simd
+        for (size_t i = lo; i < hi; i++) coef_link(d, f, y, i, 2);
+    }
+}
+
+/* The first of count items in block b of blocks equal ones (b = blocks: count). */
+static size_t block_start(size_t count, int blocks, int b)
+{
+    return count / (size_t)blocks * (size_t)b + count % (size_t)blocks * (size_t)b / (size_t)blocks;
+}
+
 /* d->multiplier <- lambda at (t, y); *f receives the fields for the accelerations. */
 static void solve_multipliers(whirl_dyn *d, double t, const double *y, field *f)
 {
     const size_t n = d->n;
     field_prepare(d, t, y, f);
     const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? d->threads : 1;
-    if (d->dim == 3) {
-#pragma omp parallel for simd if (threads > 1) num_threads(threads) schedule(static)
+    if (threads > 1) { /* links 0..N-2 in one static block per thread */
+#pragma omp parallel for num_threads(threads) schedule(static)
+        for (int b = 0; b < threads; b++)
+            coef_block(d, f, y, block_start(n - 1, threads, b), block_start(n - 1, threads, b + 1));
+        coef_ends(d, f, y, d->dim);
+    } else if (d->dim == 3) {
+#pragma omp simd
         for (size_t i = 0; i < n - 1; i++) coef_link(d, f, y, i, 3);
         coef_ends(d, f, y, 3);
     } else {
-#pragma omp parallel for simd if (threads > 1) num_threads(threads) schedule(static)
+#pragma omp simd
         for (size_t i = 0; i < n - 1; i++) coef_link(d, f, y, i, 2);
         coef_ends(d, f, y, 2);
     }
     solve_recursions(d);
+}
+
+/* Pass 4 over the inner links lo..hi-1 (neither the top nor the tip), vectorised; the sum of
+ * their finiteness probes. */
+LINK_INLINE double accel_block(const whirl_dyn *d, const field *f, const double *y, double *dydt,
+                               size_t lo, size_t hi, const int dim)
+{
+    double probe = 0;
+#pragma omp simd reduction(+ : probe)
+    for (size_t i = lo; i < hi; i++) probe += accel_link(d, f, y, dydt, i, dim, 0, 0);
+    return probe;
 }
 
 /* dydt of every link, for dim = 2 or 3 (a constant where inlined); 0 if it is finite. */
@@ -371,9 +405,19 @@ LINK_INLINE int accelerations(whirl_dyn *d, const field *f, const double *y, dou
     } else {
         probe += accel_link(d, f, y, dydt, 0, dim, 1, 0);
         const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? d->threads : 1;
-#pragma omp parallel for simd if (threads > 1) num_threads(threads) schedule(static) \
-    reduction(+ : probe)
-        for (size_t i = 1; i < n - 1; i++) probe += accel_link(d, f, y, dydt, i, dim, 0, 0);
+        if (threads > 1) { /* links 1..N-2 in one static block per thread */
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : probe)
+            for (int b = 0; b < threads; b++) {
+                const size_t lo = 1 + block_start(n - 2, threads, b);
+                const size_t hi = 1 + block_start(n - 2, threads, b + 1);
+                /* dim a constant again inside the outlined region, so that the loop vectorises */
+                probe += dim == 3 ? accel_block(d, f, y, dydt, lo, hi, 3)
+                                  : accel_block(d, f, y, dydt, lo, hi, 2);
+            }
+        } else {
+#pragma omp simd reduction(+ : probe)
+            for (size_t i = 1; i < n - 1; i++) probe += accel_link(d, f, y, dydt, i, dim, 0, 0);
+        }
         probe += accel_link(d, f, y, dydt, n - 1, dim, 0, 1);
     }
     /* link 1's base and the applied forces */
