@@ -32,9 +32,10 @@ for n in $links; do
       [ "$iso" -gt 0 ] && cell="$cell, $iso iso"
       [ "$unid" -gt 0 ] && cell="$cell, $unid unid"
       printf ' %s (%.1fs) |' "$cell" "$t"
+    elif [ $? -eq 124 ]; then
+      printf ' (over %s s) |' "$limit"
     else
-      if [ -s "$tmp/err" ]; then printf ' (%s) |' "$(sed 's/^whirl equilibria: //' "$tmp/err" | cut -c1-40)"
-      else printf ' (over %s s) |' "$limit"; fi
+      printf ' (%s) |' "$(sed 's/^whirl equilibria: //' "$tmp/err" | cut -c1-40)"
     fi
   done
   printf '\n'

@@ -86,7 +86,7 @@
 #define CRITICAL_GAP 1e-10   /* omega refused this close (relative) to a critical rate */
 #define MATCH_TIP 1e-3       /* two polished equilibria with tip radii this close (relative) */
 #define MATCH_ANGLE 1e-8     /* and every link angle this close [rad] are the same */
-#define PATH_STEPS_MAX 20000 /* continuation steps of one direction of one curve */
+#define PATH_STEPS_MAX 3000 /* continuation steps of one direction of one curve */
 #define BRENT_MAX 200
 
 whirl_equilibria_params whirl_equilibria_defaults(void)
@@ -598,7 +598,9 @@ static int follow_curve(whirl_nlink_path *p, double omega, double omega_max, con
     int status;
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= PATH_STEPS_MAX) {
-            cv->failed = 1;
+            /* the step budget: as a failure (below) */
+            if (p->omega > omega) res->cut_short++;
+            else cv->failed = 1;
             return 0;
         }
         status = whirl_nlink_path_step(p);
