@@ -1,6 +1,6 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
-# Targets: all (default), demo, check, check-clang, check-sanitize, bench, study, python, deps,
-# clean.
+# Targets: all (default), demo, check, check-clang, check-sanitize, bench, bench-quick, study,
+# python, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
@@ -44,7 +44,7 @@ CLI_OBJ  += $(BUILD)/gen/view_html.o
 
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
-.PHONY: all objects demo check check-clang check-sanitize bench study python deps clean fuzz \
+.PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python deps clean fuzz \
   install uninstall
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
@@ -126,6 +126,19 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@
 
+# The peers of tests/bench_peers.c, each built in only when its headers are found (scripts/deps.sh
+# installs them; without them the benchmark reports those rows as skipped).
+have_header = $(shell printf '\043include <%s>\n' '$(1)' | $(CC) -E -xc - >/dev/null 2>&1 && echo 1)
+PEER_CFLAGS := $(if $(call have_header,mujoco/mujoco.h),-DWHIRL_HAVE_MUJOCO) \
+  $(if $(and $(call have_header,arkode/arkode_erkstep.h),$(call have_header,cvode/cvode.h)),-DWHIRL_HAVE_SUNDIALS)
+PEER_LIBS := $(if $(findstring MUJOCO,$(PEER_CFLAGS)),-lmujoco) \
+  $(if $(findstring SUNDIALS,$(PEER_CFLAGS)),-lsundials_arkode -lsundials_cvode \
+    -lsundials_nvecserial -lsundials_sunnonlinsolfixedpoint)
+$(BUILD)/tests/bench_peers: tests/bench_peers.c $(BUILD)/libwhirl.a
+	@mkdir -p $(dir $@)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $(PEER_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) \
+	  $(PEER_LIBS) $(LDLIBS) -o $@
+
 $(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_CLI_OBJ) $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) -Itests/fuzz $(ALL_CFLAGS) $< tests/fuzz/replay.c $(FUZZ_CLI_OBJ) \
@@ -189,6 +202,11 @@ check-sanitize: deps
 bench: deps
 	@$(MAKE) --no-print-directory all $(BENCH_BIN) $(BUILD)/libwhirl.so
 	@sh scripts/bench.sh $(BUILD)
+
+# The README's headline ratios (peers, seed formulation, ns per link, shapes) in under 10 minutes.
+bench-quick: deps
+	@$(MAKE) --no-print-directory all $(BUILD)/tests/bench_peers
+	@sh scripts/bench.sh $(BUILD) quick
 
 # The studies behind the figures: stability maps and the regime map (several minutes).
 study: deps

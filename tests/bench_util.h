@@ -100,6 +100,34 @@ static inline int bench_steady_positions(const whirl_chain *c, double omega, int
     return status;
 }
 
+/* The start of the chain scenes of bench_workprecision and bench_peers: the exact N-link steady
+ * shape of mode 2 at omega (whirl_nlink_solve) as positions x (3 per mass), every link vector
+ * turned by 1e-3 rad about the axis cos(2.385 i) y + sin(2.385 i) (u_i x y) (u_i its direction;
+ * deterministic). Lengths are kept; the state is meant at rest in the frame co-rotating at omega. */
+static inline int bench_scene_start(const whirl_chain *c, double omega, double *x)
+{
+    const int status = bench_steady_positions(c, omega, 2, x);
+    if (status != GSL_SUCCESS) return status;
+    /* turn each link vector d_i (in the x-z plane, so y is perpendicular to it) by 1e-3 rad */
+    const double turn = 1e-3;
+    double prev[3] = {0, 0, 0}, pos[3] = {0, 0, 0};
+    for (size_t i = 0; i < c->n; i++) {
+        double d[3], u[3];
+        for (int k = 0; k < 3; k++) d[k] = x[3 * i + k] - prev[k];
+        for (int k = 0; k < 3; k++) prev[k] = x[3 * i + k];
+        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        for (int k = 0; k < 3; k++) u[k] = d[k] / len;
+        const double e2[3] = {-u[2], 0, u[0]}; /* u x y */
+        const double psi = 2.385 * (double)i;
+        for (int k = 0; k < 3; k++) {
+            const double b = cos(psi) * (k == 1) + sin(psi) * e2[k];
+            pos[k] += len * (cos(turn) * u[k] + sin(turn) * b);
+            x[3 * i + k] = pos[k];
+        }
+    }
+    return GSL_SUCCESS;
+}
+
 /* A smooth non-trivial state: link i at theta = 0.5 + 0.3 sin(0.7 i), phi = 0.05 i, rates
  * 0.2 cos(i), 0.1 (positions and velocities, 3 per mass, pivot at p). */
 static inline void bench_smooth_state(const whirl_chain *c, const double *p, double *x, double *v)
@@ -118,6 +146,25 @@ static inline void bench_smooth_state(const whirl_chain *c, const double *p, dou
             v[3 * i + k] = vel[k];
         }
     }
+}
+
+/* Work-precision: the time at error level e of a method's runs (count of them, errors err and
+ * seconds secs, in refinement order), by log-log interpolation between consecutive runs that
+ * bracket e, both at least 3 times floor_err (the reference's own error); NAN if no pair
+ * brackets e. The fastest bracketing pair counts. */
+static inline double bench_time_at(int count, const double *err, const double *secs, double e,
+                                   double floor_err)
+{
+    double best = NAN;
+    for (int j = 0; j + 1 < count; j++) {
+        const double e0 = err[j], e1 = err[j + 1];
+        if (!(e0 > 0 && e1 > 0) || e0 < 3 * floor_err || e1 < 3 * floor_err) continue;
+        if (!((e0 >= e && e >= e1) || (e1 >= e && e >= e0))) continue;
+        const double w = e0 == e1 ? 0 : log(e / e0) / log(e1 / e0);
+        const double t = exp(log(secs[j]) + w * (log(secs[j + 1]) - log(secs[j])));
+        if (!(t >= best)) best = t;
+    }
+    return best;
 }
 
 /* Least-squares slope of log y on log x over the n points (the exponent p of y ~ x^p). */

@@ -117,25 +117,7 @@ static void make_start(const scene *sc, start *st)
         }
         return;
     }
-    if (bench_steady_positions(st->chain, sc->omega, 2, st->x) != GSL_SUCCESS)
-        bench_die("steady shape");
-    /* turn each link vector d_i (in the x-z plane, so y is perpendicular to it) by 1e-3 rad */
-    const double turn = 1e-3;
-    double prev[3] = {0, 0, 0}, pos[3] = {0, 0, 0};
-    for (size_t i = 0; i < n; i++) {
-        double d[3], u[3];
-        for (int k = 0; k < 3; k++) d[k] = st->x[3 * i + k] - prev[k];
-        for (int k = 0; k < 3; k++) prev[k] = st->x[3 * i + k];
-        const double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        for (int k = 0; k < 3; k++) u[k] = d[k] / len;
-        const double e2[3] = {-u[2], 0, u[0]}; /* u x y */
-        const double psi = 2.385 * (double)i;
-        for (int k = 0; k < 3; k++) {
-            const double b = cos(psi) * (k == 1) + sin(psi) * e2[k];
-            pos[k] += len * (cos(turn) * u[k] + sin(turn) * b);
-            st->x[3 * i + k] = pos[k];
-        }
-    }
+    if (bench_scene_start(st->chain, sc->omega, st->x) != GSL_SUCCESS) bench_die("steady shape");
 }
 
 static void free_start(start *st)
@@ -177,20 +159,9 @@ typedef struct curve {
     double secs_per_step[MAX_RUNS];
 } curve;
 
-/* Time at error level e by log-log interpolation between consecutive resolved runs; NAN if no
- * pair brackets e. The fastest bracketing pair counts. */
 static double time_at(const curve *c, double e, double floor_err)
 {
-    double best = NAN;
-    for (int j = 0; j + 1 < c->count; j++) {
-        const double e0 = c->err[j], e1 = c->err[j + 1];
-        if (!(e0 > 0 && e1 > 0) || e0 < 3 * floor_err || e1 < 3 * floor_err) continue;
-        if (!((e0 >= e && e >= e1) || (e1 >= e && e >= e0))) continue;
-        const double w = e0 == e1 ? 0 : log(e / e0) / log(e1 / e0);
-        const double t = exp(log(c->secs[j]) + w * (log(c->secs[j + 1]) - log(c->secs[j])));
-        if (!(t >= best)) best = t;
-    }
-    return best;
+    return bench_time_at(c->count, c->err, c->secs, e, floor_err);
 }
 
 static int repeats_for(double secs) { return secs < 0.5 ? 5 : secs < 3 ? 3 : 1; }

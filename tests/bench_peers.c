@@ -1,0 +1,1010 @@
+/* whirl against the systems a user would otherwise reach for, side by side in one run.
+ * Usage: bench_peers [DIR [quick|full [CONTENDER]]] (CONTENDER: run the scenes with whirl rk8
+ * and that contender only, e.g. arkode-dp745). Writes DIR/peers_SCENE.csv (every run), DIR/peers_steps.csv
+ * (cost per step), DIR/peers_seed.csv and appends the headline ratios to DIR/headline.csv; prints
+ * the figures. "quick" uses shorter time caps and fewer repeats (the same scenes and levels).
+ *
+ * Scenes: chain10 and chain100 of bench_workprecision (the exact N-link mode-2 steady shape at
+ * omega = 4, every link turned by 1e-3 rad, at rest in the frame co-rotating at omega; t_end =
+ * 20 rotation periods, 10 pi). The pivot is fixed, so the co-rotating frame is a change of
+ * coordinates only: every contender integrates its own model, and the error is the max over the
+ * masses of |x_i(t_end) - x_ref,i(t_end)| in the inertial frame.
+ * Reference: whirl gauss3 at a step h_max / 32 confirmed by GSL rk8pd at tolerance 1e-13 (both on
+ * whirl's Cartesian right-hand side); their distance is the floor: errors below 3 times it are
+ * left out of the comparison.
+ *
+ * Contenders (each refined from a coarse setting until a run is slower than the scene's cap, its
+ * error is below 5e-9 or 3 times the floor, stalls, or fails twice in a row after a success):
+ *  - whirl rk8 (tolerance 10^-3 .. 10^-13) and GSL rk8pd on the same right-hand side;
+ *  - SUNDIALS ARKODE ERKStep (tolerance 10^-3 .. 10^-13, relative = absolute) with the explicit
+ *    tables Dormand-Prince 7-4-5, Verner 8-5-6 and Fehlberg 13-7-8, each without and with
+ *    whirl_dyn_project after every step (ERKStepSetPostprocessStepFn); the best table per level
+ *    counts;
+ *  - SUNDIALS CVODE Adams (orders up to 12, fixed-point iteration) without projection;
+ *    SUNDIALS runs are given up (failed) after twice the scene's cap;
+ *  - MuJoCo with its RK4 integrator at fixed steps h_max / 2^k (its Euler and implicit
+ *    integrators are first order): the same point-mass chain as nested bodies, each hung from
+ *    the mass above by a pair of hinges (x then y axes) with the point mass at the end of its
+ *    link, gravity -z, no contacts. MuJoCo refuses a moving body without rotational inertia (at
+ *    most 1e-15): each body gets 2e-15 about its centre, and the masses are given in units of
+ *    1e-9 of whirl's (a point-mass chain's motion does not depend on the mass scale), so that
+ *    this inertia is below 1e-14 of a link's m l^2 up to N = 1000 (energies are compared after
+ *    dividing by the scale). Its XML parser refuses elements nested deeper than 100, so the chain is cut into
+ *    files of 40 bodies, each body 40k+40 holding <include file="chain_k+1.xml"/>; the loaded
+ *    model is checked: body count, positions and velocities against whirl's to 1e-12, energy
+ *    and the hanging chain's normal-mode frequencies against whirl's to 1e-10 (frequencies from
+ *    MuJoCo's mass matrix and the Jacobian of its bias force by central differences at steps
+ *    1e-2, 5e-3, 2.5e-3 with two Richardson steps, generalized symmetric eigenproblem by LAPACK dsygv; to 1e-10 or, where
+ *    larger, to the eigensolver's bound eps kappa, kappa the condition number of MuJoCo's
+ *    joint-space mass matrix: 1.3e8 at N = 100, so that the highest modes there agree to a few
+ *    1e-10 only, as far as the dense joint-space problem can be solved in double).
+ * SUNDIALS contenders call whirl_dyn_rhs, so their model is whirl's by construction; the glue is
+ * checked by their errors converging to the reference.
+ * Wall time: contenders interleaved, median of 5 repeats (runs < 0.5 s), 3 (< 3 s) or 1.
+ * Equal error: log time interpolated linearly in log error between consecutive runs bracketing
+ * the level (1e-6, 1e-8).
+ *
+ * Right-hand side: ns per link at N = 10^4 (as bench_scaling, which has the whole range).
+ * Cost per step: a MuJoCo RK4 step against a whirl rk4 step (same step, same start) at N = 10,
+ * 100, 1000, interleaved, medians of 5.
+ * Seed formulation: gauss2 at equal step (h = 0.01) on chain100 over 2 rotation periods (quick: 1)
+ * on the seed formulation (angles, dense mass matrix) and on the Cartesian one; the distance of
+ * their end positions is printed (same method, same equations: it must be small against the
+ * step's error).
+ * A peer whose package is missing at build time (MuJoCo: mujoco/mujoco.h; SUNDIALS: arkode and
+ * cvode headers) is reported as skipped, row by row. */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <lapacke.h>
+
+#include "whirl/dynamics.h"
+#include "whirl/steady.h"
+
+#define BENCH_NAME "bench_peers"
+#include "bench_util.h"
+
+#ifdef WHIRL_HAVE_MUJOCO
+#include <mujoco/mujoco.h>
+#endif
+#ifdef WHIRL_HAVE_SUNDIALS
+#include <arkode/arkode_erkstep.h>
+#include <cvode/cvode.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_config.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+#endif
+
+#define PI 3.14159265358979323846
+#define MAX_RUNS 16
+#define N_LEVELS 2
+static const double levels[N_LEVELS] = {1e-6, 1e-8};
+
+typedef enum { K_WHIRL, K_ARK, K_CVODE, K_MUJOCO } kind;
+
+typedef struct contender {
+    const char *label;
+    kind kind;
+    const char *method; /* whirl: integrator name */
+    int table;          /* ARKODE: table id */
+    int project;        /* ARKODE: whirl_dyn_project after every step */
+    int adaptive;       /* 1: tolerance sweep, 0: step sweep */
+    const char *group;  /* the row of the summary it competes in */
+} contender;
+
+#ifdef WHIRL_HAVE_SUNDIALS
+#define ARK(label, table, proj, group) {label, K_ARK, NULL, table, proj, 1, group}
+#endif
+
+static const contender contenders[] = {
+    {"whirl-rk8", K_WHIRL, "rk8", 0, 0, 1, "whirl"},
+    {"gsl-rk8pd", K_WHIRL, "gsl-rk8pd", 0, 0, 1, "gsl"},
+#ifdef WHIRL_HAVE_SUNDIALS
+    ARK("arkode-dp745-proj", ARKODE_DORMAND_PRINCE_7_4_5, 1, "arkode-proj"),
+    ARK("arkode-verner856-proj", ARKODE_VERNER_8_5_6, 1, "arkode-proj"),
+    ARK("arkode-fehlberg1378-proj", ARKODE_FEHLBERG_13_7_8, 1, "arkode-proj"),
+    ARK("arkode-dp745", ARKODE_DORMAND_PRINCE_7_4_5, 0, "arkode"),
+    ARK("arkode-verner856", ARKODE_VERNER_8_5_6, 0, "arkode"),
+    ARK("arkode-fehlberg1378", ARKODE_FEHLBERG_13_7_8, 0, "arkode"),
+    {"cvode-adams", K_CVODE, NULL, 0, 0, 1, "cvode"},
+#endif
+#ifdef WHIRL_HAVE_MUJOCO
+    {"mujoco-rk4", K_MUJOCO, NULL, 0, 0, 0, "mujoco"},
+#endif
+};
+#define N_CONTENDERS (sizeof contenders / sizeof contenders[0])
+
+/* The summary's rows: group, what it is, its target ratio against whirl at both levels (0: none) */
+typedef struct group {
+    const char *name, *what;
+    double target;
+    int available;
+} group;
+
+static const group groups[] = {
+    {"gsl", "GSL rk8pd (same right-hand side)", 0, 1},
+#ifdef WHIRL_HAVE_SUNDIALS
+    {"arkode-proj", "ARKODE ERK, best table, with projection", 6, 1},
+    {"arkode", "ARKODE ERK, best table, no projection", 0, 1},
+    {"cvode", "CVODE Adams", 0, 1},
+#else
+    {"arkode-proj", "ARKODE ERK, best table, with projection", 6, 0},
+    {"arkode", "ARKODE ERK, best table, no projection", 0, 0},
+    {"cvode", "CVODE Adams", 0, 0},
+#endif
+#ifdef WHIRL_HAVE_MUJOCO
+    {"mujoco", "MuJoCo RK4", 100, 1},
+#else
+    {"mujoco", "MuJoCo RK4", 100, 0},
+#endif
+};
+#define N_GROUPS (sizeof groups / sizeof groups[0])
+
+typedef struct scene {
+    const char *name;
+    size_t n;
+    double t_end; /* [T] */
+    double h_max; /* coarsest fixed step */
+    double cap;   /* stop refining after a run longer than this [s] */
+} scene;
+
+#ifdef WHIRL_HAVE_MUJOCO
+typedef struct mj_chain {
+    mjModel *m;
+    mjData *d;
+    double *qpos, *qvel; /* the scene's start, 2 N each */
+} mj_chain;
+#endif
+
+/* One scene's start and everything the runs share. */
+typedef struct setup {
+    const scene *sc;
+    whirl_chain *chain;
+    whirl_model model;
+    double *y0;       /* whirl's state at t = 0 */
+    double *xi, *vi;  /* inertial positions and velocities at t = 0 (3 per mass) */
+    double *xref;     /* reference end positions, inertial */
+    double floor_err; /* distance reference - confirmation */
+    whirl_dyn *dyn;   /* Cartesian dynamics (used by the SUNDIALS runs) */
+#ifdef WHIRL_HAVE_SUNDIALS
+    SUNContext ctx;
+#endif
+#ifdef WHIRL_HAVE_MUJOCO
+    mj_chain mj;
+#endif
+} setup;
+
+typedef struct run_stats {
+    long steps, rhs;
+    double constraint; /* whirl's state only: link length drift at the end (-1: not known) */
+} run_stats;
+
+/* ---------------- whirl and GSL through whirl's integrator interface ---------------- */
+
+static double run_whirl(const setup *s, const char *method, whirl_formulation f, double h,
+                        double tol, double t_end, double *xf, run_stats *rs)
+{
+    whirl_dyn *d = whirl_dyn_alloc(&s->model, f);
+    if (d == NULL) bench_die("dyn alloc");
+    const size_t size = whirl_dyn_size(d), n = s->sc->n;
+    double *y = malloc(size * sizeof *y), *vf = malloc(3 * n * sizeof *vf);
+    double *x0 = malloc(3 * n * sizeof *x0), *v0 = malloc(3 * n * sizeof *v0);
+    whirl_integrator *it = whirl_integrator_alloc(method, d);
+    if (y == NULL || vf == NULL || x0 == NULL || v0 == NULL || it == NULL) bench_die("alloc");
+    /* the start in the model's (co-rotating) frame */
+    if (whirl_dyn_get_state(s->dyn, 0, s->y0, s->model.frame, x0, v0) != GSL_SUCCESS ||
+        whirl_dyn_set_state(d, 0, x0, v0, y) != GSL_SUCCESS)
+        bench_die("set_state");
+    double t = 0;
+    const double t0 = bench_now();
+    const int status = whirl_integrator_advance(it, &t, y, t_end, tol > 0 ? 1e-3 : h, tol);
+    double secs = bench_now() - t0;
+    if (status != GSL_SUCCESS) secs = -1;
+    else whirl_dyn_get_state(d, t, y, WHIRL_FRAME_INERTIAL, xf, vf);
+    const whirl_integrator_stats st = whirl_integrator_get_stats(it);
+    rs->steps = (long)st.steps;
+    rs->rhs = (long)st.rhs_evals;
+    rs->constraint = -1;
+    whirl_dyn_diagnostics diag;
+    if (f == WHIRL_FORMULATION_CARTESIAN && status == GSL_SUCCESS &&
+        whirl_dyn_diagnose(d, t, y, &diag) == GSL_SUCCESS)
+        rs->constraint = diag.constraint;
+    whirl_integrator_free(it);
+    whirl_dyn_free(d);
+    free(y);
+    free(vf);
+    free(x0);
+    free(v0);
+    return secs;
+}
+
+/* ---------------- SUNDIALS ---------------- */
+
+#ifdef WHIRL_HAVE_SUNDIALS
+static int sun_rhs(realtype t, N_Vector y, N_Vector ydot, void *dyn)
+{
+    /* positive: a recoverable failure (the solver retries with a smaller step) */
+    return whirl_dyn_rhs(t, NV_DATA_S(y), NV_DATA_S(ydot), dyn) == GSL_SUCCESS ? 0 : 1;
+}
+
+static int sun_project(realtype t, N_Vector y, void *dyn)
+{
+    return whirl_dyn_project(dyn, t, NV_DATA_S(y)) == GSL_SUCCESS ? 0 : -1;
+}
+
+static double run_sundials(const setup *s, const contender *c, double tol, double *xf,
+                           run_stats *rs)
+{
+    const size_t size = whirl_dyn_size(s->dyn), n = s->sc->n;
+    N_Vector y = N_VNew_Serial((sunindextype)size, s->ctx);
+    double *vf = malloc(3 * n * sizeof *vf);
+    if (y == NULL || vf == NULL) bench_die("alloc");
+    memcpy(NV_DATA_S(y), s->y0, size * sizeof(double));
+    const double t_end = s->sc->t_end;
+    realtype t = 0;
+    void *mem = NULL;
+    SUNNonlinearSolver nls = NULL;
+    int ok;
+    if (c->kind == K_ARK) {
+        mem = ERKStepCreate(sun_rhs, 0, y, s->ctx);
+        ok = mem != NULL && ERKStepSetTableNum(mem, (ARKODE_ERKTableID)c->table) == 0 &&
+             ERKStepSStolerances(mem, tol, tol) == 0 && ERKStepSetUserData(mem, s->dyn) == 0 &&
+             ERKStepSetMaxNumSteps(mem, 10000) == 0 && ERKStepSetStopTime(mem, t_end) == 0 &&
+             ERKStepSetMinStep(mem, 1e-12 * t_end) == 0 && ERKStepSetMaxHnilWarns(mem, -1) == 0 &&
+             ERKStepSetErrFile(mem, NULL) == 0 &&
+             (!c->project || ERKStepSetPostprocessStepFn(mem, sun_project) == 0);
+    } else {
+        mem = CVodeCreate(CV_ADAMS, s->ctx);
+        nls = SUNNonlinSol_FixedPoint(y, 0, s->ctx);
+        ok = mem != NULL && nls != NULL && CVodeInit(mem, sun_rhs, 0, y) == 0 &&
+             CVodeSStolerances(mem, tol, tol) == 0 && CVodeSetUserData(mem, s->dyn) == 0 &&
+             CVodeSetNonlinearSolver(mem, nls) == 0 && CVodeSetMaxNumSteps(mem, 10000) == 0 &&
+             CVodeSetStopTime(mem, t_end) == 0 && CVodeSetMinStep(mem, 1e-12 * t_end) == 0 &&
+             CVodeSetMaxHnilWarns(mem, -1) == 0 && CVodeSetErrFile(mem, NULL) == 0;
+    }
+    if (!ok) {
+        fprintf(stderr, "%s: cannot set up %s\n", BENCH_NAME, c->label);
+        exit(1);
+    }
+    /* in pieces of 10^4 steps, given up after twice the scene's cap */
+    const double t0 = bench_now();
+    int flag;
+    do
+        flag = c->kind == K_ARK ? ERKStepEvolve(mem, t_end, y, &t, ARK_NORMAL)
+                                : CVode(mem, t_end, y, &t, CV_NORMAL);
+    while ((c->kind == K_ARK ? flag == ARK_TOO_MUCH_WORK : flag == CV_TOO_MUCH_WORK) &&
+           bench_now() - t0 < 2 * s->sc->cap);
+    double secs = bench_now() - t0;
+    long steps = 0, rhs = 0, nni = 0;
+    if (c->kind == K_ARK) {
+        ERKStepGetNumSteps(mem, &steps);
+        ERKStepGetNumRhsEvals(mem, &rhs);
+        ERKStepFree(&mem);
+    } else {
+        CVodeGetNumSteps(mem, &steps);
+        CVodeGetNumRhsEvals(mem, &rhs);
+        CVodeGetNumNonlinSolvIters(mem, &nni);
+        CVodeFree(&mem);
+        SUNNonlinSolFree(nls);
+    }
+    rs->steps = steps;
+    rs->rhs = rhs;
+    rs->constraint = -1;
+    whirl_dyn_diagnostics diag;
+    if (flag < 0 || fabs(t - t_end) > 1e-9 * t_end) secs = -1;
+    else {
+        whirl_dyn_get_state(s->dyn, t, NV_DATA_S(y), WHIRL_FRAME_INERTIAL, xf, vf);
+        if (whirl_dyn_diagnose(s->dyn, t, NV_DATA_S(y), &diag) == GSL_SUCCESS)
+            rs->constraint = diag.constraint;
+    }
+    N_VDestroy(y);
+    free(vf);
+    return secs;
+}
+#endif
+
+/* ---------------- MuJoCo ---------------- */
+
+#ifdef WHIRL_HAVE_MUJOCO
+#define MJ_BODIES_PER_FILE 40
+#define MJ_MASS_SCALE 1e9 /* MuJoCo mass = MJ_MASS_SCALE x whirl's mass */
+
+/* R <- R * (rotation by angle a about axis k = 0 (x) or 1 (y)); row-major 3 x 3 */
+static void rotate_by(double R[9], int k, double a)
+{
+    const double c = cos(a), s = sin(a);
+    double G[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, T[9];
+    if (k == 0) G[4] = c, G[5] = -s, G[7] = s, G[8] = c;
+    else G[0] = c, G[2] = s, G[6] = -s, G[8] = c;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            T[3 * i + j] = R[3 * i] * G[j] + R[3 * i + 1] * G[3 + j] + R[3 * i + 2] * G[6 + j];
+    memcpy(R, T, sizeof T);
+}
+
+static void cross(const double a[3], const double b[3], double c[3])
+{
+    c[0] = a[1] * b[2] - a[2] * b[1];
+    c[1] = a[2] * b[0] - a[0] * b[2];
+    c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Joint angles and rates of the hinge pairs for positions x and velocities v (3 per mass,
+ * pivot at the origin): link i points along R_i (0, 0, -1), R_i = R_{i-1} Rx(a_i) Ry(b_i), so
+ * R_{i-1}^T u_i = (-sin b, cos b sin a, -cos b cos a); the rates from du_i/dt = Om_i x u_i,
+ * Om_i = Om_{i-1} + a_i' R_{i-1} e_x + b_i' R_{i-1} Rx(a_i) e_y (least squares in the 2 rates,
+ * exact for consistent velocities). */
+static void mj_coordinates(const whirl_chain *c, const double *x, const double *v, double *qpos,
+                           double *qvel)
+{
+    double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, om[3] = {0, 0, 0};
+    double prev_x[3] = {0, 0, 0}, prev_v[3] = {0, 0, 0};
+    for (size_t i = 0; i < c->n; i++) {
+        double u[3], w[3], ur[3];
+        for (int k = 0; k < 3; k++) {
+            u[k] = (x[3 * i + k] - prev_x[k]) / c->length[i];
+            w[k] = (v[3 * i + k] - prev_v[k]) / c->length[i];
+            prev_x[k] = x[3 * i + k];
+            prev_v[k] = v[3 * i + k];
+        }
+        for (int k = 0; k < 3; k++) ur[k] = R[k] * u[0] + R[3 + k] * u[1] + R[6 + k] * u[2];
+        const double a = atan2(ur[1], -ur[2]), b = asin(fmax(-1, fmin(1, -ur[0])));
+        const double A[3] = {R[0], R[3], R[6]};
+        rotate_by(R, 0, a);
+        const double B[3] = {R[1], R[4], R[7]};
+        rotate_by(R, 1, b);
+        double oxu[3], P[3], Q[3], r[3];
+        cross(om, u, oxu);
+        for (int k = 0; k < 3; k++) r[k] = w[k] - oxu[k];
+        cross(A, u, P);
+        cross(B, u, Q);
+        const double pp = dot3(P, P), pq = dot3(P, Q), qq = dot3(Q, Q), pr = dot3(P, r),
+                     qr = dot3(Q, r), det = pp * qq - pq * pq;
+        const double ad = (qq * pr - pq * qr) / det, bd = (pp * qr - pq * pr) / det;
+        for (int k = 0; k < 3; k++) om[k] += ad * A[k] + bd * B[k];
+        qpos[2 * i] = a, qpos[2 * i + 1] = b;
+        qvel[2 * i] = ad, qvel[2 * i + 1] = bd;
+    }
+}
+
+/* Writes the model of chain c as DIR/chain_0.xml .. chain_K.xml; returns the main file's path. */
+static void mj_write_xml(const whirl_chain *c, const char *dir, char *main_path, size_t len)
+{
+    const size_t n = c->n, files = (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE;
+    for (size_t f = 0; f < files; f++) {
+        char path[1200];
+        snprintf(path, sizeof path, "%s/chain_%zu.xml", dir, f);
+        if (f == 0) snprintf(main_path, len, "%s", path);
+        FILE *fp = fopen(path, "w");
+        if (fp == NULL) {
+            fprintf(stderr, "%s: cannot write %s\n", BENCH_NAME, path);
+            exit(1);
+        }
+        if (f == 0)
+            fprintf(fp, "<mujoco model=\"chain%zu\">\n  <compiler angle=\"radian\"/>\n"
+                        "  <option gravity=\"0 0 %.17g\" integrator=\"RK4\">\n"
+                        "    <flag contact=\"disable\" energy=\"enable\"/>\n  </option>\n"
+                        "  <worldbody>\n",
+                    n, -c->gravity);
+        else fprintf(fp, "<mujoco>\n");
+        const size_t first = f * MJ_BODIES_PER_FILE,
+                     last = first + MJ_BODIES_PER_FILE < n ? first + MJ_BODIES_PER_FILE : n;
+        for (size_t i = first; i < last; i++)
+            fprintf(fp,
+                    "<body name=\"m%zu\" pos=\"0 0 %.17g\"><joint type=\"hinge\" axis=\"1 0 0\"/>"
+                    "<joint type=\"hinge\" axis=\"0 1 0\"/><inertial pos=\"0 0 %.17g\" "
+                    "mass=\"%.17g\" diaginertia=\"2e-15 2e-15 2e-15\"/>\n",
+                    i + 1, i == 0 ? 0.0 : -c->length[i - 1], -c->length[i],
+                    MJ_MASS_SCALE * c->mass[i]);
+        if (last < n) fprintf(fp, "<include file=\"chain_%zu.xml\"/>\n", f + 1);
+        for (size_t i = first; i < last; i++) fprintf(fp, "</body>");
+        fprintf(fp, "\n%s</mujoco>\n", f == 0 ? "  </worldbody>\n" : "");
+        fclose(fp);
+    }
+}
+
+/* Frees the MuJoCo model of one scene. */
+static void mj_chain_free(mj_chain *mc)
+{
+    if (mc->d != NULL) mj_deleteData(mc->d);
+    if (mc->m != NULL) mj_deleteModel(mc->m);
+    free(mc->qpos);
+    free(mc->qvel);
+    memset(mc, 0, sizeof *mc);
+}
+
+/* Loads the chain into MuJoCo and checks it against whirl at the start (x, v inertial, energy
+ * from whirl_dyn_diagnose); frequencies: 1 to compare the hanging chain's normal modes. Prints
+ * and records the check; exits if the models differ. */
+static void mj_chain_load(const whirl_chain *c, const char *dir, const double *x, const double *v,
+                          double energy, int frequencies, mj_chain *mc, FILE *checks)
+{
+    const size_t n = c->n, nv = 2 * n;
+    char sub[1024], main_path[1200], err[1000] = "";
+    snprintf(sub, sizeof sub, "%s/mujoco_chain%zu", dir, n);
+    mkdir(sub, 0777);
+    mj_write_xml(c, sub, main_path, sizeof main_path);
+    mc->m = mj_loadXML(main_path, NULL, err, sizeof err);
+    if (mc->m == NULL) {
+        fprintf(stderr, "%s: MuJoCo refuses %s: %s\n", BENCH_NAME, main_path, err);
+        exit(1);
+    }
+    mc->d = mj_makeData(mc->m);
+    mc->qpos = malloc(nv * sizeof *mc->qpos);
+    mc->qvel = malloc(nv * sizeof *mc->qvel);
+    if (mc->d == NULL || mc->qpos == NULL || mc->qvel == NULL) bench_die("MuJoCo alloc");
+    if ((size_t)mc->m->nbody != n + 1 || (size_t)mc->m->nv != nv) {
+        fprintf(stderr, "%s: MuJoCo model of N = %zu has %d bodies and %d dofs\n", BENCH_NAME, n,
+                mc->m->nbody, mc->m->nv);
+        exit(1);
+    }
+    mjModel *m = mc->m;
+    mjData *d = mc->d;
+    mj_coordinates(c, x, v, mc->qpos, mc->qvel);
+    memcpy(d->qpos, mc->qpos, nv * sizeof(double));
+    memcpy(d->qvel, mc->qvel, nv * sizeof(double));
+    mj_forward(m, d);
+    mj_energyPos(m, d);
+    mj_energyVel(m, d);
+    const double e_mj = (d->energy[0] + d->energy[1]) / MJ_MASS_SCALE;
+    /* positions and velocities of the point masses */
+    double *jac = malloc(3 * nv * sizeof *jac);
+    if (jac == NULL) bench_die("alloc");
+    double dx = 0, dv = 0;
+    for (size_t i = 0; i < n; i++) {
+        const double *p = d->xipos + 3 * (i + 1);
+        mj_jacBodyCom(m, d, jac, NULL, (int)i + 1);
+        for (int k = 0; k < 3; k++) {
+            double vk = 0;
+            for (size_t j = 0; j < nv; j++) vk += jac[k * nv + j] * d->qvel[j];
+            dx = fmax(dx, fabs(p[k] - x[3 * i + k]));
+            dv = fmax(dv, fabs(vk - v[3 * i + k]));
+        }
+    }
+    free(jac);
+    const double de = fabs(e_mj - energy);
+    printf("  MuJoCo model N = %zu (%zu files): positions %.2g, velocities %.2g, energy %.17g "
+           "vs whirl %.17g (difference %.2g)\n",
+           n, (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE, dx, dv, e_mj, energy, de);
+    double dfreq = -1, kappa = 0;
+    if (frequencies) {
+        /* the hanging chain: x-hinges only (at q = 0 the y-hinges decouple) */
+        double *M = malloc(nv * nv * sizeof *M), *K = malloc(n * n * sizeof *K),
+               *Mx = malloc(n * n * sizeof *Mx), *w = malloc(n * sizeof *w),
+               *ref = malloc(n * sizeof *ref), *f = malloc(6 * n * sizeof *f);
+        if (M == NULL || K == NULL || Mx == NULL || w == NULL || ref == NULL || f == NULL)
+            bench_die("alloc");
+        mj_resetData(m, d);
+        mj_forward(m, d);
+        mj_fullM(m, M, d->qM);
+        for (size_t i = 0; i < n; i++)
+            for (size_t j = 0; j < n; j++) Mx[i * n + j] = M[2 * i * nv + 2 * j];
+        /* central differences at h, h/2, h/4 and two Richardson steps: error O(h^6) */
+        const double h = 1e-2, steps[6] = {h, -h, h / 2, -h / 2, h / 4, -h / 4};
+        for (size_t j = 0; j < n; j++) {
+            for (int q = 0; q < 6; q++) {
+                mj_resetData(m, d);
+                d->qpos[2 * j] = steps[q];
+                mj_forward(m, d);
+                for (size_t i = 0; i < n; i++) f[q * n + i] = d->qfrc_bias[2 * i];
+            }
+            for (size_t i = 0; i < n; i++) {
+                double cd[3];
+                for (int q = 0; q < 3; q++)
+                    cd[q] = (f[2 * q * n + i] - f[(2 * q + 1) * n + i]) / (2 * steps[2 * q]);
+                const double r1 = (4 * cd[1] - cd[0]) / 3, r2 = (4 * cd[2] - cd[1]) / 3;
+                K[i * n + j] = (16 * r2 - r1) / 15;
+            }
+        }
+        for (size_t i = 0; i < n; i++)
+            for (size_t j = 0; j < i; j++)
+                K[i * n + j] = K[j * n + i] = 0.5 * (K[i * n + j] + K[j * n + i]);
+        /* the condition number of the joint-space mass matrix (1-norm estimate) bounds the
+         * eigensolver's relative error of the highest frequencies, about eps kappa */
+        double anorm = 0, rcond = 0;
+        for (size_t j = 0; j < n; j++) {
+            double col = 0;
+            for (size_t i = 0; i < n; i++) col += fabs(Mx[i * n + j]);
+            anorm = fmax(anorm, col);
+        }
+        double *Mc = malloc(n * n * sizeof *Mc);
+        if (Mc == NULL) bench_die("alloc");
+        memcpy(Mc, Mx, n * n * sizeof *Mc);
+        if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'U', (lapack_int)n, Mc, (lapack_int)n) != 0 ||
+            LAPACKE_dpocon(LAPACK_ROW_MAJOR, 'U', (lapack_int)n, Mc, (lapack_int)n, anorm,
+                           &rcond) != 0)
+            rcond = 0;
+        free(Mc);
+        kappa = rcond > 0 ? 1 / rcond : INFINITY;
+        const int info = LAPACKE_dsygv(LAPACK_ROW_MAJOR, 1, 'N', 'U', (lapack_int)n, K,
+                                       (lapack_int)n, Mx, (lapack_int)n, w);
+        if (info != 0 || whirl_nlink_critical(c, n, ref) != GSL_SUCCESS) {
+            fprintf(stderr, "%s: normal modes of the hanging chain failed (dsygv %d)\n",
+                    BENCH_NAME, info);
+            exit(1);
+        }
+        dfreq = 0;
+        size_t worst = 0;
+        for (size_t i = 0; i < n; i++)
+            if (fabs(sqrt(w[i]) / ref[i] - 1) > dfreq) dfreq = fabs(sqrt(w[i]) / ref[i] - 1), worst = i;
+        printf("  MuJoCo hanging normal-mode frequencies %.10g .. %.10g, whirl %.10g .. %.10g: "
+               "largest relative difference %.2g (mode %zu); MuJoCo's joint-space mass matrix has "
+               "condition number %.2g (eigensolver bound eps kappa = %.2g)\n",
+               sqrt(w[0]), sqrt(w[n - 1]), ref[0], ref[n - 1], dfreq, worst + 1, kappa,
+               DBL_EPSILON * kappa);
+        free(M), free(K), free(Mx), free(w), free(ref), free(f);
+    }
+    fprintf(checks, "mujoco,%zu,%.3g,%.3g,%.3g,%.3g,%.3g\n", n, dx, dv, de, dfreq, kappa);
+    fflush(checks);
+    if (dx > 1e-12 || dv > 1e-12 || de > 1e-10 || dfreq > fmax(1e-10, DBL_EPSILON * kappa)) {
+        fprintf(stderr, "%s: the MuJoCo model of N = %zu differs from whirl's\n", BENCH_NAME, n);
+        exit(1);
+    }
+}
+
+static double run_mujoco(const setup *s, double h_try, double *xf, run_stats *rs)
+{
+    const mj_chain *mc = &s->mj;
+    mjModel *m = mc->m;
+    mjData *d = mc->d;
+    const size_t n = s->sc->n;
+    const long steps = lround(ceil(s->sc->t_end / h_try * (1 - 1e-12)));
+    mj_resetData(m, d);
+    memcpy(d->qpos, mc->qpos, 2 * n * sizeof(double));
+    memcpy(d->qvel, mc->qvel, 2 * n * sizeof(double));
+    m->opt.timestep = s->sc->t_end / (double)steps;
+    m->opt.integrator = mjINT_RK4;
+    const double t0 = bench_now();
+    for (long k = 0; k < steps; k++) mj_step(m, d);
+    mj_kinematics(m, d);
+    double secs = bench_now() - t0;
+    rs->steps = steps;
+    rs->rhs = 4 * steps;
+    rs->constraint = -1;
+    for (size_t i = 0; i < 3 * n; i++) {
+        xf[i] = d->xipos[3 + i];
+        if (!isfinite(xf[i])) secs = -1;
+    }
+    return secs;
+}
+#endif
+
+/* ---------------- runs and the comparison ---------------- */
+
+static double run_contender(const setup *s, const contender *c, double param, double *xf,
+                            run_stats *rs)
+{
+    switch (c->kind) {
+    case K_WHIRL:
+        return run_whirl(s, c->method, WHIRL_FORMULATION_CARTESIAN, c->adaptive ? 0 : param,
+                         c->adaptive ? param : 0, s->sc->t_end, xf, rs);
+#ifdef WHIRL_HAVE_SUNDIALS
+    case K_ARK:
+    case K_CVODE:
+        return run_sundials(s, c, param, xf, rs);
+#endif
+#ifdef WHIRL_HAVE_MUJOCO
+    case K_MUJOCO:
+        return run_mujoco(s, param, xf, rs);
+#endif
+    default:
+        return -1;
+    }
+}
+
+/* The runs of one contender on one scene. */
+typedef struct curve {
+    int count;
+    double err[MAX_RUNS], param[MAX_RUNS], constraint[MAX_RUNS];
+    double times[MAX_RUNS][5];
+    int reps[MAX_RUNS], done[MAX_RUNS];
+    long steps[MAX_RUNS], rhs[MAX_RUNS];
+    double secs[MAX_RUNS]; /* median */
+} curve;
+
+static int repeats_for(double secs, int quick)
+{
+    if (quick) return secs < 0.3 ? 3 : 1;
+    return secs < 0.5 ? 5 : secs < 3 ? 3 : 1;
+}
+
+static double time_at(const curve *c, double e, double floor_err)
+{
+    return bench_time_at(c->count, c->err, c->secs, e, floor_err);
+}
+
+/* First pass: refine the contender's setting run by run (one run each). */
+static void sweep(const setup *s, const contender *c, curve *cv)
+{
+    const size_t n = s->sc->n;
+    double *xf = malloc(3 * n * sizeof *xf);
+    if (xf == NULL) bench_die("alloc");
+    cv->count = 0;
+    int succeeded = 0, failures = 0;
+    for (int k = 0; k < MAX_RUNS; k++) {
+        const double param = c->adaptive ? pow(10, -3 - k) : s->sc->h_max / ldexp(1, k);
+        if (c->adaptive && param < 1e-13 * 0.99) break;
+        run_stats rs;
+        const double secs = run_contender(s, c, param, xf, &rs);
+        if (secs < 0) {
+            printf("  %-26s %s %-9.3g failed\n", c->label, c->adaptive ? "tol" : "h  ", param);
+            if (succeeded && ++failures == 2) break;
+            continue;
+        }
+        succeeded = 1;
+        failures = 0;
+        const int j = cv->count++;
+        cv->param[j] = param;
+        cv->err[j] = bench_max_distance(n, xf, s->xref);
+        cv->times[j][0] = secs;
+        cv->reps[j] = 1;
+        cv->steps[j] = rs.steps;
+        cv->rhs[j] = rs.rhs;
+        cv->constraint[j] = rs.constraint;
+        printf("  %-26s %s %-9.3g error %9.3g  %8.3g s (first run)\n", c->label,
+               c->adaptive ? "tol" : "h  ", param, cv->err[j], secs);
+        const int stalled = j >= 1 && cv->err[j] > 0.5 * cv->err[j - 1] && cv->err[j] < 1e-9;
+        if (secs > s->sc->cap || cv->err[j] < 5e-9 || cv->err[j] < 3 * s->floor_err || stalled)
+            break;
+    }
+    free(xf);
+}
+
+/* Medians: every run repeated in turn with all the other contenders' runs (interleaved). */
+static void repeat_interleaved(const setup *s, curve *curves, int quick)
+{
+    double *xf = malloc(3 * s->sc->n * sizeof *xf);
+    if (xf == NULL) bench_die("alloc");
+    for (int r = 1; r < 5; r++)
+        for (size_t k = 0; k < N_CONTENDERS; k++)
+            for (int j = 0; j < curves[k].count; j++) {
+                curve *cv = &curves[k];
+                if (r >= repeats_for(cv->times[j][0], quick)) continue;
+                run_stats rs;
+                const double secs = run_contender(s, &contenders[k], cv->param[j], xf, &rs);
+                if (secs >= 0) cv->times[j][cv->reps[j]++] = secs;
+            }
+    for (size_t k = 0; k < N_CONTENDERS; k++)
+        for (int j = 0; j < curves[k].count; j++)
+            curves[k].secs[j] = bench_median(curves[k].times[j], curves[k].reps[j]);
+    free(xf);
+}
+
+static void setup_scene(const scene *sc, const char *dir, FILE *checks, setup *s)
+{
+    const size_t n = sc->n;
+    memset(s, 0, sizeof *s);
+    s->sc = sc;
+    s->chain = whirl_chain_alloc_uniform(n, 0);
+    if (s->chain == NULL) bench_die("chain");
+    s->model = (whirl_model){
+        .chain = s->chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = 4};
+    s->dyn = whirl_dyn_alloc(&s->model, WHIRL_FORMULATION_CARTESIAN);
+    double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v);
+    s->y0 = malloc(whirl_dyn_size(s->dyn) * sizeof *s->y0);
+    s->xi = malloc(3 * n * sizeof *s->xi);
+    s->vi = malloc(3 * n * sizeof *s->vi);
+    s->xref = malloc(3 * n * sizeof *s->xref);
+    double *xconf = malloc(3 * n * sizeof *xconf);
+    if (s->dyn == NULL || x == NULL || v == NULL || s->y0 == NULL || s->xi == NULL ||
+        s->vi == NULL || s->xref == NULL || xconf == NULL)
+        bench_die("alloc");
+    if (bench_scene_start(s->chain, s->model.omega, x) != GSL_SUCCESS) bench_die("steady shape");
+    if (whirl_dyn_set_state(s->dyn, 0, x, v, s->y0) != GSL_SUCCESS ||
+        whirl_dyn_get_state(s->dyn, 0, s->y0, WHIRL_FRAME_INERTIAL, s->xi, s->vi) != GSL_SUCCESS)
+        bench_die("set_state");
+    run_stats rs;
+    const double t_ref = run_whirl(s, "gauss3", WHIRL_FORMULATION_CARTESIAN, sc->h_max / 32, 0,
+                                   sc->t_end, s->xref, &rs);
+    const double t_conf = run_whirl(s, "gsl-rk8pd", WHIRL_FORMULATION_CARTESIAN, 0, 1e-13,
+                                    sc->t_end, xconf, &rs);
+    if (t_ref < 0 || t_conf < 0) bench_die("reference run");
+    s->floor_err = bench_max_distance(n, xconf, s->xref);
+    printf("== %s: N = %zu, t_end = %.6g; reference gauss3 h = %.4g (%.3g s), confirmed by "
+           "gsl-rk8pd tol 1e-13 (%.3g s): distance %.3g (floor)\n",
+           sc->name, n, sc->t_end, sc->h_max / 32, t_ref, t_conf, s->floor_err);
+#ifdef WHIRL_HAVE_SUNDIALS
+    if (SUNContext_Create(NULL, &s->ctx) != 0) bench_die("SUNContext_Create");
+#endif
+#ifdef WHIRL_HAVE_MUJOCO
+    whirl_dyn_diagnostics diag;
+    if (whirl_dyn_diagnose(s->dyn, 0, s->y0, &diag) != GSL_SUCCESS) bench_die("diagnose");
+    mj_chain_load(s->chain, dir, s->xi, s->vi, diag.energy, 1, &s->mj, checks);
+#else
+    (void)dir;
+    (void)checks;
+#endif
+    free(x);
+    free(v);
+    free(xconf);
+}
+
+static void free_setup(setup *s)
+{
+#ifdef WHIRL_HAVE_MUJOCO
+    mj_chain_free(&s->mj);
+#endif
+#ifdef WHIRL_HAVE_SUNDIALS
+    SUNContext_Free(&s->ctx);
+#endif
+    whirl_dyn_free(s->dyn);
+    whirl_chain_free(s->chain);
+    free(s->y0), free(s->xi), free(s->vi), free(s->xref);
+}
+
+/* headline.csv: key, what, value, target (empty: none), met (yes/no/empty) */
+static void headline(FILE *fp, const char *key, const char *what, double value, double target)
+{
+    if (!isfinite(value)) {
+        fprintf(fp, "%s,%s,,,level not bracketed\n", key, what);
+        return;
+    }
+    if (target > 0)
+        fprintf(fp, "%s,%s,%.3g,>= %g,%s\n", key, what, value, target,
+                value >= target ? "met" : "not met");
+    else fprintf(fp, "%s,%s,%.3g,,\n", key, what, value);
+}
+
+static void run_scene(const scene *sc, const char *dir, int quick, const char *only, FILE *checks,
+                      FILE *head)
+{
+    setup s;
+    setup_scene(sc, dir, checks, &s);
+    static curve curves[N_CONTENDERS];
+    for (size_t k = 0; k < N_CONTENDERS; k++) {
+        curves[k].count = 0;
+        if (k == 0 || only == NULL || strcmp(only, contenders[k].label) == 0)
+            sweep(&s, &contenders[k], &curves[k]);
+    }
+    repeat_interleaved(&s, curves, quick);
+    char name[256];
+    snprintf(name, sizeof name, "peers_%s.csv", sc->name);
+    FILE *csv = bench_open_csv(dir, name);
+    fprintf(csv, "# %s: N = %zu, t_end %.17g, error = max_i |x_i - x_ref,i| (inertial); "
+                 "floor %.6g; load average %.2f\n",
+            sc->name, sc->n, sc->t_end, s.floor_err, bench_load_average());
+    fprintf(csv, "contender,setting,error,seconds,repeats,steps,rhs_evals,constraint\n");
+    for (size_t k = 0; k < N_CONTENDERS; k++) {
+        const curve *cv = &curves[k];
+        for (int j = 0; j < cv->count; j++) {
+            fprintf(csv, "%s,%.6g,%.6g,%.6g,%d,%ld,%ld,%.3g\n", contenders[k].label,
+                    cv->param[j], cv->err[j], cv->secs[j], cv->reps[j], cv->steps[j],
+                    cv->rhs[j], cv->constraint[j]);
+            printf("  %-26s %s %-9.3g error %9.3g  %8.3g s (%d)  %ld steps  %ld rhs", 
+                   contenders[k].label, contenders[k].adaptive ? "tol" : "h  ", cv->param[j],
+                   cv->err[j], cv->secs[j], cv->reps[j], cv->steps[j], cv->rhs[j]);
+            if (cv->constraint[j] >= 0) printf("  drift %.2g", cv->constraint[j]);
+            printf("\n");
+        }
+    }
+    fclose(csv);
+    for (int l = 0; l < N_LEVELS; l++) {
+        const double e = levels[l];
+        double t_whirl = time_at(&curves[0], e, s.floor_err);
+        printf("  error %.0e: whirl rk8 %.3g s\n", e, t_whirl);
+        for (size_t g = 0; g < N_GROUPS; g++) {
+            char key[128], what[256];
+            snprintf(key, sizeof key, "%s_%s_%.0e", groups[g].name, sc->name, e);
+            snprintf(what, sizeof what, "%s / whirl rk8, N = %zu, error %.0e", groups[g].what,
+                     sc->n, e);
+            if (!groups[g].available) {
+                printf("    %-45s skipped: package missing at build time\n", groups[g].what);
+                fprintf(head, "%s,%s,,,skipped: package missing\n", key, what);
+                continue;
+            }
+            double best = NAN;
+            const char *who = "-";
+            for (size_t k = 0; k < N_CONTENDERS; k++) {
+                if (strcmp(contenders[k].group, groups[g].name) != 0) continue;
+                const double t = time_at(&curves[k], e, s.floor_err);
+                if (t < best || (isnan(best) && !isnan(t))) best = t, who = contenders[k].label;
+            }
+            const double ratio = best / t_whirl;
+            printf("    %-45s %-26s %8.3g s  ratio %.3g\n", groups[g].what, who, best, ratio);
+            /* the targets are set at N = 100 */
+            headline(head, key, what, ratio, sc->n == 100 ? groups[g].target : 0);
+        }
+    }
+    fflush(head);
+    free_setup(&s);
+}
+
+/* Cost of one step: MuJoCo RK4 against whirl rk4 at the same step from the same start. */
+static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
+{
+    FILE *csv = bench_open_csv(dir, "peers_steps.csv");
+    fprintf(csv, "n,h,whirl_rk4_s_per_step,mujoco_rk4_s_per_step,ratio\n");
+    const size_t ns[3] = {10, 100, 1000};
+    for (int q = 0; q < 3; q++) {
+        const size_t n = ns[q];
+        char key[64], what[128];
+        snprintf(key, sizeof key, "mujoco_step_%zu", n);
+        snprintf(what, sizeof what, "MuJoCo RK4 step / whirl rk4 step, N = %zu", n);
+#ifndef WHIRL_HAVE_MUJOCO
+        printf("== step cost N = %zu: MuJoCo skipped: package missing at build time\n", n);
+        fprintf(head, "%s,%s,,,skipped: package missing\n", key, what);
+        (void)quick, (void)checks;
+#else
+        const double h = 0.1 / (double)n;
+        const long steps = n <= 10 ? 20000 : n <= 100 ? 2000 : quick ? 50 : 200;
+        const scene sc = {"steps", n, h * (double)steps, h, 0};
+        setup s;
+        memset(&s, 0, sizeof s);
+        s.sc = &sc;
+        s.chain = whirl_chain_alloc_uniform(n, 0);
+        s.model = (whirl_model){
+            .chain = s.chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = 4};
+        s.dyn = whirl_dyn_alloc(&s.model, WHIRL_FORMULATION_CARTESIAN);
+        double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v),
+               *xf = malloc(3 * n * sizeof *xf);
+        s.y0 = malloc(whirl_dyn_size(s.dyn) * sizeof *s.y0);
+        s.xi = malloc(3 * n * sizeof *s.xi);
+        s.vi = malloc(3 * n * sizeof *s.vi);
+        if (s.dyn == NULL || x == NULL || v == NULL || xf == NULL || s.y0 == NULL ||
+            s.xi == NULL || s.vi == NULL)
+            bench_die("alloc");
+        if (bench_scene_start(s.chain, 4, x) != GSL_SUCCESS) bench_die("steady shape");
+        if (whirl_dyn_set_state(s.dyn, 0, x, v, s.y0) != GSL_SUCCESS ||
+            whirl_dyn_get_state(s.dyn, 0, s.y0, WHIRL_FRAME_INERTIAL, s.xi, s.vi) != GSL_SUCCESS)
+            bench_die("set_state");
+        whirl_dyn_diagnostics diag;
+        if (whirl_dyn_diagnose(s.dyn, 0, s.y0, &diag) != GSL_SUCCESS) bench_die("diagnose");
+        printf("== step cost N = %zu, h = %.3g, %ld steps\n", n, h, steps);
+        mj_chain_load(s.chain, dir, s.xi, s.vi, diag.energy, 0, &s.mj, checks);
+        double tw[5], tm[5];
+        const int reps = quick && n >= 1000 ? 3 : 5;
+        for (int r = 0; r < reps; r++) {
+            run_stats rs;
+            tw[r] = run_whirl(&s, "rk4", WHIRL_FORMULATION_CARTESIAN, h, 0, sc.t_end, xf, &rs) /
+                    (double)rs.steps;
+            tm[r] = run_mujoco(&s, h, xf, &rs) / (double)rs.steps;
+            if (tw[r] <= 0 || tm[r] <= 0) bench_die("step cost run");
+        }
+        const double w = bench_median(tw, reps), m = bench_median(tm, reps);
+        printf("  whirl rk4 %.3g s per step, MuJoCo RK4 %.3g s per step: ratio %.3g\n", w, m,
+               m / w);
+        fprintf(csv, "%zu,%.6g,%.6g,%.6g,%.6g\n", n, h, w, m, m / w);
+        headline(head, key, what, m / w, 0);
+        mj_chain_free(&s.mj);
+        whirl_dyn_free(s.dyn);
+        whirl_chain_free(s.chain);
+        free(s.y0), free(s.xi), free(s.vi), free(x), free(v), free(xf);
+#endif
+    }
+    fclose(csv);
+    fflush(head);
+}
+
+/* ns per link of one Cartesian right-hand side at N = 10^4 (3D, inertial, the smooth state of
+ * bench_util.h; median of 7 timings of 100 evaluations), as bench_scaling measures it. */
+static void rhs_per_link(FILE *head)
+{
+    const size_t n = 10000;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    const whirl_model model = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_INERTIAL};
+    whirl_dyn *d = c != NULL ? whirl_dyn_alloc(&model, WHIRL_FORMULATION_CARTESIAN) : NULL;
+    double *x = malloc(3 * n * sizeof *x), *v = malloc(3 * n * sizeof *v);
+    double *y = d != NULL ? malloc(whirl_dyn_size(d) * sizeof *y) : NULL;
+    double *dy = d != NULL ? malloc(whirl_dyn_size(d) * sizeof *dy) : NULL;
+    if (d == NULL || x == NULL || v == NULL || y == NULL || dy == NULL) bench_die("alloc");
+    const double p[3] = {0, 0, 0};
+    bench_smooth_state(c, p, x, v);
+    if (whirl_dyn_set_state(d, 0, x, v, y) != GSL_SUCCESS) bench_die("set_state");
+    double t[7];
+    for (int r = 0; r < 7; r++) {
+        const double t0 = bench_now();
+        for (int k = 0; k < 100; k++) whirl_dyn_rhs(0, y, dy, d);
+        t[r] = (bench_now() - t0) / 100;
+    }
+    const double ns = 1e9 * bench_median(t, 7) / (double)n;
+    printf("== right-hand side at N = 10^4: %.3g ns per link\n", ns);
+    fprintf(head, "ns_per_link,right-hand side ns per link at N = 10^4 (target: at most 12),%.3g,"
+                  "<= 12,%s\n", ns, ns <= 12 ? "met" : "not met");
+    fflush(head);
+    whirl_dyn_free(d);
+    whirl_chain_free(c);
+    free(x), free(v), free(y), free(dy);
+}
+
+/* The seed formulation against the Cartesian one: gauss2 at equal step on chain100. */
+static void seed_cost(const char *dir, int quick, FILE *head)
+{
+    const size_t n = 100;
+    const double periods = quick ? 1 : 2, h = 0.01;
+    const scene sc = {"seed", n, periods * 2 * PI / 4, h, 0};
+    setup s;
+    memset(&s, 0, sizeof s);
+    s.sc = &sc;
+    s.chain = whirl_chain_alloc_uniform(n, 0);
+    s.model = (whirl_model){.chain = s.chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = 4};
+    s.dyn = whirl_dyn_alloc(&s.model, WHIRL_FORMULATION_CARTESIAN);
+    double *x = calloc(3 * n, sizeof *x), *v = calloc(3 * n, sizeof *v),
+           *xs = malloc(3 * n * sizeof *xs), *xc = malloc(3 * n * sizeof *xc);
+    s.y0 = s.dyn != NULL ? malloc(whirl_dyn_size(s.dyn) * sizeof *s.y0) : NULL;
+    if (s.dyn == NULL || x == NULL || v == NULL || xs == NULL || xc == NULL || s.y0 == NULL)
+        bench_die("alloc");
+    if (bench_scene_start(s.chain, 4, x) != GSL_SUCCESS) bench_die("steady shape");
+    if (whirl_dyn_set_state(s.dyn, 0, x, v, s.y0) != GSL_SUCCESS) bench_die("set_state");
+    run_stats rs_s, rs_c;
+    double ts[3], tc[3];
+    const int reps = quick ? 1 : 3;
+    for (int r = 0; r < reps; r++) {
+        ts[r] = run_whirl(&s, "gauss2", WHIRL_FORMULATION_SEED, h, 0, sc.t_end, xs, &rs_s);
+        tc[r] = run_whirl(&s, "gauss2", WHIRL_FORMULATION_CARTESIAN, h, 0, sc.t_end, xc, &rs_c);
+        if (ts[r] < 0 || tc[r] < 0) bench_die("seed formulation run");
+    }
+    const double t_seed = bench_median(ts, reps), t_cart = bench_median(tc, reps);
+    const double dist = bench_max_distance(n, xs, xc);
+    printf("== seed formulation, N = 100, gauss2 h = %g over %g periods: seed %.3g s (%ld rhs), "
+           "Cartesian %.3g s (%ld rhs), ratio %.4g; end positions apart by %.2g\n",
+           h, periods, t_seed, rs_s.rhs, t_cart, rs_c.rhs, t_seed / t_cart, dist);
+    FILE *csv = bench_open_csv(dir, "peers_seed.csv");
+    fprintf(csv, "n,h,t_end,seed_s,seed_rhs,cartesian_s,cartesian_rhs,ratio,distance\n");
+    fprintf(csv, "%zu,%g,%.17g,%.6g,%ld,%.6g,%ld,%.6g,%.3g\n", n, h, sc.t_end, t_seed, rs_s.rhs,
+            t_cart, rs_c.rhs, t_seed / t_cart, dist);
+    fclose(csv);
+    headline(head, "seed_100", "seed formulation / whirl, gauss2 at equal step, N = 100",
+             t_seed / t_cart, 200);
+    fflush(head);
+    whirl_dyn_free(s.dyn);
+    whirl_chain_free(s.chain);
+    free(s.y0), free(x), free(v), free(xs), free(xc);
+}
+
+int main(int argc, char **argv)
+{
+    gsl_set_error_handler_off();
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    const char *dir = argc > 1 ? argv[1] : "out/bench";
+    const int quick = argc > 2 && strcmp(argv[2], "quick") == 0;
+    const char *only = argc > 3 ? argv[3] : NULL;
+    if (argc > 2 && !quick && strcmp(argv[2], "full") != 0) {
+        fprintf(stderr, "%s: usage: bench_peers [DIR [quick|full [CONTENDER]]]\n", BENCH_NAME);
+        return 1;
+    }
+    printf("load average at start (other jobs share the cores): %.2f\n", bench_load_average());
+#ifdef WHIRL_HAVE_MUJOCO
+    printf("MuJoCo %s\n", mj_versionString());
+#else
+    printf("MuJoCo: skipped (mujoco/mujoco.h not found at build time: libmujoco-dev)\n");
+#endif
+#ifdef WHIRL_HAVE_SUNDIALS
+    printf("SUNDIALS %s (ARKODE, CVODE)\n", SUNDIALS_VERSION);
+#else
+    printf("SUNDIALS: skipped (arkode/cvode headers not found at build time: libsundials-dev)\n");
+#endif
+    char path[1024];
+    snprintf(path, sizeof path, "%s/headline.csv", dir);
+    FILE *head = fopen(path, "a");
+    FILE *checks = bench_open_csv(dir, "peers_checks.csv");
+    if (head == NULL) {
+        fprintf(stderr, "%s: cannot write %s\n", BENCH_NAME, path);
+        return 1;
+    }
+    fprintf(checks, "peer,n,position_diff,velocity_diff,energy_diff,frequency_rel_diff,"
+                    "mass_matrix_condition\n");
+    const double t_end = 20 * 2 * PI / 4;
+    const scene scenes[] = {
+        {"chain10", 10, t_end, 0.1, quick ? 4 : 10},
+        {"chain100", 100, t_end, 0.01, quick ? 8 : 15},
+    };
+    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++)
+        run_scene(&scenes[k], dir, quick, only, checks, head);
+    if (only == NULL) {
+        rhs_per_link(head);
+        step_costs(dir, quick, checks, head);
+        seed_cost(dir, quick, head);
+    }
+    fclose(checks);
+    fclose(head);
+    return 0;
+}
