@@ -1,8 +1,12 @@
 /* whirl against the systems a user would otherwise reach for, side by side in one run.
  * Usage: bench_peers [DIR [quick|full [CONTENDER]]] (CONTENDER: run the scenes with whirl rk8
- * and that contender only, e.g. arkode-dp745). Writes DIR/peers_SCENE.csv (every run), DIR/peers_steps.csv
+ * and that contender only, e.g. arkode-dp745). quick: tolerances from 1e-5 and fixed steps from
+ * h_max / 4, MuJoCo at N = 100 on chain100short (the same start over 2 periods, with whirl rk8
+ * alongside) instead of chain100, ARKODE without the tables that were never the best (dp745 with projection, Verner
+ * without), shorter caps, 3 repeats of runs under 0.3 s, one otherwise, the seed formulation
+ * over one period. Writes DIR/peers_SCENE.csv (every run), DIR/peers_steps.csv
  * (cost per step), DIR/peers_seed.csv and appends the headline ratios to DIR/headline.csv; prints
- * the figures. "quick" uses shorter time caps and fewer repeats (the same scenes and levels).
+ * the figures. "quick" does less (below; the same scenes and levels).
  *
  * Scenes: chain10 and chain100 of bench_workprecision (the exact N-link mode-2 steady shape at
  * omega = 4, every link turned by 1e-3 rad, at rest in the frame co-rotating at omega; t_end =
@@ -22,7 +26,7 @@
  *    counts;
  *  - SUNDIALS CVODE Adams (orders up to 12, fixed-point iteration) without projection;
  *    SUNDIALS runs are given up (failed) after twice the scene's cap;
- *  - MuJoCo with its RK4 integrator at fixed steps h_max / 2^k (its Euler and implicit
+ *  - MuJoCo with its RK4 integrator at fixed steps h_max / 2^k (cap 15 times the scene's) (its Euler and implicit
  *    integrators are first order): the same point-mass chain as nested bodies, each hung from
  *    the mass above by a pair of hinges (x then y axes) with the point mass at the end of its
  *    link, gravity -z, no contacts. MuJoCo refuses a moving body without rotational inertia (at
@@ -46,7 +50,7 @@
  *
  * Right-hand side: ns per link at N = 10^4 (as bench_scaling, which has the whole range).
  * Cost per step: a MuJoCo RK4 step against a whirl rk4 step (same step, same start) at N = 10,
- * 100, 1000, interleaved, medians of 5.
+ * 100, 1000, interleaved, medians of 5 (N = 1000: 3, MuJoCo over 5 steps, quick 2).
  * Seed formulation: gauss2 at equal step (h = 0.01) on chain100 over 2 rotation periods (quick: 1)
  * on the seed formulation (angles, dense mass matrix) and on the Cartesian one; the distance of
  * their end positions is printed (same method, same equations: it must be small against the
@@ -94,26 +98,28 @@ typedef struct contender {
     int project;        /* ARKODE: whirl_dyn_project after every step */
     int adaptive;       /* 1: tolerance sweep, 0: step sweep */
     const char *group;  /* the row of the summary it competes in */
+    int full_only;      /* 1: left out of the quick run (never the best in the full one) */
 } contender;
 
 #ifdef WHIRL_HAVE_SUNDIALS
-#define ARK(label, table, proj, group) {label, K_ARK, NULL, table, proj, 1, group}
+#define ARK(label, table, proj, group, full_only) \
+    {label, K_ARK, NULL, table, proj, 1, group, full_only}
 #endif
 
 static const contender contenders[] = {
-    {"whirl-rk8", K_WHIRL, "rk8", 0, 0, 1, "whirl"},
-    {"gsl-rk8pd", K_WHIRL, "gsl-rk8pd", 0, 0, 1, "gsl"},
+    {"whirl-rk8", K_WHIRL, "rk8", 0, 0, 1, "whirl", 0},
+    {"gsl-rk8pd", K_WHIRL, "gsl-rk8pd", 0, 0, 1, "gsl", 0},
 #ifdef WHIRL_HAVE_SUNDIALS
-    ARK("arkode-dp745-proj", ARKODE_DORMAND_PRINCE_7_4_5, 1, "arkode-proj"),
-    ARK("arkode-verner856-proj", ARKODE_VERNER_8_5_6, 1, "arkode-proj"),
-    ARK("arkode-fehlberg1378-proj", ARKODE_FEHLBERG_13_7_8, 1, "arkode-proj"),
-    ARK("arkode-dp745", ARKODE_DORMAND_PRINCE_7_4_5, 0, "arkode"),
-    ARK("arkode-verner856", ARKODE_VERNER_8_5_6, 0, "arkode"),
-    ARK("arkode-fehlberg1378", ARKODE_FEHLBERG_13_7_8, 0, "arkode"),
-    {"cvode-adams", K_CVODE, NULL, 0, 0, 1, "cvode"},
+    ARK("arkode-dp745-proj", ARKODE_DORMAND_PRINCE_7_4_5, 1, "arkode-proj", 1),
+    ARK("arkode-verner856-proj", ARKODE_VERNER_8_5_6, 1, "arkode-proj", 0),
+    ARK("arkode-fehlberg1378-proj", ARKODE_FEHLBERG_13_7_8, 1, "arkode-proj", 0),
+    ARK("arkode-dp745", ARKODE_DORMAND_PRINCE_7_4_5, 0, "arkode", 0),
+    ARK("arkode-verner856", ARKODE_VERNER_8_5_6, 0, "arkode", 1),
+    ARK("arkode-fehlberg1378", ARKODE_FEHLBERG_13_7_8, 0, "arkode", 0),
+    {"cvode-adams", K_CVODE, NULL, 0, 0, 1, "cvode", 0},
 #endif
 #ifdef WHIRL_HAVE_MUJOCO
-    {"mujoco-rk4", K_MUJOCO, NULL, 0, 0, 0, "mujoco"},
+    {"mujoco-rk4", K_MUJOCO, NULL, 0, 0, 0, "mujoco", 0},
 #endif
 };
 #define N_CONTENDERS (sizeof contenders / sizeof contenders[0])
@@ -150,6 +156,8 @@ typedef struct scene {
     double t_end; /* [T] */
     double h_max; /* coarsest fixed step */
     double cap;   /* stop refining after a run longer than this [s] */
+    const char *with; /* NULL: every contender; else whirl rk8 and this group only */
+    int no_mujoco;    /* 1: MuJoCo left out (run on a shorter scene of its own) */
 } scene;
 
 #ifdef WHIRL_HAVE_MUJOCO
@@ -623,14 +631,16 @@ static double time_at(const curve *c, double e, double floor_err)
 }
 
 /* First pass: refine the contender's setting run by run (one run each). */
-static void sweep(const setup *s, const contender *c, curve *cv)
+static void sweep(const setup *s, const contender *c, int quick, curve *cv)
 {
     const size_t n = s->sc->n;
     double *xf = malloc(3 * n * sizeof *xf);
     if (xf == NULL) bench_die("alloc");
     cv->count = 0;
     int succeeded = 0, failures = 0;
-    for (int k = 0; k < MAX_RUNS; k++) {
+    /* quick: from tolerance 1e-5 (the levels are 1e-6 and 1e-8), and fixed steps from h_max / 4
+     * (MuJoCo's RK4 errors there are above 1e-4) */
+    for (int k = quick ? 2 : 0; k < MAX_RUNS; k++) {
         const double param = c->adaptive ? pow(10, -3 - k) : s->sc->h_max / ldexp(1, k);
         if (c->adaptive && param < 1e-13 * 0.99) break;
         run_stats rs;
@@ -653,7 +663,9 @@ static void sweep(const setup *s, const contender *c, curve *cv)
         printf("  %-26s %s %-9.3g error %9.3g  %8.3g s (first run)\n", c->label,
                c->adaptive ? "tol" : "h  ", param, cv->err[j], secs);
         const int stalled = j >= 1 && cv->err[j] > 0.5 * cv->err[j - 1] && cv->err[j] < 1e-9;
-        if (secs > s->sc->cap || cv->err[j] < 5e-9 || cv->err[j] < 3 * s->floor_err || stalled)
+        /* MuJoCo's runs near 1e-6 take minutes at N = 100: a longer cap in the full run */
+        const double cap = c->kind == K_MUJOCO && !quick ? 15 * s->sc->cap : s->sc->cap;
+        if (secs > cap || cv->err[j] < 5e-9 || cv->err[j] < 3 * s->floor_err || stalled)
             break;
     }
     free(xf);
@@ -762,8 +774,11 @@ static void run_scene(const scene *sc, const char *dir, int quick, const char *o
     static curve curves[N_CONTENDERS];
     for (size_t k = 0; k < N_CONTENDERS; k++) {
         curves[k].count = 0;
+        if (quick && contenders[k].full_only) continue;
+        if (k != 0 && sc->with != NULL && strcmp(sc->with, contenders[k].group) != 0) continue;
+        if (sc->no_mujoco && contenders[k].kind == K_MUJOCO) continue;
         if (k == 0 || only == NULL || strcmp(only, contenders[k].label) == 0)
-            sweep(&s, &contenders[k], &curves[k]);
+            sweep(&s, &contenders[k], quick, &curves[k]);
     }
     repeat_interleaved(&s, curves, quick);
     char name[256];
@@ -792,10 +807,12 @@ static void run_scene(const scene *sc, const char *dir, int quick, const char *o
         double t_whirl = time_at(&curves[0], e, s.floor_err);
         printf("  error %.0e: whirl rk8 %.3g s\n", e, t_whirl);
         for (size_t g = 0; g < N_GROUPS; g++) {
+            if (sc->with != NULL && strcmp(sc->with, groups[g].name) != 0) continue;
+            if (sc->no_mujoco && strcmp(groups[g].name, "mujoco") == 0) continue;
             char key[128], what[256];
             snprintf(key, sizeof key, "%s_%s_%.0e", groups[g].name, sc->name, e);
-            snprintf(what, sizeof what, "%s / whirl rk8, N = %zu, error %.0e", groups[g].what,
-                     sc->n, e);
+            snprintf(what, sizeof what, "%s / whirl rk8, N = %zu, %.0f periods, error %.0e",
+                     groups[g].what, sc->n, sc->t_end * 4 / (2 * PI), e);
             if (!groups[g].available) {
                 printf("    %-45s skipped: package missing at build time\n", groups[g].what);
                 fprintf(head, "%s,%s,,,skipped: package missing\n", key, what);
@@ -834,9 +851,13 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
         fprintf(head, "%s,%s,,,skipped: package missing\n", key, what);
         (void)quick, (void)checks;
 #else
+        /* whirl's steps take 0.01-0.1 s in all; MuJoCo's (a dense joint-space mass matrix
+         * factorized per stage, O(N^3)) as few as give a stable median */
         const double h = 0.1 / (double)n;
-        const long steps = n <= 10 ? 20000 : n <= 100 ? 2000 : quick ? 50 : 200;
-        const scene sc = {"steps", n, h * (double)steps, h, 0};
+        const long steps = n <= 10 ? 20000 : n <= 100 ? 2000 : 200;
+        const long mj_steps = n <= 10 ? 2000 : n <= 100 ? 100 : quick ? 2 : 5;
+        const scene sc = {"steps", n, h * (double)steps, h, 0, NULL, 0};
+        const scene sc_mj = {"steps", n, h * (double)mj_steps, h, 0, NULL, 0};
         setup s;
         memset(&s, 0, sizeof s);
         s.sc = &sc;
@@ -858,15 +879,18 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
             bench_die("set_state");
         whirl_dyn_diagnostics diag;
         if (whirl_dyn_diagnose(s.dyn, 0, s.y0, &diag) != GSL_SUCCESS) bench_die("diagnose");
-        printf("== step cost N = %zu, h = %.3g, %ld steps\n", n, h, steps);
+        printf("== step cost N = %zu, h = %.3g, %ld steps of whirl, %ld of MuJoCo\n", n, h, steps,
+               mj_steps);
         mj_chain_load(s.chain, dir, s.xi, s.vi, diag.energy, 0, &s.mj, checks);
         double tw[5], tm[5];
-        const int reps = quick && n >= 1000 ? 3 : 5;
+        const int reps = n >= 1000 ? 3 : 5;
         for (int r = 0; r < reps; r++) {
             run_stats rs;
             tw[r] = run_whirl(&s, "rk4", WHIRL_FORMULATION_CARTESIAN, h, 0, sc.t_end, xf, &rs) /
                     (double)rs.steps;
+            s.sc = &sc_mj;
             tm[r] = run_mujoco(&s, h, xf, &rs) / (double)rs.steps;
+            s.sc = &sc;
             if (tw[r] <= 0 || tm[r] <= 0) bench_die("step cost run");
         }
         const double w = bench_median(tw, reps), m = bench_median(tm, reps);
@@ -992,12 +1016,20 @@ int main(int argc, char **argv)
     }
     fprintf(checks, "peer,n,position_diff,velocity_diff,energy_diff,frequency_rel_diff,"
                     "mass_matrix_condition\n");
+    /* quick: MuJoCo at N = 100 over 2 periods (over 20 its runs near 1e-6 take minutes) */
     const double t_end = 20 * 2 * PI / 4;
-    const scene scenes[] = {
-        {"chain10", 10, t_end, 0.1, quick ? 4 : 10},
-        {"chain100", 100, t_end, 0.01, quick ? 8 : 15},
+    const scene scenes_full[] = {
+        {"chain10", 10, t_end, 0.1, 10, NULL, 0},
+        {"chain100", 100, t_end, 0.01, 15, NULL, 0},
     };
-    for (size_t k = 0; k < sizeof scenes / sizeof scenes[0]; k++)
+    const scene scenes_quick[] = {
+        {"chain10", 10, t_end, 0.1, 4, NULL, 0},
+        {"chain100", 100, t_end, 0.01, 8, NULL, 1},
+        {"chain100short", 100, t_end / 10, 0.01, 30, "mujoco", 0},
+    };
+    const scene *scenes = quick ? scenes_quick : scenes_full;
+    const size_t n_scenes = quick ? 3 : 2;
+    for (size_t k = 0; k < n_scenes; k++)
         run_scene(&scenes[k], dir, quick, only, checks, head);
     if (only == NULL) {
         rhs_per_link(head);
