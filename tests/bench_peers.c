@@ -1,12 +1,13 @@
 /* whirl against the systems a user would otherwise reach for, side by side in one run.
  * Usage: bench_peers [DIR [quick|full [CONTENDER]]] (CONTENDER: run the scenes with whirl rk8
- * and that contender only, e.g. arkode-dp745). quick: tolerances from 1e-5 and fixed steps from
- * h_max / 4, MuJoCo at N = 100 on chain100short (the same start over 2 periods, with whirl rk8
- * alongside) instead of chain100 and refined only to below 1e-6, ARKODE without the tables that were never the best (dp745 with projection, Verner
- * without), shorter caps, 3 repeats of runs under 0.3 s, one otherwise, the seed formulation
- * over one period. Writes DIR/peers_SCENE.csv (every run), DIR/peers_steps.csv
- * (cost per step), DIR/peers_seed.csv and appends the headline ratios to DIR/headline.csv; prints
- * the figures. "quick" does less (below; the same scenes and levels).
+ * and that contender only, e.g. arkode-dp745). Writes DIR/peers_SCENE.csv (every run),
+ * DIR/peers_steps.csv (cost per step), DIR/peers_seed.csv, DIR/peers_checks.csv (the models'
+ * agreement) and appends the headline ratios to DIR/headline.csv; prints the figures.
+ * quick (for make bench-quick): tolerances from 1e-5 and fixed steps from h_max / 4; MuJoCo at
+ * N = 100 on chain100short (the same start over 2 periods, whirl rk8 alongside) instead of
+ * chain100, refined only to below 1e-6; ARKODE without the tables that were never the best
+ * (dp745 with projection, Verner without); shorter caps; 3 repeats of runs under 0.3 s, one
+ * otherwise; the seed formulation over one period; no step cost at N = 1000.
  *
  * Scenes: chain10 and chain100 of bench_workprecision (the exact N-link mode-2 steady shape at
  * omega = 4, every link turned by 1e-3 rad, at rest in the frame co-rotating at omega; t_end =
@@ -50,11 +51,12 @@
  *
  * Right-hand side: ns per link at N = 10^4 (as bench_scaling, which has the whole range).
  * Cost per step: a MuJoCo RK4 step against a whirl rk4 step (same step, same start) at N = 10,
- * 100, 1000, interleaved, medians of 5 (N = 1000: 3, MuJoCo over 5 steps, quick 2).
+ * 100, 1000, interleaved, medians of 5 (N = 1000: 3, MuJoCo over 2 steps of about 10 s each;
+ * left out of the quick run).
  * Seed formulation: gauss2 at equal step (h = 0.01) on chain100 over 2 rotation periods (quick: 1)
  * on the seed formulation (angles, dense mass matrix) and on the Cartesian one; the distance of
- * their end positions is printed (same method, same equations: it must be small against the
- * step's error).
+ * their end positions is printed (same method and step, same motion; Runge-Kutta methods are
+ * not invariant under the change of coordinates, so it is the size of the step's error).
  * A peer whose package is missing at build time (MuJoCo: mujoco/mujoco.h; SUNDIALS: arkode and
  * cvode headers) is reported as skipped, row by row. */
 #include <float.h>
@@ -441,6 +443,7 @@ static void mj_chain_load(const whirl_chain *c, const char *dir, const double *x
     snprintf(sub, sizeof sub, "%s/mujoco_chain%zu", dir, n);
     mkdir(sub, 0777);
     mj_write_xml(c, sub, main_path, sizeof main_path);
+    const double t_load = bench_now();
     mc->m = mj_loadXML(main_path, NULL, err, sizeof err);
     if (mc->m == NULL) {
         fprintf(stderr, "%s: MuJoCo refuses %s: %s\n", BENCH_NAME, main_path, err);
@@ -480,9 +483,10 @@ static void mj_chain_load(const whirl_chain *c, const char *dir, const double *x
     }
     free(jac);
     const double de = fabs(e_mj - energy);
-    printf("  MuJoCo model N = %zu (%zu files): positions %.2g, velocities %.2g, energy %.17g "
+    printf("  MuJoCo model N = %zu (%zu files, loaded and checked in %.3g s): positions %.2g, velocities %.2g, energy %.17g "
            "vs whirl %.17g (difference %.2g)\n",
-           n, (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE, dx, dv, e_mj, energy, de);
+           n, (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE, bench_now() - t_load, dx, dv,
+           e_mj, energy, de);
     double dfreq = -1, kappa = 0;
     if (frequencies) {
         /* the hanging chain: x-hinges only (at q = 0 the y-hinges decouple) */
@@ -806,6 +810,7 @@ static void run_scene(const scene *sc, const char *dir, int quick, const char *o
     fclose(csv);
     for (int l = 0; l < N_LEVELS; l++) {
         const double e = levels[l];
+        if (quick && sc->with != NULL && e < 1e-6) continue; /* refined to 1e-6 only */
         double t_whirl = time_at(&curves[0], e, s.floor_err);
         printf("  error %.0e: whirl rk8 %.3g s\n", e, t_whirl);
         for (size_t g = 0; g < N_GROUPS; g++) {
@@ -843,7 +848,7 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
     FILE *csv = bench_open_csv(dir, "peers_steps.csv");
     fprintf(csv, "n,h,whirl_rk4_s_per_step,mujoco_rk4_s_per_step,ratio\n");
     const size_t ns[3] = {10, 100, 1000};
-    for (int q = 0; q < 3; q++) {
+    for (int q = 0; q < (quick ? 2 : 3); q++) {
         const size_t n = ns[q];
         char key[64], what[128];
         snprintf(key, sizeof key, "mujoco_step_%zu", n);
@@ -857,7 +862,7 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
          * factorized per stage, O(N^3)) as few as give a stable median */
         const double h = 0.1 / (double)n;
         const long steps = n <= 10 ? 20000 : n <= 100 ? 2000 : 200;
-        const long mj_steps = n <= 10 ? 2000 : n <= 100 ? 100 : quick ? 2 : 5;
+        const long mj_steps = n <= 10 ? 2000 : n <= 100 ? 100 : 2;
         const scene sc = {"steps", n, h * (double)steps, h, 0, NULL, 0};
         const scene sc_mj = {"steps", n, h * (double)mj_steps, h, 0, NULL, 0};
         setup s;
