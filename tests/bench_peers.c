@@ -74,16 +74,7 @@
 #define BENCH_NAME "bench_peers"
 #include "bench_util.h"
 
-#ifdef WHIRL_HAVE_MUJOCO
-#include <mujoco/mujoco.h>
-#endif
-#ifdef WHIRL_HAVE_SUNDIALS
-#include <arkode/arkode_erkstep.h>
-#include <cvode/cvode.h>
-#include <nvector/nvector_serial.h>
-#include <sundials/sundials_config.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
-#endif
+#include "peer_glue.h"
 
 #define PI 3.14159265358979323846
 #define MAX_RUNS 16
@@ -184,7 +175,7 @@ typedef struct setup {
     SUNContext ctx;
 #endif
 #ifdef WHIRL_HAVE_MUJOCO
-    mj_chain mj;
+    peer_mj mj;
 #endif
 } setup;
 
@@ -235,83 +226,31 @@ static double run_whirl(const setup *s, const char *method, whirl_formulation f,
 /* ---------------- SUNDIALS ---------------- */
 
 #ifdef WHIRL_HAVE_SUNDIALS
-static int sun_rhs(realtype t, N_Vector y, N_Vector ydot, void *dyn)
-{
-    /* positive: a recoverable failure (the solver retries with a smaller step) */
-    return whirl_dyn_rhs(t, NV_DATA_S(y), NV_DATA_S(ydot), dyn) == GSL_SUCCESS ? 0 : 1;
-}
-
-static int sun_project(realtype t, N_Vector y, void *dyn)
-{
-    return whirl_dyn_project(dyn, t, NV_DATA_S(y)) == GSL_SUCCESS ? 0 : -1;
-}
-
 static double run_sundials(const setup *s, const contender *c, double tol, double *xf,
                            run_stats *rs)
 {
     const size_t size = whirl_dyn_size(s->dyn), n = s->sc->n;
-    N_Vector y = N_VNew_Serial((sunindextype)size, s->ctx);
-    double *vf = malloc(3 * n * sizeof *vf);
+    double *y = malloc(size * sizeof *y), *vf = malloc(3 * n * sizeof *vf);
     if (y == NULL || vf == NULL) bench_die("alloc");
-    memcpy(NV_DATA_S(y), s->y0, size * sizeof(double));
-    const double t_end = s->sc->t_end;
-    realtype t = 0;
-    void *mem = NULL;
-    SUNNonlinearSolver nls = NULL;
-    int ok;
-    if (c->kind == K_ARK) {
-        mem = ERKStepCreate(sun_rhs, 0, y, s->ctx);
-        ok = mem != NULL && ERKStepSetTableNum(mem, (ARKODE_ERKTableID)c->table) == 0 &&
-             ERKStepSStolerances(mem, tol, tol) == 0 && ERKStepSetUserData(mem, s->dyn) == 0 &&
-             ERKStepSetMaxNumSteps(mem, 10000) == 0 && ERKStepSetStopTime(mem, t_end) == 0 &&
-             ERKStepSetMinStep(mem, 1e-12 * t_end) == 0 && ERKStepSetMaxHnilWarns(mem, -1) == 0 &&
-             ERKStepSetErrFile(mem, NULL) == 0 &&
-             (!c->project || ERKStepSetPostprocessStepFn(mem, sun_project) == 0);
-    } else {
-        mem = CVodeCreate(CV_ADAMS, s->ctx);
-        nls = SUNNonlinSol_FixedPoint(y, 0, s->ctx);
-        ok = mem != NULL && nls != NULL && CVodeInit(mem, sun_rhs, 0, y) == 0 &&
-             CVodeSStolerances(mem, tol, tol) == 0 && CVodeSetUserData(mem, s->dyn) == 0 &&
-             CVodeSetNonlinearSolver(mem, nls) == 0 && CVodeSetMaxNumSteps(mem, 10000) == 0 &&
-             CVodeSetStopTime(mem, t_end) == 0 && CVodeSetMinStep(mem, 1e-12 * t_end) == 0 &&
-             CVodeSetMaxHnilWarns(mem, -1) == 0 && CVodeSetErrFile(mem, NULL) == 0;
-    }
-    if (!ok) {
+    memcpy(y, s->y0, size * sizeof *y);
+    const double t0 = bench_now();
+    const int status =
+        peer_sun_run(s->ctx, s->dyn, y, s->sc->t_end, c->kind == K_ARK ? c->table : -1,
+                     c->project, tol, 2 * s->sc->cap, &rs->steps, &rs->rhs);
+    double secs = bench_now() - t0;
+    if (status == -2) {
         fprintf(stderr, "%s: cannot set up %s\n", BENCH_NAME, c->label);
         exit(1);
     }
-    /* in pieces of 10^4 steps, given up after twice the scene's cap */
-    const double t0 = bench_now();
-    int flag;
-    do
-        flag = c->kind == K_ARK ? ERKStepEvolve(mem, t_end, y, &t, ARK_NORMAL)
-                                : CVode(mem, t_end, y, &t, CV_NORMAL);
-    while ((c->kind == K_ARK ? flag == ARK_TOO_MUCH_WORK : flag == CV_TOO_MUCH_WORK) &&
-           bench_now() - t0 < 2 * s->sc->cap);
-    double secs = bench_now() - t0;
-    long steps = 0, rhs = 0, nni = 0;
-    if (c->kind == K_ARK) {
-        ERKStepGetNumSteps(mem, &steps);
-        ERKStepGetNumRhsEvals(mem, &rhs);
-        ERKStepFree(&mem);
-    } else {
-        CVodeGetNumSteps(mem, &steps);
-        CVodeGetNumRhsEvals(mem, &rhs);
-        CVodeGetNumNonlinSolvIters(mem, &nni);
-        CVodeFree(&mem);
-        SUNNonlinSolFree(nls);
-    }
-    rs->steps = steps;
-    rs->rhs = rhs;
     rs->constraint = -1;
     whirl_dyn_diagnostics diag;
-    if (flag < 0 || fabs(t - t_end) > 1e-9 * t_end) secs = -1;
+    if (status != 0) secs = -1;
     else {
-        whirl_dyn_get_state(s->dyn, t, NV_DATA_S(y), WHIRL_FRAME_INERTIAL, xf, vf);
-        if (whirl_dyn_diagnose(s->dyn, t, NV_DATA_S(y), &diag) == GSL_SUCCESS)
+        whirl_dyn_get_state(s->dyn, s->sc->t_end, y, WHIRL_FRAME_INERTIAL, xf, vf);
+        if (whirl_dyn_diagnose(s->dyn, s->sc->t_end, y, &diag) == GSL_SUCCESS)
             rs->constraint = diag.constraint;
     }
-    N_VDestroy(y);
+    free(y);
     free(vf);
     return secs;
 }
@@ -320,273 +259,43 @@ static double run_sundials(const setup *s, const contender *c, double tol, doubl
 /* ---------------- MuJoCo ---------------- */
 
 #ifdef WHIRL_HAVE_MUJOCO
-#define MJ_BODIES_PER_FILE 40
-#define MJ_MASS_SCALE 1e9 /* MuJoCo mass = MJ_MASS_SCALE x whirl's mass */
-
-/* R <- R * (rotation by angle a about axis k = 0 (x) or 1 (y)); row-major 3 x 3 */
-static void rotate_by(double R[9], int k, double a)
-{
-    const double c = cos(a), s = sin(a);
-    double G[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, T[9];
-    if (k == 0) G[4] = c, G[5] = -s, G[7] = s, G[8] = c;
-    else G[0] = c, G[2] = s, G[6] = -s, G[8] = c;
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            T[3 * i + j] = R[3 * i] * G[j] + R[3 * i + 1] * G[3 + j] + R[3 * i + 2] * G[6 + j];
-    memcpy(R, T, sizeof T);
-}
-
-static void cross(const double a[3], const double b[3], double c[3])
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* Joint angles and rates of the hinge pairs for positions x and velocities v (3 per mass,
- * pivot at the origin): link i points along R_i (0, 0, -1), R_i = R_{i-1} Rx(a_i) Ry(b_i), so
- * R_{i-1}^T u_i = (-sin b, cos b sin a, -cos b cos a); the rates from du_i/dt = Om_i x u_i,
- * Om_i = Om_{i-1} + a_i' R_{i-1} e_x + b_i' R_{i-1} Rx(a_i) e_y (least squares in the 2 rates,
- * exact for consistent velocities). */
-static void mj_coordinates(const whirl_chain *c, const double *x, const double *v, double *qpos,
-                           double *qvel)
-{
-    double R[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, om[3] = {0, 0, 0};
-    double prev_x[3] = {0, 0, 0}, prev_v[3] = {0, 0, 0};
-    for (size_t i = 0; i < c->n; i++) {
-        double u[3], w[3], ur[3];
-        for (int k = 0; k < 3; k++) {
-            u[k] = (x[3 * i + k] - prev_x[k]) / c->length[i];
-            w[k] = (v[3 * i + k] - prev_v[k]) / c->length[i];
-            prev_x[k] = x[3 * i + k];
-            prev_v[k] = v[3 * i + k];
-        }
-        for (int k = 0; k < 3; k++) ur[k] = R[k] * u[0] + R[3 + k] * u[1] + R[6 + k] * u[2];
-        const double a = atan2(ur[1], -ur[2]), b = asin(fmax(-1, fmin(1, -ur[0])));
-        const double A[3] = {R[0], R[3], R[6]};
-        rotate_by(R, 0, a);
-        const double B[3] = {R[1], R[4], R[7]};
-        rotate_by(R, 1, b);
-        double oxu[3], P[3], Q[3], r[3];
-        cross(om, u, oxu);
-        for (int k = 0; k < 3; k++) r[k] = w[k] - oxu[k];
-        cross(A, u, P);
-        cross(B, u, Q);
-        const double pp = dot3(P, P), pq = dot3(P, Q), qq = dot3(Q, Q), pr = dot3(P, r),
-                     qr = dot3(Q, r), det = pp * qq - pq * pq;
-        const double ad = (qq * pr - pq * qr) / det, bd = (pp * qr - pq * pr) / det;
-        for (int k = 0; k < 3; k++) om[k] += ad * A[k] + bd * B[k];
-        qpos[2 * i] = a, qpos[2 * i + 1] = b;
-        qvel[2 * i] = ad, qvel[2 * i + 1] = bd;
-    }
-}
-
-/* Writes the model of chain c as DIR/chain_0.xml .. chain_K.xml; returns the main file's path. */
-static void mj_write_xml(const whirl_chain *c, const char *dir, char *main_path, size_t len)
-{
-    const size_t n = c->n, files = (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE;
-    for (size_t f = 0; f < files; f++) {
-        char path[1200];
-        snprintf(path, sizeof path, "%s/chain_%zu.xml", dir, f);
-        if (f == 0) snprintf(main_path, len, "%s", path);
-        FILE *fp = fopen(path, "w");
-        if (fp == NULL) {
-            fprintf(stderr, "%s: cannot write %s\n", BENCH_NAME, path);
-            exit(1);
-        }
-        if (f == 0)
-            fprintf(fp, "<mujoco model=\"chain%zu\">\n  <compiler angle=\"radian\"/>\n"
-                        "  <option gravity=\"0 0 %.17g\" integrator=\"RK4\">\n"
-                        "    <flag contact=\"disable\" energy=\"enable\"/>\n  </option>\n"
-                        "  <worldbody>\n",
-                    n, -c->gravity);
-        else fprintf(fp, "<mujoco>\n");
-        const size_t first = f * MJ_BODIES_PER_FILE,
-                     last = first + MJ_BODIES_PER_FILE < n ? first + MJ_BODIES_PER_FILE : n;
-        for (size_t i = first; i < last; i++)
-            fprintf(fp,
-                    "<body name=\"m%zu\" pos=\"0 0 %.17g\"><joint type=\"hinge\" axis=\"1 0 0\"/>"
-                    "<joint type=\"hinge\" axis=\"0 1 0\"/><inertial pos=\"0 0 %.17g\" "
-                    "mass=\"%.17g\" diaginertia=\"2e-15 2e-15 2e-15\"/>\n",
-                    i + 1, i == 0 ? 0.0 : -c->length[i - 1], -c->length[i],
-                    MJ_MASS_SCALE * c->mass[i]);
-        if (last < n) fprintf(fp, "<include file=\"chain_%zu.xml\"/>\n", f + 1);
-        for (size_t i = first; i < last; i++) fprintf(fp, "</body>");
-        fprintf(fp, "\n%s</mujoco>\n", f == 0 ? "  </worldbody>\n" : "");
-        fclose(fp);
-    }
-}
-
-/* Frees the MuJoCo model of one scene. */
-static void mj_chain_free(mj_chain *mc)
-{
-    if (mc->d != NULL) mj_deleteData(mc->d);
-    if (mc->m != NULL) mj_deleteModel(mc->m);
-    free(mc->qpos);
-    free(mc->qvel);
-    memset(mc, 0, sizeof *mc);
-}
-
-/* Loads the chain into MuJoCo and checks it against whirl at the start (x, v inertial, energy
- * from whirl_dyn_diagnose); frequencies: 1 to compare the hanging chain's normal modes. Prints
- * and records the check; exits if the models differ. */
+/* Loads the chain into MuJoCo (peer_mj_load), prints and records the check; exits if the models
+ * differ. */
 static void mj_chain_load(const whirl_chain *c, const char *dir, const double *x, const double *v,
-                          double energy, int frequencies, mj_chain *mc, FILE *checks)
+                          double energy, int frequencies, peer_mj *mc, FILE *checks)
 {
-    const size_t n = c->n, nv = 2 * n;
-    char sub[1024], main_path[1200], err[1000] = "";
-    snprintf(sub, sizeof sub, "%s/mujoco_chain%zu", dir, n);
-    mkdir(sub, 0777);
-    mj_write_xml(c, sub, main_path, sizeof main_path);
-    const double t_load = bench_now();
-    mc->m = mj_loadXML(main_path, NULL, err, sizeof err);
-    if (mc->m == NULL) {
-        fprintf(stderr, "%s: MuJoCo refuses %s: %s\n", BENCH_NAME, main_path, err);
+    char msg[2048];
+    peer_mj_check k;
+    const double t0 = bench_now();
+    if (peer_mj_load(c, dir, x, v, energy, frequencies, mc, &k, msg, sizeof msg) != 0) {
+        fprintf(stderr, "%s: %s\n", BENCH_NAME, msg);
         exit(1);
     }
-    mc->d = mj_makeData(mc->m);
-    mc->qpos = malloc(nv * sizeof *mc->qpos);
-    mc->qvel = malloc(nv * sizeof *mc->qvel);
-    if (mc->d == NULL || mc->qpos == NULL || mc->qvel == NULL) bench_die("MuJoCo alloc");
-    if ((size_t)mc->m->nbody != n + 1 || (size_t)mc->m->nv != nv) {
-        fprintf(stderr, "%s: MuJoCo model of N = %zu has %d bodies and %d dofs\n", BENCH_NAME, n,
-                mc->m->nbody, mc->m->nv);
-        exit(1);
-    }
-    mjModel *m = mc->m;
-    mjData *d = mc->d;
-    mj_coordinates(c, x, v, mc->qpos, mc->qvel);
-    memcpy(d->qpos, mc->qpos, nv * sizeof(double));
-    memcpy(d->qvel, mc->qvel, nv * sizeof(double));
-    mj_forward(m, d);
-    mj_energyPos(m, d);
-    mj_energyVel(m, d);
-    const double e_mj = (d->energy[0] + d->energy[1]) / MJ_MASS_SCALE;
-    /* positions and velocities of the point masses */
-    double *jac = malloc(3 * nv * sizeof *jac);
-    if (jac == NULL) bench_die("alloc");
-    double dx = 0, dv = 0;
-    for (size_t i = 0; i < n; i++) {
-        const double *p = d->xipos + 3 * (i + 1);
-        mj_jacBodyCom(m, d, jac, NULL, (int)i + 1);
-        for (int k = 0; k < 3; k++) {
-            double vk = 0;
-            for (size_t j = 0; j < nv; j++) vk += jac[k * nv + j] * d->qvel[j];
-            dx = fmax(dx, fabs(p[k] - x[3 * i + k]));
-            dv = fmax(dv, fabs(vk - v[3 * i + k]));
-        }
-    }
-    free(jac);
-    const double de = fabs(e_mj - energy);
-    printf("  MuJoCo model N = %zu (%zu files, loaded and checked in %.3g s): positions %.2g, velocities %.2g, energy %.17g "
-           "vs whirl %.17g (difference %.2g)\n",
-           n, (n + MJ_BODIES_PER_FILE - 1) / MJ_BODIES_PER_FILE, bench_now() - t_load, dx, dv,
-           e_mj, energy, de);
-    double dfreq = -1, kappa = 0;
-    if (frequencies) {
-        /* the hanging chain: x-hinges only (at q = 0 the y-hinges decouple) */
-        double *M = malloc(nv * nv * sizeof *M), *K = malloc(n * n * sizeof *K),
-               *Mx = malloc(n * n * sizeof *Mx), *w = malloc(n * sizeof *w),
-               *ref = malloc(n * sizeof *ref), *f = malloc(6 * n * sizeof *f);
-        if (M == NULL || K == NULL || Mx == NULL || w == NULL || ref == NULL || f == NULL)
-            bench_die("alloc");
-        mj_resetData(m, d);
-        mj_forward(m, d);
-        mj_fullM(m, M, d->qM);
-        for (size_t i = 0; i < n; i++)
-            for (size_t j = 0; j < n; j++) Mx[i * n + j] = M[2 * i * nv + 2 * j];
-        /* central differences at h, h/2, h/4 and two Richardson steps: error O(h^6) */
-        const double h = 1e-2, steps[6] = {h, -h, h / 2, -h / 2, h / 4, -h / 4};
-        for (size_t j = 0; j < n; j++) {
-            for (int q = 0; q < 6; q++) {
-                mj_resetData(m, d);
-                d->qpos[2 * j] = steps[q];
-                mj_forward(m, d);
-                for (size_t i = 0; i < n; i++) f[q * n + i] = d->qfrc_bias[2 * i];
-            }
-            for (size_t i = 0; i < n; i++) {
-                double cd[3];
-                for (int q = 0; q < 3; q++)
-                    cd[q] = (f[2 * q * n + i] - f[(2 * q + 1) * n + i]) / (2 * steps[2 * q]);
-                const double r1 = (4 * cd[1] - cd[0]) / 3, r2 = (4 * cd[2] - cd[1]) / 3;
-                K[i * n + j] = (16 * r2 - r1) / 15;
-            }
-        }
-        for (size_t i = 0; i < n; i++)
-            for (size_t j = 0; j < i; j++)
-                K[i * n + j] = K[j * n + i] = 0.5 * (K[i * n + j] + K[j * n + i]);
-        /* the condition number of the joint-space mass matrix (1-norm estimate) bounds the
-         * eigensolver's relative error of the highest frequencies, about eps kappa */
-        double anorm = 0, rcond = 0;
-        for (size_t j = 0; j < n; j++) {
-            double col = 0;
-            for (size_t i = 0; i < n; i++) col += fabs(Mx[i * n + j]);
-            anorm = fmax(anorm, col);
-        }
-        double *Mc = malloc(n * n * sizeof *Mc);
-        if (Mc == NULL) bench_die("alloc");
-        memcpy(Mc, Mx, n * n * sizeof *Mc);
-        if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'U', (lapack_int)n, Mc, (lapack_int)n) != 0 ||
-            LAPACKE_dpocon(LAPACK_ROW_MAJOR, 'U', (lapack_int)n, Mc, (lapack_int)n, anorm,
-                           &rcond) != 0)
-            rcond = 0;
-        free(Mc);
-        kappa = rcond > 0 ? 1 / rcond : INFINITY;
-        const int info = LAPACKE_dsygv(LAPACK_ROW_MAJOR, 1, 'N', 'U', (lapack_int)n, K,
-                                       (lapack_int)n, Mx, (lapack_int)n, w);
-        if (info != 0 || whirl_nlink_critical(c, n, ref) != GSL_SUCCESS) {
-            fprintf(stderr, "%s: normal modes of the hanging chain failed (dsygv %d)\n",
-                    BENCH_NAME, info);
-            exit(1);
-        }
-        dfreq = 0;
-        size_t worst = 0;
-        for (size_t i = 0; i < n; i++)
-            if (fabs(sqrt(w[i]) / ref[i] - 1) > dfreq) dfreq = fabs(sqrt(w[i]) / ref[i] - 1), worst = i;
-        printf("  MuJoCo hanging normal-mode frequencies %.10g .. %.10g, whirl %.10g .. %.10g: "
-               "largest relative difference %.2g (mode %zu); MuJoCo's joint-space mass matrix has "
+    printf("  MuJoCo model N = %zu (%zu files, loaded and checked in %.3g s): positions %.2g, "
+           "velocities %.2g, energy %.17g vs whirl %.17g (difference %.2g)\n",
+           c->n, k.files, bench_now() - t0, k.dx, k.dv, k.energy, energy, k.de);
+    if (frequencies)
+        printf("  MuJoCo hanging normal-mode frequencies %.10g .. %.10g: largest relative "
+               "difference from whirl's %.2g (mode %zu); MuJoCo's joint-space mass matrix has "
                "condition number %.2g (eigensolver bound eps kappa = %.2g)\n",
-               sqrt(w[0]), sqrt(w[n - 1]), ref[0], ref[n - 1], dfreq, worst + 1, kappa,
-               DBL_EPSILON * kappa);
-        free(M), free(K), free(Mx), free(w), free(ref), free(f);
-    }
-    fprintf(checks, "mujoco,%zu,%.3g,%.3g,%.3g,%.3g,%.3g\n", n, dx, dv, de, dfreq, kappa);
+               k.freq_lo, k.freq_hi, k.dfreq, k.worst_mode, k.kappa, DBL_EPSILON * k.kappa);
+    fprintf(checks, "mujoco,%zu,%.3g,%.3g,%.3g,%.3g,%.3g\n", c->n, k.dx, k.dv, k.de, k.dfreq,
+            k.kappa);
     fflush(checks);
-    if (dx > 1e-12 || dv > 1e-12 || de > 1e-10 || dfreq > fmax(1e-10, DBL_EPSILON * kappa)) {
-        fprintf(stderr, "%s: the MuJoCo model of N = %zu differs from whirl's\n", BENCH_NAME, n);
+    if (!peer_mj_agrees(&k)) {
+        fprintf(stderr, "%s: the MuJoCo model of N = %zu differs from whirl's\n", BENCH_NAME,
+                c->n);
         exit(1);
     }
 }
 
 static double run_mujoco(const setup *s, double h_try, double *xf, run_stats *rs)
 {
-    const mj_chain *mc = &s->mj;
-    mjModel *m = mc->m;
-    mjData *d = mc->d;
-    const size_t n = s->sc->n;
     const long steps = lround(ceil(s->sc->t_end / h_try * (1 - 1e-12)));
-    mj_resetData(m, d);
-    memcpy(d->qpos, mc->qpos, 2 * n * sizeof(double));
-    memcpy(d->qvel, mc->qvel, 2 * n * sizeof(double));
-    m->opt.timestep = s->sc->t_end / (double)steps;
-    m->opt.integrator = mjINT_RK4;
-    const double t0 = bench_now();
-    for (long k = 0; k < steps; k++) mj_step(m, d);
-    mj_kinematics(m, d);
-    double secs = bench_now() - t0;
     rs->steps = steps;
     rs->rhs = 4 * steps;
     rs->constraint = -1;
-    for (size_t i = 0; i < 3 * n; i++) {
-        xf[i] = d->xipos[3 + i];
-        if (!isfinite(xf[i])) secs = -1;
-    }
-    return secs;
+    return peer_mj_run((peer_mj *)&s->mj, s->sc->t_end, steps, xf);
 }
 #endif
 
@@ -749,7 +458,7 @@ static void setup_scene(const scene *sc, const char *dir, FILE *checks, setup *s
 static void free_setup(setup *s)
 {
 #ifdef WHIRL_HAVE_MUJOCO
-    mj_chain_free(&s->mj);
+    peer_mj_free(&s->mj);
 #endif
 #ifdef WHIRL_HAVE_SUNDIALS
     SUNContext_Free(&s->ctx);
@@ -905,7 +614,7 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
                m / w);
         fprintf(csv, "%zu,%.6g,%.6g,%.6g,%.6g\n", n, h, w, m, m / w);
         headline(head, key, what, m / w, 0);
-        mj_chain_free(&s.mj);
+        peer_mj_free(&s.mj);
         whirl_dyn_free(s.dyn);
         whirl_chain_free(s.chain);
         free(s.y0), free(s.xi), free(s.vi), free(x), free(v), free(xf);
@@ -951,7 +660,7 @@ static void seed_cost(const char *dir, int quick, FILE *head)
 {
     const size_t n = 100;
     const double periods = quick ? 1 : 2, h = 0.01;
-    const scene sc = {"seed", n, periods * 2 * PI / 4, h, 0};
+    const scene sc = {"seed", n, periods * 2 * PI / 4, h, 0, NULL, 0};
     setup s;
     memset(&s, 0, sizeof s);
     s.sc = &sc;
