@@ -130,12 +130,14 @@ $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
 # when its headers are found (scripts/deps.sh installs them; without them the benchmark reports
 # those rows as skipped and test_peers fails, naming the package).
 have_header = $(shell printf '\043include <%s>\n' '$(1)' | $(CC) -E -xc - >/dev/null 2>&1 && echo 1)
+have_sundials = $(and $(call have_header,arkode/arkode_erkstep.h),$(call have_header,cvode/cvode.h))
 PEER_CFLAGS := $(if $(call have_header,mujoco/mujoco.h),-DWHIRL_HAVE_MUJOCO) \
-  $(if $(and $(call have_header,arkode/arkode_erkstep.h),$(call have_header,cvode/cvode.h)),-DWHIRL_HAVE_SUNDIALS)
+  $(if $(have_sundials),-DWHIRL_HAVE_SUNDIALS)
 PEER_LIBS := $(if $(findstring MUJOCO,$(PEER_CFLAGS)),-lmujoco) \
   $(if $(findstring SUNDIALS,$(PEER_CFLAGS)),-lsundials_arkode -lsundials_cvode \
     -lsundials_nvecserial -lsundials_sunnonlinsolfixedpoint)
-$(BUILD)/tests/bench_peers $(BUILD)/tests/test_peers: $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
+PEER_BIN := $(BUILD)/tests/bench_peers $(BUILD)/tests/test_peers
+$(PEER_BIN): $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $(PEER_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) \
 	  $(PEER_LIBS) $(LDLIBS) -lcmocka -o $@

@@ -27,22 +27,13 @@
  *    counts;
  *  - SUNDIALS CVODE Adams (orders up to 12, fixed-point iteration) without projection;
  *    SUNDIALS runs are given up (failed) after twice the scene's cap;
- *  - MuJoCo with its RK4 integrator at fixed steps h_max / 2^k (cap 15 times the scene's) (its Euler and implicit
- *    integrators are first order): the same point-mass chain as nested bodies, each hung from
- *    the mass above by a pair of hinges (x then y axes) with the point mass at the end of its
- *    link, gravity -z, no contacts. MuJoCo refuses a moving body without rotational inertia (at
- *    most 1e-15): each body gets 2e-15 about its centre, and the masses are given in units of
- *    1e-9 of whirl's (a point-mass chain's motion does not depend on the mass scale), so that
- *    this inertia is below 1e-14 of a link's m l^2 up to N = 1000 (energies are compared after
- *    dividing by the scale). Its XML parser refuses elements nested deeper than 100, so the chain is cut into
- *    files of 40 bodies, each body 40k+40 holding <include file="chain_k+1.xml"/>; the loaded
- *    model is checked: body count, positions and velocities against whirl's to 1e-12, energy
- *    and the hanging chain's normal-mode frequencies against whirl's to 1e-10 (frequencies from
- *    MuJoCo's mass matrix and the Jacobian of its bias force by central differences at steps
- *    1e-2, 5e-3, 2.5e-3 with two Richardson steps, generalized symmetric eigenproblem by LAPACK dsygv; to 1e-10 or, where
- *    larger, to the eigensolver's bound eps kappa, kappa the condition number of MuJoCo's
- *    joint-space mass matrix: 1.3e8 at N = 100, so that the highest modes there agree to a few
- *    1e-10 only, as far as the dense joint-space problem can be solved in double).
+ *  - MuJoCo with its RK4 integrator (its Euler and implicit integrators are first order) at
+ *    fixed steps h_max / 2^k, cap 15 times the scene's: the same point-mass chain as nested
+ *    bodies hung by hinge pairs, written as XML files of 40 bodies joined by <include> (its
+ *    parser refuses nesting deeper than 100); tests/peer_glue.h has the model and its check:
+ *    positions and velocities equal to whirl's to 1e-12, energy to 1e-10, the hanging chain's
+ *    normal-mode frequencies to 1e-10 or, where larger, the eigensolver's bound eps kappa
+ *    (kappa = 2e8 at N = 100, where the highest modes agree to 3.5e-10).
  * SUNDIALS contenders call whirl_dyn_rhs, so their model is whirl's by construction; the glue is
  * checked by their errors converging to the reference.
  * Wall time: contenders interleaved, median of 5 repeats (runs < 0.5 s), 3 (< 3 s) or 1.
@@ -64,9 +55,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-
-#include <lapacke.h>
 
 #include "whirl/dynamics.h"
 #include "whirl/steady.h"
@@ -117,7 +105,7 @@ static const contender contenders[] = {
 };
 #define N_CONTENDERS (sizeof contenders / sizeof contenders[0])
 
-/* The summary's rows: group, what it is, its target ratio against whirl at both levels (0: none) */
+/* The summary's rows: group, what it is, its target ratio against whirl (0: none) */
 typedef struct group {
     const char *name, *what;
     double target;

@@ -255,8 +255,8 @@ done:
 
 /* Loads the chain c into MuJoCo (XML under dir/mujoco_chainN/), sets the start (x, v inertial,
  * 3 per mass) and checks it against whirl (energy: whirl_dyn_diagnose's at the start;
- * frequencies: 1 to compare the hanging chain's normal modes too). -1 with a message (msglen >= 2048 holds
- * any) on a failure to load; the check is in *k (peer_mj_agrees). */
+ * frequencies: 1 to compare the hanging chain's normal modes too). -1 with a message (msglen
+ * >= 2048 holds any) on a failure to load; the check is in *k (peer_mj_agrees). */
 static inline int peer_mj_load(const whirl_chain *c, const char *dir, const double *x,
                                const double *v, double energy, int frequencies, peer_mj *mc,
                                peer_mj_check *k, char *msg, size_t msglen)
