@@ -84,6 +84,8 @@
 
 #define CS_ELEMENTS_START 4   /* uniform elements before refinement */
 #define CS_ELEMENTS_MAX 64    /* elements at most */
+#define CS_POINTS_MAX 480     /* collocation points at most: a pencil of 1920 (5 dense copies,
+                                 150 MB; an eigen-solve of about 10 s) */
 #define CS_SAMPLES 2001       /* samples of the shooting's shape seeding the Newton iteration */
 #define CS_NEWTON_MAX 40      /* Newton iterations per element set */
 
@@ -414,7 +416,10 @@ static double tail(const whirl_cstab *w, const double *f, size_t e, double scale
     return scale > 0 ? big / scale : 0;
 }
 
-/* The shape on elements refined until the tails meet shape_tol. */
+/* The shape on elements refined until the tails meet shape_tol. On too coarse elements Newton's
+ * method may fail or find another solution of the collocation equations (the hanging chain,
+ * or a shape of no mode): then, or where the tip radius differs from the shooting's by more than
+ * 1e-7 relative, every element is halved. */
 static int solve_shape(whirl_cstab *w, double omega, double tip_r)
 {
     int status = sample_shape(w, omega, tip_r);
@@ -422,27 +427,44 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
     w->ne = CS_ELEMENTS_START;
     for (size_t e = 0; e <= w->ne; e++) w->brk[e] = (double)e / (double)w->ne;
     const size_t P = (size_t)w->p.degree + 1;
+    const char *why = "";
     for (;;) {
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = %g: stopped by request",
+                              omega);
         w->np = w->ne * P;
         if ((status = reserve(w, w->np))) return status;
         set_points(w);
         seed_shape(w);
-        if ((status = newton_shape(w, omega))) return status;
+        status = newton_shape(w, omega);
+        if (status == WHIRL_EINTERRUPTED || status == GSL_ENOMEM) return status;
+        /* another solution: 25% off the shooting's tip radius; at the end 1e-7 */
+        const double off = fabs(w->r[0] - tip_r) / tip_r;
+        int wrong = status || !(off <= 0.25);
         double sr = 0, sq = 0;
-        for (size_t g = 0; g < w->np; g++) sr = fmax(sr, fabs(w->r[g])), sq = fmax(sq, fabs(w->q[g]));
+        for (size_t g = 0; g < w->np && !wrong; g++)
+            sr = fmax(sr, fabs(w->r[g])), sq = fmax(sq, fabs(w->q[g]));
         double brk[2 * CS_ELEMENTS_MAX + 1];
         size_t nb = 0;
-        brk[nb++] = 0;
-        for (size_t e = 0; e < w->ne; e++) {
-            if (fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol)
-                brk[nb++] = (w->brk[e] + w->brk[e + 1]) / 2;
-            brk[nb++] = w->brk[e + 1];
+        for (int pass = 0; pass < 2; pass++) {
+            nb = 0;
+            brk[nb++] = 0;
+            for (size_t e = 0; e < w->ne; e++) {
+                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol)
+                    brk[nb++] = (w->brk[e] + w->brk[e + 1]) / 2;
+                brk[nb++] = w->brk[e + 1];
+            }
+            if (nb > w->ne + 1 || wrong) break;
+            if (off <= 1e-7) return GSL_SUCCESS;
+            wrong = 1; /* resolved, yet not the shooting's shape: every element halved */
         }
-        if (nb == w->ne + 1) return GSL_SUCCESS;
-        if (nb - 1 > CS_ELEMENTS_MAX)
-            return whirl_fail(GSL_EMAXITER, "the shape at omega = %g needs more than %d "
-                                            "elements of degree %d for the tolerance %g", omega,
-                              CS_ELEMENTS_MAX, w->p.degree, w->p.shape_tol);
+        why = status ? "Newton's method failed" : wrong ? "not the shooting's shape" : "";
+        if (nb - 1 > CS_ELEMENTS_MAX || (nb - 1) * P > CS_POINTS_MAX)
+            return whirl_fail(GSL_EMAXITER, "the shape of omega = %g needs more than %d "
+                                            "collocation points (elements of degree %d, shape "
+                                            "tolerance %g%s%s): lower the rate or the degree",
+                              omega, CS_POINTS_MAX, w->p.degree, w->p.shape_tol,
+                              *why ? "; " : "", why);
         w->ne = nb - 1;
         memcpy(w->brk, brk, nb * sizeof(double));
     }

@@ -276,6 +276,10 @@ static void test_errors(void **state)
     assert_int_equal(whirl_cstab_linearise(w, 0, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, NAN, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, 3, -1, 0, NULL), GSL_EINVAL);
+    /* a shape beyond the points' bound: a message, no huge pencil */
+    assert_int_equal(whirl_cstab_linearise(w, 40, 3, 0, NULL), GSL_EMAXITER);
+    assert_non_null(strstr(whirl_last_error(), "collocation points"));
+    assert_int_equal(whirl_cstab_spectrum(w, 0, &sp), GSL_EINVAL);
     whirl_window win[2];
     size_t count;
     whirl_windows_stats st;

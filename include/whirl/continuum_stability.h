@@ -39,8 +39,8 @@ WHIRL_API void whirl_cstab_free(whirl_cstab *w); /* NULL is a no-op */
  * tip_r_guess, 0: its own bracket; then the shape re-solved by collocation on elements refined
  * until shape_tol is met), or with mode 0 about the hanging chain (omega >= 0). *tip_r (may be
  * NULL) receives the collocation's tip radius [L]. GSL_EDOM if the mode does not exist at omega,
- * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 64 elements or
- * its Newton iteration does not converge. */
+ * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 480 points (64
+ * elements) or its Newton iteration does not converge, WHIRL_EINTERRUPTED on a stop request. */
 WHIRL_API int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
                                     double *tip_r);
 
