@@ -84,8 +84,8 @@
 
 #define CS_ELEMENTS_START 4   /* uniform elements before refinement */
 #define CS_ELEMENTS_MAX 64    /* elements at most */
-#define CS_POINTS_MAX 480     /* collocation points at most: a pencil of 1920 (5 dense copies,
-                                 150 MB; an eigen-solve of about 10 s) */
+#define CS_POINTS_MAX 360     /* collocation points at most: a pencil of 1440 (5 dense copies,
+                                 83 MB; an eigen-solve of about 5 s on one idle core) */
 #define CS_SAMPLES 2001       /* samples of the shooting's shape seeding the Newton iteration */
 #define CS_NEWTON_MAX 40      /* Newton iterations per element set */
 
@@ -418,8 +418,9 @@ static double tail(const whirl_cstab *w, const double *f, size_t e, double scale
 
 /* The shape on elements refined until the tails meet shape_tol. On too coarse elements Newton's
  * method may fail or find another solution of the collocation equations (the hanging chain,
- * or a shape of no mode): then, or where the tip radius differs from the shooting's by more than
- * 1e-7 relative, every element is halved. */
+ * or a shape of no mode): then (a tip radius 25% off the shooting's), or where the resolved
+ * tip radius differs from the shooting's by more than max(1e-7, 1e3 shape_tol) relative, every
+ * element is halved. */
 static int solve_shape(whirl_cstab *w, double omega, double tip_r)
 {
     int status = sample_shape(w, omega, tip_r);
@@ -438,7 +439,7 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         seed_shape(w);
         status = newton_shape(w, omega);
         if (status == WHIRL_EINTERRUPTED || status == GSL_ENOMEM) return status;
-        /* another solution: 25% off the shooting's tip radius; at the end 1e-7 */
+        /* another solution: 25% off the shooting's tip radius; at the end max(1e-7, 1e3 tol) */
         const double off = fabs(w->r[0] - tip_r) / tip_r;
         int wrong = status || !(off <= 0.25);
         double sr = 0, sq = 0;
@@ -455,7 +456,7 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
                 brk[nb++] = w->brk[e + 1];
             }
             if (nb > w->ne + 1 || wrong) break;
-            if (off <= 1e-7) return GSL_SUCCESS;
+            if (off <= fmax(1e-7, 1e3 * w->p.shape_tol)) return GSL_SUCCESS;
             wrong = 1; /* resolved, yet not the shooting's shape: every element halved */
         }
         why = status ? "Newton's method failed" : wrong ? "not the shooting's shape" : "";
@@ -777,7 +778,8 @@ int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
     const size_t ny = N_DYNAMIC * w->np;
     int status = shifted_eigen(w, signatures);
     if (status) return status;
-    const double cut = w->p.freq_max * w->p.freq_max;
+    const double fmax_kept = fmax(w->p.freq_max, 3 * w->omega);
+    const double cut = fmax_kept * fmax_kept;
     size_t count = 0, zero = 0;
     double big = 0;
     for (size_t i = 0; i < ny; i++) {

@@ -22,9 +22,9 @@ typedef struct whirl_cstab_params {
     double shape_tol; /* elements are halved until the last two Chebyshev coefficients of the
                          shape (r and the load ratio q) on each are at most shape_tol times their
                          largest value; 1e-11; in [1e-14, 1e-3] */
-    double freq_max;  /* eigenvalues with |mu| <= freq_max^2 are kept, the rest (unresolved
-                         frequencies and the constraint's infinite eigenvalues) dropped
-                         [sqrt(g/L)]; 30; > 0 */
+    double freq_max;  /* eigenvalues with |mu| <= max(freq_max, 3 omega)^2 are kept, the rest
+                         (unresolved frequencies and the constraint's infinite eigenvalues)
+                         dropped [sqrt(g/L)]; 30; > 0 */
 } whirl_cstab_params;
 
 /* The defaults above. */
@@ -39,17 +39,17 @@ WHIRL_API void whirl_cstab_free(whirl_cstab *w); /* NULL is a no-op */
  * tip_r_guess, 0: its own bracket; then the shape re-solved by collocation on elements refined
  * until shape_tol is met), or with mode 0 about the hanging chain (omega >= 0). *tip_r (may be
  * NULL) receives the collocation's tip radius [L]. GSL_EDOM if the mode does not exist at omega,
- * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 480 points (64
- * elements) or its Newton iteration does not converge, WHIRL_EINTERRUPTED on a stop request. */
+ * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 360 points or
+ * does not reproduce the shooting's shape, WHIRL_EINTERRUPTED on a stop request. */
 WHIRL_API int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
                                     double *tip_r);
 
 /* The elements and collocation points of the last linearisation. */
 WHIRL_API void whirl_cstab_grid(const whirl_cstab *w, size_t *elements, size_t *points);
 
-/* The mu of the last linearisation with |mu| <= freq_max^2, the rotation's mu = 0 removed
- * (a shape of mode >= 1), signatures as in whirl/stability.h when asked (eigenvectors: about
- * twice the work). Pointers into the workspace, valid until its next use. */
+/* The mu of the last linearisation with |mu| <= max(freq_max, 3 omega)^2, the rotation's mu = 0
+ * removed (a shape of mode >= 1), signatures as in whirl/stability.h when asked (eigenvectors:
+ * about twice the work). Pointers into the workspace, valid until its next use. */
 WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out);
 
 /* The windows of instability of mode k of the continuous chain over the range of p (as for
