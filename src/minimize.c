@@ -21,6 +21,7 @@
  * default: Nocedal 1980, Liu & Nocedal 1989), then optionally Newton steps on the analytic
  * Hessian (Cholesky, LAPACK dpotrf/dpotrs) to bring the gradient to round-off. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,6 +30,7 @@
 
 #include "whirl/optimize.h"
 #include "error.h"
+#include "worker.h"
 
 #define MINIMIZE_START_TILT 0.1     /* [rad] start of the minimisation when none is given */
 #define MINIMIZE_MAX_EVALUATIONS 100000
@@ -141,20 +143,49 @@ int whirl_minimize_algorithm(const char *name, int *algorithm)
     return GSL_SUCCESS;
 }
 
-typedef struct potential_problem {
-    const whirl_chain *chain;
+/* One minimisation, run on a worker thread (src/worker.h) so that a stop request ends the call at
+ * once even while NLopt works between two evaluations (BOBYQA on 2000 angles: over a minute) or
+ * LAPACK factorises the Hessian: everything it reads is its own (a copy of the chain). */
+typedef struct minimize_job {
+    whirl_chain *chain;  /* a copy of the caller's */
     double omega;
+    int algorithm;       /* nlopt_algorithm */
+    int max_evaluations, polish;
+    double *theta;       /* n: the start, then the result */
+    double *work;        /* 3n + n^2 */
+    double *lower;       /* 2n: bounds */
+    const whirl_worker *self;
+    nlopt_opt nl;        /* stopped when a stop is requested or the caller left */
     int evaluations;
-    nlopt_opt nl; /* stopped when a stop is requested */
-} potential_problem;
+    whirl_minimize_stats stats;
+    int status;
+    char message[256];
+} minimize_job;
+
+static void job_free(void *data)
+{
+    minimize_job *j = data;
+    if (j == NULL) return;
+    whirl_chain_free(j->chain);
+    free(j->theta);
+    free(j->work);
+    free(j->lower);
+    free(j);
+}
+
+/* Whether the job should end now: a stop request, or its caller has left. */
+static int job_stopped(const minimize_job *j)
+{
+    return whirl_stop_requested() || whirl_worker_abandoned(j->self);
+}
 
 static double potential_objective(unsigned n, const double *theta, double *grad, void *data)
 {
     (void)n;
-    potential_problem *p = data;
-    if (whirl_stop_requested()) nlopt_force_stop(p->nl);
-    p->evaluations++;
-    return whirl_potential(p->chain, p->omega, theta, grad);
+    minimize_job *j = data;
+    if (job_stopped(j)) nlopt_force_stop(j->nl);
+    j->evaluations++;
+    return whirl_potential(j->chain, j->omega, theta, grad);
 }
 
 static double max_abs(size_t n, const double *v)
@@ -166,15 +197,16 @@ static double max_abs(size_t n, const double *v)
 }
 
 /* Newton steps H d = -grad on theta (Cholesky of the analytic Hessian), each kept only while it
- * lowers max|grad|. work: 2n + n^2. Returns the number of steps kept. */
-static int newton_polish(const whirl_chain *c, double omega, double *theta, double *work)
+ * lowers max|grad|, until the job is stopped. work: 2n + n^2. Returns the number of steps kept. */
+static int newton_polish(const minimize_job *j, const whirl_chain *c, double omega, double *theta,
+                         double *work)
 {
     const size_t n = c->n;
     double *grad = work, *trial = work + n, *hess = work + 2 * n;
     whirl_potential(c, omega, theta, grad);
     double gnorm = max_abs(n, grad);
     int kept = 0;
-    for (int step = 0; step < NEWTON_MAX_STEPS && gnorm > 0; step++) {
+    for (int step = 0; step < NEWTON_MAX_STEPS && gnorm > 0 && !job_stopped(j); step++) {
         whirl_potential_hessian(c, omega, theta, hess);
         if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, hess, (lapack_int)n) != 0) break;
         for (size_t i = 0; i < n; i++) trial[i] = -grad[i];
@@ -204,6 +236,93 @@ static int min_curvature(const whirl_chain *c, double omega, const double *theta
     return GSL_SUCCESS;
 }
 
+/* The minimisation of the job (a worker, src/worker.h): j->status, j->message, j->theta,
+ * j->stats. */
+static void minimize_run(void *data, const whirl_worker *self)
+{
+    minimize_job *j = data;
+    j->self = self;
+    const whirl_chain *c = j->chain;
+    const double omega = j->omega;
+    const size_t n = c->n;
+    double *theta_out = j->theta, *work = j->work, *lower = j->lower, *upper = lower + n;
+    int status = GSL_SUCCESS;
+    nlopt_opt nl = j->nl = nlopt_create((nlopt_algorithm)j->algorithm, (unsigned)n);
+    if (nl == NULL) {
+        status = whirl_fail(GSL_ENOMEM, "out of memory minimising a chain of %zu links", n);
+        goto done;
+    }
+    /* theta = 0 is the minimum (no mode-1 shape) iff K - omega^2 M is positive definite. */
+    double *zero = work + n * n;
+    memset(zero, 0, n * sizeof *zero);
+    whirl_potential_hessian(c, omega, zero, work);
+    if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, work, (lapack_int)n) == 0) {
+        double omega_1 = NAN;
+        whirl_nlink_critical(c, 1, &omega_1); /* only to name it in the message */
+        status = whirl_fail(GSL_EDOM,
+                            "no mode-1 shape at omega = %g: it is not above the chain's first "
+                            "critical rate omega_1 = %.10g, and the hanging chain is the minimum",
+                            omega, omega_1);
+        goto done;
+    }
+    for (size_t i = 0; i < n; i++) {
+        lower[i] = -PI;
+        upper[i] = PI;
+    }
+    double v;
+    nlopt_set_min_objective(nl, potential_objective, j);
+    /* the angles are periodic: bounds only where an algorithm needs them (the global ones,
+     * named G...), since a local method can stall on a bound */
+    if (nlopt_algorithm_to_string((nlopt_algorithm)j->algorithm)[0] == 'G') {
+        nlopt_set_lower_bounds(nl, lower);
+        nlopt_set_upper_bounds(nl, upper);
+    }
+    nlopt_set_xtol_rel(nl, 1e-13);
+    nlopt_set_ftol_rel(nl, 1e-16);
+    nlopt_set_maxeval(nl, j->max_evaluations > 0 ? j->max_evaluations : MINIMIZE_MAX_EVALUATIONS);
+    nlopt_result res = nlopt_optimize(nl, theta_out, &v);
+    j->stats.evaluations = j->evaluations;
+    j->stats.nlopt_result = (int)res;
+    j->stats.newton_steps = 0;
+    if (job_stopped(j)) {
+        status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request after %d evaluations",
+                            j->evaluations);
+        goto done;
+    }
+    if (res == NLOPT_INVALID_ARGS) {
+        status = whirl_fail(GSL_EINVAL, "NLopt algorithm %s cannot minimise this problem alone "
+                            "(it needs a subsidiary algorithm or other settings)",
+                            nlopt_algorithm_to_string((nlopt_algorithm)j->algorithm));
+        goto done;
+    }
+    if (res < 0 && res != NLOPT_ROUNDOFF_LIMITED) {
+        status = whirl_fail(GSL_EFAILED, "NLopt %s failed: %s",
+                            nlopt_algorithm_to_string((nlopt_algorithm)j->algorithm),
+                            nlopt_result_to_string(res));
+        goto done;
+    }
+    const int steps = j->polish ? newton_polish(j, c, omega, theta_out, work) : 0;
+    double lambda_min = 0;
+    if (job_stopped(j)) {
+        status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request in the Newton polish");
+        goto done;
+    }
+    status = min_curvature(c, omega, theta_out, work, &lambda_min);
+    if (status) goto done;
+    j->stats.newton_steps = steps;
+    j->stats.potential = whirl_potential(c, omega, theta_out, work + n * n);
+    j->stats.gradient_norm = max_abs(n, work + n * n);
+    j->stats.min_curvature = lambda_min;
+    if (!(lambda_min > 0))
+        status = whirl_fail(GSL_EFAILED, "the minimiser stopped where the Hessian has a "
+                            "non-positive eigenvalue %g: not a minimum", lambda_min);
+done:
+    nlopt_destroy(nl);
+    j->nl = NULL;
+    j->status = status;
+    if (status) snprintf(j->message, sizeof j->message, "%s", whirl_last_error());
+}
+
 int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimize_options *opt,
                          const double *theta, double *theta_out, whirl_minimize_stats *stats)
 {
@@ -220,84 +339,28 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
     if (status) return status;
 
     const size_t n = c->n;
-    double *work = malloc((3 * n + n * n) * sizeof *work);
-    double *lower = malloc(2 * n * sizeof *lower);
-    nlopt_opt nl = nlopt_create((nlopt_algorithm)algorithm, (unsigned)n);
-    if (work == NULL || lower == NULL || nl == NULL) {
-        status = whirl_fail(GSL_ENOMEM, "out of memory minimising a chain of %zu links", n);
-        goto done;
+    minimize_job *j = calloc(1, sizeof *j);
+    if (j != NULL) {
+        j->chain = whirl_chain_alloc(n, c->length, c->mass, c->gravity);
+        j->theta = malloc(n * sizeof *j->theta);
+        j->work = malloc((3 * n + n * n) * sizeof *j->work);
+        j->lower = malloc(2 * n * sizeof *j->lower);
     }
-    double *upper = lower + n;
-
-    /* theta = 0 is the minimum (no mode-1 shape) iff K - omega^2 M is positive definite. */
-    memset(theta_out, 0, n * sizeof *theta_out);
-    whirl_potential_hessian(c, omega, theta_out, work);
-    if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, work, (lapack_int)n) == 0) {
-        double omega_1 = NAN;
-        whirl_nlink_critical(c, 1, &omega_1); /* only to name it in the message */
-        status = whirl_fail(GSL_EDOM,
-                            "no mode-1 shape at omega = %g: it is not above the chain's first "
-                            "critical rate omega_1 = %.10g, and the hanging chain is the minimum",
-                            omega, omega_1);
-        goto done;
+    if (j == NULL || j->chain == NULL || j->theta == NULL || j->work == NULL || j->lower == NULL) {
+        job_free(j);
+        return whirl_fail(GSL_ENOMEM, "out of memory minimising a chain of %zu links", n);
     }
-
-    for (size_t i = 0; i < n; i++) {
-        theta_out[i] = theta ? theta[i] : MINIMIZE_START_TILT;
-        lower[i] = -PI;
-        upper[i] = PI;
-    }
-    potential_problem problem = {c, omega, 0, nl};
-    double v;
-    nlopt_set_min_objective(nl, potential_objective, &problem);
-    /* the angles are periodic: bounds only where an algorithm needs them (the global ones,
-     * named G...), since a local method can stall on a bound */
-    if (nlopt_algorithm_to_string((nlopt_algorithm)algorithm)[0] == 'G') {
-        nlopt_set_lower_bounds(nl, lower);
-        nlopt_set_upper_bounds(nl, upper);
-    }
-    nlopt_set_xtol_rel(nl, 1e-13);
-    nlopt_set_ftol_rel(nl, 1e-16);
-    nlopt_set_maxeval(nl, opt->max_evaluations > 0 ? opt->max_evaluations : MINIMIZE_MAX_EVALUATIONS);
-    nlopt_result res = nlopt_optimize(nl, theta_out, &v);
-    if (stats) {
-        stats->evaluations = problem.evaluations;
-        stats->nlopt_result = (int)res;
-        stats->newton_steps = 0;
-    }
-    if (res == NLOPT_FORCED_STOP && whirl_stop_requested()) {
-        status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request after %d evaluations",
-                            problem.evaluations);
-        goto done;
-    }
-    if (res == NLOPT_INVALID_ARGS) {
-        status = whirl_fail(GSL_EINVAL, "NLopt algorithm %s cannot minimise this problem alone "
-                            "(it needs a subsidiary algorithm or other settings)",
-                            nlopt_algorithm_to_string((nlopt_algorithm)algorithm));
-        goto done;
-    }
-    if (res < 0 && res != NLOPT_ROUNDOFF_LIMITED) {
-        status = whirl_fail(GSL_EFAILED, "NLopt %s failed: %s",
-                            nlopt_algorithm_to_string((nlopt_algorithm)algorithm),
-                            nlopt_result_to_string(res));
-        goto done;
-    }
-    const int steps = opt->polish ? newton_polish(c, omega, theta_out, work) : 0;
-    double lambda_min = 0;
-    status = min_curvature(c, omega, theta_out, work, &lambda_min);
-    if (status) goto done;
-    if (stats) {
-        stats->newton_steps = steps;
-        stats->potential = whirl_potential(c, omega, theta_out, work + n * n);
-        stats->gradient_norm = max_abs(n, work + n * n);
-        stats->min_curvature = lambda_min;
-    }
-    if (!(lambda_min > 0))
-        status = whirl_fail(GSL_EFAILED, "the minimiser stopped where the Hessian has a "
-                            "non-positive eigenvalue %g: not a minimum", lambda_min);
-done:
-    nlopt_destroy(nl);
-    free(lower);
-    free(work);
+    j->omega = omega;
+    j->algorithm = algorithm;
+    j->max_evaluations = opt->max_evaluations;
+    j->polish = opt->polish;
+    for (size_t i = 0; i < n; i++) j->theta[i] = theta ? theta[i] : MINIMIZE_START_TILT;
+    if (whirl_worker_run(minimize_run, j, job_free) != GSL_SUCCESS)
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the minimisation"); /* the
+                                                     job is the worker's now */
+    if (stats) *stats = j->stats;
+    memcpy(theta_out, j->theta, n * sizeof *theta_out);
+    status = j->status ? whirl_fail(j->status, "%s", j->message) : GSL_SUCCESS;
+    job_free(j);
     return status;
 }

@@ -44,6 +44,7 @@
  * (M q'' + (D + G) q' + (K + N) q = 0, circulatory forces N); Kolodner 1955 (whirling string);
  * physics notes, section 7. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -53,16 +54,18 @@
 
 #include "whirl/stability.h"
 #include "error.h"
+#include "worker.h"
 
-struct whirl_stability {
+/* The eigen-solve of one linearisation: its matrices (written by the linearisation), their
+ * first-order form and the LAPACK workspace. It runs on a worker thread (src/worker.h) when it is
+ * large, so that a stop request ends the call at once; if the caller leaves, the worker keeps
+ * the solve until LAPACK returns and frees it, and the workspace starts a new one. */
+typedef struct stability_solve {
     size_t n;          /* links N */
     double *mat[4];    /* M, G, C, K: 2N x 2N row-major */
     double *symmetry;  /* s (2N) */
-    double *u0, *e1, *e2; /* the chart of each link (3N each) */
-    double *pos;       /* x_i of the masses (3N) */
-    double *drag;      /* B_i of the masses (9N, row-major 3 x 3 each) */
-    double *tension;   /* T_j (N), also scratch of whirl_nlink_positions (N + 1) */
-    double *x, *y, *z; /* the nodes (N + 1): input of the wrappers, then the linearised shape */
+    int symmetric;     /* 1 if rotation about z is a symmetry of the model */
+    double damping;    /* D of the linearisation */
     double *factor;    /* 2N x 2N: Cholesky factor of M */
     double *rhs;       /* 2N x 4N column-major: [K | G + C], then M^-1 [K | G + C] */
     gsl_matrix *a;     /* 4N x 4N: the first-order form, then Q^T A Q */
@@ -71,11 +74,77 @@ struct whirl_stability {
     double *re, *im;   /* eigenvalues (4N) */
     double *work;      /* dgeev workspace */
     lapack_int lwork;
-    int linearised;    /* 1 after a successful whirl_stability_linearise */
     int deflated;      /* number of removed zero eigenvalues: 0, 1 or 2 */
-    int symmetric;     /* 1 if rotation about z is a symmetry of the last model */
-    double damping;    /* D of the last linearisation */
+    size_t count;      /* eigenvalues found */
+    int status;        /* of the last solve */
+    char message[256]; /* its message when status != GSL_SUCCESS */
+} stability_solve;
+
+/* Linearisations of at most this many links are solved in the calling thread (a few ms). */
+#define STABILITY_INLINE_LINKS 32
+
+struct whirl_stability {
+    size_t n;          /* links N */
+    stability_solve *solve; /* NULL after an interrupted solve, until the next linearisation */
+    double *u0, *e1, *e2; /* the chart of each link (3N each) */
+    double *pos;       /* x_i of the masses (3N) */
+    double *drag;      /* B_i of the masses (9N, row-major 3 x 3 each) */
+    double *tension;   /* T_j (N), also scratch of whirl_nlink_positions (N + 1) */
+    double *x, *y, *z; /* the nodes (N + 1): input of the wrappers, then the linearised shape */
+    double *re, *im;   /* eigenvalues (4N), copied from the solve */
+    int linearised;    /* 1 after a successful whirl_stability_linearise */
 };
+
+static void solve_free(void *data)
+{
+    stability_solve *s = data;
+    if (s == NULL) return;
+    for (int k = 0; k < 4; k++) free(s->mat[k]);
+    free(s->symmetry);
+    free(s->factor);
+    free(s->rhs);
+    free(s->re);
+    free(s->im);
+    free(s->work);
+    if (s->a) gsl_matrix_free(s->a);
+    if (s->basis) gsl_matrix_free(s->basis);
+    if (s->tau) gsl_vector_free(s->tau);
+    free(s);
+}
+
+static stability_solve *solve_alloc(size_t n)
+{
+    const size_t q = 2 * n, y = 4 * n;
+    stability_solve *s = calloc(1, sizeof *s);
+    if (s == NULL) return NULL;
+    s->n = n;
+    for (int k = 0; k < 4; k++)
+        if ((s->mat[k] = malloc(q * q * sizeof(double))) == NULL) goto fail;
+    s->symmetry = malloc(q * sizeof(double));
+    s->factor = malloc(q * q * sizeof(double));
+    s->rhs = malloc(q * y * sizeof(double));
+    s->re = malloc(y * sizeof(double));
+    s->im = malloc(y * sizeof(double));
+    if (!s->symmetry || !s->factor || !s->rhs || !s->re || !s->im) goto fail;
+    gsl_error_handler_t *old = gsl_set_error_handler_off();
+    s->a = gsl_matrix_alloc(y, y);
+    s->basis = gsl_matrix_alloc(y, 2);
+    s->tau = gsl_vector_alloc(2);
+    gsl_set_error_handler(old);
+    if (!s->a || !s->basis || !s->tau) goto fail;
+    /* workspace query of dgeev for the largest matrix */
+    double query;
+    lapack_int ny = (lapack_int)y;
+    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', ny, s->a->data, ny, s->re, s->im, NULL,
+                           1, NULL, 1, &query, -1) != 0)
+        goto fail;
+    s->lwork = (lapack_int)query;
+    if ((s->work = malloc((size_t)s->lwork * sizeof(double))) == NULL) goto fail;
+    return s;
+fail:
+    solve_free(s);
+    return NULL;
+}
 
 whirl_stability *whirl_stability_alloc(size_t n)
 {
@@ -83,13 +152,11 @@ whirl_stability *whirl_stability_alloc(size_t n)
         whirl_fail(GSL_EINVAL, "the linear analysis needs at least one link");
         return NULL;
     }
-    const size_t q = 2 * n, y = 4 * n;
+    const size_t y = 4 * n;
     whirl_stability *w = calloc(1, sizeof *w);
     if (w == NULL) goto fail;
     w->n = n;
-    for (int k = 0; k < 4; k++)
-        if ((w->mat[k] = malloc(q * q * sizeof(double))) == NULL) goto fail;
-    w->symmetry = malloc(q * sizeof(double));
+    w->solve = solve_alloc(n);
     w->u0 = malloc(3 * n * sizeof(double));
     w->e1 = malloc(3 * n * sizeof(double));
     w->e2 = malloc(3 * n * sizeof(double));
@@ -99,27 +166,11 @@ whirl_stability *whirl_stability_alloc(size_t n)
     w->x = malloc((n + 1) * sizeof(double));
     w->y = calloc(n + 1, sizeof(double));
     w->z = malloc((n + 1) * sizeof(double));
-    w->factor = malloc(q * q * sizeof(double));
-    w->rhs = malloc(q * y * sizeof(double));
     w->re = malloc(y * sizeof(double));
     w->im = malloc(y * sizeof(double));
-    if (!w->symmetry || !w->u0 || !w->e1 || !w->e2 || !w->pos || !w->drag || !w->tension ||
-        !w->x || !w->y || !w->z || !w->factor || !w->rhs || !w->re || !w->im)
+    if (!w->solve || !w->u0 || !w->e1 || !w->e2 || !w->pos || !w->drag || !w->tension || !w->x ||
+        !w->y || !w->z || !w->re || !w->im)
         goto fail;
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    w->a = gsl_matrix_alloc(y, y);
-    w->basis = gsl_matrix_alloc(y, 2);
-    w->tau = gsl_vector_alloc(2);
-    gsl_set_error_handler(old);
-    if (!w->a || !w->basis || !w->tau) goto fail;
-    /* workspace query of dgeev for the largest matrix */
-    double query;
-    lapack_int ny = (lapack_int)y;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', ny, w->a->data, ny, w->re, w->im, NULL,
-                           1, NULL, 1, &query, -1) != 0)
-        goto fail;
-    w->lwork = (lapack_int)query;
-    if ((w->work = malloc((size_t)w->lwork * sizeof(double))) == NULL) goto fail;
     return w;
 fail:
     whirl_stability_free(w);
@@ -130,8 +181,7 @@ fail:
 void whirl_stability_free(whirl_stability *w)
 {
     if (w == NULL) return;
-    for (int k = 0; k < 4; k++) free(w->mat[k]);
-    free(w->symmetry);
+    solve_free(w->solve);
     free(w->u0);
     free(w->e1);
     free(w->e2);
@@ -141,14 +191,8 @@ void whirl_stability_free(whirl_stability *w)
     free(w->x);
     free(w->y);
     free(w->z);
-    free(w->factor);
-    free(w->rhs);
     free(w->re);
     free(w->im);
-    free(w->work);
-    if (w->a) gsl_matrix_free(w->a);
-    if (w->basis) gsl_matrix_free(w->basis);
-    if (w->tau) gsl_vector_free(w->tau);
     free(w);
 }
 
@@ -280,11 +324,11 @@ static void link_pair(whirl_stability *w, const whirl_model *m, size_t j, size_t
             const double *e = row[a], *f = col[b];
             const double zf[3] = {-f[1], f[0], 0}; /* z x f */
             const size_t at = (a * n + j) * q + b * n + k;
-            w->mat[WHIRL_STABILITY_MASS][at] = mu * ll * dot3(e, f);
-            w->mat[WHIRL_STABILITY_GYROSCOPIC][at] = 2 * om * mu * ll * dot3(e, zf);
-            w->mat[WHIRL_STABILITY_STIFFNESS][at] =
+            w->solve->mat[WHIRL_STABILITY_MASS][at] = mu * ll * dot3(e, f);
+            w->solve->mat[WHIRL_STABILITY_GYROSCOPIC][at] = 2 * om * mu * ll * dot3(e, zf);
+            w->solve->mat[WHIRL_STABILITY_STIFFNESS][at] =
                 -om * om * mu * ll * (e[0] * f[0] + e[1] * f[1]) + om * ll * form3(e, tail, zf);
-            w->mat[WHIRL_STABILITY_DAMPING][at] = ll * form3(e, tail, f);
+            w->solve->mat[WHIRL_STABILITY_DAMPING][at] = ll * form3(e, tail, f);
         }
 }
 
@@ -295,10 +339,13 @@ int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, c
     int status = check_model(w, model);
     if (status) return status;
     if ((status = shape_from_nodes(w, model, x, y, z))) return status;
+    if (w->solve == NULL && (w->solve = solve_alloc(w->n)) == NULL)
+        return whirl_fail(GSL_ENOMEM, "out of memory for the linear analysis of %zu links", w->n);
+    stability_solve *sv = w->solve;
     const whirl_chain *c = model->chain;
     const size_t n = w->n, q = 2 * n;
     const double d = model->internal_damping;
-    double *cc = w->mat[WHIRL_STABILITY_DAMPING], *kk = w->mat[WHIRL_STABILITY_STIFFNESS];
+    double *cc = sv->mat[WHIRL_STABILITY_DAMPING], *kk = sv->mat[WHIRL_STABILITY_STIFFNESS];
     double mu = 0, tail[9] = {0}; /* mu_j = sum_{i>=j} m_i, S_j = sum_{i>=j} B_i */
     for (size_t j = n; j-- > 0;) {
         mu += c->mass[j];
@@ -324,14 +371,14 @@ int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, c
                 cc[(b * n + j) * q + a * n + j - 1] -= v;
             }
     }
-    w->symmetric = model->drive_radius == 0 && model->air_drag == 0 &&
-                   model->air_drag_quadratic == 0;
+    sv->symmetric = model->drive_radius == 0 && model->air_drag == 0 &&
+                    model->air_drag_quadratic == 0;
     for (size_t j = 0; j < n; j++) {
         const double *u = w->u0 + 3 * j, zu[3] = {-u[1], u[0], 0}; /* z x u0 */
-        w->symmetry[j] = w->symmetric ? dot3(w->e1 + 3 * j, zu) : 0;
-        w->symmetry[n + j] = w->symmetric ? dot3(w->e2 + 3 * j, zu) : 0;
+        sv->symmetry[j] = sv->symmetric ? dot3(w->e1 + 3 * j, zu) : 0;
+        sv->symmetry[n + j] = sv->symmetric ? dot3(w->e2 + 3 * j, zu) : 0;
     }
-    w->damping = d;
+    sv->damping = d;
     w->linearised = 1;
     return GSL_SUCCESS;
 }
@@ -348,10 +395,13 @@ int whirl_stability_linearise(whirl_stability *w, const whirl_model *model, cons
 
 const double *whirl_stability_get_matrix(const whirl_stability *w, whirl_stability_matrix which)
 {
-    return w->mat[which];
+    return w->solve ? w->solve->mat[which] : NULL;
 }
 
-const double *whirl_stability_symmetry(const whirl_stability *w) { return w->symmetry; }
+const double *whirl_stability_symmetry(const whirl_stability *w)
+{
+    return w->solve ? w->solve->symmetry : NULL;
+}
 
 void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
                            const double **z)
@@ -362,7 +412,7 @@ void whirl_stability_nodes(const whirl_stability *w, const double **x, const dou
 }
 
 /* A = [[0, I], [-M^-1 K, -M^-1 (G + C)]] into w->a. */
-static int first_order_form(whirl_stability *w)
+static int first_order_form(stability_solve *w)
 {
     const size_t q = 2 * w->n, y = 4 * w->n;
     const double *mm = w->mat[WHIRL_STABILITY_MASS], *gg = w->mat[WHIRL_STABILITY_GYROSCOPIC];
@@ -391,7 +441,7 @@ static int first_order_form(whirl_stability *w)
 
 /* Replaces A by Q^T A Q, Q orthonormal with its first w->deflated columns spanning the removed
  * directions (see the header comment); returns the number removed. */
-static int deflate(whirl_stability *w)
+static int deflate(stability_solve *w)
 {
     const size_t n = w->n, q = 2 * n, y = 4 * n;
     const double *mm = w->mat[WHIRL_STABILITY_MASS], *gg = w->mat[WHIRL_STABILITY_GYROSCOPIC];
@@ -425,32 +475,58 @@ static int deflate(whirl_stability *w)
     return GSL_SUCCESS;
 }
 
+/* The eigenvalues of the linearisation in s (first-order form, deflation, dgeev): s->status,
+ * s->message, s->count, s->re, s->im. A worker (src/worker.h): it reads s alone. */
+static void solve_run(void *data, const whirl_worker *self)
+{
+    (void)self; /* one LAPACK call: nothing to poll */
+    stability_solve *w = data;
+    int status = first_order_form(w);
+    if (!status) status = deflate(w);
+    const size_t k = (size_t)w->deflated, m = 4 * w->n - k, tda = w->a->tda;
+    /* LAPACK is handed finite numbers only (a NaN or inf would make it fail, or print) */
+    for (size_t i = k; i < k + m && !status; i++)
+        for (size_t j = k; j < k + m && !status; j++)
+            if (!isfinite(w->a->data[i * tda + j]))
+                status = whirl_fail(GSL_ERANGE, "the linearised matrix is not finite (entry "
+                                    "%zu,%zu = %g): the damping %g or the rate is too large",
+                                    i - k, j - k, w->a->data[i * tda + j], w->damping);
+    /* the trailing block read as column-major is its transpose: same eigenvalues */
+    lapack_int info = 0;
+    if (!status)
+        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)m,
+                                  w->a->data + k * tda + k, (lapack_int)tda, w->re, w->im, NULL,
+                                  1, NULL, 1, w->work, w->lwork);
+    if (!status && info != 0)
+        status = whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
+                            (int)info);
+    for (size_t i = 0; i < m && !status; i++)
+        if (!isfinite(w->re[i]) || !isfinite(w->im[i]))
+            status = whirl_fail(GSL_ERANGE, "non-finite eigenvalue");
+    w->count = m;
+    w->status = status;
+    if (status) snprintf(w->message, sizeof w->message, "%s", whirl_last_error());
+}
+
 int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
                                 const double **im)
 {
     if (!w->linearised) return whirl_fail(GSL_EINVAL, "no linearisation to analyse");
-    int status = first_order_form(w);
-    if (!status) status = deflate(w);
-    if (status) return status;
-    const size_t k = (size_t)w->deflated, m = 4 * w->n - k, tda = w->a->tda;
-    /* LAPACK is handed finite numbers only (a NaN or inf would make it fail, or print) */
-    for (size_t i = k; i < k + m; i++)
-        for (size_t j = k; j < k + m; j++)
-            if (!isfinite(w->a->data[i * tda + j]))
-                return whirl_fail(GSL_ERANGE, "the linearised matrix is not finite (entry %zu,%zu "
-                                  "= %g): the damping %g or the rate is too large", i - k, j - k,
-                                  w->a->data[i * tda + j], w->damping);
-    /* the trailing block read as column-major is its transpose: same eigenvalues */
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)m,
-                                         w->a->data + k * tda + k, (lapack_int)tda, w->re, w->im,
-                                         NULL, 1, NULL, 1, w->work, w->lwork);
-    if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
-                          (int)info);
-    for (size_t i = 0; i < m; i++)
-        if (!isfinite(w->re[i]) || !isfinite(w->im[i]))
-            return whirl_fail(GSL_ERANGE, "non-finite eigenvalue");
-    *count = m;
+    if (whirl_stop_requested())
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request before the eigen-solve");
+    stability_solve *s = w->solve;
+    if (w->n <= STABILITY_INLINE_LINKS) {
+        solve_run(s, NULL);
+    } else if (whirl_worker_run(solve_run, s, solve_free) != GSL_SUCCESS) {
+        /* the worker owns s now, until LAPACK returns; the next linearisation allocates anew */
+        w->solve = NULL;
+        w->linearised = 0;
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the eigen-solve");
+    }
+    if (s->status) return whirl_fail(s->status, "%s", s->message);
+    memcpy(w->re, s->re, s->count * sizeof *w->re);
+    memcpy(w->im, s->im, s->count * sizeof *w->im);
+    *count = s->count;
     *re = w->re;
     *im = w->im;
     return GSL_SUCCESS;

@@ -25,8 +25,10 @@
 #include <cmocka.h>
 
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_linalg.h>
@@ -1163,6 +1165,89 @@ static void test_driven_runs(void **state)
     whirl_chain_free(c);
 }
 
+/* ---- large linearisations: the eigen-solve on a worker thread ---- */
+
+/* Above 32 links the dense solve runs on a thread of its own (stability.h): its spectrum is the
+ * full first-order form's (GSL's eigensolver here), as for the small chains. */
+static void test_worker_spectrum(void **state)
+{
+    (void)state;
+    const size_t n = 40;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.3);
+    whirl_model m = model_of(c, 4.3, 0.02);
+    whirl_stability *w = whirl_stability_alloc(n);
+    double growth;
+    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, NULL, &growth), 0);
+    size_t count;
+    const double *re, *im;
+    assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+    assert_int_equal(count, 4 * n - 1);
+    double *fre = malloc(4 * n * sizeof *fre), *fim = malloc(4 * n * sizeof *fim);
+    int *used = calloc(4 * n, sizeof *used);
+    full_spectrum(w, n, fre, fim);
+    double scale = 0, worst = 0, largest = -INFINITY;
+    for (size_t i = 0; i < 4 * n; i++) scale = fmax(scale, hypot(fre[i], fim[i]));
+    for (size_t i = 0; i < count; i++) {
+        size_t best = 0;
+        double dist = INFINITY;
+        for (size_t j = 0; j < 4 * n; j++) {
+            const double dj = hypot(re[i] - fre[j], im[i] - fim[j]);
+            if (!used[j] && dj < dist) dist = dj, best = j;
+        }
+        used[best] = 1;
+        worst = fmax(worst, dist);
+        largest = fmax(largest, re[i]);
+    }
+    print_message("# 40 links, mode 2, D 0.02: worker vs GSL %.2g (scale %.3g), growth %.6g\n",
+                  worst, scale, growth);
+    assert_true(worst < 1e-7 * scale);
+    assert_true(growth > 0); /* mode 2 with damping grows (Kelvin-Tait-Chetaev) */
+    assert_true(growth == largest);
+    free(fre), free(fim), free(used);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
+static void *request_stop_soon(void *arg)
+{
+    (void)arg;
+    const struct timespec pause = {0, 5000000}; /* 5 ms */
+    nanosleep(&pause, NULL);
+    whirl_stop_request();
+    return NULL;
+}
+
+/* A stop request during the dense solve of 150 links (a 600 x 600 eigenproblem, a few tenths of
+ * a second) ends the call with WHIRL_EINTERRUPTED; the workspace then linearises and solves
+ * again, to the same growth as before (the abandoned solve frees its own memory: the sanitizer
+ * build checks that nothing leaks or races). */
+static void test_worker_stop(void **state)
+{
+    (void)state;
+    const size_t n = 150;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_model m = model_of(c, 5.1, 0.01);
+    whirl_stability *w = whirl_stability_alloc(n);
+    whirl_shape_info info;
+    double growth, again = -1;
+    whirl_stop_clear();
+    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, &info, &growth), 0);
+    pthread_t stopper;
+    assert_int_equal(pthread_create(&stopper, NULL, request_stop_soon, NULL), 0);
+    const int status = whirl_stability_shape(w, &m, info.tip_r, &again);
+    pthread_join(stopper, NULL);
+    assert_int_equal(status, WHIRL_EINTERRUPTED);
+    assert_true(strstr(whirl_last_error(), "stopped by request") != NULL);
+    assert_null(whirl_stability_get_matrix(w, WHIRL_STABILITY_MASS));
+    assert_int_equal(whirl_stability_growth(w, &again), GSL_EINVAL); /* nothing linearised */
+    whirl_stop_clear();
+    assert_int_equal(whirl_stability_shape(w, &m, info.tip_r, &again), 0);
+    print_message("# 150 links, mode 2: growth %.17g, after the stop %.17g\n", growth, again);
+    assert_true(growth > 0 && again == growth);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 /* ---- errors ---- */
 
 static void test_errors(void **state)
@@ -1226,6 +1311,8 @@ int main(void)
         cmocka_unit_test(test_planar_reduction),
         cmocka_unit_test(test_uniform_linear_drag_spectrum),
         cmocka_unit_test(test_driven_runs),
+        cmocka_unit_test(test_worker_spectrum),
+        cmocka_unit_test(test_worker_stop),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

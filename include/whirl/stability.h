@@ -67,14 +67,15 @@ typedef enum {
                                       direction s */
 } whirl_stability_matrix;
 
-/* The 2N x 2N matrix (row-major, rows and columns ordered as q) of the last linearisation. */
+/* The 2N x 2N matrix (row-major, rows and columns ordered as q) of the last linearisation (NULL
+ * after an interrupted eigen-solve, until the next linearisation). */
 WHIRL_API const double *whirl_stability_get_matrix(const whirl_stability *w,
                                                    whirl_stability_matrix which);
 
 /* The symmetry direction s of the last linearisation (2N): the infinitesimal rotation about z,
  * (a_j, b_j) = (e1_j, e2_j) . (z x u0_j) (for a shape in the x-z plane a_j = 0, b_j = sin t_j);
  * all zero for a chain hanging straight down and for a model without the symmetry (drive or air
- * drag). */
+ * drag). NULL after an interrupted eigen-solve, until the next linearisation. */
 WHIRL_API const double *whirl_stability_symmetry(const whirl_stability *w);
 
 /* The nodes of the last linearisation (N + 1 each, pivot first): the pivot at (eps, 0, 0), mass i
@@ -86,7 +87,11 @@ WHIRL_API void whirl_stability_nodes(const whirl_stability *w, const double **x,
  * (4N - 2 without damping, 4N - 1 with damping, 4N for a hanging chain, which has no symmetry
  * mode, and for a model with a drive or air drag, which has no symmetry), real and imaginary
  * parts (pointers into the workspace, valid until the next call), in
- * the chain's units of 1/time (sqrt(g/L) for the dimensionless chain). */
+ * the chain's units of 1/time (sqrt(g/L) for the dimensionless chain).
+ * Stop request: the dense solve (O(N^3), seconds from a few hundred links) cannot poll it, so for
+ * more than 32 links it runs on a thread of its own while the caller polls every 20 ms; on a
+ * stop the call returns WHIRL_EINTERRUPTED at once and the linearisation is gone (linearise
+ * again), while the abandoned solve finishes in the background and frees its own memory. */
 WHIRL_API int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
                                           const double **im);
 

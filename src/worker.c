@@ -1,0 +1,121 @@
+/* Work the caller can walk away from (src/worker.h).
+ *
+ * The control block is shared by the caller and a detached worker thread and reference-counted
+ * under its mutex: the worker marks it done and signals; the caller waits on the condition with
+ * a timeout of WORKER_POLL_SECONDS and checks the stop request at each wake-up. On a stop it marks
+ * the block abandoned and leaves; the worker, once fn returns, finds the mark and releases arg.
+ * Whoever drops the last reference frees the block, so nothing leaks and nothing is freed under
+ * the other side. A process that exits meanwhile (the command line's exit 130) ends the worker
+ * with it; the worker writes only its own memory, so that is safe. */
+#include <pthread.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "whirl/common.h"
+#include "error.h"
+#include "worker.h"
+
+#define WORKER_POLL_SECONDS 0.02
+
+struct whirl_worker {
+    pthread_mutex_t lock;
+    pthread_cond_t done_cond;
+    whirl_work_fn fn;
+    void *arg;
+    void (*release)(void *arg);
+    int done;      /* fn returned */
+    int abandoned; /* the caller left without waiting */
+    int refs;      /* 2 while both sides hold it */
+};
+
+static void worker_unref(whirl_worker *w)
+{
+    pthread_mutex_lock(&w->lock);
+    const int last = --w->refs == 0;
+    pthread_mutex_unlock(&w->lock);
+    if (!last) return;
+    pthread_cond_destroy(&w->done_cond);
+    pthread_mutex_destroy(&w->lock);
+    free(w);
+}
+
+int whirl_worker_abandoned(const whirl_worker *self)
+{
+    if (self == NULL) return 0;
+    whirl_worker *w = (whirl_worker *)self; /* the lock is not part of the observable state */
+    pthread_mutex_lock(&w->lock);
+    const int abandoned = w->abandoned;
+    pthread_mutex_unlock(&w->lock);
+    return abandoned;
+}
+
+static void *worker_main(void *data)
+{
+    whirl_worker *w = data;
+    w->fn(w->arg, w);
+    pthread_mutex_lock(&w->lock);
+    w->done = 1;
+    const int abandoned = w->abandoned;
+    pthread_cond_signal(&w->done_cond);
+    pthread_mutex_unlock(&w->lock);
+    if (abandoned && w->release) w->release(w->arg);
+    worker_unref(w);
+    return NULL;
+}
+
+int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg))
+{
+    whirl_worker *w = calloc(1, sizeof *w);
+    pthread_condattr_t attr;
+    int ready = w != NULL && pthread_condattr_init(&attr) == 0;
+    if (ready) {
+        ready = pthread_condattr_setclock(&attr, CLOCK_MONOTONIC) == 0 &&
+                pthread_cond_init(&w->done_cond, &attr) == 0;
+        pthread_condattr_destroy(&attr);
+        if (ready && pthread_mutex_init(&w->lock, NULL) != 0) {
+            pthread_cond_destroy(&w->done_cond);
+            ready = 0;
+        }
+    }
+    if (!ready) { /* no control block: the work runs here */
+        free(w);
+        fn(arg, NULL);
+        return GSL_SUCCESS;
+    }
+    w->fn = fn;
+    w->arg = arg;
+    w->release = release;
+    w->refs = 2;
+    pthread_t thread;
+    pthread_attr_t tattr;
+    int started = pthread_attr_init(&tattr) == 0;
+    if (started) {
+        started = pthread_attr_setdetachstate(&tattr, PTHREAD_CREATE_DETACHED) == 0 &&
+                  pthread_create(&thread, &tattr, worker_main, w) == 0;
+        pthread_attr_destroy(&tattr);
+    }
+    if (!started) {
+        w->refs = 1;
+        worker_unref(w);
+        fn(arg, NULL);
+        return GSL_SUCCESS;
+    }
+    int status = GSL_SUCCESS;
+    pthread_mutex_lock(&w->lock);
+    while (!w->done) {
+        if (whirl_stop_requested()) {
+            w->abandoned = 1;
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
+            break;
+        }
+        struct timespec until;
+        clock_gettime(CLOCK_MONOTONIC, &until);
+        until.tv_nsec += (long)(WORKER_POLL_SECONDS * 1e9);
+        if (until.tv_nsec >= 1000000000L) until.tv_sec++, until.tv_nsec -= 1000000000L;
+        const int rc = pthread_cond_timedwait(&w->done_cond, &w->lock, &until);
+        (void)rc; /* ETIMEDOUT or a wake-up: the loop checks again */
+    }
+    pthread_mutex_unlock(&w->lock);
+    worker_unref(w);
+    return status;
+}

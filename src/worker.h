@@ -1,0 +1,28 @@
+/* Internal: work that cannot poll the stop request (one dense LAPACK solve, NLopt's own linear
+ * algebra between two objective evaluations), run so that the caller can still return promptly
+ * on a stop request (src/worker.c). */
+#ifndef WHIRL_WORKER_H
+#define WHIRL_WORKER_H
+
+typedef struct whirl_worker whirl_worker; /* the control block of one run */
+
+/* The work: runs fn(arg, self). It may ask whirl_worker_abandoned(self) between its pieces and
+ * should then return soon; it must record its own status and message in arg (the thread-local
+ * last error of a worker thread is not the caller's). */
+typedef void (*whirl_work_fn)(void *arg, const whirl_worker *self);
+
+/* Runs fn(arg, self) on a thread of its own while the calling thread polls the stop request
+ * (whirl_stop_requested) every WORKER_POLL_SECONDS (20 ms). Returns
+ *  - GSL_SUCCESS once fn returned: arg is the caller's again, with fn's results;
+ *  - WHIRL_EINTERRUPTED (message set) if a stop was requested first: the caller must not touch
+ *    arg any more; it now belongs to the worker, which calls release(arg) as soon as fn returns
+ *    (whirl_worker_abandoned(self) is then 1). Whatever fn reads must therefore live in arg
+ *    (copies, not the caller's memory).
+ * If no thread can be started, fn runs in the calling thread (GSL_SUCCESS). */
+int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg));
+
+/* 1 once the caller of whirl_worker_run has returned without waiting for fn (self may be NULL:
+ * fn run inline, never abandoned). Thread-safe. */
+int whirl_worker_abandoned(const whirl_worker *self);
+
+#endif
