@@ -5,8 +5,9 @@
  * constraints (the system's projection, if any) after every step.
  * Bounds: a tolerance below WHIRL_TOL_MIN is refused (it lies below the round-off of the state);
  * an adaptive step below WHIRL_STEP_MIN_ULPS units of round-off of t (64 eps max(|t|, 1)) stops
- * the run, as t would no longer advance by a representable amount; every right-hand side polls
- * the stop request (WHIRL_EINTERRUPTED).
+ * the run, as t would no longer advance by a representable amount; the adaptive steps, accepted
+ * and rejected, of one integrator are capped (WHIRL_ADAPTIVE_STEPS_MAX by default, GSL_EMAXITER);
+ * every right-hand side polls the stop request (WHIRL_EINTERRUPTED).
  * rk4: the classical 4-stage, order-4 explicit method (Kutta 1901; Hairer, Norsett, Wanner,
  * "Solving ODEs I", table II.1.2): k1 = f(t, y), k2 = f(t + h/2, y + h/2 k1),
  * k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3), y += h/6 (k1 + 2 k2 + 2 k3 + k4). */
@@ -156,6 +157,7 @@ whirl_integrator *whirl_integrator_alloc_system(const whirl_integrator_type *typ
     it->last_y = malloc(2 * it->size * sizeof *it->last_y);
     if (it->last_y == NULL) goto nomem;
     it->backup = it->last_y + it->size;
+    it->max_steps = WHIRL_ADAPTIVE_STEPS_MAX;
     int status = type->alloc(it);
     if (status == GSL_ENOMEM) goto nomem;
     if (status != GSL_SUCCESS) {
@@ -184,6 +186,11 @@ void whirl_integrator_free(whirl_integrator *it)
     if (it->method != NULL && it->method->free != NULL) it->method->free(it->state);
     free(it->last_y);
     free(it);
+}
+
+void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned long max_steps)
+{
+    it->max_steps = max_steps > 0 ? max_steps : WHIRL_ADAPTIVE_STEPS_MAX;
 }
 
 whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it)
@@ -252,6 +259,13 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
         while (*t < t1) {
             const double ta = *t;
             memcpy(it->backup, y, it->size * sizeof *y);
+            if (it->adaptive_steps + it->stats.rejected >= it->max_steps) {
+                status = whirl_fail(GSL_EMAXITER, "%s: %lu adaptive steps (the cap) reached t = "
+                                    "%.17g only, of %.17g: loosen the tolerance %g, shorten the "
+                                    "run or raise the cap (whirl_integrator_set_max_steps)",
+                                    it->method->name, it->max_steps, ta, t1, tol);
+                break;
+            }
             status = it->method->adaptive_step(it, t, t1, &hh, tol, y);
             if (status == GSL_SUCCESS) status = project(it, *t, y);
             const double h_min = WHIRL_STEP_MIN_ULPS * DBL_EPSILON * fmax(fabs(ta), 1);
@@ -266,6 +280,7 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
                 break;
             }
             it->stats.steps++;
+            it->adaptive_steps++;
         }
     }
     if (status != GSL_SUCCESS) {

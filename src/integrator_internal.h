@@ -35,6 +35,8 @@ struct whirl_integrator {
     double *backup;  /* the state before the current step */
     double last_t;
     int has_last;
+    unsigned long adaptive_steps; /* accepted adaptive steps over the integrator's life */
+    unsigned long max_steps;      /* cap on adaptive steps, accepted plus rejected */
 };
 
 /* Right-hand side with the evaluation counted in it->stats. */

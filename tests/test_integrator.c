@@ -9,7 +9,7 @@
  *  - the registry: names, lookup, the unknown-name message listing every method;
  *  - error paths: NULL and inconsistent systems, a method that needs what the system lacks, a
  *    failing right-hand side (its status returned, the last good state kept), a stop request
- *    (WHIRL_EINTERRUPTED, state kept). */
+ *    (WHIRL_EINTERRUPTED, state kept), the cap on adaptive steps (GSL_EMAXITER, state kept). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -191,12 +191,45 @@ static void test_errors(void **state)
     whirl_integrator_free(it);
 }
 
+/* The cap on adaptive steps: counted across calls, GSL_EMAXITER with a message naming it, t and
+ * y at the last completed step (on the exact solution); 0 restores the default, and the run
+ * then ends. For every adaptive method. */
+static void test_step_cap(void **state)
+{
+    (void)state;
+    for (const char *const *name = whirl_integrator_methods(); *name != NULL; name++) {
+        const whirl_integrator_type *type = whirl_integrator_type_find(*name);
+        if (!whirl_integrator_type_adaptive(type)) continue;
+        whirl_integrator *it = whirl_integrator_alloc_system(type, &oscillator_system);
+        assert_non_null(it);
+        whirl_integrator_set_max_steps(it, 200);
+        double y[2] = {1, 0}, t = 0;
+        assert_int_equal(whirl_integrator_advance(it, &t, y, 1.0, 0.01, 1e-10), GSL_SUCCESS);
+        const unsigned long first = whirl_integrator_get_stats(it).steps;
+        assert_true(first > 0 && first < 200);
+        assert_int_equal(whirl_integrator_advance(it, &t, y, 100.0, 0.01, 1e-10), GSL_EMAXITER);
+        const whirl_integrator_stats st = whirl_integrator_get_stats(it);
+        print_message("# %s: cap 200 reached at t = %g (%lu accepted, %lu rejected): %s\n", *name,
+                      t, st.steps, st.rejected, whirl_last_error());
+        assert_true(st.steps + st.rejected >= 200 && st.steps <= 200);
+        assert_non_null(strstr(whirl_last_error(), "200 adaptive steps (the cap)"));
+        assert_non_null(strstr(whirl_last_error(), "loosen the tolerance"));
+        assert_true(t > 1.0 && t < 100.0);
+        assert_true(hypot(y[0] - cos(W * t), (y[1] + W * sin(W * t)) / W) < 1e-6);
+        whirl_integrator_set_max_steps(it, 0);
+        assert_int_equal(whirl_integrator_advance(it, &t, y, 100.0, 0.01, 1e-10), GSL_SUCCESS);
+        assert_true(t == 100.0);
+        whirl_integrator_free(it);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_orders),
         cmocka_unit_test(test_projection),
         cmocka_unit_test(test_registry),
+        cmocka_unit_test(test_step_cap),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("integrator", tests, NULL, NULL);

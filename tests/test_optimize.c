@@ -9,11 +9,13 @@
  * a Monte-Carlo sample, the signed distances against points put off the curve along its normal,
  * and the error paths. */
 #include <math.h>
+#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <cmocka.h>
 #include <gsl/gsl_rng.h>
@@ -138,6 +140,39 @@ static void test_minimum_is_mode1(void **state)
     whirl_chain_free(c);
     c = uneven_chain(23);
     compare_with_shooting(c, 4.4, 1e-9);
+    whirl_chain_free(c);
+}
+
+static void *request_stop_soon(void *arg)
+{
+    (void)arg;
+    const struct timespec pause = {0, 5000000}; /* 5 ms */
+    nanosleep(&pause, NULL);
+    whirl_stop_request();
+    return NULL;
+}
+
+/* A stop request ends the minimisation with WHIRL_EINTERRUPTED (it runs on a worker thread the
+ * caller leaves: NLopt and LAPACK cannot poll); the next one, after whirl_stop_clear, runs to the
+ * same minimum as the shooting. */
+static void test_minimize_stop(void **state)
+{
+    (void)state;
+    const size_t n = 400;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
+    double *theta = malloc(n * sizeof *theta);
+    whirl_minimize_options o = whirl_minimize_options_default();
+    o.algorithm = "LN_BOBYQA"; /* derivative-free: long between its evaluations */
+    whirl_stop_clear();
+    pthread_t stopper;
+    assert_int_equal(pthread_create(&stopper, NULL, request_stop_soon, NULL), 0);
+    const int status = whirl_minimize_shape(c, 3.3, &o, NULL, theta, NULL);
+    pthread_join(stopper, NULL);
+    assert_int_equal(status, WHIRL_EINTERRUPTED);
+    assert_true(strstr(whirl_last_error(), "stopped by request") != NULL);
+    whirl_stop_clear();
+    free(theta);
+    compare_with_shooting(c, 3.3, 1e-9);
     whirl_chain_free(c);
 }
 
@@ -454,6 +489,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_gradient_and_hessian),
         cmocka_unit_test(test_minimum_is_mode1),
+        cmocka_unit_test(test_minimize_stop),
         cmocka_unit_test(test_below_critical),
         cmocka_unit_test(test_algorithms),
         cmocka_unit_test(test_higher_modes_are_saddles),

@@ -136,4 +136,30 @@ interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --
 interrupt "driven branch" INT none driven --omega-min 1 --omega-max 4000 --eps 0.05
 interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2
 
+# prompt NAME ARGS...: Ctrl-C during work that cannot poll (one dense solve) still ends the
+# command at once. The command runs once to its end (T seconds), then again with SIGINT at T/3:
+# it must exit 130 within T/3 of the signal (the work left then takes about 2T/3).
+prompt() {
+  name=$1; shift
+  t0=$(date +%s.%N)
+  "$WHIRL" "$@" >/dev/null 2>&1
+  full=$(echo "$(date +%s.%N) - $t0" | bc)
+  third=$(echo "$full / 3" | bc -l)
+  "$WHIRL" "$@" >/dev/null 2>"$tmp/int.stderr" &
+  pid=$!
+  sleep "$third"
+  t0=$(date +%s.%N)
+  kill -INT $pid
+  wait $pid
+  rc=$?
+  late=$(echo "$(date +%s.%N) - $t0" | bc)
+  if [ $rc -eq 130 ] && [ "$(echo "$late < $third" | bc)" -eq 1 ]; then
+    pass "interrupt at a third of the run: $name ends at once"
+  else
+    fail "interrupt at a third of the run: $name (rc=$rc, run $full s, signal to exit $late s)"
+  fi
+}
+prompt "stability of 250 links, the eigen-solve on a worker" \
+  stability --omega 3 --mode 2 --links 250 --linear -o "$tmp/prompt.csv"
+
 finish

@@ -91,12 +91,23 @@ WHIRL_API const whirl_integrator_type *whirl_integrator_type_of(const whirl_inte
 /* The smallest adaptive step, in units of round-off of t (DBL_EPSILON max(|t|, 1)). */
 #define WHIRL_STEP_MIN_ULPS 64
 
+/* The default cap on the adaptive steps (accepted plus rejected) of one integrator over its life:
+ * 1e8, hours of work on a large chain, far beyond any run the tolerance can justify (a run of
+ * 1e8 steps accumulates round-off of 1e8 eps ~ 1e-8 of the state). */
+#define WHIRL_ADAPTIVE_STEPS_MAX 100000000UL
+
+/* Sets the cap on the adaptive steps (accepted plus rejected, counted over the integrator's life,
+ * across calls of whirl_integrator_advance); 0 restores WHIRL_ADAPTIVE_STEPS_MAX. */
+WHIRL_API void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned long max_steps);
+
 /* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
  * shortened); with tol > 0 adaptively (relative and absolute tolerance tol, h the first step) for
  * the methods that allow it, GSL_EINVAL for the others. Projects after each step (if the system
  * has a projection). Stops with the status of a failing right-hand side, projection or stage
  * solve (t, y then hold the last good state); GSL_EINVAL for tol in (0, WHIRL_TOL_MIN);
  * GSL_EFAILED when an adaptive step falls below WHIRL_STEP_MIN_ULPS units of round-off of t;
+ * GSL_EMAXITER once the adaptive steps reach the cap (whirl_integrator_set_max_steps), with a
+ * message naming the cap, the time reached and what to change;
  * WHIRL_EINTERRUPTED once a stop is requested (polled in every right-hand side; t, y at the last
  * completed step). Allocates nothing. */
 WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
