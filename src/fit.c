@@ -58,6 +58,9 @@ typedef struct fit_ws {
     double *e, *e_plus, *e_minus; /* residuals, and at omega +- h */
     double tip_r_guess;  /* continuation along the current mode's branch */
     int evaluations, failures;
+    whirl_fit_progress_fn progress; /* NULL: none */
+    void *progress_data;
+    int mode, first, last; /* the mode being fitted, of first..last */
 } fit_ws;
 
 static void fit_ws_free(fit_ws *w)
@@ -121,6 +124,7 @@ static int fit_model_curve(fit_ws *w, double omega, int mode)
     whirl_shape_info info;
     int status;
     w->evaluations++;
+    if (w->progress) w->progress(w->progress_data, w->mode, w->first, w->last, w->evaluations);
     if (w->chain == NULL) {
         status = whirl_continuum_solve(omega, mode, w->model->tip_mass, w->tip_r_guess, &info);
         if (status == GSL_SUCCESS)
@@ -429,6 +433,13 @@ static int count_crossings(size_t n, const double *r, const double *z, int *cros
 int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z, int mode,
               whirl_fit_result *result)
 {
+    return whirl_fit_observed(m, n, r, z, mode, NULL, NULL, result);
+}
+
+int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, const double *z,
+                       int mode, whirl_fit_progress_fn progress, void *data,
+                       whirl_fit_result *result)
+{
     int status = check_model(m);
     if (status == GSL_SUCCESS) status = check_points(n, r, z);
     if (status) return status;
@@ -445,9 +456,14 @@ int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double 
     fit_ws w;
     status = fit_ws_init(&w, m, n, r, z);
     if (status) return status;
+    w.progress = progress;
+    w.progress_data = data;
+    w.first = first;
+    w.last = last;
     int found = 0, other = GSL_SUCCESS;
     char other_msg[512] = "";
     for (int k = first; k <= last; k++) {
+        w.mode = k;
         whirl_fit_result res;
         const int st = fit_one_mode(&w, k, &res);
         if (st && st != WHIRL_EINTERRUPTED && mode == 0) {

@@ -39,6 +39,7 @@
  * enters omega squared. */
 #include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include <gsl/gsl_roots.h>
@@ -78,16 +79,17 @@ static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, d
         eta += m * w2 * u;
         eta_a += m * w2 * u_a;
         v += m * c->gravity;
+        /* T = hypot(H, V) and ratios to it: H^2 ~ omega^4 overflows from omega ~ 1e77 */
         double h = a * eta, h_a = eta + a * eta_a, h_w = a * eta_w;
-        double t2 = h * h + v * v, t = sqrt(t2);
-        double t_a = h * h_a / t, t_w = h * h_w / t;
+        double t = hypot(h, v), ht = h / t, vt = v / t;
+        double t_a = ht * h_a, t_w = ht * h_w;
         u -= l * eta / t;
-        u_a -= l * (eta_a / t - eta * t_a / t2);
-        u_w -= l * (eta_w / t - eta * t_w / t2);
+        u_a -= l * (eta_a / t - (eta / t) * (t_a / t));
+        u_w -= l * (eta_w / t - (eta / t) * (t_w / t));
         q += u * u;
         q_a += 2 * u * u_a;
         q_w += 2 * u * u_w;
-        double th_a = v * h_a / t2, th_w = v * h_w / t2;
+        double th_a = vt * (h_a / t), th_w = vt * (h_w / t);
         s_aa += th_a * th_a;
         s_wa += th_a * th_w;
         s_ww += th_w * th_w;
@@ -503,6 +505,41 @@ static int find_events(whirl_nlink_path *p, const shot *s1, int raw_sign1)
     return status;
 }
 
+/* The ratio of the largest to the smallest link tension at (omega, a). */
+static double tension_spread(const whirl_chain *c, double omega, double a)
+{
+    double u = 1, eta = 0, v = 0, t_min = INFINITY, t_max = 0;
+    for (size_t i = c->n; i >= 1; i--) {
+        eta += c->mass[i - 1] * omega * omega * u;
+        v += c->mass[i - 1] * c->gravity;
+        const double t = hypot(a * eta, v);
+        u -= c->length[i - 1] * eta / t;
+        t_min = fmin(t_min, t);
+        t_max = fmax(t_max, t);
+    }
+    return t_max / t_min;
+}
+
+/* The failure of the continuation at the last point (w0, a0), status with its message set: named
+ * for what it is when round-off decides it. At high rates the higher modes fold ever more sharply
+ * (a link nearly slack between taut ones, its direction set by its weight alone), and G then
+ * moves by |G_a a| eps, more than the corrector's tolerance NEWTON_TOL, for one unit of round-off
+ * in the tip radius: no rate beyond can be resolved. */
+static int fail_at(const whirl_nlink_path *p, int status, double w0, double a0)
+{
+    shot s;
+    shoot(p->chain, w0, a0, &s, NULL);
+    const double wobble = fabs(s.g_a * a0) * DBL_EPSILON;
+    if (!(wobble > NEWTON_TOL)) return status;
+    char mode[32] = "";
+    if (p->mode > 0) snprintf(mode, sizeof mode, "mode %d: ", p->mode);
+    return whirl_fail(status, "%sthe shapes are not resolved above omega=%.6g: there one unit "
+                      "of round-off in the tip radius moves the pivot by %.2g of the shape's size "
+                      "(link tensions differing by a factor %.2g), more than the shooting's "
+                      "tolerance; lower rates only", mode, w0,
+                      wobble, tension_spread(p->chain, w0, a0));
+}
+
 int whirl_nlink_path_step(whirl_nlink_path *p)
 {
     const whirl_chain *c = p->chain;
@@ -552,13 +589,16 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
             p->rejected++;
             p->ds *= 0.5;
             if (p->ds < DS_MIN) {
+                int status;
                 if (p->mode > 0)
-                    return whirl_fail(GSL_EFAILED, "mode %d: the continuation fails at "
-                                      "omega=%.17g (tip radius %.6g): no convergence at the "
-                                      "smallest step %g", p->mode, w0, a0, DS_MIN);
-                return whirl_fail(GSL_EFAILED, "the continuation fails at omega=%.17g (tip "
-                                  "radius %.6g): no convergence at the smallest step %g", w0, a0,
-                                  DS_MIN);
+                    status = whirl_fail(GSL_EFAILED, "mode %d: the continuation fails at "
+                                        "omega=%.17g (tip radius %.6g): no convergence at the "
+                                        "smallest step %g", p->mode, w0, a0, DS_MIN);
+                else
+                    status = whirl_fail(GSL_EFAILED, "the continuation fails at omega=%.17g (tip "
+                                        "radius %.6g): no convergence at the smallest step %g",
+                                        w0, a0, DS_MIN);
+                return fail_at(p, status, w0, a0);
             }
             continue;
         }
@@ -585,7 +625,8 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
         p->steps++;
         if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
             p->ds = fmin(1.5 * ds, DS_MAX);
-        return find_events(p, &s, raw);
+        const int status = find_events(p, &s, raw);
+        return status ? fail_at(p, status, w0, a0) : GSL_SUCCESS;
     }
 }
 

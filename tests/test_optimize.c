@@ -9,13 +9,11 @@
  * a Monte-Carlo sample, the signed distances against points put off the curve along its normal,
  * and the error paths. */
 #include <math.h>
-#include <pthread.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <cmocka.h>
 #include <gsl/gsl_rng.h>
@@ -24,6 +22,7 @@
 
 #include "whirl/optimize.h"
 #include "whirl/steady.h"
+#include "stop_soon.h"
 
 /* ---- shared by the tests ---- */
 
@@ -141,15 +140,6 @@ static void test_minimum_is_mode1(void **state)
     c = uneven_chain(23);
     compare_with_shooting(c, 4.4, 1e-9);
     whirl_chain_free(c);
-}
-
-static void *request_stop_soon(void *arg)
-{
-    (void)arg;
-    const struct timespec pause = {0, 5000000}; /* 5 ms */
-    nanosleep(&pause, NULL);
-    whirl_stop_request();
-    return NULL;
 }
 
 /* A stop request ends the minimisation with WHIRL_EINTERRUPTED (it runs on a worker thread the
@@ -320,6 +310,49 @@ static void test_fit_nlink_exact(void **state)
 }
 
 /* omega_err against the scatter of omega over independent noisy samples of the same shape. */
+/* The progress of a fit: one call per model evaluation, counting up to the result's evaluations,
+ * over the modes tried; the result is whirl_fit's. */
+typedef struct progress_log {
+    int calls, last_evaluations, monotone, first, last, mode_min, mode_max;
+} progress_log;
+
+static void log_progress(void *data, int mode, int first, int last, int evaluations)
+{
+    progress_log *p = data;
+    p->monotone &= evaluations == p->last_evaluations + 1;
+    p->last_evaluations = evaluations;
+    p->calls++;
+    p->first = first, p->last = last;
+    if (mode < p->mode_min) p->mode_min = mode;
+    if (mode > p->mode_max) p->mode_max = mode;
+}
+
+static void test_fit_progress(void **state)
+{
+    (void)state;
+    const size_t n = 30;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
+    gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
+    double r[30], z[30];
+    whirl_fit_model m = whirl_fit_model_default();
+    m.links = n;
+    nlink_points(c, 3.71, 2, 0, 0.0, rng, r, z);
+    whirl_fit_result plain, observed;
+    assert_int_equal(whirl_fit(&m, n, r, z, 0, &plain), GSL_SUCCESS);
+    progress_log log = {0, 0, 1, 0, 0, 1000, 0};
+    assert_int_equal(whirl_fit_observed(&m, n, r, z, 0, log_progress, &log, &observed),
+                     GSL_SUCCESS);
+    print_message("# fit progress: %d calls, modes %d..%d of %d..%d\n", log.calls, log.mode_min,
+                  log.mode_max, log.first, log.last);
+    assert_true(log.monotone);
+    assert_int_equal(log.calls, observed.evaluations);
+    assert_int_equal(log.first, 1);
+    assert_true(log.mode_min == log.first && log.mode_max == log.last && log.last >= 2);
+    assert_true(observed.omega == plain.omega && observed.mode == plain.mode);
+    gsl_rng_free(rng);
+    whirl_chain_free(c);
+}
+
 static void test_fit_uncertainty_monte_carlo(void **state)
 {
     (void)state;
@@ -495,6 +528,7 @@ int main(void)
         cmocka_unit_test(test_higher_modes_are_saddles),
         cmocka_unit_test(test_minimize_errors),
         cmocka_unit_test(test_fit_nlink_exact),
+        cmocka_unit_test(test_fit_progress),
         cmocka_unit_test(test_fit_uncertainty_monte_carlo),
         cmocka_unit_test(test_fit_continuum_exact),
         cmocka_unit_test(test_fit_continuum_noise),

@@ -18,6 +18,20 @@ expect_error "shape: --mass 1e308 is refused" "--mass must be between" \
   shape --omega 2 --mode 1 --mass 1e308 -o "$out"
 expect_error "shape --links: a rate whose tensions overflow fails cleanly" "^whirl shape: " \
   shape --omega 1e160 --mode 1 --links 3 -o "$out"
+expect_error "shape --links: a high mode beyond its resolution is refused naming the round-off" \
+  "mode 3: the shapes are not resolved above omega=648.375: there one unit of round-off in the tip radius" \
+  shape --omega 1e4 --mode 3 --links 10 -o "$out"
+# mode 1 up to the highest rate: the tensions no longer overflow (H^2 ~ omega^4 did from 1e77). The
+# chain is then horizontal but for a sag ~ g/omega^2: link j's slope is g M_j / (omega^2 X_j),
+# so depth omega^2 = sum_j l_j M_j / X_j = 2 sum_{j=1..10} 1/(10 + j) for 10 equal links.
+for w in 1e20 1e90; do
+  "$WHIRL" shape --omega $w --mode 1 --links 10 -o "$tmp/flat.csv" 2>"$tmp/stderr"
+  depth=$(head -n 1 "$tmp/flat.csv" | sed -n 's/.* depth=\([^ ]*\) .*/\1/p')
+  if awk -v d="$depth" -v w=$w 'BEGIN { s = 0; for (j = 1; j <= 10; j++) s += 2 / (10 + j);
+       r = d * w * w / s; exit !(r > 1 - 1e-12 && r < 1 + 1e-12) }'; then
+    pass "shape --links 10 --omega $w: depth omega^2 is the horizontal chain's sag"
+  else fail "shape --links 10 --omega $w: depth '$depth' ($(head -c 200 "$tmp/stderr"))"; fi
+done
 expect_error "stability: a damping of 1e308 is caught before LAPACK" \
   "the linearised matrix is not finite .*the damping 1e\+308" \
   stability --omega 2 --mode 1 --links 5 --damping 1e308 -o "$out"
@@ -132,8 +146,10 @@ interrupt "regime, one run" INT none regime --omega 3 --eps 0.1 --t-max 100000
 interrupt "regime, one run" TERM none regime --omega 3 --eps 0.1 --t-max 100000
 interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 \
   --periods 20
-interrupt "sweep" INT none sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
-interrupt "driven branch" INT none driven --omega-min 1 --omega-max 4000 --eps 0.05
+interrupt "sweep" INT keep sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
+interrupt "driven branch" INT keep driven --omega-min 1 --omega-max 4000 --eps 0.05
+interrupt "sweep of the N-link chain" TERM keep sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 \
+  --omega-count 30001 --links 300
 interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2
 
 # prompt NAME ARGS...: Ctrl-C during work that cannot poll (one dense solve) still ends the

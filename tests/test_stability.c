@@ -25,10 +25,8 @@
 #include <cmocka.h>
 
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_linalg.h>
@@ -37,6 +35,7 @@
 #include <gsl/gsl_sort_vector.h>
 
 #include "whirl/stability.h"
+#include "stop_soon.h"
 
 #define NMAX 16
 
@@ -1206,15 +1205,6 @@ static void test_worker_spectrum(void **state)
     free(fre), free(fim), free(used);
     whirl_stability_free(w);
     whirl_chain_free(c);
-}
-
-static void *request_stop_soon(void *arg)
-{
-    (void)arg;
-    const struct timespec pause = {0, 5000000}; /* 5 ms */
-    nanosleep(&pause, NULL);
-    whirl_stop_request();
-    return NULL;
 }
 
 /* A stop request during the dense solve of 150 links (a 600 x 600 eigenproblem, a few tenths of

@@ -122,4 +122,14 @@ WHIRL_API int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mo
 WHIRL_API int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z,
                         int mode, whirl_fit_result *result);
 
+/* Progress of a fit: called after every evaluation of the model (one shape, its distances to the
+ * points), with the mode being fitted, the range of modes tried (first..last) and the
+ * evaluations so far (all modes). For a progress display; it must not call the fit. */
+typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
+
+/* whirl_fit reporting its progress to progress(data, ...) (NULL: none). */
+WHIRL_API int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r,
+                                 const double *z, int mode, whirl_fit_progress_fn progress,
+                                 void *data, whirl_fit_result *result);
+
 #endif

@@ -5,7 +5,9 @@
  * A branch (--omega-min, --omega-max): comment lines (parameters, one "# fold omega=..." per
  * fold), then the CSV omega,tip_x,tip_y,tip_r,top_tension,nodes,fold along the continued branch;
  * the branch starts at --omega (default omega_max) from mode K and leaves it towards smaller
- * omega (--up: larger). */
+ * omega (--up: larger). Ctrl-C (SIGINT, SIGTERM) stops a branch within a step: its points so far
+ * are written (a comment line says where it stopped) and the exit status is 130. */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "cli/cli.h"
@@ -103,8 +105,12 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     whirl_driven_curve *curve = whirl_driven_curve_alloc((size_t)o->max_points);
     if (curve == NULL) return cli_error(cmd, "%s", whirl_last_error());
     int rc = 1;
-    if (whirl_driven_branch(chain, p, &start, o->up ? 1 : -1, o->omega_min, o->omega_max,
-                            o->step, curve) != GSL_SUCCESS) {
+    char stopped[512] = "";
+    const int status = whirl_driven_branch(chain, p, &start, o->up ? 1 : -1, o->omega_min,
+                                           o->omega_max, o->step, curve);
+    if (status == WHIRL_EINTERRUPTED) {
+        snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
+    } else if (status != GSL_SUCCESS) {
         cli_error(cmd, "%s", whirl_last_error());
         goto done;
     }
@@ -115,7 +121,10 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
     fprintf(out.fp, "# branch from omega=%s towards %s omega, %zu points, %s\n", CLI_NUM(p->omega * rate),
             o->up ? "larger" : "smaller", curve->n,
-            curve->complete ? "left the interval" : "stopped early (capacity or no convergence)");
+            curve->complete ? "left the interval"
+            : stopped[0]    ? "interrupted"
+                            : "stopped early (capacity or no convergence)");
+    if (stopped[0]) fprintf(out.fp, "# interrupted (%s): the points found until then\n", stopped);
     for (size_t k = 0; k < curve->n_folds; k++)
         fprintf(out.fp, "# fold omega=%s\n", CLI_NUM(curve->fold_omega[k] * rate));
     fprintf(out.fp, "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold\n");
@@ -126,6 +135,10 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
                 CLI_NUM(user(o, CLI_UNIT_FORCE, q->top_tension)), q->nodes, curve->fold[j]);
     }
     rc = cli_out_commit(cmd, &out);
+    if (rc == 0 && stopped[0]) {
+        cli_error(cmd, "interrupted: the %zu points found until then are written", curve->n);
+        rc = CLI_EXIT_INTERRUPTED;
+    }
 done:
     whirl_driven_curve_free(curve);
     return rc;

@@ -4,9 +4,11 @@
  * in the units of --length), fits with whirl_fit and writes one row
  * omega,omega_err,mode,rms_residual: omega in the units of `whirl shape` (sqrt(g/L), or rad/s
  * with --length and --gravity), the residual in the data's units. So fit inverts shape: the
- * points of `whirl shape --omega W --mode K` (with the same unit options) give back W and K. */
+ * points of `whirl shape --omega W --mode K` (with the same unit options) give back W and K.
+ * On a terminal a progress line shows the mode being fitted and the model evaluations. */
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,6 +17,27 @@
 #include "whirl/optimize.h"
 
 #define FIT_MAX_LINKS 2000
+
+/* The progress line: modes done of those tried, the current one and its evaluations. */
+typedef struct fit_progress {
+    cli_progress_state state;
+    char label[96];
+    long done; /* modes done */
+} fit_progress;
+
+static void show_progress(void *data, int mode, int first, int last, int evaluations)
+{
+    fit_progress *f = data;
+    if (f->state.total == 0) {
+        f->state.total = last - first + 1;
+        f->state.label = f->label;
+    }
+    snprintf(f->label, sizeof f->label, "mode %d, %d model evaluations; modes done", mode,
+             evaluations);
+    f->done = mode - first;
+    cli_progress_update(&f->state, f->done, 0);
+}
+
 int cmd_fit(const cli_command *cmd, int argc, char **argv)
 {
     const char *shape = NULL, *output = NULL;
@@ -60,7 +83,13 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
         p.z[i] /= len;
     }
     whirl_fit_result res;
-    if (whirl_fit(&model, p.n, p.r, p.z, mode, &res) != GSL_SUCCESS) {
+    fit_progress progress = {.done = 0};
+    cli_progress_begin(&progress.state, cmd, "modes done", 0, 0);
+    const int status = whirl_fit_observed(&model, p.n, p.r, p.z, mode, show_progress, &progress,
+                                          &res);
+    if (progress.state.total > 0)
+        cli_progress_update(&progress.state, status ? progress.done : progress.state.total, 1);
+    if (status != GSL_SUCCESS) {
         cli_error(cmd, "%s", whirl_last_error());
         goto done;
     }

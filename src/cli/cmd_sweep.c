@@ -3,7 +3,9 @@
  * pseudo-arclength continuation from each mode's birth (whirl_nlink_follow): a row at every
  * crossing of a grid rate, in the order along the branch (through folds a rate is crossed more
  * than once), and the folds, branch points and returns to the hanging chain as comment lines
- * and, with --events FILE, as CSV. */
+ * and, with --events FILE, as CSV. Ctrl-C (SIGINT, SIGTERM) stops the sweep within a step: the
+ * rows found so far are written (a comment line says where it stopped) and the exit status is
+ * 130. */
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -107,7 +109,11 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
     }
     for (size_t j = 0; j < n; j++)
         omega[j] = cli_grid(omega_min, omega_max, count, (int)j);
-    for (int i = 0; i < modes.n && rc == 0; i++) {
+    /* the rates not reached before a stop stay "no row" */
+    for (size_t j = 0; exists && j < n * (size_t)modes.n; j++) exists[j] = 0;
+    int interrupted = 0; /* the mode being followed when a stop came */
+    char stopped[512] = "";
+    for (int i = 0; i < modes.n && rc == 0 && !interrupted; i++) {
         int status;
         if (m.chain) {
             rows.mode = modes.v[i];
@@ -123,9 +129,8 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
                                             info + i * n, exists + i * n);
         }
         if (status == WHIRL_EINTERRUPTED) {
-            cli_error(cmd, "interrupted, nothing written: mode %d %s", modes.v[i],
-                      whirl_last_error());
-            rc = 130;
+            interrupted = modes.v[i];
+            snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
         } else if (status != GSL_SUCCESS) {
             rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
         }
@@ -161,17 +166,26 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
                     "mode exists\n", CLI_NUM(m.tip_mass * m.units.mass),
                     cli_units_name(&m.units, CLI_UNIT_MASS));
         }
+        if (interrupted)
+            fprintf(out.fp, "# interrupted in mode %d (%s): the rows found until then\n",
+                    interrupted, stopped);
         cli_units_comment(out.fp, &m.units);
         fprintf(out.fp, "omega,mode,tip_r,max_r,top_tension,depth,nodes\n");
-        size_t total = m.chain ? rows.n : n * (size_t)modes.n;
+        size_t total = m.chain ? rows.n : n * (size_t)modes.n, written = 0;
         for (size_t j = 0; j < total; j++) {
             const whirl_shape_info *f = m.chain ? &rows.info[j] : &info[j];
             if (!m.chain && !exists[j]) continue;
+            written++;
             fprintf(out.fp, "%s,%d,%s,%s,%s,%s,%d\n", CLI_NUM(f->omega * rate), f->mode,
                     CLI_NUM(f->tip_r * len), CLI_NUM(f->max_r * len),
                     CLI_NUM(f->top_tension * force), CLI_NUM(f->depth * len), f->n_nodes + 1);
         }
         rc = cli_out_commit(cmd, &out);
+        if (rc == 0 && interrupted) {
+            cli_error(cmd, "interrupted in mode %d: the %zu rows found until then are written",
+                      interrupted, written);
+            rc = CLI_EXIT_INTERRUPTED;
+        }
     }
 done:
     free(omega);
