@@ -75,7 +75,8 @@ WHIRL_API int whirl_continuum_sample(double omega, double tip_mass, double tip_r
 /* Follows mode k over the rates omega[0..n-1] (any order, continuation from one to the next):
  * exists[j] = 1 and info[j] filled where the mode exists, exists[j] = 0 where it does not. The
  * rates are cut into contiguous blocks followed in parallel on the OpenMP threads (serially when
- * called from inside a parallel region). */
+ * called from inside a parallel region). After a failure or a stop request (WHIRL_EINTERRUPTED)
+ * the entries of the rates reached are valid and those of the others left as they were. */
 WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                                      whirl_shape_info *info, int *exists);
 
