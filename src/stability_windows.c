@@ -54,6 +54,7 @@
 #include "whirl/stability.h"
 #include "error.h"
 #include "windows_internal.h"
+#include "worker.h"
 
 
 struct whirl_windows {
@@ -350,9 +351,10 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
     const size_t q = 2 * w->n, d = w->deflated, m = q - d;
     /* the row-major trailing block read column-major is its transpose: its left eigenvectors
      * are the right eigenvectors of the block */
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, signatures ? 'V' : 'N', 'N',
-                                         (lapack_int)m, w->a + d * q + d, (lapack_int)q, w->re,
-                                         w->im, w->vl, (lapack_int)m, NULL, 1, w->work, w->lwork);
+    int info;
+    status = whirl_worker_dgeev(signatures ? 'V' : 'N', m, w->a + d * q + d, q, w->re, w->im,
+                                w->vl, m, w->work, (int)w->lwork, &info);
+    if (status) return status; /* a stop request: the solve runs on a worker */
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
                           (int)info);
@@ -455,6 +457,7 @@ static int evaluate(const windows_source *src, double omega, int signatures, poi
     int status = stop_check(src, omega);
     whirl_spectrum sp;
     if (!status) status = src->spectrum(src->data, omega, signatures, &sp);
+    if (status == WHIRL_EINTERRUPTED) return stop_check(src, omega); /* during the solve */
     if (status) return status;
     if (signatures)
         src->stats->solves_vectors++;

@@ -9,6 +9,9 @@
  * with it; the worker writes only its own memory, so that is safe. */
 #include <pthread.h>
 #include <stdlib.h>
+#include <string.h>
+
+#include <lapacke.h>
 #include <time.h>
 
 #include "whirl/common.h"
@@ -118,4 +121,64 @@ int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg))
     pthread_mutex_unlock(&w->lock);
     worker_unref(w);
     return status;
+}
+
+/* ---- dgeev on a worker ---- */
+
+typedef struct dgeev_job {
+    char jobvl;
+    size_t m;
+    double *a, *re, *im, *vl, *work; /* one block: a (m x m), re, im (m), vl (m x m), work */
+    lapack_int lwork, info;
+} dgeev_job;
+
+static void dgeev_release(void *data)
+{
+    dgeev_job *j = data;
+    free(j->a);
+    free(j);
+}
+
+static void dgeev_run(void *data, const whirl_worker *self)
+{
+    (void)self; /* one LAPACK call: nothing to poll */
+    dgeev_job *j = data;
+    const lapack_int m = (lapack_int)j->m;
+    j->info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, j->jobvl, 'N', m, j->a, m, j->re, j->im,
+                                 j->vl, m, NULL, 1, j->work, j->lwork);
+}
+
+int whirl_worker_dgeev(char jobvl, size_t m, double *a, size_t lda, double *re, double *im,
+                       double *vl, size_t ldvl, double *work, int lwork, int *info)
+{
+    if (m <= WORKER_DGEEV_INLINE_MAX) {
+        *info = (int)LAPACKE_dgeev_work(LAPACK_COL_MAJOR, jobvl, 'N', (lapack_int)m, a,
+                                        (lapack_int)lda, re, im, vl, (lapack_int)ldvl, NULL, 1,
+                                        work, (lapack_int)lwork);
+        return GSL_SUCCESS;
+    }
+    dgeev_job *j = calloc(1, sizeof *j);
+    const size_t size = 2 * m * m + 2 * m + (size_t)lwork;
+    if (j == NULL || (j->a = malloc(size * sizeof(double))) == NULL) {
+        free(j);
+        return whirl_fail(GSL_ENOMEM, "out of memory for an eigen-solve of %zu rows", m);
+    }
+    j->jobvl = jobvl;
+    j->m = m;
+    j->vl = j->a + m * m;
+    j->re = j->vl + m * m;
+    j->im = j->re + m;
+    j->work = j->im + m;
+    j->lwork = (lapack_int)lwork;
+    for (size_t c = 0; c < m; c++) memcpy(j->a + c * m, a + c * lda, m * sizeof(double));
+    if (whirl_worker_run(dgeev_run, j, dgeev_release) != GSL_SUCCESS)
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the eigen-solve");
+    *info = (int)j->info;
+    memcpy(re, j->re, m * sizeof(double));
+    memcpy(im, j->im, m * sizeof(double));
+    if (jobvl == 'V')
+        for (size_t c = 0; c < m; c++) memcpy(vl + c * ldvl, j->vl + c * m, m * sizeof(double));
+    for (size_t c = 0; c < m; c++) memcpy(a + c * lda, j->a + c * m, m * sizeof(double));
+    dgeev_release(j);
+    return GSL_SUCCESS;
 }

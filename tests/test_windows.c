@@ -8,6 +8,7 @@
  *  - the same windows from a coarse scan (windows between scan points found through the ranks),
  *    a fine one, and full eigen-solves instead of Arnoldi;
  *  - perturbed runs of the dynamics just inside an edge (grow) and just outside (stay bounded);
+ *  - the same above 64 rows, where the dense solve runs on a worker thread;
  *  - bad input and the stop request. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -156,6 +157,51 @@ static void test_reduced_spectrum(void **state)
     print_message("# reduced spectrum: %d neutral, %d unstable shapes checked\n", neutral,
                   unstable);
     assert_true(neutral > 10 && unstable > 5);
+    whirl_windows_free(w);
+    whirl_stability_free(lin);
+    whirl_chain_free(c);
+}
+
+/* Above 64 rows the dense solve runs on a worker thread (a stop request ends it at once): 40
+ * links, eigenvalues and left eigenvectors (signatures) from it, against the first-order form. */
+static void test_worker_spectrum(void **state)
+{
+    (void)state;
+    const size_t n = 40;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.2);
+    whirl_stability *lin = whirl_stability_alloc(n);
+    whirl_windows *w = whirl_windows_alloc(n);
+    double crit[3];
+    assert_int_equal(whirl_nlink_critical(c, 3, crit), 0);
+    for (int mode = 2; mode <= 3; mode++)
+        for (int j = 0; j < 3; j++) {
+            whirl_model m = model_of(c, crit[mode - 1] * (1.1 + 0.7 * j));
+            double g4;
+            assert_int_equal(whirl_stability_mode(lin, &m, mode, 0, NULL, &g4), 0);
+            size_t count4;
+            const double *re4, *im4;
+            assert_int_equal(whirl_stability_eigenvalues(lin, &count4, &re4, &im4), 0);
+            whirl_spectrum sp;
+            assert_int_equal(whirl_windows_spectrum(w, lin, 1, &sp), 0);
+            assert_int_equal(sp.count, 2 * n - 1);
+            double big = 0, worst = 0;
+            for (size_t i = 0; i < sp.count; i++) big = fmax(big, hypot(sp.re[i], sp.im[i]));
+            for (size_t i = 0; i < sp.count; i++) {
+                double best = INFINITY;
+                for (size_t k = 0; k < count4; k++)
+                    best = fmin(best, hypot(re4[k] * re4[k] - im4[k] * im4[k] - sp.re[i],
+                                            2 * re4[k] * im4[k] - sp.im[i]));
+                worst = fmax(worst, best);
+            }
+            int negative = 0;
+            for (size_t i = 0; i < sp.count; i++) negative += sp.signature[i] < 0;
+            print_message("# 40 links, mode %d, omega %.4g: mu vs lambda^2 %.2g (scale %.3g), "
+                          "growth %.6g / %.6g, %d of negative energy\n", mode, m.omega, worst,
+                          big, sp.growth, g4, negative);
+            assert_true(worst <= 1e-9 * big);
+            assert_true(fabs(sp.growth - g4) <= 1e-8 * sqrt(big));
+            if (sp.growth == 0) assert_int_equal(negative, mode - 1);
+        }
     whirl_windows_free(w);
     whirl_stability_free(lin);
     whirl_chain_free(c);
@@ -330,6 +376,7 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_reduced_spectrum),
+        cmocka_unit_test(test_worker_spectrum),
         cmocka_unit_test(test_edges),
         cmocka_unit_test(test_runs_at_edges),
         cmocka_unit_test(test_errors),
