@@ -3,8 +3,9 @@
 # by category and classifies each run as clean (exit 0 with a finite output, or exit 1 / 130 with
 # a one-line error), crash (killed by a signal other than the one sent, or a sanitizer report),
 # hang (still running after $LIMIT s), non-finite written (inf or nan in an output) and file left
-# (a temporary or unasked file). Then the slowest Ctrl-C: the time from SIGINT to exit of each
-# long command. Usage: sh scripts/robust.sh [BUILD]   (a few minutes)
+# (a temporary or unasked file). Then the slowest Ctrl-C: the time from the signal to the exit of
+# each long command (signalled 1 s after its start, or later where the slow part comes later).
+# Usage: sh scripts/robust.sh [BUILD]   (ten minutes)
 build=${1:-build}
 W="$(cd "$(dirname "$build/whirl")" && pwd)/whirl"
 LIMIT=${LIMIT:-30}
@@ -49,6 +50,7 @@ for v in 1e308 -1e308 1e-308 5e-324 0 -0 1e100 1e-100; do
   try overflow shape --omega "$v" --mode 2 -o out.csv
   try overflow shape --omega 3 --mode 1 --tip-mass "$v" -o out.csv
   try overflow shape --omega "$v" --mode 1 --links 6 -o out.csv
+  try overflow shape --omega "$v" --mode 3 --links 10 -o out.csv
   try overflow shape --omega 3 --mode 1 --mass "$v" --length 1 -o out.csv
   try overflow sweep --modes 1,2 --omega-min 1 --omega-max "$v" --omega-count 5 -o out.csv
   try overflow sweep --modes 1 --omega-min 2 --omega-max 3 --omega-count 3 --tip-mass "$v" -o out.csv
@@ -97,14 +99,15 @@ try input regime --omega 3 --eps 0.1 --t-max 60 --links 5 --trace '' -o out.csv
 try input simulate '' -o out.csv
 try input shape --omega 2 --mode 1 -o /nonexistent/dir/out.csv
 
-# ---- interrupts: SIGINT and SIGTERM after 1 s, and the time from the signal to the exit ----
-printf '%-58s %s\n' "command (signal after 1 s)" "signal to exit [s]" >"$work/.latency"
+# ---- interrupts: SIGINT and SIGTERM after 1 s (or AFTER s), the time from the signal to the exit ----
+printf '%-58s %s\n' "command, signal" "signal to exit [s]" >"$work/.latency"
+# interrupt AFTER SIGNAL ARGS...
 interrupt() {
-  sig=$1; shift
+  after=$1; sig=$2; shift 2
   rm -rf run; mkdir run; cd run || exit 1
   "$W" "$@" -o out.csv >stdout 2>stderr &
   pid=$!
-  sleep 1
+  sleep "$after"
   t0=$(date +%s.%N)
   kill -"$sig" $pid
   wait $pid
@@ -117,23 +120,26 @@ interrupt() {
   [ $clean -eq 1 ] || echo "  interrupt: rc=$rc left=$left: whirl $*: $(head -c 200 stderr)" >&2
   cd .. || exit 1
   echo "interrupt $clean $crash 0 0 $left" >>"$stats"
-  printf '%-58s %.3f\n' "$1 $sig" "$(echo "$t1 - $t0" | bc)" >>"$work/.latency"
+  printf '%-58s %.3f\n' "$1 $sig after $after s" "$(echo "$t1 - $t0" | bc)" >>"$work/.latency"
 }
 "$W" shape --omega 3.3 --mode 2 --points 10000 -o p10k.csv
 for sig in INT TERM; do
-  interrupt $sig simulate "$scenes/mode2.ini" --set run.method=gsl-rk4imp --set run.tol=1e-8 --set run.air_drag=1e12 --set chain.links=10
-  interrupt $sig simulate "$scenes/mode2.ini" --set run.method=rk8 --set run.tol=1e-16 --set run.t_end=1000 --set run.stop_deviation=1e9
-  interrupt $sig simulate "$scenes/mode2.ini" --set run.method=gauss3 --set chain.links=1000 --set run.t_end=1000 --set run.stop_deviation=1e9
-  interrupt $sig regime --omega 3 --eps 0.1 --t-max 100000
-  interrupt $sig regime --omega-min 2 --omega-max 6 --omega-count 40 --eps 0.1
-  interrupt $sig stability --omega-min 2 --omega-max 8 --omega-count 401 --links 8 --periods 20
-  interrupt $sig stability --omega 3 --mode 2 --links 200 --periods 1000
-  interrupt $sig sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
-  interrupt $sig sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001 --links 300
-  interrupt $sig driven --omega-min 1 --omega-max 4000 --eps 0.05
-  interrupt $sig fit --shape "$work/p10k.csv" --mode 2
-  interrupt $sig minimize --omega 40 --links 2000 --algorithm LN_BOBYQA
-  interrupt $sig critical --links 3000 --modes 64
+  interrupt 1 $sig simulate "$scenes/mode2.ini" --set run.method=gsl-rk4imp --set run.tol=1e-8 --set run.air_drag=1e12 --set chain.links=10
+  interrupt 1 $sig simulate "$scenes/mode2.ini" --set run.method=rk8 --set run.tol=1e-16 --set run.t_end=1000 --set run.stop_deviation=1e9
+  interrupt 1 $sig simulate "$scenes/mode2.ini" --set run.method=gauss3 --set chain.links=1000 --set run.t_end=1000 --set run.stop_deviation=1e9
+  interrupt 1 $sig regime --omega 3 --eps 0.1 --t-max 100000
+  interrupt 1 $sig regime --omega-min 2 --omega-max 6 --omega-count 40 --eps 0.1
+  interrupt 1 $sig stability --omega-min 2 --omega-max 8 --omega-count 401 --links 8 --periods 20
+  interrupt 1 $sig stability --omega 3 --mode 2 --links 200 --periods 1000
+  interrupt 1 $sig sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
+  interrupt 1 $sig sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001 --links 300
+  interrupt 1 $sig driven --omega-min 1 --omega-max 4000 --eps 0.05
+  interrupt 1 $sig fit --shape "$work/p10k.csv" --mode 2
+  interrupt 1 $sig minimize --omega 40 --links 2000 --algorithm LN_BOBYQA
+  interrupt 1 $sig critical --links 3000 --modes 64
+  interrupt 1 $sig stability --omega 3 --mode 2 --links 300 --linear
+  interrupt 2 $sig stability --windows --links 300 --omega-min 3 --omega-max 30 --modes 2
+  interrupt 60 $sig minimize --omega 40 --links 2000 --algorithm LN_BOBYQA
 done
 
 echo "category   tried  clean-error/ok  crash  hang  non-finite  file-left"
