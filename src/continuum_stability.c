@@ -80,6 +80,7 @@
 
 #include "whirl/continuum_stability.h"
 #include "error.h"
+#include "worker.h"
 #include "windows_internal.h"
 
 #define CS_ELEMENTS_START 4   /* uniform elements before refinement */
@@ -763,9 +764,11 @@ static int shifted_eigen(whirl_cstab *w, int vectors)
     for (size_t j = 0; j < ny; j++)
         for (size_t k = 0; k < N_DYNAMIC; k++)
             memcpy(c + j * ny + k * np, x + j * n + col[k] * np, np * sizeof(double));
-    info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', vectors ? 'V' : 'N', (lapack_int)ny, c,
-                              (lapack_int)ny, w->alphar, w->alphai, NULL, 1, w->vr,
-                              (lapack_int)ny, w->work, w->lwork);
+    int dinfo; /* on a worker thread: a stop request ends the call at once */
+    status = whirl_worker_dgeev('N', vectors ? 'V' : 'N', ny, c, ny, w->alphar, w->alphai, w->vr,
+                                ny, w->work, (int)w->lwork, &dinfo);
+    if (status) return status;
+    info = dinfo;
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
                           (int)info);

@@ -352,8 +352,8 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
     /* the row-major trailing block read column-major is its transpose: its left eigenvectors
      * are the right eigenvectors of the block */
     int info;
-    status = whirl_worker_dgeev(signatures ? 'V' : 'N', m, w->a + d * q + d, q, w->re, w->im,
-                                w->vl, m, w->work, (int)w->lwork, &info);
+    status = whirl_worker_dgeev(signatures ? 'V' : 'N', 'N', m, w->a + d * q + d, q, w->re,
+                                w->im, w->vl, m, w->work, (int)w->lwork, &info);
     if (status) return status; /* a stop request: the solve runs on a worker */
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",

@@ -126,9 +126,9 @@ int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg))
 /* ---- dgeev on a worker ---- */
 
 typedef struct dgeev_job {
-    char jobvl;
+    char jobvl, jobvr;
     size_t m;
-    double *a, *re, *im, *vl, *work; /* one block: a (m x m), re, im (m), vl (m x m), work */
+    double *a, *re, *im, *v, *work; /* one block: a (m x m), v (m x m), re, im (m), work */
     lapack_int lwork, info;
 } dgeev_job;
 
@@ -139,22 +139,28 @@ static void dgeev_release(void *data)
     free(j);
 }
 
+static lapack_int dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, double *re,
+                        double *im, double *v, size_t ldv, double *work, lapack_int lwork)
+{
+    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, jobvl, jobvr, (lapack_int)m, a, (lapack_int)lda,
+                              re, im, jobvl == 'V' ? v : NULL, jobvl == 'V' ? (lapack_int)ldv : 1,
+                              jobvr == 'V' ? v : NULL, jobvr == 'V' ? (lapack_int)ldv : 1, work,
+                              lwork);
+}
+
 static void dgeev_run(void *data, const whirl_worker *self)
 {
     (void)self; /* one LAPACK call: nothing to poll */
     dgeev_job *j = data;
-    const lapack_int m = (lapack_int)j->m;
-    j->info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, j->jobvl, 'N', m, j->a, m, j->re, j->im,
-                                 j->vl, m, NULL, 1, j->work, j->lwork);
+    j->info = dgeev(j->jobvl, j->jobvr, j->m, j->a, j->m, j->re, j->im, j->v, j->m, j->work,
+                    j->lwork);
 }
 
-int whirl_worker_dgeev(char jobvl, size_t m, double *a, size_t lda, double *re, double *im,
-                       double *vl, size_t ldvl, double *work, int lwork, int *info)
+int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, double *re,
+                       double *im, double *v, size_t ldv, double *work, int lwork, int *info)
 {
     if (m <= WORKER_DGEEV_INLINE_MAX) {
-        *info = (int)LAPACKE_dgeev_work(LAPACK_COL_MAJOR, jobvl, 'N', (lapack_int)m, a,
-                                        (lapack_int)lda, re, im, vl, (lapack_int)ldvl, NULL, 1,
-                                        work, (lapack_int)lwork);
+        *info = (int)dgeev(jobvl, jobvr, m, a, lda, re, im, v, ldv, work, (lapack_int)lwork);
         return GSL_SUCCESS;
     }
     dgeev_job *j = calloc(1, sizeof *j);
@@ -164,9 +170,10 @@ int whirl_worker_dgeev(char jobvl, size_t m, double *a, size_t lda, double *re, 
         return whirl_fail(GSL_ENOMEM, "out of memory for an eigen-solve of %zu rows", m);
     }
     j->jobvl = jobvl;
+    j->jobvr = jobvr;
     j->m = m;
-    j->vl = j->a + m * m;
-    j->re = j->vl + m * m;
+    j->v = j->a + m * m;
+    j->re = j->v + m * m;
     j->im = j->re + m;
     j->work = j->im + m;
     j->lwork = (lapack_int)lwork;
@@ -176,8 +183,8 @@ int whirl_worker_dgeev(char jobvl, size_t m, double *a, size_t lda, double *re, 
     *info = (int)j->info;
     memcpy(re, j->re, m * sizeof(double));
     memcpy(im, j->im, m * sizeof(double));
-    if (jobvl == 'V')
-        for (size_t c = 0; c < m; c++) memcpy(vl + c * ldvl, j->vl + c * m, m * sizeof(double));
+    if (jobvl == 'V' || jobvr == 'V')
+        for (size_t c = 0; c < m; c++) memcpy(v + c * ldv, j->v + c * m, m * sizeof(double));
     for (size_t c = 0; c < m; c++) memcpy(a + c * lda, j->a + c * m, m * sizeof(double));
     dgeev_release(j);
     return GSL_SUCCESS;

@@ -25,14 +25,14 @@ int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg));
  * fn run inline, never abandoned). Thread-safe. */
 int whirl_worker_abandoned(const whirl_worker *self);
 
-/* LAPACK's dgeev (column-major, right eigenvectors not computed) of the m x m matrix a (leading
- * dimension lda, overwritten as dgeev does), eigenvalues into re, im, left eigenvectors into vl
- * (leading dimension ldvl) if jobvl is 'V'; work, lwork: a workspace for m as dgeev's query gives.
- * Above WORKER_DGEEV_INLINE_MAX rows it runs on a copy in a worker (whirl_worker_run), so that a
- * stop request ends the call at once: *info is dgeev's; GSL_SUCCESS, or WHIRL_EINTERRUPTED (message
- * set; re, im, vl untouched), or GSL_ENOMEM for the copy. */
+/* LAPACK's dgeev (column-major) of the m x m matrix a (leading dimension lda, overwritten as
+ * dgeev does): eigenvalues into re, im, and the left (jobvl 'V') or the right (jobvr 'V')
+ * eigenvectors, not both, into v (leading dimension ldv); work, lwork: a workspace for m as
+ * dgeev's query gives. Above WORKER_DGEEV_INLINE_MAX rows it runs on a copy in a worker
+ * (whirl_worker_run), so that a stop request ends the call at once. *info is dgeev's; returns
+ * GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; re, im, v untouched) or GSL_ENOMEM. */
 #define WORKER_DGEEV_INLINE_MAX 64
-int whirl_worker_dgeev(char jobvl, size_t m, double *a, size_t lda, double *re, double *im,
-                       double *vl, size_t ldvl, double *work, int lwork, int *info);
+int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, double *re,
+                       double *im, double *v, size_t ldv, double *work, int lwork, int *info);
 
 #endif
