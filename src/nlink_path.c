@@ -63,6 +63,14 @@ typedef struct shot {
     double m_ww, m_wa, m_aa; /* the metric M at the point */
 } shot;
 
+/* x y / d: d = t (single = 1) or t^2; with big, as (x / t) (y / t) or (x / t) y, which do not
+ * overflow where t^2 does. */
+static double ratio(double x, double y, double t, double d, int big)
+{
+    if (!big) return d == 1 ? x * y / t : x * y / d;
+    return d == 1 ? (x / t) * y : (x / t) * (y / t);
+}
+
 /* G, its derivatives and the metric at (omega, a); if theta is not NULL, the link angles into
  * theta[0..N-1]; if embed is not NULL, the unit tangent (G_a, -G_omega) normalised, embedded in
  * (ln omega, theta / sqrt(N)), into embed[0..N] (embed[N+1..2N] is scratch). */
@@ -79,17 +87,20 @@ static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, d
         eta += m * w2 * u;
         eta_a += m * w2 * u_a;
         v += m * c->gravity;
-        /* T = hypot(H, V) and ratios to it: H^2 ~ omega^4 overflows from omega ~ 1e77 */
         double h = a * eta, h_a = eta + a * eta_a, h_w = a * eta_w;
-        double t = hypot(h, v), ht = h / t, vt = v / t;
-        double t_a = ht * h_a, t_w = ht * h_w;
+        double t2 = h * h + v * v, t = sqrt(t2);
+        /* H^2 ~ omega^4 (and H H_a) overflow from omega ~ 1e77: from T^2 = 1e300 on,
+         * T = hypot(H, V) and ratios to it */
+        const int big = !(t2 < 1e300);
+        if (big) t = hypot(h, v);
+        double t_a = ratio(h, h_a, t, 1, big), t_w = ratio(h, h_w, t, 1, big);
         u -= l * eta / t;
-        u_a -= l * (eta_a / t - (eta / t) * (t_a / t));
-        u_w -= l * (eta_w / t - (eta / t) * (t_w / t));
+        u_a -= l * (eta_a / t - ratio(eta, t_a, t, t2, big));
+        u_w -= l * (eta_w / t - ratio(eta, t_w, t, t2, big));
         q += u * u;
         q_a += 2 * u * u_a;
         q_w += 2 * u * u_w;
-        double th_a = vt * (h_a / t), th_w = vt * (h_w / t);
+        double th_a = ratio(v, h_a, t, t2, big), th_w = ratio(v, h_w, t, t2, big);
         s_aa += th_a * th_a;
         s_wa += th_a * th_w;
         s_ww += th_w * th_w;

@@ -19,7 +19,7 @@ expect_error "shape: --mass 1e308 is refused" "--mass must be between" \
 expect_error "shape --links: a rate whose tensions overflow fails cleanly" "^whirl shape: " \
   shape --omega 1e160 --mode 1 --links 3 -o "$out"
 expect_error "shape --links: a high mode beyond its resolution is refused naming the round-off" \
-  "mode 3: the shapes are not resolved above omega=648.375: there one unit of round-off in the tip radius" \
+  "mode 3: the shapes are not resolved above omega=[0-9.]+: there one unit of round-off in the tip radius" \
   shape --omega 1e4 --mode 3 --links 10 -o "$out"
 # mode 1 up to the highest rate: the tensions no longer overflow (H^2 ~ omega^4 did from 1e77). The
 # chain is then horizontal but for a sag ~ g/omega^2: link j's slope is g M_j / (omega^2 X_j),
