@@ -65,6 +65,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -349,28 +350,24 @@ static void linear_loads(const whirl_chain *c, double omega, double *per_tip, do
  * The tip shot carries the round-off of the recursion up the chain, amplified as the radii
  * grow from the tip (by up to ~1e-8 relative in the tip radius for the high modes of a 7-link
  * chain at omega = 21.1), and the pivot shot its own: each root is polished by Newton's method
- * on the force balance of every link, in the link angles theta_i from the downward vertical,
- *     F_i = H_i cos theta_i - V_i sin theta_i = 0,  H_i = omega^2 sum_{j >= i} m_j r_j,
- *     r_j = sum_{k <= j} l_k sin theta_k,  V_i = g sum_{j >= i} m_j,
- *     dF_i/dtheta_k = cos theta_i omega^2 l_k cos theta_k sum_{j >= max(i, k)} m_j
- *                     - delta_ik (H_i sin theta_i + V_i cos theta_i),
- * rows divided by the tension T_i = |(H_i, V_i)| (dense LU, LAPACK dgesv), from the angles of the
- * shot. Its Jacobian is the in-plane stiffness of the chain, regular at a root that is not a
- * fold: the polished shape balances every link to round-off whatever shot found it. */
+ * on the force balance of every link in the link angles (whirl_nlink_balance_polish,
+ * src/nlink_balance.c: the horizontal balances differenced so that the Jacobian, the in-plane
+ * stiffness of the chain, is tridiagonal; regular at a root that is not a fold), from the angles
+ * of the shot: the polished shape balances every link to round-off whatever shot found it. */
 
 typedef struct angle_ws {
     const whirl_chain *c;
     double omega;
-    double *theta, *f, *jac, *r, *z, *t, *mass_below; /* N, N, N*N, N+1, N+1, N+1, N+1 */
-    lapack_int *ipiv;
-    double worst; /* largest |F_i| / T_i of the polished shapes */
+    nlink_balance *bal;
+    double *theta, *r, *z, *t; /* N, N+1, N+1, N+1 */
+    double worst; /* largest sine of a link's angle to the force it carries, polished shapes */
 } angle_ws;
 
 static void angle_ws_free(angle_ws *w)
 {
     if (w == NULL) return;
+    whirl_nlink_balance_free(w->bal);
     free(w->theta);
-    free(w->ipiv);
     free(w);
 }
 
@@ -381,45 +378,18 @@ static angle_ws *angle_ws_alloc(const whirl_chain *c, double omega)
     if (w == NULL) goto fail;
     w->c = c;
     w->omega = omega;
-    w->theta = malloc((n * n + 2 * n + 4 * (n + 1)) * sizeof *w->theta);
-    w->ipiv = malloc(n * sizeof *w->ipiv);
-    if (w->theta == NULL || w->ipiv == NULL) goto fail;
-    w->f = w->theta + n;
-    w->jac = w->f + n;
-    w->r = w->jac + n * n;
+    w->theta = malloc((n + 3 * (n + 1)) * sizeof *w->theta);
+    if (w->theta == NULL) goto fail;
+    w->r = w->theta + n;
     w->z = w->r + n + 1;
     w->t = w->z + n + 1;
-    w->mass_below = w->t + n + 1;
-    w->mass_below[n] = 0;
-    for (size_t i = n; i >= 1; i--) w->mass_below[i - 1] = w->mass_below[i] + c->mass[i - 1];
+    w->bal = whirl_nlink_balance_alloc(c);
+    if (w->bal == NULL) goto fail;
     return w;
 fail:
     angle_ws_free(w);
     whirl_fail(GSL_ENOMEM, "out of memory for Newton's method on %zu links", n);
     return NULL;
-}
-
-/* Nodes, tensions and the scaled residuals F_i / T_i of the angles; returns max |F_i| / T_i. */
-static double angle_residual(angle_ws *w)
-{
-    const whirl_chain *c = w->c;
-    size_t n = c->n;
-    double w2 = w->omega * w->omega, worst = 0;
-    w->r[0] = w->z[0] = 0;
-    for (size_t i = 1; i <= n; i++) {
-        w->r[i] = w->r[i - 1] + c->length[i - 1] * sin(w->theta[i - 1]);
-        w->z[i] = w->z[i - 1] - c->length[i - 1] * cos(w->theta[i - 1]);
-    }
-    double h = 0;
-    for (size_t i = n; i >= 1; i--) {
-        h += w2 * c->mass[i - 1] * w->r[i];
-        double v = c->gravity * w->mass_below[i - 1], th = w->theta[i - 1];
-        w->t[i] = hypot(h, v);
-        w->f[i - 1] = (h * cos(th) - v * sin(th)) / w->t[i];
-        worst = fmax(worst, fabs(w->f[i - 1]));
-    }
-    w->t[0] = w->t[1];
-    return worst;
 }
 
 /* The link angles of the tip shot with tip radius tip_r into w->theta. */
@@ -433,62 +403,26 @@ static int angles_of_tip(angle_ws *w, double tip_r)
 
 /* Polishes the equilibrium near the link angles w->theta (from a shot): the polished angles
  * back in w->theta (mirrored to a positive tip radius), its tip radius in *tip_r, the nodes in
- * w->r, w->z, w->t. GSL_EFAILED if it does not converge or a link ends up compressed (F_i = 0
- * also holds for a link turned by pi: a rod's equilibrium, not a chain's). */
+ * w->r, w->z, w->t. GSL_EFAILED if it does not converge or a link ends up horizontal or
+ * compressed (a rod's equilibrium, not a chain's). */
 static int angle_polish(angle_ws *w, double *tip_r)
 {
     const whirl_chain *c = w->c;
     size_t n = c->n;
-    double w2 = w->omega * w->omega, prev = INFINITY;
-    for (int it = 0; it < 30; it++) {
-        angle_residual(w);
-        /* Jacobian rows i, columns k (column-major for LAPACK), divided by T_i */
-        double h = 0;
-        for (size_t i = n; i >= 1; i--) {
-            h += w2 * c->mass[i - 1] * w->r[i];
-            double th = w->theta[i - 1], v = c->gravity * w->mass_below[i - 1];
-            for (size_t k = 1; k <= n; k++) {
-                double below = w->mass_below[(i > k ? i : k) - 1];
-                double d = cos(th) * w2 * c->length[k - 1] * cos(w->theta[k - 1]) * below;
-                if (k == i) d -= h * sin(th) + v * cos(th);
-                w->jac[(k - 1) * n + (i - 1)] = d / w->t[i];
-            }
-            w->f[i - 1] = -w->f[i - 1];
-        }
-        lapack_int info = LAPACKE_dgesv(LAPACK_COL_MAJOR, (lapack_int)n, 1, w->jac,
-                                        (lapack_int)n, w->ipiv, w->f, (lapack_int)n);
-        if (info != 0)
-            return whirl_fail(GSL_ESING, "omega=%g, tip radius %g: the force balance is "
-                              "singular (a fold)", w->omega, *tip_r);
-        double step = 0;
-        for (size_t i = 0; i < n; i++) {
-            w->theta[i] += w->f[i];
-            step = fmax(step, fabs(w->f[i]));
-        }
-        if (!isfinite(step)) break;
-        if (step <= 8 * DBL_EPSILON || (step <= 1e-10 && step >= 0.5 * prev)) {
-            double worst = angle_residual(w), h2 = 0;
-            for (size_t i = n; i >= 1; i--) {
-                h2 += w2 * c->mass[i - 1] * w->r[i];
-                double v = c->gravity * w->mass_below[i - 1];
-                if (!(h2 * sin(w->theta[i - 1]) + v * cos(w->theta[i - 1]) > 0))
-                    return whirl_fail(GSL_EFAILED, "omega=%g: Newton's method on the link "
-                                      "angles ends with link %zu compressed", w->omega, i);
-            }
-            w->worst = fmax(w->worst, worst);
-            *tip_r = fabs(w->r[n]);
-            if (w->r[n] < 0) {
-                for (size_t i = 0; i <= n; i++) w->r[i] = -w->r[i];
-                for (size_t i = 0; i < n; i++) w->theta[i] = -w->theta[i];
-            }
-            double zn = w->z[0];
-            for (size_t i = 0; i <= n; i++) w->z[i] -= zn;
-            return GSL_SUCCESS;
-        }
-        prev = step;
+    int status = whirl_nlink_balance_polish(w->bal, w->omega, w->theta);
+    if (status) {
+        char why[256];
+        snprintf(why, sizeof why, "%s", whirl_last_error());
+        return whirl_fail(GSL_EFAILED, "tip radius %g: %s", *tip_r, why);
     }
-    return whirl_fail(GSL_EFAILED, "omega=%g, tip radius %g: Newton's method on the link "
-                      "angles does not converge", w->omega, *tip_r);
+    double worst = whirl_nlink_balance_nodes(c, w->omega, w->theta, w->r, w->z, w->t);
+    w->worst = fmax(w->worst, worst);
+    *tip_r = fabs(w->r[n]);
+    if (w->r[n] < 0) {
+        for (size_t i = 0; i <= n; i++) w->r[i] = -w->r[i];
+        for (size_t i = 0; i < n; i++) w->theta[i] = -w->theta[i];
+    }
+    return GSL_SUCCESS;
 }
 
 /* ---- the list of equilibria ---- */

@@ -74,4 +74,38 @@ void whirl_nlink_info_nodes(const whirl_chain *c, const double *r, const double 
 int whirl_continuum_shots(double omega, double tip_mass, size_t n, const double *a,
                           double *residual, int *crossings);
 
+/* ---- the force balance of the N-link chain in its link angles (src/nlink_balance.c) ----
+ * R_i(omega, theta) = rho_i - rho_{i-1} - l_i sin theta_i (rho_i: the radius that balances mass i
+ * horizontally), zero exactly at an equilibrium; its Jacobian in theta is tridiagonal. */
+typedef struct nlink_balance nlink_balance;
+
+/* NULL (with whirl_last_error) on no memory; the chain is read, not owned. */
+nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c);
+void whirl_nlink_balance_free(nlink_balance *b); /* NULL is a no-op */
+
+/* R at (omega, theta[0..N-1]) and its Jacobian, factorised. GSL_EDOM if a link is not below the
+ * horizontal (|theta_i| >= pi/2), GSL_ESING if the Jacobian is exactly singular, GSL_ERANGE if
+ * not finite. */
+int whirl_nlink_balance_factor(nlink_balance *b, double omega, const double *theta);
+/* R_i of the last factor (N values, owned by b). */
+const double *whirl_nlink_balance_residual(const nlink_balance *b);
+/* ln |det A| of the last factor, its sign in *sign. */
+double whirl_nlink_balance_logdet(const nlink_balance *b, int *sign);
+/* The bordered system [A, dR/domega; c_theta^T, c_omega] (x_theta, x_omega) = (f, g) at the last
+ * factor (f NULL: zero), with one step of iterative refinement if refine; the Schur complement
+ * c_omega - c_theta . A^{-1} dR/domega in *schur (det of the system = det A * schur). */
+int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double c_omega,
+                                 const double *f, double g, int refine, double *x_theta,
+                                 double *x_omega, double *schur);
+/* Newton's method on R at fixed omega from theta (in place) to round-off; the last factor is
+ * the converged point's. GSL_EFAILED if it does not converge, GSL_EDOM if it ends with a link at
+ * or beyond the horizontal. */
+int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta);
+/* The nodes r, z (pivot first, z relative to the pivot) and the link tensions (tension[i] of
+ * link i, tension[0] = tension[1]; arrays of N + 1) of the link angles theta; returns the largest
+ * sine of the angle between a link and the resultant of the forces on the masses below it
+ * (zero at an equilibrium). */
+double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const double *theta,
+                                 double *r, double *z, double *tension);
+
 #endif

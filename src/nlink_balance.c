@@ -1,0 +1,288 @@
+/* The force balance of the N-link chain's relative equilibria in its link angles, written so that
+ * its Jacobian is tridiagonal.
+ *
+ * Link i (1..N) makes the angle theta_i with the downward vertical and carries the tension T_i
+ * along it; mass i (at the lower end of link i) feels gravity (0, -m_i g) and the centrifugal
+ * force (m_i omega^2 r_i, 0) in the co-rotating frame. The vertical balance of the part below
+ * link i fixes T_i cos theta_i = V_i = g sum_{j >= i} m_j, so the horizontal force of link i is
+ * H_i = V_i tan theta_i, and the horizontal balance of mass i reads
+ *     E_i = H_i - H_{i+1} - m_i omega^2 r_i = 0,   H_{N+1} = 0,   r_i = sum_{k <= i} l_k sin theta_k.
+ * Written so, dE_i/dtheta_k is dense below the diagonal (r_i depends on every link above). With
+ * rho_i = (H_i - H_{i+1}) / (m_i omega^2), the radius that balances mass i, the differences of
+ * successive balances are local:
+ *     R_i = rho_i - rho_{i-1} - l_i sin theta_i = 0,   i = 1..N,  rho_0 = 0 (the pivot on the axis),
+ * and R_i = (rho_i - r_i) - (rho_{i-1} - r_{i-1}), so R = 0 exactly when every E_i = 0. R_i
+ * depends on theta_{i-1}, theta_i, theta_{i+1} only: with s_j = V_j / (omega^2 cos^2 theta_j),
+ *     dR_i/dtheta_{i-1} = -s_{i-1} / m_{i-1},
+ *     dR_i/dtheta_i     =  s_i / m_i + s_i / m_{i-1} [i >= 2] - l_i cos theta_i,
+ *     dR_i/dtheta_{i+1} = -s_{i+1} / m_i,
+ *     dR_i/domega       = -2 (rho_i - rho_{i-1}) / omega,
+ * a tridiagonal matrix A factorised by Gaussian elimination with partial pivoting (LAPACK dgttrf,
+ * O(N)). Numerically each R_i is formed from quantities of its own links: the round-off of a
+ * residual stays that of a few neighbouring terms, where the shot from the tip (src/nlink.c)
+ * carries the round-off of every link below up the chain, amplified by the ratios of the
+ * tensions (on the high modes at high rates by 1e6 and more).
+ *
+ * The continuation (src/nlink_path.c) adds one row, the arclength condition c_theta . d theta +
+ * c_omega d omega = g, and solves the bordered system
+ *     [ A        b      ] [d theta]   [f]
+ *     [ c_theta^T c_omega] [d omega] = [g],   b = dR/domega,
+ * by block elimination: v = A^{-1} b, w = A^{-1} f, d omega = (g - c.w) / (c_omega - c.v),
+ * d theta = w - d omega v (Keller 1977; Govaerts & Pryce 1990, "Block elimination with one
+ * refinement solves bordered linear systems accurately", BIT 30:490: one step of iterative
+ * refinement restores the accuracy lost where A is nearly singular, at a fold), O(N) per solve.
+ * Its determinant det A (c_omega - c.v) changes sign where the curve of equilibria meets another
+ * (a branch point) and not at a fold, where both factors do.
+ *
+ * The polish at fixed omega (Newton's method on R with the tridiagonal A) serves the list of all
+ * equilibria (src/equilibria.c) as well. Where A is singular the equilibrium is a fold. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include <gsl/gsl_math.h>
+#include <lapacke.h>
+
+#include "error.h"
+#include "steady_internal.h"
+
+struct nlink_balance {
+    const whirl_chain *c;
+    double omega;
+    double *v;                 /* V_i, N */
+    double *rho;               /* rho_i, N */
+    double *res;               /* R_i, N */
+    double *b;                 /* dR_i/domega, N */
+    double *dl, *d, *du, *du2; /* A and its LU factors: N - 1, N, N - 1, N - 2 */
+    double *a_dl, *a_d, *a_du; /* a copy of A (for the refinement): N each */
+    double *u, *rf;            /* scratch, 2 N each */
+    lapack_int *ipiv;
+    int factored;
+    double logdet;             /* ln |det A| */
+    int det_sign;              /* sign of det A */
+};
+
+nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c)
+{
+    size_t n = c->n;
+    nlink_balance *b = calloc(1, sizeof *b);
+    if (b == NULL) goto fail;
+    b->c = c;
+    b->v = malloc(15 * n * sizeof *b->v);
+    b->ipiv = malloc(n * sizeof *b->ipiv);
+    if (b->v == NULL || b->ipiv == NULL) goto fail;
+    b->rho = b->v + n;
+    b->res = b->rho + n;
+    b->b = b->res + n;
+    b->d = b->b + n;
+    b->dl = b->d + n;
+    b->du = b->dl + n;
+    b->du2 = b->du + n;
+    b->a_dl = b->du2 + n;
+    b->a_d = b->a_dl + n;
+    b->a_du = b->a_d + n;
+    b->u = b->a_du + n;
+    b->rf = b->u + 2 * n;
+    double v = 0;
+    for (size_t i = n; i >= 1; i--) b->v[i - 1] = v += c->mass[i - 1] * c->gravity;
+    return b;
+fail:
+    whirl_nlink_balance_free(b);
+    whirl_fail(GSL_ENOMEM, "out of memory for the force balance of %zu links", n);
+    return NULL;
+}
+
+void whirl_nlink_balance_free(nlink_balance *b)
+{
+    if (b == NULL) return;
+    free(b->v);
+    free(b->ipiv);
+    free(b);
+}
+
+/* rho_i and R_i at (omega, theta); with jac, also A (factorised) and b. GSL_EDOM where a link
+ * is horizontal or beyond (its tension would be infinite or negative), GSL_ESING where A is
+ * exactly singular. */
+static int evaluate(nlink_balance *b, double omega, const double *theta, int jac)
+{
+    const whirl_chain *c = b->c;
+    size_t n = c->n;
+    const double w2 = omega * omega;
+    b->omega = omega;
+    b->factored = 0;
+    double h_below = 0, s_below = 0, rho_above = 0;
+    /* rho_i from the tip up: H_{i+1} is the one below */
+    for (size_t i = n; i >= 1; i--) {
+        const double th = theta[i - 1];
+        if (!(fabs(th) < M_PI_2))
+            return whirl_fail(GSL_EDOM, "link %zu at %.6g rad from the vertical: not a hanging "
+                              "chain", i, th);
+        const double co = cos(th), h = b->v[i - 1] * tan(th), m = c->mass[i - 1];
+        b->rho[i - 1] = (h - h_below) / (m * w2);
+        if (jac) {
+            const double s = b->v[i - 1] / (w2 * co * co);
+            b->d[i - 1] = s / m - c->length[i - 1] * co + (i >= 2 ? s / c->mass[i - 2] : 0);
+            if (i < n) {
+                b->dl[i - 1] = -s / m;
+                b->du[i - 1] = -s_below / m;
+            }
+            s_below = s;
+        }
+        h_below = h;
+    }
+    for (size_t i = 1; i <= n; i++) {
+        double rho = b->rho[i - 1];
+        b->res[i - 1] = rho - rho_above - c->length[i - 1] * sin(theta[i - 1]);
+        if (jac) b->b[i - 1] = -2 * (rho - rho_above) / omega;
+        rho_above = rho;
+    }
+    if (!jac) return GSL_SUCCESS;
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(b->d[i]) || !isfinite(b->res[i]))
+            return whirl_fail(GSL_ERANGE, "the force balance is not finite at omega=%g", omega);
+    for (size_t i = 0; i < n; i++) {
+        b->a_d[i] = b->d[i];
+        if (i + 1 < n) b->a_dl[i] = b->dl[i], b->a_du[i] = b->du[i];
+    }
+    lapack_int info = LAPACKE_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
+    if (info != 0)
+        return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega);
+    b->logdet = 0;
+    b->det_sign = 1;
+    for (size_t i = 0; i < n; i++) {
+        b->logdet += log(fabs(b->d[i]));
+        if (b->d[i] < 0) b->det_sign = -b->det_sign;
+        if (b->ipiv[i] != (lapack_int)i + 1) b->det_sign = -b->det_sign;
+    }
+    b->factored = 1;
+    return GSL_SUCCESS;
+}
+
+int whirl_nlink_balance_factor(nlink_balance *b, double omega, const double *theta)
+{
+    return evaluate(b, omega, theta, 1);
+}
+
+const double *whirl_nlink_balance_residual(const nlink_balance *b)
+{
+    return b->res;
+}
+
+double whirl_nlink_balance_logdet(const nlink_balance *b, int *sign)
+{
+    *sign = b->det_sign;
+    return b->logdet;
+}
+
+/* y = A x for the tridiagonal A kept in a_dl, a_d, a_du. */
+static double tri_row(const nlink_balance *b, const double *x, size_t i)
+{
+    size_t n = b->c->n;
+    double y = b->a_d[i] * x[i];
+    if (i > 0) y += b->a_dl[i - 1] * x[i - 1];
+    if (i + 1 < n) y += b->a_du[i] * x[i + 1];
+    return y;
+}
+
+/* One block elimination: x_theta, *x_omega from the right-hand side (f, g) (f NULL: zero);
+ * the Schur complement c_omega - c.v in *schur. */
+static int eliminate(nlink_balance *b, const double *c_theta, double c_omega, const double *f,
+                     double g, double *x_theta, double *x_omega, double *schur)
+{
+    size_t n = b->c->n;
+    double *v = b->u, *w = b->u + n;
+    for (size_t i = 0; i < n; i++) v[i] = b->b[i], w[i] = f ? f[i] : 0;
+    lapack_int info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 2, b->dl, b->d,
+                                          b->du, b->du2, b->ipiv, b->u, (lapack_int)n);
+    if (info != 0) return whirl_fail(GSL_EFAILED, "tridiagonal solve (dgttrs): info %d",
+                                     (int)info);
+    double cv = 0, cw = 0;
+    for (size_t i = 0; i < n; i++) cv += c_theta[i] * v[i], cw += c_theta[i] * w[i];
+    *schur = c_omega - cv;
+    const double dw = (g - cw) / *schur;
+    if (!isfinite(dw))
+        return whirl_fail(GSL_ESING, "omega=%g: the bordered system is singular (a branch "
+                          "point)", b->omega);
+    for (size_t i = 0; i < n; i++) x_theta[i] = w[i] - dw * v[i];
+    *x_omega = dw;
+    return GSL_SUCCESS;
+}
+
+int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double c_omega,
+                                 const double *f, double g, int refine, double *x_theta,
+                                 double *x_omega, double *schur)
+{
+    if (!b->factored) return whirl_fail(GSL_EINVAL, "the force balance is not factorised");
+    int status = eliminate(b, c_theta, c_omega, f, g, x_theta, x_omega, schur);
+    if (status || !refine) return status;
+    /* one step of iterative refinement: the residual of the bordered system, solved again */
+    size_t n = b->c->n;
+    double *rf = b->rf, *dx = rf + n, dw, s2;
+    double rg = g - c_omega * *x_omega;
+    for (size_t i = 0; i < n; i++) {
+        rf[i] = (f ? f[i] : 0) - tri_row(b, x_theta, i) - b->b[i] * *x_omega;
+        rg -= c_theta[i] * x_theta[i];
+    }
+    status = eliminate(b, c_theta, c_omega, rf, rg, dx, &dw, &s2);
+    if (!status) {
+        for (size_t i = 0; i < n; i++) x_theta[i] += dx[i];
+        *x_omega += dw;
+    }
+    return status;
+}
+
+int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
+{
+    size_t n = b->c->n;
+    double prev = INFINITY;
+    for (int it = 0; it < 30; it++) {
+        int status = evaluate(b, omega, theta, 1);
+        if (status) return status;
+        double *step = b->u;
+        for (size_t i = 0; i < n; i++) step[i] = -b->res[i];
+        lapack_int info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 1, b->dl,
+                                              b->d, b->du, b->du2, b->ipiv, step, (lapack_int)n);
+        if (info != 0) return whirl_fail(GSL_EFAILED, "tridiagonal solve (dgttrs): info %d",
+                                         (int)info);
+        double norm = 0;
+        for (size_t i = 0; i < n; i++) {
+            theta[i] += step[i];
+            norm = fmax(norm, fabs(step[i]));
+        }
+        if (!isfinite(norm)) break;
+        if (norm <= 8 * DBL_EPSILON || (norm <= 1e-10 && norm >= 0.5 * prev)) {
+            for (size_t i = 0; i < n; i++)
+                if (!(fabs(theta[i]) < M_PI_2))
+                    return whirl_fail(GSL_EDOM, "omega=%g: Newton's method on the link angles "
+                                      "leaves link %zu horizontal or compressed", omega, i + 1);
+            return evaluate(b, omega, theta, 1);
+        }
+        prev = norm;
+    }
+    return whirl_fail(GSL_EFAILED, "omega=%g: Newton's method on the link angles does not "
+                      "converge", omega);
+}
+
+double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const double *theta,
+                                 double *r, double *z, double *tension)
+{
+    size_t n = c->n;
+    const double w2 = omega * omega;
+    r[0] = z[0] = 0;
+    for (size_t i = 1; i <= n; i++) {
+        r[i] = r[i - 1] + c->length[i - 1] * sin(theta[i - 1]);
+        z[i] = z[i - 1] - c->length[i - 1] * cos(theta[i - 1]);
+    }
+    /* the resultant (H_i, V_i) of the forces on the masses below link i, from the tip up, and
+     * the sine of its angle to the link */
+    double h = 0, v = 0, worst = 0;
+    for (size_t i = n; i >= 1; i--) {
+        h += w2 * c->mass[i - 1] * r[i];
+        v += c->gravity * c->mass[i - 1];
+        const double t = hypot(h, v), th = theta[i - 1];
+        tension[i] = t;
+        worst = fmax(worst, fabs(h * cos(th) - v * sin(th)) / t);
+    }
+    tension[0] = tension[1];
+    return worst;
+}
