@@ -379,8 +379,9 @@ static int newton_shape(whirl_cstab *w, double omega)
                 }
             }
 #undef J
-        lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, (lapack_int)nn, 1, jac,
-                                             (lapack_int)nn, w->ipiv, f, (lapack_int)nn);
+        int info; /* on a worker thread when large: a stop request ends the call at once */
+        const int status = whirl_worker_dgesv(nn, 1, jac, nn, w->ipiv, f, nn, &info);
+        if (status) return status;
         if (info != 0)
             return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = %g is "
                                            "singular (dgesv info %d)", omega, (int)info);
@@ -695,7 +696,7 @@ static double cstab_energy(void *data, size_t k)
 static int shifted_lu(whirl_cstab *w, double shift, int tries)
 {
     const size_t n = N_FIELDS * w->np;
-    lapack_int info = 1;
+    int info = 1;
     for (int k = 0; k < tries && info != 0; k++) { /* s an eigenvalue: another s */
         w->shift = shift * pow(1.7, k);
         for (size_t i = 0; i < n * n; i++) w->a[i] = w->a0[i] - w->shift * w->b0[i];
@@ -707,8 +708,8 @@ static int shifted_lu(whirl_cstab *w, double shift, int tries)
         for (size_t i = 0; i < n; i++) w->row_a[i] = w->row_a[i] > 0 ? 1 / w->row_a[i] : 1;
         for (size_t j = 0; j < n; j++)
             for (size_t i = 0; i < n; i++) w->a[i + j * n] *= w->row_a[i];
-        info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, w->a,
-                                   (lapack_int)n, w->ipiv);
+        const int status = whirl_worker_dgetrf(n, w->a, n, w->ipiv, &info); /* see dgesv */
+        if (status) return status;
     }
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgetrf info %d)",
@@ -751,24 +752,22 @@ static int shifted_eigen(whirl_cstab *w, int vectors)
     const size_t col[N_DYNAMIC] = {F_U, F_W, F_V}; /* field of block k of y */
     int status = shifted_lu(w, CS_SHIFT, 4);
     if (status) return status;
-    lapack_int info;
+    int info;
     double *x = w->b; /* n x ny: B's columns of (u, w, vh), then solved */
     for (size_t k = 0; k < N_DYNAMIC; k++)
         memcpy(x + k * np * n, w->b0 + col[k] * np * n, np * n * sizeof(double));
     for (size_t j = 0; j < ny; j++)
         for (size_t i = 0; i < n; i++) x[i + j * n] *= w->row_a[i];
-    info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)ny, w->a,
-                               (lapack_int)n, w->ipiv, x, (lapack_int)n);
-    if (info != 0) return whirl_fail(GSL_EFAILED, "dgetrs info %d", (int)info);
+    status = whirl_worker_dgetrs(n, ny, w->a, n, w->ipiv, x, n, &info);
+    if (status) return status;
+    if (info != 0) return whirl_fail(GSL_EFAILED, "dgetrs info %d", info);
     double *c = w->a; /* ny x ny: the rows of (u, w, vh) */
     for (size_t j = 0; j < ny; j++)
         for (size_t k = 0; k < N_DYNAMIC; k++)
             memcpy(c + j * ny + k * np, x + j * n + col[k] * np, np * sizeof(double));
-    int dinfo; /* on a worker thread: a stop request ends the call at once */
     status = whirl_worker_dgeev('N', vectors ? 'V' : 'N', ny, c, ny, w->alphar, w->alphai, w->vr,
-                                ny, w->work, (int)w->lwork, &dinfo);
+                                ny, w->work, (int)w->lwork, &info);
     if (status) return status;
-    info = dinfo;
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
                           (int)info);

@@ -189,3 +189,100 @@ int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, 
     dgeev_release(j);
     return GSL_SUCCESS;
 }
+
+/* ---- LU (dgetrf, dgetrs, dgesv) on a worker ---- */
+
+typedef enum { LU_FACTOR = 1, LU_SOLVE = 2 } lu_part; /* dgesv: both */
+
+typedef struct lu_job {
+    int parts;
+    size_t n, nrhs;
+    double *a, *b; /* one block: a (n x n), then b (n x nrhs) */
+    lapack_int *ipiv;
+    lapack_int info;
+} lu_job;
+
+static void lu_release(void *data)
+{
+    lu_job *j = data;
+    free(j->a);
+    free(j->ipiv);
+    free(j);
+}
+
+static lapack_int lu_call(int parts, size_t n, size_t nrhs, double *a, size_t lda,
+                          lapack_int *ipiv, double *b, size_t ldb)
+{
+    lapack_int info = 0;
+    if (parts & LU_FACTOR)
+        info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, a,
+                                   (lapack_int)lda, ipiv);
+    if (info == 0 && (parts & LU_SOLVE))
+        info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)nrhs, a,
+                                   (lapack_int)lda, ipiv, b, (lapack_int)ldb);
+    return info;
+}
+
+static void lu_run(void *data, const whirl_worker *self)
+{
+    (void)self; /* one LAPACK call: nothing to poll */
+    lu_job *j = data;
+    j->info = lu_call(j->parts, j->n, j->nrhs, j->a, j->n, j->ipiv, j->b, j->n);
+}
+
+/* The LU work of parts on a (n x n) and b (n x nrhs): here if small, else on copies in a
+ * worker, whose results are copied back. */
+static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapack_int *ipiv,
+                   double *b, size_t ldb, int *info)
+{
+    const double dn = (double)n;
+    const double flops = ((parts & LU_FACTOR) ? 2.0 / 3.0 * dn * dn * dn : 0) +
+                         ((parts & LU_SOLVE) ? 2.0 * dn * dn * (double)nrhs : 0);
+    if (flops <= WORKER_INLINE_FLOPS) {
+        *info = (int)lu_call(parts, n, nrhs, a, lda, ipiv, b, ldb);
+        return GSL_SUCCESS;
+    }
+    lu_job *j = calloc(1, sizeof *j);
+    const size_t nb = (parts & LU_SOLVE) ? n * nrhs : 0;
+    if (j == NULL || (j->a = malloc((n * n + nb) * sizeof(double))) == NULL ||
+        (j->ipiv = malloc((n ? n : 1) * sizeof(lapack_int))) == NULL) {
+        if (j) free(j->a);
+        free(j);
+        return whirl_fail(GSL_ENOMEM, "out of memory for a linear solve of %zu rows", n);
+    }
+    j->parts = parts;
+    j->n = n;
+    j->nrhs = nrhs;
+    j->b = j->a + n * n;
+    for (size_t c = 0; c < n; c++) memcpy(j->a + c * n, a + c * lda, n * sizeof(double));
+    if (!(parts & LU_FACTOR)) memcpy(j->ipiv, ipiv, n * sizeof(lapack_int));
+    for (size_t c = 0; c < (nb ? nrhs : 0); c++) memcpy(j->b + c * n, b + c * ldb, n * sizeof(double));
+    if (whirl_worker_run(lu_run, j, lu_release) != GSL_SUCCESS)
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during a linear solve");
+    *info = (int)j->info;
+    if (parts & LU_FACTOR) {
+        for (size_t c = 0; c < n; c++) memcpy(a + c * lda, j->a + c * n, n * sizeof(double));
+        memcpy(ipiv, j->ipiv, n * sizeof(lapack_int));
+    }
+    for (size_t c = 0; c < (nb ? nrhs : 0); c++) memcpy(b + c * ldb, j->b + c * n, n * sizeof(double));
+    lu_release(j);
+    return GSL_SUCCESS;
+}
+
+int whirl_worker_dgetrf(size_t n, double *a, size_t lda, lapack_int *ipiv, int *info)
+{
+    return lu_work(LU_FACTOR, n, 0, a, lda, ipiv, NULL, 1, info);
+}
+
+int whirl_worker_dgetrs(size_t n, size_t nrhs, const double *a, size_t lda,
+                        const lapack_int *ipiv, double *b, size_t ldb, int *info)
+{
+    /* the solve reads a and ipiv only (on a worker it reads copies) */
+    return lu_work(LU_SOLVE, n, nrhs, (double *)a, lda, (lapack_int *)ipiv, b, ldb, info);
+}
+
+int whirl_worker_dgesv(size_t n, size_t nrhs, double *a, size_t lda, lapack_int *ipiv, double *b,
+                       size_t ldb, int *info)
+{
+    return lu_work(LU_FACTOR | LU_SOLVE, n, nrhs, a, lda, ipiv, b, ldb, info);
+}

@@ -4,6 +4,10 @@
 #ifndef WHIRL_WORKER_H
 #define WHIRL_WORKER_H
 
+#include <stddef.h>
+
+#include <lapacke.h>
+
 typedef struct whirl_worker whirl_worker; /* the control block of one run */
 
 /* The work: runs fn(arg, self). It may ask whirl_worker_abandoned(self) between its pieces and
@@ -34,5 +38,19 @@ int whirl_worker_abandoned(const whirl_worker *self);
 #define WORKER_DGEEV_INLINE_MAX 64
 int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, double *re,
                        double *im, double *v, size_t ldv, double *work, int lwork, int *info);
+
+/* LAPACK's LU of a dense n x n matrix (column-major, leading dimension lda), as the routines of
+ * the same name: dgetrf factors a in place (pivots into ipiv); dgetrs solves with those factors
+ * for the n x nrhs right-hand sides b (leading dimension ldb) in place; dgesv does both. Work
+ * above WORKER_INLINE_FLOPS floating-point operations runs on copies in a worker
+ * (whirl_worker_run), so that a stop request ends the call at once; smaller work runs here.
+ * *info is LAPACK's; returns GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; a, ipiv, b
+ * untouched) or GSL_ENOMEM. */
+#define WORKER_INLINE_FLOPS 2e7 /* about 10 ms of one core: below, a thread costs more */
+int whirl_worker_dgetrf(size_t n, double *a, size_t lda, lapack_int *ipiv, int *info);
+int whirl_worker_dgetrs(size_t n, size_t nrhs, const double *a, size_t lda,
+                        const lapack_int *ipiv, double *b, size_t ldb, int *info);
+int whirl_worker_dgesv(size_t n, size_t nrhs, double *a, size_t lda, lapack_int *ipiv, double *b,
+                       size_t ldb, int *info);
 
 #endif
