@@ -544,8 +544,11 @@ int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p, whirl_regime
 }
 
 int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
-                       size_t n, double t_change, whirl_regime_result *res)
+                       size_t n, double t_change, whirl_regime_result *res, size_t *n_done)
 {
+    size_t done_here = 0;
+    if (n_done == NULL) n_done = &done_here;
+    *n_done = 0;
     if (p->frame != WHIRL_FRAME_ROTATING)
         return whirl_fail(GSL_EINVAL, "a sweep of omega needs the rotating frame");
     if (n < 1) return whirl_fail(GSL_EINVAL, "a sweep needs at least one rate");
@@ -560,9 +563,11 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
     int status = from_rest(w, p, omega[0], &res[0]);
     status = finish(w, status, &res[0]);
     if (status) return status;
+    *n_done = 1;
     for (size_t j = 1; j < n; j++) {
         if (res[j - 1].state == WHIRL_REGIME_FAILED) {
             result_failed(&res[j], w);
+            *n_done = j + 1;
             continue;
         }
         const whirl_ramp change = {omega[j - 1], omega[j], w->t, w->t + t_change};
@@ -571,6 +576,7 @@ int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const doub
         if (status == GSL_SUCCESS) status = settle(w, p, p->t_max - p->t_ramp, &res[j]);
         status = finish(w, status, &res[j]);
         if (status) return status;
+        *n_done = j + 1;
     }
     return GSL_SUCCESS;
 }

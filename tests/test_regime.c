@@ -156,6 +156,18 @@ static void test_step_and_seed(void **state)
     whirl_chain_free(chain);
 }
 
+/* An observer that stops the run at time t_stop. */
+typedef struct stop_after {
+    double t_stop;
+} stop_after;
+
+static int stop_late(void *ctx, double t, double frame_angle, const double *pivot, const double *x,
+                     size_t n)
+{
+    (void)frame_angle, (void)pivot, (void)x, (void)n;
+    return t >= ((const stop_after *)ctx)->t_stop ? WHIRL_EINTERRUPTED : GSL_SUCCESS;
+}
+
 /* A sweep's first point is the run from rest; the next one settles on the same branch. */
 static void test_sweep(void **state)
 {
@@ -165,17 +177,29 @@ static void test_sweep(void **state)
     const double omega[] = {3.4, 3.55};
     whirl_regime_result res[2];
     whirl_regime *w = whirl_regime_alloc(chain);
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res), GSL_SUCCESS);
+    size_t done = 0;
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res, &done), GSL_SUCCESS);
+    assert_int_equal(done, 2);
     const whirl_regime_result r = run(chain, &p);
     assert_same(&res[0], &r);
+    /* a stop during the second point keeps the first: *n_done says how many are complete */
+    whirl_regime_result seen[2], part[2]; /* observed runs (observing moves the steps) */
+    stop_after st = {INFINITY};
+    whirl_regime_observe(w, stop_late, &st, 0.25);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, seen, &done), GSL_SUCCESS);
+    st.t_stop = seen[0].t_end + 1;
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, part, &done), WHIRL_EINTERRUPTED);
+    whirl_regime_observe(w, NULL, NULL, 0);
+    assert_int_equal(done, 1);
+    assert_same(&part[0], &seen[0]);
     assert_int_equal(res[1].state, WHIRL_REGIME_SETTLED);
     assert_int_equal(res[1].nodes, res[0].nodes);
     assert_true(res[1].shape_error < p.settle_tol);
     p.frame = WHIRL_FRAME_INERTIAL;
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 10, res, NULL), GSL_EINVAL);
     p.frame = WHIRL_FRAME_ROTATING;
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0, res), GSL_EINVAL);
-    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, NAN, res), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, 0, res, NULL), GSL_EINVAL);
+    assert_int_equal(whirl_regime_sweep(w, &p, omega, 2, NAN, res, NULL), GSL_EINVAL);
     whirl_regime_free(w);
     whirl_chain_free(chain);
 }

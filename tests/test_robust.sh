@@ -116,7 +116,7 @@ expect_error "fit: more than 20000 points are refused" "a fit takes at most 2000
 # command keeps rows, no temporary file left ----
 # interrupt NAME SIGNAL ROWS ARGS...: runs `whirl ARGS -o $tmp/int/out.csv`, sends SIGNAL after
 # 1 s; ROWS = keep: the output must then exist with its header and the rows done (possibly
-# none); none: no output.
+# none); rows: likewise with at least one row; none: no output.
 interrupt() {
   name=$1; sig=$2; rows=$3; shift 3
   rm -rf "$tmp/int"; mkdir "$tmp/int"
@@ -128,7 +128,11 @@ interrupt() {
   rc=$?
   left=$(ls -A "$tmp/int" | grep -v '^out.csv$')
   kept=$( [ -f "$tmp/int/out.csv" ] && grep -cv '^#' "$tmp/int/out.csv" || echo 0)
-  if [ "$rows" = keep ]; then [ "$kept" -ge 1 ]; else [ ! -e "$tmp/int/out.csv" ]; fi
+  case $rows in
+    keep) [ "$kept" -ge 1 ] ;;
+    rows) [ "$kept" -ge 2 ] ;;
+    *) [ ! -e "$tmp/int/out.csv" ] ;;
+  esac
   output_ok=$?
   if [ $rc -eq 130 ] && [ -z "$left" ] && [ $output_ok -eq 0 ]; then
     pass "interrupt ($sig): $name"
@@ -148,6 +152,8 @@ interrupt "stability map" INT keep stability --omega-min 2 --omega-max 8 --omega
   --periods 20
 interrupt "sweep" INT keep sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
 interrupt "driven branch" INT keep driven --omega-min 1 --omega-max 4000 --eps 0.05
+interrupt "regime sweep (the points completed are kept)" INT rows regime --sweep --omega-min 3 \
+  --omega-max 3.5 --omega-count 5000 --eps 0.1 --links 5 --t-max 60
 interrupt "sweep of the N-link chain" TERM keep sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 \
   --omega-count 30001 --links 300
 interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2

@@ -134,9 +134,12 @@ WHIRL_API int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p,
 /* Hysteresis: a run from rest at omega[0] (p->omega is ignored), then omega changed to each next
  * omega[j] by a smooth step over t_change (> 0) and the run continued until it
  * settles (or for t_max - t_ramp), res[j] the outcome there. Rotating frame only (GSL_EINVAL
- * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED). */
+ * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED).
+ * If n_done is not NULL it receives the number of points of res[] completed, also when the
+ * sweep stops early (a stop request: WHIRL_EINTERRUPTED, res[0..*n_done-1] kept). */
 WHIRL_API int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
-                                 size_t n, double t_change, whirl_regime_result *res);
+                                 size_t n, double t_change, whirl_regime_result *res,
+                                 size_t *n_done);
 
 /* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
 WHIRL_API const char *whirl_regime_state_name(whirl_regime_state s);

@@ -373,10 +373,13 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     observe_ctx oc;
     observe_begin(cmd, o, w, &oc, NULL, "time (of the longest possible)",
                   o->p.t_max + (double)(n - 1) * (o->t_change + o->p.t_max - o->p.t_ramp));
-    const int status = whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res);
+    size_t done = 0; /* points complete; on a stop, the rows written */
+    const int status = whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res, &done);
     cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
-    if (status == WHIRL_EINTERRUPTED)
-        rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
+    const int interrupted = status == WHIRL_EINTERRUPTED;
+    char stopped[512] = "";
+    if (interrupted)
+        snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
     else if (status != GSL_SUCCESS)
         rc = cli_error(cmd, "the sweep failed: %s", whirl_last_error());
     cli_out out;
@@ -385,9 +388,13 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
         fprintf(out.fp, "# whirl regime sweep: omega up then down at eps = %s, the state "
                 "carried over, t_change = %s\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)),
                 CLI_NUM(regime_cli_user(o, CLI_UNIT_TIME, o->t_change)));
+        if (interrupted)
+            fprintf(out.fp, "# interrupted at omega %s (%s): the %zu of %zu points completed "
+                    "until then\n", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[done < n ? done : n - 1])),
+                    stopped, done, n);
         regime_cli_write_parameters(out.fp, o);
         regime_cli_write_critical(out.fp, o, chain);
-        for (size_t j = 1; j < n; j++)
+        for (size_t j = 1; j < done; j++)
             if (state_class(&res[j]) != state_class(&res[j - 1]))
                 fprintf(out.fp, "# jump %s: between omega %s and %s: %s %d nodes -> %s %d "
                         "nodes\n", j < n_up ? "up" : "down",
@@ -396,12 +403,17 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
                         whirl_regime_state_name(res[j - 1].state), res[j - 1].nodes,
                         whirl_regime_state_name(res[j].state), res[j].nodes);
         fprintf(out.fp, "%s\n", sweep_columns);
-        for (size_t j = 0; j < n; j++) {
+        for (size_t j = 0; j < done; j++) {
             fprintf(out.fp, "%s,%s,", j < n_up ? "up" : "down",
                     CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[j])));
             regime_cli_write_result(out.fp, o, &res[j]);
         }
         rc = cli_out_commit(cmd, &out);
+        if (rc == 0 && interrupted) {
+            cli_error(cmd, "interrupted at omega %s: the %zu points completed until then are "
+                      "written", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega[done < n ? done : n - 1])), done);
+            rc = CLI_EXIT_INTERRUPTED;
+        }
     }
     free(omega);
     free(res);
