@@ -21,6 +21,7 @@
  * default: Nocedal 1980, Liu & Nocedal 1989), then optionally Newton steps on the analytic
  * Hessian (Cholesky, LAPACK dpotrf/dpotrs) to bring the gradient to round-off. */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -129,7 +130,11 @@ void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
 
 whirl_minimize_options whirl_minimize_options_default(void)
 {
-    whirl_minimize_options o = {"LD_LBFGS", MINIMIZE_MAX_EVALUATIONS, 1};
+    whirl_minimize_options o = {.algorithm = "LD_LBFGS",
+                                .max_evaluations = MINIMIZE_MAX_EVALUATIONS,
+                                .polish = 1,
+                                .progress = NULL,
+                                .progress_data = NULL};
     return o;
 }
 
@@ -156,7 +161,7 @@ typedef struct minimize_job {
     double *lower;       /* 2n: bounds */
     const whirl_worker *self;
     nlopt_opt nl;        /* stopped when a stop is requested or the caller left */
-    int evaluations;
+    atomic_int evaluations; /* read by the caller's progress display while the job runs */
     whirl_minimize_stats stats;
     int status;
     char message[256];
@@ -184,7 +189,7 @@ static double potential_objective(unsigned n, const double *theta, double *grad,
     (void)n;
     minimize_job *j = data;
     if (job_stopped(j)) nlopt_force_stop(j->nl);
-    j->evaluations++;
+    atomic_fetch_add_explicit(&j->evaluations, 1, memory_order_relaxed);
     return whirl_potential(j->chain, j->omega, theta, grad);
 }
 
@@ -281,12 +286,12 @@ static void minimize_run(void *data, const whirl_worker *self)
     nlopt_set_ftol_rel(nl, 1e-16);
     nlopt_set_maxeval(nl, j->max_evaluations > 0 ? j->max_evaluations : MINIMIZE_MAX_EVALUATIONS);
     nlopt_result res = nlopt_optimize(nl, theta_out, &v);
-    j->stats.evaluations = j->evaluations;
+    j->stats.evaluations = atomic_load(&j->evaluations);
     j->stats.nlopt_result = (int)res;
     j->stats.newton_steps = 0;
     if (job_stopped(j)) {
         status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request after %d evaluations",
-                            j->evaluations);
+                            j->stats.evaluations);
         goto done;
     }
     if (res == NLOPT_INVALID_ARGS) {
@@ -323,6 +328,19 @@ done:
     if (status) snprintf(j->message, sizeof j->message, "%s", whirl_last_error());
 }
 
+/* The caller's progress display, called by the worker's poll on the caller's thread. */
+typedef struct minimize_tick_ctx {
+    minimize_job *job; /* alive while the caller waits */
+    const whirl_minimize_options *opt;
+    int cap;
+} minimize_tick_ctx;
+
+static void minimize_tick(void *data)
+{
+    const minimize_tick_ctx *t = data;
+    t->opt->progress(t->opt->progress_data, atomic_load(&t->job->evaluations), t->cap);
+}
+
 int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimize_options *opt,
                          const double *theta, double *theta_out, whirl_minimize_stats *stats)
 {
@@ -355,7 +373,11 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
     j->max_evaluations = opt->max_evaluations;
     j->polish = opt->polish;
     for (size_t i = 0; i < n; i++) j->theta[i] = theta ? theta[i] : MINIMIZE_START_TILT;
-    if (whirl_worker_run(minimize_run, j, job_free) != GSL_SUCCESS)
+    atomic_init(&j->evaluations, 0);
+    minimize_tick_ctx tc = {j, opt, j->max_evaluations > 0 ? j->max_evaluations
+                                                           : MINIMIZE_MAX_EVALUATIONS};
+    if (whirl_worker_run_ticked(minimize_run, j, job_free, opt->progress ? minimize_tick : NULL,
+                                &tc) != GSL_SUCCESS)
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the minimisation"); /* the
                                                      job is the worker's now */
     if (stats) *stats = j->stats;

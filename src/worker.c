@@ -68,6 +68,12 @@ static void *worker_main(void *data)
 
 int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg))
 {
+    return whirl_worker_run_ticked(fn, arg, release, NULL, NULL);
+}
+
+int whirl_worker_run_ticked(whirl_work_fn fn, void *arg, void (*release)(void *arg),
+                            void (*tick)(void *tick_data), void *tick_data)
+{
     whirl_worker *w = calloc(1, sizeof *w);
     pthread_condattr_t attr;
     int ready = w != NULL && pthread_condattr_init(&attr) == 0;
@@ -117,6 +123,11 @@ int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg))
         if (until.tv_nsec >= 1000000000L) until.tv_sec++, until.tv_nsec -= 1000000000L;
         const int rc = pthread_cond_timedwait(&w->done_cond, &w->lock, &until);
         (void)rc; /* ETIMEDOUT or a wake-up: the loop checks again */
+        if (tick && !w->done) { /* outside the lock: tick may take its time */
+            pthread_mutex_unlock(&w->lock);
+            tick(tick_data);
+            pthread_mutex_lock(&w->lock);
+        }
     }
     pthread_mutex_unlock(&w->lock);
     worker_unref(w);

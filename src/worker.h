@@ -25,6 +25,12 @@ typedef void (*whirl_work_fn)(void *arg, const whirl_worker *self);
  * If no thread can be started, fn runs in the calling thread (GSL_SUCCESS). */
 int whirl_worker_run(whirl_work_fn fn, void *arg, void (*release)(void *arg));
 
+/* whirl_worker_run that also calls tick(tick_data) on the calling thread at every poll (about
+ * every WORKER_POLL_SECONDS while fn runs; tick may be NULL): for a progress display, reading
+ * what fn publishes through atomics. */
+int whirl_worker_run_ticked(whirl_work_fn fn, void *arg, void (*release)(void *arg),
+                            void (*tick)(void *tick_data), void *tick_data);
+
 /* 1 once the caller of whirl_worker_run has returned without waiting for fn (self may be NULL:
  * fn run inline, never abandoned). Thread-safe. */
 int whirl_worker_abandoned(const whirl_worker *self);

@@ -167,6 +167,46 @@ static void test_minimize_stop(void **state)
     whirl_chain_free(c);
 }
 
+/* The progress callback: on the caller's thread, evaluations never decreasing, within the cap,
+ * the last no more than the minimisation's count. */
+typedef struct progress_seen {
+    pthread_t caller;
+    int calls, other_thread, last, decreasing, cap;
+} progress_seen;
+
+static void record_progress(void *data, int evaluations, int max_evaluations)
+{
+    progress_seen *p = data;
+    p->calls++;
+    if (!pthread_equal(pthread_self(), p->caller)) p->other_thread++;
+    if (evaluations < p->last) p->decreasing++;
+    p->last = evaluations;
+    p->cap = max_evaluations;
+}
+
+static void test_minimize_progress(void **state)
+{
+    (void)state;
+    const size_t n = 600; /* about 0.1 s of work or more: several 20 ms polls */
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
+    double *theta = malloc(n * sizeof *theta);
+    whirl_minimize_options o = whirl_minimize_options_default();
+    o.polish = 0;
+    o.max_evaluations = 5000;
+    progress_seen seen = {.caller = pthread_self()};
+    o.progress = record_progress;
+    o.progress_data = &seen;
+    whirl_minimize_stats st;
+    assert_int_equal(whirl_minimize_shape(c, 3, &o, NULL, theta, &st), GSL_SUCCESS);
+    assert_true(seen.calls >= 1);
+    assert_int_equal(seen.other_thread, 0);
+    assert_int_equal(seen.decreasing, 0);
+    assert_int_equal(seen.cap, 5000);
+    assert_true(seen.last <= st.evaluations);
+    free(theta);
+    whirl_chain_free(c);
+}
+
 /* No mode-1 shape exactly at or below the first critical rate of the tridiagonal eigenproblem. */
 static void test_below_critical(void **state)
 {
@@ -524,6 +564,7 @@ int main(void)
         cmocka_unit_test(test_gradient_and_hessian),
         cmocka_unit_test(test_minimum_is_mode1),
         cmocka_unit_test(test_minimize_stop),
+        cmocka_unit_test(test_minimize_progress),
         cmocka_unit_test(test_below_critical),
         cmocka_unit_test(test_algorithms),
         cmocka_unit_test(test_higher_modes_are_saddles),

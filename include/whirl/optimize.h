@@ -47,6 +47,10 @@ typedef struct whirl_minimize_options {
     int max_evaluations;   /* cap on NLopt's evaluations of V; <= 0: 100000 */
     int polish;            /* != 0: finish with Newton steps on the analytic Hessian (default 1
                             * in whirl_minimize_options_default) */
+    /* called on the caller's thread about every 20 ms while NLopt runs, with the evaluations
+     * of V so far and the cap (for a progress display; NULL: none, the default) */
+    void (*progress)(void *data, int evaluations, int max_evaluations);
+    void *progress_data; /* passed to progress */
 } whirl_minimize_options;
 
 /* What the minimisation did. */

@@ -14,6 +14,21 @@
 
 #define MINIMIZE_MAX_LINKS 2000 /* the dense Hessian: O(N^2) memory, O(N^3) work */
 
+/* The progress line: NLopt's evaluations against the cap (the time left is to the cap: a run
+ * that converges ends sooner). */
+typedef struct minimize_progress {
+    cli_progress_state state;
+    long done; /* evaluations at the last call */
+} minimize_progress;
+
+static void show_progress(void *data, int evaluations, int max_evaluations)
+{
+    minimize_progress *p = data;
+    p->state.total = max_evaluations;
+    p->done = evaluations;
+    cli_progress_update(&p->state, evaluations, 0);
+}
+
 int cmd_minimize(const cli_command *cmd, int argc, char **argv)
 {
     double omega = 0;
@@ -57,10 +72,18 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     mo.algorithm = algorithm;
     mo.polish = !no_polish;
     mo.max_evaluations = max_evaluations;
+    minimize_progress progress = {.done = 0};
+    cli_progress_begin(&progress.state, cmd, "evaluations (the time left: to the cap)",
+                       mo.max_evaluations > 0 ? mo.max_evaluations : 100000, 0);
+    mo.progress = show_progress;
+    mo.progress_data = &progress;
     whirl_minimize_stats st;
     const double t0 = cli_wall_seconds();
     const int status = whirl_minimize_shape(m.chain, omega, &mo, NULL, theta, &st);
     const double elapsed = cli_wall_seconds() - t0;
+    if (progress.state.shown > progress.state.start) /* a line was shown: end it */
+        cli_progress_update(&progress.state, status == GSL_SUCCESS ? st.evaluations : progress.done,
+                            1);
     if (status == GSL_EDOM) {
         double omega_1;
         if (steady_cli_critical(cmd, &m, 1, &omega_1) == 0)
