@@ -156,6 +156,28 @@ if "$WHIRL" stability --windows --modes 2 --omega-min 4.38 --omega-max 4.42 --sc
   else fail "continuum windows: mode 2 opens at $from"; fi
 else fail "continuum windows CSV: $(cat "$tmp/err" "$tmp/cw.csv" 2>/dev/null | tail -3)"; fi
 
+# With a tip mass (0.5): the continuum's mode-2 window against the N-link chain's (the same
+# tip mass on the last node) at N = 25, 50, 100, extrapolated with errors a/N + b/N^2, i.e.
+# (8 x_100 - 6 x_50 + x_25) / 3 (observed: within 1.1e-6 and 2.5e-6 of the continuum's edges,
+# while the N = 100 edges are 2.2e-3 away).
+tm="--tip-mass 0.5 --modes 2 --omega-min 4.2 --omega-max 4.5"
+if "$WHIRL" stability --windows $tm -o "$tmp/tc.csv" 2>"$tmp/err" &&
+   "$WHIRL" stability --windows $tm --links 25 -o "$tmp/t25.csv" 2>>"$tmp/err" &&
+   "$WHIRL" stability --windows $tm --links 50 -o "$tmp/t50.csv" 2>>"$tmp/err" &&
+   "$WHIRL" stability --windows $tm --links 100 -o "$tmp/t100.csv" 2>>"$tmp/err" &&
+   grep -q '^# whirl stability --windows: 100 links, tip mass 0.5' "$tmp/t100.csv"; then
+  bad=""
+  for edge in from to; do
+    c=$(csv_field "$tmp/tc.csv" $edge); a=$(csv_field "$tmp/t25.csv" $edge)
+    b=$(csv_field "$tmp/t50.csv" $edge); d=$(csv_field "$tmp/t100.csv" $edge)
+    awk -v c="$c" -v a="$a" -v b="$b" -v d="$d" 'BEGIN { x = (8 * d - 6 * b + a) / 3;
+      exit !(x - c < 1e-5 && c - x < 1e-5 && (d - c > 1e-3 || c - d > 1e-3)) }' || bad="$bad $edge"
+  done
+  if [ -z "$bad" ]; then
+    pass "continuum windows with a tip mass: mode 2 edges equal the N-link chain's extrapolated to 1e-5"
+  else fail "continuum windows with a tip mass: edges$bad disagree with the N-link extrapolation"; fi
+else fail "windows with a tip mass: $(cat "$tmp/err" | tail -3)"; fi
+
 # ---- a map stopped by Ctrl-C: exit 130, the finished rows kept, no temporary file; --resume
 # computes the rest, and the file equals that of a run without a stop ----
 # The stop comes at half the time the whole map took, so that it finds the map running on a

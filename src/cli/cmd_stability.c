@@ -279,7 +279,7 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
 static int run_windows(const cli_command *cmd, const options *o)
 {
     whirl_chain *c = NULL;
-    if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, 0)) == NULL)
+    if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, o->tip_mass)) == NULL)
         return cli_error(cmd, "%s", whirl_last_error());
     const size_t nmodes = (size_t)o->modes.n;
     whirl_window *win = calloc(nmodes * WINDOWS_MAX, sizeof *win);
@@ -317,7 +317,8 @@ static int run_windows(const cli_command *cmd, const options *o)
         const double rate = unit(o, CLI_UNIT_RATE);
         char chain[160], links[16];
         if (c) {
-            snprintf(chain, sizeof chain, "%d links", o->links);
+            snprintf(chain, sizeof chain, "%d links, tip mass %s", o->links,
+                     CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)));
             snprintf(links, sizeof links, "%d", o->links);
         } else {
             snprintf(chain, sizeof chain, "continuous chain, tip mass %s (Chebyshev collocation "
@@ -538,8 +539,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
          "--windows", "--links"},
         {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m",
-         "windows of the continuum: point mass at the free end (default 0)", "[0, 1e12]",
-         "--windows", "--links", NULL, CLI_UNIT_MASS},
+         "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
+         NULL, CLI_UNIT_MASS},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
