@@ -140,6 +140,10 @@ for sig in INT TERM; do
   interrupt 1 $sig stability --omega 3 --mode 2 --links 300 --linear
   interrupt 2 $sig stability --windows --links 300 --omega-min 3 --omega-max 30 --modes 2
   interrupt 60 $sig minimize --omega 40 --links 2000 --algorithm LN_BOBYQA
+  interrupt 1 $sig regime --sweep --omega-min 3 --omega-max 3.5 --omega-count 5000 --eps 0.1 --links 5 --t-max 60
+  interrupt 3 $sig stability --windows --modes 2 --omega-min 2 --omega-max 10 --degree 64
+  interrupt 20 $sig stability --windows --modes 2 --omega-min 4 --omega-max 5 --degree 64
+  interrupt 1 $sig equilibria --links 100 --omega 15
 done
 
 echo "category   tried  clean-error/ok  crash  hang  non-finite  file-left"
