@@ -134,6 +134,14 @@ int whirl_worker_run_ticked(whirl_work_fn fn, void *arg, void (*release)(void *a
     return status;
 }
 
+/* The rows x cols column-major block src (leading dimension lds) into dst (leading dimension
+ * ldd): the copies a worker reads instead of the caller's memory, and its results back. */
+static void copy_columns(double *dst, size_t ldd, const double *src, size_t lds, size_t rows,
+                         size_t cols)
+{
+    for (size_t c = 0; c < cols; c++) memcpy(dst + c * ldd, src + c * lds, rows * sizeof(double));
+}
+
 /* ---- dgeev on a worker ---- */
 
 typedef struct dgeev_job {
@@ -188,15 +196,15 @@ int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, 
     j->im = j->re + m;
     j->work = j->im + m;
     j->lwork = (lapack_int)lwork;
-    for (size_t c = 0; c < m; c++) memcpy(j->a + c * m, a + c * lda, m * sizeof(double));
+    copy_columns(j->a, m, a, lda, m, m);
     if (whirl_worker_run(dgeev_run, j, dgeev_release) != GSL_SUCCESS)
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the eigen-solve");
     *info = (int)j->info;
     memcpy(re, j->re, m * sizeof(double));
     memcpy(im, j->im, m * sizeof(double));
     if (jobvl == 'V' || jobvr == 'V')
-        for (size_t c = 0; c < m; c++) memcpy(v + c * ldv, j->v + c * m, m * sizeof(double));
-    for (size_t c = 0; c < m; c++) memcpy(a + c * lda, j->a + c * m, m * sizeof(double));
+        copy_columns(v, ldv, j->v, m, m, m);
+    copy_columns(a, lda, j->a, m, m, m);
     dgeev_release(j);
     return GSL_SUCCESS;
 }
@@ -265,17 +273,17 @@ static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapa
     j->n = n;
     j->nrhs = nrhs;
     j->b = j->a + n * n;
-    for (size_t c = 0; c < n; c++) memcpy(j->a + c * n, a + c * lda, n * sizeof(double));
+    copy_columns(j->a, n, a, lda, n, n);
     if (!(parts & LU_FACTOR)) memcpy(j->ipiv, ipiv, n * sizeof(lapack_int));
-    for (size_t c = 0; c < (nb ? nrhs : 0); c++) memcpy(j->b + c * n, b + c * ldb, n * sizeof(double));
+    if (nb) copy_columns(j->b, n, b, ldb, n, nrhs);
     if (whirl_worker_run(lu_run, j, lu_release) != GSL_SUCCESS)
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during a linear solve");
     *info = (int)j->info;
     if (parts & LU_FACTOR) {
-        for (size_t c = 0; c < n; c++) memcpy(a + c * lda, j->a + c * n, n * sizeof(double));
+        copy_columns(a, lda, j->a, n, n, n);
         memcpy(ipiv, j->ipiv, n * sizeof(lapack_int));
     }
-    for (size_t c = 0; c < (nb ? nrhs : 0); c++) memcpy(b + c * ldb, j->b + c * n, n * sizeof(double));
+    if (nb) copy_columns(b, ldb, j->b, n, n, nrhs);
     lu_release(j);
     return GSL_SUCCESS;
 }
