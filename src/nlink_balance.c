@@ -268,21 +268,32 @@ double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const doubl
 {
     size_t n = c->n;
     const double w2 = omega * omega;
-    r[0] = z[0] = 0;
-    for (size_t i = 1; i <= n; i++) {
-        r[i] = r[i - 1] + c->length[i - 1] * sin(theta[i - 1]);
-        z[i] = z[i - 1] - c->length[i - 1] * cos(theta[i - 1]);
-    }
-    /* the resultant (H_i, V_i) of the forces on the masses below link i, from the tip up, and
-     * the sine of its angle to the link */
-    double h = 0, v = 0, worst = 0;
+    /* z from the pivot down; r_i = rho_i, the radius that balances mass i, which is formed
+     * from its own links and keeps its relative accuracy where r is small (the tail of a high
+     * mode, 1e-16 of the largest radius and less), where the sum of l_k sin theta_k from the
+     * pivot keeps only an absolute accuracy of eps times the largest radius */
+    z[0] = r[0] = 0;
+    for (size_t i = 1; i <= n; i++) z[i] = z[i - 1] - c->length[i - 1] * cos(theta[i - 1]);
+    double h_below = 0, v = 0;
     for (size_t i = n; i >= 1; i--) {
-        h += w2 * c->mass[i - 1] * r[i];
         v += c->gravity * c->mass[i - 1];
-        const double t = hypot(h, v), th = theta[i - 1];
-        tension[i] = t;
-        worst = fmax(worst, fabs(h * cos(th) - v * sin(th)) / t);
+        const double h = v * tan(theta[i - 1]);
+        r[i] = (h - h_below) / (c->mass[i - 1] * w2);
+        tension[i] = hypot(h, v);
+        h_below = h;
     }
     tension[0] = tension[1];
+    /* the resultant (H_i, V_i) of the forces on the masses below link i with the nodes summed
+     * from the pivot, and the sine of its angle to the link */
+    double h = 0, worst = 0, r_i = 0;
+    v = 0;
+    for (size_t i = 1; i <= n; i++) r_i += c->length[i - 1] * sin(theta[i - 1]);
+    for (size_t i = n; i >= 1; i--) {
+        h += w2 * c->mass[i - 1] * r_i;
+        v += c->gravity * c->mass[i - 1];
+        const double th = theta[i - 1];
+        worst = fmax(worst, fabs(h * cos(th) - v * sin(th)) / hypot(h, v));
+        r_i -= c->length[i - 1] * sin(th);
+    }
     return worst;
 }

@@ -36,7 +36,33 @@
  * changes; a return to the hanging chain where a changes sign. Each is located by Brent's method
  * (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every evaluation a corrector
  * solve on the hyperplane at sigma: at a fold omega(sigma) is stationary, so the arclength error
- * enters omega squared. */
+ * enters omega squared. A crossing of a rate is first sought by Newton's method at that rate from
+ * the point interpolated in omega (omega is monotone between the step's folds, so the point whose
+ * arclength coordinate lies on the piece is the one), Brent's method only where that fails.
+ *
+ * The same curve in the link angles. The shot loses digits on long chains at high rates: the
+ * tip radius of a high mode is 1e-18 of the largest radius or less and fixes the shape only to
+ * the round-off of the recursion amplified by the tension ratios, the Newton steps in (omega, a)
+ * stall or the shape's links are unbalanced far above round-off. There the path continues in
+ * x = (omega, theta_1..theta_N) on the force balance R(omega, theta) = 0 of src/nlink_balance.c
+ * (tridiagonal Jacobian A; the arclength row (M0 t0) . (x - x0) = ds with the same metric M =
+ * diag(1/omega^2, 1/N, ..)), each Newton step a bordered solve by block elimination, O(N); the
+ * tangent solves [A, R_omega; (M0 t0)^T] t = e_{N+1} (one step of iterative refinement), which
+ * orients it along the travel. Test functions: a fold where t_omega changes sign, a branch point
+ * where det [A, R_omega; (M0 t0)^T] = det A (c_omega - c . A^-1 R_omega) does (not at a fold,
+ * where both factors do), a return to the hanging chain where the shape's projection on the
+ * step's start changes sign; located as above. The tip radius there is g tan theta_N / omega^2
+ * (the radius that balances the tip mass: no cancellation). Which formulation a step uses: the
+ * shot's round-off at an accepted point is measured as |G - G_ext| (G_ext the recursion in long
+ * double) and turned into the force it leaves across the links (the pivot misses the axis by
+ * a |u| |G - G_ext|, and moving it there changes link i's horizontal force by omega^2 M_i r_0,
+ * relative to its tension T_i); above NOISE_UP, or where the shot's Newton steps fail, the path
+ * goes over to the link angles (the point polished there at fixed omega, the tangent carried
+ * over), and it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
+ * at each failure of the shot, so that it does not flap). The shot is kept where it is clean: it
+ * is about three times cheaper per step, and it resolves the tail of a high mode (radii of 1e-16
+ * of the largest) to relative accuracy where the link angles resolve it only to eps. Crossings
+ * found on the shot where its round-off exceeds NOISE_UP are polished on the link angles. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -57,6 +83,15 @@
 #define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made */
 #define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off */
 #define LOCATE_MAX 200   /* Brent iterations for an event */
+#define LOCATE_NEWTON_MAX 40 /* Newton iterations of a point of an event's location (slow near a
+                              * branch point, where the corrector's system is singular) */
+#ifndef NOISE_UP
+#define NOISE_UP 3e-14   /* the path goes over to the link angles where the shot's round-off
+                          * unbalances a link by more than this (relative to its tension) */
+#define NOISE_DOWN 3e-15 /* and back to the tip shot where it falls below this */
+#endif
+#define STAY_FIRST 16    /* steps in the link angles after the shot's Newton failed, before the
+                          * shot is tried again (doubled on each such failure) */
 
 typedef struct shot {
     double g, g_w, g_a;      /* G and its partial derivatives */
@@ -129,6 +164,39 @@ static void shoot(const whirl_chain *c, double omega, double a, shot *s, double 
     shoot_embed(c, omega, a, s, theta, NULL);
 }
 
+/* G alone, the same recursion in long double (64-bit significand on x86-64); the norm |u| in
+ * *norm and max_i omega^2 M_i / T_i (M_i the mass below link i) in *load. */
+static long double shoot_g_ext(const whirl_chain *c, double omega, double a, double *norm,
+                               double *load)
+{
+    long double u = 1, eta = 0, v = 0, q = 1, w2 = (long double)omega * omega, worst = 0;
+    for (size_t i = c->n; i >= 1; i--) {
+        const long double m = c->mass[i - 1];
+        eta += m * w2 * u;
+        v += m * c->gravity;
+        const long double h = a * eta, t = sqrtl(h * h + v * v);
+        u -= c->length[i - 1] * eta / t;
+        q += u * u;
+        if (v / (c->gravity * t) > worst) worst = v / (c->gravity * t);
+    }
+    *norm = (double)sqrtl(q);
+    *load = (double)(w2 * worst);
+    return u / sqrtl(q);
+}
+
+/* The round-off of the shot s at (omega, a) in the force balance: the pivot misses the axis by
+ * r_0 = a |u| (G - G_ext) (G_ext the recursion in extended precision, which stands for the
+ * exact G), and shifting the chain onto the axis changes the horizontal force that link i
+ * carries by omega^2 M_i r_0, relative to its tension T_i; the largest over the links. At
+ * least the same for one unit of round-off in G. */
+static double shot_noise(const whirl_chain *c, double omega, double a, const shot *s)
+{
+    double norm, load;
+    const double dg = fabs(s->g - (double)shoot_g_ext(c, omega, a, &norm, &load));
+    const double noise = fmax(dg, DBL_EPSILON) * fabs(a) * norm * load;
+    return isfinite(noise) ? noise : INFINITY;
+}
+
 static double metric_dot(const double *m, double x_w, double x_a, double y_w, double y_a)
 {
     return m[0] * x_w * y_w + m[1] * (x_w * y_a + x_a * y_w) + m[2] * x_a * y_a;
@@ -148,6 +216,7 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
 {
     int final = 0;
     double prev = INFINITY;
+    p->floor_exit = 0;
     for (int it = 0; it < NEWTON_MAX; it++) {
         shoot(p->chain, *w, *a, s, NULL);
         p->shots++;
@@ -172,6 +241,7 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
         } else if (it >= 2 && norm <= NEWTON_FLOOR && norm >= 0.5 * prev) {
             /* no longer decreasing: the round-off floor of an ill-conditioned shot */
             if (iters) *iters = it + 1;
+            p->floor_exit = 1;
             return 0;
         }
         prev = norm;
@@ -188,12 +258,22 @@ whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c)
     whirl_nlink_path *p = calloc(1, sizeof *p);
     if (p == NULL) goto fail;
     p->chain = c;
-    p->work = malloc((2 * c->n + 2 * (2 * c->n + 1)) * sizeof *p->work);
+    const size_t n = c->n, ne = WHIRL_PATH_EVENTS_MAX;
+    p->work = malloc((6 * n + 2 * (2 * n + 1) + (2 * ne + 1) * n + 7 * n + 3) * sizeof *p->work);
     if (p->work == NULL) goto fail;
     p->theta = p->work;
-    p->theta_trial = p->theta + c->n;
-    p->embed = p->theta_trial + c->n;
-    p->embed_trial = p->embed + 2 * c->n + 1;
+    p->theta_trial = p->theta + n;
+    p->embed = p->theta_trial + n;
+    p->embed_trial = p->embed + 2 * n + 1;
+    p->t_theta = p->embed_trial + 2 * n + 1;
+    p->t_theta_trial = p->t_theta + n;
+    p->last.theta0 = p->t_theta_trial + n;
+    p->last.t_theta0 = p->last.theta0 + n;
+    p->cross_theta = p->last.t_theta0 + n;
+    p->event_theta = p->cross_theta + (ne + 1) * n;
+    p->scratch = p->event_theta + ne * n;
+    p->balance = whirl_nlink_balance_alloc(c);
+    if (p->balance == NULL) goto fail;
     return p;
 fail:
     whirl_nlink_path_free(p);
@@ -204,6 +284,7 @@ fail:
 void whirl_nlink_path_free(whirl_nlink_path *p)
 {
     if (p == NULL) return;
+    whirl_nlink_balance_free(p->balance);
     free(p->work);
     free(p);
 }
@@ -220,12 +301,137 @@ static void tangent(const shot *s, const double *m, const double *m_ref, double 
     *t_a = *raw_sign * r_a / norm;
 }
 
+/* ---- the path in the link angles (the equations: src/nlink_balance.c) ---- */
+
+/* Scratch arrays of the path (7 N + 3 doubles). */
+static double *scr_f(const whirl_nlink_path *p) { return p->scratch; }
+static double *scr_dth(const whirl_nlink_path *p) { return p->scratch + p->chain->n; }
+static double *scr_zero(const whirl_nlink_path *p) { return p->scratch + 2 * p->chain->n; }
+static double *scr_cth(const whirl_nlink_path *p) { return p->scratch + 3 * p->chain->n; }
+static double *scr_nodes(const whirl_nlink_path *p) { return p->scratch + 4 * p->chain->n; }
+
+/* The tip radius of the link angles: at an equilibrium r_N = rho_N = g tan theta_N / omega^2, the
+ * radius that balances the tip mass, free of the cancellation of the sum of l_i sin theta_i (a
+ * high mode's tip radius can be 1e-18 of the largest); and its rate of change along
+ * (d omega, d theta). */
+static double tip_of(const whirl_chain *c, double w, const double *th)
+{
+    return c->gravity * tan(th[c->n - 1]) / (w * w);
+}
+
+static double tip_rate(const whirl_chain *c, double w, const double *th, double dw,
+                       const double *dth)
+{
+    const double co = cos(th[c->n - 1]);
+    return c->gravity * (dth[c->n - 1] / (co * co) - 2 * tan(th[c->n - 1]) * dw / w) / (w * w);
+}
+
+/* The projection of the link angles th on th0 (it changes sign where the path passes the
+ * hanging chain). */
+static double shape_projection(size_t n, const double *th, const double *th0)
+{
+    double q = 0;
+    for (size_t i = 0; i < n; i++) q += th[i] * th0[i];
+    return q;
+}
+
+/* The metric norm of (d omega, d theta) at omega0: sqrt((d omega / omega0)^2 + |d theta|^2 / N). */
+static double angle_norm(size_t n, double w0, double dw, const double *dth)
+{
+    double q = 0;
+    for (size_t i = 0; i < n; i++) q += dth[i] * dth[i];
+    return sqrt(dw * dw / (w0 * w0) + q / (double)n);
+}
+
+/* Newton's method on R(omega, theta) = 0 and the row c_w (omega - w0) + c_th . (theta - th0) =
+ * sigma from (*w, th) (in place), converged as correct(); the force balance is left factorised
+ * at the converged point. Returns 0 when it converged, -1 otherwise. */
+static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, double c_w,
+                          const double *c_th, double sigma, double *w, double *th, int *iters,
+                          int max_iter)
+{
+    const size_t n = p->chain->n;
+    double *f = scr_f(p), *dth = scr_dth(p), prev = INFINITY;
+    int final = 0;
+    for (int it = 0; it < max_iter; it++) {
+        if (whirl_nlink_balance_factor(p->balance, *w, th)) return -1;
+        p->shots++;
+        const double *res = whirl_nlink_balance_residual(p->balance);
+        double g = sigma - c_w * (*w - w0), dw, schur;
+        for (size_t i = 0; i < n; i++) f[i] = -res[i], g -= c_th[i] * (th[i] - th0[i]);
+        if (whirl_nlink_balance_bordered(p->balance, c_th, c_w, f, g, 0, dth, &dw, &schur))
+            return -1;
+        *w += dw;
+        for (size_t i = 0; i < n; i++) th[i] += dth[i];
+        if (!(*w > 0 && isfinite(*w))) return -1;
+        const double norm = angle_norm(n, w0, dw, dth);
+        if (!(norm >= 0)) return -1;
+        int done = final;
+        if (!final && norm <= NEWTON_TOL) {
+            final = 1;
+            if (iters) *iters = it + 1;
+        } else if (!final && it >= 2 && norm <= NEWTON_FLOOR && norm >= 0.5 * prev) {
+            if (iters) *iters = it + 1;
+            done = 1;
+        }
+        if (done) {
+            p->shots++;
+            return whirl_nlink_balance_factor(p->balance, *w, th) ? -1 : 0;
+        }
+        prev = norm;
+    }
+    return -1;
+}
+
+/* The unit tangent at the last factorised point (rate w), its component along the row
+ * (c_w, c_th) positive: d omega in *t_w, d theta in t_th. *det_sign: the sign of det [J; c],
+ * which changes at a branch point; the continuous test sign(det A) exp(ln|det A| - ref) schur
+ * in *test if not NULL (*ref set from the first call when NaN). Returns 0 or -1. */
+static int angle_tangent(whirl_nlink_path *p, double w, double c_w, const double *c_th,
+                         double *t_w, double *t_th, int *det_sign, double *ref, double *test)
+{
+    const size_t n = p->chain->n;
+    double schur;
+    if (whirl_nlink_balance_bordered(p->balance, c_th, c_w, NULL, 1, 1, t_th, t_w, &schur))
+        return -1;
+    const double len = angle_norm(n, w, *t_w, t_th);
+    if (!(len > 0 && isfinite(len))) return -1;
+    *t_w /= len;
+    for (size_t i = 0; i < n; i++) t_th[i] /= len;
+    int sign;
+    const double logdet = whirl_nlink_balance_logdet(p->balance, &sign);
+    *det_sign = (schur > 0) == (sign > 0) ? 1 : -1;
+    if (test) {
+        if (isnan(*ref)) *ref = logdet;
+        *test = sign * exp(fmax(-700, fmin(700, logdet - *ref))) * schur;
+    }
+    return 0;
+}
+
+/* The tangent embedded in (ln omega, theta / sqrt(N)). */
+static void angle_embed(size_t n, double w, double t_w, const double *t_th, double *embed)
+{
+    const double scale = 1 / sqrt((double)n);
+    embed[0] = t_w / w;
+    for (size_t i = 0; i < n; i++) embed[i + 1] = scale * t_th[i];
+}
+
+/* The round-off of the shot at (omega, a) (shot_noise). */
+static double noise_at(whirl_nlink_path *p, double omega, double a)
+{
+    shot s;
+    shoot(p->chain, omega, a, &s, NULL);
+    p->shots += 2;
+    return shot_noise(p->chain, omega, a, &s);
+}
+
 /* The state at an accepted point. */
-static void set_point(whirl_nlink_path *p, double omega, double a, const shot *s)
+static void set_point(whirl_nlink_path *p, double omega, double a, const shot *s, double noise)
 {
     p->omega = omega;
     p->tip_r = a;
     shot_metric(s, p->metric);
+    p->noise = noise >= 0 ? noise : shot_noise(p->chain, omega, a, s);
     if (omega < p->omega_lo) p->omega_lo = omega;
     if (omega > p->omega_hi) p->omega_hi = omega;
 }
@@ -240,6 +446,60 @@ static void reset(whirl_nlink_path *p)
     p->omega_lo = INFINITY;
     p->omega_hi = -INFINITY;
     p->have_last = 0;
+    p->angles = 0;
+    p->noise = 0;
+    p->why = "";
+    p->stay = 0;
+    p->backoff = STAY_FIRST;
+    for (size_t i = 0; i < p->chain->n; i++) scr_zero(p)[i] = 0;
+}
+
+/* Over to the link angles at the current point of the shot: its angles polished on the force
+ * balance at fixed omega, the tangent carried over (the shot's tangent in theta is p->embed).
+ * Returns 0, or -1 with the path unchanged. */
+static int to_angles(whirl_nlink_path *p)
+{
+    const whirl_chain *c = p->chain;
+    const size_t n = c->n;
+    double *th = p->theta_trial, *c_th = scr_cth(p), t_w;
+    for (size_t i = 0; i < n; i++) th[i] = p->theta[i];
+    if (whirl_nlink_balance_polish(p->balance, p->omega, th)) return -1;
+    const double c_w = p->t_omega / (p->omega * p->omega);
+    for (size_t i = 0; i < n; i++)
+        c_th[i] = p->raw_sign * p->embed[i + 1] * sqrt((double)n) / (double)n;
+    int det;
+    if (angle_tangent(p, p->omega, c_w, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
+    double *tmp = p->theta;
+    p->theta = th;
+    p->theta_trial = tmp;
+    p->t_omega = t_w;
+    p->t_tip = tip_rate(c, p->omega, th, t_w, p->t_theta);
+    p->tip_r = tip_of(c, p->omega, th);
+    p->det_sign = det;
+    angle_embed(n, p->omega, t_w, p->t_theta, p->embed);
+    p->angles = 1;
+    p->have_last = 0;
+    return 0;
+}
+
+/* Back to the tip shot at the current point (polished by the shot's Newton at fixed omega).
+ * Returns 0, or -1 with the path unchanged. */
+static int to_shot(whirl_nlink_path *p)
+{
+    double w = p->omega, a = p->tip_r, m[3];
+    shot s;
+    int iters;
+    shoot(p->chain, w, a, &s, NULL);
+    shot_metric(&s, m);
+    if (correct(p, m, w, a, 1, 0, 0, &w, &a, &s, &iters) != 0 || a == 0) return -1;
+    double t_w = p->t_omega, t_a = p->t_tip;
+    shoot_embed(p->chain, w, a, &s, p->theta, p->embed);
+    p->shots++;
+    set_point(p, w, a, &s, -1);
+    tangent(&s, p->metric, p->metric, t_w, t_a, &p->t_omega, &p->t_tip, &p->raw_sign);
+    p->angles = 0;
+    p->have_last = 0;
+    return 0;
 }
 
 int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
@@ -271,7 +531,7 @@ int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
     shoot_embed(c, omega, 0, &s, p->theta, p->embed);
     p->shots++;
     p->omega_birth = omega;
-    set_point(p, omega, 0, &s);
+    set_point(p, omega, 0, &s, -1);
     /* the tangent is vertical: into a > 0 */
     p->t_omega = 0;
     p->t_tip = 1 / sqrt(s.m_aa);
@@ -295,7 +555,7 @@ int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int 
                           omega, tip_r);
     shoot_embed(p->chain, w, a, &s, p->theta, p->embed);
     p->shots++;
-    set_point(p, w, a, &s);
+    set_point(p, w, a, &s, -1);
     double tw, ta;
     int raw;
     tangent(&s, p->metric, p->metric, s.g_a, -s.g_w, &tw, &ta, &raw);
@@ -311,6 +571,11 @@ void whirl_nlink_path_reverse(whirl_nlink_path *p)
     p->t_omega = -p->t_omega;
     p->t_tip = -p->t_tip;
     p->raw_sign = -p->raw_sign;
+    if (p->angles) {
+        for (size_t i = 0; i < p->chain->n; i++) p->t_theta[i] = -p->t_theta[i];
+        for (size_t i = 0; i <= p->chain->n; i++) p->embed[i] = -p->embed[i];
+        p->det_sign = -p->det_sign;
+    }
     p->have_last = 0;
 }
 
@@ -320,31 +585,47 @@ typedef enum { TARGET_OMEGA, TARGET_FOLD, TARGET_BRANCH, TARGET_RETURN } target_
 
 typedef struct step_frame {
     whirl_nlink_path *p;
-    double m0[3];        /* metric at the step's start */
+    int angles;          /* the step was made in the link angles */
+    double m0[3];        /* metric at the step's start (shot) */
     double w0, a0;       /* the step's start */
     double t0_w, t0_a;   /* its tangent */
+    double c_w;          /* in the link angles: the row c_w, scr_cth(p) */
     double w1, a1, ds;   /* its end and length */
     target_kind kind;
     double target;       /* the rate for TARGET_OMEGA */
+    double ref;          /* ln |det A| of the first branch test */
     int failed;
     double w, a;         /* the last corrected point */
-    shot s;
+    double *th;          /* its link angles (in the link angles) */
+    shot s;              /* its shot (shot) */
 } step_frame;
 
 /* The corrected point at arclength sigma of the step (a start on the chord). */
 static int frame_point(step_frame *f, double sigma)
 {
-    double lambda = sigma / f->ds;
+    whirl_nlink_path *p = f->p;
+    const double lambda = sigma / f->ds;
+    int iters;
+    if (f->angles) {
+        const size_t n = p->chain->n;
+        const double *th0 = p->last.theta0, *th1 = p->theta;
+        f->w = f->w0 + lambda * (f->w1 - f->w0);
+        for (size_t i = 0; i < n; i++) f->th[i] = th0[i] + lambda * (th1[i] - th0[i]);
+        if (correct_angles(p, f->w0, th0, f->c_w, scr_cth(p), sigma, &f->w, f->th, &iters,
+                           LOCATE_NEWTON_MAX))
+            return -1;
+        f->a = tip_of(p->chain, f->w, f->th);
+        return 0;
+    }
     double c_w = f->m0[0] * f->t0_w + f->m0[1] * f->t0_a;
     double c_a = f->m0[1] * f->t0_w + f->m0[2] * f->t0_a;
-    int iters;
     /* from the geometric interpolation of a (a tip radius that varies exponentially), then from
      * the linear one */
     for (int geometric = (f->a0 > 0 && f->a1 > 0) || (f->a0 < 0 && f->a1 < 0); geometric >= 0;
          geometric--) {
         f->w = f->w0 + lambda * (f->w1 - f->w0);
         f->a = geometric ? f->a0 * pow(f->a1 / f->a0, lambda) : f->a0 + lambda * (f->a1 - f->a0);
-        if (correct(f->p, f->m0, f->w0, f->a0, c_w, c_a, sigma, &f->w, &f->a, &f->s, &iters) == 0)
+        if (correct(p, f->m0, f->w0, f->a0, c_w, c_a, sigma, &f->w, &f->a, &f->s, &iters) == 0)
             return 0;
     }
     return -1;
@@ -357,31 +638,40 @@ static double frame_phi(double sigma, void *params)
         f->failed = 1;
         return 0; /* ends Brent's iteration, which then reports the failure */
     }
+    if (f->kind == TARGET_OMEGA) return f->w - f->target;
+    if (f->kind == TARGET_RETURN)
+        return f->angles ? shape_projection(f->p->chain->n, f->th, f->p->last.theta0) : f->a;
+    if (f->angles) {
+        double t_w, test;
+        int det;
+        if (angle_tangent(f->p, f->w, f->c_w, scr_cth(f->p), &t_w, f->p->t_theta_trial, &det,
+                          &f->ref, &test)) {
+            f->failed = 1;
+            return 0;
+        }
+        return f->kind == TARGET_FOLD ? t_w : test;
+    }
     const shot *s = &f->s;
     double r_w = s->g_a, r_a = -s->g_w;
     double along = metric_dot(f->m0, r_w, r_a, f->t0_w, f->t0_a);
-    switch (f->kind) {
-    case TARGET_OMEGA:
-        return f->w - f->target;
-    case TARGET_FOLD: {
+    if (f->kind == TARGET_FOLD) {
         double m[3];
         shot_metric(s, m);
         return (along >= 0 ? 1 : -1) * r_w / sqrt(metric_dot(m, r_w, r_a, r_w, r_a));
     }
-    case TARGET_BRANCH:
-        return along;
-    case TARGET_RETURN:
-        return f->a;
-    }
-    return GSL_NAN;
+    return along; /* TARGET_BRANCH */
 }
 
 /* The sigma in [lo, hi] where phi changes sign (phi(lo) and phi(hi) of opposite signs, or one
- * zero); the corrected point left in f->w, f->a, f->s. */
+ * zero); the corrected point left in f->w, f->a, f->s or f->th. */
 static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
 {
     double f_lo = frame_phi(lo, f), f_hi = frame_phi(hi, f);
-    if (f->failed) return whirl_fail(GSL_EFAILED, "an event could not be located");
+    static const char *const what[] = {"a crossing of a rate", "a fold", "a branch point",
+                                       "a return to the hanging chain"};
+    if (f->failed)
+        return whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be located "
+                          "(no convergence at an end of the step)", what[f->kind], f->w0, f->w1);
     if (f_lo == 0 || f_hi == 0 || (f_lo > 0) == (f_hi > 0)) {
         *sigma = fabs(f_lo) <= fabs(f_hi) ? lo : hi;
         frame_phi(*sigma, f);
@@ -394,8 +684,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     for (int it = 0; status == GSL_SUCCESS; it++) {
         status = gsl_root_fsolver_iterate(s);
         if (f->failed || status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "an event at omega=%.17g could not be located",
-                                f->w);
+            status = whirl_fail(GSL_EFAILED, "%s near omega=%.17g could not be located",
+                                what[f->kind], f->w);
             break;
         }
         double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
@@ -411,13 +701,15 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     }
     gsl_root_fsolver_free(s);
     if (status == GSL_SUCCESS && (frame_phi(*sigma, f), f->failed))
-        status = whirl_fail(GSL_EFAILED, "an event could not be located");
+        status = whirl_fail(GSL_EFAILED, "%s near omega=%.17g could not be located",
+                            what[f->kind], f->w);
     return status;
 }
 
 static void frame_of_last(whirl_nlink_path *p, step_frame *f, target_kind kind, double target)
 {
     f->p = p;
+    f->angles = p->last.angles;
     for (int i = 0; i < 3; i++) f->m0[i] = p->last.m0[i];
     f->w0 = p->last.w0;
     f->a0 = p->last.a0;
@@ -429,11 +721,72 @@ static void frame_of_last(whirl_nlink_path *p, step_frame *f, target_kind kind, 
     f->kind = kind;
     f->target = target;
     f->failed = 0;
+    f->ref = NAN;
+    f->th = p->theta_trial; /* free after a step: its start is kept in last.theta0 */
+    if (f->angles) {
+        const size_t n = p->chain->n;
+        f->c_w = f->t0_w / (f->w0 * f->w0);
+        for (size_t i = 0; i < n; i++) scr_cth(p)[i] = p->last.t_theta0[i] / (double)n;
+    }
+}
+
+/* The arclength coordinate of the frame's corrected point along the step's tangent. */
+static double frame_sigma(const step_frame *f)
+{
+    const whirl_nlink_path *p = f->p;
+    if (f->angles) {
+        double sigma = f->c_w * (f->w - f->w0);
+        for (size_t i = 0; i < p->chain->n; i++)
+            sigma += scr_cth(p)[i] * (f->th[i] - p->last.theta0[i]);
+        return sigma;
+    }
+    double c_w = f->m0[0] * f->t0_w + f->m0[1] * f->t0_a;
+    double c_a = f->m0[1] * f->t0_w + f->m0[2] * f->t0_a;
+    return c_w * (f->w - f->w0) + c_a * (f->a - f->a0);
+}
+
+/* The point of the frame at the rate omega exactly, by Newton's method at fixed omega from the
+ * frame's point at sigma (interpolated if interpolate, else the last corrected one). */
+static int frame_at_rate(step_frame *f, double omega, double sigma, int interpolate)
+{
+    whirl_nlink_path *p = f->p;
+    int iters;
+    if (interpolate) {
+        const double lambda = sigma / f->ds;
+        f->w = omega;
+        if (f->angles) {
+            for (size_t i = 0; i < p->chain->n; i++)
+                f->th[i] = p->last.theta0[i] + lambda * (p->theta[i] - p->last.theta0[i]);
+        } else {
+            int geometric = (f->a0 > 0 && f->a1 > 0) || (f->a0 < 0 && f->a1 < 0);
+            f->a = geometric ? f->a0 * pow(f->a1 / f->a0, lambda)
+                             : f->a0 + lambda * (f->a1 - f->a0);
+        }
+    }
+    double w = omega;
+    if (f->angles) {
+        if (correct_angles(p, omega, f->th, 1, scr_zero(p), 0, &w, f->th, &iters,
+                           LOCATE_NEWTON_MAX))
+            return -1;
+        f->w = w;
+        f->a = tip_of(p->chain, f->w, f->th);
+        return 0;
+    }
+    /* the metric of the corrected point, or of the step's start for an interpolated one */
+    double a = f->a, m[3];
+    if (interpolate) m[0] = f->m0[0], m[1] = f->m0[1], m[2] = f->m0[2];
+    else shot_metric(&f->s, m);
+    if (correct(p, m, omega, f->a, 1, 0, 0, &w, &a, &f->s, &iters) != 0 || a == 0) return -1;
+    f->w = w;
+    f->a = a;
+    return 0;
 }
 
 int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r)
 {
     if (!p->have_last) return 0;
+    if (max > WHIRL_PATH_EVENTS_MAX + 1) max = WHIRL_PATH_EVENTS_MAX + 1;
+    const size_t n = p->chain->n;
     /* the step cut at its folds into pieces where omega is monotone */
     double start = p->arclength - p->last.ds;
     double cut[WHIRL_PATH_EVENTS_MAX + 2], w_cut[WHIRL_PATH_EVENTS_MAX + 2];
@@ -449,37 +802,110 @@ int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, doubl
         if (!((lo < omega && omega <= hi) || (hi <= omega && omega < lo))) continue;
         step_frame f;
         frame_of_last(p, &f, TARGET_OMEGA, omega);
-        double sigma;
-        int status = frame_locate(&f, cut[k], cut[k + 1], &sigma);
-        if (status) return -status;
-        /* polished at omega itself */
-        double w = omega, a = f.a, m[3];
-        shot_metric(&f.s, m);
-        int iters;
-        if (correct(p, m, omega, f.a, 1, 0, 0, &w, &a, &f.s, &iters) != 0 || a == 0)
-            return -whirl_fail(GSL_EFAILED, "no equilibrium at omega=%.17g near the branch",
-                               omega);
-        tip_r[found++] = a;
+        /* omega is monotone on the piece, so its point at omega is the one whose arclength
+         * coordinate lies on the piece: first Newton's method at omega from the point
+         * interpolated linearly in omega, and where that lands off the piece, Brent's method on
+         * the arclength, polished at omega */
+        const double guess = cut[k] + (cut[k + 1] - cut[k]) * (omega - lo) / (hi - lo);
+        const double slack = 1e-9 * f.ds;
+        int fast = frame_at_rate(&f, omega, guess, 1) == 0;
+        if (fast) {
+            const double sig = frame_sigma(&f);
+            fast = sig >= cut[k] - slack && sig <= cut[k + 1] + slack;
+        }
+        if (!fast) {
+            double sigma;
+            int status = frame_locate(&f, cut[k], cut[k + 1], &sigma);
+            if (status) return -status;
+            if (frame_at_rate(&f, omega, sigma, 0) != 0)
+                return -whirl_fail(GSL_EFAILED, "no equilibrium at omega=%.17g near the branch",
+                                   omega);
+        }
+        double *th = p->cross_theta + (size_t)found * n;
+        if (f.angles) {
+            for (size_t i = 0; i < n; i++) th[i] = f.th[i];
+        } else {
+            /* the shot's point polished on the force balance in the link angles, which the
+             * shot's round-off does not limit */
+            shot s;
+            shoot(p->chain, f.w, f.a, &s, th);
+            p->cross_angles[found] = 0;
+            if (shot_noise(p->chain, f.w, f.a, &s) > NOISE_UP) {
+                for (size_t i = 0; i < n; i++) f.th[i] = th[i];
+                if (whirl_nlink_balance_polish(p->balance, f.w, f.th) == GSL_SUCCESS) {
+                    for (size_t i = 0; i < n; i++) th[i] = f.th[i];
+                    f.a = tip_of(p->chain, f.w, th);
+                    p->cross_angles[found] = 1;
+                }
+            }
+        }
+        if (f.angles) p->cross_angles[found] = 1;
+        tip_r[found++] = f.a;
     }
     return found;
+}
+
+/* The summary of the shape at (omega, a) with link angles th: from the angles on a step made
+ * in them (angles), else from the tip shot; mirrored to a positive tip radius. */
+static int shape_info(whirl_nlink_path *p, int angles, double omega, double a, const double *th,
+                      whirl_shape_info *info, double *r, double *z, double *t)
+{
+    const whirl_chain *c = p->chain;
+    const size_t n = c->n;
+    int status;
+    if (angles) {
+        whirl_nlink_balance_nodes(c, omega, th, r, z, t);
+        if (a < 0)
+            for (size_t i = 0; i <= n; i++) r[i] = -r[i];
+        status = whirl_steady_check_samples(omega, n + 1, r, z, t);
+    } else {
+        status = whirl_nlink_positions(c, omega, fabs(a), r, z, t);
+    }
+    if (status) return status;
+    whirl_nlink_info_nodes(c, r, z, t, omega, p->mode, info);
+    if (angles && info->tip_r > 0) {
+        /* the tip radius as the shot's root next to it where the shot converges there, so that
+         * whirl_nlink_positions reproduces the shape to the shot's round-off */
+        double w = omega, tip = info->tip_r, m[3];
+        shot s;
+        int iters;
+        shoot(c, omega, tip, &s, NULL);
+        shot_metric(&s, m);
+        if (correct(p, m, omega, tip, 1, 0, 0, &w, &tip, &s, &iters) == 0 &&
+            fabs(tip - info->tip_r) <= 1e-6 * info->tip_r) {
+            info->tip_r = tip;
+            info->max_r = fmax(info->max_r, tip);
+        }
+    }
+    return whirl_steady_check_info(info);
 }
 
 static int add_event(whirl_nlink_path *p, whirl_event_kind kind, step_frame *f, double sigma)
 {
     if (p->n_events == WHIRL_PATH_EVENTS_MAX) return GSL_SUCCESS;
+    const size_t n = p->chain->n;
+    double *th = p->event_theta + (size_t)p->n_events * n;
     whirl_branch_event *e = &p->event[p->n_events++];
     e->kind = kind;
     e->omega = f->w;
     e->tip_r = f->a;
     e->arclength = p->arclength - p->last.ds + sigma;
+    if (f->angles) {
+        for (size_t i = 0; i < n; i++) th[i] = f->th[i];
+    } else {
+        shot s;
+        shoot(p->chain, f->w, f->a, &s, th);
+    }
+    double *r = scr_nodes(p);
     whirl_shape_info info;
-    int status = whirl_nlink_info(p->chain, f->w, fabs(f->a), p->mode, &info);
+    int status = shape_info(p, f->angles, f->w, f->a, th, &info, r, r + n + 1, r + 2 * (n + 1));
     e->n_nodes = status == GSL_SUCCESS ? info.n_nodes : -1;
     return status;
 }
 
-/* Finds the events of the last step and sorts them by arclength. */
-static int find_events(whirl_nlink_path *p, const shot *s1, int raw_sign1)
+/* Finds the events of the last step and sorts them by arclength; branch: the orientation test
+ * changed sign. */
+static int find_events(whirl_nlink_path *p, int branch)
 {
     p->n_events = 0;
     step_frame f;
@@ -490,12 +916,15 @@ static int find_events(whirl_nlink_path *p, const shot *s1, int raw_sign1)
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)))
             status = add_event(p, WHIRL_EVENT_FOLD, &f, sigma);
     }
-    if (!status && raw_sign1 != p->last.raw_sign) {
+    if (!status && branch) {
         frame_of_last(p, &f, TARGET_BRANCH, 0);
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)))
             status = add_event(p, WHIRL_EVENT_BRANCH_POINT, &f, sigma);
     }
-    if (!status && p->last.a0 != 0 && (p->last.a0 > 0) != (p->tip_r > 0)) {
+    const int passed = p->last.angles
+        ? shape_projection(p->chain->n, p->theta, p->last.theta0) < 0
+        : p->last.a0 != 0 && (p->last.a0 > 0) != (p->tip_r > 0);
+    if (!status && passed) {
         frame_of_last(p, &f, TARGET_RETURN, 0);
         if (!(status = frame_locate(&f, 0, f.ds, &sigma))) {
             status = add_event(p, WHIRL_EVENT_RETURN, &f, sigma);
@@ -505,13 +934,19 @@ static int find_events(whirl_nlink_path *p, const shot *s1, int raw_sign1)
             p->tip_r = 0;
         }
     }
-    (void)s1;
     /* in order of arclength */
     for (int i = 1; i < p->n_events; i++)
         for (int j = i; j > 0 && p->event[j].arclength < p->event[j - 1].arclength; j--) {
             whirl_branch_event tmp = p->event[j];
             p->event[j] = p->event[j - 1];
             p->event[j - 1] = tmp;
+            const size_t n = p->chain->n;
+            double *a = p->event_theta + (size_t)j * n, *b = a - n;
+            for (size_t k = 0; k < n; k++) {
+                double x = a[k];
+                a[k] = b[k];
+                b[k] = x;
+            }
         }
     return status;
 }
@@ -531,36 +966,188 @@ static double tension_spread(const whirl_chain *c, double omega, double a)
     return t_max / t_min;
 }
 
-/* The failure of the continuation at the last point (w0, a0), status with its message set: named
- * for what it is when round-off decides it. At high rates the higher modes fold ever more sharply
- * (a link nearly slack between taut ones, its direction set by its weight alone), and G then
- * moves by |G_a a| eps, more than the corrector's tolerance NEWTON_TOL, for one unit of round-off
- * in the tip radius: no rate beyond can be resolved. */
-static int fail_at(const whirl_nlink_path *p, int status, double w0, double a0)
+/* The failure of the continuation at the last point (w0, a0) with a step below DS_MIN: names
+ * the mode, the rate reached and why the last trial step was rejected. */
+static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
 {
-    shot s;
-    shoot(p->chain, w0, a0, &s, NULL);
-    const double wobble = fabs(s.g_a * a0) * DBL_EPSILON;
-    if (!(wobble > NEWTON_TOL)) return status;
     char mode[32] = "";
     if (p->mode > 0) snprintf(mode, sizeof mode, "mode %d: ", p->mode);
-    return whirl_fail(status, "%sthe shapes are not resolved above omega=%.6g: there one unit "
-                      "of round-off in the tip radius moves the pivot by %.2g of the shape's size "
-                      "(link tensions differing by a factor %.2g), more than the shooting's "
-                      "tolerance; lower rates only", mode, w0,
-                      wobble, tension_spread(p->chain, w0, a0));
+    if (p->angles)
+        return whirl_fail(status, "%sthe continuation in the link angles fails at omega=%.17g "
+                          "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
+                          "the smallest step %g", mode, w0, a0,
+                          tension_spread(p->chain, w0, a0), p->why, DS_MIN);
+    return whirl_fail(status, "%sthe continuation fails at omega=%.17g (tip radius %.6g): %s at "
+                      "the smallest step %g", mode, w0, a0, p->why, DS_MIN);
 }
 
-int whirl_nlink_path_step(whirl_nlink_path *p)
+/* The accepted step's start, kept for the events and crossings. */
+static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double a0, double ds)
+{
+    for (int i = 0; i < 3; i++) p->last.m0[i] = m0 ? m0[i] : 0;
+    p->last.w0 = w0;
+    p->last.a0 = a0;
+    p->last.t_w = p->t_omega;
+    p->last.t_a = p->t_tip;
+    p->last.ds = ds;
+    p->last.raw_sign = p->raw_sign;
+    p->last.angles = p->angles;
+    p->last.det_sign = p->det_sign;
+    if (p->angles)
+        for (size_t i = 0; i < p->chain->n; i++)
+            p->last.theta0[i] = p->theta[i], p->last.t_theta0[i] = p->t_theta[i];
+    p->have_last = 1;
+}
+
+static void swap(double **x, double **y)
+{
+    double *tmp = *x;
+    *x = *y;
+    *y = tmp;
+}
+
+/* One step in the link angles: predictor x0 + ds t0, Newton's method on R = 0 and the
+ * arclength row (M0 t0) . (x - x0) = ds, the same acceptance as in the shot. */
+static int angle_step(whirl_nlink_path *p)
 {
     const whirl_chain *c = p->chain;
-    p->n_events = 0;
-    if (p->ended)
-        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
-                          p->omega);
-    if (whirl_stop_requested())
-        return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps",
-                          p->omega, p->steps);
+    const size_t n = c->n;
+    const double w0 = p->omega, a0 = p->tip_r;
+    double *c_th = scr_cth(p);
+    const double c_w = p->t_omega / (w0 * w0);
+    for (;;) {
+        for (size_t i = 0; i < n; i++) c_th[i] = p->t_theta[i] / (double)n;
+        const double ds = p->ds;
+        double w = w0 + ds * p->t_omega, *th = p->theta_trial, t_w = 0, turn = 0, dtheta = 0;
+        for (size_t i = 0; i < n; i++) th[i] = p->theta[i] + ds * p->t_theta[i];
+        int iters = NEWTON_MAX, det = 0;
+        int ok = correct_angles(p, w0, p->theta, c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
+        if (!ok) p->why = "Newton's method on the force balance does not converge";
+        if (ok && angle_tangent(p, w, c_w, c_th, &t_w, p->t_theta_trial, &det, NULL, NULL)) {
+            ok = 0;
+            p->why = "the tangent is not defined (a singular point)";
+        }
+        if (ok) {
+            angle_embed(n, w, t_w, p->t_theta_trial, p->embed_trial);
+            double cosine = 0;
+            for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
+            turn = acos(fmin(1, fmax(-1, cosine)));
+            for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
+            if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
+            if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+        }
+        if (!ok) {
+            p->rejected++;
+            p->ds *= 0.5;
+            if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
+            continue;
+        }
+        keep_start(p, NULL, w0, a0, ds);
+        swap(&p->theta, &p->theta_trial);
+        swap(&p->t_theta, &p->t_theta_trial);
+        swap(&p->embed, &p->embed_trial);
+        p->omega = w;
+        p->tip_r = tip_of(c, w, p->theta);
+        p->t_omega = t_w;
+        p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
+        p->det_sign = det;
+        const double lo = p->omega_lo, hi = p->omega_hi, noise = p->noise;
+        if (w < p->omega_lo) p->omega_lo = w;
+        if (w > p->omega_hi) p->omega_hi = w;
+        p->arclength += ds;
+        p->steps++;
+        p->noise = noise_at(p, w, p->tip_r);
+        const int status = find_events(p, det != p->last.det_sign);
+        if (status != GSL_EFAILED) {
+            if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
+                p->ds = fmin(1.5 * ds, DS_MAX);
+            return status;
+        }
+        /* an event the step passed could not be located (the curve between the two points is
+         * more intricate than the step: two close folds, a near crossing of another branch):
+         * back to the step's start, half the step */
+        p->why = "an event between two points could not be located";
+        for (size_t i = 0; i < n; i++)
+            p->theta[i] = p->last.theta0[i], p->t_theta[i] = p->last.t_theta0[i];
+        p->omega = w0;
+        p->tip_r = a0;
+        p->t_omega = p->last.t_w;
+        p->t_tip = p->last.t_a;
+        p->det_sign = p->last.det_sign;
+        angle_embed(n, w0, p->t_omega, p->t_theta, p->embed);
+        p->omega_lo = lo, p->omega_hi = hi, p->noise = noise;
+        p->arclength -= ds;
+        p->steps--;
+        p->have_last = 0;
+        p->n_events = 0;
+        p->ended = 0;
+        p->rejected++;
+        p->ds = 0.5 * ds;
+        if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
+    }
+}
+
+#define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
+
+/* The first point of the branch in the link angles, where the shot's first step from the birth
+ * fails (the modes near N, whose linear mode shape has a tip displacement of 1e-10 of its
+ * largest or less). At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
+ * vector phi, the linear mode shape in the link angles (two steps of inverse iteration from the
+ * shot's d theta / d a); the branch is the curve through it along phi, and its point with
+ * phi . theta / sqrt(N) = BIRTH_AMPLITUDE (a regular point of the system with that row: omega
+ * moves from omega_k by O(amplitude^2)) is found by Newton's method from theta = amplitude phi.
+ * Rates below that point's (within ~1e-10 omega_k of the birth) are not reached. */
+static int birth_angles(whirl_nlink_path *p)
+{
+    const whirl_chain *c = p->chain;
+    const size_t n = c->n;
+    double *phi = p->t_theta_trial, *th = p->theta_trial, *c_th = scr_cth(p);
+    double w = p->omega_birth, dw, schur, norm = 0;
+    for (size_t i = 0; i < n; i++) norm += p->embed[n + 1 + i] * p->embed[n + 1 + i];
+    if (!(norm > 0 && isfinite(norm))) return -1;
+    for (size_t i = 0; i < n; i++) phi[i] = p->embed[n + 1 + i] / sqrt(norm);
+    if (whirl_nlink_balance_factor(p->balance, w, scr_zero(p)) == GSL_SUCCESS)
+        for (int it = 0; it < 2; it++) {
+            if (whirl_nlink_balance_bordered(p->balance, scr_zero(p), 1, phi, 0, 0, th, &dw,
+                                             &schur))
+                break;
+            norm = 0;
+            for (size_t i = 0; i < n; i++) norm += th[i] * th[i];
+            norm = sqrt(norm) * (th[n - 1] < 0 ? -1 : 1); /* the tip moving to r > 0 */
+            if (!(fabs(norm) > 0 && isfinite(norm))) break;
+            for (size_t i = 0; i < n; i++) phi[i] = th[i] / norm;
+        }
+    const double scale = sqrt((double)n);
+    for (size_t i = 0; i < n; i++) {
+        c_th[i] = phi[i] / scale;
+        th[i] = BIRTH_AMPLITUDE * scale * phi[i];
+    }
+    if (correct_angles(p, w, scr_zero(p), 0, c_th, BIRTH_AMPLITUDE, &w, th, NULL,
+                       LOCATE_NEWTON_MAX))
+        return -1;
+    double t_w;
+    int det;
+    if (angle_tangent(p, w, 0, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
+    swap(&p->theta, &p->theta_trial);
+    p->omega = w;
+    p->tip_r = tip_of(c, w, p->theta);
+    p->t_omega = t_w;
+    p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
+    p->det_sign = det;
+    angle_embed(n, w, t_w, p->t_theta, p->embed);
+    if (w < p->omega_lo) p->omega_lo = w;
+    if (w > p->omega_hi) p->omega_hi = w;
+    p->angles = 1;
+    p->stay = p->backoff;
+    p->have_last = 0;
+    p->ds = DS_FIRST;
+    return p->tip_r > 0 ? 0 : -1;
+}
+
+/* One step on the tip shot (the equations above the file). */
+static int shot_step(whirl_nlink_path *p)
+{
+    const whirl_chain *c = p->chain;
     const double w0 = p->omega, a0 = p->tip_r, *m0 = p->metric;
     const double c_w = m0[0] * p->t_omega + m0[1] * p->t_tip;
     const double c_a = m0[1] * p->t_omega + m0[2] * p->t_tip;
@@ -580,6 +1167,13 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
         int iters = NEWTON_MAX, ok = correct(p, m0, w0, a0, c_w, c_a, ds, &w, &a, &s, &iters) == 0;
         double turn = 0, dtheta = 0, t_w = 0, t_a = 0;
         int raw = 0;
+        if (!ok) p->why = "Newton's method on the tip shot does not converge";
+        if (ok && p->floor_exit) {
+            /* converged only to the shot's round-off: not an equilibrium to round-off */
+            ok = 0;
+            iters = NEWTON_MAX;
+            p->why = "the tip shot's round-off exceeds the tolerance";
+        }
         if (ok) {
             shoot_embed(c, w, a, &s, p->theta_trial, p->embed_trial);
             p->shots++;
@@ -594,41 +1188,40 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < c->n; i++)
                 dtheta = fmax(dtheta, fabs(p->theta_trial[i] - p->theta[i]));
-            ok = turn <= TURN_MAX && dtheta <= DTHETA_MAX;
+            if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
+            if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
         }
         if (!ok) {
             p->rejected++;
+            /* where Newton's method on the shot fails away from the birth, the shot is too
+             * nonlinear or too noisy in (omega, a): the same step in the link angles */
+            if (iters == NEWTON_MAX && p->steps > 0 && to_angles(p) == 0) {
+                p->stay = p->backoff;
+                p->backoff = p->backoff < 1024 ? 2 * p->backoff : p->backoff;
+                return angle_step(p);
+            }
             p->ds *= 0.5;
             if (p->ds < DS_MIN) {
-                int status;
-                if (p->mode > 0)
-                    status = whirl_fail(GSL_EFAILED, "mode %d: the continuation fails at "
-                                        "omega=%.17g (tip radius %.6g): no convergence at the "
-                                        "smallest step %g", p->mode, w0, a0, DS_MIN);
-                else
-                    status = whirl_fail(GSL_EFAILED, "the continuation fails at omega=%.17g (tip "
-                                        "radius %.6g): no convergence at the smallest step %g",
-                                        w0, a0, DS_MIN);
-                return fail_at(p, status, w0, a0);
+                if (p->steps == 0 && a0 == 0) {
+                    if (birth_angles(p) == 0) return angle_step(p);
+                    return fail_at(p, GSL_EFAILED, w0, a0);
+                }
+                if (to_angles(p) == 0) {
+                    p->ds = DS_FIRST;
+                    return angle_step(p);
+                }
+                return fail_at(p, GSL_EFAILED, w0, a0);
             }
             continue;
         }
-        /* accepted */
-        for (int i = 0; i < 3; i++) p->last.m0[i] = m0[i];
-        p->last.w0 = w0;
-        p->last.a0 = a0;
-        p->last.t_w = p->t_omega;
-        p->last.t_a = p->t_tip;
-        p->last.ds = ds;
-        p->last.raw_sign = p->raw_sign;
-        p->have_last = 1;
-        double *tmp = p->theta;
-        p->theta = p->theta_trial;
-        p->theta_trial = tmp;
-        tmp = p->embed;
-        p->embed = p->embed_trial;
-        p->embed_trial = tmp;
-        set_point(p, w, a, &s);
+        /* a point the shot resolves only to more than NOISE_UP: the step in the link angles
+         * (measured at every point: the measure is itself round-off and jumps along a branch) */
+        const double noise = shot_noise(c, w, a, &s);
+        if (p->steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
+        keep_start(p, m0, w0, a0, ds);
+        swap(&p->theta, &p->theta_trial);
+        swap(&p->embed, &p->embed_trial);
+        set_point(p, w, a, &s, noise);
         p->t_omega = t_w;
         p->t_tip = t_a;
         p->raw_sign = raw;
@@ -636,9 +1229,25 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
         p->steps++;
         if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
             p->ds = fmin(1.5 * ds, DS_MAX);
-        const int status = find_events(p, &s, raw);
-        return status ? fail_at(p, status, w0, a0) : GSL_SUCCESS;
+        return find_events(p, raw != p->last.raw_sign);
     }
+}
+
+int whirl_nlink_path_step(whirl_nlink_path *p)
+{
+    p->n_events = 0;
+    if (p->ended)
+        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
+                          p->omega);
+    if (whirl_stop_requested())
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps",
+                          p->omega, p->steps);
+    /* the formulation of this step: the link angles where the shot's round-off is felt, with
+     * a hysteresis (each switch polishes the point on the other formulation) */
+    if (!p->angles && p->noise > NOISE_UP) to_angles(p);
+    else if (p->angles && p->stay > 0) p->stay--;
+    else if (p->angles && p->noise < NOISE_DOWN) to_shot(p);
+    return p->angles ? angle_step(p) : shot_step(p);
 }
 
 int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,
@@ -661,11 +1270,13 @@ int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, doubl
 
 /* Follows the path until its rate first exceeds omega_max, it returns to the hanging chain, or
  * visit returns non-zero (WHIRL_VISIT_STOP: success). visit gets every crossing of the rates
- * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set). */
+ * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
+ * angles of the shape visited are in p->cross_theta (a crossing) or p->event_theta (an event). */
 static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const double *omega,
                        whirl_nlink_visit_fn visit, void *ctx)
 {
-    const whirl_chain *c = p->chain;
+    const size_t links = p->chain->n;
+    double *r = scr_nodes(p), *z = r + links + 1, *t = z + links + 1;
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= STEPS_MAX)
             return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps reached "
@@ -676,10 +1287,11 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
          * first is not needed by the callers, so crossings of a step follow its events */
         for (int e = 0; e < p->n_events; e++) {
             whirl_shape_info info;
-            if ((status = whirl_nlink_info(c, p->event[e].omega, fabs(p->event[e].tip_r),
-                                           p->mode, &info)))
+            const whirl_branch_event *ev = &p->event[e];
+            if ((status = shape_info(p, p->last.angles, ev->omega, ev->tip_r,
+                                     p->event_theta + (size_t)e * links, &info, r, z, t)))
                 return status;
-            if ((status = visit(ctx, SIZE_MAX, &info, &p->event[e])))
+            if ((status = visit(ctx, SIZE_MAX, &info, ev)))
                 return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
         }
         for (size_t j = 0; j < n; j++) {
@@ -688,8 +1300,14 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
             if (found < 0) return -found;
             for (int k = 0; k < found; k++) {
                 whirl_shape_info info;
-                if ((status = whirl_nlink_info(c, omega[j], tip[k], p->mode, &info)))
+                const double *th = p->cross_theta + (size_t)k * links;
+                if ((status = shape_info(p, p->cross_angles[k], omega[j], tip[k], th, &info, r,
+                                         z, t)))
                     return status;
+                if (k > 0) {
+                    for (size_t i = 0; i < links; i++) p->cross_theta[i] = th[i];
+                    p->cross_angles[0] = p->cross_angles[k];
+                }
                 if ((status = visit(ctx, j, &info, NULL)))
                     return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
             }
@@ -709,11 +1327,13 @@ int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t 
     return status;
 }
 
-/* The first crossing of each rate. */
+/* The first crossing of each rate; with nodes, the nodes of the first crossing of rate 0. */
 typedef struct first_ctx {
     whirl_shape_info *info;
     int *exists;
     size_t n, left;
+    whirl_nlink_path *p;
+    double *r, *z, *tension; /* NULL: not wanted */
 } first_ctx;
 
 static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
@@ -723,13 +1343,31 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
     if (event != NULL || f->exists[j]) return 0;
     f->exists[j] = 1;
     f->info[j] = *info;
+    if (f->r) {
+        /* the visited crossing's nodes, from its link angles (the first k of the step is
+         * copied to the front of cross_theta) */
+        whirl_nlink_path *p = f->p;
+        const size_t n = p->chain->n;
+        int status;
+        if (p->cross_angles[0]) {
+            whirl_nlink_balance_nodes(p->chain, info->omega, p->cross_theta, f->r, f->z,
+                                      f->tension);
+            if (f->r[n] < 0)
+                for (size_t i = 0; i <= n; i++) f->r[i] = -f->r[i];
+            status = whirl_steady_check_samples(info->omega, n + 1, f->r, f->z, f->tension);
+        } else {
+            status = whirl_nlink_positions(p->chain, info->omega, info->tip_r, f->r, f->z,
+                                           f->tension);
+        }
+        if (status) return status;
+    }
     return --f->left == 0 ? WHIRL_VISIT_STOP : 0;
 }
 
 /* The branch of mode at the rates omega[]: a path from the birth up to the largest of them (and
  * at least to twice the birth rate, where a branch that first turns to lower rates is seen). */
 static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *omega,
-                       whirl_shape_info *info, int *exists)
+                       whirl_shape_info *info, int *exists, double *r, double *z, double *t)
 {
     for (size_t j = 0; j < n; j++) {
         int status = whirl_steady_check_args(omega[j], mode);
@@ -743,7 +1381,7 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
     if (status) return status;
     double top = 2 * p->omega_birth;
     for (size_t j = 0; j < n; j++) top = fmax(top, omega[j]);
-    first_ctx f = {info, exists, n, n};
+    first_ctx f = {info, exists, n, n, p, r, z, t};
     if (n == 0) return GSL_SUCCESS;
     status = follow_path(p, top, n, omega, first_visit, &f);
     if (status == GSL_EFAILED || status == GSL_EMAXITER) {
@@ -762,25 +1400,32 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
 {
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
-    int status = branch_path(p, mode, n, omega, info, exists);
+    int status = branch_path(p, mode, n, omega, info, exists, NULL, NULL, NULL);
     whirl_nlink_path_free(p);
     return status;
 }
 
-int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info)
+int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
+                            whirl_shape_info *info, double *r, double *z, double *tension)
 {
-    (void)tip_r_guess;
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int exists = 0;
-    int status = branch_path(p, mode, 1, &omega, info, &exists);
+    int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension);
     if (status == GSL_SUCCESS && !exists) {
         if (p->ended)
             status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
                                 p->omega_birth, p->omega);
+        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13))
+            /* above the birth but below the first point of a branch begun in the link angles
+             * (birth_angles): the mode exists there, it is not resolved */
+            status = whirl_fail(GSL_EFAILED, "mode %d at omega=%.17g is not resolved: it lies "
+                                "between the birth omega_%d=%.17g and the first point of the "
+                                "branch, which the tip shot cannot start (begun in the link "
+                                "angles at an amplitude of %g rad)", mode, omega, mode,
+                                p->omega_birth, BIRTH_AMPLITUDE);
         else if (p->omega_lo >= p->omega_birth)
             status = whirl_steady_fail_missing(mode, omega, p->omega_birth);
         else
@@ -790,4 +1435,11 @@ int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r
     }
     whirl_nlink_path_free(p);
     return status;
+}
+
+int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
+                      whirl_shape_info *info)
+{
+    (void)tip_r_guess;
+    return whirl_nlink_solve_nodes(c, omega, mode, info, NULL, NULL, NULL);
 }

@@ -10,6 +10,12 @@
  * - a fold located to 1e-10 in omega, checked by the pivot-end shooting (a second formulation):
  *   two equilibria just inside the fold, none just outside;
  * - every mode up to N, mode N just above omega_N;
+ * - high rates, where the path goes over to the link angles (the tip shot loses digits there):
+ *   N = 15 mode 7 to omega = 200, N = 100 mode 50 to omega = 300, every mode of N = 100 at
+ *   twice omega_N, modes of N = 1000; at every accepted point the force across every link at
+ *   round-off of the forces summed in it (computed here from the nodes), no link angle jump
+ *   beyond what the step allows; a retrace up to omega = 200 and back to 1e-10 in the link
+ *   angles;
  * - the error paths. */
 #include <float.h>
 #include <math.h>
@@ -73,6 +79,49 @@ static void link_angles(const whirl_chain *c, double omega, double tip_r, double
     assert_int_equal(whirl_nlink_positions(c, omega, tip_r, r, z, t), GSL_SUCCESS);
     for (size_t i = 1; i <= n; i++) theta[i - 1] = atan2(r[i] - r[i - 1], z[i - 1] - z[i]);
     free(r);
+}
+
+/* The force across link i (the component of the resultant of the forces on the masses below it
+ * perpendicular to the link: zero at an equilibrium) for the shape with link angles theta, the
+ * nodes built from the pivot; the largest over the links relative to the forces summed in it
+ * (V_i + omega^2 sum_{j >= i} m_j |r_j|, the scale of its round-off), and relative to the total
+ * weight in *per_weight. */
+static double angle_residual(const whirl_chain *c, double omega, const double *theta,
+                             double *per_weight)
+{
+    /* in long double, so that the measure's own round-off stays below that of the angles */
+    size_t n = c->n;
+    long double *r = malloc((n + 1) * sizeof *r), h = 0, v = 0, sum = 0, weight = 0;
+    long double w2 = (long double)omega * omega, worst = 0, pw = 0;
+    assert_non_null(r);
+    r[0] = 0;
+    for (size_t i = 1; i <= n; i++) r[i] = r[i - 1] + c->length[i - 1] * sinl(theta[i - 1]);
+    for (size_t i = 0; i < n; i++) weight += c->mass[i] * c->gravity;
+    for (size_t i = n; i >= 1; i--) {
+        long double m = c->mass[i - 1], load = m * w2 * r[i];
+        h += load;
+        v += m * c->gravity;
+        sum += fabsl(load);
+        long double across = fabsl(h * cosl(theta[i - 1]) - v * sinl(theta[i - 1]));
+        worst = fmaxl(worst, across / (v + sum));
+        pw = fmaxl(pw, across / weight);
+    }
+    free(r);
+    *per_weight = (double)pw;
+    return (double)worst;
+}
+
+/* The same for nodes r, z (pivot first): the link angles from the nodes. */
+static double node_residual(const whirl_chain *c, double omega, const double *r, const double *z,
+                            double *per_weight)
+{
+    size_t n = c->n;
+    double *theta = malloc(n * sizeof *theta);
+    assert_non_null(theta);
+    for (size_t i = 1; i <= n; i++) theta[i - 1] = atan2(r[i] - r[i - 1], z[i - 1] - z[i]);
+    double worst = angle_residual(c, omega, theta, per_weight);
+    free(theta);
+    return worst;
 }
 
 /* Zeros of L_N by Golub-Welsch: the Jacobi matrix has diagonal 2k + 1 and off-diagonal k. */
@@ -145,13 +194,13 @@ static void test_branch_continuous(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     assert_int_equal(whirl_nlink_path_birth(p, 4), GSL_SUCCESS);
-    double th0[5], th1[5], worst = 0, jump = 0;
-    link_angles(c, p->omega, p->tip_r, th0);
+    double th0[5], th1[5], worst = 0, jump = 0, per_weight;
+    for (int i = 0; i < 5; i++) th0[i] = p->theta[i];
     while (p->omega < 45) {
         double ds = p->ds;
         assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
-        worst = fmax(worst, force_residual(c, p->omega, p->tip_r));
-        link_angles(c, p->omega, p->tip_r, th1);
+        worst = fmax(worst, angle_residual(c, p->omega, p->theta, &per_weight));
+        for (int i = 0; i < 5; i++) th1[i] = p->theta[i];
         for (int i = 0; i < 5; i++) {
             jump = fmax(jump, fabs(th1[i] - th0[i]) / ds);
             th0[i] = th1[i];
@@ -333,29 +382,199 @@ static void test_every_mode(void **state)
         size_t n = sizes[s];
         whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
         double *crit = malloc(n * sizeof *crit);
+        double *r = malloc(3 * (n + 1) * sizeof *r), *z = r + n + 1, *t = z + n + 1;
         assert_int_equal(whirl_nlink_critical(c, n, crit), GSL_SUCCESS);
         const double factors[] = {1 + 1e-9, 1 + 1e-4, 1.2};
+        double worst = 0;
         for (size_t k = 1; k <= n; k++)
             for (int f = 0; f < 3; f++) {
                 whirl_shape_info info;
-                double omega = crit[k - 1] * factors[f];
-                int status = whirl_nlink_solve(c, omega, (int)k, 0, &info);
+                double omega = crit[k - 1] * factors[f], per_weight;
+                int status = whirl_nlink_solve_nodes(c, omega, (int)k, &info, r, z, t);
                 if (status) print_message("N %zu mode %zu: %s\n", n, k, whirl_last_error());
                 assert_int_equal(status, GSL_SUCCESS);
                 assert_int_equal(info.mode, (int)k);
                 assert_true(info.tip_r > 0);
-                assert_true(force_residual(c, omega, info.tip_r) < 1e-13);
+                assert_true(r[n] > 0 && fabs(r[0]) <= 1e-13 * info.max_r);
+                double res = node_residual(c, omega, r, z, &per_weight);
+                worst = fmax(worst, res);
+                assert_true(res < 1e-13);
                 if (f == 0) assert_int_equal(info.n_nodes, (int)k - 1);
             }
+        print_message("N = %zu, modes 1..N at 1 + 1e-9, 1 + 1e-4 and 1.2 times their birth: "
+                      "worst force across a link %.2e of the forces summed in it\n", n, worst);
         /* the case: mode 15 of 15 at 26.85 (omega_15 = 26.8401) */
         if (n == 15) {
             whirl_shape_info info;
             assert_int_equal(whirl_nlink_solve(c, 26.85, 15, 0, &info), GSL_SUCCESS);
             assert_int_equal(info.n_nodes, 14);
         }
+        free(r);
         free(crit);
         whirl_chain_free(c);
     }
+}
+
+/* Mode k of c from its birth until the path first crosses omega_top: at every accepted point
+ * the force across the links (angle_residual, relative to the forces summed in a link and to
+ * the weight), the largest change of a link angle per unit step, the steps made in the link
+ * angles; the crossing's link angles into theta_top (if not NULL). */
+typedef struct high_run {
+    double worst, per_weight, jump, omega_reached;
+    long steps, angle_steps;
+} high_run;
+
+static void follow_high(const whirl_chain *c, int mode, double omega_top, double *theta_top,
+                        high_run *h)
+{
+    size_t n = c->n;
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_non_null(p);
+    assert_int_equal(whirl_nlink_path_birth(p, mode), GSL_SUCCESS);
+    double *prev = malloc(n * sizeof *prev), pw;
+    assert_non_null(prev);
+    for (size_t i = 0; i < n; i++) prev[i] = p->theta[i];
+    memset(h, 0, sizeof *h);
+    int found = 0;
+    while (!found) {
+        double ds = p->ds;
+        int status = whirl_nlink_path_step(p);
+        if (status) print_message("N %zu mode %d: %s\n", n, mode, whirl_last_error());
+        assert_int_equal(status, GSL_SUCCESS);
+        assert_false(p->ended);
+        h->worst = fmax(h->worst, angle_residual(c, p->omega, p->theta, &pw));
+        h->per_weight = fmax(h->per_weight, pw);
+        for (size_t i = 0; i < n; i++) {
+            h->jump = fmax(h->jump, fabs(p->theta[i] - prev[i]) / ds);
+            prev[i] = p->theta[i];
+        }
+        h->angle_steps += p->angles;
+        double a;
+        found = whirl_nlink_path_crossings(p, omega_top, 1, &a);
+        assert_true(found >= 0);
+        assert_true(p->steps < 20000);
+    }
+    if (theta_top)
+        for (size_t i = 0; i < n; i++) theta_top[i] = p->cross_theta[i];
+    h->steps = p->steps;
+    h->omega_reached = p->omega;
+    free(prev);
+    whirl_nlink_path_free(p);
+}
+
+/* The checks of a high run: the force balance at round-off of the forces summed in each link
+ * at every point (the floor of the balance in double at these rates grows with N: 5e-13 for
+ * N = 15 at omega = 157, 1e-12 for N = 100 at 300, and one more Newton iteration on the link
+ * angles does not lower it; bound: 200 N eps), no link angle changing by more than the metric allows (ds^2 >= |d theta|^2 /
+ * N, so |d theta_i| <= sqrt(N) ds up to the chord's excess over the arc). */
+static void check_high(const whirl_chain *c, int mode, double omega_top, const high_run *h)
+{
+    print_message("N = %zu mode %d to omega = %g: %ld steps (%ld in the link angles), force "
+                  "across a link <= %.2e of the forces summed in it (%.2e of the weight), link "
+                  "angle change per unit step <= %.2f (sqrt(N) = %.2f)\n", c->n, mode, omega_top,
+                  h->steps, h->angle_steps, h->worst, h->per_weight, h->jump, sqrt((double)c->n));
+    assert_true(h->worst < 200 * (double)c->n * DBL_EPSILON);
+    assert_true(h->jump <= 1.05 * sqrt((double)c->n));
+}
+
+/* High rates: the tip shot loses digits (N = 15 mode 7 stopped at omega = 40.1, N = 100 mode 50
+ * at 100.2 before the link angles); the path goes on in the link angles. */
+static void test_high_rates(void **state)
+{
+    (void)state;
+    high_run h;
+    whirl_chain *c15 = whirl_chain_alloc_uniform(15, 0);
+    double theta[100], r[101], z[101], t[101];
+    follow_high(c15, 7, 200, theta, &h);
+    check_high(c15, 7, 200, &h);
+    assert_true(h.angle_steps > 0);
+    /* the shape from whirl_nlink_solve_nodes at 200: the pivot on the axis, 7 nodes, the same
+     * link angles as the path's crossing */
+    whirl_shape_info info;
+    assert_int_equal(whirl_nlink_solve_nodes(c15, 200, 7, &info, r, z, t), GSL_SUCCESS);
+    assert_true(r[0] == 0 && info.tip_r > 0);
+    assert_int_equal(info.n_nodes, 6);
+    for (size_t i = 1; i <= 15; i++)
+        assert_float_equal(atan2(r[i] - r[i - 1], z[i - 1] - z[i]), theta[i - 1], 1e-12);
+    whirl_chain *c100 = whirl_chain_alloc_uniform(100, 0);
+    follow_high(c100, 50, 300, NULL, &h);
+    check_high(c100, 50, 300, &h);
+    assert_true(h.angle_steps > 0);
+    whirl_chain_free(c15);
+    whirl_chain_free(c100);
+}
+
+/* Every mode of N = 100 (every third and the last) at twice omega_N, and modes 2 and 10 of
+ * N = 1000 at twice their birth. */
+static void test_every_mode_high(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(100, 0);
+    double crit[100], worst = 0, per_weight = 0;
+    assert_int_equal(whirl_nlink_critical(c, 100, crit), GSL_SUCCESS);
+    const double top = 2 * crit[99];
+    high_run h;
+    for (int k = 1; k <= 100; k += 3) {
+        follow_high(c, k, top, NULL, &h);
+        assert_true(h.worst < 200 * 100 * DBL_EPSILON);
+        assert_true(h.jump <= 1.05 * sqrt(100.0));
+        worst = fmax(worst, h.worst);
+        per_weight = fmax(per_weight, h.per_weight);
+    }
+    print_message("N = 100, modes 1, 4, .., 100 at omega = %.4f (2 omega_N): force across a link "
+                  "<= %.2e of the forces summed in it (%.2e of the weight)\n", top, worst,
+                  per_weight);
+    whirl_chain_free(c);
+    whirl_chain *c1000 = whirl_chain_alloc_uniform(1000, 0);
+    double crit1000[10];
+    assert_int_equal(whirl_nlink_critical(c1000, 10, crit1000), GSL_SUCCESS);
+    const int modes[] = {2, 10};
+    for (int m = 0; m < 2; m++) {
+        follow_high(c1000, modes[m], 2 * crit1000[modes[m] - 1], NULL, &h);
+        check_high(c1000, modes[m], 2 * crit1000[modes[m] - 1], &h);
+    }
+    whirl_chain_free(c1000);
+}
+
+/* Up to omega = 200 and back down on N = 15 mode 7: the same link angles at the same rates. */
+static void test_retrace_high(void **state)
+{
+    (void)state;
+    const size_t n = 15;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    enum { nr = 5 };
+    const double rates[nr] = {45.3, 80.7, 120.1, 160.9, 190.2};
+    double up[nr][15], down[nr][15];
+    int seen_up[nr] = {0}, seen_down[nr] = {0};
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_int_equal(whirl_nlink_path_birth(p, 7), GSL_SUCCESS);
+    for (int dir = 0; dir < 2; dir++) {
+        while (dir == 0 ? p->omega < 200 : p->omega > 40) {
+            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+            for (int j = 0; j < nr; j++) {
+                double a;
+                int found = whirl_nlink_path_crossings(p, rates[j], 1, &a);
+                assert_true(found >= 0);
+                if (!found) continue;
+                double *dst = dir == 0 ? up[j] : down[j];
+                for (size_t i = 0; i < n; i++) dst[i] = p->cross_theta[i];
+                (dir == 0 ? seen_up : seen_down)[j]++;
+            }
+            assert_true(p->steps < 20000);
+        }
+        if (dir == 0) whirl_nlink_path_reverse(p);
+    }
+    double worst = 0;
+    for (int j = 0; j < nr; j++) {
+        assert_int_equal(seen_up[j], 1);
+        assert_int_equal(seen_down[j], 1);
+        for (size_t i = 0; i < n; i++) worst = fmax(worst, fabs(up[j][i] - down[j][i]));
+    }
+    print_message("retrace N = 15 mode 7 to omega = 200 and back to 40: link angles agree to "
+                  "%.2e rad\n", worst);
+    assert_true(worst < 1e-10);
+    whirl_nlink_path_free(p);
+    whirl_chain_free(c);
 }
 
 static void test_errors(void **state)
@@ -402,7 +621,8 @@ int main(void)
         cmocka_unit_test(test_critical_laguerre), cmocka_unit_test(test_branch_continuous),
         cmocka_unit_test(test_birth_linear_shape), cmocka_unit_test(test_retrace),
         cmocka_unit_test(test_folds),              cmocka_unit_test(test_every_mode),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_high_rates),         cmocka_unit_test(test_every_mode_high),
+        cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
 }

@@ -99,6 +99,14 @@ WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *
 WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
                       whirl_shape_info *info);
 
+/* whirl_nlink_solve with the shape's nodes: r[i], z[i] of mass i (i = 0: the pivot, z relative
+ * to it) and tension[i] of link i (tension[0] = tension[1]), arrays of c->n + 1. At high rates
+ * the tip radius alone no longer fixes the shape to round-off (whirl_nlink_positions from it
+ * lands the pivot off the axis): these nodes come from the branch's own link angles. */
+WHIRL_API int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
+                                      whirl_shape_info *info, double *r, double *z,
+                                      double *tension);
+
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
  * arrays of c->n + 1. */
@@ -118,7 +126,10 @@ WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const
  * where its zeros in omega are the critical rates: a branch is a curve of G = 0 in the
  * (omega, a) plane, born at (omega_k, 0). whirl_nlink_path follows such a curve with arclength
  * measured in (ln omega, link angles): ds^2 = (d omega / omega)^2 + the mean over the links of
- * d theta_i^2, so that a step of ds changes no link angle by much more than ds. */
+ * d theta_i^2, so that a step of ds changes no link angle by much more than ds. Where the shot
+ * from the tip loses digits (long chains, high modes, high rates: the tip radius then fixes the
+ * shape only to a few digits) the path continues the same curve in (omega, all link angles)
+ * instead, on the force balance of every mass (tridiagonal Jacobian, O(N) per Newton step). */
 
 /* What happens on a branch between two continuation points. */
 typedef enum whirl_event_kind {
@@ -145,7 +156,14 @@ typedef struct whirl_nlink_path {
     double omega_birth; /* its birth rate omega_k [sqrt(g/L)] (0 from an equilibrium) */
     double omega;     /* current point: rate [sqrt(g/L)] */
     double tip_r;     /* current point: signed tip radius [L] */
-    double t_omega, t_tip; /* unit tangent (direction of travel) in the metric above */
+    double t_omega, t_tip; /* unit tangent (direction of travel) in the metric above (t_tip:
+                            * d tip_r / ds) */
+    int angles;       /* 1 while the path is continued in (omega, link angles), 0 in
+                       * (omega, tip radius) */
+    double noise;     /* the round-off of the tip shot at the current point, as a distance
+                       * from the curve in the metric above */
+    int stay, backoff; /* steps the path stays in the link angles before it tries the shot
+                        * again, and the next such wait */
     double arclength; /* travelled since the start */
     double ds;        /* the next step's length; adapted to the Newton convergence and the
                        * turning of the tangent */
@@ -159,8 +177,20 @@ typedef struct whirl_nlink_path {
     /* workspace */
     double metric[3]; /* at the current point: g_ww, g_wa, g_aa */
     int raw_sign;     /* orientation of the tangent against (G_a, -G_w) */
-    double *theta;    /* link angles at the current point, c->n */
+    double *theta;    /* link angles at the current point, c->n [rad] */
     double *theta_trial;
+    double *t_theta;  /* the tangent's link-angle part, c->n (set in the link angles) */
+    double *t_theta_trial;
+    int det_sign;     /* in the link angles: sign of det [J; tangent] (branch points) */
+    double *cross_theta; /* the link angles of the crossings of the last
+                          * whirl_nlink_path_crossings, (WHIRL_PATH_EVENTS_MAX + 1) x c->n */
+    int cross_angles[WHIRL_PATH_EVENTS_MAX + 1]; /* 1: that crossing was resolved in the link
+                                                  * angles, 0: by the tip shot */
+    double *event_theta; /* the link angles of the events of the last step, EVENTS_MAX x c->n */
+    double *scratch;  /* 7 c->n + 3 */
+    void *balance;    /* the force balance in the link angles (src/nlink_balance.c) */
+    const char *why;  /* what rejected the last trial step */
+    int floor_exit;   /* the last Newton's method on the shot stopped at its round-off floor */
     double *embed;    /* the tangent in (ln omega, theta / sqrt(N)), c->n + 1 (+ c->n scratch) */
     double *embed_trial;
     double *work;     /* the block the arrays point into */
@@ -168,6 +198,9 @@ typedef struct whirl_nlink_path {
     struct {
         double m0[3], w0, a0, t_w, t_a, ds; /* its start: metric, point, tangent; its length */
         int raw_sign;
+        int angles;       /* the step was made in the link angles: */
+        double *theta0, *t_theta0; /* its start's link angles and tangent, c->n each */
+        int det_sign;
     } last;
 } whirl_nlink_path;
 
@@ -197,9 +230,10 @@ WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
 
 /* Where the last step crossed the rate omega (between the previous and the current point; the
  * step is cut at its folds, so it can cross a rate more than once): the tip radii of the first
- * max crossings, in the order of travel, into tip_r[], each located by Brent's method on the
- * step's arclength and polished at fixed omega. Returns their number (0: no crossing), or minus
- * a status on failure. */
+ * max crossings, in the order of travel, into tip_r[], each found by Newton's method at omega
+ * from the step's interpolation (Brent's method on the step's arclength where that lands off the
+ * piece), and their link angles in p->cross_theta (p->cross_angles[k]: resolved on the link
+ * angles). Returns their number (0: no crossing), or minus a status on failure. */
 WHIRL_API int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
 
 /* What whirl_nlink_follow reports: a crossing of the rate omega[j] (event NULL) or an event

@@ -26,22 +26,23 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     double tip_mass = steady_cli_tip_mass(&m);
-    whirl_shape_info info;
-    int status = m.chain ? whirl_nlink_solve(m.chain, omega, mode, 0, &info)
-                         : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
-    if (status != GSL_SUCCESS) {
-        steady_cli_solve_error(cmd, &m, status, mode, omega);
-        steady_cli_model_free(&m);
-        return 1;
-    }
     size_t n = m.chain ? m.chain->n + 1 : (size_t)points;
     double *s = malloc(4 * n * sizeof *s), *r = s + n, *z = r + n, *tension = z + n;
     if (s == NULL) {
         steady_cli_model_free(&m);
         return cli_error(cmd, "out of memory for %zu points", n);
     }
+    /* the N-link shape with its nodes from the branch's link angles */
+    whirl_shape_info info;
+    int status = m.chain ? whirl_nlink_solve_nodes(m.chain, omega, mode, &info, r, z, tension)
+                         : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
+    if (status != GSL_SUCCESS) {
+        steady_cli_solve_error(cmd, &m, status, mode, omega);
+        free(s);
+        steady_cli_model_free(&m);
+        return 1;
+    }
     if (m.chain) {
-        status = whirl_nlink_positions(m.chain, omega, info.tip_r, r, z, tension);
         s[0] = 0;
         for (size_t i = 1; i < n; i++) s[i] = s[i - 1] + m.chain->length[i - 1];
     } else {
