@@ -516,15 +516,19 @@ int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
     if (status) return status;
     reset(p);
     p->mode = mode;
-    /* Newton's method on the linearised shot G(omega, 0) */
+    /* Newton's method on the linearised shot G(omega, 0); where the shot is too inaccurate
+     * for it (the high modes of long chains: a correction beyond 1e-6 omega_k, or none that
+     * settles), the rate from the tridiagonal eigenproblem, accurate to a few eps relative */
     shot s;
+    const double omega_eig = omega;
     for (int it = 0; it < 20; it++) {
         shoot(c, omega, 0, &s, NULL);
         p->shots++;
         double d = s.g / s.g_w;
-        if (!isfinite(d) || fabs(d) > 1e-6 * omega)
-            return whirl_fail(GSL_EFAILED, "mode %d: the critical rate %.17g does not polish",
-                              mode, omega);
+        if (!isfinite(d) || fabs(omega - d - omega_eig) > 1e-6 * omega_eig || it == 19) {
+            omega = omega_eig;
+            break;
+        }
         omega -= d;
         if (fabs(d) <= 4 * DBL_EPSILON * omega) break;
     }
@@ -1092,8 +1096,8 @@ static int angle_step(whirl_nlink_path *p)
 /* The first point of the branch in the link angles, where the shot's first step from the birth
  * fails (the modes near N, whose linear mode shape has a tip displacement of 1e-10 of its
  * largest or less). At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
- * vector phi, the linear mode shape in the link angles (two steps of inverse iteration from the
- * shot's d theta / d a); the branch is the curve through it along phi, and its point with
+ * vector phi, the linear mode shape in the link angles (three steps of inverse iteration from
+ * the shot's d theta / d a, or from a constant vector where that is not finite); the branch is the curve through it along phi, and its point with
  * phi . theta / sqrt(N) = BIRTH_AMPLITUDE (a regular point of the system with that row: omega
  * moves from omega_k by O(amplitude^2)) is found by Newton's method from theta = amplitude phi.
  * Rates below that point's (within ~1e-10 omega_k of the birth) are not reached. */
@@ -1104,10 +1108,10 @@ static int birth_angles(whirl_nlink_path *p)
     double *phi = p->t_theta_trial, *th = p->theta_trial, *c_th = scr_cth(p);
     double w = p->omega_birth, dw, schur, norm = 0;
     for (size_t i = 0; i < n; i++) norm += p->embed[n + 1 + i] * p->embed[n + 1 + i];
-    if (!(norm > 0 && isfinite(norm))) return -1;
-    for (size_t i = 0; i < n; i++) phi[i] = p->embed[n + 1 + i] / sqrt(norm);
+    for (size_t i = 0; i < n; i++)
+        phi[i] = norm > 0 && isfinite(norm) ? p->embed[n + 1 + i] / sqrt(norm) : 1;
     if (whirl_nlink_balance_factor(p->balance, w, scr_zero(p)) == GSL_SUCCESS)
-        for (int it = 0; it < 2; it++) {
+        for (int it = 0; it < 3; it++) {
             if (whirl_nlink_balance_bordered(p->balance, scr_zero(p), 1, phi, 0, 0, th, &dw,
                                              &schur))
                 break;

@@ -533,6 +533,23 @@ static void test_every_mode_high(void **state)
         follow_high(c1000, modes[m], 2 * crit1000[modes[m] - 1], NULL, &h);
         check_high(c1000, modes[m], 2 * crit1000[modes[m] - 1], &h);
     }
+    /* modes 500 and 1000 of 1000, where the shot polishes neither the birth nor the first step:
+     * they start in the link angles, above their birth, balanced */
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c1000);
+    for (int k = 500; k <= 1000; k += 500) {
+        assert_int_equal(whirl_nlink_path_birth(p, k), GSL_SUCCESS);
+        for (int s = 0; s < 3; s++) {
+            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+            /* the tip's sign only where the tail is resolved: mode 1000's tip radius is 1e-160
+             * of its largest, below what link angles in double resolve */
+            assert_true(p->angles && p->omega > p->omega_birth && (k == 1000 || p->tip_r > 0));
+            double pw, res = angle_residual(c1000, p->omega, p->theta, &pw);
+            assert_true(res < 200 * 1000 * DBL_EPSILON);
+        }
+        print_message("N = 1000 mode %d: born at %.10g, three steps in the link angles to %.10g\n",
+                      k, p->omega_birth, p->omega);
+    }
+    whirl_nlink_path_free(p);
     whirl_chain_free(c1000);
 }
 
