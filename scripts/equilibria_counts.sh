@@ -1,42 +1,53 @@
 #!/bin/sh
 # How the number of planar equilibria of the N-link chain departs from Kolodner's count (the
 # number of modes born below the rate, the continuum's exact count) as the rate grows: for each
-# N and rate, `whirl equilibria --no-stability`, printed as a Markdown table of
-# "count (isolated)" cells, with the wall time of each run. A run that fails (scan not settled,
-# budget) shows its reason; one over LIMIT seconds (default 300) is stopped.
-# Usage: [LIMIT=S] scripts/equilibria_counts.sh [BUILD] [N...]
+# N and rate, `whirl equilibria --no-branches --no-stability` (the two scans only), one Markdown
+# row: the rate, its ratio to omega_N (the highest critical rate), Kolodner's count, the number
+# found, whether the tip scan and the pivot scan found the same equilibria, the count by node
+# number (nodes:count) and the wall time. A run that fails (budget) shows its reason; one over
+# LIMIT seconds (default 300) is stopped.
+# Usage: [LIMIT=S] [RATES_5="..."] [RATES_10=...] scripts/equilibria_counts.sh [BUILD] [N...]
 build=${1:-build}
 shift 2>/dev/null
 links=${*:-5 10 25 100}
-rates="5 7.5 10 12.5 15 20 25 30 40 50"
 whirl=$build/whirl
 limit=${LIMIT:-300} # seconds per run
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-printf '| N |'
-for w in $rates; do printf ' %s |' "$w"; done
-printf '\n|---|'
-for w in $rates; do printf -- '---|'; done
-printf '\n'
+printf '| N | W | W / omega_N | Kolodner | found | scans agree | by node number | time |\n'
+printf '|---|---|---|---|---|---|---|---|\n'
 for n in $links; do
-  printf '| %s |' "$n"
+  case $n in
+    5) rates=${RATES_5:-5 7.5 10 12.5 16 20 30 50} ;;
+    10) rates=${RATES_10:-5 10 15 20 25 30 35 40 50 60} ;;
+    25) rates=${RATES_25:-10 15 20 25 30 35 40 50 70} ;;
+    100) rates=${RATES_100:-10 20 30 40 50 60 80 100 200 300} ;;
+    *) rates=${RATES:-5 10 20 40} ;;
+  esac
+  top=$n
+  [ "$top" -gt 64 ] && top=64
+  "$whirl" critical --links "$n" --modes "$top" > "$tmp/crit.csv"
+  if [ "$n" -le 64 ]; then
+    wn=$(tail -n 1 "$tmp/crit.csv" | cut -d, -f2)
+  else
+    wn=""
+  fi
   for w in $rates; do
+    ratio="-"
+    [ -n "$wn" ] && ratio=$(awk -v w="$w" -v c="$wn" 'BEGIN { printf "%.2f", w / c }')
     start=$(date +%s.%N)
-    if timeout "$limit" "$whirl" equilibria --omega "$w" --links "$n" --no-stability -o "$tmp/e.csv" 2>"$tmp/err"; then
+    if timeout "$limit" "$whirl" equilibria --omega "$w" --links "$n" --no-branches --no-stability -o "$tmp/e.csv" 2>"$tmp/err"; then
       t=$(echo "$(date +%s.%N) - $start" | bc)
       born=$(sed -n 's/.* \([0-9]*\) modes born below omega$/\1/p' "$tmp/e.csv")
       count=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | wc -l)
-      iso=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | grep -c ',isolated,')
-      unid=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | grep -c ',unidentified,')
-      cell="$count / $born"
-      [ "$iso" -gt 0 ] && cell="$cell, $iso iso"
-      [ "$unid" -gt 0 ] && cell="$cell, $unid unid"
-      printf ' %s (%.1fs) |' "$cell" "$t"
+      agree=$(sed -n 's/.*tip scan: \([0-9]*\) roots.*pivot scan: \([0-9]*\) roots.*both: \([0-9]*\)$/\1 \2 \3/p' "$tmp/e.csv")
+      if [ "$agree" = "$count $count $count" ]; then agree=yes; else agree="no (tip, pivot, both: $agree)"; fi
+      nodes=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | cut -d, -f1 | sort -n | uniq -c | awk '{ printf "%s%s:%s", sep, $2, $1; sep = " " }')
+      printf '| %s | %s | %s | %s | %s | %s | %s | %.1f s |\n' "$n" "$w" "$ratio" "$born" "$count" "$agree" "$nodes" "$t"
     elif [ $? -eq 124 ]; then
-      printf ' (over %s s) |' "$limit"
+      printf '| %s | %s | %s | | | | over %s s | |\n' "$n" "$w" "$ratio" "$limit"
     else
-      printf ' (%s) |' "$(sed 's/^whirl equilibria: //' "$tmp/err" | cut -c1-40)"
+      printf '| %s | %s | %s | | | | %s | |\n' "$n" "$w" "$ratio" "$(sed 's/^whirl equilibria: //' "$tmp/err" | head -n 1 | cut -c1-60)"
     fi
   done
-  printf '\n'
 done

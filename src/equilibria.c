@@ -15,18 +15,32 @@
  *    relative). So every root lies in [a_f, L). In x = ln(a / (L - a)) (logarithmic at both
  *    ends: high modes have tip radii down to 1e-18 of their largest radius, mode 1 at high rates
  *    a tip radius within ~1/(2 omega^4) of L) the interval [ln a_f - 9, 36] is cut into a grid,
- *    and each cell [x_l, x_r] with its midpoint x_m is accepted when
+ *    and each cell [x_l, x_r] with its midpoint x_m is accepted when (c) and either (a) or (b)
+ *    hold:
  *      (a) G has one sign at the three points and min |G| > h max |G'| (h = x_r - x_l): G
  *          stays away from zero; or
  *      (b) G' has one strict sign at the three points and the cubic Hermite interpolant of the
  *          ends predicts G(x_m) to tau |G(x_r) - G(x_l)|: G is monotone on the cell, so it has
  *          at most one root, found by the sign change;
- *    and otherwise halved, down to a width of 1e-11 (a cell accepted there is counted as
- *    unresolved: a near-tangent root, i.e. omega within ~1e-20 of a fold). G' = dG/da da/dx is
- *    exact (forward differentiation of the recursion). The scan is repeated with a grid 4 times
- *    finer and tau 4 times smaller until two successive levels give the same count. Clusters of
- *    roots (on a 7-link chain at omega = 21.1 about a hundred roots, some 1e-5 apart in a) are
- *    resolved by (b), which refines exactly where G' changes sign.
+ *      (c) every link angle theta_i = atan(H_i / V_i) is resolved: it turns by at most 0.25 rad
+ *          from each of the three points to the next, and the cubic Hermite interpolant of its
+ *          tangent H_i / V_i (exact derivative) predicts theta_i(x_m) to tau rad;
+ *    and otherwise halved, down to a width of 1e-14 (1 + |x|) (about 50 rounding units of x; a
+ *    cell accepted there is counted as unresolved: a near-tangent root, i.e. omega within
+ *    ~1e-28 of a fold). G' = dG/da da/dx is exact (forward differentiation of the recursion).
+ *    The scan is repeated with a grid 4 times finer and tau 4 times smaller until two
+ *    successive levels give the same count.
+ *    Why (c): at high rates (|H_i| >> V_i) a link angle turns by nearly pi where H_i passes
+ *    through zero, over a width ~ V_i / |dH_i/dx| that shrinks with the rate (1e-11 in x for 10
+ *    links at omega = 40), and every link above it follows; G varies on that scale only
+ *    there, so samples on either side show nothing of it (a and b passed on cells holding two
+ *    roots 1e-7 apart in a: 10 links at omega = 30 lost 10 of 1084 roots to the pivot scan's
+ *    count). G is a smooth function of a and the angles (r_0 = a - sum l_i sin theta_i), so a
+ *    cell on which every angle is resolved, G included, holds what (a) and (b) say. Each H_i is
+ *    a smooth function of the angles below link i, which is what the Hermite test on its
+ *    tangent checks, from the tip up. Clusters of roots (a hundred on 7 links at omega = 21.1,
+ *    some 1e-5 apart in a; over a thousand on 10 links at omega = 40, 1e-7 apart) are resolved
+ *    this way.
  * 2. Pivot scan, an independent formulation: the top link's angle theta_1 in (0, pi/2) (every
  *    nontrivial equilibrium has theta_1 != 0, and theta_1 > 0 for one of the mirror pair) fixes
  *    the horizontal force at the pivot; going down the chain the force left below the tip,
@@ -42,13 +56,18 @@
  *    matched against the scans' roots (a crossing they did not find counts as missed and is
  *    added). Curves that meet no birth are isolated: they appear as pairs at folds, and the
  *    lowest fold found is reported as where the curve is born.
- * Limits: (b) tests monotonicity at three points per cell, it does not prove it (two roots
- * closer than the cell where the Hermite cubic fits G to tau would be missed by both scans;
- * method 3 finds such a pair when its curve passes through another root). Curves that first
- * cross omega after rising above follow_factor * omega are followed from their own roots,
- * and a birth reached only above that limit is not seen (the root is then called isolated).
- * On long chains at high rates the tip shot loses digits (its round-off grows with the rate):
- * the scans then disagree or exceed their budget, and the function says so.
+ * Limits: (b) and (c) test at three points per cell, they do not prove (two roots closer
+ * than a cell on which the Hermite cubics fit G and every angle to tau would be missed by a
+ * scan; the other scan, whose parameter runs the other way along the chain, and method 3 are
+ * the checks). Curves that first cross omega after rising above follow_factor * omega are
+ * followed from their own roots, and a birth reached only above that limit is not seen (the
+ * root is then called isolated). Features narrower than the cell floor (a rounding limit of
+ * the parameter) are counted as unresolved. The cost is about proportional to the number of
+ * equilibria, which at high rates grows about exponentially with N (25 links: 1354 at omega
+ * = 30, 9672 at 35, about 75000 at 40): shot_budget bounds each level and GSL_EMAXITER says
+ * when it is exceeded; method 3 costs thousands of steps per root and can be left out
+ * (params.continuation = 0) to count. Duplicates among the scans' roots are merged after
+ * sorting by tip radius (list_unique), not by a search per root.
  *
  * Continuous chain: Kolodner (1955, Comm. Pure Appl. Math. 8:395, "Heavy rotating string - a
  * nonlinear eigenvalue problem") proves exactly n nontrivial shapes for omega_n < omega <=
@@ -80,7 +99,8 @@
 #define SCAN_X_TOP 36.0      /* top of the scan: L - a = L e^-36 ~ 2e-16 L */
 #define SCAN_BELOW_FLOOR 9.0 /* the scan starts e^-9 ~ 1e-4 below the linear floor */
 #define FLOOR_NONLINEAR 1e-8 /* |H_i| / V_i at the floor */
-#define SCAN_H_MIN 1e-11     /* narrowest cell */
+#define SCAN_H_MIN 1e-14     /* narrowest cell (x: about 50 ulp of the tip radius) */
+#define SCAN_DTHETA 0.25     /* largest turn of a link angle between two points [rad] */
 #define SCAN_TAU 0.01        /* Hermite test of the first level */
 #define SCAN_LEVELS_MAX 5
 #define SCAN_DEPTH_MAX 64
@@ -92,7 +112,7 @@
 
 whirl_equilibria_params whirl_equilibria_defaults(void)
 {
-    whirl_equilibria_params p = {1, 2.0, 20000000L};
+    whirl_equilibria_params p = {1, 2.0, 20000000L, 1};
     return p;
 }
 
@@ -105,11 +125,21 @@ void whirl_equilibria_free(whirl_equilibria *e)
 
 /* ---- the adaptive sign-change scan of a function of one variable ---- */
 
-typedef int (*scan_fn)(void *ctx, double x, double *g, double *dg);
+/* G and dG/dx at x; with s, sd not NULL, the tangents of the link angles H_i / V_i and their
+ * derivatives with respect to x */
+typedef int (*scan_fn)(void *ctx, double x, double *g, double *dg, double *s, double *sd);
 
 typedef struct scan_point {
     double x, g, d;
+    double *s, *sd; /* the link angles' tangents and their derivatives (n_slopes each) */
 } scan_point;
+
+typedef struct scan_problem {
+    scan_fn f;
+    void *ctx;
+    size_t n_slopes; /* N */
+    long budget;     /* residual evaluations of one level */
+} scan_problem;
 
 typedef struct bracket {
     double lo, hi; /* a sign change of the function between x = lo and x = hi */
@@ -122,18 +152,20 @@ typedef struct scan_out {
     size_t unresolved;
 } scan_out;
 
-static int scan_eval(scan_fn f, void *ctx, double x, scan_point *p, scan_out *o, long budget)
+static int scan_eval(const scan_problem *pb, double x, scan_point *p, scan_out *o)
 {
-    if (++o->evals > budget)
+    if (++o->evals > pb->budget)
         return whirl_fail(GSL_EMAXITER, "the scan needs more than %ld residual evaluations",
-                          budget);
+                          pb->budget);
     if ((o->evals & 1023) == 0 && whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped after %ld residual evaluations",
                           o->evals);
     p->x = x;
-    int status = f(ctx, x, &p->g, &p->d);
+    int status = pb->f(pb->ctx, x, &p->g, &p->d, p->s, p->sd);
     if (status) return status;
-    if (!(isfinite(p->g) && isfinite(p->d)))
+    int finite = isfinite(p->g) && isfinite(p->d);
+    for (size_t i = 0; i < pb->n_slopes; i++) finite &= isfinite(p->s[i]) && isfinite(p->sd[i]);
+    if (!finite)
         return whirl_fail(GSL_ERANGE, "the shot is not finite at x=%.17g: the radii of the "
                           "shape overflow (too many links for this rate)", x);
     return GSL_SUCCESS;
@@ -160,46 +192,64 @@ static int accept(scan_out *o, const scan_point *l, const scan_point *r)
     return GSL_SUCCESS;
 }
 
-/* One level: n0 equal cells on [x0, x1], refined as in the header comment (a), (b). */
-static int scan_level(scan_fn f, void *ctx, double x0, double x1, size_t n0, double tau,
-                      long budget, scan_out *o)
+/* Test (c) of the header comment: every link angle turns by at most SCAN_DTHETA from one point
+ * to the next, and the cubic Hermite interpolant of its tangent predicts the midpoint's angle
+ * to tau. */
+static int slopes_resolved(const scan_point *l, const scan_point *m, const scan_point *r,
+                           size_t n, double tau)
 {
-    scan_point stack[SCAN_DEPTH_MAX + 2][2];
-    scan_point left;
-    int status = scan_eval(f, ctx, x0, &left, o, budget);
+    double h = r->x - l->x;
+    for (size_t i = 0; i < n; i++) {
+        double tl = atan(l->s[i]), tm = atan(m->s[i]), tr = atan(r->s[i]);
+        if (!(fabs(tm - tl) <= SCAN_DTHETA && fabs(tr - tm) <= SCAN_DTHETA)) return 0;
+        double fit = 0.5 * (l->s[i] + r->s[i]) + 0.125 * h * (l->sd[i] - r->sd[i]);
+        if (!(fabs(atan(fit) - tm) <= tau)) return 0;
+    }
+    return 1;
+}
+
+/* One level: n0 equal cells on [x0, x1], refined as in the header comment (a), (b), (c), depth
+ * first. pt[0..top] are the points still to visit, in decreasing x from pt[0] (the right end
+ * of the grid cell) to pt[top] (the left end of the cell under test); pt[top + 1] is the
+ * midpoint's slot. Halving exchanges the pointers only. */
+static int scan_level(const scan_problem *pb, double x0, double x1, size_t n0, double tau,
+                      scan_point **pt, scan_out *o)
+{
+    int status = scan_eval(pb, x0, pt[1], o);
     for (size_t i = 1; i <= n0 && !status; i++) {
-        scan_point right;
         double xr = i == n0 ? x1 : x0 + (x1 - x0) * (double)i / (double)n0;
-        if ((status = scan_eval(f, ctx, xr, &right, o, budget))) break;
-        int top = 0;
-        stack[0][0] = left;
-        stack[0][1] = right;
-        while (top >= 0 && !status) {
-            scan_point l = stack[top][0], r = stack[top][1], m;
-            top--;
-            double h = r.x - l.x;
-            if ((status = scan_eval(f, ctx, 0.5 * (l.x + r.x), &m, o, budget))) break;
-            int same = sign_of(l.g) == sign_of(m.g) && sign_of(m.g) == sign_of(r.g);
-            double gmin = fmin(fabs(l.g), fmin(fabs(m.g), fabs(r.g)));
-            double dmax = fmax(fabs(l.d), fmax(fabs(m.d), fabs(r.d)));
-            double hermite = 0.5 * (l.g + r.g) + 0.125 * h * (l.d - r.d);
-            int monotone = l.d != 0 && sign_of(l.d) == sign_of(m.d) &&
-                           sign_of(m.d) == sign_of(r.d) && m.d != 0 && r.d != 0 &&
-                           fabs(m.g - hermite) <= tau * fabs(r.g - l.g);
-            int narrow = h <= SCAN_H_MIN * fmax(1, fabs(m.x)) || top + 2 >= SCAN_DEPTH_MAX;
-            if ((same && gmin > h * dmax) || monotone || narrow) {
-                if (narrow && !(same && gmin > h * dmax) && !monotone) o->unresolved++;
-                if (!(status = accept(o, &l, &m))) status = accept(o, &m, &r);
+        /* the left end (pt[1]) and the right end (pt[0]) of grid cell i */
+        if ((status = scan_eval(pb, xr, pt[0], o))) break;
+        int top = 1;
+        while (top >= 1 && !status) {
+            scan_point *l = pt[top], *r = pt[top - 1], *m = pt[top + 1];
+            double h = r->x - l->x;
+            if ((status = scan_eval(pb, 0.5 * (l->x + r->x), m, o))) break;
+            int same = sign_of(l->g) == sign_of(m->g) && sign_of(m->g) == sign_of(r->g);
+            double gmin = fmin(fabs(l->g), fmin(fabs(m->g), fabs(r->g)));
+            double dmax = fmax(fabs(l->d), fmax(fabs(m->d), fabs(r->d)));
+            double hermite = 0.5 * (l->g + r->g) + 0.125 * h * (l->d - r->d);
+            int monotone = l->d != 0 && sign_of(l->d) == sign_of(m->d) &&
+                           sign_of(m->d) == sign_of(r->d) && m->d != 0 && r->d != 0 &&
+                           fabs(m->g - hermite) <= tau * fabs(r->g - l->g);
+            int away = same && gmin > h * dmax;
+            int ok = (away || monotone) && slopes_resolved(l, m, r, pb->n_slopes, tau);
+            int narrow = h <= SCAN_H_MIN * fmax(1, fabs(m->x)) || top + 2 >= SCAN_DEPTH_MAX;
+            if (ok || narrow) {
+                if (!ok) o->unresolved++;
+                if (!(status = accept(o, l, m))) status = accept(o, m, r);
+                top--; /* the cell's right end is the next cell's left end */
                 continue;
             }
+            /* [l, m] first, then [m, r] */
+            pt[top] = m;
+            pt[top + 1] = l;
             top++;
-            stack[top][0] = m;
-            stack[top][1] = r;
-            top++;
-            stack[top][0] = l;
-            stack[top][1] = m;
         }
-        left = right;
+        /* the right end becomes the next left end */
+        scan_point *tmp = pt[1];
+        pt[1] = pt[0];
+        pt[0] = tmp;
     }
     return status;
 }
@@ -212,15 +262,25 @@ static void scan_out_free(scan_out *o)
 
 /* Levels with 4^k n0 cells and tau / 4^k until two successive counts agree; the last level's
  * brackets in *o. */
-static int scan_settled(scan_fn f, void *ctx, double x0, double x1, size_t n0, long budget,
-                        scan_out *o, int *levels)
+static int scan_settled(const scan_problem *pb, double x0, double x1, size_t n0, scan_out *o,
+                        int *levels)
 {
+    enum { SLOTS = SCAN_DEPTH_MAX + 2 };
+    scan_point pool[SLOTS], *pt[SLOTS];
+    size_t n = pb->n_slopes;
+    double *store = malloc((2 * n * SLOTS + 1) * sizeof *store);
+    if (store == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the scan");
+    for (int k = 0; k < SLOTS; k++) {
+        pool[k].s = store + 2 * n * (size_t)k;
+        pool[k].sd = pool[k].s + n;
+        pt[k] = &pool[k];
+    }
     scan_out prev = {0};
     double tau = SCAN_TAU;
     int status = GSL_SUCCESS;
     for (int k = 0; k < SCAN_LEVELS_MAX; k++, n0 *= 4, tau /= 4) {
         scan_out cur = {0};
-        status = scan_level(f, ctx, x0, x1, n0, tau, budget, &cur);
+        status = scan_level(pb, x0, x1, n0, tau, pt, &cur);
         if (status) {
             scan_out_free(&cur);
             break;
@@ -228,12 +288,14 @@ static int scan_settled(scan_fn f, void *ctx, double x0, double x1, size_t n0, l
         *levels = k + 1;
         if (k > 0 && cur.n == prev.n) {
             scan_out_free(&prev);
+            free(store);
             *o = cur;
             return GSL_SUCCESS;
         }
         scan_out_free(&prev);
         prev = cur;
     }
+    free(store);
     scan_out_free(&prev);
     if (status) return status;
     return whirl_fail(GSL_EMAXITER, "the root count did not settle in %d refinement levels",
@@ -250,7 +312,7 @@ static double brent_value(double x, void *p)
 {
     brent_ctx *b = p;
     double g, d;
-    int status = b->f(b->ctx, x, &g, &d);
+    int status = b->f(b->ctx, x, &g, &d, NULL, NULL);
     if (status && !b->status) b->status = status;
     return g;
 }
@@ -292,31 +354,34 @@ static int check_stop(size_t i, size_t n)
 typedef struct nlink_scan {
     const whirl_chain *c;
     double omega, length; /* the rate; L = sum of the link lengths */
+    double *slope, *slope_d; /* scratch of the tip shot (N each) */
 } nlink_scan;
 
 /* x = ln(a / (L - a)) */
 static double tip_of_x(const nlink_scan *s, double x) { return s->length / (1 + exp(-x)); }
 
-static int tip_fn(void *ctx, double x, double *g, double *dg)
+static int tip_fn(void *ctx, double x, double *g, double *dg, double *sl, double *sl_d)
 {
     const nlink_scan *s = ctx;
     double e = exp(-x), a = s->length / (1 + e), da = s->length * e / ((1 + e) * (1 + e));
     double g_a;
-    int status = whirl_nlink_residual(s->c, s->omega, a, g, NULL, &g_a);
+    whirl_nlink_tip_shot(s->c, s->omega, a, g, &g_a, sl ? sl : s->slope, sl_d ? sl_d : s->slope_d);
     *dg = g_a * da;
-    return status;
+    for (size_t i = 0; sl_d && i < s->c->n; i++) sl_d[i] *= da;
+    return GSL_SUCCESS;
 }
 
 /* y = ln(theta_1 / (pi/2 - theta_1)) */
 static double theta_of_y(double y) { return M_PI_2 / (1 + exp(-y)); }
 
-static int pivot_fn(void *ctx, double y, double *g, double *dg)
+static int pivot_fn(void *ctx, double y, double *g, double *dg, double *sl, double *sl_d)
 {
     const nlink_scan *s = ctx;
     double e = exp(-y), th = M_PI_2 / (1 + e), dth = M_PI_2 * e / ((1 + e) * (1 + e));
     double d;
-    int status = whirl_nlink_pivot_shot(s->c, s->omega, th, g, &d, NULL, NULL);
+    int status = whirl_nlink_pivot_shot(s->c, s->omega, th, g, &d, NULL, NULL, sl, sl_d);
     *dg = d * dth;
+    for (size_t i = 0; sl_d && i < s->c->n; i++) sl_d[i] *= dth;
     return status;
 }
 
@@ -485,6 +550,64 @@ static size_t list_merge(eq_list *l, double tip_r, const double *theta, int sour
     }
     if ((*status = list_add(l, tip_r, theta, source))) return SIZE_MAX;
     return l->n - 1;
+}
+
+typedef struct tip_index {
+    double tip_r;
+    size_t i;
+} tip_index;
+
+static int cmp_tip_index(const void *x, const void *y)
+{
+    double a = ((const tip_index *)x)->tip_r, b = ((const tip_index *)y)->tip_r;
+    return (a > b) - (a < b);
+}
+
+/* Merges the entries that are the same equilibrium (as list_find), in increasing tip radius:
+ * O(n log n + n w) for w entries within MATCH_TIP of each other, where list_merge for each
+ * would be O(n^2) (tens of thousands of roots on long chains at high rates). */
+static int list_unique(eq_list *l)
+{
+    size_t n = l->n, kept = 0, links = l->links;
+    tip_index *order = malloc(n * sizeof *order);
+    whirl_equilibrium *eq = malloc(n * sizeof *eq);
+    int *source = malloc(n * sizeof *source);
+    double *theta = malloc(n * links * sizeof *theta);
+    if (order == NULL || eq == NULL || source == NULL || (n * links > 0 && theta == NULL)) {
+        free(order), free(eq), free(source), free(theta);
+        return whirl_fail(GSL_ENOMEM, "out of memory for %zu equilibria", n);
+    }
+    for (size_t i = 0; i < n; i++) order[i] = (tip_index){l->eq[i].info.tip_r, i};
+    qsort(order, n, sizeof *order, cmp_tip_index);
+    for (size_t k = 0; k < n; k++) {
+        size_t i = order[k].i, same = SIZE_MAX;
+        double tip = l->eq[i].info.tip_r;
+        const double *th = l->theta + i * links;
+        for (size_t j = kept; j-- > 0 && eq[j].info.tip_r >= tip - MATCH_TIP * tip;) {
+            double d = 0;
+            for (size_t q = 0; q < links; q++) d = fmax(d, fabs(theta[j * links + q] - th[q]));
+            if (d <= MATCH_ANGLE) {
+                same = j;
+                break;
+            }
+        }
+        if (same != SIZE_MAX) {
+            source[same] |= l->source[i];
+            continue;
+        }
+        eq[kept] = l->eq[i];
+        source[kept] = l->source[i];
+        memcpy(theta + kept * links, th, links * sizeof *theta);
+        kept++;
+    }
+    free(order);
+    free(l->eq), free(l->source), free(l->theta);
+    l->eq = eq;
+    l->source = source;
+    l->theta = theta;
+    l->n = l->cap = kept;
+    if (kept == 0) l->cap = n; /* the arrays hold n */
+    return GSL_SUCCESS;
 }
 
 /* ---- N-link chain: continuation of the curves through the roots ---- */
@@ -665,8 +788,11 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
                                 "hanging chain", omega, k + 1, crit[k]);
         if (crit[k] < omega) res->born++;
     }
-    nlink_scan s = {c, omega, 0};
+    nlink_scan s = {c, omega, 0, NULL, NULL};
     for (size_t i = 0; i < n; i++) s.length += c->length[i];
+    if (!status && (s.slope = malloc(2 * n * sizeof *s.slope)) == NULL)
+        status = whirl_fail(GSL_ENOMEM, "out of memory for %zu links", n);
+    s.slope_d = s.slope + n;
     double per_tip, per_top;
     linear_loads(c, omega, &per_tip, &per_top);
     if (!status && !(isfinite(per_tip) && isfinite(per_top) && per_tip < 1e150 && per_top < 1e150))
@@ -677,15 +803,15 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     if (!status) {
         res->tip_floor = FLOOR_NONLINEAR / per_tip;
         double x0 = log(res->tip_floor / s.length) - SCAN_BELOW_FLOOR;
-        status = scan_settled(tip_fn, &s, x0, SCAN_X_TOP, n0, par->shot_budget, &tip,
-                              &res->tip_levels);
+        scan_problem pb = {tip_fn, &s, n, par->shot_budget};
+        status = scan_settled(&pb, x0, SCAN_X_TOP, n0, &tip, &res->tip_levels);
         res->tip_shots = tip.evals;
         res->tip_unresolved = tip.unresolved;
     }
     if (!status) {
         double y0 = log(FLOOR_NONLINEAR / per_top / M_PI_2) - SCAN_BELOW_FLOOR;
-        status = scan_settled(pivot_fn, &s, y0, SCAN_X_TOP, n0, par->shot_budget, &top,
-                              &res->check_levels);
+        scan_problem pb = {pivot_fn, &s, n, par->shot_budget};
+        status = scan_settled(&pb, y0, SCAN_X_TOP, n0, &top, &res->check_levels);
         res->check_shots = top.evals;
     }
     /* the roots, polished */
@@ -695,22 +821,26 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         if (!(status = polish(tip_fn, &s, tip.br[i].lo, tip.br[i].hi, &x)))
             a = tip_of_x(&s, x), status = angles_of_tip(aw, a);
         if (!status) status = angle_polish(aw, &a);
-        if (!status) list_merge(l, a, aw->theta, 1, &status);
+        if (!status) status = list_add(l, a, aw->theta, 1);
     }
     res->tip_roots = tip.n;
     for (size_t i = 0; i < top.n && !status; i++) {
         double y, g, a;
         if ((status = check_stop(i, top.n))) break;
         if (!(status = polish(pivot_fn, &s, top.br[i].lo, top.br[i].hi, &y)))
-            status = whirl_nlink_pivot_shot(c, omega, theta_of_y(y), &g, NULL, &a, aw->theta);
+            status = whirl_nlink_pivot_shot(c, omega, theta_of_y(y), &g, NULL, &a, aw->theta,
+                                            NULL, NULL);
         if (!status) status = angle_polish(aw, &a);
-        if (!status) list_merge(l, a, aw->theta, 2, &status);
+        if (!status) status = list_add(l, a, aw->theta, 2);
     }
     res->check_roots = top.n;
     scan_out_free(&tip);
     scan_out_free(&top);
+    free(s.slope);
+    if (!status) status = list_unique(l);
     for (size_t i = 0; i < l->n; i++) res->matched += (l->source[i] & 3) == 3;
-    if (!status) status = continue_all(c, omega, par->follow_factor, crit, l, aw, res);
+    if (!status && par->continuation)
+        status = continue_all(c, omega, par->follow_factor, crit, l, aw, res);
     free(crit);
     return status;
 }

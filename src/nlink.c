@@ -186,7 +186,8 @@ int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
 }
 
 int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, double *residual,
-                           double *d_residual, double *tip_r, double *theta)
+                           double *d_residual, double *tip_r, double *theta, double *slope,
+                           double *slope_d)
 {
     /* everything divided by H_1: eta_i = H_i / H_1, x_i = r_i / H_1; the primed quantities are
      * their derivatives with respect to theta_1 (forward differentiation, exact) */
@@ -197,6 +198,8 @@ int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, d
     for (size_t i = 1; i <= c->n; i++) {
         double he = h1 * eta, t = hypot(he, v);
         if (theta) theta[i - 1] = atan2(he, v);
+        if (slope) slope[i - 1] = he / v;
+        if (slope_d) slope_d[i - 1] = (h1_d * eta + h1 * eta_d) / v;
         x += c->length[i - 1] * eta / t;
         x_d += c->length[i - 1] * (eta_d / t - eta * he * (h1_d * eta + h1 * eta_d) / (t * t * t));
         eta -= c->mass[i - 1] * w2 * x;
@@ -209,6 +212,29 @@ int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, d
     return GSL_SUCCESS;
 }
 
+void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *g, double *g_a,
+                          double *slope, double *slope_a)
+{
+    /* u_i = r_i / a, eta_i = H_i / a and their derivatives with respect to a */
+    double u = 1, u_a = 0, eta = 0, eta_a = 0, v = 0, q = 1, q_a = 0, w2 = omega * omega;
+    for (size_t i = c->n; i >= 1; i--) {
+        double m = c->mass[i - 1], l = c->length[i - 1];
+        eta += m * w2 * u;
+        eta_a += m * w2 * u_a;
+        v += m * c->gravity;
+        double h = a * eta, h_a = eta + a * eta_a, t = hypot(h, v);
+        slope[i - 1] = h / v;
+        slope_a[i - 1] = h_a / v;
+        u -= l * eta / t;
+        u_a -= l * (eta_a / t - eta * (h / t) * (h_a / t) / t);
+        q += u * u;
+        q_a += 2 * u * u_a;
+    }
+    double norm = sqrt(q);
+    *g = u / norm;
+    *g_a = u_a / norm - 0.5 * u * q_a / (q * norm);
+}
+
 int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
                                double *residual, double *tip_r)
 {
@@ -216,5 +242,5 @@ int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_
     if (status != GSL_SUCCESS) return status;
     if (!(isfinite(omega) && omega > 0 && fabs(theta_1) < M_PI_2))
         return whirl_fail(GSL_EINVAL, "pivot shooting needs omega > 0 and |theta_1| < pi/2");
-    return whirl_nlink_pivot_shot(c, omega, theta_1, residual, NULL, tip_r, NULL);
+    return whirl_nlink_pivot_shot(c, omega, theta_1, residual, NULL, tip_r, NULL, NULL, NULL);
 }

@@ -57,10 +57,19 @@ int whirl_steady_check_samples(double omega, size_t n, const double *r, const do
 int whirl_steady_fail_missing(int mode, double omega, double omega_k);
 
 /* The pivot-end shot of whirl_nlink_pivot_residual without its argument checks, with the
- * derivative of the residual with respect to theta_1 in *d_residual and the link angles from
- * the downward vertical in theta[0..N-1] (each may be NULL). */
+ * derivative of the residual with respect to theta_1 in *d_residual, the link angles from
+ * the downward vertical in theta[0..N-1] and their tangents H_i / V_i in slope[0..N-1] with
+ * the derivatives of those with respect to theta_1 in slope_d (each may be NULL). */
 int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, double *residual,
-                           double *d_residual, double *tip_r, double *theta);
+                           double *d_residual, double *tip_r, double *theta, double *slope,
+                           double *slope_d);
+
+/* The shot from the tip (src/nlink.c's recursion) at tip radius a, without argument checks:
+ * G = r_0 / |r| (|r|^2 = sum_{i=0}^N r_i^2) and dG/da, the tangents of the link angles
+ * H_i / V_i in slope[0..N-1] and their derivatives with respect to a in slope_a (forward
+ * differentiation, exact). G is the residual of whirl_nlink_residual. */
+void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *g, double *g_a,
+                          double *slope, double *slope_a);
 
 /* The summary of the N-link shape with nodes r, z (pivot first, z relative to the pivot) and
  * link tensions (tension[i] of link i), as whirl_nlink_info. */

@@ -8,6 +8,8 @@
  *   there are exactly two more equilibria than just below it, and they are the pair;
  * - N = 7 at omega = 21.1: a cluster of 103 equilibria, 11 of them with four nodes, the two scans
  *   in agreement, the count settled;
+ * - high rates (6 and 8 links at omega = 25), where link angles flip over 1e-11 in the
+ *   scan's parameter: the two scans find the same equilibria;
  * - the continuum: Kolodner's count, exactly n shapes for omega_n < omega < omega_{n+1}, just
  *   above and just below the critical rates, with and without a tip mass;
  * - linear verdicts: those of the shapes of modes 1 and 2 as whirl_stability_mode gives them,
@@ -186,6 +188,41 @@ static void test_seven_links_cluster(void **state)
     whirl_chain_free(c);
 }
 
+/* High rates, where link angles flip over widths of 1e-11 in the scan's parameter: 6 links at
+ * omega = 25 (three methods in agreement, every root identified by continuation) and 8 links at
+ * omega = 25 (the scans only). Without the test on the link angles the tip scan settled on 50
+ * and 200 roots where the pivot scan found 54 and 224 (and 226): the two scans, shooting from
+ * opposite ends, must now find the same equilibria link angle by link angle, each balanced to
+ * round-off, with no cell left unresolved. */
+static void test_high_rates(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(6, 0);
+    whirl_equilibria *e = find(c, 0, 25, 0);
+    assert_agreement(e);
+    assert_int_equal(e->count, 54);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+
+    c = whirl_chain_alloc_uniform(8, 0);
+    whirl_equilibria_params p = whirl_equilibria_defaults();
+    p.stability = 0;
+    p.continuation = 0;
+    assert_int_equal(whirl_equilibria_find(c, 0, 25, &p, &e), GSL_SUCCESS);
+    assert_int_equal(e->tip_roots, e->count);
+    assert_int_equal(e->check_roots, e->count);
+    assert_int_equal(e->matched, e->count);
+    assert_int_equal(e->tip_unresolved, 0);
+    assert_true(e->balance < 1e-13);
+    assert_true(e->count >= 226);
+    size_t unlabelled = 0;
+    for (size_t i = 0; i < e->count; i++) unlabelled += e->eq[i].branch == -1;
+    assert_int_equal(unlabelled, e->count);
+    assert_int_equal(e->path_steps, 0);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
 /* Kolodner: exactly n shapes for omega_n < omega < omega_{n+1}. */
 static void test_kolodner(void **state)
 {
@@ -225,14 +262,15 @@ static void test_pivot_derivative(void **state)
     for (int i = 0; i < 3; i++)
         for (int j = 0; j < 3; j++) {
             double g, d, gp, gm, tip, h = 1e-5 * angles[j], theta[9];
-            assert_int_equal(whirl_nlink_pivot_shot(c, rates[i], angles[j], &g, &d, &tip, theta),
+            assert_int_equal(whirl_nlink_pivot_shot(c, rates[i], angles[j], &g, &d, &tip, theta,
+                                                    NULL, NULL),
                              GSL_SUCCESS);
             /* central differences at h and h/2, extrapolated (error O(h^4)) */
             double fd2[2];
             for (int k = 0; k < 2; k++) {
                 double hk = k ? h / 2 : h;
-                whirl_nlink_pivot_shot(c, rates[i], angles[j] + hk, &gp, NULL, NULL, NULL);
-                whirl_nlink_pivot_shot(c, rates[i], angles[j] - hk, &gm, NULL, NULL, NULL);
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] + hk, &gp, NULL, NULL, NULL, NULL, NULL);
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] - hk, &gm, NULL, NULL, NULL, NULL, NULL);
                 fd2[k] = (gp - gm) / (2 * hk);
             }
             double fd = (4 * fd2[1] - fd2[0]) / 3;
@@ -241,6 +279,45 @@ static void test_pivot_derivative(void **state)
             double r = whirl_nlink_pivot_residual(c, rates[i], angles[j], &gp, NULL);
             assert_int_equal(r, GSL_SUCCESS);
             assert_true(gp == g);
+        }
+    whirl_chain_free(c);
+}
+
+/* The tip shot with the link angles' tangents: G and dG/da as whirl_nlink_residual (the
+ * continuation's shot), the angles as the nodes of whirl_nlink_positions, the tangents'
+ * derivatives against central differences; and the pivot shot's tangents against its angles. */
+static void test_tip_slopes(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(9, 0.23);
+    const double rates[3] = {2.385, 7.1, 15.3}, tips[3] = {1e-4, 0.137, 0.71};
+    double sl[9], sl_a[9], sp[9], sm[9], dummy[9], r[10], z[10], t[10], theta[9], pd[9];
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            double g, g_a, g2, g2_a, gp, gpa, h = 1e-6 * tips[j];
+            whirl_nlink_tip_shot(c, rates[i], tips[j], &g, &g_a, sl, sl_a);
+            assert_int_equal(whirl_nlink_residual(c, rates[i], tips[j], &g2, NULL, &g2_a),
+                             GSL_SUCCESS);
+            assert_true(fabs(g - g2) <= 1e-14 && fabs(g_a - g2_a) <= 1e-12 * fabs(g2_a));
+            assert_int_equal(whirl_nlink_positions(c, rates[i], tips[j], r, z, t), GSL_SUCCESS);
+            whirl_nlink_tip_shot(c, rates[i], tips[j] + h, &gp, &gpa, sp, dummy);
+            whirl_nlink_tip_shot(c, rates[i], tips[j] - h, &gp, &gpa, sm, dummy);
+            for (int k = 0; k < 9; k++) {
+                double angle = atan2(r[k + 1] - r[k], z[k] - z[k + 1]);
+                assert_true(fabs(atan(sl[k]) - angle) <= 1e-13);
+                double fd = (sp[k] - sm[k]) / (2 * h);
+                assert_true(fabs(fd - sl_a[k]) <= 1e-6 * (fabs(sl_a[k]) + fabs(sl[k]) / tips[j]));
+            }
+            /* the pivot shot at this shape's top angle */
+            double top = atan(sl[0]);
+            whirl_nlink_pivot_shot(c, rates[i], top, &gp, NULL, NULL, theta, sp, pd);
+            for (int k = 0; k < 9; k++) assert_true(fabs(atan(sp[k]) - theta[k]) <= 1e-14);
+            double ht = 1e-7, spp[9], spm[9];
+            whirl_nlink_pivot_shot(c, rates[i], top + ht, &gp, NULL, NULL, NULL, spp, dummy);
+            whirl_nlink_pivot_shot(c, rates[i], top - ht, &gp, NULL, NULL, NULL, spm, dummy);
+            for (int k = 0; k < 9; k++)
+                assert_true(fabs((spp[k] - spm[k]) / (2 * ht) - pd[k]) <=
+                            1e-6 * (fabs(pd[k]) + fabs(sp[k] / top)));
         }
     whirl_chain_free(c);
 }
@@ -280,8 +357,9 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_five_links), cmocka_unit_test(test_fold_pairs),
-        cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_kolodner),
-        cmocka_unit_test(test_pivot_derivative),
+        cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_high_rates),
+        cmocka_unit_test(test_kolodner),
+        cmocka_unit_test(test_pivot_derivative), cmocka_unit_test(test_tip_slopes),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("equilibria", tests, NULL, NULL);

@@ -24,6 +24,16 @@ expect_ok "continuum at 5" equilibria --omega 5 -o "$out"
 rows=$(grep -v '^#' "$out" | tail -n +2 | cut -d, -f1,2 | tr '\n' ' ')
 if [ "$rows" = "3,3 2,2 1,1 " ]; then pass "continuum at omega 5: modes 3, 2, 1"; else fail "continuum rows: $rows"; fi
 
+# a high rate, the scans only: both scans find every root, the branch column left empty
+expect_ok "10 links at 30, --no-branches" equilibria --omega 30 --links 10 --no-branches --no-stability -o "$out"
+rows=$(grep -v '^#' "$out" | tail -n +2 | wc -l)
+scans=$(sed -n 's/.*tip scan: \([0-9]*\) roots.*pivot scan: \([0-9]*\) roots.*both: \([0-9]*\)$/\1 \2 \3/p' "$out")
+labelled=$(grep -v '^#' "$out" | tail -n +2 | awk -F, '$2 != "" || $3 != ""' | wc -l)
+if [ "$scans" = "$rows $rows $rows" ] && [ "$rows" -ge 1084 ] && [ "$labelled" -eq 0 ] \
+   && grep -q '0 cells unresolved' "$out" && grep -q 'continuation: not run' "$out"; then
+  pass "10 links at 30: $rows equilibria, both scans agree"
+else fail "10 links at 30: $rows rows, scans $scans, $labelled labelled"; fi
+
 # physical units: the same equilibria, rates in rad/s and lengths in m
 rate=$(awk 'BEGIN { printf "%.10f", 11.62 * sqrt(9.81 / 0.5) }')
 expect_ok "physical units" equilibria --omega "$rate" --links 5 --length 0.5 --gravity 9.81 -o "$tmp/si.csv"
@@ -41,6 +51,7 @@ expect_error "too many links" "a chain of 1..200 links" equilibria --omega 5 --l
 crit=$("$WHIRL" critical --links 5 --modes 3 | tail -n 1 | cut -d, -f2)
 expect_error "omega at a critical rate" "critical rate of mode 3" equilibria --omega "$crit" --links 5 -o "$out"
 expect_error "--no-stability without --links" "needs|--links" equilibria --omega 5 --no-stability -o "$out"
+expect_error "--no-branches without --links" "needs|--links" equilibria --omega 5 --no-branches -o "$out"
 
 # Ctrl-C: exit 130 within a short time, no file left
 rm -rf "$tmp/int"; mkdir "$tmp/int"

@@ -290,6 +290,8 @@ typedef struct whirl_equilibria_params {
     int stability;        /* 1: compute eig_growth for each N-link equilibrium; default 1 */
     double follow_factor; /* curves are followed up to follow_factor * omega, > 1; default 2 */
     long shot_budget;     /* most residual evaluations of one scan, >= 1000; default 2e7 */
+    int continuation;     /* 1: method 3 below, which names each equilibrium's branch; 0: the
+                           * two scans only (every N-link equilibrium's branch -1); default 1 */
 } whirl_equilibria_params;
 
 WHIRL_API whirl_equilibria_params whirl_equilibria_defaults(void);

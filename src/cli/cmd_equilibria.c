@@ -7,7 +7,7 @@
 int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
 {
     double omega = 0;
-    int no_stability = 0;
+    int no_stability = 0, no_branches = 0;
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
@@ -17,6 +17,9 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
         {"--no-stability", NULL, CLI_FLAG, &no_stability, NULL, NULL,
          "N-link: leave eig_growth and verdict empty (faster on long chains)", NULL,
          "--links"},
+        {"--no-branches", NULL, CLI_FLAG, &no_branches, NULL, NULL,
+         "N-link: the two scans only, no continuation (branch and born_at empty; for counts at "
+         "high rates)", NULL, "--links"},
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
     };
@@ -25,6 +28,7 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
     if (steady_cli_model_setup(cmd, &m)) return 1;
     whirl_equilibria_params par = whirl_equilibria_defaults();
     par.stability = !no_stability;
+    par.continuation = !no_branches;
     whirl_equilibria *e = NULL;
     if (whirl_equilibria_find(m.chain, steady_cli_tip_mass(&m), omega, &par, &e)) {
         steady_cli_model_free(&m);
@@ -51,10 +55,14 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
                 m.links, e->tip_roots, e->tip_levels, e->tip_shots, CLI_NUM(e->tip_floor * len),
                 cli_units_name(&m.units, CLI_UNIT_LENGTH), e->tip_unresolved, e->check_roots,
                 e->check_levels, e->check_shots, e->matched);
-        fprintf(fp, "# continuation: %zu crossings of omega, %zu missed by the scans, %zu "
-                "isolated, %zu unidentified, %zu cut short above omega, %ld steps; largest "
-                "force across a link / tension %s\n", e->crossings, e->missed, e->isolated,
-                e->unidentified, e->cut_short, e->path_steps, CLI_NUM(e->balance));
+        if (no_branches)
+            fprintf(fp, "# continuation: not run (--no-branches); largest force across a link "
+                    "/ tension %s\n", CLI_NUM(e->balance));
+        else
+            fprintf(fp, "# continuation: %zu crossings of omega, %zu missed by the scans, %zu "
+                    "isolated, %zu unidentified, %zu cut short above omega, %ld steps; largest "
+                    "force across a link / tension %s\n", e->crossings, e->missed, e->isolated,
+                    e->unidentified, e->cut_short, e->path_steps, CLI_NUM(e->balance));
         fprintf(fp, "# branch: the mode k whose birth (born_at = omega_k) the equilibrium is "
                 "connected to by continuation; isolated: on a curve that meets no birth, "
                 "born_at its lowest fold; unidentified: the continuation failed\n");
@@ -72,6 +80,7 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
         const whirl_equilibrium *q = &e->eq[i];
         char branch[32];
         if (q->branch > 0) snprintf(branch, sizeof branch, "%d", q->branch);
+        else if (no_branches && m.chain) branch[0] = 0;
         else snprintf(branch, sizeof branch, "%s", q->branch == 0 ? "isolated" : "unidentified");
         fprintf(fp, "%d,%s,%s,%s,%s,%s,%s,", q->info.n_nodes + 1, branch,
                 isfinite(q->born_at) ? CLI_NUM(q->born_at * rate) : "",
