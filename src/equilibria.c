@@ -62,7 +62,10 @@
  * the checks). Curves that first cross omega after rising above follow_factor * omega are
  * followed from their own roots, and a birth reached only above that limit is not seen (the
  * root is then called isolated). Features narrower than the cell floor (a rounding limit of
- * the parameter) are counted as unresolved. The cost is about proportional to the number of
+ * the parameter) are counted as unresolved. Where roots crowd within round-off of each other
+ * (10 links at omega = 60: tip radii 1e-13 apart) Newton's method from a shot can end on a
+ * rod's equilibrium or fail at a fold: such a root is counted as not polished and left out,
+ * and the two scans' lists then differ (the result says by how many). The cost is about proportional to the number of
  * equilibria, which at high rates grows about exponentially with N (25 links: 1354 at omega
  * = 30, 9672 at 35, about 75000 at 40): shot_budget bounds each level and GSL_EMAXITER says
  * when it is exceeded; method 3 costs thousands of steps per root and can be left out
@@ -105,8 +108,8 @@
 #define SCAN_LEVELS_MAX 5
 #define SCAN_DEPTH_MAX 64
 #define CRITICAL_GAP 1e-10   /* omega refused this close (relative) to a critical rate */
-#define MATCH_TIP 1e-3       /* two polished equilibria with tip radii this close (relative) */
-#define MATCH_ANGLE 1e-8     /* and every link angle this close [rad] are the same */
+#define MATCH_ANGLE 1e-8     /* two polished equilibria with every link angle this close [rad]
+                              * are the same (their tip radii then within MATCH_ANGLE L) */
 #define PATH_STEPS_MAX 3000 /* continuation steps of one direction of one curve */
 #define BRENT_MAX 200
 
@@ -497,6 +500,7 @@ typedef struct eq_list {
     size_t n, cap;
     int *source;   /* bit 1: tip scan, 2: pivot scan or solve, 4: continuation */
     size_t links;  /* N (0: no angles kept) */
+    double window; /* 2 MATCH_ANGLE L: tip radii further apart are different equilibria */
     double *theta; /* the polished link angles of entry i at theta[i N ..] */
 } eq_list;
 
@@ -530,7 +534,7 @@ static int list_add(eq_list *l, double tip_r, const double *theta, int source)
 static size_t list_find(const eq_list *l, double tip_r, const double *theta)
 {
     for (size_t i = 0; i < l->n; i++) {
-        if (fabs(l->eq[i].info.tip_r - tip_r) > MATCH_TIP * tip_r) continue;
+        if (fabs(l->eq[i].info.tip_r - tip_r) > l->window) continue;
         double d = 0;
         for (size_t k = 0; k < l->links; k++)
             d = fmax(d, fabs(l->theta[i * l->links + k] - theta[k]));
@@ -564,7 +568,7 @@ static int cmp_tip_index(const void *x, const void *y)
 }
 
 /* Merges the entries that are the same equilibrium (as list_find), in increasing tip radius:
- * O(n log n + n w) for w entries within MATCH_TIP of each other, where list_merge for each
+ * O(n log n + n w) for w entries within l->window of each other, where list_merge for each
  * would be O(n^2) (tens of thousands of roots on long chains at high rates). */
 static int list_unique(eq_list *l)
 {
@@ -583,7 +587,7 @@ static int list_unique(eq_list *l)
         size_t i = order[k].i, same = SIZE_MAX;
         double tip = l->eq[i].info.tip_r;
         const double *th = l->theta + i * links;
-        for (size_t j = kept; j-- > 0 && eq[j].info.tip_r >= tip - MATCH_TIP * tip;) {
+        for (size_t j = kept; j-- > 0 && eq[j].info.tip_r >= tip - l->window;) {
             double d = 0;
             for (size_t q = 0; q < links; q++) d = fmax(d, fabs(theta[j * links + q] - th[q]));
             if (d <= MATCH_ANGLE) {
@@ -821,6 +825,11 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         if (!(status = polish(tip_fn, &s, tip.br[i].lo, tip.br[i].hi, &x)))
             a = tip_of_x(&s, x), status = angles_of_tip(aw, a);
         if (!status) status = angle_polish(aw, &a);
+        if (status == GSL_EFAILED || status == GSL_ESING) {
+            res->unpolished++; /* reported; the other scan is the check */
+            status = GSL_SUCCESS;
+            continue;
+        }
         if (!status) status = list_add(l, a, aw->theta, 1);
     }
     res->tip_roots = tip.n;
@@ -831,6 +840,11 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
             status = whirl_nlink_pivot_shot(c, omega, theta_of_y(y), &g, NULL, &a, aw->theta,
                                             NULL, NULL);
         if (!status) status = angle_polish(aw, &a);
+        if (status == GSL_EFAILED || status == GSL_ESING) {
+            res->unpolished++; /* reported; the other scan is the check */
+            status = GSL_SUCCESS;
+            continue;
+        }
         if (!status) status = list_add(l, a, aw->theta, 2);
     }
     res->check_roots = top.n;
@@ -945,6 +959,7 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
     res->n_links = c ? c->n : 0;
     eq_list l = {0};
     l.links = c ? c->n : 0;
+    for (size_t i = 0; i < l.links; i++) l.window += 2 * MATCH_ANGLE * c->length[i];
     angle_ws *aw = c ? angle_ws_alloc(c, omega) : NULL;
     int status = c && aw == NULL ? GSL_ENOMEM : GSL_SUCCESS;
     if (!status)

@@ -49,6 +49,7 @@ static void assert_agreement(const whirl_equilibria *e)
     assert_int_equal(e->tip_roots, e->count);
     assert_int_equal(e->check_roots, e->count);
     assert_int_equal(e->matched, e->count);
+    assert_int_equal(e->unpolished, 0);
     assert_int_equal(e->missed, 0);
     assert_int_equal(e->unidentified, 0);
     assert_int_equal(e->tip_unresolved, 0);
@@ -213,6 +214,7 @@ static void test_high_rates(void **state)
     assert_int_equal(e->check_roots, e->count);
     assert_int_equal(e->matched, e->count);
     assert_int_equal(e->tip_unresolved, 0);
+    assert_int_equal(e->unpolished, 0);
     assert_true(e->balance < 1e-13);
     assert_true(e->count >= 226);
     size_t unlabelled = 0;

@@ -317,6 +317,9 @@ typedef struct whirl_equilibria {
     size_t matched;       /* equilibria both methods found (N-link: every link angle of the
                            * polished shapes within 1e-8 rad; continuum: each solved shape
                            * alone in a sign change of the scan) */
+    size_t unpolished;    /* N-link: roots of either scan from whose shot Newton's method on
+                           * the link angles did not converge to a chain's equilibrium (left
+                           * out of eq; 0 unless roots lie within round-off of each other) */
     /* method 3, N-link: continuation of every curve through the roots (and of every branch
      * from its birth) up to follow_factor * omega, counting its crossings of omega */
     size_t crossings;     /* crossings found, each matched against the scans' roots */

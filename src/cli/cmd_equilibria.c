@@ -51,10 +51,11 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
             e->count, e->born);
     if (m.chain) {
         fprintf(fp, "# links=%d; tip scan: %zu roots (%d levels, %ld shots, floor %s %s, %zu "
-                "cells unresolved); pivot scan: %zu roots (%d levels, %ld shots); both: %zu\n",
+                "cells unresolved); pivot scan: %zu roots (%d levels, %ld shots); both: %zu; "
+                "not polished: %zu\n",
                 m.links, e->tip_roots, e->tip_levels, e->tip_shots, CLI_NUM(e->tip_floor * len),
                 cli_units_name(&m.units, CLI_UNIT_LENGTH), e->tip_unresolved, e->check_roots,
-                e->check_levels, e->check_shots, e->matched);
+                e->check_levels, e->check_shots, e->matched, e->unpolished);
         if (no_branches)
             fprintf(fp, "# continuation: not run (--no-branches); largest force across a link "
                     "/ tension %s\n", CLI_NUM(e->balance));
