@@ -300,6 +300,67 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
 STRUCTS += ["whirl_windows_params", "whirl_window", "whirl_windows_stats"]
 
 CDEF += r"""
+typedef struct whirl_equilibria_params {
+    int stability;
+    double follow_factor;
+    long shot_budget;
+    int continuation;
+} whirl_equilibria_params;
+whirl_equilibria_params whirl_equilibria_defaults(void);
+typedef struct whirl_equilibrium {
+    whirl_shape_info info;
+    int branch;
+    double born_at;
+    double eig_growth;
+} whirl_equilibrium;
+typedef struct whirl_equilibria {
+    double omega;
+    size_t n_links;
+    size_t count;
+    whirl_equilibrium *eq;
+    int born;
+    size_t tip_roots;
+    double tip_floor;
+    long tip_shots;
+    int tip_levels;
+    size_t tip_unresolved;
+    size_t check_roots;
+    long check_shots;
+    int check_levels;
+    size_t matched;
+    size_t unpolished;
+    size_t crossings;
+    size_t missed;
+    size_t isolated;
+    size_t unidentified;
+    long path_steps;
+    size_t cut_short;
+    double balance;
+} whirl_equilibria;
+int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
+                          const whirl_equilibria_params *params, whirl_equilibria **out);
+void whirl_equilibria_free(whirl_equilibria *e);
+"""
+STRUCTS += ["whirl_equilibria_params", "whirl_equilibrium", "whirl_equilibria"]
+
+CDEF += r"""
+typedef struct whirl_cstab whirl_cstab;
+typedef struct whirl_cstab_params {
+    int degree;
+    double tip_mass;
+    double shape_tol;
+    double freq_max;
+} whirl_cstab_params;
+whirl_cstab_params whirl_cstab_defaults(void);
+whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p);
+void whirl_cstab_free(whirl_cstab *w);
+int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
+                        whirl_window *windows, size_t max, size_t *count,
+                        whirl_windows_stats *stats);
+"""
+STRUCTS += ["whirl_cstab_params"]
+
+CDEF += r"""
 int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
                       double *links);
 int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);

@@ -154,19 +154,22 @@ WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("ope
                          ("at", "f8")])
 
 
-def stability_windows(mode, links, omega_min=1.0, omega_max=10.0, scan_step=0.25, tol=1e-9,
-                      krylov=True, max_windows=1024):
+def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step=0.25, tol=1e-9,
+                      krylov=True, max_windows=1024, degree=None, tip_mass=0.0):
     """The windows of instability of ``mode`` of the conservative N-link chain (``links``: N or
-    a Chain) for rates in [omega_min, omega_max] [sqrt(g/L)], as ``whirl stability --windows``:
-    the edges are the rates where two eigenvalues collide (Krein collision), located to ``tol``
-    after a scan with spacing ``scan_step``. Returns (windows, stats): a structured array with
-    fields from, to (the unstable interval), open_from, open_to (True: that end is the end of
-    the range, not an edge), freq_from, freq_to (|Im lambda| where the pair meets [1/T]),
-    max_growth [1/T] and at (where it occurs), in increasing omega; stats a dict of the search's
-    counters. whirl.Error (EDOM) if the mode does not exist in the range; Ctrl-C raises
-    KeyboardInterrupt."""
-    chain = links if isinstance(links, Chain) else Chain(links)
+    a Chain) or, with links=None, of the continuous chain (its string equations linearised by
+    Chebyshev collocation on elements of ``degree``, default the library's 16, with a point mass
+    ``tip_mass`` [M] at the free end), for rates in [omega_min, omega_max] [sqrt(g/L)], as
+    ``whirl stability --windows``: the edges are the rates where two eigenvalues collide (Krein
+    collision), located to ``tol`` after a scan with spacing ``scan_step``. Returns (windows,
+    stats): a structured array with fields from, to (the unstable interval), open_from, open_to
+    (True: that end is the end of the range, not an edge), freq_from, freq_to (|Im lambda| where
+    the pair meets [1/T]), max_growth [1/T] and at (where it occurs), in increasing omega; stats
+    a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
+    Ctrl-C raises KeyboardInterrupt."""
     mode = _mode(mode)
+    if links is not None and (degree is not None or tip_mass):
+        raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
     p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
     p.omega_min = as_float(omega_min, "omega_min", positive=True)
     p.omega_max = as_float(omega_max, "omega_max", positive=True)
@@ -177,12 +180,22 @@ def stability_windows(mode, links, omega_min=1.0, omega_max=10.0, scan_step=0.25
     p.tol = as_float(tol, "tol", positive=True)
     p.krylov = 1 if krylov else 0
     cap = as_int(max_windows, "max_windows", minimum=1)
-    ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
     found = ffi.new("whirl_window[]", cap)
     count = ffi.new("size_t *")
     st = ffi.new("whirl_windows_stats *")
-    with _lib.interruptible():
-        status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
+    if links is None:
+        cp = ffi.new("whirl_cstab_params *", lib.whirl_cstab_defaults())
+        if degree is not None:
+            cp.degree = as_int(degree, "degree", minimum=1)
+        cp.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True)
+        ws = _lib.check_ptr(lib.whirl_cstab_alloc(cp), lib.whirl_cstab_free)
+        with _lib.interruptible():
+            status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)
+    else:
+        chain = links if isinstance(links, Chain) else Chain(links)
+        ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
+        with _lib.interruptible():
+            status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
     check(status, "mode %d" % mode)
     out = np.empty(count[0], dtype=WINDOW_DTYPE)
     for i in range(count[0]):

@@ -249,3 +249,51 @@ def sweep(modes, omega, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=
                     f.top_tension * u.force, f.depth * u.length, f.n_nodes)
         out[k] = a
     return out
+
+
+EQUILIBRIA_DTYPE = np.dtype([("nodes", "i4"), ("branch", "i4"), ("born_at", "f8"),
+                             ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
+                             ("top_tension", "f8"), ("eig_growth", "f8")])
+
+EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_levels",
+                       "tip_unresolved", "check_roots", "check_shots", "check_levels", "matched",
+                       "unpolished", "crossings", "missed", "isolated", "unidentified",
+                       "path_steps", "cut_short", "balance")
+
+
+def equilibria(omega, links=None, tip_mass=0.0, stability=True, branches=True,
+               follow_factor=2.0, shot_budget=20000000, length=1.0, mass=1.0, gravity=1.0):
+    """Every planar relative equilibrium at the rate ``omega`` [sqrt(g/L), or rad/s] (mirror
+    images r -> -r counted once), as ``whirl equilibria``: of the N-link chain (links=N or a
+    Chain) or of the continuous chain (links=None, Kolodner's shapes). Returns (rows, evidence):
+    a structured array in increasing tip radius with fields nodes (the pivot plus the axis
+    crossings), branch (k: on the branch born at omega_k; 0: isolated; -1: not identified, or
+    branches=False), born_at (omega_k, or the lowest fold of an isolated curve; NaN if none),
+    tip_r, max_r, depth, top_tension and eig_growth (largest real part of the linearisation;
+    NaN for the continuum or stability=False); and a dict of the completeness evidence (the
+    counts of the two scans and the continuation, tip_floor in lengths, balance the largest
+    force across a link over its tension). branches=False skips the continuation (the scans
+    only). Ctrl-C raises KeyboardInterrupt."""
+    u = Units(length, mass, gravity)
+    w = as_float(omega, "omega", positive=True) / u.rate
+    m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    chain = _chain(links, m)
+    p = ffi.new("whirl_equilibria_params *", lib.whirl_equilibria_defaults())
+    p.stability = 1 if stability else 0
+    p.continuation = 1 if branches else 0
+    p.follow_factor = as_float(follow_factor, "follow_factor", positive=True)
+    p.shot_budget = as_int(shot_budget, "shot_budget", minimum=1)
+    out = ffi.new("whirl_equilibria **")
+    with _lib.interruptible():
+        status = lib.whirl_equilibria_find(ffi.NULL if chain is None else chain._c, m, w, p, out)
+    check(status)
+    e = ffi.gc(out[0], lib.whirl_equilibria_free)
+    rows = np.empty(e.count, dtype=EQUILIBRIA_DTYPE)
+    for i in range(e.count):
+        q = e.eq[i]
+        rows[i] = (q.info.n_nodes + 1, q.branch, q.born_at * u.rate, q.info.tip_r * u.length,
+                   q.info.max_r * u.length, q.info.depth * u.length,
+                   q.info.top_tension * u.force, q.eig_growth * u.rate)
+    evidence = {k: getattr(e, k) for k in EQUILIBRIA_EVIDENCE}
+    evidence["tip_floor"] *= u.length
+    return rows, evidence
