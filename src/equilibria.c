@@ -65,12 +65,12 @@
  * the parameter) are counted as unresolved. Where roots crowd within round-off of each other
  * (10 links at omega = 60: tip radii 1e-13 apart) Newton's method from a shot can end on a
  * rod's equilibrium or fail at a fold: such a root is counted as not polished and left out,
- * and the two scans' lists then differ (the result says by how many). The cost is about proportional to the number of
- * equilibria, which at high rates grows about exponentially with N (25 links: 1354 at omega
- * = 30, 9672 at 35, about 75000 at 40): shot_budget bounds each level and GSL_EMAXITER says
- * when it is exceeded; method 3 costs thousands of steps per root and can be left out
- * (params.continuation = 0) to count. Duplicates among the scans' roots are merged after
- * sorting by tip radius (list_unique), not by a search per root.
+ * and the two scans' lists then differ (the result says by how many). The cost is about
+ * proportional to the number of equilibria, which at high rates grows about exponentially
+ * with N (25 links: 1354 at omega = 30, 9672 at 35, about 75000 at 40): shot_budget bounds
+ * each level and GSL_EMAXITER says when it is exceeded; method 3 costs thousands of steps per
+ * root and can be left out (params.continuation = 0) to count. Duplicates among the scans'
+ * roots are merged after sorting by tip radius (list_unique), not by a search per root.
  *
  * Continuous chain: Kolodner (1955, Comm. Pure Appl. Math. 8:395, "Heavy rotating string - a
  * nonlinear eigenvalue problem") proves exactly n nontrivial shapes for omega_n < omega <=

@@ -271,8 +271,10 @@ static void test_pivot_derivative(void **state)
             double fd2[2];
             for (int k = 0; k < 2; k++) {
                 double hk = k ? h / 2 : h;
-                whirl_nlink_pivot_shot(c, rates[i], angles[j] + hk, &gp, NULL, NULL, NULL, NULL, NULL);
-                whirl_nlink_pivot_shot(c, rates[i], angles[j] - hk, &gm, NULL, NULL, NULL, NULL, NULL);
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] + hk, &gp, NULL, NULL, NULL,
+                                       NULL, NULL);
+                whirl_nlink_pivot_shot(c, rates[i], angles[j] - hk, &gm, NULL, NULL, NULL,
+                                       NULL, NULL);
                 fd2[k] = (gp - gm) / (2 * hk);
             }
             double fd = (4 * fd2[1] - fd2[0]) / 3;
