@@ -1,6 +1,7 @@
 /* whirl against the systems a user would otherwise reach for, side by side in one run.
  * Usage: bench_peers [DIR [quick|full [CONTENDER]]] (CONTENDER: run the scenes with whirl rk8
- * and that contender only, e.g. arkode-dp745). Writes DIR/peers_SCENE.csv (every run),
+ * and that contender only, e.g. arkode-dp745), bench_peers DIR steps1000 or bench_peers DIR
+ * arkode [ROUNDS] (see below). Writes DIR/peers_SCENE.csv (every run),
  * DIR/peers_steps.csv (cost per step), DIR/peers_seed.csv, DIR/peers_checks.csv (the models'
  * agreement) and appends the headline ratios to DIR/headline.csv; prints the figures.
  * quick (for make bench-quick): tolerances from 1e-4 and fixed steps from h_max / 4; MuJoCo at
@@ -48,6 +49,17 @@
  * on the seed formulation (angles, dense mass matrix) and on the Cartesian one; the distance of
  * their end positions is printed (same method and step, same motion; Runge-Kutta methods are
  * not invariant under the change of coordinates, so it is the size of the step's error).
+ * steps1000: the cost per step at N = 1000 only (as in the full run; DIR/peers_steps_1000.csv),
+ * which make bench adds to the quick run.
+ * arkode (ROUNDS default 15, at most 31): whirl rk8 against ARKODE with projection (its three
+ * tables) on chain100 only, the ratio at 1e-6 and 1e-8 with its spread: after the sweep (from
+ * tolerance 1e-4), ROUNDS rounds, each running once in turn every setting of every contender
+ * whose error brackets a level;
+ * per round the best table's time over whirl's at equal error (the ratio of that round), and
+ * over all rounds the median, quartiles and range of those ratios and the ratio of the median
+ * times; also the right-hand sides at equal error (interpolated as the times) and the time per
+ * right-hand side, the two factors of the ratio. Writes DIR/peers_arkode_rounds.csv and appends
+ * the medians to DIR/headline.csv.
  * A peer whose package is missing at build time (MuJoCo: mujoco/mujoco.h; SUNDIALS: arkode and
  * cvode headers) is reported as skipped, row by row. */
 #include <float.h>
@@ -542,12 +554,14 @@ static void run_scene(const scene *sc, const char *dir, int quick, const char *o
 }
 
 /* Cost of one step: MuJoCo RK4 against whirl rk4 at the same step from the same start. */
-static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
+/* The step costs at N = 10, 100, 1000, sizes from .. to - 1 of those, into DIR/name. */
+static void step_costs(const char *dir, int from, int to, const char *name, FILE *checks,
+                       FILE *head)
 {
-    FILE *csv = bench_open_csv(dir, "peers_steps.csv");
+    FILE *csv = bench_open_csv(dir, name);
     fprintf(csv, "n,h,whirl_rk4_s_per_step,mujoco_rk4_s_per_step,ratio\n");
     const size_t ns[3] = {10, 100, 1000};
-    for (int q = 0; q < (quick ? 2 : 3); q++) {
+    for (int q = from; q < to; q++) {
         const size_t n = ns[q];
         char key[64], what[128];
         snprintf(key, sizeof key, "mujoco_step_%zu", n);
@@ -555,7 +569,7 @@ static void step_costs(const char *dir, int quick, FILE *checks, FILE *head)
 #ifndef WHIRL_HAVE_MUJOCO
         printf("== step cost N = %zu: MuJoCo skipped: package missing at build time\n", n);
         fprintf(head, "%s,%s,,,skipped: package missing\n", key, what);
-        (void)quick, (void)checks;
+        (void)checks;
 #else
         /* whirl's steps take 0.01-0.1 s in all; MuJoCo's (a dense joint-space mass matrix
          * factorized per stage, O(N^3)) as few as give a stable median */
@@ -690,15 +704,148 @@ static void seed_cost(const char *dir, int quick, FILE *head)
     free(s.y0), free(x), free(v), free(xs), free(xc);
 }
 
+#ifdef WHIRL_HAVE_SUNDIALS
+#define MAX_ROUNDS 31
+
+/* q-quantile of x[0..n-1] (sorted copy; linear between order statistics). */
+static double quantile(const double *x, int n, double q)
+{
+    double v[MAX_ROUNDS];
+    int m = 0;
+    for (int i = 0; i < n; i++)
+        if (isfinite(x[i])) v[m++] = x[i];
+    if (m == 0) return NAN;
+    qsort(v, (size_t)m, sizeof *v, bench_cmp_double);
+    const double pos = q * (m - 1);
+    const int i = (int)pos;
+    return i + 1 < m ? v[i] + (pos - i) * (v[i + 1] - v[i]) : v[m - 1];
+}
+
+/* The best of the contenders of group g at error e, from per-run values val (times or right-hand
+ * sides) of the curves; *who receives the winner's index. */
+static double best_at(const curve *curves, double vals[][MAX_RUNS], const char *g, double e,
+                      double floor_err, size_t *who)
+{
+    double best = NAN;
+    for (size_t k = 0; k < N_CONTENDERS; k++) {
+        if (strcmp(contenders[k].group, g) != 0 || curves[k].count == 0) continue;
+        const double t = bench_time_at(curves[k].count, curves[k].err, vals[k], e, floor_err);
+        if (t < best || (isnan(best) && !isnan(t))) best = t, *who = k;
+    }
+    return best;
+}
+
+/* bench_peers DIR arkode [ROUNDS]: whirl rk8 against ARKODE with projection on chain100, the
+ * ratio per interleaved round and its spread (see the header). */
+static void arkode_rounds(const char *dir, int rounds, FILE *checks, FILE *head)
+{
+    const scene sc = {"chain100", 100, 20 * 2 * PI / 4, 0.01, 8, "arkode-proj", 1};
+    setup s;
+    setup_scene(&sc, dir, checks, &s);
+    static curve curves[N_CONTENDERS];
+    static double t[N_CONTENDERS][MAX_RUNS][MAX_ROUNDS];
+    for (size_t k = 0; k < N_CONTENDERS; k++) {
+        curves[k].count = 0;
+        if (k == 0 || strcmp(contenders[k].group, "arkode-proj") == 0)
+            sweep(&s, &contenders[k], 1, &curves[k]);
+    }
+    /* the rounds repeat only the settings that bracket a level (the others are never
+     * interpolated; they keep their first run's time) */
+    static int needed[N_CONTENDERS][MAX_RUNS];
+    for (size_t k = 0; k < N_CONTENDERS; k++)
+        for (int j = 0; j < curves[k].count; j++) {
+            needed[k][j] = 0;
+            for (int r = 0; r < rounds; r++) t[k][j][r] = curves[k].times[j][0];
+        }
+    for (size_t k = 0; k < N_CONTENDERS; k++)
+        for (int j = 0; j + 1 < curves[k].count; j++)
+            for (int l = 0; l < N_LEVELS; l++) {
+                const double e0 = curves[k].err[j], e1 = curves[k].err[j + 1], e = levels[l];
+                if ((e0 >= e && e >= e1) || (e1 >= e && e >= e0)) needed[k][j] = needed[k][j + 1] = 1;
+            }
+    double *xf = malloc(3 * sc.n * sizeof *xf);
+    if (xf == NULL) bench_die("alloc");
+    for (int r = 0; r < rounds; r++)
+        for (size_t k = 0; k < N_CONTENDERS; k++)
+            for (int j = 0; j < curves[k].count; j++) {
+                if (!needed[k][j]) continue;
+                run_stats rs;
+                const double secs = run_contender(&s, &contenders[k], curves[k].param[j], xf, &rs);
+                t[k][j][r] = secs >= 0 ? secs : NAN; /* a failed repeat: left out */
+            }
+    free(xf);
+    FILE *csv = bench_open_csv(dir, "peers_arkode_rounds.csv");
+    fprintf(csv, "# chain100 over 20 periods, %d interleaved rounds; load average at the end "
+                 "%.2f\n", rounds, bench_load_average());
+    fprintf(csv, "round,error,whirl_s,arkode_s,arkode_table,ratio\n");
+    static double vals[N_CONTENDERS][MAX_RUNS], rhs[N_CONTENDERS][MAX_RUNS];
+    for (size_t k = 0; k < N_CONTENDERS; k++)
+        for (int j = 0; j < curves[k].count; j++) rhs[k][j] = (double)curves[k].rhs[j];
+    printf("  ARKODE with projection / whirl rk8, N = 100, 20 periods, %d interleaved rounds:\n",
+           rounds);
+    for (int l = 0; l < N_LEVELS; l++) {
+        const double e = levels[l];
+        double ratio[MAX_ROUNDS];
+        for (int r = 0; r < rounds; r++) {
+            for (size_t k = 0; k < N_CONTENDERS; k++)
+                for (int j = 0; j < curves[k].count; j++) vals[k][j] = t[k][j][r];
+            size_t who = 0, w0 = 0;
+            const double tw = best_at(curves, vals, "whirl", e, s.floor_err, &w0);
+            const double ta = best_at(curves, vals, "arkode-proj", e, s.floor_err, &who);
+            ratio[r] = ta / tw;
+            fprintf(csv, "%d,%.0e,%.6g,%.6g,%s,%.4g\n", r + 1, e, tw, ta, contenders[who].label,
+                    ratio[r]);
+        }
+        /* the median times over the rounds, and the right-hand sides, at equal error */
+        for (size_t k = 0; k < N_CONTENDERS; k++)
+            for (int j = 0; j < curves[k].count; j++) {
+                double tmp[MAX_ROUNDS];
+                for (int r = 0; r < rounds; r++) tmp[r] = t[k][j][r];
+                vals[k][j] = quantile(tmp, rounds, 0.5);
+            }
+        size_t who = 0, w0 = 0;
+        const double tw = best_at(curves, vals, "whirl", e, s.floor_err, &w0);
+        const double ta = best_at(curves, vals, "arkode-proj", e, s.floor_err, &who);
+        const double ew = best_at(curves, rhs, "whirl", e, s.floor_err, &w0);
+        const double ea = bench_time_at(curves[who].count, curves[who].err, rhs[who], e,
+                                        s.floor_err);
+        const double med = quantile(ratio, rounds, 0.5);
+        printf("    error %.0e: ratio per round median %.3g, quartiles %.3g-%.3g, range %.3g-%.3g; "
+               "ratio of the median times %.3g (%s %.3g s, whirl %.3g s)\n",
+               e, med, quantile(ratio, rounds, 0.25), quantile(ratio, rounds, 0.75),
+               quantile(ratio, rounds, 0), quantile(ratio, rounds, 1), ta / tw,
+               contenders[who].label, ta, tw);
+        printf("      right-hand sides at equal error: %s %.4g, whirl %.4g (ratio %.3g); time per "
+               "right-hand side: ratio %.3g\n",
+               contenders[who].label, ea, ew, ea / ew, (ta / tw) / (ea / ew));
+        char key[128], what[256];
+        snprintf(key, sizeof key, "arkode-proj_rounds_chain100_%.0e", e);
+        snprintf(what, sizeof what,
+                 "ARKODE ERK with projection / whirl rk8; N = 100; error %.0e; median of %d "
+                 "interleaved rounds (range %.2g-%.2g)",
+                 e, rounds, quantile(ratio, rounds, 0), quantile(ratio, rounds, 1));
+        headline(head, key, what, med, 6);
+    }
+    fclose(csv);
+    fflush(head);
+    free_setup(&s);
+}
+#endif
+
 int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     setvbuf(stdout, NULL, _IOLBF, 0);
     const char *dir = argc > 1 ? argv[1] : "out/bench";
     const int quick = argc > 2 && strcmp(argv[2], "quick") == 0;
-    const char *only = argc > 3 ? argv[3] : NULL;
-    if (argc > 2 && !quick && strcmp(argv[2], "full") != 0) {
-        fprintf(stderr, "%s: usage: bench_peers [DIR [quick|full [CONTENDER]]]\n", BENCH_NAME);
+    const int arkode = argc > 2 && strcmp(argv[2], "arkode") == 0;
+    const int steps1000 = argc > 2 && strcmp(argv[2], "steps1000") == 0;
+    const char *only = argc > 3 && !arkode ? argv[3] : NULL;
+    const int rounds = arkode && argc > 3 ? atoi(argv[3]) : 15;
+    if ((argc > 2 && !quick && !arkode && !steps1000 && strcmp(argv[2], "full") != 0) ||
+        rounds < 1 || rounds > 31) {
+        fprintf(stderr, "%s: usage: bench_peers [DIR [quick|full [CONTENDER]]], bench_peers DIR "
+                        "arkode [ROUNDS (1..31)] or bench_peers DIR steps1000\n", BENCH_NAME);
         return 1;
     }
     printf("load average at start (other jobs share the cores): %.2f\n", bench_load_average());
@@ -722,6 +869,24 @@ int main(int argc, char **argv)
     }
     fprintf(checks, "peer,n,position_diff,velocity_diff,energy_diff,frequency_rel_diff,"
                     "mass_matrix_condition\n");
+    if (steps1000) {
+        step_costs(dir, 2, 3, "peers_steps_1000.csv", checks, head);
+        fclose(checks);
+        fclose(head);
+        return 0;
+    }
+    if (arkode) {
+#ifdef WHIRL_HAVE_SUNDIALS
+        arkode_rounds(dir, rounds, checks, head);
+#else
+        printf("ARKODE with projection: skipped (SUNDIALS headers not found at build time)\n");
+        fprintf(head, "arkode-proj_rounds_chain100,ARKODE with projection / whirl rk8 over "
+                      "rounds,,,skipped: package missing\n");
+#endif
+        fclose(checks);
+        fclose(head);
+        return 0;
+    }
     /* quick: MuJoCo at N = 100 over 2 periods (over 20 its runs near 1e-6 take minutes) */
     const double t_end = 20 * 2 * PI / 4;
     const scene scenes_full[] = {
@@ -739,7 +904,7 @@ int main(int argc, char **argv)
         run_scene(&scenes[k], dir, quick, only, checks, head);
     if (only == NULL) {
         rhs_per_link(head);
-        step_costs(dir, quick, checks, head);
+        step_costs(dir, 0, quick ? 2 : 3, "peers_steps.csv", checks, head);
         seed_cost(dir, quick, head);
     }
     fclose(checks);

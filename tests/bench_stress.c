@@ -1,5 +1,6 @@
 /* Long numerical stress runs of the dynamics (the quick versions are tests/test_stress.c).
- * Writes argv[1]/stress.csv (default out/bench; the long case also stress_long_h<h>.csv, its
+ * Usage: bench_stress [DIR [CASE|all [LONG_STEPS]]] (LONG_STEPS: steps of each long run, default
+ * 10^7, about 22 minutes; make bench: 2.5 10^6). Writes argv[1]/stress.csv (default out/bench; the long case also stress_long_h<h>.csv, its
  * energy error against time) and prints one line per case: the conserved quantity's drift
  * (energy in the inertial frame, the Jacobi constant E - omega L_z in the co-rotating one; no
  * forces act, so both are exact invariants), the constraint residual, and whether the stated
@@ -7,7 +8,7 @@
  * it meets its bound (on the drift at half the case's step), or its drift shrinks under step
  * halving at the method's order (truncation error, reported as such), or it stops with a failure
  * status and a message; and never leaves a non-finite number. The program exits 1 otherwise.
- *  - long: at h = 0.005, 0.0025 and 0.00125, 8 runs of 10^7 gauss3 steps each (5 links, 3D,
+ *  - long: at h = 0.005, 0.0025 and 0.00125, 8 runs of 10^7 (LONG_STEPS) gauss3 steps each (5 links, 3D,
  *    inertial, the smooth state of bench_util.h, rates scaled by 1 + 1e-9 j): |dE| <= 1e-12 |E|
  *    at the smallest step (a larger one meets it or its drift shrinks as 2^5 under halving),
  *    and the growth of the energy error's systematic part (the runs' mean) and random part (their
@@ -153,7 +154,8 @@ static void turned_steady(const whirl_chain *c, double omega, int mode, double t
     memset(v, 0, 3 * n * sizeof *v);
 }
 
-/* Long gauss3 runs at step h: an ensemble of LONG_MEMBERS runs of 10^7 steps from the smooth
+/* Long gauss3 runs at step h: an ensemble of LONG_MEMBERS runs of `steps` steps (10^7 unless
+ * the command line says otherwise) from the smooth
  * state with the rates scaled by 1 + 1e-9 j (j = 0..LONG_MEMBERS-1; the chaotic motion makes
  * their round-off independent), the signed energy error dE_j(t) at log-spaced times. The
  * ensemble splits it into a systematic part, the mean (a drift common to every run: truncation
@@ -181,7 +183,7 @@ static double tail_exponent(const double *ts, const double *value, int n, double
     return bench_fit_exponent(lt, lv, used);
 }
 
-static long_result long_run(const char *dir, double h)
+static long_result long_run(const char *dir, double h, long steps)
 {
     const size_t n = 5;
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
@@ -190,7 +192,6 @@ static long_result long_run(const char *dir, double h)
     whirl_integrator *it = whirl_integrator_alloc("gauss3", d);
     if (d == NULL || it == NULL) bench_die("long run");
     const double p[3] = {0, 0, 0};
-    const long steps = 10000000;
     double ts[LONG_SAMPLES], sum[LONG_SAMPLES] = {0}, sum2[LONG_SAMPLES] = {0}, t = 0;
     double worst = 0, constraint = 0;
     int ns = 0, status = GSL_SUCCESS, finite = 1;
@@ -277,15 +278,15 @@ static int long_report(FILE *csv, const long_result *r, int count)
                               : meets ? "meets bound" : converges ? "truncation error converging"
                               : "EXCEEDS BOUND";
         ok &= r[k].finite && (meets || converges || r[k].status != GSL_SUCCESS);
-        fprintf(csv, "long_1e7_steps,gauss3,%g,0,%g,%d,%.3g,,1e-12,%.3g,%ld,%.3g,%s (%d runs at "
+        fprintf(csv, "long_%ld_steps,gauss3,%g,0,%g,%d,%.3g,,1e-12,%.3g,%ld,%.3g,%s (%d runs at "
                      "the end: mean %.3g growing like t^%.2f; std %.3g growing like t^%.2f)\n",
-                r[k].h, r[k].t, r[k].status, r[k].worst, r[k].constraint,
+                r[k].steps, r[k].h, r[k].t, r[k].status, r[k].worst, r[k].constraint,
                 r[k].steps * LONG_MEMBERS, r[k].secs, verdict, LONG_MEMBERS, r[k].mean_end,
                 r[k].mean_exponent, r[k].std_end, r[k].std_exponent);
         printf("  %-22s %-9s h %-7g t %-8.4g %d x %ld steps %6.1f s: max |dE|/|E| %.2e (bound "
                "1e-12); at the end mean %.2e (growing like t^%.2f), std %.2e (like t^%.2f; "
                "Brouwer: 0.5), constraint %.1e: %s%s%s\n",
-               "long (10^7 steps)", "gauss3", r[k].h, r[k].t, LONG_MEMBERS, r[k].steps,
+               "long", "gauss3", r[k].h, r[k].t, LONG_MEMBERS, r[k].steps,
                r[k].secs, r[k].worst, r[k].mean_end, r[k].mean_exponent, r[k].std_end,
                r[k].std_exponent, r[k].constraint, verdict,
                r[k].status != GSL_SUCCESS ? ": " : "",
@@ -299,7 +300,13 @@ int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
     const char *dir = argc > 1 ? argv[1] : "out/bench";
-    const char *only = argc > 2 ? argv[2] : NULL;
+    /* argv[2]: one case, or "all" (default); argv[3]: the steps of each long run (10^7) */
+    const char *only = argc > 2 && strcmp(argv[2], "all") != 0 ? argv[2] : NULL;
+    const long long_steps = argc > 3 ? atol(argv[3]) : 10000000;
+    if (long_steps < 1000 || long_steps > 1000000000) {
+        fprintf(stderr, "%s: the long runs' steps must be 1000 .. 1e9\n", BENCH_NAME);
+        return 1;
+    }
     FILE *csv = bench_open_csv(dir, "stress.csv");
     fprintf(csv, "case,method,h,tol,t_reached,status,drift,drift_half_step,bound,max_constraint,"
                  "steps,seconds,verdict\n");
@@ -308,7 +315,7 @@ int main(int argc, char **argv)
 #define WANT(name) (only == NULL || strcmp(only, name) == 0)
     if (WANT("long")) {
         long_result r[3];
-        for (int k = 0; k < 3; k++) r[k] = long_run(dir, 0.005 / (1 << k));
+        for (int k = 0; k < 3; k++) r[k] = long_run(dir, 0.005 / (1 << k), long_steps);
         ok &= long_report(csv, r, 3);
     }
     if (WANT("large")) { /* N = 10^5 hanging, kicked */

@@ -1,7 +1,8 @@
 /* Work-precision benchmark of the integrators: wall time against final position error on
  * reference scenes. Usage: bench_workprecision [DIR [SCENE [PERIODS [METHOD]]]] (DIR default
  * out/bench; SCENE one of the names below or "all", default all; PERIODS the chain scenes' rotation periods,
- * default 20, fewer to measure within a time budget; METHOD one method only, the CSV then named
+ * default 20, fewer to measure within a time budget, or P,Q: chain1000 over Q periods, the
+ * other chains over P (make bench: 20,2); METHOD one method only, the CSV then named
  * workprecision_SCENE_METHOD.csv). Writes DIR/workprecision_SCENE.csv (one row per run) and
  * DIR/workprecision_summary.csv (times at equal error), and prints the figures.
  *
@@ -340,18 +341,23 @@ int main(int argc, char **argv)
     const char *only = argc > 2 ? argv[2] : NULL;
     const char *only_method = argc > 4 ? argv[4] : NULL;
     /* rotation periods of the chain scenes: 20 unless argv[3] says otherwise (a shorter run to
-     * measure within a time budget) */
-    const double periods = argc > 3 ? atof(argv[3]) : 20;
-    if (!(periods > 0)) {
-        fprintf(stderr, "bench_workprecision: the number of periods must be > 0\n");
+     * measure within a time budget); "P,Q": chain1000 over Q periods, the others over P */
+    const char *pspec = argc > 3 ? argv[3] : "20";
+    char *rest;
+    const double periods = strtod(pspec, &rest);
+    const double periods1000 = *rest == ',' ? strtod(rest + 1, &rest) : periods;
+    if (!(periods > 0) || !(periods1000 > 0) || *rest != '\0' || !isfinite(periods) ||
+        !isfinite(periods1000)) {
+        fprintf(stderr, "bench_workprecision: periods '%s': want a number > 0 or two, P,Q\n",
+                pspec);
         return 1;
     }
-    const double period20 = periods * 2 * PI / 4.0;
+    const double period20 = periods * 2 * PI / 4.0, period1000 = periods1000 * 2 * PI / 4.0;
     const scene scenes[] = {
         {"double_pendulum", 2, 2, WHIRL_FRAME_INERTIAL, 0, 20, 0.1, 32, 1, 10},
         {"chain10", 10, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.1, 32, 1, 10},
         {"chain100", 100, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.01, 32, 0, 15},
-        {"chain1000", 1000, 3, WHIRL_FRAME_ROTATING, 4, period20, 0.001, 16, 0, 10 * periods},
+        {"chain1000", 1000, 3, WHIRL_FRAME_ROTATING, 4, period1000, 0.001, 16, 0, 10 * periods1000},
     };
     printf("load average at start (other jobs share the cores): %.2f\n", bench_load_average());
     char name[256];
