@@ -2,6 +2,8 @@
 # The studies behind the figures (`make study`): sh scripts/study.sh [PART] [OUT] [BUILD]
 #   stability: eig_growth against omega (1..10, step 0.01) for modes 1-3 at N = 25, 50 and 100
 #              (stability_map_N*.csv, stability_map.png) and the instability windows found;
+#              STABILITY_LINKS="25 50" for other chains (N = 100 alone takes about half an
+#              hour: 2200 eigen-solves of 400 rows);
 #   regime:    the settled node count of a chain swung by hand from rest, over (omega, eps), with
 #              the folds of the steady branches (regime_map.csv, regime_folds.csv, regime.png),
 #              on 2 MPI ranks when the program has MPI.
@@ -14,7 +16,10 @@ WHIRL=${WHIRL:-$build/whirl}
 mkdir -p "$out"
 
 stability() {
-  for n in 25 50 100; do
+  links=${STABILITY_LINKS:-25 50 100}
+  files=""
+  for n in $links; do
+    files="$files${files:+ }$out/stability_map_N$n.csv"
     start=$(date +%s)
     "$WHIRL" stability --omega-min 1 --omega-max 10 --omega-count 901 --links $n --linear \
       -o "$out/stability_map_N$n.csv"
@@ -28,7 +33,7 @@ stability() {
       { close_window() }
       END { close_window() }'
   done
-  gnuplot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv $out/stability_map_N100.csv'; out='$out/stability_map.png'" \
+  gnuplot -e "files='$files'; out='$out/stability_map.png'" \
     plots/stability_map.gp && echo "figure: $out/stability_map.png"
 }
 
