@@ -9,8 +9,9 @@
  *    400, with the wall time and the eigen-solves of each search;
  *  - windows_continuum.csv: every window edge against N, the observed order of convergence in
  *    1/N from the three finest chains, and the continuum value by Richardson extrapolation
- *    (two levels: e_N = e + a/N + b/N^2 + ...) with an error estimate (the same extrapolation
- *    from N = 50, 100, 200);
+ *    (two levels: e_N = e + a/N + b/N^2 + ...) with an error estimate (error_from "coarser":
+ *    the same extrapolation from the three coarser chains; "first_order", for an edge with
+ *    only three chains: the difference from the first-order extrapolation of the two finest);
  *  - windows_scan.csv: the N = 100 windows again with scan steps 0.125 and 0.5 (the edges must
  *    not depend on the scan).
  * Argument 2 (optional): the largest N (default 400); argument 3: the parts to run, "windows"
@@ -370,7 +371,7 @@ int main(int argc, char **argv)
      * it (tests/bench_windows.sh and plots/windows.gp read the columns by position) */
     if (fp) fprintf(fp, "mode,window,edge");
     for (int l = 0; fp && l < NLEVELS; l++) fprintf(fp, ",N%zu", levels[l]);
-    if (fp) fprintf(fp, ",order,continuum,error\n");
+    if (fp) fprintf(fp, ",order,continuum,error,error_from\n");
     printf("edges against N (1/N extrapolation; order from the three finest N):\n");
     for (int k = 0; k < 2 && nl >= 3; k++) {
         /* each window of the finest chain, matched at the coarser ones by overlap */
@@ -393,9 +394,15 @@ int main(int argc, char **argv)
                 const double d1 = e[nl - 2] - e[nl - 3], d2 = e[nl - 1] - e[nl - 2];
                 const double order = log2(d1 / d2);
                 const double cont = richardson(e[nl - 3], e[nl - 2], e[nl - 1]);
-                const double err = have >= 4 ? fabs(cont - richardson(e[nl - 4], e[nl - 3],
-                                                                      e[nl - 2]))
-                                             : NAN;
+                /* the error estimate: with four chains, the same extrapolation from the three
+                 * coarser ones; with three (an edge the coarsest chain lacks), the size of the
+                 * last correction, against the first-order extrapolation 2 e_N - e_{N/2} of the
+                 * two finest (larger than the error of the second-order value while the edges
+                 * converge at first order) */
+                const int from_coarser = have >= 4;
+                const double err = from_coarser
+                                       ? fabs(cont - richardson(e[nl - 4], e[nl - 3], e[nl - 2]))
+                                       : fabs(cont - (2 * e[nl - 1] - e[nl - 2]));
                 fprintf(fp, "%d,%zu,%s", k + 2, i + 1, edge ? "to" : "from");
                 printf("  mode %d window %zu %-4s:", k + 2, i + 1, edge ? "to" : "from");
                 for (int l = 0; l < nl; l++) {
@@ -406,11 +413,10 @@ int main(int argc, char **argv)
                     printf(" %.8f", e[l]);
                 }
                 for (int l = nl; l < NLEVELS; l++) fprintf(fp, ",");
-                if (isnan(err))
-                    fprintf(fp, ",%.6g,%.17g,\n", order, cont);
-                else
-                    fprintf(fp, ",%.6g,%.17g,%.3g\n", order, cont, err);
-                printf("  order %.3f  continuum %.8f +- %.2g\n", order, cont, err);
+                fprintf(fp, ",%.6g,%.17g,%.3g,%s\n", order, cont, err,
+                        from_coarser ? "coarser" : "first_order");
+                printf("  order %.3f  continuum %.8f +- %.2g (%s)\n", order, cont, err,
+                       from_coarser ? "from the coarser chains" : "against first order");
             }
     }
     if (fp) fclose(fp);
