@@ -79,18 +79,17 @@ static inline double bench_load_average(void)
     return load;
 }
 
-/* The N-link steady shape of mode `mode` at omega (whirl_nlink_solve) as positions x (3 per mass,
+/* The N-link steady shape of mode `mode` at omega (whirl_nlink_solve_nodes) as positions x (3 per mass,
  * relative to the pivot) in the x-z plane. */
 static inline int bench_steady_positions(const whirl_chain *c, double omega, int mode, double *x)
 {
     const size_t n = c->n;
     whirl_shape_info info;
-    int status = whirl_nlink_solve(c, omega, mode, 0, &info);
-    if (status != GSL_SUCCESS) return status;
     double *r = malloc(3 * (n + 1) * sizeof *r);
     if (r == NULL) return GSL_ENOMEM;
     double *z = r + n + 1, *ten = z + n + 1;
-    status = whirl_nlink_positions(c, omega, info.tip_r, r, z, ten);
+    /* the nodes from the branch's own link angles, not rebuilt from the tip radius */
+    int status = whirl_nlink_solve_nodes(c, omega, mode, &info, r, z, ten);
     for (size_t i = 0; i < n; i++) {
         x[3 * i] = r[i + 1] - r[0];
         x[3 * i + 1] = 0;
