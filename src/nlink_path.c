@@ -33,7 +33,14 @@
  * Test functions between two accepted points: a fold where t_omega changes sign; a branch point
  * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as
  * the tangent (G_a, -G_omega) reversing against the direction of travel) where that orientation
- * changes; a return to the hanging chain where a changes sign. Each is located by Brent's method
+ * changes; a return to the hanging chain where a changes sign. The orientation also reverses
+ * when the corrector lands on a neighbouring curve: G changes sign across each curve of G = 0,
+ * so two adjacent curves carry opposite orientations (coarse chains at high rates have curves
+ * a few percent apart in a over long stretches: 10 links near omega = 12.89, mode 7's branch
+ * and an isolated curve 5% apart). A genuine branch point is crossed by a step of any length,
+ * a neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on
+ * which the orientation reverses is rejected and halved, and only a reversal that persists
+ * down to DS_BRANCH is located as a branch point. Each is located by Brent's method
  * (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every evaluation a corrector
  * solve on the hyperplane at sigma: at a fold omega(sigma) is stationary, so the arclength error
  * enters omega squared. A crossing of a rate is first sought by Newton's method at that rate from
@@ -48,9 +55,12 @@
  * (tridiagonal Jacobian A; the arclength row (M0 t0) . (x - x0) = ds with the same metric M =
  * diag(1/omega^2, 1/N, ..)), each Newton step a bordered solve by block elimination, O(N); the
  * tangent solves [A, R_omega; (M0 t0)^T] t = e_{N+1} (one step of iterative refinement), which
- * orients it along the travel. Test functions: a fold where t_omega changes sign, a branch point
- * where det [A, R_omega; (M0 t0)^T] = det A (c_omega - c . A^-1 R_omega) does (not at a fold,
- * where both factors do), a return to the hanging chain where the shape's projection on the
+ * orients it along the travel. A path can also start here, from an equilibrium's link angles
+ * (whirl_nlink_path_start_angles: where roots crowd, the tip radius does not tell the shot which
+ * one is meant); the tangent then solves the same system with the row e_omega. Test functions:
+ * a fold where t_omega changes sign, a branch point where
+ * det [A, R_omega; (M0 t0)^T] = det A (c_omega - c . A^-1 R_omega) does (not at a fold, where
+ * both factors do), a return to the hanging chain where the shape's projection on the
  * step's start changes sign; located as above. The tip radius there is g tan theta_N / omega^2
  * (the radius that balances the tip mass: no cancellation). Which formulation a step uses: the
  * shot's round-off at an accepted point is measured as |G - G_ext| (G_ext the recursion in long
@@ -59,9 +69,11 @@
  * relative to its tension T_i); above NOISE_UP, or where the shot's Newton steps fail, the path
  * goes over to the link angles (the point polished there at fixed omega, the tangent carried
  * over), and it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
- * at each failure of the shot, so that it does not flap). The shot is kept where it is clean: it
- * is about three times cheaper per step, and it resolves the tail of a high mode (radii of 1e-16
- * of the largest) to relative accuracy where the link angles resolve it only to eps. Crossings
+ * at each failure of the shot, so that it does not flap); on the way back the shot's Newton's
+ * method at fixed omega must land within SHOT_SAME of the link angles (else it found another
+ * equilibrium nearby). The shot is kept where it is clean: it is about three times cheaper per
+ * step, and it resolves the tail of a high mode (radii of 1e-16 of the largest) to relative
+ * accuracy where the link angles resolve it only to eps. Crossings
  * found on the shot where its round-off exceeds NOISE_UP are polished on the link angles. */
 #include <float.h>
 #include <math.h>
@@ -76,6 +88,8 @@
 #define DS_FIRST 0.02    /* first step from a start */
 #define DS_MIN 1e-7      /* smallest step before the continuation fails */
 #define DS_MAX 0.1       /* largest step */
+#define DS_BRANCH 1e-6   /* a step longer than this on which the orientation test changes sign
+                          * is rejected (halved): see the header comment */
 #define TURN_MAX 0.2     /* largest turn of the tangent per step [rad] */
 #define DTHETA_MAX 0.2   /* largest change of a link angle per step [rad] */
 #define NEWTON_MAX 10    /* corrector iterations per trial step */
@@ -90,6 +104,8 @@
                           * unbalances a link by more than this (relative to its tension) */
 #define NOISE_DOWN 3e-15 /* and back to the tip shot where it falls below this */
 #endif
+#define SHOT_SAME 1e-9 /* back on the shot, no link angle moves more than this [rad] (else
+                        * its Newton's method went to another equilibrium nearby) */
 #define STAY_FIRST 16    /* steps in the link angles after the shot's Newton failed, before the
                           * shot is tried again (doubled on each such failure) */
 
@@ -482,6 +498,8 @@ static int to_angles(whirl_nlink_path *p)
     return 0;
 }
 
+static void swap(double **x, double **y);
+
 /* Back to the tip shot at the current point (polished by the shot's Newton at fixed omega).
  * Returns 0, or -1 with the path unchanged. */
 static int to_shot(whirl_nlink_path *p)
@@ -492,9 +510,14 @@ static int to_shot(whirl_nlink_path *p)
     shoot(p->chain, w, a, &s, NULL);
     shot_metric(&s, m);
     if (correct(p, m, w, a, 1, 0, 0, &w, &a, &s, &iters) != 0 || a == 0) return -1;
-    double t_w = p->t_omega, t_a = p->t_tip;
-    shoot_embed(p->chain, w, a, &s, p->theta, p->embed);
+    double t_w = p->t_omega, t_a = p->t_tip, moved = 0;
+    shoot_embed(p->chain, w, a, &s, p->theta_trial, p->embed_trial);
     p->shots++;
+    for (size_t i = 0; i < p->chain->n; i++)
+        moved = fmax(moved, fabs(p->theta_trial[i] - p->theta[i]));
+    if (!(moved <= SHOT_SAME)) return -1;
+    swap(&p->theta, &p->theta_trial);
+    swap(&p->embed, &p->embed_trial);
     set_point(p, w, a, &s, -1);
     tangent(&s, p->metric, p->metric, t_w, t_a, &p->t_omega, &p->t_tip, &p->raw_sign);
     p->angles = 0;
@@ -567,6 +590,48 @@ int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int 
     p->t_omega = tw;
     p->t_tip = ta;
     p->raw_sign = raw;
+    return GSL_SUCCESS;
+}
+
+int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega, const double *theta,
+                                  int direction)
+{
+    const whirl_chain *c = p->chain;
+    const size_t n = c->n;
+    if (!(isfinite(omega) && omega > 0))
+        return whirl_fail(GSL_EINVAL, "a path starts at omega > 0");
+    reset(p);
+    p->mode = 0;
+    p->omega_birth = 0;
+    for (size_t i = 0; i < n; i++) p->theta[i] = theta[i];
+    if (whirl_nlink_balance_polish(p->balance, omega, p->theta) ||
+        !(tip_of(c, omega, p->theta) != 0))
+        return whirl_fail(GSL_EFAILED, "no equilibrium of the chain near the link angles given "
+                          "at omega=%.17g", omega);
+    /* the tangent with d omega > 0 (the row e_omega: regular unless the point is a fold),
+     * turned to the direction asked; then the orientation test with the tangent's own row, as
+     * a step makes it */
+    double t_w, *c_th = scr_cth(p);
+    int det;
+    if (angle_tangent(p, omega, 1, scr_zero(p), &t_w, p->t_theta, &det, NULL, NULL))
+        return whirl_fail(GSL_EFAILED, "the equilibrium at omega=%.17g is a fold: no tangent "
+                          "transversal to the rate", omega);
+    const double sign = direction >= 0 ? 1 : -1;
+    t_w *= sign;
+    for (size_t i = 0; i < n; i++) p->t_theta[i] *= sign, c_th[i] = p->t_theta[i] / (double)n;
+    double t_check;
+    if (angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, p->t_theta_trial, &det,
+                      NULL, NULL))
+        return whirl_fail(GSL_EFAILED, "the tangent at omega=%.17g is not defined", omega);
+    p->omega = omega;
+    p->tip_r = tip_of(c, omega, p->theta);
+    p->t_omega = t_w;
+    p->t_tip = tip_rate(c, omega, p->theta, t_w, p->t_theta);
+    p->det_sign = det;
+    angle_embed(n, omega, t_w, p->t_theta, p->embed);
+    p->omega_lo = p->omega_hi = omega;
+    p->angles = 1;
+    p->noise = noise_at(p, omega, p->tip_r);
     return GSL_SUCCESS;
 }
 
@@ -1039,6 +1104,8 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
             if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+            if (det != p->det_sign && ds > DS_BRANCH)
+                ok = 0, p->why = "the orientation test changes sign (another curve close by)";
         }
         if (!ok) {
             p->rejected++;
@@ -1194,6 +1261,8 @@ static int shot_step(whirl_nlink_path *p)
                 dtheta = fmax(dtheta, fabs(p->theta_trial[i] - p->theta[i]));
             if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+            if (raw != p->raw_sign && ds > DS_BRANCH)
+                ok = 0, p->why = "the orientation test changes sign (another curve close by)";
         }
         if (!ok) {
             p->rejected++;

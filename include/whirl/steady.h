@@ -217,6 +217,15 @@ WHIRL_API int whirl_nlink_path_birth(whirl_nlink_path *p, int mode);
  * Newton's method does not converge there. */
 WHIRL_API int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int direction);
 
+/* Starts at the equilibrium near the link angles theta[0..N-1] [rad] at omega (polished by
+ * Newton's method on the force balance of every link at fixed omega), in the link angles,
+ * heading where omega increases (direction > 0) or decreases (direction < 0). Unlike a start
+ * from the tip radius, the start is the equilibrium whose angles are given even where the shot
+ * cannot resolve it (roots whose tip radii agree to 1e-7 on a coarse chain at a high rate).
+ * GSL_EFAILED if Newton's method does not converge or the point is a fold. */
+WHIRL_API int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega,
+                                            const double *theta, int direction);
+
 /* Reverses the direction of travel. */
 WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
 
