@@ -54,7 +54,13 @@
  *    one of them is followed both ways, each up to follow_factor * omega, until it returns to
  *    the hanging chain (a birth: the root is on that branch) or closes; each crossing of omega is
  *    matched against the scans' roots (a crossing they did not find counts as missed and is
- *    added). Curves that meet no birth are isolated: they appear as pairs at folds, and the
+ *    added). A curve starts from its root's polished link angles, and each crossing is polished
+ *    from the path's own link angles there: where roots crowd (tip radii 1e-7 apart on 10 links
+ *    at omega = 40) a tip radius does not single out one root to the shot, and a start from it
+ *    failed on the first step or could begin on a neighbour. The path rejects a step on which
+ *    its orientation test reverses (src/nlink_path.c): that is what a step that lands on the
+ *    neighbouring curve looks like, and such jumps had put mode 7's branch of 10 links onto an
+ *    isolated curve near omega = 12.89. Curves that meet no birth are isolated: they appear as pairs at folds, and the
  *    lowest fold found is reported as where the curve is born.
  * Limits: (b) and (c) test at three points per cell, they do not prove (two roots closer
  * than a cell on which the Hermite cubics fit G and every angle to tau would be missed by a
@@ -691,7 +697,10 @@ static int follow_curve(whirl_nlink_path *p, double omega, double omega_max, con
         for (int k = 0; k < found; k++) {
             double a = fabs(tip[k]);
             size_t before = l->n;
-            if ((status = angles_of_tip(aw, a)) || (status = angle_polish(aw, &a))) {
+            /* from the crossing's own link angles (the tip radius alone does not fix the
+             * shape where roots crowd) */
+            memcpy(aw->theta, p->cross_theta + (size_t)k * l->links, l->links * sizeof *aw->theta);
+            if ((status = angle_polish(aw, &a))) {
                 if (status == WHIRL_EINTERRUPTED || status == GSL_ENOMEM) return -status;
                 cv->failed = 1;
                 return 0;
@@ -756,7 +765,7 @@ static int continue_all(const whirl_chain *c, double omega, double factor, const
         if ((status = curve_member(&cv, i))) break;
         int closed = 0;
         for (int dir = -1; dir <= 1 && !closed && !status; dir += 2) {
-            if (whirl_nlink_path_start(p, omega, l->eq[i].info.tip_r, dir)) {
+            if (whirl_nlink_path_start_angles(p, omega, l->theta + i * l->links, dir)) {
                 cv.failed = 1;
                 continue;
             }

@@ -10,6 +10,9 @@
  *   in agreement, the count settled;
  * - high rates (6 and 8 links at omega = 25), where link angles flip over 1e-11 in the
  *   scan's parameter: the two scans find the same equilibria;
+ * - 10 links at omega = 40, roots crowded to 1e-7 in tip radius: every one identified, each
+ *   branch's crossing the shape whirl_nlink_solve returns, the isolated ones in pairs per fold,
+ *   the count rising by two across four of the folds;
  * - the continuum: Kolodner's count, exactly n shapes for omega_n < omega < omega_{n+1}, just
  *   above and just below the critical rates, with and without a tip mass;
  * - linear verdicts: those of the shapes of modes 1 and 2 as whirl_stability_mode gives them,
@@ -225,6 +228,90 @@ static void test_high_rates(void **state)
     whirl_chain_free(c);
 }
 
+static int cmp_double(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* 10 links at omega = 40 (2.3 omega_10), 1332 equilibria, many in clusters whose tip radii agree
+ * to 1e-7. Started from its tip radius, the continuation of 30 of them failed on its first step
+ * (the shot there does not tell the neighbours apart) and they were left unidentified; mode 7's
+ * branch jumped near omega = 12.89 onto an isolated curve 5% away in tip radius (the step's
+ * corrector landed on it), so that branch crossed omega twice and one isolated equilibrium had
+ * no partner. Now: every equilibrium identified; every branch crosses omega once, at the shape
+ * whirl_nlink_solve returns for its mode; the isolated ones come in pairs per fold (a curve
+ * that meets no birth rises above omega at both ends, so it crosses omega an even number of
+ * times); and at four of the folds the count of the scans alone rises by exactly two across
+ * the fold. */
+static void test_ten_links_high_rate(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(10, 0);
+    const double omega = 40;
+    whirl_equilibria *e = find(c, 0, omega, 0);
+    assert_agreement(e);
+    assert_int_equal(e->count, 1332);
+    assert_int_equal(e->born, 10);
+    int on_branch[11] = {0};
+    size_t n_iso = 0;
+    double *fold = malloc(e->count * sizeof *fold);
+    assert_non_null(fold);
+    for (size_t i = 0; i < e->count; i++) {
+        const whirl_equilibrium *q = &e->eq[i];
+        assert_true(q->branch >= 0 && q->branch <= 10);
+        if (q->branch == 0) {
+            assert_true(q->born_at > 1 && q->born_at < omega);
+            fold[n_iso++] = q->born_at;
+            continue;
+        }
+        on_branch[q->branch]++;
+        whirl_shape_info info;
+        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, 0, &info), GSL_SUCCESS);
+        assert_true(fabs(info.tip_r - q->info.tip_r) <= 1e-9 * q->info.tip_r);
+        assert_int_equal(info.n_nodes, q->info.n_nodes);
+    }
+    for (int k = 1; k <= 10; k++) assert_int_equal(on_branch[k], 1);
+    assert_int_equal(n_iso, e->isolated);
+    assert_int_equal(n_iso, e->count - 10);
+    /* the isolated equilibria by their curve's lowest fold: pairs (or more, an even number) */
+    qsort(fold, n_iso, sizeof *fold, cmp_double);
+    size_t n_fold = 0;
+    for (size_t i = 0; i < n_iso;) {
+        size_t j = i;
+        while (j < n_iso && fold[j] - fold[i] <= 1e-9 * fold[i]) j++;
+        assert_true((j - i) % 2 == 0);
+        fold[n_fold++] = fold[i];
+        i = j;
+    }
+    assert_true(n_fold >= n_iso / 4);
+    /* the count of the scans alone across four folds, each 1e-6 (relative) or more from the
+     * next: the lowest, the highest and two between */
+    whirl_equilibria_params p = whirl_equilibria_defaults();
+    p.stability = 0;
+    p.continuation = 0;
+    const size_t pick[4] = {0, n_fold / 3, 2 * n_fold / 3, n_fold - 1};
+    for (int j = 0; j < 4; j++) {
+        size_t k = pick[j];
+        while (k + 1 < n_fold && ((k > 0 && fold[k] - fold[k - 1] <= 1e-6 * fold[k]) ||
+                                  fold[k + 1] - fold[k] <= 1e-6 * fold[k]))
+            k++;
+        whirl_equilibria *below = NULL, *above = NULL;
+        assert_int_equal(whirl_equilibria_find(c, 0, fold[k] * (1 - 1e-7), &p, &below),
+                         GSL_SUCCESS);
+        assert_int_equal(whirl_equilibria_find(c, 0, fold[k] * (1 + 1e-7), &p, &above),
+                         GSL_SUCCESS);
+        assert_int_equal(below->matched, below->count);
+        assert_int_equal(above->matched, above->count);
+        assert_int_equal(above->count, below->count + 2);
+        whirl_equilibria_free(below);
+        whirl_equilibria_free(above);
+    }
+    free(fold);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
 /* Kolodner: exactly n shapes for omega_n < omega < omega_{n+1}. */
 static void test_kolodner(void **state)
 {
@@ -362,6 +449,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_five_links), cmocka_unit_test(test_fold_pairs),
         cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_high_rates),
+        cmocka_unit_test(test_ten_links_high_rate),
         cmocka_unit_test(test_kolodner),
         cmocka_unit_test(test_pivot_derivative), cmocka_unit_test(test_tip_slopes),
         cmocka_unit_test(test_errors),
