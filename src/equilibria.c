@@ -67,7 +67,11 @@
  * scan; the other scan, whose parameter runs the other way along the chain, and method 3 are
  * the checks). Curves that first cross omega after rising above follow_factor * omega are
  * followed from their own roots, and a birth reached only above that limit is not seen (the
- * root is then called isolated). Features narrower than the cell floor (a rounding limit of
+ * root is then called isolated). The path sees a jump to the next curve (its orientation
+ * reverses), not one over two curves at once, nor onto a curve closer than its shortest
+ * tested step (1e-6) tells apart: the parity of the crossings (odd on a branch born below
+ * omega that does not return to the hanging chain, even on a curve that meets no birth) is the
+ * check (tests/test_equilibria.c). Features narrower than the cell floor (a rounding limit of
  * the parameter) are counted as unresolved. Where roots crowd within round-off of each other
  * (10 links at omega = 60: tip radii 1e-13 apart) Newton's method from a shot can end on a
  * rod's equilibrium or fail at a fold: such a root is counted as not polished and left out,

@@ -432,6 +432,22 @@ static void angle_embed(size_t n, double w, double t_w, const double *t_th, doub
     for (size_t i = 0; i < n; i++) embed[i + 1] = scale * t_th[i];
 }
 
+/* The path at the point p->theta, rate w, of a step or start in the link angles, with the tangent
+ * (t_w, p->t_theta) and the orientation test's sign det. */
+static void angle_point(whirl_nlink_path *p, double w, double t_w, int det)
+{
+    const whirl_chain *c = p->chain;
+    p->omega = w;
+    p->tip_r = tip_of(c, w, p->theta);
+    p->t_omega = t_w;
+    p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
+    p->det_sign = det;
+    angle_embed(c->n, w, t_w, p->t_theta, p->embed);
+    if (w < p->omega_lo) p->omega_lo = w;
+    if (w > p->omega_hi) p->omega_hi = w;
+    p->angles = 1;
+}
+
 /* The round-off of the shot at (omega, a) (shot_noise). */
 static double noise_at(whirl_nlink_path *p, double omega, double a)
 {
@@ -623,14 +639,7 @@ int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega, const doubl
     if (angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, p->t_theta_trial, &det,
                       NULL, NULL))
         return whirl_fail(GSL_EFAILED, "the tangent at omega=%.17g is not defined", omega);
-    p->omega = omega;
-    p->tip_r = tip_of(c, omega, p->theta);
-    p->t_omega = t_w;
-    p->t_tip = tip_rate(c, omega, p->theta, t_w, p->t_theta);
-    p->det_sign = det;
-    angle_embed(n, omega, t_w, p->t_theta, p->embed);
-    p->omega_lo = p->omega_hi = omega;
-    p->angles = 1;
+    angle_point(p, omega, t_w, det);
     p->noise = noise_at(p, omega, p->tip_r);
     return GSL_SUCCESS;
 }
@@ -1200,15 +1209,7 @@ static int birth_angles(whirl_nlink_path *p)
     int det;
     if (angle_tangent(p, w, 0, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
     swap(&p->theta, &p->theta_trial);
-    p->omega = w;
-    p->tip_r = tip_of(c, w, p->theta);
-    p->t_omega = t_w;
-    p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
-    p->det_sign = det;
-    angle_embed(n, w, t_w, p->t_theta, p->embed);
-    if (w < p->omega_lo) p->omega_lo = w;
-    if (w > p->omega_hi) p->omega_hi = w;
-    p->angles = 1;
+    angle_point(p, w, t_w, det);
     p->stay = p->backoff;
     p->have_last = 0;
     p->ds = DS_FIRST;
