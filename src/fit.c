@@ -2,7 +2,7 @@
  *
  * Data: n points (r_i, z_i) in units of the chain length, the pivot at the origin, in any order
  * along the chain. Model: the curve C(omega, k) of mode k at omega (whirl_continuum_sample
- * finely sampled, or the nodes of the uniform N-link chain from whirl_nlink_positions), a
+ * finely sampled, or the nodes of the uniform N-link chain from whirl_nlink_solve_nodes), a
  * polyline, mirrored (r -> -r) when the points lie on the other side of the axis.
  * Residual e_i = signed distance of point i to the polyline (sign of the cross product of the
  * nearest segment with the offset of the point); the fit minimises S(omega) = sum_i e_i^2 over
@@ -131,9 +131,8 @@ static int fit_model_curve(fit_ws *w, double omega, int mode)
             status = whirl_continuum_sample(omega, w->model->tip_mass, info.tip_r, w->npoly,
                                             w->s, w->pr, w->pz, w->tension);
     } else {
-        status = whirl_nlink_solve(w->chain, omega, mode, w->tip_r_guess, &info);
-        if (status == GSL_SUCCESS)
-            status = whirl_nlink_positions(w->chain, omega, info.tip_r, w->pr, w->pz, w->tension);
+        status = whirl_nlink_solve_nodes(w->chain, omega, mode, &info, w->pr, w->pz,
+                                         w->tension);
     }
     if (status == GSL_SUCCESS) w->tip_r_guess = info.tip_r;
     else if (status != GSL_EDOM) w->failures++;

@@ -1401,7 +1401,8 @@ int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t 
     return status;
 }
 
-/* The first crossing of each rate; with nodes, the nodes of the first crossing of rate 0. */
+/* The first crossing of each rate; with nodes, those of the first crossing of rate j in row j
+ * (c->n + 1 each). */
 typedef struct first_ctx {
     whirl_shape_info *info;
     int *exists;
@@ -1422,16 +1423,15 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
          * copied to the front of cross_theta) */
         whirl_nlink_path *p = f->p;
         const size_t n = p->chain->n;
+        double *r = f->r + j * (n + 1), *z = f->z + j * (n + 1), *t = f->tension + j * (n + 1);
         int status;
         if (p->cross_angles[0]) {
-            whirl_nlink_balance_nodes(p->chain, info->omega, p->cross_theta, f->r, f->z,
-                                      f->tension);
-            if (f->r[n] < 0)
-                for (size_t i = 0; i <= n; i++) f->r[i] = -f->r[i];
-            status = whirl_steady_check_samples(info->omega, n + 1, f->r, f->z, f->tension);
+            whirl_nlink_balance_nodes(p->chain, info->omega, p->cross_theta, r, z, t);
+            if (r[n] < 0)
+                for (size_t i = 0; i <= n; i++) r[i] = -r[i];
+            status = whirl_steady_check_samples(info->omega, n + 1, r, z, t);
         } else {
-            status = whirl_nlink_positions(p->chain, info->omega, info->tip_r, f->r, f->z,
-                                           f->tension);
+            status = whirl_nlink_positions(p->chain, info->omega, info->tip_r, r, z, t);
         }
         if (status) return status;
     }
@@ -1469,14 +1469,23 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
     return status;
 }
 
+int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const double *omega,
+                             whirl_shape_info *info, int *exists, double *r, double *z,
+                             double *tension)
+{
+    if ((r == NULL) != (z == NULL) || (r == NULL) != (tension == NULL))
+        return whirl_fail(GSL_EINVAL, "the nodes need all of r, z and tension, or none");
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
+    int status = branch_path(p, mode, n, omega, info, exists, r, z, tension);
+    whirl_nlink_path_free(p);
+    return status;
+}
+
 int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists)
 {
-    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
-    int status = branch_path(p, mode, n, omega, info, exists, NULL, NULL, NULL);
-    whirl_nlink_path_free(p);
-    return status;
+    return whirl_nlink_branch_nodes(c, mode, n, omega, info, exists, NULL, NULL, NULL);
 }
 
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,

@@ -3,7 +3,7 @@
  * The start state, in the run's frame at t = 0, the pivot at p0 = (drive_radius, 0, 0) moving
  * with the drive:
  *  - steady: the N-link relative equilibrium of mode k at omega_s in the x-z plane
- *    (whirl_nlink_solve, whirl_nlink_positions), each link turned by perturb
+ *    (whirl_nlink_solve_nodes), each link turned by perturb
  *    (whirl_perturb_links), turning rigidly at omega_s (whirl_dyn_state_from_shape);
  *  - angles: link unit vectors u_i = (sin th cos ph, sin th sin ph, -cos th) (2D: (sin th, 0,
  *    -cos th)), x_i = p0 + sum_{k<=i} l_k u_k, velocities p0' + sum l_k du_k/dt;
@@ -62,15 +62,15 @@ static int mode_links(whirl_scene_work *w, double omega, int mode, whirl_scene_k
     const size_t n = w->n;
     whirl_shape_info info;
     char msg[600];
-    if (whirl_nlink_solve(w->chain, omega, mode, 0, &info) != GSL_SUCCESS) {
-        snprintf(msg, sizeof msg, "no steady shape: %s", whirl_last_error());
-        return key_fail(w->scene, GSL_EDOM, key, msg);
-    }
     double *rr = malloc(3 * (n + 1) * sizeof *rr);
     if (rr == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
     double *zz = rr + n + 1, *tension = zz + n + 1;
-    int status = whirl_nlink_positions(w->chain, omega, info.tip_r, rr, zz, tension);
-    if (status == GSL_SUCCESS) status = whirl_shape_links(n, rr, NULL, zz, links);
+    if (whirl_nlink_solve_nodes(w->chain, omega, mode, &info, rr, zz, tension) != GSL_SUCCESS) {
+        free(rr);
+        snprintf(msg, sizeof msg, "no steady shape: %s", whirl_last_error());
+        return key_fail(w->scene, GSL_EDOM, key, msg);
+    }
+    int status = whirl_shape_links(n, rr, NULL, zz, links);
     free(rr);
     if (status != GSL_SUCCESS) {
         snprintf(msg, sizeof msg, "steady shape: %s", whirl_last_error());

@@ -566,8 +566,13 @@ int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
     if (status) return status;
     whirl_shape_info local;
     whirl_shape_info *out = info ? info : &local;
-    status = whirl_nlink_solve(model->chain, model->omega, mode, tip_r_guess, out);
-    if (!status) status = whirl_stability_shape(w, model, out->tip_r, growth);
+    /* the nodes from the branch's link angles: at high rates the tip radius no longer fixes
+     * the shape (whirl_nlink_solve_nodes), and its rebuilt nodes are off the equilibrium */
+    (void)tip_r_guess;
+    status = whirl_nlink_solve_nodes(model->chain, model->omega, mode, out, w->x, w->z,
+                                     w->tension);
+    if (!status) status = whirl_stability_linearise(w, model, w->x, w->z);
+    if (!status) status = whirl_stability_growth(w, growth);
     return status;
 }
 

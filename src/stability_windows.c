@@ -77,8 +77,6 @@ struct whirl_windows {
     const whirl_chain *chain; /* of the current search */
     int mode;
     double lin_omega;      /* the rate of the linearisation in lin (NAN: none) */
-    const double *scan_omega, *scan_tip; /* the scan's rates and tip radii, for the seeds */
-    size_t nscan;
     whirl_windows_stats *stats;
 };
 
@@ -393,31 +391,22 @@ static void point_free(point *p)
     p->gap = p->gap_mu = NULL;
 }
 
-/* The seed of the shape at omega: the scan's tip radii interpolated linearly. */
-static double seed_of(const whirl_windows *w, double omega)
-{
-    size_t j = 0;
-    while (j + 2 < w->nscan && w->scan_omega[j + 1] <= omega) j++;
-    if (w->nscan < 2) return w->scan_tip[0];
-    const double t = (omega - w->scan_omega[j]) / (w->scan_omega[j + 1] - w->scan_omega[j]);
-    return w->scan_tip[j] + t * (w->scan_tip[j + 1] - w->scan_tip[j]);
-}
-
-/* The shape of the mode at omega (the seed tip_r: the one nearest it), then the linearisation. */
-static int linearise_at(whirl_windows *w, double omega, double seed)
+/* The shape of the mode at omega, its nodes from the branch's link angles (at high rates the
+ * tip radius alone does not fix them to round-off), then the linearisation. */
+static int linearise_at(whirl_windows *w, double omega)
 {
     if (omega == w->lin_omega) return GSL_SUCCESS;
     w->lin_omega = NAN;
     whirl_shape_info info;
-    int status = whirl_nlink_solve(w->chain, omega, w->mode, seed, &info);
+    int status = whirl_nlink_solve_nodes(w->chain, omega, w->mode, &info, w->r, w->z,
+                                         w->tension);
     if (status) return status;
     whirl_model m = {0};
     m.chain = w->chain;
     m.dim = 3;
     m.frame = WHIRL_FRAME_ROTATING;
     m.omega = omega;
-    status = whirl_nlink_positions(w->chain, omega, info.tip_r, w->r, w->z, w->tension);
-    if (!status) status = whirl_stability_linearise(w->lin, &m, w->r, w->z);
+    status = whirl_stability_linearise(w->lin, &m, w->r, w->z);
     w->stats->shapes++;
     if (!status) w->lin_omega = omega;
     return status;
@@ -431,11 +420,11 @@ static int stop_check(const windows_source *src, double omega)
     return GSL_SUCCESS;
 }
 
-/* The N-link chain as a source of spectra: the shape seeded from the scan, its linearisation. */
+/* The N-link chain as a source of spectra: the shape, its linearisation. */
 static int nlink_spectrum(void *data, double omega, int signatures, whirl_spectrum *out)
 {
     whirl_windows *w = data;
-    int status = linearise_at(w, omega, seed_of(w, omega));
+    int status = linearise_at(w, omega);
     if (!status) status = whirl_windows_spectrum(w, w->lin, signatures, out);
     return status;
 }
@@ -445,7 +434,7 @@ static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu
 static int nlink_pair(void *data, double omega, double sigma, double *mu_re, double *mu_im)
 {
     whirl_windows *w = data;
-    int status = linearise_at(w, omega, seed_of(w, omega));
+    int status = linearise_at(w, omega);
     if (!status) status = split_blocks(w, w->lin);
     if (!status) status = krylov_pair(w, sigma, mu_re, mu_im);
     return status;
@@ -1112,7 +1101,7 @@ int whirl_windows_search(const windows_source *src, const whirl_windows_params *
     if (!status) qsort(pts, nall, sizeof *pts, compare_points);
     for (size_t j = 0; j + 1 < nall && !status; j++)
         status = explore(&s, &pts[j], &pts[j + 1], 0);
-    if (!status) qsort(s.edges, s.nedges, sizeof *s.edges, compare_edges);
+    if (!status && s.nedges > 0) qsort(s.edges, s.nedges, sizeof *s.edges, compare_edges);
     /* windows from the edges, the largest growth in each */
     int inside = pts && pts[0].unstable;
     whirl_window cur = {0};
@@ -1173,25 +1162,18 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
     w->lin_omega = NAN;
     whirl_shape_info *info = malloc(npts * sizeof *info);
     int *exists = malloc(npts * sizeof *exists);
-    double *tip = malloc(npts * sizeof *tip);
-    status = (!info || !exists || !tip) ? whirl_fail(GSL_ENOMEM, "out of memory") : 0;
+    status = (!info || !exists) ? whirl_fail(GSL_ENOMEM, "out of memory") : 0;
     if (!status) status = whirl_nlink_branch(c, mode, npts, omega, info, exists);
     for (size_t j = 0; j < npts && !status; j++) {
-        tip[j] = info[j].tip_r;
         if (!exists[j])
             status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = %g on its branch", mode,
                                 omega[j]);
     }
-    w->scan_omega = omega;
-    w->scan_tip = tip;
-    w->nscan = status ? 0 : npts;
     windows_source src = {nlink_spectrum, p->krylov ? nlink_pair : NULL, w, mode, stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
-    w->nscan = 0;
     w->lin_omega = NAN;
     free(omega);
     free(info);
     free(exists);
-    free(tip);
     return status;
 }

@@ -15,7 +15,9 @@
  *    drag's generalised force written here in the documented chart; the linear response of the
  *    accelerations of the dynamics module with the same drive and drag; the reduction to the
  *    planar formulas without drive and drag (also for a shape turned about the axis); perturbed
- *    runs: the growth of an unstable trailing shape, the convergence of a stable one.
+ *    runs: the growth of an unstable trailing shape, the convergence of a stable one;
+ *  - high rates (N = 15 at omega = 150): the shape linearised is an equilibrium to round-off (a
+ *    force balance written here), its growth that of a perturbed run, also in the window search.
  * Equilibria come from a shooting written here (recursion up from the tip, bisection on the tip
  * radius), independent of the steady-shape module; that module's shapes are compared too. */
 #include <setjmp.h>
@@ -24,6 +26,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1252,6 +1255,93 @@ static void test_worker_stop(void **state)
     whirl_chain_free(c);
 }
 
+/* ---- high rates: the shape from the branch's link angles ---- */
+
+/* The largest force across a link of the planar shape (r[i], z[i]) at omega, from the loads
+ * m_i (omega^2 (r_i - r_0), -g) of the masses below it (the pivot put on the axis, as the
+ * linearisation puts it), over the scale M (g + omega^2 L) of the loads: round-off (positions
+ * to eps L) at an equilibrium. */
+static double force_across(const whirl_chain *c, double omega, const double *r, const double *z)
+{
+    double fr = 0, fz = 0, worst = 0;
+    for (size_t j = c->n; j >= 1; j--) {
+        fr += c->mass[j - 1] * omega * omega * (r[j] - r[0]);
+        fz -= c->mass[j - 1] * c->gravity;
+        const double ur = r[j] - r[j - 1], uz = z[j] - z[j - 1];
+        worst = fmax(worst, fabs(fr * uz - fz * ur) / hypot(ur, uz));
+    }
+    return worst / (whirl_chain_total_mass(c) *
+                    (c->gravity + omega * omega * whirl_chain_total_length(c)));
+}
+
+/* N = 15 at omega = 150: mode 7's tip radius (2.6e-5) no longer fixes its shape (rebuilt from
+ * it, the pivot lands 3.7e-4 off the axis and the balance is lost), so the stability module
+ * takes the nodes from the branch's link angles. Its linearisation point balances every link
+ * to round-off; the growth is that of a perturbed run of the dynamics, and mode 3, neutral
+ * there, stays bounded in a run. The window search over 140..150 linearises the same shapes. */
+static void test_high_rate_shape(void **state)
+{
+    (void)state;
+    const size_t n = 15;
+    const double omega = 150;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    whirl_stability *w = whirl_stability_alloc(n);
+    whirl_model m = model_of(c, omega, 0);
+    whirl_shape_info info;
+    double growth, r[NMAX + 1], z[NMAX + 1], t[NMAX + 1];
+    /* the premise: the tip radius alone does not give the shape at this rate */
+    assert_int_equal(whirl_stability_mode(w, &m, 7, 0, &info, &growth), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, t), GSL_SUCCESS);
+    const double miss = fabs(r[0]);
+    const double *x, *y, *zz;
+    whirl_stability_nodes(w, &x, &y, &zz);
+    const double across = force_across(c, omega, x, zz);
+    for (size_t i = 0; i <= n; i++) assert_true(y[i] == 0);
+    whirl_stability_run_params p = whirl_stability_run_defaults();
+    p.periods = 20;
+    whirl_stability_run_result run;
+    assert_int_equal(whirl_stability_run_shape(&m, x, y, zz, &p, &run), GSL_SUCCESS);
+    print_message("# N = 15, mode 7, omega 150: tip radius %.3g (the pivot %.3g off the axis "
+                  "from it); linearised shape: force across a link %.2e of M (g + omega^2 L); growth "
+                  "%.10g, perturbed run %.10g (%s)\n", info.tip_r, miss, across, growth,
+                  run.sim_growth, whirl_verdict_name(run.verdict));
+    assert_true(miss > 1e-6);
+    assert_true(across < 10 * (double)n * DBL_EPSILON);
+    assert_true(growth > 30);
+    assert_int_equal(run.verdict, WHIRL_VERDICT_UNSTABLE);
+    assert_true(fabs(run.sim_growth - growth) < 0.03 * growth);
+    /* mode 3: neutral, and a run stays below 100 times its perturbation */
+    double neutral;
+    assert_int_equal(whirl_stability_mode(w, &m, 3, 0, NULL, &neutral), GSL_SUCCESS);
+    whirl_stability_nodes(w, &x, &y, &zz);
+    const double across3 = force_across(c, omega, x, zz);
+    assert_int_equal(whirl_stability_run_shape(&m, x, y, zz, &p, &run), GSL_SUCCESS);
+    print_message("# mode 3: force across a link %.2e of M (g + omega^2 L); growth %g, perturbed run: %s "
+                  "(largest deviation %.3g times the initial one)\n", across3, neutral,
+                  whirl_verdict_name(run.verdict), run.max_deviation);
+    assert_true(across3 < 10 * (double)n * DBL_EPSILON);
+    assert_true(neutral == 0);
+    assert_int_equal(run.verdict, WHIRL_VERDICT_STABLE);
+    /* the window search: mode 7 unstable over all of 140..150, the same growth at 150 */
+    whirl_windows *ws = whirl_windows_alloc(n);
+    whirl_windows_params wp = whirl_windows_defaults();
+    wp.omega_min = 140;
+    wp.omega_max = omega;
+    whirl_window win[4];
+    size_t count = 0;
+    whirl_windows_stats stats;
+    assert_int_equal(whirl_windows_find(ws, c, 7, &wp, win, 4, &count, &stats), GSL_SUCCESS);
+    assert_int_equal(count, 1);
+    assert_true(win[0].open_from && win[0].open_to);
+    print_message("# window search 140..150: largest growth %.13g at %g\n", win[0].max_growth,
+                  win[0].at);
+    assert_float_equal(win[0].at, omega, 0);
+    assert_float_equal(win[0].max_growth, growth, 1e-9 * growth);
+    whirl_windows_free(ws);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 /* ---- errors ---- */
 
 static void test_errors(void **state)
@@ -1317,6 +1407,7 @@ int main(void)
         cmocka_unit_test(test_driven_runs),
         cmocka_unit_test(test_worker_spectrum),
         cmocka_unit_test(test_worker_stop),
+        cmocka_unit_test(test_high_rate_shape),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

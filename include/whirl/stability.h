@@ -102,13 +102,19 @@ WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
 
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
  * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
- * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. */
+ * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. At high
+ * rates the tip radius alone no longer fixes a shape (whirl_nlink_solve_nodes): the nodes
+ * rebuilt from it are off the equilibrium, or refused as none (GSL_EINVAL). There use
+ * whirl_stability_mode, or whirl_stability_linearise on the nodes of whirl_nlink_solve_nodes or
+ * whirl_nlink_branch_nodes. */
 WHIRL_API int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
                                     double *growth);
 
-/* The steady shape of mode k at model->omega (whirl_nlink_solve, tip_r_guess as there), its
- * linearisation and growth rate. info may be NULL. GSL_EDOM if the mode does not exist;
- * GSL_EINVAL with a drive or air drag (see whirl_stability_driven_mode). */
+/* The steady shape of mode k at model->omega (whirl_nlink_solve_nodes: the nodes from the
+ * branch's link angles, an equilibrium to round-off at any rate), its linearisation and growth
+ * rate. tip_r_guess is not used (kept for the signature; the branch is continued from its
+ * birth). info may be NULL. GSL_EDOM if the mode does not exist; GSL_EINVAL with a drive or
+ * air drag (see whirl_stability_driven_mode). */
 WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
                                    double tip_r_guess, whirl_shape_info *info, double *growth);
 
@@ -185,8 +191,9 @@ WHIRL_API int whirl_stability_run_shape(const whirl_model *model, const double *
                                         whirl_stability_run_result *result);
 
 /* whirl_stability_run_shape from the free steady shape with tip radius tip_r (as for
- * whirl_stability_shape; whirl_nlink_positions at model->omega). The model must have no drive
- * and no air drag (GSL_EINVAL). */
+ * whirl_stability_shape; whirl_nlink_positions at model->omega, so at high rates not the
+ * equilibrium: there run from the nodes of whirl_nlink_solve_nodes or whirl_stability_nodes).
+ * The model must have no drive and no air drag (GSL_EINVAL). */
 WHIRL_API int whirl_stability_run(const whirl_model *model, double tip_r,
                                   const whirl_stability_run_params *params,
                                   whirl_stability_run_result *result);

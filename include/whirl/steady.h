@@ -119,6 +119,13 @@ WHIRL_API int whirl_nlink_positions(const whirl_chain *c, double omega, double t
 WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
 
+/* whirl_nlink_branch with the nodes of each shape (as whirl_nlink_solve_nodes): row j of r, z
+ * and tension (each n x (c->n + 1), row-major) holds the shape at omega[j] where exists[j],
+ * and is left as it was elsewhere. r, z and tension are all NULL (none wanted) or none is. */
+WHIRL_API int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n,
+                                       const double *omega, whirl_shape_info *info, int *exists,
+                                       double *r, double *z, double *tension);
+
 /* ---- N-link chain: branches by pseudo-arclength continuation ----
  * The relative equilibria of the N-link chain are the zeros of one function of two variables,
  * G(omega, a) = r_0 / |r|: the pivot's radius, divided by the norm of the radii of all the nodes,

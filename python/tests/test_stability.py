@@ -33,6 +33,23 @@ def test_stability_map_matches_single_points():
     assert np.any(m["growth"] > 0) and np.any(m["growth"] == 0)
 
 
+def test_high_rate_shapes_come_from_the_branch():
+    # N = 15, mode 7 at omega 150: the tip radius (2.6e-5) does not fix the shape; the shape,
+    # the map and the single point all use the branch's nodes (pivot on the axis, balanced)
+    s = whirl.shape(150, 7, links=15)
+    assert s.r[0] == 0
+    # the force across each link from the loads m (omega^2 r, -g) below it, over M (g + w^2 L)
+    fr = np.cumsum((150.0**2 * s.r[1:] / 15)[::-1])[::-1]
+    fz = -np.arange(15, 0, -1) / 15
+    ur, uz = np.diff(s.r), np.diff(s.z)
+    across = np.abs(fr * uz - fz * ur) / np.hypot(ur, uz)
+    assert np.max(across) < 1e-13 * (1 + 150.0**2)
+    m = whirl.stability_map(np.array([100.0, 150.0]), 7, 15)
+    r = whirl.stability(150, 7, 15, linear=True)
+    assert r.eig_growth > 30
+    assert m["growth"][-1] == pytest.approx(r.eig_growth, rel=1e-12)
+
+
 def test_driven_shape_trails_and_counts_its_node():
     d = whirl.driven(3.0, 1, 0.05, air_drag=0.1)
     assert d.nodes == 1 and d.residual < 1e-9

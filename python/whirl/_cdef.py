@@ -54,6 +54,11 @@ int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, doub
                           double *tension);
 int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
+int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
+                            whirl_shape_info *info, double *r, double *z, double *tension);
+int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const double *omega,
+                             whirl_shape_info *info, int *exists, double *r, double *z,
+                             double *tension);
 
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
@@ -113,6 +118,8 @@ whirl_stability *whirl_stability_alloc(size_t n);
 void whirl_stability_free(whirl_stability *w);
 int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
                                 const double **im);
+int whirl_stability_linearise(whirl_stability *w, const whirl_model *model, const double *r,
+                              const double *z);
 int whirl_stability_growth(whirl_stability *w, double *growth);
 int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
                           double *growth);

@@ -133,10 +133,9 @@ class Simulation:
         if self._model.dim != 3:
             raise ValueError("a steady start needs dim = 3")
         info = ffi.new("whirl_shape_info *")
-        check(lib.whirl_nlink_solve(self.chain._c, w, mode, 0.0, info))
         r, z, tension = (np.empty(self.n + 1) for _ in range(3))
-        check(lib.whirl_nlink_positions(self.chain._c, w, info.tip_r, _lib.dptr(r),
-                                        _lib.dptr(z), _lib.dptr(tension)))
+        check(lib.whirl_nlink_solve_nodes(self.chain._c, w, mode, info, _lib.dptr(r),
+                                          _lib.dptr(z), _lib.dptr(tension)))
         links = np.empty(3 * self.n)
         check(lib.whirl_shape_links(self.n, _lib.dptr(r), ffi.NULL, _lib.dptr(z),
                                     _lib.dptr(links)))

@@ -130,9 +130,13 @@ def stability_map(omega, mode, links, damping=0.0):
     n = w.size
     info = ffi.new("whirl_shape_info[]", n)
     exists = np.zeros(n, dtype=np.intc)
+    # the shapes' nodes from the branch's link angles (at high rates the tip radius alone does
+    # not fix them)
+    r, z, tension = (np.empty((n, chain.n + 1)) for _ in range(3))
     with _lib.interruptible():
-        status = lib.whirl_nlink_branch(chain._c, mode, n, _lib.dptr(w), info,
-                                        ffi.cast("int *", ffi.from_buffer(exists)))
+        status = lib.whirl_nlink_branch_nodes(chain._c, mode, n, _lib.dptr(w), info,
+                                              ffi.cast("int *", ffi.from_buffer(exists)),
+                                              _lib.dptr(r), _lib.dptr(z), _lib.dptr(tension))
     check(status, "mode %d" % mode)
     ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     growth = ffi.new("double *")
@@ -141,8 +145,10 @@ def stability_map(omega, mode, links, damping=0.0):
     with _lib.interruptible():
         for i, j in enumerate(rows):
             m = _model(chain, w[j], damping, 0.0, 0.0, 0.0)
-            check(lib.whirl_stability_shape(ws, m, info[j].tip_r, growth),
-                  "omega %.17g" % w[j])
+            status = lib.whirl_stability_linearise(ws, m, _lib.dptr(r[j]), _lib.dptr(z[j]))
+            if status == _lib.GSL_SUCCESS:
+                status = lib.whirl_stability_growth(ws, growth)
+            check(status, "omega %.17g" % w[j])
             out[i] = (w[j], info[j].tip_r, growth[0])
             if _lib.stop_requested():
                 break

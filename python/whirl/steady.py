@@ -153,12 +153,17 @@ class Shape:
                                 self.s.size))
 
 
-def _solve(chain, omega, mode, m, guess):
+def _solve(chain, omega, mode, m, guess, nodes=None):
+    """nodes: (r, z, tension) arrays of N + 1 for the N-link chain's nodes, which come from the
+    branch's link angles (at high rates the tip radius alone does not fix them)."""
     info = ffi.new("whirl_shape_info *")
     if chain is None:
         status = lib.whirl_continuum_solve(omega, mode, m, guess, info)
-    else:
+    elif nodes is None:
         status = lib.whirl_nlink_solve(chain._c, omega, mode, guess, info)
+    else:
+        status = lib.whirl_nlink_solve_nodes(chain._c, omega, mode, info,
+                                             *(_lib.dptr(a) for a in nodes))
     return status, info
 
 
@@ -178,7 +183,12 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True) / u.length
     chain = _chain(links, m)
-    status, info = _solve(chain, w, mode, m, guess)
+    if chain is None:
+        n = as_int(points, "points", minimum=2)
+    else:
+        n = chain.n + 1
+    s, r, z, t = (np.empty(n) for _ in range(4))
+    status, info = _solve(chain, w, mode, m, guess, None if chain is None else (r, z, t))
     if status != _lib.GSL_SUCCESS:
         msg = _lib.last_error()
         if status == 1:  # GSL_EDOM: name where the mode is born, as the command line does
@@ -191,16 +201,9 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
                 pass
         raise _lib.Error(status, msg)
     if chain is None:
-        n = as_int(points, "points", minimum=2)
-    else:
-        n = chain.n + 1
-    s, r, z, t = (np.empty(n) for _ in range(4))
-    if chain is None:
         check(lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
                                          _lib.dptr(z), _lib.dptr(t)))
     else:
-        check(lib.whirl_nlink_positions(chain._c, w, info.tip_r, _lib.dptr(r), _lib.dptr(z),
-                                        _lib.dptr(t)))
         s[0] = 0
         np.cumsum(chain.lengths, out=s[1:])
     crit = (mode, dict(links=chain, tip_mass=0 if chain else tip_mass, length=length, mass=mass,

@@ -51,6 +51,7 @@ typedef struct options {
 
 typedef struct point {
     double omega, tip_r;
+    const double *r, *z; /* free shapes: the nodes, from the branch's link angles (N + 1) */
     int mode;
     double eig_growth, sim_growth, max_deviation;
     double tip[2]; /* driven: the tip's horizontal position */
@@ -99,37 +100,48 @@ static int check_options(const cli_command *cmd, const options *o)
     return 0;
 }
 
-/* The points of the single form or of the map (rates where the mode exists); *count of them.
+/* The points of the single form or of the map (rates where the mode exists); *count of them,
+ * their free shapes' nodes in *nodes (NULL for the hand-swung chain; the caller frees both).
  * Returns NULL after printing an error. */
 static point *make_points(const cli_command *cmd, const options *o, const whirl_chain *c,
-                          size_t *count)
+                          size_t *count, double **nodes)
 {
-    if (o->omega_given) {
-        whirl_shape_info info = {0};
-        if (!driven(o) && whirl_nlink_solve(c, o->omega, o->mode, 0, &info) != GSL_SUCCESS) {
-            cli_error(cmd, "%s", whirl_last_error());
-            return NULL;
-        }
-        point *p = calloc(1, sizeof *p);
-        if (p == NULL) {
-            cli_error(cmd, "out of memory");
-            return NULL;
-        }
-        p->omega = o->omega;
-        p->mode = o->mode;
-        p->tip_r = info.tip_r;
-        *count = 1;
-        return p;
-    }
-    const size_t steps = (size_t)o->steps, nmodes = (size_t)o->modes.n;
+    const size_t links = c->n + 1;
+    const size_t steps = o->omega_given ? 1 : (size_t)o->steps;
+    const size_t nmodes = o->omega_given ? 1 : (size_t)o->modes.n;
     double *omega = malloc(steps * sizeof *omega);
     whirl_shape_info *info = malloc(steps * sizeof *info);
     int *exists = malloc(steps * sizeof *exists);
+    double *tension = driven(o) ? NULL : malloc(steps * links * sizeof *tension);
+    *nodes = driven(o) ? NULL : malloc(2 * nmodes * steps * links * sizeof **nodes);
     point *p = calloc(steps * nmodes, sizeof *p);
     size_t n = 0;
-    if (!omega || !info || !exists || !p) {
+    if (!omega || !info || !exists || !p || (!driven(o) && (!tension || !*nodes))) {
         cli_error(cmd, "out of memory");
         goto fail;
+    }
+    if (o->omega_given) {
+        p->omega = o->omega;
+        p->mode = o->mode;
+        if (!driven(o)) {
+            /* the nodes from the branch's link angles: at high rates the tip radius alone does
+             * not fix the shape to round-off */
+            whirl_shape_info one;
+            if (whirl_nlink_solve_nodes(c, o->omega, o->mode, &one, *nodes, *nodes + links,
+                                        tension) != GSL_SUCCESS) {
+                cli_error(cmd, "%s", whirl_last_error());
+                goto fail;
+            }
+            p->tip_r = one.tip_r;
+            p->r = *nodes;
+            p->z = *nodes + links;
+        }
+        free(omega);
+        free(info);
+        free(exists);
+        free(tension);
+        *count = 1;
+        return p;
     }
     for (size_t j = 0; j < steps; j++)
         omega[j] = cli_grid(o->omega_min, o->omega_max, o->steps, (int)j);
@@ -140,7 +152,9 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
             n++;
         }
     for (size_t k = 0; k < nmodes && !driven(o); k++) {
-        if (whirl_nlink_branch(c, o->modes.v[k], steps, omega, info, exists) != GSL_SUCCESS) {
+        double *r = *nodes + 2 * k * steps * links, *z = r + steps * links;
+        if (whirl_nlink_branch_nodes(c, o->modes.v[k], steps, omega, info, exists, r, z,
+                                     tension) != GSL_SUCCESS) {
             cli_error(cmd, "mode %d: %s", o->modes.v[k], whirl_last_error());
             goto fail;
         }
@@ -149,18 +163,24 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
                 p[n].omega = omega[j];
                 p[n].mode = o->modes.v[k];
                 p[n].tip_r = info[j].tip_r;
+                p[n].r = r + j * links;
+                p[n].z = z + j * links;
                 n++;
             }
     }
     free(omega);
     free(info);
     free(exists);
+    free(tension);
     *count = n;
     return p;
 fail:
     free(omega);
     free(info);
     free(exists);
+    free(tension);
+    free(*nodes);
+    *nodes = NULL;
     free(p);
     return NULL;
 }
@@ -208,7 +228,8 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
         p->tip_r = info.tip_r;
         p->nodes = info.nodes;
     } else {
-        status = whirl_stability_shape(w, &m, p->tip_r, &p->eig_growth);
+        status = whirl_stability_linearise(w, &m, p->r, p->z);
+        if (!status) status = whirl_stability_growth(w, &p->eig_growth);
     }
     if (status) return status;
     if (o->linear) {
@@ -560,7 +581,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
     size_t count = 0;
-    point *pts = make_points(cmd, &o, c, &count);
+    double *nodes = NULL;
+    point *pts = make_points(cmd, &o, c, &count, &nodes);
     if (pts == NULL) {
         whirl_chain_free(c);
         return 1;
@@ -575,6 +597,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     if (rc) {
         free_kept(kept, count);
         free(pts);
+        free(nodes);
         whirl_chain_free(c);
         return rc;
     }
@@ -625,6 +648,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         cli_out_abort(&trace);
         free_kept(kept, count);
         free(pts);
+        free(nodes);
         whirl_chain_free(c);
         return cli_error(cmd, "%s", message);
     }
@@ -637,6 +661,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     free_kept(kept, count);
     free(pts);
+    free(nodes);
     whirl_chain_free(c);
     if (cli_out_commit(cmd, &out)) {
         cli_out_abort(&trace);
