@@ -860,7 +860,25 @@ static int frame_at_rate(step_frame *f, double omega, double sigma, int interpol
     return 0;
 }
 
+/* status, the message of a failure (not a stop request) of a path begun at a birth led by its
+ * mode: "mode k: ..." */
+static int name_mode(const whirl_nlink_path *p, int status)
+{
+    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED || p->mode <= 0) return status;
+    char message[512];
+    snprintf(message, sizeof message, "%s", whirl_last_error());
+    return whirl_fail(status, "mode %d: %s", p->mode, message);
+}
+
+static int path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
+
 int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r)
+{
+    const int found = path_crossings(p, omega, max, tip_r);
+    return found < 0 ? -name_mode(p, -found) : found;
+}
+
+static int path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r)
 {
     if (!p->have_last) return 0;
     if (max > WHIRL_PATH_EVENTS_MAX + 1) max = WHIRL_PATH_EVENTS_MAX + 1;
@@ -1045,19 +1063,19 @@ static double tension_spread(const whirl_chain *c, double omega, double a)
 }
 
 /* The failure of the continuation at the last point (w0, a0) with a step below DS_MIN: names
- * the mode, the rate reached and why the last trial step was rejected. */
+ * the rate reached and why the last trial step was rejected (whirl_nlink_path_step adds the
+ * mode). */
 static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
 {
-    char mode[32] = "";
-    if (p->mode > 0) snprintf(mode, sizeof mode, "mode %d: ", p->mode);
     if (p->angles)
-        return whirl_fail(status, "%sthe continuation in the link angles fails at omega=%.17g "
+        return whirl_fail(status, "the continuation in the link angles fails at omega=%.17g "
                           "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
-                          "the smallest step %g", mode, w0, a0,
-                          tension_spread(p->chain, w0, a0), p->why, DS_MIN);
-    return whirl_fail(status, "%sthe continuation fails at omega=%.17g (tip radius %.6g): %s at "
-                      "the smallest step %g", mode, w0, a0, p->why, DS_MIN);
+                          "the smallest step %g", w0, a0, tension_spread(p->chain, w0, a0),
+                          p->why, DS_MIN);
+    return whirl_fail(status, "the continuation fails at omega=%.17g (tip radius %.6g): %s at "
+                      "the smallest step %g", w0, a0, p->why, DS_MIN);
 }
+
 
 /* The accepted step's start, kept for the events and crossings. */
 static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double a0, double ds)
@@ -1311,8 +1329,8 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
 {
     p->n_events = 0;
     if (p->ended)
-        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
-                          p->omega);
+        return name_mode(p, whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at "
+                                       "omega=%.17g", p->omega));
     if (whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps",
                           p->omega, p->steps);
@@ -1321,7 +1339,7 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
     if (!p->angles && p->noise > NOISE_UP) to_angles(p);
     else if (p->angles && p->stay > 0) p->stay--;
     else if (p->angles && p->noise < NOISE_DOWN) to_shot(p);
-    return p->angles ? angle_step(p) : shot_step(p);
+    return name_mode(p, p->angles ? angle_step(p) : shot_step(p));
 }
 
 int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,
@@ -1364,7 +1382,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
             const whirl_branch_event *ev = &p->event[e];
             if ((status = shape_info(p, p->last.angles, ev->omega, ev->tip_r,
                                      p->event_theta + (size_t)e * links, &info, r, z, t)))
-                return status;
+                return name_mode(p, status);
             if ((status = visit(ctx, SIZE_MAX, &info, ev)))
                 return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
         }
@@ -1377,7 +1395,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
                 const double *th = p->cross_theta + (size_t)k * links;
                 if ((status = shape_info(p, p->cross_angles[k], omega[j], tip[k], th, &info, r,
                                          z, t)))
-                    return status;
+                    return name_mode(p, status);
                 if (k > 0) {
                     for (size_t i = 0; i < links; i++) p->cross_theta[i] = th[i];
                     p->cross_angles[0] = p->cross_angles[k];

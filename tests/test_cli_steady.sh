@@ -89,5 +89,15 @@ expect_error "below the birth" "whirl shape: mode 15 does not exist at omega=26.
 expect_error "sweep mode above N" "whirl sweep: mode 6 does not exist: a chain of 5 links has modes 1..5" sweep --modes 2,6 --links 5 --omega-min 1 --omega-max 9 --omega-count 9 -o "$tmp/out.csv"
 expect_error "events without links" "whirl sweep: --events needs --links" sweep --modes 2 --omega-min 1 --omega-max 9 --omega-count 9 --events "$tmp/ev2.csv" -o "$tmp/out.csv"
 if [ -e "$tmp/ev2.csv" ]; then fail "no events file after an error"; else pass "no events file after an error"; fi
+# a branch that cannot be continued (30 links, tip mass 1e12 chain masses: mode 16 stalls near
+# omega 7e7, Newton's method on the link angles failing at the smallest step): one line naming
+# the mode, the rate reached and why; no output or events file
+expect_error "shape: branch not continued" "^whirl shape: mode 16: the continuation .* fails at omega=[0-9.e+]+ .*: Newton's method .* at the smallest step" \
+  shape --links 30 --tip-mass 1e12 --mode 16 --omega 2.2e8 -o "$tmp/out.csv"
+expect_error "sweep: branch not continued" "^whirl sweep: mode 16: the continuation .* fails at omega=[0-9.e+]+ .*: Newton's method .* at the smallest step" \
+  sweep --links 30 --tip-mass 1e12 --modes 15,16 --omega-min 4.3e7 --omega-max 2.2e8 --omega-count 5 \
+  --events "$tmp/ev3.csv" -o "$tmp/out.csv"
+if [ -e "$tmp/ev3.csv" ]; then fail "no events file after a failed branch"
+else pass "no events file after a failed branch"; fi
 expect_error "unwritable output (sweep)" "whirl sweep: cannot write" sweep --modes 1 --omega-min 1 --omega-max 2 --omega-count 2 -o "$tmp/no/such/dir/out.csv"
 finish

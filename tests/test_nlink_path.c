@@ -16,7 +16,8 @@
  *   round-off of the forces summed in it (computed here from the nodes), no link angle jump
  *   beyond what the step allows; a retrace up to omega = 200 and back to 1e-10 in the link
  *   angles;
- * - the error paths. */
+ * - the error paths; a branch that cannot be continued (30 links, tip mass 1e12): the message
+ *   names the mode, the rate the path reached and why. */
 #include <float.h>
 #include <math.h>
 #include <setjmp.h>
@@ -655,6 +656,48 @@ static void test_nodes_lengths(void **state)
     whirl_chain_free(c);
 }
 
+/* A branch that cannot be continued: mode 16 of 30 links with a tip mass of 1e12 chain masses
+ * (the largest the library takes: the links' own weight is then at the rounding of the tension)
+ * stalls far above its birth, where Newton's method on the link angles fails at the smallest
+ * step. The path, whirl_nlink_solve and whirl_nlink_branch return GSL_EFAILED with one line
+ * naming the mode, the rate reached (the path's last point) and why. (Should the continuation
+ * learn to pass here, this test needs another branch it cannot continue.) */
+static void test_stalled_branch(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(30, 1e12);
+    double crit[16];
+    assert_int_equal(whirl_nlink_critical(c, 16, crit), GSL_SUCCESS);
+    const double target = 5 * crit[15];
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_int_equal(whirl_nlink_path_birth(p, 16), GSL_SUCCESS);
+    int status = GSL_SUCCESS;
+    for (long steps = 0; status == GSL_SUCCESS && p->omega <= target && steps < 100000; steps++)
+        status = whirl_nlink_path_step(p);
+    char message[512], where[64];
+    snprintf(message, sizeof message, "%s", whirl_last_error());
+    const double reached = p->omega;
+    print_message("N = 30, tip mass 1e12, mode 16 (born at omega %.6g), to %.6g: %s\n",
+                  crit[15], target, message);
+    assert_int_equal(status, GSL_EFAILED);
+    assert_true(reached > crit[15] && reached < target);
+    snprintf(where, sizeof where, " fails at omega=%.17g ", reached);
+    assert_int_equal(strncmp(message, "mode 16: the continuation", 25), 0);
+    assert_non_null(strstr(message, where));
+    assert_non_null(strstr(message, "Newton's method"));
+    assert_non_null(strstr(message, "at the smallest step"));
+    assert_null(strchr(message, '\n'));
+    whirl_nlink_path_free(p);
+    /* the drivers: the same failure and message */
+    whirl_shape_info info;
+    int exists;
+    assert_int_equal(whirl_nlink_solve(c, target, 16, 0, &info), GSL_EFAILED);
+    assert_string_equal(whirl_last_error(), message);
+    assert_int_equal(whirl_nlink_branch(c, 16, 1, &target, &info, &exists), GSL_EFAILED);
+    assert_string_equal(whirl_last_error(), message);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -665,6 +708,7 @@ int main(void)
         cmocka_unit_test(test_high_rates),         cmocka_unit_test(test_every_mode_high),
         cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
         cmocka_unit_test(test_nodes_lengths),
+        cmocka_unit_test(test_stalled_branch),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
 }

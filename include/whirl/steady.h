@@ -239,9 +239,11 @@ WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
 /* One accepted step: predictor along the tangent, Newton corrector on the arclength hyperplane.
  * A trial step is rejected and halved when Newton needs many iterations, the tangent turns by
  * more than 0.2 rad or a link angle changes by more than 0.2 rad. Events between the old and
- * the new point are located and listed in p->event. GSL_EFAILED (message naming the rate
- * reached) if the step falls below its minimum; GSL_EDOM once the path has ended;
- * WHIRL_EINTERRUPTED on a stop request. */
+ * the new point are located and listed in p->event. GSL_EFAILED if the step falls below its
+ * minimum (1e-7), with a one-line message naming the rate reached (the current point, where
+ * the path stays) and why the last trial was rejected; GSL_EDOM once the path has ended;
+ * WHIRL_EINTERRUPTED on a stop request. The message of a failure of a path begun at a birth
+ * (here, in whirl_nlink_path_crossings and in the drivers below) starts with "mode k: ". */
 WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
 
 /* Where the last step crossed the rate omega (between the previous and the current point; the

@@ -87,7 +87,9 @@ def check(status, context=None):
         lib.whirl_stop_clear()
         raise KeyboardInterrupt(last_error())
     msg = last_error()
-    raise Error(status, "%s: %s" % (context, msg) if context else msg)
+    if context and not msg.startswith(context + ":"):  # the library may name it already
+        msg = "%s: %s" % (context, msg)
+    raise Error(status, msg)
 
 
 def check_ptr(ptr, free=None):

@@ -155,7 +155,7 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
         double *r = *nodes + 2 * k * steps * links, *z = r + steps * links;
         if (whirl_nlink_branch_nodes(c, o->modes.v[k], steps, omega, info, exists, r, z,
                                      tension) != GSL_SUCCESS) {
-            cli_error(cmd, "mode %d: %s", o->modes.v[k], whirl_last_error());
+            cli_error(cmd, "%s", whirl_last_error()); /* it names the mode */
             goto fail;
         }
         for (size_t j = 0; j < steps; j++)

@@ -132,7 +132,9 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
             interrupted = modes.v[i];
             snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
         } else if (status != GSL_SUCCESS) {
-            rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
+            /* the N-link path's messages name the mode themselves */
+            if (m.chain) rc = cli_error(cmd, "%s", whirl_last_error());
+            else rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
         }
     }
     cli_out out, ev;
