@@ -735,11 +735,49 @@ static void label_curve(eq_list *l, const curve *cv, const double *crit)
     }
 }
 
+static int cmp_double(const void *x, const void *y)
+{
+    double a = *(const double *)x, b = *(const double *)y;
+    return (a > b) - (a < b);
+}
+
+/* The curves whose crossings of omega have the wrong parity. A branch born below omega that
+ * does not return to the hanging chain starts below omega and ends above it: it crosses omega
+ * an odd number of times; one that returns (returned[k - 1]) an even number. A curve that meets
+ * no birth rises above omega at both ends: an even number. Its equilibria share born_at, the
+ * same double (label_curve). */
+static int parity_check(const eq_list *l, size_t n, const double *crit, double omega,
+                        const int *returned, whirl_equilibria *res)
+{
+    double *fold = malloc((l->n + 1) * sizeof *fold);
+    if (fold == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu folds", l->n);
+    for (size_t k = 1; k <= n && crit[k - 1] < omega; k++) {
+        size_t count = 0;
+        for (size_t i = 0; i < l->n; i++) count += l->eq[i].branch == (int)k;
+        res->wrong_parity += (count % 2 == 0) != (returned[k - 1] != 0);
+    }
+    size_t m = 0;
+    for (size_t i = 0; i < l->n; i++)
+        if (l->eq[i].branch == 0 && isfinite(l->eq[i].born_at)) fold[m++] = l->eq[i].born_at;
+    qsort(fold, m, sizeof *fold, cmp_double);
+    for (size_t i = 0, j; i < m; i = j) {
+        for (j = i; j < m && fold[j] == fold[i]; j++) continue;
+        res->wrong_parity += (j - i) % 2;
+    }
+    free(fold);
+    return GSL_SUCCESS;
+}
+
 static int continue_all(const whirl_chain *c, double omega, double factor, const double *crit,
                         eq_list *l, angle_ws *aw, whirl_equilibria *res)
 {
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    if (p == NULL) return GSL_ENOMEM;
+    int *returned = calloc(c->n, sizeof *returned);
+    if (p == NULL || returned == NULL) {
+        whirl_nlink_path_free(p);
+        free(returned);
+        return whirl_fail(GSL_ENOMEM, "out of memory for the continuation");
+    }
     double omega_max = factor * omega;
     int status = GSL_SUCCESS;
     curve cv = {0};
@@ -755,6 +793,7 @@ static int continue_all(const whirl_chain *c, double omega, double factor, const
             status = -r;
             break;
         }
+        returned[k - 1] = p->ended;
         cv.branch = (int)k; /* the birth it starts from, even if it returns at another */
         cv.failed = 0;      /* its crossings are on branch k whatever happened further on */
         label_curve(l, &cv, crit);
@@ -779,7 +818,9 @@ static int continue_all(const whirl_chain *c, double omega, double factor, const
         }
         if (!status) label_curve(l, &cv, crit);
     }
+    if (!status) status = parity_check(l, c->n, crit, omega, returned, res);
     free(cv.members);
+    free(returned);
     whirl_nlink_path_free(p);
     return status;
 }

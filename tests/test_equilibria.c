@@ -55,6 +55,7 @@ static void assert_agreement(const whirl_equilibria *e)
     assert_int_equal(e->unpolished, 0);
     assert_int_equal(e->missed, 0);
     assert_int_equal(e->unidentified, 0);
+    assert_int_equal(e->wrong_parity, 0);
     assert_int_equal(e->tip_unresolved, 0);
     assert_true(e->tip_levels >= 2 && e->check_levels >= 2);
     assert_true(e->balance < 1e-13);

@@ -349,6 +349,11 @@ typedef struct whirl_equilibria {
                            * follow_factor * omega): their crossings of omega are all seen */
     double balance;       /* N-link: the largest force across a link over its tension among
                            * the polished equilibria (round-off: ~1e-16) */
+    size_t wrong_parity;  /* method 3: curves whose crossings of omega have the wrong parity, a
+                           * sign that the continuation jumped between curves or stopped short:
+                           * a branch born below omega that does not return to the hanging
+                           * chain with an even number, or an isolated curve (its equilibria
+                           * grouped by born_at) with an odd number; 0 expected */
 } whirl_equilibria;
 
 /* Every planar relative equilibrium (up to the mirror image r -> -r) of the N-link chain c at

@@ -343,6 +343,7 @@ typedef struct whirl_equilibria {
     long path_steps;
     size_t cut_short;
     double balance;
+    size_t wrong_parity;
 } whirl_equilibria;
 int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           const whirl_equilibria_params *params, whirl_equilibria **out);

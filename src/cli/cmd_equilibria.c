@@ -61,12 +61,16 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
                     "/ tension %s\n", CLI_NUM(e->balance));
         else
             fprintf(fp, "# continuation: %zu crossings of omega, %zu missed by the scans, %zu "
-                    "isolated, %zu unidentified, %zu cut short above omega, %ld steps; largest "
-                    "force across a link / tension %s\n", e->crossings, e->missed, e->isolated,
-                    e->unidentified, e->cut_short, e->path_steps, CLI_NUM(e->balance));
+                    "isolated, %zu unidentified, %zu cut short above omega, %zu curves with the "
+                    "wrong parity of crossings, %ld steps; largest force across a link / tension "
+                    "%s\n", e->crossings, e->missed, e->isolated, e->unidentified, e->cut_short,
+                    e->wrong_parity, e->path_steps, CLI_NUM(e->balance));
         fprintf(fp, "# branch: the mode k whose birth (born_at = omega_k) the equilibrium is "
                 "connected to by continuation; isolated: on a curve that meets no birth, "
-                "born_at its lowest fold; unidentified: the continuation failed\n");
+                "born_at its lowest fold; unidentified: the continuation failed; wrong parity: "
+                "a branch born below omega (not returning to the hanging chain) crossing it an "
+                "even number of times or an isolated curve an odd number, where the "
+                "continuation jumped between curves or stopped short (0 expected)\n");
     } else {
         fprintf(fp, "# sign changes of the pivot's radius over the tip radius: %zu (%d levels, "
                 "%ld shots); shapes solved mode by mode: %zu, each alone in a sign change: %zu "
