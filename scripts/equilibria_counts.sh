@@ -24,17 +24,10 @@ for n in $links; do
     100) rates=${RATES_100:-10 20 30 40 50 60 80 100 200 300} ;;
     *) rates=${RATES:-5 10 20 40} ;;
   esac
-  top=$n
-  [ "$top" -gt 64 ] && top=64
-  "$whirl" critical --links "$n" --modes "$top" > "$tmp/crit.csv"
-  if [ "$n" -le 64 ]; then
-    wn=$(tail -n 1 "$tmp/crit.csv" | cut -d, -f2)
-  else
-    wn=""
-  fi
+  "$whirl" critical --links "$n" --modes "$n" > "$tmp/crit.csv"
+  wn=$(tail -n 1 "$tmp/crit.csv" | cut -d, -f2)
   for w in $rates; do
-    ratio="-"
-    [ -n "$wn" ] && ratio=$(awk -v w="$w" -v c="$wn" 'BEGIN { printf "%.2f", w / c }')
+    ratio=$(awk -v w="$w" -v c="$wn" 'BEGIN { printf "%.2f", w / c }')
     start=$(date +%s.%N)
     if timeout "$limit" "$whirl" equilibria --omega "$w" --links "$n" --no-branches --no-stability -o "$tmp/e.csv" 2>"$tmp/err"; then
       t=$(echo "$(date +%s.%N) - $start" | bc)

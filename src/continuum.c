@@ -497,7 +497,7 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
                               whirl_shape_info *info)
 {
     continuum_ws *w = ws;
-    int status = whirl_steady_check_args(omega, mode);
+    int status = whirl_steady_check_args(omega, mode, WHIRL_MODE_MAX);
     if (status != GSL_SUCCESS) return status;
     if ((status = set_rate(w, omega)) != GSL_SUCCESS) return status;
     double a;

@@ -117,10 +117,13 @@ void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
     double s = 0, last = 0; /* arclength of node i-1; last non-zero r above */
     for (size_t i = 1; i <= n; i++) {
         if (fabs(r[i]) > info->max_r) info->max_r = fabs(r[i]);
-        if (r[i] != 0 && last != 0 && (r[i] > 0) != (last > 0) && info->n_nodes < WHIRL_MODE_MAX) {
-            /* crossing on link i, linear interpolation from node i-1 (r[i-1] may be 0) */
+        if (r[i] != 0 && last != 0 && (r[i] > 0) != (last > 0)) {
+            /* crossing on link i, linear interpolation from node i-1 (r[i-1] may be 0); every
+             * crossing counted, the first WHIRL_SHAPE_NODES kept */
             const double f = r[i - 1] / (r[i - 1] - r[i]);
-            info->node_s[info->n_nodes++] = s + f * c->length[i - 1];
+            if (info->n_nodes < WHIRL_SHAPE_NODES)
+                info->node_s[info->n_nodes] = s + f * c->length[i - 1];
+            info->n_nodes++;
         }
         if (r[i] != 0) last = r[i];
         s += c->length[i - 1];

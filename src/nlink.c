@@ -141,6 +141,22 @@ int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, doub
     return whirl_steady_check_samples(omega, c->n + 1, r, z, tension);
 }
 
+size_t whirl_nlink_node_arclengths(const whirl_chain *c, const double *r, size_t max,
+                                   double *node_s)
+{
+    size_t count = 0;
+    double s = 0; /* arclength of mass i-1 from the pivot */
+    for (size_t i = 1; i <= c->n; i++) {
+        /* a crossing on link i (below the pivot: the pivot itself is not counted) */
+        if (i >= 2 && ((r[i - 1] > 0 && r[i] <= 0) || (r[i - 1] < 0 && r[i] >= 0))) {
+            if (count < max) node_s[count] = s + c->length[i - 1] * r[i - 1] / (r[i - 1] - r[i]);
+            count++;
+        }
+        s += c->length[i - 1];
+    }
+    return count;
+}
+
 /* The summary of the shape with nodes r, z and tensions t (an equilibrium). */
 static void nlink_info(const whirl_chain *c, const double *r, const double *z, const double *t,
                        double omega, int mode, whirl_shape_info *info)
@@ -152,16 +168,8 @@ static void nlink_info(const whirl_chain *c, const double *r, const double *z, c
     info->top_tension = t[1];
     info->depth = -z[n];
     info->max_r = 0;
-    info->n_nodes = 0;
-    double s = 0; /* arclength of mass i-1 from the pivot */
-    for (size_t i = 1; i <= n; i++) {
-        info->max_r = fmax(info->max_r, fabs(r[i]));
-        /* a crossing on link i (below the pivot: the pivot itself is not counted) */
-        if (i >= 2 && ((r[i - 1] > 0 && r[i] <= 0) || (r[i - 1] < 0 && r[i] >= 0)) &&
-            info->n_nodes < WHIRL_MODE_MAX)
-            info->node_s[info->n_nodes++] = s + c->length[i - 1] * r[i - 1] / (r[i - 1] - r[i]);
-        s += c->length[i - 1];
-    }
+    for (size_t i = 1; i <= n; i++) info->max_r = fmax(info->max_r, fabs(r[i]));
+    info->n_nodes = (int)whirl_nlink_node_arclengths(c, r, WHIRL_SHAPE_NODES, info->node_s);
 }
 
 void whirl_nlink_info_nodes(const whirl_chain *c, const double *r, const double *z,

@@ -76,6 +76,7 @@
  * accuracy where the link angles resolve it only to eps. Crossings
  * found on the shot where its round-off exceeds NOISE_UP are polished on the link angles. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -1462,7 +1463,7 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
                        whirl_shape_info *info, int *exists, double *r, double *z, double *t)
 {
     for (size_t j = 0; j < n; j++) {
-        int status = whirl_steady_check_args(omega[j], mode);
+        int status = whirl_steady_check_args(omega[j], mode, INT_MAX);
         if (status != GSL_SUCCESS) return status;
         exists[j] = 0;
     }

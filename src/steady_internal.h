@@ -43,8 +43,10 @@ typedef struct steady_model {
 int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double *omega,
                         whirl_shape_info *info, int *exists);
 
-/* The checks every solver starts with: omega > 0 and finite, 1 <= mode <= WHIRL_MODE_MAX. */
-int whirl_steady_check_args(double omega, int mode);
+/* The checks every solver starts with: omega > 0 and finite, 1 <= mode <= mode_max
+ * (WHIRL_MODE_MAX for the continuum; INT_MAX for the N-link chain, which checks mode <= N
+ * itself: GSL_EDOM). */
+int whirl_steady_check_args(double omega, int mode, int mode_max);
 /* GSL_SUCCESS if every number of the solved shape is finite, else GSL_ERANGE naming the first
  * that is not (a rate or tip mass too large for doubles). */
 int whirl_steady_check_info(const whirl_shape_info *info);

@@ -9,6 +9,7 @@
  * minimization without derivatives", ch. 4) converges to round-off. Near the critical rate
  * a_k -> 0 like sqrt(omega - omega_k), hence the bracket search in log(a). */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 
 #include <gsl/gsl_roots.h>
@@ -21,14 +22,15 @@
 #define BISECT_MAX 300
 #define BRENT_MAX 200
 
-int whirl_steady_check_args(double omega, int mode)
+int whirl_steady_check_args(double omega, int mode, int mode_max)
 {
     if (!(isfinite(omega) && omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
     if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
-    if (mode < 1 || mode > WHIRL_MODE_MAX)
-        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", WHIRL_MODE_MAX,
-                          mode);
+    if (mode < 1 && mode_max == INT_MAX)
+        return whirl_fail(GSL_EINVAL, "mode must be >= 1, got %d", mode);
+    if (mode < 1 || mode > mode_max)
+        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", mode_max, mode);
     return GSL_SUCCESS;
 }
 
@@ -44,7 +46,7 @@ int whirl_steady_check_info(const whirl_shape_info *info)
             return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: %s is not finite (%g): the rate "
                               "or the tip mass is too large", info->mode, info->omega, q[i].name,
                               q[i].value);
-    for (int j = 0; j < info->n_nodes; j++)
+    for (int j = 0; j < info->n_nodes && j < WHIRL_SHAPE_NODES; j++)
         if (!isfinite(info->node_s[j]))
             return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: node %d is not finite",
                               info->mode, info->omega, j + 1);

@@ -51,6 +51,22 @@ if awk -F, '/^#/ {next} !h {h = $0; next} {n[$1]++} END {exit !(n["6.9"] == 3 &&
 expect_ok "shape mode N" shape --links 15 --mode 15 --omega 26.85 -o "$tmp/m15.csv"
 if head -1 "$tmp/m15.csv" | grep -q ' mode=15 node_count=15 '; then pass "shape mode N: 15 nodes"
 else fail "shape mode N: 15 nodes"; fi
+# every mode of a long chain, beyond 64: mode 150 of 200 at 1.02 omega_150 (252.93), all its
+# 149 crossings listed; 200 critical rates, increasing
+expect_ok "shape mode 150 of 200" shape --links 200 --mode 150 --omega 258 -o "$tmp/m150.csv"
+if head -1 "$tmp/m150.csv" | grep -q ' mode=150 node_count=150 ' \
+   && [ "$(head -1 "$tmp/m150.csv" | sed 's/.*nodes=//' | tr ';' '\n' | grep -c .)" -eq 149 ] \
+   && [ "$(grep -vc '^#' "$tmp/m150.csv")" -eq 202 ]; then
+  pass "shape mode 150 of 200: 150 nodes, 149 crossings listed"
+else fail "shape mode 150 of 200: 150 nodes, 149 crossings listed"; fi
+expect_ok "critical 200 modes" critical --links 200 --modes 200 -o "$tmp/c200.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($1 == n && $2 > last); last = $2}
+     END {exit !(n == 200 && ok == 200 && last > 391.87 && last < 391.88)}' "$tmp/c200.csv"; then
+  pass "critical: 200 modes of 200 links"; else fail "critical: 200 modes of 200 links"; fi
+expect_ok "sweep mode 100 of 200" sweep --links 200 --modes 100 --omega-min 150 --omega-max 165 --omega-count 2 -o "$tmp/s200.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($2 == 100 && $7 == 100)} END {exit !(n == 1 && ok == 1)}' \
+     "$tmp/s200.csv"; then pass "sweep: mode 100 of 200 above its birth (160.93) only"
+else fail "sweep: mode 100 of 200 above its birth (160.93) only"; fi
 
 # help
 expect_ok "critical --help" critical --help
@@ -66,14 +82,14 @@ expect_error "infinite" "whirl shape: option --omega needs a finite number" shap
 expect_error "omega missing" "whirl shape: --omega is required" shape --mode 1 -o "$tmp/out.csv"
 expect_error "omega zero" "whirl shape: --omega must be > 0" shape --omega 0 --mode 1 -o "$tmp/out.csv"
 expect_error "omega negative" "whirl shape: --omega must be > 0" shape --omega -2 --mode 1 -o "$tmp/out.csv"
-expect_error "mode zero" "whirl shape: --mode must be between" shape --omega 3 --mode 0 -o "$tmp/out.csv"
+expect_error "mode zero" "whirl shape: --mode must be >= 1, got 0" shape --omega 3 --mode 0 -o "$tmp/out.csv"
 expect_error "links zero" "whirl shape: --links must be >= 1" shape --omega 3 --mode 1 --links 0 -o "$tmp/out.csv"
 expect_error "negative tip mass" "whirl shape: --tip-mass must be >= 0" shape --omega 3 --mode 1 --tip-mass -1 -o "$tmp/out.csv"
 expect_error "points" "whirl shape: --points must be between 2 and" shape --omega 3 --mode 1 --points 1 -o "$tmp/out.csv"
 expect_error "mode does not exist" "whirl shape: mode 3 does not exist at omega=4 sqrt\\(g/L\\): it exists only above omega_3=4.3268" shape --omega 4 --mode 3 -o "$tmp/out.csv"
 expect_error "mode above N" "whirl shape: .*modes 1..3" shape --omega 30 --mode 4 --links 3 -o "$tmp/out.csv"
 expect_error "bad units" "whirl shape: --length must be > 0" shape --omega 3 --mode 1 --length -1 -o "$tmp/out.csv"
-expect_error "critical modes" "whirl critical: --modes must be between" critical --modes 0 -o "$tmp/out.csv"
+expect_error "critical modes" "whirl critical: --modes must be >= 1, got 0" critical --modes 0 -o "$tmp/out.csv"
 expect_error "critical modes above N" "whirl critical: .*exceeds" critical --modes 5 --links 4 -o "$tmp/out.csv"
 expect_error "critical tip mass" "whirl critical: --tip-mass must be >= 0" critical --tip-mass -0.5 -o "$tmp/out.csv"
 expect_error "sweep count" "whirl sweep: --omega-count must be between 1 and" sweep --modes 1 --omega-min 1 --omega-max 2 --omega-count 0 -o "$tmp/out.csv"
@@ -81,12 +97,16 @@ expect_error "sweep order" "whirl sweep: need --omega-min < --omega-max" sweep -
 expect_error "sweep old --steps" "whirl sweep: unknown option '--steps'" sweep --modes 1 --omega-min 1 --omega-max 2 --steps 5 -o "$tmp/out.csv"
 expect_error "sweep omega-min" "whirl sweep: --omega-min must be > 0" sweep --modes 1 --omega-min 0 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
 expect_error "sweep modes list" "whirl sweep: option --modes needs a comma-separated list" sweep --modes 1,x --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
-expect_error "sweep mode zero" "whirl sweep: --modes: each entry must be between 1 and 64" sweep --modes 1,0 --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
+expect_error "sweep mode zero" "whirl sweep: --modes: each entry must be >= 1, got 0" sweep --modes 1,0 --omega-min 1 --omega-max 2 --omega-count 5 -o "$tmp/out.csv"
 expect_error "sweep missing count" "whirl sweep: --omega-count is required" sweep --modes 1 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "unwritable output" "whirl shape: cannot write" shape --omega 3 --mode 1 -o "$tmp/no/such/dir/out.csv"
 expect_error "mode above N" "whirl shape: mode 6 does not exist: a chain of 5 links has modes 1..5" shape --omega 30 --mode 6 --links 5 -o "$tmp/out.csv"
 expect_error "below the birth" "whirl shape: mode 15 does not exist at omega=26.8 .*: it exists only above omega_15=26.84" shape --links 15 --mode 15 --omega 26.8 -o "$tmp/out.csv"
 expect_error "sweep mode above N" "whirl sweep: mode 6 does not exist: a chain of 5 links has modes 1..5" sweep --modes 2,6 --links 5 --omega-min 1 --omega-max 9 --omega-count 9 -o "$tmp/out.csv"
+expect_error "mode above N (long chain)" "whirl shape: mode 201 does not exist: a chain of 200 links has modes 1..200" shape --links 200 --mode 201 --omega 300 -o "$tmp/out.csv"
+expect_error "continuum mode above 64" "whirl shape: mode 65 is out of range: the continuous chain's solvers take modes 1..64" shape --mode 65 --omega 300 -o "$tmp/out.csv"
+expect_error "critical continuum above 64" "whirl critical: mode 65 is out of range" critical --modes 65 -o "$tmp/out.csv"
+expect_error "below the birth (long chain)" "whirl shape: mode 150 does not exist at omega=250 .*: it exists only above omega_150=252.93" shape --links 200 --mode 150 --omega 250 -o "$tmp/out.csv"
 expect_error "events without links" "whirl sweep: --events needs --links" sweep --modes 2 --omega-min 1 --omega-max 9 --omega-count 9 --events "$tmp/ev2.csv" -o "$tmp/out.csv"
 if [ -e "$tmp/ev2.csv" ]; then fail "no events file after an error"; else pass "no events file after an error"; fi
 # a branch that cannot be continued (30 links, tip mass 1e12 chain masses: mode 16 stalls near

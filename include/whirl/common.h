@@ -25,7 +25,9 @@
 #define WHIRL_API
 #endif
 
-/* The highest mode number the steady-shape solvers handle. */
+/* The highest mode of the continuous chain's solvers (steady shapes, their stability, the driven
+ * chain, the fit and the scenes seeded by them). The N-link chain's steady shapes, branches and
+ * critical rates take every mode 1..N of an N-link chain, at any N. */
 #define WHIRL_MODE_MAX 64
 
 /* The heaviest tip mass, in chain masses, of every model: beyond it the chain's weight (1) is

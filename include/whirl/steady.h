@@ -18,18 +18,26 @@
 #include "whirl/chain.h"
 #include "whirl/common.h"
 
+/* The node arclengths a whirl_shape_info holds: the first ones from the pivot. */
+#define WHIRL_SHAPE_NODES 64
+
 /* The summary of one steady shape (the comment line of `whirl shape`). */
 typedef struct whirl_shape_info {
     double omega;       /* rotation rate [sqrt(g/L)] */
-    int mode;           /* node count k, 1 <= k <= WHIRL_MODE_MAX */
+    int mode;           /* node count k: 1..N for the N-link chain, 1..WHIRL_MODE_MAX for the
+                         * continuum */
     double tip_r;       /* distance of the free end from the axis [L], > 0 */
     double max_r;       /* max over the chain of |r| [L] */
     double top_tension; /* tension at the pivot [M g] */
     double depth;       /* height of the pivot above the free end [L] */
     int n_nodes;        /* axis crossings below the pivot (sign changes of r along the masses
                          * for the N-link chain): mode - 1 for the continuum; on a coarse N-link
-                         * chain the branch of mode k can have another count at high rates */
-    double node_s[WHIRL_MODE_MAX]; /* their arclengths from the pivot [L], increasing */
+                         * chain the branch of mode k can have another count at high rates;
+                         * all of them, also beyond WHIRL_SHAPE_NODES */
+    double node_s[WHIRL_SHAPE_NODES]; /* the arclengths from the pivot [L] of the first
+                                       * min(n_nodes, WHIRL_SHAPE_NODES) of them, increasing
+                                       * (an N-link shape's full list: whirl_nlink_node_arclengths
+                                       * on the r of whirl_nlink_solve_nodes) */
 } whirl_shape_info;
 
 /* ---- continuous chain ---- */
@@ -81,6 +89,14 @@ WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const 
                                      whirl_shape_info *info, int *exists);
 
 /* ---- N-link chain ---- */
+
+/* The axis crossings below the pivot of the N-link shape whose masses lie at the radii
+ * r[0..c->n] (pivot first): returns their count, and writes the arclengths from the pivot [L]
+ * of the first min(count, max) into node_s[] (increasing; node_s may be NULL when max is 0).
+ * A crossing lies on link i >= 2 where r changes sign from mass i-1 to mass i (or reaches 0
+ * from a non-zero value), at the linearly interpolated point. */
+WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, const double *r, size_t max,
+                                             double *node_s);
 
 /* The first nmodes (<= c->n) linear critical rates of the chain, ascending: the normal-mode
  * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem). */

@@ -5,6 +5,7 @@ and checks that every struct declared here has the same size and field offsets."
 
 CDEF = r"""
 #define WHIRL_MODE_MAX 64
+#define WHIRL_SHAPE_NODES 64
 #define WHIRL_EINTERRUPTED 1000
 #define WHIRL_DRIVEN_FOLD_MAX 32
 
@@ -52,6 +53,8 @@ int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r
                       whirl_shape_info *info);
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
+size_t whirl_nlink_node_arclengths(const whirl_chain *c, const double *r, size_t max,
+                                   double *node_s);
 int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
@@ -449,5 +452,5 @@ int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
 STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 
 # The constants whose values tests/test_layout.py checks against the C headers.
-CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
+CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
              "WHIRL_NCOLUMNS"]

@@ -127,7 +127,7 @@ class Simulation:
         MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
         The deviation is measured from the unperturbed shape."""
         w = self.omega if omega is None else as_float(omega, "omega", positive=True)
-        mode = _mode(mode)
+        mode = _mode(mode, self.chain)
         perturb = as_float(perturb, "perturb", nonnegative=True)
         seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
         if self._model.dim != 3:

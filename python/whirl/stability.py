@@ -65,7 +65,7 @@ def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, pert
     whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
     chain = links if isinstance(links, Chain) else Chain(links)
     w = as_float(omega, "omega", positive=True)
-    mode = _mode(mode)
+    mode = _mode(mode, chain)
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
@@ -125,7 +125,7 @@ def stability_map(omega, mode, links, damping=0.0):
     --linear``. Returns a structured array (omega, tip_r, growth [1/T]) with one row per rate
     where the mode exists; growth > 0: unstable. Ctrl-C raises KeyboardInterrupt."""
     chain = links if isinstance(links, Chain) else Chain(links)
-    mode = _mode(mode)
+    mode = _mode(mode, chain)
     w = as_array(omega, "omega", positive=True)
     n = w.size
     info = ffi.new("whirl_shape_info[]", n)
@@ -173,7 +173,8 @@ def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step
     the pair meets [1/T]), max_growth [1/T] and at (where it occurs), in increasing omega; stats
     a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
     Ctrl-C raises KeyboardInterrupt."""
-    mode = _mode(mode)
+    chain = None if links is None else links if isinstance(links, Chain) else Chain(links)
+    mode = _mode(mode, chain)
     if links is not None and (degree is not None or tip_mass):
         raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
     p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
@@ -198,7 +199,6 @@ def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step
         with _lib.interruptible():
             status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)
     else:
-        chain = links if isinstance(links, Chain) else Chain(links)
         ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
         with _lib.interruptible():
             status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)

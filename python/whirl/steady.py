@@ -87,8 +87,15 @@ def _chain(links, tip_mass):
     return Chain(links, tip_mass)
 
 
-def _mode(mode):
-    return as_int(mode, "mode", minimum=1, maximum=lib.WHIRL_MODE_MAX)
+def _mode(mode, chain):
+    """The N-link chain has modes 1..N (any N), the continuum 1..WHIRL_MODE_MAX."""
+    if chain is None:
+        return as_int(mode, "mode", minimum=1, maximum=lib.WHIRL_MODE_MAX)
+    mode = as_int(mode, "mode", minimum=1)
+    if mode > chain.n:
+        raise ValueError("mode %d does not exist: a chain of %d links has modes 1..%d"
+                         % (mode, chain.n, chain.n))
+    return mode
 
 
 def critical(modes=3, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.0):
@@ -127,14 +134,14 @@ class Shape:
     crossings below the pivot), and the branch it lies on: ``critical`` (omega_k where mode k is
     born) and ``links`` (None: the continuum)."""
 
-    def __init__(self, info, s, r, z, tension, u, critical_args, links):
+    def __init__(self, info, nodes, s, r, z, tension, u, critical_args, links):
         self.omega = info.omega * u.rate
         self.mode = int(info.mode)
         self.tip_r = info.tip_r * u.length
         self.max_r = info.max_r * u.length
         self.top_tension = info.top_tension * u.force
         self.depth = info.depth * u.length
-        self.nodes = np.array([info.node_s[j] for j in range(info.n_nodes)]) * u.length
+        self.nodes = nodes * u.length
         self.s, self.r, self.z = s * u.length, r * u.length, z * u.length
         self.tension = tension * u.force
         self._critical_args = critical_args
@@ -179,10 +186,10 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
     does not exist at omega, naming its critical rate."""
     u = Units(length, mass, gravity)
     w = as_float(omega, "omega", positive=True) / u.rate
-    mode = _mode(mode)
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True) / u.length
     chain = _chain(links, m)
+    mode = _mode(mode, chain)
     if chain is None:
         n = as_int(points, "points", minimum=2)
     else:
@@ -195,20 +202,29 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
             try:
                 wk = critical(mode, links=chain, tip_mass=0 if chain else tip_mass,
                               length=length, mass=mass, gravity=gravity)[-1]
-                msg = ("mode %d does not exist at omega=%.17g: it exists only above "
-                       "omega_%d=%.17g" % (mode, omega, mode, wk))
+                if omega < wk:
+                    msg = ("mode %d does not exist at omega=%.17g: it exists only above "
+                           "omega_%d=%.17g" % (mode, omega, mode, wk))
             except (ValueError, _lib.Error):
                 pass
         raise _lib.Error(status, msg)
     if chain is None:
         check(lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
                                          _lib.dptr(z), _lib.dptr(t)))
+        nodes = np.array([info.node_s[j] for j in range(info.n_nodes)])
     else:
+        # the nodes of the branch's own link angles (at high rates the tip radius alone does
+        # not fix the shape to round-off); every axis crossing, not only the first
+        # WHIRL_SHAPE_NODES the summary holds
         s[0] = 0
         np.cumsum(chain.lengths, out=s[1:])
+        nodes = np.empty(max(info.n_nodes, 1))
+        count = lib.whirl_nlink_node_arclengths(chain._c, _lib.dptr(r), nodes.size,
+                                                _lib.dptr(nodes))
+        nodes = nodes[:min(count, nodes.size)]
     crit = (mode, dict(links=chain, tip_mass=0 if chain else tip_mass, length=length, mass=mass,
                        gravity=gravity))
-    return Shape(info, s, r, z, t, u, crit, None if chain is None else chain.n)
+    return Shape(info, nodes, s, r, z, t, u, crit, None if chain is None else chain.n)
 
 
 BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
@@ -224,14 +240,14 @@ def sweep(modes, omega, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=
     u = Units(length, mass, gravity)
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
         modes = [modes]
-    try:
-        modes = [_mode(k) for k in modes]
-    except TypeError:
-        raise TypeError("modes must be an integer or a sequence of integers, got %r"
-                        % (modes,)) from None
     w = as_array(omega, "omega", positive=True) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     chain = _chain(links, m)
+    try:
+        modes = [_mode(k, chain) for k in modes]
+    except TypeError:
+        raise TypeError("modes must be an integer or a sequence of integers, got %r"
+                        % (modes,)) from None
     n = w.size
     out = {}
     info = ffi.new("whirl_shape_info[]", n)

@@ -1,5 +1,7 @@
 /* whirl critical: the linear critical rates of modes 1..K, where they bifurcate from the
  * hanging chain (continuum: j_{0,k}/2 or the tip-mass root; --links N: the N-link chain). */
+#include <stdlib.h>
+
 #include "cli/steady_cli.h"
 
 int cmd_critical(const cli_command *cmd, int argc, char **argv)
@@ -8,7 +10,9 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--modes", NULL, CLI_INT, &modes, NULL, "K", "modes 1..K (default 3)", "[1, 64]"},
+        {"--modes", NULL, CLI_INT, &modes, NULL, "K",
+         "modes 1..K (default 3; up to N with --links N, up to 64 for the continuum)",
+         "[1, inf)"},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
@@ -21,14 +25,29 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "--modes %d exceeds the %d modes of a chain of %d links", modes,
                          m.links, m.links);
     }
-    double omega[WHIRL_MODE_MAX];
-    for (int k = 1; k <= modes; k++)
-        if (cli_interrupted || steady_cli_critical(cmd, &m, k, &omega[k - 1])) {
-            steady_cli_model_free(&m);
-            return cli_interrupted ? cli_error(cmd, "interrupted at mode %d", k) : 1;
-        }
+    if (steady_cli_check_mode(cmd, &m, modes)) {
+        steady_cli_model_free(&m);
+        return 1;
+    }
+    double *omega = malloc((size_t)modes * sizeof *omega);
+    if (omega == NULL) {
+        steady_cli_model_free(&m);
+        return cli_error(cmd, "out of memory for %d critical rates", modes);
+    }
+    /* the N-link chain's in one eigen-solve, the continuum's one by one */
+    if (m.chain && whirl_nlink_critical(m.chain, (size_t)modes, omega) != GSL_SUCCESS)
+        rc = cli_error(cmd, "%s", whirl_last_error());
+    for (int k = 1; !m.chain && k <= modes && rc == 0; k++)
+        if (cli_interrupted || steady_cli_critical(cmd, &m, k, &omega[k - 1]))
+            rc = cli_interrupted ? cli_error(cmd, "interrupted at mode %d", k) : 1;
+    if (rc) {
+        free(omega);
+        steady_cli_model_free(&m);
+        return rc;
+    }
     cli_out out;
     if (cli_out_open(cmd, &out, out_path)) {
+        free(omega);
         steady_cli_model_free(&m);
         return 1;
     }
@@ -41,6 +60,7 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     cli_units_comment(out.fp, &m.units);
     fprintf(out.fp, "mode,omega\n");
     for (int k = 1; k <= modes; k++) fprintf(out.fp, "%d,%s\n", k, CLI_NUM(omega[k - 1] * rate));
+    free(omega);
     steady_cli_model_free(&m);
     return cli_out_commit(cmd, &out);
 }

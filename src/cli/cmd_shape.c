@@ -14,7 +14,8 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
          NULL, NULL, "", CLI_UNIT_RATE},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K",
-         "node count: the pivot plus K-1 axis crossings", "[1, 64]", NULL, NULL, ""},
+         "node count: the pivot plus K-1 axis crossings (1..N with --links N, 1..64 for the "
+         "continuum)", "[1, inf)", NULL, NULL, ""},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)",
          "[2, 10000000]", NULL, "--links"},
@@ -24,6 +25,10 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;
     if (steady_cli_model_setup(cmd, &m)) return 1;
+    if (steady_cli_check_mode(cmd, &m, mode)) {
+        steady_cli_model_free(&m);
+        return 1;
+    }
 
     double tip_mass = steady_cli_tip_mass(&m);
     size_t n = m.chain ? m.chain->n + 1 : (size_t)points;

@@ -79,12 +79,21 @@ static int check_options(const cli_command *cmd, const options *o)
     if (o->windows) {
         if (!(o->tol < o->scan_step))
             return cli_error(cmd, "--tol must be smaller than --scan-step");
-        for (int k = 0; k < o->modes.n && o->links_given; k++)
-            if (o->modes.v[k] > o->links)
-                return cli_error(cmd, "--modes must be at most --links (%d), got %d", o->links,
-                                 o->modes.v[k]);
     } else if (o->min_given && !o->steps_given) {
         return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
+    }
+    /* the N-link chain has modes 1..N; the continuum and the hand-swung chain (seeded by the
+     * continuum's shapes) 1..WHIRL_MODE_MAX */
+    const int continuum = (o->windows && !o->links_given) || (!o->windows && driven(o));
+    const int top = continuum ? WHIRL_MODE_MAX : o->links;
+    for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
+        const int mode = o->mode_given ? o->mode : o->modes.v[k];
+        if (mode > top && continuum)
+            return cli_error(cmd, "mode %d is out of range: the %s takes modes 1..%d", mode,
+                             o->windows ? "continuous chain" : "hand-swung chain", top);
+        if (mode > top)
+            return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
+                             mode, top, top);
     }
     if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
@@ -513,8 +522,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     const cli_option opts[] = {
         {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate (one point)",
          "(0, inf)", "--mode", "--omega-min --modes", "--omega-min", CLI_UNIT_RATE},
-        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K", "mode (node count) at --omega",
-         "[1, 64]", "--omega"},
+        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K",
+         "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
+         "--omega"},
         {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
          "(0, inf)", "--omega-max", "--trace", "--omega", CLI_UNIT_RATE},
         {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate",
@@ -522,7 +532,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
          "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
         {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
-         "map: modes (default 1,2,3)", "[1, 64]", "--omega-min"},
+         "map: modes (default 1,2,3): 1..N (the hand-swung or the continuous chain: 1..64)",
+         "[1, inf)", "--omega-min"},
         {"--links", NULL, CLI_INT, &o.links, &o.links_given, "N",
          "links of the chain (default 25; with --windows the continuous chain unless given)",
          "[2, 100000]"},

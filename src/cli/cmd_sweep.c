@@ -74,7 +74,8 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     sweep_rows rows = {0};
     const cli_option opts[] = {
-        {"--modes", NULL, CLI_INT_LIST, &modes, NULL, "LIST", "modes, e.g. 1,2,3", "[1, 64]",
+        {"--modes", NULL, CLI_INT_LIST, &modes, NULL, "LIST",
+         "modes, e.g. 1,2,3 (1..N with --links N, 1..64 for the continuum)", "[1, inf)",
          NULL, NULL, ""},
         {"--omega-min", NULL, CLI_DOUBLE, &omega_min, NULL, "A", "lowest rate", "(0, inf)", NULL,
          NULL, "", CLI_UNIT_RATE},
@@ -94,6 +95,11 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
     if (count == 1 ? omega_min != omega_max : !(omega_min < omega_max))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
     if (steady_cli_model_setup(cmd, &m)) return 1;
+    for (int i = 0; i < modes.n; i++)
+        if (steady_cli_check_mode(cmd, &m, modes.v[i])) {
+            steady_cli_model_free(&m);
+            return 1;
+        }
 
     cli_catch_interrupts();
     double rate = cli_units_rate(&m.units), len = m.units.length, force = cli_units_force(&m.units);
@@ -117,11 +123,6 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         int status;
         if (m.chain) {
             rows.mode = modes.v[i];
-            if ((size_t)modes.v[i] > m.chain->n) {
-                rc = cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
-                               modes.v[i], m.links, m.links);
-                break;
-            }
             status = whirl_nlink_follow(m.chain, modes.v[i], omega[n - 1], n, omega, sweep_visit,
                                         &rows);
         } else {

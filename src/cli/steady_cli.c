@@ -1,5 +1,6 @@
 /* What the steady-shape commands share: model options, checks, unit conversions. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "cli/steady_cli.h"
 
@@ -20,17 +21,28 @@ void steady_cli_model_free(steady_cli_model *m)
 
 double steady_cli_tip_mass(const steady_cli_model *m) { return m->tip_mass; }
 
+int steady_cli_check_mode(const cli_command *cmd, const steady_cli_model *m, int mode)
+{
+    if (m->chain && (mode < 1 || (size_t)mode > m->chain->n))
+        return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
+                         mode, m->links, m->links);
+    if (!m->chain && (mode < 1 || mode > WHIRL_MODE_MAX))
+        return cli_error(cmd, "mode %d is out of range: the continuous chain's solvers take "
+                         "modes 1..%d (--links N: modes 1..N)", mode, WHIRL_MODE_MAX);
+    return 0;
+}
+
 int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int mode,
                         double *omega)
 {
+    if (steady_cli_check_mode(cmd, m, mode)) return 1;
     int status;
     if (m->chain) {
-        if ((size_t)mode > m->chain->n)
-            return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
-                             mode, m->links, m->links);
-        double crit[WHIRL_MODE_MAX];
+        double *crit = malloc((size_t)mode * sizeof *crit);
+        if (crit == NULL) return cli_error(cmd, "out of memory for %d critical rates", mode);
         status = whirl_nlink_critical(m->chain, (size_t)mode, crit);
         *omega = crit[mode - 1];
+        free(crit);
     } else {
         status = whirl_continuum_critical(mode, steady_cli_tip_mass(m), omega);
     }
@@ -58,13 +70,22 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
 {
     double rate = cli_units_rate(&m->units), len = m->units.length;
     double force = cli_units_force(&m->units);
+    /* the N-link chain's nodes from its masses' radii: all of them (info holds the first
+     * WHIRL_SHAPE_NODES) */
+    double *node_s = NULL;
+    size_t nodes = info->n_nodes > 0 ? (size_t)info->n_nodes : 0;
+    if (m->chain && nodes > WHIRL_SHAPE_NODES && (node_s = malloc(n * sizeof *node_s)) != NULL)
+        nodes = whirl_nlink_node_arclengths(m->chain, r, n, node_s);
+    else if (nodes > WHIRL_SHAPE_NODES)
+        nodes = WHIRL_SHAPE_NODES;
     fprintf(fp, "# omega=%s mode=%d node_count=%d tip_r=%s max_r=%s top_tension=%s depth=%s "
             "nodes=", CLI_NUM(info->omega * rate), info->mode, info->n_nodes + 1,
             CLI_NUM(info->tip_r * len),
             CLI_NUM(info->max_r * len), CLI_NUM(info->top_tension * force),
             CLI_NUM(info->depth * len));
-    for (int j = 0; j < info->n_nodes; j++)
-        fprintf(fp, "%s%s", j ? ";" : "", CLI_NUM(info->node_s[j] * len));
+    for (size_t j = 0; j < nodes; j++)
+        fprintf(fp, "%s%s", j ? ";" : "", CLI_NUM((node_s ? node_s[j] : info->node_s[j]) * len));
+    free(node_s);
     fprintf(fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
             "z: height (pivot 0), tension: %s\n",
             m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
