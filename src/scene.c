@@ -604,7 +604,7 @@ static int convert_start(const convert *v)
         if (s->dim != 3)
             return key_error(v, WHIRL_KEY_START_MODE,
                              "a steady start needs [chain] dim = 3, got %d", s->dim);
-        TRY(get_integer(v, WHIRL_KEY_START_MODE, 1, 1, WHIRL_MODE_MAX, &mode));
+        TRY(get_integer(v, WHIRL_KEY_START_MODE, 1, 1, (long)s->links, &mode)); /* modes 1..N */
         s->mode = (int)mode;
         TRY(get_bounded(v, WHIRL_KEY_START_OMEGA, 0, 0, 1, &s->start_omega));
         if (!(s->start_omega <= WHIRL_OMEGA_MAX))
@@ -738,7 +738,7 @@ static int convert_output(const convert *v)
     TRY(convert_columns(v));
     if (given(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE)) {
         long mode;
-        TRY(get_integer(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, 1, 1, WHIRL_MODE_MAX, &mode));
+        TRY(get_integer(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, 1, 1, (long)s->links, &mode));
         if (s->dim != 3)
             return key_error(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, "needs [chain] dim = 3, got %d",
                              s->dim);

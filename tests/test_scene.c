@@ -269,7 +269,7 @@ static const bad_case bad_cases[] = {
      ":5: [start] hanging: must be one of false, true, no, yes, 0, 1, off, on, got 'maybe'"},
     {CHAIN2 "[start]\nomega = 2\nmode = 1\n" RUN, NULL,
      ":6: [start] mode: a steady start needs [chain] dim = 3, got 2"},
-    {CHAIN3 "[start]\nomega = 2\nmode = 0\n" RUN, NULL, ":6: [start] mode: must be in 1..64, got 0"},
+    {CHAIN3 "[start]\nomega = 2\nmode = 0\n" RUN, NULL, ":6: [start] mode: must be in 1..2, got 0"},
     {CHAIN3 "[start]\nomega = -2\nmode = 1\n" RUN, NULL, ":5: [start] omega: must be > 0, got -2"},
     {CHAIN3 "[start]\nomega = 2\nmode = 1\nperturb = -0.1\n" RUN, NULL,
      ":7: [start] perturb: must be >= 0, got -0.1"},
@@ -336,7 +336,7 @@ static const bad_case bad_cases[] = {
     {CHAIN3 HANG RUN "[output]\nreference_mode = 1\n", NULL,
      ":10: [output] reference_mode: needs [run] omega > 0 (the rate of the reference shape)"},
     {CHAIN3 HANG RUN "omega = 2\n[output]\nreference_mode = 0\n", NULL,
-     ":11: [output] reference_mode: must be in 1..64, got 0"},
+     ":11: [output] reference_mode: must be in 1..2, got 0"},
     {CHAIN3 HANG RUN "[output]\ncolumns = t, energy, tipx\n", NULL,
      ":10: [output] columns: unknown column 'tipx' (known: t, tip_x, tip_y, tip_z, energy, "
      "jacobi, lz, constraint, deviation)"},

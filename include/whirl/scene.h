@@ -141,7 +141,7 @@ typedef struct whirl_scene {
     /* [start] */
     whirl_start_kind start;
     double start_omega;    /* STEADY: rate of the steady shape, > 0 */
-    int mode;              /* STEADY: node count, 1..WHIRL_MODE_MAX */
+    int mode;              /* STEADY: node count, 1..links */
     double perturb;        /* STEADY, HANGING: angle each link direction is turned by [rad] */
     unsigned long seed;    /* STEADY, HANGING: seed of the random turns; default 1 */
     double *theta;         /* ANGLES: N angles from the downward vertical [rad]; else NULL */

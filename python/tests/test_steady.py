@@ -52,6 +52,8 @@ def _read_cli(path):
 @pytest.mark.parametrize("args,kwargs", [
     (["--omega", "3.5", "--mode", "2"], dict(omega=3.5, mode=2)),
     (["--omega", "5.2", "--mode", "3", "--links", "40"], dict(omega=5.2, mode=3, links=40)),
+    # beyond 64 modes: mode 150 of 200 just above its birth (252.93), its 149 crossings
+    (["--omega", "258", "--mode", "150", "--links", "200"], dict(omega=258, mode=150, links=200)),
     (["--omega", "21", "--mode", "1", "--length", "0.5", "--mass", "0.05", "--gravity", "9.81",
       "--tip-mass", "0.01", "--points", "57"],
      dict(omega=21, mode=1, length=0.5, mass=0.05, gravity=9.81, tip_mass=0.01, points=57)),
