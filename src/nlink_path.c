@@ -1370,12 +1370,16 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
 {
     const size_t links = p->chain->n;
     double *r = scr_nodes(p), *z = r + links + 1, *t = z + links + 1;
+    long folds = 0;
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= STEPS_MAX)
-            return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps reached "
-                              "omega=%.17g only", p->mode, STEPS_MAX, p->omega);
+            return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps (arclength %.4g, "
+                              "%ld folds) reached omega=%.17g at most (now at %.17g), short of "
+                              "omega=%.17g", p->mode, STEPS_MAX, p->arclength, folds,
+                              p->omega_hi, p->omega, omega_max);
         int status = whirl_nlink_path_step(p);
         if (status) return status;
+        for (int e = 0; e < p->n_events; e++) folds += p->event[e].kind == WHIRL_EVENT_FOLD;
         /* crossings and events in the order of arclength: events first where they come
          * first is not needed by the callers, so crossings of a step follow its events */
         for (int e = 0; e < p->n_events; e++) {
