@@ -277,9 +277,11 @@ double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const doubl
      * omega^2) each: 1e-9 of a link's length near the pivot of 10^4 links). The sum ends on
      * the pivot's radius r_0, zero at an equilibrium up to its round-off (1e-17 of the chain's
      * length on 15 links at omega = 200). It is spread over the links in proportion to their
-     * lengths, r_i -= r_0 (L - s_i) / L (s_i the arclength of mass i from the pivot, L the
-     * chain's length): the pivot on the axis, the tip radius untouched, and every link's
-     * horizontal extent changed by r_0 l_i / L, a relative round-off for every link. */
+     * horizontal extents d_i = |l_i sin theta_i|, r_i -= r_0 (sum_{k > i} d_k) / (sum_k d_k):
+     * the pivot on the axis, the tip radius untouched, and every link's horizontal extent
+     * changed by the same relative round-off r_0 / sum_k d_k; the radii of a tail that is 1e-70
+     * of the largest move by as little, relative to themselves, and keep their signs (spread in
+     * proportion to the links' lengths instead, the pivot's 1e-17 would swamp them). */
     z[0] = 0;
     for (size_t i = 1; i <= n; i++) z[i] = z[i - 1] - c->length[i - 1] * cos(theta[i - 1]);
     double v = 0;
@@ -292,10 +294,10 @@ double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const doubl
     }
     const double r0 = r[0];
     double below = 0, total = 0;
-    for (size_t i = 0; i < n; i++) total += c->length[i];
-    for (size_t i = n; i >= 1; i--) {
-        r[i] -= r0 * below / total;
-        below += c->length[i - 1];
+    for (size_t i = 0; i < n; i++) total += fabs(c->length[i] * sin(theta[i]));
+    for (size_t i = n; i >= 1 && total > 0; i--) {
+        r[i] -= r0 * (below / total);
+        below += fabs(c->length[i - 1] * sin(theta[i - 1]));
     }
     r[0] = 0;
     tension[0] = tension[1];
