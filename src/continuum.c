@@ -329,8 +329,9 @@ typedef struct continuum_run {
     int crossings;           /* sign changes of r at the steps below the pivot */
     double r_pivot, q_pivot, z_pivot; /* R, Q, z at sigma = 1 */
     int locate;              /* also locate the nodes and the extrema: */
-    int n_nodes;             /* nodes found, node_sigma[] increasing */
-    double node_sigma[WHIRL_MODE_MAX];
+    int n_nodes;             /* nodes found; the last WHIRL_SHAPE_NODES of them (those nearest
+                              * the pivot) in node_sigma[j % WHIRL_SHAPE_NODES], j = 0.. */
+    double node_sigma[WHIRL_SHAPE_NODES];
     double max_abs_r;        /* max |r| over the tip and the extrema */
 } continuum_run;
 
@@ -406,12 +407,12 @@ static int integrate(continuum_ws *w, continuum_run *run)
         if (sigma < 1 && (shape_value(w, SHAPE_R, y) > 0) !=
                              (shape_value(w, SHAPE_R, y_prev) > 0)) {
             run->crossings++;
-            if (run->locate && run->n_nodes < WHIRL_MODE_MAX) {
+            if (run->locate) {
                 double s_node, y_node[N_STATE];
                 status = locate_zero(w, SHAPE_R, sigma_prev, y_prev, sigma, y, 1e-15, &s_node,
                                      y_node);
                 if (status != GSL_SUCCESS) return status;
-                run->node_sigma[run->n_nodes++] = s_node;
+                run->node_sigma[run->n_nodes++ % WHIRL_SHAPE_NODES] = s_node;
             }
         }
         if (run->locate &&
@@ -453,9 +454,9 @@ static double critical_determinant(double omega, void *params)
 
 int whirl_continuum_critical(int mode, double tip_mass, double *omega)
 {
-    if (mode < 1 || mode > WHIRL_MODE_MAX)
-        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", WHIRL_MODE_MAX,
-                          mode);
+    if (mode < 1 || mode > WHIRL_CONTINUUM_MODE_MAX)
+        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d",
+                          WHIRL_CONTINUUM_MODE_MAX, mode);
     int status = whirl_check_tip_mass(tip_mass);
     if (status != GSL_SUCCESS) return status;
     if (tip_mass == 0) {
@@ -469,7 +470,7 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega)
     gsl_function f = {critical_determinant, &tip_mass};
     double lo = 0.5, f_lo = critical_determinant(lo, &tip_mass);
     int found = 0;
-    for (int iter = 0; iter < 100000; iter++) {
+    for (int iter = 0; iter < 40 * (WHIRL_CONTINUUM_MODE_MAX + 2); iter++) {
         double step = found == 0 ? fmin(0.05, spacing / 32) : spacing / 32;
         double hi = lo + step, f_hi = critical_determinant(hi, &tip_mass);
         if ((f_lo > 0) != (f_hi > 0) && ++found == mode) {
@@ -497,7 +498,7 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
                               whirl_shape_info *info)
 {
     continuum_ws *w = ws;
-    int status = whirl_steady_check_args(omega, mode, WHIRL_MODE_MAX);
+    int status = whirl_steady_check_args(omega, mode, WHIRL_CONTINUUM_MODE_MAX);
     if (status != GSL_SUCCESS) return status;
     if ((status = set_rate(w, omega)) != GSL_SUCCESS) return status;
     double a;
@@ -523,7 +524,9 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     info->top_tension = (1 + w->p.tip_mass) * sqrt(1 + w->b2 * run.q_pivot * run.q_pivot);
     info->depth = run.z_pivot;
     info->n_nodes = run.n_nodes;
-    for (int j = 0; j < run.n_nodes; j++) info->node_s[j] = 1 - run.node_sigma[run.n_nodes - 1 - j];
+    /* the first nodes from the pivot are the last found from the tip */
+    for (int j = 0; j < run.n_nodes && j < WHIRL_SHAPE_NODES; j++)
+        info->node_s[j] = 1 - run.node_sigma[(run.n_nodes - 1 - j) % WHIRL_SHAPE_NODES];
     return whirl_steady_check_info(info);
 }
 

@@ -76,7 +76,7 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
                         whirl_shape_info *info, int *exists)
 {
     for (size_t j = 0; j < n; j++) {
-        int status = whirl_steady_check_args(omega[j], mode, WHIRL_MODE_MAX);
+        int status = whirl_steady_check_args(omega[j], mode, WHIRL_CONTINUUM_MODE_MAX);
         if (status != GSL_SUCCESS) return status;
     }
     size_t nblocks = 1;

@@ -44,7 +44,7 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
                         whirl_shape_info *info, int *exists);
 
 /* The checks every solver starts with: omega > 0 and finite, 1 <= mode <= mode_max
- * (WHIRL_MODE_MAX for the continuum; INT_MAX for the N-link chain, which checks mode <= N
+ * (WHIRL_CONTINUUM_MODE_MAX for the continuum; INT_MAX for the N-link chain, which checks mode <= N
  * itself: GSL_EDOM). */
 int whirl_steady_check_args(double omega, int mode, int mode_max);
 /* GSL_SUCCESS if every number of the solved shape is finite, else GSL_ERANGE naming the first

@@ -67,6 +67,14 @@ expect_ok "sweep mode 100 of 200" sweep --links 200 --modes 100 --omega-min 150 
 if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($2 == 100 && $7 == 100)} END {exit !(n == 1 && ok == 1)}' \
      "$tmp/s200.csv"; then pass "sweep: mode 100 of 200 above its birth (160.93) only"
 else fail "sweep: mode 100 of 200 above its birth (160.93) only"; fi
+# the continuum's modes beyond 64: mode 200 at 1.001 omega_200 (316.59), its 199 crossings
+# counted, the first 64 listed and said so
+expect_ok "continuum mode 200" shape --mode 200 --omega 316.9 --points 11 -o "$tmp/c200s.csv"
+if head -1 "$tmp/c200s.csv" | grep -q ' mode=200 node_count=200 ' \
+   && [ "$(head -1 "$tmp/c200s.csv" | sed 's/.*nodes=//' | tr ';' '\n' | grep -c .)" -eq 64 ] \
+   && grep -q '^# nodes: the first 64 of the 199 axis crossings below the pivot$' "$tmp/c200s.csv"; then
+  pass "continuum mode 200: 200 nodes, the first 64 listed"
+else fail "continuum mode 200: 200 nodes, the first 64 listed"; fi
 
 # help
 expect_ok "critical --help" critical --help
@@ -104,8 +112,8 @@ expect_error "mode above N" "whirl shape: mode 6 does not exist: a chain of 5 li
 expect_error "below the birth" "whirl shape: mode 15 does not exist at omega=26.8 .*: it exists only above omega_15=26.84" shape --links 15 --mode 15 --omega 26.8 -o "$tmp/out.csv"
 expect_error "sweep mode above N" "whirl sweep: mode 6 does not exist: a chain of 5 links has modes 1..5" sweep --modes 2,6 --links 5 --omega-min 1 --omega-max 9 --omega-count 9 -o "$tmp/out.csv"
 expect_error "mode above N (long chain)" "whirl shape: mode 201 does not exist: a chain of 200 links has modes 1..200" shape --links 200 --mode 201 --omega 300 -o "$tmp/out.csv"
-expect_error "continuum mode above 64" "whirl shape: mode 65 is out of range: the continuous chain's solvers take modes 1..64" shape --mode 65 --omega 300 -o "$tmp/out.csv"
-expect_error "critical continuum above 64" "whirl critical: mode 65 is out of range" critical --modes 65 -o "$tmp/out.csv"
+expect_error "continuum mode above 3183" "whirl shape: mode 3184 is out of range: the continuous chain's solvers take modes 1..3183, those born below omega=5000" shape --mode 3184 --omega 4000 -o "$tmp/out.csv"
+expect_error "critical continuum above 3183" "whirl critical: mode 3184 is out of range" critical --modes 3184 -o "$tmp/out.csv"
 expect_error "below the birth (long chain)" "whirl shape: mode 150 does not exist at omega=250 .*: it exists only above omega_150=252.93" shape --links 200 --mode 150 --omega 250 -o "$tmp/out.csv"
 expect_error "events without links" "whirl sweep: --events needs --links" sweep --modes 2 --omega-min 1 --omega-max 9 --omega-count 9 --events "$tmp/ev2.csv" -o "$tmp/out.csv"
 if [ -e "$tmp/ev2.csv" ]; then fail "no events file after an error"; else pass "no events file after an error"; fi

@@ -56,6 +56,47 @@ static void test_small_amplitude_limit(void **state)
     }
 }
 
+/* Modes beyond the 64 node arclengths of whirl_shape_info: just above the birth the nodes are
+ * the linear shape's, the zeros of J0(2 omega_k sqrt(1 - s)), s = 1 - (j_{0,m} / (2 omega_k))^2
+ * (m = k-1 first from the pivot), to O(omega - omega_k): mode 300 at eps = 1e-4 and 1e-6 (the
+ * deviation 100 times smaller), modes 65 and 1000 at eps = 1e-6; all k - 1 crossings counted. */
+static void test_high_modes(void **state)
+{
+    (void)state;
+    const int modes[] = {65, 300, 300, 1000};
+    const double eps[] = {1e-6, 1e-4, 1e-6, 1e-6};
+    double dev[4];
+    for (int c = 0; c < 4; c++) {
+        const int k = modes[c];
+        double omega_k;
+        assert_int_equal(whirl_continuum_critical(k, 0, &omega_k), GSL_SUCCESS);
+        whirl_shape_info info;
+        assert_int_equal(whirl_continuum_solve(omega_k * (1 + eps[c]), k, 0, 0, &info),
+                         GSL_SUCCESS);
+        assert_int_equal(info.mode, k);
+        assert_int_equal(info.n_nodes, k - 1);
+        dev[c] = 0;
+        for (int j = 0; j < WHIRL_SHAPE_NODES; j++) {
+            const double x = gsl_sf_bessel_zero_J0((unsigned)(k - 1 - j)) / (2 * omega_k);
+            dev[c] = fmax(dev[c], fabs(info.node_s[j] - (1 - x * x)));
+            if (j > 0) assert_true(info.node_s[j] > info.node_s[j - 1]);
+        }
+        print_message("mode %d at (1 + %g) omega_k: first %d nodes within %.2e of the linear "
+                      "shape's\n", k, eps[c], WHIRL_SHAPE_NODES, dev[c]);
+        assert_true(dev[c] < eps[c]); /* the nodes move by O(omega - omega_k) */
+    }
+    assert_true(dev[2] < 0.03 * dev[1]);
+    /* the last mode born below the continuum's highest rate, and the first beyond it */
+    double omega;
+    assert_int_equal(whirl_continuum_critical(WHIRL_CONTINUUM_MODE_MAX, 0, &omega), GSL_SUCCESS);
+    assert_true(omega < WHIRL_CONTINUUM_OMEGA_MAX);
+    assert_int_equal(whirl_continuum_critical(WHIRL_CONTINUUM_MODE_MAX + 1, 0, &omega),
+                     GSL_EINVAL);
+    whirl_shape_info info;
+    assert_int_equal(whirl_continuum_solve(4999.9, WHIRL_CONTINUUM_MODE_MAX + 1, 0, 0, &info),
+                     GSL_EINVAL);
+}
+
 /* Sign changes of r(pivot; a) over a log grid of a: the number of shapes at omega. */
 static int count_shapes(double omega, double tip_mass)
 {
@@ -385,6 +426,7 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_small_amplitude_limit),
+        cmocka_unit_test(test_high_modes),
         cmocka_unit_test(test_kolodner_count),
         cmocka_unit_test(test_tolerance_convergence),
         cmocka_unit_test(test_sub_chain),

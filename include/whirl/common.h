@@ -25,9 +25,10 @@
 #define WHIRL_API
 #endif
 
-/* The highest mode of the continuous chain's solvers (steady shapes, their stability, the driven
- * chain, the fit and the scenes seeded by them). The N-link chain's steady shapes, branches and
- * critical rates take every mode 1..N of an N-link chain, at any N. */
+/* The highest mode of the models seeded by the continuous chain's shape of a mode: the driven
+ * chain, the fit and the continuum's stability. The steady shapes, branches and critical rates
+ * take more: every mode 1..N of an N-link chain at any N, and the continuum's modes up to
+ * WHIRL_CONTINUUM_MODE_MAX (whirl/steady.h). */
 #define WHIRL_MODE_MAX 64
 
 /* The heaviest tip mass, in chain masses, of every model: beyond it the chain's weight (1) is

@@ -24,8 +24,8 @@
 /* The summary of one steady shape (the comment line of `whirl shape`). */
 typedef struct whirl_shape_info {
     double omega;       /* rotation rate [sqrt(g/L)] */
-    int mode;           /* node count k: 1..N for the N-link chain, 1..WHIRL_MODE_MAX for the
-                         * continuum */
+    int mode;           /* node count k: 1..N for the N-link chain, 1..WHIRL_CONTINUUM_MODE_MAX
+                         * for the continuum */
     double tip_r;       /* distance of the free end from the axis [L], > 0 */
     double max_r;       /* max over the chain of |r| [L] */
     double top_tension; /* tension at the pivot [M g] */
@@ -49,8 +49,9 @@ WHIRL_API int whirl_continuum_critical(int mode, double tip_mass, double *omega)
 
 /* The steady shape of mode k at omega. tip_r_guess > 0 seeds the root search (continuation);
  * 0 lets the solver bracket the root itself. GSL_EDOM (message naming omega_k) if mode k does not
- * exist at omega; GSL_EINVAL on omega <= 0 or non-finite, mode outside 1..WHIRL_MODE_MAX or a
- * negative tip mass. Accuracy: tip_r, top_tension and depth to 1e-10 relative or better (about
+ * exist at omega; GSL_EINVAL on omega <= 0 or non-finite, mode outside
+ * 1..WHIRL_CONTINUUM_MODE_MAX or a negative tip mass. info->node_s holds the first
+ * WHIRL_SHAPE_NODES nodes from the pivot, info->n_nodes counts them all. Accuracy: tip_r, top_tension and depth to 1e-10 relative or better (about
  * 1e-13 measured). Near the bifurcation tip_r ~ sqrt(omega - omega_k) is ill-conditioned
  * (d ln tip_r / d ln omega = 1 / (2 eps), eps = omega / omega_k - 1): the linear part of the
  * residual is evaluated in closed form, so the error is that of one rounding of omega, about
@@ -64,6 +65,11 @@ WHIRL_API int whirl_continuum_solve(double omega, int mode, double tip_mass, dou
  * than its cap of 100000 steps per shot (the shape varies on a scale ~ 1/omega); higher rates are
  * refused with GSL_EINVAL (the N-link chain has no such limit). */
 #define WHIRL_CONTINUUM_OMEGA_MAX 5000.0
+
+/* The highest mode of the continuum's steady shapes and critical rates: the last one born below
+ * WHIRL_CONTINUUM_OMEGA_MAX without a tip mass (j_{0,3183}/2 = 4999.45, j_{0,3184}/2 = 5001.02);
+ * higher modes are refused with GSL_EINVAL. */
+#define WHIRL_CONTINUUM_MODE_MAX 3183
 
 /* The ODE tolerance (absolute and relative, on order-one scaled variables) of the continuum. */
 #define WHIRL_CONTINUUM_TOL 1e-13

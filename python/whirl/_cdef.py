@@ -6,6 +6,7 @@ and checks that every struct declared here has the same size and field offsets."
 CDEF = r"""
 #define WHIRL_MODE_MAX 64
 #define WHIRL_SHAPE_NODES 64
+#define WHIRL_CONTINUUM_MODE_MAX 3183
 #define WHIRL_EINTERRUPTED 1000
 #define WHIRL_DRIVEN_FOLD_MAX 32
 
@@ -452,5 +453,6 @@ int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
 STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 
 # The constants whose values tests/test_layout.py checks against the C headers.
-CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
+CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_CONTINUUM_MODE_MAX",
+             "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
              "WHIRL_NCOLUMNS"]

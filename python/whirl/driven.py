@@ -43,7 +43,7 @@ def driven(omega, mode, drive_radius, air_drag=0.0, air_drag_quadratic=0.0, side
     Returns a DrivenShape; whirl.Error (EDOM) if the shape does not exist or cannot be reached
     by continuation, EMAXITER if Newton does not converge from tip_guess."""
     if tip_guess is None or mode is not None:
-        mode = _mode(mode, None)  # seeded by the continuum's shapes: its modes
+        mode = _mode(mode, None, lib.WHIRL_MODE_MAX)  # seeded by the continuum's shape
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)

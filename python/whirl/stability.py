@@ -174,7 +174,7 @@ def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step
     a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
     Ctrl-C raises KeyboardInterrupt."""
     chain = None if links is None else links if isinstance(links, Chain) else Chain(links)
-    mode = _mode(mode, chain)
+    mode = _mode(mode, chain, lib.WHIRL_MODE_MAX)
     if links is not None and (degree is not None or tip_mass):
         raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
     p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())

@@ -87,10 +87,12 @@ def _chain(links, tip_mass):
     return Chain(links, tip_mass)
 
 
-def _mode(mode, chain):
-    """The N-link chain has modes 1..N (any N), the continuum 1..WHIRL_MODE_MAX."""
+def _mode(mode, chain, continuum_max=None):
+    """The N-link chain has modes 1..N (any N), the continuum's steady shapes
+    1..WHIRL_CONTINUUM_MODE_MAX (continuum_max: the limit of a model built on them)."""
     if chain is None:
-        return as_int(mode, "mode", minimum=1, maximum=lib.WHIRL_MODE_MAX)
+        top = lib.WHIRL_CONTINUUM_MODE_MAX if continuum_max is None else continuum_max
+        return as_int(mode, "mode", minimum=1, maximum=top)
     mode = as_int(mode, "mode", minimum=1)
     if mode > chain.n:
         raise ValueError("mode %d does not exist: a chain of %d links has modes 1..%d"
@@ -111,8 +113,9 @@ def critical(modes=3, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.
     chain = _chain(links, m)
     out = np.empty(modes)
     if chain is None:
-        if modes > lib.WHIRL_MODE_MAX:
-            raise ValueError("modes must be <= %d, got %d" % (lib.WHIRL_MODE_MAX, modes))
+        if modes > lib.WHIRL_CONTINUUM_MODE_MAX:
+            raise ValueError("modes must be <= %d, got %d" % (lib.WHIRL_CONTINUUM_MODE_MAX,
+                                                             modes))
         w = ffi.new("double *")
         for k in range(modes):
             check(lib.whirl_continuum_critical(k + 1, m, w))

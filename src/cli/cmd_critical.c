@@ -11,7 +11,7 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
         {"--modes", NULL, CLI_INT, &modes, NULL, "K",
-         "modes 1..K (default 3; up to N with --links N, up to 64 for the continuum)",
+         "modes 1..K (default 3; up to N with --links N, up to 3183 for the continuum)",
          "[1, inf)"},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
@@ -25,6 +25,7 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "--modes %d exceeds the %d modes of a chain of %d links", modes,
                          m.links, m.links);
     }
+    cli_catch_interrupts(); /* the continuum's rates with a tip mass: a scan per mode */
     if (steady_cli_check_mode(cmd, &m, modes)) {
         steady_cli_model_free(&m);
         return 1;
@@ -39,7 +40,9 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         rc = cli_error(cmd, "%s", whirl_last_error());
     for (int k = 1; !m.chain && k <= modes && rc == 0; k++)
         if (cli_interrupted || steady_cli_critical(cmd, &m, k, &omega[k - 1]))
-            rc = cli_interrupted ? cli_error(cmd, "interrupted at mode %d", k) : 1;
+            rc = cli_interrupted ? (cli_error(cmd, "interrupted at mode %d", k),
+                                    CLI_EXIT_INTERRUPTED)
+                                 : 1;
     if (rc) {
         free(omega);
         steady_cli_model_free(&m);

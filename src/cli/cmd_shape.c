@@ -14,7 +14,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
          NULL, NULL, "", CLI_UNIT_RATE},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K",
-         "node count: the pivot plus K-1 axis crossings (1..N with --links N, 1..64 for the "
+         "node count: the pivot plus K-1 axis crossings (1..N with --links N, 1..3183 for the "
          "continuum)", "[1, inf)", NULL, NULL, ""},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)",

@@ -75,7 +75,7 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
     sweep_rows rows = {0};
     const cli_option opts[] = {
         {"--modes", NULL, CLI_INT_LIST, &modes, NULL, "LIST",
-         "modes, e.g. 1,2,3 (1..N with --links N, 1..64 for the continuum)", "[1, inf)",
+         "modes, e.g. 1,2,3 (1..N with --links N, 1..3183 for the continuum)", "[1, inf)",
          NULL, NULL, ""},
         {"--omega-min", NULL, CLI_DOUBLE, &omega_min, NULL, "A", "lowest rate", "(0, inf)", NULL,
          NULL, "", CLI_UNIT_RATE},

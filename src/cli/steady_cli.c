@@ -26,9 +26,10 @@ int steady_cli_check_mode(const cli_command *cmd, const steady_cli_model *m, int
     if (m->chain && (mode < 1 || (size_t)mode > m->chain->n))
         return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
                          mode, m->links, m->links);
-    if (!m->chain && (mode < 1 || mode > WHIRL_MODE_MAX))
+    if (!m->chain && (mode < 1 || mode > WHIRL_CONTINUUM_MODE_MAX))
         return cli_error(cmd, "mode %d is out of range: the continuous chain's solvers take "
-                         "modes 1..%d (--links N: modes 1..N)", mode, WHIRL_MODE_MAX);
+                         "modes 1..%d, those born below omega=%g (--links N: modes 1..N)", mode,
+                         WHIRL_CONTINUUM_MODE_MAX, WHIRL_CONTINUUM_OMEGA_MAX);
     return 0;
 }
 
@@ -90,6 +91,9 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
             "z: height (pivot 0), tension: %s\n",
             m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
             m->chain ? "of the link above the node" : "at that point");
+    if ((int)nodes < info->n_nodes)
+        fprintf(fp, "# nodes: the first %zu of the %d axis crossings below the pivot\n", nodes,
+                info->n_nodes);
     if (info->n_nodes + 1 != info->mode)
         fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes at this rate: on a "
                 "coarse chain a branch can change its node count\n", info->mode, info->mode,
