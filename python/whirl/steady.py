@@ -134,7 +134,8 @@ class Shape:
     ``tension`` [L, L, L, M g; or m, m, m, N], from the pivot to the free end (N-link chain:
     the pivot, then masses 1..N, tension of the link above); the summary ``omega``, ``mode``,
     ``tip_r``, ``max_r``, ``top_tension``, ``depth``, ``nodes`` (arclengths of the axis
-    crossings below the pivot), and the branch it lies on: ``critical`` (omega_k where mode k is
+    crossings below the pivot: all of them for the N-link chain, the first 64 for the
+    continuum), and the branch it lies on: ``critical`` (omega_k where mode k is
     born) and ``links`` (None: the continuum)."""
 
     def __init__(self, info, nodes, s, r, z, tension, u, critical_args, links):
@@ -214,7 +215,9 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
     if chain is None:
         check(lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
                                          _lib.dptr(z), _lib.dptr(t)))
-        nodes = np.array([info.node_s[j] for j in range(info.n_nodes)])
+        # the continuum's first WHIRL_SHAPE_NODES from the pivot (n_nodes counts them all)
+        nodes = np.array([info.node_s[j]
+                          for j in range(min(info.n_nodes, lib.WHIRL_SHAPE_NODES))])
     else:
         # the nodes of the branch's own link angles (at high rates the tip radius alone does
         # not fix the shape to round-off); every axis crossing, not only the first

@@ -30,8 +30,8 @@ int steady_cli_model_setup(const cli_command *cmd, steady_cli_model *m);
 void steady_cli_model_free(steady_cli_model *m);
 /* The tip mass in units of the chain's mass (cli_parse converted it). */
 double steady_cli_tip_mass(const steady_cli_model *m);
-/* 0 if the model has mode (the N-link chain: 1..N; the continuum: 1..WHIRL_MODE_MAX), else 1
- * after printing an error naming the mode and the range. */
+/* 0 if the model has mode (the N-link chain: 1..N; the continuum: 1..WHIRL_CONTINUUM_MODE_MAX),
+ * else 1 after printing an error naming the mode and the range. */
 int steady_cli_check_mode(const cli_command *cmd, const steady_cli_model *m, int mode);
 /* The linear critical rate of mode (dimensionless); 0, or 1 after printing an error. */
 int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int mode,
