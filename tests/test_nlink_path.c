@@ -735,8 +735,8 @@ static void test_nodes_lengths(void **state)
 
 /* A branch that cannot be continued: mode 16 of 30 links with a tip mass of 1e12 chain masses
  * (the largest the library takes: the links' own weight is then at the rounding of the tension)
- * stalls far above its birth, where Newton's method on the link angles fails at the smallest
- * step. The path, whirl_nlink_solve and whirl_nlink_branch return GSL_EFAILED with one line
+ * stalls far above its birth, where its trial steps fail at the smallest step (Newton's method
+ * on the link angles, or the tangent turning by more than the step allows). The path, whirl_nlink_solve and whirl_nlink_branch return GSL_EFAILED with one line
  * naming the mode, the rate reached (the path's last point) and why. (Should the continuation
  * learn to pass here, this test needs another branch it cannot continue.) */
 static void test_stalled_branch(void **state)
@@ -761,8 +761,12 @@ static void test_stalled_branch(void **state)
     snprintf(where, sizeof where, " fails at omega=%.17g ", reached);
     assert_int_equal(strncmp(message, "mode 16: the continuation", 25), 0);
     assert_non_null(strstr(message, where));
-    assert_non_null(strstr(message, "Newton's method"));
-    assert_non_null(strstr(message, "at the smallest step"));
+    /* why: the rejection of the last trial step (Newton's method on the link angles failing,
+     * or the tangent turning too far: which comes first depends on the path's earlier steps) */
+    const char *why = strstr(message, "): "), *smallest = strstr(message, " at the smallest step");
+    assert_non_null(why);
+    assert_non_null(smallest);
+    assert_true(smallest > why + 3);
     assert_null(strchr(message, '\n'));
     whirl_nlink_path_free(p);
     /* the drivers: the same failure and message */
