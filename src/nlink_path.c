@@ -1373,10 +1373,10 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
     long folds = 0;
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= STEPS_MAX)
-            return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps (arclength %.4g, "
-                              "%ld folds) reached omega=%.17g at most (now at %.17g), short of "
-                              "omega=%.17g", p->mode, STEPS_MAX, p->arclength, folds,
-                              p->omega_hi, p->omega, omega_max);
+            return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps from the birth "
+                              "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
+                              "at most (now at %.17g)", p->mode, STEPS_MAX, p->omega_birth,
+                              p->arclength, folds, p->omega_hi, p->omega);
         int status = whirl_nlink_path_step(p);
         if (status) return status;
         for (int e = 0; e < p->n_events; e++) folds += p->event[e].kind == WHIRL_EVENT_FOLD;
