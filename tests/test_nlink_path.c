@@ -779,6 +779,38 @@ static void test_stalled_branch(void **state)
     whirl_chain_free(c);
 }
 
+/* whirl_nlink_branch_nodes: the row of each rate holds the nodes whirl_nlink_solve_nodes gives
+ * at it (N = 15 mode 7 at 150 and 60, in that order, where the tip radius alone no longer fixes
+ * them), a rate below the birth leaves its row as it was; all three arrays or none. */
+static void test_branch_nodes(void **state)
+{
+    (void)state;
+    enum { N = 15, ROW = N + 1 };
+    whirl_chain *c = whirl_chain_alloc_uniform(N, 0);
+    const double omega[3] = {150, 2, 60};
+    double r[3 * ROW], z[3 * ROW], t[3 * ROW], r1[ROW], z1[ROW], t1[ROW];
+    for (size_t i = 0; i < 3 * ROW; i++) r[i] = z[i] = t[i] = NAN;
+    whirl_shape_info info[3], one;
+    int exists[3];
+    assert_int_equal(whirl_nlink_branch_nodes(c, 7, 3, omega, info, exists, r, z, t),
+                     GSL_SUCCESS);
+    assert_true(exists[0] && !exists[1] && exists[2]);
+    for (size_t i = 0; i < ROW; i++) assert_true(isnan(r[ROW + i]) && isnan(t[ROW + i]));
+    for (size_t j = 0; j < 3; j += 2) {
+        assert_int_equal(whirl_nlink_solve_nodes(c, omega[j], 7, &one, r1, z1, t1), GSL_SUCCESS);
+        assert_true(r[j * ROW] == 0);
+        for (size_t i = 0; i < ROW; i++) {
+            assert_float_equal(r[j * ROW + i], r1[i], 1e-15);
+            assert_float_equal(z[j * ROW + i], z1[i], 1e-15);
+            assert_float_equal(t[j * ROW + i], t1[i], 1e-15 * t1[i]);
+        }
+        assert_float_equal(info[j].tip_r, r[j * ROW + N], 1e-12 * info[j].tip_r);
+    }
+    assert_int_equal(whirl_nlink_branch_nodes(c, 7, 3, omega, info, exists, r, NULL, t),
+                     GSL_EINVAL);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -790,6 +822,7 @@ int main(void)
         cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
         cmocka_unit_test(test_nodes_lengths),
         cmocka_unit_test(test_stalled_branch),
+        cmocka_unit_test(test_branch_nodes),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
 }

@@ -68,6 +68,16 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 7 --modes 1,2 --
   pass "map form: rows where the modes exist"
 else fail "map form: $(cat "$tmp/err" "$tmp/map.csv" 2>/dev/null | tail -3)"; fi
 
+# A map at high rates (N = 15, mode 7 up to omega 150, where the tip radius no longer fixes the
+# shape): the shapes come from the branch's link angles, the row at 150 is the single point's.
+if "$WHIRL" stability --omega-min 140 --omega-max 150 --omega-count 2 --modes 7 --links 15 --linear \
+     -o "$tmp/hmap.csv" 2>"$tmp/err" \
+   && "$WHIRL" stability --omega 150 --mode 7 --links 15 --linear -o "$tmp/h1.csv" 2>>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/hmap.csv" | awk -F, '$1 == 150 {print $4}')" = "$(csv_field "$tmp/h1.csv" eig_growth)" ] \
+   && awk -v e="$(csv_field "$tmp/h1.csv" eig_growth)" 'BEGIN { exit !(e > 39.9 && e < 40.1) }'; then
+  pass "map at high rates: the branch's shapes, as the single point"
+else fail "map at high rates: $(cat "$tmp/err" "$tmp/hmap.csv" 2>/dev/null | tail -3)"; fi
+
 # Hand-swung chain: mode 1 on the far side of the axis from the pivot trails and is unstable; the
 # run's growth agrees with the eigenvalue within 5% (linear and quadratic drag).
 driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,tip_x,tip_y,nodes"
