@@ -42,10 +42,13 @@
  * which the orientation reverses is rejected and halved, and only a reversal that persists
  * down to DS_BRANCH is located as a branch point. Each is located by Brent's method
  * (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every evaluation a corrector
- * solve on the hyperplane at sigma: at a fold omega(sigma) is stationary, so the arclength error
- * enters omega squared. A crossing of a rate is first sought by Newton's method at that rate from
- * the point interpolated in omega (omega is monotone between the step's folds, so the point whose
- * arclength coordinate lies on the piece is the one), Brent's method only where that fails.
+ * solve on the hyperplane at sigma (at the step's ends a fold's test function is known: the
+ * tangent of each end): at a fold omega(sigma) is stationary, so the arclength error enters
+ * omega squared, and sigma is bracketed to LOCATE_FOLD of the step (the test function's own
+ * noise where the Jacobian is singular), elsewhere to round-off. A crossing of a rate is first
+ * sought by Newton's method at that rate from the point interpolated in omega (omega is
+ * monotone between the step's folds, so the point whose arclength coordinate lies on the piece
+ * is the one), Brent's method only where that fails.
  *
  * The same curve in the link angles. The shot loses digits on long chains at high rates: the
  * tip radius of a high mode is 1e-18 of the largest radius or less and fixes the shape only to
@@ -98,6 +101,7 @@
 #define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made */
 #define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off */
 #define LOCATE_MAX 200   /* Brent iterations for an event */
+#define LOCATE_FOLD 1e-12 /* a fold's bracket in sigma, relative to the step (see frame_locate) */
 #define LOCATE_NEWTON_MAX 40 /* Newton iterations of a point of an event's location (slow near a
                               * branch point, where the corrector's system is singular) */
 #ifndef NOISE_UP
@@ -674,6 +678,10 @@ typedef struct step_frame {
     double target;       /* the rate for TARGET_OMEGA */
     double ref;          /* ln |det A| of the first branch test */
     int failed;
+    int known;           /* phi at the ends of the step is known (in values[]) */
+    int cached;          /* phi at the bracket's ends is known: ends[], values[] */
+    double ends[2], values[2];
+    double at;           /* the sigma of the last corrected point (NAN: none) */
     double w, a;         /* the last corrected point */
     double *th;          /* its link angles (in the link angles) */
     shot s;              /* its shot (shot) */
@@ -713,10 +721,15 @@ static int frame_point(step_frame *f, double sigma)
 static double frame_phi(double sigma, void *params)
 {
     step_frame *f = params;
+    if (f->cached)
+        for (int i = 0; i < 2; i++)
+            if (sigma == f->ends[i]) return f->values[i];
+    f->at = NAN;
     if (frame_point(f, sigma) != 0) {
         f->failed = 1;
         return 0; /* ends Brent's iteration, which then reports the failure */
     }
+    f->at = sigma;
     if (f->kind == TARGET_OMEGA) return f->w - f->target;
     if (f->kind == TARGET_RETURN)
         return f->angles ? shape_projection(f->p->chain->n, f->th, f->p->last.theta0) : f->a;
@@ -745,7 +758,8 @@ static double frame_phi(double sigma, void *params)
  * zero); the corrected point left in f->w, f->a, f->s or f->th. */
 static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
 {
-    double f_lo = frame_phi(lo, f), f_hi = frame_phi(hi, f);
+    double f_lo = f->known ? f->values[0] : frame_phi(lo, f);
+    double f_hi = f->known ? f->values[1] : frame_phi(hi, f);
     static const char *const what[] = {"a crossing of a rate", "a fold", "a branch point",
                                        "a return to the hanging chain"};
     if (f->failed)
@@ -753,13 +767,19 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
                           "(no convergence at an end of the step)", what[f->kind], f->w0, f->w1);
     if (f_lo == 0 || f_hi == 0 || (f_lo > 0) == (f_hi > 0)) {
         *sigma = fabs(f_lo) <= fabs(f_hi) ? lo : hi;
-        frame_phi(*sigma, f);
-        return GSL_SUCCESS;
+        if (f->at != *sigma) frame_phi(*sigma, f);
+        return f->failed ? whirl_fail(GSL_EFAILED, "%s at omega=%.17g could not be located",
+                                      what[f->kind], f->w)
+                         : GSL_SUCCESS;
     }
     gsl_function fn = {frame_phi, f};
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
+    /* the solver's set evaluates phi at both ends again: the values just found */
+    f->ends[0] = lo, f->ends[1] = hi, f->values[0] = f_lo, f->values[1] = f_hi;
+    f->cached = 1;
     int status = gsl_root_fsolver_set(s, &fn, lo, hi);
+    f->cached = 0;
     for (int it = 0; status == GSL_SUCCESS; it++) {
         status = gsl_root_fsolver_iterate(s);
         if (f->failed || status != GSL_SUCCESS) {
@@ -768,7 +788,12 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
             break;
         }
         double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
-        if (x_hi - x_lo <= 4 * DBL_EPSILON * f->ds) {
+        /* at a fold omega is stationary in sigma: its error is of the order of the square of
+         * sigma's, and the test function t_omega is no better than about 1e-12 of the step
+         * there (the Jacobian is singular), so its bracket is closed to LOCATE_FOLD; elsewhere
+         * to round-off */
+        const double tol = f->kind == TARGET_FOLD ? LOCATE_FOLD : 4 * DBL_EPSILON;
+        if (x_hi - x_lo <= tol * f->ds) {
             *sigma = gsl_root_fsolver_root(s);
             break;
         }
@@ -779,7 +804,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
         }
     }
     gsl_root_fsolver_free(s);
-    if (status == GSL_SUCCESS && (frame_phi(*sigma, f), f->failed))
+    /* the corrected point at the root (Brent's last evaluation, as a rule) */
+    if (status == GSL_SUCCESS && f->at != *sigma && (frame_phi(*sigma, f), f->failed))
         status = whirl_fail(GSL_EFAILED, "%s near omega=%.17g could not be located",
                             what[f->kind], f->w);
     return status;
@@ -800,6 +826,9 @@ static void frame_of_last(whirl_nlink_path *p, step_frame *f, target_kind kind, 
     f->kind = kind;
     f->target = target;
     f->failed = 0;
+    f->known = 0;
+    f->cached = 0;
+    f->at = NAN;
     f->ref = NAN;
     f->th = p->theta_trial; /* free after a step: its start is kept in last.theta0 */
     if (f->angles) {
@@ -1010,6 +1039,11 @@ static int find_events(whirl_nlink_path *p, int branch)
     int status = GSL_SUCCESS;
     if (p->last.t_w * p->t_omega < 0) {
         frame_of_last(p, &f, TARGET_FOLD, 0);
+        /* t_omega at the step's ends: at its start the tangent there, at its end the one
+         * oriented along the step's row (the same as phi's, to the corrector's round-off) */
+        f.known = 1;
+        f.values[0] = p->last.t_w;
+        f.values[1] = p->t_omega;
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)))
             status = add_event(p, WHIRL_EVENT_FOLD, &f, sigma);
     }
