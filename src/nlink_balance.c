@@ -56,9 +56,9 @@ struct nlink_balance {
     double *dl, *d, *du, *du2; /* A and its LU factors: N - 1, N, N - 1, N - 2 */
     double *a_dl, *a_d, *a_du; /* a copy of A (for the refinement): N each */
     double *u, *rf;            /* scratch, 2 N each */
+    double *sn;                /* sin theta_i of the last evaluation, N */
     lapack_int *ipiv;
     int factored;
-    double logdet;             /* ln |det A| */
     int det_sign;              /* sign of det A */
 };
 
@@ -68,7 +68,7 @@ nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c)
     nlink_balance *b = calloc(1, sizeof *b);
     if (b == NULL) goto fail;
     b->c = c;
-    b->v = malloc(15 * n * sizeof *b->v);
+    b->v = malloc(16 * n * sizeof *b->v);
     b->ipiv = malloc(n * sizeof *b->ipiv);
     if (b->v == NULL || b->ipiv == NULL) goto fail;
     b->rho = b->v + n;
@@ -83,6 +83,7 @@ nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c)
     b->a_du = b->a_d + n;
     b->u = b->a_du + n;
     b->rf = b->u + 2 * n;
+    b->sn = b->rf + 2 * n;
     double v = 0;
     for (size_t i = n; i >= 1; i--) b->v[i - 1] = v += c->mass[i - 1] * c->gravity;
     return b;
@@ -117,7 +118,8 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
         if (!(fabs(th) < M_PI_2))
             return whirl_fail(GSL_EDOM, "link %zu at %.6g rad from the vertical: not a hanging "
                               "chain", i, th);
-        const double co = cos(th), h = b->v[i - 1] * tan(th), m = c->mass[i - 1];
+        const double si = sin(th), co = cos(th), h = b->v[i - 1] * (si / co), m = c->mass[i - 1];
+        b->sn[i - 1] = si;
         b->rho[i - 1] = (h - h_below) / (m * w2);
         if (jac) {
             const double s = b->v[i - 1] / (w2 * co * co);
@@ -132,7 +134,7 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
     }
     for (size_t i = 1; i <= n; i++) {
         double rho = b->rho[i - 1];
-        b->res[i - 1] = rho - rho_above - c->length[i - 1] * sin(theta[i - 1]);
+        b->res[i - 1] = rho - rho_above - c->length[i - 1] * b->sn[i - 1];
         if (jac) b->b[i - 1] = -2 * (rho - rho_above) / omega;
         rho_above = rho;
     }
@@ -147,10 +149,8 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
     lapack_int info = LAPACKE_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
     if (info != 0)
         return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega);
-    b->logdet = 0;
     b->det_sign = 1;
     for (size_t i = 0; i < n; i++) {
-        b->logdet += log(fabs(b->d[i]));
         if (b->d[i] < 0) b->det_sign = -b->det_sign;
         if (b->ipiv[i] != (lapack_int)i + 1) b->det_sign = -b->det_sign;
     }
@@ -170,8 +170,16 @@ const double *whirl_nlink_balance_residual(const nlink_balance *b)
 
 double whirl_nlink_balance_logdet(const nlink_balance *b, int *sign)
 {
+    /* the product of the pivots of U (dgttrf) */
+    double logdet = 0;
+    for (size_t i = 0; i < b->c->n; i++) logdet += log(fabs(b->d[i]));
     *sign = b->det_sign;
-    return b->logdet;
+    return logdet;
+}
+
+int whirl_nlink_balance_det_sign(const nlink_balance *b)
+{
+    return b->det_sign;
 }
 
 /* y = A x for the tridiagonal A kept in a_dl, a_d, a_du. */
@@ -185,15 +193,23 @@ static double tri_row(const nlink_balance *b, const double *x, size_t i)
 }
 
 /* One block elimination: x_theta, *x_omega from the right-hand side (f, g) (f NULL: zero);
- * the Schur complement c_omega - c.v in *schur. */
+ * the Schur complement c_omega - c.v in *schur. v = A^-1 b is solved for unless have_v (kept in
+ * b->u from the last elimination at the same factor); w = A^-1 f only where f is given. */
 static int eliminate(nlink_balance *b, const double *c_theta, double c_omega, const double *f,
-                     double g, double *x_theta, double *x_omega, double *schur)
+                     double g, int have_v, double *x_theta, double *x_omega, double *schur)
 {
     size_t n = b->c->n;
     double *v = b->u, *w = b->u + n;
-    for (size_t i = 0; i < n; i++) v[i] = b->b[i], w[i] = f ? f[i] : 0;
-    lapack_int info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 2, b->dl, b->d,
-                                          b->du, b->du2, b->ipiv, b->u, (lapack_int)n);
+    if (!have_v)
+        for (size_t i = 0; i < n; i++) v[i] = b->b[i];
+    for (size_t i = 0; i < n; i++) w[i] = f ? f[i] : 0;
+    /* the columns to solve: v and w, v alone, or w alone */
+    const int from = have_v ? 1 : 0, to = f ? 2 : 1;
+    lapack_int info = 0;
+    if (to > from)
+        info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, to - from, b->dl, b->d,
+                                   b->du, b->du2, b->ipiv, b->u + (size_t)from * n,
+                                   (lapack_int)n);
     if (info != 0) return whirl_fail(GSL_EFAILED, "tridiagonal solve (dgttrs): info %d",
                                      (int)info);
     double cv = 0, cw = 0;
@@ -213,7 +229,7 @@ int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double
                                  double *x_omega, double *schur)
 {
     if (!b->factored) return whirl_fail(GSL_EINVAL, "the force balance is not factorised");
-    int status = eliminate(b, c_theta, c_omega, f, g, x_theta, x_omega, schur);
+    int status = eliminate(b, c_theta, c_omega, f, g, 0, x_theta, x_omega, schur);
     if (status || !refine) return status;
     /* one step of iterative refinement: the residual of the bordered system, solved again */
     size_t n = b->c->n;
@@ -223,7 +239,7 @@ int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double
         rf[i] = (f ? f[i] : 0) - tri_row(b, x_theta, i) - b->b[i] * *x_omega;
         rg -= c_theta[i] * x_theta[i];
     }
-    status = eliminate(b, c_theta, c_omega, rf, rg, dx, &dw, &s2);
+    status = eliminate(b, c_theta, c_omega, rf, rg, 1, dx, &dw, &s2);
     if (!status) {
         for (size_t i = 0; i < n; i++) x_theta[i] += dx[i];
         *x_omega += dw;

@@ -366,7 +366,8 @@ static double angle_norm(size_t n, double w0, double dw, const double *dth)
 
 /* Newton's method on R(omega, theta) = 0 and the row c_w (omega - w0) + c_th . (theta - th0) =
  * sigma from (*w, th) (in place), converged as correct(); the force balance is left factorised
- * at the converged point. Returns 0 when it converged, -1 otherwise. */
+ * at the converged point (or at the point before its last correction, when that was below the
+ * square of NEWTON_TOL). Returns 0 when it converged, -1 otherwise. */
 static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, double c_w,
                           const double *c_th, double sigma, double *w, double *th, int *iters,
                           int max_iter)
@@ -395,6 +396,10 @@ static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, dou
             if (iters) *iters = it + 1;
             done = 1;
         }
+        /* after the iteration that follows a correction below NEWTON_TOL, the factor is that
+         * of a point within the square of it (quadratic convergence): kept for the tangent; at
+         * the floor the converged point's own */
+        if (done && final) return 0;
         if (done) {
             p->shots++;
             return whirl_nlink_balance_factor(p->balance, *w, th) ? -1 : 0;
@@ -419,10 +424,10 @@ static int angle_tangent(whirl_nlink_path *p, double w, double c_w, const double
     if (!(len > 0 && isfinite(len))) return -1;
     *t_w /= len;
     for (size_t i = 0; i < n; i++) t_th[i] /= len;
-    int sign;
-    const double logdet = whirl_nlink_balance_logdet(p->balance, &sign);
+    int sign = whirl_nlink_balance_det_sign(p->balance);
     *det_sign = (schur > 0) == (sign > 0) ? 1 : -1;
     if (test) {
+        const double logdet = whirl_nlink_balance_logdet(p->balance, &sign);
         if (isnan(*ref)) *ref = logdet;
         *test = sign * exp(fmax(-700, fmin(700, logdet - *ref))) * schur;
     }
@@ -1258,6 +1263,13 @@ static int birth_angles(whirl_nlink_path *p)
     if (correct_angles(p, w, scr_zero(p), 0, c_th, BIRTH_AMPLITUDE, &w, th, NULL,
                        LOCATE_NEWTON_MAX))
         return -1;
+    /* the tip's angle of a mode near N is below the round-off of phi's orientation: where the
+     * point came out with its tip at r < 0, its mirror image (R is odd in theta), the other half
+     * of the pitchfork, with the row turned with it */
+    if (tip_of(c, w, th) < 0) {
+        for (size_t i = 0; i < n; i++) th[i] = -th[i], c_th[i] = -c_th[i];
+        if (whirl_nlink_balance_factor(p->balance, w, th)) return -1;
+    }
     double t_w;
     int det;
     if (angle_tangent(p, w, 0, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;

@@ -100,8 +100,10 @@ void whirl_nlink_balance_free(nlink_balance *b); /* NULL is a no-op */
 int whirl_nlink_balance_factor(nlink_balance *b, double omega, const double *theta);
 /* R_i of the last factor (N values, owned by b). */
 const double *whirl_nlink_balance_residual(const nlink_balance *b);
-/* ln |det A| of the last factor, its sign in *sign. */
+/* ln |det A| of the last factor (O(N) logarithms), its sign in *sign. */
 double whirl_nlink_balance_logdet(const nlink_balance *b, int *sign);
+/* The sign of det A of the last factor. */
+int whirl_nlink_balance_det_sign(const nlink_balance *b);
 /* The bordered system [A, dR/domega; c_theta^T, c_omega] (x_theta, x_omega) = (f, g) at the last
  * factor (f NULL: zero), with one step of iterative refinement if refine; the Schur complement
  * c_omega - c_theta . A^{-1} dR/domega in *schur (det of the system = det A * schur). */
