@@ -452,6 +452,65 @@ static double critical_determinant(double omega, void *params)
            (gsl_sf_bessel_Y1(x0) - 0.5 * x0 * gsl_sf_bessel_Y0(x0)) * gsl_sf_bessel_J0(x1);
 }
 
+/* The first n roots of critical_determinant (tip mass m > 0) in one sweep: sign changes are
+ * bracketed once, in steps of 1/32 of the asymptotic spacing sp = pi (sqrt(1+m) + sqrt(m)) / 2
+ * (the phase x1 - x0 = 2 omega (sqrt(1+m) - sqrt(m)) of the Bessel functions grows by pi per
+ * root), from omega = 0.5 (omega_1 lies in (1, j_{0,1}/2]: a pendulum for a heavy tip, the
+ * chain without) in steps of at most 0.05 up to the first root, and each bracket is refined by
+ * Brent's method. No root is missed: consecutive roots are at least 0.76 sp apart (measured
+ * for m = 1e-12 .. 1e8, modes 1..3183; the smallest, 0.768 sp, near m = 0.5 between modes 1
+ * and 2), 24 scan steps, and the count is checked against the roots' asymptotic density: the
+ * k-th root lies in ((k - 1) sp, (k - 0.23) sp) (measured over the same range), so a root
+ * missed or counted twice moves every later one by a whole sp out of the window
+ * ((k - 1.1) sp, (k - 0.1) sp) tested here. Writes omega[0..n-1] (omega may be NULL) and the
+ * n-th root to *last. Polls the stop request every 4096 evaluations. */
+static int critical_sweep(double m, int n, double *omega, double *last)
+{
+    double spacing = 0.5 * M_PI * (sqrt(1 + m) + sqrt(m));
+    gsl_function f = {critical_determinant, &m};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
+    int status = GSL_SUCCESS, found = 0;
+    double lo = 0.5, f_lo = critical_determinant(lo, &m);
+    /* bounded: n roots need about 32 n steps (40 n + 80 with the margin of the first) */
+    for (long iter = 0; found < n; iter++) {
+        if (iter > 40L * (n + 2)) {
+            status = whirl_fail(GSL_EFAILED, "critical rate of mode %d with tip mass %g not "
+                                "found", found + 1, m);
+            break;
+        }
+        if (iter % 4096 == 4095 && whirl_stop_requested()) {
+            status = whirl_fail(WHIRL_EINTERRUPTED, "critical rates with tip mass %g "
+                                "interrupted at mode %d", m, found + 1);
+            break;
+        }
+        double step = found == 0 ? fmin(0.05, spacing / 32) : spacing / 32;
+        double hi = lo + step, f_hi = critical_determinant(hi, &m);
+        if ((f_lo > 0) != (f_hi > 0)) {
+            gsl_root_fsolver_set(s, &f, lo, hi);
+            for (int k = 0; k < REFINE_MAX; k++) {
+                if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
+                if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
+                                           gsl_root_fsolver_x_upper(s), 0,
+                                           2 * DBL_EPSILON) == GSL_SUCCESS)
+                    break;
+            }
+            double root = gsl_root_fsolver_root(s), k = ++found;
+            if (root < (k - 1.1) * spacing || root > (k - 0.1) * spacing) {
+                status = whirl_fail(GSL_EFAILED, "critical rate %d with tip mass %g at omega=%g "
+                                    "is off the roots' density (%g per unit omega): a root "
+                                    "missed or counted twice", found, m, root, 1 / spacing);
+                break;
+            }
+            if (omega) omega[found - 1] = root;
+            *last = root;
+        }
+        lo = hi, f_lo = f_hi;
+    }
+    gsl_root_fsolver_free(s);
+    return status;
+}
+
 int whirl_continuum_critical(int mode, double tip_mass, double *omega)
 {
     if (mode < 1 || mode > WHIRL_CONTINUUM_MODE_MAX)
@@ -463,35 +522,19 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega)
         *omega = 0.5 * gsl_sf_bessel_zero_J0((unsigned)mode);
         return GSL_SUCCESS;
     }
-    /* omega_1 lies in (1, j_{0,1}/2] (a pendulum for a heavy tip, the chain without): scan in
-     * steps of 0.05 up to it; the later roots are about pi / (2 (sqrt(1+m) - sqrt(m))) apart
-     * (the phase x1 - x0 of the Bessel functions): scan in 1/32 of that */
-    double spacing = M_PI / (2 * (sqrt(1 + tip_mass) - sqrt(tip_mass)));
-    gsl_function f = {critical_determinant, &tip_mass};
-    double lo = 0.5, f_lo = critical_determinant(lo, &tip_mass);
-    int found = 0;
-    for (int iter = 0; iter < 40 * (WHIRL_CONTINUUM_MODE_MAX + 2); iter++) {
-        double step = found == 0 ? fmin(0.05, spacing / 32) : spacing / 32;
-        double hi = lo + step, f_hi = critical_determinant(hi, &tip_mass);
-        if ((f_lo > 0) != (f_hi > 0) && ++found == mode) {
-            gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-            if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
-            gsl_root_fsolver_set(s, &f, lo, hi);
-            for (int k = 0; k < REFINE_MAX; k++) {
-                if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
-                if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
-                                           gsl_root_fsolver_x_upper(s), 0,
-                                           2 * DBL_EPSILON) == GSL_SUCCESS)
-                    break;
-            }
-            *omega = gsl_root_fsolver_root(s);
-            gsl_root_fsolver_free(s);
-            return GSL_SUCCESS;
-        }
-        lo = hi, f_lo = f_hi;
-    }
-    return whirl_fail(GSL_EFAILED, "critical rate of mode %d with tip mass %g not found", mode,
-                      tip_mass);
+    return critical_sweep(tip_mass, mode, NULL, omega);
+}
+
+int whirl_continuum_critical_rates(size_t n, double tip_mass, double *omega)
+{
+    if (n < 1 || n > WHIRL_CONTINUUM_MODE_MAX)
+        return whirl_fail(GSL_EINVAL, "the number of modes must be between 1 and %d, got %zu",
+                          WHIRL_CONTINUUM_MODE_MAX, n);
+    int status = whirl_check_tip_mass(tip_mass);
+    if (status != GSL_SUCCESS) return status;
+    if (tip_mass > 0) return critical_sweep(tip_mass, (int)n, omega, &omega[n - 1]);
+    for (size_t k = 1; k <= n; k++) omega[k - 1] = 0.5 * gsl_sf_bessel_zero_J0((unsigned)k);
+    return GSL_SUCCESS;
 }
 
 static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_guess,

@@ -63,6 +63,13 @@ expect_ok "critical 200 modes" critical --links 200 --modes 200 -o "$tmp/c200.cs
 if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($1 == n && $2 > last); last = $2}
      END {exit !(n == 200 && ok == 200 && last > 391.87 && last < 391.88)}' "$tmp/c200.csv"; then
   pass "critical: 200 modes of 200 links"; else fail "critical: 200 modes of 200 links"; fi
+# all 3183 continuum modes with a tip mass in one sweep; the last equals the Bessel determinant's
+# 3183rd root by mpmath (40 digits): 9655.9238544007285973
+expect_ok "critical 3183 modes, tip mass" critical --tip-mass 0.5 --modes 3183 -o "$tmp/c3183.csv"
+if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($1 == n && $2 > last); last = $2}
+     END {exit !(n == 3183 && ok == 3183 && last > 9655.923854400 && last < 9655.923854401)}' \
+     "$tmp/c3183.csv"; then
+  pass "critical: 3183 modes with tip mass 0.5"; else fail "critical: 3183 modes with tip mass 0.5"; fi
 expect_ok "sweep mode 100 of 200" sweep --links 200 --modes 100 --omega-min 150 --omega-max 165 --omega-count 2 -o "$tmp/s200.csv"
 if awk -F, '/^#/ {next} !h {h = $0; next} {n++; ok += ($2 == 100 && $7 == 100)} END {exit !(n == 1 && ok == 1)}' \
      "$tmp/s200.csv"; then pass "sweep: mode 100 of 200 above its birth (160.93) only"

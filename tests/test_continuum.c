@@ -7,7 +7,9 @@
  * - the sub-chain property: below its first node a mode-k chain is a mode-(k-1) chain of length
  *   l = 1 - s_1 at the same omega (in its own units: rate omega sqrt(l), tip mass m / l);
  * - the N-link chain converges to it as N grows (order about 1); its critical rates too;
- * - the critical rates with a tip mass: the mode exists just above and not just below;
+ * - the critical rates with a tip mass: the mode exists just above and not just below; all 3183
+ *   in one sweep equal the per-mode roots, tend to j_{0,k}/2 as m -> 0, and the highest equals an
+ *   independent 40-digit evaluation of the Bessel determinant;
  * - near-critical tip radii against a long-double Taylor-series integration of the unsplit
  *   equations;
  * - modes up to 6, near-critical and high rates, tip masses, the sampled shape, the errors. */
@@ -250,6 +252,44 @@ static void test_critical_with_tip_mass(void **state)
     assert_true(rel(omega, 1) < 1e-4);
 }
 
+/* Modes 1..3183 with a tip mass in one sweep. References: mode 3183's root of the determinant in
+ * src/continuum.c's header comment, by mpmath 1.2.1 (40 digits, besselj/bessely, findroot),
+ * whose count was confirmed by the sign changes of the same determinant (scipy.special) in steps
+ * of 1e-3 in omega: 9655.9238544007285973 (m = 0.5), 20450.371510074109876 (m = 3.7),
+ * 5617.4293884071243985 (m = 0.0137). */
+static void test_critical_rates_sweep(void **state)
+{
+    (void)state;
+    enum { K = WHIRL_CONTINUUM_MODE_MAX };
+    static double rates[K];
+    const double masses[] = {0.5, 3.7, 0.0137};
+    const double ref[] = {9655.9238544007285973, 20450.371510074109876, 5617.4293884071243985};
+    for (size_t t = 0; t < 3; t++) {
+        assert_int_equal(whirl_continuum_critical_rates(K, masses[t], rates), GSL_SUCCESS);
+        assert_true(rel(rates[K - 1], ref[t]) < 1e-13);
+        for (int k = 2; k <= K; k++) assert_true(rates[k - 1] > rates[k - 2]);
+        const int probe[] = {1, 2, 3, 61, 1000, K};
+        for (size_t i = 0; i < 6; i++) {
+            double omega;
+            assert_int_equal(whirl_continuum_critical(probe[i], masses[t], &omega), GSL_SUCCESS);
+            assert_true(omega == rates[probe[i] - 1]);
+        }
+    }
+    /* m -> 0: every root tends to j_{0,k}/2 (a root missed would shift all later ones) */
+    assert_int_equal(whirl_continuum_critical_rates(K, 1e-12, rates), GSL_SUCCESS);
+    for (int k = 1; k <= K; k++)
+        assert_true(rel(rates[k - 1], 0.5 * gsl_sf_bessel_zero_J0((unsigned)k)) < 1e-9);
+    assert_int_equal(whirl_continuum_critical_rates(K, 0, rates), GSL_SUCCESS);
+    assert_true(rates[K - 1] == 0.5 * gsl_sf_bessel_zero_J0(K));
+    /* a stop request ends the sweep */
+    whirl_stop_request();
+    assert_int_equal(whirl_continuum_critical_rates(K, 0.5, rates), WHIRL_EINTERRUPTED);
+    whirl_stop_clear();
+    assert_int_equal(whirl_continuum_critical_rates(0, 0.5, rates), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_critical_rates(K + 1, 0.5, rates), GSL_EINVAL);
+    assert_int_equal(whirl_continuum_critical_rates(3, -1, rates), GSL_EINVAL);
+}
+
 static void test_sampled_shape(void **state)
 {
     (void)state;
@@ -432,6 +472,7 @@ int main(void)
         cmocka_unit_test(test_sub_chain),
         cmocka_unit_test(test_nlink_converges),
         cmocka_unit_test(test_critical_with_tip_mass),
+        cmocka_unit_test(test_critical_rates_sweep),
         cmocka_unit_test(test_sampled_shape),
         cmocka_unit_test(test_branch_equals_fresh),
         cmocka_unit_test(test_near_critical_reference),

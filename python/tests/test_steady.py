@@ -14,6 +14,28 @@ def test_critical_continuum_is_half_the_bessel_zeros():
     np.testing.assert_allclose(whirl.critical(12), jn_zeros(0, 12) / 2, rtol=1e-12, atol=0)
 
 
+def test_critical_tip_mass_equals_scipy_determinant_roots():
+    # with a tip mass m: the roots of the J0/Y0 determinant of the linearised problem, here
+    # bracketed by scipy on a grid of 1e-3 in omega (finer than any gap between roots) and
+    # refined by brentq: all 300 in order, none missed
+    from scipy.optimize import brentq
+    from scipy.special import j0, j1, y0, y1
+
+    def det(w, m):
+        x0, x1 = 2 * w * np.sqrt(m), 2 * w * np.sqrt(1 + m)
+        return ((j1(x0) - x0 / 2 * j0(x0)) * y0(x1)
+                - (y1(x0) - x0 / 2 * y0(x0)) * j0(x1))
+
+    for m in (0.0137, 0.4821, 3.7):
+        got = whirl.critical(300, tip_mass=m)
+        grid = np.arange(0.5, got[-1] + 0.25, 1e-3)
+        d = det(grid, m)
+        i = np.nonzero(np.signbit(d[:-1]) != np.signbit(d[1:]))[0]
+        assert len(i) == 300
+        ref = [brentq(det, grid[j], grid[j + 1], args=(m,), xtol=1e-14, rtol=1e-15) for j in i]
+        np.testing.assert_allclose(got, ref, rtol=1e-13, atol=0)
+
+
 def test_critical_physical_units_scale_by_sqrt_g_over_l():
     L, g = 0.6, 9.81
     np.testing.assert_allclose(whirl.critical(5, length=L, mass=0.05, gravity=g),

@@ -43,6 +43,7 @@ typedef struct whirl_shape_info {
     double node_s[64];
 } whirl_shape_info;
 int whirl_continuum_critical(int mode, double tip_mass, double *omega);
+int whirl_continuum_critical_rates(size_t n, double tip_mass, double *omega);
 int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
                           whirl_shape_info *info);
 int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts, double *s,

@@ -116,10 +116,7 @@ def critical(modes=3, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.
         if modes > lib.WHIRL_CONTINUUM_MODE_MAX:
             raise ValueError("modes must be <= %d, got %d" % (lib.WHIRL_CONTINUUM_MODE_MAX,
                                                              modes))
-        w = ffi.new("double *")
-        for k in range(modes):
-            check(lib.whirl_continuum_critical(k + 1, m, w))
-            out[k] = w[0]
+        check(lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out)))
     else:
         if modes > chain.n:
             raise ValueError("a chain of %d links has modes 1..%d, asked for %d"

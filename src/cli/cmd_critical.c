@@ -25,7 +25,7 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "--modes %d exceeds the %d modes of a chain of %d links", modes,
                          m.links, m.links);
     }
-    cli_catch_interrupts(); /* the continuum's rates with a tip mass: a scan per mode */
+    cli_catch_interrupts(); /* the continuum's rates with a tip mass: a sweep over the rates */
     if (steady_cli_check_mode(cmd, &m, modes)) {
         steady_cli_model_free(&m);
         return 1;
@@ -35,14 +35,16 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
         steady_cli_model_free(&m);
         return cli_error(cmd, "out of memory for %d critical rates", modes);
     }
-    /* the N-link chain's in one eigen-solve, the continuum's one by one */
-    if (m.chain && whirl_nlink_critical(m.chain, (size_t)modes, omega) != GSL_SUCCESS)
+    /* the N-link chain's in one eigen-solve, the continuum's in one sweep */
+    int status = m.chain ? whirl_nlink_critical(m.chain, (size_t)modes, omega)
+                         : whirl_continuum_critical_rates((size_t)modes,
+                                                          steady_cli_tip_mass(&m), omega);
+    if (status == WHIRL_EINTERRUPTED || cli_interrupted)
+        rc = (cli_error(cmd, "%s", status == WHIRL_EINTERRUPTED ? whirl_last_error()
+                                                                 : "interrupted"),
+              CLI_EXIT_INTERRUPTED);
+    else if (status != GSL_SUCCESS)
         rc = cli_error(cmd, "%s", whirl_last_error());
-    for (int k = 1; !m.chain && k <= modes && rc == 0; k++)
-        if (cli_interrupted || steady_cli_critical(cmd, &m, k, &omega[k - 1]))
-            rc = cli_interrupted ? (cli_error(cmd, "interrupted at mode %d", k),
-                                    CLI_EXIT_INTERRUPTED)
-                                 : 1;
     if (rc) {
         free(omega);
         steady_cli_model_free(&m);
