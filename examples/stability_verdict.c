@@ -19,9 +19,9 @@
  *
  * Expected output (examples/stability_verdict.out; `make check` compares it):
  *     mode 1 at omega = 4: linear growth 0 -> stable; run: stable, rate 0, largest deviation 1 x ...
- *       run: 35000 steps, 705022 right-hand sides
- *     mode 2 at omega = 9: linear growth 0.4486 -> unstable; run: unstable, rate 0.4479, ...
- *       run: 6440 steps, 114323 right-hand sides
+ *       run: 35000 steps, 648660 right-hand sides
+ *     mode 2 at omega = 9: linear growth 0.4486 -> unstable; run: unstable, rate 0.4486, ...
+ *       run: 10292 steps, 177880 right-hand sides
  * and exit status 0; a disagreement prints why and exits 1. */
 #include <math.h>
 #include <stdio.h>

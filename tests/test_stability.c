@@ -17,7 +17,10 @@
  *    planar formulas without drive and drag (also for a shape turned about the axis); perturbed
  *    runs: the growth of an unstable trailing shape, the convergence of a stable one;
  *  - high rates (N = 15 at omega = 150): the shape linearised is an equilibrium to round-off (a
- *    force balance written here), its growth that of a perturbed run, also in the window search.
+ *    force balance written here), its growth that of a perturbed run, also in the window search;
+ *  - a high mode of a long chain (N = 100, mode 50, omega 250): the leading eigenvalues equal
+ *    those of a finite-difference Jacobian of the dynamics' right-hand side (Cartesian state)
+ *    about the shape, by LAPACK's dgeev.
  * Equilibria come from a shooting written here (recursion up from the tip, bisection on the tip
  * radius), independent of the steady-shape module; that module's shapes are compared too. */
 #include <setjmp.h>
@@ -38,6 +41,9 @@
 #include <gsl/gsl_sort.h>
 #include <gsl/gsl_sort_vector.h>
 
+#include <lapacke.h>
+
+#include "whirl/dynamics.h"
 #include "whirl/stability.h"
 #include "stop_soon.h"
 
@@ -1389,6 +1395,79 @@ static void test_errors(void **state)
     whirl_chain_free(c);
 }
 
+
+/* The largest real part of the eigenvalues and of those with Im > 0 the three largest, of the
+ * linearisation and of a central-difference Jacobian of whirl_dyn_rhs (steps 1e-6 of the largest
+ * link vector entry, times omega for the rates) about the same shape: N = 100, mode 50, omega = 250. The
+ * Cartesian state holds 2 N constraint directions more than q (their eigenvalues are 0 in the
+ * exact Jacobian, order 1e-3 in the differenced one: far below the unstable ones). */
+static int by_real_desc(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x < y) - (x > y);
+}
+
+static void test_high_mode_by_rhs_jacobian(void **state)
+{
+    (void)state;
+    enum { N = 100 };
+    whirl_chain *c = whirl_chain_alloc_uniform(N, 0);
+    whirl_model m = {0};
+    m.chain = c, m.dim = 3, m.frame = WHIRL_FRAME_ROTATING, m.omega = 250;
+    whirl_stability *w = whirl_stability_alloc(N);
+    assert_non_null(w);
+    double growth;
+    assert_int_equal(whirl_stability_mode(w, &m, 50, 0, NULL, &growth), 0);
+    size_t count;
+    const double *re, *im;
+    assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
+    double lin[4 * N], fd[4];
+    size_t nl = 0;
+    for (size_t i = 0; i < count; i++)
+        if (im[i] > 0) lin[nl++] = re[i];
+    qsort(lin, nl, sizeof *lin, by_real_desc);
+    const double *x, *y, *z;
+    whirl_stability_nodes(w, &x, &y, &z);
+    double links[3 * N];
+    assert_int_equal(whirl_shape_links(N, x, y, z, links), 0);
+    whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_non_null(d);
+    const size_t n = whirl_dyn_size(d);
+    double *y0 = malloc(n * sizeof *y0), *yp = malloc(n * sizeof *yp);
+    double *fp = malloc(n * sizeof *fp), *fm = malloc(n * sizeof *fm);
+    double *jac = malloc(n * n * sizeof *jac), *wr = malloc(n * sizeof *wr);
+    double *wi = malloc(n * sizeof *wi);
+    assert_true(y0 && yp && fp && fm && jac && wr && wi);
+    assert_int_equal(whirl_dyn_state_from_shape(d, 0, links, m.omega, y0), 0);
+    double scale = 0; /* the largest link vector entry; the rates' (all 0 at rest) times omega */
+    for (size_t i = 0; 2 * i < n; i++) scale = fmax(scale, fabs(y0[i]));
+    for (size_t j = 0; j < n; j++) { /* column j, column-major */
+        const double h = 1e-6 * scale * (2 * j < n ? 1 : m.omega);
+        memcpy(yp, y0, n * sizeof *yp);
+        yp[j] = y0[j] + h;
+        assert_int_equal(whirl_dyn_rhs(0, yp, fp, d), 0);
+        yp[j] = y0[j] - h;
+        assert_int_equal(whirl_dyn_rhs(0, yp, fm, d), 0);
+        for (size_t i = 0; i < n; i++) jac[j * n + i] = (fp[i] - fm[i]) / (2 * h);
+    }
+    assert_int_equal(LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)n, jac,
+                                   (lapack_int)n, wr, wi, NULL, 1, NULL, 1), 0);
+    size_t nf = 0;
+    for (size_t i = 0; i < n; i++)
+        if (wi[i] > 0) wr[nf++] = wr[i];
+    qsort(wr, nf, sizeof *wr, by_real_desc);
+    for (int k = 0; k < 4; k++) fd[k] = wr[k];
+    print_message("# N = 100 mode 50 omega 250: growth %.10g; linearisation %.10g %.10g %.10g, "
+                  "Jacobian of the right-hand side %.10g %.10g %.10g\n", growth, lin[0], lin[1],
+                  lin[2], fd[0], fd[1], fd[2]);
+    assert_true(growth == lin[0] && growth > 72.3 && growth < 72.4);
+    for (int k = 0; k < 3; k++) assert_true(fabs(fd[k] / lin[k] - 1) < 1e-7);
+    free(y0), free(yp), free(fp), free(fm), free(jac), free(wr), free(wi);
+    whirl_dyn_free(d);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -1408,6 +1487,7 @@ int main(void)
         cmocka_unit_test(test_worker_spectrum),
         cmocka_unit_test(test_worker_stop),
         cmocka_unit_test(test_high_rate_shape),
+        cmocka_unit_test(test_high_mode_by_rhs_jacobian),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -141,7 +141,10 @@ WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
 typedef struct whirl_stability_run_params {
     double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100; at
                             most 1e9 time steps in all (GSL_EINVAL beyond) */
-    double perturbation; /* EPS in (0, 1): each link direction turned by EPS [rad]; 1e-6 */
+    double perturbation; /* EPS in (0, 1): each link direction turned by EPS [rad]; 1e-10
+                            (small enough for a linear stretch of some 8 e-folds of growth when
+                            an unstable mode turns a few links 1e3 times faster than it moves
+                            the masses, as on long chains at high modes) */
     unsigned long seed;  /* seed of the random directions (GSL's mt19937); 1 */
     const char *method;  /* integrator (whirl_integrator_methods); "gauss2" */
     double dt;           /* fixed step [T]; 0: the default, min(period / 200, 2 / (nu + omega),
@@ -161,8 +164,10 @@ WHIRL_API whirl_stability_run_params whirl_stability_run_defaults(void);
 
 typedef struct whirl_stability_run_result {
     double sim_growth;    /* exponential rate fitted to log(deviation) over the stretch where it
-                             grows from 100 to 1e4 times the initial deviation (or to the end of
-                             the run) [1/T]; 0 unless the verdict is unstable */
+                             grows from 100 times the initial deviation until some link has
+                             turned by 1e-3 rad from the shape and it is 1e4 times the initial
+                             one, or until 1e8 times or 1e-2 L, or to the end of the run [1/T];
+                             0 unless the verdict is unstable */
     double max_deviation; /* largest deviation over the run / the initial one */
     double end_deviation; /* deviation at the end of the run / the initial one */
     double initial;       /* the initial deviation [L] */
@@ -183,7 +188,7 @@ typedef struct whirl_stability_run_result {
  * times the initial one; converging (internal damping or air drag > 0 only) as soon as its
  * largest value over a whole rotation period is at most 1/100 of it, or if over the last period
  * of the run it is at most 1/10 of it; stable otherwise. The run stops early once the verdict is settled: unstable
- * after the fitted stretch ends (1e4 times or 1e-2 L), converging at once. GSL_EINVAL on bad
+ * after the fitted stretch ends (see sim_growth), converging at once. GSL_EINVAL on bad
  * parameters or links of the wrong length (1e-9 relative). Allocates its own dynamics and
  * integrator. The shape is not checked to be an equilibrium. */
 WHIRL_API int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,

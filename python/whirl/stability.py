@@ -51,7 +51,7 @@ def _observe_stop(t, ratio, data):
     return lib.WHIRL_EINTERRUPTED if lib.whirl_stop_requested() else 0
 
 
-def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, perturb=1e-6,
+def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, perturb=1e-10,
               method="rk4", seed=1, dt=0.0, drive_radius=0.0, air_drag=0.0,
               air_drag_quadratic=0.0, side=1):
     """The stability of the steady shape of ``mode`` at ``omega`` [sqrt(g/L)] of the N-link

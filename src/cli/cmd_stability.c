@@ -508,7 +508,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     options o = {0};
     o.links = 25;
     o.periods = 100;
-    o.perturb = 1e-6;
+    o.perturb = 1e-10;
     o.seed = 1;
     o.method = "rk4";
     o.modes.n = 3;
@@ -540,7 +540,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--periods", NULL, CLI_DOUBLE, &o.periods, NULL, "P",
          "run length in rotation periods (default 100)", "(0, inf)"},
         {"--perturb", NULL, CLI_DOUBLE, &o.perturb, NULL, "EPS",
-         "turn of each link direction [rad] (default 1e-6)", "(0, 1)"},
+         "turn of each link direction [rad] (default 1e-10)", "(0, 1)"},
         {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)",
          "[0, inf)"},
         {"--damping", NULL, CLI_DOUBLE, &o.damping, NULL, "D",
