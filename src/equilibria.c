@@ -384,6 +384,22 @@ static int tip_fn(void *ctx, double x, double *g, double *dg, double *sl, double
     return GSL_SUCCESS;
 }
 
+/* The link angles theta_i = atan(H_i / V_i) of the tip scan's own shot at x (the shot whose
+ * residual changed sign there) into theta[0..N-1], as the start of Newton's method. Not those
+ * of a second shot from the tip radius by the positions' recursion (whirl_nlink_positions):
+ * where roots crowd, the two recursions' round-off moves the upper links as much as a change of
+ * the tip radius to a neighbouring root would, and their angles differ by up to 0.11 rad (10
+ * links at omega = 50: 6 roots with more than 1e-3 rad; 24 at omega = 60). Newton's method
+ * reached the same equilibrium from both at every root of 5, 7, 10 and 25 links in the
+ * README's tables, but only the scan's own angles belong to the sign change found. */
+static int angles_of_scan(const nlink_scan *s, double x, double *theta)
+{
+    double g, dg;
+    int status = tip_fn((void *)s, x, &g, &dg, NULL, NULL);
+    for (size_t i = 0; i < s->c->n && !status; i++) theta[i] = atan(s->slope[i]);
+    return status;
+}
+
 /* y = ln(theta_1 / (pi/2 - theta_1)) */
 static double theta_of_y(double y) { return M_PI_2 / (1 + exp(-y)); }
 
@@ -468,15 +484,6 @@ fail:
     angle_ws_free(w);
     whirl_fail(GSL_ENOMEM, "out of memory for Newton's method on %zu links", n);
     return NULL;
-}
-
-/* The link angles of the tip shot with tip radius tip_r into w->theta. */
-static int angles_of_tip(angle_ws *w, double tip_r)
-{
-    int status = whirl_nlink_positions(w->c, w->omega, tip_r, w->r, w->z, w->t);
-    for (size_t i = 1; i <= w->c->n && !status; i++)
-        w->theta[i - 1] = atan2(w->r[i] - w->r[i - 1], w->z[i - 1] - w->z[i]);
-    return status;
 }
 
 /* Polishes the equilibrium near the link angles w->theta (from a shot): the polished angles
@@ -877,7 +884,7 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         double x, a = 0;
         if ((status = check_stop(i, tip.n))) break;
         if (!(status = polish(tip_fn, &s, tip.br[i].lo, tip.br[i].hi, &x)))
-            a = tip_of_x(&s, x), status = angles_of_tip(aw, a);
+            a = tip_of_x(&s, x), status = angles_of_scan(&s, x, aw->theta);
         if (!status) status = angle_polish(aw, &a);
         if (status == GSL_EFAILED || status == GSL_ESING) {
             res->unpolished++; /* reported; the other scan is the check */
