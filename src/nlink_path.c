@@ -28,7 +28,12 @@
  * decreasing below 1e-8: the round-off floor of the shot on a high mode). The step is rejected and
  * halved if Newton needs more than NEWTON_MAX iterations, the tangent turns by more than
  * TURN_MAX or a link angle changes by more than DTHETA_MAX (the corrector never lands on another
- * curve); it grows 1.5-fold after an easy step, up to DS_MAX.
+ * curve); it grows 1.5-fold after an easy step, up to DS_MAX. The smallest step is DS_MIN on the
+ * shot (below it the path goes over to the link angles, below) and DS_MIN_ANGLES in the link
+ * angles: a branch can turn within an arclength of 1e-7 (a tip mass of 1e12 chain masses makes
+ * the chain a string pinned at both ends, whose symmetric branches split in pitchforks; the
+ * links' own weight unfolds each at 1e-12, and the branch from the birth turns onto the
+ * asymmetric side over an arclength of order the square root of that).
  *
  * Test functions between two accepted points: a fold where t_omega changes sign; a branch point
  * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as
@@ -40,7 +45,12 @@
  * and an isolated curve 5% apart). A genuine branch point is crossed by a step of any length,
  * a neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on
  * which the orientation reverses is rejected and halved, and only a reversal that persists
- * down to DS_BRANCH is located as a branch point. Each is located by Brent's method
+ * down to DS_BRANCH is located as a branch point (an unfolded branch point, two curves that
+ * turn away from each other within a distance d, is followed around its turn where d exceeds
+ * DS_BRANCH, and taken as a branch point below). Where the path in the link angles cannot be
+ * followed at any step down to DS_MIN_ANGLES (the tangent turning too fast: an unfolding too
+ * narrow for the tangent's round-off), the shortest step up to DS_CROSS on which the
+ * orientation reverses is taken across, as at a branch point. Each is located by Brent's method
  * (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every evaluation a corrector
  * solve on the hyperplane at sigma (at the step's ends a fold's test function is known: the
  * tangent of each end): at a fold omega(sigma) is stationary, so the arclength error enters
@@ -90,10 +100,14 @@
 #include "steady_internal.h"
 
 #define DS_FIRST 0.02    /* first step from a start */
-#define DS_MIN 1e-7      /* smallest step before the continuation fails */
+#define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
+#define DS_MIN_ANGLES 1e-10 /* smallest step in the link angles before the continuation fails */
 #define DS_MAX 0.1       /* largest step */
-#define DS_BRANCH 1e-6   /* a step longer than this on which the orientation test changes sign
+#define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
                           * is rejected (halved): see the header comment */
+#define DS_CROSS 1e-6    /* in the link angles, the longest step taken across a branch point
+                          * where the path cannot be followed at any step: see the header
+                          * comment */
 #define TURN_MAX 0.2     /* largest turn of the tangent per step [rad] */
 #define DTHETA_MAX 0.2   /* largest change of a link angle per step [rad] */
 #define NEWTON_MAX 10    /* corrector iterations per trial step */
@@ -1111,7 +1125,7 @@ static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
         return whirl_fail(status, "the continuation in the link angles fails at omega=%.17g "
                           "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
                           "the smallest step %g", w0, a0, tension_spread(p->chain, w0, a0),
-                          p->why, DS_MIN);
+                          p->why, DS_MIN_ANGLES);
     return whirl_fail(status, "the continuation fails at omega=%.17g (tip radius %.6g): %s at "
                       "the smallest step %g", w0, a0, p->why, DS_MIN);
 }
@@ -1151,6 +1165,8 @@ static int angle_step(whirl_nlink_path *p)
     const double w0 = p->omega, a0 = p->tip_r;
     double *c_th = scr_cth(p);
     const double c_w = p->t_omega / (w0 * w0);
+    int crossing = 0; /* the trials probe for a step across a branch point */
+    const char *why = "";
     for (;;) {
         for (size_t i = 0; i < n; i++) c_th[i] = p->t_theta[i] / (double)n;
         const double ds = p->ds;
@@ -1169,15 +1185,34 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
-            if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
+            if (turn > TURN_MAX && !crossing)
+                ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
-            if (det != p->det_sign && ds > DS_BRANCH)
+            if (det != p->det_sign && ds > DS_BRANCH && !crossing)
                 ok = 0, p->why = "the orientation test changes sign (another curve close by)";
+            if (det == p->det_sign && crossing) ok = 0;
         }
         if (!ok) {
             p->rejected++;
+            if (crossing) {
+                /* the probe: steps doubling up to DS_CROSS */
+                p->ds *= 2;
+                if (p->ds > DS_CROSS) {
+                    p->why = why;
+                    return fail_at(p, GSL_EFAILED, w0, a0);
+                }
+                continue;
+            }
             p->ds *= 0.5;
-            if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
+            if (p->ds < DS_MIN_ANGLES) {
+                /* the curve cannot be followed at any step: if a curve of the opposite
+                 * orientation lies within DS_CROSS ahead, the two meet there to within the
+                 * resolution of the steps (a branch point, its unfolding narrower than the
+                 * smallest step): the shortest step that reaches it is taken across */
+                why = p->why;
+                crossing = 1;
+                p->ds = 2 * DS_MIN_ANGLES;
+            }
             continue;
         }
         keep_start(p, NULL, w0, a0, ds);
@@ -1221,7 +1256,7 @@ static int angle_step(whirl_nlink_path *p)
         p->ended = 0;
         p->rejected++;
         p->ds = 0.5 * ds;
-        if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
+        if (crossing || p->ds < DS_MIN_ANGLES) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
 
@@ -1340,11 +1375,15 @@ static int shot_step(whirl_nlink_path *p)
                 return angle_step(p);
             }
             p->ds *= 0.5;
+            /* the first step from the birth no longer than the amplitude of the first point in
+             * the link angles: begun there (a shorter one lands at amplitudes where the force
+             * balance at fixed omega cannot tell the branch from the hanging chain, and the
+             * path, handed over to the link angles, follows the hanging chain instead) */
+            if (p->steps == 0 && a0 == 0 && p->ds < BIRTH_AMPLITUDE) {
+                if (birth_angles(p) == 0) return angle_step(p);
+                return fail_at(p, GSL_EFAILED, w0, a0);
+            }
             if (p->ds < DS_MIN) {
-                if (p->steps == 0 && a0 == 0) {
-                    if (birth_angles(p) == 0) return angle_step(p);
-                    return fail_at(p, GSL_EFAILED, w0, a0);
-                }
                 if (to_angles(p) == 0) {
                     p->ds = DS_FIRST;
                     return angle_step(p);
