@@ -787,8 +787,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     if (f_lo == 0 || f_hi == 0 || (f_lo > 0) == (f_hi > 0)) {
         *sigma = fabs(f_lo) <= fabs(f_hi) ? lo : hi;
         if (f->at != *sigma) frame_phi(*sigma, f);
-        return f->failed ? whirl_fail(GSL_EFAILED, "%s at omega=%.17g could not be located",
-                                      what[f->kind], f->w)
+        return f->failed ? whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not "
+                                      "be located", what[f->kind], f->w0, f->w1)
                          : GSL_SUCCESS;
     }
     gsl_function fn = {frame_phi, f};
@@ -802,8 +802,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     for (int it = 0; status == GSL_SUCCESS; it++) {
         status = gsl_root_fsolver_iterate(s);
         if (f->failed || status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "%s near omega=%.17g could not be located",
-                                what[f->kind], f->w);
+            status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be "
+                                "located", what[f->kind], f->w0, f->w1);
             break;
         }
         double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
@@ -825,8 +825,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     gsl_root_fsolver_free(s);
     /* the corrected point at the root (Brent's last evaluation, as a rule) */
     if (status == GSL_SUCCESS && f->at != *sigma && (frame_phi(*sigma, f), f->failed))
-        status = whirl_fail(GSL_EFAILED, "%s near omega=%.17g could not be located",
-                            what[f->kind], f->w);
+        status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be "
+                            "located", what[f->kind], f->w0, f->w1);
     return status;
 }
 

@@ -28,6 +28,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -894,6 +895,43 @@ static void test_stalled_branch(void **state)
     whirl_chain_free(c);
 }
 
+/* An event the path cannot locate names the step's rates: mode 5 of this 12-link chain meets the
+ * hanging chain near omega_6 = 7.93 on a step of the tip shot whose return is not located; the
+ * message gave the last corrector's rate, omega=-27.2, before. */
+static void test_unlocated_event(void **state)
+{
+    (void)state;
+    static const double length[12] = {0.70403423566254408, 0.0028799247651691614,
+        179.62487807681703, 0.55409840839684177, 7.0846261124165908, 2.1244018786508869,
+        315.91485889581793, 0.0038842487934508513, 7.4303958899335383, 1.2598171177511306,
+        42.309625851784432, 0.0023127677208833767};
+    static const double mass[12] = {0.011440600590855081, 97.279005759553158,
+        0.0097910690387522561, 0.37916439148618519, 254.12836818080615, 0.085565408476195495,
+        24.871044560929754, 296.19505062745651, 102.7913799085638, 0.0046280411468803042,
+        0.17736707190375597, 0.17457857631998686};
+    whirl_chain *c = whirl_chain_alloc(12, length, mass, 1);
+    assert_non_null(c);
+    double crit[12];
+    assert_int_equal(whirl_nlink_critical(c, 12, crit), GSL_SUCCESS);
+    whirl_shape_info info;
+    const int status = whirl_nlink_solve(c, 10 * crit[4], 5, 0, &info);
+    const char *message = whirl_last_error();
+    print_message("12 links, mode 5 at 10 times its birth: %s\n", message);
+    if (status == GSL_SUCCESS) {
+        /* located after all: the shape is the branch's */
+        assert_int_equal(info.mode, 5);
+    } else {
+        assert_int_equal(status, GSL_EFAILED);
+        const char *between = strstr(message, " between omega=");
+        assert_non_null(between);
+        double w0 = 0, w1 = 0;
+        assert_int_equal(sscanf(between, " between omega=%lf and %lf", &w0, &w1), 2);
+        assert_true(fmin(w0, w1) >= crit[4] && fmax(w0, w1) <= 10 * crit[4]);
+        assert_null(strchr(message, '\n'));
+    }
+    whirl_chain_free(c);
+}
+
 /* whirl_nlink_branch_nodes: the row of each rate holds the nodes whirl_nlink_solve_nodes gives
  * at it (N = 15 mode 7 at 150 and 60, in that order, where the tip radius alone no longer fixes
  * them), a rate below the birth leaves its row as it was; all three arrays or none. */
@@ -937,7 +975,7 @@ int main(void)
         cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
         cmocka_unit_test(test_nodes_lengths),
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_birth_in_angles),
-        cmocka_unit_test(test_stalled_branch),
+        cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
