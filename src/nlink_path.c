@@ -141,11 +141,12 @@ static double ratio(double x, double y, double t, double d, int big)
     return d == 1 ? (x / t) * y : (x / t) * (y / t);
 }
 
-/* G, its derivatives and the metric at (omega, a); if theta is not NULL, the link angles into
- * theta[0..N-1]; if embed is not NULL, the unit tangent (G_a, -G_omega) normalised, embedded in
- * (ln omega, theta / sqrt(N)), into embed[0..N] (embed[N+1..2N] is scratch). */
-static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, double *theta,
-                        double *embed)
+/* G, with derivs its derivatives and the metric at (omega, a) (without, those are NaN); if theta
+ * is not NULL, the link angles into theta[0..N-1]; if embed is not NULL (and derivs), the unit
+ * tangent (G_a, -G_omega) normalised, embedded in (ln omega, theta / sqrt(N)), into embed[0..N]
+ * (embed[N+1..2N] is scratch). */
+static inline void shoot_core(const whirl_chain *c, double omega, double a, shot *s,
+                              double *theta, double *embed, int derivs)
 {
     size_t n = c->n;
     double u = 1, u_a = 0, u_w = 0, eta = 0, eta_a = 0, eta_w = 0, v = 0;
@@ -153,33 +154,38 @@ static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, d
     double q = 1, q_a = 0, q_w = 0; /* sum of u_i^2 and its derivatives */
     for (size_t i = n; i >= 1; i--) {
         double m = c->mass[i - 1], l = c->length[i - 1];
-        eta_w += m * (2 * omega * u + w2 * u_w);
+        if (derivs) eta_w += m * (2 * omega * u + w2 * u_w);
         eta += m * w2 * u;
-        eta_a += m * w2 * u_a;
         v += m * c->gravity;
-        double h = a * eta, h_a = eta + a * eta_a, h_w = a * eta_w;
-        double t2 = h * h + v * v, t = sqrt(t2);
+        double h = a * eta, t2 = h * h + v * v, t = sqrt(t2);
         /* H^2 ~ omega^4 (and H H_a) overflow from omega ~ 1e77: from T^2 = 1e300 on,
          * T = hypot(H, V) and ratios to it */
         const int big = !(t2 < 1e300);
         if (big) t = hypot(h, v);
-        double t_a = ratio(h, h_a, t, 1, big), t_w = ratio(h, h_w, t, 1, big);
         u -= l * eta / t;
+        q += u * u;
+        if (theta) theta[i - 1] = atan2(h, v);
+        if (!derivs) continue;
+        eta_a += m * w2 * u_a;
+        double h_a = eta + a * eta_a, h_w = a * eta_w;
+        double t_a = ratio(h, h_a, t, 1, big), t_w = ratio(h, h_w, t, 1, big);
         u_a -= l * (eta_a / t - ratio(eta, t_a, t, t2, big));
         u_w -= l * (eta_w / t - ratio(eta, t_w, t, t2, big));
-        q += u * u;
         q_a += 2 * u * u_a;
         q_w += 2 * u * u_w;
         double th_a = ratio(v, h_a, t, t2, big), th_w = ratio(v, h_w, t, t2, big);
         s_aa += th_a * th_a;
         s_wa += th_a * th_w;
         s_ww += th_w * th_w;
-        if (theta) theta[i - 1] = atan2(h, v);
         if (embed) embed[i] = th_w, embed[n + i] = th_a;
     }
     /* G = u_0 / |u| */
     double norm = sqrt(q);
     s->g = u / norm;
+    if (!derivs) {
+        s->g_a = s->g_w = s->m_ww = s->m_wa = s->m_aa = NAN;
+        return;
+    }
     s->g_a = u_a / norm - 0.5 * u * q_a / (q * norm);
     s->g_w = u_w / norm - 0.5 * u * q_w / (q * norm);
     s->m_ww = 1 / w2 + s_ww / (double)n;
@@ -194,9 +200,15 @@ static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, d
     }
 }
 
+static void shoot_embed(const whirl_chain *c, double omega, double a, shot *s, double *theta,
+                        double *embed)
+{
+    shoot_core(c, omega, a, s, theta, embed, 1);
+}
+
 static void shoot(const whirl_chain *c, double omega, double a, shot *s, double *theta)
 {
-    shoot_embed(c, omega, a, s, theta, NULL);
+    shoot_core(c, omega, a, s, theta, NULL, 1);
 }
 
 /* G alone, the same recursion in long double (64-bit significand on x86-64); the norm |u| in
@@ -476,7 +488,7 @@ static void angle_point(whirl_nlink_path *p, double w, double t_w, int det)
 static double noise_at(whirl_nlink_path *p, double omega, double a)
 {
     shot s;
-    shoot(p->chain, omega, a, &s, NULL);
+    shoot_core(p->chain, omega, a, &s, NULL, NULL, 0);
     p->shots += 2;
     return shot_noise(p->chain, omega, a, &s);
 }
