@@ -1168,8 +1168,10 @@ static void swap(double **x, double **y)
     *y = tmp;
 }
 
-/* One step in the link angles: predictor x0 + ds t0, Newton's method on R = 0 and the
- * arclength row (M0 t0) . (x - x0) = ds, the same acceptance as in the shot. */
+/* One step in the link angles: predictor x0 + ds t0 + ds^2 k / 2 (k the curvature, the change
+ * of the tangent over the last step divided by its length, where that step was made in the link
+ * angles too), Newton's method on R = 0 and the arclength row (M0 t0) . (x - x0) = ds, the same
+ * acceptance as in the shot. */
 static int angle_step(whirl_nlink_path *p)
 {
     const whirl_chain *c = p->chain;
@@ -1184,6 +1186,12 @@ static int angle_step(whirl_nlink_path *p)
         const double ds = p->ds;
         double w = w0 + ds * p->t_omega, *th = p->theta_trial, t_w = 0, turn = 0, dtheta = 0;
         for (size_t i = 0; i < n; i++) th[i] = p->theta[i] + ds * p->t_theta[i];
+        if (p->have_last && p->last.angles) {
+            /* the second-order term, the curvature from the tangents at the last two points */
+            const double q = 0.5 * ds * ds / p->last.ds;
+            w += q * (p->t_omega - p->last.t_w);
+            for (size_t i = 0; i < n; i++) th[i] += q * (p->t_theta[i] - p->last.t_theta0[i]);
+        }
         int iters = NEWTON_MAX, det = 0;
         int ok = correct_angles(p, w0, p->theta, c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
         if (!ok) p->why = "Newton's method on the force balance does not converge";
