@@ -27,8 +27,11 @@
  * to round-off (one iteration after the correction falls below 1e-10, or once it stops
  * decreasing below 1e-8: the round-off floor of the shot on a high mode). The step is rejected and
  * halved if Newton needs more than NEWTON_MAX iterations, the tangent turns by more than
- * TURN_MAX or a link angle changes by more than DTHETA_MAX (the corrector never lands on another
- * curve); it grows 1.5-fold after an easy step, up to DS_MAX. The smallest step is DS_MIN on the
+ * TURN_MAX, a link angle changes by more than DTHETA_MAX (the corrector never lands on another
+ * curve) or the chord of the step is not that of an arc the step resolves (chord_test: it lies
+ * further than CHORD_MAX times the turn from either end's tangent, or its rate part outside the
+ * tangents' range: the step passed over a small S of two folds); it grows 1.5-fold after an
+ * easy step, up to DS_MAX. The smallest step is DS_MIN on the
  * shot (below it the path goes over to the link angles, below) and DS_MIN_ANGLES in the link
  * angles: a branch can turn within an arclength of 1e-7 (a tip mass of 1e12 chain masses makes
  * the chain a string pinned at both ends, whose symmetric branches split in pitchforks; the
@@ -110,6 +113,12 @@
                           * comment */
 #define TURN_MAX 0.2     /* largest turn of the tangent per step [rad] */
 #define DTHETA_MAX 0.2   /* largest change of a link angle per step [rad] */
+#define CHORD_MAX 0.75   /* largest angle between a step's chord and its end tangents, relative
+                          * to the turn of the tangent (see chord_angle) */
+#define CHORD_SLACK 1e-3 /* and beyond that [rad] (and NEWTON_TOL over the chord's length: the
+                          * round-off of its ends on short steps) */
+#define SLOPE_MAX 0.5    /* the chord's rate part beyond the end tangents' [turn^2] (chord_test) */
+#define SLOPE_SLACK 1e-9 /* and beyond that (the rate's round-off) */
 #define NEWTON_MAX 10    /* corrector iterations per trial step */
 #define NEWTON_EASY 4    /* a step converged in this many or fewer may grow */
 #define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made */
@@ -1161,6 +1170,47 @@ static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double 
     p->have_last = 1;
 }
 
+/* What the chord of a step, from (w0, th0) to (w1, th1) in (ln omega, theta / sqrt(N)), says of
+ * the curve between: NULL where it is consistent with an arc the step resolves, else why not.
+ * s0 e0 and s1 e1 are the unit tangents at the ends (embedded the same way: e[0] the rate's
+ * part, e[1..N] the link angles'), turn the angle between them [rad].
+ * - On an arc in a plane whose curvature keeps its sign the chord lies between the end tangents,
+ *   at angles from them that add up to the turn: at most 2/3 of it from either where the
+ *   curvature grows linearly from zero across the step, half of it on a circle. A chord further
+ *   than CHORD_MAX times the turn from either tangent marks a step across a part of the curve it
+ *   does not resolve (a small S of two folds, both end tangents on the same side of it).
+ * - The chord's rate part (its mean d ln omega / ds) lies within the range of the tangents'
+ *   rate parts along the step; on such an arc that range exceeds the ends' by at most turn^2 / 8.
+ *   Beyond SLOPE_MAX turn^2 the rate went back and forth between the ends while the link angles
+ *   moved on (two folds within the step on a nearly straight curve, which the angles do not
+ *   show: the rate is a small part of the tangent away from folds). */
+static const char *chord_test(size_t n, double w0, const double *th0, double w1,
+                              const double *th1, const double *e0, double s0, const double *e1,
+                              double s1, double turn)
+{
+    const double scale = 1 / sqrt((double)n), lw = log(w1 / w0);
+    double q = lw * lw, c0 = lw * e0[0], c1 = lw * e1[0];
+    for (size_t i = 0; i < n; i++) {
+        const double d = scale * (th1[i] - th0[i]);
+        q += d * d;
+        c0 += d * e0[i + 1];
+        c1 += d * e1[i + 1];
+    }
+    const double len = sqrt(q);
+    if (!(len > 0 && isfinite(len))) return NULL;
+    /* the chord's own round-off: its ends are converged to NEWTON_TOL */
+    const double noise = NEWTON_TOL / len;
+    const double chord = fmax(acos(fmin(1, fmax(-1, s0 * c0 / len))),
+                              acos(fmin(1, fmax(-1, s1 * c1 / len))));
+    if (chord > CHORD_MAX * turn + CHORD_SLACK + noise)
+        return "the chord leaves the end tangents (a part of the curve passed over)";
+    const double slope = lw / len, excess = SLOPE_MAX * turn * turn + SLOPE_SLACK + noise;
+    if (slope < fmin(s0 * e0[0], s1 * e1[0]) - excess ||
+        slope > fmax(s0 * e0[0], s1 * e1[0]) + excess)
+        return "the rate goes back and forth within the step (two folds passed over)";
+    return NULL;
+}
+
 static void swap(double **x, double **y)
 {
     double *tmp = *x;
@@ -1205,9 +1255,12 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
+            const char *chord = chord_test(n, w0, p->theta, w, th, p->embed, 1,
+                                           p->embed_trial, 1, turn);
             if (turn > TURN_MAX && !crossing)
                 ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+            if (chord && !crossing) ok = 0, p->why = chord;
             if (det != p->det_sign && ds > DS_BRANCH && !crossing)
                 ok = 0, p->why = "the orientation test changes sign (another curve close by)";
             if (det == p->det_sign && crossing) ok = 0;
@@ -1380,8 +1433,11 @@ static int shot_step(whirl_nlink_path *p)
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < c->n; i++)
                 dtheta = fmax(dtheta, fabs(p->theta_trial[i] - p->theta[i]));
+            const char *chord = chord_test(c->n, w0, p->theta, w, p->theta_trial, p->embed,
+                                           p->raw_sign, p->embed_trial, raw, turn);
             if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+            if (chord) ok = 0, p->why = chord;
             if (raw != p->raw_sign && ds > DS_BRANCH)
                 ok = 0, p->why = "the orientation test changes sign (another curve close by)";
         }

@@ -266,7 +266,10 @@ WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
 
 /* One accepted step: predictor along the tangent, Newton corrector on the arclength hyperplane.
  * A trial step is rejected and halved when Newton needs many iterations, the tangent turns by
- * more than 0.2 rad or a link angle changes by more than 0.2 rad. Events between the old and
+ * more than 0.2 rad, a link angle changes by more than 0.2 rad or the step's chord is not that
+ * of an arc the step resolves (further from either end's tangent than 3/4 of the turn, or its
+ * rate changing outside the range the tangents allow: the step passed over a small S of two
+ * folds). Events between the old and
  * the new point are located and listed in p->event. GSL_EFAILED if the step falls below its
  * minimum (1e-7), with a one-line message naming the rate reached (the current point, where
  * the path stays) and why the last trial was rejected; GSL_EDOM once the path has ended;
