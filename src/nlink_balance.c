@@ -182,6 +182,39 @@ int whirl_nlink_balance_det_sign(const nlink_balance *b)
     return b->det_sign;
 }
 
+/* x <- A^-1 x for the columns x[k N .. k N + N - 1], k < nrhs, with the LU factors of dgttrf:
+ * the substitutions of LAPACK's dgtts2 (no transpose), operation for operation, with the
+ * columns side by side (each substitution is a chain of dependent operations, a division in
+ * every link: two independent columns go at about the pace of one). */
+static void solve(const nlink_balance *b, int nrhs, double *x)
+{
+    const size_t n = b->c->n;
+    const double *dl = b->dl, *d = b->d, *du = b->du, *du2 = b->du2;
+    for (size_t i = 0; i + 1 < n; i++) {
+        const int swap = b->ipiv[i] != (lapack_int)i + 1;
+        for (int k = 0; k < nrhs; k++) {
+            double *y = x + (size_t)k * n;
+            if (swap) {
+                const double t = y[i];
+                y[i] = y[i + 1];
+                y[i + 1] = t - dl[i] * y[i];
+            } else {
+                y[i + 1] = y[i + 1] - dl[i] * y[i];
+            }
+        }
+    }
+    for (int k = 0; k < nrhs; k++) {
+        double *y = x + (size_t)k * n;
+        y[n - 1] = y[n - 1] / d[n - 1];
+        if (n > 1) y[n - 2] = (y[n - 2] - du[n - 2] * y[n - 1]) / d[n - 2];
+    }
+    for (size_t i = n - 2; n > 2 && i-- > 0;)
+        for (int k = 0; k < nrhs; k++) {
+            double *y = x + (size_t)k * n;
+            y[i] = (y[i] - du[i] * y[i + 1] - du2[i] * y[i + 2]) / d[i];
+        }
+}
+
 /* y = A x for the tridiagonal A kept in a_dl, a_d, a_du. */
 static double tri_row(const nlink_balance *b, const double *x, size_t i)
 {
@@ -205,13 +238,7 @@ static int eliminate(nlink_balance *b, const double *c_theta, double c_omega, co
     for (size_t i = 0; i < n; i++) w[i] = f ? f[i] : 0;
     /* the columns to solve: v and w, v alone, or w alone */
     const int from = have_v ? 1 : 0, to = f ? 2 : 1;
-    lapack_int info = 0;
-    if (to > from)
-        info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, to - from, b->dl, b->d,
-                                   b->du, b->du2, b->ipiv, b->u + (size_t)from * n,
-                                   (lapack_int)n);
-    if (info != 0) return whirl_fail(GSL_EFAILED, "tridiagonal solve (dgttrs): info %d",
-                                     (int)info);
+    if (to > from) solve(b, to - from, b->u + (size_t)from * n);
     double cv = 0, cw = 0;
     for (size_t i = 0; i < n; i++) cv += c_theta[i] * v[i], cw += c_theta[i] * w[i];
     *schur = c_omega - cv;
@@ -256,10 +283,7 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
         if (status) return status;
         double *step = b->u;
         for (size_t i = 0; i < n; i++) step[i] = -b->res[i];
-        lapack_int info = LAPACKE_dgttrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 1, b->dl,
-                                              b->d, b->du, b->du2, b->ipiv, step, (lapack_int)n);
-        if (info != 0) return whirl_fail(GSL_EFAILED, "tridiagonal solve (dgttrs): info %d",
-                                         (int)info);
+        solve(b, 1, step);
         double norm = 0;
         for (size_t i = 0; i < n; i++) {
             theta[i] += step[i];

@@ -1520,24 +1520,39 @@ int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, doubl
 
 /* ---- drivers: a branch from its birth ---- */
 
-#define STEPS_MAX 100000 /* accepted steps of one path */
+#define STEPS_MIN 100000   /* accepted steps of one path: at least, */
+#define STEPS_PER_LINK 200 /* and per link of the chain (a middle mode folds about once per 25
+                            * steps, and the number of its folds below a given multiple of its
+                            * birth grows with N) */
+#define PROGRESS_STEPS 256 /* steps between two reports of the progress */
+
+/* The bound on the accepted steps of a path on the chain c. */
+static long steps_max(const whirl_chain *c)
+{
+    const double per_link = (double)STEPS_PER_LINK * (double)c->n;
+    return per_link > STEPS_MIN ? (per_link < 1e15 ? (long)per_link : (long)1e15) : STEPS_MIN;
+}
 
 /* Follows the path until its rate first exceeds omega_max, it returns to the hanging chain, or
  * visit returns non-zero (WHIRL_VISIT_STOP: success). visit gets every crossing of the rates
  * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
  * angles of the shape visited are in p->cross_theta (a crossing) or p->event_theta (an event). */
 static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const double *omega,
-                       whirl_nlink_visit_fn visit, void *ctx)
+                       whirl_nlink_visit_fn visit, void *ctx, whirl_nlink_progress_fn progress,
+                       void *progress_ctx)
 {
     const size_t links = p->chain->n;
     double *r = scr_nodes(p), *z = r + links + 1, *t = z + links + 1;
     long folds = 0;
+    const long bound = steps_max(p->chain);
     while (p->omega <= omega_max && !p->ended) {
-        if (p->steps >= STEPS_MAX)
-            return whirl_fail(GSL_EMAXITER, "mode %d: %d continuation steps from the birth "
+        if (p->steps >= bound)
+            return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
                               "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
-                              "at most (now at %.17g)", p->mode, STEPS_MAX, p->omega_birth,
+                              "at most (now at %.17g)", p->mode, bound, p->omega_birth,
                               p->arclength, folds, p->omega_hi, p->omega);
+        if (progress && p->steps % PROGRESS_STEPS == 0)
+            progress(progress_ctx, p->steps, bound, p->omega_hi);
         int status = whirl_nlink_path_step(p);
         if (status) return status;
         for (int e = 0; e < p->n_events; e++) folds += p->event[e].kind == WHIRL_EVENT_FOLD;
@@ -1580,7 +1595,7 @@ int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t 
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int status = whirl_nlink_path_birth(p, mode);
-    if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx);
+    if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx, NULL, NULL);
     whirl_nlink_path_free(p);
     return status;
 }
@@ -1625,7 +1640,8 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
 /* The branch of mode at the rates omega[]: a path from the birth up to the largest of them (and
  * at least to twice the birth rate, where a branch that first turns to lower rates is seen). */
 static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *omega,
-                       whirl_shape_info *info, int *exists, double *r, double *z, double *t)
+                       whirl_shape_info *info, int *exists, double *r, double *z, double *t,
+                       whirl_nlink_progress_fn progress, void *progress_ctx)
 {
     for (size_t j = 0; j < n; j++) {
         int status = whirl_steady_check_args(omega[j], mode, INT_MAX);
@@ -1641,7 +1657,7 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
     for (size_t j = 0; j < n; j++) top = fmax(top, omega[j]);
     first_ctx f = {info, exists, n, n, p, r, z, t};
     if (n == 0) return GSL_SUCCESS;
-    status = follow_path(p, top, n, omega, first_visit, &f);
+    status = follow_path(p, top, n, omega, first_visit, &f, progress, progress_ctx);
     if (status == GSL_EFAILED || status == GSL_EMAXITER) {
         /* a failure above every rate still missing, while looking for a turn of a branch
          * back below its birth: those rates are below the branch as far as it was followed */
@@ -1661,7 +1677,7 @@ int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const dou
         return whirl_fail(GSL_EINVAL, "the nodes need all of r, z and tension, or none");
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
-    int status = branch_path(p, mode, n, omega, info, exists, r, z, tension);
+    int status = branch_path(p, mode, n, omega, info, exists, r, z, tension, NULL, NULL);
     whirl_nlink_path_free(p);
     return status;
 }
@@ -1675,10 +1691,17 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
                             whirl_shape_info *info, double *r, double *z, double *tension)
 {
+    return whirl_nlink_solve_nodes_progress(c, omega, mode, info, r, z, tension, NULL, NULL);
+}
+
+int whirl_nlink_solve_nodes_progress(const whirl_chain *c, double omega, int mode,
+                                     whirl_shape_info *info, double *r, double *z,
+                                     double *tension, whirl_nlink_progress_fn progress, void *ctx)
+{
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int exists = 0;
-    int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension);
+    int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension, progress, ctx);
     if (status == GSL_SUCCESS && !exists) {
         if (p->ended)
             status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "

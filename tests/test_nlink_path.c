@@ -22,7 +22,10 @@
  *   branch splits (symmetric below it, asymmetric above, no branch point); a first point in the
  *   link angles where the shot cannot start a branch (a random chain's mode 9);
  * - the error paths; a branch that cannot be continued (a random chain of 10 links): the
- *   message names the mode, the rate the path reached and why. */
+ *   message names the mode, the rate the path reached and why;
+ * - a middle mode of a long chain, which folds many times (N = 250 mode 80 to twice its birth):
+ *   every fold that the same path with its steps capped to 0.003 finds, none passed over, at
+ *   the same rates. */
 #include <float.h>
 #include <math.h>
 #include <setjmp.h>
@@ -964,6 +967,58 @@ static void test_branch_nodes(void **state)
     whirl_chain_free(c);
 }
 
+/* The folds of the path of mode 80 of 250 links up to omega_max, in their order, into
+ * omega[] (at most max); with cap > 0, every step at most cap. Returns their number. */
+static int fold_list(const whirl_chain *c, double omega_max, double cap, double *omega, int max)
+{
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_int_equal(whirl_nlink_path_birth(p, 80), GSL_SUCCESS);
+    int nf = 0;
+    while (p->omega <= omega_max) {
+        if (cap > 0 && p->ds > cap) p->ds = cap;
+        assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+        for (int e = 0; e < p->n_events; e++)
+            if (p->event[e].kind == WHIRL_EVENT_FOLD) {
+                assert_true(nf < max);
+                omega[nf++] = p->event[e].omega;
+            }
+    }
+    print_message("N = 250 mode 80 to omega %.4g, steps %s %g: %ld steps, %d folds\n", omega_max,
+                  cap > 0 ? "capped to" : "up to", cap > 0 ? cap : p->ds, p->steps, nf);
+    whirl_nlink_path_free(p);
+    return nf;
+}
+
+/* A middle mode of a long chain folds many times on its way up, in S-shaped pairs of folds
+ * (a maximum and a minimum of the rate) that can be as small as 2e-4 in omega: the path with
+ * its own step control finds each fold that the path with steps of at most 0.003 (a thirtieth
+ * of the largest) finds, none passed over by a step, at the same rates. */
+static void test_many_folds(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(250, 0);
+    double crit[80];
+    assert_int_equal(whirl_nlink_critical(c, 80, crit), GSL_SUCCESS);
+    enum { MAX = 200 };
+    double own[MAX], fine[MAX];
+    const int n_own = fold_list(c, 2 * crit[79], 0, own, MAX);
+    const int n_fine = fold_list(c, 2 * crit[79], 0.003, fine, MAX);
+    int same = 0;
+    double worst = 0;
+    while (same < n_own && same < n_fine && fabs(own[same] - fine[same]) <= 1e-9 * fine[same]) {
+        worst = fmax(worst, fabs(own[same] - fine[same]) / fine[same]);
+        same++;
+    }
+    if (same < n_fine)
+        print_message("  fold number %d, at omega %.10g, passed over\n", same + 1,
+                      fine[same]);
+    print_message("  %d folds agree, to %.2e in omega\n", same, worst);
+    assert_true(n_fine > 40);
+    assert_int_equal(n_own, n_fine);
+    assert_int_equal(same, n_fine);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -977,6 +1032,7 @@ int main(void)
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_birth_in_angles),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
+        cmocka_unit_test(test_many_folds),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
 }

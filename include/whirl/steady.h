@@ -135,6 +135,19 @@ WHIRL_API int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mo
                                       whirl_shape_info *info, double *r, double *z,
                                       double *tension);
 
+/* What a long continuation reports as it goes: the accepted steps so far, their bound (the path
+ * fails with GSL_EMAXITER there: 100000 or 200 per link, whichever is more) and the highest
+ * rate reached [sqrt(g/L)]; every 256 steps. */
+typedef void (*whirl_nlink_progress_fn)(void *ctx, long steps, long steps_max, double omega_hi);
+
+/* whirl_nlink_solve_nodes reporting its progress to progress (may be NULL). The middle modes of
+ * long chains fold thousands of times on their way up (1000 links, mode 334: about 5000 folds
+ * from its birth at omega 530 to 700, 120000 steps). */
+WHIRL_API int whirl_nlink_solve_nodes_progress(const whirl_chain *c, double omega, int mode,
+                                               whirl_shape_info *info, double *r, double *z,
+                                               double *tension, whirl_nlink_progress_fn progress,
+                                               void *ctx);
+
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
  * arrays of c->n + 1. */
