@@ -1230,6 +1230,8 @@ static int angle_step(whirl_nlink_path *p)
     double *c_th = scr_cth(p);
     const double c_w = p->t_omega / (w0 * w0);
     int crossing = 0; /* the trials probe for a step across a branch point */
+    int chord_off = 0, chord_failed = 0; /* the chord test set aside; it rejected the last trial */
+    const double ds_first = p->ds;
     const char *why = "";
     for (;;) {
         for (size_t i = 0; i < n; i++) c_th[i] = p->t_theta[i] / (double)n;
@@ -1260,7 +1262,8 @@ static int angle_step(whirl_nlink_path *p)
             if (turn > TURN_MAX && !crossing)
                 ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
-            if (chord && !crossing) ok = 0, p->why = chord;
+            chord_failed = chord && !crossing && !chord_off;
+            if (chord_failed) ok = 0, p->why = chord;
             if (det != p->det_sign && ds > DS_BRANCH && !crossing)
                 ok = 0, p->why = "the orientation test changes sign (another curve close by)";
             if (det == p->det_sign && crossing) ok = 0;
@@ -1277,6 +1280,18 @@ static int angle_step(whirl_nlink_path *p)
                 continue;
             }
             p->ds *= 0.5;
+            if (p->ds < DS_MIN_ANGLES && chord_failed && !chord_off) {
+                /* the chord test alone rejected steps down to the smallest: at that scale the
+                 * corrected points scatter by their own round-off across a turn of the curve
+                 * sharper than the tangent resolves (a heavy tip's pinned string where it
+                 * splits), and the chord measures that scatter, not a part of the curve passed
+                 * over. The step is retried from its first length without the chord test,
+                 * every other test kept (the turn, the link angles, the orientation: no step
+                 * lands on another curve). */
+                chord_off = 1;
+                p->ds = ds_first;
+                continue;
+            }
             if (p->ds < DS_MIN_ANGLES) {
                 /* the curve cannot be followed at any step: if a curve of the opposite
                  * orientation lies within DS_CROSS ahead, the two meet there to within the

@@ -820,6 +820,22 @@ static void test_heavy_tip(void **state)
     follow_high(c, 16, 5 * crit[15], NULL, &h);
     check_ulp(c, 16, 5 * crit[15], &h);
     whirl_chain_free(c);
+    /* 20 links, mode 4: near omega 1.899e7 the corrected points of steps below 1e-8 scatter by
+     * their round-off across the turn, and the chord test rejected every step down to the
+     * smallest; the step is then taken without it. At 2.5 times the birth the tip radius is
+     * the one a path with steps of at most 0.01 and turns of at most 0.05 reaches,
+     * 1.463901448e-14. */
+    double theta20[20];
+    c = whirl_chain_alloc_uniform(20, 1e12);
+    assert_int_equal(whirl_nlink_critical(c, 4, crit), GSL_SUCCESS);
+    const double w20 = 2.5 * crit[3];
+    follow_high(c, 4, w20, theta20, &h);
+    check_ulp(c, 4, w20, &h);
+    const double tip20 = c->gravity * tan(theta20[19]) / (w20 * w20);
+    print_message("N = 20, tip mass 1e12, mode 4 at 2.5 times its birth: tip radius %.10e\n",
+                  tip20);
+    assert_true(fabs(tip20 / 1.463901448e-14 - 1) < 1e-8);
+    whirl_chain_free(c);
 }
 
 /* The first point of a branch whose shot from the tip cannot start it: in the link angles at a
