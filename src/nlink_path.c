@@ -30,13 +30,16 @@
  * TURN_MAX, a link angle changes by more than DTHETA_MAX (the corrector never lands on another
  * curve) or the chord of the step is not that of an arc the step resolves (chord_test: it lies
  * further than CHORD_MAX times the turn from either end's tangent, or its rate part outside the
- * tangents' range: the step passed over a small S of two folds); it grows 1.5-fold after an
- * easy step, up to DS_MAX. The smallest step is DS_MIN on the
- * shot (below it the path goes over to the link angles, below) and DS_MIN_ANGLES in the link
- * angles: a branch can turn within an arclength of 1e-7 (a tip mass of 1e12 chain masses makes
- * the chain a string pinned at both ends, whose symmetric branches split in pitchforks; the
- * links' own weight unfolds each at 1e-12, and the branch from the birth turns onto the
- * asymmetric side over an arclength of order the square root of that).
+ * tangents' range: the step passed over a small S of two folds; where it alone rejects every
+ * step down to the smallest in the link angles, the corrected points scatter by their round-off
+ * across a turn sharper than the tangent resolves, and the step is retried from its first
+ * length without it, the other tests kept); it grows 1.5-fold after an easy step, up to DS_MAX.
+ * The smallest step is DS_MIN on the shot (below it the path goes over to the link angles,
+ * below) and DS_MIN_ANGLES in the link angles: a branch can turn within an arclength of 1e-7
+ * (a tip mass of 1e12 chain masses makes the chain a string pinned at both ends, whose
+ * symmetric branches split in pitchforks; the links' own weight unfolds each at 1e-12, and
+ * the branch from the birth turns onto the asymmetric side over an arclength of order the
+ * square root of that).
  *
  * Test functions between two accepted points: a fold where t_omega changes sign; a branch point
  * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as
