@@ -52,6 +52,7 @@
  * References: Kolodner 1955, Comm. Pure Appl. Math. 8:395; Caughey 1958, J. Appl. Mech.;
  * Coomer, Lazarus, Tucker, Kershaw, Tegman 2001, J. Sound Vib. 244:845. */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -511,12 +512,19 @@ static int critical_sweep(double m, int n, double *omega, double *last)
     return status;
 }
 
+/* The arguments of the critical rates: what (mode, number of modes) = k in
+ * 1..WHIRL_CONTINUUM_MODE_MAX, a valid tip mass. */
+static int critical_args(long k, const char *what, double tip_mass)
+{
+    if (k < 1 || k > WHIRL_CONTINUUM_MODE_MAX)
+        return whirl_fail(GSL_EINVAL, "%s must be between 1 and %d, got %ld", what,
+                          WHIRL_CONTINUUM_MODE_MAX, k);
+    return whirl_check_tip_mass(tip_mass);
+}
+
 int whirl_continuum_critical(int mode, double tip_mass, double *omega)
 {
-    if (mode < 1 || mode > WHIRL_CONTINUUM_MODE_MAX)
-        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d",
-                          WHIRL_CONTINUUM_MODE_MAX, mode);
-    int status = whirl_check_tip_mass(tip_mass);
+    int status = critical_args(mode, "mode", tip_mass);
     if (status != GSL_SUCCESS) return status;
     if (tip_mass == 0) {
         *omega = 0.5 * gsl_sf_bessel_zero_J0((unsigned)mode);
@@ -527,10 +535,8 @@ int whirl_continuum_critical(int mode, double tip_mass, double *omega)
 
 int whirl_continuum_critical_rates(size_t n, double tip_mass, double *omega)
 {
-    if (n < 1 || n > WHIRL_CONTINUUM_MODE_MAX)
-        return whirl_fail(GSL_EINVAL, "the number of modes must be between 1 and %d, got %zu",
-                          WHIRL_CONTINUUM_MODE_MAX, n);
-    int status = whirl_check_tip_mass(tip_mass);
+    int status = critical_args(n > (size_t)LONG_MAX ? LONG_MAX : (long)n, "the number of modes",
+                               tip_mass);
     if (status != GSL_SUCCESS) return status;
     if (tip_mass > 0) return critical_sweep(tip_mass, (int)n, omega, &omega[n - 1]);
     for (size_t k = 1; k <= n; k++) omega[k - 1] = 0.5 * gsl_sf_bessel_zero_J0((unsigned)k);
