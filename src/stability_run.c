@@ -14,8 +14,9 @@
  * the first where some link has turned by 1e-3 rad from its direction in the shape (the
  * nonlinear terms of the equations of motion are of the relative size of the links' turns) and d
  * has reached 1e4 d(0) (the shortest stretch, for perturbations too large to leave a linear one),
- * or to the first that reaches 1e8 d(0) or 1e-2 L, or to the end of the run. The turn, not d / L, bounds the linear regime:
- * an unstable mode of a long chain at a high mode concentrates on a few links near the tip
+ * or to the first that reaches 1e8 d(0) or 1e-2 L, or to the end of the run. The turn, not
+ * d / L, bounds the linear regime: an unstable mode of a long chain at a high mode concentrates
+ * on a few links near the tip
  * (N = 100, mode 50, omega = 250: largest turn about 1e3 d / L), and a fit that ran on to
  * d = 1e-2 L there took in turns of 0.04 rad and gave 68.74 for the growth 72.33 of the
  * linearisation. The fit's stretch is long for the same reason: the unstable modes next to the

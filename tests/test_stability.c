@@ -1398,9 +1398,9 @@ static void test_errors(void **state)
 
 /* The largest real part of the eigenvalues and of those with Im > 0 the three largest, of the
  * linearisation and of a central-difference Jacobian of whirl_dyn_rhs (steps 1e-6 of the largest
- * link vector entry, times omega for the rates) about the same shape: N = 100, mode 50, omega = 250. The
- * Cartesian state holds 2 N constraint directions more than q (their eigenvalues are 0 in the
- * exact Jacobian, order 1e-3 in the differenced one: far below the unstable ones). */
+ * link vector entry, times omega for the rates) about the same shape: N = 100, mode 50, omega =
+ * 250. The Cartesian state holds 2 N constraint directions more than q (their eigenvalues are 0 in
+ * the exact Jacobian, order 1e-3 in the differenced one: far below the unstable ones). */
 static int by_real_desc(const void *a, const void *b)
 {
     const double x = *(const double *)a, y = *(const double *)b;

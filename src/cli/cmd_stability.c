@@ -507,9 +507,11 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
 {
     options o = {0};
     o.links = 25;
-    o.periods = 100;
-    o.perturb = 1e-10;
-    o.seed = 1;
+    /* the perturbed runs' defaults are the library's (the method apart: rk4 here) */
+    const whirl_stability_run_params run = whirl_stability_run_defaults();
+    o.periods = run.periods;
+    o.perturb = run.perturbation;
+    o.seed = (int)run.seed;
     o.method = "rk4";
     o.modes.n = 3;
     o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;

@@ -1,12 +1,12 @@
 /* whirl sweep: the branches of the listed modes over a grid of rates. The continuum's by
  * continuation in omega (whirl_continuum_branch, on all OpenMP threads); the N-link chain's by
  * pseudo-arclength continuation from each mode's birth (whirl_nlink_follow): a row at every
- * crossing of a grid rate, in the order along the branch (through folds a rate is crossed more
- * than once), and the folds, branch points and returns to the hanging chain as comment lines
- * and, with --events FILE, as CSV. On a terminal, a sweep of the N-link chain that runs longer
- * than a second shows a progress line (the grid rates its branches have reached). Ctrl-C (SIGINT, SIGTERM) stops the sweep within a step: the
- * rows found so far are written (a comment line says where it stopped) and the exit status is
- * 130. */
+ * crossing of a grid rate, in the order along the branch (through folds a rate is crossed more than
+ * once), and the folds, branch points and returns to the hanging chain as comment lines and, with
+ * --events FILE, as CSV. On a terminal, a sweep of the N-link chain that runs longer than a second
+ * shows a progress line (the grid rates its branches have reached). Ctrl-C (SIGINT, SIGTERM) stops
+ * the sweep within a step: the rows found so far are written (a comment line says where it stopped)
+ * and the exit status is 130. */
 #include <stdint.h>
 #include <stdlib.h>
 
