@@ -1556,21 +1556,27 @@ static long steps_max(const whirl_chain *c)
  * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
  * angles of the shape visited are in p->cross_theta (a crossing) or p->event_theta (an event). */
 static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const double *omega,
-                       whirl_nlink_visit_fn visit, void *ctx, whirl_nlink_progress_fn progress,
-                       void *progress_ctx)
+                       whirl_nlink_visit_fn visit, void *ctx,
+                       const whirl_nlink_follow_options *opt)
 {
     const size_t links = p->chain->n;
     double *r = scr_nodes(p), *z = r + links + 1, *t = z + links + 1;
     long folds = 0;
-    const long bound = steps_max(p->chain);
+    if (opt && opt->steps_max < 0)
+        return whirl_fail(GSL_EINVAL, "the bound on the continuation steps must be > 0 (0: the "
+                          "default), got %ld", opt->steps_max);
+    const long bound = opt && opt->steps_max > 0 ? opt->steps_max : steps_max(p->chain);
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= bound)
             return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
                               "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
                               "at most (now at %.17g)", p->mode, bound, p->omega_birth,
                               p->arclength, folds, p->omega_hi, p->omega);
-        if (progress && p->steps % PROGRESS_STEPS == 0)
-            progress(progress_ctx, p->steps, bound, p->omega_hi);
+        if (opt && opt->progress && p->steps % PROGRESS_STEPS == 0) {
+            const whirl_nlink_progress at = {p->mode, p->omega_birth, p->steps, bound, folds,
+                                             p->omega, p->omega_hi, p->arclength};
+            opt->progress(opt->progress_ctx, &at);
+        }
         int status = whirl_nlink_path_step(p);
         if (status) return status;
         for (int e = 0; e < p->n_events; e++) folds += p->event[e].kind == WHIRL_EVENT_FOLD;
@@ -1610,10 +1616,17 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
 int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
                        const double *omega, whirl_nlink_visit_fn visit, void *ctx)
 {
+    return whirl_nlink_follow_opt(c, mode, omega_max, n, omega, visit, ctx, NULL);
+}
+
+int whirl_nlink_follow_opt(const whirl_chain *c, int mode, double omega_max, size_t n,
+                           const double *omega, whirl_nlink_visit_fn visit, void *ctx,
+                           const whirl_nlink_follow_options *opt)
+{
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int status = whirl_nlink_path_birth(p, mode);
-    if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx, NULL, NULL);
+    if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx, opt);
     whirl_nlink_path_free(p);
     return status;
 }
@@ -1659,7 +1672,7 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
  * at least to twice the birth rate, where a branch that first turns to lower rates is seen). */
 static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists, double *r, double *z, double *t,
-                       whirl_nlink_progress_fn progress, void *progress_ctx)
+                       const whirl_nlink_follow_options *opt)
 {
     for (size_t j = 0; j < n; j++) {
         int status = whirl_steady_check_args(omega[j], mode, INT_MAX);
@@ -1675,7 +1688,7 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
     for (size_t j = 0; j < n; j++) top = fmax(top, omega[j]);
     first_ctx f = {info, exists, n, n, p, r, z, t};
     if (n == 0) return GSL_SUCCESS;
-    status = follow_path(p, top, n, omega, first_visit, &f, progress, progress_ctx);
+    status = follow_path(p, top, n, omega, first_visit, &f, opt);
     if (status == GSL_EFAILED || status == GSL_EMAXITER) {
         /* a failure above every rate still missing, while looking for a turn of a branch
          * back below its birth: those rates are below the branch as far as it was followed */
@@ -1695,7 +1708,7 @@ int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const dou
         return whirl_fail(GSL_EINVAL, "the nodes need all of r, z and tension, or none");
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
-    int status = branch_path(p, mode, n, omega, info, exists, r, z, tension, NULL, NULL);
+    int status = branch_path(p, mode, n, omega, info, exists, r, z, tension, NULL);
     whirl_nlink_path_free(p);
     return status;
 }
@@ -1709,17 +1722,17 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
                             whirl_shape_info *info, double *r, double *z, double *tension)
 {
-    return whirl_nlink_solve_nodes_progress(c, omega, mode, info, r, z, tension, NULL, NULL);
+    return whirl_nlink_solve_nodes_opt(c, omega, mode, info, r, z, tension, NULL);
 }
 
-int whirl_nlink_solve_nodes_progress(const whirl_chain *c, double omega, int mode,
-                                     whirl_shape_info *info, double *r, double *z,
-                                     double *tension, whirl_nlink_progress_fn progress, void *ctx)
+int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
+                                whirl_shape_info *info, double *r, double *z, double *tension,
+                                const whirl_nlink_follow_options *opt)
 {
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int exists = 0;
-    int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension, progress, ctx);
+    int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension, opt);
     if (status == GSL_SUCCESS && !exists) {
         if (p->ended)
             status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "

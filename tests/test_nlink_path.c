@@ -1036,6 +1036,78 @@ static void test_many_folds(void **state)
     whirl_chain_free(c);
 }
 
+/* What the progress reports of a continuation are checked against: the fold events visited so
+ * far (follow visits a step's events before the next report) and the previous report. */
+typedef struct progress_check {
+    long folds_visited, reports, last_steps;
+    double last_hi;
+    int bad; /* a report disagreed */
+} progress_check;
+
+static int count_folds(void *ctx, size_t j, const whirl_shape_info *info,
+                       const whirl_branch_event *event)
+{
+    (void)j;
+    (void)info;
+    if (event && event->kind == WHIRL_EVENT_FOLD) ((progress_check *)ctx)->folds_visited++;
+    return 0;
+}
+
+static void check_progress(void *ctx, const whirl_nlink_progress *at)
+{
+    progress_check *k = ctx;
+    if (at->mode != 80 || at->steps % 256 != 0 || at->steps != k->last_steps + 256 * (k->reports > 0)
+        || at->steps_max != 100000 || at->folds != k->folds_visited || at->omega > at->omega_hi
+        || at->omega_hi < k->last_hi || at->omega < at->omega_birth || !(at->arclength >= 0))
+        k->bad++;
+    k->reports++;
+    k->last_steps = at->steps;
+    k->last_hi = at->omega_hi;
+}
+
+/* The options of the drivers: the progress reports agree with what the path visits (folds,
+ * steps every 256, the default bound 100000 for 250 links), a bound set by the caller stops
+ * the path there with a message naming the mode and the rate reached, a bound not reached
+ * changes nothing, and a negative one is refused. */
+static void test_follow_options(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(250, 0);
+    double crit[80];
+    assert_int_equal(whirl_nlink_critical(c, 80, crit), GSL_SUCCESS);
+    progress_check k = {0, 0, 0, 0, 0};
+    whirl_nlink_follow_options opt = {0, check_progress, &k};
+    assert_int_equal(whirl_nlink_follow_opt(c, 80, 2 * crit[79], 0, NULL, count_folds, &k, &opt),
+                     GSL_SUCCESS);
+    print_message("  N = 250 mode 80 to twice its birth: %ld progress reports, %ld folds\n",
+                  k.reports, k.folds_visited);
+    assert_int_equal(k.bad, 0);
+    assert_true(k.reports >= 3);
+    assert_true(k.folds_visited > 40);
+    /* the same path under a bound it stays within: the same folds */
+    progress_check again = {0, 0, 0, 0, 0};
+    opt = (whirl_nlink_follow_options){k.last_steps + 256, NULL, NULL};
+    assert_int_equal(whirl_nlink_follow_opt(c, 80, 2 * crit[79], 0, NULL, count_folds, &again,
+                                            &opt), GSL_SUCCESS);
+    assert_int_equal(again.folds_visited, k.folds_visited);
+    /* a bound the path needs more than: GSL_EMAXITER, from follow and from solve */
+    opt.steps_max = 300;
+    assert_int_equal(whirl_nlink_follow_opt(c, 80, 2 * crit[79], 0, NULL, count_folds, &again,
+                                            &opt), GSL_EMAXITER);
+    assert_non_null(strstr(whirl_last_error(), "mode 80: 300 continuation steps"));
+    double *nodes = malloc(3 * 251 * sizeof *nodes);
+    assert_non_null(nodes);
+    whirl_shape_info info;
+    assert_int_equal(whirl_nlink_solve_nodes_opt(c, 2 * crit[79], 80, &info, nodes, nodes + 251,
+                                                 nodes + 502, &opt), GSL_EMAXITER);
+    assert_non_null(strstr(whirl_last_error(), "mode 80: 300 continuation steps"));
+    opt.steps_max = -1;
+    assert_int_equal(whirl_nlink_solve_nodes_opt(c, 2 * crit[79], 80, &info, nodes, nodes + 251,
+                                                 nodes + 502, &opt), GSL_EINVAL);
+    free(nodes);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -1049,7 +1121,7 @@ int main(void)
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_birth_in_angles),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
-        cmocka_unit_test(test_many_folds),
+        cmocka_unit_test(test_many_folds),         cmocka_unit_test(test_follow_options),
     };
     return cmocka_run_group_tests_name("nlink_path", tests, NULL, NULL);
 }

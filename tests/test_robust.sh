@@ -161,6 +161,13 @@ interrupt "regime sweep (the points completed are kept)" INT rows regime --sweep
 interrupt "sweep of the N-link chain" TERM keep sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 \
   --omega-count 30001 --links 300
 interrupt "fit of 10^4 points" INT none fit --shape "$tmp/p10000.csv" --mode 2
+# a long continuation (mode 334 of 1000 links to omega 700: a minute): no output, one line naming
+# the mode and the rate reached
+interrupt "shape of a long N-link continuation" INT none shape --links 1000 --mode 334 --omega 700
+if [ "$(wc -l <"$tmp/int.stderr")" -eq 1 ] && grep -Eq \
+     '^whirl shape: interrupted in mode 334: stopped at omega=5[3-9][0-9.]* after [0-9]+ steps$' \
+     "$tmp/int.stderr"; then pass "interrupt: the shape's line names the mode and the rate reached"
+else fail "interrupt: the shape's line names the mode and the rate reached ($(head -c 300 "$tmp/int.stderr"))"; fi
 
 # prompt NAME ARGS...: Ctrl-C during work that cannot poll (one dense solve) still ends the
 # command at once. The command runs once to its end (T seconds), then again with SIGINT at T/3:

@@ -135,18 +135,37 @@ WHIRL_API int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mo
                                       whirl_shape_info *info, double *r, double *z,
                                       double *tension);
 
-/* What a long continuation reports as it goes: the accepted steps so far, their bound (the path
- * fails with GSL_EMAXITER there: 100000 or 200 per link, whichever is more) and the highest
- * rate reached [sqrt(g/L)]; every 256 steps. */
-typedef void (*whirl_nlink_progress_fn)(void *ctx, long steps, long steps_max, double omega_hi);
+/* Where a continuation from a birth stands: what the drivers below report to a progress
+ * function every 256 accepted steps. */
+typedef struct whirl_nlink_progress {
+    int mode;           /* the branch's mode */
+    double omega_birth; /* its birth rate omega_k [sqrt(g/L)] */
+    long steps;         /* accepted steps from the birth */
+    long steps_max;     /* their bound: the path fails with GSL_EMAXITER there */
+    long folds;         /* folds passed (the rate turned back) */
+    double omega;       /* the current point's rate [sqrt(g/L)] */
+    double omega_hi;    /* the highest rate reached [sqrt(g/L)] */
+    double arclength;   /* travelled from the birth (the metric of whirl_nlink_path below) */
+} whirl_nlink_progress;
+typedef void (*whirl_nlink_progress_fn)(void *ctx, const whirl_nlink_progress *at);
 
-/* whirl_nlink_solve_nodes reporting its progress to progress (may be NULL). The middle modes of
- * long chains fold thousands of times on their way up (1000 links, mode 334: about 5000 folds
- * from its birth at omega 530 to 700, 120000 steps). */
-WHIRL_API int whirl_nlink_solve_nodes_progress(const whirl_chain *c, double omega, int mode,
-                                               whirl_shape_info *info, double *r, double *z,
-                                               double *tension, whirl_nlink_progress_fn progress,
-                                               void *ctx);
+/* How the drivers follow a branch from its birth (whirl_nlink_solve_nodes_opt,
+ * whirl_nlink_follow_opt); all zero (or a NULL pointer to it): the defaults, as the functions
+ * without it. */
+typedef struct whirl_nlink_follow_options {
+    long steps_max; /* bound on the accepted continuation steps from the birth (> 0): there the
+                     * path fails with GSL_EMAXITER, naming the rate reached; 0: the default,
+                     * 100000 or 200 per link, whichever is more (GSL_EINVAL if < 0) */
+    whirl_nlink_progress_fn progress; /* called every 256 accepted steps; NULL: none (default) */
+    void *progress_ctx;               /* passed to progress */
+} whirl_nlink_follow_options;
+
+/* whirl_nlink_solve_nodes with the options opt (may be NULL). The middle modes of long chains
+ * fold thousands of times on their way up (1000 links, mode 334: about 5000 folds from its
+ * birth at omega 530 to 700, 120000 steps). */
+WHIRL_API int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
+                                          whirl_shape_info *info, double *r, double *z,
+                                          double *tension, const whirl_nlink_follow_options *opt);
 
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
@@ -312,6 +331,10 @@ typedef int (*whirl_nlink_visit_fn)(void *ctx, size_t j, const whirl_shape_info 
  * whirl_nlink_path_step, or visit's status. */
 WHIRL_API int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
                        const double *omega, whirl_nlink_visit_fn visit, void *ctx);
+/* whirl_nlink_follow with the options opt (may be NULL). */
+WHIRL_API int whirl_nlink_follow_opt(const whirl_chain *c, int mode, double omega_max, size_t n,
+                                     const double *omega, whirl_nlink_visit_fn visit, void *ctx,
+                                     const whirl_nlink_follow_options *opt);
 
 /* The shape summary at rate omega and tip radius tip_r (an equilibrium): mode is copied. */
 WHIRL_API int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,

@@ -573,6 +573,7 @@ void cli_progress_begin(cli_progress_state *p, const cli_command *cmd, const cha
     p->start = cli_wall_seconds();
     p->shown = -HUGE_VAL;
     p->tty = isatty(STDERR_FILENO);
+    p->drawn = 0;
 }
 
 /* "1h02m", "3m05s", "12s". */
@@ -584,12 +585,21 @@ static void duration_words(double seconds, char *buf, size_t size)
     else snprintf(buf, size, "%lds", s);
 }
 
+/* Draws "whirl CMD: TEXT" over the line (a newline after it when final). */
+static void progress_draw(cli_progress_state *p, const char *text, int final)
+{
+    fprintf(stderr, "\rwhirl %s: %s\033[K", p->cmd->name, text);
+    if (final) fputc('\n', stderr);
+    fflush(stderr);
+    p->drawn = !final;
+}
+
 void cli_progress_update(cli_progress_state *p, long done, int final)
 {
     const double now = cli_wall_seconds();
     if (!p->tty || (!final && now - p->shown < 0.2)) return;
     p->shown = now;
-    char elapsed[32], left[48] = "";
+    char elapsed[32], left[48] = "", text[512];
     duration_words(now - p->start, elapsed, sizeof elapsed);
     const long run_done = done - p->already;
     if (!final && run_done > 0 && done < p->total) {
@@ -598,10 +608,31 @@ void cli_progress_update(cli_progress_state *p, long done, int final)
                        sizeof eta);
         snprintf(left, sizeof left, ", about %s left", eta);
     }
-    fprintf(stderr, "\rwhirl %s: %s %ld/%ld (%.0f%%), %s elapsed%s\033[K", p->cmd->name,
-            p->label, done, p->total, p->total > 0 ? 100.0 * (double)done / (double)p->total : 100.0,
-            elapsed, left);
-    if (final) fputc('\n', stderr);
-    fflush(stderr);
+    snprintf(text, sizeof text, "%s %ld/%ld (%.0f%%), %s elapsed%s", p->label, done, p->total,
+             p->total > 0 ? 100.0 * (double)done / (double)p->total : 100.0, elapsed, left);
+    progress_draw(p, text, final);
 }
 
+void cli_progress_text(cli_progress_state *p, const char *fmt, ...)
+{
+    const double now = cli_wall_seconds();
+    if (!p->tty || now - p->shown < 0.2) return;
+    p->shown = now;
+    char elapsed[32], text[512];
+    duration_words(now - p->start, elapsed, sizeof elapsed);
+    va_list ap;
+    va_start(ap, fmt);
+    int len = vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    if (len >= 0 && (size_t)len < sizeof text)
+        snprintf(text + len, sizeof text - (size_t)len, ", %s elapsed", elapsed);
+    progress_draw(p, text, 0);
+}
+
+void cli_progress_clear(cli_progress_state *p)
+{
+    if (!p->drawn) return;
+    fputs("\r\033[K", stderr);
+    fflush(stderr);
+    p->drawn = 0;
+}

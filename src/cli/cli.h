@@ -222,12 +222,23 @@ typedef struct cli_progress_state {
     double start;      /* wall clock at cli_progress_begin [s] */
     double shown;      /* wall clock of the last line [s] */
     int tty;           /* standard error is a terminal */
+    int drawn;         /* a line is on the terminal, not ended */
 } cli_progress_state;
 void cli_progress_begin(cli_progress_state *p, const cli_command *cmd, const char *label,
                         long total, long already);
 /* done: items done so far, including the already ones; final != 0 prints the last line and a
  * newline. */
 void cli_progress_update(cli_progress_state *p, long done, int final);
+/* The line with free text where no count of items measures the work: "whirl CMD: TEXT, 12s
+ * elapsed" (TEXT from the printf format), rewritten in place at most every 0.2 s, on a terminal
+ * only; cli_progress_clear ends it. (begin's label, total and already are not used.) */
+void cli_progress_text(cli_progress_state *p, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* Erases the line if one is drawn, leaving the cursor at the start of the empty line. */
+void cli_progress_clear(cli_progress_state *p);
 /* Seconds on the monotonic clock. */
 double cli_wall_seconds(void);
 

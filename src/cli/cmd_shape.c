@@ -1,32 +1,13 @@
 /* whirl shape: the steady shape of mode K at rotation rate W, as CSV s,r,z,tension from the
  * pivot to the free end, after a comment line summarising it. The N-link shape is the point of
- * the branch's continuation from its birth; on a terminal a progress line shows the steps of a
- * long one (the middle modes of long chains fold thousands of times) and the highest rate
- * reached. Ctrl-C stops it: no output, exit status 130. */
+ * the branch's continuation from its birth; on a terminal a progress line shows how far a long
+ * one has come (the middle modes of long chains fold thousands of times; steady_cli.h), and
+ * --max-steps bounds it. A continuation that fails (Ctrl-C, the step bound) leaves no output:
+ * one line names the mode, the rate reached and why; exit status 130 after Ctrl-C, else 1. */
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "cli/steady_cli.h"
-
-/* The progress line: continuation steps against their bound, the highest rate reached. */
-typedef struct shape_progress {
-    cli_progress_state state;
-    const cli_command *cmd;
-    double rate, target; /* the unit of rates; the rate asked for, in it */
-    const char *unit;
-    long steps;          /* the last reported, -1 before the first */
-    char label[128];
-} shape_progress;
-
-static void show_progress(void *ctx, long steps, long steps_max, double omega_hi)
-{
-    shape_progress *s = ctx;
-    if (s->steps < 0) cli_progress_begin(&s->state, s->cmd, s->label, steps_max, 0);
-    s->steps = steps;
-    snprintf(s->label, sizeof s->label, "continuation steps (highest rate %.6g of %.6g %s)",
-             omega_hi * s->rate, s->target, s->unit);
-    cli_progress_update(&s->state, steps, 0);
-}
 
 int cmd_shape(const cli_command *cmd, int argc, char **argv)
 {
@@ -34,6 +15,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     int mode = 0, points = 201, omega_given = 0, mode_given = 0;
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
+    steady_cli_follow follow = {0};
     const cli_option opts[] = {
         {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
          NULL, NULL, "", CLI_UNIT_RATE},
@@ -43,6 +25,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)",
          "[2, 10000000]", NULL, "--links"},
+        STEADY_CLI_FOLLOW_OPTIONS(follow),
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
     };
@@ -63,16 +46,14 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     }
     /* the N-link shape with its nodes from the branch's link angles */
     whirl_shape_info info;
-    shape_progress progress = {.cmd = cmd, .rate = cli_units_rate(&m.units), .steps = -1,
-                               .unit = cli_units_name(&m.units, CLI_UNIT_RATE)};
-    progress.target = omega * progress.rate;
     cli_catch_interrupts();
-    int status = m.chain ? whirl_nlink_solve_nodes_progress(m.chain, omega, mode, &info, r, z,
-                                                            tension, show_progress, &progress)
+    steady_cli_follow_begin(&follow, cmd, &m, omega, 1);
+    int status = m.chain ? whirl_nlink_solve_nodes_opt(m.chain, omega, mode, &info, r, z, tension,
+                                                       &follow.opt)
                          : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
-    if (progress.steps >= 0) cli_progress_update(&progress.state, progress.steps, 1);
+    steady_cli_follow_end(&follow);
     if (status == WHIRL_EINTERRUPTED) {
-        cli_error(cmd, "interrupted: %s", whirl_last_error());
+        cli_error(cmd, "interrupted in mode %d: %s", mode, whirl_last_error());
         free(s);
         steady_cli_model_free(&m);
         return CLI_EXIT_INTERRUPTED;

@@ -4,9 +4,11 @@
  * crossing of a grid rate, in the order along the branch (through folds a rate is crossed more than
  * once), and the folds, branch points and returns to the hanging chain as comment lines and, with
  * --events FILE, as CSV. On a terminal, a sweep of the N-link chain that runs longer than a second
- * shows a progress line (the grid rates its branches have reached). Ctrl-C (SIGINT, SIGTERM) stops
- * the sweep within a step: the rows found so far are written (a comment line says where it stopped)
- * and the exit status is 130. */
+ * shows a progress line (steady_cli.h: how far the branch being followed has come), and
+ * --max-steps bounds each branch's continuation. Ctrl-C (SIGINT, SIGTERM) stops the sweep within
+ * a step: the rows found so far are written (a comment line says where it stopped) and the exit
+ * status is 130. A branch that fails (the step bound) writes nothing: one line names the mode,
+ * the rate reached and why, exit status 1 (its rows would stop short of the grid's end). */
 #include <stdint.h>
 #include <stdlib.h>
 
@@ -20,32 +22,13 @@ typedef struct sweep_rows {
     size_t ne, cap_e;
     whirl_branch_event *event;
     int *event_mode;
-    /* the progress line, on a terminal once a sweep has run for a second: the grid rates the
-     * branches have reached (a middle mode of a long chain folds thousands of times between
-     * two of them) */
-    const cli_command *cmd;
-    cli_progress_state progress;
-    double t0;       /* wall clock at the sweep's start [s] */
-    int shown;       /* the line has begun */
-    long base, reached, total; /* rates of the modes before this one, of this one, in all */
 } sweep_rows;
-
-static void sweep_progress(sweep_rows *rows, int final)
-{
-    if (!rows->shown && !final && cli_wall_seconds() - rows->t0 > 1) {
-        cli_progress_begin(&rows->progress, rows->cmd, "grid rates reached", rows->total, 0);
-        rows->progress.start = rows->t0;
-        rows->shown = 1;
-    }
-    if (rows->shown) cli_progress_update(&rows->progress, rows->base + rows->reached, final);
-}
 
 static int sweep_visit(void *ctx, size_t j, const whirl_shape_info *info,
                        const whirl_branch_event *event)
 {
     sweep_rows *rows = ctx;
-    if (event == NULL && (long)j + 1 > rows->reached) rows->reached = (long)j + 1;
-    sweep_progress(rows, 0);
+    (void)j;
     if (event) {
         if (rows->ne == rows->cap_e) {
             size_t cap = rows->cap_e ? 2 * rows->cap_e : 16;
@@ -93,6 +76,7 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
     const char *out_path = NULL, *events_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     sweep_rows rows = {0};
+    steady_cli_follow follow = {0};
     const cli_option opts[] = {
         {"--modes", NULL, CLI_INT_LIST, &modes, NULL, "LIST",
          "modes, e.g. 1,2,3 (1..N with --links N, 1..3183 for the continuum)", "[1, inf)",
@@ -107,6 +91,7 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         {"--events", NULL, CLI_STRING, &events_path, NULL, "FILE",
          "write the folds, branch points and returns of the N-link branches to FILE (CSV)", NULL,
          "--links", NULL, NULL},
+        STEADY_CLI_FOLLOW_OPTIONS(follow),
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
     };
@@ -137,16 +122,16 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         omega[j] = cli_grid(omega_min, omega_max, count, (int)j);
     /* the rates not reached before a stop stay "no row" */
     for (size_t j = 0; exists && j < n * (size_t)modes.n; j++) exists[j] = 0;
-    rows.cmd = cmd, rows.t0 = cli_wall_seconds(), rows.total = (long)n * modes.n;
+    steady_cli_follow_begin(&follow, cmd, &m, omega[n - 1], modes.n);
     int interrupted = 0; /* the mode being followed when a stop came */
     char stopped[512] = "";
     for (int i = 0; i < modes.n && rc == 0 && !interrupted; i++) {
         int status;
         if (m.chain) {
             rows.mode = modes.v[i];
-            rows.base = (long)i * (long)n, rows.reached = 0;
-            status = whirl_nlink_follow(m.chain, modes.v[i], omega[n - 1], n, omega, sweep_visit,
-                                        &rows);
+            follow.index = i + 1;
+            status = whirl_nlink_follow_opt(m.chain, modes.v[i], omega[n - 1], n, omega,
+                                            sweep_visit, &rows, &follow.opt);
         } else {
             status = whirl_continuum_branch(modes.v[i], steady_cli_tip_mass(&m), n, omega,
                                             info + i * n, exists + i * n);
@@ -155,13 +140,13 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
             interrupted = modes.v[i];
             snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
         } else if (status != GSL_SUCCESS) {
+            steady_cli_follow_end(&follow);
             /* the N-link path's messages name the mode themselves */
-            if (m.chain) rc = cli_error(cmd, "%s", whirl_last_error());
+            if (m.chain) rc = steady_cli_solve_error(cmd, &m, status, modes.v[i], omega[n - 1]);
             else rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
         }
     }
-    if (!interrupted && rc == 0) rows.base = rows.total, rows.reached = 0;
-    sweep_progress(&rows, 1);
+    steady_cli_follow_end(&follow);
     cli_out out, ev;
     if (rc == 0 && events_path && (rc = cli_out_open(cmd, &ev, events_path)) == 0) {
         fprintf(ev.fp, "# events on the branches of the N-link chain (%d links), tip mass %s %s; "

@@ -54,6 +54,8 @@ int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int m
 int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status,
                            int mode, double omega)
 {
+    if (status == GSL_EMAXITER && m->chain)
+        return cli_error(cmd, "%s; --max-steps sets the bound", whirl_last_error());
     if (status != GSL_EDOM) return cli_error(cmd, "%s", whirl_last_error());
     double omega_k, rate = cli_units_rate(&m->units);
     if (steady_cli_critical(cmd, m, mode, &omega_k)) return 1;
@@ -64,6 +66,34 @@ int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, in
                      cli_units_name(&m->units, CLI_UNIT_RATE), mode, CLI_NUM(omega_k * rate),
                      cli_units_name(&m->units, CLI_UNIT_RATE));
 }
+
+/* The progress line (a whirl_nlink_progress_fn); see steady_cli.h for what it shows. */
+static void follow_progress(void *ctx, const whirl_nlink_progress *at)
+{
+    steady_cli_follow *f = ctx;
+    if (!f->line.drawn && cli_wall_seconds() - f->line.start < 1) return;
+    const double rate = cli_units_rate(&f->m->units);
+    char which[64] = "", unit[32] = "";
+    if (f->count > 1) snprintf(which, sizeof which, " (%d of %d)", f->index, f->count);
+    if (f->m->units.physical)
+        snprintf(unit, sizeof unit, " %s", cli_units_name(&f->m->units, CLI_UNIT_RATE));
+    cli_progress_text(&f->line, "mode %d%s: omega %.6g of %.6g%s (now %.6g), %ld steps (at most "
+                      "%ld), %ld folds", at->mode, which, at->omega_hi * rate, f->target * rate,
+                      unit, at->omega * rate, at->steps, at->steps_max, at->folds);
+}
+
+void steady_cli_follow_begin(steady_cli_follow *f, const cli_command *cmd,
+                             const steady_cli_model *m, double target, int count)
+{
+    f->opt = (whirl_nlink_follow_options){f->max_steps, follow_progress, f};
+    f->m = m;
+    f->target = target;
+    f->index = 1;
+    f->count = count;
+    cli_progress_begin(&f->line, cmd, "", 0, 0);
+}
+
+void steady_cli_follow_end(steady_cli_follow *f) { cli_progress_clear(&f->line); }
 
 void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_shape_info *info,
                             size_t n, const double *s, const double *r, const double *z,

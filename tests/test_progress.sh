@@ -1,0 +1,115 @@
+#!/bin/sh
+# Command-line tests of long continuations of the N-link chain (whirl shape, whirl sweep): the
+# progress line shows on a terminal only (the command run on a pseudo-terminal by util-linux's
+# script), says where the branch stands (rate reached of the target, steps and their bound,
+# folds; no estimate of the time left) and is erased at the end, and the CSV stays clean; the
+# bound on the steps (--max-steps) stops a run with one line naming the mode and the rate
+# reached, and no output.
+. "$(dirname "$0")/lib.sh"
+
+# Mode 100 of 1000 links (born at omega 156.81) up to 190: some 5000 steps and 160 folds, about
+# 2 s; the line starts after a second.
+shape="shape --links 1000 --mode 100 --omega 190"
+sweep="sweep --links 1000 --modes 1,100 --omega-min 170 --omega-max 190 --omega-count 3"
+printf '\r\033[K' >"$tmp/erase"
+
+# on_tty NAME REDIRECTIONS ARGS...: runs `whirl ARGS REDIRECTIONS` on a pseudo-terminal, what the
+# terminal shows into $tmp/NAME.tty; its exit status.
+on_tty() {
+  name=$1; redir=$2; shift 2
+  script -qfec "\"$WHIRL\" $* $redir" /dev/null </dev/null >"$tmp/$name.tty"
+}
+
+# progress_lines NAME CMD PATTERN: the lines drawn on the terminal (each "\r...\033[K") that
+# match "^whirl CMD: PATTERN, Ns elapsed$" (the erase sequences removed), into $tmp/NAME.lines.
+progress_lines() {
+  tr '\r' '\n' <"$tmp/$1.tty" | sed 's/\x1b\[K$//' \
+    | grep -E "^whirl $2: $3, [0-9]+s elapsed\$" >"$tmp/$1.lines"
+}
+
+# ---- shape ----
+if command -v script >/dev/null 2>&1; then pass "script (util-linux) is installed"
+else fail "script (util-linux) is installed"; fi
+# the CSV to a file, standard error on the terminal: the line shows, then is erased
+on_tty shape ">\"$tmp/shape_tty.csv\"" $shape
+rc=$?
+progress_lines shape shape \
+  'mode 100: omega [0-9.]+ of 190 \(now [0-9.]+\), [0-9]+ steps \(at most 200000\), [0-9]+ folds'
+if [ $rc -eq 0 ] && [ -s "$tmp/shape.lines" ]; then pass "shape: a progress line on a terminal"
+else fail "shape: a progress line on a terminal (rc=$rc: $(tr '\r\033' '|^' <"$tmp/shape.tty" | head -c 300))"; fi
+# what the lines say: the highest rate between the birth and the target, at least the current
+# one; steps reported every 256, folds among them
+if awk '{split($0, f, /[ (),]+/)
+         hi = f[6]; now = f[10]; steps = f[11]; folds = f[16]
+         if (!(hi >= 156.8 && hi <= 190 && now <= hi && now >= 156.8 && steps % 256 == 0 &&
+               steps > 0 && folds > 0 && folds < steps)) bad = 1
+         n++}
+       END {exit bad || n == 0}' "$tmp/shape.lines"; then
+  pass "shape: the line's rates, steps and folds"
+else fail "shape: the line's rates, steps and folds ($(head -n 2 "$tmp/shape.lines"))"; fi
+if grep -q 'left' "$tmp/shape.tty"; then fail "shape: no estimate of the time left"
+else pass "shape: no estimate of the time left"; fi
+if tail -c 4 "$tmp/shape.tty" | cmp -s - "$tmp/erase"; then pass "shape: the line is erased at the end"
+else fail "shape: the line is erased at the end ($(tail -c 40 "$tmp/shape.tty" | tr '\r\033' '|^'))"; fi
+# the CSV to the terminal, standard error to a file: no line anywhere, the same CSV
+on_tty shape_err "2>\"$tmp/shape.err\"" $shape
+rc=$?
+tr -d '\r' <"$tmp/shape_err.tty" >"$tmp/shape_err.csv"
+if [ $rc -eq 0 ] && [ ! -s "$tmp/shape.err" ] && ! grep -q 'whirl' "$tmp/shape_err.tty" \
+   && [ "$(grep -c '^[0-9]' "$tmp/shape_err.csv")" -eq 1001 ]; then
+  pass "shape: no progress line when standard error is not a terminal"
+else fail "shape: no progress line when standard error is not a terminal (rc=$rc, $(head -c 200 "$tmp/shape.err"))"; fi
+if cmp -s "$tmp/shape_tty.csv" "$tmp/shape_err.csv" && ! grep -q "$(printf '[\r\033]')" "$tmp/shape_tty.csv"
+then pass "shape: the CSV is the same, with or without the line"
+else fail "shape: the CSV is the same, with or without the line"; fi
+
+# ---- sweep: the same line, with the mode's place in the list ----
+on_tty sweep ">\"$tmp/sweep_tty.csv\"" $sweep
+rc=$?
+progress_lines sweep sweep \
+  'mode 100 \(2 of 2\): omega [0-9.]+ of 190 \(now [0-9.]+\), [0-9]+ steps \(at most 200000\), [0-9]+ folds'
+if [ $rc -eq 0 ] && [ -s "$tmp/sweep.lines" ] && ! grep -q 'left' "$tmp/sweep.tty" \
+   && tail -c 4 "$tmp/sweep.tty" | cmp -s - "$tmp/erase"; then
+  pass "sweep: a progress line on a terminal, erased at the end"
+else fail "sweep: a progress line on a terminal, erased at the end (rc=$rc: $(tr '\r\033' '|^' <"$tmp/sweep.tty" | head -c 300))"; fi
+on_tty sweep_err "2>\"$tmp/sweep.err\"" $sweep
+rc=$?
+tr -d '\r' <"$tmp/sweep_err.tty" >"$tmp/sweep_err.csv"
+if [ $rc -eq 0 ] && [ ! -s "$tmp/sweep.err" ] && ! grep -q 'whirl' "$tmp/sweep_err.tty" \
+   && cmp -s "$tmp/sweep_tty.csv" "$tmp/sweep_err.csv" \
+   && [ "$(grep -c '^1[0-9]*,100,' "$tmp/sweep_tty.csv")" -ge 3 ]; then
+  pass "sweep: no progress line when standard error is not a terminal, the same CSV"
+else fail "sweep: no progress line when standard error is not a terminal, the same CSV (rc=$rc)"; fi
+
+# ---- --max-steps: a bound on the continuation steps of each branch ----
+expect_error "shape: --max-steps 10 stops a long continuation, no file" \
+  '^whirl shape: mode 100: 10 continuation steps from the birth at omega=156\.8[0-9]* .*reached omega=15[6-9]\.[0-9]+ at most .*--max-steps' \
+  $shape --max-steps 10 -o "$tmp/out.csv"
+expect_error "sweep: --max-steps 10 stops a long continuation, no file" \
+  '^whirl sweep: mode 100: 10 continuation steps from the birth at omega=156\.8[0-9]* .*reached omega=15[6-9]\.[0-9]+ at most .*--max-steps' \
+  sweep --links 1000 --modes 100 --omega-min 170 --omega-max 190 --omega-count 3 --max-steps 10 \
+  -o "$tmp/out.csv"
+expect_error "sweep: --max-steps 10 in the first mode of two, nothing on standard output" \
+  '^whirl sweep: mode 1: 10 continuation steps from the birth at omega=1\.202' $sweep --max-steps 10
+# a bound the run stays within changes nothing
+expect_ok "shape: --max-steps within the run's needs" \
+  shape --links 40 --mode 12 --omega 30 --max-steps 1000 -o "$tmp/bounded.csv"
+expect_ok "shape: the default bound" shape --links 40 --mode 12 --omega 30 -o "$tmp/default.csv"
+if cmp -s "$tmp/bounded.csv" "$tmp/default.csv"; then pass "shape: a bound not reached changes nothing"
+else fail "shape: a bound not reached changes nothing"; fi
+for bad in 0 -3; do
+  expect_error "shape: --max-steps $bad" "^whirl shape: --max-steps must be >= 1, got $bad\$" \
+    shape --links 40 --mode 12 --omega 30 --max-steps $bad -o "$tmp/out.csv"
+done
+for bad in 2.5 1e3 ten ''; do
+  expect_error "sweep: --max-steps '$bad'" "^whirl sweep: option --max-steps needs an integer" \
+    sweep --links 40 --modes 12 --omega-min 20 --omega-max 30 --omega-count 2 --max-steps "$bad" \
+    -o "$tmp/out.csv"
+done
+expect_error "shape: --max-steps needs --links" "^whirl shape: --max-steps needs --links\$" \
+  shape --mode 2 --omega 4 --max-steps 100 -o "$tmp/out.csv"
+if "$WHIRL" shape --help | grep -q -- '--max-steps S .*(default max(100000, 200 N))' \
+   && "$WHIRL" sweep --help | grep -q -- '--max-steps S '; then pass "--max-steps in the help"
+else fail "--max-steps in the help"; fi
+
+finish
