@@ -11,6 +11,7 @@
 #  3. one traced run (N = 25, omega 9, mode 2): stability_trace.csv, stability_deviation.png.
 out=${1:-out/bench}
 WHIRL=${WHIRL:-build/whirl}
+jobs=${BENCH_JOBS:-2} # perturbed runs at once (BENCH_JOBS=1 on a shared machine)
 mkdir -p "$out"
 status=0
 
@@ -41,7 +42,7 @@ for n in 25 50; do
   while read -r w k g; do
     p=$(awk -v g="$g" -v w="$w" 'BEGIN { p = 100; if (g > 0) { q = (log(1e4) + 6) / g * w / (2 * 3.141592653589793) + 20; if (q > p) p = int(q) } print p }')
     echo "$w $k $p"
-  done <"$out/stability_points_N$n.txt" | xargs -P 2 -L 1 sh -c \
+  done <"$out/stability_points_N$n.txt" | xargs -P "$jobs" -L 1 sh -c \
     '"$0" stability --omega "$1" --mode "$2" --links '$n' --periods "$3" | grep -v "^[#o]"' "$WHIRL" >>"$csv" || status=1
   echo "runs N = $n: $(( $(date +%s) - start )) s wall for $(($(wc -l <"$csv") - 1)) runs"
   awk -F, -v n=$n 'NR > 1 {

@@ -16,6 +16,7 @@
 #     collocation's values.
 out=${1:-out/bench}
 WHIRL=${WHIRL:-build/whirl}
+jobs=${BENCH_JOBS:-2} # perturbed runs at once (BENCH_JOBS=1 on a shared machine)
 status=0
 
 for n in 25 50; do
@@ -33,7 +34,7 @@ for n in 25 50; do
     g=$("$WHIRL" stability --omega "$w" --mode "$k" --links $n --linear | grep -v '^[#o]' | cut -d, -f4)
     p=$(awk -v g="$g" -v w="$w" 'BEGIN { p = 150; if (g > 0) { q = 1.3 * (log(1e4) + 6) / g * w / (2 * 3.141592653589793) + 20; if (q > p) p = int(q) } print p }')
     echo "$e $side $w $k $p"
-  done | xargs -P 2 -L 1 sh -c \
+  done | xargs -P "$jobs" -L 1 sh -c \
     'echo "$0,$1,$("'"$WHIRL"'" stability --omega "$2" --mode "$3" --links '$n' --periods "$4" | grep -v "^[#o]")"' >>"$runs"
   echo "runs N = $n: $(( $(date +%s) - start )) s wall for $(($(wc -l <"$runs") - 1)) runs"
   awk -F, -v n=$n 'NR > 1 {
