@@ -182,6 +182,32 @@ int whirl_nlink_balance_det_sign(const nlink_balance *b)
     return b->det_sign;
 }
 
+/* The inertia of A. Its off-diagonal products A_{i+1,i} A_{i,i+1} = s_i s_{i+1} / m_i^2 are
+ * positive, so the diagonal similarity D A D^-1 with D_{i+1} / D_i = sqrt(A_{i,i+1} /
+ * A_{i+1,i}) makes A the symmetric tridiagonal T with T_ii = A_ii and T_{i,i+1}^2 = A_{i,i+1}
+ * A_{i+1,i}: its eigenvalues are real, and by Sylvester's law of inertia as many are negative
+ * as pivots of T = L D L^T are, q_1 = T_11, q_i = T_ii - T_{i,i-1}^2 / q_{i-1} (the Sturm
+ * count, backward stable: Kahan 1966, Demmel 1997 section 5.3.4; a zero pivot is moved to
+ * -eps |T|, as LAPACK dstebz does). */
+int whirl_nlink_balance_index(const nlink_balance *b)
+{
+    const size_t n = b->c->n;
+    double scale = 0;
+    for (size_t i = 0; i < n; i++) {
+        scale = fmax(scale, fabs(b->a_d[i]));
+        if (i + 1 < n) scale = fmax(scale, fmax(fabs(b->a_dl[i]), fabs(b->a_du[i])));
+    }
+    const double tiny = DBL_EPSILON * scale;
+    int count = 0;
+    double q = 1;
+    for (size_t i = 0; i < n; i++) {
+        q = b->a_d[i] - (i > 0 ? b->a_dl[i - 1] * b->a_du[i - 1] / q : 0);
+        if (q == 0) q = -tiny;
+        if (q < 0) count++;
+    }
+    return count;
+}
+
 /* x <- A^-1 x for the columns x[k N .. k N + N - 1], k < nrhs, with the LU factors of dgttrf:
  * the substitutions of LAPACK's dgtts2 (no transpose), operation for operation, with the
  * columns side by side (each substitution is a chain of dependent operations, a division in

@@ -838,6 +838,62 @@ static void test_heavy_tip(void **state)
     whirl_chain_free(c);
 }
 
+/* The link angles of mode k of c where its path from the birth first crosses omega_top, every
+ * step at most cap if cap > 0 (the step control otherwise its own), into theta; returns the
+ * steps. */
+static long path_end(const whirl_chain *c, int mode, double omega_top, double cap, double *theta)
+{
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_non_null(p);
+    assert_int_equal(whirl_nlink_path_birth(p, mode), GSL_SUCCESS);
+    double a;
+    int found = 0;
+    while (!found) {
+        if (cap > 0 && p->ds > cap) p->ds = cap;
+        assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+        assert_false(p->ended);
+        found = whirl_nlink_path_crossings(p, omega_top, 1, &a);
+        assert_true(found >= 0);
+        assert_true(p->steps < 20000);
+    }
+    for (size_t i = 0; i < c->n; i++) theta[i] = p->cross_theta[i];
+    const long steps = p->steps;
+    whirl_nlink_path_free(p);
+    return steps;
+}
+
+/* A tip mass of 1e12: the modes whose path, with steps of up to 0.1, passed over two splits of
+ * the pinned string at nearly the same rate in one step, where the orientation test (a sign)
+ * stays the same, and went on on the symmetric curve beyond them: at 2.5 times their birth
+ * every link angle is the one the path with steps of at most 0.01 reaches (on the asymmetric
+ * side), to 1e-6 rad; the index of the force balance changes by two on such a step, which is
+ * halved. */
+static void test_heavy_tip_jumps(void **state)
+{
+    (void)state;
+    static const int cases[][2] = {{12, 11}, {16, 11}, {16, 15}, {20, 7}, {20, 15}, {20, 19},
+                                   {24, 11}, {24, 15}, {24, 16}, {24, 22}, {24, 23}, {28, 11},
+                                   {28, 19}, {28, 23}};
+    double own[28], fine[28], crit[28];
+    for (size_t j = 0; j < sizeof cases / sizeof cases[0]; j++) {
+        const size_t n = (size_t)cases[j][0];
+        const int mode = cases[j][1];
+        whirl_chain *c = whirl_chain_alloc_uniform(n, 1e12);
+        assert_int_equal(whirl_nlink_critical(c, (size_t)mode, crit), GSL_SUCCESS);
+        const double top = 2.5 * crit[mode - 1];
+        const long s_own = path_end(c, mode, top, 0, own);
+        const long s_fine = path_end(c, mode, top, 0.01, fine);
+        double diff = 0;
+        for (size_t i = 0; i < n; i++) diff = fmax(diff, fabs(own[i] - fine[i]));
+        print_message("N = %zu mode %d, tip mass 1e12, at 2.5 times its birth: %ld steps, %ld "
+                      "with steps of at most 0.01; link angles apart by %.1e, asymmetry %.2f\n",
+                      n, mode, s_own, s_fine, diff, asymmetry(n, own));
+        assert_true(diff < 1e-6);
+        assert_true(asymmetry(n, fine) > 0.1);
+        whirl_chain_free(c);
+    }
+}
+
 /* The first point of a branch whose shot from the tip cannot start it: in the link angles at a
  * finite amplitude. Mode 9 of this 9-link chain (lengths and masses over six decades) took a
  * first step on the shot of 2e-6 (a tip radius of 1e-30), handed over to the link angles there,
@@ -994,6 +1050,10 @@ static int fold_list(const whirl_chain *c, double omega_max, double cap, double 
     while (p->omega <= omega_max) {
         if (cap > 0 && p->ds > cap) p->ds = cap;
         assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+        /* the index of the force balance changes by one at each fold, and nowhere else */
+        int singular = 0;
+        for (int e = 0; e < p->n_events; e++) singular += p->event[e].kind != WHIRL_EVENT_RETURN;
+        if (p->angles && p->last.angles) assert_int_equal(abs(p->index - p->last.index), singular);
         for (int e = 0; e < p->n_events; e++)
             if (p->event[e].kind == WHIRL_EVENT_FOLD) {
                 assert_true(nf < max);
@@ -1118,7 +1178,8 @@ int main(void)
         cmocka_unit_test(test_high_rates),         cmocka_unit_test(test_every_mode_high),
         cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
         cmocka_unit_test(test_nodes_lengths),
-        cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_birth_in_angles),
+        cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_heavy_tip_jumps),
+        cmocka_unit_test(test_birth_in_angles),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
         cmocka_unit_test(test_many_folds),         cmocka_unit_test(test_follow_options),

@@ -249,6 +249,9 @@ typedef struct whirl_nlink_path {
     double *t_theta;  /* the tangent's link-angle part, c->n (set in the link angles) */
     double *t_theta_trial;
     int det_sign;     /* in the link angles: sign of det [J; tangent] (branch points) */
+    int index;        /* in the link angles: the number of negative eigenvalues of the force
+                       * balance's Jacobian in theta (it changes by one at a fold or a branch
+                       * point); -1 on the tip shot */
     double *cross_theta; /* the link angles of the crossings of the last
                           * whirl_nlink_path_crossings, (WHIRL_PATH_EVENTS_MAX + 1) x c->n */
     int cross_angles[WHIRL_PATH_EVENTS_MAX + 1]; /* 1: that crossing was resolved in the link
@@ -267,7 +270,7 @@ typedef struct whirl_nlink_path {
         int raw_sign;
         int angles;       /* the step was made in the link angles: */
         double *theta0, *t_theta0; /* its start's link angles and tangent, c->n each */
-        int det_sign;
+        int det_sign, index;
     } last;
 } whirl_nlink_path;
 
@@ -301,10 +304,11 @@ WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
  * more than 0.2 rad, a link angle changes by more than 0.2 rad or the step's chord is not that
  * of an arc the step resolves (further from either end's tangent than 3/4 of the turn, or its
  * rate changing outside the range the tangents allow: the step passed over a small S of two
- * folds). Events between the old and
- * the new point are located and listed in p->event. GSL_EFAILED if the step falls below its
- * minimum (1e-7), with a one-line message naming the rate reached (the current point, where
- * the path stays) and why the last trial was rejected; GSL_EDOM once the path has ended;
+ * folds), or, in the link angles, the index of the force balance (its Jacobian's negative
+ * eigenvalues) changes by more than one (two folds or branch points passed over). Events between
+ * the old and the new point are located and listed in p->event. GSL_EFAILED if the step falls
+ * below its minimum (1e-7), with a one-line message naming the rate reached (the current point,
+ * where the path stays) and why the last trial was rejected; GSL_EDOM once the path has ended;
  * WHIRL_EINTERRUPTED on a stop request. The message of a failure of a path begun at a birth
  * (here, in whirl_nlink_path_crossings and in the drivers below) starts with "mode k: ". */
 WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
