@@ -122,8 +122,8 @@ WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *
  * tip_r_guess is not used (kept for the continuum's signature). GSL_EDOM with a message naming
  * the rates the branch reaches if it does not reach omega (omega below its lowest rate, which
  * is omega_k unless the branch first turns to lower rates; or k > c->n); GSL_EFAILED if the
- * continuation fails (the message names the rate reached); WHIRL_EINTERRUPTED on a stop
- * request. */
+ * continuation fails (the message names the rate reached); GSL_EMAXITER at the bound on its
+ * steps (whirl_nlink_follow_options); WHIRL_EINTERRUPTED on a stop request. */
 WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
                       whirl_shape_info *info);
 
@@ -332,7 +332,8 @@ typedef int (*whirl_nlink_visit_fn)(void *ctx, size_t j, const whirl_shape_info 
  * returns to the hanging chain, calling visit at every crossing of one of the rates
  * omega[0..n-1] (a rate crossed several times, through folds, is reported each time) and at every
  * event, in the order met (a step's events before its crossings). Errors as
- * whirl_nlink_path_step, or visit's status. */
+ * whirl_nlink_path_step, GSL_EMAXITER at the bound on the steps (whirl_nlink_follow_options;
+ * the message names the mode, the steps and the rates reached), or visit's status. */
 WHIRL_API int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
                        const double *omega, whirl_nlink_visit_fn visit, void *ctx);
 /* whirl_nlink_follow with the options opt (may be NULL). */
