@@ -329,6 +329,62 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
                       "converge", omega);
 }
 
+/* The null vector of A at a critical rate (theta = 0): the linear mode shape in the link angles,
+ * by the twisted factorization of A (Parlett & Dhillon 1997, "Fernando's solution to
+ * Wilkinson's problem", Linear Algebra Appl. 267:247; LAPACK dlar1v). The elimination from the
+ * pivot down, p_1 = A_11, p_i = A_ii - A_{i,i-1} A_{i-1,i} / p_{i-1}, and from the tip up, q_N =
+ * A_NN, q_i = A_ii - A_{i,i+1} A_{i+1,i} / q_{i+1}, meet at the link r where |p_r + q_r - A_rr|
+ * is least; with phi_r = 1, phi_i = -A_{i,i+1} phi_{i+1} / p_i above it and phi_i = -A_{i,i-1}
+ * phi_{i-1} / q_i below. Each component is a product of ratios of its own neighbourhood, so a
+ * tail that decays to 1e-160 of the largest component keeps its relative accuracy and its signs
+ * (inverse iteration with the LU factors of A resolves components only down to about eps of the
+ * largest). A pivot that is exactly zero is moved to eps times its row. Where a component
+ * underflows its sign is still known: the signs of the ratios, multiplied down to the tip, are
+ * *tip_sign (+1 or -1), even where phi_N is zero. phi is scaled to a largest component of 1. */
+int whirl_nlink_balance_mode(nlink_balance *b, double omega, double *phi, int *tip_sign)
+{
+    const size_t n = b->c->n;
+    double *zero = b->rf, *p = b->u, *q = b->u + n;
+    for (size_t i = 0; i < n; i++) zero[i] = 0;
+    /* A itself (a_dl, a_d, a_du) is kept even where it is exactly singular */
+    const int status = evaluate(b, omega, zero, 1);
+    b->factored = 0;
+    if (status != GSL_SUCCESS && status != GSL_ESING) return status;
+    const double *dl = b->a_dl, *d = b->a_d, *du = b->a_du;
+    for (size_t i = 0; i < n; i++) {
+        const double off = (i > 0 ? dl[i - 1] * du[i - 1] / p[i - 1] : 0);
+        p[i] = d[i] - off;
+        if (p[i] == 0) p[i] = DBL_EPSILON * (fabs(d[i]) + fabs(off));
+    }
+    for (size_t i = n; i-- > 0;) {
+        const double off = (i + 1 < n ? du[i] * dl[i] / q[i + 1] : 0);
+        q[i] = d[i] - off;
+        if (q[i] == 0) q[i] = DBL_EPSILON * (fabs(d[i]) + fabs(off));
+    }
+    size_t r = 0;
+    double best = INFINITY;
+    for (size_t i = 0; i < n; i++) {
+        const double gamma = fabs(p[i] + q[i] - d[i]);
+        if (gamma < best) best = gamma, r = i;
+    }
+    phi[r] = 1;
+    for (size_t i = r; i-- > 0;) phi[i] = -du[i] * phi[i + 1] / p[i];
+    int sign = 1;
+    for (size_t i = r + 1; i < n; i++) {
+        const double ratio = -dl[i - 1] / q[i];
+        phi[i] = ratio * phi[i - 1];
+        if (ratio < 0) sign = -sign;
+    }
+    double big = 0;
+    for (size_t i = 0; i < n; i++) big = fmax(big, fabs(phi[i]));
+    if (!(big > 0 && isfinite(big) && isfinite(best)))
+        return whirl_fail(GSL_EFAILED, "omega=%g: no linear mode shape (the null vector of the "
+                          "force balance is not finite)", omega);
+    for (size_t i = 0; i < n; i++) phi[i] /= big;
+    *tip_sign = sign;
+    return GSL_SUCCESS;
+}
+
 double whirl_nlink_balance_nodes(const whirl_chain *c, double omega, const double *theta,
                                  double *r, double *z, double *tension)
 {

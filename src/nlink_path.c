@@ -31,7 +31,7 @@
  * curve) or the chord of the step is not that of an arc the step resolves (chord_test: it lies
  * further than CHORD_MAX times the turn from either end's tangent, or its rate part outside the
  * tangents' range: the step passed over a small S of two folds; where it alone rejects every
- * step down to the smallest in the link angles, the corrected points scatter by their round-off
+ * step down to DS_MIN_CHORD in the link angles, the corrected points scatter by their round-off
  * across a turn sharper than the tangent resolves, and the step is retried from its first
  * length without it, the other tests kept); it grows 1.5-fold after an easy step, up to DS_MAX.
  * The smallest step is DS_MIN on the shot (below it the path goes over to the link angles,
@@ -39,7 +39,11 @@
  * (a tip mass of 1e12 chain masses makes the chain a string pinned at both ends, whose
  * symmetric branches split in pitchforks; the links' own weight unfolds each at 1e-12, and
  * the branch from the birth turns onto the asymmetric side over an arclength of order the
- * square root of that).
+ * square root of that), and within 1e-9 where a branch meets another mode's birth with part of
+ * the chain all but hanging (links 1..7 of a 12-link chain whose lengths and masses span six
+ * decades at 1e-10 rad, the rest at finite angles: the upper links split off there in a
+ * pitchfork that the lower ones unfold, and the branch turns by about a radian onto it; a path
+ * in 60 digits with turns of at most 0.05 rad per step does the same).
  *
  * Test functions between two accepted points: a fold where t_omega changes sign; a branch point
  * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as
@@ -64,7 +68,11 @@
  * noise where the Jacobian is singular), elsewhere to round-off. A crossing of a rate is first
  * sought by Newton's method at that rate from the point interpolated in omega (omega is
  * monotone between the step's folds, so the point whose arclength coordinate lies on the piece
- * is the one), Brent's method only where that fails.
+ * is the one), Brent's method only where that fails. A step across an event that cannot be
+ * located (the curve between its ends more intricate than the step: a tail of links all but
+ * hanging that turns in a pitchfork of its own, which the tip radius shows by changing sign and
+ * the metric, dominated by the links at finite angles, does not) is taken back and halved, on
+ * the shot as in the link angles.
  *
  * The same curve in the link angles. The shot loses digits on long chains at high rates: the
  * tip radius of a high mode is 1e-18 of the largest radius or less and fixes the shape only to
@@ -130,7 +138,8 @@
 
 #define DS_FIRST 0.02    /* first step from a start */
 #define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
-#define DS_MIN_ANGLES 1e-10 /* smallest step in the link angles before the continuation fails */
+#define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails */
+#define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
 #define DS_MAX 0.1       /* largest step */
 #define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
                           * is rejected (halved): see the header comment */
@@ -1315,7 +1324,7 @@ static int angle_step(whirl_nlink_path *p)
                 continue;
             }
             p->ds *= 0.5;
-            if (p->ds < DS_MIN_ANGLES && chord_failed && !chord_off) {
+            if (p->ds < DS_MIN_CHORD && chord_failed && !chord_off) {
                 /* the chord test alone rejected steps down to the smallest: at that scale the
                  * corrected points scatter by their own round-off across a turn of the curve
                  * sharper than the tangent resolves (a heavy tip's pinned string where it
@@ -1386,59 +1395,80 @@ static int angle_step(whirl_nlink_path *p)
 }
 
 #define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
+#define GAP_MAX 30 /* secant iterations of a point between the birth and that first point */
+
+/* The point of the branch whose projection on the linear mode shape phi is amplitude
+ * (phi . theta / sqrt(N), phi of unit norm oriented to a positive tip), by Newton's method into
+ * th, from th scaled by guess (0: from amplitude phi); its rate in *w. The row phi / sqrt(N) is
+ * left in scr_cth(p). Returns 0, or -1 where phi or Newton's method fails. */
+static int birth_point(whirl_nlink_path *p, double amplitude, double guess, double *th, double *w)
+{
+    const size_t n = p->chain->n;
+    double *phi = p->t_theta_trial, *c_th = scr_cth(p), norm = 0;
+    int tip_sign;
+    if (whirl_nlink_balance_mode(p->balance, p->omega_birth, phi, &tip_sign)) return -1;
+    for (size_t i = 0; i < n; i++) norm += phi[i] * phi[i];
+    norm = sqrt(norm) * tip_sign;
+    const double scale = sqrt((double)n);
+    for (size_t i = 0; i < n; i++) {
+        phi[i] /= norm;
+        c_th[i] = phi[i] / scale;
+        th[i] = guess > 0 ? guess * th[i] : amplitude * scale * phi[i];
+    }
+    *w = p->omega_birth;
+    return correct_angles(p, p->omega_birth, scr_zero(p), 0, c_th, amplitude, w, th, NULL,
+                          LOCATE_NEWTON_MAX);
+}
 
 /* The first point of the branch in the link angles, where the shot's first step from the birth
  * fails (the modes near N, whose linear mode shape has a tip displacement of 1e-10 of its
  * largest or less). At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
- * vector phi, the linear mode shape in the link angles (three steps of inverse iteration from
- * the shot's d theta / d a, or from a constant vector where that is not finite); the branch is the curve through it along phi, and its point with
- * phi . theta / sqrt(N) = BIRTH_AMPLITUDE (a regular point of the system with that row: omega
- * moves from omega_k by O(amplitude^2)) is found by Newton's method from theta = amplitude phi.
- * Rates below that point's (within ~1e-10 omega_k of the birth) are not reached. */
+ * vector phi, the linear mode shape in the link angles (whirl_nlink_balance_mode: a twisted
+ * factorization of A, every component to its own relative accuracy, the tip's sign known even
+ * where its magnitude underflows; the shot's d theta / d a at a = 0 is not used: where the
+ * mode decays towards the pivot its upper links are the shot's round-off, amplified); the
+ * branch is the curve through it along phi, and its point with phi . theta / sqrt(N) =
+ * BIRTH_AMPLITUDE (a regular point of the system with that row: omega moves from omega_k by
+ * O(amplitude^2)) is found by Newton's method from theta = amplitude phi. The half of the
+ * pitchfork is that of phi oriented to a positive tip angle (the side a > 0 of the shot), by
+ * the exact sign of the linear mode's tip, not by the tip of the corrected point, whose sign can
+ * be round-off (its magnitude 1e-160 of the largest or less) or zero. Rates below that point's
+ * (within ~1e-9 omega_k of the birth) are reached by birth_gap. */
 static int birth_angles(whirl_nlink_path *p)
 {
-    const whirl_chain *c = p->chain;
-    const size_t n = c->n;
-    double *phi = p->t_theta_trial, *th = p->theta_trial, *c_th = scr_cth(p);
-    double w = p->omega_birth, dw, schur, norm = 0;
-    for (size_t i = 0; i < n; i++) norm += p->embed[n + 1 + i] * p->embed[n + 1 + i];
-    for (size_t i = 0; i < n; i++)
-        phi[i] = norm > 0 && isfinite(norm) ? p->embed[n + 1 + i] / sqrt(norm) : 1;
-    if (whirl_nlink_balance_factor(p->balance, w, scr_zero(p)) == GSL_SUCCESS)
-        for (int it = 0; it < 3; it++) {
-            if (whirl_nlink_balance_bordered(p->balance, scr_zero(p), 1, phi, 0, 0, th, &dw,
-                                             &schur))
-                break;
-            norm = 0;
-            for (size_t i = 0; i < n; i++) norm += th[i] * th[i];
-            norm = sqrt(norm) * (th[n - 1] < 0 ? -1 : 1); /* the tip moving to r > 0 */
-            if (!(fabs(norm) > 0 && isfinite(norm))) break;
-            for (size_t i = 0; i < n; i++) phi[i] = th[i] / norm;
-        }
-    const double scale = sqrt((double)n);
-    for (size_t i = 0; i < n; i++) {
-        c_th[i] = phi[i] / scale;
-        th[i] = BIRTH_AMPLITUDE * scale * phi[i];
-    }
-    if (correct_angles(p, w, scr_zero(p), 0, c_th, BIRTH_AMPLITUDE, &w, th, NULL,
-                       LOCATE_NEWTON_MAX))
-        return -1;
-    /* the tip's angle of a mode near N is below the round-off of phi's orientation: where the
-     * point came out with its tip at r < 0, its mirror image (R is odd in theta), the other half
-     * of the pitchfork, with the row turned with it */
-    if (tip_of(c, w, th) < 0) {
-        for (size_t i = 0; i < n; i++) th[i] = -th[i], c_th[i] = -c_th[i];
-        if (whirl_nlink_balance_factor(p->balance, w, th)) return -1;
-    }
-    double t_w;
+    double w, t_w;
     int det;
-    if (angle_tangent(p, w, 0, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
+    if (birth_point(p, BIRTH_AMPLITUDE, 0, p->theta_trial, &w)) return -1;
+    if (angle_tangent(p, w, 0, scr_cth(p), &t_w, p->t_theta, &det, NULL, NULL)) return -1;
     swap(&p->theta, &p->theta_trial);
     angle_point(p, w, t_w, det);
     p->stay = p->backoff;
     p->have_last = 0;
     p->ds = DS_FIRST;
-    return p->tip_r > 0 ? 0 : -1;
+    return 0;
+}
+
+/* The point of the branch at the rate omega between the birth and the first point of
+ * birth_angles, into th: the point with amplitude s (birth_point) whose rate is omega, s by the
+ * secant method on omega(s^2), which is linear in s^2 near the birth (a pitchfork), from the
+ * amplitude of the first point. Only the rate is ill-conditioned there (omega - omega_k of
+ * 1e-9 omega_k fixes s to about 1e-7 of itself); each point is regular in the system with the
+ * amplitude's row. Returns 0, or -1 where that does not converge. */
+static int birth_gap(whirl_nlink_path *p, double omega, double *th)
+{
+    const double wk = p->omega_birth;
+    double s2_a = 0, w_a = wk, s2_b = BIRTH_AMPLITUDE * BIRTH_AMPLITUDE, w_b;
+    if (birth_point(p, BIRTH_AMPLITUDE, 0, th, &w_b)) return -1;
+    for (int it = 0; it < GAP_MAX; it++) {
+        if (fabs(w_b - omega) <= 4 * DBL_EPSILON * omega) return 0;
+        if (!(w_b != w_a)) return -1;
+        const double s2 = s2_b + (omega - w_b) * (s2_b - s2_a) / (w_b - w_a);
+        if (!(s2 > 0 && isfinite(s2))) return -1;
+        const double guess = sqrt(s2 / s2_b);
+        s2_a = s2_b, w_a = w_b, s2_b = s2;
+        if (birth_point(p, sqrt(s2), guess, th, &w_b)) return -1;
+    }
+    return -1;
 }
 
 /* One step on the tip shot (the equations above the file). */
@@ -1524,6 +1554,8 @@ static int shot_step(whirl_nlink_path *p)
          * (measured at every point: the measure is itself round-off and jumps along a branch) */
         const double noise = shot_noise(c, w, a, &s);
         if (p->steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
+        const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->omega_lo, hi = p->omega_hi;
+        const double noise_start = p->noise;
         keep_start(p, m0, w0, a0, ds);
         swap(&p->theta, &p->theta_trial);
         swap(&p->embed, &p->embed_trial);
@@ -1533,9 +1565,34 @@ static int shot_step(whirl_nlink_path *p)
         p->raw_sign = raw;
         p->arclength += ds;
         p->steps++;
-        if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
-            p->ds = fmin(1.5 * ds, DS_MAX);
-        return find_events(p, raw != p->last.raw_sign);
+        const int status = find_events(p, raw != p->last.raw_sign);
+        if (status != GSL_EFAILED) {
+            if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
+                p->ds = fmin(1.5 * ds, DS_MAX);
+            return status;
+        }
+        /* an event the step passed could not be located (the step went across a part of the
+         * curve it does not resolve: the header comment): back to the step's start, half the
+         * step */
+        swap(&p->theta, &p->theta_trial);
+        swap(&p->embed, &p->embed_trial);
+        for (int i = 0; i < 3; i++) p->metric[i] = m_start[i];
+        p->omega = w0;
+        p->tip_r = a0;
+        p->noise = noise_start;
+        p->omega_lo = lo, p->omega_hi = hi;
+        p->t_omega = p->last.t_w;
+        p->t_tip = p->last.t_a;
+        p->raw_sign = p->last.raw_sign;
+        p->arclength -= ds;
+        p->steps--;
+        p->have_last = 0;
+        p->n_events = 0;
+        p->ended = 0;
+        p->rejected++;
+        p->why = "an event between two points could not be located";
+        p->ds = 0.5 * ds;
+        if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
 
@@ -1753,6 +1810,18 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
     return whirl_nlink_branch_nodes(c, mode, n, omega, info, exists, NULL, NULL, NULL);
 }
 
+/* The shape of the branch at omega between its birth and the first point of a path begun in the
+ * link angles (birth_gap), into info and, where r is not NULL, r, z, tension. */
+static int gap_shape(whirl_nlink_path *p, double omega, whirl_shape_info *info, double *r,
+                     double *z, double *tension)
+{
+    const size_t n = p->chain->n;
+    double *th = p->cross_theta;
+    if (birth_gap(p, omega, th)) return GSL_EFAILED;
+    if (r == NULL) r = scr_nodes(p), z = r + n + 1, tension = z + n + 1;
+    return shape_info(p, 1, omega, tip_of(p->chain, omega, th), th, info, r, z, tension);
+}
+
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
                             whirl_shape_info *info, double *r, double *z, double *tension)
 {
@@ -1773,14 +1842,18 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
                                 p->omega_birth, p->omega);
+        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13) &&
+                 gap_shape(p, omega, info, r, z, tension) == GSL_SUCCESS)
+            status = GSL_SUCCESS;
         else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13))
             /* above the birth but below the first point of a branch begun in the link angles
-             * (birth_angles): the mode exists there, it is not resolved */
+             * (birth_angles), where birth_gap does not converge: the mode exists there, it is
+             * not resolved */
             status = whirl_fail(GSL_EFAILED, "mode %d at omega=%.17g is not resolved: it lies "
                                 "between the birth omega_%d=%.17g and the first point of the "
-                                "branch, which the tip shot cannot start (begun in the link "
-                                "angles at an amplitude of %g rad)", mode, omega, mode,
-                                p->omega_birth, BIRTH_AMPLITUDE);
+                                "branch, at omega=%.17g, where the tip shot cannot start it "
+                                "(begun in the link angles at an amplitude of %g rad)", mode,
+                                omega, mode, p->omega_birth, p->omega_lo, BIRTH_AMPLITUDE);
         else if (p->omega_lo >= p->omega_birth)
             status = whirl_steady_fail_missing(mode, omega, p->omega_birth);
         else

@@ -117,6 +117,11 @@ int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double
  * the converged point's. GSL_EFAILED if it does not converge, GSL_EDOM if it ends with a link at
  * or beyond the horizontal. */
 int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta);
+/* The linear mode shape at the critical rate omega: the null vector of A at theta = 0, with
+ * the relative accuracy of each component (a twisted factorization), scaled to a largest
+ * component of 1 into phi[0..N-1]; *tip_sign the sign of phi_N (+1 or -1) even where phi_N
+ * underflows. Leaves b unfactored. GSL_EFAILED if the vector is not finite. */
+int whirl_nlink_balance_mode(nlink_balance *b, double omega, double *phi, int *tip_sign);
 /* The nodes r, z (pivot first, z relative to the pivot) and the link tensions (tension[i] of
  * link i, tension[0] = tension[1]; arrays of N + 1) of the link angles theta; returns the largest
  * sine of the angle between a link and the resultant of the forces on the masses below it
