@@ -71,7 +71,7 @@ int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, in
 static void follow_progress(void *ctx, const whirl_nlink_progress *at)
 {
     steady_cli_follow *f = ctx;
-    if (!f->line.drawn && cli_wall_seconds() - f->line.start < 1) return;
+    if (!f->line.drawn && cli_wall_seconds() - f->line.start < f->after) return;
     const double rate = cli_units_rate(&f->m->units);
     char which[64] = "", unit[32] = "";
     if (f->count > 1) snprintf(which, sizeof which, " (%d of %d)", f->index, f->count);
@@ -90,6 +90,12 @@ void steady_cli_follow_begin(steady_cli_follow *f, const cli_command *cmd,
     f->target = target;
     f->index = 1;
     f->count = count;
+    /* WHIRL_PROGRESS_AFTER: a delay in seconds, for scripts that want the line at once (a
+     * value that is not a number in [0, 3600] keeps the default) */
+    const char *env = getenv("WHIRL_PROGRESS_AFTER");
+    char *end = NULL;
+    double after = env ? strtod(env, &end) : 1;
+    f->after = env && end != env && *end == '\0' && after >= 0 && after <= 3600 ? after : 1;
     cli_progress_begin(&f->line, cmd, "", 0, 0);
 }
 

@@ -45,7 +45,8 @@ int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, in
 
 /* ---- following an N-link branch from its birth (shape, sweep) ----
  * --max-steps S bounds the continuation steps of each branch (whirl_nlink_follow_options); on a
- * terminal, once the run has taken a second, a progress line shows where it stands:
+ * terminal, once the run has taken a second (the environment's WHIRL_PROGRESS_AFTER, in
+ * seconds, if set: 0 shows it from the first step), a progress line shows where it stands:
  *   whirl shape: mode 100: omega 171.898 of 190 (now 167.295), 1024 steps (at most 200000),
  *   36 folds, 1s elapsed
  * (one line; rates in the command's units): the highest rate reached against the rate the
@@ -63,6 +64,7 @@ typedef struct steady_cli_follow {
     cli_progress_state line;
     const steady_cli_model *m;
     double target;    /* the rate the branches are followed to (dimensionless) */
+    double after;     /* the line shows once the run has taken this long [s] (default 1) */
     int index, count; /* the mode being followed: its place in the list (from 1), the list's
                        * length */
 } steady_cli_follow;
