@@ -510,9 +510,9 @@ static void test_every_mode(void **state)
 }
 
 /* The top modes of N = 1000 at 1 + 1e-9 times their birth, below the first point of the path,
- * which starts in the link angles at an amplitude of 1e-5 rad (1 + 2e-9 and more of the birth):
- * the point there with the amplitude whose rate is omega (a secant method in the amplitude
- * squared). Balanced to round-off, the pivot on the axis; mode 1000's radii alternate in sign
+ * which starts in the link angles at an amplitude of 1e-5 rad (1 + 1.66e-9 and 1 + 1.16e-9
+ * times the birth of modes 1000 and 999): the point there with the amplitude whose rate is
+ * omega (a secant method in the amplitude squared). Balanced to round-off, the pivot on the axis; mode 1000's radii alternate in sign
  * from mass to mass wherever they do not underflow (its tail decays below 1e-308 of the largest
  * radius). They were "not resolved" before. */
 static void test_birth_gap(void **state)
