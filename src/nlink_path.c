@@ -1176,6 +1176,19 @@ static double tension_spread(const whirl_chain *c, double omega, double a)
     return t_max / t_min;
 }
 
+/* The counters of a step taken back after an event on it could not be located (the point and
+ * tangent restored by the caller): the next trial is half as long. */
+static void step_undone(whirl_nlink_path *p, double ds)
+{
+    p->arclength -= ds;
+    p->steps--;
+    p->have_last = 0;
+    p->n_events = 0;
+    p->ended = 0;
+    p->rejected++;
+    p->ds = 0.5 * ds;
+}
+
 /* The failure of the continuation at the last point (w0, a0) with a step below DS_MIN: names
  * the rate reached and why the last trial step was rejected (whirl_nlink_path_step adds the
  * mode). */
@@ -1383,13 +1396,7 @@ static int angle_step(whirl_nlink_path *p)
         p->index = p->last.index;
         angle_embed(n, w0, p->t_omega, p->t_theta, p->embed);
         p->omega_lo = lo, p->omega_hi = hi, p->noise = noise;
-        p->arclength -= ds;
-        p->steps--;
-        p->have_last = 0;
-        p->n_events = 0;
-        p->ended = 0;
-        p->rejected++;
-        p->ds = 0.5 * ds;
+        step_undone(p, ds);
         if (crossing || p->ds < DS_MIN_ANGLES) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
@@ -1584,14 +1591,8 @@ static int shot_step(whirl_nlink_path *p)
         p->t_omega = p->last.t_w;
         p->t_tip = p->last.t_a;
         p->raw_sign = p->last.raw_sign;
-        p->arclength -= ds;
-        p->steps--;
-        p->have_last = 0;
-        p->n_events = 0;
-        p->ended = 0;
-        p->rejected++;
         p->why = "an event between two points could not be located";
-        p->ds = 0.5 * ds;
+        step_undone(p, ds);
         if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
