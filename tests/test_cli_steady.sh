@@ -83,6 +83,21 @@ if head -1 "$tmp/c200s.csv" | grep -q ' mode=200 node_count=200 ' \
   pass "continuum mode 200: 200 nodes, the first 64 listed"
 else fail "continuum mode 200: 200 nodes, the first 64 listed"; fi
 
+# mode 500 of 500 at 1.2 times its birth (988.80): its radii decay below the smallest double
+# towards the tip (1e-423 of the largest in the linear shape), so they are 0 in the CSV and the
+# node count stops where they do; the output says so instead of calling it a change of the
+# branch's node count
+expect_ok "mode 500 of 500 links" shape --links 500 --mode 500 --omega 1186.557 -o "$tmp/m500.csv"
+# the last mass with a radius not zero (row 1 is the pivot)
+last=$(grep -v '^#' "$tmp/m500.csv" | tail -n +2 | awk -F, '$2 != 0 {k = NR - 1} END {print k}')
+count=$(head -1 "$tmp/m500.csv" | sed 's/.* node_count=\([0-9]*\) .*/\1/')
+if [ -n "$last" ] && [ "$last" -lt 500 ] && [ "$count" -lt 500 ] \
+   && grep -q "^# the radii of masses $((last + 1))\.\.500 are below the smallest double (0 here): the node count stops at mass $((last + 1))\$" "$tmp/m500.csv" \
+   && grep -q "^# the branch of mode 500 (born at omega_500) has $count nodes down to mass $((last + 1)) at this rate; those among the masses below, whose radii underflow, are not counted\$" "$tmp/m500.csv" \
+   && ! grep -q 'can change its node count' "$tmp/m500.csv"; then
+  pass "mode 500 of 500: the underflowed tail said, $count nodes down to mass $((last + 1))"
+else fail "mode 500 of 500: the underflowed tail said (last nonzero radius at mass $last, node_count $count)"; fi
+
 # help
 expect_ok "critical --help" critical --help
 expect_ok "shape --help" shape --help

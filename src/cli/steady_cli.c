@@ -130,7 +130,21 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
     if ((int)nodes < info->n_nodes)
         fprintf(fp, "# nodes: the first %zu of the %d axis crossings below the pivot\n", nodes,
                 info->n_nodes);
-    if (info->n_nodes + 1 != info->mode)
+    /* an N-link shape whose radii decay below the smallest double towards the tip (the top
+     * modes of 500 links and more near their birth): those masses' radii are zero in double,
+     * their signs lost, and the count covers the masses above them */
+    size_t resolved = n - 1;
+    if (m->chain && n >= 2 && r[n - 1] == 0) {
+        while (resolved > 0 && r[resolved] == 0) resolved--;
+        if (resolved > 0)
+            fprintf(fp, "# the radii of masses %zu..%zu are below the smallest double (0 here): "
+                    "the node count stops at mass %zu\n", resolved + 1, n - 1, resolved + 1);
+    }
+    if (info->n_nodes + 1 != info->mode && resolved + 1 < n && resolved > 0)
+        fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes down to mass %zu at "
+                "this rate; those among the masses below, whose radii underflow, are not "
+                "counted\n", info->mode, info->mode, info->n_nodes + 1, resolved + 1);
+    else if (info->n_nodes + 1 != info->mode)
         fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes at this rate: on a "
                 "coarse chain a branch can change its node count\n", info->mode, info->mode,
                 info->n_nodes + 1);
