@@ -62,6 +62,14 @@ origin, on the rotation axis. Mode k has k nodes: the pivot plus k\-1 crossings 
 .SH OUTPUT
 CSV: comment lines start with #, the first other line is the header, numbers with full
 precision.
+.SH ENVIRONMENT
+.TP
+.B WHIRL_PROGRESS_AFTER
+Seconds after which \fBshape\fR and \fBsweep\fR show their progress line on a terminal
+(default 1; 0 shows it from the first report).
+.TP
+.B OMP_NUM_THREADS
+Threads of the commands that run on several cores.
 .SH EXIT STATUS
 0 on success, 130 when interrupted (Ctrl\-C; the rows written so far are kept), non\-zero on
 any error.
