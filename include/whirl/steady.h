@@ -102,13 +102,18 @@ WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const 
 
 /* ---- N-link chain ---- */
 
-/* The axis crossings below the pivot of the N-link shape whose masses lie at the radii
- * r[0..c->n] (pivot first): returns their count, and writes the arclengths from the pivot [L]
- * of the first min(count, max) into node_s[] (increasing; node_s may be NULL when max is 0).
- * A crossing lies on link i >= 2 where r changes sign from mass i-1 to mass i (or reaches 0
- * from a non-zero value), at the linearly interpolated point. */
-WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, const double *r, size_t max,
-                                             double *node_s);
+/* The axis crossings below the pivot of the N-link shape at the rate omega (> 0) whose masses
+ * lie at the radii r[0..c->n] (pivot first): returns their count, and writes the arclengths
+ * from the pivot [L] of the first min(count, max) into node_s[] (increasing; node_s may be NULL
+ * when max is 0). A crossing lies on link i >= 2 where r changes sign from mass i-1 to mass i
+ * (or reaches 0 from a non-zero value), at the linearly interpolated point. Below the last mass
+ * whose |r| is a normal double (>= DBL_MIN; the top modes of long chains decay below it towards
+ * the tip, their radii there zero or subnormal) the signs are those of the force balance
+ * linearised about the hanging chain at omega, followed up from the tip (src/nlink.c). That
+ * mass's index into *resolved (if not NULL): c->n when every radius is counted as it is (also
+ * when none is normal, the hanging chain: no crossing). */
+WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega, const double *r,
+                                             size_t max, double *node_s, size_t *resolved);
 
 /* The first nmodes (<= c->n) linear critical rates of the chain, ascending: the normal-mode
  * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem). */

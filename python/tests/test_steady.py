@@ -76,6 +76,9 @@ def _read_cli(path):
     (["--omega", "5.2", "--mode", "3", "--links", "40"], dict(omega=5.2, mode=3, links=40)),
     # beyond 64 modes: mode 150 of 200 just above its birth (252.93), its 149 crossings
     (["--omega", "258", "--mode", "150", "--links", "200"], dict(omega=258, mode=150, links=200)),
+    # mode 500 of 500 at 1.2 times its birth, whose radii underflow below mass 363
+    (["--omega", "1186.557", "--mode", "500", "--links", "500"],
+     dict(omega=1186.557, mode=500, links=500)),
     (["--omega", "21", "--mode", "1", "--length", "0.5", "--mass", "0.05", "--gravity", "9.81",
       "--tip-mass", "0.01", "--points", "57"],
      dict(omega=21, mode=1, length=0.5, mass=0.05, gravity=9.81, tip_mass=0.01, points=57)),
@@ -108,6 +111,16 @@ def test_shape_physics_nodes_and_tension():
     dz_ds = (-3 * s.z[0] + 4 * s.z[1] - s.z[2]) / (2 * ds)  # second order, error O(ds^2)
     assert s.top_tension * (-dz_ds) == pytest.approx(1.0, rel=1e-4)
     assert s.critical == pytest.approx(jn_zeros(0, 3)[-1] / 2, rel=1e-12)
+
+
+def test_shape_counts_the_underflowed_tail():
+    # mode 500 of 500 at 1.2 times its birth: the radii below the last normal double (from mass
+    # 364 on) are 0 or subnormal; their crossings come from the linearised balance, all 499 listed
+    s = whirl.shape(1186.557, 500, links=500)
+    last = np.nonzero(np.abs(s.r) >= np.finfo(float).tiny)[0][-1]
+    assert s.r[-1] == 0 and 300 < last < 450
+    assert len(s.nodes) == 499 and np.all(np.diff(s.nodes) > 0)
+    assert 0 < s.nodes[0] and s.nodes[-1] < 1 and np.sum(s.nodes > s.s[last]) > 100
 
 
 def test_sweep_agrees_with_single_shapes():

@@ -55,8 +55,8 @@ int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r
                       whirl_shape_info *info);
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
-size_t whirl_nlink_node_arclengths(const whirl_chain *c, const double *r, size_t max,
-                                   double *node_s);
+size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega, const double *r,
+                                   size_t max, double *node_s, size_t *resolved);
 int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,

@@ -222,8 +222,8 @@ def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, le
         s[0] = 0
         np.cumsum(chain.lengths, out=s[1:])
         nodes = np.empty(max(info.n_nodes, 1))
-        count = lib.whirl_nlink_node_arclengths(chain._c, _lib.dptr(r), nodes.size,
-                                                _lib.dptr(nodes))
+        count = lib.whirl_nlink_node_arclengths(chain._c, info.omega, _lib.dptr(r), nodes.size,
+                                                _lib.dptr(nodes), _lib.ffi.NULL)
         nodes = nodes[:min(count, nodes.size)]
     crit = (mode, dict(links=chain, tip_mass=0 if chain else tip_mass, length=length, mass=mass,
                        gravity=gravity))

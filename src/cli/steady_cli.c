@@ -112,7 +112,7 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
     double *node_s = NULL;
     size_t nodes = info->n_nodes > 0 ? (size_t)info->n_nodes : 0;
     if (m->chain && nodes > WHIRL_SHAPE_NODES && (node_s = malloc(n * sizeof *node_s)) != NULL)
-        nodes = whirl_nlink_node_arclengths(m->chain, r, n, node_s);
+        nodes = whirl_nlink_node_arclengths(m->chain, info->omega, r, n, node_s, NULL);
     else if (nodes > WHIRL_SHAPE_NODES)
         nodes = WHIRL_SHAPE_NODES;
     fprintf(fp, "# omega=%s mode=%d node_count=%d tip_r=%s max_r=%s top_tension=%s depth=%s "
@@ -130,21 +130,17 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
     if ((int)nodes < info->n_nodes)
         fprintf(fp, "# nodes: the first %zu of the %d axis crossings below the pivot\n", nodes,
                 info->n_nodes);
-    /* an N-link shape whose radii decay below the smallest double towards the tip (the top
-     * modes of 500 links and more near their birth): those masses' radii are zero in double,
-     * their signs lost, and the count covers the masses above them */
+    /* an N-link shape whose radii decay below the smallest normal double towards the tip (the
+     * top modes of 500 links and more near their birth): the CSV cannot show the signs of the
+     * tail's radii, which the node count takes from the linearised force balance */
     size_t resolved = n - 1;
-    if (m->chain && n >= 2 && r[n - 1] == 0) {
-        while (resolved > 0 && r[resolved] == 0) resolved--;
-        if (resolved > 0)
-            fprintf(fp, "# the radii of masses %zu..%zu are below the smallest double (0 here): "
-                    "the node count stops at mass %zu\n", resolved + 1, n - 1, resolved + 1);
-    }
-    if (info->n_nodes + 1 != info->mode && resolved + 1 < n && resolved > 0)
-        fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes down to mass %zu at "
-                "this rate; those among the masses below, whose radii underflow, are not "
-                "counted\n", info->mode, info->mode, info->n_nodes + 1, resolved + 1);
-    else if (info->n_nodes + 1 != info->mode)
+    if (m->chain) whirl_nlink_node_arclengths(m->chain, info->omega, r, 0, NULL, &resolved);
+    if (m->chain && resolved + 1 < n)
+        fprintf(fp, "# the radii of masses %zu..%zu are below the smallest normal double (0 or "
+                "subnormal here): their signs and nodes are those of the force balance "
+                "linearised about the hanging chain at this rate, from the tip up\n",
+                resolved + 1, n - 1);
+    if (info->n_nodes + 1 != info->mode)
         fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes at this rate: on a "
                 "coarse chain a branch can change its node count\n", info->mode, info->mode,
                 info->n_nodes + 1);
