@@ -113,21 +113,10 @@ void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
     info->max_r = 0;
     info->depth = -z[n];
     info->top_tension = tension ? tension[0] : NAN;
-    info->n_nodes = 0;
-    double s = 0, last = 0; /* arclength of node i-1; last non-zero r above */
-    for (size_t i = 1; i <= n; i++) {
-        if (fabs(r[i]) > info->max_r) info->max_r = fabs(r[i]);
-        if (r[i] != 0 && last != 0 && (r[i] > 0) != (last > 0)) {
-            /* crossing on link i, linear interpolation from node i-1 (r[i-1] may be 0); every
-             * crossing counted, the first WHIRL_SHAPE_NODES kept */
-            const double f = r[i - 1] / (r[i - 1] - r[i]);
-            if (info->n_nodes < WHIRL_SHAPE_NODES)
-                info->node_s[info->n_nodes] = s + f * c->length[i - 1];
-            info->n_nodes++;
-        }
-        if (r[i] != 0) last = r[i];
-        s += c->length[i - 1];
-    }
+    for (size_t i = 1; i <= n; i++) info->max_r = fmax(info->max_r, fabs(r[i]));
+    /* every crossing counted, the first WHIRL_SHAPE_NODES kept */
+    info->n_nodes =
+        (int)whirl_nlink_node_arclengths(c, omega, r, WHIRL_SHAPE_NODES, info->node_s, NULL);
     info->mode = info->n_nodes + 1;
 }
 

@@ -34,9 +34,9 @@ WHIRL_API void whirl_potential_hessian(const whirl_chain *c, double omega, const
 
 /* The shape of the angles theta: r[i], z[i] of node i (i = 0 the pivot, arrays of n + 1),
  * tension[i] of link i from the force balance of the masses below it, projected on the link
- * (tension[0] = tension[1]), and its summary (mode = 1 + sign changes of r). If the free end
- * has r < 0 the shape is mirrored so that it has r > 0. r and z are required; tension and info may be NULL (then
- * info->top_tension is NaN). */
+ * (tension[0] = tension[1]), and its summary (mode = 1 + the crossings of
+ * whirl_nlink_node_arclengths). If the free end has r < 0 the shape is mirrored so that it has
+ * r > 0. r and z are required; tension and info may be NULL (then info->top_tension is NaN). */
 WHIRL_API void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
                                   double *r, double *z, double *tension, whirl_shape_info *info);
 

@@ -132,8 +132,10 @@ class Shape:
     the pivot, then masses 1..N, tension of the link above); the summary ``omega``, ``mode``,
     ``tip_r``, ``max_r``, ``top_tension``, ``depth``, ``nodes`` (arclengths of the axis
     crossings below the pivot: all of them for the N-link chain, the first 64 for the
-    continuum), and the branch it lies on: ``critical`` (omega_k where mode k is
-    born) and ``links`` (None: the continuum)."""
+    continuum; where an N-link shape's radii underflow towards the tip, r is 0 or subnormal and
+    the crossings there come from the force balance linearised about the hanging chain), and
+    the branch it lies on: ``critical`` (omega_k where mode k is born) and ``links`` (None: the
+    continuum)."""
 
     def __init__(self, info, nodes, s, r, z, tension, u, critical_args, links):
         self.omega = info.omega * u.rate
