@@ -56,7 +56,7 @@ struct nlink_balance {
     double *dl, *d, *du, *du2; /* A and its LU factors: N - 1, N, N - 1, N - 2 */
     double *a_dl, *a_d, *a_du; /* a copy of A (for the refinement): N each */
     double *u, *rf;            /* scratch, 2 N each */
-    double *sn;                /* sin theta_i of the last evaluation, N */
+    double *sn, *co;           /* sin theta_i and cos theta_i of the last evaluation, N each */
     lapack_int *ipiv;
     int factored;
     int det_sign;              /* sign of det A */
@@ -68,7 +68,7 @@ nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c)
     nlink_balance *b = calloc(1, sizeof *b);
     if (b == NULL) goto fail;
     b->c = c;
-    b->v = malloc(16 * n * sizeof *b->v);
+    b->v = malloc(17 * n * sizeof *b->v);
     b->ipiv = malloc(n * sizeof *b->ipiv);
     if (b->v == NULL || b->ipiv == NULL) goto fail;
     b->rho = b->v + n;
@@ -84,6 +84,7 @@ nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c)
     b->u = b->a_du + n;
     b->rf = b->u + 2 * n;
     b->sn = b->rf + 2 * n;
+    b->co = b->sn + n;
     double v = 0;
     for (size_t i = n; i >= 1; i--) b->v[i - 1] = v += c->mass[i - 1] * c->gravity;
     return b;
@@ -120,6 +121,7 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
                               "chain", i, th);
         const double si = sin(th), co = cos(th), h = b->v[i - 1] * (si / co), m = c->mass[i - 1];
         b->sn[i - 1] = si;
+        b->co[i - 1] = co;
         b->rho[i - 1] = (h - h_below) / (m * w2);
         if (jac) {
             const double s = b->v[i - 1] / (w2 * co * co);
@@ -274,6 +276,60 @@ static int eliminate(nlink_balance *b, const double *c_theta, double c_omega, co
                           "point)", b->omega);
     for (size_t i = 0; i < n; i++) x_theta[i] = w[i] - dw * v[i];
     *x_omega = dw;
+    return GSL_SUCCESS;
+}
+
+/* The eigenvalue of A nearest zero and its rate along the path. S = diag(s) A is symmetric
+ * (s_i = V_i / (omega^2 cos^2 theta_i): S_{i,i+1} = -s_i s_{i+1} / m_i), so y = diag(s) x is the
+ * left eigenvector of A to the right one x, and with z = diag(sqrt(s)) x (the eigenvector of the
+ * symmetric T above)
+ *     mu = x^T S x / x^T diag(s) x,   d mu = x^T diag(s) (dA) x / x^T diag(s) x
+ * (the Rayleigh quotient of T, its error the square of z's; Hellmann-Feynman for T, where the
+ * change of the similarity drops out: T' = D A' D^-1 + [D' D^-1, T] and z^T [., T] z = 0). dA
+ * along (d omega, d theta) from ds_i = 2 s_i (tan theta_i d theta_i - d omega / omega):
+ *     dA_ii = ds_i / m_i + ds_i / m_{i-1} [i >= 2] + l_i sin theta_i d theta_i,
+ *     dA_{i+1,i} = -ds_i / m_i,  dA_{i,i+1} = -ds_{i+1} / m_i.
+ * x by iters steps of inverse iteration (x <- A^-1 x with the factors of the last factor) from
+ * x as given; s and dA from the link angles of the last factor (no further sines). */
+int whirl_nlink_balance_near_zero(nlink_balance *b, double d_omega, const double *d_theta,
+                                  int iters, double *x, double *mu, double *mu_rate)
+{
+    if (!b->factored) return whirl_fail(GSL_EINVAL, "the force balance is not factorised");
+    const whirl_chain *c = b->c;
+    const size_t n = c->n;
+    const double w2 = b->omega * b->omega;
+    for (int it = 0; it < iters; it++) {
+        solve(b, 1, x);
+        double big = 0;
+        for (size_t i = 0; i < n; i++) big = fmax(big, fabs(x[i]));
+        if (!(big > 0 && isfinite(big)))
+            return whirl_fail(GSL_EFAILED, "omega=%g: inverse iteration on the force balance "
+                              "does not give a finite vector", b->omega);
+        for (size_t i = 0; i < n; i++) x[i] /= big;
+    }
+    double num = 0, rate = 0, den = 0;
+    double *s = b->rf, *ds = b->rf + n;
+    for (size_t i = 0; i < n; i++) {
+        const double co = b->co[i];
+        s[i] = b->v[i] / (w2 * co * co);
+        ds[i] = 2 * s[i] * (b->sn[i] / co * d_theta[i] - d_omega / b->omega);
+    }
+    for (size_t i = 0; i < n; i++) {
+        const double m = c->mass[i];
+        double dd = ds[i] / m + c->length[i] * b->sn[i] * d_theta[i];
+        if (i > 0) dd += ds[i] / c->mass[i - 1];
+        double ax = tri_row(b, x, i), dax = dd * x[i];
+        if (i > 0) dax -= ds[i - 1] / c->mass[i - 1] * x[i - 1];
+        if (i + 1 < n) dax -= ds[i + 1] / m * x[i + 1];
+        num += s[i] * x[i] * ax;
+        rate += s[i] * x[i] * dax;
+        den += s[i] * x[i] * x[i];
+    }
+    *mu = num / den;
+    *mu_rate = rate / den;
+    if (!(isfinite(*mu) && isfinite(*mu_rate)))
+        return whirl_fail(GSL_ERANGE, "omega=%g: the eigenvalue of the force balance nearest "
+                          "zero is not finite", b->omega);
     return GSL_SUCCESS;
 }
 

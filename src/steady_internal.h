@@ -113,6 +113,12 @@ int whirl_nlink_balance_index(const nlink_balance *b);
 int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double c_omega,
                                  const double *f, double g, int refine, double *x_theta,
                                  double *x_omega, double *schur);
+/* The eigenvalue of A nearest zero (all are real) into *mu, and its rate along the direction
+ * (d_omega, d_theta) into *mu_rate, from iters steps of inverse iteration with the last factor
+ * on x[0..N-1] (in place: the start vector, then the eigenvector, largest component 1), O(N)
+ * each. GSL_EFAILED or GSL_ERANGE where they are not finite. */
+int whirl_nlink_balance_near_zero(nlink_balance *b, double d_omega, const double *d_theta,
+                                  int iters, double *x, double *mu, double *mu_rate);
 /* Newton's method on R at fixed omega from theta (in place) to round-off; the last factor is
  * the converged point's. GSL_EFAILED if it does not converge, GSL_EDOM if it ends with a link at
  * or beyond the horizontal. */

@@ -257,6 +257,9 @@ typedef struct whirl_nlink_path {
     int index;        /* in the link angles: the number of negative eigenvalues of the force
                        * balance's Jacobian in theta (it changes by one at a fold or a branch
                        * point); -1 on the tip shot */
+    double mu, mu_rate; /* in the link angles: the eigenvalue of that Jacobian nearest zero and
+                         * its rate along the tangent (d mu / ds); NAN where not known */
+    double *eig, *eig_trial; /* its eigenvector (largest component 1), c->n each */
     double *cross_theta; /* the link angles of the crossings of the last
                           * whirl_nlink_path_crossings, (WHIRL_PATH_EVENTS_MAX + 1) x c->n */
     int cross_angles[WHIRL_PATH_EVENTS_MAX + 1]; /* 1: that crossing was resolved in the link
@@ -276,6 +279,7 @@ typedef struct whirl_nlink_path {
         int angles;       /* the step was made in the link angles: */
         double *theta0, *t_theta0; /* its start's link angles and tangent, c->n each */
         int det_sign, index;
+        double mu, mu_rate;
     } last;
 } whirl_nlink_path;
 
