@@ -34,7 +34,10 @@ for n in $links; do
       born=$(sed -n 's/.* \([0-9]*\) modes born below omega$/\1/p' "$tmp/e.csv")
       count=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | wc -l)
       agree=$(sed -n 's/.*tip scan: \([0-9]*\) roots.*pivot scan: \([0-9]*\) roots.*both: \([0-9]*\); not polished: \([0-9]*\)$/\1 \2 \3 \4/p' "$tmp/e.csv")
-      if [ "$agree" = "$count $count $count 0" ]; then agree=yes; else agree="no (tip, pivot, both, not polished: $agree)"; fi
+      # and no two roots of one scan on one equilibrium
+      distinct=$(grep -c '; 0 roots on the equilibrium of another root' "$tmp/e.csv")
+      if [ "$agree" = "$count $count $count 0" ] && [ "$distinct" -eq 1 ]; then agree=yes
+      else agree="no (tip, pivot, both, not polished: $agree)"; fi
       nodes=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | cut -d, -f1 | sort -n | uniq -c | awk '{ printf "%s%s:%s", sep, $2, $1; sep = " " }')
       printf '| %s | %s | %s | %s | %s | %s | %s | %.1f s |\n' "$n" "$w" "$ratio" "$born" "$count" "$agree" "$nodes" "$t"
     elif [ $? -eq 124 ]; then

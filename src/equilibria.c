@@ -73,9 +73,12 @@
  * omega that does not return to the hanging chain, even on a curve that meets no birth) is the
  * check (tests/test_equilibria.c). Features narrower than the cell floor (a rounding limit of
  * the parameter) are counted as unresolved. Where roots crowd within round-off of each other
- * (10 links at omega = 60: tip radii 1e-13 apart) Newton's method from a shot can end on a
- * rod's equilibrium or fail at a fold: such a root is counted as not polished and left out,
- * and the two scans' lists then differ (the result says by how many). The cost is about
+ * (10 links at omega = 60: tip radii 3e-15 apart) a double shot's link angles can be too far
+ * off for Newton's method: such a root is bisected again in quadruple precision and polished
+ * from that shot's angles (below, polish_root); one that does not polish even so (none on 10
+ * links up to omega = 80, 4 of 1511 roots at 100) is counted as not polished and left out,
+ * and the two scans' lists then differ (the result says by how many). Two roots of one scan
+ * polished onto one equilibrium are counted (coincident; 0 expected). The cost is about
  * proportional to the number of equilibria, which at high rates grows about exponentially
  * with N (25 links: 1354 at omega = 30, 9672 at 35, about 75000 at 40): shot_budget bounds
  * each level and GSL_EMAXITER says when it is exceeded; method 3 costs thousands of steps per
@@ -122,6 +125,7 @@
                               * are the same (their tip radii then within MATCH_ANGLE L) */
 #define PATH_STEPS_MAX 3000 /* continuation steps of one direction of one curve */
 #define BRENT_MAX 200
+#define BISECT_QUAD_MAX 512 /* bisections in quadruple precision (from 1 to 1e-34: 113) */
 
 whirl_equilibria_params whirl_equilibria_defaults(void)
 {
@@ -454,6 +458,7 @@ typedef struct angle_ws {
     double omega;
     nlink_balance *bal;
     double *theta, *r, *z, *t; /* N, N+1, N+1, N+1 */
+    double *start;             /* N: the start of a refined root's Newton's method */
     double worst; /* largest sine of a link's angle to the force it carries, polished shapes */
 } angle_ws;
 
@@ -472,11 +477,12 @@ static angle_ws *angle_ws_alloc(const whirl_chain *c, double omega)
     if (w == NULL) goto fail;
     w->c = c;
     w->omega = omega;
-    w->theta = malloc((n + 3 * (n + 1)) * sizeof *w->theta);
+    w->theta = malloc((2 * n + 3 * (n + 1)) * sizeof *w->theta);
     if (w->theta == NULL) goto fail;
     w->r = w->theta + n;
     w->z = w->r + n + 1;
     w->t = w->z + n + 1;
+    w->start = w->t + n + 1;
     w->bal = whirl_nlink_balance_alloc(c);
     if (w->bal == NULL) goto fail;
     return w;
@@ -510,6 +516,78 @@ static int angle_polish(angle_ws *w, double *tip_r)
     return GSL_SUCCESS;
 }
 
+/* ---- N-link chain: a root crowded within round-off, refined in quadruple precision ----
+ * Where roots crowd (10 links at omega = 60: three tip radii within 3e-15 of each other, and at
+ * the middle one the top link turns by a radian over 3.6e-18 in tip radius, less than the spacing
+ * of doubles there, 6.9e-18) no double tip radius is close enough to the root for the shot's upper
+ * link angles to be those of the equilibrium (the top link's off by 1.4 rad), and Newton's
+ * method from them does not converge; long double (64 bits) leaves it 2e-3 rad off. The root is
+ * then bisected again in quadruple precision (whirl_nlink_tip_shot_quad, _pivot_shot_quad) inside
+ * its scan's bracket, down to adjacent quadruple numbers, and Newton's method (in double) starts
+ * from the link angles of the shot there. The polished shape is kept only if every link angle
+ * stays within MATCH_ANGLE of that start (Newton's method refined the root the shot found, it did
+ * not go elsewhere) and, like every root, it must not be another root's equilibrium
+ * (eq_list.coincident). The tip shot is bisected in the tip radius a, the pivot shot in
+ * tan(theta_1), between the values of the double scan's bracket ends. */
+
+typedef nlink_quad (*quad_fn)(const nlink_scan *s, nlink_quad p, double *theta);
+
+static nlink_quad tip_quad(const nlink_scan *s, nlink_quad a, double *theta)
+{
+    return whirl_nlink_tip_shot_quad(s->c, s->omega, a, theta);
+}
+
+static nlink_quad pivot_quad(const nlink_scan *s, nlink_quad tan_1, double *theta)
+{
+    return whirl_nlink_pivot_shot_quad(s->c, s->omega, tan_1, theta);
+}
+
+/* The root of f between p = lo and hi, bisected in quadruple precision down to adjacent
+ * numbers; the link angles of the shot at the end with the smaller residual into theta.
+ * GSL_EFAILED if f has one sign at both ends. */
+static int bisect_quad(const nlink_scan *s, quad_fn f, double lo, double hi, double *theta)
+{
+    nlink_quad a = lo, b = hi, fa = f(s, a, NULL), fb = f(s, b, NULL);
+    if ((fa < 0) == (fb < 0))
+        return whirl_fail(GSL_EFAILED, "no sign change over [%.17g, %.17g] in quadruple "
+                          "precision", lo, hi);
+    for (int it = 0; it < BISECT_QUAD_MAX; it++) {
+        nlink_quad m = a + (b - a) / 2;
+        if (!((m > a && m < b) || (m < a && m > b))) break;
+        nlink_quad fm = f(s, m, NULL);
+        if ((fm < 0) == (fa < 0)) a = m, fa = fm;
+        else b = m, fb = fm;
+    }
+    f(s, (fa < 0 ? -fa : fa) <= (fb < 0 ? -fb : fb) ? a : b, theta);
+    return GSL_SUCCESS;
+}
+
+/* Polishes the root of a scan between the parameters lo and hi of f from its double shot's link
+ * angles (in aw->theta): Newton's method from them, and where it does not converge, from the
+ * root refined in quadruple precision (above; counted in *refined). The tip radius in *a, as
+ * angle_polish. */
+static int polish_root(angle_ws *aw, const nlink_scan *s, quad_fn f, double lo, double hi,
+                       double *a, size_t *refined)
+{
+    int status = angle_polish(aw, a);
+    if (status != GSL_EFAILED) return status;
+    size_t n = s->c->n;
+    if ((status = bisect_quad(s, f, lo, hi, aw->start))) return status;
+    memcpy(aw->theta, aw->start, n * sizeof *aw->theta);
+    if ((status = angle_polish(aw, a))) return status;
+    /* angle_polish mirrors the shape to a positive tip radius */
+    double same = 0, mirror = 0;
+    for (size_t i = 0; i < n; i++) {
+        same = fmax(same, fabs(aw->theta[i] - aw->start[i]));
+        mirror = fmax(mirror, fabs(aw->theta[i] + aw->start[i]));
+    }
+    if (!(fmin(same, mirror) <= MATCH_ANGLE))
+        return whirl_fail(GSL_EFAILED, "tip radius %g: Newton's method moved a link angle by "
+                          "%g rad from the quadruple precision shot's", *a, fmin(same, mirror));
+    ++*refined;
+    return GSL_SUCCESS;
+}
+
 /* ---- the list of equilibria ---- */
 
 typedef struct eq_list {
@@ -519,6 +597,7 @@ typedef struct eq_list {
     size_t links;  /* N (0: no angles kept) */
     double window; /* 2 MATCH_ANGLE L: tip radii further apart are different equilibria */
     double *theta; /* the polished link angles of entry i at theta[i N ..] */
+    size_t coincident; /* roots of one scan merged into an equilibrium of the same scan */
 } eq_list;
 
 static int list_add(eq_list *l, double tip_r, const double *theta, int source)
@@ -613,6 +692,7 @@ static int list_unique(eq_list *l)
             }
         }
         if (same != SIZE_MAX) {
+            l->coincident += (source[same] & l->source[i]) != 0;
             source[same] |= l->source[i];
             continue;
         }
@@ -885,7 +965,9 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         if ((status = check_stop(i, tip.n))) break;
         if (!(status = polish(tip_fn, &s, tip.br[i].lo, tip.br[i].hi, &x)))
             a = tip_of_x(&s, x), status = angles_of_scan(&s, x, aw->theta);
-        if (!status) status = angle_polish(aw, &a);
+        if (!status)
+            status = polish_root(aw, &s, tip_quad, tip_of_x(&s, tip.br[i].lo),
+                                 tip_of_x(&s, tip.br[i].hi), &a, &res->refined);
         if (status == GSL_EFAILED || status == GSL_ESING) {
             res->unpolished++; /* reported; the other scan is the check */
             status = GSL_SUCCESS;
@@ -900,7 +982,9 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         if (!(status = polish(pivot_fn, &s, top.br[i].lo, top.br[i].hi, &y)))
             status = whirl_nlink_pivot_shot(c, omega, theta_of_y(y), &g, NULL, &a, aw->theta,
                                             NULL, NULL);
-        if (!status) status = angle_polish(aw, &a);
+        if (!status)
+            status = polish_root(aw, &s, pivot_quad, tan(theta_of_y(top.br[i].lo)),
+                                 tan(theta_of_y(top.br[i].hi)), &a, &res->refined);
         if (status == GSL_EFAILED || status == GSL_ESING) {
             res->unpolished++; /* reported; the other scan is the check */
             status = GSL_SUCCESS;
@@ -913,6 +997,7 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     scan_out_free(&top);
     free(s.slope);
     if (!status) status = list_unique(l);
+    res->coincident = l->coincident;
     for (size_t i = 0; i < l->n; i++) res->matched += (l->source[i] & 3) == 3;
     if (!status && par->continuation)
         status = continue_all(c, omega, par->follow_factor, crit, l, aw, res);

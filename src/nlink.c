@@ -301,6 +301,63 @@ void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *
     *g_a = u_a / norm - 0.5 * u * q_a / (q * norm);
 }
 
+/* The two shots again in quadruple precision (113 bits of mantissa against double's 53), the
+ * residuals only and the link angles. Where roots crowd within round-off of each other (10
+ * links at omega = 60: three tip radii within 3e-15, and at the middle one the top link turns
+ * by a radian over 3.6e-18 in tip radius, less than the spacing of doubles there) no double tip
+ * radius is near enough the root for the shot's upper link angles to be the equilibrium's;
+ * these refine such a root (src/equilibria.c). Same recursions as whirl_nlink_tip_shot and
+ * whirl_nlink_pivot_shot, without the derivatives, and with the pivot shot's parameter
+ * tan(theta_1) (no tangent in quadruple precision needed). The square root is Newton's
+ * iteration from the long double one (which has quadruple precision's range; each step doubles
+ * the correct bits, 64 -> 113 in one, a second for the rounding); the angles come out in
+ * double, atan2 of the loads rounded to double (relative accuracy eps). */
+static nlink_quad sqrt_quad(nlink_quad x)
+{
+    nlink_quad y = sqrtl((long double)x);
+    y = (y + x / y) / 2;
+    return (y + x / y) / 2;
+}
+
+/* |(h, v)| for v > 0, without overflow */
+static nlink_quad hypot_quad(nlink_quad h, nlink_quad v)
+{
+    nlink_quad ah = h < 0 ? -h : h, big = ah > v ? ah : v, small = ah > v ? v : ah;
+    nlink_quad q = small / big;
+    return big * sqrt_quad(1 + q * q);
+}
+
+nlink_quad whirl_nlink_tip_shot_quad(const whirl_chain *c, double omega, nlink_quad a,
+                                     double *theta)
+{
+    nlink_quad u = 1, eta = 0, v = 0, q = 1, w2 = (nlink_quad)omega * omega;
+    for (size_t i = c->n; i >= 1; i--) {
+        eta += c->mass[i - 1] * w2 * u;
+        v += (nlink_quad)c->mass[i - 1] * c->gravity;
+        nlink_quad h = a * eta, t = hypot_quad(h, v);
+        if (theta) theta[i - 1] = atan2((double)h, (double)v);
+        u -= c->length[i - 1] * eta / t;
+        q += u * u;
+    }
+    return u / sqrt_quad(q);
+}
+
+nlink_quad whirl_nlink_pivot_shot_quad(const whirl_chain *c, double omega, nlink_quad tan_1,
+                                       double *theta)
+{
+    nlink_quad v = 0;
+    for (size_t i = 0; i < c->n; i++) v += (nlink_quad)c->mass[i] * c->gravity;
+    nlink_quad h1 = v * tan_1, eta = 1, x = 0, w2 = (nlink_quad)omega * omega;
+    for (size_t i = 1; i <= c->n; i++) {
+        nlink_quad he = h1 * eta, t = hypot_quad(he, v);
+        if (theta) theta[i - 1] = atan2((double)he, (double)v);
+        x += c->length[i - 1] * eta / t;
+        eta -= c->mass[i - 1] * w2 * x;
+        v -= (nlink_quad)c->mass[i - 1] * c->gravity;
+    }
+    return eta;
+}
+
 int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
                                double *residual, double *tip_r)
 {

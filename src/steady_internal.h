@@ -10,6 +10,7 @@
 #ifndef WHIRL_STEADY_INTERNAL_H
 #define WHIRL_STEADY_INTERNAL_H
 
+#include <float.h>
 #include <stddef.h>
 
 #include "whirl/steady.h"
@@ -72,6 +73,22 @@ int whirl_nlink_pivot_shot(const whirl_chain *c, double omega, double theta_1, d
  * differentiation, exact). G is the residual of whirl_nlink_residual. */
 void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *g, double *g_a,
                           double *slope, double *slope_a);
+
+/* Quadruple precision: __float128 (arithmetic in libgcc, which gcc and clang link) where long
+ * double is shorter (x86-64: 64 bits of mantissa), else long double (113 bits on aarch64). */
+#if defined(__SIZEOF_FLOAT128__) && LDBL_MANT_DIG < 113
+__extension__ typedef __float128 nlink_quad;
+#else
+typedef long double nlink_quad;
+#endif
+
+/* The tip shot's residual G at tip radius a, and the pivot shot's H_{N+1} / H_1 at tan(theta_1)
+ * = tan_1, in quadruple precision, with the link angles from the downward vertical in
+ * theta[0..N-1] (may be NULL); no argument checks. */
+nlink_quad whirl_nlink_tip_shot_quad(const whirl_chain *c, double omega, nlink_quad a,
+                                     double *theta);
+nlink_quad whirl_nlink_pivot_shot_quad(const whirl_chain *c, double omega, nlink_quad tan_1,
+                                       double *theta);
 
 /* The summary of the N-link shape with nodes r, z (pivot first, z relative to the pivot) and
  * link tensions (tension[i] of link i), as whirl_nlink_info. */

@@ -13,6 +13,9 @@
  * - 10 links at omega = 40, roots crowded to 1e-7 in tip radius: every one identified, each
  *   branch's crossing the shape whirl_nlink_solve returns, the isolated ones in pairs per fold,
  *   the count rising by two across four of the folds;
+ * - 10 links at omega = 60, roots crowded within round-off (tip radii 3e-15 apart): every root of
+ *   both scans polished (two of them from a shot in quadruple precision) onto an equilibrium of
+ *   its own, the crowded ones as a 60-digit mpmath shot gives them;
  * - the continuum: Kolodner's count, exactly n shapes for omega_n < omega < omega_{n+1}, just
  *   above and just below the critical rates, with and without a tip mass;
  * - linear verdicts: those of the shapes of modes 1 and 2 as whirl_stability_mode gives them,
@@ -45,14 +48,22 @@ static whirl_equilibria *find(const whirl_chain *c, double tip_mass, double omeg
     return e;
 }
 
-/* The methods agree: both scans found every equilibrium, the continuation missed none of them
- * and identified every one. */
-static void assert_agreement(const whirl_equilibria *e)
+/* The scans agree: both found every equilibrium, each root polished onto an equilibrium of its
+ * own. */
+static void assert_scans_agree(const whirl_equilibria *e)
 {
     assert_int_equal(e->tip_roots, e->count);
     assert_int_equal(e->check_roots, e->count);
     assert_int_equal(e->matched, e->count);
     assert_int_equal(e->unpolished, 0);
+    assert_int_equal(e->coincident, 0);
+}
+
+/* The methods agree: the scans, and the continuation missed none of the equilibria and
+ * identified every one. */
+static void assert_agreement(const whirl_equilibria *e)
+{
+    assert_scans_agree(e);
     assert_int_equal(e->missed, 0);
     assert_int_equal(e->unidentified, 0);
     assert_int_equal(e->wrong_parity, 0);
@@ -214,11 +225,8 @@ static void test_high_rates(void **state)
     p.stability = 0;
     p.continuation = 0;
     assert_int_equal(whirl_equilibria_find(c, 0, 25, &p, &e), GSL_SUCCESS);
-    assert_int_equal(e->tip_roots, e->count);
-    assert_int_equal(e->check_roots, e->count);
-    assert_int_equal(e->matched, e->count);
+    assert_scans_agree(e);
     assert_int_equal(e->tip_unresolved, 0);
-    assert_int_equal(e->unpolished, 0);
     assert_true(e->balance < 1e-13);
     assert_true(e->count >= 226);
     size_t unlabelled = 0;
@@ -309,6 +317,77 @@ static void test_ten_links_high_rate(void **state)
         whirl_equilibria_free(above);
     }
     free(fold);
+    whirl_equilibria_free(e);
+    whirl_chain_free(c);
+}
+
+/* 10 links at omega = 60 (3.5 omega_10), 1506 equilibria, roots crowded within round-off: three
+ * tip radii within 3e-15 of each other, the middle one with its top link at 1e-15 rad from the
+ * vertical (it turns by a radian over 3.6e-18 in tip radius, less than the spacing of doubles
+ * there), and a shape whose tip radius is 4.5e-16 (its lower link angles 1e-12 rad and less).
+ * From the double shots' link angles Newton's method did not converge at the tip scan's middle
+ * root (the top link's start off by 1.4 rad) nor at the pivot scan's root of the second shape,
+ * so each scan lacked one equilibrium the other had (both: 1504 of 1506, not polished: 2). Now
+ * both are refined in quadruple precision: every root of either scan polished, each on an
+ * equilibrium of its own, the two scans in agreement on all 1506.
+ * The reference, independent of the library: mpmath (60 digits, and the same to every digit
+ * given at 80 digits on a grid twice as fine), the shot from the tip for 10 equal links and
+ * masses (L = M = g = 1) at omega = 60 over x = ln(a / (1 - a)) in [-2.9478812562812,
+ * -2.9478812562794] on 18000 points, each sign change of r_0 refined by findroot (r_0 ~ 1e-48):
+ * exactly three roots,
+ *   a = 0.04983674488450310751080604: 10 nodes, depth 0.76450917549002525092, top tension
+ *       1.1552855586836483537, max_r 0.050161701814764244331;
+ *   a = 0.04983674488450588749387310: 10 nodes, depth 0.88687494839502721539, top tension
+ *       1 + 4.8e-31 (theta_1 = -9.8426047413657034e-16), max_r 0.050161701814761464521;
+ *   a = 0.04983674488450866747694004: 9 nodes, depth 0.76450917549263789361, top tension
+ *       1.1552855586836940548, max_r 0.050161701814758684712;
+ * and the shot from the pivot, its root at ln(theta_1 / (pi/2 - theta_1)) =
+ * 4.001768241262640468518658 (between neighbours 5.3e-14 away): tip radius
+ * 4.469792644893128687888832e-16, 9 nodes, depth 0.77814600669742862371, top tension
+ * 35.461098027432107087, max_r 0.099960230327603584193 (the tip shot from that radius lands on
+ * the axis to 5e-30 with the same link angles). */
+static void test_crowded_roots(void **state)
+{
+    (void)state;
+    static const struct {
+        double tip_r, depth, top_tension, max_r;
+        int nodes;
+    } ref[4] = {
+        {0.04983674488450310751, 0.76450917549002525092, 1.1552855586836483537,
+         0.050161701814764244331, 10},
+        {0.04983674488450588749, 0.88687494839502721539, 1, 0.050161701814761464521, 10},
+        {0.04983674488450866748, 0.76450917549263789361, 1.1552855586836940548,
+         0.050161701814758684712, 9},
+        {4.469792644893128687888832e-16, 0.77814600669742862371, 35.461098027432107087,
+         0.099960230327603584193, 9},
+    };
+    whirl_chain *c = whirl_chain_alloc_uniform(10, 0);
+    whirl_equilibria_params p = whirl_equilibria_defaults();
+    p.stability = 0;
+    p.continuation = 0;
+    whirl_equilibria *e = NULL;
+    assert_int_equal(whirl_equilibria_find(c, 0, 60, &p, &e), GSL_SUCCESS);
+    assert_int_equal(e->count, 1506);
+    assert_scans_agree(e);
+    assert_int_equal(e->refined, 2);
+    /* round-off of the check itself, which sums the radii from the pivot: 1.9e-13 at this rate
+     * (horizontal loads up to 180 times the weight below), against 6e-15 on 5 links at 11.62 */
+    assert_true(e->balance < 5e-13);
+    for (int k = 0; k < 4; k++) {
+        /* the equilibrium nearest in tip radius: within half the spacing of the three (2.8e-15),
+         * each figure of its shape as mpmath's */
+        size_t best = 0;
+        for (size_t i = 1; i < e->count; i++)
+            if (fabs(e->eq[i].info.tip_r - ref[k].tip_r) <
+                fabs(e->eq[best].info.tip_r - ref[k].tip_r))
+                best = i;
+        const whirl_shape_info *q = &e->eq[best].info;
+        assert_true(fabs(q->tip_r - ref[k].tip_r) < (k < 3 ? 1.4e-15 : 1e-14 * ref[k].tip_r));
+        assert_int_equal(q->n_nodes + 1, ref[k].nodes);
+        assert_true(fabs(q->depth - ref[k].depth) < 1e-13 * ref[k].depth);
+        assert_true(fabs(q->top_tension - ref[k].top_tension) < 1e-13 * ref[k].top_tension);
+        assert_true(fabs(q->max_r - ref[k].max_r) < 1e-13 * ref[k].max_r);
+    }
     whirl_equilibria_free(e);
     whirl_chain_free(c);
 }
@@ -450,7 +529,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_five_links), cmocka_unit_test(test_fold_pairs),
         cmocka_unit_test(test_seven_links_cluster), cmocka_unit_test(test_high_rates),
-        cmocka_unit_test(test_ten_links_high_rate),
+        cmocka_unit_test(test_ten_links_high_rate), cmocka_unit_test(test_crowded_roots),
         cmocka_unit_test(test_kolodner),
         cmocka_unit_test(test_pivot_derivative), cmocka_unit_test(test_tip_slopes),
         cmocka_unit_test(test_errors),

@@ -30,7 +30,9 @@ rows=$(grep -v '^#' "$out" | tail -n +2 | wc -l)
 scans=$(sed -n 's/.*tip scan: \([0-9]*\) roots.*pivot scan: \([0-9]*\) roots.*both: \([0-9]*\); not polished: \([0-9]*\)$/\1 \2 \3 \4/p' "$out")
 labelled=$(grep -v '^#' "$out" | tail -n +2 | awk -F, '$2 != "" || $3 != ""' | wc -l)
 if [ "$scans" = "$rows $rows $rows 0" ] && [ "$rows" -ge 1084 ] && [ "$labelled" -eq 0 ] \
-   && grep -q '0 cells unresolved' "$out" && grep -q 'continuation: not run' "$out"; then
+   && grep -q '0 cells unresolved' "$out" && grep -q 'continuation: not run' "$out" \
+   && grep -q '^# polish: 0 roots from a shot in quadruple precision' "$out" \
+   && grep -q '; 0 roots on the equilibrium of another root of the same scan' "$out"; then
   pass "10 links at 30: $rows equilibria, both scans agree"
 else fail "10 links at 30: $rows rows, scans $scans, $labelled labelled"; fi
 

@@ -417,8 +417,9 @@ typedef struct whirl_equilibria {
                            * polished shapes within 1e-8 rad; continuum: each solved shape
                            * alone in a sign change of the scan) */
     size_t unpolished;    /* N-link: roots of either scan from whose shot Newton's method on
-                           * the link angles did not converge to a chain's equilibrium (left
-                           * out of eq; 0 unless roots lie within round-off of each other) */
+                           * the link angles did not converge to a chain's equilibrium, even
+                           * from a shot in quadruple precision (see refined; left out of eq;
+                           * 0 unless roots lie within round-off of each other) */
     /* method 3, N-link: continuation of every curve through the roots (and of every branch
      * from its birth) up to follow_factor * omega, counting its crossings of omega */
     size_t crossings;     /* crossings found, each matched against the scans' roots */
@@ -435,6 +436,12 @@ typedef struct whirl_equilibria {
                            * a branch born below omega that does not return to the hanging
                            * chain with an even number, or an isolated curve (its equilibria
                            * grouped by born_at) with an odd number; 0 expected */
+    size_t refined;       /* N-link: roots of either scan polished from a shot in long double,
+                           * where Newton's method from the double shot's link angles did not
+                           * converge (roots within round-off of each other) */
+    size_t coincident;    /* N-link: roots of one scan whose polished shape is that of another
+                           * root of the same scan (every link angle within 1e-8 rad), merged;
+                           * 0 expected: each root a distinct equilibrium */
 } whirl_equilibria;
 
 /* Every planar relative equilibrium (up to the mirror image r -> -r) of the N-link chain c at

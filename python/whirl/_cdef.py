@@ -349,6 +349,8 @@ typedef struct whirl_equilibria {
     size_t cut_short;
     double balance;
     size_t wrong_parity;
+    size_t refined;
+    size_t coincident;
 } whirl_equilibria;
 int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           const whirl_equilibria_params *params, whirl_equilibria **out);

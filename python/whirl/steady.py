@@ -282,7 +282,8 @@ EQUILIBRIA_DTYPE = np.dtype([("nodes", "i4"), ("branch", "i4"), ("born_at", "f8"
 EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_levels",
                        "tip_unresolved", "check_roots", "check_shots", "check_levels", "matched",
                        "unpolished", "crossings", "missed", "isolated", "unidentified",
-                       "path_steps", "cut_short", "balance", "wrong_parity")
+                       "path_steps", "cut_short", "balance", "wrong_parity", "refined",
+                       "coincident")
 
 
 def equilibria(omega, links=None, tip_mass=0.0, stability=True, branches=True,

@@ -71,6 +71,10 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
                 "a branch born below omega (not returning to the hanging chain) crossing it an "
                 "even number of times or an isolated curve an odd number, where the "
                 "continuation jumped between curves or stopped short (0 expected)\n");
+        fprintf(fp, "# polish: %zu roots from a shot in quadruple precision (where the double "
+                "shot's link angles were too far off: roots within round-off of each other); "
+                "%zu roots on the equilibrium of another root of the same scan (0 expected)\n",
+                e->refined, e->coincident);
     } else {
         fprintf(fp, "# sign changes of the pivot's radius over the tip radius: %zu (%d levels, "
                 "%ld shots); shapes solved mode by mode: %zu, each alone in a sign change: %zu "
