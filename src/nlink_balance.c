@@ -307,23 +307,24 @@ int whirl_nlink_balance_near_zero(nlink_balance *b, double d_omega, const double
                               "does not give a finite vector", b->omega);
         for (size_t i = 0; i < n; i++) x[i] /= big;
     }
-    double num = 0, rate = 0, den = 0;
-    double *s = b->rf, *ds = b->rf + n;
+    /* s_i, and ds_i / m_i, ds_i / m_{i-1} (the changes of A's entries) */
+    double num = 0, rate = 0, den = 0, *s = b->rf, *q = b->rf + n, *p = b->u;
+    const double dw = d_omega / b->omega;
     for (size_t i = 0; i < n; i++) {
-        const double co = b->co[i];
-        s[i] = b->v[i] / (w2 * co * co);
-        ds[i] = 2 * s[i] * (b->sn[i] / co * d_theta[i] - d_omega / b->omega);
+        const double co = b->co[i], si = b->v[i] / (w2 * co * co);
+        const double dsi = 2 * si * (b->sn[i] / co * d_theta[i] - dw);
+        s[i] = si;
+        q[i] = dsi / c->mass[i];
+        p[i] = i > 0 ? dsi / c->mass[i - 1] : 0;
     }
     for (size_t i = 0; i < n; i++) {
-        const double m = c->mass[i];
-        double dd = ds[i] / m + c->length[i] * b->sn[i] * d_theta[i];
-        if (i > 0) dd += ds[i] / c->mass[i - 1];
-        double ax = tri_row(b, x, i), dax = dd * x[i];
-        if (i > 0) dax -= ds[i - 1] / c->mass[i - 1] * x[i - 1];
-        if (i + 1 < n) dax -= ds[i + 1] / m * x[i + 1];
-        num += s[i] * x[i] * ax;
-        rate += s[i] * x[i] * dax;
-        den += s[i] * x[i] * x[i];
+        double dax = (q[i] + p[i] + c->length[i] * b->sn[i] * d_theta[i]) * x[i];
+        if (i > 0) dax -= q[i - 1] * x[i - 1];
+        if (i + 1 < n) dax -= p[i + 1] * x[i + 1];
+        const double sx = s[i] * x[i];
+        num += sx * tri_row(b, x, i);
+        rate += sx * dax;
+        den += sx * x[i];
     }
     *mu = num / den;
     *mu_rate = rate / den;
