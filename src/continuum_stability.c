@@ -619,7 +619,7 @@ int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_g
 {
     if (!(isfinite(omega) && omega >= 0 && omega <= WHIRL_CONTINUUM_OMEGA_MAX) ||
         (mode > 0 && omega == 0))
-        return whirl_fail(GSL_EINVAL, "the rate must be in %s..%g, got %g",
+        return whirl_fail(GSL_EINVAL, "the rate must be in %s..%g, got omega = %g",
                           mode > 0 ? "(0" : "[0", WHIRL_CONTINUUM_OMEGA_MAX, omega);
     if (mode < 0 || mode > WHIRL_MODE_MAX)
         return whirl_fail(GSL_EINVAL, "the mode must be in 0..%d (0: the hanging chain), got %d",
@@ -863,7 +863,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     if (status) return status;
     if (!(p->omega_max <= WHIRL_CONTINUUM_OMEGA_MAX)) {
         free(omega);
-        return whirl_fail(GSL_EINVAL, "the continuum's rates end at %g, got %g",
+        return whirl_fail(GSL_EINVAL, "the continuum's rates end at omega = %g, got omega = %g",
                           WHIRL_CONTINUUM_OMEGA_MAX, p->omega_max);
     }
     whirl_shape_info *info = malloc(npts * sizeof *info);

@@ -929,8 +929,8 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     for (size_t k = 0; k < n && !status; k++) {
         if (fabs(omega / crit[k] - 1) <= CRITICAL_GAP)
             status = whirl_fail(GSL_EDOM, "omega=%.17g is the critical rate of mode %zu "
-                                "(%.17g): its branch is born there, not separated from the "
-                                "hanging chain", omega, k + 1, crit[k]);
+                                "(omega_%zu=%.17g): its branch is born there, not separated "
+                                "from the hanging chain", omega, k + 1, k + 1, crit[k]);
         if (crit[k] < omega) res->born++;
     }
     nlink_scan s = {c, omega, 0, NULL, NULL};
@@ -1021,8 +1021,8 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
         if ((status = whirl_continuum_critical(k, tip_mass, &crit[k - 1]))) break;
         if (fabs(omega / crit[k - 1] - 1) <= CRITICAL_GAP)
             status = whirl_fail(GSL_EDOM, "omega=%.17g is the critical rate of mode %d "
-                                "(%.17g): its branch is born there, not separated from the "
-                                "hanging chain", omega, k, crit[k - 1]);
+                                "(omega_%d=%.17g): its branch is born there, not separated "
+                                "from the hanging chain", omega, k, k, crit[k - 1]);
         if (crit[k - 1] > omega) break;
         n = k;
     }
@@ -1094,8 +1094,8 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           ">= 1000");
     double omega_max = c ? WHIRL_EQUILIBRIA_OMEGA_MAX : WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX;
     if (!(isfinite(omega) && omega > 0 && omega <= omega_max))
-        return whirl_fail(GSL_EINVAL, "omega must be in (0, %g] for %s, got %g", omega_max,
-                          c ? "the N-link chain" : "the continuum", omega);
+        return whirl_fail(GSL_EINVAL, "omega=%g is out of range for %s: it must be > 0 and at most "
+                          "omega=%g", omega, c ? "the N-link chain" : "the continuum", omega_max);
     if (c != NULL && (c->n < 1 || c->n > WHIRL_EQUILIBRIA_LINKS_MAX))
         return whirl_fail(GSL_EINVAL, "a chain of 1..%d links for the equilibria, got %zu",
                           WHIRL_EQUILIBRIA_LINKS_MAX, c->n);

@@ -882,13 +882,15 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     static const char *const what[] = {"a crossing of a rate", "a fold", "a branch point",
                                        "a return to the hanging chain"};
     if (f->failed)
-        return whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be located "
-                          "(no convergence at an end of the step)", what[f->kind], f->w0, f->w1);
+        return whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
+                          "located (no convergence at an end of the step)", what[f->kind], f->w0,
+                          f->w1);
     if (f_lo == 0 || f_hi == 0 || (f_lo > 0) == (f_hi > 0)) {
         *sigma = fabs(f_lo) <= fabs(f_hi) ? lo : hi;
         if (f->at != *sigma) frame_phi(*sigma, f);
-        return f->failed ? whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not "
-                                      "be located", what[f->kind], f->w0, f->w1)
+        return f->failed ? whirl_fail(GSL_EFAILED, "%s between omega=%.17g and "
+                                      "omega=%.17g could not be located", what[f->kind],
+                                      f->w0, f->w1)
                          : GSL_SUCCESS;
     }
     gsl_function fn = {frame_phi, f};
@@ -902,7 +904,7 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     for (int it = 0; status == GSL_SUCCESS; it++) {
         status = gsl_root_fsolver_iterate(s);
         if (f->failed || status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be "
+            status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
                                 "located", what[f->kind], f->w0, f->w1);
             break;
         }
@@ -925,7 +927,7 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     gsl_root_fsolver_free(s);
     /* the corrected point at the root (Brent's last evaluation, as a rule) */
     if (status == GSL_SUCCESS && f->at != *sigma && (frame_phi(*sigma, f), f->failed))
-        status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and %.17g could not be "
+        status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
                             "located", what[f->kind], f->w0, f->w1);
     return status;
 }
@@ -1784,7 +1786,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
         if (p->steps >= bound)
             return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
                               "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
-                              "at most (now at %.17g)", p->mode, bound, p->omega_birth,
+                              "at most (now at omega=%.17g)", p->mode, bound, p->omega_birth,
                               p->arclength, folds, p->omega_hi, p->omega);
         if (opt && opt->progress && p->steps % PROGRESS_STEPS == 0) {
             const whirl_nlink_progress at = {p->mode, p->omega_birth, p->steps, bound, folds,

@@ -832,8 +832,9 @@ static int locate(search *s, point *a, point *b, int depth)
         }
         if (status) {
             gsl_root_fsolver_free(solver);
-            return whirl_fail(status, "mode %d: the window edge between omega = %.10g and %.10g "
-                                      "was not located", s->src->mode, a->omega, b->omega);
+            return whirl_fail(status, "mode %d: the window edge between omega = %.10g "
+                                      "and omega = %.10g was not located", s->src->mode,
+                              a->omega, b->omega);
         }
     } else { /* the discriminant does not bracket (several pairs): bisect on the stability */
         point mid = {0};
@@ -1038,19 +1039,21 @@ int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, d
     *npts = 0;
     if (!(p->omega_min > 0 && p->omega_max > p->omega_min && isfinite(p->omega_max)))
         return whirl_fail(GSL_EINVAL, "the range of rates must have 0 < omega_min < omega_max, "
-                                      "got %g, %g", p->omega_min, p->omega_max);
+                                      "got omega_min = %g, omega_max = %g", p->omega_min,
+                          p->omega_max);
     if (!(p->scan_step > 0) || !(p->tol > 0) || !(p->tol < p->scan_step))
         return whirl_fail(GSL_EINVAL, "the scan step and the tolerance must be > 0 (tol < step), "
                                       "got %g, %g", p->scan_step, p->tol);
     const double from = fmax(p->omega_min, birth * (1 + 1e-6));
     if (!(from < p->omega_max))
         return whirl_fail(GSL_EDOM, "mode %d exists only above omega_%d = %.10g, beyond the "
-                                    "range's end %g", mode, mode, birth, p->omega_max);
+                                    "range's end, omega = %g", mode, mode, birth, p->omega_max);
     const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
     if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
-        return whirl_fail(GSL_EINVAL, "mode %d: a scan of %g..%g in steps of %g has %.3g points, "
-                          "more than %d: raise the scan step or narrow the range", mode, from,
-                          p->omega_max, p->scan_step, scan_steps + 1, WINDOWS_SCAN_MAX);
+        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %g to omega = %g in steps of "
+                          "%g has %.3g points, more than %d: raise the scan step or narrow the "
+                          "range", mode, from, p->omega_max, p->scan_step, scan_steps + 1,
+                          WINDOWS_SCAN_MAX);
     const size_t steps = (size_t)scan_steps, n = steps + 1;
     double *om = malloc(n * sizeof *om);
     if (om == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");

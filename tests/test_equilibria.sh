@@ -47,8 +47,8 @@ if [ "$rows_si" -eq 17 ] && grep -q '^# units: length=m' "$tmp/si.csv" \
 else fail "SI units: $rows_si rows, tip $tip"; fi
 
 expect_error "omega zero" "must be > 0|range" equilibria --omega 0 --links 5 -o "$out"
-expect_error "omega above the range" "omega must be in \(0, 1000\]" equilibria --omega 1001 --links 5 -o "$out"
-expect_error "continuum omega above its range" "omega must be in \(0, 50\]" equilibria --omega 51 -o "$out"
+expect_error "omega above the range" "omega=1001 is out of range for the N-link chain: it must be > 0 and at most omega=1000$" equilibria --omega 1001 --links 5 -o "$out"
+expect_error "continuum omega above its range" "omega=51 is out of range for the continuum: it must be > 0 and at most omega=50$" equilibria --omega 51 -o "$out"
 expect_error "too many links" "a chain of 1..200 links" equilibria --omega 5 --links 201 -o "$out"
 crit=$("$WHIRL" critical --links 5 --modes 3 | tail -n 1 | cut -d, -f2)
 expect_error "omega at a critical rate" "critical rate of mode 3" equilibria --omega "$crit" --links 5 -o "$out"

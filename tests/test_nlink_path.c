@@ -1237,7 +1237,7 @@ static void test_unlocated_event(void **state)
         const char *between = strstr(message, " between omega=");
         assert_non_null(between);
         double w0 = 0, w1 = 0;
-        assert_int_equal(sscanf(between, " between omega=%lf and %lf", &w0, &w1), 2);
+        assert_int_equal(sscanf(between, " between omega=%lf and omega=%lf", &w0, &w1), 2);
         assert_true(fmin(w0, w1) >= crit[4] && fmax(w0, w1) <= 10 * crit[4]);
         assert_null(strchr(message, '\n'));
     }

@@ -173,4 +173,53 @@ printf '[units]\nsystem = imperial\n' >"$tmp/imperial.ini"
 expect_error "simulate: an unknown unit system" "must be one of dimensionless, SI, got 'imperial'" \
   simulate "$tmp/imperial.ini"
 
+# the library's error messages in the user's units: run the failing command dimensionless and in
+# SI, and compare the two one-line errors. Every rate ("omega", "omega_k", ... and a number) of
+# the SI line must carry "rad/s" and equal the dimensionless one times sqrt(g/L), to the digits
+# printed (at least 6: 1e-5 relative); the rest of the text must be the same.
+same_error() {
+  name=$1; dimless=$2; physical=$3
+  "$WHIRL" $dimless -o "$tmp/err.csv" 2>"$tmp/a.err" >/dev/null && { fail "$name (no error)"; return; }
+  "$WHIRL" $physical -o "$tmp/err.csv" 2>"$tmp/b.err" >/dev/null && { fail "$name (no error)"; return; }
+  if awk -v R="$R" -v name="$name" '
+       function rates(line, unit, out,   n, rest, m, x) {
+         n = 0; rest = line
+         while (match(rest, /omega(_[A-Za-z0-9]+)?( = |=| )-?[0-9][0-9.e+-]*/)) {
+           m = substr(rest, RSTART, RLENGTH); x = m; sub(/^omega(_[A-Za-z0-9]+)?( = |=| )/, "", x)
+           out[++n] = x; out["tail" n] = substr(rest, RSTART + RLENGTH, length(unit))
+           rest = substr(rest, RSTART + RLENGTH)
+         }
+         return n
+       }
+       NR == 1 { a = $0 } NR == 2 { b = $0 }
+       END {
+         na = rates(a, "", x); nb = rates(b, " rad/s", y)
+         if (na == 0 || na != nb) { print "# " na " rates against " nb; exit 1 }
+         for (i = 1; i <= na; i++) {
+           if (y["tail" i] != " rad/s") { print "# rate " i " has no unit"; exit 1 }
+           d = y[i] / R / x[i] - 1; if (d < 0) d = -d
+           if (d > 1e-5) { print "# rate " i ": " x[i] " against " y[i] / R; exit 1 }
+         }
+         gsub(/-?[0-9][0-9.e+-]*( rad\/s)?/, "#", a); gsub(/-?[0-9][0-9.e+-]*( rad\/s)?/, "#", b)
+         if (a != b) { print "# text differs: " a " | " b; exit 1 }
+       }' "$tmp/a.err" "$tmp/b.err"; then pass "$name"
+  else fail "$name: $(cat "$tmp/a.err") | $(cat "$tmp/b.err")"; fi
+}
+w2=$(val "2 * R") w30=$(val "30 * R")
+same_error "error in SI: stability of a mode below its birth" \
+  "stability --links 10 --mode 3 --omega 2" "stability --links 10 --mode 3 --omega $w2 $units"
+same_error "error in SI: shape below the birth, continuum" \
+  "shape --mode 3 --omega 2" "shape --mode 3 --omega $w2 $units"
+same_error "error in SI: shape below the birth, N-link" \
+  "shape --links 4 --mode 3 --omega 2" "shape --links 4 --mode 3 --omega $w2 $units"
+same_error "error in SI: the bound on the continuation steps" \
+  "shape --links 5 --mode 4 --omega 30 --max-steps 3" \
+  "shape --links 5 --mode 4 --omega $w30 --max-steps 3 $units"
+same_error "error in SI: windows beyond the range" \
+  "stability --windows --links 10 --modes 3 --omega-min 0.5 --omega-max 2" \
+  "stability --windows --links 10 --modes 3 --omega-min $(val "0.5 * R") --omega-max $w2 $units"
+same_error "error in SI: equilibria at a birth" \
+  "equilibria --links 5 --omega $("$WHIRL" critical --links 5 --modes 3 | grep -v '^#' | tail -n 1 | cut -d, -f2)" \
+  "equilibria --links 5 --omega $(val "R * $("$WHIRL" critical --links 5 --modes 3 | grep -v '^#' | tail -n 1 | cut -d, -f2)") $units"
+
 finish

@@ -40,11 +40,11 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
                          : whirl_continuum_critical_rates((size_t)modes,
                                                           steady_cli_tip_mass(&m), omega);
     if (status == WHIRL_EINTERRUPTED || cli_interrupted)
-        rc = (cli_error(cmd, "%s", status == WHIRL_EINTERRUPTED ? whirl_last_error()
+        rc = (cli_error(cmd, "%s", status == WHIRL_EINTERRUPTED ? CLI_LIBRARY_ERROR(&m.units)
                                                                  : "interrupted"),
               CLI_EXIT_INTERRUPTED);
     else if (status != GSL_SUCCESS)
-        rc = cli_error(cmd, "%s", whirl_last_error());
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     if (rc) {
         free(omega);
         steady_cli_model_free(&m);

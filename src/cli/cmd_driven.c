@@ -62,14 +62,14 @@ static int run_shape(const cli_command *cmd, const driven_options *o, const whir
 {
     whirl_driven_info info;
     if (whirl_driven_mode(chain, p, o->mode, o->side, &info) != GSL_SUCCESS)
-        return cli_error(cmd, "%s", whirl_last_error());
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     const size_t n = chain ? chain->n + 1 : (size_t)o->points;
     double *buf = malloc(5 * n * sizeof *buf);
     if (buf == NULL) return cli_error(cmd, "out of memory for %zu points", n);
     double *s = buf, *x = s + n, *y = x + n, *z = y + n, *tension = z + n;
     int rc = 1;
     if (whirl_driven_sample(chain, p, info.tip, n, s, x, y, z, tension) != GSL_SUCCESS) {
-        cli_error(cmd, "%s", whirl_last_error());
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
         goto done;
     }
     cli_out out;
@@ -101,17 +101,17 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     if (whirl_driven_mode(chain, p, o->mode, o->side, &start) != GSL_SUCCESS)
         return cli_error(cmd, "start at omega %s %s: %s",
                          CLI_NUM(user(o, CLI_UNIT_RATE, p->omega)),
-                         cli_units_name(&o->units, CLI_UNIT_RATE), whirl_last_error());
+                         cli_units_name(&o->units, CLI_UNIT_RATE), CLI_LIBRARY_ERROR(&o->units));
     whirl_driven_curve *curve = whirl_driven_curve_alloc((size_t)o->max_points);
-    if (curve == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    if (curve == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     int rc = 1;
     char stopped[512] = "";
     const int status = whirl_driven_branch(chain, p, &start, o->up ? 1 : -1, o->omega_min,
                                            o->omega_max, o->step, curve);
     if (status == WHIRL_EINTERRUPTED) {
-        snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
+        cli_library_error(&o->units, stopped, sizeof stopped);
     } else if (status != GSL_SUCCESS) {
-        cli_error(cmd, "%s", whirl_last_error());
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
         goto done;
     }
     cli_out out;
@@ -186,7 +186,7 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv)
     if ((rc = check_options(cmd, &o))) return rc;
     whirl_chain *chain = NULL;
     if (o.links > 0 && (chain = whirl_chain_alloc_uniform((size_t)o.links, o.tip_mass)) == NULL)
-        return cli_error(cmd, "%s", whirl_last_error());
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
     whirl_driven_params p = {.omega = o.omega,
                              .drive_radius = o.eps,
                              .air_drag = o.drag,

@@ -32,7 +32,7 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
     whirl_equilibria *e = NULL;
     if (whirl_equilibria_find(m.chain, steady_cli_tip_mass(&m), omega, &par, &e)) {
         steady_cli_model_free(&m);
-        return cli_error(cmd, "%s", whirl_last_error());
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     }
     cli_out out;
     if (cli_out_open(cmd, &out, out_path)) {

@@ -90,7 +90,7 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     if (progress.state.total > 0)
         cli_progress_update(&progress.state, status ? progress.done : progress.state.total, 1);
     if (status != GSL_SUCCESS) {
-        cli_error(cmd, "%s", whirl_last_error());
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
         goto done;
     }
     if (!(res.rms_residual <= max_residual)) {

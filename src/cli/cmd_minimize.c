@@ -55,7 +55,7 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "--links must be at most %d, got %d", MINIMIZE_MAX_LINKS, m.links);
     int alg;
     if (whirl_minimize_algorithm(algorithm, &alg) != GSL_SUCCESS)
-        return cli_error(cmd, "%s", whirl_last_error());
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
@@ -92,7 +92,7 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     if (status != GSL_SUCCESS) {
-        cli_error(cmd, "%s", whirl_last_error());
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
         goto done;
     }
     whirl_shape_info info;

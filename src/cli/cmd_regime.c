@@ -136,7 +136,7 @@ static int check_options(const cli_command *cmd, regime_options *o)
                                                  {"air_drag", "drag"},
                                                  {"air_drag_quadratic", "drag_quadratic"}};
         char field[64] = "", *dash = field;
-        const char *msg = whirl_last_error();
+        const char *msg = CLI_LIBRARY_ERROR(&o->units);
         sscanf(msg, "%63[a-z_]", field);
         for (size_t k = 0; k < sizeof renamed / sizeof renamed[0]; k++)
             if (strcmp(field, renamed[k][0]) == 0) snprintf(field, sizeof field, "%s", renamed[k][1]);
@@ -325,14 +325,15 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
     const int status = whirl_regime_run(w, &o->p, &r);
     cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
     if (status == WHIRL_EINTERRUPTED)
-        rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", whirl_last_error());
+        rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", CLI_LIBRARY_ERROR(&o->units));
     else if (status != GSL_SUCCESS)
-        rc = cli_error(cmd, "the run failed: %s", whirl_last_error());
+        rc = cli_error(cmd, "the run failed: %s", CLI_LIBRARY_ERROR(&o->units));
     if (rc == 0) {
         fprintf(out.fp, "# whirl regime: one run from rest\n");
         regime_cli_write_parameters(out.fp, o);
         regime_cli_write_critical(out.fp, o, chain);
-        if (r.state == WHIRL_REGIME_FAILED) fprintf(out.fp, "# failed: %s\n", whirl_last_error());
+        if (r.state == WHIRL_REGIME_FAILED)
+            fprintf(out.fp, "# failed: %s\n", CLI_LIBRARY_ERROR(&o->units));
         fprintf(out.fp, "%s\n", regime_cli_map_columns);
         fprintf(out.fp, "0,%s,%s,", CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, o->omega)),
                 CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
@@ -379,9 +380,9 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
     const int interrupted = status == WHIRL_EINTERRUPTED;
     char stopped[512] = "";
     if (interrupted)
-        snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
+        cli_library_error(&o->units, stopped, sizeof stopped);
     else if (status != GSL_SUCCESS)
-        rc = cli_error(cmd, "the sweep failed: %s", whirl_last_error());
+        rc = cli_error(cmd, "the sweep failed: %s", CLI_LIBRARY_ERROR(&o->units));
     cli_out out;
     if (rc == 0) rc = cli_out_open(cmd, &out, o->output);
     if (rc == 0) {
@@ -503,7 +504,8 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
     if (mc->size > 1 && (!regime_cli_is_map(&o) || o.sweep))
         return cli_error(cmd, "one run and a sweep run on one rank; only a map is shared out");
     whirl_chain *chain = whirl_chain_alloc_uniform((size_t)o.links, 0);
-    if (chain == NULL) return cli_error(cmd, "cannot make the chain: %s", whirl_last_error());
+    if (chain == NULL)
+        return cli_error(cmd, "cannot make the chain: %s", CLI_LIBRARY_ERROR(&o.units));
     cli_catch_interrupts();
     rc = !regime_cli_is_map(&o) ? run_one(cmd, &o, chain)
          : o.sweep   ? run_sweep(cmd, &o, chain)

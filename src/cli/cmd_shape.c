@@ -53,13 +53,13 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
                          : whirl_continuum_solve(omega, mode, tip_mass, 0, &info);
     steady_cli_follow_end(&follow);
     if (status == WHIRL_EINTERRUPTED) {
-        cli_error(cmd, "interrupted in mode %d: %s", mode, whirl_last_error());
+        cli_error(cmd, "interrupted in mode %d: %s", mode, CLI_LIBRARY_ERROR(&m.units));
         free(s);
         steady_cli_model_free(&m);
         return CLI_EXIT_INTERRUPTED;
     }
     if (status != GSL_SUCCESS) {
-        steady_cli_solve_error(cmd, &m, status, mode, omega);
+        steady_cli_solve_error(cmd, &m, status);
         free(s);
         steady_cli_model_free(&m);
         return 1;
@@ -71,7 +71,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         status = whirl_continuum_sample(omega, tip_mass, info.tip_r, n, s, r, z, tension);
     }
     cli_out out;
-    if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
+    if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     else rc = cli_out_open(cmd, &out, out_path);
     if (rc == 0) {
         steady_cli_write_shape(out.fp, &m, &info, n, s, r, z, tension, NULL);

@@ -138,7 +138,7 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
             whirl_shape_info one;
             if (whirl_nlink_solve_nodes(c, o->omega, o->mode, &one, *nodes, *nodes + links,
                                         tension) != GSL_SUCCESS) {
-                cli_error(cmd, "%s", whirl_last_error());
+                cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
                 goto fail;
             }
             p->tip_r = one.tip_r;
@@ -164,7 +164,7 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
         double *r = *nodes + 2 * k * steps * links, *z = r + steps * links;
         if (whirl_nlink_branch_nodes(c, o->modes.v[k], steps, omega, info, exists, r, z,
                                      tension) != GSL_SUCCESS) {
-            cli_error(cmd, "%s", whirl_last_error()); /* it names the mode */
+            cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units)); /* it names the mode */
             goto fail;
         }
         for (size_t j = 0; j < steps; j++)
@@ -310,7 +310,7 @@ static int run_windows(const cli_command *cmd, const options *o)
 {
     whirl_chain *c = NULL;
     if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, o->tip_mass)) == NULL)
-        return cli_error(cmd, "%s", whirl_last_error());
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     const size_t nmodes = (size_t)o->modes.n;
     whirl_window *win = calloc(nmodes * WINDOWS_MAX, sizeof *win);
     size_t *count = calloc(nmodes, sizeof *count);
@@ -333,7 +333,7 @@ static int run_windows(const cli_command *cmd, const options *o)
         const double t0 = cli_wall_seconds();
         status[k] = find_windows(o, c, o->modes.v[k], &p, win + k * WINDOWS_MAX, &count[k],
                                  &stats[k]);
-        if (status[k]) snprintf(message[k], sizeof message[k], "%s", whirl_last_error());
+        if (status[k]) cli_library_error(&o->units, message[k], sizeof message[k]);
         seconds[k] = cli_wall_seconds() - t0;
     }
     for (size_t k = 0; k < nmodes && !rc; k++)
@@ -592,7 +592,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     if (o.windows) return run_windows(cmd, &o);
 
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
-    if (c == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
     size_t count = 0;
     double *nodes = NULL;
     point *pts = make_points(cmd, &o, c, &count, &nodes);
@@ -626,7 +626,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         if (w == NULL) {
 #pragma omp critical(stability_error)
             if (!failed) {
-                snprintf(message, sizeof message, "%s", whirl_last_error());
+                cli_library_error(&o.units, message, sizeof message);
 #pragma omp atomic write
                 failed = 1;
             }
@@ -643,7 +643,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
                 if (!failed) {
                     snprintf(message, sizeof message, "omega %s, mode %d: %s",
                              CLI_NUM(pts[i].omega * unit(&o, CLI_UNIT_RATE)), pts[i].mode,
-                             whirl_last_error());
+                             CLI_LIBRARY_ERROR(&o.units));
 #pragma omp atomic write
                     failed = 1;
                 }

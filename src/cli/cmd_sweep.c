@@ -138,12 +138,12 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         }
         if (status == WHIRL_EINTERRUPTED) {
             interrupted = modes.v[i];
-            snprintf(stopped, sizeof stopped, "%s", whirl_last_error());
+            cli_library_error(&m.units, stopped, sizeof stopped);
         } else if (status != GSL_SUCCESS) {
             steady_cli_follow_end(&follow);
             /* the N-link path's messages name the mode themselves */
-            if (m.chain) rc = steady_cli_solve_error(cmd, &m, status, modes.v[i], omega[n - 1]);
-            else rc = cli_error(cmd, "mode %d: %s", modes.v[i], whirl_last_error());
+            if (m.chain) rc = steady_cli_solve_error(cmd, &m, status);
+            else rc = cli_error(cmd, "mode %d: %s", modes.v[i], CLI_LIBRARY_ERROR(&m.units));
         }
     }
     steady_cli_follow_end(&follow);

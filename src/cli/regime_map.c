@@ -282,7 +282,8 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
         for (long k = mc->rank; k < round; k += mc->size) mine[count++] = pending[first + k];
         for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
         int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
-        if (failed) cli_error(cmd, "a run failed on rank %d: %s", mc->rank, whirl_last_error());
+        if (failed)
+            cli_error(cmd, "a run failed on rank %d: %s", mc->rank, CLI_LIBRARY_ERROR(&o->units));
 #ifdef WHIRL_MPI
         if (mc->size > 1)
             MPI_Gather(mc->rank == 0 ? MPI_IN_PLACE : buf, (int)(block * RESULT_FIELDS),

@@ -9,7 +9,7 @@ int steady_cli_model_setup(const cli_command *cmd, steady_cli_model *m)
     m->chain = NULL;
     if (!m->links_given) return 0;
     m->chain = whirl_chain_alloc_uniform((size_t)m->links, steady_cli_tip_mass(m));
-    if (m->chain == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    if (m->chain == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
     return 0;
 }
 
@@ -47,24 +47,15 @@ int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int m
     } else {
         status = whirl_continuum_critical(mode, steady_cli_tip_mass(m), omega);
     }
-    if (status != GSL_SUCCESS) return cli_error(cmd, "%s", whirl_last_error());
+    if (status != GSL_SUCCESS) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
     return 0;
 }
 
-int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status,
-                           int mode, double omega)
+int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status)
 {
     if (status == GSL_EMAXITER && m->chain)
-        return cli_error(cmd, "%s; --max-steps sets the bound", whirl_last_error());
-    if (status != GSL_EDOM) return cli_error(cmd, "%s", whirl_last_error());
-    double omega_k, rate = cli_units_rate(&m->units);
-    if (steady_cli_critical(cmd, m, mode, &omega_k)) return 1;
-    /* an N-link branch that turns back or ends says so itself (dimensionless rates) */
-    if (m->chain && omega >= omega_k) return cli_error(cmd, "%s", whirl_last_error());
-    return cli_error(cmd, "mode %d does not exist at omega=%s %s: it exists only above "
-                     "omega_%d=%s %s", mode, CLI_NUM(omega * rate),
-                     cli_units_name(&m->units, CLI_UNIT_RATE), mode, CLI_NUM(omega_k * rate),
-                     cli_units_name(&m->units, CLI_UNIT_RATE));
+        return cli_error(cmd, "%s; --max-steps sets the bound", CLI_LIBRARY_ERROR(&m->units));
+    return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
 }
 
 /* The progress line (a whirl_nlink_progress_fn); see steady_cli.h for what it shows. */

@@ -36,12 +36,10 @@ int steady_cli_check_mode(const cli_command *cmd, const steady_cli_model *m, int
 /* The linear critical rate of mode (dimensionless); 0, or 1 after printing an error. */
 int steady_cli_critical(const cli_command *cmd, const steady_cli_model *m, int mode,
                         double *omega);
-/* Reports a failed solve at the dimensionless rate omega: for a mode that does not exist, the
- * line names its critical rate in the user's units; for an N-link branch stopped by the bound on
- * its steps (GSL_EMAXITER), the library's message (the mode, the rate reached, the steps) and
- * the option that sets the bound. Returns 1. */
-int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status,
-                           int mode, double omega);
+/* Reports a failed solve: the library's message in the user's units (a mode that does not exist
+ * names its critical rate), and for an N-link branch stopped by the bound on its steps
+ * (GSL_EMAXITER) the option that sets the bound. Returns 1. */
+int steady_cli_solve_error(const cli_command *cmd, const steady_cli_model *m, int status);
 
 /* ---- following an N-link branch from its birth (shape, sweep) ----
  * --max-steps S bounds the continuation steps of each branch (whirl_nlink_follow_options); on a
