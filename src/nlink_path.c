@@ -1767,6 +1767,18 @@ static long steps_max(const whirl_chain *c)
     return per_link > STEPS_MIN ? (per_link < 1e15 ? (long)per_link : (long)1e15) : STEPS_MIN;
 }
 
+/* The shape of the branch at omega between its birth and the first point of a path begun in the
+ * link angles (birth_gap), into info and, where r is not NULL, r, z, tension. */
+static int gap_shape(whirl_nlink_path *p, double omega, whirl_shape_info *info, double *r,
+                     double *z, double *tension)
+{
+    const size_t n = p->chain->n;
+    double *th = p->cross_theta;
+    if (birth_gap(p, omega, th)) return GSL_EFAILED;
+    if (r == NULL) r = scr_nodes(p), z = r + n + 1, tension = z + n + 1;
+    return shape_info(p, 1, omega, tip_of(p->chain, omega, th), th, info, r, z, tension);
+}
+
 /* Follows the path until its rate first exceeds omega_max, it returns to the hanging chain, or
  * visit returns non-zero (WHIRL_VISIT_STOP: success). visit gets every crossing of the rates
  * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
@@ -1782,6 +1794,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
         return whirl_fail(GSL_EINVAL, "the bound on the continuation steps must be > 0 (0: the "
                           "default), got %ld", opt->steps_max);
     const long bound = opt && opt->steps_max > 0 ? opt->steps_max : steps_max(p->chain);
+    int first = p->steps == 0; /* the first step from the birth is still to come */
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= bound)
             return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
@@ -1811,6 +1824,17 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
             double tip[WHIRL_PATH_EVENTS_MAX + 1];
             int found = whirl_nlink_path_crossings(p, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
             if (found < 0) return -found;
+            if (found == 0 && first && omega[j] > p->omega_birth * (1 + 1e-13) &&
+                omega[j] < p->omega) {
+                /* a rate between the birth and the first point, which the step's crossings do
+                 * not resolve (a path begun in the link angles): gap_shape, or left out as not
+                 * resolved where that does not converge */
+                whirl_shape_info info;
+                if (gap_shape(p, omega[j], &info, r, z, t) != GSL_SUCCESS) continue;
+                p->cross_angles[0] = 1; /* the visit's link angles are in cross_theta */
+                if ((status = visit(ctx, j, &info, NULL)))
+                    return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
+            }
             for (int k = 0; k < found; k++) {
                 whirl_shape_info info;
                 const double *th = p->cross_theta + (size_t)k * links;
@@ -1825,6 +1849,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
                     return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
             }
         }
+        first = 0;
     }
     return GSL_SUCCESS;
 }
@@ -1935,18 +1960,6 @@ int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *o
     return whirl_nlink_branch_nodes(c, mode, n, omega, info, exists, NULL, NULL, NULL);
 }
 
-/* The shape of the branch at omega between its birth and the first point of a path begun in the
- * link angles (birth_gap), into info and, where r is not NULL, r, z, tension. */
-static int gap_shape(whirl_nlink_path *p, double omega, whirl_shape_info *info, double *r,
-                     double *z, double *tension)
-{
-    const size_t n = p->chain->n;
-    double *th = p->cross_theta;
-    if (birth_gap(p, omega, th)) return GSL_EFAILED;
-    if (r == NULL) r = scr_nodes(p), z = r + n + 1, tension = z + n + 1;
-    return shape_info(p, 1, omega, tip_of(p->chain, omega, th), th, info, r, z, tension);
-}
-
 int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
                             whirl_shape_info *info, double *r, double *z, double *tension)
 {
@@ -1967,9 +1980,6 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
                                 p->omega_birth, p->omega);
-        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13) &&
-                 gap_shape(p, omega, info, r, z, tension) == GSL_SUCCESS)
-            status = GSL_SUCCESS;
         else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13))
             /* above the birth but below the first point of a branch begun in the link angles
              * (birth_angles), where birth_gap does not converge: the mode exists there, it is

@@ -144,6 +144,18 @@ expect_error "mode above N (long chain)" "whirl shape: mode 201 does not exist: 
 expect_error "continuum mode above 3183" "whirl shape: mode 3184 is out of range: the continuous chain's solvers take modes 1..3183, those born below omega=5000" shape --mode 3184 --omega 4000 -o "$tmp/out.csv"
 expect_error "critical continuum above 3183" "whirl critical: mode 3184 is out of range" critical --modes 3184 -o "$tmp/out.csv"
 expect_error "below the birth (long chain)" "whirl shape: mode 150 does not exist at omega=250: it exists only above omega_150=252.93" shape --links 200 --mode 150 --omega 250 -o "$tmp/out.csv"
+# sweep: a rate between the birth and the first point of the path (mode 100 of 100 at 1 + 1e-12
+# of its birth) has its row, as shape has it (the same tip radius)
+w100=$("$WHIRL" critical --links 100 --modes 100 | grep -v '^#' | tail -n 1 | cut -d, -f2)
+lo=$(awk -v w="$w100" 'BEGIN { printf "%.17g", w * (1 + 1e-12) }')
+hi=$(awk -v w="$w100" 'BEGIN { printf "%.17g", w * (1 + 1e-6) }')
+"$WHIRL" sweep --links 100 --modes 100 --omega-min "$lo" --omega-max "$hi" --omega-count 3 \
+  -o "$tmp/gap.csv" && "$WHIRL" shape --links 100 --mode 100 --omega "$lo" -o "$tmp/gap1.csv" &&
+tip=$(grep -m1 '^# .*tip_r=' "$tmp/gap1.csv" | sed 's/.*tip_r=\([^ ,]*\).*/\1/')
+if [ "$(grep -vc '^#' "$tmp/gap.csv")" -eq 4 ] &&
+   grep -v '^#' "$tmp/gap.csv" | awk -F, -v tip="$tip" 'NR == 2 { exit !($3 == tip && $7 == 100) }'; then
+  pass "sweep: a rate just above the birth (1 + 1e-12)"
+else fail "sweep: a rate just above the birth (1 + 1e-12) (tip $tip: $(grep -v '^#' "$tmp/gap.csv" | head -2 | tr '\n' ' '))"; fi
 expect_error "events without links" "whirl sweep: --events needs --links" sweep --modes 2 --omega-min 1 --omega-max 9 --omega-count 9 --events "$tmp/ev2.csv" -o "$tmp/out.csv"
 if [ -e "$tmp/ev2.csv" ]; then fail "no events file after an error"; else pass "no events file after an error"; fi
 # the heaviest tip mass (1e12 chain masses): mode 16 of 30 links, which stopped near omega 4.4e7

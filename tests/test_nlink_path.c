@@ -660,6 +660,43 @@ static void test_underflowed_tail(void **state)
     whirl_chain_free(c);
 }
 
+/* The branch at several rates (whirl_nlink_branch, as sweep and stability use it) reaches the
+ * rates between the birth and the first point of a path begun in the link angles, as the
+ * single-rate solve does: N = 100, mode 100 at 1 + 1e-12 of its birth was left out before. The
+ * shapes are the solve's, bit for bit, and the largest radius follows the pitchfork's square
+ * root law, max_r ~ sqrt(omega - omega_k): between 1e-9 and 1e-6 to 1e-5 (the next order, and
+ * the birth rate's round-off over 1e-9), and from 1e-12 to 1e-9 to 1e-3 (half an ulp of the
+ * birth rate is 5e-5 of omega - omega_k at 1e-12). */
+static void test_branch_birth_gap(void **state)
+{
+    (void)state;
+    const size_t n = 100;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
+    double crit[100];
+    assert_int_equal(whirl_nlink_critical(c, n, crit), GSL_SUCCESS);
+    for (int k = 99; k <= 100; k++) {
+        const double f[3] = {1e-12, 1e-9, 1e-6};
+        double omega[3];
+        whirl_shape_info info[3], one;
+        int exists[3];
+        for (int j = 0; j < 3; j++) omega[j] = crit[k - 1] * (1 + f[j]);
+        assert_int_equal(whirl_nlink_branch(c, k, 3, omega, info, exists), GSL_SUCCESS);
+        for (int j = 0; j < 3; j++) {
+            assert_true(exists[j]);
+            assert_int_equal(whirl_nlink_solve(c, omega[j], k, 0, &one), GSL_SUCCESS);
+            assert_true(info[j].omega == omega[j] && info[j].tip_r == one.tip_r &&
+                        info[j].max_r == one.max_r && info[j].n_nodes == one.n_nodes);
+        }
+        const double law = info[1].max_r / info[2].max_r / sqrt(1e-3);
+        const double law_12 = info[0].max_r / info[1].max_r / sqrt(1e-3);
+        print_message("N = 100 mode %d: max_r %.4g, %.4g, %.4g at 1 + 1e-12, 1e-9, 1e-6 of the "
+                      "birth; their ratios over sqrt(1e-3), %.8f and %.8f\n", k, info[0].max_r,
+                      info[1].max_r, info[2].max_r, law_12, law);
+        assert_true(fabs(law - 1) < 1e-5 && fabs(law_12 - 1) < 1e-3);
+    }
+    whirl_chain_free(c);
+}
+
 /* Mode k of c from its birth until the path first crosses omega_top: at every accepted point
  * the force across the links (angle_residual, relative to the forces summed in a link and to
  * the weight), the largest change of a link angle per unit step, the steps made in the link
@@ -1435,6 +1472,7 @@ int main(void)
         cmocka_unit_test(test_birth_linear_shape), cmocka_unit_test(test_retrace),
         cmocka_unit_test(test_folds),              cmocka_unit_test(test_every_mode),
         cmocka_unit_test(test_birth_gap),          cmocka_unit_test(test_underflowed_tail),
+        cmocka_unit_test(test_branch_birth_gap),
         cmocka_unit_test(test_high_rates),         cmocka_unit_test(test_every_mode_high),
         cmocka_unit_test(test_retrace_high),       cmocka_unit_test(test_errors),
         cmocka_unit_test(test_nodes_lengths),
