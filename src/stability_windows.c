@@ -1047,11 +1047,11 @@ int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, d
     const double from = fmax(p->omega_min, birth * (1 + 1e-6));
     if (!(from < p->omega_max))
         return whirl_fail(GSL_EDOM, "mode %d exists only above omega_%d = %.10g, beyond the "
-                                    "range's end, omega = %g", mode, mode, birth, p->omega_max);
+                                    "range's end, omega = %.10g", mode, mode, birth, p->omega_max);
     const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
     if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
-        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %g to omega = %g in steps of "
-                          "%g has %.3g points, more than %d: raise the scan step or narrow the "
+        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %.10g to omega = %.10g in steps "
+                          "of delta omega = %.10g has %.3g points, more than %d: raise the scan step or narrow the "
                           "range", mode, from, p->omega_max, p->scan_step, scan_steps + 1,
                           WINDOWS_SCAN_MAX);
     const size_t steps = (size_t)scan_steps, n = steps + 1;
