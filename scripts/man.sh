@@ -59,6 +59,9 @@ cat <<'END'
 Dimensionless unless a command says otherwise: chain length L = 1, chain mass M = 1, gravity
 g = 1; rates in sqrt(g/L), times in sqrt(L/g), tensions in M g. z points up; the pivot is the
 origin, on the rotation axis. Mode k has k nodes: the pivot plus k\-1 crossings of the axis.
+With \fB\-\-length\fR, \fB\-\-mass\fR or \fB\-\-gravity\fR a command works in SI units
+(m, kg, s, rad/s, N; rates also as 4Hz or 240rpm), its CSV says so on a "# units:" line, and its
+error messages give their rates and tip radii in those units.
 .SH OUTPUT
 CSV: comment lines start with #, the first other line is the header, numbers with full
 precision.
