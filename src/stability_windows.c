@@ -1050,10 +1050,10 @@ int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, d
                                     "range's end, omega = %.10g", mode, mode, birth, p->omega_max);
     const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
     if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
-        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %.10g to omega = %.10g in steps "
-                          "of delta omega = %.10g has %.3g points, more than %d: raise the scan step or narrow the "
-                          "range", mode, from, p->omega_max, p->scan_step, scan_steps + 1,
-                          WINDOWS_SCAN_MAX);
+        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %.10g to omega = %.10g in "
+                          "steps of delta omega = %.10g has %.3g points, more than %d: raise the "
+                          "scan step or narrow the range", mode, from, p->omega_max, p->scan_step,
+                          scan_steps + 1, WINDOWS_SCAN_MAX);
     const size_t steps = (size_t)scan_steps, n = steps + 1;
     double *om = malloc(n * sizeof *om);
     if (om == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
