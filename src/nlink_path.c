@@ -1527,6 +1527,7 @@ static int angle_step(whirl_nlink_path *p)
 
 #define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
 #define GAP_MAX 30 /* secant iterations of a point between the birth and that first point */
+#define GAP_MIN 1e-13 /* omega / omega_k - 1 below which a rate is the birth itself (no gap) */
 
 /* The point of the branch whose projection on the linear mode shape phi is amplitude
  * (phi . theta / sqrt(N), phi of unit norm oriented to a positive tip), by Newton's method into
@@ -1824,7 +1825,7 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
             double tip[WHIRL_PATH_EVENTS_MAX + 1];
             int found = whirl_nlink_path_crossings(p, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
             if (found < 0) return -found;
-            if (found == 0 && first && omega[j] > p->omega_birth * (1 + 1e-13) &&
+            if (found == 0 && first && omega[j] > p->omega_birth * (1 + GAP_MIN) &&
                 omega[j] < p->omega) {
                 /* a rate between the birth and the first point, which the step's crossings do
                  * not resolve (a path begun in the link angles): gap_shape, or left out as not
@@ -1980,7 +1981,7 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
                                 p->omega_birth, p->omega);
-        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + 1e-13))
+        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + GAP_MIN))
             /* above the birth but below the first point of a branch begun in the link angles
              * (birth_angles), where birth_gap does not converge: the mode exists there, it is
              * not resolved */
