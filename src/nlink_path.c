@@ -55,9 +55,21 @@
  * and an isolated curve 5% apart). A genuine branch point is crossed by a step of any length,
  * a neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on
  * which the orientation reverses is rejected and halved, and only a reversal that persists
- * down to DS_BRANCH is located as a branch point (an unfolded branch point, two curves that
- * turn away from each other within a distance d, is followed around its turn where d exceeds
- * DS_BRANCH, and taken as a branch point below). Where the path in the link angles cannot be
+ * down to DS_BRANCH is a branch point, unless the curve turns there. An unfolded branch point,
+ * two curves that turn away from each other within a distance d, is followed around its turn
+ * where the steps resolve d, and the turn can be far sharper than DS_BRANCH: where a branch
+ * passes just below the birth of a higher mode with part of the chain all but hanging, that
+ * part splits off in a pitchfork of its own, which the rest of the chain unfolds, and the
+ * branch turns by a right angle within an arclength of 3e-9 to 5e-9, the other curve 1e-10 to
+ * 2e-10 away (random chains of 2 to 12 links, lengths and masses over six decades, at ten times
+ * their births; a 50-digit path in mpmath with turns of at most 0.02 rad per step goes around
+ * each such turn with steps down to 1e-13, and ends on another curve than a path that takes
+ * the reversal). So before such a reversal is taken, a copy of the path (the probe, look_ahead)
+ * goes on from the step's start in the fine mode: steps down to DS_MIN_FINE, a reversal taken
+ * only at the smallest step, for an arclength of FINE_SPAN. Where it gets there with no branch
+ * point, the path follows the curve the same way (in the fine mode up to that arclength, the
+ * steps the probe made); where it does not, the unfolding is narrower than the finest step and
+ * the reversal is located as a branch point. Where the path in the link angles cannot be
  * followed at any step down to DS_MIN_ANGLES (the tangent turning too fast: an unfolding too
  * narrow for the tangent's round-off), the shortest step up to DS_CROSS on which the
  * orientation reverses is taken across, as at a branch point. Each is located by Brent's method
@@ -121,7 +133,7 @@
  * at each fold and each branch point. A step in the link angles on which the index changes by
  * more than one passed over two singular points, or landed on a curve beyond them, and is
  * rejected and halved like a step on which the orientation reverses (down to DS_BRANCH, below
- * which it is taken). Where no step passes two singular points it costs nothing: the steps of
+ * which it is taken unless the probe finds a turn). Where no step passes two singular points it costs nothing: the steps of
  * mode 334 of 1000 links up to omega 600 and of every test are unchanged. A curve of the same
  * index and orientation is not told apart by either test (the turn, the link angles and the
  * chord are).
@@ -157,6 +169,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <gsl/gsl_roots.h>
 
@@ -166,9 +179,10 @@
 #define DS_FIRST 0.02    /* first step from a start */
 #define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
 #define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails */
+#define DS_MIN_FINE 1e-14 /* and in the fine mode (look_ahead): about 50 ulps of the rate */
 #define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
 #define DS_MAX 0.1       /* largest step */
-#define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
+#define DS_BRANCH 1e-9    /* a step longer than this on which the orientation test changes sign
                           * is rejected (halved): see the header comment */
 #define DS_CROSS 1e-6    /* in the link angles, the longest step taken across a branch point
                           * where the path cannot be followed at any step: see the header
@@ -196,6 +210,8 @@
 #endif
 #define SHOT_SAME 1e-9 /* back on the shot, no link angle moves more than this [rad] (else
                         * its Newton's method went to another equilibrium nearby) */
+#define FINE_SPAN 1e-7  /* the arclength a probe looks ahead (look_ahead) */
+#define PROBE_STEPS 2000 /* and its most steps */
 #define NEAR_MAX 0.5     /* an eigenvalue that turns back closer to zero than this times its
                           * value at the nearer end of the step: the step is halved (near_zero) */
 #define EIG_ITERS 1      /* inverse iterations for the eigenvalue nearest zero, from the last */
@@ -373,6 +389,13 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
     return -1;
 }
 
+/* The doubles of a path's block (the arrays below, in one allocation). */
+static size_t work_size(size_t n)
+{
+    const size_t ne = WHIRL_PATH_EVENTS_MAX;
+    return 8 * n + 2 * (2 * n + 1) + (2 * ne + 1) * n + 7 * n + 3;
+}
+
 whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c)
 {
     if (c == NULL || c->n < 1) {
@@ -383,7 +406,7 @@ whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c)
     if (p == NULL) goto fail;
     p->chain = c;
     const size_t n = c->n, ne = WHIRL_PATH_EVENTS_MAX;
-    p->work = malloc((8 * n + 2 * (2 * n + 1) + (2 * ne + 1) * n + 7 * n + 3) * sizeof *p->work);
+    p->work = malloc(work_size(n) * sizeof *p->work);
     if (p->work == NULL) goto fail;
     p->theta = p->work;
     p->theta_trial = p->theta + n;
@@ -410,6 +433,7 @@ fail:
 void whirl_nlink_path_free(whirl_nlink_path *p)
 {
     if (p == NULL) return;
+    whirl_nlink_path_free(p->probe);
     whirl_nlink_balance_free(p->balance);
     free(p->work);
     free(p);
@@ -602,6 +626,7 @@ static void reset(whirl_nlink_path *p)
     p->why = "";
     p->stay = 0;
     p->backoff = STAY_FIRST;
+    p->fine_end = 0;
     for (size_t i = 0; i < p->chain->n; i++) scr_zero(p)[i] = 0;
 }
 
@@ -779,6 +804,7 @@ void whirl_nlink_path_reverse(whirl_nlink_path *p)
         p->mu_rate = -p->mu_rate;
     }
     p->have_last = 0;
+    p->fine_end = 0;
 }
 
 /* ---- events: located on the last step by Brent's method on sigma ---- */
@@ -1231,6 +1257,12 @@ static void step_undone(whirl_nlink_path *p, double ds)
     p->ds = 0.5 * ds;
 }
 
+/* The smallest step in the link angles at the current point: finer in the fine mode. */
+static double ds_smallest(const whirl_nlink_path *p)
+{
+    return p->arclength < p->fine_end ? DS_MIN_FINE : DS_MIN_ANGLES;
+}
+
 /* The failure of the continuation at the last point (w0, a0) with a step below DS_MIN: names
  * the rate reached and why the last trial step was rejected (whirl_nlink_path_step adds the
  * mode). */
@@ -1240,7 +1272,7 @@ static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
         return whirl_fail(status, "the continuation in the link angles fails at omega=%.17g "
                           "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
                           "the smallest step %g", w0, a0, tension_spread(p->chain, w0, a0),
-                          p->why, DS_MIN_ANGLES);
+                          p->why, ds_smallest(p));
     return whirl_fail(status, "the continuation fails at omega=%.17g (tip radius %.6g): %s at "
                       "the smallest step %g", w0, a0, p->why, DS_MIN);
 }
@@ -1384,6 +1416,66 @@ static int near_zero(whirl_nlink_path *p, double t_w, double ds, double *mu, dou
     return changes > 1 || near < NEAR_MAX;
 }
 
+/* dst becomes a copy of src at its current point: every field and the contents of src's block,
+ * dst's own arrays (at the offsets of src's: swap exchanges a point's and its trial's), its
+ * force balance's workspace and its probe kept. */
+static void path_copy(whirl_nlink_path *dst, const whirl_nlink_path *src)
+{
+    double *const work = dst->work;
+    void *const balance = dst->balance;
+    whirl_nlink_path *const probe = dst->probe;
+    *dst = *src;
+    dst->work = work;
+    dst->balance = balance;
+    dst->probe = probe;
+#define REBASE(field) dst->field = work + (src->field - src->work)
+    REBASE(theta);
+    REBASE(theta_trial);
+    REBASE(t_theta);
+    REBASE(t_theta_trial);
+    REBASE(embed);
+    REBASE(embed_trial);
+    REBASE(last.theta0);
+    REBASE(last.t_theta0);
+    REBASE(cross_theta);
+    REBASE(event_theta);
+    REBASE(eig);
+    REBASE(eig_trial);
+    REBASE(scratch);
+#undef REBASE
+    memcpy(work, src->work, work_size(src->chain->n) * sizeof *work);
+}
+
+static int path_step(whirl_nlink_path *p);
+
+/* Looks ahead from the current point before a reversal of the orientation test on a step no
+ * longer than DS_BRANCH is taken for a branch point (see the header comment): the probe, a copy
+ * of the path, goes on from here with steps from ds, in the fine mode (a reversal taken only at
+ * the smallest step) up to FINE_SPAN of arclength. Returns 1 where it gets there within
+ * PROBE_STEPS steps with no branch point: the curve turns sharply here and the path should
+ * follow it; 0 where it does not (a branch point at the finer scale too, or a failure: the
+ * reversal is taken as before); WHIRL_EINTERRUPTED on a stop request, GSL_ENOMEM. The probe's
+ * shots are counted in p->shots. */
+static int look_ahead(whirl_nlink_path *p, double ds)
+{
+    if (p->probe == NULL && (p->probe = whirl_nlink_path_alloc(p->chain)) == NULL)
+        return GSL_ENOMEM;
+    whirl_nlink_path *q = p->probe;
+    path_copy(q, p);
+    q->ds = ds;
+    q->fine_end = p->arclength + FINE_SPAN;
+    int status = GSL_SUCCESS, resolved = 0;
+    for (long k = 0; k < PROBE_STEPS && status == GSL_SUCCESS && !resolved; k++) {
+        status = path_step(q);
+        for (int e = 0; e < q->n_events; e++)
+            if (q->event[e].kind == WHIRL_EVENT_BRANCH_POINT) status = GSL_EFAILED;
+        resolved = status == GSL_SUCCESS && (q->ended || q->arclength >= q->fine_end);
+    }
+    p->shots = q->shots; /* the probe counted on from p->shots */
+    if (status == WHIRL_EINTERRUPTED) return status;
+    return resolved;
+}
+
 /* One step in the link angles: predictor x0 + ds t0 + ds^2 k / 2 (k the curvature, the change
  * of the tangent over the last step divided by its length, where that step was made in the link
  * angles too), Newton's method on R = 0 and the arclength row (M0 t0) . (x - x0) = ds, the same
@@ -1398,6 +1490,9 @@ static int angle_step(whirl_nlink_path *p)
     int crossing = 0; /* the trials probe for a step across a branch point */
     int chord_off = 0, chord_failed = 0; /* the chord test set aside; it rejected the last trial */
     const double ds_first = p->ds;
+    /* the step above which a reversal of the orientation is another curve close by */
+    const double ds_min = ds_smallest(p), ds_branch = p->arclength < p->fine_end ? ds_min
+                                                                                 : DS_BRANCH;
     const char *why = "";
     for (;;) {
         for (size_t i = 0; i < n; i++) c_th[i] = p->t_theta[i] / (double)n;
@@ -1433,15 +1528,30 @@ static int angle_step(whirl_nlink_path *p)
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
             chord_failed = chord && !crossing && !chord_off;
             if (chord_failed) ok = 0, p->why = chord;
-            if (det != p->det_sign && ds > DS_BRANCH && !crossing)
+            const int jump = p->index >= 0 && abs(index - p->index) > 1;
+            if (det != p->det_sign && ds > ds_branch && !crossing)
                 ok = 0, p->why = "the orientation test changes sign (another curve close by)";
-            if (p->index >= 0 && abs(index - p->index) > 1 && ds > DS_BRANCH && !crossing)
+            if (jump && ds > ds_branch && !crossing)
                 ok = 0, p->why = "the index of the force balance changes by more than one (two "
                                  "singular points passed over)";
-            if (pair && ds > DS_BRANCH && !crossing)
+            if (pair && ds > ds_branch && !crossing)
                 ok = 0, p->why = "an eigenvalue of the force balance crosses zero and back "
                                  "within the step (two folds passed over)";
             if (det == p->det_sign && crossing) ok = 0;
+            if (ok && !crossing && (det != p->det_sign || jump || pair) &&
+                p->arclength >= p->fine_end) {
+                /* a branch point by the rule of DS_BRANCH: unless the curve turns within it */
+                const int ahead = look_ahead(p, 0.5 * ds);
+                if (ahead < 0 || ahead > 1) return fail_at(p, ahead, w0, a0);
+                if (ahead == 1) {
+                    /* the fine mode from here on, the steps as from a fresh call (as the
+                     * probe's) */
+                    p->fine_end = p->arclength + FINE_SPAN;
+                    p->rejected++;
+                    p->ds = 0.5 * ds;
+                    return angle_step(p);
+                }
+            }
         }
         if (!ok) {
             p->rejected++;
@@ -1467,14 +1577,14 @@ static int angle_step(whirl_nlink_path *p)
                 p->ds = ds_first;
                 continue;
             }
-            if (p->ds < DS_MIN_ANGLES) {
+            if (p->ds < ds_min) {
                 /* the curve cannot be followed at any step: if a curve of the opposite
                  * orientation lies within DS_CROSS ahead, the two meet there to within the
                  * resolution of the steps (a branch point, its unfolding narrower than the
                  * smallest step): the shortest step that reaches it is taken across */
                 why = p->why;
                 crossing = 1;
-                p->ds = 2 * DS_MIN_ANGLES;
+                p->ds = 2 * ds_min;
             }
             continue;
         }
@@ -1521,7 +1631,7 @@ static int angle_step(whirl_nlink_path *p)
         angle_embed(n, w0, p->t_omega, p->t_theta, p->embed);
         p->omega_lo = lo, p->omega_hi = hi, p->noise = noise;
         step_undone(p, ds);
-        if (crossing || p->ds < DS_MIN_ANGLES) return fail_at(p, GSL_EFAILED, w0, a0);
+        if (crossing || p->ds < ds_min) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
 
@@ -1722,12 +1832,13 @@ static int shot_step(whirl_nlink_path *p)
     }
 }
 
-int whirl_nlink_path_step(whirl_nlink_path *p)
+/* whirl_nlink_path_step, its failures not yet led by the mode */
+static int path_step(whirl_nlink_path *p)
 {
     p->n_events = 0;
     if (p->ended)
-        return name_mode(p, whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at "
-                                       "omega=%.17g", p->omega));
+        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
+                          p->omega);
     if (whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps",
                           p->omega, p->steps);
@@ -1736,7 +1847,12 @@ int whirl_nlink_path_step(whirl_nlink_path *p)
     if (!p->angles && p->noise > NOISE_UP) to_angles(p);
     else if (p->angles && p->stay > 0) p->stay--;
     else if (p->angles && p->noise < NOISE_DOWN) to_shot(p);
-    return name_mode(p, p->angles ? angle_step(p) : shot_step(p));
+    return p->angles ? angle_step(p) : shot_step(p);
+}
+
+int whirl_nlink_path_step(whirl_nlink_path *p)
+{
+    return name_mode(p, path_step(p));
 }
 
 int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,

@@ -21,6 +21,9 @@
  * - a tip mass of 1e12: the branch follows the sharp turn where the pinned string's symmetric
  *   branch splits (symmetric below it, asymmetric above, no branch point); a first point in the
  *   link angles where the shot cannot start a branch (a random chain's mode 9);
+ * - branches that turn by a right angle within 5e-9 of arclength just below another mode's
+ *   birth (random chains, lengths and masses over six decades): the link angles at ten times
+ *   the birth against a 50-digit pseudo-arclength path in mpmath, no branch point on the way;
  * - the error paths; a branch that cannot be continued (a random chain of 10 links): the
  *   message names the mode, the rate the path reached and why;
  * - a middle mode of a long chain, which folds many times (N = 250 mode 80 to twice its birth):
@@ -1193,6 +1196,92 @@ static void test_near_births(void **state)
     }
 }
 
+/* Corners just below another mode's birth: mode 8 of a 12-link and a 9-link chain (lengths and
+ * masses over six decades) pass within 1e-10 (relative) below the birth of mode 9 with part of
+ * the chain all but hanging, and turn there by a right angle over an arclength of about 4e-9,
+ * another curve of equilibria 1e-10 to 2e-10 away. The path took a reversal of its orientation
+ * test on a step of 1e-9 there for a branch point and went on along that other curve, ending at
+ * 10 times the birth 1.45 and 1.55 rad away from the branch; a probe now looks ahead with finer
+ * steps and follows the turn. Mode 7 of a third 9-link chain went the right way before and must
+ * still. The reference: the link angles at 10 times the birth from an independent 50-digit
+ * pseudo-arclength continuation in mpmath of the force balance in (omega, theta), in the same
+ * metric, turns of at most 0.02 rad per step and every step's orientation and index checked
+ * (its corner: 135 to 156 steps shorter than 1e-9). */
+static void test_corners(void **state)
+{
+    (void)state;
+    static const double length_a[12] = {0.035350988975983766, 0.75669569454246821,
+        0.32845934013890316, 0.020326768502812585, 2.2652340137841711, 0.45754287785312786,
+        4.2288237971426543, 198.4248599993677, 12.764992808177084, 3.0056614495915541,
+        0.10488532688884442, 253.25708685712144};
+    static const double mass_a[12] = {7.0504222524289499, 191.42565269492235,
+        0.40884434092041139, 76.735985574243657, 0.0014559722666634754, 201.19295425113916,
+        14.310337262877036, 1.1948508310681367, 14.869597527176841, 0.01030076036692045,
+        0.077556098480104863, 47.521385083298341};
+    static const double end_a[12] = {1.445165547539164, -0.046375833592764953,
+        2.0501528335352348e-05, 3.4899469053183568e-05, -3.3028461118581966e-09,
+        -3.4499299167308829e-09, -1.1750333868404033e-12, 2.1028429666459822e-08,
+        -0.0014257665837115365, 1.5609484048604609, 1.5596871280578071, -0.012210028922129955};
+    static const double length_b[9] = {0.070162066030373019, 111.81954152718886,
+        2.3222961544612386, 23.062821237957106, 330.49317381274932, 0.14277270054558061,
+        0.0037092662097338424, 22.915984884650165, 0.27251719136522617};
+    static const double mass_b[9] = {0.0068675647299397914, 1.7013048900246917,
+        0.07636857239449947, 7.896589309214459, 0.32922785172356628, 0.0724052084410058,
+        183.34632586580688, 111.71786576971722, 0.0083645241425102553};
+    static const double end_b[9] = {1.5608023682850978, -0.0006274267235814589,
+        7.6471307268517278e-10, -2.0505934970029224e-15, -1.1119459644592979e-09,
+        0.025971552721493634, -1.5534434385263649, 6.3857879076832439e-08,
+        -3.6979829202771218e-15};
+    static const double length_c[9] = {0.8624770221753858, 0.10941880901976603,
+        1.7406746655743852, 2.7337776804982017, 90.524982180307802, 0.090124520184199364,
+        1.3478017650844096, 0.46867340661603152, 0.0071712700659721787};
+    static const double mass_c[9] = {0.0023397721798814248, 0.065100103846090149,
+        0.028579361980291582, 69.524207910028281, 675.48491737981828, 0.082598129143583901,
+        0.024182725185860465, 0.0013407704854452862, 14.088509789399636};
+    static const double end_c[9] = {-0.80921705094650609, 1.3782255701280011,
+        1.5640142191803372, -0.46415266599726046, 1.8804645148860566e-08,
+        1.0811733978314748e-09, -1.8303496868658376e-06, 0.013594539208479145,
+        -1.0933566087834345};
+    const struct {
+        size_t n;
+        const double *length, *mass, *end;
+        int mode;
+    } runs[] = {{12, length_a, mass_a, end_a, 8}, {9, length_b, mass_b, end_b, 8},
+                {9, length_c, mass_c, end_c, 7}};
+    for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+        const size_t n = runs[k].n;
+        whirl_chain *c = whirl_chain_alloc(n, runs[k].length, runs[k].mass, 1);
+        assert_non_null(c);
+        whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+        assert_non_null(p);
+        assert_int_equal(whirl_nlink_path_birth(p, runs[k].mode), GSL_SUCCESS);
+        const double target = 10 * p->omega_birth;
+        int found = 0, branch_points = 0;
+        double tip[WHIRL_PATH_EVENTS_MAX + 1];
+        for (long steps = 0; !found && steps < 10000; steps++) {
+            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+            for (int e = 0; e < p->n_events; e++)
+                branch_points += p->event[e].kind == WHIRL_EVENT_BRANCH_POINT;
+            found = whirl_nlink_path_crossings(p, target, WHIRL_PATH_EVENTS_MAX + 1, tip);
+            assert_true(found >= 0);
+        }
+        assert_int_equal(found, 1);
+        /* the branch or its mirror image */
+        double same = 0, mirror = 0;
+        for (size_t i = 0; i < n; i++) {
+            same = fmax(same, fabs(p->cross_theta[i] - runs[k].end[i]));
+            mirror = fmax(mirror, fabs(p->cross_theta[i] + runs[k].end[i]));
+        }
+        print_message("%zu links, mode %d at 10 times its birth: %ld steps, %d branch points, "
+                      "link angles %.1e rad from the 50-digit path\n", n, runs[k].mode, p->steps,
+                      branch_points, fmin(same, mirror));
+        assert_true(fmin(same, mirror) < 1e-12);
+        assert_int_equal(branch_points, 0);
+        whirl_nlink_path_free(p);
+        whirl_chain_free(c);
+    }
+}
+
 /* A branch that cannot be continued: mode 3 of this 6-link chain (lengths and masses over six
  * decades) near omega = 0.493, where an event between two of its points is not located at any
  * step down to the smallest. The path, whirl_nlink_solve and whirl_nlink_branch return
@@ -1478,6 +1567,7 @@ int main(void)
         cmocka_unit_test(test_nodes_lengths),
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_heavy_tip_jumps),
         cmocka_unit_test(test_birth_in_angles),    cmocka_unit_test(test_near_births),
+        cmocka_unit_test(test_corners),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
         cmocka_unit_test(test_many_folds),         cmocka_unit_test(test_pair_in_step),

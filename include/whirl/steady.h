@@ -281,6 +281,10 @@ typedef struct whirl_nlink_path {
         int det_sign, index;
         double mu, mu_rate;
     } last;
+    double fine_end;  /* the arclength up to which the path takes a reversal of its orientation
+                       * test for a branch point only at its smallest step, having looked ahead
+                       * and found a sharp turn of the curve there (0: none) */
+    struct whirl_nlink_path *probe; /* the path that looks ahead (allocated when first needed) */
 } whirl_nlink_path;
 
 /* NULL (with whirl_last_error) on no memory or a chain of no links. */
