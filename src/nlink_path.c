@@ -133,8 +133,9 @@
  * at each fold and each branch point. A step in the link angles on which the index changes by
  * more than one passed over two singular points, or landed on a curve beyond them, and is
  * rejected and halved like a step on which the orientation reverses (down to DS_BRANCH, below
- * which it is taken unless the probe finds a turn). Where no step passes two singular points it costs nothing: the steps of
- * mode 334 of 1000 links up to omega 600 and of every test are unchanged. A curve of the same
+ * which it is taken unless the probe finds a turn). Where no step passes two singular points it
+ * costs nothing: the steps of mode 334 of 1000 links up to omega 600 and of every test are
+ * unchanged. A curve of the same
  * index and orientation is not told apart by either test (the turn, the link angles and the
  * chord are).
  *
@@ -182,7 +183,7 @@
 #define DS_MIN_FINE 1e-14 /* and in the fine mode (look_ahead): about 50 ulps of the rate */
 #define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
 #define DS_MAX 0.1       /* largest step */
-#define DS_BRANCH 1e-9    /* a step longer than this on which the orientation test changes sign
+#define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
                           * is rejected (halved): see the header comment */
 #define DS_CROSS 1e-6    /* in the link angles, the longest step taken across a branch point
                           * where the path cannot be followed at any step: see the header
@@ -1257,6 +1258,13 @@ static void step_undone(whirl_nlink_path *p, double ds)
     p->ds = 0.5 * ds;
 }
 
+/* A stop request at the current point. */
+static int stopped(const whirl_nlink_path *p)
+{
+    return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps", p->omega,
+                      p->steps);
+}
+
 /* The smallest step in the link angles at the current point: finer in the fine mode. */
 static double ds_smallest(const whirl_nlink_path *p)
 {
@@ -1542,7 +1550,8 @@ static int angle_step(whirl_nlink_path *p)
                 p->arclength >= p->fine_end) {
                 /* a branch point by the rule of DS_BRANCH: unless the curve turns within it */
                 const int ahead = look_ahead(p, 0.5 * ds);
-                if (ahead < 0 || ahead > 1) return fail_at(p, ahead, w0, a0);
+                if (ahead == WHIRL_EINTERRUPTED) return stopped(p);
+                if (ahead != 0 && ahead != 1) return ahead;
                 if (ahead == 1) {
                     /* the fine mode from here on, the steps as from a fresh call (as the
                      * probe's) */
@@ -1839,9 +1848,7 @@ static int path_step(whirl_nlink_path *p)
     if (p->ended)
         return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
                           p->omega);
-    if (whirl_stop_requested())
-        return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps",
-                          p->omega, p->steps);
+    if (whirl_stop_requested()) return stopped(p);
     /* the formulation of this step: the link angles where the shot's round-off is felt, with
      * a hysteresis (each switch polishes the point on the other formulation) */
     if (!p->angles && p->noise > NOISE_UP) to_angles(p);
