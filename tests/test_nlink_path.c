@@ -1118,6 +1118,17 @@ static void test_birth_in_angles(void **state)
     whirl_chain_free(c);
 }
 
+/* A 12-link chain of a random audit (lengths and masses over six decades): test_near_births and
+ * test_corners. */
+static const double length12[12] = {6.4137541914433962, 0.69985078418033264,
+    0.30445216588345081, 0.040501451846643347, 882.05113251028865, 105.55843472014749,
+    379.95636790871288, 484.65009559407321, 0.0078598851595356005, 0.014259210818873328,
+    0.23404188197373091, 0.0042769417477639222};
+static const double mass12[12] = {0.588136706496169, 0.0037810206044739006,
+    2.3210929408558481, 0.41819146771713517, 48.103996890005305, 0.0045684015998842158,
+    0.83784451659396864, 2.6769554892953562, 0.33110164254819519, 0.089698702524540028,
+    0.037324865515517835, 0.0042130898264247044};
+
 /* Branches that pass close to the hanging chain at another mode's birth: modes 7 and 8 of this
  * 10-link chain meet the birth of mode 9 at omega = 196.2457, where part of the chain comes within
  * 1e-15 of hanging (a secondary pitchfork of the upper links, unfolded by the lower ones at that
@@ -1145,14 +1156,6 @@ static void test_near_births(void **state)
     static const double mass10[10] = {13.826388989566144, 2.4045304435807306, 6.0273741545159591,
         0.0080766022194672816, 3.420393787126256, 0.016414051020772945, 1.6254273412394882,
         4.8288160952370749, 0.042321538977457586, 47.515183489569964};
-    static const double length12[12] = {6.4137541914433962, 0.69985078418033264,
-        0.30445216588345081, 0.040501451846643347, 882.05113251028865, 105.55843472014749,
-        379.95636790871288, 484.65009559407321, 0.0078598851595356005, 0.014259210818873328,
-        0.23404188197373091, 0.0042769417477639222};
-    static const double mass12[12] = {0.588136706496169, 0.0037810206044739006,
-        2.3210929408558481, 0.41819146771713517, 48.103996890005305, 0.0045684015998842158,
-        0.83784451659396864, 2.6769554892953562, 0.33110164254819519, 0.089698702524540028,
-        0.037324865515517835, 0.0042130898264247044};
     static const double length_b[12] = {0.0043204635832964754, 15.59049893081143,
         0.052218545422964668, 0.78520350820823459, 19.126137090217345, 0.052759247012254401,
         0.026953662526442237, 100.49103184670962, 15.345957326808813, 171.03188630787901,
@@ -1202,8 +1205,11 @@ static void test_near_births(void **state)
  * another curve of equilibria 1e-10 to 2e-10 away. The path took a reversal of its orientation
  * test on a step of 1e-9 there for a branch point and went on along that other curve, ending at
  * 10 times the birth 1.45 and 1.55 rad away from the branch; a probe now looks ahead with finer
- * steps and follows the turn. Mode 7 of a third 9-link chain went the right way before and must
- * still. The reference: the link angles at 10 times the birth from an independent 50-digit
+ * steps and follows the turn. Mode 10 of the 12-link chain above turns within 1e-13 (relative)
+ * below the birth of mode 11 at omega = 60.5124486, where the 50-digit path takes steps down to
+ * 1e-17: its top five links, 1e-20 to 1e-15 rad from hanging, bend while the rate moves within
+ * its round-off. Mode 7 of a
+ * third 9-link chain went the right way before and must still. The reference: the link angles at 10 times the birth from an independent 50-digit
  * pseudo-arclength continuation in mpmath of the force balance in (omega, theta), in the same
  * metric, turns of at most 0.02 rad per step and every step's orientation and index checked
  * (its corner: 135 to 156 steps shorter than 1e-9). */
@@ -1242,12 +1248,17 @@ static void test_corners(void **state)
         1.5640142191803372, -0.46415266599726046, 1.8804645148860566e-08,
         1.0811733978314748e-09, -1.8303496868658376e-06, 0.013594539208479145,
         -1.0933566087834345};
+    static const double end_d[12] = {-5.510068271783418e-06, 0.0098771387153506751,
+        -0.0024865934479776594, -1.43001257530022, 3.8524662939935253e-05,
+        -1.5162467320018383e-11, 1.3342232979815041e-15, 6.1840531281516485e-17,
+        -4.5241514691164682e-09, 2.320984168481202e-06, -0.0018538656341763743,
+        1.5608152411436502};
     const struct {
         size_t n;
         const double *length, *mass, *end;
         int mode;
     } runs[] = {{12, length_a, mass_a, end_a, 8}, {9, length_b, mass_b, end_b, 8},
-                {9, length_c, mass_c, end_c, 7}};
+                {9, length_c, mass_c, end_c, 7}, {12, length12, mass12, end_d, 10}};
     for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
         const size_t n = runs[k].n;
         whirl_chain *c = whirl_chain_alloc(n, runs[k].length, runs[k].mass, 1);
