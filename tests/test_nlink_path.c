@@ -1208,11 +1208,10 @@ static void test_near_births(void **state)
  * steps and follows the turn. Mode 10 of the 12-link chain above turns within 1e-13 (relative)
  * below the birth of mode 11 at omega = 60.5124486, where the 50-digit path takes steps down to
  * 1e-17: its top five links, 1e-20 to 1e-15 rad from hanging, bend while the rate moves within
- * its round-off. Mode 7 of a
- * third 9-link chain went the right way before and must still. The reference: the link angles at 10 times the birth from an independent 50-digit
+ * its round-off. Mode 7 of a third 9-link chain went the right way before and must still. The
+ * reference: the link angles at 10 times the birth from an independent 50-digit
  * pseudo-arclength continuation in mpmath of the force balance in (omega, theta), in the same
- * metric, turns of at most 0.02 rad per step and every step's orientation and index checked
- * (its corner: 135 to 156 steps shorter than 1e-9). */
+ * metric, turns of at most 0.02 rad per step and every step's orientation and index checked. */
 static void test_corners(void **state)
 {
     (void)state;
