@@ -31,6 +31,7 @@ python3-scipy    have_py scipy
 python3-pytest   have_py pytest
 python3-matplotlib have_py matplotlib
 python3-nbformat have_py nbformat
+python3-mpmath   have_py mpmath
 python3-nbclient have_py nbclient
 python3-ipykernel have_py ipykernel
 python3-pip      have_py pip

@@ -46,45 +46,45 @@
  * in 60 digits with turns of at most 0.05 rad per step does the same).
  *
  * Test functions between two accepted points: a fold where t_omega changes sign; a branch point
- * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as
- * the tangent (G_a, -G_omega) reversing against the direction of travel) where that orientation
- * changes; a return to the hanging chain where a changes sign. The orientation also reverses
- * when the corrector lands on a neighbouring curve: G changes sign across each curve of G = 0,
- * so two adjacent curves carry opposite orientations (coarse chains at high rates have curves
- * a few percent apart in a over long stretches: 10 links near omega = 12.89, mode 7's branch
- * and an isolated curve 5% apart). A genuine branch point is crossed by a step of any length,
- * a neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on
- * which the orientation reverses is rejected and halved, and only a reversal that persists
- * down to DS_BRANCH is a branch point, unless the curve turns there. An unfolded branch point,
- * two curves that turn away from each other within a distance d, is followed around its turn
- * where the steps resolve d, and the turn can be far sharper than DS_BRANCH: where a branch
- * passes just below the birth of a higher mode with part of the chain all but hanging, that
- * part splits off in a pitchfork of its own, which the rest of the chain unfolds, and the
- * branch turns by a right angle within an arclength of 3e-9 to 5e-9, the other curve 1e-10 to
- * 2e-10 away (random chains of 2 to 12 links, lengths and masses over six decades, at ten times
- * their births; a 50-digit path in mpmath with turns of at most 0.02 rad per step goes around
- * each such turn with steps down to 1e-13, and ends on another curve than a path that takes
- * the reversal). So before such a reversal is taken, a copy of the path (the probe, look_ahead)
- * goes on from the step's start in the fine mode: steps down to DS_MIN_FINE, a reversal taken
- * only at the smallest step, for an arclength of FINE_SPAN. Where it gets there with no branch
- * point, the path follows the curve the same way (in the fine mode up to that arclength, the
- * steps the probe made); where it does not, the unfolding is narrower than the finest step and
- * the reversal is located as a branch point. Where the path in the link angles cannot be
- * followed at any step down to DS_MIN_ANGLES (the tangent turning too fast: an unfolding too
- * narrow for the tangent's round-off), the shortest step up to DS_CROSS on which the
- * orientation reverses is taken across, as at a branch point. Each is located by Brent's method
- * (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every evaluation a corrector
- * solve on the hyperplane at sigma (at the step's ends a fold's test function is known: the
- * tangent of each end): at a fold omega(sigma) is stationary, so the arclength error enters
- * omega squared, and sigma is bracketed to LOCATE_FOLD of the step (the test function's own
- * noise where the Jacobian is singular), elsewhere to round-off. A crossing of a rate is first
- * sought by Newton's method at that rate from the point interpolated in omega (omega is
- * monotone between the step's folds, so the point whose arclength coordinate lies on the piece
- * is the one), Brent's method only where that fails. A step across an event that cannot be
- * located (the curve between its ends more intricate than the step: a tail of links all but
- * hanging that turns in a pitchfork of its own, which the tip radius shows by changing sign and
- * the metric, dominated by the links at finite angles, does not) is taken back and halved, on
- * the shot as in the link angles.
+ * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as the
+ * tangent (G_a, -G_omega) reversing against the direction of travel) where that orientation
+ * changes; a return to the hanging chain where a changes sign. The orientation also reverses when
+ * the corrector lands on a neighbouring curve: G changes sign across each curve of G = 0, so two
+ * adjacent curves carry opposite orientations (coarse chains at high rates have curves a few
+ * percent apart in a over long stretches: 10 links near omega = 12.89, mode 7's branch and an
+ * isolated curve 5% apart). A genuine branch point is crossed by a step of any length, a
+ * neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on which
+ * the orientation reverses is rejected and halved, and only a reversal that persists down to
+ * DS_BRANCH is a branch point, unless the curve turns there. An unfolded branch point, two curves
+ * that turn away from each other within a distance d, is followed around its turn where the steps
+ * resolve d, and the turn can be far sharper than DS_BRANCH: where a branch passes just below the
+ * birth of a higher mode with part of the chain all but hanging, that part splits off in a
+ * pitchfork of its own, which the rest of the chain unfolds, and the branch turns by a right angle
+ * within an arclength of 3e-9 to 5e-9, the other curve 1e-10 to 2e-10 away (random chains of 2 to
+ * 12 links, lengths and masses over six decades, at ten times their births; a 50-digit path in
+ * mpmath with turns of at most 0.02 rad per step goes around each such turn with steps of 1e-12
+ * down to 1e-17 (at the finest, the rate moves within its round-off while links 1e-20 rad from
+ * hanging bend), and ends on another curve than a path that takes the reversal). So before such a
+ * reversal is taken, a copy of the path (the probe, look_ahead) goes on from the step's start in
+ * the fine mode: steps down to DS_MIN_FINE, a reversal taken only at the smallest step, for an
+ * arclength of FINE_SPAN. Where it gets there with no branch point, the path follows the curve the
+ * same way (in the fine mode up to that arclength, the steps the probe made); where it does not,
+ * the unfolding is narrower than the finest step and the reversal is located as a branch point.
+ * Where the path in the link angles cannot be followed at any step down to DS_MIN_ANGLES (the
+ * tangent turning too fast: an unfolding too narrow for the tangent's round-off), the shortest step
+ * up to DS_CROSS on which the orientation reverses is taken across, as at a branch point. Each is
+ * located by Brent's method (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every
+ * evaluation a corrector solve on the hyperplane at sigma (at the step's ends a fold's test
+ * function is known: the tangent of each end): at a fold omega(sigma) is stationary, so the
+ * arclength error enters omega squared, and sigma is bracketed to LOCATE_FOLD of the step (the test
+ * function's own noise where the Jacobian is singular), elsewhere to round-off. A crossing of a
+ * rate is first sought by Newton's method at that rate from the point interpolated in omega (omega
+ * is monotone between the step's folds, so the point whose arclength coordinate lies on the piece
+ * is the one), Brent's method only where that fails. A step across an event that cannot be located
+ * (the curve between its ends more intricate than the step: a tail of links all but hanging that
+ * turns in a pitchfork of its own, which the tip radius shows by changing sign and the metric,
+ * dominated by the links at finite angles, does not) is taken back and halved, on the shot as in
+ * the link angles.
  *
  * The same curve in the link angles. The shot loses digits on long chains at high rates: the
  * tip radius of a high mode is 1e-18 of the largest radius or less and fixes the shape only to

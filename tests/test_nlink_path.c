@@ -1211,7 +1211,8 @@ static void test_near_births(void **state)
  * its round-off. Mode 7 of a third 9-link chain went the right way before and must still. The
  * reference: the link angles at 10 times the birth from an independent 50-digit
  * pseudo-arclength continuation in mpmath of the force balance in (omega, theta), in the same
- * metric, turns of at most 0.02 rad per step and every step's orientation and index checked. */
+ * metric, turns of at most 0.02 rad per step and every step's orientation and index checked
+ * (tests/branch_mp.py --length L --mass M MODE: its CROSS line). */
 static void test_corners(void **state)
 {
     (void)state;
