@@ -111,31 +111,28 @@ def mdot(a, b, g):
     return mp.fsum(a[i] * b[i] * g[i] for i in range(len(a)))
 
 
-def tangent(ch, x, row):
-    """t with J t = 0, row . t = 1; returns t (unnormalised), the bordered matrix's det."""
-    n = ch.n
-    R, J = ch.resid(x, jac=True)
+def bordered(n, J, row):
+    """[J; row]: the N x (N+1) Jacobian with the row below it"""
     B = mp.zeros(n + 1, n + 1)
     for i in range(n):
         for j in range(n + 1):
             B[i, j] = J[i, j]
     for j in range(n + 1):
         B[n, j] = row[j]
-    rhs = mp.matrix([0] * n + [1])
-    t = mp.lu_solve(B, rhs)
+    return B
+
+
+def tangent(ch, x, row):
+    """t with J t = 0, row . t = 1 (unnormalised), and J at x."""
+    n = ch.n
+    R, J = ch.resid(x, jac=True)
+    t = mp.lu_solve(bordered(n, J, row), mp.matrix([0] * n + [1]))
     return [t[i] for i in range(n + 1)], J
 
 
 def orient_det(ch, J, t):
-    n = ch.n
-    B = mp.zeros(n + 1, n + 1)
-    for i in range(n):
-        for j in range(n + 1):
-            B[i, j] = J[i, j]
-    for j in range(n + 1):
-        B[n, j] = t[j]
-    d = mp.det(B)
-    return 1 if d > 0 else -1
+    """the sign of det [J; t]"""
+    return 1 if mp.det(bordered(ch.n, J, t)) > 0 else -1
 
 
 def newton(ch, x, row, rhs_val, x0, tol, itmax):
@@ -144,14 +141,10 @@ def newton(ch, x, row, rhs_val, x0, tol, itmax):
     x = list(x)
     for it in range(1, itmax + 1):
         R, J = ch.resid(x, jac=True)
-        B = mp.zeros(n + 1, n + 1)
+        B = bordered(n, J, row)
         f = mp.matrix(n + 1, 1)
         for i in range(n):
-            for j in range(n + 1):
-                B[i, j] = J[i, j]
             f[i] = -R[i]
-        for j in range(n + 1):
-            B[n, j] = row[j]
         f[n] = -(mp.fsum(row[j] * (x[j] - x0[j]) for j in range(n + 1)) - rhs_val)
         try:
             dx = mp.lu_solve(B, f)
