@@ -1,5 +1,6 @@
 """Steady shapes from Python against independent results: Bessel zeros, analytic pendulum
 frequencies, and the command line's CSV."""
+import os
 import subprocess
 
 import numpy as np
@@ -134,3 +135,34 @@ def test_sweep_agrees_with_single_shapes():
             s = whirl.shape(row["omega"], k, links=30)
             assert row["tip_r"] == pytest.approx(s.tip_r, rel=1e-9)
             assert row["top_tension"] == pytest.approx(s.top_tension, rel=1e-9)
+
+
+def test_sharp_turn_against_the_mpmath_continuation():
+    # Mode 8 of this 9-link chain (lengths and masses over six decades) turns by a right angle
+    # within 4e-9 of arclength just below the birth of mode 9 (omega = 1061.985); a path that
+    # took the turn for a branch point ended 1.55 rad away. The library's shape at ten times the
+    # birth against tests/branch_mp.py, an independent pseudo-arclength continuation in mpmath
+    # (30 digits here, turns of at most 0.02 rad per step): every node to 1e-12 of the largest
+    # radius, or the mirror image.
+    lengths = [0.070162066030373019, 111.81954152718886, 2.3222961544612386, 23.062821237957106,
+               330.49317381274932, 0.14277270054558061, 0.0037092662097338424,
+               22.915984884650165, 0.27251719136522617]
+    masses = [0.0068675647299397914, 1.7013048900246917, 0.07636857239449947, 7.896589309214459,
+              0.32922785172356628, 0.0724052084410058, 183.34632586580688, 111.71786576971722,
+              0.0083645241425102553]
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
+                          "tests", "branch_mp.py")
+    out = subprocess.run(["/usr/bin/python3", script, "--length", ",".join(map(repr, lengths)),
+                          "--mass", ",".join(map(repr, masses)), "8", "--dps", "30"],
+                         capture_output=True, text=True, check=True).stdout
+    cross = [line.split() for line in out.splitlines() if line.startswith("CROSS")]
+    assert len(cross) == 1, out[-500:]
+    omega = float(cross[0][1])
+    theta = np.array([float(v) for v in cross[0][2:2 + len(lengths)]])
+    r_ref = np.concatenate(([0.0], np.cumsum(lengths * np.sin(theta))))
+    z_ref = np.concatenate(([0.0], -np.cumsum(lengths * np.cos(theta))))
+    s = whirl.shape(omega, 8, links=whirl.Chain(lengths=lengths, masses=masses))
+    scale = np.max(np.abs(s.r))
+    err = min(np.max(np.abs(s.r - r_ref)), np.max(np.abs(s.r + r_ref)))
+    assert err < 1e-12 * scale
+    assert np.max(np.abs(s.z - z_ref)) < 1e-12 * np.max(np.abs(s.z))
