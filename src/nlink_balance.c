@@ -59,6 +59,7 @@ struct nlink_balance {
     double *sn, *co;           /* sin theta_i and cos theta_i of the last evaluation, N each */
     lapack_int *ipiv;
     int factored;
+    int zero_pivot;            /* the last factor had a pivot exactly zero, moved (evaluate) */
     int det_sign;              /* sign of det A */
 };
 
@@ -103,8 +104,8 @@ void whirl_nlink_balance_free(nlink_balance *b)
 }
 
 /* rho_i and R_i at (omega, theta); with jac, also A (factorised) and b. GSL_EDOM where a link
- * is horizontal or beyond (its tension would be infinite or negative), GSL_ESING where A is
- * exactly singular. */
+ * is horizontal or beyond (its tension would be infinite or negative); where A is exactly
+ * singular, its zero pivot moved and b->zero_pivot set. */
 static int evaluate(nlink_balance *b, double omega, const double *theta, int jac)
 {
     const whirl_chain *c = b->c;
@@ -149,8 +150,24 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
         if (i + 1 < n) b->a_dl[i] = b->dl[i], b->a_du[i] = b->du[i];
     }
     lapack_int info = LAPACKE_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
-    if (info != 0)
-        return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega);
+    b->zero_pivot = info > 0;
+    if (info < 0)
+        return whirl_fail(GSL_EINVAL, "omega=%g: dgttrf rejects argument %d", omega, (int)-info);
+    if (b->zero_pivot) {
+        /* A pivot of U exactly zero (dgttrf completes the factors, that column's multiplier
+         * zero): the point is a fold to the last bit, which a corrector's Newton iterate on a
+         * curve through a fold can land on. The bordered system is regular there; the pivot is
+         * moved to -eps |A| (as in whirl_nlink_balance_index, and LAPACK dstebz), the factors
+         * then those of A + E with |E| <= eps |A|, a backward error of the elimination's own
+         * size. Newton's method at fixed omega (the polish) stops there: GSL_ESING. */
+        double scale = 0;
+        for (size_t i = 0; i < n; i++) {
+            scale = fmax(scale, fabs(b->a_d[i]));
+            if (i + 1 < n) scale = fmax(scale, fmax(fabs(b->a_dl[i]), fabs(b->a_du[i])));
+        }
+        for (size_t i = 0; i < n; i++)
+            if (b->d[i] == 0) b->d[i] = -DBL_EPSILON * scale;
+    }
     b->det_sign = 1;
     for (size_t i = 0; i < n; i++) {
         if (b->d[i] < 0) b->det_sign = -b->det_sign;
@@ -364,6 +381,9 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
     for (int it = 0; it < 30; it++) {
         int status = evaluate(b, omega, theta, 1);
         if (status) return status;
+        if (b->zero_pivot)
+            return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)",
+                              omega);
         double *step = b->u;
         for (size_t i = 0; i < n; i++) step[i] = -b->res[i];
         solve(b, 1, step);
@@ -378,7 +398,10 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
                 if (!(fabs(theta[i]) < M_PI_2))
                     return whirl_fail(GSL_EDOM, "omega=%g: Newton's method on the link angles "
                                       "leaves link %zu horizontal or compressed", omega, i + 1);
-            return evaluate(b, omega, theta, 1);
+            status = evaluate(b, omega, theta, 1);
+            return status == GSL_SUCCESS && b->zero_pivot
+                ? whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega)
+                : status;
         }
         prev = norm;
     }
@@ -406,7 +429,7 @@ int whirl_nlink_balance_mode(nlink_balance *b, double omega, double *phi, int *t
     /* A itself (a_dl, a_d, a_du) is kept even where it is exactly singular */
     const int status = evaluate(b, omega, zero, 1);
     b->factored = 0;
-    if (status != GSL_SUCCESS && status != GSL_ESING) return status;
+    if (status != GSL_SUCCESS) return status;
     const double *dl = b->a_dl, *d = b->a_d, *du = b->a_du;
     for (size_t i = 0; i < n; i++) {
         const double off = (i > 0 ? dl[i - 1] * du[i - 1] / p[i - 1] : 0);

@@ -106,8 +106,10 @@
  * double) and turned into the force it leaves across the links (the pivot misses the axis by
  * a |u| |G - G_ext|, and moving it there changes link i's horizontal force by omega^2 M_i r_0,
  * relative to its tension T_i); above NOISE_UP, or where the shot's Newton steps fail, the path
- * goes over to the link angles (the point polished there at fixed omega, the tangent carried
- * over), and it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
+ * goes over to the link angles (the point polished there at fixed omega, or where A is singular
+ * there, a fold, on the hyperplane normal to the shot's tangent; the tangent carried over; the
+ * first step from a birth to such a point begins in the link angles instead, birth_angles), and
+ * it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
  * at each failure of the shot, so that it does not flap); on the way back the shot's Newton's
  * method at fixed omega must land within SHOT_SAME of the link angles (else it found another
  * equilibrium nearby). The shot is kept where it is clean: it is about three times cheaper per
@@ -634,23 +636,32 @@ static void reset(whirl_nlink_path *p)
 }
 
 /* Over to the link angles at the current point of the shot: its angles polished on the force
- * balance at fixed omega, the tangent carried over (the shot's tangent in theta is p->embed).
- * Returns 0, or -1 with the path unchanged. */
+ * balance at fixed omega, or where that fails (A singular or nearly: a fold at or next to the
+ * point) on the hyperplane through the point normal to the shot's tangent (the arclength row at
+ * sigma = 0, regular at a fold); the tangent carried over (the shot's tangent in theta is
+ * p->embed). Returns 0, or -1 with the path unchanged. */
 static int to_angles(whirl_nlink_path *p)
 {
     const whirl_chain *c = p->chain;
     const size_t n = c->n;
-    double *th = p->theta_trial, *c_th = scr_cth(p), t_w;
-    for (size_t i = 0; i < n; i++) th[i] = p->theta[i];
-    if (whirl_nlink_balance_polish(p->balance, p->omega, th)) return -1;
+    double *th = p->theta_trial, *c_th = scr_cth(p), t_w, w = p->omega;
     const double c_w = p->t_omega / (p->omega * p->omega);
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
+        th[i] = p->theta[i];
         c_th[i] = p->raw_sign * p->embed[i + 1] * sqrt((double)n) / (double)n;
+    }
+    if (whirl_nlink_balance_polish(p->balance, w, th)) {
+        for (size_t i = 0; i < n; i++) th[i] = p->theta[i];
+        if (correct_angles(p, p->omega, p->theta, c_w, c_th, 0, &w, th, NULL,
+                           LOCATE_NEWTON_MAX))
+            return -1;
+    }
     int det;
-    if (angle_tangent(p, p->omega, c_w, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
+    if (angle_tangent(p, w, c_w, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
     double *tmp = p->theta;
     p->theta = th;
     p->theta_trial = tmp;
+    p->omega = w;
     p->t_omega = t_w;
     p->t_tip = tip_rate(c, p->omega, th, t_w, p->t_theta);
     p->tip_r = tip_of(c, p->omega, th);
@@ -1675,7 +1686,7 @@ static int birth_point(whirl_nlink_path *p, double amplitude, double guess, doub
 
 /* The first point of the branch in the link angles, where the shot's first step from the birth
  * fails (the modes near N, whose linear mode shape has a tip displacement of 1e-10 of its
- * largest or less). At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
+ * largest or less) or lands where the shot's round-off exceeds NOISE_UP. At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
  * vector phi, the linear mode shape in the link angles (whirl_nlink_balance_mode: a twisted
  * factorization of A, every component to its own relative accuracy, the tip's sign known even
  * where its magnitude underflows; the shot's d theta / d a at a = 0 is not used: where the
@@ -1807,6 +1818,13 @@ static int shot_step(whirl_nlink_path *p)
          * (measured at every point: the measure is itself round-off and jumps along a branch) */
         const double noise = shot_noise(c, w, a, &s);
         if (p->steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
+        /* the first step from the birth to such a point: begun in the link angles instead
+         * (the shot's point, handed over and polished at fixed omega that close to the birth,
+         * can fall onto the hanging chain, as above) */
+        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP) {
+            if (birth_angles(p) == 0) return angle_step(p);
+            return fail_at(p, GSL_EFAILED, w0, a0);
+        }
         const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->omega_lo, hi = p->omega_hi;
         const double noise_start = p->noise;
         keep_start(p, m0, w0, a0, ds);

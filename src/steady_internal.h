@@ -112,8 +112,9 @@ nlink_balance *whirl_nlink_balance_alloc(const whirl_chain *c);
 void whirl_nlink_balance_free(nlink_balance *b); /* NULL is a no-op */
 
 /* R at (omega, theta[0..N-1]) and its Jacobian, factorised. GSL_EDOM if a link is not below the
- * horizontal (|theta_i| >= pi/2), GSL_ESING if the Jacobian is exactly singular, GSL_ERANGE if
- * not finite. */
+ * horizontal (|theta_i| >= pi/2), GSL_ERANGE if not finite. A Jacobian exactly singular (a fold
+ * to the last bit) is factorised with its zero pivot moved to -eps |A|: the bordered solves
+ * stay accurate there, and the sign and logarithm of det A are those of that pivot. */
 int whirl_nlink_balance_factor(nlink_balance *b, double omega, const double *theta);
 /* R_i of the last factor (N values, owned by b). */
 const double *whirl_nlink_balance_residual(const nlink_balance *b);

@@ -1293,38 +1293,146 @@ static void test_corners(void **state)
     }
 }
 
-/* A branch that cannot be continued: mode 3 of this 6-link chain (lengths and masses over six
- * decades) near omega = 0.493, where an event between two of its points is not located at any
- * step down to the smallest. The path, whirl_nlink_solve and whirl_nlink_branch return
- * GSL_EFAILED with one line naming the mode, the rate reached (the path's last point) and why.
- * (Should the continuation learn to pass here, this test needs another branch it cannot
- * continue.) */
+/* Chains whose lengths and masses span eight to ten decades, each once stopped or sent off its
+ * branch by the continuation's own arithmetic, now followed to 10 times the birth:
+ * - mode 3 of a 6-link chain passes two folds, at omega = 0.4929787 and 0.4298846. A corrector's
+ *   Newton iterate near the first lands on the fold to the last bit, where LAPACK's dgttrf finds
+ *   a pivot of the force balance exactly zero; the fold could not be located and the path
+ *   stalled at it. The zero pivot is now moved to -eps |A| (src/nlink_balance.c). Each fold is
+ *   checked against the solution of the extended system R = 0, A phi = 0 (Moore & Spence 1980)
+ *   by Newton's method in 40-digit mpmath, from the library's point: 0.492978728497649851028698
+ *   and 0.429884560098057538983563.
+ * - mode 4 of a 5-link chain: the tip shot's first step from the birth lands within 4e-15
+ *   (relative) of the birth's rate, where the force balance at fixed omega cannot tell the
+ *   branch from the hanging chain; handed over to the link angles there, the path fell onto the
+ *   hanging chain and reported "the branch ended on the hanging chain" at omega = 2225.05, no
+ *   critical rate. Such a first step now begins in the link angles from the linear mode shape.
+ * - mode 4 of a 10-link chain: where the shot hands over to the link angles at a point the
+ *   path takes for a fold, its polish at fixed omega fails; it now falls back on the hyperplane
+ *   normal to the shot's tangent. Before, the shot failed there (or, by another route, the path
+ *   ended 1.55 rad off the branch). Near omega = 1.4998725 the rate is stationary to 1e-10 over
+ *   an arclength of 1e-5, the rate's part of the unit tangent falling to 3e-5 without changing
+ *   sign (the 40-digit path: no fold); the library's tangent there is good to about 3e-3 only
+ *   (part of the chain all but hanging, another curve close by), and it reports 29 folds within
+ *   3e-9 of each other in omega. Their count is not checked.
+ * The reference: the link angles at 10 times the birth from tests/branch_mp.py (--dps 30 or 40:
+ * its CROSS line), up to the mirror image. */
+static void test_wide_chains(void **state)
+{
+    (void)state;
+    static const double length_a[6] = {630.33005332306675, 0.27500766827344486,
+        174.81872058124804, 1.4411941992607589, 8.7492626352478684, 6.8690222534588523};
+    static const double mass_a[6] = {12.394488685353037, 0.0016892875309677934,
+        189.87315451839621, 23.436595581584179, 0.006442324773379496, 63.03504867928811};
+    static const double end_a[6] = {-4.781645393876825730e-05, 0.023102088461326647899,
+        0.023104719146899795003, -1.5641709981643918101, -1.5663208114236537786,
+        -1.5663210522606348583};
+    static const double length_b[5] = {0.00020000653783724246, 4.8946411383332427e-06,
+        392030.14194413403, 64.590489722376191, 1.2944253980781326};
+    static const double mass_b[5] = {0.0063534961973308358, 122.31343730443081,
+        3040.567579273004, 5.0619419448599691e-05, 317.66724932499346};
+    static const double end_b[5] = {-2.9400289858288358427e-21, -2.4092028973156036362e-21,
+        1.0801333450446181290e-17, -0.020040870046259079667, 1.5609907104313135559};
+    static const double length_c[10] = {0.0036562240126909737, 0.44084328951817064,
+        2.7587669586471862e-05, 0.80487366894353563, 546.56969276689119,
+        6.1669592018545456e-05, 0.0035821353635932147, 10166.134822036443, 1.5960193291413209,
+        74.013597551022457};
+    static const double mass_c[10] = {3.1906671193842886, 0.0028475288809263976,
+        73587.63745891898, 3.3361796949069408e-05, 0.97473431470066951, 0.036732958619229102,
+        0.00010956934181698877, 0.13881324572048581, 0.00072004338782051232,
+        0.00059443697276225708};
+    static const double end_c[10] = {1.5514174090303641811, 1.5514182421068862800,
+        1.5514182421069210718, 0.00068234238347470777352, -0.00081417041372842584387,
+        -0.00019387380603678162766, -1.5343069474987325282e-06, -8.0924221564943726457e-07,
+        1.5608919317387428078, -0.021455690654361637889};
+    static const double folds_a[2] = {0.492978728497649851028698, 0.429884560098057538983563};
+    const struct {
+        size_t n;
+        const double *length, *mass, *end, *folds;
+        int mode, n_folds;
+    } runs[] = {{6, length_a, mass_a, end_a, folds_a, 3, 2},
+                {5, length_b, mass_b, end_b, NULL, 4, 0},
+                {10, length_c, mass_c, end_c, NULL, 4, -1}};
+    for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
+        const size_t n = runs[k].n;
+        whirl_chain *c = whirl_chain_alloc(n, runs[k].length, runs[k].mass, 1);
+        assert_non_null(c);
+        whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+        assert_non_null(p);
+        assert_int_equal(whirl_nlink_path_birth(p, runs[k].mode), GSL_SUCCESS);
+        const double target = 10 * p->omega_birth;
+        int found = 0, folds = 0, others = 0;
+        double tip[WHIRL_PATH_EVENTS_MAX + 1], fold_error = 0;
+        for (long steps = 0; !found && steps < 10000; steps++) {
+            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+            for (int e = 0; e < p->n_events; e++) {
+                if (p->event[e].kind != WHIRL_EVENT_FOLD) {
+                    others++;
+                    continue;
+                }
+                if (runs[k].folds && folds < runs[k].n_folds)
+                    fold_error = fmax(fold_error, fabs(p->event[e].omega / runs[k].folds[folds]
+                                                       - 1));
+                folds++;
+            }
+            found = whirl_nlink_path_crossings(p, target, WHIRL_PATH_EVENTS_MAX + 1, tip);
+            assert_true(found >= 0);
+        }
+        assert_int_equal(found, 1);
+        double same = 0, mirror = 0;
+        for (size_t i = 0; i < n; i++) {
+            same = fmax(same, fabs(p->cross_theta[i] - runs[k].end[i]));
+            mirror = fmax(mirror, fabs(p->cross_theta[i] + runs[k].end[i]));
+        }
+        print_message("%zu links, mode %d at 10 times its birth: %ld steps, %d folds (rates "
+                      "%.1e from the extended system's), %d other events, link angles %.1e rad "
+                      "from the mpmath path\n", n, runs[k].mode, p->steps, folds, fold_error,
+                      others, fmin(same, mirror));
+        assert_true(fmin(same, mirror) < 1e-12);
+        assert_int_equal(others, 0);
+        if (runs[k].n_folds >= 0) assert_int_equal(folds, runs[k].n_folds);
+        assert_true(fold_error < 1e-13);
+        whirl_nlink_path_free(p);
+        whirl_chain_free(c);
+    }
+}
+
+/* A branch that cannot be continued: mode 4 of this 6-link chain (lengths and masses over seven
+ * decades, link tensions differing by a factor 8e6) near omega = 26.0834, where its top three
+ * links, 1e-10 to 1e-9 rad from hanging, bend by their own size within arclengths of 1e-10: the
+ * path's corrected points there scatter by 1e-9 in the rate, the tangent by more than 0.2 rad
+ * from one point to the next at every step down to the smallest. (tests/branch_mp.py follows it
+ * in 40 digits with steps down to 5e-11: a limit of this continuation in double precision, not
+ * of the branch.) The path, whirl_nlink_solve and whirl_nlink_branch return GSL_EFAILED with one
+ * line naming the mode, the rate reached (the path's last point) and why. (Should the
+ * continuation learn to pass here, this test needs another branch it cannot continue.) */
 static void test_stalled_branch(void **state)
 {
     (void)state;
-    static const double length[6] = {630.33005332306675, 0.27500766827344486,
-        174.81872058124804, 1.4411941992607589, 8.7492626352478684, 6.8690222534588523};
-    static const double mass[6] = {12.394488685353037, 0.0016892875309677934,
-        189.87315451839621, 23.436595581584179, 0.006442324773379496, 63.03504867928811};
+    static const double length[6] = {0.0012922587406787884, 0.00017902550382390632,
+        0.10220696674289667, 6.3390966531444954, 5091.3012894023204, 0.22932441501380871};
+    static const double mass[6] = {1.1695728844445877e-05, 3759.5128350298978,
+        3.6256413904149021, 0.0045631467174315227, 2.2911713280111182e-05,
+        0.00044231089281488502};
     whirl_chain *c = whirl_chain_alloc(6, length, mass, 1);
     assert_non_null(c);
     double crit[6];
     assert_int_equal(whirl_nlink_critical(c, 6, crit), GSL_SUCCESS);
-    const double target = 10 * crit[2];
+    const double target = 10 * crit[3];
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    assert_int_equal(whirl_nlink_path_birth(p, 3), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_path_birth(p, 4), GSL_SUCCESS);
     int status = GSL_SUCCESS;
     for (long steps = 0; status == GSL_SUCCESS && p->omega <= target && steps < 100000; steps++)
         status = whirl_nlink_path_step(p);
     char message[512], where[64];
     snprintf(message, sizeof message, "%s", whirl_last_error());
     const double reached = p->omega;
-    print_message("6 links, mode 3 (born at omega %.6g), to %.6g: %s\n", crit[2], target,
+    print_message("6 links, mode 4 (born at omega %.6g), to %.6g: %s\n", crit[3], target,
                   message);
     assert_int_equal(status, GSL_EFAILED);
-    assert_true(reached > crit[2] && reached < target);
+    assert_true(reached > crit[3] && reached < target);
     snprintf(where, sizeof where, " fails at omega=%.17g ", reached);
-    assert_int_equal(strncmp(message, "mode 3: the continuation", 24), 0);
+    assert_int_equal(strncmp(message, "mode 4: the continuation", 24), 0);
     assert_non_null(strstr(message, where));
     /* why: the rejection of the last trial step */
     const char *why = strstr(message, "): "), *smallest = strstr(message, " at the smallest step");
@@ -1336,9 +1444,9 @@ static void test_stalled_branch(void **state)
     /* the drivers: the same failure and message */
     whirl_shape_info info;
     int exists;
-    assert_int_equal(whirl_nlink_solve(c, target, 3, 0, &info), GSL_EFAILED);
+    assert_int_equal(whirl_nlink_solve(c, target, 4, 0, &info), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
-    assert_int_equal(whirl_nlink_branch(c, 3, 1, &target, &info, &exists), GSL_EFAILED);
+    assert_int_equal(whirl_nlink_branch(c, 4, 1, &target, &info, &exists), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
     whirl_chain_free(c);
 }
@@ -1579,6 +1687,7 @@ int main(void)
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_heavy_tip_jumps),
         cmocka_unit_test(test_birth_in_angles),    cmocka_unit_test(test_near_births),
         cmocka_unit_test(test_corners),
+        cmocka_unit_test(test_wide_chains),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
         cmocka_unit_test(test_many_folds),         cmocka_unit_test(test_pair_in_step),
