@@ -107,9 +107,9 @@
  * a |u| |G - G_ext|, and moving it there changes link i's horizontal force by omega^2 M_i r_0,
  * relative to its tension T_i); above NOISE_UP, or where the shot's Newton steps fail, the path
  * goes over to the link angles (the point polished there at fixed omega, or where A is singular
- * there, a fold, on the hyperplane normal to the shot's tangent; the tangent carried over; the
- * first step from a birth to such a point begins in the link angles instead, birth_angles), and
- * it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
+ * there, a fold, on the hyperplane normal to the shot's tangent; the tangent carried over; a
+ * first step from a birth to such a point within BIRTH_NEAR of the birth's rate begins in the
+ * link angles instead, birth_angles), and it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
  * at each failure of the shot, so that it does not flap); on the way back the shot's Newton's
  * method at fixed omega must land within SHOT_SAME of the link angles (else it found another
  * equilibrium nearby). The shot is kept where it is clean: it is about three times cheaper per
@@ -1660,6 +1660,10 @@ static int angle_step(whirl_nlink_path *p)
 #define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
 #define GAP_MAX 30 /* secant iterations of a point between the birth and that first point */
 #define GAP_MIN 1e-13 /* omega / omega_k - 1 below which a rate is the birth itself (no gap) */
+#define BIRTH_NEAR 1e-10 /* omega / omega_k - 1 below which the force balance at fixed omega
+                          * does not tell a branch's point from the hanging chain: the
+                          * eigenvalue of its Jacobian nearest zero is about that times its
+                          * largest, the shot's round-off 3e-14 (NOISE_UP) */
 
 /* The point of the branch whose projection on the linear mode shape phi is amplitude
  * (phi . theta / sqrt(N), phi of unit norm oriented to a positive tip), by Newton's method into
@@ -1686,7 +1690,8 @@ static int birth_point(whirl_nlink_path *p, double amplitude, double guess, doub
 
 /* The first point of the branch in the link angles, where the shot's first step from the birth
  * fails (the modes near N, whose linear mode shape has a tip displacement of 1e-10 of its
- * largest or less) or lands where the shot's round-off exceeds NOISE_UP. At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
+ * largest or less) or lands within BIRTH_NEAR of the birth's rate where the shot's round-off
+ * exceeds NOISE_UP. At the birth (omega_k, theta = 0) the Jacobian A is singular with the null
  * vector phi, the linear mode shape in the link angles (whirl_nlink_balance_mode: a twisted
  * factorization of A, every component to its own relative accuracy, the tip's sign known even
  * where its magnitude underflows; the shot's d theta / d a at a = 0 is not used: where the
@@ -1818,10 +1823,11 @@ static int shot_step(whirl_nlink_path *p)
          * (measured at every point: the measure is itself round-off and jumps along a branch) */
         const double noise = shot_noise(c, w, a, &s);
         if (p->steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
-        /* the first step from the birth to such a point: begun in the link angles instead
-         * (the shot's point, handed over and polished at fixed omega that close to the birth,
-         * can fall onto the hanging chain, as above) */
-        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP) {
+        /* the first step from the birth to such a point at a rate within BIRTH_NEAR of the
+         * birth's: begun in the link angles instead (the force balance at fixed omega is
+         * singular there to within the shot's round-off, and its Newton's method, polishing the
+         * shot's point on the hand-over, can fall onto the hanging chain, as above) */
+        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR) {
             if (birth_angles(p) == 0) return angle_step(p);
             return fail_at(p, GSL_EFAILED, w0, a0);
         }
