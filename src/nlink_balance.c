@@ -103,6 +103,17 @@ void whirl_nlink_balance_free(nlink_balance *b)
     free(b);
 }
 
+double whirl_nlink_balance_scale(const nlink_balance *b)
+{
+    const size_t n = b->c->n;
+    double scale = 0;
+    for (size_t i = 0; i < n; i++) {
+        scale = fmax(scale, fabs(b->a_d[i]));
+        if (i + 1 < n) scale = fmax(scale, fmax(fabs(b->a_dl[i]), fabs(b->a_du[i])));
+    }
+    return scale;
+}
+
 /* rho_i and R_i at (omega, theta); with jac, also A (factorised) and b. GSL_EDOM where a link
  * is horizontal or beyond (its tension would be infinite or negative); where A is exactly
  * singular, its zero pivot moved and b->zero_pivot set. */
@@ -160,11 +171,7 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
          * moved to -eps |A| (as in whirl_nlink_balance_index, and LAPACK dstebz), the factors
          * then those of A + E with |E| <= eps |A|, a backward error of the elimination's own
          * size. Newton's method at fixed omega (the polish) stops there: GSL_ESING. */
-        double scale = 0;
-        for (size_t i = 0; i < n; i++) {
-            scale = fmax(scale, fabs(b->a_d[i]));
-            if (i + 1 < n) scale = fmax(scale, fmax(fabs(b->a_dl[i]), fabs(b->a_du[i])));
-        }
+        const double scale = whirl_nlink_balance_scale(b);
         for (size_t i = 0; i < n; i++)
             if (b->d[i] == 0) b->d[i] = -DBL_EPSILON * scale;
     }
@@ -211,12 +218,7 @@ int whirl_nlink_balance_det_sign(const nlink_balance *b)
 int whirl_nlink_balance_index(const nlink_balance *b)
 {
     const size_t n = b->c->n;
-    double scale = 0;
-    for (size_t i = 0; i < n; i++) {
-        scale = fmax(scale, fabs(b->a_d[i]));
-        if (i + 1 < n) scale = fmax(scale, fmax(fabs(b->a_dl[i]), fabs(b->a_du[i])));
-    }
-    const double tiny = DBL_EPSILON * scale;
+    const double tiny = DBL_EPSILON * whirl_nlink_balance_scale(b);
     int count = 0;
     double q = 1;
     for (size_t i = 0; i < n; i++) {

@@ -125,6 +125,8 @@ int whirl_nlink_balance_det_sign(const nlink_balance *b);
 /* The number of negative eigenvalues of A at the last factor (all real: A is similar to a
  * symmetric tridiagonal matrix), by the Sturm count of its pivots; O(N). */
 int whirl_nlink_balance_index(const nlink_balance *b);
+/* The largest magnitude of an entry of A at the last factor: the scale of its round-off. */
+double whirl_nlink_balance_scale(const nlink_balance *b);
 /* The bordered system [A, dR/domega; c_theta^T, c_omega] (x_theta, x_omega) = (f, g) at the last
  * factor (f NULL: zero), with one step of iterative refinement if refine; the Schur complement
  * c_omega - c_theta . A^{-1} dR/domega in *schur (det of the system = det A * schur). */

@@ -285,6 +285,10 @@ typedef struct whirl_nlink_path {
                        * test for a branch point only at its smallest step, having looked ahead
                        * and found a sharp turn of the curve there (0: none) */
     struct whirl_nlink_path *probe; /* the path that looks ahead (allocated when first needed) */
+    int rate_sign;    /* the sign of t_omega at the last point where it is resolved (in the link
+                       * angles: where the eigenvalue mu is not round-off); a fold is where it
+                       * changes. 0 until known (at a birth) */
+    int last_rate_sign; /* that sign at the last step's start */
 } whirl_nlink_path;
 
 /* NULL (with whirl_last_error) on no memory or a chain of no links. */
