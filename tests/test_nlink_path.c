@@ -1199,6 +1199,51 @@ static void test_near_births(void **state)
     }
 }
 
+/* A run of mode `mode` of a chain from its birth to its first crossing of 10 times the birth
+ * (to_ten): its steps, the events met by kind (events[WHIRL_EVENT_*]), the rates of its first
+ * max_folds folds into fold_at, and the largest difference of its link angles there from end or
+ * from end's mirror image, whichever is nearer. */
+typedef struct ten_run {
+    long steps;
+    int events[4];
+    double distance;
+} ten_run;
+
+static void to_ten(size_t n, const double *length, const double *mass, int mode,
+                   const double *end, double *fold_at, int max_folds, ten_run *r)
+{
+    whirl_chain *c = whirl_chain_alloc(n, length, mass, 1);
+    assert_non_null(c);
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_non_null(p);
+    assert_int_equal(whirl_nlink_path_birth(p, mode), GSL_SUCCESS);
+    const double target = 10 * p->omega_birth;
+    int found = 0;
+    double tip[WHIRL_PATH_EVENTS_MAX + 1];
+    memset(r, 0, sizeof *r);
+    for (long steps = 0; !found && steps < 10000; steps++) {
+        assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
+        for (int e = 0; e < p->n_events; e++) {
+            const whirl_event_kind kind = p->event[e].kind;
+            if (kind == WHIRL_EVENT_FOLD && r->events[kind] < max_folds)
+                fold_at[r->events[kind]] = p->event[e].omega;
+            r->events[kind]++;
+        }
+        found = whirl_nlink_path_crossings(p, target, WHIRL_PATH_EVENTS_MAX + 1, tip);
+        assert_true(found >= 0);
+    }
+    assert_int_equal(found, 1);
+    double same = 0, mirror = 0;
+    for (size_t i = 0; i < n; i++) {
+        same = fmax(same, fabs(p->cross_theta[i] - end[i]));
+        mirror = fmax(mirror, fabs(p->cross_theta[i] + end[i]));
+    }
+    r->steps = p->steps;
+    r->distance = fmin(same, mirror);
+    whirl_nlink_path_free(p);
+    whirl_chain_free(c);
+}
+
 /* Corners just below another mode's birth: mode 8 of a 12-link and a 9-link chain (lengths and
  * masses over six decades) pass within 1e-10 (relative) below the birth of mode 9 with part of
  * the chain all but hanging, and turn there by a right angle over an arclength of about 4e-9,
@@ -1260,36 +1305,13 @@ static void test_corners(void **state)
     } runs[] = {{12, length_a, mass_a, end_a, 8}, {9, length_b, mass_b, end_b, 8},
                 {9, length_c, mass_c, end_c, 7}, {12, length12, mass12, end_d, 10}};
     for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
-        const size_t n = runs[k].n;
-        whirl_chain *c = whirl_chain_alloc(n, runs[k].length, runs[k].mass, 1);
-        assert_non_null(c);
-        whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-        assert_non_null(p);
-        assert_int_equal(whirl_nlink_path_birth(p, runs[k].mode), GSL_SUCCESS);
-        const double target = 10 * p->omega_birth;
-        int found = 0, branch_points = 0;
-        double tip[WHIRL_PATH_EVENTS_MAX + 1];
-        for (long steps = 0; !found && steps < 10000; steps++) {
-            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
-            for (int e = 0; e < p->n_events; e++)
-                branch_points += p->event[e].kind == WHIRL_EVENT_BRANCH_POINT;
-            found = whirl_nlink_path_crossings(p, target, WHIRL_PATH_EVENTS_MAX + 1, tip);
-            assert_true(found >= 0);
-        }
-        assert_int_equal(found, 1);
-        /* the branch or its mirror image */
-        double same = 0, mirror = 0;
-        for (size_t i = 0; i < n; i++) {
-            same = fmax(same, fabs(p->cross_theta[i] - runs[k].end[i]));
-            mirror = fmax(mirror, fabs(p->cross_theta[i] + runs[k].end[i]));
-        }
+        ten_run r;
+        to_ten(runs[k].n, runs[k].length, runs[k].mass, runs[k].mode, runs[k].end, NULL, 0, &r);
         print_message("%zu links, mode %d at 10 times its birth: %ld steps, %d branch points, "
-                      "link angles %.1e rad from the 50-digit path\n", n, runs[k].mode, p->steps,
-                      branch_points, fmin(same, mirror));
-        assert_true(fmin(same, mirror) < 1e-12);
-        assert_int_equal(branch_points, 0);
-        whirl_nlink_path_free(p);
-        whirl_chain_free(c);
+                      "link angles %.1e rad from the 50-digit path\n", runs[k].n, runs[k].mode,
+                      r.steps, r.events[WHIRL_EVENT_BRANCH_POINT], r.distance);
+        assert_true(r.distance < 1e-12);
+        assert_int_equal(r.events[WHIRL_EVENT_BRANCH_POINT], 0);
     }
 }
 
@@ -1366,46 +1388,23 @@ static void test_wide_chains(void **state)
                 {10, length_c, mass_c, end_c, NULL, 4, 0},
                 {7, length_d, mass_d, end_d, NULL, 5, 0}};
     for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
-        const size_t n = runs[k].n;
-        whirl_chain *c = whirl_chain_alloc(n, runs[k].length, runs[k].mass, 1);
-        assert_non_null(c);
-        whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-        assert_non_null(p);
-        assert_int_equal(whirl_nlink_path_birth(p, runs[k].mode), GSL_SUCCESS);
-        const double target = 10 * p->omega_birth;
-        int found = 0, folds = 0, others = 0;
-        double tip[WHIRL_PATH_EVENTS_MAX + 1], fold_error = 0;
-        for (long steps = 0; !found && steps < 10000; steps++) {
-            assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
-            for (int e = 0; e < p->n_events; e++) {
-                if (p->event[e].kind != WHIRL_EVENT_FOLD) {
-                    others++;
-                    continue;
-                }
-                if (runs[k].folds && folds < runs[k].n_folds)
-                    fold_error = fmax(fold_error, fabs(p->event[e].omega / runs[k].folds[folds]
-                                                       - 1));
-                folds++;
-            }
-            found = whirl_nlink_path_crossings(p, target, WHIRL_PATH_EVENTS_MAX + 1, tip);
-            assert_true(found >= 0);
-        }
-        assert_int_equal(found, 1);
-        double same = 0, mirror = 0;
-        for (size_t i = 0; i < n; i++) {
-            same = fmax(same, fabs(p->cross_theta[i] - runs[k].end[i]));
-            mirror = fmax(mirror, fabs(p->cross_theta[i] + runs[k].end[i]));
-        }
+        ten_run r;
+        double fold_at[2];
+        to_ten(runs[k].n, runs[k].length, runs[k].mass, runs[k].mode, runs[k].end, fold_at, 2,
+               &r);
+        const int folds = r.events[WHIRL_EVENT_FOLD];
+        double fold_error = 0;
+        for (int f = 0; runs[k].folds && f < runs[k].n_folds && f < folds; f++)
+            fold_error = fmax(fold_error, fabs(fold_at[f] / runs[k].folds[f] - 1));
         print_message("%zu links, mode %d at 10 times its birth: %ld steps, %d folds (rates "
                       "%.1e from the extended system's), %d other events, link angles %.1e rad "
-                      "from the mpmath path\n", n, runs[k].mode, p->steps, folds, fold_error,
-                      others, fmin(same, mirror));
-        assert_true(fmin(same, mirror) < 1e-12);
-        assert_int_equal(others, 0);
+                      "from the mpmath path\n", runs[k].n, runs[k].mode, r.steps, folds,
+                      fold_error, r.events[WHIRL_EVENT_BRANCH_POINT] +
+                      r.events[WHIRL_EVENT_RETURN], r.distance);
+        assert_true(r.distance < 1e-12);
+        assert_int_equal(r.events[WHIRL_EVENT_BRANCH_POINT] + r.events[WHIRL_EVENT_RETURN], 0);
         assert_int_equal(folds, runs[k].n_folds);
         assert_true(fold_error < 1e-13);
-        whirl_nlink_path_free(p);
-        whirl_chain_free(c);
     }
 }
 
