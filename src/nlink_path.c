@@ -101,7 +101,8 @@
  * a fold where the resolved sign of t_omega changes (below), a branch point where
  * det [A, R_omega; (M0 t0)^T] = det A (c_omega - c . A^-1 R_omega) does (not at a fold, where
  * both factors do), a return to the hanging chain where the shape's projection on the
- * step's start changes sign; located as above. The tip radius there is g tan theta_N / omega^2
+ * step's start changes sign, taken only at a critical rate (at_a_birth: elsewhere the step
+ * passed onto the hanging chain, and is taken back and halved); located as above. The tip radius there is g tan theta_N / omega^2
  * (the radius that balances the tip mass: no cancellation). Which formulation a step uses: the
  * shot's round-off at an accepted point is measured as |G - G_ext| (G_ext the recursion in long
  * double) and turned into the force it leaves across the links (the pivot misses the axis by
@@ -233,6 +234,8 @@
 #define SHOT_SAME 1e-9 /* back on the shot, no link angle moves more than this [rad] (else
                         * its Newton's method went to another equilibrium nearby) */
 #define FINE_SPAN 1e-7  /* the arclength a probe looks ahead (look_ahead) */
+#define RETURN_SPAN 1e-8 /* a return to the hanging chain is located within this of a critical
+                          * rate (relative; at_a_birth) */
 #define MU_RESOLVED 1e-12 /* in the link angles, the sign of t_omega at a point is the fold
                            * test's only where |mu| > MU_RESOLVED |A| (rate_sign) */
 #define PROBE_STEPS 2000 /* and its most steps */
@@ -1220,6 +1223,22 @@ static int add_event(whirl_nlink_path *p, whirl_event_kind kind, step_frame *f, 
 
 /* Finds the events of the last step and sorts them by arclength; branch: the orientation test
  * changed sign. */
+/* A critical rate lies within RETURN_SPAN (relative) of omega: the index of the hanging chain's
+ * force balance (the number of negative eigenvalues of its Jacobian, a Sturm count, backward
+ * stable whatever the scaling of the links) differs at omega (1 - RETURN_SPAN) and omega (1 +
+ * RETURN_SPAN). Only there can a branch meet the hanging chain: at any other rate the hanging
+ * chain is an isolated equilibrium. */
+static int at_a_birth(whirl_nlink_path *p, double omega)
+{
+    int index[2];
+    for (int side = 0; side < 2; side++) {
+        const double w = omega * (side ? 1 + RETURN_SPAN : 1 - RETURN_SPAN);
+        if (whirl_nlink_balance_factor(p->balance, w, scr_zero(p))) return 1; /* singular */
+        index[side] = whirl_nlink_balance_index(p->balance);
+    }
+    return index[0] != index[1];
+}
+
 static int find_events(whirl_nlink_path *p, int branch)
 {
     p->n_events = 0;
@@ -1246,7 +1265,11 @@ static int find_events(whirl_nlink_path *p, int branch)
         : p->last.a0 != 0 && (p->last.a0 > 0) != (p->tip_r > 0);
     if (!status && passed) {
         frame_of_last(p, &f, TARGET_RETURN, 0);
-        if (!(status = frame_locate(&f, 0, f.ds, &sigma))) {
+        if (!(status = frame_locate(&f, 0, f.ds, &sigma)) && !at_a_birth(p, f.w))
+            status = whirl_fail(GSL_EFAILED, "the step between omega=%.17g and omega=%.17g meets "
+                                "the hanging chain at omega=%.17g, where no branch is born",
+                                f.w0, f.w1, f.w);
+        if (!status) {
             status = add_event(p, WHIRL_EVENT_RETURN, &f, sigma);
             /* the path ends on the hanging chain */
             p->ended = 1;

@@ -1408,6 +1408,54 @@ static void test_wide_chains(void **state)
     }
 }
 
+/* A branch meets the hanging chain only at a critical rate: at any other rate the hanging chain
+ * is an isolated equilibrium. Mode 1 of this 11-link chain (lengths and masses over eleven
+ * decades) leaves its birth, omega_1 = 8.0276357e-4, towards lower rates, and a step landed on
+ * the hanging chain 4e-5 (relative) below it: the path reported "the branch ended on the hanging
+ * chain" at omega = 8.0273064e-4, no critical rate. A return is now taken only within 1e-8 of a
+ * critical rate (where the index of the hanging chain's force balance changes); elsewhere the
+ * step is taken back and halved (here down to the smallest, and the path stops with a one-line
+ * error naming the rate). Every return met must lie at a critical rate. */
+static void test_no_false_return(void **state)
+{
+    (void)state;
+    static const double length[11] = {471547.87652430119, 882464.78727897396,
+        87559.056305644131, 133543.55344487427, 1291.674565929595, 3.4420302527524989e-06,
+        0.0010441608491720345, 8.5760131719946422, 64071.911373003823, 5.2683769322812637,
+        0.0036817092862023891};
+    static const double mass[11] = {2624.8491907971998, 34005.277305055424, 28277.968467022256,
+        3.1388899870734902e-06, 0.00030556973585918842, 4.7526282639460331e-06,
+        383058.91210314538, 4344.1803034713566, 0.14739381443430533, 1.9076713976879238e-05,
+        11.796767219715317};
+    whirl_chain *c = whirl_chain_alloc(11, length, mass, 1);
+    assert_non_null(c);
+    double crit[11];
+    assert_int_equal(whirl_nlink_critical(c, 11, crit), GSL_SUCCESS);
+    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    assert_non_null(p);
+    assert_int_equal(whirl_nlink_path_birth(p, 1), GSL_SUCCESS);
+    int status = GSL_SUCCESS, returns = 0;
+    for (long steps = 0; status == GSL_SUCCESS && !p->ended && p->omega <= 10 * crit[0] &&
+                         steps < 10000; steps++) {
+        status = whirl_nlink_path_step(p);
+        for (int e = 0; e < p->n_events; e++) {
+            if (p->event[e].kind != WHIRL_EVENT_RETURN) continue;
+            double nearest = INFINITY;
+            for (int k = 0; k < 11; k++)
+                nearest = fmin(nearest, fabs(p->event[e].omega / crit[k] - 1));
+            print_message("a return at omega %.17g, %.1e from a critical rate\n",
+                          p->event[e].omega, nearest);
+            assert_true(nearest < 1e-8);
+            returns++;
+        }
+    }
+    print_message("11 links, mode 1 (born at omega %.8g): %d returns; %s\n", crit[0], returns,
+                  status ? whirl_last_error() : "no error");
+    assert_true(status == GSL_SUCCESS || strchr(whirl_last_error(), '\n') == NULL);
+    whirl_nlink_path_free(p);
+    whirl_chain_free(c);
+}
+
 /* A branch that cannot be continued: mode 4 of this 6-link chain (lengths and masses over eight
  * decades, link tensions differing by a factor 8e6) near omega = 26.0834, where its top three
  * links, 1e-10 to 1e-9 rad from hanging, bend by their own size within arclengths of 1e-10: the
@@ -1698,7 +1746,7 @@ int main(void)
         cmocka_unit_test(test_heavy_tip),          cmocka_unit_test(test_heavy_tip_jumps),
         cmocka_unit_test(test_birth_in_angles),    cmocka_unit_test(test_near_births),
         cmocka_unit_test(test_corners),
-        cmocka_unit_test(test_wide_chains),
+        cmocka_unit_test(test_wide_chains),        cmocka_unit_test(test_no_false_return),
         cmocka_unit_test(test_stalled_branch),     cmocka_unit_test(test_unlocated_event),
         cmocka_unit_test(test_branch_nodes),
         cmocka_unit_test(test_many_folds),         cmocka_unit_test(test_pair_in_step),
