@@ -200,9 +200,11 @@
 #define DS_FIRST 0.02    /* first step from a start */
 #define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
 #define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails */
-#define DS_MIN_FINE 1e-16 /* and in the fine mode (look_ahead): the rate's round-off (such a
-                           * step moves the links all but hanging, whose angles are resolved
-                           * far below it) */
+#define DS_MIN_FINE 1e-18 /* and in the fine mode (look_ahead): a hundredth of the rate's
+                           * round-off (such a step moves only the links all but hanging, 1e-20
+                           * to 1e-10 rad from the vertical, whose angles are resolved far below
+                           * it; the 50-digit path turns with steps of 1e-17 at some of these
+                           * corners, which 1e-16 took for branch points) */
 #define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
 #define DS_MAX 0.1       /* largest step */
 #define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign

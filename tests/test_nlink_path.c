@@ -1253,11 +1253,14 @@ static void to_ten(size_t n, const double *length, const double *mass, int mode,
  * steps and follows the turn. Mode 10 of the 12-link chain above turns within 1e-13 (relative)
  * below the birth of mode 11 at omega = 60.5124486, where the 50-digit path takes steps down to
  * 1e-17: its top five links, 1e-20 to 1e-15 rad from hanging, bend while the rate moves within
- * its round-off. Mode 7 of a third 9-link chain went the right way before and must still. The
- * reference: the link angles at 10 times the birth from an independent 50-digit
- * pseudo-arclength continuation in mpmath of the force balance in (omega, theta), in the same
- * metric, turns of at most 0.02 rad per step and every step's orientation and index checked
- * (tests/branch_mp.py --length L --mass M MODE: its CROSS line). */
+ * its round-off. Mode 10 of an 11-link chain (seed 2 of the README's random chains) turns where
+ * the 40-digit path takes steps of 1.7e-17, which a look ahead whose finest step was 1e-16 took
+ * for a branch point, ending 1.6 rad off; it goes down to 1e-18 now. Mode 7 of a third 9-link
+ * chain went the right way before and must still. The reference: the link angles at 10 times the
+ * birth from an independent 50-digit pseudo-arclength continuation in mpmath of the force balance
+ * in (omega, theta), in the same metric, turns of at most 0.02 rad per step and every step's
+ * orientation and index checked (tests/branch_mp.py --length L --mass M MODE: its CROSS line; 40
+ * digits for the 11-link chain). */
 static void test_corners(void **state)
 {
     (void)state;
@@ -1293,6 +1296,18 @@ static void test_corners(void **state)
         1.5640142191803372, -0.46415266599726046, 1.8804645148860566e-08,
         1.0811733978314748e-09, -1.8303496868658376e-06, 0.013594539208479145,
         -1.0933566087834345};
+    static const double length_e[11] = {0.72797279613612398, 0.0022690681500526196,
+        0.006491926481726364, 0.015975069751098574, 38.313501595981194, 342.37913689973078,
+        0.0015751490705917433, 0.053664745916852927, 582.9529450096054, 0.076843773683814232,
+        0.039999046010488301};
+    static const double mass_e[11] = {0.18347902920841735, 17.347051726274756,
+        0.013282959756605921, 1.5752586173499785, 0.0033168056859108857, 108.20010408606522,
+        64.258489128035009, 0.016741976613517277, 37.884092590071404, 0.0015210788521924591,
+        123.16876865370656};
+    static const double end_e[11] = {-1.871191063205387498e-08, 0.0021826978381104272057,
+        -1.5580899264129391254, 0.41813391667386620406, -8.014899267482777203e-09,
+        7.647354684348351103e-15, -1.534804739863923166e-20, -6.435592987645522040e-15,
+        1.104479196114788405e-11, -0.54744410641003248562, 1.5641931391098556376};
     static const double end_d[12] = {-5.510068271783418e-06, 0.0098771387153506751,
         -0.0024865934479776594, -1.43001257530022, 3.8524662939935253e-05,
         -1.5162467320018383e-11, 1.3342232979815041e-15, 6.1840531281516485e-17,
@@ -1303,7 +1318,8 @@ static void test_corners(void **state)
         const double *length, *mass, *end;
         int mode;
     } runs[] = {{12, length_a, mass_a, end_a, 8}, {9, length_b, mass_b, end_b, 8},
-                {9, length_c, mass_c, end_c, 7}, {12, length12, mass12, end_d, 10}};
+                {9, length_c, mass_c, end_c, 7}, {12, length12, mass12, end_d, 10},
+                {11, length_e, mass_e, end_e, 10}};
     for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
         ten_run r;
         to_ten(runs[k].n, runs[k].length, runs[k].mass, runs[k].mode, runs[k].end, NULL, 0, &r);
