@@ -70,7 +70,9 @@
  * the fine mode: steps down to DS_MIN_FINE, a reversal taken only at the smallest step, for an
  * arclength of FINE_SPAN. Where it gets there with no branch point, the path follows the curve the
  * same way (in the fine mode up to that arclength, the steps the probe made); where it does not,
- * the unfolding is narrower than the finest step and the reversal is located as a branch point.
+ * the unfolding is narrower than the finest step and the reversal is located as a branch point,
+ * and the path does not look ahead again within FINE_SPAN of there (the probe looked over that
+ * stretch; on a branch that crawls, every step would probe it again).
  * Where the path in the link angles cannot be followed at any step down to DS_MIN_ANGLES (the
  * tangent turning too fast: an unfolding too narrow for the tangent's round-off), the shortest step
  * up to DS_CROSS on which the orientation reverses is taken across, as at a branch point. Each is
@@ -661,7 +663,7 @@ static void reset(whirl_nlink_path *p)
     p->why = "";
     p->stay = 0;
     p->backoff = STAY_FIRST;
-    p->fine_end = 0;
+    p->fine_end = p->probe_end = 0;
     p->rate_sign = p->last_rate_sign = 0;
     for (size_t i = 0; i < p->chain->n; i++) scr_zero(p)[i] = 0;
 }
@@ -851,7 +853,7 @@ void whirl_nlink_path_reverse(whirl_nlink_path *p)
         p->mu_rate = -p->mu_rate;
     }
     p->have_last = 0;
-    p->fine_end = 0;
+    p->fine_end = p->probe_end = 0;
 }
 
 /* ---- events: located on the last step by Brent's method on sigma ---- */
@@ -1619,11 +1621,14 @@ static int angle_step(whirl_nlink_path *p)
                                  "within the step (two folds passed over)";
             if (det == p->det_sign && crossing) ok = 0;
             if (ok && !crossing && (det != p->det_sign || jump || pair) &&
-                !in_fine_mode(p)) {
-                /* a branch point by the rule of DS_BRANCH: unless the curve turns within it */
+                !in_fine_mode(p) && p->arclength >= p->probe_end) {
+                /* a branch point by the rule of DS_BRANCH: unless the curve turns within it
+                 * (not looked at again within FINE_SPAN of where the probe last found a branch
+                 * point at the finer scale: it looked over that stretch) */
                 const int ahead = look_ahead(p, 0.5 * ds);
                 if (ahead == WHIRL_EINTERRUPTED) return stopped(p);
                 if (ahead != 0 && ahead != 1) return ahead;
+                if (ahead == 0) p->probe_end = p->arclength + FINE_SPAN;
                 if (ahead == 1) {
                     /* the fine mode from here on, the steps as from a fresh call (as the
                      * probe's) */

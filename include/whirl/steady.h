@@ -289,6 +289,8 @@ typedef struct whirl_nlink_path {
                        * angles: where the eigenvalue mu is not round-off); a fold is where it
                        * changes. 0 until known (at a birth) */
     int last_rate_sign; /* that sign at the last step's start */
+    double probe_end; /* the arclength up to which a reversal is taken for a branch point without
+                       * looking ahead again: the probe found one there at the finer scale */
 } whirl_nlink_path;
 
 /* NULL (with whirl_last_error) on no memory or a chain of no links. */
