@@ -376,6 +376,12 @@ int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double
     return status;
 }
 
+/* The polish's failure where A is exactly singular. */
+static int singular(double omega)
+{
+    return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega);
+}
+
 int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
 {
     size_t n = b->c->n;
@@ -383,9 +389,7 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
     for (int it = 0; it < 30; it++) {
         int status = evaluate(b, omega, theta, 1);
         if (status) return status;
-        if (b->zero_pivot)
-            return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)",
-                              omega);
+        if (b->zero_pivot) return singular(omega);
         double *step = b->u;
         for (size_t i = 0; i < n; i++) step[i] = -b->res[i];
         solve(b, 1, step);
@@ -401,9 +405,7 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
                     return whirl_fail(GSL_EDOM, "omega=%g: Newton's method on the link angles "
                                       "leaves link %zu horizontal or compressed", omega, i + 1);
             status = evaluate(b, omega, theta, 1);
-            return status == GSL_SUCCESS && b->zero_pivot
-                ? whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega)
-                : status;
+            return status == GSL_SUCCESS && b->zero_pivot ? singular(omega) : status;
         }
         prev = norm;
     }

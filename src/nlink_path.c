@@ -1807,6 +1807,14 @@ static int birth_gap(whirl_nlink_path *p, double omega, double *th)
     return -1;
 }
 
+/* The first step from the birth, begun in the link angles instead of on the shot (birth_angles);
+ * the failure at the birth where that does not start. */
+static int begin_in_angles(whirl_nlink_path *p)
+{
+    if (birth_angles(p) == 0) return angle_step(p);
+    return fail_at(p, GSL_EFAILED, p->omega, p->tip_r);
+}
+
 /* One step on the tip shot (the equations above the file). */
 static int shot_step(whirl_nlink_path *p)
 {
@@ -1873,10 +1881,7 @@ static int shot_step(whirl_nlink_path *p)
              * the link angles: begun there (a shorter one lands at amplitudes where the force
              * balance at fixed omega cannot tell the branch from the hanging chain, and the
              * path, handed over to the link angles, follows the hanging chain instead) */
-            if (p->steps == 0 && a0 == 0 && p->ds < BIRTH_AMPLITUDE) {
-                if (birth_angles(p) == 0) return angle_step(p);
-                return fail_at(p, GSL_EFAILED, w0, a0);
-            }
+            if (p->steps == 0 && a0 == 0 && p->ds < BIRTH_AMPLITUDE) return begin_in_angles(p);
             if (p->ds < DS_MIN) {
                 if (to_angles(p) == 0) {
                     p->ds = DS_FIRST;
@@ -1894,10 +1899,8 @@ static int shot_step(whirl_nlink_path *p)
          * birth's: begun in the link angles instead (the force balance at fixed omega is
          * singular there to within the shot's round-off, and its Newton's method, polishing the
          * shot's point on the hand-over, can fall onto the hanging chain, as above) */
-        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR) {
-            if (birth_angles(p) == 0) return angle_step(p);
-            return fail_at(p, GSL_EFAILED, w0, a0);
-        }
+        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR)
+            return begin_in_angles(p);
         const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->omega_lo, hi = p->omega_hi;
         const double noise_start = p->noise;
         keep_start(p, m0, w0, a0, ds);
