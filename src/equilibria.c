@@ -209,18 +209,28 @@ static int accept(scan_out *o, const scan_point *l, const scan_point *r)
     return GSL_SUCCESS;
 }
 
+/* Whether the angles atan(s0) and atan(s1) differ by at most the angle whose tangent is tan_d
+ * (< pi/2): with 1 + s0 s1 > 0 their difference lies in (-pi/2, pi/2) and its tangent is
+ * (s1 - s0) / (1 + s0 s1) (tan is increasing there); otherwise it is pi/2 or more. No atan: the
+ * scans make this comparison 3 N times per cell. False where either is NaN. */
+static int within_angle(double s0, double s1, double tan_d)
+{
+    const double q = 1 + s0 * s1;
+    return q > 0 && fabs(s1 - s0) <= tan_d * q;
+}
+
 /* Test (c) of the header comment: every link angle turns by at most SCAN_DTHETA from one point
  * to the next, and the cubic Hermite interpolant of its tangent predicts the midpoint's angle
  * to tau. */
 static int slopes_resolved(const scan_point *l, const scan_point *m, const scan_point *r,
                            size_t n, double tau)
 {
-    double h = r->x - l->x;
+    const double h = r->x - l->x, tan_d = tan(SCAN_DTHETA), tan_tau = tan(tau);
     for (size_t i = 0; i < n; i++) {
-        double tl = atan(l->s[i]), tm = atan(m->s[i]), tr = atan(r->s[i]);
-        if (!(fabs(tm - tl) <= SCAN_DTHETA && fabs(tr - tm) <= SCAN_DTHETA)) return 0;
-        double fit = 0.5 * (l->s[i] + r->s[i]) + 0.125 * h * (l->sd[i] - r->sd[i]);
-        if (!(fabs(atan(fit) - tm) <= tau)) return 0;
+        if (!within_angle(l->s[i], m->s[i], tan_d) || !within_angle(m->s[i], r->s[i], tan_d))
+            return 0;
+        const double fit = 0.5 * (l->s[i] + r->s[i]) + 0.125 * h * (l->sd[i] - r->sd[i]);
+        if (!within_angle(fit, m->s[i], tan_tau)) return 0;
     }
     return 1;
 }
