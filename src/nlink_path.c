@@ -170,7 +170,14 @@
  * in 120935 steps (5032 in 119753 without the test); the path with steps of at most 0.003 finds
  * 5128 of them, each at the same rate (to 4e-14), and passes over two of the pairs (at 579.769
  * and 620.141, found at the same rates by steps of 1e-5 there). Up to omega 600: the same 706
- * folds in 17854 steps (17860).
+ * folds in 17854 steps (17860). The tip shot forms no Jacobian, so it has no mu; on the shot,
+ * and in the link angles where mu is resolved at both ends, the rate itself is interpolated
+ * instead: a step on which the cubic Hermite interpolant of ln omega, from the chord and the end
+ * tangents, turns back against the travel is halved (rate_turns_back, in the chord test). The
+ * random chains of the README (six to twelve decades, 129008 modes): 7 modes had a small S of two
+ * folds (5e-7 to 3e-5 apart in omega, relative; 6 within 1% of the birth) in one shot step, which
+ * the path did not report; it reports them now, each pair confirmed by the 40-digit path of
+ * tests/branch_mp.py, at the cost of 189 more steps in 7.6 million and with no end moved.
  *
  * The sign of t_omega that the fold test compares (rate_sign). Near a fold t_omega =
  * -mu (psi . t_theta) / (psi . R_omega) to first order (psi the left null vector of A), so its
@@ -1382,6 +1389,31 @@ static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double 
     p->have_last = 1;
 }
 
+/* Whether the rate turns back within a step whose ends' rates move the same way: two folds
+ * inside, which the fold test (a change of sign between the ends) does not see. slope is the
+ * chord's mean d ln omega / ds, r0 and r1 the end tangents' (oriented along the travel), slack
+ * their round-off. The cubic Hermite interpolant of ln omega on the step, x in [0, 1] along it,
+ * has the rate
+ *     q(x) = 6 x (1 - x) slope + r0 (1 - 4 x + 3 x^2) + r1 (3 x^2 - 2 x)
+ * (q(0) = r0, q(1) = r1, mean slope), and the step turns back where q falls below -slack inside:
+ * certainly where slope itself has the other sign (the rate went back), and where the chord
+ * is too short for ends that both move on at their rates (q(1/2) = 1.5 slope - (r0 + r1) / 4).
+ * Random chains over six decades: S-shaped pairs of folds within 1e-5 of each other in omega
+ * just above a birth, a step of 0.05 across both with the rate at its ends of one sign and
+ * moved on by 2e-7 of the 1e-5 the end tangents predict (the 40-digit path of
+ * tests/branch_mp.py finds both folds). The interpolant errs by O(ds^4); where the curve's rate
+ * only dips towards zero, halving resolves the dip. */
+static int rate_turns_back(double slope, double r0, double r1, double slack)
+{
+    if (!(r0 * r1 > 0)) return 0;
+    if (r0 < 0) slope = -slope, r0 = -r0, r1 = -r1;
+    if (slope < -slack) return 1;
+    const double a = 3 * (r0 + r1) - 6 * slope, b = 6 * slope - 4 * r0 - 2 * r1;
+    if (!(a > 0)) return 0; /* q is concave or linear: its least value is at an end */
+    const double x = -b / (2 * a);
+    return x > 0 && x < 1 && r0 - b * b / (4 * a) < -slack;
+}
+
 /* What the chord of a step, from (w0, th0) to (w1, th1) in (ln omega, theta / sqrt(N)), says of
  * the curve between: NULL where it is consistent with an arc the step resolves, else why not.
  * s0 e0 and s1 e1 are the unit tangents at the ends (embedded the same way: e[0] the rate's
@@ -1395,10 +1427,12 @@ static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double 
  *   rate parts along the step; on such an arc that range exceeds the ends' by at most turn^2 / 8.
  *   Beyond SLOPE_MAX turn^2 the rate went back and forth between the ends while the link angles
  *   moved on (two folds within the step on a nearly straight curve, which the angles do not
- *   show: the rate is a small part of the tangent away from folds). */
+ *   show: the rate is a small part of the tangent away from folds).
+ * - Where rates is set (the ends' rate parts are resolved: their signs are the fold test's), the
+ *   rate's cubic Hermite interpolant does not turn back within the step (rate_turns_back). */
 static const char *chord_test(size_t n, double w0, const double *th0, double w1,
                               const double *th1, const double *e0, double s0, const double *e1,
-                              double s1, double turn)
+                              double s1, double turn, int rates)
 {
     const double scale = 1 / sqrt((double)n), lw = log(w1 / w0);
     double q = lw * lw, c0 = lw * e0[0], c1 = lw * e1[0];
@@ -1417,6 +1451,8 @@ static const char *chord_test(size_t n, double w0, const double *th0, double w1,
     if (chord > CHORD_MAX * turn + CHORD_SLACK + noise)
         return "the chord leaves the end tangents (a part of the curve passed over)";
     const double slope = lw / len, excess = SLOPE_MAX * turn * turn + SLOPE_SLACK + noise;
+    if (rates && rate_turns_back(slope, s0 * e0[0], s1 * e1[0], SLOPE_SLACK + noise))
+        return "the rate goes back and forth within the step (two folds passed over)";
     if (slope < fmin(s0 * e0[0], s1 * e1[0]) - excess ||
         slope > fmax(s0 * e0[0], s1 * e1[0]) + excess)
         return "the rate goes back and forth within the step (two folds passed over)";
@@ -1603,8 +1639,10 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
+            const double mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
             const char *chord = chord_test(n, w0, p->theta, w, th, p->embed, 1,
-                                           p->embed_trial, 1, turn);
+                                           p->embed_trial, 1, turn,
+                                           fabs(p->mu) > mu_min && fabs(mu) > mu_min);
             if (turn > TURN_MAX && !crossing)
                 ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
@@ -1860,7 +1898,7 @@ static int shot_step(whirl_nlink_path *p)
             for (size_t i = 0; i < c->n; i++)
                 dtheta = fmax(dtheta, fabs(p->theta_trial[i] - p->theta[i]));
             const char *chord = chord_test(c->n, w0, p->theta, w, p->theta_trial, p->embed,
-                                           p->raw_sign, p->embed_trial, raw, turn);
+                                           p->raw_sign, p->embed_trial, raw, turn, 1);
             if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
             if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
             if (chord) ok = 0, p->why = chord;

@@ -1356,6 +1356,13 @@ static void test_corners(void **state)
  *   resolved (src/nlink_path.c, rate_sign).
  * - mode 5 of a 7-link chain, the same near omega = 58.0137796387: 6 folds within 2e-13 in omega
  *   reported before, none by the 40-digit path, none now.
+ * - mode 3 of a 7-link chain (eight decades) turns back twice within 1.2e-5 in omega just above
+ *   its birth, at 0.40899259 and 0.40898043: a step of 0.1 on the tip shot went across both, the
+ *   rate at its ends moving on (t_omega of 2.1e-4 and 1.4e-3) and the rate itself by 1.9e-6
+ *   where the tangents predict 8e-5; the tip shot had no test for two folds within a step, and
+ *   the path reported none. The step is now halved where the rate's cubic Hermite interpolant
+ *   turns back inside it (src/nlink_path.c, rate_turns_back). Both folds are checked against the
+ *   extended system in 40-digit mpmath: 0.408992589151043604685 and 0.408980430164768980572.
  * The reference: the link angles at 10 times the birth from tests/branch_mp.py (--dps 30 or 40:
  * its CROSS line), up to the mirror image, and its count of folds. */
 static void test_wide_chains(void **state)
@@ -1394,7 +1401,17 @@ static void test_wide_chains(void **state)
     static const double end_d[7] = {0.313818289644083911743, -1.09278432037385566320,
         -1.09548512926404625341, 1.513357850838353697867e-06, -4.856731069221029322e-13,
         -5.72208916424475726815e-07, 1.56079616578636737316};
+    static const double length_e[7] = {9636.9231974723316, 788.96920386832323,
+        0.00017503334304547083, 0.00012409426253038452, 0.043021942215724668,
+        0.14667519976064033, 6.9347500721724771};
+    static const double mass_e[7] = {0.12822130438825816, 15.120366728913137,
+        0.00028846328443776439, 0.29269396131203362, 0.00011984187386754951,
+        0.0008996220057487721, 0.089233586728373768};
+    static const double end_e[7] = {3.94313044616558088457227e-8,
+        -0.00005248158224275984423910274, 1.533843462707804233746159, 1.533871952880489020453103, 1.562254391787351830646698,
+        1.562265729877013084139852, 1.562349079460895866443229};
     static const double folds_a[2] = {0.492978728497649851028698, 0.429884560098057538983563};
+    static const double folds_e[2] = {0.408992589151043604684978, 0.408980430164768980571546};
     const struct {
         size_t n;
         const double *length, *mass, *end, *folds;
@@ -1402,7 +1419,8 @@ static void test_wide_chains(void **state)
     } runs[] = {{6, length_a, mass_a, end_a, folds_a, 3, 2},
                 {5, length_b, mass_b, end_b, NULL, 4, 0},
                 {10, length_c, mass_c, end_c, NULL, 4, 0},
-                {7, length_d, mass_d, end_d, NULL, 5, 0}};
+                {7, length_d, mass_d, end_d, NULL, 5, 0},
+                {7, length_e, mass_e, end_e, folds_e, 3, 2}};
     for (size_t k = 0; k < sizeof runs / sizeof *runs; k++) {
         ten_run r;
         double fold_at[2];
