@@ -5,8 +5,10 @@
 # row: the rate, its ratio to omega_N (the highest critical rate), Kolodner's count, the number
 # found, whether the tip scan and the pivot scan found the same equilibria, the count by node
 # number (nodes:count) and the wall time. A run that fails (budget) shows its reason; one over
-# LIMIT seconds (default 300) is stopped.
-# Usage: [LIMIT=S] [RATES_5="..."] [RATES_10=...] scripts/equilibria_counts.sh [BUILD] [N...]
+# LIMIT seconds (default 300) is stopped; SHOT_BUDGET=E passes --shot-budget E (the scans' bound,
+# 2e7 residual evaluations by default: N = 25 at 50 and N = 100 at 80 need more).
+# Usage: [LIMIT=S] [SHOT_BUDGET=E] [RATES_5="..."] [RATES_10=...] scripts/equilibria_counts.sh
+#        [BUILD] [N...]
 build=${1:-build}
 shift 2>/dev/null
 links=${*:-5 10 25 100}
@@ -29,7 +31,7 @@ for n in $links; do
   for w in $rates; do
     ratio=$(awk -v w="$w" -v c="$wn" 'BEGIN { printf "%.2f", w / c }')
     start=$(date +%s.%N)
-    if timeout "$limit" "$whirl" equilibria --omega "$w" --links "$n" --no-branches --no-stability -o "$tmp/e.csv" 2>"$tmp/err"; then
+    if timeout "$limit" "$whirl" equilibria --omega "$w" --links "$n" --no-branches --no-stability ${SHOT_BUDGET:+--shot-budget "$SHOT_BUDGET"} -o "$tmp/e.csv" 2>"$tmp/err"; then
       t=$(echo "$(date +%s.%N) - $start" | bc)
       born=$(sed -n 's/.* \([0-9]*\) modes born below omega$/\1/p' "$tmp/e.csv")
       count=$(grep -v '^#' "$tmp/e.csv" | tail -n +2 | wc -l)

@@ -305,6 +305,8 @@ static int scan_settled(const scan_problem *pb, double x0, double x1, size_t n0,
     scan_out prev = {0};
     double tau = SCAN_TAU;
     int status = GSL_SUCCESS;
+    size_t counts[SCAN_LEVELS_MAX] = {0};
+    _Static_assert(SCAN_LEVELS_MAX == 5, "the message below lists five counts");
     for (int k = 0; k < SCAN_LEVELS_MAX; k++, n0 *= 4, tau /= 4) {
         scan_out cur = {0};
         status = scan_level(pb, x0, x1, n0, tau, pt, &cur);
@@ -313,6 +315,7 @@ static int scan_settled(const scan_problem *pb, double x0, double x1, size_t n0,
             break;
         }
         *levels = k + 1;
+        counts[k] = cur.n;
         if (k > 0 && cur.n == prev.n) {
             scan_out_free(&prev);
             free(store);
@@ -325,8 +328,9 @@ static int scan_settled(const scan_problem *pb, double x0, double x1, size_t n0,
     free(store);
     scan_out_free(&prev);
     if (status) return status;
-    return whirl_fail(GSL_EMAXITER, "the root count did not settle in %d refinement levels",
-                      SCAN_LEVELS_MAX);
+    return whirl_fail(GSL_ETOL, "the root count did not settle in %d refinement levels (%zu, "
+                      "%zu, %zu, %zu, %zu roots)", SCAN_LEVELS_MAX, counts[0], counts[1],
+                      counts[2], counts[3], counts[4]);
 }
 
 typedef struct brent_ctx {
@@ -1085,7 +1089,7 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
         }
         prev_count = count;
         if (level == SCAN_LEVELS_MAX - 1)
-            status = whirl_fail(GSL_EMAXITER, "the continuum's root count did not settle in "
+            status = whirl_fail(GSL_ETOL, "the continuum's root count did not settle in "
                                 "%d levels", SCAN_LEVELS_MAX);
     }
     free(a);

@@ -54,6 +54,13 @@ crit=$("$WHIRL" critical --links 5 --modes 3 | tail -n 1 | cut -d, -f2)
 expect_error "omega at a critical rate" "critical rate of mode 3" equilibria --omega "$crit" --links 5 -o "$out"
 expect_error "--no-stability without --links" "needs|--links" equilibria --omega 5 --no-stability -o "$out"
 expect_error "--no-branches without --links" "needs|--links" equilibria --omega 5 --no-branches -o "$out"
+# the scans' budget: over it, a one-line error that names the flag; within it, the same count
+expect_error "a scan over its budget" "the scan needs more than 1000 residual evaluations; --shot-budget raises the bound$" equilibria --omega 50 --links 25 --no-branches --no-stability --shot-budget 1000 -o "$out"
+expect_error "--shot-budget below 1000" "--shot-budget must be >= 1000" equilibria --omega 5 --links 5 --shot-budget 999 -o "$out"
+expect_error "--shot-budget without --links" "needs|--links" equilibria --omega 5 --shot-budget 5000 -o "$out"
+expect_ok "5 links at 11.62, --shot-budget 100000" equilibria --omega 11.62 --links 5 --shot-budget 100000 --no-branches -o "$out"
+rows=$(grep -v '^#' "$out" | tail -n +2 | wc -l)
+if [ "$rows" -eq 17 ]; then pass "--shot-budget 100000: 17 equilibria"; else fail "--shot-budget: $rows rows"; fi
 
 # Ctrl-C: exit 130 within a short time, no file left
 rm -rf "$tmp/int"; mkdir "$tmp/int"

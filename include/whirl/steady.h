@@ -398,7 +398,8 @@ typedef struct whirl_equilibrium {
 typedef struct whirl_equilibria_params {
     int stability;        /* 1: compute eig_growth for each N-link equilibrium; default 1 */
     double follow_factor; /* curves are followed up to follow_factor * omega, > 1; default 2 */
-    long shot_budget;     /* most residual evaluations of one scan, >= 1000; default 2e7 */
+    long shot_budget;     /* most residual evaluations of one refinement level of a scan,
+                           * >= 1000; default 2e7 */
     int continuation;     /* 1: method 3 below, which names each equilibrium's branch; 0: the
                            * two scans only (every N-link equilibrium's branch -1); default 1 */
 } whirl_equilibria_params;
@@ -461,7 +462,8 @@ typedef struct whirl_equilibria {
  * WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX), a chain of more than WHIRL_EQUILIBRIA_LINKS_MAX links
  * or bad params; GSL_EDOM when omega is within 1e-10 relative of a critical rate (a branch is
  * born there: its equilibrium is not separated from the hanging chain); GSL_EMAXITER when a
- * scan needs more than shot_budget evaluations or does not settle; GSL_ERANGE when the shot
+ * scan needs more than shot_budget evaluations; GSL_ETOL when its count of roots does not settle
+ * (the same at two successive refinements) within its levels; GSL_ERANGE when the shot
  * overflows (the radii of a shape span more than ~1e150); WHIRL_EINTERRUPTED on a stop
  * request. */
 WHIRL_API int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,

@@ -58,7 +58,7 @@ lib.gsl_set_error_handler_off()
 
 GSL_SUCCESS = 0
 _STATUS_NAMES = {1: "EDOM", 2: "ERANGE", 4: "EINVAL", 5: "EFAILED", 8: "ENOMEM", 9: "EBADFUNC",
-                 11: "EMAXITER", lib.WHIRL_EINTERRUPTED: "EINTERRUPTED"}
+                 11: "EMAXITER", 14: "ETOL", lib.WHIRL_EINTERRUPTED: "EINTERRUPTED"}
 
 
 class Error(Exception):

@@ -7,7 +7,7 @@
 int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
 {
     double omega = 0;
-    int no_stability = 0, no_branches = 0;
+    int no_stability = 0, no_branches = 0, shot_budget = 0;
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
@@ -20,6 +20,11 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
         {"--no-branches", NULL, CLI_FLAG, &no_branches, NULL, NULL,
          "N-link: the two scans only, no continuation (branch and born_at empty; for counts at "
          "high rates)", NULL, "--links"},
+        {"--shot-budget", NULL, CLI_INT, &shot_budget, NULL, "E",
+         "N-link: most residual evaluations of one refinement level of a scan (default 2e7; "
+         "the count of equilibria grows about sevenfold per 5 in W at high rates, and the "
+         "scans' work with it)",
+         "[1000, inf)", "--links"},
         {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},
     };
@@ -29,10 +34,13 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
     whirl_equilibria_params par = whirl_equilibria_defaults();
     par.stability = !no_stability;
     par.continuation = !no_branches;
+    if (shot_budget) par.shot_budget = shot_budget;
     whirl_equilibria *e = NULL;
-    if (whirl_equilibria_find(m.chain, steady_cli_tip_mass(&m), omega, &par, &e)) {
+    const int status = whirl_equilibria_find(m.chain, steady_cli_tip_mass(&m), omega, &par, &e);
+    if (status) {
         steady_cli_model_free(&m);
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
+        return cli_error(cmd, "%s%s", CLI_LIBRARY_ERROR(&m.units),
+                         status == GSL_EMAXITER ? "; --shot-budget raises the bound" : "");
     }
     cli_out out;
     if (cli_out_open(cmd, &out, out_path)) {
