@@ -8,7 +8,10 @@
  * gravity 1. A mode's run stops at an error of the path or at MAX_STEPS steps.
  *
  * Usage: bench_random_chains [OUT [SEEDS [CHAINS [D [NMAX]]]]], SEEDS a range "A-B" or one seed
- * (default out/bench 1-12 300 3 12). Writes OUT/random_chains.csv, a row per mode:
+ * (default out/bench 1-12 300 3 12); bench_random_chains --chain SEED INDEX [D [NMAX]] prints the
+ * arguments "--length l_1,..,l_N --mass m_1,..,m_N" of chain INDEX (from 0) of SEED, for
+ * tests/branch_mp.py (the 40-digit continuation that decides a mode's end). Writes
+ * OUT/random_chains.csv, a row per mode:
  *   seed,chain,links,mode,status,steps,folds,branch_points,returns,theta_1,..
  * (status 0: reached 10 times the birth, and the link angles there follow, NMAX of them, empty
  * beyond N; otherwise the GSL status, the angles empty), and prints per seed and in all: the
@@ -118,8 +121,48 @@ static int parse_number(const char *text, double lo, double hi, double *x)
     return end != text && *end == '\0' && *x >= lo && *x <= hi;
 }
 
+/* The next chain of the draw: N in 2..nmax, then its N lengths and N masses, each 10^(D (2u - 1)).
+ * Returns N. */
+static size_t draw_chain(gsl_rng *r, double decades, int nmax, double *length, double *mass)
+{
+    const size_t n = 2 + gsl_rng_uniform_int(r, (unsigned long)nmax - 1);
+    for (size_t i = 0; i < n; i++) length[i] = pow(10, decades * (2 * gsl_rng_uniform(r) - 1));
+    for (size_t i = 0; i < n; i++) mass[i] = pow(10, decades * (2 * gsl_rng_uniform(r) - 1));
+    return n;
+}
+
+/* --chain SEED INDEX [D [NMAX]]: the chain's arguments for tests/branch_mp.py. */
+static int print_chain(int argc, char **argv)
+{
+    double seed, index, decades = 3, nmax_x = 12;
+    if (argc < 4 || argc > 6 || !(parse_number(argv[2], 0, 1000000, &seed) &&
+                                  seed == floor(seed)) ||
+        !(parse_number(argv[3], 0, 1e7, &index) && index == floor(index)) ||
+        (argc > 4 && !parse_number(argv[4], 0, 12, &decades)) ||
+        (argc > 5 && !(parse_number(argv[5], 2, NMAX_LIMIT, &nmax_x) && nmax_x == floor(nmax_x)))) {
+        fprintf(stderr, "%s: usage: %s --chain SEED INDEX [D [NMAX]] (0 <= D <= 12, 2 <= NMAX <= "
+                "%d)\n", BENCH_NAME, BENCH_NAME, NMAX_LIMIT);
+        return 2;
+    }
+    gsl_rng *r = gsl_rng_alloc(gsl_rng_mt19937);
+    if (r == NULL) bench_die("random numbers");
+    gsl_rng_set(r, (unsigned long)seed);
+    double length[NMAX_LIMIT], mass[NMAX_LIMIT];
+    size_t n = 0;
+    for (long k = 0; k <= (long)index; k++) n = draw_chain(r, decades, (int)nmax_x, length, mass);
+    gsl_rng_free(r);
+    const double *lists[2] = {length, mass};
+    for (int j = 0; j < 2; j++) {
+        fputs(j ? " --mass " : "--length ", stdout);
+        for (size_t i = 0; i < n; i++) printf("%s%.17g", i ? "," : "", lists[j][i]);
+    }
+    printf("\n");
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "--chain") == 0) return print_chain(argc, argv);
     const char *dir = argc > 1 ? argv[1] : "out/bench";
     int first = 1, last = 12;
     double chains_x = 300, decades = 3, nmax_x = 12;
@@ -149,12 +192,8 @@ int main(int argc, char **argv)
         gsl_rng_set(r, (unsigned long)seed);
         tally t = {0, 0, 0, 0, 0};
         for (int index = 0; index < chains; index++) {
-            const size_t n = 2 + gsl_rng_uniform_int(r, (unsigned long)nmax - 1);
             double length[NMAX_LIMIT], mass[NMAX_LIMIT];
-            for (size_t i = 0; i < n; i++)
-                length[i] = pow(10, decades * (2 * gsl_rng_uniform(r) - 1));
-            for (size_t i = 0; i < n; i++)
-                mass[i] = pow(10, decades * (2 * gsl_rng_uniform(r) - 1));
+            const size_t n = draw_chain(r, decades, nmax, length, mass);
             run_chain(csv, seed, index, n, length, mass, nmax, &t);
         }
         printf("seed %d: %ld modes, %ld stop, %ld steps, %ld take a branch point, %ld folds\n",
