@@ -174,10 +174,10 @@
  * and in the link angles where mu is resolved at both ends, the rate itself is interpolated
  * instead: a step on which the cubic Hermite interpolant of ln omega, from the chord and the end
  * tangents, turns back against the travel is halved (rate_turns_back, in the chord test). The
- * random chains of the README (six to twelve decades, 129008 modes): 7 modes had a small S of two
+ * random chains of the README (five sets, six to twelve decades, 149698 modes): 7 had an S of two
  * folds (5e-7 to 3e-5 apart in omega, relative; 6 within 1% of the birth) in one shot step, which
  * the path did not report; it reports them now, each pair confirmed by the 40-digit path of
- * tests/branch_mp.py, at the cost of 189 more steps in 7.6 million and with no end moved.
+ * tests/branch_mp.py, at the cost of 189 more steps in 8.7 million and with no end moved.
  *
  * The sign of t_omega that the fold test compares (rate_sign). Near a fold t_omega =
  * -mu (psi . t_theta) / (psi . R_omega) to first order (psi the left null vector of A), so its
