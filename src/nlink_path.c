@@ -1451,9 +1451,8 @@ static const char *chord_test(size_t n, double w0, const double *th0, double w1,
     if (chord > CHORD_MAX * turn + CHORD_SLACK + noise)
         return "the chord leaves the end tangents (a part of the curve passed over)";
     const double slope = lw / len, excess = SLOPE_MAX * turn * turn + SLOPE_SLACK + noise;
-    if (rates && rate_turns_back(slope, s0 * e0[0], s1 * e1[0], SLOPE_SLACK + noise))
-        return "the rate goes back and forth within the step (two folds passed over)";
-    if (slope < fmin(s0 * e0[0], s1 * e1[0]) - excess ||
+    if ((rates && rate_turns_back(slope, s0 * e0[0], s1 * e1[0], SLOPE_SLACK + noise)) ||
+        slope < fmin(s0 * e0[0], s1 * e1[0]) - excess ||
         slope > fmax(s0 * e0[0], s1 * e1[0]) + excess)
         return "the rate goes back and forth within the step (two folds passed over)";
     return NULL;
@@ -1624,7 +1623,7 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i < n; i++) th[i] += q * (p->t_theta[i] - p->last.t_theta0[i]);
         }
         int iters = NEWTON_MAX, det = 0, index = -1, pair = 0;
-        double mu = NAN, mu_rate = NAN;
+        double mu = NAN, mu_rate = NAN, mu_min = INFINITY; /* mu_min: mu's resolution */
         int ok = correct_angles(p, w0, p->theta, c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
         if (!ok) p->why = "Newton's method on the force balance does not converge";
         if (ok && angle_tangent(p, w, c_w, c_th, &t_w, p->t_theta_trial, &det, NULL, NULL)) {
@@ -1639,7 +1638,7 @@ static int angle_step(whirl_nlink_path *p)
             for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
-            const double mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
+            mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
             const char *chord = chord_test(n, w0, p->theta, w, th, p->embed, 1,
                                            p->embed_trial, 1, turn,
                                            fabs(p->mu) > mu_min && fabs(mu) > mu_min);
@@ -1725,8 +1724,7 @@ static int angle_step(whirl_nlink_path *p)
         swap(&p->eig, &p->eig_trial);
         p->mu = mu;
         p->mu_rate = mu_rate;
-        if (!(fabs(mu) <= MU_RESOLVED * whirl_nlink_balance_scale(p->balance)) && t_w != 0)
-            p->rate_sign = sign_of(t_w);
+        if (!(fabs(mu) <= mu_min) && t_w != 0) p->rate_sign = sign_of(t_w);
         const double lo = p->omega_lo, hi = p->omega_hi, noise = p->noise;
         if (w < p->omega_lo) p->omega_lo = w;
         if (w > p->omega_hi) p->omega_hi = w;

@@ -121,6 +121,15 @@ static int parse_number(const char *text, double lo, double hi, double *x)
     return end != text && *end == '\0' && *x >= lo && *x <= hi;
 }
 
+/* The draw's D and NMAX from argv[at] and argv[at + 1], where given (else left as they are);
+ * 0 if either is not a number in its range (0 <= D <= 12, 2 <= NMAX <= NMAX_LIMIT, whole). */
+static int parse_draw(int argc, char **argv, int at, double *decades, double *nmax)
+{
+    return !(argc > at && !parse_number(argv[at], 0, 12, decades)) &&
+           !(argc > at + 1 &&
+             !(parse_number(argv[at + 1], 2, NMAX_LIMIT, nmax) && *nmax == floor(*nmax)));
+}
+
 /* The next chain of the draw: N in 2..nmax, then its N lengths and N masses, each 10^(D (2u - 1)).
  * Returns N. */
 static size_t draw_chain(gsl_rng *r, double decades, int nmax, double *length, double *mass)
@@ -138,8 +147,7 @@ static int print_chain(int argc, char **argv)
     if (argc < 4 || argc > 6 || !(parse_number(argv[2], 0, 1000000, &seed) &&
                                   seed == floor(seed)) ||
         !(parse_number(argv[3], 0, 1e7, &index) && index == floor(index)) ||
-        (argc > 4 && !parse_number(argv[4], 0, 12, &decades)) ||
-        (argc > 5 && !(parse_number(argv[5], 2, NMAX_LIMIT, &nmax_x) && nmax_x == floor(nmax_x)))) {
+        !parse_draw(argc, argv, 4, &decades, &nmax_x)) {
         fprintf(stderr, "%s: usage: %s --chain SEED INDEX [D [NMAX]] (0 <= D <= 12, 2 <= NMAX <= "
                 "%d)\n", BENCH_NAME, BENCH_NAME, NMAX_LIMIT);
         return 2;
@@ -168,9 +176,7 @@ int main(int argc, char **argv)
     double chains_x = 300, decades = 3, nmax_x = 12;
     if ((argc > 2 && !parse_seeds(argv[2], &first, &last)) ||
         (argc > 3 && !(parse_number(argv[3], 1, 1e7, &chains_x) && chains_x == floor(chains_x))) ||
-        (argc > 4 && !parse_number(argv[4], 0, 12, &decades)) ||
-        (argc > 5 && !(parse_number(argv[5], 2, NMAX_LIMIT, &nmax_x) && nmax_x == floor(nmax_x)))
-        || argc > 6) {
+        !parse_draw(argc, argv, 4, &decades, &nmax_x) || argc > 6) {
         fprintf(stderr, "%s: usage: %s [OUT [SEEDS [CHAINS [D [NMAX]]]]] (SEEDS A-B with 0 <= A "
                 "<= B, CHAINS >= 1, 0 <= D <= 12, 2 <= NMAX <= %d)\n", BENCH_NAME, BENCH_NAME,
                 NMAX_LIMIT);
