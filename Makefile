@@ -24,14 +24,22 @@ LDLIBS    = $(PKG_LIBS) -llapack -lblas -lpthread -lm
 ALL_CFLAGS = $(WFLAGS) $(CFLAGS) -fopenmp $(PKG_CFLAGS) $(XCFLAGS)
 ALL_LDFLAGS = -fopenmp $(LDFLAGS) $(XLDFLAGS)
 
-LIB_SRC  := $(wildcard src/*.c)
+# One folder per module under src/ (core, steady, dynamics, integrate, stability, optimize,
+# studies); src/cli/ is the program.
+LIB_SRC  := $(filter-out src/cli/%,$(wildcard src/*/*.c))
 CLI_SRC  := $(wildcard src/cli/*.c)
-TEST_SRC := $(wildcard tests/test_*.c)
-BENCH_SRC := $(wildcard tests/bench_*.c)
+# Unit tests by module (tests/unit/MODULE/test_*.c), benchmarks (tests/bench/), headers they share
+# (tests/lib/); every program builds flat into BUILD/tests/.
+TEST_SRC := $(wildcard tests/unit/*/test_*.c)
+BENCH_SRC := $(wildcard tests/bench/bench_*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
-TEST_BIN := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-BENCH_BIN := $(BENCH_SRC:tests/%.c=$(BUILD)/tests/%)
+TEST_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(TEST_SRC:.c=)))
+BENCH_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(BENCH_SRC:.c=)))
+# the peers' programs (built with the peers' flags, below)
+PEER_BIN := $(BUILD)/tests/bench_peers $(BUILD)/tests/test_peers
+# the source of a test or benchmark program from its name
+test_source = $(filter %/$(1).c,$(TEST_SRC) $(BENCH_SRC))
 # fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
@@ -122,11 +130,14 @@ $(BUILD)/whirl: PKG_LIBS += $(shell mpicc --showme:link)
 endif
 # --- end MPI
 
-$(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
+.SECONDEXPANSION:
+$(filter-out $(PEER_BIN),$(TEST_BIN) $(BENCH_BIN)): $(BUILD)/tests/%: $$(call test_source,$$*) \
+  $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@
+	$(CC) $(CPPFLAGS) -Itests/lib $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) \
+	  -lcmocka -o $@
 
-# The peers of tests/bench_peers.c and tests/test_peers.c (tests/peer_glue.h), each built in only
+# The peers of tests/bench/bench_peers.c and tests/unit/dynamics/test_peers.c (tests/lib/peer_glue.h), each built in only
 # when its headers are found (scripts/deps.sh installs them; without them the benchmark reports
 # those rows as skipped and test_peers fails, naming the package).
 have_header = $(shell printf '\043include <%s>\n' '$(1)' | $(CC) -E -xc - >/dev/null 2>&1 && echo 1)
@@ -136,10 +147,9 @@ PEER_CFLAGS := $(if $(call have_header,mujoco/mujoco.h),-DWHIRL_HAVE_MUJOCO) \
 PEER_LIBS := $(if $(findstring MUJOCO,$(PEER_CFLAGS)),-lmujoco) \
   $(if $(findstring SUNDIALS,$(PEER_CFLAGS)),-lsundials_arkode -lsundials_cvode \
     -lsundials_nvecserial -lsundials_sunnonlinsolfixedpoint)
-PEER_BIN := $(BUILD)/tests/bench_peers $(BUILD)/tests/test_peers
-$(PEER_BIN): $(BUILD)/tests/%: tests/%.c $(BUILD)/libwhirl.a
+$(PEER_BIN): $(BUILD)/tests/%: $$(call test_source,$$*) $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) $(PEER_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) \
+	$(CC) $(CPPFLAGS) -Itests/lib $(ALL_CFLAGS) $(PEER_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) \
 	  $(PEER_LIBS) $(LDLIBS) -lcmocka -o $@
 
 $(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_CLI_OBJ) $(BUILD)/libwhirl.a
@@ -178,12 +188,12 @@ demo: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/demo.sh $(BUILD)
 
-# The tests and the installed library's (tests/install.sh: a temporary prefix, the examples built
+# The tests and the installed library's (tests/cli/install.sh: a temporary prefix, the examples built
 # with pkg-config), a clang -Werror compile of the library and the program, then the same tests
 # under AddressSanitizer and UndefinedBehaviorSanitizer.
 check: deps
 	@$(MAKE) --no-print-directory all $(TEST_BIN) $(REPLAY_BIN)
-	@sh tests/run.sh $(BUILD) --also tests/install.sh
+	@sh tests/run.sh $(BUILD) --also tests/cli/install.sh
 	@$(MAKE) --no-print-directory check-clang
 	@$(MAKE) --no-print-directory check-sanitize
 

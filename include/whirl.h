@@ -1,5 +1,5 @@
 /* whirl: steady shapes, dynamics and stability of a chain spun about the vertical axis. Includes
- * every public header of the library (tests/test_install.sh checks it). */
+ * every public header of the library (tests/cli/install.sh checks it). */
 #ifndef WHIRL_H
 #define WHIRL_H
 

@@ -1,4 +1,4 @@
-# Scaling figures of tests/bench_scaling.c, from dir/scaling.csv and dir/scaling_tension.csv:
+# Scaling figures of tests/bench/bench_scaling.c, from dir/scaling.csv and dir/scaling_tension.csv:
 # left, ns per right-hand side and per step against N (log-log, with a line of slope 1);
 # right, the relative round-off of the tensions against N (whirl against plain double Thomas
 # elimination), written to dir/scaling.png.

@@ -1,4 +1,4 @@
-# Work-precision diagrams of tests/bench_workprecision.c: wall time against the final position
+# Work-precision diagrams of tests/bench/bench_workprecision.c: wall time against the final position
 # error, log-log, one curve per method (whirl's solid, GSL's dashed, the seed formulation's
 # dotted), one PNG per scene found in dir (workprecision_SCENE.csv -> workprecision_SCENE.png).
 # usage: gnuplot -e "dir='out/bench'" plots/workprecision.gp

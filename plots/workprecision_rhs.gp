@@ -1,5 +1,5 @@
 # Work-precision before and after the right-hand side in double (data/workprecision/
-# rhs_before_after.csv: tests/bench_workprecision.c's chain100 scene run with the library built
+# rhs_before_after.csv: tests/bench/bench_workprecision.c's chain100 scene run with the library built
 # before and after, one method at a time, rk8 and rk4): left, processor time against the final
 # position error, one colour per method, before dashed, after solid; right, the right-hand sides against the error
 # (the same curves before and after: the methods and their steps did not change, only the cost of

@@ -1,12 +1,12 @@
 #!/bin/sh
 # Runs the benchmarks and prints their headline ratios as one table (out/bench/headline.csv).
 # Usage: scripts/bench.sh [BUILD [quick]].
-#  - full (default, under an hour here): every benchmark program (tests/bench_*.c, *.sh, *.py),
+#  - full (default, under an hour here): every benchmark program (tests/bench/bench_*.c, *.sh, *.py),
 #    some with shorter settings than their own defaults (listed in args_of below; the README's
 #    Performance section says what each cut leaves out); each writes its CSV under out/bench/ and
 #    prints its figures; then the figures out/bench/workprecision_*.png and scaling.png are drawn;
-#  - quick: the peers (tests/bench_peers.c quick: MuJoCo, SUNDIALS, GSL, the seed formulation,
-#    ns per link) and the continuum shapes against scipy (tests/bench_scipy.py quick): every
+#  - quick: the peers (tests/bench/bench_peers.c quick: MuJoCo, SUNDIALS, GSL, the seed formulation,
+#    ns per link) and the continuum shapes against scipy (tests/bench/bench_scipy.py quick): every
 #    headline ratio of the README in under 10 minutes.
 # Every step's wall time and the load average at its start go to out/bench/bench_times.csv and
 # are printed at the end. Timings are medians of repeats, reported as measured on this machine.
@@ -54,7 +54,7 @@ args_of() {
 export WHIRL="$build/whirl"
 if [ "$mode" = quick ]; then
   step bench_peers_quick "$build/tests/bench_peers" "$out" quick
-  step bench_scipy_quick /usr/bin/python3 tests/bench_scipy.py "$out" "$build/whirl" quick
+  step bench_scipy_quick /usr/bin/python3 tests/bench/bench_scipy.py "$out" "$build/whirl" quick
 else
   for b in "$build"/tests/bench_*; do
     [ -x "$b" ] || continue
@@ -71,11 +71,11 @@ else
     # shellcheck disable=SC2046 # the arguments are words
     step "$name" "$b" "$out" $(args_of "$name")
   done
-  for s in tests/bench_*.sh; do
+  for s in tests/bench/bench_*.sh; do
     [ -f "$s" ] || continue
     step "$(basename "$s")" sh "$s" "$out"
   done
-  step bench_scipy /usr/bin/python3 tests/bench_scipy.py "$out" "$build/whirl"
+  step bench_scipy /usr/bin/python3 tests/bench/bench_scipy.py "$out" "$build/whirl"
   # figures from the CSVs (plots/*.gp), when gnuplot is installed
   if command -v gnuplot >/dev/null 2>&1; then
     for g in workprecision scaling; do

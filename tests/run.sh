@@ -1,7 +1,7 @@
 #!/bin/sh
 # Runs the tests and prints the closing line "tests: N passed, N failed"; exits non-zero unless
 # every test program passed. Usage: run.sh [BUILD [TEST...]] or run.sh BUILD --also TEST...:
-# without TEST, every test program BUILD/tests/test_* and every shell test tests/test_*.sh; with
+# without TEST, every test program BUILD/tests/test_* and every shell test tests/cli/test_*.sh; with
 # --also, those and the TESTs. A TEST ending in .sh runs under sh with WHIRL=BUILD/whirl, any
 # other is executed.
 #
@@ -64,7 +64,7 @@ else
     case $t in *.d) continue ;; esac
     [ -x "$t" ] && run_one "$t"
   done
-  for t in tests/test_*.sh; do
+  for t in tests/cli/test_*.sh; do
     [ -f "$t" ] && run_one "$t"
   done
   for t in "$@"; do run_one "$t"; done

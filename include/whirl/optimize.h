@@ -117,7 +117,7 @@ WHIRL_API int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mo
  * bracket of the best point, then Gauss-Newton steps.
  * omega_err = sqrt(s^2 / J^T J) with J = d(resid)/d(omega) by central differences and
  * s^2 = SSR / (n - 1): the linearised standard error, which assumes independent errors of equal
- * variance normal to the curve (validated against Monte-Carlo scatter in tests/test_optimize.c);
+ * variance normal to the curve (validated against Monte-Carlo scatter in tests/unit/optimize/test_optimize.c);
  * it means little when omega ends on a bound. Needs 3 to 20000 finite points, at least 3 of
  * them distinct and off the axis (|r| > 1e-9) (GSL_EINVAL otherwise); GSL_EFAILED when the
  * residuals do not change with omega (an ill-conditioned fit). GSL_EDOM if no mode has a shape

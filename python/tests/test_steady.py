@@ -141,7 +141,7 @@ def test_sharp_turn_against_the_mpmath_continuation():
     # Mode 8 of this 9-link chain (lengths and masses over six decades) turns by a right angle
     # within 4e-9 of arclength just below the birth of mode 9 (omega = 1061.985); a path that
     # took the turn for a branch point ended 1.55 rad away. The library's shape at ten times the
-    # birth against tests/branch_mp.py, an independent pseudo-arclength continuation in mpmath
+    # birth against tests/tools/branch_mp.py, an independent pseudo-arclength continuation in mpmath
     # (30 digits here, turns of at most 0.02 rad per step): every node to 1e-12 of the largest
     # radius, or the mirror image.
     lengths = [0.070162066030373019, 111.81954152718886, 2.3222961544612386, 23.062821237957106,

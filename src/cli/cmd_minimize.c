@@ -3,7 +3,7 @@
  * Output as `whirl shape --links N` (its two comment lines, then the CSV s,r,z,tension, one row
  * per node, the pivot first), with a third comment line of the minimiser's statistics.
  * Only mode 1 is a minimum of V: mode k >= 2 is a saddle with k-1 negative in-plane directions,
- * so a minimiser started next to it falls to mode 1 (tests/test_optimize.c checks both). Below
+ * so a minimiser started next to it falls to mode 1 (tests/unit/optimize/test_optimize.c checks both). Below
  * the first critical rate the hanging chain is the minimum and there is no shape to report. */
 #include <stdlib.h>
 

@@ -1,0 +1,111 @@
+/* Branch following for the steady shapes: natural-parameter continuation in omega.
+ *
+ * At each rate the tip radius is seeded by the quadratic extrapolation a(omega) through the
+ * three previous solutions of the same block (fewer after its start or a gap where the mode did
+ * not exist; nothing at all at first), and whirl_steady_shoot_root brackets around the seed. The
+ * rates are cut into one contiguous block per OpenMP thread; each block starts afresh. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "core/error.h"
+#include "steady/steady_internal.h"
+
+int whirl_steady_fail_missing(int mode, double omega, double omega_k)
+{
+    return whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: it exists only above "
+                      "omega_%d=%.17g", mode, omega, mode, omega_k);
+}
+
+#define BLOCK_MIN 16 /* fewest rates per thread block */
+
+typedef struct block_result {
+    int status;
+    char message[512];
+} block_result;
+
+#define PREV_MAX 3 /* solutions the predictor extrapolates: quadratic */
+
+/* The seed at omega: the polynomial through the n_prev (<= PREV_MAX) previous solutions
+ * (omega_prev[i], a_prev[i]), most recent last, evaluated at omega (Lagrange's form). */
+static double predict(int n_prev, const double *omega_prev, const double *a_prev, double omega)
+{
+    if (n_prev == 0) return 0;
+    const double *w = omega_prev + PREV_MAX - n_prev, *a = a_prev + PREV_MAX - n_prev;
+    double seed = 0;
+    for (int i = 0; i < n_prev; i++) {
+        double basis = 1;
+        for (int j = 0; j < n_prev; j++)
+            if (j != i) basis *= (omega - w[j]) / (w[i] - w[j]);
+        seed += basis * a[i];
+    }
+    double last = a_prev[PREV_MAX - 1];
+    /* a wild extrapolation (near omega_k, where a ~ sqrt(omega - omega_k)): the last value */
+    if (!(isfinite(seed) && seed > 0.5 * last && seed < 2 * last)) seed = last;
+    return seed;
+}
+
+static int follow_block(const steady_model *m, void *ws, int mode, size_t n,
+                        const double *omega, whirl_shape_info *info, int *exists)
+{
+    double omega_prev[PREV_MAX] = {0}, a_prev[PREV_MAX] = {0};
+    int n_prev = 0;
+    for (size_t j = 0; j < n; j++) {
+        double guess = predict(n_prev, omega_prev, a_prev, omega[j]);
+        int status = m->solve(ws, omega[j], mode, guess, &info[j]);
+        if (status == GSL_EDOM) {
+            exists[j] = 0;
+            n_prev = 0;
+            continue;
+        }
+        if (status != GSL_SUCCESS) return status;
+        exists[j] = 1;
+        for (int i = 0; i + 1 < PREV_MAX; i++)
+            omega_prev[i] = omega_prev[i + 1], a_prev[i] = a_prev[i + 1];
+        omega_prev[PREV_MAX - 1] = omega[j], a_prev[PREV_MAX - 1] = info[j].tip_r;
+        if (n_prev < PREV_MAX) n_prev++;
+    }
+    return GSL_SUCCESS;
+}
+
+int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double *omega,
+                        whirl_shape_info *info, int *exists)
+{
+    for (size_t j = 0; j < n; j++) {
+        int status = whirl_steady_check_args(omega[j], mode, WHIRL_CONTINUUM_MODE_MAX);
+        if (status != GSL_SUCCESS) return status;
+    }
+    size_t nblocks = 1;
+#ifdef _OPENMP
+    if (!omp_in_parallel()) nblocks = (size_t)omp_get_max_threads();
+#endif
+    if (nblocks > n / BLOCK_MIN) nblocks = n / BLOCK_MIN;
+    if (nblocks < 1) nblocks = 1;
+    block_result *result = malloc(nblocks * sizeof *result);
+    if (result == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu blocks", nblocks);
+
+#pragma omp parallel for schedule(static, 1) num_threads((int)nblocks) if (nblocks > 1)
+    for (size_t b = 0; b < nblocks; b++) {
+        size_t first = n * b / nblocks, last = n * (b + 1) / nblocks;
+        block_result *res = &result[b];
+        void *ws = m->ws_alloc(m->params);
+        if (ws == NULL) res->status = GSL_ENOMEM;
+        else res->status = follow_block(m, ws, mode, last - first, omega + first, info + first,
+                                        exists + first);
+        if (res->status != GSL_SUCCESS) {
+            strncpy(res->message, whirl_last_error(), sizeof res->message - 1);
+            res->message[sizeof res->message - 1] = '\0';
+        }
+        m->ws_free(ws);
+    }
+    int status = GSL_SUCCESS;
+    for (size_t b = 0; b < nblocks && status == GSL_SUCCESS; b++)
+        if (result[b].status != GSL_SUCCESS)
+            status = whirl_fail(result[b].status, "%s", result[b].message);
+    free(result);
+    return status;
+}

@@ -1,0 +1,205 @@
+/* Shooting on the tip radius, shared by the continuous and the N-link steady shapes.
+ *
+ * The mode-k shape has the tip radius a_k where the k-th zero of r leaves the chain through the
+ * pivot: crossings(a) >= k for a < a_k and <= k - 1 above (Kolodner 1955, Comm. Pure Appl. Math.
+ * 8:395, "Heavy rotating string - a nonlinear eigenvalue problem": one shape per mode). The
+ * crossing count is an integer, so the bracket search on it cannot be fooled by the residual's
+ * other roots; within a bracket where the count drops from exactly k to exactly k - 1, r(pivot)
+ * changes sign once and Brent's method (GSL roots/brent.c; Brent 1973, "Algorithms for
+ * minimization without derivatives", ch. 4) converges to round-off. Near the critical rate
+ * a_k -> 0 like sqrt(omega - omega_k), hence the bracket search in log(a). */
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+
+#include <gsl/gsl_roots.h>
+
+#include "core/error.h"
+#include "steady/steady_internal.h"
+
+#define A_MIN_FRACTION 1e-9  /* smallest tip radius tried, relative to a_max */
+#define SEED_STEP 1e-6       /* first relative step away from a seed; grows 8-fold */
+#define BISECT_MAX 300
+#define BRENT_MAX 200
+
+int whirl_steady_check_args(double omega, int mode, int mode_max)
+{
+    if (!(isfinite(omega) && omega > 0))
+        return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
+    if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
+    if (mode < 1 && mode_max == INT_MAX)
+        return whirl_fail(GSL_EINVAL, "mode must be >= 1, got %d", mode);
+    if (mode < 1 || mode > mode_max)
+        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", mode_max, mode);
+    return GSL_SUCCESS;
+}
+
+int whirl_steady_check_info(const whirl_shape_info *info)
+{
+    const struct {
+        const char *name;
+        double value;
+    } q[] = {{"tip_r", info->tip_r}, {"max_r", info->max_r},
+             {"top_tension", info->top_tension}, {"depth", info->depth}};
+    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++)
+        if (!isfinite(q[i].value))
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: %s is not finite (%g): the rate "
+                              "or the tip mass is too large", info->mode, info->omega, q[i].name,
+                              q[i].value);
+    for (int j = 0; j < info->n_nodes && j < WHIRL_SHAPE_NODES; j++)
+        if (!isfinite(info->node_s[j]))
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: node %d is not finite",
+                              info->mode, info->omega, j + 1);
+    return GSL_SUCCESS;
+}
+
+int whirl_steady_check_samples(double omega, size_t n, const double *r, const double *z,
+                               const double *tension)
+{
+    const double *a[3] = {r, z, tension};
+    static const char *const name[3] = {"r", "z", "tension"};
+    for (int k = 0; k < 3; k++)
+        for (size_t i = 0; a[k] != NULL && i < n; i++)
+            if (!isfinite(a[k][i]))
+                return whirl_fail(GSL_ERANGE, "the shape at omega=%g: %s of point %zu is not "
+                                  "finite (%g): the rate or the tip mass is too large", omega,
+                                  name[k], i, a[k][i]);
+    return GSL_SUCCESS;
+}
+
+typedef struct shot_call {
+    steady_shot_fn shot;
+    void *ws;
+    int status;         /* first failure of a shot inside Brent's iteration */
+    double known_a[2];  /* the bracket's ends, whose residuals are known: not shot again */
+    double known_res[2];
+} shot_call;
+
+static double residual_of(double a, void *p)
+{
+    shot_call *call = p;
+    for (int i = 0; i < 2; i++)
+        if (a == call->known_a[i]) return call->known_res[i];
+    double res;
+    int crossings;
+    int status = call->shot(call->ws, a, &res, &crossings);
+    if (status != GSL_SUCCESS) {
+        if (call->status == GSL_SUCCESS) call->status = status;
+        return GSL_NAN;
+    }
+    return res;
+}
+
+/* Brent's method on residual(a) in [lo, hi] (opposite signs), to round-off. */
+static int polish(shot_call *call, double lo, double hi, double *a)
+{
+    gsl_function f = {residual_of, call};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
+    int status = gsl_root_fsolver_set(s, &f, lo, hi);
+    for (int iter = 0; status == GSL_SUCCESS && iter < BRENT_MAX; iter++) {
+        status = gsl_root_fsolver_iterate(s);
+        if (call->status != GSL_SUCCESS) {
+            status = call->status;
+            break;
+        }
+        if (status != GSL_SUCCESS) {
+            status = whirl_fail(GSL_EFAILED, "Brent iteration failed on the tip radius");
+            break;
+        }
+        double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
+        /* (a residual exactly 0 collapses the interval to the root) */
+        if (gsl_root_test_interval(x_lo, x_hi, 0, 4 * DBL_EPSILON) == GSL_SUCCESS) {
+            *a = gsl_root_fsolver_root(s);
+            gsl_root_fsolver_free(s);
+            return GSL_SUCCESS;
+        }
+        if (iter == BRENT_MAX - 1)
+            status = whirl_fail(GSL_EMAXITER, "no convergence of the tip radius in %d Brent steps",
+                                BRENT_MAX);
+    }
+    gsl_root_fsolver_free(s);
+    return status;
+}
+
+/* One shot evaluated: the tip radius, residual, crossings below the pivot and the total count
+ * of sign changes up to and including the pivot. */
+typedef struct shot_point {
+    double a, res;
+    int below, total;
+} shot_point;
+
+static int take_shot(steady_shot_fn shot, void *ws, double a, shot_point *p)
+{
+    p->a = a;
+    p->res = 0, p->below = p->total = 0;
+    if (whirl_stop_requested()) return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
+    int status = shot(ws, a, &p->res, &p->below);
+    /* after `below` changes from r > 0 the sign is (-1)^below; the pivot adds one if it differs */
+    int pivot_flips = p->res != 0 && (p->res > 0) != (p->below % 2 == 0);
+    p->total = p->below + pivot_flips;
+    return status;
+}
+
+int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max,
+                            double scan_ratio, double guess, double *a)
+{
+    const double a_min = A_MIN_FRACTION * a_max;
+    shot_point lo, hi;
+    int status;
+
+    if (guess > a_min && guess < a_max) {
+        /* walk away from the seed, in steps growing 8-fold, until the count brackets mode */
+        shot_point g;
+        if ((status = take_shot(shot, ws, guess, &g)) != GSL_SUCCESS) return status;
+        double step = SEED_STEP;
+        if (g.total >= mode) {
+            for (lo = g;; lo = hi, step *= 8) {
+                if ((status = take_shot(shot, ws, fmin(lo.a * (1 + step), a_max), &hi)))
+                    return status;
+                if (hi.total < mode) break;
+                if (hi.a == a_max)
+                    return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest "
+                                      "tip radius %g", mode, a_max);
+            }
+        } else {
+            for (hi = g;; hi = lo, step *= 8) {
+                if ((status = take_shot(shot, ws, fmax(hi.a / (1 + step), a_min), &lo)))
+                    return status;
+                if (lo.total >= mode) break;
+                if (lo.a == a_min)
+                    return whirl_fail(GSL_EDOM, "mode %d does not exist at this rate", mode);
+            }
+        }
+    } else {
+        if ((status = take_shot(shot, ws, a_min, &lo)) != GSL_SUCCESS) return status;
+        if (lo.total < mode)
+            return whirl_fail(GSL_EDOM, "mode %d does not exist at this rate", mode);
+        /* the whole range, or a scan upwards for the smallest tip radius where it drops */
+        double next = scan_ratio > 1 ? fmin(lo.a * scan_ratio, a_max) : a_max;
+        for (;; lo = hi, next = fmin(lo.a * scan_ratio, a_max)) {
+            if ((status = take_shot(shot, ws, next, &hi)) != GSL_SUCCESS) return status;
+            if (hi.total < mode) break;
+            if (hi.a == a_max)
+                return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest "
+                                  "tip radius %g", mode, a_max);
+        }
+    }
+
+    /* narrow until the only event between lo and hi is the k-th zero leaving through the
+     * pivot: k - 1 crossings below it at both ends, the pivot's sign flipping */
+    for (int iter = 0; !(lo.total == mode && hi.total == mode - 1 && lo.below == mode - 1 &&
+                         hi.below == mode - 1);
+         iter++) {
+        if (iter == BISECT_MAX)
+            return whirl_fail(GSL_EMAXITER, "mode %d: no bracket of the tip radius in %d "
+                              "bisections", mode, BISECT_MAX);
+        shot_point mid;
+        double a_mid = hi.a > 2 * lo.a ? sqrt(lo.a * hi.a) : 0.5 * (lo.a + hi.a);
+        if ((status = take_shot(shot, ws, a_mid, &mid)) != GSL_SUCCESS) return status;
+        if (mid.total >= mode) lo = mid;
+        else hi = mid;
+    }
+    shot_call call = {shot, ws, GSL_SUCCESS, {lo.a, hi.a}, {lo.res, hi.res}};
+    return polish(&call, lo.a, hi.a, a);
+}
