@@ -1,5 +1,4 @@
 /* Command-line plumbing: option parsing, one-line errors, atomic output, units, progress. */
-#include <ctype.h>
 #include <errno.h>
 #include <float.h>
 #include <limits.h>
@@ -638,75 +637,9 @@ void cli_progress_clear(cli_progress_state *p)
     p->drawn = 0;
 }
 
-/* ---- the library's messages in the user's units ----
- * The library writes every rate in its messages as "omega", or "omega_" and a subscript, then
- * "=", " = " or " " and the number ("omega=2.5", "omega_3 = 4.25", "at omega 3"), and the tip's
- * radius as "tip radius" and the number. With units, each such number is scaled to the user's
- * unit, written with as many significant digits as the library gave, but at least 6 (its
- * shortest format, %g; a short number from %.17g is exact) and at most 15 (a rate given as
- * 1 rad/s reads 1 in the message, not 0.9999999999999999), and followed by the unit's name.
- * Dimensionless, a number of 16 or 17 digits is written in the fewest that read back to it
- * (26.8, not 26.800000000000001). The rest of the text is copied. */
-static const struct {
-    const char *word;
-    cli_unit kind;
-} message_quantity[] = {{"omega", CLI_UNIT_RATE}, {"tip radius", CLI_UNIT_LENGTH}};
-
-/* At p, the word of a message quantity and its number: the length of the text before the number,
- * the number in *x, its length in *nlen and its significant digits in *digits; 0 if p does not
- * start one. */
-static size_t message_number(const char *p, const char *word, double *x, size_t *nlen,
-                             int *digits)
-{
-    const size_t wlen = strlen(word);
-    const char *q = p + wlen;
-    char *end;
-    if (strncmp(p, word, wlen) != 0) return 0;
-    if (word[0] == 'o' && *q == '_') /* a subscript: omega_3, omega_k */
-        for (q++; isalnum((unsigned char)*q); q++) {}
-    if (q[0] == ' ' && q[1] == '=' && q[2] == ' ') q += 3;
-    else if (*q == '=' || *q == ' ') q++;
-    else return 0;
-    if (!(isdigit((unsigned char)*q) || (*q == '-' && isdigit((unsigned char)q[1])))) return 0;
-    *x = strtod(q, &end);
-    *nlen = (size_t)(end - q);
-    *digits = 0;
-    for (const char *d = q; d < end && *d != 'e' && *d != 'E'; d++)
-        if (isdigit((unsigned char)*d) && (*digits > 0 || *d != '0')) ++*digits;
-    return (size_t)(q - p);
-}
-
+/* The library's messages in the user's units: the library types the rates and lengths of its
+ * messages (whirl_last_error_in_units), so nothing here reads their text. */
 const char *cli_library_error(const cli_units *u, char *buf, size_t size)
 {
-    const char *msg = whirl_last_error(), *p = msg;
-    size_t len = 0;
-    if (size == 0) return buf;
-    buf[0] = '\0';
-    while (*p && len + 1 < size) {
-        size_t before = 0, nlen = 0, k = 0;
-        int digits = 0;
-        double x = 0;
-        if (p == msg || (!isalnum((unsigned char)p[-1]) && p[-1] != '_'))
-            for (; k < sizeof message_quantity / sizeof *message_quantity; k++)
-                if ((before = message_number(p, message_quantity[k].word, &x, &nlen, &digits)))
-                    break;
-        if (!before) {
-            buf[len++] = *p++;
-            buf[len] = '\0';
-            continue;
-        }
-        const cli_unit kind = message_quantity[k].kind;
-        const int n = u->physical
-                          ? snprintf(buf + len, size - len, "%.*s%.*g %s", (int)before, p,
-                                     digits < 6 ? 6 : digits > 15 ? 15 : digits,
-                                     x * cli_units_scale(u, kind), cli_units_name(u, kind))
-                      : digits >= 16 ? snprintf(buf + len, size - len, "%.*s%s", (int)before, p,
-                                                CLI_NUM(x))
-                                     : snprintf(buf + len, size - len, "%.*s", (int)(before + nlen),
-                                                p);
-        if (n < 0 || (size_t)n >= size - len) break;
-        len += (size_t)n;
-        p += before + nlen;
-    }
-    return buf;
+    return whirl_last_error_in_units(buf, size, u->physical, u->length, u->mass, u->gravity, 0);
 }

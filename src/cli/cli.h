@@ -154,8 +154,8 @@ double cli_units_scale(const cli_units *u, cli_unit kind);
 const char *cli_units_name(const cli_units *u, cli_unit kind);
 /* Writes the "# units: ..." comment line. */
 void cli_units_comment(FILE *fp, const cli_units *u);
-/* The library's last message (whirl_last_error) with its rates and tip radii in the user's
- * units, written into buf (size bytes); returns buf. CLI_LIBRARY_ERROR(u) gives it in a buffer
+/* The library's last message (whirl_last_error) with its quantities in the user's units
+ * (whirl_last_error_in_units), written into buf (size bytes); returns buf. CLI_LIBRARY_ERROR(u) gives it in a buffer
  * valid to the end of the enclosing block: cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&units)). */
 const char *cli_library_error(const cli_units *u, char *buf, size_t size);
 #define CLI_MESSAGE_MAX 1024

@@ -299,7 +299,8 @@ static int gauss_newton(mode_fit *f, double *omega, double *ssr, double *jj)
         const double sp = mode_ssr(f, *omega + h, w->e_plus);
         const double sm = mode_ssr(f, *omega - h, w->e_minus);
         if (!(isfinite(sp) && isfinite(sm)))
-            return whirl_fail(GSL_EFAILED, "mode %d has no shape near omega = %g", f->mode, *omega);
+            return whirl_fail(GSL_EFAILED, "mode %d has no shape near omega = " WHIRL_Q_RATE "%g",
+                              f->mode, *omega);
         double je = 0;
         *jj = 0;
         for (size_t i = 0; i < n; i++) {
@@ -331,8 +332,8 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     if (status) return status;
     const double u_max = log(w->model->omega_max / f.omega_crit - 1);
     if (!(f.omega_crit < w->model->omega_max) || !(u_max > FIT_U_MIN))
-        return whirl_fail(GSL_EDOM, "mode %d starts at omega_%d = %g, above the highest rate %g",
-                          mode, mode, f.omega_crit, w->model->omega_max);
+        return whirl_fail(GSL_EDOM, "mode %d starts at omega_%d = " WHIRL_Q_RATE "%g, above the "
+                          "highest rate %g", mode, mode, f.omega_crit, w->model->omega_max);
 
     /* scan: both sides, keeping the better */
     double u_grid[FIT_SCAN_POINTS], best_ssr = HUGE_VAL;
@@ -352,8 +353,8 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
     }
     if (whirl_stop_requested()) return stopped(mode);
     if (best < 0)
-        return whirl_fail(GSL_EDOM, "mode %d has no shape between omega_%d = %g and %g", mode,
-                          mode, f.omega_crit, w->model->omega_max);
+        return whirl_fail(GSL_EDOM, "mode %d has no shape between omega_%d = " WHIRL_Q_RATE "%g "
+                          "and %g", mode, mode, f.omega_crit, w->model->omega_max);
 
     /* BOBYQA on the bracket of the best grid point */
     double lower = u_grid[best > 0 ? best - 1 : 0];
@@ -378,7 +379,8 @@ static int fit_one_mode(fit_ws *w, int mode, whirl_fit_result *res)
 
     double omega = omega_of_u(&f, u), ssr = mode_ssr(&f, omega, w->e), jj = 0;
     if (!isfinite(ssr))
-        return whirl_fail(GSL_EFAILED, "mode %d has no shape at omega = %g", mode, omega);
+        return whirl_fail(GSL_EFAILED, "mode %d has no shape at omega = " WHIRL_Q_RATE "%g", mode,
+                          omega);
     status = gauss_newton(&f, &omega, &ssr, &jj);
     if (whirl_stop_requested()) return stopped(mode);
     if (status) return status;
@@ -459,17 +461,14 @@ int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, cons
     w.progress_data = data;
     w.first = first;
     w.last = last;
-    int found = 0, other = GSL_SUCCESS;
-    char other_msg[512] = "";
+    int found = 0;
+    whirl_error_record other = {GSL_SUCCESS, ""};
     for (int k = first; k <= last; k++) {
         w.mode = k;
         whirl_fit_result res;
         const int st = fit_one_mode(&w, k, &res);
         if (st && st != WHIRL_EINTERRUPTED && mode == 0) {
-            if (st != GSL_EDOM && other == GSL_SUCCESS) { /* kept in case no mode fits */
-                other = st;
-                snprintf(other_msg, sizeof other_msg, "%s", whirl_last_error());
-            }
+            if (st != GSL_EDOM) whirl_error_keep(&other, st); /* kept in case no mode fits */
             continue; /* no shape of this mode below omega_max, or no fit of it */
         }
         if (st) {
@@ -479,11 +478,11 @@ int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, cons
         if (!found || res.rms_residual < result->rms_residual) *result = res;
         found = 1;
     }
-    if (!found && other != GSL_SUCCESS)
-        status = whirl_fail(other, "%s", other_msg);
+    if (!found && other.status != GSL_SUCCESS)
+        status = whirl_error_restore(&other);
     else if (!found)
-        status = whirl_fail(GSL_EDOM, "no mode from %d to %d has a shape below omega = %g",
-                            first, last, m->omega_max);
+        status = whirl_fail(GSL_EDOM, "no mode from %d to %d has a shape below omega = "
+                            WHIRL_Q_RATE "%g", first, last, m->omega_max);
 done:
     result->evaluations = w.evaluations;
     result->failures = w.failures;

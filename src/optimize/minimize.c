@@ -155,8 +155,7 @@ typedef struct minimize_job {
     nlopt_opt nl;        /* stopped when a stop is requested or the caller left */
     atomic_int evaluations; /* read by the caller's progress display while the job runs */
     whirl_minimize_stats stats;
-    int status;
-    char message[256];
+    whirl_error_record error; /* its status GSL_SUCCESS if it worked */
 } minimize_job;
 
 static void job_free(void *data)
@@ -256,10 +255,9 @@ static void minimize_run(void *data, const whirl_worker *self)
     if (LAPACKE_dpotrf(LAPACK_ROW_MAJOR, 'L', (lapack_int)n, work, (lapack_int)n) == 0) {
         double omega_1 = NAN;
         whirl_nlink_critical(c, 1, &omega_1); /* only to name it in the message */
-        status = whirl_fail(GSL_EDOM,
-                            "no mode-1 shape at omega = %g: it is not above the chain's first "
-                            "critical rate omega_1 = %.10g, and the hanging chain is the minimum",
-                            omega, omega_1);
+        status = whirl_fail(GSL_EDOM, "no mode-1 shape at omega = " WHIRL_Q_RATE "%g: it is not "
+                            "above the chain's first critical rate omega_1 = " WHIRL_Q_RATE
+                            "%.10g, and the hanging chain is the minimum", omega, omega_1);
         goto done;
     }
     for (size_t i = 0; i < n; i++) {
@@ -316,8 +314,8 @@ static void minimize_run(void *data, const whirl_worker *self)
 done:
     nlopt_destroy(nl);
     j->nl = NULL;
-    j->status = status;
-    if (status) snprintf(j->message, sizeof j->message, "%s", whirl_last_error());
+    j->error.status = GSL_SUCCESS;
+    whirl_error_keep(&j->error, status);
 }
 
 /* The caller's progress display, called by the worker's poll on the caller's thread. */
@@ -374,7 +372,7 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
                                                      job is the worker's now */
     if (stats) *stats = j->stats;
     memcpy(theta_out, j->theta, n * sizeof *theta_out);
-    status = j->status ? whirl_fail(j->status, "%s", j->message) : GSL_SUCCESS;
+    status = j->error.status ? whirl_error_restore(&j->error) : GSL_SUCCESS;
     job_free(j);
     return status;
 }

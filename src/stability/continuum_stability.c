@@ -383,22 +383,23 @@ static int newton_shape(whirl_cstab *w, double omega)
         const int status = whirl_worker_dgesv(nn, 1, jac, nn, w->ipiv, f, nn, &info);
         if (status) return status;
         if (info != 0)
-            return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = %g is "
-                                           "singular (dgesv info %d)", omega, (int)info);
+            return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = " WHIRL_Q_RATE
+                              "%g is singular (dgesv info "
+                              "%d)", omega, (int)info);
         double step = 0, scale = 1;
         for (size_t g = 0; g < np; g++) {
             w->r[g] -= f[g];
             w->q[g] -= f[np + g];
             if (!isfinite(w->r[g]) || !isfinite(w->q[g]))
-                return whirl_fail(GSL_ERANGE, "the collocation of the shape at omega = %g "
-                                              "diverged", omega);
+                return whirl_fail(GSL_ERANGE, "the collocation of the shape at omega = "
+                                  WHIRL_Q_RATE "%g diverged", omega);
             step = fmax(step, fmax(fabs(f[g]), fabs(f[np + g])));
             scale = fmax(scale, fabs(w->q[g]));
         }
         if (step <= 1e-13 * scale) return GSL_SUCCESS;
     }
-    return whirl_fail(GSL_EMAXITER, "the collocation of the shape at omega = %g did not converge "
-                                    "in %d Newton steps", omega, CS_NEWTON_MAX);
+    return whirl_fail(GSL_EMAXITER, "the collocation of the shape at omega = " WHIRL_Q_RATE "%g "
+                      "did not converge in %d Newton steps", omega, CS_NEWTON_MAX);
 }
 
 /* The largest of the last two Chebyshev coefficients of f on element e over scale. */
@@ -433,8 +434,8 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
     const char *why = "";
     for (;;) {
         if (whirl_stop_requested())
-            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = %g: stopped by request",
-                              omega);
+            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = " WHIRL_Q_RATE "%g: "
+                              "stopped by request", omega);
         w->np = w->ne * P;
         if ((status = reserve(w, w->np))) return status;
         set_points(w);
@@ -463,11 +464,10 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         }
         why = status ? "Newton's method failed" : wrong ? "not the shooting's shape" : "";
         if (nb - 1 > CS_ELEMENTS_MAX || (nb - 1) * P > CS_POINTS_MAX)
-            return whirl_fail(GSL_EMAXITER, "the shape of omega = %g needs more than %d "
-                                            "collocation points (elements of degree %d, shape "
-                                            "tolerance %g%s%s): lower the rate or the degree",
-                              omega, CS_POINTS_MAX, w->p.degree, w->p.shape_tol,
-                              *why ? "; " : "", why);
+            return whirl_fail(GSL_EMAXITER, "the shape of omega = " WHIRL_Q_RATE "%g needs more "
+                              "than %d collocation points (elements of degree %d, shape tolerance "
+                              "%g%s%s): lower the rate or the degree", omega, CS_POINTS_MAX,
+                              w->p.degree, w->p.shape_tol, *why ? "; " : "", why);
         w->ne = nb - 1;
         memcpy(w->brk, brk, nb * sizeof(double));
     }
@@ -619,7 +619,7 @@ int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_g
 {
     if (!(isfinite(omega) && omega >= 0 && omega <= WHIRL_CONTINUUM_OMEGA_MAX) ||
         (mode > 0 && omega == 0))
-        return whirl_fail(GSL_EINVAL, "the rate must be in %s..%g, got omega = %g",
+        return whirl_fail(GSL_EINVAL, "the rate must be in %s..%g, got omega = " WHIRL_Q_RATE "%g",
                           mode > 0 ? "(0" : "[0", WHIRL_CONTINUUM_OMEGA_MAX, omega);
     if (mode < 0 || mode > WHIRL_MODE_MAX)
         return whirl_fail(GSL_EINVAL, "the mode must be in 0..%d (0: the hanging chain), got %d",
@@ -863,8 +863,9 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     if (status) return status;
     if (!(p->omega_max <= WHIRL_CONTINUUM_OMEGA_MAX)) {
         free(omega);
-        return whirl_fail(GSL_EINVAL, "the continuum's rates end at omega = %g, got omega = %g",
-                          WHIRL_CONTINUUM_OMEGA_MAX, p->omega_max);
+        return whirl_fail(GSL_EINVAL, "the continuum's rates end at omega = " WHIRL_Q_RATE "%g, "
+                          "got omega = " WHIRL_Q_RATE "%g", WHIRL_CONTINUUM_OMEGA_MAX,
+                          p->omega_max);
     }
     whirl_shape_info *info = malloc(npts * sizeof *info);
     int *exists = malloc(npts * sizeof *exists);
@@ -874,8 +875,8 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     for (size_t j = 0; j < npts && !status; j++) {
         tip[j] = info[j].tip_r;
         if (!exists[j])
-            status = whirl_fail(GSL_EFAILED, "mode %d: no continuum shape at omega = %g", mode,
-                                omega[j]);
+            status = whirl_fail(GSL_EFAILED, "mode %d: no continuum shape at omega = " WHIRL_Q_RATE
+                                "%g", mode, omega[j]);
     }
     w->mode = mode;
     cstab_search c = {w, omega, tip, npts, stats};

@@ -76,8 +76,7 @@ typedef struct stability_solve {
     lapack_int lwork;
     int deflated;      /* number of removed zero eigenvalues: 0, 1 or 2 */
     size_t count;      /* eigenvalues found */
-    int status;        /* of the last solve */
-    char message[256]; /* its message when status != GSL_SUCCESS */
+    whirl_error_record error; /* of the last solve (its status GSL_SUCCESS if it worked) */
 } stability_solve;
 
 /* Linearisations of at most this many links are solved in the calling thread (a few ms). */
@@ -475,8 +474,8 @@ static int deflate(stability_solve *w)
     return GSL_SUCCESS;
 }
 
-/* The eigenvalues of the linearisation in s (first-order form, deflation, dgeev): s->status,
- * s->message, s->count, s->re, s->im. A worker (src/core/worker.h): it reads s alone. */
+/* The eigenvalues of the linearisation in s (first-order form, deflation, dgeev): s->error,
+ * s->count, s->re, s->im. A worker (src/core/worker.h): it reads s alone. */
 static void solve_run(void *data, const whirl_worker *self)
 {
     (void)self; /* one LAPACK call: nothing to poll */
@@ -504,8 +503,8 @@ static void solve_run(void *data, const whirl_worker *self)
         if (!isfinite(w->re[i]) || !isfinite(w->im[i]))
             status = whirl_fail(GSL_ERANGE, "non-finite eigenvalue");
     w->count = m;
-    w->status = status;
-    if (status) snprintf(w->message, sizeof w->message, "%s", whirl_last_error());
+    w->error.status = GSL_SUCCESS;
+    whirl_error_keep(&w->error, status);
 }
 
 int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
@@ -523,7 +522,7 @@ int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double 
         w->linearised = 0;
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the eigen-solve");
     }
-    if (s->status) return whirl_fail(s->status, "%s", s->message);
+    if (s->error.status) return whirl_error_restore(&s->error);
     memcpy(w->re, s->re, s->count * sizeof *w->re);
     memcpy(w->im, s->im, s->count * sizeof *w->im);
     *count = s->count;

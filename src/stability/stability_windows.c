@@ -832,9 +832,9 @@ static int locate(search *s, point *a, point *b, int depth)
         }
         if (status) {
             gsl_root_fsolver_free(solver);
-            return whirl_fail(status, "mode %d: the window edge between omega = %.10g "
-                                      "and omega = %.10g was not located", s->src->mode,
-                              a->omega, b->omega);
+            return whirl_fail(status, "mode %d: the window edge between omega = " WHIRL_Q_RATE
+                              "%.10g and omega = " WHIRL_Q_RATE "%.10g was not located",
+                              s->src->mode, a->omega, b->omega);
         }
     } else { /* the discriminant does not bracket (several pairs): bisect on the stability */
         point mid = {0};
@@ -1038,22 +1038,23 @@ int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, d
     *omega = NULL;
     *npts = 0;
     if (!(p->omega_min > 0 && p->omega_max > p->omega_min && isfinite(p->omega_max)))
-        return whirl_fail(GSL_EINVAL, "the range of rates must have 0 < omega_min < omega_max, "
-                                      "got omega_min = %g, omega_max = %g", p->omega_min,
-                          p->omega_max);
+        return whirl_fail(GSL_EINVAL, "the range of rates must have 0 < omega_min < omega_max, got "
+                          "omega_min = " WHIRL_Q_RATE "%g, omega_max = " WHIRL_Q_RATE "%g",
+                          p->omega_min, p->omega_max);
     if (!(p->scan_step > 0) || !(p->tol > 0) || !(p->tol < p->scan_step))
         return whirl_fail(GSL_EINVAL, "the scan step and the tolerance must be > 0 (tol < step), "
                                       "got %g, %g", p->scan_step, p->tol);
     const double from = fmax(p->omega_min, birth * (1 + 1e-6));
     if (!(from < p->omega_max))
-        return whirl_fail(GSL_EDOM, "mode %d exists only above omega_%d = %.10g, beyond the "
-                                    "range's end, omega = %.10g", mode, mode, birth, p->omega_max);
+        return whirl_fail(GSL_EDOM, "mode %d exists only above omega_%d = " WHIRL_Q_RATE "%.10g, "
+                          "beyond the range's end, omega = " WHIRL_Q_RATE "%.10g", mode, mode,
+                          birth, p->omega_max);
     const double scan_steps = ceil((p->omega_max - from) / p->scan_step - 1e-9);
     if (!(scan_steps + 1 <= WINDOWS_SCAN_MAX))
-        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = %.10g to omega = %.10g in "
-                          "steps of delta omega = %.10g has %.3g points, more than %d: raise the "
-                          "scan step or narrow the range", mode, from, p->omega_max, p->scan_step,
-                          scan_steps + 1, WINDOWS_SCAN_MAX);
+        return whirl_fail(GSL_EINVAL, "mode %d: a scan from omega = " WHIRL_Q_RATE "%.10g to omega "
+                          "= " WHIRL_Q_RATE "%.10g in steps of delta omega = " WHIRL_Q_RATE "%.10g "
+                          "has %.3g points, more than %d: raise the scan step or narrow the range",
+                          mode, from, p->omega_max, p->scan_step, scan_steps + 1, WINDOWS_SCAN_MAX);
     const size_t steps = (size_t)scan_steps, n = steps + 1;
     double *om = malloc(n * sizeof *om);
     if (om == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
@@ -1113,8 +1114,8 @@ int whirl_windows_search(const windows_source *src, const whirl_windows_params *
         const int last = e == s.nedges;
         if (last && !inside) break;
         if (!last && s.edges[e].opens == inside)
-            status = whirl_fail(GSL_EFAILED, "mode %d: the window edges do not alternate at "
-                                             "omega = %.10g", mode, s.edges[e].omega);
+            status = whirl_fail(GSL_EFAILED, "mode %d: the window edges do not alternate at omega "
+                                "= " WHIRL_Q_RATE "%.10g", mode, s.edges[e].omega);
         if (status) break;
         if (!last && !inside) {
             cur = (whirl_window){0};
@@ -1169,8 +1170,8 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
     if (!status) status = whirl_nlink_branch(c, mode, npts, omega, info, exists);
     for (size_t j = 0; j < npts && !status; j++) {
         if (!exists[j])
-            status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = %g on its branch", mode,
-                                omega[j]);
+            status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = " WHIRL_Q_RATE "%g on "
+                                "its branch", mode, omega[j]);
     }
     windows_source src = {nlink_spectrum, p->krylov ? nlink_pair : NULL, w, mode, stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);

@@ -108,7 +108,7 @@ static int linear_pivot(double omega, double m, double *r0_pivot, double *q0_piv
     for (long step = 0; sigma < 1; step++) {
         if (step == LINEAR_STEP_MAX)
             return whirl_fail(GSL_EMAXITER, "more than %d Taylor steps for the linear solution "
-                              "(omega=%g): lower the rate", LINEAR_STEP_MAX, omega);
+                              "(omega=" WHIRL_Q_RATE "%g): lower the rate", LINEAR_STEP_MAX, omega);
         long double r[LINEAR_TERMS], q[LINEAR_TERMS], t = sigma + m;
         r[0] = r0, q[0] = q0;
         for (int n = 1; n < LINEAR_TERMS; n++) {
@@ -139,9 +139,9 @@ static int check_rate(double omega)
     if (!(isfinite(omega) && omega > 0))
         return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
     if (omega > WHIRL_CONTINUUM_OMEGA_MAX)
-        return whirl_fail(GSL_EINVAL, "omega=%g is above %g, the highest rate the continuum "
-                          "shooting resolves (its ODE would need more than %d steps per shot); "
-                          "use the N-link chain (--links) there", omega,
+        return whirl_fail(GSL_EINVAL, "omega=" WHIRL_Q_RATE "%g is above %g, the highest rate the "
+                          "continuum shooting resolves (its ODE would need more than %d steps per "
+                          "shot); use the N-link chain (--links) there", omega,
                           WHIRL_CONTINUUM_OMEGA_MAX, STEP_MAX);
     return GSL_SUCCESS;
 }
@@ -376,8 +376,8 @@ static int locate_zero(continuum_ws *w, int c, double sigma_a, const double y_a[
         }
         s = next;
     }
-    return whirl_fail(GSL_EMAXITER, "no convergence locating a zero of the shape (omega=%g, a=%g)",
-                      w->omega, w->a);
+    return whirl_fail(GSL_EMAXITER, "no convergence locating a zero of the shape (omega="
+                      WHIRL_Q_RATE "%g, a=%g)", w->omega, w->a);
 }
 
 /* Integrates the shape with tip radius w->a from the tip to the pivot. */
@@ -396,15 +396,15 @@ static int integrate(continuum_ws *w, continuum_run *run)
         if (n % 256 == 255 && whirl_stop_requested())
             return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
         if (n == STEP_MAX)
-            return whirl_fail(GSL_EMAXITER, "more than %d ODE steps (omega=%g, a=%g)", STEP_MAX,
-                              w->omega, w->a);
+            return whirl_fail(GSL_EMAXITER, "more than %d ODE steps (omega=" WHIRL_Q_RATE "%g, "
+                              "a=%g)", STEP_MAX, w->omega, w->a);
         double sigma_prev = sigma;
         for (int i = 0; i < N_STATE; i++) y_prev[i] = y[i];
         int status = gsl_odeiv2_evolve_apply(o->evolve, o->control, o->step, &o->sys, &sigma, 1,
                                              &h, y);
         if (status != GSL_SUCCESS)
-            return whirl_fail(status, "ODE integration failed at sigma=%g (omega=%g, a=%g)",
-                              sigma, w->omega, w->a);
+            return whirl_fail(status, "ODE integration failed at sigma=%g (omega=" WHIRL_Q_RATE
+                              "%g, a=%g)", sigma, w->omega, w->a);
         if (sigma < 1 && (shape_value(w, SHAPE_R, y) > 0) !=
                              (shape_value(w, SHAPE_R, y_prev) > 0)) {
             run->crossings++;
@@ -498,9 +498,10 @@ static int critical_sweep(double m, int n, double *omega, double *last)
             }
             double root = gsl_root_fsolver_root(s), k = ++found;
             if (root < (k - 1.1) * spacing || root > (k - 0.1) * spacing) {
-                status = whirl_fail(GSL_EFAILED, "critical rate %d with tip mass %g at omega=%g "
-                                    "is off the roots' density (%g per unit omega): a root "
-                                    "missed or counted twice", found, m, root, 1 / spacing);
+                status = whirl_fail(GSL_EFAILED, "critical rate %d with tip mass %g at omega="
+                                    WHIRL_Q_RATE "%g is off the roots' density (%g per unit "
+                                    "omega): a root missed or counted twice", found, m, root,
+                                    1 / spacing);
                 break;
             }
             if (omega) omega[found - 1] = root;
@@ -564,8 +565,8 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     set_tip_radius(w, a);
     if ((status = integrate(w, &run)) != GSL_SUCCESS) return status;
     if (run.n_nodes != mode - 1)
-        return whirl_fail(GSL_EFAILED, "mode %d at omega=%g: found %d axis crossings", mode,
-                          omega, run.n_nodes);
+        return whirl_fail(GSL_EFAILED, "mode %d at omega=" WHIRL_Q_RATE "%g: found %d axis "
+                          "crossings", mode, omega, run.n_nodes);
     info->omega = omega;
     info->mode = mode;
     info->tip_r = a;
@@ -647,7 +648,8 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
         tension[j] = (sigma + tip_mass) * sqrt(1 + w->b2 * q * q);
     }
     if (status != GSL_SUCCESS)
-        status = whirl_fail(status, "ODE integration failed sampling the shape (omega=%g)", omega);
+        status = whirl_fail(status, "ODE integration failed sampling the shape (omega=" WHIRL_Q_RATE
+                            "%g)", omega);
     else
         for (size_t j = npts; j-- > 0;) z[j] -= z[0]; /* heights relative to the pivot */
     if (status == GSL_SUCCESS) status = whirl_steady_check_samples(omega, npts, r, z, tension);

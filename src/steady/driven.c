@@ -202,8 +202,9 @@ static int continuum_integrate(problem *pb, const double *u, size_t nsample, dou
         const double target = j < nsample ? (double)j / (double)(nsample - 1) : 1.0;
         while (sigma < target) {
             if (++steps > ODE_STEP_MAX)
-                return whirl_fail(GSL_EMAXITER, "the shape's integration needs more than %d "
-                                  "steps (omega=%g): lower the rate", ODE_STEP_MAX, pb->omega);
+                return whirl_fail(GSL_EMAXITER, "the shape's integration needs more than %d steps "
+                                  "(omega=" WHIRL_Q_RATE "%g): lower the rate", ODE_STEP_MAX,
+                                  pb->omega);
             if (steps % ODE_POLL == 0 && whirl_stop_requested())
                 return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request");
             int status = gsl_odeiv2_evolve_apply(pb->evolve, pb->control, pb->step, &sys, &sigma,
@@ -306,8 +307,8 @@ static int pivot_miss(problem *pb, const double *u, double *R, double J[3][3])
         J[1][0] = J[1][2] = 0, J[1][1] = 1;
     }
     if (!(isfinite(R[0]) && isfinite(R[1])))
-        return whirl_fail(GSL_ERANGE, "the shape is not finite at tip (%g, %g), omega %g", u[0],
-                          u[1], u[2]);
+        return whirl_fail(GSL_ERANGE, "the shape is not finite at tip (%g, %g), omega " WHIRL_Q_RATE
+                          "%g", u[0], u[1], u[2]);
     return GSL_SUCCESS;
 }
 
@@ -358,8 +359,8 @@ static int newton(problem *pb, double *u, const arclength *arc, int *iterations,
         gsl_linalg_LU_decomp(&m.matrix, &perm, &signum);
         if (gsl_linalg_LU_det(&m.matrix, signum) == 0 ||
             gsl_linalg_LU_solve(&m.matrix, &perm, &b.vector, &x.vector) != GSL_SUCCESS)
-            return whirl_fail(GSL_EFAILED, "singular Jacobian at tip (%g, %g), omega %g", u[0],
-                              u[1], u[2]);
+            return whirl_fail(GSL_EFAILED, "singular Jacobian at tip (%g, %g), omega " WHIRL_Q_RATE
+                              "%g", u[0], u[1], u[2]);
         double lambda = 1, trynorm = HUGE_VAL;
         for (int bt = 0; bt <= NEWTON_BACKTRACK; bt++, lambda *= 0.5) {
             memcpy(utry, u, sizeof utry);
@@ -369,8 +370,8 @@ static int newton(problem *pb, double *u, const arclength *arc, int *iterations,
             if (trynorm <= norm || norm < NEWTON_RESIDUAL_OK) break;
         }
         if (!isfinite(trynorm))
-            return whirl_fail(GSL_EFAILED, "Newton step failed at tip (%g, %g), omega %g", u[0],
-                              u[1], u[2]);
+            return whirl_fail(GSL_EFAILED, "Newton step failed at tip (%g, %g), omega " WHIRL_Q_RATE
+                              "%g", u[0], u[1], u[2]);
         memcpy(u, utry, sizeof utry);
         memcpy(R, Rtry, sizeof R);
         memcpy(J, Jtry, sizeof J);
@@ -384,8 +385,8 @@ static int newton(problem *pb, double *u, const arclength *arc, int *iterations,
     }
     *iterations = NEWTON_MAX;
     *rnorm = norm;
-    return whirl_fail(GSL_EMAXITER, "Newton did not converge in %d iterations (pivot miss %g) "
-                      "at tip (%g, %g), omega %g", NEWTON_MAX, norm, u[0], u[1], u[2]);
+    return whirl_fail(GSL_EMAXITER, "Newton did not converge in %d iterations (pivot miss %g) at "
+                      "tip (%g, %g), omega " WHIRL_Q_RATE "%g", NEWTON_MAX, norm, u[0], u[1], u[2]);
 }
 
 /* ---- set-up ---- */
@@ -684,8 +685,8 @@ static int branch_tangent(problem *pb, const double *u, const double *ref, int d
     *D = tau[2];
     const double norm = sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
     if (!(norm > 0))
-        return whirl_fail(GSL_EFAILED, "the branch has no unique tangent at omega %g "
-                          "(a bifurcation point)", u[2]);
+        return whirl_fail(GSL_EFAILED, "the branch has no unique tangent at omega " WHIRL_Q_RATE
+                          "%g (a bifurcation point)", u[2]);
     const double orient = ref ? ref[0] * tau[0] + ref[1] * tau[1] + ref[2] * tau[2]
                               : direction * tau[2];
     for (int k = 0; k < 3; k++) tau[k] *= (orient < 0 ? -1 : 1) / norm;
@@ -743,9 +744,11 @@ static int locate_fold(problem *pb, const double *u, const double *tau, double h
     double root = gsl_root_fsolver_root(solver);
     gsl_root_fsolver_free(solver);
     if (status != GSL_SUCCESS || fs.failed)
-        return whirl_fail(GSL_EFAILED, "the fold near omega %g could not be located", u[2]);
+        return whirl_fail(GSL_EFAILED, "the fold near omega " WHIRL_Q_RATE "%g could not be "
+                          "located", u[2]);
     fold_function_at(root, &fs);
-    if (fs.failed) return whirl_fail(GSL_EFAILED, "the fold near omega %g could not be located", u[2]);
+    if (fs.failed) return whirl_fail(GSL_EFAILED, "the fold near omega " WHIRL_Q_RATE "%g could "
+                                     "not be located", u[2]);
     memcpy(ufold, fs.u_at, sizeof fs.u_at);
     return GSL_SUCCESS;
 }
@@ -772,8 +775,8 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
     if (!(isfinite(step) && step > 0))
         return whirl_fail(GSL_EINVAL, "step must be positive and finite, got %g", step);
     if (!(start->omega >= omega_min && start->omega <= omega_max))
-        return whirl_fail(GSL_EINVAL, "the start's omega %g is outside [%g, %g]", start->omega,
-                          omega_min, omega_max);
+        return whirl_fail(GSL_EINVAL, "the start's omega " WHIRL_Q_RATE "%g is outside [%g, %g]",
+                          start->omega, omega_min, omega_max);
     problem pb;
     int status = problem_init(&pb, chain, params);
     if (status) return status;
@@ -786,7 +789,8 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
     if (status == GSL_SUCCESS) status = curve_append(&pb, curve, u, start->iterations, 0);
     while (status == GSL_SUCCESS && curve->n < curve->capacity) {
         if (whirl_stop_requested()) {
-            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega = %g", u[2]);
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega = " WHIRL_Q_RATE
+                                "%g", u[2]);
             break;
         }
         if (branch_step(&pb, u, tau, h, unew, &iterations) != GSL_SUCCESS ||

@@ -516,9 +516,9 @@ static int angle_polish(angle_ws *w, double *tip_r)
     size_t n = c->n;
     int status = whirl_nlink_balance_polish(w->bal, w->omega, w->theta);
     if (status) {
-        char why[256];
-        snprintf(why, sizeof why, "%s", whirl_last_error());
-        return whirl_fail(GSL_EFAILED, "tip radius %g: %s", *tip_r, why);
+        whirl_error_record why;
+        whirl_error_save(&why);
+        return whirl_fail(GSL_EFAILED, "tip radius " WHIRL_Q_LENGTH "%g: %s", *tip_r, why.text);
     }
     double worst = whirl_nlink_balance_nodes(c, w->omega, w->theta, w->r, w->z, w->t);
     w->worst = fmax(w->worst, worst);
@@ -596,8 +596,9 @@ static int polish_root(angle_ws *aw, const nlink_scan *s, quad_fn f, double lo, 
         mirror = fmax(mirror, fabs(aw->theta[i] + aw->start[i]));
     }
     if (!(fmin(same, mirror) <= MATCH_ANGLE))
-        return whirl_fail(GSL_EFAILED, "tip radius %g: Newton's method moved a link angle by "
-                          "%g rad from the quadruple precision shot's", *a, fmin(same, mirror));
+        return whirl_fail(GSL_EFAILED, "tip radius " WHIRL_Q_LENGTH "%g: Newton's method moved a "
+                          "link angle by %g rad from the quadruple precision shot's", *a,
+                          fmin(same, mirror));
     ++*refined;
     return GSL_SUCCESS;
 }
@@ -942,9 +943,10 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     int status = whirl_nlink_critical(c, n, crit);
     for (size_t k = 0; k < n && !status; k++) {
         if (fabs(omega / crit[k] - 1) <= CRITICAL_GAP)
-            status = whirl_fail(GSL_EDOM, "omega=%.17g is the critical rate of mode %zu "
-                                "(omega_%zu=%.17g): its branch is born there, not separated "
-                                "from the hanging chain", omega, k + 1, k + 1, crit[k]);
+            status = whirl_fail(GSL_EDOM, "omega=" WHIRL_Q_RATE "%.17g is the critical rate of "
+                                "mode %zu (omega_%zu=" WHIRL_Q_RATE "%.17g): its branch is born "
+                                "there, not separated from the hanging chain", omega, k + 1, k + 1,
+                                crit[k]);
         if (crit[k] < omega) res->born++;
     }
     nlink_scan s = {c, omega, 0, NULL, NULL};
@@ -955,8 +957,9 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     double per_tip, per_top;
     linear_loads(c, omega, &per_tip, &per_top);
     if (!status && !(isfinite(per_tip) && isfinite(per_top) && per_tip < 1e150 && per_top < 1e150))
-        status = whirl_fail(GSL_ERANGE, "%zu links at omega=%g: the linear shot's loads "
-                            "overflow (more than 1e150): too many links for this rate", n, omega);
+        status = whirl_fail(GSL_ERANGE, "%zu links at omega=" WHIRL_Q_RATE "%g: the linear shot's "
+                            "loads overflow (more than 1e150): too many links for this rate", n,
+                            omega);
     scan_out tip = {0}, top = {0};
     size_t n0 = 256 + 16 * n;
     if (!status) {
@@ -1028,15 +1031,17 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
     int n = 0;
     for (int k = 1; k <= WHIRL_MODE_MAX + 1 && !status; k++) {
         if (k == WHIRL_MODE_MAX + 1) {
-            status = whirl_fail(GSL_EINVAL, "omega=%g is above the birth of mode %d, the most "
-                                "the continuum solver handles", omega, WHIRL_MODE_MAX + 1);
+            status = whirl_fail(GSL_EINVAL, "omega=" WHIRL_Q_RATE "%g is above the birth of mode "
+                                "%d, the most the continuum solver handles", omega,
+                                WHIRL_MODE_MAX + 1);
             break;
         }
         if ((status = whirl_continuum_critical(k, tip_mass, &crit[k - 1]))) break;
         if (fabs(omega / crit[k - 1] - 1) <= CRITICAL_GAP)
-            status = whirl_fail(GSL_EDOM, "omega=%.17g is the critical rate of mode %d "
-                                "(omega_%d=%.17g): its branch is born there, not separated "
-                                "from the hanging chain", omega, k, k, crit[k - 1]);
+            status = whirl_fail(GSL_EDOM, "omega=" WHIRL_Q_RATE "%.17g is the critical rate of "
+                                "mode %d (omega_%d=" WHIRL_Q_RATE "%.17g): its branch is born "
+                                "there, not separated from the hanging chain", omega, k, k,
+                                crit[k - 1]);
         if (crit[k - 1] > omega) break;
         n = k;
     }
@@ -1108,8 +1113,9 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           ">= 1000");
     double omega_max = c ? WHIRL_EQUILIBRIA_OMEGA_MAX : WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX;
     if (!(isfinite(omega) && omega > 0 && omega <= omega_max))
-        return whirl_fail(GSL_EINVAL, "omega=%g is out of range for %s: it must be > 0 and at most "
-                          "omega=%g", omega, c ? "the N-link chain" : "the continuum", omega_max);
+        return whirl_fail(GSL_EINVAL, "omega=" WHIRL_Q_RATE "%g is out of range for %s: it must be "
+                          "> 0 and at most omega=" WHIRL_Q_RATE "%g", omega,
+                          c ? "the N-link chain" : "the continuum", omega_max);
     if (c != NULL && (c->n < 1 || c->n > WHIRL_EQUILIBRIA_LINKS_MAX))
         return whirl_fail(GSL_EINVAL, "a chain of 1..%d links for the equilibria, got %zu",
                           WHIRL_EQUILIBRIA_LINKS_MAX, c->n);

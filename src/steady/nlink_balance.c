@@ -155,7 +155,8 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
     if (!jac) return GSL_SUCCESS;
     for (size_t i = 0; i < n; i++)
         if (!isfinite(b->d[i]) || !isfinite(b->res[i]))
-            return whirl_fail(GSL_ERANGE, "the force balance is not finite at omega=%g", omega);
+            return whirl_fail(GSL_ERANGE, "the force balance is not finite at omega=" WHIRL_Q_RATE
+                              "%g", omega);
     for (size_t i = 0; i < n; i++) {
         b->a_d[i] = b->d[i];
         if (i + 1 < n) b->a_dl[i] = b->dl[i], b->a_du[i] = b->du[i];
@@ -163,7 +164,8 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
     lapack_int info = LAPACKE_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
     b->zero_pivot = info > 0;
     if (info < 0)
-        return whirl_fail(GSL_EINVAL, "omega=%g: dgttrf rejects argument %d", omega, (int)-info);
+        return whirl_fail(GSL_EINVAL, "omega=" WHIRL_Q_RATE "%g: dgttrf rejects argument %d", omega,
+                          (int)-info);
     if (b->zero_pivot) {
         /* A pivot of U exactly zero (dgttrf completes the factors, that column's multiplier
          * zero): the point is a fold to the last bit, which a corrector's Newton iterate on a
@@ -291,8 +293,8 @@ static int eliminate(nlink_balance *b, const double *c_theta, double c_omega, co
     *schur = c_omega - cv;
     const double dw = (g - cw) / *schur;
     if (!isfinite(dw))
-        return whirl_fail(GSL_ESING, "omega=%g: the bordered system is singular (a branch "
-                          "point)", b->omega);
+        return whirl_fail(GSL_ESING, "omega=" WHIRL_Q_RATE "%g: the bordered system is singular (a "
+                          "branch point)", b->omega);
     for (size_t i = 0; i < n; i++) x_theta[i] = w[i] - dw * v[i];
     *x_omega = dw;
     return GSL_SUCCESS;
@@ -322,8 +324,8 @@ int whirl_nlink_balance_near_zero(nlink_balance *b, double d_omega, const double
         double big = 0;
         for (size_t i = 0; i < n; i++) big = fmax(big, fabs(x[i]));
         if (!(big > 0 && isfinite(big)))
-            return whirl_fail(GSL_EFAILED, "omega=%g: inverse iteration on the force balance "
-                              "does not give a finite vector", b->omega);
+            return whirl_fail(GSL_EFAILED, "omega=" WHIRL_Q_RATE "%g: inverse iteration on the "
+                              "force balance does not give a finite vector", b->omega);
         for (size_t i = 0; i < n; i++) x[i] /= big;
     }
     /* s_i, and ds_i / m_i, ds_i / m_{i-1} (the changes of A's entries) */
@@ -348,8 +350,8 @@ int whirl_nlink_balance_near_zero(nlink_balance *b, double d_omega, const double
     *mu = num / den;
     *mu_rate = rate / den;
     if (!(isfinite(*mu) && isfinite(*mu_rate)))
-        return whirl_fail(GSL_ERANGE, "omega=%g: the eigenvalue of the force balance nearest "
-                          "zero is not finite", b->omega);
+        return whirl_fail(GSL_ERANGE, "omega=" WHIRL_Q_RATE "%g: the eigenvalue of the force "
+                          "balance nearest zero is not finite", b->omega);
     return GSL_SUCCESS;
 }
 
@@ -379,7 +381,8 @@ int whirl_nlink_balance_bordered(nlink_balance *b, const double *c_theta, double
 /* The polish's failure where A is exactly singular. */
 static int singular(double omega)
 {
-    return whirl_fail(GSL_ESING, "omega=%g: the force balance is singular (a fold)", omega);
+    return whirl_fail(GSL_ESING, "omega=" WHIRL_Q_RATE "%g: the force balance is singular (a fold)",
+                      omega);
 }
 
 int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
@@ -402,15 +405,16 @@ int whirl_nlink_balance_polish(nlink_balance *b, double omega, double *theta)
         if (norm <= 8 * DBL_EPSILON || (norm <= 1e-10 && norm >= 0.5 * prev)) {
             for (size_t i = 0; i < n; i++)
                 if (!(fabs(theta[i]) < M_PI_2))
-                    return whirl_fail(GSL_EDOM, "omega=%g: Newton's method on the link angles "
-                                      "leaves link %zu horizontal or compressed", omega, i + 1);
+                    return whirl_fail(GSL_EDOM, "omega=" WHIRL_Q_RATE "%g: Newton's method on the "
+                                      "link angles leaves link %zu horizontal or compressed", omega,
+                                      i + 1);
             status = evaluate(b, omega, theta, 1);
             return status == GSL_SUCCESS && b->zero_pivot ? singular(omega) : status;
         }
         prev = norm;
     }
-    return whirl_fail(GSL_EFAILED, "omega=%g: Newton's method on the link angles does not "
-                      "converge", omega);
+    return whirl_fail(GSL_EFAILED, "omega=" WHIRL_Q_RATE "%g: Newton's method on the link angles "
+                      "does not converge", omega);
 }
 
 /* The null vector of A at a critical rate (theta = 0): the linear mode shape in the link angles,
@@ -462,8 +466,8 @@ int whirl_nlink_balance_mode(nlink_balance *b, double omega, double *phi, int *t
     double big = 0;
     for (size_t i = 0; i < n; i++) big = fmax(big, fabs(phi[i]));
     if (!(big > 0 && isfinite(big) && isfinite(best)))
-        return whirl_fail(GSL_EFAILED, "omega=%g: no linear mode shape (the null vector of the "
-                          "force balance is not finite)", omega);
+        return whirl_fail(GSL_EFAILED, "omega=" WHIRL_Q_RATE "%g: no linear mode shape (the null "
+                          "vector of the force balance is not finite)", omega);
     for (size_t i = 0; i < n; i++) phi[i] /= big;
     *tip_sign = sign;
     return GSL_SUCCESS;

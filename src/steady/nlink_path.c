@@ -796,8 +796,8 @@ int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int 
     shot s;
     int iters;
     if (correct(p, m, omega, tip_r, 1, 0, 0, &w, &a, &s, &iters) != 0 || a == 0)
-        return whirl_fail(GSL_EFAILED, "no equilibrium near omega=%.17g, tip radius %.17g",
-                          omega, tip_r);
+        return whirl_fail(GSL_EFAILED, "no equilibrium near omega=" WHIRL_Q_RATE "%.17g, tip "
+                          "radius " WHIRL_Q_LENGTH "%.17g", omega, tip_r);
     shoot_embed(p->chain, w, a, &s, p->theta, p->embed);
     p->shots++;
     set_point(p, w, a, &s, -1);
@@ -825,23 +825,24 @@ int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega, const doubl
     for (size_t i = 0; i < n; i++) p->theta[i] = theta[i];
     if (whirl_nlink_balance_polish(p->balance, omega, p->theta) ||
         !(tip_of(c, omega, p->theta) != 0))
-        return whirl_fail(GSL_EFAILED, "no equilibrium of the chain near the link angles given "
-                          "at omega=%.17g", omega);
+        return whirl_fail(GSL_EFAILED, "no equilibrium of the chain near the link angles given at "
+                          "omega=" WHIRL_Q_RATE "%.17g", omega);
     /* the tangent with d omega > 0 (the row e_omega: regular unless the point is a fold),
      * turned to the direction asked; then the orientation test with the tangent's own row, as
      * a step makes it */
     double t_w, *c_th = scr_cth(p);
     int det;
     if (angle_tangent(p, omega, 1, scr_zero(p), &t_w, p->t_theta, &det, NULL, NULL))
-        return whirl_fail(GSL_EFAILED, "the equilibrium at omega=%.17g is a fold: no tangent "
-                          "transversal to the rate", omega);
+        return whirl_fail(GSL_EFAILED, "the equilibrium at omega=" WHIRL_Q_RATE "%.17g is a fold: "
+                          "no tangent transversal to the rate", omega);
     const double sign = direction >= 0 ? 1 : -1;
     t_w *= sign;
     for (size_t i = 0; i < n; i++) p->t_theta[i] *= sign, c_th[i] = p->t_theta[i] / (double)n;
     double t_check;
     if (angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, p->t_theta_trial, &det,
                       NULL, NULL))
-        return whirl_fail(GSL_EFAILED, "the tangent at omega=%.17g is not defined", omega);
+        return whirl_fail(GSL_EFAILED, "the tangent at omega=" WHIRL_Q_RATE "%.17g is not defined",
+                          omega);
     angle_point(p, omega, t_w, det);
     p->noise = noise_at(p, omega, p->tip_r);
     return GSL_SUCCESS;
@@ -964,15 +965,15 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     static const char *const what[] = {"a crossing of a rate", "a fold", "a branch point",
                                        "a return to the hanging chain"};
     if (f->failed)
-        return whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
-                          "located (no convergence at an end of the step)", what[f->kind], f->w0,
-                          f->w1);
+        return whirl_fail(GSL_EFAILED, "%s between omega=" WHIRL_Q_RATE "%.17g and omega="
+                          WHIRL_Q_RATE "%.17g could not be located (no convergence at an end of "
+                          "the step)", what[f->kind], f->w0, f->w1);
     if (f_lo == 0 || f_hi == 0 || (f_lo > 0) == (f_hi > 0)) {
         *sigma = fabs(f_lo) <= fabs(f_hi) ? lo : hi;
         if (f->at != *sigma) frame_phi(*sigma, f);
-        return f->failed ? whirl_fail(GSL_EFAILED, "%s between omega=%.17g and "
-                                      "omega=%.17g could not be located", what[f->kind],
-                                      f->w0, f->w1)
+        return f->failed ? whirl_fail(GSL_EFAILED, "%s between omega=" WHIRL_Q_RATE "%.17g and "
+                                      "omega=" WHIRL_Q_RATE "%.17g could not be located",
+                                      what[f->kind], f->w0, f->w1)
                          : GSL_SUCCESS;
     }
     gsl_function fn = {frame_phi, f};
@@ -986,8 +987,9 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     for (int it = 0; status == GSL_SUCCESS; it++) {
         status = gsl_root_fsolver_iterate(s);
         if (f->failed || status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
-                                "located", what[f->kind], f->w0, f->w1);
+            status = whirl_fail(GSL_EFAILED, "%s between omega=" WHIRL_Q_RATE "%.17g and omega="
+                                WHIRL_Q_RATE "%.17g could not be located", what[f->kind], f->w0,
+                                f->w1);
             break;
         }
         double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
@@ -1009,8 +1011,8 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     gsl_root_fsolver_free(s);
     /* the corrected point at the root (Brent's last evaluation, as a rule) */
     if (status == GSL_SUCCESS && f->at != *sigma && (frame_phi(*sigma, f), f->failed))
-        status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
-                            "located", what[f->kind], f->w0, f->w1);
+        status = whirl_fail(GSL_EFAILED, "%s between omega=" WHIRL_Q_RATE "%.17g and omega="
+                            WHIRL_Q_RATE "%.17g could not be located", what[f->kind], f->w0, f->w1);
     return status;
 }
 
@@ -1098,9 +1100,9 @@ static int frame_at_rate(step_frame *f, double omega, double sigma, int interpol
 static int name_mode(const whirl_nlink_path *p, int status)
 {
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED || p->mode <= 0) return status;
-    char message[512];
-    snprintf(message, sizeof message, "%s", whirl_last_error());
-    return whirl_fail(status, "mode %d: %s", p->mode, message);
+    whirl_error_record why;
+    whirl_error_save(&why);
+    return whirl_fail(status, "mode %d: %s", p->mode, why.text);
 }
 
 static int path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
@@ -1147,8 +1149,8 @@ static int path_crossings(whirl_nlink_path *p, double omega, int max, double *ti
             int status = frame_locate(&f, cut[k], cut[k + 1], &sigma);
             if (status) return -status;
             if (frame_at_rate(&f, omega, sigma, 0) != 0)
-                return -whirl_fail(GSL_EFAILED, "no equilibrium at omega=%.17g near the branch",
-                                   omega);
+                return -whirl_fail(GSL_EFAILED, "no equilibrium at omega=" WHIRL_Q_RATE "%.17g "
+                                   "near the branch", omega);
         }
         double *th = p->cross_theta + (size_t)found * n;
         if (f.angles) {
@@ -1277,9 +1279,9 @@ static int find_events(whirl_nlink_path *p, int branch)
     if (!status && passed) {
         frame_of_last(p, &f, TARGET_RETURN, 0);
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)) && !at_a_birth(p, f.w))
-            status = whirl_fail(GSL_EFAILED, "the step between omega=%.17g and omega=%.17g meets "
-                                "the hanging chain at omega=%.17g, where no branch is born",
-                                f.w0, f.w1, f.w);
+            status = whirl_fail(GSL_EFAILED, "the step between omega=" WHIRL_Q_RATE "%.17g and "
+                                "omega=" WHIRL_Q_RATE "%.17g meets the hanging chain at omega="
+                                WHIRL_Q_RATE "%.17g, where no branch is born", f.w0, f.w1, f.w);
         if (!status) {
             status = add_event(p, WHIRL_EVENT_RETURN, &f, sigma);
             /* the path ends on the hanging chain */
@@ -1336,8 +1338,8 @@ static void step_undone(whirl_nlink_path *p, double ds)
 /* A stop request at the current point. */
 static int stopped(const whirl_nlink_path *p)
 {
-    return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps", p->omega,
-                      p->steps);
+    return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=" WHIRL_Q_RATE "%.17g after %ld steps",
+                      p->omega, p->steps);
 }
 
 /* The path is in the fine mode at its current point (look_ahead). */
@@ -1358,12 +1360,13 @@ static double ds_smallest(const whirl_nlink_path *p)
 static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
 {
     if (p->angles)
-        return whirl_fail(status, "the continuation in the link angles fails at omega=%.17g "
-                          "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
-                          "the smallest step %g", w0, a0, tension_spread(p->chain, w0, a0),
-                          p->why, ds_smallest(p));
-    return whirl_fail(status, "the continuation fails at omega=%.17g (tip radius %.6g): %s at "
-                      "the smallest step %g", w0, a0, p->why, DS_MIN);
+        return whirl_fail(status, "the continuation in the link angles fails at omega=" WHIRL_Q_RATE
+                          "%.17g (tip "
+                          "radius " WHIRL_Q_LENGTH "%.6g, link tensions differing by a factor "
+                          "%.2g): %s at the smallest step %g", w0, a0,
+                          tension_spread(p->chain, w0, a0), p->why, ds_smallest(p));
+    return whirl_fail(status, "the continuation fails at omega=" WHIRL_Q_RATE "%.17g (tip radius "
+                      WHIRL_Q_LENGTH "%.6g): %s at the smallest step %g", w0, a0, p->why, DS_MIN);
 }
 
 
@@ -1980,8 +1983,8 @@ static int path_step(whirl_nlink_path *p)
 {
     p->n_events = 0;
     if (p->ended)
-        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
-                          p->omega);
+        return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=" WHIRL_Q_RATE
+                          "%.17g", p->omega);
     if (whirl_stop_requested()) return stopped(p);
     /* the formulation of this step: the link angles where the shot's round-off is felt, with
      * a hysteresis (each switch polishes the point on the other formulation) */
@@ -2055,10 +2058,11 @@ static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const do
     int first = p->steps == 0; /* the first step from the birth is still to come */
     while (p->omega <= omega_max && !p->ended) {
         if (p->steps >= bound)
-            return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
-                              "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
-                              "at most (now at omega=%.17g)", p->mode, bound, p->omega_birth,
-                              p->arclength, folds, p->omega_hi, p->omega);
+            return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth at "
+                              "omega=" WHIRL_Q_RATE "%.17g (arclength %.4g, %ld folds) reached "
+                              "omega=" WHIRL_Q_RATE "%.17g at most (now at omega=" WHIRL_Q_RATE
+                              "%.17g)", p->mode, bound, p->omega_birth, p->arclength, folds,
+                              p->omega_hi, p->omega);
         if (opt && opt->progress && p->steps % PROGRESS_STEPS == 0) {
             const whirl_nlink_progress at = {p->mode, p->omega_birth, p->steps, bound, folds,
                                              p->omega, p->omega_hi, p->arclength};
@@ -2123,7 +2127,7 @@ int whirl_nlink_follow_opt(const whirl_chain *c, int mode, double omega_max, siz
                            const whirl_nlink_follow_options *opt)
 {
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
+    if (p == NULL) return whirl_last_status();
     int status = whirl_nlink_path_birth(p, mode);
     if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx, opt);
     whirl_nlink_path_free(p);
@@ -2206,7 +2210,7 @@ int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const dou
     if ((r == NULL) != (z == NULL) || (r == NULL) != (tension == NULL))
         return whirl_fail(GSL_EINVAL, "the nodes need all of r, z and tension, or none");
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
+    if (p == NULL) return whirl_last_status();
     int status = branch_path(p, mode, n, omega, info, exists, r, z, tension, NULL);
     whirl_nlink_path_free(p);
     return status;
@@ -2229,30 +2233,32 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 const whirl_nlink_follow_options *opt)
 {
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
-    if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
+    if (p == NULL) return whirl_last_status();
     int exists = 0;
     int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension, opt);
     if (status == GSL_SUCCESS && !exists) {
         if (p->ended)
-            status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "
-                                "born at omega_%d=%.17g, returns to the hanging chain at "
-                                "omega=%.17g without reaching it", mode, omega, mode,
-                                p->omega_birth, p->omega);
+            status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=" WHIRL_Q_RATE "%.17g: "
+                                "its branch, born at omega_%d=" WHIRL_Q_RATE "%.17g, returns to "
+                                "the hanging chain at omega=" WHIRL_Q_RATE "%.17g without reaching "
+                                "it", mode, omega, mode, p->omega_birth, p->omega);
         else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + GAP_MIN))
             /* above the birth but below the first point of a branch begun in the link angles
              * (birth_angles), where birth_gap does not converge: the mode exists there, it is
              * not resolved */
-            status = whirl_fail(GSL_EFAILED, "mode %d at omega=%.17g is not resolved: it lies "
-                                "between the birth omega_%d=%.17g and the first point of the "
-                                "branch, at omega=%.17g, where the tip shot cannot start it "
-                                "(begun in the link angles at an amplitude of %g rad)", mode,
-                                omega, mode, p->omega_birth, p->omega_lo, BIRTH_AMPLITUDE);
+            status = whirl_fail(GSL_EFAILED, "mode %d at omega=" WHIRL_Q_RATE "%.17g is not "
+                                "resolved: it lies between the birth omega_%d=" WHIRL_Q_RATE
+                                "%.17g and the first point of the branch, at omega=" WHIRL_Q_RATE
+                                "%.17g, where the tip shot cannot start it (begun in the link "
+                                "angles at an amplitude of %g rad)", mode, omega, mode,
+                                p->omega_birth, p->omega_lo, BIRTH_AMPLITUDE);
         else if (p->omega_lo >= p->omega_birth)
             status = whirl_steady_fail_missing(mode, omega, p->omega_birth);
         else
-            status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "
-                                "born at omega_%d=%.17g, reaches down to omega=%.17g only",
-                                mode, omega, mode, p->omega_birth, p->omega_lo);
+            status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=" WHIRL_Q_RATE "%.17g: "
+                                "its branch, born at omega_%d=" WHIRL_Q_RATE "%.17g, reaches down "
+                                "to omega=" WHIRL_Q_RATE "%.17g only", mode, omega, mode,
+                                p->omega_birth, p->omega_lo);
     }
     whirl_nlink_path_free(p);
     return status;

@@ -17,16 +17,11 @@
 
 int whirl_steady_fail_missing(int mode, double omega, double omega_k)
 {
-    return whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: it exists only above "
-                      "omega_%d=%.17g", mode, omega, mode, omega_k);
+    return whirl_fail(GSL_EDOM, "mode %d does not exist at omega=" WHIRL_Q_RATE "%.17g: it exists "
+                      "only above omega_%d=" WHIRL_Q_RATE "%.17g", mode, omega, mode, omega_k);
 }
 
 #define BLOCK_MIN 16 /* fewest rates per thread block */
-
-typedef struct block_result {
-    int status;
-    char message[512];
-} block_result;
 
 #define PREV_MAX 3 /* solutions the predictor extrapolates: quadratic */
 
@@ -85,27 +80,21 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
 #endif
     if (nblocks > n / BLOCK_MIN) nblocks = n / BLOCK_MIN;
     if (nblocks < 1) nblocks = 1;
-    block_result *result = malloc(nblocks * sizeof *result);
+    whirl_error_record *result = malloc(nblocks * sizeof *result);
     if (result == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu blocks", nblocks);
 
 #pragma omp parallel for schedule(static, 1) num_threads((int)nblocks) if (nblocks > 1)
     for (size_t b = 0; b < nblocks; b++) {
         size_t first = n * b / nblocks, last = n * (b + 1) / nblocks;
-        block_result *res = &result[b];
         void *ws = m->ws_alloc(m->params);
-        if (ws == NULL) res->status = GSL_ENOMEM;
-        else res->status = follow_block(m, ws, mode, last - first, omega + first, info + first,
-                                        exists + first);
-        if (res->status != GSL_SUCCESS) {
-            strncpy(res->message, whirl_last_error(), sizeof res->message - 1);
-            res->message[sizeof res->message - 1] = '\0';
-        }
+        result[b].status = GSL_SUCCESS;
+        whirl_error_keep(&result[b], ws == NULL ? whirl_last_status()
+                                                : follow_block(m, ws, mode, last - first,
+                                                               omega + first, info + first,
+                                                               exists + first));
         m->ws_free(ws);
     }
-    int status = GSL_SUCCESS;
-    for (size_t b = 0; b < nblocks && status == GSL_SUCCESS; b++)
-        if (result[b].status != GSL_SUCCESS)
-            status = whirl_fail(result[b].status, "%s", result[b].message);
+    const int status = whirl_error_restore_first(result, nblocks);
     free(result);
     return status;
 }

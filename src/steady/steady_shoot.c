@@ -43,13 +43,13 @@ int whirl_steady_check_info(const whirl_shape_info *info)
              {"top_tension", info->top_tension}, {"depth", info->depth}};
     for (size_t i = 0; i < sizeof q / sizeof q[0]; i++)
         if (!isfinite(q[i].value))
-            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: %s is not finite (%g): the rate "
-                              "or the tip mass is too large", info->mode, info->omega, q[i].name,
-                              q[i].value);
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: %s is not finite "
+                              "(%g): the rate or the tip mass is too large", info->mode,
+                              info->omega, q[i].name, q[i].value);
     for (int j = 0; j < info->n_nodes && j < WHIRL_SHAPE_NODES; j++)
         if (!isfinite(info->node_s[j]))
-            return whirl_fail(GSL_ERANGE, "mode %d at omega=%g: node %d is not finite",
-                              info->mode, info->omega, j + 1);
+            return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: node %d is not "
+                              "finite", info->mode, info->omega, j + 1);
     return GSL_SUCCESS;
 }
 
@@ -61,9 +61,9 @@ int whirl_steady_check_samples(double omega, size_t n, const double *r, const do
     for (int k = 0; k < 3; k++)
         for (size_t i = 0; a[k] != NULL && i < n; i++)
             if (!isfinite(a[k][i]))
-                return whirl_fail(GSL_ERANGE, "the shape at omega=%g: %s of point %zu is not "
-                                  "finite (%g): the rate or the tip mass is too large", omega,
-                                  name[k], i, a[k][i]);
+                return whirl_fail(GSL_ERANGE, "the shape at omega=" WHIRL_Q_RATE "%g: %s of point "
+                                  "%zu is not finite (%g): the rate or the tip mass is too large",
+                                  omega, name[k], i, a[k][i]);
     return GSL_SUCCESS;
 }
 
@@ -160,7 +160,7 @@ int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_ma
                 if (hi.total < mode) break;
                 if (hi.a == a_max)
                     return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest "
-                                      "tip radius %g", mode, a_max);
+                                      "tip radius " WHIRL_Q_LENGTH "%g", mode, a_max);
             }
         } else {
             for (hi = g;; hi = lo, step *= 8) {
@@ -181,8 +181,8 @@ int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_ma
             if ((status = take_shot(shot, ws, next, &hi)) != GSL_SUCCESS) return status;
             if (hi.total < mode) break;
             if (hi.a == a_max)
-                return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest "
-                                  "tip radius %g", mode, a_max);
+                return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest tip "
+                                  "radius " WHIRL_Q_LENGTH "%g", mode, a_max);
         }
     }
 

@@ -258,8 +258,9 @@ static int integration_failed(whirl_regime *w, int status)
     if (status == WHIRL_EINTERRUPTED) return status;
     if (status == GSL_SUCCESS)
         return whirl_fail(GSL_EFAILED, "the state is not finite at t = %.6g", w->t);
-    return whirl_fail(GSL_EFAILED, "integration failed after t = %.6g: %s", w->t,
-                      whirl_last_error());
+    whirl_error_record why;
+    whirl_error_save(&why);
+    return whirl_fail(GSL_EFAILED, "integration failed after t = %.6g: %s", w->t, why.text);
 }
 
 /* Advances the run (and the twin y2 if twin) by dt_total at the current drive, stopping at the
@@ -505,11 +506,11 @@ static unsigned long run_steps(const whirl_regime *w)
 static int finish(whirl_regime *w, int status, whirl_regime_result *res)
 {
     if (status == GSL_EFAILED) {
-        char message[512];
-        snprintf(message, sizeof message, "%s", whirl_last_error());
+        whirl_error_record why;
+        whirl_error_save(&why);
         result_failed(res, w);
         res->steps = run_steps(w);
-        whirl_fail(GSL_EFAILED, "%s", message);
+        whirl_error_restore(&why);
         return GSL_SUCCESS;
     }
     res->steps = run_steps(w);

@@ -42,7 +42,7 @@ struct whirl_scene_work {
 static int key_fail(const whirl_scene *s, int status, whirl_scene_key key, const char *message)
 {
     char where[512], copy[600];
-    snprintf(copy, sizeof copy, "%s", message); /* message may be whirl_last_error() */
+    snprintf(copy, sizeof copy, "%s", message); /* message may be whirl_error_marked() */
     return whirl_fail(status, "%s: %s", whirl_scene_where(s, key, where, sizeof where), copy);
 }
 
@@ -67,13 +67,13 @@ static int mode_links(whirl_scene_work *w, double omega, int mode, whirl_scene_k
     double *zz = rr + n + 1, *tension = zz + n + 1;
     if (whirl_nlink_solve_nodes(w->chain, omega, mode, &info, rr, zz, tension) != GSL_SUCCESS) {
         free(rr);
-        snprintf(msg, sizeof msg, "no steady shape: %s", whirl_last_error());
+        snprintf(msg, sizeof msg, "no steady shape: %s", whirl_error_marked());
         return key_fail(w->scene, GSL_EDOM, key, msg);
     }
     int status = whirl_shape_links(n, rr, NULL, zz, links);
     free(rr);
     if (status != GSL_SUCCESS) {
-        snprintf(msg, sizeof msg, "steady shape: %s", whirl_last_error());
+        snprintf(msg, sizeof msg, "steady shape: %s", whirl_error_marked());
         return key_fail(w->scene, status, key, msg);
     }
     return GSL_SUCCESS;
@@ -132,12 +132,12 @@ static int start_state(whirl_scene_work *w)
         if (status) return status;
         accumulate(n, p0, w->links, w->ref);
         if (s->perturb > 0 && (status = whirl_perturb_links(n, w->links, s->perturb, s->seed)))
-            return key_fail(s, status, WHIRL_KEY_START_PERTURB, whirl_last_error());
+            return key_fail(s, status, WHIRL_KEY_START_PERTURB, whirl_error_marked());
         status = whirl_dyn_state_from_shape(w->dyn, 0, w->links, spin, w->y);
     }
     if (status) {
         char copy[512];
-        snprintf(copy, sizeof copy, "%s", whirl_last_error());
+        snprintf(copy, sizeof copy, "%s", whirl_error_marked());
         return whirl_fail(status, "%s: [start]: %s", s->path, copy);
     }
     if (s->reference_mode > 0) {
@@ -174,7 +174,7 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
     w->n = s->links;
     w->chain = whirl_chain_alloc(s->links, s->length, s->mass, s->gravity);
     if (w->chain == NULL) {
-        whirl_fail(GSL_EINVAL, "%s: [chain]: %s", s->path, whirl_last_error());
+        whirl_fail(GSL_EINVAL, "%s: [chain]: %s", s->path, whirl_error_marked());
         goto fail;
     }
     w->model = (whirl_model){
@@ -191,16 +191,16 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
     };
     w->dyn = whirl_dyn_alloc(&w->model, s->formulation);
     if (w->dyn == NULL) {
-        whirl_fail(GSL_EINVAL, "%s: [run]: %s", s->path, whirl_last_error());
+        whirl_fail(GSL_EINVAL, "%s: [run]: %s", s->path, whirl_error_marked());
         goto fail;
     }
     if (whirl_dyn_set_threads(w->dyn, s->threads > 0 ? s->threads : 1) != GSL_SUCCESS) {
-        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_THREADS, whirl_last_error());
+        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_THREADS, whirl_error_marked());
         goto fail;
     }
     w->integrator = whirl_integrator_alloc(s->method, w->dyn);
     if (w->integrator == NULL) {
-        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_METHOD, whirl_last_error());
+        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_METHOD, whirl_error_marked());
         goto fail;
     }
     w->y = malloc(whirl_dyn_size(w->dyn) * sizeof *w->y);
@@ -214,7 +214,7 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
     double t = 0;
     if (whirl_integrator_advance(w->integrator, &t, w->y, 0, s->dt, s->tol) != GSL_SUCCESS) {
         key_fail(s, GSL_EINVAL, s->tol > 0 ? WHIRL_KEY_RUN_TOL : WHIRL_KEY_RUN_DT,
-                 whirl_last_error());
+                 whirl_error_marked());
         goto fail;
     }
     *out = w;
@@ -332,7 +332,7 @@ int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
         if (status == WHIRL_EINTERRUPTED) continue; /* reported at the top of the loop */
         if (status != GSL_SUCCESS) {
             char copy[512];
-            snprintf(copy, sizeof copy, "%s", whirl_last_error());
+            snprintf(copy, sizeof copy, "%s", whirl_error_marked());
             status = whirl_fail(status, "the run failed after t = %.17g (step %lu): %s", t,
                                 whirl_integrator_get_stats(w->integrator).steps + 1, copy);
             break;

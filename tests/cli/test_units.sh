@@ -222,4 +222,14 @@ same_error "error in SI: equilibria at a birth" \
   "equilibria --links 5 --omega $("$WHIRL" critical --links 5 --modes 3 | grep -v '^#' | tail -n 1 | cut -d, -f2)" \
   "equilibria --links 5 --omega $(val "R * $("$WHIRL" critical --links 5 --modes 3 | grep -v '^#' | tail -n 1 | cut -d, -f2)") $units"
 
+
+# Every rate and tip radius of a library message is typed (WHIRL_Q_RATE, WHIRL_Q_LENGTH), so that
+# the lines above print it in SI: none of the library's format strings leaves one untyped.
+root=$(dirname "$0")/../..
+if /usr/bin/python3 "$root/tests/tools/message_quantities.py" "$root" >"$tmp/untyped"; then
+  pass "every rate and tip radius of the library's messages is typed"
+else
+  fail "untyped quantities in messages: $(head -n 3 "$tmp/untyped" | tr '\n' ' ')"
+fi
+
 finish

@@ -1,0 +1,53 @@
+#!/usr/bin/env python3
+"""Lists the rates and tip radii of the library's messages that are not typed.
+
+A rate ("omega", "omega_k", "omega_min" ... then "=", " = " or " " and a printf conversion) or a
+tip radius ("tip radius" and a conversion) in a string literal of a library source file
+(src/*/*.c outside src/cli/) must carry its mark (WHIRL_Q_RATE, WHIRL_Q_LENGTH, src/core/error.h)
+so that the program prints it in the user's units. Prints each unmarked one as FILE:LINE: TEXT
+and exits 1 if there is any. --apply inserts the marks (then reflow the lines by hand).
+Usage: message_quantities.py [--apply] [ROOT]"""
+import glob
+import os
+import re
+import sys
+
+CONV = r'%[-+ #0]*[0-9]*(?:\.[0-9*]+)?(?:l|ll|z|h)?[a-zA-Z]'
+QUANTITY = re.compile(r'(?<![A-Za-z0-9_%])(omega(?:_(?:%z?l?[dui]|[A-Za-z0-9])*)?|tip radius)'
+                      r'( = |=| )(' + CONV + ')')
+LITERAL = re.compile(r'"(?:[^"\\\n]|\\.)*"')
+# files whose literals with rates are not messages (headers of output files)
+NOT_MESSAGES = {'src/studies/scene_run.c'}
+
+
+def mark(m):
+    kind = 'WHIRL_Q_LENGTH' if m.group(1) == 'tip radius' else 'WHIRL_Q_RATE'
+    return m.group(1) + m.group(2) + '" ' + kind + ' "' + m.group(3)
+
+
+def main(argv):
+    apply = '--apply' in argv
+    args = [a for a in argv if a != '--apply']
+    root = args[0] if args else '.'
+    found = 0
+    for path in sorted(glob.glob(os.path.join(root, 'src/*/*.c'))):
+        rel = os.path.relpath(path, root)
+        if rel.startswith('src/cli/') or rel in NOT_MESSAGES:
+            continue
+        src = open(path).read()
+        out, pos = [], 0
+        for lit in LITERAL.finditer(src):
+            line = src.count('\n', 0, lit.start()) + 1
+            for q in QUANTITY.finditer(lit.group(0)):
+                print('%s:%d: %s' % (rel, line, q.group(0)))
+                found += 1
+            out += [src[pos:lit.start()], QUANTITY.sub(mark, lit.group(0))]
+            pos = lit.end()
+        out.append(src[pos:])
+        if apply:
+            open(path, 'w').write(''.join(out))
+    return 1 if found and not apply else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main(sys.argv[1:]))
