@@ -55,6 +55,31 @@ WHIRL_API int whirl_last_status(void);
 WHIRL_API char *whirl_last_error_in_units(char *buf, size_t size, int physical, double length,
                                           double mass, double gravity, int rate_hz);
 
+/* ---- a failure carried between threads ----
+ * The last failure is per thread: work on OpenMP or other threads keeps its failure (status and
+ * message, its quantities typed) in a record that the caller's thread restores after the join:
+ *   whirl_error_record err[N];      (or one shared record: the first failure wins)
+ *   #pragma omp parallel for
+ *   for (i...) { err[i].status = GSL_SUCCESS; whirl_error_keep(&err[i], work(i)); }
+ *   status = whirl_error_restore_first(err, N);   now whirl_last_error() is that failure's */
+#define WHIRL_ERROR_MAX 1024
+typedef struct whirl_error_record {
+    int status; /* GSL_SUCCESS: no failure */
+    char text[WHIRL_ERROR_MAX]; /* the message (read it by whirl_error_restore) */
+} whirl_error_record;
+
+/* Copies this thread's last failure into r. */
+WHIRL_API void whirl_error_save(whirl_error_record *r);
+/* Makes r this thread's last failure; returns its status. */
+WHIRL_API int whirl_error_restore(const whirl_error_record *r);
+/* Restores the first record of r[0..n) that holds a failure and returns its status, or returns
+ * GSL_SUCCESS if none does (one record per block of work: the caller reports the failure of the
+ * earliest block, whatever the order the threads ended in). */
+WHIRL_API int whirl_error_restore_first(const whirl_error_record *r, size_t n);
+/* Keeps this thread's last failure in *slot if status is a failure and slot holds none yet
+ * (thread-safe: for workers sharing one slot, the first to fail wins); returns status. */
+WHIRL_API int whirl_error_keep(whirl_error_record *slot, int status);
+
 /* ---- stopping long work ----
  * One stop request per process, because the signals that raise it (SIGINT, SIGTERM) are
  * process-wide. Every long loop of the library (integrations, sweeps, maps, fits, root scans)

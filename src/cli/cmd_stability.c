@@ -317,9 +317,9 @@ static int run_windows(const cli_command *cmd, const options *o)
     whirl_windows_stats *stats = calloc(nmodes, sizeof *stats);
     double *seconds = calloc(nmodes, sizeof *seconds);
     int *status = calloc(nmodes, sizeof *status);
-    char (*message)[256] = calloc(nmodes, sizeof *message);
+    whirl_error_record *err = calloc(nmodes, sizeof *err); /* each mode's failure */
     int rc = 0;
-    if (!win || !count || !stats || !seconds || !status || !message)
+    if (!win || !count || !stats || !seconds || !status || !err)
         rc = cli_error(cmd, "out of memory");
     whirl_windows_params p = whirl_windows_defaults();
     p.omega_min = o->omega_min;
@@ -333,14 +333,14 @@ static int run_windows(const cli_command *cmd, const options *o)
         const double t0 = cli_wall_seconds();
         status[k] = find_windows(o, c, o->modes.v[k], &p, win + k * WINDOWS_MAX, &count[k],
                                  &stats[k]);
-        if (status[k]) cli_library_error(&o->units, message[k], sizeof message[k]);
+        whirl_error_keep(&err[k], status[k]);
         seconds[k] = cli_wall_seconds() - t0;
     }
-    for (size_t k = 0; k < nmodes && !rc; k++)
-        if (status[k]) {
-            cli_error(cmd, "%s", message[k]);
-            rc = status[k] == WHIRL_EINTERRUPTED ? CLI_EXIT_INTERRUPTED : 1;
-        }
+    const int failed = rc ? GSL_SUCCESS : whirl_error_restore_first(err, nmodes);
+    if (failed) {
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+        rc = failed == WHIRL_EINTERRUPTED ? CLI_EXIT_INTERRUPTED : 1;
+    }
     cli_out out;
     if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
     if (!rc) {
@@ -384,7 +384,7 @@ static int run_windows(const cli_command *cmd, const options *o)
             }
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
-    free(win), free(count), free(stats), free(seconds), free(status), free(message);
+    free(win), free(count), free(stats), free(seconds), free(status), free(err);
     whirl_chain_free(c);
     return rc;
 }

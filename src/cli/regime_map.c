@@ -175,12 +175,12 @@ static int thread_id(void)
 }
 
 /* Runs the points pending[first..first+count-1] on the threads, packed results into buf. Returns 0,
- * or 1 if a workspace could not be had or a run returned an error status. */
+ * or 1 if a run returned an error status: the earliest point's failure is then this thread's
+ * (whirl_last_error), carried from the thread that ran it in err[] (count records). */
 static int run_block(const regime_options *o, whirl_regime **ws, const long *pending, long count,
-                     double *buf)
+                     double *buf, whirl_error_record *err)
 {
-    int failed = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(| : failed)
+#pragma omp parallel for schedule(dynamic, 1)
     for (long j = 0; j < count; j++) {
         whirl_regime_params p = o->p;
         grid_point(o, pending[j], &p.omega, &p.drive_radius);
@@ -188,10 +188,12 @@ static int run_block(const regime_options *o, whirl_regime **ws, const long *pen
         whirl_regime_result r;
         memset(&r, 0, sizeof r);
         const int status = whirl_regime_run(ws[thread_id()], &p, &r), ok = status == GSL_SUCCESS;
-        failed |= !ok && status != WHIRL_EINTERRUPTED; /* a stopped point is left to --resume */
+        err[j].status = GSL_SUCCESS;
+        if (status != WHIRL_EINTERRUPTED) /* a stopped point is left to --resume */
+            whirl_error_keep(&err[j], status);
         pack(buf + j * RESULT_FIELDS, ok ? pending[j] : -1, &r);
     }
-    return failed;
+    return whirl_error_restore_first(err, (size_t)count) != GSL_SUCCESS;
 }
 
 /* The folds of the steady driven branches of modes 1..FOLD_MODES, both sides, for every eps of
@@ -251,7 +253,8 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
     long *mine = malloc((size_t)block * sizeof *mine);
     double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
     whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
-    int rc = done && pending && mine && buf && ws ? 0 : 1;
+    whirl_error_record *err = malloc((size_t)block * sizeof *err);
+    int rc = done && pending && mine && buf && ws && err ? 0 : 1;
     for (int k = 0; rc == 0 && k < threads; k++)
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
@@ -281,7 +284,7 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
         long count = 0;
         for (long k = mc->rank; k < round; k += mc->size) mine[count++] = pending[first + k];
         for (long j = 0; j < block; j++) buf[j * RESULT_FIELDS] = -1;
-        int failed = count > 0 ? run_block(o, ws, mine, count, buf) : 0;
+        int failed = count > 0 ? run_block(o, ws, mine, count, buf, err) : 0;
         if (failed)
             cli_error(cmd, "a run failed on rank %d: %s", mc->rank, CLI_LIBRARY_ERROR(&o->units));
 #ifdef WHIRL_MPI
@@ -320,6 +323,7 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
     }
     for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
     free(ws);
+    free(err);
     free(buf);
     free(mine);
     free(pending);

@@ -5,6 +5,8 @@
 
 #include <stddef.h>
 
+#include "whirl/common.h" /* whirl_error_record, its functions */
+
 /* Formats the message of this thread's last failure and records status with it, so that a
  * failing function can end with: return whirl_fail(GSL_EINVAL, "omega must be > 0, got %g",
  * omega); */
@@ -29,27 +31,6 @@ int whirl_fail(int status, const char *fmt, ...)
 /* This thread's last message with its marks: for a message that quotes it,
  * whirl_fail(status, "the start: %s", whirl_error_marked()), so that its quantities stay typed. */
 const char *whirl_error_marked(void);
-
-/* ---- a failure carried between threads ----
- * The last error is per thread: work on OpenMP or worker threads saves its failure in a record
- * that the caller's thread restores after the join. */
-#define WHIRL_ERROR_MAX 1024
-typedef struct whirl_error_record {
-    int status; /* GSL_SUCCESS: no failure */
-    char text[WHIRL_ERROR_MAX]; /* the message, with its marks */
-} whirl_error_record;
-
-/* Copies this thread's last failure into r. */
-void whirl_error_save(whirl_error_record *r);
-/* Makes r this thread's last failure; returns its status. */
-int whirl_error_restore(const whirl_error_record *r);
-/* Restores the first record of r[0..n) that holds a failure and returns its status, or returns
- * GSL_SUCCESS if none does (one record per block of work: the caller reports the failure of the
- * earliest block, whatever the order the threads ended in). */
-int whirl_error_restore_first(const whirl_error_record *r, size_t n);
-/* Keeps this thread's last failure in *slot if status is a failure and slot holds none yet
- * (thread-safe: for workers sharing one slot, the first to fail wins); returns status. */
-int whirl_error_keep(whirl_error_record *slot, int status);
 
 /* GSL_SUCCESS if the tip mass m (in chain masses) is in [0, WHIRL_TIP_MASS_MAX], else GSL_EINVAL
  * with the message. */
