@@ -1,6 +1,7 @@
-/* whirl regime: what the command's two files share. cmd_regime.c: the options, one run and the
- * hysteresis sweep; regime_map.c: the map, its file (fresh or --resume) and the sharing of its
- * points over OpenMP threads and MPI ranks. */
+/* whirl regime: what the command's three files share, each calling only the ones after it.
+ * cmd_regime.c: the options, one run and the hysteresis sweep; regime_map.c: the map, its file
+ * (fresh or --resume) and the sharing of its points over OpenMP threads and MPI ranks;
+ * regime_rows.c: the rows and header lines both write. */
 #ifndef WHIRL_REGIME_CLI_H
 #define WHIRL_REGIME_CLI_H
 
@@ -35,6 +36,7 @@ typedef struct mpi_context {
     int rank, size;
 } mpi_context;
 
+/* ---- regime_rows.c ---- */
 /* A dimensionless value of the kind in the user's units. */
 double regime_cli_user(const regime_options *o, cli_unit kind, double x);
 /* The map form (an omega range), a sweep included. */
@@ -43,8 +45,12 @@ int regime_cli_is_map(const regime_options *o);
 void regime_cli_write_parameters(FILE *fp, const regime_options *o);
 /* The critical rates of the free N-link chain, for comparison with the map. */
 void regime_cli_write_critical(FILE *fp, const regime_options *o, const whirl_chain *chain);
+/* The class of a run's state for the heat map: the node count if settled or converging, 0
+ * periodic, -1 quasi-periodic, -2 chaotic, -3 failed. */
+int regime_cli_state_class(const whirl_regime_result *r);
 /* The columns of a row from state on. */
 void regime_cli_write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r);
+/* ---- regime_map.c ---- */
 /* The map: -o FILE written as the points finish (fresh or --resume), shared over the threads
  * and, with MPI, the ranks; --folds after it. Returns 0, 1 after an error, 130 after Ctrl-C. */
 int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,

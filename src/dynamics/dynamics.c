@@ -487,6 +487,17 @@ int whirl_dyn_system(whirl_dyn *d, whirl_system *sys)
     return GSL_SUCCESS;
 }
 
+/* The integrators (src/integrate/) know general systems only: the dynamics hand themselves over
+ * as one. */
+whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
+{
+    const whirl_integrator_type *type = whirl_integrator_type_find(method);
+    if (type == NULL) return NULL;
+    whirl_system sys;
+    if (whirl_dyn_system(d, &sys) != GSL_SUCCESS) return NULL;
+    return whirl_integrator_alloc_system(type, &sys);
+}
+
 int whirl_dyn_project(whirl_dyn *d, double t, double *y)
 {
     return d->ops->project(d, y); /* the constraints do not depend on t */

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "whirl/dynamics.h"
+#include "whirl/integrator.h"
 #include "core/error.h"
 #include "integrate/integrator_internal.h"
 
@@ -169,15 +169,6 @@ nomem:
     whirl_integrator_free(it);
     whirl_fail(GSL_ENOMEM, "out of memory for the integrator %s", type->name);
     return NULL;
-}
-
-whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d)
-{
-    const whirl_integrator_type *type = whirl_integrator_type_find(method);
-    if (type == NULL) return NULL;
-    whirl_system sys;
-    if (whirl_dyn_system(d, &sys) != GSL_SUCCESS) return NULL;
-    return whirl_integrator_alloc_system(type, &sys);
 }
 
 void whirl_integrator_free(whirl_integrator *it)
