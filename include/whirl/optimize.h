@@ -46,7 +46,7 @@ typedef struct whirl_minimize_options {
                             * "LN_BOBYQA": anything nlopt_algorithm_from_string knows */
     int max_evaluations;   /* cap on NLopt's evaluations of V; <= 0: 100000 */
     int polish;            /* != 0: finish with Newton steps on the analytic Hessian (default 1
-                            * in whirl_minimize_options_default) */
+                            * in whirl_minimize_options_defaults) */
     /* called on the caller's thread about every 20 ms while NLopt runs, with the evaluations
      * of V so far and the cap (for a progress display; NULL: none, the default) */
     void (*progress)(void *data, int evaluations, int max_evaluations);
@@ -64,7 +64,7 @@ typedef struct whirl_minimize_stats {
 } whirl_minimize_stats;
 
 /* Defaults: LD_LBFGS, 100000 evaluations, polish on. */
-WHIRL_API whirl_minimize_options whirl_minimize_options_default(void);
+WHIRL_API whirl_minimize_options whirl_minimize_options_defaults(void);
 
 /* The NLopt algorithm called name (as nlopt_algorithm_from_string), into *algorithm (an
  * nlopt_algorithm). GSL_EINVAL naming it if unknown. */
@@ -90,7 +90,7 @@ typedef struct whirl_fit_model {
 } whirl_fit_model;
 
 /* Defaults: the continuum, no tip mass, omega_max 50, 4001 samples. */
-WHIRL_API whirl_fit_model whirl_fit_model_default(void);
+WHIRL_API whirl_fit_model whirl_fit_model_defaults(void);
 
 /* The result of a fit. */
 typedef struct whirl_fit_result {

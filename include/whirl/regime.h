@@ -83,10 +83,10 @@ typedef struct whirl_regime_params {
     unsigned long seed;      /* seed of those turns (GSL's MT19937) */
 } whirl_regime_params;
 
-/* Defaults of every field but omega and drive_radius: drag 0, rotating frame, "rk4", dt = 0.1 / N,
- * t_ramp 20, t_max 400, settle_tol 1e-3, settle_periods 3, periodic_tol 1e-3,
- * lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
-WHIRL_API void whirl_regime_params_default(whirl_regime_params *p, size_t links);
+/* The defaults for a chain of links links, omega and drive_radius 0 (to be set): drag 0, rotating
+ * frame, "rk4", dt = 0.1 / links, t_ramp 20, t_max 400, settle_tol 1e-3, settle_periods 3,
+ * periodic_tol 1e-3, lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
+WHIRL_API whirl_regime_params whirl_regime_defaults(size_t links);
 
 /* The outcome of one run. */
 typedef struct whirl_regime_result {

@@ -204,7 +204,7 @@ typedef struct whirl_fit_result {
     int evaluations;
     int failures;
 } whirl_fit_result;
-whirl_fit_model whirl_fit_model_default(void);
+whirl_fit_model whirl_fit_model_defaults(void);
 int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z, int mode,
               whirl_fit_result *result);
 
@@ -255,7 +255,7 @@ typedef struct whirl_regime whirl_regime;
 whirl_regime *whirl_regime_alloc(const whirl_chain *chain);
 void whirl_regime_free(whirl_regime *w);
 void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx, double every);
-void whirl_regime_params_default(whirl_regime_params *p, size_t links);
+whirl_regime_params whirl_regime_defaults(size_t links);
 int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p, whirl_regime_result *res);
 const char *whirl_regime_state_name(whirl_regime_state s);
 """

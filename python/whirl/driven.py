@@ -99,14 +99,13 @@ def spin_up(omega, drive_radius, links, air_drag=0.0, air_drag_quadratic=0.0, me
     point): the N-link chain (``links``: N or a Chain) hangs at rest, the hand brings the top up
     to the circle of radius ``drive_radius`` [L] at rate ``omega`` [sqrt(g/L)] over t_ramp, with
     air drag, until the shape in the co-rotating frame stops changing or t_max.
-    Further parameters (defaults from whirl_regime_params_default): internal_damping, dt,
+    Further parameters (defaults from whirl_regime_defaults): internal_damping, dt,
     t_ramp, t_max, settle_tol, settle_periods, periodic_tol, lyapunov_periods,
     chaos_lambda, perturb, seed; method (default rk4), frame ("rotating" or "inertial").
     every > 0: record the masses every ``every`` time units. Returns a SpinUp. Ctrl-C raises
     KeyboardInterrupt."""
     chain = links if isinstance(links, Chain) else Chain(links)
-    p = ffi.new("whirl_regime_params *")
-    lib.whirl_regime_params_default(p, chain.n)
+    p = ffi.new("whirl_regime_params *", lib.whirl_regime_defaults(chain.n))
     p.omega = as_float(omega, "omega", positive=True)
     p.drive_radius = as_float(drive_radius, "drive_radius", positive=True)
     p.air_drag = as_float(air_drag, "air_drag", nonnegative=True)

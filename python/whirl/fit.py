@@ -28,7 +28,7 @@ def fit(r, z, mode=0, links=None, tip_mass=0.0, omega_max=None, samples=None, le
     z = as_array(z, "z", shape=r.shape)
     if r.size < 3:
         raise ValueError("a fit needs at least 3 points, got %d" % r.size)
-    m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_default())
+    m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_defaults())
     m.links = 0 if links is None else as_int(links, "links", minimum=1)
     m.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     if omega_max is not None:

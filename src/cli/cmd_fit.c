@@ -65,7 +65,7 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
-    whirl_fit_model model = whirl_fit_model_default();
+    whirl_fit_model model = whirl_fit_model_defaults();
     model.links = m.links_given ? (size_t)m.links : 0;
     model.tip_mass = steady_cli_tip_mass(&m);
     if (omega_max_given) model.omega_max = omega_max;

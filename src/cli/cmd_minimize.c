@@ -68,7 +68,7 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     double *z = r + (n + 1), *tension = z + (n + 1);
-    whirl_minimize_options mo = whirl_minimize_options_default();
+    whirl_minimize_options mo = whirl_minimize_options_defaults();
     mo.algorithm = algorithm;
     mo.polish = !no_polish;
     mo.max_evaluations = max_evaluations;

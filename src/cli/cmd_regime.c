@@ -90,11 +90,8 @@ static int check_options(const cli_command *cmd, regime_options *o)
     if (o->links < 1 || o->links > REGIME_MAX_LINKS)
         return cli_error(cmd, "--links must be between 1 and %d, got %d", REGIME_MAX_LINKS,
                          o->links);
-    if (!o->dt_given) { /* the library's default for the chain of --links */
-        whirl_regime_params d;
-        whirl_regime_params_default(&d, (size_t)o->links);
-        o->p.dt = d.dt;
-    }
+    if (!o->dt_given) /* the library's default for the chain of --links */
+        o->p.dt = whirl_regime_defaults((size_t)o->links).dt;
     if (strcmp(o->frame, "rotating") == 0) o->p.frame = WHIRL_FRAME_ROTATING;
     else if (strcmp(o->frame, "inertial") == 0) o->p.frame = WHIRL_FRAME_INERTIAL;
     else return cli_error(cmd, "--frame must be rotating or inertial, got '%s'", o->frame);
@@ -339,7 +336,7 @@ static int regime_main(const cli_command *cmd, int argc, char **argv, const mpi_
     o.frame = "rotating";
     o.trace_every = 0.1;
     o.t_change = 20;
-    whirl_regime_params_default(&o.p, 20);
+    o.p = whirl_regime_defaults(20);
     o.units = (cli_units)CLI_UNITS_INIT;
     o.air = (cli_air)CLI_AIR_INIT(o.units);
     double seed = 1, settle_periods = 3, lyapunov_periods = 60;

@@ -39,7 +39,7 @@
                                     distance of each point, ~50 evaluations per mode */
 #define FIT_AXIS_R 1e-9          /* |r| up to this [L] is a point on the axis (no information) */
 
-whirl_fit_model whirl_fit_model_default(void)
+whirl_fit_model whirl_fit_model_defaults(void)
 {
     whirl_fit_model m = {0, 0.0, 50.0, 4001};
     return m;

@@ -120,7 +120,7 @@ void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
     info->mode = info->n_nodes + 1;
 }
 
-whirl_minimize_options whirl_minimize_options_default(void)
+whirl_minimize_options whirl_minimize_options_defaults(void)
 {
     whirl_minimize_options o = {.algorithm = "LD_LBFGS",
                                 .max_evaluations = MINIMIZE_MAX_EVALUATIONS,
@@ -339,7 +339,7 @@ int whirl_minimize_shape(const whirl_chain *c, double omega, const whirl_minimiz
     if (!(isfinite(omega) && omega >= 0))
         return whirl_fail(GSL_EINVAL, "omega must be >= 0 and finite, got %g", omega);
     if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
-    const whirl_minimize_options defaults = whirl_minimize_options_default();
+    const whirl_minimize_options defaults = whirl_minimize_options_defaults();
     if (opt == NULL) opt = &defaults;
     int algorithm = 0;
     int status = whirl_minimize_algorithm(opt->algorithm ? opt->algorithm : defaults.algorithm,

@@ -70,21 +70,23 @@ const char *whirl_regime_state_name(whirl_regime_state s)
     return (unsigned)s < sizeof state_names / sizeof state_names[0] ? state_names[s] : NULL;
 }
 
-void whirl_regime_params_default(whirl_regime_params *p, size_t links)
+whirl_regime_params whirl_regime_defaults(size_t links)
 {
-    memset(p, 0, sizeof *p);
-    p->frame = WHIRL_FRAME_ROTATING;
-    p->method = "rk4";
-    p->dt = 0.1 / (double)(links > 0 ? links : 1);
-    p->t_ramp = 20;
-    p->t_max = 400;
-    p->settle_tol = 1e-3;
-    p->settle_periods = 3;
-    p->periodic_tol = 1e-3;
-    p->lyapunov_periods = 60;
-    p->chaos_lambda = 0.05;
-    p->perturb = 1e-3;
-    p->seed = 1;
+    whirl_regime_params p;
+    memset(&p, 0, sizeof p);
+    p.frame = WHIRL_FRAME_ROTATING;
+    p.method = "rk4";
+    p.dt = 0.1 / (double)(links > 0 ? links : 1);
+    p.t_ramp = 20;
+    p.t_max = 400;
+    p.settle_tol = 1e-3;
+    p.settle_periods = 3;
+    p.periodic_tol = 1e-3;
+    p.lyapunov_periods = 60;
+    p.chaos_lambda = 0.05;
+    p.perturb = 1e-3;
+    p.seed = 1;
+    return p;
 }
 
 int whirl_regime_check(const whirl_regime_params *p)

@@ -25,7 +25,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (stderr != saved) fclose(stderr);
     stderr = saved;
     if (rc == 0 && p.n >= 3 && p.n <= FIT_POINTS_MAX) {
-        whirl_fit_model m = whirl_fit_model_default();
+        whirl_fit_model m = whirl_fit_model_defaults();
         m.samples = 201;
         double resid[FIT_POINTS_MAX];
         if (whirl_fit_residuals(&m, 2.7, 1, 0, p.n, p.r, p.z, resid) == GSL_SUCCESS)

@@ -151,7 +151,7 @@ static void test_minimize_stop(void **state)
     const size_t n = 400;
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
     double *theta = malloc(n * sizeof *theta);
-    whirl_minimize_options o = whirl_minimize_options_default();
+    whirl_minimize_options o = whirl_minimize_options_defaults();
     o.algorithm = "LN_BOBYQA"; /* derivative-free: long between its evaluations */
     whirl_stop_clear();
     pthread_t stopper;
@@ -190,7 +190,7 @@ static void test_minimize_progress(void **state)
     const size_t n = 600; /* about 0.1 s of work or more: several 20 ms polls */
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
     double *theta = malloc(n * sizeof *theta);
-    whirl_minimize_options o = whirl_minimize_options_default();
+    whirl_minimize_options o = whirl_minimize_options_defaults();
     o.polish = 0;
     o.max_evaluations = 5000;
     progress_seen seen = {.caller = pthread_self()};
@@ -238,7 +238,7 @@ static void test_algorithms(void **state)
     whirl_shape_info ref, got;
     assert_int_equal(whirl_nlink_solve(c, omega, 1, 0.0, &ref), GSL_SUCCESS);
     for (size_t a = 0; a < sizeof algs / sizeof algs[0]; a++) {
-        whirl_minimize_options o = whirl_minimize_options_default();
+        whirl_minimize_options o = whirl_minimize_options_defaults();
         o.algorithm = algs[a];
         o.polish = 0;
         double theta[8], r[9], z[9];
@@ -289,7 +289,7 @@ static void test_minimize_errors(void **state)
     (void)state;
     whirl_chain *c = whirl_chain_alloc_uniform(5, 0.0);
     double theta[5];
-    whirl_minimize_options o = whirl_minimize_options_default();
+    whirl_minimize_options o = whirl_minimize_options_defaults();
     o.algorithm = "LD_NOSUCH";
     assert_int_equal(whirl_minimize_shape(c, 2.0, &o, NULL, theta, NULL), GSL_EINVAL);
     assert_non_null(strstr(whirl_last_error(), "LD_NOSUCH"));
@@ -335,7 +335,7 @@ static void test_fit_nlink_exact(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double r[30], z[30];
-    whirl_fit_model m = whirl_fit_model_default();
+    whirl_fit_model m = whirl_fit_model_defaults();
     m.links = n;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         nlink_points(c, cases[k].omega, cases[k].mode, cases[k].mirrored, 0.0, rng, r, z);
@@ -375,7 +375,7 @@ static void test_fit_progress(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double r[30], z[30];
-    whirl_fit_model m = whirl_fit_model_default();
+    whirl_fit_model m = whirl_fit_model_defaults();
     m.links = n;
     nlink_points(c, 3.71, 2, 0, 0.0, rng, r, z);
     whirl_fit_result plain, observed;
@@ -403,7 +403,7 @@ static void test_fit_uncertainty_monte_carlo(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0.0);
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     gsl_rng_set(rng, 2385);
-    whirl_fit_model m = whirl_fit_model_default();
+    whirl_fit_model m = whirl_fit_model_defaults();
     m.links = n;
     double r[30], z[30], est[SAMPLES], err_sum = 0, mean = 0, var = 0;
     for (int j = 0; j < SAMPLES; j++) {
@@ -462,7 +462,7 @@ static void test_fit_continuum_exact(void **state)
     gsl_rng *rng = gsl_rng_alloc(gsl_rng_mt19937);
     double r[N], z[N];
     for (size_t k = 0; k < sizeof continuum_cases / sizeof continuum_cases[0]; k++) {
-        whirl_fit_model m = whirl_fit_model_default();
+        whirl_fit_model m = whirl_fit_model_defaults();
         m.tip_mass = continuum_cases[k].tip_mass;
         continuum_points(continuum_cases[k].omega, continuum_cases[k].mode, m.tip_mass,
                          continuum_cases[k].mirrored, 0.0, rng, N, r, z);
@@ -486,7 +486,7 @@ static void test_fit_continuum_noise(void **state)
     gsl_rng_set(rng, 77);
     double r[N], z[N];
     for (size_t k = 0; k < sizeof continuum_cases / sizeof continuum_cases[0]; k++) {
-        whirl_fit_model m = whirl_fit_model_default();
+        whirl_fit_model m = whirl_fit_model_defaults();
         m.tip_mass = continuum_cases[k].tip_mass;
         const double omega = continuum_cases[k].omega;
         continuum_points(omega, continuum_cases[k].mode, m.tip_mass, continuum_cases[k].mirrored,
@@ -518,7 +518,7 @@ static void test_fit_residuals(void **state)
         qr[2 * i + 1] = r[i] - delta * dz / h;
         qz[2 * i + 1] = z[i] + delta * dr / h;
     }
-    whirl_fit_model m = whirl_fit_model_default();
+    whirl_fit_model m = whirl_fit_model_defaults();
     assert_int_equal(whirl_fit_residuals(&m, omega, 2, 0, 2 * N - 4, qr + 2, qz + 2, e),
                      GSL_SUCCESS);
     for (size_t j = 0; j < 2 * N - 4; j += 2) {
@@ -533,7 +533,7 @@ static void test_fit_residuals(void **state)
 static void test_fit_errors(void **state)
 {
     (void)state;
-    whirl_fit_model m = whirl_fit_model_default();
+    whirl_fit_model m = whirl_fit_model_defaults();
     whirl_fit_result res;
     double r[4] = {0.1, 0.2, 0.3, 0.35}, z[4] = {-0.2, -0.5, -0.7, -0.9};
     assert_int_equal(whirl_fit(&m, 2, r, z, 0, &res), GSL_EINVAL);
@@ -547,13 +547,13 @@ static void test_fit_errors(void **state)
     m.omega_max = 1.1; /* below omega_1 = 1.2024: no mode exists */
     assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EDOM);
     assert_int_equal(whirl_fit(&m, 4, r, z, 2, &res), GSL_EDOM);
-    m = whirl_fit_model_default();
+    m = whirl_fit_model_defaults();
     m.tip_mass = -0.1;
     assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
-    m = whirl_fit_model_default();
+    m = whirl_fit_model_defaults();
     m.samples = 1;
     assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
-    m = whirl_fit_model_default();
+    m = whirl_fit_model_defaults();
     m.links = 3;
     assert_int_equal(whirl_fit(&m, 4, r, z, 4, &res), GSL_EDOM); /* 3 links: modes 1..3 */
 }

@@ -28,8 +28,7 @@
 
 static whirl_regime_params params(double omega, double eps, double drag)
 {
-    whirl_regime_params p;
-    whirl_regime_params_default(&p, LINKS);
+    whirl_regime_params p = whirl_regime_defaults(LINKS);
     p.omega = omega;
     p.drive_radius = eps;
     p.air_drag = drag;
