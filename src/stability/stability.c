@@ -288,8 +288,8 @@ static int shape_from_nodes(whirl_stability *w, const whirl_model *m, const doub
                                    fabs(dot3(load, w->e2 + 3 * j)));
         if (!(across <= 1e-8 * scale))
             return whirl_fail(GSL_EINVAL, "the shape is not a relative equilibrium at omega = "
-                                          "%g: force across link %zu is %.3g", m->omega, j + 1,
-                              across);
+                                          WHIRL_Q_RATE "%g: force across link %zu is %.3g",
+                              m->omega, j + 1, across);
     }
     /* the nodes as linearised */
     w->x[0] = m->drive_radius, w->y[0] = w->z[0] = 0;

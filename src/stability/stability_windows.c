@@ -416,7 +416,7 @@ static int stop_check(const windows_source *src, double omega)
 {
     if (whirl_stop_requested())
         return whirl_fail(WHIRL_EINTERRUPTED, "window search of mode %d interrupted at omega = "
-                                              "%.10g", src->mode, omega);
+                                              WHIRL_Q_RATE "%.10g", src->mode, omega);
     return GSL_SUCCESS;
 }
 

@@ -119,8 +119,9 @@ int whirl_regime_check(const whirl_regime_params *p)
      * periods after it could be far longer than t_max) */
     const double period = 2 * M_PI / p->omega, need = REGIME_PERIODS_MIN * period;
     if (p->t_max - p->t_ramp < need)
-        return whirl_fail(GSL_EINVAL, "t_max - t_ramp = %g holds %.3g drive periods (2 pi/omega "
-                          "= %g); the classification needs %d: raise t_max to %.6g or omega",
+        return whirl_fail(GSL_EINVAL, "t_max - t_ramp = " WHIRL_Q_TIME "%g holds %.3g drive "
+                          "periods (2 pi/omega = " WHIRL_Q_TIME "%g); the classification needs "
+                          "%d: raise t_max to " WHIRL_Q_TIME "%.6g or omega",
                           p->t_max - p->t_ramp, (p->t_max - p->t_ramp) / period, period,
                           REGIME_PERIODS_MIN, p->t_ramp + need);
     if (p->frame != WHIRL_FRAME_INERTIAL && p->frame != WHIRL_FRAME_ROTATING)
