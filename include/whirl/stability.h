@@ -126,6 +126,34 @@ WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model,
 WHIRL_API int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode,
                                           int side, whirl_driven_info *info, double *growth);
 
+/* ---- the linear stability map (src/stability/stability_map.c) ---- */
+
+/* One point of a map: a free steady shape of the chain at a rate, given by its nodes (from
+ * whirl_nlink_branch_nodes, or whirl_nlink_solve_nodes: at high rates the tip radius alone does
+ * not fix the shape to round-off). */
+typedef struct whirl_stability_point {
+    double omega;        /* the rate [sqrt(g/L)] */
+    const double *r, *z; /* the nodes r[i], z[i], i = 0..N (read, not owned) */
+    int skip;            /* 1: not analysed (a point known from before) */
+    double growth;       /* out: the growth rate of whirl_stability_growth [sqrt(g/L)] */
+    int status;          /* out: GSL_SUCCESS once analysed, its failure, or -1 if not reached
+                          * (skipped, or after a stop request) */
+} whirl_stability_point;
+
+/* Called once per point analysed with the count analysed so far by this call, from the thread
+ * that analysed it, one call at a time. */
+typedef void (*whirl_stability_map_progress)(void *ctx, size_t done);
+
+/* The linear stability of the free shapes pts[0..n) of the chain c with internal damping
+ * damping (whirl_stability_linearise and whirl_stability_growth in the co-rotating frame, 3D),
+ * the points shared over the OpenMP threads, a workspace each (the growth of a point does not
+ * depend on the sharing). progress may be NULL. Returns GSL_SUCCESS; the failure of the earliest
+ * point that failed, with its message (its status in pts[i].status); GSL_ENOMEM; or
+ * WHIRL_EINTERRUPTED (message set) on a stop request, the points analysed until then kept. */
+WHIRL_API int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
+                                  whirl_stability_point *pts,
+                                  whirl_stability_map_progress progress, void *ctx);
+
 /* ---- perturbed time-domain runs (src/stability_run.c) ---- */
 
 typedef enum {
@@ -137,6 +165,9 @@ typedef enum {
 
 /* "stable", "unstable", "converging". */
 WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
+/* The verdict of the linearisation alone from a growth rate: unstable (> 0), converging (< 0),
+ * stable (0: the conservative chain's eigenvalues on the imaginary axis). */
+WHIRL_API whirl_verdict whirl_verdict_linear(double growth);
 
 typedef struct whirl_stability_run_params {
     double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100; at

@@ -139,6 +139,18 @@ typedef enum {
     WHIRL_VERDICT_CONVERGING = 2
 } whirl_verdict;
 const char *whirl_verdict_name(whirl_verdict v);
+whirl_verdict whirl_verdict_linear(double growth);
+typedef struct whirl_stability_point {
+    double omega;
+    const double *r, *z;
+    int skip;
+    double growth;
+    int status;
+} whirl_stability_point;
+typedef void (*whirl_stability_map_progress)(void *ctx, size_t done);
+int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
+                        whirl_stability_point *pts, whirl_stability_map_progress progress,
+                        void *ctx);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;
@@ -264,7 +276,7 @@ const char *whirl_regime_state_name(whirl_regime_state s);
 STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_ramp", "whirl_model", "whirl_dyn_diagnostics",
            "whirl_integrator_stats", "whirl_stability_run_params", "whirl_stability_run_result",
            "whirl_driven_params", "whirl_driven_info", "whirl_fit_model", "whirl_fit_result",
-           "whirl_regime_params", "whirl_regime_result"]
+           "whirl_regime_params", "whirl_regime_result", "whirl_stability_point"]
 
 CDEF += r"""
 int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,

@@ -138,20 +138,21 @@ def stability_map(omega, mode, links, damping=0.0):
                                               ffi.cast("int *", ffi.from_buffer(exists)),
                                               _lib.dptr(r), _lib.dptr(z), _lib.dptr(tension))
     check(status, "mode %d" % mode)
-    ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
-    growth = ffi.new("double *")
+    # the growth of each shape: the library's map (whirl_stability_map, as the CLI's)
     rows = np.flatnonzero(exists)
-    out = np.empty(rows.size, dtype=MAP_DTYPE)
+    pts = ffi.new("whirl_stability_point[]", max(rows.size, 1))
+    for i, j in enumerate(rows):
+        pts[i].omega = w[j]
+        pts[i].r = _lib.dptr(r[j])
+        pts[i].z = _lib.dptr(z[j])
+    damping = as_float(damping, "damping", nonnegative=True)
     with _lib.interruptible():
-        for i, j in enumerate(rows):
-            m = _model(chain, w[j], damping, 0.0, 0.0, 0.0)
-            status = lib.whirl_stability_linearise(ws, m, _lib.dptr(r[j]), _lib.dptr(z[j]))
-            if status == _lib.GSL_SUCCESS:
-                status = lib.whirl_stability_growth(ws, growth)
-            check(status, "omega %.17g" % w[j])
-            out[i] = (w[j], info[j].tip_r, growth[0])
-            if _lib.stop_requested():
-                break
+        status = lib.whirl_stability_map(chain._c, damping, rows.size, pts, ffi.NULL, ffi.NULL)
+    failed = [i for i in range(rows.size) if pts[i].status not in (_lib.GSL_SUCCESS, -1)]
+    check(status, "omega %.17g" % w[rows[failed[0]]] if failed else None)
+    out = np.empty(rows.size, dtype=MAP_DTYPE)
+    for i, j in enumerate(rows):
+        out[i] = (w[j], info[j].tip_r, pts[i].growth)
     return out
 
 

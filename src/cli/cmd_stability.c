@@ -57,6 +57,7 @@ typedef struct point {
     double tip[2]; /* driven: the tip's horizontal position */
     int nodes;     /* driven: node count */
     whirl_verdict verdict;
+    int linearised; /* free shapes: eig_growth known (whirl_stability_map) */
     int done;
     int absent;    /* driven map: the mode has no shape at this rate */
 } point;
@@ -210,7 +211,8 @@ static int observe(double t, double ratio, void *data)
     return cli_interrupted ? GSL_EFAILED : GSL_SUCCESS;
 }
 
-/* Linear analysis and (unless --linear) the perturbed run of one point; trace: where the samples
+/* The perturbed run of one point (unless --linear), and for the hand-swung chain its linear
+ * analysis (that of the free shapes is whirl_stability_map's, before); trace: where the samples
  * of the run go (NULL: nowhere). A driven map point whose shape does not exist is marked absent. */
 static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, point *p,
                    FILE *trace)
@@ -237,14 +239,12 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
         p->tip_r = info.tip_r;
         p->nodes = info.nodes;
     } else {
+        /* eig_growth from the map; the run needs the linearisation's nodes (same shape) */
         status = whirl_stability_linearise(w, &m, p->r, p->z);
-        if (!status) status = whirl_stability_growth(w, &p->eig_growth);
     }
     if (status) return status;
     if (o->linear) {
-        p->verdict = p->eig_growth > 0   ? WHIRL_VERDICT_UNSTABLE
-                     : p->eig_growth < 0 ? WHIRL_VERDICT_CONVERGING
-                                         : WHIRL_VERDICT_STABLE;
+        p->verdict = whirl_verdict_linear(p->eig_growth);
         return GSL_SUCCESS;
     }
     whirl_stability_run_params rp = whirl_stability_run_defaults();
@@ -439,6 +439,59 @@ static void write_row(FILE *fp, const options *o, const point *p)
     fputc('\n', fp);
 }
 
+typedef struct map_progress {
+    cli_progress_state *state;
+    long already; /* points done before the map */
+} map_progress;
+
+static void linear_progress(void *ctx, size_t done)
+{
+    const map_progress *mp = ctx;
+    cli_progress_update(mp->state, mp->already + (long)done, 0);
+}
+
+/* The growth of the free shapes of the points not done (whirl_stability_map): eig_growth and
+ * linearised; with --linear their verdict too, and done (*finished counts them). Returns 0, or 1
+ * with the message of the earliest failed point in message (a stop is no failure). */
+static int linear_map(const options *o, const whirl_chain *c, point *pts, size_t count,
+                      cli_progress_state *progress, long *finished, char *message, size_t size)
+{
+    whirl_stability_point *mp = calloc(count > 0 ? count : 1, sizeof *mp);
+    if (mp == NULL) {
+        snprintf(message, size, "out of memory");
+        return 1;
+    }
+    for (size_t i = 0; i < count; i++)
+        mp[i] = (whirl_stability_point){pts[i].omega, pts[i].r, pts[i].z, pts[i].done, 0, 0};
+    map_progress ctx = {progress, *finished};
+    const int status = whirl_stability_map(c, o->damping, count, mp,
+                                           o->linear ? linear_progress : NULL, &ctx);
+    for (size_t i = 0; i < count; i++) {
+        if (mp[i].status != GSL_SUCCESS) continue;
+        pts[i].eig_growth = mp[i].growth;
+        pts[i].linearised = 1;
+        if (!o->linear) continue;
+        pts[i].verdict = whirl_verdict_linear(mp[i].growth);
+        pts[i].done = 1;
+        ++*finished;
+    }
+    int failed = 0;
+    for (size_t i = 0; i < count && status != GSL_SUCCESS && status != WHIRL_EINTERRUPTED; i++)
+        if (mp[i].status != GSL_SUCCESS && mp[i].status != -1) {
+            snprintf(message, size, "omega %s, mode %d: %s",
+                     CLI_NUM(pts[i].omega * unit(o, CLI_UNIT_RATE)), pts[i].mode,
+                     CLI_LIBRARY_ERROR(&o->units));
+            failed = 1;
+            break;
+        }
+    if (status != GSL_SUCCESS && status != WHIRL_EINTERRUPTED && !failed) {
+        snprintf(message, size, "%s", CLI_LIBRARY_ERROR(&o->units)); /* no workspace */
+        failed = 1;
+    }
+    free(mp);
+    return failed;
+}
+
 static void free_kept(char **kept, size_t count)
 {
     for (size_t i = 0; kept && i < count; i++) free(kept[i]);
@@ -620,6 +673,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     long finished = (long)already;
     cli_progress_state progress;
     cli_progress_begin(&progress, cmd, "points", (long)count, (long)already);
+    if (!driven(&o) && linear_map(&o, c, pts, count, &progress, &finished, message,
+                                  sizeof message))
+        failed = 1;
 #pragma omp parallel
     {
         whirl_stability *w = whirl_stability_alloc((size_t)o.links);
@@ -636,7 +692,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
             int stop;
 #pragma omp atomic read
             stop = failed;
-            if (stop || w == NULL || cli_interrupted || pts[i].done) continue;
+            if (stop || w == NULL || cli_interrupted || pts[i].done ||
+                (!driven(&o) && !pts[i].linearised))
+                continue;
             if (analyse(&o, c, w, &pts[i], o.trace ? trace.fp : NULL) != GSL_SUCCESS) {
                 if (cli_interrupted) continue;
 #pragma omp critical(stability_error)

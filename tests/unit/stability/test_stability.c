@@ -1468,6 +1468,62 @@ static void test_high_mode_by_rhs_jacobian(void **state)
     whirl_chain_free(c);
 }
 
+/* The map (whirl_stability_map, OpenMP threads) against the same shapes analysed one by one on
+ * this thread (whirl_stability_linearise, whirl_stability_growth): equal to the bit, whatever the
+ * sharing; a failure is that of the earliest failed point, with its own message. */
+static void test_map(void **state)
+{
+    (void)state;
+    enum { RATES = 9, LINKS = 10 };
+    whirl_chain *c = whirl_chain_alloc_uniform(LINKS, 0);
+    assert_non_null(c);
+    double omega[RATES], r[RATES][LINKS + 1], z[RATES][LINKS + 1], t[RATES][LINKS + 1];
+    whirl_shape_info info[RATES];
+    int exists[RATES];
+    for (int j = 0; j < RATES; j++) omega[j] = 3 + 0.75 * j;
+    assert_int_equal(whirl_nlink_branch_nodes(c, 2, RATES, omega, info, exists, &r[0][0],
+                                              &z[0][0], &t[0][0]),
+                     GSL_SUCCESS);
+    whirl_stability_point pts[RATES];
+    for (int j = 0; j < RATES; j++) {
+        assert_true(exists[j]);
+        pts[j] = (whirl_stability_point){omega[j], r[j], z[j], j == 4, 0, 0};
+    }
+    assert_int_equal(whirl_stability_map(c, 0.01, RATES, pts, NULL, NULL), GSL_SUCCESS);
+    whirl_stability *w = whirl_stability_alloc(LINKS);
+    assert_non_null(w);
+    for (int j = 0; j < RATES; j++) {
+        if (j == 4) {
+            assert_int_equal(pts[j].status, -1); /* skipped */
+            continue;
+        }
+        assert_int_equal(pts[j].status, GSL_SUCCESS);
+        whirl_model m = {0};
+        m.chain = c;
+        m.dim = 3;
+        m.frame = WHIRL_FRAME_ROTATING;
+        m.omega = omega[j];
+        m.internal_damping = 0.01;
+        double growth;
+        assert_int_equal(whirl_stability_linearise(w, &m, r[j], z[j]), GSL_SUCCESS);
+        assert_int_equal(whirl_stability_growth(w, &growth), GSL_SUCCESS);
+        assert_memory_equal(&growth, &pts[j].growth, sizeof growth);
+        assert_int_equal(whirl_verdict_linear(growth), growth > 0 ? WHIRL_VERDICT_UNSTABLE
+                                                                  : WHIRL_VERDICT_CONVERGING);
+    }
+    /* two bad points: the earlier one's failure is reported */
+    pts[3].omega = -1;
+    pts[7].omega = -2;
+    for (int j = 0; j < RATES; j++) pts[j].skip = 0;
+    const int status = whirl_stability_map(c, 0, RATES, pts, NULL, NULL);
+    assert_int_not_equal(status, GSL_SUCCESS);
+    assert_int_equal(pts[3].status, status);
+    assert_int_equal(whirl_last_status(), status);
+    assert_non_null(strstr(whirl_last_error(), "-1"));
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -1489,6 +1545,7 @@ int main(void)
         cmocka_unit_test(test_high_rate_shape),
         cmocka_unit_test(test_high_mode_by_rhs_jacobian),
         cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_map),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
