@@ -53,7 +53,7 @@ CLI_OBJ  += $(BUILD)/gen/view_html.o
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
 .PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python deps clean fuzz \
-  install uninstall
+  install uninstall docs
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
@@ -179,6 +179,18 @@ fuzz: deps
 	  grep -E 'INITED|DONE|ERROR|SUMMARY|Test unit written|number_of_executed|new_units' \
 	    out/fuzz/$$f.log; [ $$rc -eq 0 ] || exit 1; \
 	done
+
+# The manual (docs/, Sphinx with MyST): HTML into $(BUILD)/docs/, warnings are errors. The C API
+# pages are generated from include/whirl/*.h, the Python API from the package's docstrings (which
+# loads $(BUILD)/libwhirl.so). tests/cli/test_docs.sh builds it the same way in `make check`.
+DOCS_PKGS := python3-sphinx python3-myst-parser
+docs: $(BUILD)/whirl $(BUILD)/libwhirl.so
+	@$(PYTHON) -c 'import sphinx, myst_parser' 2>/dev/null || { echo "make docs: needs the \
+	Debian packages $(DOCS_PKGS) (sudo apt-get install -y $(DOCS_PKGS), or make deps as root)" >&2; \
+	exit 1; }
+	WHIRL_LIBRARY=$(abspath $(BUILD)/libwhirl.so) $(PYTHON) -m sphinx -b html -W --keep-going -q \
+	  -d $(BUILD)/docs-doctrees docs $(BUILD)/docs
+	@echo "manual: $(BUILD)/docs/index.html"
 
 # Debian packages the build, the tests and the figures need; installed when run as root.
 deps:

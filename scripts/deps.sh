@@ -42,6 +42,8 @@ libsundials-dev  have_header cc arkode/arkode_erkstep.h && have_header cc cvode/
 chromium         have_cmd chromium
 ffmpeg           have_cmd ffmpeg
 bsdutils         have_cmd script
+python3-sphinx   have_py sphinx
+python3-myst-parser have_py myst_parser
 '
 
 missing=""
