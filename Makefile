@@ -98,20 +98,32 @@ $(BUILD)/libwhirl.so: $(SHLIB)
 	ln -sf libwhirl.so.$(MAJOR) $@
 
 # The manual page, generated from the program's --help (scripts/man.sh).
-$(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh
-	sh scripts/man.sh $(BUILD)/whirl >$@.tmp && mv $@.tmp $@
+$(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh include/whirl/scene.h $(DATADIR_H)
+	sh scripts/man.sh $(BUILD)/whirl '$(DATADIR)' >$@.tmp && mv $@.tmp $@
 
 # make install PREFIX=/usr/local DESTDIR=: the program, libwhirl.a and libwhirl.so, the headers,
-# whirl.pc for pkg-config, the manual page. make uninstall removes them.
+# whirl.pc for pkg-config, the manual page, the scenes, plot scripts and example data under
+# DATADIR. make uninstall removes them.
 PREFIX     ?= /usr/local
 BINDIR     ?= $(PREFIX)/bin
 LIBDIR     ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 MANDIR     ?= $(PREFIX)/share/man
 PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+# The scene files, the plot scripts and the example data (share/whirl/): the program's --help and
+# the manual page name this directory, compiled in (BUILD/gen/datadir.h, rewritten when it changes).
+DATADIR    ?= $(PREFIX)/share/whirl
+DATADIR_H  := $(BUILD)/gen/datadir.h
+# (a relative DATADIR, which make install refuses, leaves the header as it was)
+ifneq ($(MAKECMDGOALS),clean)
+$(shell case '$(DATADIR)' in /*) ;; *) exit 0 ;; esac; mkdir -p $(BUILD)/gen && printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' | \
+  cmp -s - $(DATADIR_H) || printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' >$(DATADIR_H))
+endif
+$(BUILD)/src/cli/main.o: $(DATADIR_H)
+$(BUILD)/src/cli/main.o: CPPFLAGS += -I$(BUILD)/gen
 INSTALL_VARS = BUILD='$(BUILD)' VERSION='$(VERSION)' MAJOR='$(MAJOR)' DESTDIR='$(DESTDIR)' \
   PREFIX='$(PREFIX)' BINDIR='$(BINDIR)' LIBDIR='$(LIBDIR)' INCLUDEDIR='$(INCLUDEDIR)' \
-  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)'
+  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)' DATADIR='$(DATADIR)'
 install: all
 	@$(INSTALL_VARS) sh scripts/install.sh install
 uninstall:
