@@ -116,7 +116,7 @@ DATADIR    ?= $(PREFIX)/share/whirl
 DATADIR_H  := $(BUILD)/gen/datadir.h
 # (a relative DATADIR, which make install refuses, leaves the header as it was)
 ifneq ($(MAKECMDGOALS),clean)
-$(shell case '$(DATADIR)' in /*) ;; *) exit 0 ;; esac; mkdir -p $(BUILD)/gen && printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' | \
+$(shell case '$(DATADIR)' in (/*) ;; (*) exit 0 ;; esac; mkdir -p $(BUILD)/gen && printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' | \
   cmp -s - $(DATADIR_H) || printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' >$(DATADIR_H))
 endif
 $(BUILD)/src/cli/main.o: $(DATADIR_H)

@@ -185,6 +185,8 @@ class WhirlCHeader(Directive):
 
     @staticmethod
     def header_rst(name, text):
+        # the extern "C" guards for C++ are no declarations
+        text = re.sub(r'#ifdef __cplusplus\n(extern "C" \{|\})\n#endif\n', "\n", text)
         toks = _tokens(text)
         rst = []
         guard = None
