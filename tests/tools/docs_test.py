@@ -10,7 +10,9 @@
                  that follow a command up to the next "$ " are its expected output, compared line
                  by line (a line "..." stands for any number of lines; none shown: not compared);
      ```python   a script that must exit 0;
-     ```pycon    a doctest (">>> " lines and their expected output).
+     ```pycon    a doctest (">>> " lines and their expected output);
+   with `<!-- runnable: FILE -->` the block (any language) is written to FILE for the blocks
+   after it.
    The blocks of one page run in order in one temporary directory, which links data/, plots/,
    examples/ and python/ of the source tree; the program is the one installed by `make install`
    into a temporary prefix (its bin/ first on PATH, PKG_CONFIG_PATH and the loader's path set),
@@ -29,7 +31,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-MARK = "<!-- runnable -->"
+MARK = re.compile(r"^<!-- runnable(?:: ([\w.-]+))? -->$")
 LINKED = ["data", "plots", "examples", "python"]
 TIMEOUT = 240  # seconds per block: a block that hangs fails instead of stopping the suite
 
@@ -52,26 +54,27 @@ def pages():
 
 
 def blocks(path):
-    """The runnable blocks of a page: (line of the fence, language, lines)."""
+    """The runnable blocks of a page: (line of the fence, language, lines, file name or None)."""
     with open(path) as f:
         lines = f.read().split("\n")
     out = []
     i = 0
     while i < len(lines):
-        if lines[i].strip() == MARK:
+        mark = MARK.match(lines[i].strip())
+        if mark:
             j = i + 1
             while j < len(lines) and not lines[j].strip():
                 j += 1
             m = re.match(r"^(`{3,}|~{3,})\s*\{?([\w-]+)\}?", lines[j]) if j < len(lines) else None
             if not m:
-                out.append((i + 1, "missing", []))
+                out.append((i + 1, "missing", [], None))
                 i += 1
                 continue
             fence, lang = m.group(1), m.group(2)
             k = j + 1
             while k < len(lines) and not lines[k].startswith(fence):
                 k += 1
-            out.append((j + 1, lang, lines[j + 1:k]))
+            out.append((j + 1, lang, lines[j + 1:k], mark.group(1)))
             i = k
         i += 1
     return out
@@ -210,10 +213,15 @@ def main():
             os.makedirs(cwd)
             for d in LINKED:
                 os.symlink(os.path.join(ROOT, d), os.path.join(cwd, d))
-            for k, (line, lang, body) in enumerate(bl, 1):
+            for k, (line, lang, body, fname) in enumerate(bl, 1):
                 total += 1
-                name = "%s:%d (block %d, %s)" % (rel, line, k, lang)
-                if lang == "console":
+                name = "%s:%d (block %d, %s)" % (rel, line, k, fname or lang)
+                if fname:
+                    # a file the blocks after it use (a C source, a scene): written as shown
+                    with open(os.path.join(cwd, fname), "w") as f:
+                        f.write("\n".join(body) + "\n")
+                    err = None
+                elif lang == "console":
                     err = run_console(body, cwd, env) if console_steps(body) else "no $ command"
                 elif lang == "python":
                     err = run_python(body, cwd, env)
