@@ -200,7 +200,8 @@ docs: $(BUILD)/whirl $(BUILD)/libwhirl.so
 	@$(PYTHON) -c 'import sphinx, myst_parser' 2>/dev/null || { echo "make docs: needs the \
 	Debian packages $(DOCS_PKGS) (sudo apt-get install -y $(DOCS_PKGS), or make deps as root)" >&2; \
 	exit 1; }
-	WHIRL_LIBRARY=$(abspath $(BUILD)/libwhirl.so) $(PYTHON) -m sphinx -b html -W --keep-going -q \
+	WHIRL_LIBRARY=$(abspath $(BUILD)/libwhirl.so) WHIRL_PROGRAM=$(abspath $(BUILD)/whirl) \
+	  $(PYTHON) -m sphinx -b html -W --keep-going -q \
 	  -d $(BUILD)/docs-doctrees docs $(BUILD)/docs
 	@echo "manual: $(BUILD)/docs/index.html"
 

@@ -22,7 +22,7 @@ author = "the whirl developers"
 copyright = "the whirl developers, GPL-3.0-or-later"
 release = version = _version()
 
-extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.mathjax", "whirl_capi", "whirl_pydoc"]
+extensions = ["myst_parser", "sphinx.ext.autodoc", "sphinx.ext.mathjax", "whirl_capi", "whirl_pydoc", "whirl_text"]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 myst_enable_extensions = ["dollarmath", "amsmath", "colon_fence"]
 myst_heading_anchors = 3
@@ -31,7 +31,7 @@ root_doc = "index"
 html_theme = "alabaster"
 html_static_path = ["_static"]
 html_title = "whirl %s" % release
-html_theme_options = {"page_width": "1100px", "sidebar_width": "240px"}
+html_theme_options = {"page_width": "1200px", "sidebar_width": "240px"}
 # The C API (api/c.rst) is generated from include/whirl/*.h by _ext/whirl_capi.py.
 whirl_include_dir = os.path.join(ROOT, "include")
 primary_domain = "c"
@@ -39,3 +39,4 @@ autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "undoc-members": False}
 # MathJax is loaded from its CDN only when a page is viewed; the build needs no network.
 nitpicky = False
+html_css_files = ["whirl.css"]

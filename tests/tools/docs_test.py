@@ -171,7 +171,8 @@ def main():
     tmp = tempfile.mkdtemp(prefix="whirl-docs.")
     try:
         if "--no-sphinx" not in args:
-            env = dict(os.environ, WHIRL_LIBRARY=os.path.join(build, "libwhirl.so"))
+            env = dict(os.environ, WHIRL_LIBRARY=os.path.join(build, "libwhirl.so"),
+                       WHIRL_PROGRAM=os.path.join(build, "whirl"))
             p = subprocess.run(["/usr/bin/python3", "-m", "sphinx", "-b", "html", "-W",
                                 "--keep-going", "-q", "-d", os.path.join(build, "docs-doctrees"),
                                 os.path.join(ROOT, "docs"), os.path.join(build, "docs")],
