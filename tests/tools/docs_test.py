@@ -8,7 +8,8 @@
    line `<!-- runnable -->` right before the block's opening fence:
      ```console  lines "$ COMMAND" (continued by a trailing backslash) run under sh; the lines
                  that follow a command up to the next "$ " are its expected output, compared line
-                 by line (a line "..." stands for any number of lines; none shown: not compared);
+                 by line (a line "..." stands for any number of lines, "..." within a line for any
+                 text; no line shown: not compared);
      ```python   a script that must exit 0;
      ```pycon    a doctest (">>> " lines and their expected output);
    with `<!-- runnable: FILE -->` the block (any language) is written to FILE for the blocks
@@ -110,7 +111,16 @@ def matches(expect, got):
         return not got
     if expect[0].strip() == "...":
         return any(matches(expect[1:], got[k:]) for k in range(len(got) + 1))
-    return bool(got) and expect[0].rstrip() == got[0].rstrip() and matches(expect[1:], got[1:])
+    return bool(got) and same_line(expect[0], got[0]) and matches(expect[1:], got[1:])
+
+
+def same_line(expect, got):
+    """A line as shown, where "..." inside it stands for any text (a time, a digit that varies)."""
+    expect, got = expect.rstrip(), got.rstrip()
+    if "..." not in expect:
+        return expect == got
+    pattern = ".*".join(re.escape(part) for part in expect.split("..."))
+    return re.fullmatch(pattern, got) is not None
 
 
 def run_console(body, cwd, env):
