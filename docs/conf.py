@@ -37,6 +37,14 @@ whirl_include_dir = os.path.join(ROOT, "include")
 primary_domain = "c"
 autodoc_member_order = "bysource"
 autodoc_default_options = {"members": True, "undoc-members": False}
-# MathJax is loaded from its CDN only when a page is viewed; the build needs no network.
-nitpicky = False
+# The equations are typeset by MathJax when a page is viewed: Debian's copy (libjs-mathjax), so that
+# the manual reads offline; without it, MathJax's CDN. The build itself needs no network.
+_MATHJAX = "/usr/share/javascript/mathjax/MathJax.js"
+if os.path.exists(_MATHJAX):
+    mathjax_path = "file://" + _MATHJAX + "?config=TeX-AMS-MML_HTMLorMML"
+    # MathJax 2: typeset the math nodes Sphinx writes, whatever class MyST gives the page
+    myst_update_mathjax = False
+    mathjax2_config = {"tex2jax": {"processClass": "math", "ignoreClass": "document",
+                                   "inlineMath": [["\\(", "\\)"]],
+                                   "displayMath": [["\\[", "\\]"]]}}
 html_css_files = ["whirl.css"]

@@ -44,6 +44,7 @@ ffmpeg           have_cmd ffmpeg
 bsdutils         have_cmd script
 python3-sphinx   have_py sphinx
 python3-myst-parser have_py myst_parser
+libjs-mathjax    test -f /usr/share/javascript/mathjax/MathJax.js
 '
 
 missing=""

@@ -211,7 +211,12 @@ class WhirlCHeader(Directive):
                         and not (nxt[0] == "pp" and not nxt[1].startswith("#define")):
                     pending = lines
                 else:
-                    # a comment that stands alone: the introduction of what follows
+                    # a comment that stands alone: the introduction of what follows; a first
+                    # line "---- title ----" is the title of a group of declarations
+                    m = re.match(r"^\s*-{2,}\s*(.*?)\s*-{2,}\s*$", lines[0]) if lines else None
+                    if m:
+                        rst += [".. rubric:: " + _escape(m.group(1)), ""]
+                        lines = lines[1:]
                     rst += _rst_text(lines, 0)
                     pending = []
                 continue
