@@ -175,6 +175,7 @@ class WhirlCHeader(Directive):
         inc = env.config.whirl_include_dir
         path = os.path.join(inc, self.arguments[0])
         env.note_dependency(path)
+        env.note_dependency(__file__)  # and when this extension changes
         with open(path) as f:
             text = f.read()
         rst = self.header_rst(self.arguments[0], text)

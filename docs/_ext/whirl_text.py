@@ -43,6 +43,7 @@ class WhirlOpening(Directive):
         env = self.state.document.settings.env
         path = os.path.join(env.config.whirl_root, self.arguments[0])
         env.note_dependency(path)
+        env.note_dependency(__file__)  # and when this extension changes
         with open(path) as f:
             m = re.match(r"\s*/\*(.*?)\*/", f.read(), re.S)
         if not m:
