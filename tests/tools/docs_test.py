@@ -15,8 +15,8 @@
    with `<!-- runnable: FILE -->` the block (any language) is written to FILE for the blocks
    after it.
    The blocks of one page run in order in one temporary directory, which links data/, plots/,
-   examples/ and python/ of the source tree; the program is the one installed by `make install`
-   into a temporary prefix (its bin/ first on PATH, PKG_CONFIG_PATH and the loader's path set),
+   examples/ and python/ of the source tree; the program is the build's, installed by
+   scripts/install.sh (as `make install` runs it) into a temporary prefix (its bin/ first on PATH, PKG_CONFIG_PATH and the loader's path set),
    so that the installed data directory and pkg-config file are used as a user would use them.
    A failing block is reported as "not ok N - PAGE:LINE (block K): what differed".
 
@@ -168,9 +168,17 @@ def run_pycon(body, cwd, env, name):
 
 
 def install(build, prefix):
-    p = subprocess.run(["make", "--no-print-directory", "-s", "BUILD=" + build, "PREFIX=" + prefix,
-                        "install"], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                       text=True)
+    """scripts/install.sh into prefix, as `make install` runs it, from the files already built
+    (no rebuild: the program keeps the data directory it was compiled with)."""
+    with open(os.path.join(ROOT, "include", "whirl", "version.h")) as f:
+        v = dict(re.findall(r"#define WHIRL_VERSION_(MAJOR|MINOR|PATCH) (\d+)", f.read()))
+    env = dict(os.environ, BUILD=build, VERSION="%s.%s.%s" % (v["MAJOR"], v["MINOR"], v["PATCH"]),
+               MAJOR=v["MAJOR"], DESTDIR="", PREFIX=prefix, BINDIR=prefix + "/bin",
+               LIBDIR=prefix + "/lib", INCLUDEDIR=prefix + "/include",
+               MANDIR=prefix + "/share/man", PKGCONFIGDIR=prefix + "/lib/pkgconfig",
+               DATADIR=prefix + "/share/whirl")
+    p = subprocess.run(["sh", "scripts/install.sh", "install"], cwd=ROOT, env=env,
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     return p.returncode == 0, p.stdout[-400:]
 
 
@@ -202,7 +210,7 @@ def main():
                     len(syms), ": missing " + ", ".join(missing) if missing else ""))
         prefix = os.path.join(tmp, "prefix")
         ok, log = install(build, prefix)
-        tap(ok, "make install into a temporary prefix" + ("" if ok else ": " + log))
+        tap(ok, "installed into a temporary prefix" + ("" if ok else ": " + log))
         libdir = os.path.join(prefix, "lib")
         env = dict(os.environ)
         env["PATH"] = os.path.join(prefix, "bin") + os.pathsep + env.get("PATH", "")
