@@ -220,6 +220,15 @@ def main():
         env["PYTHONPATH"] = os.path.join(ROOT, "python")
         env["MPLBACKEND"] = "Agg"
         env["OMP_NUM_THREADS"] = "1"
+        # the test's own check: a block whose output differs from the page, or whose command
+        # fails, is caught (and a matching one is not)
+        probe = os.path.join(tmp, "probe")
+        os.makedirs(probe)
+        caught = (run_console(["$ echo 4.39", "4.3900000000000006"], probe, env) is not None
+                  and run_console(["$ false"], probe, env) is not None
+                  and run_console(["$ printf 'a\\nb\\nc\\n'", "a", "...", "c"], probe, env) is None
+                  and run_console(["$ echo 1.2345", "1.23..."], probe, env) is None)
+        tap(caught, "a changed output or a failing command is caught, a matching one passes")
         total = 0
         for page in pages():
             rel = os.path.relpath(page, ROOT)
