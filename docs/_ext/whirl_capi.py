@@ -12,8 +12,9 @@ import os
 import re
 
 from docutils import nodes
-from docutils.parsers.rst import Directive
 from docutils.statemachine import StringList
+
+from whirl_text import SourceDirective
 
 
 def _tokens(text):
@@ -166,18 +167,11 @@ def _members(body):
     return out
 
 
-class WhirlCHeader(Directive):
-    required_arguments = 1
-    has_content = False
-
+class WhirlCHeader(SourceDirective):
     def run(self):
-        env = self.state.document.settings.env
-        inc = env.config.whirl_include_dir
-        path = os.path.join(inc, self.arguments[0])
-        env.note_dependency(path)
-        env.note_dependency(__file__)  # and when this extension changes
-        with open(path) as f:
-            text = f.read()
+        path = os.path.join(self.state.document.settings.env.config.whirl_include_dir,
+                            self.arguments[0])
+        text = self.read(path)
         rst = self.header_rst(self.arguments[0], text)
         node = nodes.section()
         node.document = self.state.document

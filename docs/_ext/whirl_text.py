@@ -11,20 +11,35 @@
 import os
 import re
 import subprocess
+import sys
 
 from docutils import nodes
 from docutils.parsers.rst import Directive
 from sphinx.errors import ExtensionError
 
 
-class WhirlHelp(Directive):
+class SourceDirective(Directive):
+    """A directive with one argument whose page is read again when a file it reads changes, or
+    the extension that defines it."""
     required_arguments = 1
     has_content = False
 
-    def run(self):
+    def note(self, path):
         env = self.state.document.settings.env
-        prog = env.config.whirl_program
-        env.note_dependency(prog)  # the page is read again when the program changes
+        env.note_dependency(path)
+        env.note_dependency(sys.modules[type(self).__module__].__file__)
+        return env
+
+    def read(self, path):
+        self.note(path)
+        with open(path) as f:
+            return f.read()
+
+
+class WhirlHelp(SourceDirective):
+    def run(self):
+        prog = self.state.document.settings.env.config.whirl_program
+        self.note(prog)  # the page is read again when the program changes
         p = subprocess.run([prog, self.arguments[0], "--help"], stdout=subprocess.PIPE,
                            stderr=subprocess.PIPE, text=True)
         if p.returncode != 0:
@@ -35,17 +50,10 @@ class WhirlHelp(Directive):
         return [node]
 
 
-class WhirlOpening(Directive):
-    required_arguments = 1
-    has_content = False
-
+class WhirlOpening(SourceDirective):
     def run(self):
-        env = self.state.document.settings.env
-        path = os.path.join(env.config.whirl_root, self.arguments[0])
-        env.note_dependency(path)
-        env.note_dependency(__file__)  # and when this extension changes
-        with open(path) as f:
-            m = re.match(r"\s*/\*(.*?)\*/", f.read(), re.S)
+        path = os.path.join(self.state.document.settings.env.config.whirl_root, self.arguments[0])
+        m = re.match(r"\s*/\*(.*?)\*/", self.read(path), re.S)
         if not m:
             raise ExtensionError("%s does not open with a comment" % path)
         lines = [re.sub(r"^ ?\* ?", "", ln).rstrip() for ln in m.group(1).split("\n")]
