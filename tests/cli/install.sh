@@ -222,4 +222,9 @@ else fail "unwritable prefix (rc $rc): $(head -c 300 "$tmp/bad.err")"; fi
 if mk install PREFIX=relative/path >/dev/null 2>"$tmp/bad.err"; then fail "relative PREFIX accepted"
 elif grep -q "PREFIX must be an absolute path" "$tmp/bad.err"; then pass "relative PREFIX refused"
 else fail "relative PREFIX: $(head -c 300 "$tmp/bad.err")"; fi
+# the program in BUILD names the default data directory again (the installs above compiled in
+# theirs)
+if mk all >"$tmp/rebuild.out" 2>&1 && "$build/whirl" simulate --help | grep -q "/usr/local/share/whirl"; then
+  pass "make all after the installs: whirl names /usr/local/share/whirl again"
+else fail "rebuild after the installs: $(tail -n 3 "$tmp/rebuild.out")"; fi
 finish
