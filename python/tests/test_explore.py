@@ -141,11 +141,20 @@ def test_page_in_chromium(tmp_path):
         assert page.eval("window.whirlState.requests") == before
         page.eval("document.getElementById('length').value = '0.6'; "
                   "document.getElementById('length').dispatchEvent(new Event('change'))")
-        # a perturbed run: frames arrive, and it can be cancelled
+        # a perturbed run: frames arrive, the shape still answers while it runs, and it can
+        # be cancelled
         page.eval("document.getElementById('run').click()")
         page.wait("window.whirlState.run && window.whirlState.run.frames.length > 5")
+        page.eval("whirlSetRate(4)")
+        page.wait("window.whirlState.shape && window.whirlState.shape.rate === 4")
+        busy_ms = page.eval("window.whirlState.latencyMs")
+        assert not page.eval("window.whirlState.run.done"), "the run ended before the check"
         page.eval("document.getElementById('cancel').click()")
         page.wait("window.whirlState.run.done")
+        page.call("Performance.enable")
+        metrics = {m["name"]: m["value"] for m in page.call("Performance.getMetrics")["metrics"]}
+        with open("/proc/%d/status" % server.pid) as f:
+            rss = [l.split()[1] for l in f if l.startswith("VmRSS")][0]
         shot = os.environ.get("WHIRL_EXPLORE_SCREENSHOT")
         if shot:
             import base64
@@ -154,8 +163,10 @@ def test_page_in_chromium(tmp_path):
                 f.write(base64.b64decode(png))
         assert page.eval("window.whirlState.errors.length") == 0
         assert page.console_errors == [], page.console_errors
-        print("explore: load %.2f s, update 2 Hz %.0f ms, 6 Hz %.0f ms"
-              % (load, results[2]["ms"], results[6]["ms"]))
+        print("explore: load %.2f s, update 2 Hz %.0f ms, 6 Hz %.0f ms, 4 Hz during a run "
+              "%.0f ms; page JS heap %.1f MB, server RSS %.0f MB"
+              % (load, results[2]["ms"], results[6]["ms"], busy_ms,
+                 metrics["JSHeapUsedSize"] / 2**20, int(rss) / 1024))
     finally:
         page.close()
         server.terminate()
