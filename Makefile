@@ -1,6 +1,6 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
 # Targets: all (default), demo, check, check-clang, check-sanitize, bench, bench-quick, study,
-# python, deps, clean.
+# python, explore, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
@@ -53,7 +53,7 @@ CLI_OBJ  += $(BUILD)/gen/view_html.o
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
 .PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python deps clean fuzz \
-  install uninstall docs
+  install uninstall docs explore
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
@@ -260,6 +260,11 @@ python: deps
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
 	cp $(BUILD)/libwhirl.so python/whirl/libwhirl.so
 	$(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
+
+# The live page (python/whirl/explore.py) over the library just built.
+explore: deps
+	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
+	PYTHONPATH=python WHIRL_LIBRARY=$(BUILD)/libwhirl.so $(PYTHON) -m whirl.explore
 
 clean:
 	rm -rf build build-* out
