@@ -155,8 +155,9 @@ const char *cli_units_name(const cli_units *u, cli_unit kind);
 /* Writes the "# units: ..." comment line. */
 void cli_units_comment(FILE *fp, const cli_units *u);
 /* The library's last message (whirl_last_error) with its quantities in the user's units
- * (whirl_last_error_in_units), written into buf (size bytes); returns buf. CLI_LIBRARY_ERROR(u) gives it in a buffer
- * valid to the end of the enclosing block: cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&units)). */
+ * (whirl_last_error_in_units), written into buf (size bytes); returns buf. CLI_LIBRARY_ERROR(u)
+ * gives it in a buffer valid to the end of the enclosing block:
+ * cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&units)). */
 const char *cli_library_error(const cli_units *u, char *buf, size_t size);
 #define CLI_MESSAGE_MAX 1024
 #define CLI_LIBRARY_ERROR(u) cli_library_error((u), (char[CLI_MESSAGE_MAX]){0}, CLI_MESSAGE_MAX)

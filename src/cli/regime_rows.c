@@ -88,8 +88,8 @@ static void put_value(FILE *fp, double x)
 void regime_cli_write_result(FILE *fp, const regime_options *o, const whirl_regime_result *r)
 {
     const double len = regime_cli_user(o, CLI_UNIT_LENGTH, 1);
-    fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), regime_cli_state_class(r), r->nodes,
-            r->period);
+    fprintf(fp, "%s,%d,%d,%d,", whirl_regime_state_name(r->state), regime_cli_state_class(r),
+            r->nodes, r->period);
     put_value(fp, regime_cli_user(o, CLI_UNIT_TIME, r->t_end));
     put_value(fp, r->change * len);
     put_value(fp, r->remaining * len);
