@@ -407,6 +407,15 @@ static void convert_units(const cli_option *opts, size_t nopts, const char *give
             *(double *)opts[i].value /= cli_units_scale(&u, opts[i].unit);
 }
 
+/* The command's units (the --length option's value is their first member, length), told that
+ * a rate was given in Hz. */
+static void note_rate_hz(const cli_option *opts, size_t nopts)
+{
+    _Static_assert(offsetof(cli_units, length) == 0, "--length's value locates its cli_units");
+    for (size_t i = 0; i < nopts; i++)
+        if (opts[i].unit == CLI_UNIT_SET_LENGTH) ((cli_units *)opts[i].value)->rate_hz = 1;
+}
+
 #define CLI_MAX_OPTIONS 256
 
 int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *opts, size_t nopts,
@@ -445,6 +454,10 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         if (parse_value(o, text) != 0)
             return cli_error(cmd, "option %s needs %s, got '%s'", o->name,
                              type_words(o, words, sizeof words), text);
+        const size_t len = strlen(text);
+        if (o->type == CLI_DOUBLE && o->unit == CLI_UNIT_RATE && len > 2 &&
+            strcmp(text + len - 2, "Hz") == 0)
+            note_rate_hz(opts, nopts);
     }
     /* the units before they are used */
     if (check_ranges(cmd, opts, nopts, given, 1)) return 1;
@@ -641,5 +654,6 @@ void cli_progress_clear(cli_progress_state *p)
  * messages (whirl_last_error_in_units), so nothing here reads their text. */
 const char *cli_library_error(const cli_units *u, char *buf, size_t size)
 {
-    return whirl_last_error_in_units(buf, size, u->physical, u->length, u->mass, u->gravity, 0);
+    return whirl_last_error_in_units(buf, size, u->physical, u->length, u->mass, u->gravity,
+                                     u->rate_hz);
 }

@@ -124,6 +124,8 @@ typedef struct cli_units {
     double mass;    /* M [kg], --mass (default 1) */
     double gravity; /* g [m/s^2], --gravity (default 1; 9.80665 once a unit option is given) */
     int physical;   /* set by cli_parse: 1 if any of the three was given */
+    int rate_hz;    /* set by cli_parse: 1 if a rate was given in Hz (the library's messages then
+                     * give their rates in Hz) */
 } cli_units;
 #define CLI_UNITS_INIT {1, 1, 1, 0}
 #define CLI_STANDARD_GRAVITY WHIRL_STANDARD_GRAVITY /* g when SI units are on and no --gravity */

@@ -223,6 +223,20 @@ same_error "error in SI: equilibria at a birth" \
   "equilibria --links 5 --omega $(val "R * $("$WHIRL" critical --links 5 --modes 3 | grep -v '^#' | tail -n 1 | cut -d, -f2)") $units"
 
 
+
+# A rate given in Hz: the library's messages give their rates in Hz, the same rates as in rad/s
+# divided by 2 pi (to the 15 digits printed: 1e-12 relative).
+"$WHIRL" shape --omega 4Hz --mode 9 --length 0.6 2>"$tmp/hz.err" >/dev/null
+"$WHIRL" shape --omega "$(val "8 * pi")" --mode 9 --length 0.6 2>"$tmp/rad.err" >/dev/null
+if grep -q '^whirl shape: mode 9 does not exist at omega=4 Hz: it exists only above omega_9=[0-9.]* Hz$' \
+     "$tmp/hz.err" &&
+   awk 'NR == 1 { split($0, a, "omega_9="); hz = a[2] + 0 }
+        NR == 2 { split($0, b, "omega_9="); rad = b[2] + 0 }
+        END { d = hz * 2 * 3.14159265358979323846 / rad - 1; if (d < 0) d = -d; exit !(d < 1e-12) }' \
+     "$tmp/hz.err" "$tmp/rad.err"; then
+  pass "error in SI with --omega in Hz: the rates in Hz"
+else fail "error in SI with --omega in Hz: $(cat "$tmp/hz.err") | $(cat "$tmp/rad.err")"; fi
+
 # Every rate and tip radius of a library message is typed (WHIRL_Q_RATE, WHIRL_Q_LENGTH), so that
 # the lines above print it in SI: none of the library's format strings leaves one untyped.
 root=$(dirname "$0")/../..
