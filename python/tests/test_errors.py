@@ -59,10 +59,10 @@ def test_mode_that_does_not_exist():
 
 
 def test_library_rejects_bad_model_and_state():
-    # an _alloc function returns NULL and leaves its message: EFAILED
-    _library_error(lambda: whirl.Simulation(3, dim=4), "EFAILED", "dim")
-    _library_error(lambda: whirl.Simulation(3, dim=2, frame="rotating"), "EFAILED", "")
-    _library_error(lambda: whirl.Simulation(3, method="euler"), "EFAILED", "gauss2")
+    # an _alloc function returns NULL and leaves its message and status (whirl_last_status): EINVAL
+    _library_error(lambda: whirl.Simulation(3, dim=4), "EINVAL", "dim")
+    _library_error(lambda: whirl.Simulation(3, dim=2, frame="rotating"), "EINVAL", "")
+    _library_error(lambda: whirl.Simulation(3, method="euler"), "EINVAL", "gauss2")
     sim = whirl.Simulation(3)
     x = np.array([[0, 0, -0.3], [0, 0, -0.6], [0, 0, -0.9]])  # links of 0.3, not 1/3
     _library_error(lambda: sim.set_state(x, np.zeros((3, 3))), "EINVAL", "")

@@ -95,7 +95,7 @@ def check(status, context=None):
 def check_ptr(ptr, free=None):
     """A pointer from an _alloc function, or whirl.Error with the library's message."""
     if ptr == ffi.NULL:
-        raise Error(5, last_error() or "allocation failed")
+        raise Error(lib.whirl_last_status() or 5, last_error() or "allocation failed")
     return ffi.gc(ptr, free) if free is not None else ptr
 
 
