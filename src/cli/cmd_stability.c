@@ -291,7 +291,7 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
     if (c) {
         whirl_windows *w = whirl_windows_alloc((size_t)o->links);
         status = w ? whirl_windows_find(w, c, mode, p, win, WINDOWS_MAX, count, stats)
-                   : GSL_ENOMEM;
+                   : whirl_last_status();
         whirl_windows_free(w);
     } else {
         whirl_cstab_params cp = whirl_cstab_defaults();
@@ -299,7 +299,7 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
         cp.tip_mass = o->tip_mass;
         whirl_cstab *w = whirl_cstab_alloc(&cp);
         status = w ? whirl_cstab_windows(w, mode, p, win, WINDOWS_MAX, count, stats)
-                   : GSL_ENOMEM;
+                   : whirl_last_status();
         whirl_cstab_free(w);
     }
     return status;

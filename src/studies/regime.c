@@ -211,11 +211,11 @@ static int start_model(whirl_regime *w, const whirl_regime_params *p, double ome
                              .internal_damping = p->internal_damping,
                              .drive_radius_ramp = {0, p->drive_radius, 0, p->t_ramp}};
     w->dyn = whirl_dyn_alloc(&w->model, WHIRL_FORMULATION_CARTESIAN);
-    if (w->dyn == NULL) return GSL_EINVAL;
+    if (w->dyn == NULL) return whirl_last_status();
     w->it = whirl_integrator_alloc(p->method, w->dyn);
-    if (w->it == NULL) return GSL_EINVAL;
+    if (w->it == NULL) return whirl_last_status();
     w->twin = whirl_integrator_alloc(p->method, w->dyn);
-    if (w->twin == NULL) return GSL_ENOMEM;
+    if (w->twin == NULL) return whirl_last_status();
     return GSL_SUCCESS;
 }
 
