@@ -11,8 +11,9 @@
 typedef struct whirl_worker whirl_worker; /* the control block of one run */
 
 /* The work: runs fn(arg, self). It may ask whirl_worker_abandoned(self) between its pieces and
- * should then return soon; it must record its own status and message in arg (the thread-local
- * last error of a worker thread is not the caller's). */
+ * should then return soon; it must record its own status and message in arg, in a
+ * whirl_error_record (whirl_error_keep there, whirl_error_restore on the caller's thread: the
+ * thread-local last error of a worker thread is not the caller's). */
 typedef void (*whirl_work_fn)(void *arg, const whirl_worker *self);
 
 /* Runs fn(arg, self) on a thread of its own while the calling thread polls the stop request
