@@ -204,6 +204,7 @@
 #include <gsl/gsl_roots.h>
 
 #include "core/error.h"
+#include "steady/nlink_path_internal.h"
 #include "steady/steady_internal.h"
 
 #define DS_FIRST 0.02    /* first step from a start */
@@ -389,15 +390,15 @@ static void shot_metric(const shot *s, double *m)
 
 /* Newton's method on G = 0 and the row c . (x - x0) = sigma from (*w, *a). Returns 0 when it
  * converged (the last shot in *s), -1 otherwise. */
-static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, double c_w,
+static int correct(nlink_path *p, const double *m0, double w0, double a0, double c_w,
                    double c_a, double sigma, double *w, double *a, shot *s, int *iters)
 {
     int final = 0;
     double prev = INFINITY;
-    p->floor_exit = 0;
+    p->s.floor_exit = 0;
     for (int it = 0; it < NEWTON_MAX; it++) {
-        shoot(p->chain, *w, *a, s, NULL);
-        p->shots++;
+        shoot(p->pub.chain, *w, *a, s, NULL);
+        p->pub.shots++;
         if (!(isfinite(s->g) && isfinite(s->g_a) && isfinite(s->g_w))) return -1;
         double r1 = -s->g, r2 = sigma - (c_w * (*w - w0) + c_a * (*a - a0));
         double det = s->g_w * c_a - s->g_a * c_w;
@@ -407,8 +408,8 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
         *a += da;
         if (!(*w > 0 && isfinite(*w) && isfinite(*a))) return -1;
         if (final) {
-            shoot(p->chain, *w, *a, s, NULL);
-            p->shots++;
+            shoot(p->pub.chain, *w, *a, s, NULL);
+            p->pub.shots++;
             return 0;
         }
         double norm2 = metric_dot(m0, dw, da, dw, da), norm = sqrt(norm2);
@@ -419,7 +420,7 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
         } else if (it >= 2 && norm <= NEWTON_FLOOR && norm >= 0.5 * prev) {
             /* no longer decreasing: the round-off floor of an ill-conditioned shot */
             if (iters) *iters = it + 1;
-            p->floor_exit = 1;
+            p->s.floor_exit = 1;
             return 0;
         }
         prev = norm;
@@ -427,54 +428,74 @@ static int correct(whirl_nlink_path *p, const double *m0, double w0, double a0, 
     return -1;
 }
 
-/* The doubles of a path's block (the arrays below, in one allocation). */
-static size_t work_size(size_t n)
-{
-    const size_t ne = WHIRL_PATH_EVENTS_MAX;
-    return 8 * n + 2 * (2 * n + 1) + (2 * ne + 1) * n + 7 * n + 3;
-}
+static void path_free(nlink_path *p);
+static void swap(size_t *x, size_t *y);
 
-whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c)
+static nlink_path *path_alloc(const whirl_chain *c)
 {
     if (c == NULL || c->n < 1) {
         whirl_fail(GSL_EINVAL, "a chain needs at least one link");
         return NULL;
     }
-    whirl_nlink_path *p = calloc(1, sizeof *p);
+    const size_t n = c->n;
+    nlink_path *p = calloc(1, sizeof *p + path_block_size(n) * sizeof(double));
     if (p == NULL) goto fail;
-    p->chain = c;
-    const size_t n = c->n, ne = WHIRL_PATH_EVENTS_MAX;
-    p->work = malloc(work_size(n) * sizeof *p->work);
-    if (p->work == NULL) goto fail;
-    p->theta = p->work;
-    p->theta_trial = p->theta + n;
-    p->embed = p->theta_trial + n;
-    p->embed_trial = p->embed + 2 * n + 1;
-    p->t_theta = p->embed_trial + 2 * n + 1;
-    p->t_theta_trial = p->t_theta + n;
-    p->last.theta0 = p->t_theta_trial + n;
-    p->last.t_theta0 = p->last.theta0 + n;
-    p->cross_theta = p->last.t_theta0 + n;
-    p->event_theta = p->cross_theta + (ne + 1) * n;
-    p->eig = p->event_theta + ne * n;
-    p->eig_trial = p->eig + n;
-    p->scratch = p->eig_trial + n;
+    p->pub.chain = c;
+    /* the arrays exchanged with their trial: theta, theta_trial, t_theta, t_theta_trial (n
+     * each), embed, embed_trial (2 n + 1 each), eig, eig_trial (n each) */
+    p->s.theta = 0;
+    p->s.theta_trial = n;
+    p->s.t_theta = 2 * n;
+    p->s.t_theta_trial = 3 * n;
+    p->s.embed = 4 * n;
+    p->s.embed_trial = 6 * n + 1;
+    p->s.eig = 8 * n + 2;
+    p->s.eig_trial = 9 * n + 2;
     p->balance = whirl_nlink_balance_alloc(c);
     if (p->balance == NULL) goto fail;
     return p;
 fail:
-    whirl_nlink_path_free(p);
+    path_free(p);
     whirl_fail(GSL_ENOMEM, "out of memory for a path on a chain of %zu links", c->n);
     return NULL;
 }
 
-void whirl_nlink_path_free(whirl_nlink_path *p)
+static void path_free(nlink_path *p)
 {
     if (p == NULL) return;
-    whirl_nlink_path_free(p->probe);
+    path_free(p->probe);
     whirl_nlink_balance_free(p->balance);
-    free(p->work);
     free(p);
+}
+
+whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c)
+{
+    nlink_path *p = path_alloc(c);
+    return p ? &p->pub : NULL;
+}
+
+void whirl_nlink_path_free(whirl_nlink_path *p)
+{
+    if (p) path_free(path_of(p));
+}
+
+const double *whirl_nlink_path_theta(const whirl_nlink_path *p)
+{
+    return arr_theta((const nlink_path *)p);
+}
+
+const double *whirl_nlink_path_cross_theta(const whirl_nlink_path *p)
+{
+    return arr_cross_theta((const nlink_path *)p);
+}
+
+/* dst becomes a copy of src at its current point: its public part, its state and its block (the
+ * arrays, addressed by offsets); dst's force balance and probe are its own. */
+static void path_copy(nlink_path *dst, const nlink_path *src)
+{
+    dst->pub = src->pub;
+    dst->s = src->s;
+    memcpy(dst->block, src->block, path_block_size(src->pub.chain->n) * sizeof(double));
 }
 
 /* The unit tangent at s (metric m) oriented against the previous direction (ref_w, ref_a) in the
@@ -492,11 +513,11 @@ static void tangent(const shot *s, const double *m, const double *m_ref, double 
 /* ---- the path in the link angles (the equations: src/nlink_balance.c) ---- */
 
 /* Scratch arrays of the path (7 N + 3 doubles). */
-static double *scr_f(const whirl_nlink_path *p) { return p->scratch; }
-static double *scr_dth(const whirl_nlink_path *p) { return p->scratch + p->chain->n; }
-static double *scr_zero(const whirl_nlink_path *p) { return p->scratch + 2 * p->chain->n; }
-static double *scr_cth(const whirl_nlink_path *p) { return p->scratch + 3 * p->chain->n; }
-static double *scr_nodes(const whirl_nlink_path *p) { return p->scratch + 4 * p->chain->n; }
+static double *scr_f(const nlink_path *p) { return arr_scratch(p); }
+static double *scr_dth(const nlink_path *p) { return arr_scratch(p) + p->pub.chain->n; }
+static double *scr_zero(const nlink_path *p) { return arr_scratch(p) + 2 * p->pub.chain->n; }
+static double *scr_cth(const nlink_path *p) { return arr_scratch(p) + 3 * p->pub.chain->n; }
+static double *scr_nodes(const nlink_path *p) { return arr_scratch(p) + 4 * p->pub.chain->n; }
 
 /* The tip radius of the link angles: at an equilibrium r_N = rho_N = g tan theta_N / omega^2, the
  * radius that balances the tip mass, free of the cancellation of the sum of l_i sin theta_i (a
@@ -535,16 +556,16 @@ static double angle_norm(size_t n, double w0, double dw, const double *dth)
  * sigma from (*w, th) (in place), converged as correct(); the force balance is left factorised
  * at the converged point (or at the point before its last correction, when that was below the
  * square of NEWTON_TOL). Returns 0 when it converged, -1 otherwise. */
-static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, double c_w,
+static int correct_angles(nlink_path *p, double w0, const double *th0, double c_w,
                           const double *c_th, double sigma, double *w, double *th, int *iters,
                           int max_iter)
 {
-    const size_t n = p->chain->n;
+    const size_t n = p->pub.chain->n;
     double *f = scr_f(p), *dth = scr_dth(p), prev = INFINITY;
     int final = 0;
     for (int it = 0; it < max_iter; it++) {
         if (whirl_nlink_balance_factor(p->balance, *w, th)) return -1;
-        p->shots++;
+        p->pub.shots++;
         const double *res = whirl_nlink_balance_residual(p->balance);
         double g = sigma - c_w * (*w - w0), dw, schur;
         for (size_t i = 0; i < n; i++) f[i] = -res[i], g -= c_th[i] * (th[i] - th0[i]);
@@ -568,7 +589,7 @@ static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, dou
          * the floor the converged point's own */
         if (done && final) return 0;
         if (done) {
-            p->shots++;
+            p->pub.shots++;
             return whirl_nlink_balance_factor(p->balance, *w, th) ? -1 : 0;
         }
         prev = norm;
@@ -580,10 +601,10 @@ static int correct_angles(whirl_nlink_path *p, double w0, const double *th0, dou
  * (c_w, c_th) positive: d omega in *t_w, d theta in t_th. *det_sign: the sign of det [J; c],
  * which changes at a branch point; the continuous test sign(det A) exp(ln|det A| - ref) schur
  * in *test if not NULL (*ref set from the first call when NaN). Returns 0 or -1. */
-static int angle_tangent(whirl_nlink_path *p, double w, double c_w, const double *c_th,
+static int angle_tangent(nlink_path *p, double w, double c_w, const double *c_th,
                          double *t_w, double *t_th, int *det_sign, double *ref, double *test)
 {
-    const size_t n = p->chain->n;
+    const size_t n = p->pub.chain->n;
     double schur;
     if (whirl_nlink_balance_bordered(p->balance, c_th, c_w, NULL, 1, 1, t_th, t_w, &schur))
         return -1;
@@ -614,138 +635,135 @@ static int sign_of(double x)
     return (x > 0) - (x < 0);
 }
 
-/* The path at the point p->theta, rate w, of a step or start in the link angles, with the tangent
- * (t_w, p->t_theta) and the orientation test's sign det. */
-static void angle_point(whirl_nlink_path *p, double w, double t_w, int det)
+/* The path at the point arr_theta(p), rate w, of a step or start in the link angles, with the tangent
+ * (t_w, arr_t_theta(p)) and the orientation test's sign det. */
+static void angle_point(nlink_path *p, double w, double t_w, int det)
 {
-    const whirl_chain *c = p->chain;
-    p->omega = w;
-    p->tip_r = tip_of(c, w, p->theta);
-    p->t_omega = t_w;
-    p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
-    p->det_sign = det;
-    p->index = whirl_nlink_balance_index(p->balance);
-    p->mu = p->mu_rate = NAN;
-    p->rate_sign = sign_of(t_w);
-    angle_embed(c->n, w, t_w, p->t_theta, p->embed);
-    if (w < p->omega_lo) p->omega_lo = w;
-    if (w > p->omega_hi) p->omega_hi = w;
-    p->angles = 1;
+    const whirl_chain *c = p->pub.chain;
+    p->pub.omega = w;
+    p->pub.tip_r = tip_of(c, w, arr_theta(p));
+    p->pub.t_omega = t_w;
+    p->pub.t_tip = tip_rate(c, w, arr_theta(p), t_w, arr_t_theta(p));
+    p->s.det_sign = det;
+    p->s.index = whirl_nlink_balance_index(p->balance);
+    p->s.mu = p->s.mu_rate = NAN;
+    p->s.rate_sign = sign_of(t_w);
+    angle_embed(c->n, w, t_w, arr_t_theta(p), arr_embed(p));
+    if (w < p->pub.omega_lo) p->pub.omega_lo = w;
+    if (w > p->pub.omega_hi) p->pub.omega_hi = w;
+    p->pub.angles = 1;
 }
 
 /* The round-off of the shot at (omega, a) (shot_noise). */
-static double noise_at(whirl_nlink_path *p, double omega, double a)
+static double noise_at(nlink_path *p, double omega, double a)
 {
     shot s;
-    shoot_core(p->chain, omega, a, &s, NULL, NULL, 0);
-    p->shots += 2;
-    return shot_noise(p->chain, omega, a, &s);
+    shoot_core(p->pub.chain, omega, a, &s, NULL, NULL, 0);
+    p->pub.shots += 2;
+    return shot_noise(p->pub.chain, omega, a, &s);
 }
 
 /* The state at an accepted point. */
-static void set_point(whirl_nlink_path *p, double omega, double a, const shot *s, double noise)
+static void set_point(nlink_path *p, double omega, double a, const shot *s, double noise)
 {
-    p->omega = omega;
-    p->tip_r = a;
-    shot_metric(s, p->metric);
-    p->noise = noise >= 0 ? noise : shot_noise(p->chain, omega, a, s);
-    if (omega < p->omega_lo) p->omega_lo = omega;
-    if (omega > p->omega_hi) p->omega_hi = omega;
+    p->pub.omega = omega;
+    p->pub.tip_r = a;
+    shot_metric(s, p->s.metric);
+    p->s.noise = noise >= 0 ? noise : shot_noise(p->pub.chain, omega, a, s);
+    if (omega < p->pub.omega_lo) p->pub.omega_lo = omega;
+    if (omega > p->pub.omega_hi) p->pub.omega_hi = omega;
 }
 
-static void reset(whirl_nlink_path *p)
+static void reset(nlink_path *p)
 {
-    p->arclength = 0;
-    p->ds = DS_FIRST;
-    p->steps = p->rejected = p->shots = 0;
-    p->n_events = 0;
-    p->ended = 0;
-    p->omega_lo = INFINITY;
-    p->omega_hi = -INFINITY;
-    p->have_last = 0;
-    p->angles = 0;
-    p->noise = 0;
-    p->index = -1;
-    p->mu = p->mu_rate = NAN;
-    p->why = "";
-    p->stay = 0;
-    p->backoff = STAY_FIRST;
-    p->fine_end = p->probe_end = 0;
-    p->rate_sign = p->last_rate_sign = 0;
-    for (size_t i = 0; i < p->chain->n; i++) scr_zero(p)[i] = 0;
+    p->pub.arclength = 0;
+    p->pub.ds = DS_FIRST;
+    p->pub.steps = p->pub.rejected = p->pub.shots = 0;
+    p->pub.n_events = 0;
+    p->pub.ended = 0;
+    p->pub.omega_lo = INFINITY;
+    p->pub.omega_hi = -INFINITY;
+    p->s.have_last = 0;
+    p->pub.angles = 0;
+    p->s.noise = 0;
+    p->s.index = -1;
+    p->s.mu = p->s.mu_rate = NAN;
+    p->s.why = "";
+    p->s.stay = 0;
+    p->s.backoff = STAY_FIRST;
+    p->s.fine_end = p->s.probe_end = 0;
+    p->s.rate_sign = p->s.last_rate_sign = 0;
+    for (size_t i = 0; i < p->pub.chain->n; i++) scr_zero(p)[i] = 0;
 }
 
 /* Over to the link angles at the current point of the shot: its angles polished on the force
  * balance at fixed omega, or where that fails (A singular or nearly: a fold at or next to the
  * point) on the hyperplane through the point normal to the shot's tangent (the arclength row at
  * sigma = 0, regular at a fold); the tangent carried over (the shot's tangent in theta is
- * p->embed). Returns 0, or -1 with the path unchanged. */
-static int to_angles(whirl_nlink_path *p)
+ * arr_embed(p)). Returns 0, or -1 with the path unchanged. */
+static int to_angles(nlink_path *p)
 {
-    const whirl_chain *c = p->chain;
+    const whirl_chain *c = p->pub.chain;
     const size_t n = c->n;
-    double *th = p->theta_trial, *c_th = scr_cth(p), t_w, w = p->omega;
-    const double c_w = p->t_omega / (p->omega * p->omega);
+    double *th = arr_theta_trial(p), *c_th = scr_cth(p), t_w, w = p->pub.omega;
+    const double c_w = p->pub.t_omega / (p->pub.omega * p->pub.omega);
     for (size_t i = 0; i < n; i++) {
-        th[i] = p->theta[i];
-        c_th[i] = p->raw_sign * p->embed[i + 1] * sqrt((double)n) / (double)n;
+        th[i] = arr_theta(p)[i];
+        c_th[i] = p->s.raw_sign * arr_embed(p)[i + 1] * sqrt((double)n) / (double)n;
     }
     if (whirl_nlink_balance_polish(p->balance, w, th)) {
-        for (size_t i = 0; i < n; i++) th[i] = p->theta[i];
-        if (correct_angles(p, p->omega, p->theta, c_w, c_th, 0, &w, th, NULL,
+        for (size_t i = 0; i < n; i++) th[i] = arr_theta(p)[i];
+        if (correct_angles(p, p->pub.omega, arr_theta(p), c_w, c_th, 0, &w, th, NULL,
                            LOCATE_NEWTON_MAX))
             return -1;
     }
     int det;
-    if (angle_tangent(p, w, c_w, c_th, &t_w, p->t_theta, &det, NULL, NULL)) return -1;
-    double *tmp = p->theta;
-    p->theta = th;
-    p->theta_trial = tmp;
-    p->omega = w;
-    p->t_omega = t_w;
-    p->t_tip = tip_rate(c, p->omega, th, t_w, p->t_theta);
-    p->tip_r = tip_of(c, p->omega, th);
-    p->det_sign = det;
-    p->index = whirl_nlink_balance_index(p->balance);
-    p->mu = p->mu_rate = NAN;
-    angle_embed(n, p->omega, t_w, p->t_theta, p->embed);
-    p->angles = 1;
-    p->have_last = 0;
+    if (angle_tangent(p, w, c_w, c_th, &t_w, arr_t_theta(p), &det, NULL, NULL)) return -1;
+    swap(&p->s.theta, &p->s.theta_trial); /* th was the trial's */
+    p->pub.omega = w;
+    p->pub.t_omega = t_w;
+    p->pub.t_tip = tip_rate(c, p->pub.omega, th, t_w, arr_t_theta(p));
+    p->pub.tip_r = tip_of(c, p->pub.omega, th);
+    p->s.det_sign = det;
+    p->s.index = whirl_nlink_balance_index(p->balance);
+    p->s.mu = p->s.mu_rate = NAN;
+    angle_embed(n, p->pub.omega, t_w, arr_t_theta(p), arr_embed(p));
+    p->pub.angles = 1;
+    p->s.have_last = 0;
     return 0;
 }
-
-static void swap(double **x, double **y);
 
 /* Back to the tip shot at the current point (polished by the shot's Newton at fixed omega).
  * Returns 0, or -1 with the path unchanged. */
-static int to_shot(whirl_nlink_path *p)
+static int to_shot(nlink_path *p)
 {
-    double w = p->omega, a = p->tip_r, m[3];
+    double w = p->pub.omega, a = p->pub.tip_r, m[3];
     shot s;
     int iters;
-    shoot(p->chain, w, a, &s, NULL);
+    shoot(p->pub.chain, w, a, &s, NULL);
     shot_metric(&s, m);
     if (correct(p, m, w, a, 1, 0, 0, &w, &a, &s, &iters) != 0 || a == 0) return -1;
-    double t_w = p->t_omega, t_a = p->t_tip, moved = 0;
-    shoot_embed(p->chain, w, a, &s, p->theta_trial, p->embed_trial);
-    p->shots++;
-    for (size_t i = 0; i < p->chain->n; i++)
-        moved = fmax(moved, fabs(p->theta_trial[i] - p->theta[i]));
+    double t_w = p->pub.t_omega, t_a = p->pub.t_tip, moved = 0;
+    shoot_embed(p->pub.chain, w, a, &s, arr_theta_trial(p), arr_embed_trial(p));
+    p->pub.shots++;
+    for (size_t i = 0; i < p->pub.chain->n; i++)
+        moved = fmax(moved, fabs(arr_theta_trial(p)[i] - arr_theta(p)[i]));
     if (!(moved <= SHOT_SAME)) return -1;
-    swap(&p->theta, &p->theta_trial);
-    swap(&p->embed, &p->embed_trial);
+    swap(&p->s.theta, &p->s.theta_trial);
+    swap(&p->s.embed, &p->s.embed_trial);
     set_point(p, w, a, &s, -1);
-    tangent(&s, p->metric, p->metric, t_w, t_a, &p->t_omega, &p->t_tip, &p->raw_sign);
-    p->angles = 0;
-    p->index = -1;
-    p->mu = p->mu_rate = NAN;
-    p->have_last = 0;
+    tangent(&s, p->s.metric, p->s.metric, t_w, t_a, &p->pub.t_omega, &p->pub.t_tip, &p->s.raw_sign);
+    p->pub.angles = 0;
+    p->s.index = -1;
+    p->s.mu = p->s.mu_rate = NAN;
+    p->s.have_last = 0;
     return 0;
 }
 
-int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
+int whirl_nlink_path_birth(whirl_nlink_path *path, int mode)
 {
-    const whirl_chain *c = p->chain;
+    nlink_path *p = path_of(path);
+    const whirl_chain *c = p->pub.chain;
     if (mode < 1 || (size_t)mode > c->n)
         return whirl_fail(GSL_EINVAL, "mode %d does not exist: a chain of %zu links has modes "
                           "1..%zu", mode, c->n, c->n);
@@ -756,7 +774,7 @@ int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
     free(crit);
     if (status) return status;
     reset(p);
-    p->mode = mode;
+    p->pub.mode = mode;
     /* Newton's method on the linearised shot G(omega, 0); where the shot is too inaccurate
      * for it (the high modes of long chains: a correction beyond 1e-6 omega_k, or none that
      * settles), the rate from the tridiagonal eigenproblem, accurate to a few eps relative */
@@ -764,7 +782,7 @@ int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
     const double omega_eig = omega;
     for (int it = 0; it < 20; it++) {
         shoot(c, omega, 0, &s, NULL);
-        p->shots++;
+        p->pub.shots++;
         double d = s.g / s.g_w;
         if (!isfinite(d) || fabs(omega - d - omega_eig) > 1e-6 * omega_eig || it == 19) {
             omega = omega_eig;
@@ -773,58 +791,60 @@ int whirl_nlink_path_birth(whirl_nlink_path *p, int mode)
         omega -= d;
         if (fabs(d) <= 4 * DBL_EPSILON * omega) break;
     }
-    shoot_embed(c, omega, 0, &s, p->theta, p->embed);
-    p->shots++;
-    p->omega_birth = omega;
+    shoot_embed(c, omega, 0, &s, arr_theta(p), arr_embed(p));
+    p->pub.shots++;
+    p->pub.omega_birth = omega;
     set_point(p, omega, 0, &s, -1);
     /* the tangent is vertical: into a > 0 */
-    p->t_omega = 0;
-    p->t_tip = 1 / sqrt(s.m_aa);
+    p->pub.t_omega = 0;
+    p->pub.t_tip = 1 / sqrt(s.m_aa);
     double tw, ta;
-    tangent(&s, p->metric, p->metric, p->t_omega, p->t_tip, &tw, &ta, &p->raw_sign);
+    tangent(&s, p->s.metric, p->s.metric, p->pub.t_omega, p->pub.t_tip, &tw, &ta, &p->s.raw_sign);
     return GSL_SUCCESS;
 }
 
-int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int direction)
+int whirl_nlink_path_start(whirl_nlink_path *path, double omega, double tip_r, int direction)
 {
+    nlink_path *p = path_of(path);
     if (!(isfinite(omega) && omega > 0 && isfinite(tip_r)))
         return whirl_fail(GSL_EINVAL, "a path starts at omega > 0 and a finite tip radius");
     reset(p);
-    p->mode = 0;
-    p->omega_birth = 0;
+    p->pub.mode = 0;
+    p->pub.omega_birth = 0;
     double w = omega, a = tip_r, m[3] = {1, 0, 1};
     shot s;
     int iters;
     if (correct(p, m, omega, tip_r, 1, 0, 0, &w, &a, &s, &iters) != 0 || a == 0)
         return whirl_fail(GSL_EFAILED, "no equilibrium near omega=%.17g, tip radius %.17g",
                           omega, tip_r);
-    shoot_embed(p->chain, w, a, &s, p->theta, p->embed);
-    p->shots++;
+    shoot_embed(p->pub.chain, w, a, &s, arr_theta(p), arr_embed(p));
+    p->pub.shots++;
     set_point(p, w, a, &s, -1);
     double tw, ta;
     int raw;
-    tangent(&s, p->metric, p->metric, s.g_a, -s.g_w, &tw, &ta, &raw);
+    tangent(&s, p->s.metric, p->s.metric, s.g_a, -s.g_w, &tw, &ta, &raw);
     if ((direction >= 0) != (tw >= 0)) tw = -tw, ta = -ta, raw = -raw;
-    p->t_omega = tw;
-    p->t_tip = ta;
-    p->raw_sign = raw;
-    p->rate_sign = sign_of(tw);
+    p->pub.t_omega = tw;
+    p->pub.t_tip = ta;
+    p->s.raw_sign = raw;
+    p->s.rate_sign = sign_of(tw);
     return GSL_SUCCESS;
 }
 
-int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega, const double *theta,
+int whirl_nlink_path_start_angles(whirl_nlink_path *path, double omega, const double *theta,
                                   int direction)
 {
-    const whirl_chain *c = p->chain;
+    nlink_path *p = path_of(path);
+    const whirl_chain *c = p->pub.chain;
     const size_t n = c->n;
     if (!(isfinite(omega) && omega > 0))
         return whirl_fail(GSL_EINVAL, "a path starts at omega > 0");
     reset(p);
-    p->mode = 0;
-    p->omega_birth = 0;
-    for (size_t i = 0; i < n; i++) p->theta[i] = theta[i];
-    if (whirl_nlink_balance_polish(p->balance, omega, p->theta) ||
-        !(tip_of(c, omega, p->theta) != 0))
+    p->pub.mode = 0;
+    p->pub.omega_birth = 0;
+    for (size_t i = 0; i < n; i++) arr_theta(p)[i] = theta[i];
+    if (whirl_nlink_balance_polish(p->balance, omega, arr_theta(p)) ||
+        !(tip_of(c, omega, arr_theta(p)) != 0))
         return whirl_fail(GSL_EFAILED, "no equilibrium of the chain near the link angles given "
                           "at omega=%.17g", omega);
     /* the tangent with d omega > 0 (the row e_omega: regular unless the point is a fold),
@@ -832,35 +852,36 @@ int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega, const doubl
      * a step makes it */
     double t_w, *c_th = scr_cth(p);
     int det;
-    if (angle_tangent(p, omega, 1, scr_zero(p), &t_w, p->t_theta, &det, NULL, NULL))
+    if (angle_tangent(p, omega, 1, scr_zero(p), &t_w, arr_t_theta(p), &det, NULL, NULL))
         return whirl_fail(GSL_EFAILED, "the equilibrium at omega=%.17g is a fold: no tangent "
                           "transversal to the rate", omega);
     const double sign = direction >= 0 ? 1 : -1;
     t_w *= sign;
-    for (size_t i = 0; i < n; i++) p->t_theta[i] *= sign, c_th[i] = p->t_theta[i] / (double)n;
+    for (size_t i = 0; i < n; i++) arr_t_theta(p)[i] *= sign, c_th[i] = arr_t_theta(p)[i] / (double)n;
     double t_check;
-    if (angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, p->t_theta_trial, &det,
+    if (angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, arr_t_theta_trial(p), &det,
                       NULL, NULL))
         return whirl_fail(GSL_EFAILED, "the tangent at omega=%.17g is not defined", omega);
     angle_point(p, omega, t_w, det);
-    p->noise = noise_at(p, omega, p->tip_r);
+    p->s.noise = noise_at(p, omega, p->pub.tip_r);
     return GSL_SUCCESS;
 }
 
-void whirl_nlink_path_reverse(whirl_nlink_path *p)
+void whirl_nlink_path_reverse(whirl_nlink_path *path)
 {
-    p->t_omega = -p->t_omega;
-    p->t_tip = -p->t_tip;
-    p->raw_sign = -p->raw_sign;
-    p->rate_sign = -p->rate_sign;
-    if (p->angles) {
-        for (size_t i = 0; i < p->chain->n; i++) p->t_theta[i] = -p->t_theta[i];
-        for (size_t i = 0; i <= p->chain->n; i++) p->embed[i] = -p->embed[i];
-        p->det_sign = -p->det_sign;
-        p->mu_rate = -p->mu_rate;
+    nlink_path *p = path_of(path);
+    p->pub.t_omega = -p->pub.t_omega;
+    p->pub.t_tip = -p->pub.t_tip;
+    p->s.raw_sign = -p->s.raw_sign;
+    p->s.rate_sign = -p->s.rate_sign;
+    if (p->pub.angles) {
+        for (size_t i = 0; i < p->pub.chain->n; i++) arr_t_theta(p)[i] = -arr_t_theta(p)[i];
+        for (size_t i = 0; i <= p->pub.chain->n; i++) arr_embed(p)[i] = -arr_embed(p)[i];
+        p->s.det_sign = -p->s.det_sign;
+        p->s.mu_rate = -p->s.mu_rate;
     }
-    p->have_last = 0;
-    p->fine_end = p->probe_end = 0;
+    p->s.have_last = 0;
+    p->s.fine_end = p->s.probe_end = 0;
 }
 
 /* ---- events: located on the last step by Brent's method on sigma ---- */
@@ -868,7 +889,7 @@ void whirl_nlink_path_reverse(whirl_nlink_path *p)
 typedef enum { TARGET_OMEGA, TARGET_FOLD, TARGET_BRANCH, TARGET_RETURN } target_kind;
 
 typedef struct step_frame {
-    whirl_nlink_path *p;
+    nlink_path *p;
     int angles;          /* the step was made in the link angles */
     double m0[3];        /* metric at the step's start (shot) */
     double w0, a0;       /* the step's start */
@@ -891,18 +912,18 @@ typedef struct step_frame {
 /* The corrected point at arclength sigma of the step (a start on the chord). */
 static int frame_point(step_frame *f, double sigma)
 {
-    whirl_nlink_path *p = f->p;
+    nlink_path *p = f->p;
     const double lambda = sigma / f->ds;
     int iters;
     if (f->angles) {
-        const size_t n = p->chain->n;
-        const double *th0 = p->last.theta0, *th1 = p->theta;
+        const size_t n = p->pub.chain->n;
+        const double *th0 = arr_theta0(p), *th1 = arr_theta(p);
         f->w = f->w0 + lambda * (f->w1 - f->w0);
         for (size_t i = 0; i < n; i++) f->th[i] = th0[i] + lambda * (th1[i] - th0[i]);
         if (correct_angles(p, f->w0, th0, f->c_w, scr_cth(p), sigma, &f->w, f->th, &iters,
                            LOCATE_NEWTON_MAX))
             return -1;
-        f->a = tip_of(p->chain, f->w, f->th);
+        f->a = tip_of(p->pub.chain, f->w, f->th);
         return 0;
     }
     double c_w = f->m0[0] * f->t0_w + f->m0[1] * f->t0_a;
@@ -933,11 +954,11 @@ static double frame_phi(double sigma, void *params)
     f->at = sigma;
     if (f->kind == TARGET_OMEGA) return f->w - f->target;
     if (f->kind == TARGET_RETURN)
-        return f->angles ? shape_projection(f->p->chain->n, f->th, f->p->last.theta0) : f->a;
+        return f->angles ? shape_projection(f->p->pub.chain->n, f->th, arr_theta0(f->p)) : f->a;
     if (f->angles) {
         double t_w, test;
         int det;
-        if (angle_tangent(f->p, f->w, f->c_w, scr_cth(f->p), &t_w, f->p->t_theta_trial, &det,
+        if (angle_tangent(f->p, f->w, f->c_w, scr_cth(f->p), &t_w, arr_t_theta_trial(f->p), &det,
                           &f->ref, &test)) {
             f->failed = 1;
             return 0;
@@ -1014,18 +1035,18 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
     return status;
 }
 
-static void frame_of_last(whirl_nlink_path *p, step_frame *f, target_kind kind, double target)
+static void frame_of_last(nlink_path *p, step_frame *f, target_kind kind, double target)
 {
     f->p = p;
-    f->angles = p->last.angles;
-    for (int i = 0; i < 3; i++) f->m0[i] = p->last.m0[i];
-    f->w0 = p->last.w0;
-    f->a0 = p->last.a0;
-    f->t0_w = p->last.t_w;
-    f->t0_a = p->last.t_a;
-    f->w1 = p->omega;
-    f->a1 = p->tip_r;
-    f->ds = p->last.ds;
+    f->angles = p->s.last.angles;
+    for (int i = 0; i < 3; i++) f->m0[i] = p->s.last.m0[i];
+    f->w0 = p->s.last.w0;
+    f->a0 = p->s.last.a0;
+    f->t0_w = p->s.last.t_w;
+    f->t0_a = p->s.last.t_a;
+    f->w1 = p->pub.omega;
+    f->a1 = p->pub.tip_r;
+    f->ds = p->s.last.ds;
     f->kind = kind;
     f->target = target;
     f->failed = 0;
@@ -1033,22 +1054,22 @@ static void frame_of_last(whirl_nlink_path *p, step_frame *f, target_kind kind, 
     f->cached = 0;
     f->at = NAN;
     f->ref = NAN;
-    f->th = p->theta_trial; /* free after a step: its start is kept in last.theta0 */
+    f->th = arr_theta_trial(p); /* free after a step: its start is kept in last.theta0 */
     if (f->angles) {
-        const size_t n = p->chain->n;
+        const size_t n = p->pub.chain->n;
         f->c_w = f->t0_w / (f->w0 * f->w0);
-        for (size_t i = 0; i < n; i++) scr_cth(p)[i] = p->last.t_theta0[i] / (double)n;
+        for (size_t i = 0; i < n; i++) scr_cth(p)[i] = arr_t_theta0(p)[i] / (double)n;
     }
 }
 
 /* The arclength coordinate of the frame's corrected point along the step's tangent. */
 static double frame_sigma(const step_frame *f)
 {
-    const whirl_nlink_path *p = f->p;
+    const nlink_path *p = f->p;
     if (f->angles) {
         double sigma = f->c_w * (f->w - f->w0);
-        for (size_t i = 0; i < p->chain->n; i++)
-            sigma += scr_cth(p)[i] * (f->th[i] - p->last.theta0[i]);
+        for (size_t i = 0; i < p->pub.chain->n; i++)
+            sigma += scr_cth(p)[i] * (f->th[i] - arr_theta0(p)[i]);
         return sigma;
     }
     double c_w = f->m0[0] * f->t0_w + f->m0[1] * f->t0_a;
@@ -1060,14 +1081,14 @@ static double frame_sigma(const step_frame *f)
  * frame's point at sigma (interpolated if interpolate, else the last corrected one). */
 static int frame_at_rate(step_frame *f, double omega, double sigma, int interpolate)
 {
-    whirl_nlink_path *p = f->p;
+    nlink_path *p = f->p;
     int iters;
     if (interpolate) {
         const double lambda = sigma / f->ds;
         f->w = omega;
         if (f->angles) {
-            for (size_t i = 0; i < p->chain->n; i++)
-                f->th[i] = p->last.theta0[i] + lambda * (p->theta[i] - p->last.theta0[i]);
+            for (size_t i = 0; i < p->pub.chain->n; i++)
+                f->th[i] = arr_theta0(p)[i] + lambda * (arr_theta(p)[i] - arr_theta0(p)[i]);
         } else {
             int geometric = (f->a0 > 0 && f->a1 > 0) || (f->a0 < 0 && f->a1 < 0);
             f->a = geometric ? f->a0 * pow(f->a1 / f->a0, lambda)
@@ -1080,7 +1101,7 @@ static int frame_at_rate(step_frame *f, double omega, double sigma, int interpol
                            LOCATE_NEWTON_MAX))
             return -1;
         f->w = w;
-        f->a = tip_of(p->chain, f->w, f->th);
+        f->a = tip_of(p->pub.chain, f->w, f->th);
         return 0;
     }
     /* the metric of the corrected point, or of the step's start for an interpolated one */
@@ -1095,36 +1116,37 @@ static int frame_at_rate(step_frame *f, double omega, double sigma, int interpol
 
 /* status, the message of a failure (not a stop request) of a path begun at a birth led by its
  * mode: "mode k: ..." */
-static int name_mode(const whirl_nlink_path *p, int status)
+static int name_mode(const nlink_path *p, int status)
 {
-    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED || p->mode <= 0) return status;
+    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED || p->pub.mode <= 0) return status;
     char message[512];
     snprintf(message, sizeof message, "%s", whirl_last_error());
-    return whirl_fail(status, "mode %d: %s", p->mode, message);
+    return whirl_fail(status, "mode %d: %s", p->pub.mode, message);
 }
 
-static int path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
+static int path_crossings(nlink_path *p, double omega, int max, double *tip_r);
 
-int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r)
+int whirl_nlink_path_crossings(whirl_nlink_path *path, double omega, int max, double *tip_r)
 {
+    nlink_path *p = path_of(path);
     const int found = path_crossings(p, omega, max, tip_r);
     return found < 0 ? -name_mode(p, -found) : found;
 }
 
-static int path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r)
+static int path_crossings(nlink_path *p, double omega, int max, double *tip_r)
 {
-    if (!p->have_last) return 0;
+    if (!p->s.have_last) return 0;
     if (max > WHIRL_PATH_EVENTS_MAX + 1) max = WHIRL_PATH_EVENTS_MAX + 1;
-    const size_t n = p->chain->n;
+    const size_t n = p->pub.chain->n;
     /* the step cut at its folds into pieces where omega is monotone */
-    double start = p->arclength - p->last.ds;
+    double start = p->pub.arclength - p->s.last.ds;
     double cut[WHIRL_PATH_EVENTS_MAX + 2], w_cut[WHIRL_PATH_EVENTS_MAX + 2];
     int ncut = 0;
-    cut[ncut] = 0, w_cut[ncut++] = p->last.w0;
-    for (int i = 0; i < p->n_events; i++)
-        if (p->event[i].kind == WHIRL_EVENT_FOLD)
-            cut[ncut] = p->event[i].arclength - start, w_cut[ncut++] = p->event[i].omega;
-    cut[ncut] = p->last.ds, w_cut[ncut++] = p->omega;
+    cut[ncut] = 0, w_cut[ncut++] = p->s.last.w0;
+    for (int i = 0; i < p->pub.n_events; i++)
+        if (p->pub.event[i].kind == WHIRL_EVENT_FOLD)
+            cut[ncut] = p->pub.event[i].arclength - start, w_cut[ncut++] = p->pub.event[i].omega;
+    cut[ncut] = p->s.last.ds, w_cut[ncut++] = p->pub.omega;
     int found = 0;
     for (int k = 0; k + 1 < ncut && found < max; k++) {
         double lo = w_cut[k], hi = w_cut[k + 1];
@@ -1150,25 +1172,25 @@ static int path_crossings(whirl_nlink_path *p, double omega, int max, double *ti
                 return -whirl_fail(GSL_EFAILED, "no equilibrium at omega=%.17g near the branch",
                                    omega);
         }
-        double *th = p->cross_theta + (size_t)found * n;
+        double *th = arr_cross_theta(p) + (size_t)found * n;
         if (f.angles) {
             for (size_t i = 0; i < n; i++) th[i] = f.th[i];
         } else {
             /* the shot's point polished on the force balance in the link angles, which the
              * shot's round-off does not limit */
             shot s;
-            shoot(p->chain, f.w, f.a, &s, th);
-            p->cross_angles[found] = 0;
-            if (shot_noise(p->chain, f.w, f.a, &s) > NOISE_UP) {
+            shoot(p->pub.chain, f.w, f.a, &s, th);
+            p->pub.cross_angles[found] = 0;
+            if (shot_noise(p->pub.chain, f.w, f.a, &s) > NOISE_UP) {
                 for (size_t i = 0; i < n; i++) f.th[i] = th[i];
                 if (whirl_nlink_balance_polish(p->balance, f.w, f.th) == GSL_SUCCESS) {
                     for (size_t i = 0; i < n; i++) th[i] = f.th[i];
-                    f.a = tip_of(p->chain, f.w, th);
-                    p->cross_angles[found] = 1;
+                    f.a = tip_of(p->pub.chain, f.w, th);
+                    p->pub.cross_angles[found] = 1;
                 }
             }
         }
-        if (f.angles) p->cross_angles[found] = 1;
+        if (f.angles) p->pub.cross_angles[found] = 1;
         tip_r[found++] = f.a;
     }
     return found;
@@ -1176,10 +1198,10 @@ static int path_crossings(whirl_nlink_path *p, double omega, int max, double *ti
 
 /* The summary of the shape at (omega, a) with link angles th: from the angles on a step made
  * in them (angles), else from the tip shot; mirrored to a positive tip radius. */
-static int shape_info(whirl_nlink_path *p, int angles, double omega, double a, const double *th,
+static int shape_info(nlink_path *p, int angles, double omega, double a, const double *th,
                       whirl_shape_info *info, double *r, double *z, double *t)
 {
-    const whirl_chain *c = p->chain;
+    const whirl_chain *c = p->pub.chain;
     const size_t n = c->n;
     int status;
     if (angles) {
@@ -1191,7 +1213,7 @@ static int shape_info(whirl_nlink_path *p, int angles, double omega, double a, c
         status = whirl_nlink_positions(c, omega, fabs(a), r, z, t);
     }
     if (status) return status;
-    whirl_nlink_info_nodes(c, r, z, t, omega, p->mode, info);
+    whirl_nlink_info_nodes(c, r, z, t, omega, p->pub.mode, info);
     if (angles && info->tip_r > 0) {
         /* the tip radius as the shot's root next to it where the shot converges there, so that
          * whirl_nlink_positions reproduces the shape to the shot's round-off */
@@ -1209,21 +1231,21 @@ static int shape_info(whirl_nlink_path *p, int angles, double omega, double a, c
     return whirl_steady_check_info(info);
 }
 
-static int add_event(whirl_nlink_path *p, whirl_event_kind kind, step_frame *f, double sigma)
+static int add_event(nlink_path *p, whirl_event_kind kind, step_frame *f, double sigma)
 {
-    if (p->n_events == WHIRL_PATH_EVENTS_MAX) return GSL_SUCCESS;
-    const size_t n = p->chain->n;
-    double *th = p->event_theta + (size_t)p->n_events * n;
-    whirl_branch_event *e = &p->event[p->n_events++];
+    if (p->pub.n_events == WHIRL_PATH_EVENTS_MAX) return GSL_SUCCESS;
+    const size_t n = p->pub.chain->n;
+    double *th = arr_event_theta(p) + (size_t)p->pub.n_events * n;
+    whirl_branch_event *e = &p->pub.event[p->pub.n_events++];
     e->kind = kind;
     e->omega = f->w;
     e->tip_r = f->a;
-    e->arclength = p->arclength - p->last.ds + sigma;
+    e->arclength = p->pub.arclength - p->s.last.ds + sigma;
     if (f->angles) {
         for (size_t i = 0; i < n; i++) th[i] = f->th[i];
     } else {
         shot s;
-        shoot(p->chain, f->w, f->a, &s, th);
+        shoot(p->pub.chain, f->w, f->a, &s, th);
     }
     double *r = scr_nodes(p);
     whirl_shape_info info;
@@ -1239,7 +1261,7 @@ static int add_event(whirl_nlink_path *p, whirl_event_kind kind, step_frame *f, 
  * stable whatever the scaling of the links) differs at omega (1 - RETURN_SPAN) and omega (1 +
  * RETURN_SPAN). Only there can a branch meet the hanging chain: at any other rate the hanging
  * chain is an isolated equilibrium. */
-static int at_a_birth(whirl_nlink_path *p, double omega)
+static int at_a_birth(nlink_path *p, double omega)
 {
     int index[2];
     for (int side = 0; side < 2; side++) {
@@ -1250,19 +1272,19 @@ static int at_a_birth(whirl_nlink_path *p, double omega)
     return index[0] != index[1];
 }
 
-static int find_events(whirl_nlink_path *p, int branch)
+static int find_events(nlink_path *p, int branch)
 {
-    p->n_events = 0;
+    p->pub.n_events = 0;
     step_frame f;
     double sigma;
     int status = GSL_SUCCESS;
-    if (p->last_rate_sign * p->rate_sign < 0) {
+    if (p->s.last_rate_sign * p->s.rate_sign < 0) {
         frame_of_last(p, &f, TARGET_FOLD, 0);
         /* t_omega at the step's ends: at its start the tangent there, at its end the one
          * oriented along the step's row (the same as phi's, to the corrector's round-off) */
         f.known = 1;
-        f.values[0] = p->last.t_w;
-        f.values[1] = p->t_omega;
+        f.values[0] = p->s.last.t_w;
+        f.values[1] = p->pub.t_omega;
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)))
             status = add_event(p, WHIRL_EVENT_FOLD, &f, sigma);
     }
@@ -1271,9 +1293,9 @@ static int find_events(whirl_nlink_path *p, int branch)
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)))
             status = add_event(p, WHIRL_EVENT_BRANCH_POINT, &f, sigma);
     }
-    const int passed = p->last.angles
-        ? shape_projection(p->chain->n, p->theta, p->last.theta0) < 0
-        : p->last.a0 != 0 && (p->last.a0 > 0) != (p->tip_r > 0);
+    const int passed = p->s.last.angles
+        ? shape_projection(p->pub.chain->n, arr_theta(p), arr_theta0(p)) < 0
+        : p->s.last.a0 != 0 && (p->s.last.a0 > 0) != (p->pub.tip_r > 0);
     if (!status && passed) {
         frame_of_last(p, &f, TARGET_RETURN, 0);
         if (!(status = frame_locate(&f, 0, f.ds, &sigma)) && !at_a_birth(p, f.w))
@@ -1283,19 +1305,19 @@ static int find_events(whirl_nlink_path *p, int branch)
         if (!status) {
             status = add_event(p, WHIRL_EVENT_RETURN, &f, sigma);
             /* the path ends on the hanging chain */
-            p->ended = 1;
-            p->omega = f.w;
-            p->tip_r = 0;
+            p->pub.ended = 1;
+            p->pub.omega = f.w;
+            p->pub.tip_r = 0;
         }
     }
     /* in order of arclength */
-    for (int i = 1; i < p->n_events; i++)
-        for (int j = i; j > 0 && p->event[j].arclength < p->event[j - 1].arclength; j--) {
-            whirl_branch_event tmp = p->event[j];
-            p->event[j] = p->event[j - 1];
-            p->event[j - 1] = tmp;
-            const size_t n = p->chain->n;
-            double *a = p->event_theta + (size_t)j * n, *b = a - n;
+    for (int i = 1; i < p->pub.n_events; i++)
+        for (int j = i; j > 0 && p->pub.event[j].arclength < p->pub.event[j - 1].arclength; j--) {
+            whirl_branch_event tmp = p->pub.event[j];
+            p->pub.event[j] = p->pub.event[j - 1];
+            p->pub.event[j - 1] = tmp;
+            const size_t n = p->pub.chain->n;
+            double *a = arr_event_theta(p) + (size_t)j * n, *b = a - n;
             for (size_t k = 0; k < n; k++) {
                 double x = a[k];
                 a[k] = b[k];
@@ -1322,32 +1344,32 @@ static double tension_spread(const whirl_chain *c, double omega, double a)
 
 /* The counters of a step taken back after an event on it could not be located (the point and
  * tangent restored by the caller): the next trial is half as long. */
-static void step_undone(whirl_nlink_path *p, double ds)
+static void step_undone(nlink_path *p, double ds)
 {
-    p->arclength -= ds;
-    p->steps--;
-    p->have_last = 0;
-    p->n_events = 0;
-    p->ended = 0;
-    p->rejected++;
-    p->ds = 0.5 * ds;
+    p->pub.arclength -= ds;
+    p->pub.steps--;
+    p->s.have_last = 0;
+    p->pub.n_events = 0;
+    p->pub.ended = 0;
+    p->pub.rejected++;
+    p->pub.ds = 0.5 * ds;
 }
 
 /* A stop request at the current point. */
-static int stopped(const whirl_nlink_path *p)
+static int stopped(const nlink_path *p)
 {
-    return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps", p->omega,
-                      p->steps);
+    return whirl_fail(WHIRL_EINTERRUPTED, "stopped at omega=%.17g after %ld steps", p->pub.omega,
+                      p->pub.steps);
 }
 
 /* The path is in the fine mode at its current point (look_ahead). */
-static int in_fine_mode(const whirl_nlink_path *p)
+static int in_fine_mode(const nlink_path *p)
 {
-    return p->arclength < p->fine_end;
+    return p->pub.arclength < p->s.fine_end;
 }
 
 /* The smallest step in the link angles at the current point: finer in the fine mode. */
-static double ds_smallest(const whirl_nlink_path *p)
+static double ds_smallest(const nlink_path *p)
 {
     return in_fine_mode(p) ? DS_MIN_FINE : DS_MIN_ANGLES;
 }
@@ -1355,38 +1377,38 @@ static double ds_smallest(const whirl_nlink_path *p)
 /* The failure of the continuation at the last point (w0, a0) with a step below DS_MIN: names
  * the rate reached and why the last trial step was rejected (whirl_nlink_path_step adds the
  * mode). */
-static int fail_at(whirl_nlink_path *p, int status, double w0, double a0)
+static int fail_at(nlink_path *p, int status, double w0, double a0)
 {
-    if (p->angles)
+    if (p->pub.angles)
         return whirl_fail(status, "the continuation in the link angles fails at omega=%.17g "
                           "(tip radius %.6g, link tensions differing by a factor %.2g): %s at "
-                          "the smallest step %g", w0, a0, tension_spread(p->chain, w0, a0),
-                          p->why, ds_smallest(p));
+                          "the smallest step %g", w0, a0, tension_spread(p->pub.chain, w0, a0),
+                          p->s.why, ds_smallest(p));
     return whirl_fail(status, "the continuation fails at omega=%.17g (tip radius %.6g): %s at "
-                      "the smallest step %g", w0, a0, p->why, DS_MIN);
+                      "the smallest step %g", w0, a0, p->s.why, DS_MIN);
 }
 
 
 /* The accepted step's start, kept for the events and crossings. */
-static void keep_start(whirl_nlink_path *p, const double *m0, double w0, double a0, double ds)
+static void keep_start(nlink_path *p, const double *m0, double w0, double a0, double ds)
 {
-    for (int i = 0; i < 3; i++) p->last.m0[i] = m0 ? m0[i] : 0;
-    p->last.w0 = w0;
-    p->last.a0 = a0;
-    p->last.t_w = p->t_omega;
-    p->last.t_a = p->t_tip;
-    p->last.ds = ds;
-    p->last.raw_sign = p->raw_sign;
-    p->last.angles = p->angles;
-    p->last.det_sign = p->det_sign;
-    p->last.index = p->index;
-    p->last.mu = p->mu;
-    p->last.mu_rate = p->mu_rate;
-    p->last_rate_sign = p->rate_sign;
-    if (p->angles)
-        for (size_t i = 0; i < p->chain->n; i++)
-            p->last.theta0[i] = p->theta[i], p->last.t_theta0[i] = p->t_theta[i];
-    p->have_last = 1;
+    for (int i = 0; i < 3; i++) p->s.last.m0[i] = m0 ? m0[i] : 0;
+    p->s.last.w0 = w0;
+    p->s.last.a0 = a0;
+    p->s.last.t_w = p->pub.t_omega;
+    p->s.last.t_a = p->pub.t_tip;
+    p->s.last.ds = ds;
+    p->s.last.raw_sign = p->s.raw_sign;
+    p->s.last.angles = p->pub.angles;
+    p->s.last.det_sign = p->s.det_sign;
+    p->s.last.index = p->s.index;
+    p->s.last.mu = p->s.mu;
+    p->s.last.mu_rate = p->s.mu_rate;
+    p->s.last_rate_sign = p->s.rate_sign;
+    if (p->pub.angles)
+        for (size_t i = 0; i < p->pub.chain->n; i++)
+            arr_theta0(p)[i] = arr_theta(p)[i], arr_t_theta0(p)[i] = arr_t_theta(p)[i];
+    p->s.have_last = 1;
 }
 
 /* Whether the rate turns back within a step whose ends' rates move the same way: two folds
@@ -1458,9 +1480,9 @@ static const char *chord_test(size_t n, double w0, const double *th0, double w1,
     return NULL;
 }
 
-static void swap(double **x, double **y)
+static void swap(size_t *x, size_t *y)
 {
-    double *tmp = *x;
+    const size_t tmp = *x;
     *x = *y;
     *y = tmp;
 }
@@ -1505,19 +1527,19 @@ static int hermite_crossings(double f0, double d0, double f1, double d1, double 
 }
 
 /* The eigenvalue of the force balance nearest zero at the trial point (factorised) and its rate
- * along the trial tangent (t_w, p->t_theta_trial) into *mu, *mu_rate, its eigenvector into
- * p->eig_trial (from the start's); NAN where not found. Returns 1 where the step of length ds
+ * along the trial tangent (t_w, arr_t_theta_trial(p)) into *mu, *mu_rate, its eigenvector into
+ * arr_eig_trial(p) (from the start's); NAN where not found. Returns 1 where the step of length ds
  * does not resolve it (see the header comment): its cubic Hermite interpolant in the arclength
  * changes sign more than once, or turns back towards the ends' sign at less than NEAR_MAX times
  * the smaller end value from zero; 0 where it does, or where the start's eigenvector is not the
  * end's (another eigenvalue became the nearest to zero: the cubic joins two different ones). */
-static int near_zero(whirl_nlink_path *p, double t_w, double ds, double *mu, double *mu_rate)
+static int near_zero(nlink_path *p, double t_w, double ds, double *mu, double *mu_rate)
 {
-    const size_t n = p->chain->n;
-    const int known = isfinite(p->mu);
-    for (size_t i = 0; i < n; i++) p->eig_trial[i] = known ? p->eig[i] : 1;
-    if (whirl_nlink_balance_near_zero(p->balance, t_w, p->t_theta_trial,
-                                      known ? EIG_ITERS : EIG_ITERS_FIRST, p->eig_trial, mu,
+    const size_t n = p->pub.chain->n;
+    const int known = isfinite(p->s.mu);
+    for (size_t i = 0; i < n; i++) arr_eig_trial(p)[i] = known ? arr_eig(p)[i] : 1;
+    if (whirl_nlink_balance_near_zero(p->balance, t_w, arr_t_theta_trial(p),
+                                      known ? EIG_ITERS : EIG_ITERS_FIRST, arr_eig_trial(p), mu,
                                       mu_rate) != GSL_SUCCESS) {
         *mu = *mu_rate = NAN;
         return 0;
@@ -1525,46 +1547,16 @@ static int near_zero(whirl_nlink_path *p, double t_w, double ds, double *mu, dou
     if (!known) return 0;
     double dot = 0, q0 = 0, q1 = 0, near;
     for (size_t i = 0; i < n; i++) {
-        dot += p->eig[i] * p->eig_trial[i];
-        q0 += p->eig[i] * p->eig[i];
-        q1 += p->eig_trial[i] * p->eig_trial[i];
+        dot += arr_eig(p)[i] * arr_eig_trial(p)[i];
+        q0 += arr_eig(p)[i] * arr_eig(p)[i];
+        q1 += arr_eig_trial(p)[i] * arr_eig_trial(p)[i];
     }
     if (!(fabs(dot) >= EIG_SAME * sqrt(q0 * q1))) return 0;
-    const int changes = hermite_crossings(p->mu, ds * p->mu_rate, *mu, ds * *mu_rate, &near);
+    const int changes = hermite_crossings(p->s.mu, ds * p->s.mu_rate, *mu, ds * *mu_rate, &near);
     return changes > 1 || near < NEAR_MAX;
 }
 
-/* dst becomes a copy of src at its current point: every field and the contents of src's block,
- * dst's own arrays (at the offsets of src's: swap exchanges a point's and its trial's), its
- * force balance's workspace and its probe kept. */
-static void path_copy(whirl_nlink_path *dst, const whirl_nlink_path *src)
-{
-    double *const work = dst->work;
-    void *const balance = dst->balance;
-    whirl_nlink_path *const probe = dst->probe;
-    *dst = *src;
-    dst->work = work;
-    dst->balance = balance;
-    dst->probe = probe;
-#define REBASE(field) dst->field = work + (src->field - src->work)
-    REBASE(theta);
-    REBASE(theta_trial);
-    REBASE(t_theta);
-    REBASE(t_theta_trial);
-    REBASE(embed);
-    REBASE(embed_trial);
-    REBASE(last.theta0);
-    REBASE(last.t_theta0);
-    REBASE(cross_theta);
-    REBASE(event_theta);
-    REBASE(eig);
-    REBASE(eig_trial);
-    REBASE(scratch);
-#undef REBASE
-    memcpy(work, src->work, work_size(src->chain->n) * sizeof *work);
-}
-
-static int path_step(whirl_nlink_path *p);
+static int path_step(nlink_path *p);
 
 /* Looks ahead from the current point before a reversal of the orientation test on a step no
  * longer than DS_BRANCH is taken for a branch point (see the header comment): the probe, a copy
@@ -1573,23 +1565,23 @@ static int path_step(whirl_nlink_path *p);
  * PROBE_STEPS steps with no branch point: the curve turns sharply here and the path should
  * follow it; 0 where it does not (a branch point at the finer scale too, or a failure: the
  * reversal is taken as before); WHIRL_EINTERRUPTED on a stop request, GSL_ENOMEM. The probe's
- * shots are counted in p->shots. */
-static int look_ahead(whirl_nlink_path *p, double ds)
+ * shots are counted in p->pub.shots. */
+static int look_ahead(nlink_path *p, double ds)
 {
-    if (p->probe == NULL && (p->probe = whirl_nlink_path_alloc(p->chain)) == NULL)
+    if (p->probe == NULL && (p->probe = path_alloc(p->pub.chain)) == NULL)
         return GSL_ENOMEM;
-    whirl_nlink_path *q = p->probe;
+    nlink_path *q = p->probe;
     path_copy(q, p);
-    q->ds = ds;
-    q->fine_end = p->arclength + FINE_SPAN;
+    q->pub.ds = ds;
+    q->s.fine_end = p->pub.arclength + FINE_SPAN;
     int status = GSL_SUCCESS, resolved = 0;
     for (long k = 0; k < PROBE_STEPS && status == GSL_SUCCESS && !resolved; k++) {
         status = path_step(q);
-        for (int e = 0; e < q->n_events; e++)
-            if (q->event[e].kind == WHIRL_EVENT_BRANCH_POINT) status = GSL_EFAILED;
-        resolved = status == GSL_SUCCESS && (q->ended || !in_fine_mode(q));
+        for (int e = 0; e < q->pub.n_events; e++)
+            if (q->pub.event[e].kind == WHIRL_EVENT_BRANCH_POINT) status = GSL_EFAILED;
+        resolved = status == GSL_SUCCESS && (q->pub.ended || !in_fine_mode(q));
     }
-    p->shots = q->shots; /* the probe counted on from p->shots */
+    p->pub.shots = q->pub.shots; /* the probe counted on from p->pub.shots */
     if (status == WHIRL_EINTERRUPTED) return status;
     return resolved;
 }
@@ -1598,97 +1590,97 @@ static int look_ahead(whirl_nlink_path *p, double ds)
  * of the tangent over the last step divided by its length, where that step was made in the link
  * angles too), Newton's method on R = 0 and the arclength row (M0 t0) . (x - x0) = ds, the same
  * acceptance as in the shot. */
-static int angle_step(whirl_nlink_path *p)
+static int angle_step(nlink_path *p)
 {
-    const whirl_chain *c = p->chain;
+    const whirl_chain *c = p->pub.chain;
     const size_t n = c->n;
-    const double w0 = p->omega, a0 = p->tip_r;
+    const double w0 = p->pub.omega, a0 = p->pub.tip_r;
     double *c_th = scr_cth(p);
-    const double c_w = p->t_omega / (w0 * w0);
+    const double c_w = p->pub.t_omega / (w0 * w0);
     int crossing = 0; /* the trials probe for a step across a branch point */
     int chord_off = 0, chord_failed = 0; /* the chord test set aside; it rejected the last trial */
-    const double ds_first = p->ds;
+    const double ds_first = p->pub.ds;
     /* the step above which a reversal of the orientation is another curve close by */
     const double ds_min = ds_smallest(p), ds_branch = in_fine_mode(p) ? ds_min : DS_BRANCH;
     const char *why = "";
     for (;;) {
-        for (size_t i = 0; i < n; i++) c_th[i] = p->t_theta[i] / (double)n;
-        const double ds = p->ds;
-        double w = w0 + ds * p->t_omega, *th = p->theta_trial, t_w = 0, turn = 0, dtheta = 0;
-        for (size_t i = 0; i < n; i++) th[i] = p->theta[i] + ds * p->t_theta[i];
-        if (p->have_last && p->last.angles) {
+        for (size_t i = 0; i < n; i++) c_th[i] = arr_t_theta(p)[i] / (double)n;
+        const double ds = p->pub.ds;
+        double w = w0 + ds * p->pub.t_omega, *th = arr_theta_trial(p), t_w = 0, turn = 0, dtheta = 0;
+        for (size_t i = 0; i < n; i++) th[i] = arr_theta(p)[i] + ds * arr_t_theta(p)[i];
+        if (p->s.have_last && p->s.last.angles) {
             /* the second-order term, the curvature from the tangents at the last two points */
-            const double q = 0.5 * ds * ds / p->last.ds;
-            w += q * (p->t_omega - p->last.t_w);
-            for (size_t i = 0; i < n; i++) th[i] += q * (p->t_theta[i] - p->last.t_theta0[i]);
+            const double q = 0.5 * ds * ds / p->s.last.ds;
+            w += q * (p->pub.t_omega - p->s.last.t_w);
+            for (size_t i = 0; i < n; i++) th[i] += q * (arr_t_theta(p)[i] - arr_t_theta0(p)[i]);
         }
         int iters = NEWTON_MAX, det = 0, index = -1, pair = 0;
         double mu = NAN, mu_rate = NAN, mu_min = INFINITY; /* mu_min: mu's resolution */
-        int ok = correct_angles(p, w0, p->theta, c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
-        if (!ok) p->why = "Newton's method on the force balance does not converge";
-        if (ok && angle_tangent(p, w, c_w, c_th, &t_w, p->t_theta_trial, &det, NULL, NULL)) {
+        int ok = correct_angles(p, w0, arr_theta(p), c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
+        if (!ok) p->s.why = "Newton's method on the force balance does not converge";
+        if (ok && angle_tangent(p, w, c_w, c_th, &t_w, arr_t_theta_trial(p), &det, NULL, NULL)) {
             ok = 0;
-            p->why = "the tangent is not defined (a singular point)";
+            p->s.why = "the tangent is not defined (a singular point)";
         }
         if (ok) {
             index = whirl_nlink_balance_index(p->balance);
             pair = near_zero(p, t_w, ds, &mu, &mu_rate);
-            angle_embed(n, w, t_w, p->t_theta_trial, p->embed_trial);
+            angle_embed(n, w, t_w, arr_t_theta_trial(p), arr_embed_trial(p));
             double cosine = 0;
-            for (size_t i = 0; i <= n; i++) cosine += p->embed_trial[i] * p->embed[i];
+            for (size_t i = 0; i <= n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
             turn = acos(fmin(1, fmax(-1, cosine)));
-            for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - p->theta[i]));
+            for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - arr_theta(p)[i]));
             mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
-            const char *chord = chord_test(n, w0, p->theta, w, th, p->embed, 1,
-                                           p->embed_trial, 1, turn,
-                                           fabs(p->mu) > mu_min && fabs(mu) > mu_min);
+            const char *chord = chord_test(n, w0, arr_theta(p), w, th, arr_embed(p), 1,
+                                           arr_embed_trial(p), 1, turn,
+                                           fabs(p->s.mu) > mu_min && fabs(mu) > mu_min);
             if (turn > TURN_MAX && !crossing)
-                ok = 0, p->why = "the tangent turns by more than 0.2 rad";
-            if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
+                ok = 0, p->s.why = "the tangent turns by more than 0.2 rad";
+            if (dtheta > DTHETA_MAX) ok = 0, p->s.why = "a link angle changes by more than 0.2 rad";
             chord_failed = chord && !crossing && !chord_off;
-            if (chord_failed) ok = 0, p->why = chord;
-            const int jump = p->index >= 0 && abs(index - p->index) > 1;
-            if (det != p->det_sign && ds > ds_branch && !crossing)
-                ok = 0, p->why = "the orientation test changes sign (another curve close by)";
+            if (chord_failed) ok = 0, p->s.why = chord;
+            const int jump = p->s.index >= 0 && abs(index - p->s.index) > 1;
+            if (det != p->s.det_sign && ds > ds_branch && !crossing)
+                ok = 0, p->s.why = "the orientation test changes sign (another curve close by)";
             if (jump && ds > ds_branch && !crossing)
-                ok = 0, p->why = "the index of the force balance changes by more than one (two "
+                ok = 0, p->s.why = "the index of the force balance changes by more than one (two "
                                  "singular points passed over)";
             if (pair && ds > ds_branch && !crossing)
-                ok = 0, p->why = "an eigenvalue of the force balance crosses zero and back "
+                ok = 0, p->s.why = "an eigenvalue of the force balance crosses zero and back "
                                  "within the step (two folds passed over)";
-            if (det == p->det_sign && crossing) ok = 0;
-            if (ok && !crossing && (det != p->det_sign || jump || pair) &&
-                !in_fine_mode(p) && p->arclength >= p->probe_end) {
+            if (det == p->s.det_sign && crossing) ok = 0;
+            if (ok && !crossing && (det != p->s.det_sign || jump || pair) &&
+                !in_fine_mode(p) && p->pub.arclength >= p->s.probe_end) {
                 /* a branch point by the rule of DS_BRANCH: unless the curve turns within it
                  * (not looked at again within FINE_SPAN of where the probe last found a branch
                  * point at the finer scale: it looked over that stretch) */
                 const int ahead = look_ahead(p, 0.5 * ds);
                 if (ahead == WHIRL_EINTERRUPTED) return stopped(p);
                 if (ahead != 0 && ahead != 1) return ahead;
-                if (ahead == 0) p->probe_end = p->arclength + FINE_SPAN;
+                if (ahead == 0) p->s.probe_end = p->pub.arclength + FINE_SPAN;
                 if (ahead == 1) {
                     /* the fine mode from here on, the steps as from a fresh call (as the
                      * probe's) */
-                    p->fine_end = p->arclength + FINE_SPAN;
-                    p->rejected++;
-                    p->ds = 0.5 * ds;
+                    p->s.fine_end = p->pub.arclength + FINE_SPAN;
+                    p->pub.rejected++;
+                    p->pub.ds = 0.5 * ds;
                     return angle_step(p);
                 }
             }
         }
         if (!ok) {
-            p->rejected++;
+            p->pub.rejected++;
             if (crossing) {
                 /* the probe: steps doubling up to DS_CROSS */
-                p->ds *= 2;
-                if (p->ds > DS_CROSS) {
-                    p->why = why;
+                p->pub.ds *= 2;
+                if (p->pub.ds > DS_CROSS) {
+                    p->s.why = why;
                     return fail_at(p, GSL_EFAILED, w0, a0);
                 }
                 continue;
             }
-            p->ds *= 0.5;
-            if (p->ds < DS_MIN_CHORD && chord_failed && !chord_off) {
+            p->pub.ds *= 0.5;
+            if (p->pub.ds < DS_MIN_CHORD && chord_failed && !chord_off) {
                 /* the chord test alone rejected steps down to the smallest: at that scale the
                  * corrected points scatter by their own round-off across a turn of the curve
                  * sharper than the tangent resolves (a heavy tip's pinned string where it
@@ -1697,66 +1689,66 @@ static int angle_step(whirl_nlink_path *p)
                  * every other test kept (the turn, the link angles, the orientation: no step
                  * lands on another curve). */
                 chord_off = 1;
-                p->ds = ds_first;
+                p->pub.ds = ds_first;
                 continue;
             }
-            if (p->ds < ds_min) {
+            if (p->pub.ds < ds_min) {
                 /* the curve cannot be followed at any step: if a curve of the opposite
                  * orientation lies within DS_CROSS ahead, the two meet there to within the
                  * resolution of the steps (a branch point, its unfolding narrower than the
                  * smallest step): the shortest step that reaches it is taken across */
-                why = p->why;
+                why = p->s.why;
                 crossing = 1;
-                p->ds = 2 * ds_min;
+                p->pub.ds = 2 * ds_min;
             }
             continue;
         }
         keep_start(p, NULL, w0, a0, ds);
-        swap(&p->theta, &p->theta_trial);
-        swap(&p->t_theta, &p->t_theta_trial);
-        swap(&p->embed, &p->embed_trial);
-        p->omega = w;
-        p->tip_r = tip_of(c, w, p->theta);
-        p->t_omega = t_w;
-        p->t_tip = tip_rate(c, w, p->theta, t_w, p->t_theta);
-        p->det_sign = det;
-        p->index = index;
-        swap(&p->eig, &p->eig_trial);
-        p->mu = mu;
-        p->mu_rate = mu_rate;
-        if (!(fabs(mu) <= mu_min) && t_w != 0) p->rate_sign = sign_of(t_w);
-        const double lo = p->omega_lo, hi = p->omega_hi, noise = p->noise;
-        if (w < p->omega_lo) p->omega_lo = w;
-        if (w > p->omega_hi) p->omega_hi = w;
-        p->arclength += ds;
-        p->steps++;
-        p->noise = noise_at(p, w, p->tip_r);
-        const int status = find_events(p, det != p->last.det_sign);
+        swap(&p->s.theta, &p->s.theta_trial);
+        swap(&p->s.t_theta, &p->s.t_theta_trial);
+        swap(&p->s.embed, &p->s.embed_trial);
+        p->pub.omega = w;
+        p->pub.tip_r = tip_of(c, w, arr_theta(p));
+        p->pub.t_omega = t_w;
+        p->pub.t_tip = tip_rate(c, w, arr_theta(p), t_w, arr_t_theta(p));
+        p->s.det_sign = det;
+        p->s.index = index;
+        swap(&p->s.eig, &p->s.eig_trial);
+        p->s.mu = mu;
+        p->s.mu_rate = mu_rate;
+        if (!(fabs(mu) <= mu_min) && t_w != 0) p->s.rate_sign = sign_of(t_w);
+        const double lo = p->pub.omega_lo, hi = p->pub.omega_hi, noise = p->s.noise;
+        if (w < p->pub.omega_lo) p->pub.omega_lo = w;
+        if (w > p->pub.omega_hi) p->pub.omega_hi = w;
+        p->pub.arclength += ds;
+        p->pub.steps++;
+        p->s.noise = noise_at(p, w, p->pub.tip_r);
+        const int status = find_events(p, det != p->s.last.det_sign);
         if (status != GSL_EFAILED) {
             if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
-                p->ds = fmin(1.5 * ds, DS_MAX);
+                p->pub.ds = fmin(1.5 * ds, DS_MAX);
             return status;
         }
         /* an event the step passed could not be located (the curve between the two points is
          * more intricate than the step: two close folds, a near crossing of another branch):
          * back to the step's start, half the step */
-        p->why = "an event between two points could not be located";
+        p->s.why = "an event between two points could not be located";
         for (size_t i = 0; i < n; i++)
-            p->theta[i] = p->last.theta0[i], p->t_theta[i] = p->last.t_theta0[i];
-        p->omega = w0;
-        p->tip_r = a0;
-        p->t_omega = p->last.t_w;
-        p->t_tip = p->last.t_a;
-        p->det_sign = p->last.det_sign;
-        p->index = p->last.index;
-        swap(&p->eig, &p->eig_trial);
-        p->mu = p->last.mu;
-        p->mu_rate = p->last.mu_rate;
-        p->rate_sign = p->last_rate_sign;
-        angle_embed(n, w0, p->t_omega, p->t_theta, p->embed);
-        p->omega_lo = lo, p->omega_hi = hi, p->noise = noise;
+            arr_theta(p)[i] = arr_theta0(p)[i], arr_t_theta(p)[i] = arr_t_theta0(p)[i];
+        p->pub.omega = w0;
+        p->pub.tip_r = a0;
+        p->pub.t_omega = p->s.last.t_w;
+        p->pub.t_tip = p->s.last.t_a;
+        p->s.det_sign = p->s.last.det_sign;
+        p->s.index = p->s.last.index;
+        swap(&p->s.eig, &p->s.eig_trial);
+        p->s.mu = p->s.last.mu;
+        p->s.mu_rate = p->s.last.mu_rate;
+        p->s.rate_sign = p->s.last_rate_sign;
+        angle_embed(n, w0, p->pub.t_omega, arr_t_theta(p), arr_embed(p));
+        p->pub.omega_lo = lo, p->pub.omega_hi = hi, p->s.noise = noise;
         step_undone(p, ds);
-        if (crossing || p->ds < ds_min) return fail_at(p, GSL_EFAILED, w0, a0);
+        if (crossing || p->pub.ds < ds_min) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
 
@@ -1772,12 +1764,12 @@ static int angle_step(whirl_nlink_path *p)
  * (phi . theta / sqrt(N), phi of unit norm oriented to a positive tip), by Newton's method into
  * th, from th scaled by guess (0: from amplitude phi); its rate in *w. The row phi / sqrt(N) is
  * left in scr_cth(p). Returns 0, or -1 where phi or Newton's method fails. */
-static int birth_point(whirl_nlink_path *p, double amplitude, double guess, double *th, double *w)
+static int birth_point(nlink_path *p, double amplitude, double guess, double *th, double *w)
 {
-    const size_t n = p->chain->n;
-    double *phi = p->t_theta_trial, *c_th = scr_cth(p), norm = 0;
+    const size_t n = p->pub.chain->n;
+    double *phi = arr_t_theta_trial(p), *c_th = scr_cth(p), norm = 0;
     int tip_sign;
-    if (whirl_nlink_balance_mode(p->balance, p->omega_birth, phi, &tip_sign)) return -1;
+    if (whirl_nlink_balance_mode(p->balance, p->pub.omega_birth, phi, &tip_sign)) return -1;
     for (size_t i = 0; i < n; i++) norm += phi[i] * phi[i];
     norm = sqrt(norm) * tip_sign;
     const double scale = sqrt((double)n);
@@ -1786,8 +1778,8 @@ static int birth_point(whirl_nlink_path *p, double amplitude, double guess, doub
         c_th[i] = phi[i] / scale;
         th[i] = guess > 0 ? guess * th[i] : amplitude * scale * phi[i];
     }
-    *w = p->omega_birth;
-    return correct_angles(p, p->omega_birth, scr_zero(p), 0, c_th, amplitude, w, th, NULL,
+    *w = p->pub.omega_birth;
+    return correct_angles(p, p->pub.omega_birth, scr_zero(p), 0, c_th, amplitude, w, th, NULL,
                           LOCATE_NEWTON_MAX);
 }
 
@@ -1806,17 +1798,17 @@ static int birth_point(whirl_nlink_path *p, double amplitude, double guess, doub
  * the exact sign of the linear mode's tip, not by the tip of the corrected point, whose sign can
  * be round-off (its magnitude 1e-160 of the largest or less) or zero. Rates below that point's
  * (within ~1e-9 omega_k of the birth) are reached by birth_gap. */
-static int birth_angles(whirl_nlink_path *p)
+static int birth_angles(nlink_path *p)
 {
     double w, t_w;
     int det;
-    if (birth_point(p, BIRTH_AMPLITUDE, 0, p->theta_trial, &w)) return -1;
-    if (angle_tangent(p, w, 0, scr_cth(p), &t_w, p->t_theta, &det, NULL, NULL)) return -1;
-    swap(&p->theta, &p->theta_trial);
+    if (birth_point(p, BIRTH_AMPLITUDE, 0, arr_theta_trial(p), &w)) return -1;
+    if (angle_tangent(p, w, 0, scr_cth(p), &t_w, arr_t_theta(p), &det, NULL, NULL)) return -1;
+    swap(&p->s.theta, &p->s.theta_trial);
     angle_point(p, w, t_w, det);
-    p->stay = p->backoff;
-    p->have_last = 0;
-    p->ds = DS_FIRST;
+    p->s.stay = p->s.backoff;
+    p->s.have_last = 0;
+    p->pub.ds = DS_FIRST;
     return 0;
 }
 
@@ -1826,9 +1818,9 @@ static int birth_angles(whirl_nlink_path *p)
  * amplitude of the first point. Only the rate is ill-conditioned there (omega - omega_k of
  * 1e-9 omega_k fixes s to about 1e-7 of itself); each point is regular in the system with the
  * amplitude's row. Returns 0, or -1 where that does not converge. */
-static int birth_gap(whirl_nlink_path *p, double omega, double *th)
+static int birth_gap(nlink_path *p, double omega, double *th)
 {
-    const double wk = p->omega_birth;
+    const double wk = p->pub.omega_birth;
     double s2_a = 0, w_a = wk, s2_b = BIRTH_AMPLITUDE * BIRTH_AMPLITUDE, w_b;
     if (birth_point(p, BIRTH_AMPLITUDE, 0, th, &w_b)) return -1;
     for (int it = 0; it < GAP_MAX; it++) {
@@ -1845,82 +1837,82 @@ static int birth_gap(whirl_nlink_path *p, double omega, double *th)
 
 /* The first step from the birth, begun in the link angles instead of on the shot (birth_angles);
  * the failure at the birth where that does not start. */
-static int begin_in_angles(whirl_nlink_path *p)
+static int begin_in_angles(nlink_path *p)
 {
     if (birth_angles(p) == 0) return angle_step(p);
-    return fail_at(p, GSL_EFAILED, p->omega, p->tip_r);
+    return fail_at(p, GSL_EFAILED, p->pub.omega, p->pub.tip_r);
 }
 
 /* One step on the tip shot (the equations above the file). */
-static int shot_step(whirl_nlink_path *p)
+static int shot_step(nlink_path *p)
 {
-    const whirl_chain *c = p->chain;
-    const double w0 = p->omega, a0 = p->tip_r, *m0 = p->metric;
-    const double c_w = m0[0] * p->t_omega + m0[1] * p->t_tip;
-    const double c_a = m0[1] * p->t_omega + m0[2] * p->t_tip;
+    const whirl_chain *c = p->pub.chain;
+    const double w0 = p->pub.omega, a0 = p->pub.tip_r, *m0 = p->s.metric;
+    const double c_w = m0[0] * p->pub.t_omega + m0[1] * p->pub.t_tip;
+    const double c_a = m0[1] * p->pub.t_omega + m0[2] * p->pub.t_tip;
     /* the predictor of a: along the tangent, or along it in ln|a| (where a decays or grows
      * exponentially, as on the high modes), whichever predicts the previous point better */
     int log_predictor = 0;
-    if (p->have_last && a0 != 0 && p->last.a0 != 0 && (a0 > 0) == (p->last.a0 > 0)) {
-        double back = -p->last.ds, lin = a0 + back * p->t_tip;
-        double lg = a0 * exp(fmax(-50, fmin(50, back * p->t_tip / a0)));
-        log_predictor = fabs(lg - p->last.a0) < fabs(lin - p->last.a0);
+    if (p->s.have_last && a0 != 0 && p->s.last.a0 != 0 && (a0 > 0) == (p->s.last.a0 > 0)) {
+        double back = -p->s.last.ds, lin = a0 + back * p->pub.t_tip;
+        double lg = a0 * exp(fmax(-50, fmin(50, back * p->pub.t_tip / a0)));
+        log_predictor = fabs(lg - p->s.last.a0) < fabs(lin - p->s.last.a0);
     }
     for (;;) {
-        double ds = p->ds, w = w0 + ds * p->t_omega;
-        double a = log_predictor ? a0 * exp(fmax(-50, fmin(50, ds * p->t_tip / a0)))
-                                 : a0 + ds * p->t_tip;
+        double ds = p->pub.ds, w = w0 + ds * p->pub.t_omega;
+        double a = log_predictor ? a0 * exp(fmax(-50, fmin(50, ds * p->pub.t_tip / a0)))
+                                 : a0 + ds * p->pub.t_tip;
         shot s;
         int iters = NEWTON_MAX, ok = correct(p, m0, w0, a0, c_w, c_a, ds, &w, &a, &s, &iters) == 0;
         double turn = 0, dtheta = 0, t_w = 0, t_a = 0;
         int raw = 0;
-        if (!ok) p->why = "Newton's method on the tip shot does not converge";
-        if (ok && p->floor_exit) {
+        if (!ok) p->s.why = "Newton's method on the tip shot does not converge";
+        if (ok && p->s.floor_exit) {
             /* converged only to the shot's round-off: not an equilibrium to round-off */
             ok = 0;
             iters = NEWTON_MAX;
-            p->why = "the tip shot's round-off exceeds the tolerance";
+            p->s.why = "the tip shot's round-off exceeds the tolerance";
         }
         if (ok) {
-            shoot_embed(c, w, a, &s, p->theta_trial, p->embed_trial);
-            p->shots++;
+            shoot_embed(c, w, a, &s, arr_theta_trial(p), arr_embed_trial(p));
+            p->pub.shots++;
             double m1[3];
             shot_metric(&s, m1);
-            tangent(&s, m1, m0, p->t_omega, p->t_tip, &t_w, &t_a, &raw);
+            tangent(&s, m1, m0, p->pub.t_omega, p->pub.t_tip, &t_w, &t_a, &raw);
             /* the turn of the tangent in (ln omega, theta / sqrt(N)); the embedded tangents are
              * those of (G_a, -G_omega), oriented by raw and the current orientation */
             double cosine = 0;
-            for (size_t i = 0; i <= c->n; i++) cosine += p->embed_trial[i] * p->embed[i];
-            cosine *= raw * p->raw_sign;
+            for (size_t i = 0; i <= c->n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
+            cosine *= raw * p->s.raw_sign;
             turn = acos(fmin(1, fmax(-1, cosine)));
             for (size_t i = 0; i < c->n; i++)
-                dtheta = fmax(dtheta, fabs(p->theta_trial[i] - p->theta[i]));
-            const char *chord = chord_test(c->n, w0, p->theta, w, p->theta_trial, p->embed,
-                                           p->raw_sign, p->embed_trial, raw, turn, 1);
-            if (turn > TURN_MAX) ok = 0, p->why = "the tangent turns by more than 0.2 rad";
-            if (dtheta > DTHETA_MAX) ok = 0, p->why = "a link angle changes by more than 0.2 rad";
-            if (chord) ok = 0, p->why = chord;
-            if (raw != p->raw_sign && ds > DS_BRANCH)
-                ok = 0, p->why = "the orientation test changes sign (another curve close by)";
+                dtheta = fmax(dtheta, fabs(arr_theta_trial(p)[i] - arr_theta(p)[i]));
+            const char *chord = chord_test(c->n, w0, arr_theta(p), w, arr_theta_trial(p), arr_embed(p),
+                                           p->s.raw_sign, arr_embed_trial(p), raw, turn, 1);
+            if (turn > TURN_MAX) ok = 0, p->s.why = "the tangent turns by more than 0.2 rad";
+            if (dtheta > DTHETA_MAX) ok = 0, p->s.why = "a link angle changes by more than 0.2 rad";
+            if (chord) ok = 0, p->s.why = chord;
+            if (raw != p->s.raw_sign && ds > DS_BRANCH)
+                ok = 0, p->s.why = "the orientation test changes sign (another curve close by)";
         }
         if (!ok) {
-            p->rejected++;
+            p->pub.rejected++;
             /* where Newton's method on the shot fails away from the birth, the shot is too
              * nonlinear or too noisy in (omega, a): the same step in the link angles */
-            if (iters == NEWTON_MAX && p->steps > 0 && to_angles(p) == 0) {
-                p->stay = p->backoff;
-                p->backoff = p->backoff < 1024 ? 2 * p->backoff : p->backoff;
+            if (iters == NEWTON_MAX && p->pub.steps > 0 && to_angles(p) == 0) {
+                p->s.stay = p->s.backoff;
+                p->s.backoff = p->s.backoff < 1024 ? 2 * p->s.backoff : p->s.backoff;
                 return angle_step(p);
             }
-            p->ds *= 0.5;
+            p->pub.ds *= 0.5;
             /* the first step from the birth no longer than the amplitude of the first point in
              * the link angles: begun there (a shorter one lands at amplitudes where the force
              * balance at fixed omega cannot tell the branch from the hanging chain, and the
              * path, handed over to the link angles, follows the hanging chain instead) */
-            if (p->steps == 0 && a0 == 0 && p->ds < BIRTH_AMPLITUDE) return begin_in_angles(p);
-            if (p->ds < DS_MIN) {
+            if (p->pub.steps == 0 && a0 == 0 && p->pub.ds < BIRTH_AMPLITUDE) return begin_in_angles(p);
+            if (p->pub.ds < DS_MIN) {
                 if (to_angles(p) == 0) {
-                    p->ds = DS_FIRST;
+                    p->pub.ds = DS_FIRST;
                     return angle_step(p);
                 }
                 return fail_at(p, GSL_EFAILED, w0, a0);
@@ -1930,69 +1922,70 @@ static int shot_step(whirl_nlink_path *p)
         /* a point the shot resolves only to more than NOISE_UP: the step in the link angles
          * (measured at every point: the measure is itself round-off and jumps along a branch) */
         const double noise = shot_noise(c, w, a, &s);
-        if (p->steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
+        if (p->pub.steps > 0 && noise > NOISE_UP && to_angles(p) == 0) return angle_step(p);
         /* the first step from the birth to such a point at a rate within BIRTH_NEAR of the
          * birth's: begun in the link angles instead (the force balance at fixed omega is
          * singular there to within the shot's round-off, and its Newton's method, polishing the
          * shot's point on the hand-over, can fall onto the hanging chain, as above) */
-        if (p->steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR)
+        if (p->pub.steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR)
             return begin_in_angles(p);
-        const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->omega_lo, hi = p->omega_hi;
-        const double noise_start = p->noise;
+        const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->pub.omega_lo, hi = p->pub.omega_hi;
+        const double noise_start = p->s.noise;
         keep_start(p, m0, w0, a0, ds);
-        swap(&p->theta, &p->theta_trial);
-        swap(&p->embed, &p->embed_trial);
+        swap(&p->s.theta, &p->s.theta_trial);
+        swap(&p->s.embed, &p->s.embed_trial);
         set_point(p, w, a, &s, noise);
-        p->t_omega = t_w;
-        p->t_tip = t_a;
-        p->raw_sign = raw;
-        if (t_w != 0) p->rate_sign = sign_of(t_w);
-        p->arclength += ds;
-        p->steps++;
-        const int status = find_events(p, raw != p->last.raw_sign);
+        p->pub.t_omega = t_w;
+        p->pub.t_tip = t_a;
+        p->s.raw_sign = raw;
+        if (t_w != 0) p->s.rate_sign = sign_of(t_w);
+        p->pub.arclength += ds;
+        p->pub.steps++;
+        const int status = find_events(p, raw != p->s.last.raw_sign);
         if (status != GSL_EFAILED) {
             if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
-                p->ds = fmin(1.5 * ds, DS_MAX);
+                p->pub.ds = fmin(1.5 * ds, DS_MAX);
             return status;
         }
         /* an event the step passed could not be located (the step went across a part of the
          * curve it does not resolve: the header comment): back to the step's start, half the
          * step */
-        swap(&p->theta, &p->theta_trial);
-        swap(&p->embed, &p->embed_trial);
-        for (int i = 0; i < 3; i++) p->metric[i] = m_start[i];
-        p->omega = w0;
-        p->tip_r = a0;
-        p->noise = noise_start;
-        p->omega_lo = lo, p->omega_hi = hi;
-        p->t_omega = p->last.t_w;
-        p->t_tip = p->last.t_a;
-        p->raw_sign = p->last.raw_sign;
-        p->rate_sign = p->last_rate_sign;
-        p->why = "an event between two points could not be located";
+        swap(&p->s.theta, &p->s.theta_trial);
+        swap(&p->s.embed, &p->s.embed_trial);
+        for (int i = 0; i < 3; i++) p->s.metric[i] = m_start[i];
+        p->pub.omega = w0;
+        p->pub.tip_r = a0;
+        p->s.noise = noise_start;
+        p->pub.omega_lo = lo, p->pub.omega_hi = hi;
+        p->pub.t_omega = p->s.last.t_w;
+        p->pub.t_tip = p->s.last.t_a;
+        p->s.raw_sign = p->s.last.raw_sign;
+        p->s.rate_sign = p->s.last_rate_sign;
+        p->s.why = "an event between two points could not be located";
         step_undone(p, ds);
-        if (p->ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
+        if (p->pub.ds < DS_MIN) return fail_at(p, GSL_EFAILED, w0, a0);
     }
 }
 
 /* whirl_nlink_path_step, its failures not yet led by the mode */
-static int path_step(whirl_nlink_path *p)
+static int path_step(nlink_path *p)
 {
-    p->n_events = 0;
-    if (p->ended)
+    p->pub.n_events = 0;
+    if (p->pub.ended)
         return whirl_fail(GSL_EDOM, "the branch ended on the hanging chain at omega=%.17g",
-                          p->omega);
+                          p->pub.omega);
     if (whirl_stop_requested()) return stopped(p);
     /* the formulation of this step: the link angles where the shot's round-off is felt, with
      * a hysteresis (each switch polishes the point on the other formulation) */
-    if (!p->angles && p->noise > NOISE_UP) to_angles(p);
-    else if (p->angles && p->stay > 0) p->stay--;
-    else if (p->angles && p->noise < NOISE_DOWN) to_shot(p);
-    return p->angles ? angle_step(p) : shot_step(p);
+    if (!p->pub.angles && p->s.noise > NOISE_UP) to_angles(p);
+    else if (p->pub.angles && p->s.stay > 0) p->s.stay--;
+    else if (p->pub.angles && p->s.noise < NOISE_DOWN) to_shot(p);
+    return p->pub.angles ? angle_step(p) : shot_step(p);
 }
 
-int whirl_nlink_path_step(whirl_nlink_path *p)
+int whirl_nlink_path_step(whirl_nlink_path *path)
 {
+    nlink_path *p = path_of(path);
     return name_mode(p, path_step(p));
 }
 
@@ -2027,81 +2020,81 @@ static long steps_max(const whirl_chain *c)
 
 /* The shape of the branch at omega between its birth and the first point of a path begun in the
  * link angles (birth_gap), into info and, where r is not NULL, r, z, tension. */
-static int gap_shape(whirl_nlink_path *p, double omega, whirl_shape_info *info, double *r,
+static int gap_shape(nlink_path *p, double omega, whirl_shape_info *info, double *r,
                      double *z, double *tension)
 {
-    const size_t n = p->chain->n;
-    double *th = p->cross_theta;
+    const size_t n = p->pub.chain->n;
+    double *th = arr_cross_theta(p);
     if (birth_gap(p, omega, th)) return GSL_EFAILED;
     if (r == NULL) r = scr_nodes(p), z = r + n + 1, tension = z + n + 1;
-    return shape_info(p, 1, omega, tip_of(p->chain, omega, th), th, info, r, z, tension);
+    return shape_info(p, 1, omega, tip_of(p->pub.chain, omega, th), th, info, r, z, tension);
 }
 
 /* Follows the path until its rate first exceeds omega_max, it returns to the hanging chain, or
  * visit returns non-zero (WHIRL_VISIT_STOP: success). visit gets every crossing of the rates
  * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
- * angles of the shape visited are in p->cross_theta (a crossing) or p->event_theta (an event). */
-static int follow_path(whirl_nlink_path *p, double omega_max, size_t n, const double *omega,
+ * angles of the shape visited are in arr_cross_theta(p) (a crossing) or arr_event_theta(p) (an event). */
+static int follow_path(nlink_path *p, double omega_max, size_t n, const double *omega,
                        whirl_nlink_visit_fn visit, void *ctx,
                        const whirl_nlink_follow_options *opt)
 {
-    const size_t links = p->chain->n;
+    const size_t links = p->pub.chain->n;
     double *r = scr_nodes(p), *z = r + links + 1, *t = z + links + 1;
     long folds = 0;
     if (opt && opt->steps_max < 0)
         return whirl_fail(GSL_EINVAL, "the bound on the continuation steps must be > 0 (0: the "
                           "default), got %ld", opt->steps_max);
-    const long bound = opt && opt->steps_max > 0 ? opt->steps_max : steps_max(p->chain);
-    int first = p->steps == 0; /* the first step from the birth is still to come */
-    while (p->omega <= omega_max && !p->ended) {
-        if (p->steps >= bound)
+    const long bound = opt && opt->steps_max > 0 ? opt->steps_max : steps_max(p->pub.chain);
+    int first = p->pub.steps == 0; /* the first step from the birth is still to come */
+    while (p->pub.omega <= omega_max && !p->pub.ended) {
+        if (p->pub.steps >= bound)
             return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
                               "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
-                              "at most (now at omega=%.17g)", p->mode, bound, p->omega_birth,
-                              p->arclength, folds, p->omega_hi, p->omega);
-        if (opt && opt->progress && p->steps % PROGRESS_STEPS == 0) {
-            const whirl_nlink_progress at = {p->mode, p->omega_birth, p->steps, bound, folds,
-                                             p->omega, p->omega_hi, p->arclength};
+                              "at most (now at omega=%.17g)", p->pub.mode, bound, p->pub.omega_birth,
+                              p->pub.arclength, folds, p->pub.omega_hi, p->pub.omega);
+        if (opt && opt->progress && p->pub.steps % PROGRESS_STEPS == 0) {
+            const whirl_nlink_progress at = {p->pub.mode, p->pub.omega_birth, p->pub.steps, bound, folds,
+                                             p->pub.omega, p->pub.omega_hi, p->pub.arclength};
             opt->progress(opt->progress_ctx, &at);
         }
-        int status = whirl_nlink_path_step(p);
+        int status = whirl_nlink_path_step(&p->pub);
         if (status) return status;
-        for (int e = 0; e < p->n_events; e++) folds += p->event[e].kind == WHIRL_EVENT_FOLD;
+        for (int e = 0; e < p->pub.n_events; e++) folds += p->pub.event[e].kind == WHIRL_EVENT_FOLD;
         /* crossings and events in the order of arclength: events first where they come
          * first is not needed by the callers, so crossings of a step follow its events */
-        for (int e = 0; e < p->n_events; e++) {
+        for (int e = 0; e < p->pub.n_events; e++) {
             whirl_shape_info info;
-            const whirl_branch_event *ev = &p->event[e];
-            if ((status = shape_info(p, p->last.angles, ev->omega, ev->tip_r,
-                                     p->event_theta + (size_t)e * links, &info, r, z, t)))
+            const whirl_branch_event *ev = &p->pub.event[e];
+            if ((status = shape_info(p, p->s.last.angles, ev->omega, ev->tip_r,
+                                     arr_event_theta(p) + (size_t)e * links, &info, r, z, t)))
                 return name_mode(p, status);
             if ((status = visit(ctx, SIZE_MAX, &info, ev)))
                 return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
         }
         for (size_t j = 0; j < n; j++) {
             double tip[WHIRL_PATH_EVENTS_MAX + 1];
-            int found = whirl_nlink_path_crossings(p, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
+            int found = whirl_nlink_path_crossings(&p->pub, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
             if (found < 0) return -found;
-            if (found == 0 && first && omega[j] > p->omega_birth * (1 + GAP_MIN) &&
-                omega[j] < p->omega) {
+            if (found == 0 && first && omega[j] > p->pub.omega_birth * (1 + GAP_MIN) &&
+                omega[j] < p->pub.omega) {
                 /* a rate between the birth and the first point, which the step's crossings do
                  * not resolve (a path begun in the link angles): gap_shape, or left out as not
                  * resolved where that does not converge */
                 whirl_shape_info info;
                 if (gap_shape(p, omega[j], &info, r, z, t) != GSL_SUCCESS) continue;
-                p->cross_angles[0] = 1; /* the visit's link angles are in cross_theta */
+                p->pub.cross_angles[0] = 1; /* the visit's link angles are in cross_theta */
                 if ((status = visit(ctx, j, &info, NULL)))
                     return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
             }
             for (int k = 0; k < found; k++) {
                 whirl_shape_info info;
-                const double *th = p->cross_theta + (size_t)k * links;
-                if ((status = shape_info(p, p->cross_angles[k], omega[j], tip[k], th, &info, r,
+                const double *th = arr_cross_theta(p) + (size_t)k * links;
+                if ((status = shape_info(p, p->pub.cross_angles[k], omega[j], tip[k], th, &info, r,
                                          z, t)))
                     return name_mode(p, status);
                 if (k > 0) {
-                    for (size_t i = 0; i < links; i++) p->cross_theta[i] = th[i];
-                    p->cross_angles[0] = p->cross_angles[k];
+                    for (size_t i = 0; i < links; i++) arr_cross_theta(p)[i] = th[i];
+                    p->pub.cross_angles[0] = p->pub.cross_angles[k];
                 }
                 if ((status = visit(ctx, j, &info, NULL)))
                     return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
@@ -2122,11 +2115,11 @@ int whirl_nlink_follow_opt(const whirl_chain *c, int mode, double omega_max, siz
                            const double *omega, whirl_nlink_visit_fn visit, void *ctx,
                            const whirl_nlink_follow_options *opt)
 {
-    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    nlink_path *p = path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
-    int status = whirl_nlink_path_birth(p, mode);
+    int status = whirl_nlink_path_birth(&p->pub, mode);
     if (!status) status = follow_path(p, omega_max, n, omega, visit, ctx, opt);
-    whirl_nlink_path_free(p);
+    path_free(p);
     return status;
 }
 
@@ -2136,7 +2129,7 @@ typedef struct first_ctx {
     whirl_shape_info *info;
     int *exists;
     size_t n, left;
-    whirl_nlink_path *p;
+    nlink_path *p;
     double *r, *z, *tension; /* NULL: not wanted */
 } first_ctx;
 
@@ -2150,17 +2143,17 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
     if (f->r) {
         /* the visited crossing's nodes, from its link angles (the first k of the step is
          * copied to the front of cross_theta) */
-        whirl_nlink_path *p = f->p;
-        const size_t n = p->chain->n;
+        nlink_path *p = f->p;
+        const size_t n = p->pub.chain->n;
         double *r = f->r + j * (n + 1), *z = f->z + j * (n + 1), *t = f->tension + j * (n + 1);
         int status;
-        if (p->cross_angles[0]) {
-            whirl_nlink_balance_nodes(p->chain, info->omega, p->cross_theta, r, z, t);
+        if (p->pub.cross_angles[0]) {
+            whirl_nlink_balance_nodes(p->pub.chain, info->omega, arr_cross_theta(p), r, z, t);
             if (r[n] < 0)
                 for (size_t i = 0; i <= n; i++) r[i] = -r[i];
             status = whirl_steady_check_samples(info->omega, n + 1, r, z, t);
         } else {
-            status = whirl_nlink_positions(p->chain, info->omega, info->tip_r, r, z, t);
+            status = whirl_nlink_positions(p->pub.chain, info->omega, info->tip_r, r, z, t);
         }
         if (status) return status;
     }
@@ -2169,7 +2162,7 @@ static int first_visit(void *ctx, size_t j, const whirl_shape_info *info,
 
 /* The branch of mode at the rates omega[]: a path from the birth up to the largest of them (and
  * at least to twice the birth rate, where a branch that first turns to lower rates is seen). */
-static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *omega,
+static int branch_path(nlink_path *p, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists, double *r, double *z, double *t,
                        const whirl_nlink_follow_options *opt)
 {
@@ -2178,12 +2171,12 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
         if (status != GSL_SUCCESS) return status;
         exists[j] = 0;
     }
-    if ((size_t)mode > p->chain->n)
+    if ((size_t)mode > p->pub.chain->n)
         return whirl_fail(GSL_EDOM, "mode %d does not exist: a chain of %zu links has modes "
-                          "1..%zu", mode, p->chain->n, p->chain->n);
-    int status = whirl_nlink_path_birth(p, mode);
+                          "1..%zu", mode, p->pub.chain->n, p->pub.chain->n);
+    int status = whirl_nlink_path_birth(&p->pub, mode);
     if (status) return status;
-    double top = 2 * p->omega_birth;
+    double top = 2 * p->pub.omega_birth;
     for (size_t j = 0; j < n; j++) top = fmax(top, omega[j]);
     first_ctx f = {info, exists, n, n, p, r, z, t};
     if (n == 0) return GSL_SUCCESS;
@@ -2193,7 +2186,7 @@ static int branch_path(whirl_nlink_path *p, int mode, size_t n, const double *om
          * back below its birth: those rates are below the branch as far as it was followed */
         int below = 1;
         for (size_t j = 0; j < n; j++)
-            if (!exists[j] && omega[j] >= p->omega_lo) below = 0;
+            if (!exists[j] && omega[j] >= p->pub.omega_lo) below = 0;
         if (below) status = GSL_SUCCESS;
     }
     return status;
@@ -2205,10 +2198,10 @@ int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n, const dou
 {
     if ((r == NULL) != (z == NULL) || (r == NULL) != (tension == NULL))
         return whirl_fail(GSL_EINVAL, "the nodes need all of r, z and tension, or none");
-    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    nlink_path *p = path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int status = branch_path(p, mode, n, omega, info, exists, r, z, tension, NULL);
-    whirl_nlink_path_free(p);
+    path_free(p);
     return status;
 }
 
@@ -2228,17 +2221,17 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 whirl_shape_info *info, double *r, double *z, double *tension,
                                 const whirl_nlink_follow_options *opt)
 {
-    whirl_nlink_path *p = whirl_nlink_path_alloc(c);
+    nlink_path *p = path_alloc(c);
     if (p == NULL) return whirl_last_error()[0] ? GSL_ENOMEM : GSL_EINVAL;
     int exists = 0;
     int status = branch_path(p, mode, 1, &omega, info, &exists, r, z, tension, opt);
     if (status == GSL_SUCCESS && !exists) {
-        if (p->ended)
+        if (p->pub.ended)
             status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
-                                p->omega_birth, p->omega);
-        else if (p->omega_lo >= p->omega_birth && omega > p->omega_birth * (1 + GAP_MIN))
+                                p->pub.omega_birth, p->pub.omega);
+        else if (p->pub.omega_lo >= p->pub.omega_birth && omega > p->pub.omega_birth * (1 + GAP_MIN))
             /* above the birth but below the first point of a branch begun in the link angles
              * (birth_angles), where birth_gap does not converge: the mode exists there, it is
              * not resolved */
@@ -2246,15 +2239,15 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 "between the birth omega_%d=%.17g and the first point of the "
                                 "branch, at omega=%.17g, where the tip shot cannot start it "
                                 "(begun in the link angles at an amplitude of %g rad)", mode,
-                                omega, mode, p->omega_birth, p->omega_lo, BIRTH_AMPLITUDE);
-        else if (p->omega_lo >= p->omega_birth)
-            status = whirl_steady_fail_missing(mode, omega, p->omega_birth);
+                                omega, mode, p->pub.omega_birth, p->pub.omega_lo, BIRTH_AMPLITUDE);
+        else if (p->pub.omega_lo >= p->pub.omega_birth)
+            status = whirl_steady_fail_missing(mode, omega, p->pub.omega_birth);
         else
             status = whirl_fail(GSL_EDOM, "mode %d does not exist at omega=%.17g: its branch, "
                                 "born at omega_%d=%.17g, reaches down to omega=%.17g only",
-                                mode, omega, mode, p->omega_birth, p->omega_lo);
+                                mode, omega, mode, p->pub.omega_birth, p->pub.omega_lo);
     }
-    whirl_nlink_path_free(p);
+    path_free(p);
     return status;
 }
 
