@@ -116,4 +116,185 @@ static inline size_t path_block_size(size_t n)
     return path_fixed(n) + 2 * n + (2 * WHIRL_PATH_EVENTS_MAX + 1) * n + 7 * n + 3;
 }
 
+/* ---- constants (their reasons: src/steady/nlink_path.c's header comment) ---- */
+
+#define DS_FIRST 0.02    /* first step from a start */
+#define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
+#define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails */
+#define DS_MIN_FINE 1e-18 /* and in the fine mode (look_ahead): a hundredth of the rate's
+                           * round-off (such a step moves only the links all but hanging, 1e-20
+                           * to 1e-10 rad from the vertical, whose angles are resolved far below
+                           * it; the 50-digit path turns with steps of 1e-17 at some of these
+                           * corners, which 1e-16 took for branch points) */
+#define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
+#define DS_MAX 0.1       /* largest step */
+#define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
+                          * is rejected (halved): see the header comment */
+#define DS_CROSS 1e-6    /* in the link angles, the longest step taken across a branch point
+                          * where the path cannot be followed at any step: see the header
+                          * comment */
+#define TURN_MAX 0.2     /* largest turn of the tangent per step [rad] */
+#define DTHETA_MAX 0.2   /* largest change of a link angle per step [rad] */
+#define CHORD_MAX 0.75   /* largest angle between a step's chord and its end tangents, relative
+                          * to the turn of the tangent (see chord_angle) */
+#define CHORD_SLACK 1e-3 /* and beyond that [rad] (and NEWTON_TOL over the chord's length: the
+                          * round-off of its ends on short steps) */
+#define SLOPE_MAX 0.5    /* the chord's rate part beyond the end tangents' [turn^2] (chord_test) */
+#define SLOPE_SLACK 1e-9 /* and beyond that (the rate's round-off) */
+#define NEWTON_MAX 10    /* corrector iterations per trial step */
+#define NEWTON_EASY 4    /* a step converged in this many or fewer may grow */
+#define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made */
+#define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off */
+#define LOCATE_MAX 200   /* Brent iterations for an event */
+#define LOCATE_FOLD 1e-12 /* a fold's bracket in sigma, relative to the step (see frame_locate) */
+#define LOCATE_NEWTON_MAX 40 /* Newton iterations of a point of an event's location (slow near a
+                              * branch point, where the corrector's system is singular) */
+#ifndef NOISE_UP
+#define NOISE_UP 3e-14   /* the path goes over to the link angles where the shot's round-off
+                          * unbalances a link by more than this (relative to its tension) */
+#define NOISE_DOWN 3e-15 /* and back to the tip shot where it falls below this */
+#endif
+#define SHOT_SAME 1e-9 /* back on the shot, no link angle moves more than this [rad] (else
+                        * its Newton's method went to another equilibrium nearby) */
+#define FINE_SPAN 1e-7  /* the arclength a probe looks ahead (look_ahead) */
+#define RETURN_SPAN 1e-8 /* a return to the hanging chain is located within this of a critical
+                          * rate (relative; at_a_birth) */
+#define MU_RESOLVED 1e-12 /* in the link angles, the sign of t_omega at a point is the fold
+                           * test's only where |mu| > MU_RESOLVED |A| (rate_sign) */
+#define PROBE_STEPS 2000 /* and its most steps */
+#define NEAR_MAX 0.5     /* an eigenvalue that turns back closer to zero than this times its
+                          * value at the nearer end of the step: the step is halved (near_zero) */
+#define EIG_ITERS 1      /* inverse iterations for the eigenvalue nearest zero, from the last */
+#define EIG_ITERS_FIRST 8 /* and from a start */
+#define EIG_SAME 0.5     /* the eigenvectors at a step's ends are of the same eigenvalue where
+                          * their angle's cosine is at least this */
+#define STAY_FIRST 16    /* steps in the link angles after the shot's Newton failed, before the
+                          * shot is tried again (doubled on each such failure) */
+
+#define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
+#define GAP_MAX 30 /* secant iterations of a point between the birth and that first point */
+#define GAP_MIN 1e-13 /* omega / omega_k - 1 below which a rate is the birth itself (no gap) */
+#define BIRTH_NEAR 1e-10 /* omega / omega_k - 1 below which the force balance at fixed omega
+                          * does not tell a branch's point from the hanging chain: the
+                          * eigenvalue of its Jacobian nearest zero is about that times its
+                          * largest, the shot's round-off 3e-14 (NOISE_UP) */
+
+typedef struct shot {
+    double g, g_w, g_a;      /* G and its partial derivatives */
+    double m_ww, m_wa, m_aa; /* the metric M at the point */
+} shot;
+
+/* Scratch arrays of the path (7 N + 3 doubles): a Newton step's residual and correction, zeros,
+ * the arclength row's link-angle part, and 3 (N + 1) for a shape's nodes. */
+static inline double *scr_f(const nlink_path *p) { return arr_scratch(p); }
+static inline double *scr_dth(const nlink_path *p) { return arr_scratch(p) + p->pub.chain->n; }
+static inline double *scr_zero(const nlink_path *p)
+{
+    return arr_scratch(p) + 2 * p->pub.chain->n;
+}
+static inline double *scr_cth(const nlink_path *p)
+{
+    return arr_scratch(p) + 3 * p->pub.chain->n;
+}
+static inline double *scr_nodes(const nlink_path *p)
+{
+    return arr_scratch(p) + 4 * p->pub.chain->n;
+}
+
+/* The tip radius of the link angles: at an equilibrium r_N = rho_N = g tan theta_N / omega^2, the
+ * radius that balances the tip mass, free of the cancellation of the sum of l_i sin theta_i (a
+ * high mode's tip radius can be 1e-18 of the largest); and its rate of change along
+ * (d omega, d theta). */
+static inline double tip_of(const whirl_chain *c, double w, const double *th)
+{
+    return c->gravity * tan(th[c->n - 1]) / (w * w);
+}
+
+static inline int sign_of(double x)
+{
+    return (x > 0) - (x < 0);
+}
+
+/* The path is in the fine mode at its current point (look_ahead). */
+static inline int in_fine_mode(const nlink_path *p)
+{
+    return p->pub.arclength < p->s.fine_end;
+}
+
+/* The smallest step in the link angles at the current point: finer in the fine mode. */
+static inline double ds_smallest(const nlink_path *p)
+{
+    return in_fine_mode(p) ? DS_MIN_FINE : DS_MIN_ANGLES;
+}
+
+static inline void swap(size_t *x, size_t *y)
+{
+    const size_t tmp = *x;
+    *x = *y;
+    *y = tmp;
+}
+
+static inline double metric_dot(const double *m, double x_w, double x_a, double y_w, double y_a)
+{
+    return m[0] * x_w * y_w + m[1] * (x_w * y_a + x_a * y_w) + m[2] * x_a * y_a;
+}
+
+static inline void shot_metric(const shot *s, double *m)
+{
+    m[0] = s->m_ww;
+    m[1] = s->m_wa;
+    m[2] = s->m_aa;
+}
+
+/* src/steady/nlink_path.c */
+int path_name_mode(const nlink_path *p, int status);
+void path_step_undone(nlink_path *p, double ds);
+int path_stopped(const nlink_path *p);
+int path_fail_at(nlink_path *p, int status, double w0, double a0);
+void path_keep_start(nlink_path *p, const double *m0, double w0, double a0, double ds);
+void path_free(nlink_path *p);
+nlink_path *path_alloc(const whirl_chain *c);
+int path_step(nlink_path *p);
+
+/* src/steady/nlink_path_shot.c */
+void path_shoot_embed(const whirl_chain *c, double omega, double a, shot *s, double *theta,
+                      double *embed);
+void path_shoot(const whirl_chain *c, double omega, double a, shot *s, double *theta);
+double path_shot_noise(const whirl_chain *c, double omega, double a, const shot *s);
+int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c_w, double c_a,
+                 double sigma, double *w, double *a, shot *s, int *iters);
+void path_tangent(const shot *s, const double *m, const double *m_ref, double ref_w, double ref_a,
+                  double *t_w, double *t_a, int *raw_sign);
+double path_tension_spread(const whirl_chain *c, double omega, double a);
+double path_noise_at(nlink_path *p, double omega, double a);
+void path_set_point(nlink_path *p, double omega, double a, const shot *s, double noise);
+int path_to_shot(nlink_path *p);
+int path_shot_step(nlink_path *p);
+
+/* src/steady/nlink_path_angles.c */
+double path_shape_projection(size_t n, const double *th, const double *th0);
+int path_correct_angles(nlink_path *p, double w0, const double *th0, double c_w, const double *c_th,
+                        double sigma, double *w, double *th, int *iters, int max_iter);
+int path_angle_tangent(nlink_path *p, double w, double c_w, const double *c_th, double *t_w,
+                       double *t_th, int *det_sign, double *ref, double *test);
+void path_angle_point(nlink_path *p, double w, double t_w, int det);
+int path_to_angles(nlink_path *p);
+int path_angle_step(nlink_path *p);
+int path_birth_gap(nlink_path *p, double omega, double *th);
+int path_begin_in_angles(nlink_path *p);
+
+/* src/steady/nlink_path_events.c */
+int path_shape_info(nlink_path *p, int angles, double omega, double a, const double *th,
+                    whirl_shape_info *info, double *r, double *z, double *t);
+int path_find_events(nlink_path *p, int branch);
+
+/* src/steady/nlink_path_checks.c */
+const char *path_chord_test(size_t n, double w0, const double *th0, double w1, const double *th1,
+                            const double *e0, double s0, const double *e1, double s1, double turn,
+                            int rates);
+int path_hermite_crossings(double f0, double d0, double f1, double d1, double *near);
+
+/* src/steady/nlink_path_probe.c */
+int path_look_ahead(nlink_path *p, double ds);
+
 #endif
