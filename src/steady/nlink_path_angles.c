@@ -202,171 +202,150 @@ static int near_zero(nlink_path *p, double t_w, double ds, double *mu, double *m
     return changes > 1 || near < NEAR_MAX;
 }
 
-/* One step in the link angles: predictor x0 + ds t0 + ds^2 k / 2 (k the curvature, the change
- * of the tangent over the last step divided by its length, where that step was made in the link
- * angles too), Newton's method on R = 0 and the arclength row (M0 t0) . (x - x0) = ds, the same
- * acceptance as in the shot. */
-int path_angle_step(nlink_path *p)
+/* ---- the step in the link angles (the loop: src/steady/nlink_path_step.c) ----
+ * Predictor x0 + ds t0 + ds^2 k / 2 (k the curvature, the change of the tangent over the last
+ * step divided by its length, where that step was made in the link angles too), Newton's method
+ * on R = 0 and the arclength row (M0 t0) . (x - x0) = ds. Where no step down to the smallest
+ * can be followed, the crossing mode: steps doubling from twice the smallest up to DS_CROSS,
+ * one taken only where the orientation reverses on it (a branch point narrower than the
+ * smallest step). */
+
+static void angle_begin(nlink_path *p, step_ctx *x)
+{
+    x->w0 = p->pub.omega;
+    x->a0 = p->pub.tip_r;
+    x->m0 = NULL;
+    x->c_w = p->pub.t_omega / (x->w0 * x->w0);
+    x->c_a = 0;
+    x->log_predictor = 0;
+    x->crossing = 0;
+    x->chord_off = x->chord_failed = 0;
+    x->ds_first = p->pub.ds;
+    /* the step above which a reversal of the orientation is another curve close by */
+    x->ds_min = ds_smallest(p);
+    x->ds_branch = in_fine_mode(p) ? x->ds_min : DS_BRANCH;
+    x->why = "";
+}
+
+static void angle_trial(nlink_path *p, step_ctx *x, step_trial *t)
+{
+    const size_t n = p->pub.chain->n;
+    double *c_th = scr_cth(p);
+    for (size_t i = 0; i < n; i++) c_th[i] = arr_t_theta(p)[i] / (double)n;
+    const double ds = t->ds;
+    double w = x->w0 + ds * p->pub.t_omega, *th = arr_theta_trial(p);
+    for (size_t i = 0; i < n; i++) th[i] = arr_theta(p)[i] + ds * arr_t_theta(p)[i];
+    if (p->s.have_last && p->s.last.angles) {
+        /* the second-order term, the curvature from the tangents at the last two points */
+        const double q = 0.5 * ds * ds / p->s.last.ds;
+        w += q * (p->pub.t_omega - p->s.last.t_w);
+        for (size_t i = 0; i < n; i++) th[i] += q * (arr_t_theta(p)[i] - arr_t_theta0(p)[i]);
+    }
+    t->ok = path_correct_angles(p, x->w0, arr_theta(p), x->c_w, c_th, ds, &w, th, &t->iters,
+                                NEWTON_MAX) == 0;
+    if (!t->ok) p->s.why = "Newton's method on the force balance does not converge";
+    if (t->ok && path_angle_tangent(p, w, x->c_w, c_th, &t->t_w, arr_t_theta_trial(p), &t->det,
+                                    NULL, NULL)) {
+        t->ok = 0;
+        p->s.why = "the tangent is not defined (a singular point)";
+    }
+    t->w = w;
+    if (!t->ok) return;
+    t->index = whirl_nlink_balance_index(p->balance);
+    t->pair = near_zero(p, t->t_w, ds, &t->mu, &t->mu_rate);
+    angle_embed(n, w, t->t_w, arr_t_theta_trial(p), arr_embed_trial(p));
+    double cosine = 0;
+    for (size_t i = 0; i <= n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
+    t->turn = acos(fmin(1, fmax(-1, cosine)));
+    for (size_t i = 0; i < n; i++) t->dtheta = fmax(t->dtheta, fabs(th[i] - arr_theta(p)[i]));
+    t->mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
+    t->chord = path_chord_test(n, x->w0, arr_theta(p), w, th, arr_embed(p), 1, arr_embed_trial(p),
+                               1, t->turn, fabs(p->s.mu) > t->mu_min && fabs(t->mu) > t->mu_min);
+    t->flip = t->det != p->s.det_sign;
+    t->jump = p->s.index >= 0 && abs(t->index - p->s.index) > 1;
+}
+
+/* A reversal of the orientation (or a jump of the index, or an eigenvalue that crosses zero and
+ * back) on a step no longer than DS_BRANCH is a branch point, unless the curve turns within it:
+ * the probe looks ahead (not again within FINE_SPAN of where it last found a branch point at
+ * the finer scale: it looked over that stretch). */
+static int angle_ready(nlink_path *p, step_ctx *x, step_trial *t)
+{
+    if (x->crossing || !(t->flip || t->jump || t->pair) || in_fine_mode(p) ||
+        !(p->pub.arclength >= p->s.probe_end))
+        return GSL_SUCCESS;
+    const int ahead = path_look_ahead(p, 0.5 * t->ds);
+    if (ahead == WHIRL_EINTERRUPTED) return path_stopped(p);
+    if (ahead != 0 && ahead != 1) return ahead;
+    if (ahead == 0) p->s.probe_end = p->pub.arclength + FINE_SPAN;
+    if (ahead == 1) {
+        /* the fine mode from here on, the steps as from a fresh call (as the probe's) */
+        p->s.fine_end = p->pub.arclength + FINE_SPAN;
+        p->pub.rejected++;
+        p->pub.ds = 0.5 * t->ds;
+        return STEP_ANGLES;
+    }
+    return GSL_SUCCESS;
+}
+
+static int angle_rejected(nlink_path *p, step_ctx *x, const step_trial *t)
+{
+    if (x->crossing) {
+        /* the steps doubling up to DS_CROSS */
+        p->pub.ds *= 2;
+        if (p->pub.ds > DS_CROSS) {
+            p->s.why = x->why;
+            return path_fail_at(p, GSL_EFAILED, x->w0, x->a0);
+        }
+        return STEP_RETRY;
+    }
+    p->pub.ds *= 0.5;
+    if (p->pub.ds < DS_MIN_CHORD && x->chord_failed && !x->chord_off) {
+        /* the chord test alone rejected steps down to the smallest: at that scale the corrected
+         * points scatter by their own round-off across a turn of the curve sharper than the
+         * tangent resolves (a heavy tip's pinned string where it splits), and the chord
+         * measures that scatter, not a part of the curve passed over. The step is retried from
+         * its first length without the chord test, every other test kept (the turn, the link
+         * angles, the orientation: no step lands on another curve). */
+        x->chord_off = 1;
+        p->pub.ds = x->ds_first;
+        return STEP_RETRY;
+    }
+    if (p->pub.ds < x->ds_min) {
+        /* the curve cannot be followed at any step: if a curve of the opposite orientation lies
+         * within DS_CROSS ahead, the two meet there to within the resolution of the steps (a
+         * branch point, its unfolding narrower than the smallest step): the shortest step that
+         * reaches it is taken across */
+        x->why = p->s.why;
+        x->crossing = 1;
+        p->pub.ds = 2 * x->ds_min;
+    }
+    return STEP_RETRY;
+}
+
+static void angle_accept(nlink_path *p, const step_ctx *x, const step_trial *t)
 {
     const whirl_chain *c = p->pub.chain;
-    const size_t n = c->n;
-    const double w0 = p->pub.omega, a0 = p->pub.tip_r;
-    double *c_th = scr_cth(p);
-    const double c_w = p->pub.t_omega / (w0 * w0);
-    int crossing = 0; /* the trials probe for a step across a branch point */
-    int chord_off = 0, chord_failed = 0; /* the chord test set aside; it rejected the last trial */
-    const double ds_first = p->pub.ds;
-    /* the step above which a reversal of the orientation is another curve close by */
-    const double ds_min = ds_smallest(p), ds_branch = in_fine_mode(p) ? ds_min : DS_BRANCH;
-    const char *why = "";
-    for (;;) {
-        for (size_t i = 0; i < n; i++) c_th[i] = arr_t_theta(p)[i] / (double)n;
-        const double ds = p->pub.ds;
-        double w = w0 + ds * p->pub.t_omega, *th = arr_theta_trial(p), t_w = 0, turn = 0, dtheta = 0;
-        for (size_t i = 0; i < n; i++) th[i] = arr_theta(p)[i] + ds * arr_t_theta(p)[i];
-        if (p->s.have_last && p->s.last.angles) {
-            /* the second-order term, the curvature from the tangents at the last two points */
-            const double q = 0.5 * ds * ds / p->s.last.ds;
-            w += q * (p->pub.t_omega - p->s.last.t_w);
-            for (size_t i = 0; i < n; i++) th[i] += q * (arr_t_theta(p)[i] - arr_t_theta0(p)[i]);
-        }
-        int iters = NEWTON_MAX, det = 0, index = -1, pair = 0;
-        double mu = NAN, mu_rate = NAN, mu_min = INFINITY; /* mu_min: mu's resolution */
-        int ok = path_correct_angles(p, w0, arr_theta(p), c_w, c_th, ds, &w, th, &iters, NEWTON_MAX) == 0;
-        if (!ok) p->s.why = "Newton's method on the force balance does not converge";
-        if (ok && path_angle_tangent(p, w, c_w, c_th, &t_w, arr_t_theta_trial(p), &det, NULL, NULL)) {
-            ok = 0;
-            p->s.why = "the tangent is not defined (a singular point)";
-        }
-        if (ok) {
-            index = whirl_nlink_balance_index(p->balance);
-            pair = near_zero(p, t_w, ds, &mu, &mu_rate);
-            angle_embed(n, w, t_w, arr_t_theta_trial(p), arr_embed_trial(p));
-            double cosine = 0;
-            for (size_t i = 0; i <= n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
-            turn = acos(fmin(1, fmax(-1, cosine)));
-            for (size_t i = 0; i < n; i++) dtheta = fmax(dtheta, fabs(th[i] - arr_theta(p)[i]));
-            mu_min = MU_RESOLVED * whirl_nlink_balance_scale(p->balance);
-            const char *chord = path_chord_test(n, w0, arr_theta(p), w, th, arr_embed(p), 1,
-                                           arr_embed_trial(p), 1, turn,
-                                           fabs(p->s.mu) > mu_min && fabs(mu) > mu_min);
-            if (turn > TURN_MAX && !crossing)
-                ok = 0, p->s.why = "the tangent turns by more than 0.2 rad";
-            if (dtheta > DTHETA_MAX) ok = 0, p->s.why = "a link angle changes by more than 0.2 rad";
-            chord_failed = chord && !crossing && !chord_off;
-            if (chord_failed) ok = 0, p->s.why = chord;
-            const int jump = p->s.index >= 0 && abs(index - p->s.index) > 1;
-            if (det != p->s.det_sign && ds > ds_branch && !crossing)
-                ok = 0, p->s.why = "the orientation test changes sign (another curve close by)";
-            if (jump && ds > ds_branch && !crossing)
-                ok = 0, p->s.why = "the index of the force balance changes by more than one (two "
-                                 "singular points passed over)";
-            if (pair && ds > ds_branch && !crossing)
-                ok = 0, p->s.why = "an eigenvalue of the force balance crosses zero and back "
-                                 "within the step (two folds passed over)";
-            if (det == p->s.det_sign && crossing) ok = 0;
-            if (ok && !crossing && (det != p->s.det_sign || jump || pair) &&
-                !in_fine_mode(p) && p->pub.arclength >= p->s.probe_end) {
-                /* a branch point by the rule of DS_BRANCH: unless the curve turns within it
-                 * (not looked at again within FINE_SPAN of where the probe last found a branch
-                 * point at the finer scale: it looked over that stretch) */
-                const int ahead = path_look_ahead(p, 0.5 * ds);
-                if (ahead == WHIRL_EINTERRUPTED) return path_stopped(p);
-                if (ahead != 0 && ahead != 1) return ahead;
-                if (ahead == 0) p->s.probe_end = p->pub.arclength + FINE_SPAN;
-                if (ahead == 1) {
-                    /* the fine mode from here on, the steps as from a fresh call (as the
-                     * probe's) */
-                    p->s.fine_end = p->pub.arclength + FINE_SPAN;
-                    p->pub.rejected++;
-                    p->pub.ds = 0.5 * ds;
-                    return path_angle_step(p);
-                }
-            }
-        }
-        if (!ok) {
-            p->pub.rejected++;
-            if (crossing) {
-                /* the probe: steps doubling up to DS_CROSS */
-                p->pub.ds *= 2;
-                if (p->pub.ds > DS_CROSS) {
-                    p->s.why = why;
-                    return path_fail_at(p, GSL_EFAILED, w0, a0);
-                }
-                continue;
-            }
-            p->pub.ds *= 0.5;
-            if (p->pub.ds < DS_MIN_CHORD && chord_failed && !chord_off) {
-                /* the chord test alone rejected steps down to the smallest: at that scale the
-                 * corrected points scatter by their own round-off across a turn of the curve
-                 * sharper than the tangent resolves (a heavy tip's pinned string where it
-                 * splits), and the chord measures that scatter, not a part of the curve passed
-                 * over. The step is retried from its first length without the chord test,
-                 * every other test kept (the turn, the link angles, the orientation: no step
-                 * lands on another curve). */
-                chord_off = 1;
-                p->pub.ds = ds_first;
-                continue;
-            }
-            if (p->pub.ds < ds_min) {
-                /* the curve cannot be followed at any step: if a curve of the opposite
-                 * orientation lies within DS_CROSS ahead, the two meet there to within the
-                 * resolution of the steps (a branch point, its unfolding narrower than the
-                 * smallest step): the shortest step that reaches it is taken across */
-                why = p->s.why;
-                crossing = 1;
-                p->pub.ds = 2 * ds_min;
-            }
-            continue;
-        }
-        path_keep_start(p, NULL, w0, a0, ds);
-        swap(&p->s.theta, &p->s.theta_trial);
-        swap(&p->s.t_theta, &p->s.t_theta_trial);
-        swap(&p->s.embed, &p->s.embed_trial);
-        p->pub.omega = w;
-        p->pub.tip_r = tip_of(c, w, arr_theta(p));
-        p->pub.t_omega = t_w;
-        p->pub.t_tip = tip_rate(c, w, arr_theta(p), t_w, arr_t_theta(p));
-        p->s.det_sign = det;
-        p->s.index = index;
-        swap(&p->s.eig, &p->s.eig_trial);
-        p->s.mu = mu;
-        p->s.mu_rate = mu_rate;
-        if (!(fabs(mu) <= mu_min) && t_w != 0) p->s.rate_sign = sign_of(t_w);
-        const double lo = p->pub.omega_lo, hi = p->pub.omega_hi, noise = p->s.noise;
-        if (w < p->pub.omega_lo) p->pub.omega_lo = w;
-        if (w > p->pub.omega_hi) p->pub.omega_hi = w;
-        p->pub.arclength += ds;
-        p->pub.steps++;
-        p->s.noise = path_noise_at(p, w, p->pub.tip_r);
-        const int status = path_find_events(p, det != p->s.last.det_sign);
-        if (status != GSL_EFAILED) {
-            if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
-                p->pub.ds = fmin(1.5 * ds, DS_MAX);
-            return status;
-        }
-        /* an event the step passed could not be located (the curve between the two points is
-         * more intricate than the step: two close folds, a near crossing of another branch):
-         * back to the step's start, half the step */
-        p->s.why = "an event between two points could not be located";
-        for (size_t i = 0; i < n; i++)
-            arr_theta(p)[i] = arr_theta0(p)[i], arr_t_theta(p)[i] = arr_t_theta0(p)[i];
-        p->pub.omega = w0;
-        p->pub.tip_r = a0;
-        p->pub.t_omega = p->s.last.t_w;
-        p->pub.t_tip = p->s.last.t_a;
-        p->s.det_sign = p->s.last.det_sign;
-        p->s.index = p->s.last.index;
-        swap(&p->s.eig, &p->s.eig_trial);
-        p->s.mu = p->s.last.mu;
-        p->s.mu_rate = p->s.last.mu_rate;
-        p->s.rate_sign = p->s.last_rate_sign;
-        angle_embed(n, w0, p->pub.t_omega, arr_t_theta(p), arr_embed(p));
-        p->pub.omega_lo = lo, p->pub.omega_hi = hi, p->s.noise = noise;
-        path_step_undone(p, ds);
-        if (crossing || p->pub.ds < ds_min) return path_fail_at(p, GSL_EFAILED, w0, a0);
-    }
+    swap(&p->s.theta, &p->s.theta_trial);
+    swap(&p->s.t_theta, &p->s.t_theta_trial);
+    swap(&p->s.embed, &p->s.embed_trial);
+    p->pub.omega = t->w;
+    p->pub.tip_r = tip_of(c, t->w, arr_theta(p));
+    p->pub.t_omega = t->t_w;
+    p->pub.t_tip = tip_rate(c, t->w, arr_theta(p), t->t_w, arr_t_theta(p));
+    p->s.det_sign = t->det;
+    p->s.index = t->index;
+    swap(&p->s.eig, &p->s.eig_trial);
+    p->s.mu = t->mu;
+    p->s.mu_rate = t->mu_rate;
+    if (!(fabs(t->mu) <= t->mu_min) && t->t_w != 0) p->s.rate_sign = sign_of(t->t_w);
+    if (t->w < p->pub.omega_lo) p->pub.omega_lo = t->w;
+    if (t->w > p->pub.omega_hi) p->pub.omega_hi = t->w;
+    p->s.noise = path_noise_at(p, t->w, p->pub.tip_r);
 }
+
+const step_ops path_angle_ops = {angle_begin, angle_trial, angle_ready, angle_rejected,
+                                 angle_accept};
 
 /* The point of the branch whose projection on the linear mode shape phi is amplitude
  * (phi . theta / sqrt(N), phi of unit norm oriented to a positive tip), by Newton's method into
@@ -443,10 +422,10 @@ int path_birth_gap(nlink_path *p, double omega, double *th)
     return -1;
 }
 
-/* The first step from the birth, begun in the link angles instead of on the shot (birth_angles);
- * the failure at the birth where that does not start. */
+/* The first step from the birth, begun in the link angles instead of on the shot (birth_angles):
+ * STEP_ANGLES; the failure at the birth where that does not start. */
 int path_begin_in_angles(nlink_path *p)
 {
-    if (birth_angles(p) == 0) return path_angle_step(p);
+    if (birth_angles(p) == 0) return STEP_ANGLES;
     return path_fail_at(p, GSL_EFAILED, p->pub.omega, p->pub.tip_r);
 }

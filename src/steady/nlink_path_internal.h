@@ -246,12 +246,68 @@ static inline void shot_metric(const shot *s, double *m)
     m[2] = s->m_aa;
 }
 
+/* ---- one step: the loop (src/steady/nlink_path_step.c) and the formulations behind it ---- */
+
+/* What a formulation's hook asks of the loop, besides a status to return */
+#define STEP_RETRY (-1001)  /* the next trial, of length p->pub.ds */
+#define STEP_ANGLES (-1002) /* the step afresh in the link angles from the current point */
+
+/* A step's setup (step_ops.begin). */
+typedef struct step_ctx {
+    double w0, a0;    /* the step's start: rate and tip radius */
+    const double *m0; /* the metric there (the shot; NULL in the link angles) */
+    double c_w, c_a;  /* the arclength row's rate and tip-radius parts (the link angles': the
+                       * rate part, and scr_cth) */
+    int log_predictor; /* the shot predicts a in ln|a| */
+    double ds_first;  /* the step's first trial length */
+    double ds_min;    /* its smallest */
+    double ds_branch; /* the longest on which a reversal of the orientation is taken */
+    int crossing;     /* the crossing mode (link angles) */
+    int chord_off;    /* the chord test set aside (link angles) */
+    int chord_failed; /* the chord test rejected the last trial it judged */
+    const char *why;  /* what rejected the trials before the crossing mode */
+} step_ctx;
+
+/* A trial: its length, its corrected point and the measures the tests read. */
+typedef struct step_trial {
+    double ds;
+    int ok;              /* converged (then: passed the tests) */
+    int iters;           /* Newton iterations (NEWTON_MAX: none converged) */
+    double w, a;         /* the corrected point: rate, tip radius (the shot) */
+    double t_w, t_a;     /* its tangent's rate and tip-radius parts */
+    int raw;             /* the shot: its tangent's orientation against (G_a, -G_omega) */
+    shot s;              /* the shot there */
+    double noise;        /* the shot's round-off there */
+    int det, index;      /* the link angles: orientation test, index */
+    double mu, mu_rate, mu_min; /* the eigenvalue nearest zero, its rate, its resolution */
+    double turn, dtheta; /* the tangent's turn, the largest change of a link angle */
+    const char *chord;   /* path_chord_test's verdict (NULL: consistent) */
+    int flip;            /* the orientation test reversed */
+    int jump;            /* the index changed by more than one */
+    int pair;            /* the eigenvalue nearest zero crosses zero and back within the step */
+} step_trial;
+
+/* A formulation. */
+typedef struct step_ops {
+    void (*begin)(nlink_path *p, step_ctx *x);
+    /* predicts and corrects the trial of length t->ds, and measures it (t->ok = 0 where it does
+     * not converge, the reason in p->s.why) */
+    void (*trial)(nlink_path *p, step_ctx *x, step_trial *t);
+    /* a trial that passed the tests, before it is taken: GSL_SUCCESS to take it, STEP_ANGLES,
+     * or a status to return */
+    int (*ready)(nlink_path *p, step_ctx *x, step_trial *t);
+    /* after a rejected trial: STEP_RETRY (p->pub.ds shortened), STEP_ANGLES or a status */
+    int (*rejected)(nlink_path *p, step_ctx *x, const step_trial *t);
+    /* the trial becomes the current point (the start kept by the loop) */
+    void (*accept)(nlink_path *p, const step_ctx *x, const step_trial *t);
+} step_ops;
+
+extern const step_ops path_shot_ops, path_angle_ops;
+
 /* src/steady/nlink_path.c */
 int path_name_mode(const nlink_path *p, int status);
-void path_step_undone(nlink_path *p, double ds);
 int path_stopped(const nlink_path *p);
 int path_fail_at(nlink_path *p, int status, double w0, double a0);
-void path_keep_start(nlink_path *p, const double *m0, double w0, double a0, double ds);
 void path_free(nlink_path *p);
 nlink_path *path_alloc(const whirl_chain *c);
 int path_step(nlink_path *p);
@@ -269,7 +325,6 @@ double path_tension_spread(const whirl_chain *c, double omega, double a);
 double path_noise_at(nlink_path *p, double omega, double a);
 void path_set_point(nlink_path *p, double omega, double a, const shot *s, double noise);
 int path_to_shot(nlink_path *p);
-int path_shot_step(nlink_path *p);
 
 /* src/steady/nlink_path_angles.c */
 double path_shape_projection(size_t n, const double *th, const double *th0);
@@ -279,7 +334,6 @@ int path_angle_tangent(nlink_path *p, double w, double c_w, const double *c_th, 
                        double *t_th, int *det_sign, double *ref, double *test);
 void path_angle_point(nlink_path *p, double w, double t_w, int det);
 int path_to_angles(nlink_path *p);
-int path_angle_step(nlink_path *p);
 int path_birth_gap(nlink_path *p, double omega, double *th);
 int path_begin_in_angles(nlink_path *p);
 

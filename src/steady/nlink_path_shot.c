@@ -238,129 +238,128 @@ int path_to_shot(nlink_path *p)
     return 0;
 }
 
-/* One step on the tip shot (the equations above the file). */
-int path_shot_step(nlink_path *p)
+/* ---- the step on the tip shot (the loop: src/steady/nlink_path_step.c) ----
+ * Predictor along the tangent (for a, along it in ln|a| where that predicts the previous point
+ * better: a tip radius that decays or grows exponentially, as on the high modes), Newton's
+ * method on G = 0 and the arclength row. Where the shot fails, the step goes on in the link
+ * angles. */
+
+/* the largest |d ln a| the predictor in ln|a| extrapolates (exp stays finite) */
+#define LOG_PREDICT_MAX 50
+#define STAY_MAX 1024 /* the longest wait in the link angles before the shot is tried again */
+
+static void shot_begin(nlink_path *p, step_ctx *x)
 {
-    const whirl_chain *c = p->pub.chain;
     const double w0 = p->pub.omega, a0 = p->pub.tip_r, *m0 = p->s.metric;
-    const double c_w = m0[0] * p->pub.t_omega + m0[1] * p->pub.t_tip;
-    const double c_a = m0[1] * p->pub.t_omega + m0[2] * p->pub.t_tip;
-    /* the predictor of a: along the tangent, or along it in ln|a| (where a decays or grows
-     * exponentially, as on the high modes), whichever predicts the previous point better */
-    int log_predictor = 0;
+    x->w0 = w0;
+    x->a0 = a0;
+    x->m0 = m0;
+    x->c_w = m0[0] * p->pub.t_omega + m0[1] * p->pub.t_tip;
+    x->c_a = m0[1] * p->pub.t_omega + m0[2] * p->pub.t_tip;
+    x->log_predictor = 0;
     if (p->s.have_last && a0 != 0 && p->s.last.a0 != 0 && (a0 > 0) == (p->s.last.a0 > 0)) {
         double back = -p->s.last.ds, lin = a0 + back * p->pub.t_tip;
-        double lg = a0 * exp(fmax(-50, fmin(50, back * p->pub.t_tip / a0)));
-        log_predictor = fabs(lg - p->s.last.a0) < fabs(lin - p->s.last.a0);
+        double lg = a0 * exp(fmax(-LOG_PREDICT_MAX, fmin(LOG_PREDICT_MAX, back * p->pub.t_tip / a0)));
+        x->log_predictor = fabs(lg - p->s.last.a0) < fabs(lin - p->s.last.a0);
     }
-    for (;;) {
-        double ds = p->pub.ds, w = w0 + ds * p->pub.t_omega;
-        double a = log_predictor ? a0 * exp(fmax(-50, fmin(50, ds * p->pub.t_tip / a0)))
-                                 : a0 + ds * p->pub.t_tip;
-        shot s;
-        int iters = NEWTON_MAX, ok = path_correct(p, m0, w0, a0, c_w, c_a, ds, &w, &a, &s, &iters) == 0;
-        double turn = 0, dtheta = 0, t_w = 0, t_a = 0;
-        int raw = 0;
-        if (!ok) p->s.why = "Newton's method on the tip shot does not converge";
-        if (ok && p->s.floor_exit) {
-            /* converged only to the shot's round-off: not an equilibrium to round-off */
-            ok = 0;
-            iters = NEWTON_MAX;
-            p->s.why = "the tip shot's round-off exceeds the tolerance";
-        }
-        if (ok) {
-            path_shoot_embed(c, w, a, &s, arr_theta_trial(p), arr_embed_trial(p));
-            p->pub.shots++;
-            double m1[3];
-            shot_metric(&s, m1);
-            path_tangent(&s, m1, m0, p->pub.t_omega, p->pub.t_tip, &t_w, &t_a, &raw);
-            /* the turn of the tangent in (ln omega, theta / sqrt(N)); the embedded tangents are
-             * those of (G_a, -G_omega), oriented by raw and the current orientation */
-            double cosine = 0;
-            for (size_t i = 0; i <= c->n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
-            cosine *= raw * p->s.raw_sign;
-            turn = acos(fmin(1, fmax(-1, cosine)));
-            for (size_t i = 0; i < c->n; i++)
-                dtheta = fmax(dtheta, fabs(arr_theta_trial(p)[i] - arr_theta(p)[i]));
-            const char *chord = path_chord_test(c->n, w0, arr_theta(p), w, arr_theta_trial(p), arr_embed(p),
-                                           p->s.raw_sign, arr_embed_trial(p), raw, turn, 1);
-            if (turn > TURN_MAX) ok = 0, p->s.why = "the tangent turns by more than 0.2 rad";
-            if (dtheta > DTHETA_MAX) ok = 0, p->s.why = "a link angle changes by more than 0.2 rad";
-            if (chord) ok = 0, p->s.why = chord;
-            if (raw != p->s.raw_sign && ds > DS_BRANCH)
-                ok = 0, p->s.why = "the orientation test changes sign (another curve close by)";
-        }
-        if (!ok) {
-            p->pub.rejected++;
-            /* where Newton's method on the shot fails away from the birth, the shot is too
-             * nonlinear or too noisy in (omega, a): the same step in the link angles */
-            if (iters == NEWTON_MAX && p->pub.steps > 0 && path_to_angles(p) == 0) {
-                p->s.stay = p->s.backoff;
-                p->s.backoff = p->s.backoff < 1024 ? 2 * p->s.backoff : p->s.backoff;
-                return path_angle_step(p);
-            }
-            p->pub.ds *= 0.5;
-            /* the first step from the birth no longer than the amplitude of the first point in
-             * the link angles: begun there (a shorter one lands at amplitudes where the force
-             * balance at fixed omega cannot tell the branch from the hanging chain, and the
-             * path, handed over to the link angles, follows the hanging chain instead) */
-            if (p->pub.steps == 0 && a0 == 0 && p->pub.ds < BIRTH_AMPLITUDE) return path_begin_in_angles(p);
-            if (p->pub.ds < DS_MIN) {
-                if (path_to_angles(p) == 0) {
-                    p->pub.ds = DS_FIRST;
-                    return path_angle_step(p);
-                }
-                return path_fail_at(p, GSL_EFAILED, w0, a0);
-            }
-            continue;
-        }
-        /* a point the shot resolves only to more than NOISE_UP: the step in the link angles
-         * (measured at every point: the measure is itself round-off and jumps along a branch) */
-        const double noise = path_shot_noise(c, w, a, &s);
-        if (p->pub.steps > 0 && noise > NOISE_UP && path_to_angles(p) == 0) return path_angle_step(p);
-        /* the first step from the birth to such a point at a rate within BIRTH_NEAR of the
-         * birth's: begun in the link angles instead (the force balance at fixed omega is
-         * singular there to within the shot's round-off, and its Newton's method, polishing the
-         * shot's point on the hand-over, can fall onto the hanging chain, as above) */
-        if (p->pub.steps == 0 && a0 == 0 && noise > NOISE_UP && fabs(w / w0 - 1) < BIRTH_NEAR)
-            return path_begin_in_angles(p);
-        const double m_start[3] = {m0[0], m0[1], m0[2]}, lo = p->pub.omega_lo, hi = p->pub.omega_hi;
-        const double noise_start = p->s.noise;
-        path_keep_start(p, m0, w0, a0, ds);
-        swap(&p->s.theta, &p->s.theta_trial);
-        swap(&p->s.embed, &p->s.embed_trial);
-        path_set_point(p, w, a, &s, noise);
-        p->pub.t_omega = t_w;
-        p->pub.t_tip = t_a;
-        p->s.raw_sign = raw;
-        if (t_w != 0) p->s.rate_sign = sign_of(t_w);
-        p->pub.arclength += ds;
-        p->pub.steps++;
-        const int status = path_find_events(p, raw != p->s.last.raw_sign);
-        if (status != GSL_EFAILED) {
-            if (iters <= NEWTON_EASY && turn < TURN_MAX / 2 && dtheta < DTHETA_MAX / 2)
-                p->pub.ds = fmin(1.5 * ds, DS_MAX);
-            return status;
-        }
-        /* an event the step passed could not be located (the step went across a part of the
-         * curve it does not resolve: the header comment): back to the step's start, half the
-         * step */
-        swap(&p->s.theta, &p->s.theta_trial);
-        swap(&p->s.embed, &p->s.embed_trial);
-        for (int i = 0; i < 3; i++) p->s.metric[i] = m_start[i];
-        p->pub.omega = w0;
-        p->pub.tip_r = a0;
-        p->s.noise = noise_start;
-        p->pub.omega_lo = lo, p->pub.omega_hi = hi;
-        p->pub.t_omega = p->s.last.t_w;
-        p->pub.t_tip = p->s.last.t_a;
-        p->s.raw_sign = p->s.last.raw_sign;
-        p->s.rate_sign = p->s.last_rate_sign;
-        p->s.why = "an event between two points could not be located";
-        path_step_undone(p, ds);
-        if (p->pub.ds < DS_MIN) return path_fail_at(p, GSL_EFAILED, w0, a0);
-    }
+    x->crossing = 0;
+    x->chord_off = x->chord_failed = 0;
+    x->ds_first = p->pub.ds;
+    x->ds_min = DS_MIN;
+    x->ds_branch = DS_BRANCH;
+    x->why = "";
 }
+
+static void shot_trial(nlink_path *p, step_ctx *x, step_trial *t)
+{
+    const whirl_chain *c = p->pub.chain;
+    const double ds = t->ds, a0 = x->a0;
+    double w = x->w0 + ds * p->pub.t_omega;
+    double a = x->log_predictor
+                   ? a0 * exp(fmax(-LOG_PREDICT_MAX, fmin(LOG_PREDICT_MAX, ds * p->pub.t_tip / a0)))
+                   : a0 + ds * p->pub.t_tip;
+    t->ok = path_correct(p, x->m0, x->w0, a0, x->c_w, x->c_a, ds, &w, &a, &t->s, &t->iters) == 0;
+    t->w = w;
+    t->a = a;
+    if (!t->ok) p->s.why = "Newton's method on the tip shot does not converge";
+    if (t->ok && p->s.floor_exit) {
+        /* converged only to the shot's round-off: not an equilibrium to round-off */
+        t->ok = 0;
+        t->iters = NEWTON_MAX;
+        p->s.why = "the tip shot's round-off exceeds the tolerance";
+    }
+    if (!t->ok) return;
+    path_shoot_embed(c, w, a, &t->s, arr_theta_trial(p), arr_embed_trial(p));
+    p->pub.shots++;
+    double m1[3];
+    shot_metric(&t->s, m1);
+    path_tangent(&t->s, m1, x->m0, p->pub.t_omega, p->pub.t_tip, &t->t_w, &t->t_a, &t->raw);
+    /* the turn of the tangent in (ln omega, theta / sqrt(N)); the embedded tangents are those of
+     * (G_a, -G_omega), oriented by raw and the current orientation */
+    double cosine = 0;
+    for (size_t i = 0; i <= c->n; i++) cosine += arr_embed_trial(p)[i] * arr_embed(p)[i];
+    cosine *= t->raw * p->s.raw_sign;
+    t->turn = acos(fmin(1, fmax(-1, cosine)));
+    for (size_t i = 0; i < c->n; i++)
+        t->dtheta = fmax(t->dtheta, fabs(arr_theta_trial(p)[i] - arr_theta(p)[i]));
+    t->chord = path_chord_test(c->n, x->w0, arr_theta(p), w, arr_theta_trial(p), arr_embed(p),
+                               p->s.raw_sign, arr_embed_trial(p), t->raw, t->turn, 1);
+    t->flip = t->raw != p->s.raw_sign;
+}
+
+/* A point the shot resolves only to more than NOISE_UP: the step in the link angles (measured
+ * at every point: the measure is itself round-off and jumps along a branch). The first step
+ * from the birth to such a point at a rate within BIRTH_NEAR of the birth's: begun in the link
+ * angles instead (the force balance at fixed omega is singular there to within the shot's
+ * round-off, and its Newton's method, polishing the shot's point on the hand-over, can fall onto
+ * the hanging chain). */
+static int shot_ready(nlink_path *p, step_ctx *x, step_trial *t)
+{
+    t->noise = path_shot_noise(p->pub.chain, t->w, t->a, &t->s);
+    if (p->pub.steps > 0 && t->noise > NOISE_UP && path_to_angles(p) == 0) return STEP_ANGLES;
+    if (p->pub.steps == 0 && x->a0 == 0 && t->noise > NOISE_UP && fabs(t->w / x->w0 - 1) < BIRTH_NEAR)
+        return path_begin_in_angles(p);
+    return GSL_SUCCESS;
+}
+
+static int shot_rejected(nlink_path *p, step_ctx *x, const step_trial *t)
+{
+    /* where Newton's method on the shot fails away from the birth, the shot is too nonlinear or
+     * too noisy in (omega, a): the same step in the link angles */
+    if (t->iters == NEWTON_MAX && p->pub.steps > 0 && path_to_angles(p) == 0) {
+        p->s.stay = p->s.backoff;
+        p->s.backoff = p->s.backoff < STAY_MAX ? 2 * p->s.backoff : p->s.backoff;
+        return STEP_ANGLES;
+    }
+    p->pub.ds *= 0.5;
+    /* the first step from the birth no longer than the amplitude of the first point in the link
+     * angles: begun there (a shorter one lands at amplitudes where the force balance at fixed
+     * omega cannot tell the branch from the hanging chain, and the path, handed over to the link
+     * angles, follows the hanging chain instead) */
+    if (p->pub.steps == 0 && x->a0 == 0 && p->pub.ds < BIRTH_AMPLITUDE)
+        return path_begin_in_angles(p);
+    if (p->pub.ds < DS_MIN) {
+        if (path_to_angles(p) == 0) {
+            p->pub.ds = DS_FIRST;
+            return STEP_ANGLES;
+        }
+        return path_fail_at(p, GSL_EFAILED, x->w0, x->a0);
+    }
+    return STEP_RETRY;
+}
+
+static void shot_accept(nlink_path *p, const step_ctx *x, const step_trial *t)
+{
+    swap(&p->s.theta, &p->s.theta_trial);
+    swap(&p->s.embed, &p->s.embed_trial);
+    path_set_point(p, t->w, t->a, &t->s, t->noise);
+    p->pub.t_omega = t->t_w;
+    p->pub.t_tip = t->t_a;
+    p->s.raw_sign = t->raw;
+    if (t->t_w != 0) p->s.rate_sign = sign_of(t->t_w);
+}
+
+const step_ops path_shot_ops = {shot_begin, shot_trial, shot_ready, shot_rejected, shot_accept};
 
 int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,
                          double *g_omega, double *g_tip)
