@@ -34,6 +34,8 @@ static double root_value(double x, void *p)
 int whirl_root_brent(whirl_root_fn f, void *ctx, double lo, double hi, const whirl_root_opts *o,
                      whirl_root *out)
 {
+    const whirl_root start = {0.5 * (lo + hi), lo, hi, 0, 0};
+    *out = start;
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
     root_call call = {f, ctx, GSL_SUCCESS, o->known != 0, lo, hi, o->f_lo, o->f_hi};
@@ -56,12 +58,14 @@ int whirl_root_brent(whirl_root_fn f, void *ctx, double lo, double hi, const whi
                                    o->epsabs, o->epsrel) == GSL_SUCCESS)
             break;
     }
-    /* (GSL's set leaves the midpoint and the ends as its estimate, and leaves nothing where it
-     * refuses lo > hi) */
-    out->root = it ? gsl_root_fsolver_root(s) : 0.5 * (lo + hi);
-    out->lower = it ? gsl_root_fsolver_x_lower(s) : lo;
-    out->upper = it ? gsl_root_fsolver_x_upper(s) : hi;
-    out->iterations = it;
+    /* (before an iteration, GSL's estimate is the start's, and it has none where it refuses
+     * lo > hi) */
+    if (it) {
+        out->root = gsl_root_fsolver_root(s);
+        out->lower = gsl_root_fsolver_x_lower(s);
+        out->upper = gsl_root_fsolver_x_upper(s);
+        out->iterations = it;
+    }
     gsl_root_fsolver_free(s);
     return status;
 }

@@ -41,8 +41,8 @@ typedef struct whirl_root {
  *  - GSL's status of a bracket it refuses (out->bracketed = 0: GSL_EINVAL, no sign change;
  *    GSL_EBADFUNC, f not finite) or of an iteration that fails (f not finite), no message;
  *  - GSL_ENOMEM, with its message.
- * out (all fields) is written in every case but GSL_ENOMEM: the estimate where the search
- * stopped (the midpoint of [lo, hi] if it stopped at the ends). */
+ * out (all fields) is written in every case: the estimate where the search stopped (the
+ * midpoint of [lo, hi] and the bracket [lo, hi] if no iteration was done). */
 int whirl_root_brent(whirl_root_fn f, void *ctx, double lo, double hi, const whirl_root_opts *o,
                      whirl_root *out);
 
