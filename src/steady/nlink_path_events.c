@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_roots.h>
 
 #include "core/error.h"
+#include "core/roots.h"
 #include "steady/nlink_path_internal.h"
 
 typedef enum { TARGET_OMEGA, TARGET_FOLD, TARGET_BRANCH, TARGET_RETURN } target_kind;
@@ -29,8 +29,7 @@ typedef struct step_frame {
     double ref;          /* ln |det A| of the first branch test */
     int failed;
     int known;           /* phi at the ends of the step is known (in values[]) */
-    int cached;          /* phi at the bracket's ends is known: ends[], values[] */
-    double ends[2], values[2];
+    double values[2];
     double at;           /* the sigma of the last corrected point (NAN: none) */
     double w, a;         /* the last corrected point */
     double *th;          /* its link angles (in the link angles) */
@@ -71,9 +70,6 @@ static int frame_point(step_frame *f, double sigma)
 static double frame_phi(double sigma, void *params)
 {
     step_frame *f = params;
-    if (f->cached)
-        for (int i = 0; i < 2; i++)
-            if (sigma == f->ends[i]) return f->values[i];
     f->at = NAN;
     if (frame_point(f, sigma) != 0) {
         f->failed = 1;
@@ -104,6 +100,15 @@ static double frame_phi(double sigma, void *params)
     return along; /* TARGET_BRANCH */
 }
 
+/* frame_phi for core/roots.h: GSL_EFAILED where the corrected point fails (phi 0 then, which
+ * GSL's iteration takes as a value). */
+static int frame_root(double sigma, void *ctx, double *phi)
+{
+    step_frame *f = ctx;
+    *phi = frame_phi(sigma, f);
+    return f->failed ? GSL_EFAILED : GSL_SUCCESS;
+}
+
 /* The sigma in [lo, hi] where phi changes sign (phi(lo) and phi(hi) of opposite signs, or one
  * zero); the corrected point left in f->w, f->a, f->s or f->th. */
 static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
@@ -124,38 +129,22 @@ static int frame_locate(step_frame *f, double lo, double hi, double *sigma)
                                       f->w0, f->w1)
                          : GSL_SUCCESS;
     }
-    gsl_function fn = {frame_phi, f};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
-    /* the solver's set evaluates phi at both ends again: the values just found */
-    f->ends[0] = lo, f->ends[1] = hi, f->values[0] = f_lo, f->values[1] = f_hi;
-    f->cached = 1;
-    int status = gsl_root_fsolver_set(s, &fn, lo, hi);
-    f->cached = 0;
-    for (int it = 0; status == GSL_SUCCESS; it++) {
-        status = gsl_root_fsolver_iterate(s);
-        if (f->failed || status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
-                                "located", what[f->kind], f->w0, f->w1);
-            break;
-        }
-        double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
-        /* at a fold omega is stationary in sigma: its error is of the order of the square of
-         * sigma's, and the test function t_omega is no better than about 1e-12 of the step
-         * there (the Jacobian is singular), so its bracket is closed to LOCATE_FOLD; elsewhere
-         * to round-off */
-        const double tol = f->kind == TARGET_FOLD ? LOCATE_FOLD : 4 * DBL_EPSILON;
-        if (x_hi - x_lo <= tol * f->ds) {
-            *sigma = gsl_root_fsolver_root(s);
-            break;
-        }
-        if (it == LOCATE_MAX) {
-            status = whirl_fail(GSL_EMAXITER, "an event was not located in %d steps",
-                                LOCATE_MAX);
-            break;
-        }
-    }
-    gsl_root_fsolver_free(s);
+    /* at a fold omega is stationary in sigma: its error is of the order of the square of
+     * sigma's, and the test function t_omega is no better than about 1e-12 of the step there
+     * (the Jacobian is singular), so its bracket is closed to LOCATE_FOLD; elsewhere to
+     * round-off (the bracket at most that long: epsabs just above it) */
+    const double tol = f->kind == TARGET_FOLD ? LOCATE_FOLD : LOCATE_ROUND;
+    const whirl_root_opts o = {nextafter(tol * f->ds, INFINITY), 0, LOCATE_MAX + 1, 1, f_lo, f_hi};
+    whirl_root r;
+    int status = whirl_root_brent(frame_root, f, lo, hi, &o, &r);
+    if (status == GSL_ENOMEM || !r.bracketed) return status;
+    if (status == GSL_EMAXITER)
+        status = whirl_fail(GSL_EMAXITER, "an event was not located in %d steps", LOCATE_MAX);
+    else if (status != GSL_SUCCESS)
+        status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
+                            "located", what[f->kind], f->w0, f->w1);
+    else
+        *sigma = r.root;
     /* the corrected point at the root (Brent's last evaluation, as a rule) */
     if (status == GSL_SUCCESS && f->at != *sigma && (frame_phi(*sigma, f), f->failed))
         status = whirl_fail(GSL_EFAILED, "%s between omega=%.17g and omega=%.17g could not be "
@@ -179,7 +168,6 @@ static void frame_of_last(nlink_path *p, step_frame *f, target_kind kind, double
     f->target = target;
     f->failed = 0;
     f->known = 0;
-    f->cached = 0;
     f->at = NAN;
     f->ref = NAN;
     f->th = arr_theta_trial(p); /* free after a step: its start is kept in last.theta0 */

@@ -6,6 +6,7 @@
 #ifndef WHIRL_NLINK_PATH_INTERNAL_H
 #define WHIRL_NLINK_PATH_INTERNAL_H
 
+#include <float.h>
 #include <stddef.h>
 
 #include "steady/steady_internal.h"
@@ -147,6 +148,7 @@ static inline size_t path_block_size(size_t n)
 #define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off */
 #define LOCATE_MAX 200   /* Brent iterations for an event */
 #define LOCATE_FOLD 1e-12 /* a fold's bracket in sigma, relative to the step (see frame_locate) */
+#define LOCATE_ROUND (4 * DBL_EPSILON) /* any other event's: round-off */
 #define LOCATE_NEWTON_MAX 40 /* Newton iterations of a point of an event's location (slow near a
                               * branch point, where the corrector's system is singular) */
 #ifndef NOISE_UP

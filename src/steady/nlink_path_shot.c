@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"
+#include "steady/tip_up.h"
 
 /* x y / d: d = t (single = 1) or t^2; with big, as (x / t) (y / t) or (x / t) y, which do not
  * overflow where t^2 does. */
@@ -29,20 +30,18 @@ static inline void shoot_core(const whirl_chain *c, double omega, double a, shot
                               double *theta, double *embed, int derivs)
 {
     size_t n = c->n;
-    double u = 1, u_a = 0, u_w = 0, eta = 0, eta_a = 0, eta_w = 0, v = 0;
+    double u_a = 0, u_w = 0, eta_a = 0, eta_w = 0;
     double s_aa = 0, s_wa = 0, s_ww = 0, w2 = omega * omega;
     double q = 1, q_a = 0, q_w = 0; /* sum of u_i^2 and its derivatives */
+    /* H^2 ~ omega^4 (and H H_a) overflow from omega ~ 1e77: from T^2 = 1e300 on, T = hypot(H, V)
+     * and ratios to it (TIP_UP_SQRT_BIG) */
+    tip_up r = tip_up_start(c, w2, 1, a, 1);
     for (size_t i = n; i >= 1; i--) {
         double m = c->mass[i - 1], l = c->length[i - 1];
-        if (derivs) eta_w += m * (2 * omega * u + w2 * u_w);
-        eta += m * w2 * u;
-        v += m * c->gravity;
-        double h = a * eta, t2 = h * h + v * v, t = sqrt(t2);
-        /* H^2 ~ omega^4 (and H H_a) overflow from omega ~ 1e77: from T^2 = 1e300 on,
-         * T = hypot(H, V) and ratios to it */
-        const int big = !(t2 < 1e300);
-        if (big) t = hypot(h, v);
-        u -= l * eta / t;
+        if (derivs) eta_w += m * (2 * omega * r.u + w2 * u_w);
+        tip_up_link(&r, c, i, TIP_UP_SQRT_BIG);
+        const double u = r.u, eta = r.eta, v = r.v, h = r.h, t = r.t, t2 = r.t2;
+        const int big = r.big;
         q += u * u;
         if (theta) theta[i - 1] = atan2(h, v);
         if (!derivs) continue;
@@ -59,6 +58,7 @@ static inline void shoot_core(const whirl_chain *c, double omega, double a, shot
         s_ww += th_w * th_w;
         if (embed) embed[i] = th_w, embed[n + i] = th_a;
     }
+    const double u = r.u;
     /* G = u_0 / |u| */
     double norm = sqrt(q);
     s->g = u / norm;
@@ -96,16 +96,15 @@ void path_shoot(const whirl_chain *c, double omega, double a, shot *s, double *t
 static long double shoot_g_ext(const whirl_chain *c, double omega, double a, double *norm,
                                double *load)
 {
-    long double u = 1, eta = 0, v = 0, q = 1, w2 = (long double)omega * omega, worst = 0;
+    long double q = 1, w2 = (long double)omega * omega, worst = 0;
+    tip_up_ext r = tip_up_ext_start(c, w2, 1, a, 1);
     for (size_t i = c->n; i >= 1; i--) {
-        const long double m = c->mass[i - 1];
-        eta += m * w2 * u;
-        v += m * c->gravity;
-        const long double h = a * eta, t = sqrtl(h * h + v * v);
-        u -= c->length[i - 1] * eta / t;
+        tip_up_ext_link(&r, c, i, TIP_UP_SQRT);
+        const long double u = r.u, v = r.v, t = r.t;
         q += u * u;
         if (v / (c->gravity * t) > worst) worst = v / (c->gravity * t);
     }
+    const long double u = r.u;
     *norm = (double)sqrtl(q);
     *load = (double)(w2 * worst);
     return u / sqrtl(q);
@@ -179,14 +178,12 @@ void path_tangent(const shot *s, const double *m, const double *m_ref, double re
 /* The ratio of the largest to the smallest link tension at (omega, a). */
 double path_tension_spread(const whirl_chain *c, double omega, double a)
 {
-    double u = 1, eta = 0, v = 0, t_min = INFINITY, t_max = 0;
+    double t_min = INFINITY, t_max = 0;
+    tip_up r = tip_up_start(c, omega, omega, a, 1);
     for (size_t i = c->n; i >= 1; i--) {
-        eta += c->mass[i - 1] * omega * omega * u;
-        v += c->mass[i - 1] * c->gravity;
-        const double t = hypot(a * eta, v);
-        u -= c->length[i - 1] * eta / t;
-        t_min = fmin(t_min, t);
-        t_max = fmax(t_max, t);
+        tip_up_link(&r, c, i, TIP_UP_HYPOT);
+        t_min = fmin(t_min, r.t);
+        t_max = fmax(t_max, r.t);
     }
     return t_max / t_min;
 }
