@@ -16,12 +16,14 @@
                             * steps, and the number of its folds below a given multiple of its
                             * birth grows with N) */
 #define PROGRESS_STEPS 256 /* steps between two reports of the progress */
+#define STEPS_CAP 1e15     /* the bound's largest value (a long on every platform) */
 
 /* The bound on the accepted steps of a path on the chain c. */
 static long steps_max(const whirl_chain *c)
 {
     const double per_link = (double)STEPS_PER_LINK * (double)c->n;
-    return per_link > STEPS_MIN ? (per_link < 1e15 ? (long)per_link : (long)1e15) : STEPS_MIN;
+    return per_link > STEPS_MIN ? (per_link < STEPS_CAP ? (long)per_link : (long)STEPS_CAP)
+                                : STEPS_MIN;
 }
 
 /* The shape of the branch at omega between its birth and the first point of a path begun in the

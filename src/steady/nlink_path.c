@@ -300,20 +300,21 @@ int whirl_nlink_path_birth(whirl_nlink_path *path, int mode)
     reset(p);
     p->pub.mode = mode;
     /* Newton's method on the linearised shot G(omega, 0); where the shot is too inaccurate
-     * for it (the high modes of long chains: a correction beyond 1e-6 omega_k, or none that
+     * for it (the high modes of long chains: a correction beyond BIRTH_NEWTON_SPAN omega_k, or none that
      * settles), the rate from the tridiagonal eigenproblem, accurate to a few eps relative */
     shot s;
     const double omega_eig = omega;
-    for (int it = 0; it < 20; it++) {
+    for (int it = 0; it < BIRTH_NEWTON_MAX; it++) {
         path_shoot(c, omega, 0, &s, NULL);
         p->pub.shots++;
         double d = s.g / s.g_w;
-        if (!isfinite(d) || fabs(omega - d - omega_eig) > 1e-6 * omega_eig || it == 19) {
+        if (!isfinite(d) || fabs(omega - d - omega_eig) > BIRTH_NEWTON_SPAN * omega_eig ||
+            it == BIRTH_NEWTON_MAX - 1) {
             omega = omega_eig;
             break;
         }
         omega -= d;
-        if (fabs(d) <= 4 * DBL_EPSILON * omega) break;
+        if (fabs(d) <= RATE_ROUND * omega) break;
     }
     path_shoot_embed(c, omega, 0, &s, arr_theta(p), arr_embed(p));
     p->pub.shots++;

@@ -66,7 +66,8 @@ int path_correct_angles(nlink_path *p, double w0, const double *th0, double c_w,
         if (!final && norm <= NEWTON_TOL) {
             final = 1;
             if (iters) *iters = it + 1;
-        } else if (!final && it >= 2 && norm <= NEWTON_FLOOR && norm >= 0.5 * prev) {
+        } else if (!final && it >= NEWTON_STALL_AFTER && norm <= NEWTON_FLOOR &&
+                   norm >= NEWTON_STALL * prev) {
             if (iters) *iters = it + 1;
             done = 1;
         }
@@ -103,7 +104,7 @@ int path_angle_tangent(nlink_path *p, double w, double c_w, const double *c_th,
     if (test) {
         const double logdet = whirl_nlink_balance_logdet(p->balance, &sign);
         if (isnan(*ref)) *ref = logdet;
-        *test = sign * exp(fmax(-700, fmin(700, logdet - *ref))) * schur;
+        *test = sign * exp(fmax(-EXP_ARG_MAX, fmin(EXP_ARG_MAX, logdet - *ref))) * schur;
     }
     return 0;
 }
@@ -411,7 +412,7 @@ int path_birth_gap(nlink_path *p, double omega, double *th)
     double s2_a = 0, w_a = wk, s2_b = BIRTH_AMPLITUDE * BIRTH_AMPLITUDE, w_b;
     if (birth_point(p, BIRTH_AMPLITUDE, 0, th, &w_b)) return -1;
     for (int it = 0; it < GAP_MAX; it++) {
-        if (fabs(w_b - omega) <= 4 * DBL_EPSILON * omega) return 0;
+        if (fabs(w_b - omega) <= RATE_ROUND * omega) return 0;
         if (!(w_b != w_a)) return -1;
         const double s2 = s2_b + (omega - w_b) * (s2_b - s2_a) / (w_b - w_a);
         if (!(s2 > 0 && isfinite(s2))) return -1;

@@ -264,7 +264,7 @@ static int path_crossings(nlink_path *p, double omega, int max, double *tip_r)
          * interpolated linearly in omega, and where that lands off the piece, Brent's method on
          * the arclength, polished at omega */
         const double guess = cut[k] + (cut[k + 1] - cut[k]) * (omega - lo) / (hi - lo);
-        const double slack = 1e-9 * f.ds;
+        const double slack = CROSS_SLACK * f.ds;
         int fast = frame_at_rate(&f, omega, guess, 1) == 0;
         if (fast) {
             const double sig = frame_sigma(&f);
@@ -329,7 +329,7 @@ int path_shape_info(nlink_path *p, int angles, double omega, double a, const dou
         path_shoot(c, omega, tip, &s, NULL);
         shot_metric(&s, m);
         if (path_correct(p, m, omega, tip, 1, 0, 0, &w, &tip, &s, &iters) == 0 &&
-            fabs(tip - info->tip_r) <= 1e-6 * info->tip_r) {
+            fabs(tip - info->tip_r) <= TIP_SAME * info->tip_r) {
             info->tip_r = tip;
             info->max_r = fmax(info->max_r, tip);
         }

@@ -117,63 +117,114 @@ static inline size_t path_block_size(size_t n)
     return path_fixed(n) + 2 * n + (2 * WHIRL_PATH_EVENTS_MAX + 1) * n + 7 * n + 3;
 }
 
-/* ---- constants (their reasons: src/steady/nlink_path.c's header comment) ---- */
+/* ---- the continuation's constants, each with its reason (the method: src/steady/nlink_path.c;
+ * the measurements behind the values: docs/validation/continuation.md) ---- */
 
-#define DS_FIRST 0.02    /* first step from a start */
-#define DS_MIN 1e-7      /* smallest step on the tip shot before it hands over to the link angles */
-#define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails */
+/* steps: arclength in (ln omega, theta / sqrt(N)) */
+#define DS_FIRST 0.02 /* first step from a start: a few percent of a radian, resolved at once */
+#define DS_MAX 0.1    /* largest step: a tenth of a radian keeps the predictor within Newton's
+                       * basin on every branch seen */
+#define DS_GROW 1.5   /* an easy step (NEWTON_EASY, half of TURN_MAX and DTHETA_MAX) grows so */
+#define DS_MIN 1e-7   /* smallest step on the tip shot: below it the shot's round-off, not the
+                       * curve, rejects the step, and the path hands over to the link angles */
+#define DS_MIN_ANGLES 1e-12 /* smallest step in the link angles before the continuation fails:
+                             * a branch can turn within an arclength of 1e-9 where part of the
+                             * chain all but hangs */
 #define DS_MIN_FINE 1e-18 /* and in the fine mode (look_ahead): a hundredth of the rate's
-                           * round-off (such a step moves only the links all but hanging, 1e-20
-                           * to 1e-10 rad from the vertical, whose angles are resolved far below
-                           * it; the 50-digit path turns with steps of 1e-17 at some of these
-                           * corners, which 1e-16 took for branch points) */
-#define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside */
-#define DS_MAX 0.1       /* largest step */
-#define DS_BRANCH 1e-9   /* a step longer than this on which the orientation test changes sign
-                          * is rejected (halved): see the header comment */
-#define DS_CROSS 1e-6    /* in the link angles, the longest step taken across a branch point
-                          * where the path cannot be followed at any step: see the header
-                          * comment */
-#define TURN_MAX 0.2     /* largest turn of the tangent per step [rad] */
-#define DTHETA_MAX 0.2   /* largest change of a link angle per step [rad] */
-#define CHORD_MAX 0.75   /* largest angle between a step's chord and its end tangents, relative
-                          * to the turn of the tangent (see chord_angle) */
+                           * round-off; such a step moves only the links all but hanging (1e-20
+                           * to 1e-10 rad from the vertical), whose angles are resolved far
+                           * below it, and a 50-digit path turns some such corners with steps of
+                           * 1e-17 */
+#define DS_MIN_CHORD 1e-10 /* the step below which the chord test alone is set aside: there
+                            * the corrected points scatter by their round-off across a turn
+                            * sharper than the tangent resolves */
+#define DS_BRANCH 1e-9 /* a step longer than this on which the orientation test reverses is
+                        * another curve close by and is halved; one no longer is a branch point
+                        * (adjacent curves lie further apart, genuine unfoldings closer) */
+#define DS_CROSS 1e-6  /* in the link angles, the longest step taken across a branch point
+                        * where no step down to the smallest can be followed */
+
+/* the tests of a step */
+#define TURN_MAX 0.2   /* largest turn of the tangent per step [rad]: the predictor's error is
+                        * of order ds turn, within Newton's basin */
+#define DTHETA_MAX 0.2 /* largest change of a link angle per step [rad]: no corrector lands on
+                        * another curve */
+#define CHORD_MAX 0.75 /* largest angle between a step's chord and its end tangents, relative to
+                        * the turn: 2/3 on an arc whose curvature grows linearly from zero, 1/2 on
+                        * a circle, with a margin (path_chord_test) */
 #define CHORD_SLACK 1e-3 /* and beyond that [rad] (and NEWTON_TOL over the chord's length: the
                           * round-off of its ends on short steps) */
-#define SLOPE_MAX 0.5    /* the chord's rate part beyond the end tangents' [turn^2] (chord_test) */
+#define SLOPE_MAX 0.5  /* the chord's rate part beyond the end tangents' [turn^2]: an arc of
+                        * constant sign of curvature exceeds them by at most turn^2 / 8 */
 #define SLOPE_SLACK 1e-9 /* and beyond that (the rate's round-off) */
+#define NEAR_MAX 0.5   /* an eigenvalue that turns back closer to zero than this times its value
+                        * at the nearer end of the step: the interpolant's error is not known to
+                        * be small against the distance from zero; the step is halved */
+#define EIG_SAME 0.5   /* the eigenvectors at a step's ends are of the same eigenvalue where
+                        * their angle's cosine is at least this (else another eigenvalue became
+                        * the nearest to zero) */
+#define EIG_ITERS 1    /* inverse iterations for the eigenvalue nearest zero, from the last
+                        * point's eigenvector (a step moves it little) */
+#define EIG_ITERS_FIRST 8 /* and from a start (a vector of ones) */
+#define MU_RESOLVED 1e-12 /* in the link angles the sign of t_omega is the fold test's only
+                           * where |mu| > MU_RESOLVED |A|: genuine folds lie at 1e-9 to 1e-2 of
+                           * |A|, the round-off of a sharp turn at 1e-24 to 1e-15 */
+
+/* Newton's method (the corrector) */
 #define NEWTON_MAX 10    /* corrector iterations per trial step */
 #define NEWTON_EASY 4    /* a step converged in this many or fewer may grow */
-#define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made */
-#define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off */
-#define LOCATE_MAX 200   /* Brent iterations for an event */
-#define LOCATE_FOLD 1e-12 /* a fold's bracket in sigma, relative to the step (see frame_locate) */
-#define LOCATE_ROUND (4 * DBL_EPSILON) /* any other event's: round-off */
+#define NEWTON_TOL 1e-10 /* correction (metric norm) after which one last iteration is made
+                          * (quadratic convergence: then round-off) */
+#define NEWTON_FLOOR 1e-8 /* a correction this small that stops decreasing is round-off (the
+                           * floor of the shot on a high mode) */
+#define NEWTON_STALL 0.5  /* stops decreasing: falls by less than this factor, */
+#define NEWTON_STALL_AFTER 2 /* from this iteration on */
 #define LOCATE_NEWTON_MAX 40 /* Newton iterations of a point of an event's location (slow near a
                               * branch point, where the corrector's system is singular) */
-#ifndef NOISE_UP
-#define NOISE_UP 3e-14   /* the path goes over to the link angles where the shot's round-off
-                          * unbalances a link by more than this (relative to its tension) */
-#define NOISE_DOWN 3e-15 /* and back to the tip shot where it falls below this */
-#endif
-#define SHOT_SAME 1e-9 /* back on the shot, no link angle moves more than this [rad] (else
-                        * its Newton's method went to another equilibrium nearby) */
-#define FINE_SPAN 1e-7  /* the arclength a probe looks ahead (look_ahead) */
-#define RETURN_SPAN 1e-8 /* a return to the hanging chain is located within this of a critical
-                          * rate (relative; at_a_birth) */
-#define MU_RESOLVED 1e-12 /* in the link angles, the sign of t_omega at a point is the fold
-                           * test's only where |mu| > MU_RESOLVED |A| (rate_sign) */
-#define PROBE_STEPS 2000 /* and its most steps */
-#define NEAR_MAX 0.5     /* an eigenvalue that turns back closer to zero than this times its
-                          * value at the nearer end of the step: the step is halved (near_zero) */
-#define EIG_ITERS 1      /* inverse iterations for the eigenvalue nearest zero, from the last */
-#define EIG_ITERS_FIRST 8 /* and from a start */
-#define EIG_SAME 0.5     /* the eigenvectors at a step's ends are of the same eigenvalue where
-                          * their angle's cosine is at least this */
-#define STAY_FIRST 16    /* steps in the link angles after the shot's Newton failed, before the
-                          * shot is tried again (doubled on each such failure) */
+#define EXP_ARG_MAX 700  /* the orientation test's determinant scaled by exp of at most this
+                          * (finite in double) */
 
-#define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles */
+/* events and crossings */
+#define LOCATE_MAX 200    /* Brent iterations for an event */
+#define LOCATE_FOLD 1e-12 /* a fold's bracket in sigma, relative to the step: omega is
+                           * stationary there, its error the square of sigma's, and the test
+                           * function t_omega no better than about this (frame_locate) */
+#define LOCATE_ROUND (4 * DBL_EPSILON) /* any other event's bracket, relative: round-off */
+#define RATE_ROUND (4 * DBL_EPSILON)   /* a relative change of the rate this small is round-off
+                                        * (Newton's method at a birth, the secant of birth_gap) */
+#define CROSS_SLACK 1e-9 /* a crossing's arclength coordinate lies on its piece of the step to
+                          * within this times the step (the corrector's round-off) */
+#define RETURN_SPAN 1e-8 /* a return to the hanging chain is taken only within this (relative)
+                          * of a critical rate, where the hanging chain's index changes
+                          * (at_a_birth); elsewhere the step is halved */
+#define TIP_SAME 1e-6    /* a shape's tip radius is the shot's root next to the link angles'
+                          * where the two agree to this (relative; path_shape_info) */
+
+/* the two formulations */
+#define NOISE_UP 3e-14   /* the path goes over to the link angles where the shot's round-off
+                          * unbalances a link by more than this (relative to its tension: a
+                          * hundred times eps) */
+#define NOISE_DOWN 3e-15 /* and back to the tip shot where it falls below this (a decade of
+                          * hysteresis) */
+#define STAY_FIRST 16    /* steps in the link angles after the shot's Newton failed, before the
+                          * shot is tried again (doubled on each such failure, so that the path
+                          * does not flap) */
+#define SHOT_SAME 1e-9   /* back on the shot, no link angle moves more than this [rad] (else
+                          * its Newton's method went to another equilibrium nearby) */
+
+/* the look ahead */
+#define FINE_SPAN 1e-7   /* the arclength a probe looks ahead: an unfolded branch point turns
+                          * within 3e-9 to 5e-9 (look_ahead) */
+#define PROBE_STEPS 2000 /* and its most steps */
+
+/* births */
+#define BIRTH_NEWTON_MAX 20 /* Newton iterations on the linearised shot G(omega, 0) at a birth */
+#define BIRTH_NEWTON_SPAN 1e-6 /* a correction beyond this (relative) from the eigenproblem's
+                                * rate: the shot is too inaccurate for it (the high modes of long
+                                * chains), and that rate is kept */
+#define BIRTH_AMPLITUDE 1e-5 /* rms link angle of the first point of a birth in the link angles:
+                              * its rate moves from omega_k by O(amplitude^2), far above the
+                              * round-off */
 #define GAP_MAX 30 /* secant iterations of a point between the birth and that first point */
 #define GAP_MIN 1e-13 /* omega / omega_k - 1 below which a rate is the birth itself (no gap) */
 #define BIRTH_NEAR 1e-10 /* omega / omega_k - 1 below which the force balance at fixed omega

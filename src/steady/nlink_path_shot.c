@@ -152,7 +152,7 @@ int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c
         if (norm <= NEWTON_TOL) {
             final = 1;
             if (iters) *iters = it + 1;
-        } else if (it >= 2 && norm <= NEWTON_FLOOR && norm >= 0.5 * prev) {
+        } else if (it >= NEWTON_STALL_AFTER && norm <= NEWTON_FLOOR && norm >= NEWTON_STALL * prev) {
             /* no longer decreasing: the round-off floor of an ill-conditioned shot */
             if (iters) *iters = it + 1;
             p->s.floor_exit = 1;
@@ -241,7 +241,8 @@ int path_to_shot(nlink_path *p)
  * method on G = 0 and the arclength row. Where the shot fails, the step goes on in the link
  * angles. */
 
-/* the largest |d ln a| the predictor in ln|a| extrapolates (exp stays finite) */
+/* the largest |d ln a| the predictor in ln|a| extrapolates (exp stays finite; a larger change
+ * is no prediction) */
 #define LOG_PREDICT_MAX 50
 #define STAY_MAX 1024 /* the longest wait in the link angles before the shot is tried again */
 

@@ -139,7 +139,7 @@ static int step_with(nlink_path *p, const step_ops *ops)
         status = path_find_events(p, t.flip);
         if (status != GSL_EFAILED) {
             if (t.iters <= NEWTON_EASY && t.turn < TURN_MAX / 2 && t.dtheta < DTHETA_MAX / 2)
-                p->pub.ds = fmin(1.5 * t.ds, DS_MAX);
+                p->pub.ds = fmin(DS_GROW * t.ds, DS_MAX);
             return status;
         }
         /* an event the step passed could not be located (the curve between the two points is
