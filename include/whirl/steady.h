@@ -194,7 +194,7 @@ WHIRL_API int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n,
 /* ---- N-link chain: branches by pseudo-arclength continuation ----
  * The relative equilibria of the N-link chain are the zeros of one function of two variables,
  * G(omega, a) = r_0 / |r|: the pivot's radius, divided by the norm of the radii of all the nodes,
- * when the shape is built up from the tip with tip radius a (src/nlink_path.c). G depends on a only through a^2 and is finite at a = 0,
+ * when the shape is built up from the tip with tip radius a (src/steady/nlink_path.c). G depends on a only through a^2 and is finite at a = 0,
  * where its zeros in omega are the critical rates: a branch is a curve of G = 0 in the
  * (omega, a) plane, born at (omega_k, 0). whirl_nlink_path follows such a curve with arclength
  * measured in (ln omega, link angles): ds^2 = (d omega / omega)^2 + the mean over the links of

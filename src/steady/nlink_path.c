@@ -1,199 +1,53 @@
 /* Branches of the N-link chain's relative equilibria by pseudo-arclength continuation.
  *
- * The shape is built up from the tip (src/nlink.c): with the tip radius a and u_i = r_i / a,
+ * The tip shot (nlink_path_shot.c). Built up from the tip (steady/tip_up.h) with tip radius a
+ * and u_i = r_i / a,
  *     eta_i = sum_{j >= i} m_j omega^2 u_j,  V_i = g sum_{j >= i} m_j,  H_i = a eta_i,
  *     T_i = sqrt(H_i^2 + V_i^2),  u_{i-1} = u_i - l_i eta_i / T_i,  u_N = 1,
- * and the pivot lands on the axis when G(omega, a) = u_0 / |u| = 0 (|u|^2 = sum_{i=0}^N u_i^2:
- * the normalisation keeps G of order one when r spans many decades, as on the high modes, whose
- * tip radius can be 1e-18 of the largest or less). G depends on a only through a^2 and
- * is the linearised shot at a = 0, whose zeros in omega are the critical rates omega_k: the
- * trivial solution a = 0 is divided out and the pitchfork at omega_k becomes a regular point of
- * the curve G = 0, with a vertical tangent. Every relative equilibrium is a point of that curve
- * (a fixes the whole chain), so continuing the curve continues the equilibrium in all its link
- * angles theta_i = atan2(H_i, V_i). G_omega, G_a and the link angles' derivatives come from the
- * forward differentiation of the recursion (exact, O(N) per shot).
+ * the pivot lands on the axis where G(omega, a) = u_0 / |u| = 0 (|u|^2 = sum_i u_i^2 keeps G of
+ * order one where r spans many decades). G depends on a only through a^2 and is the linear shot
+ * at a = 0, whose zeros are the critical rates omega_k: the pitchfork at omega_k becomes a
+ * regular point of the curve G = 0 with a vertical tangent, and a fixes every link angle
+ * theta_i = atan2(H_i, V_i). G_omega, G_a and d theta / d(omega, a) by forward differentiation of
+ * the recursion (O(N)).
  *
- * Pseudo-arclength continuation (Keller 1977, "Numerical solution of bifurcation and nonlinear
- * eigenvalue problems", in Applications of Bifurcation Theory; Allgower & Georg 1990,
- * "Numerical Continuation Methods", ch. 2; Doedel's AUTO): the arclength is measured in
- * (ln omega, theta) with the metric
- *     ds^2 = (d omega / omega)^2 + (1/N) sum_i d theta_i^2
- *          = x^T M x,  x = (d omega, d a),  M from d theta_i = theta_i,omega d omega + theta_i,a d a,
- * the tangent t solves G_omega t_omega + G_a t_a = 0, t^T M t = 1, oriented along the travel.
- * A step predicts x0 + ds t0 (or, for a, a0 exp(ds t0_a / a0): the tangent in ln|a|, when that
- * predicts the previous point better: the tip radius of a high mode varies exponentially) and
- * corrects by Newton's method on
- *     G(x) = 0,   (M0 t0) . (x - x0) = ds,
- * to round-off (one iteration after the correction falls below 1e-10, or once it stops
- * decreasing below 1e-8: the round-off floor of the shot on a high mode). The step is rejected and
- * halved if Newton needs more than NEWTON_MAX iterations, the tangent turns by more than
- * TURN_MAX, a link angle changes by more than DTHETA_MAX (the corrector never lands on another
- * curve) or the chord of the step is not that of an arc the step resolves (chord_test: it lies
- * further than CHORD_MAX times the turn from either end's tangent, or its rate part outside the
- * tangents' range: the step passed over a small S of two folds; where it alone rejects every
- * step down to DS_MIN_CHORD in the link angles, the corrected points scatter by their round-off
- * across a turn sharper than the tangent resolves, and the step is retried from its first
- * length without it, the other tests kept); it grows 1.5-fold after an easy step, up to DS_MAX.
- * The smallest step is DS_MIN on the shot (below it the path goes over to the link angles,
- * below) and DS_MIN_ANGLES in the link angles: a branch can turn within an arclength of 1e-7
- * (a tip mass of 1e12 chain masses makes the chain a string pinned at both ends, whose
- * symmetric branches split in pitchforks; the links' own weight unfolds each at 1e-12, and
- * the branch from the birth turns onto the asymmetric side over an arclength of order the
- * square root of that), and within 1e-9 where a branch meets another mode's birth with part of
- * the chain all but hanging (links 1..7 of a 12-link chain whose lengths and masses span six
- * decades at 1e-10 rad, the rest at finite angles: the upper links split off there in a
- * pitchfork that the lower ones unfold, and the branch turns by about a radian onto it; a path
- * in 60 digits with turns of at most 0.05 rad per step does the same).
+ * The continuation (Keller 1977, "Numerical solution of bifurcation and nonlinear eigenvalue
+ * problems", in Applications of Bifurcation Theory; Allgower & Georg 1990, "Numerical
+ * Continuation Methods", ch. 2; Doedel's AUTO). Arclength in (ln omega, theta):
+ *     ds^2 = (d omega / omega)^2 + (1/N) sum_i d theta_i^2 = x^T M x,
+ * the unit tangent t with G_omega t_omega + G_a t_a = 0, t^T M t = 1, along the travel. A step
+ * predicts x0 + ds t0 (a in ln|a| where that predicts the last point better) and corrects by
+ * Newton's method on G(x) = 0, (M0 t0) . (x - x0) = ds. One loop (nlink_path_step.c) judges a
+ * trial: it is halved if Newton fails, the tangent turns by more than TURN_MAX, a link angle
+ * moves by more than DTHETA_MAX, or the chord is not that of an arc the step resolves
+ * (nlink_path_checks.c: further than CHORD_MAX times the turn from an end tangent, its rate part
+ * outside the tangents' range, or the rate's cubic Hermite interpolant turning back: a small S
+ * of two folds passed over); it grows after an easy step.
  *
- * Test functions between two accepted points: a fold where t_omega changes sign (its resolved
- * sign in the link angles: below); a branch point
- * (grad G = 0 on G = 0: two curves cross, which the one-dimensional reduction makes visible as the
- * tangent (G_a, -G_omega) reversing against the direction of travel) where that orientation
- * changes; a return to the hanging chain where a changes sign. The orientation also reverses when
- * the corrector lands on a neighbouring curve: G changes sign across each curve of G = 0, so two
- * adjacent curves carry opposite orientations (coarse chains at high rates have curves a few
- * percent apart in a over long stretches: 10 links near omega = 12.89, mode 7's branch and an
- * isolated curve 5% apart). A genuine branch point is crossed by a step of any length, a
- * neighbouring curve is not reached by a short enough one: a step longer than DS_BRANCH on which
- * the orientation reverses is rejected and halved, and only a reversal that persists down to
- * DS_BRANCH is a branch point, unless the curve turns there. An unfolded branch point, two curves
- * that turn away from each other within a distance d, is followed around its turn where the steps
- * resolve d, and the turn can be far sharper than DS_BRANCH: where a branch passes just below the
- * birth of a higher mode with part of the chain all but hanging, that part splits off in a
- * pitchfork of its own, which the rest of the chain unfolds, and the branch turns by a right angle
- * within an arclength of 3e-9 to 5e-9, the other curve 1e-10 to 2e-10 away (random chains of 2 to
- * 12 links, lengths and masses over six decades, at ten times their births; a 50-digit path in
- * mpmath with turns of at most 0.02 rad per step goes around each such turn with steps of 1e-12
- * down to 1e-17 (at the finest, the rate moves within its round-off while links 1e-20 rad from
- * hanging bend), and ends on another curve than a path that takes the reversal). So before such a
- * reversal is taken, a copy of the path (the probe, look_ahead) goes on from the step's start in
- * the fine mode: steps down to DS_MIN_FINE, a reversal taken only at the smallest step, for an
- * arclength of FINE_SPAN. Where it gets there with no branch point, the path follows the curve the
- * same way (in the fine mode up to that arclength, the steps the probe made); where it does not,
- * the unfolding is narrower than the finest step and the reversal is located as a branch point,
- * and the path does not look ahead again within FINE_SPAN of there (the probe looked over that
- * stretch; on a branch that crawls, every step would probe it again).
- * Where the path in the link angles cannot be followed at any step down to DS_MIN_ANGLES (the
- * tangent turning too fast: an unfolding too narrow for the tangent's round-off), the shortest step
- * up to DS_CROSS on which the orientation reverses is taken across, as at a branch point. Each is
- * located by Brent's method (GSL roots/brent.c) on the step's arclength sigma in [0, ds], every
- * evaluation a corrector solve on the hyperplane at sigma (at the step's ends a fold's test
- * function is known: the tangent of each end): at a fold omega(sigma) is stationary, so the
- * arclength error enters omega squared, and sigma is bracketed to LOCATE_FOLD of the step (the test
- * function's own noise where the Jacobian is singular), elsewhere to round-off. A crossing of a
- * rate is first sought by Newton's method at that rate from the point interpolated in omega (omega
- * is monotone between the step's folds, so the point whose arclength coordinate lies on the piece
- * is the one), Brent's method only where that fails. A step across an event that cannot be located
- * (the curve between its ends more intricate than the step: a tail of links all but hanging that
- * turns in a pitchfork of its own, which the tip radius shows by changing sign and the metric,
- * dominated by the links at finite angles, does not) is taken back and halved, on the shot as in
- * the link angles.
+ * The link angles (nlink_path_angles.c). Where the shot loses digits (its round-off, |G - G_ext|
+ * with G_ext in long double turned into the force it leaves across a link, above NOISE_UP) the
+ * same curve is followed in (omega, theta_1..theta_N) on the force balance R(omega, theta) = 0
+ * (nlink_balance.c: tridiagonal Jacobian A, each Newton step a bordered solve, O(N)); back on the
+ * shot below NOISE_DOWN. With U = g sum m_i z_i - omega^2 / 2 sum m_i r_i^2,
+ *     A = omega^-2 B M^-1 B^T C^-1 Hess U   (B bidiagonal, M = diag m_i, C = diag l_i cos theta_i)
+ * at an equilibrium, so A is singular exactly where Hess U is; its index (negative eigenvalues, a
+ * Sturm count) changes by one at each fold and branch point, and its eigenvalue mu nearest zero
+ * is followed with d mu / ds (Hellmann-Feynman on the symmetrised A): a step on which the index
+ * jumps by two, or the cubic Hermite interpolant of mu crosses zero and back, is halved.
  *
- * The same curve in the link angles. The shot loses digits on long chains at high rates: the
- * tip radius of a high mode is 1e-18 of the largest radius or less and fixes the shape only to
- * the round-off of the recursion amplified by the tension ratios, the Newton steps in (omega, a)
- * stall or the shape's links are unbalanced far above round-off. There the path continues in
- * x = (omega, theta_1..theta_N) on the force balance R(omega, theta) = 0 of src/nlink_balance.c
- * (tridiagonal Jacobian A; the arclength row (M0 t0) . (x - x0) = ds with the same metric M =
- * diag(1/omega^2, 1/N, ..)), each Newton step a bordered solve by block elimination, O(N); the
- * tangent solves [A, R_omega; (M0 t0)^T] t = e_{N+1} (one step of iterative refinement), which
- * orients it along the travel. A path can also start here, from an equilibrium's link angles
- * (whirl_nlink_path_start_angles: where roots crowd, the tip radius does not tell the shot which
- * one is meant); the tangent then solves the same system with the row e_omega. Test functions:
- * a fold where the resolved sign of t_omega changes (below), a branch point where
- * det [A, R_omega; (M0 t0)^T] = det A (c_omega - c . A^-1 R_omega) does (not at a fold, where
- * both factors do), a return to the hanging chain where the shape's projection on the
- * step's start changes sign, taken only at a critical rate (at_a_birth: elsewhere the step
- * passed onto the hanging chain, and is taken back and halved); located as above. The tip radius there is g tan theta_N / omega^2
- * (the radius that balances the tip mass: no cancellation). Which formulation a step uses: the
- * shot's round-off at an accepted point is measured as |G - G_ext| (G_ext the recursion in long
- * double) and turned into the force it leaves across the links (the pivot misses the axis by
- * a |u| |G - G_ext|, and moving it there changes link i's horizontal force by omega^2 M_i r_0,
- * relative to its tension T_i); above NOISE_UP, or where the shot's Newton steps fail, the path
- * goes over to the link angles (the point polished there at fixed omega, or where A is singular
- * there, a fold, on the hyperplane normal to the shot's tangent; the tangent carried over; a
- * first step from a birth to such a point within BIRTH_NEAR of the birth's rate begins in the
- * link angles instead, birth_angles), and it returns to the shot once that falls below NOISE_DOWN (after STAY steps, doubled
- * at each failure of the shot, so that it does not flap); on the way back the shot's Newton's
- * method at fixed omega must land within SHOT_SAME of the link angles (else it found another
- * equilibrium nearby). The shot is kept where it is clean: it is about three times cheaper per
- * step, and it resolves the tail of a high mode (radii of 1e-16 of the largest) to relative
- * accuracy where the link angles resolve it only to eps. Crossings
- * found on the shot where its round-off exceeds NOISE_UP are polished on the link angles.
+ * Events (nlink_path_events.c): a fold where the resolved sign of t_omega changes (in the link
+ * angles only where |mu| > MU_RESOLVED |A|), a branch point where the orientation test changes
+ * sign (the tangent (G_a, -G_omega) against the travel; det [A, R_omega; (M0 t0)^T] in the link
+ * angles), a return to the hanging chain where a (the projection on the step's start) changes
+ * sign, taken only at a critical rate; each located by Brent's method (Brent 1973) on the
+ * step's arclength, every evaluation a corrector solve. A reversal of the orientation on a step
+ * longer than DS_BRANCH is another curve close by (G changes sign across each curve) and is
+ * halved; a shorter one is a branch point unless the probe (nlink_path_probe.c), a copy of the
+ * path in the fine mode (steps down to DS_MIN_FINE), follows a sharp turn over FINE_SPAN.
  *
- * The index: a count where the orientation test is a sign. A step that passes two singular
- * points sees the orientation unchanged, and so does a corrector that lands on a curve two
- * crossings away (a tip mass of 1e12 chain masses: one step of 0.05 to 0.1 passes over two splits
- * of the pinned string, unfolded at 1e-12 by the links' weight, at nearly the same rate; 14 of
- * the 459 modes of N = 4..30 ended at 2.5 times their birth on another curve than a path with
- * small steps, and tip masses from 1e3 on did the same). The force balance counts them. With
- * U = g sum_i m_i z_i - omega^2 / 2 sum_i m_i r_i^2, the potential in the rotating frame,
- *     dU/dtheta_k = l_k cos theta_k F_k,  F_k = H_k - omega^2 sum_{i >= k} m_i r_i,
- * the balance of mass i is E_i = F_i - F_{i+1}, and R_i = E_i / (m_i omega^2) - E_{i-1} /
- * (m_{i-1} omega^2), so that R = omega^-2 B M^-1 B^T C^-1 grad U (B the lower bidiagonal
- * difference, M = diag(m_i), C = diag(l_i cos theta_i)); at an equilibrium A = omega^-2 B M^-1
- * B^T C^-1 Hess U, whose first factor has a positive determinant: A is singular exactly where
- * the Hessian of U is, at a fold or a branch point. A's eigenvalues are real (a diagonal
- * similarity makes it symmetric, src/nlink_balance.c), and the number of negative ones, the
- * index (a Sturm count, O(N) per step), changes by one where a simple eigenvalue crosses zero,
- * at each fold and each branch point. A step in the link angles on which the index changes by
- * more than one passed over two singular points, or landed on a curve beyond them, and is
- * rejected and halved like a step on which the orientation reverses (down to DS_BRANCH, below
- * which it is taken unless the probe finds a turn). Where no step passes two singular points it
- * costs nothing: the steps of mode 334 of 1000 links up to omega 600 and of every test are
- * unchanged. A curve of the same
- * index and orientation is not told apart by either test (the turn, the link angles and the
- * chord are).
- *
- * Two singular points within one step. The index is a count at the step's ends: an eigenvalue
- * of A that crosses zero and back within a step (a small S of two folds) leaves it unchanged,
- * and an S narrower than the step that turns the tangent by less than the slack of the chord
- * test passes every other test too (mode 75 of 300 links: two folds 0.0015 apart in omega at
- * 142.1 within one step; mode 334 of 1000 links: 48 such pairs between omega 600 and 700). The
- * eigenvalue mu of A nearest zero is followed from point to point instead, with its rate along
- * the tangent (src/nlink_balance.c: EIG_ITERS steps of inverse iteration with A's factors from
- * the last point's eigenvector x, then, with s_i = V_i / (omega^2 cos^2 theta_i) and
- * S = diag(s) A symmetric, the Rayleigh quotient and Hellmann-Feynman's rate
- *     mu = x^T S x / x^T diag(s) x,   d mu / ds = x^T diag(s) (dA/ds) x / x^T diag(s) x,
- * dA/ds from the tangent; O(N) per point, no further sines). Along the step mu(sigma) is smooth
- * where the eigenvalue is simple, and its cubic Hermite interpolant p from mu and d mu / ds at
- * both ends, sigma in [0, ds], errs by O(ds^4 max |d^4 mu / ds^4|). A step is rejected and
- * halved where p changes sign more than once (two crossings inside), or where p turns back
- * towards zero inside the step and comes closer to it than NEAR_MAX times mu at the nearer end:
- * there the interpolant's error is not known to be small against the distance from zero (mode
- * 334 of 1000 links near omega 622.2: p turns back at -5e-9 between ends at -2.7e-7 and
- * -4.7e-8, and the eigenvalue itself crosses zero and back, at two folds 0.0023 apart). After
- * halving, an end lies in the dip (the index then counts each fold) or the turn is resolved.
- * Where the eigenvectors at the two ends are not one eigenvalue's (the cosine of their angle
- * below EIG_SAME: another eigenvalue became the nearest to zero) the interpolant would join two
- * different curves, and the test is not made. Mode 334 of 1000 links to omega 700: 5132 folds
- * in 120935 steps (5032 in 119753 without the test); the path with steps of at most 0.003 finds
- * 5128 of them, each at the same rate (to 4e-14), and passes over two of the pairs (at 579.769
- * and 620.141, found at the same rates by steps of 1e-5 there). Up to omega 600: the same 706
- * folds in 17854 steps (17860). The tip shot forms no Jacobian, so it has no mu; on the shot,
- * and in the link angles where mu is resolved at both ends, the rate itself is interpolated
- * instead: a step on which the cubic Hermite interpolant of ln omega, from the chord and the end
- * tangents, turns back against the travel is halved (rate_turns_back, in the chord test). The
- * random chains of the README (five sets, six to twelve decades, 149698 modes): 7 had an S of two
- * folds (5e-7 to 3e-5 apart in omega, relative; 6 within 1% of the birth) in one shot step, which
- * the path did not report; it reports them now, each pair confirmed by the 40-digit path of
- * tests/tools/branch_mp.py, at the cost of 189 more steps in 8.7 million and with no end moved.
- *
- * The sign of t_omega that the fold test compares (rate_sign). Near a fold t_omega =
- * -mu (psi . t_theta) / (psi . R_omega) to first order (psi the left null vector of A), so its
- * sign is mu's, and mu is known only to about eps |A|. Where a branch passes a sharp turn with
- * part of the chain all but hanging, A stays singular to working precision over the turn
- * (|mu| of 1e-24 to 1e-15 of |A|) while the curve's true t_omega is small but of one sign: the
- * computed t_omega changed sign at random there, and the path reported clusters of folds within
- * a few ulps of each other in omega (the 40-digit continuation of tests/tools/branch_mp.py has none:
- * modes 5 and 9 of a 7- and a 10-link chain, 6 and 14 such folds). In the link angles the sign
- * of t_omega at a point counts only where |mu| > MU_RESOLVED |A|; elsewhere the last resolved
- * sign is kept, and a fold is a change of that sign between a step's ends (located as above; an
- * end whose own t_omega has the other sign is the fold itself to the tangent's resolution).
- * Measured over every fold of the 25314 modes of the random chains in the README (six decades):
- * at the ends of the steps that carry a genuine fold the larger |mu| / |A| is 1e-9 to 1e-2,
- * at the clusters' 1e-24 to 1e-15; 974 of 1528 folds, all in clusters of an even number, go,
- * and nothing else changes. */
+ * The measurements behind the constants and the audits of these tests on random and uniform
+ * chains against a 40-digit continuation (tests/tools/branch_mp.py): docs/validation/
+ * continuation.md. */
 #include <float.h>
 #include <limits.h>
 #include <math.h>
@@ -299,9 +153,10 @@ int whirl_nlink_path_birth(whirl_nlink_path *path, int mode)
     if (status) return status;
     reset(p);
     p->pub.mode = mode;
-    /* Newton's method on the linearised shot G(omega, 0); where the shot is too inaccurate
-     * for it (the high modes of long chains: a correction beyond BIRTH_NEWTON_SPAN omega_k, or none that
-     * settles), the rate from the tridiagonal eigenproblem, accurate to a few eps relative */
+    /* Newton's method on the linearised shot G(omega, 0); where the shot is too inaccurate for
+     * it (the high modes of long chains: a correction beyond BIRTH_NEWTON_SPAN omega_k, or none
+     * that settles), the rate from the tridiagonal eigenproblem, accurate to a few eps
+     * relative */
     shot s;
     const double omega_eig = omega;
     for (int it = 0; it < BIRTH_NEWTON_MAX; it++) {

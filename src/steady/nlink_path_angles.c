@@ -176,7 +176,7 @@ int path_to_angles(nlink_path *p)
 /* The eigenvalue of the force balance nearest zero at the trial point (factorised) and its rate
  * along the trial tangent (t_w, arr_t_theta_trial(p)) into *mu, *mu_rate, its eigenvector into
  * arr_eig_trial(p) (from the start's); NAN where not found. Returns 1 where the step of length ds
- * does not resolve it (see the header comment): its cubic Hermite interpolant in the arclength
+ * does not resolve it (src/steady/nlink_path.c): its cubic Hermite interpolant in the arclength
  * changes sign more than once, or turns back towards the ends' sign at less than NEAR_MAX times
  * the smaller end value from zero; 0 where it does, or where the start's eigenvector is not the
  * end's (another eigenvalue became the nearest to zero: the cubic joins two different ones). */

@@ -20,11 +20,8 @@
  * (q(0) = r0, q(1) = r1, mean slope), and the step turns back where q falls below -slack inside:
  * certainly where slope itself has the other sign (the rate went back), and where the chord
  * is too short for ends that both move on at their rates (q(1/2) = 1.5 slope - (r0 + r1) / 4).
- * Random chains over six decades: S-shaped pairs of folds within 1e-5 of each other in omega
- * just above a birth, a step of 0.05 across both with the rate at its ends of one sign and
- * moved on by 2e-7 of the 1e-5 the end tangents predict (the 40-digit path of
- * tests/tools/branch_mp.py finds both folds). The interpolant errs by O(ds^4); where the curve's rate
- * only dips towards zero, halving resolves the dip. */
+ * The interpolant errs by O(ds^4); where the curve's rate only dips towards zero, halving
+ * resolves the dip (the pairs of folds this finds: docs/validation/continuation.md). */
 static int rate_turns_back(double slope, double r0, double r1, double slack)
 {
     if (!(r0 * r1 > 0)) return 0;

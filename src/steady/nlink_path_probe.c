@@ -21,7 +21,7 @@ static void path_copy(nlink_path *dst, const nlink_path *src)
 }
 
 /* Looks ahead from the current point before a reversal of the orientation test on a step no
- * longer than DS_BRANCH is taken for a branch point (see the header comment): the probe, a copy
+ * longer than DS_BRANCH is taken for a branch point (src/steady/nlink_path.c): the probe, a copy
  * of the path, goes on from here with steps from ds, in the fine mode (a reversal taken only at
  * the smallest step) up to FINE_SPAN of arclength. Returns 1 where it gets there within
  * PROBE_STEPS steps with no branch point: the curve turns sharply here and the path should
