@@ -124,13 +124,13 @@ WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *
  * (whirl_nlink_path). The force balance of every mass holds to round-off. info->n_nodes is
  * the shape's own crossing count, which on a coarse chain at a high rate can differ from k - 1
  * (several equilibria then share a node count; the branch decides which one is mode k).
- * tip_r_guess is not used (kept for the continuum's signature). GSL_EDOM with a message naming
+ * GSL_EDOM with a message naming
  * the rates the branch reaches if it does not reach omega (omega below its lowest rate, which
  * is omega_k unless the branch first turns to lower rates; or k > c->n); GSL_EFAILED if the
  * continuation fails (the message names the rate reached); GSL_EMAXITER at the bound on its
  * steps (whirl_nlink_follow_options); WHIRL_EINTERRUPTED on a stop request. */
-WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info);
+WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode,
+                                whirl_shape_info *info);
 
 /* whirl_nlink_solve with the shape's nodes: r[i], z[i] of mass i (i = 0: the pivot, z relative
  * to it) and tension[i] of link i (tension[0] = tension[1]), arrays of c->n + 1. At high rates

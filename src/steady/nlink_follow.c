@@ -259,9 +259,7 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
     return status;
 }
 
-int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info)
+int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, whirl_shape_info *info)
 {
-    (void)tip_r_guess;
     return whirl_nlink_solve_nodes(c, omega, mode, info, NULL, NULL, NULL);
 }

@@ -302,7 +302,7 @@ static void test_birth_linear_shape(void **state)
         for (int e = 0; e < 2; e++) {
             double omega = omega_k * (1 + eps[e]);
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, omega, (int)mode, 0, &info), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, omega, (int)mode, &info), GSL_SUCCESS);
             assert_int_equal(info.n_nodes, (int)mode - 1);
             assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, t), GSL_SUCCESS);
             /* both normalised to their tip value */
@@ -535,15 +535,15 @@ static void test_every_mode(void **state)
         /* the case: mode 15 of 15 at 26.85 (omega_15 = 26.8401) */
         if (n == 15) {
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, 26.85, 15, 0, &info), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, 26.85, 15, &info), GSL_SUCCESS);
             assert_int_equal(info.n_nodes, 14);
         }
         /* beyond N and below the birth: GSL_EDOM, the message naming the mode */
         if (n == 200) {
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, 1000, 201, 0, &info), GSL_EDOM);
+            assert_int_equal(whirl_nlink_solve(c, 1000, 201, &info), GSL_EDOM);
             assert_non_null(strstr(whirl_last_error(), "mode 201"));
-            assert_int_equal(whirl_nlink_solve(c, crit[149] * (1 - 1e-6), 150, 0, &info),
+            assert_int_equal(whirl_nlink_solve(c, crit[149] * (1 - 1e-6), 150, &info),
                              GSL_EDOM);
             assert_non_null(strstr(whirl_last_error(), "mode 150"));
         }
@@ -687,7 +687,7 @@ static void test_branch_birth_gap(void **state)
         assert_int_equal(whirl_nlink_branch(c, k, 3, omega, info, exists), GSL_SUCCESS);
         for (int j = 0; j < 3; j++) {
             assert_true(exists[j]);
-            assert_int_equal(whirl_nlink_solve(c, omega[j], k, 0, &one), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, omega[j], k, &one), GSL_SUCCESS);
             assert_true(info[j].omega == omega[j] && info[j].tip_r == one.tip_r &&
                         info[j].max_r == one.max_r && info[j].n_nodes == one.n_nodes);
         }
@@ -891,13 +891,13 @@ static void test_errors(void **state)
     double crit[5];
     assert_int_equal(whirl_nlink_critical(c, 5, crit), GSL_SUCCESS);
     /* above N */
-    assert_int_equal(whirl_nlink_solve(c, 30, 6, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 30, 6, &info), GSL_EDOM);
     assert_non_null(strstr(whirl_last_error(), "modes 1..5"));
     /* below the birth: says so, naming omega_k */
-    assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-9), 3, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-9), 3, &info), GSL_EDOM);
     assert_non_null(strstr(whirl_last_error(), "exists only above omega_3="));
     /* exactly at the birth: the hanging chain, not a shape of the mode */
-    assert_int_equal(whirl_nlink_solve(c, crit[2], 3, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, crit[2], 3, &info), GSL_EDOM);
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     assert_int_equal(whirl_nlink_path_birth(p, 0), GSL_EINVAL);
     assert_int_equal(whirl_nlink_path_birth(p, 6), GSL_EINVAL);
@@ -906,11 +906,11 @@ static void test_errors(void **state)
     assert_int_equal(whirl_nlink_path_birth(p, 2), GSL_SUCCESS);
     whirl_stop_request();
     assert_int_equal(whirl_nlink_path_step(p), WHIRL_EINTERRUPTED);
-    assert_int_equal(whirl_nlink_solve(c, 10, 2, 0, &info), WHIRL_EINTERRUPTED);
+    assert_int_equal(whirl_nlink_solve(c, 10, 2, &info), WHIRL_EINTERRUPTED);
     whirl_stop_clear();
     assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
     /* a start from an equilibrium found by the birth path, in both directions */
-    assert_int_equal(whirl_nlink_solve(c, 7.3, 2, 0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, 7.3, 2, &info), GSL_SUCCESS);
     assert_int_equal(whirl_nlink_path_start(p, 7.3, info.tip_r, -1), GSL_SUCCESS);
     assert_float_equal(p->tip_r, info.tip_r, 1e-13 * info.tip_r);
     assert_true(p->t_omega < 0);
@@ -1193,8 +1193,8 @@ static void test_near_births(void **state)
          * would be many times that */
         assert_true(h.jump <= 1.15 * sqrt((double)c->n));
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, 10 * crit[runs[k].mode - 1], runs[k].mode, 0,
-                                           &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, 10 * crit[runs[k].mode - 1], runs[k].mode, &info),
+                         GSL_SUCCESS);
         if (runs[k].n == 5) assert_true(fabs(info.tip_r / 4.9718259981491416e-07 - 1) < 1e-8);
         whirl_chain_free(c);
     }
@@ -1538,7 +1538,7 @@ static void test_stalled_branch(void **state)
     /* the drivers: the same failure and message */
     whirl_shape_info info;
     int exists;
-    assert_int_equal(whirl_nlink_solve(c, target, 4, 0, &info), GSL_EFAILED);
+    assert_int_equal(whirl_nlink_solve(c, target, 4, &info), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
     assert_int_equal(whirl_nlink_branch(c, 4, 1, &target, &info, &exists), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
@@ -1565,7 +1565,7 @@ static void test_unlocated_event(void **state)
     double crit[12];
     assert_int_equal(whirl_nlink_critical(c, 12, crit), GSL_SUCCESS);
     whirl_shape_info info;
-    const int status = whirl_nlink_solve(c, 10 * crit[4], 5, 0, &info);
+    const int status = whirl_nlink_solve(c, 10 * crit[4], 5, &info);
     const char *message = whirl_last_error();
     print_message("12 links, mode 5 at 10 times its birth: %s\n", message);
     if (status == GSL_SUCCESS) {
