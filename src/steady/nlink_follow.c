@@ -41,7 +41,8 @@ static int gap_shape(nlink_path *p, double omega, whirl_shape_info *info, double
 /* Follows the path until its rate first exceeds omega_max, it returns to the hanging chain, or
  * visit returns non-zero (WHIRL_VISIT_STOP: success). visit gets every crossing of the rates
  * omega[0..n-1] (j its index, info filled) and every event (j = SIZE_MAX, event set); the link
- * angles of the shape visited are in arr_cross_theta(p) (a crossing) or arr_event_theta(p) (an event). */
+ * angles of the shape visited are in arr_cross_theta(p) (a crossing) or arr_event_theta(p) (an
+ * event). */
 static int follow_path(nlink_path *p, double omega_max, size_t n, const double *omega,
                        whirl_nlink_visit_fn visit, void *ctx,
                        const whirl_nlink_follow_options *opt)
@@ -56,13 +57,16 @@ static int follow_path(nlink_path *p, double omega_max, size_t n, const double *
     int first = p->pub.steps == 0; /* the first step from the birth is still to come */
     while (p->pub.omega <= omega_max && !p->pub.ended) {
         if (p->pub.steps >= bound)
-            return whirl_fail(GSL_EMAXITER, "mode %d: %ld continuation steps from the birth "
+            return whirl_fail(GSL_EMAXITER,
+                              "mode %d: %ld continuation steps from the birth "
                               "at omega=%.17g (arclength %.4g, %ld folds) reached omega=%.17g "
-                              "at most (now at omega=%.17g)", p->pub.mode, bound, p->pub.omega_birth,
-                              p->pub.arclength, folds, p->pub.omega_hi, p->pub.omega);
+                              "at most (now at omega=%.17g)",
+                              p->pub.mode, bound, p->pub.omega_birth, p->pub.arclength, folds,
+                              p->pub.omega_hi, p->pub.omega);
         if (opt && opt->progress && p->pub.steps % PROGRESS_STEPS == 0) {
-            const whirl_nlink_progress at = {p->pub.mode, p->pub.omega_birth, p->pub.steps, bound, folds,
-                                             p->pub.omega, p->pub.omega_hi, p->pub.arclength};
+            const whirl_nlink_progress at = {p->pub.mode, p->pub.omega_birth, p->pub.steps,
+                                             bound, folds, p->pub.omega,
+                                             p->pub.omega_hi, p->pub.arclength};
             opt->progress(opt->progress_ctx, &at);
         }
         int status = whirl_nlink_path_step(&p->pub);
@@ -74,14 +78,15 @@ static int follow_path(nlink_path *p, double omega_max, size_t n, const double *
             whirl_shape_info info;
             const whirl_branch_event *ev = &p->pub.event[e];
             if ((status = path_shape_info(p, p->s.last.angles, ev->omega, ev->tip_r,
-                                     arr_event_theta(p) + (size_t)e * links, &info, r, z, t)))
+                                          arr_event_theta(p) + (size_t)e * links, &info, r, z, t)))
                 return path_name_mode(p, status);
             if ((status = visit(ctx, SIZE_MAX, &info, ev)))
                 return status == WHIRL_VISIT_STOP ? GSL_SUCCESS : status;
         }
         for (size_t j = 0; j < n; j++) {
             double tip[WHIRL_PATH_EVENTS_MAX + 1];
-            int found = whirl_nlink_path_crossings(&p->pub, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
+            int found =
+                whirl_nlink_path_crossings(&p->pub, omega[j], WHIRL_PATH_EVENTS_MAX + 1, tip);
             if (found < 0) return -found;
             if (found == 0 && first && omega[j] > p->pub.omega_birth * (1 + GAP_MIN) &&
                 omega[j] < p->pub.omega) {
@@ -97,8 +102,8 @@ static int follow_path(nlink_path *p, double omega_max, size_t n, const double *
             for (int k = 0; k < found; k++) {
                 whirl_shape_info info;
                 const double *th = arr_cross_theta(p) + (size_t)k * links;
-                if ((status = path_shape_info(p, p->pub.cross_angles[k], omega[j], tip[k], th, &info, r,
-                                         z, t)))
+                if ((status = path_shape_info(p, p->pub.cross_angles[k], omega[j], tip[k], th,
+                                              &info, r, z, t)))
                     return path_name_mode(p, status);
                 if (k > 0) {
                     for (size_t i = 0; i < links; i++) arr_cross_theta(p)[i] = th[i];
@@ -239,7 +244,8 @@ int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                 "born at omega_%d=%.17g, returns to the hanging chain at "
                                 "omega=%.17g without reaching it", mode, omega, mode,
                                 p->pub.omega_birth, p->pub.omega);
-        else if (p->pub.omega_lo >= p->pub.omega_birth && omega > p->pub.omega_birth * (1 + GAP_MIN))
+        else if (p->pub.omega_lo >= p->pub.omega_birth &&
+                 omega > p->pub.omega_birth * (1 + GAP_MIN))
             /* above the birth but below the first point of a branch begun in the link angles
              * (birth_angles), where birth_gap does not converge: the mode exists there, it is
              * not resolved */

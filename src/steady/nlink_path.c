@@ -179,7 +179,8 @@ int whirl_nlink_path_birth(whirl_nlink_path *path, int mode)
     p->pub.t_omega = 0;
     p->pub.t_tip = 1 / sqrt(s.m_aa);
     double tw, ta;
-    path_tangent(&s, p->s.metric, p->s.metric, p->pub.t_omega, p->pub.t_tip, &tw, &ta, &p->s.raw_sign);
+    path_tangent(&s, p->s.metric, p->s.metric, p->pub.t_omega, p->pub.t_tip, &tw, &ta,
+                 &p->s.raw_sign);
     return GSL_SUCCESS;
 }
 
@@ -237,10 +238,11 @@ int whirl_nlink_path_start_angles(whirl_nlink_path *path, double omega, const do
                           "transversal to the rate", omega);
     const double sign = direction >= 0 ? 1 : -1;
     t_w *= sign;
-    for (size_t i = 0; i < n; i++) arr_t_theta(p)[i] *= sign, c_th[i] = arr_t_theta(p)[i] / (double)n;
+    for (size_t i = 0; i < n; i++)
+        arr_t_theta(p)[i] *= sign, c_th[i] = arr_t_theta(p)[i] / (double)n;
     double t_check;
-    if (path_angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, arr_t_theta_trial(p), &det,
-                      NULL, NULL))
+    if (path_angle_tangent(p, omega, t_w / (omega * omega), c_th, &t_check, arr_t_theta_trial(p),
+                           &det, NULL, NULL))
         return whirl_fail(GSL_EFAILED, "the tangent at omega=%.17g is not defined", omega);
     path_angle_point(p, omega, t_w, det);
     p->s.noise = path_noise_at(p, omega, p->pub.tip_r);

@@ -42,9 +42,8 @@ static double angle_norm(size_t n, double w0, double dw, const double *dth)
  * sigma from (*w, th) (in place), converged as path_correct(); the force balance is left factorised
  * at the converged point (or at the point before its last correction, when that was below the
  * square of NEWTON_TOL). Returns 0 when it converged, -1 otherwise. */
-int path_correct_angles(nlink_path *p, double w0, const double *th0, double c_w,
-                          const double *c_th, double sigma, double *w, double *th, int *iters,
-                          int max_iter)
+int path_correct_angles(nlink_path *p, double w0, const double *th0, double c_w, const double *c_th,
+                        double sigma, double *w, double *th, int *iters, int max_iter)
 {
     const size_t n = p->pub.chain->n;
     double *f = scr_f(p), *dth = scr_dth(p), prev = INFINITY;
@@ -88,8 +87,8 @@ int path_correct_angles(nlink_path *p, double w0, const double *th0, double c_w,
  * (c_w, c_th) positive: d omega in *t_w, d theta in t_th. *det_sign: the sign of det [J; c],
  * which changes at a branch point; the continuous test sign(det A) exp(ln|det A| - ref) schur
  * in *test if not NULL (*ref set from the first call when NaN). Returns 0 or -1. */
-int path_angle_tangent(nlink_path *p, double w, double c_w, const double *c_th,
-                         double *t_w, double *t_th, int *det_sign, double *ref, double *test)
+int path_angle_tangent(nlink_path *p, double w, double c_w, const double *c_th, double *t_w,
+                       double *t_th, int *det_sign, double *ref, double *test)
 {
     const size_t n = p->pub.chain->n;
     double schur;
@@ -117,8 +116,8 @@ static void angle_embed(size_t n, double w, double t_w, const double *t_th, doub
     for (size_t i = 0; i < n; i++) embed[i + 1] = scale * t_th[i];
 }
 
-/* The path at the point arr_theta(p), rate w, of a step or start in the link angles, with the tangent
- * (t_w, arr_t_theta(p)) and the orientation test's sign det. */
+/* The path at the point arr_theta(p), rate w, of a step or start in the link angles, with the
+ * tangent (t_w, arr_t_theta(p)) and the orientation test's sign det. */
 void path_angle_point(nlink_path *p, double w, double t_w, int det)
 {
     const whirl_chain *c = p->pub.chain;
@@ -199,7 +198,8 @@ static int near_zero(nlink_path *p, double t_w, double ds, double *mu, double *m
         q1 += arr_eig_trial(p)[i] * arr_eig_trial(p)[i];
     }
     if (!(fabs(dot) >= EIG_SAME * sqrt(q0 * q1))) return 0;
-    const int changes = path_hermite_crossings(p->s.mu, ds * p->s.mu_rate, *mu, ds * *mu_rate, &near);
+    const int changes =
+        path_hermite_crossings(p->s.mu, ds * p->s.mu_rate, *mu, ds * *mu_rate, &near);
     return changes > 1 || near < NEAR_MAX;
 }
 

@@ -49,9 +49,9 @@ static int rate_turns_back(double slope, double r0, double r1, double slack)
  *   show: the rate is a small part of the tangent away from folds).
  * - Where rates is set (the ends' rate parts are resolved: their signs are the fold test's), the
  *   rate's cubic Hermite interpolant does not turn back within the step (rate_turns_back). */
-const char *path_chord_test(size_t n, double w0, const double *th0, double w1,
-                              const double *th1, const double *e0, double s0, const double *e1,
-                              double s1, double turn, int rates)
+const char *path_chord_test(size_t n, double w0, const double *th0, double w1, const double *th1,
+                            const double *e0, double s0, const double *e1, double s1, double turn,
+                            int rates)
 {
     const double scale = 1 / sqrt((double)n), lw = log(w1 / w0);
     double q = lw * lw, c0 = lw * e0[0], c1 = lw * e1[0];

@@ -48,7 +48,7 @@ static int frame_point(step_frame *f, double sigma)
         f->w = f->w0 + lambda * (f->w1 - f->w0);
         for (size_t i = 0; i < n; i++) f->th[i] = th0[i] + lambda * (th1[i] - th0[i]);
         if (path_correct_angles(p, f->w0, th0, f->c_w, scr_cth(p), sigma, &f->w, f->th, &iters,
-                           LOCATE_NEWTON_MAX))
+                                LOCATE_NEWTON_MAX))
             return -1;
         f->a = tip_of(p->pub.chain, f->w, f->th);
         return 0;
@@ -78,12 +78,13 @@ static double frame_phi(double sigma, void *params)
     f->at = sigma;
     if (f->kind == TARGET_OMEGA) return f->w - f->target;
     if (f->kind == TARGET_RETURN)
-        return f->angles ? path_shape_projection(f->p->pub.chain->n, f->th, arr_theta0(f->p)) : f->a;
+        return f->angles ? path_shape_projection(f->p->pub.chain->n, f->th, arr_theta0(f->p))
+                         : f->a;
     if (f->angles) {
         double t_w, test;
         int det;
-        if (path_angle_tangent(f->p, f->w, f->c_w, scr_cth(f->p), &t_w, arr_t_theta_trial(f->p), &det,
-                          &f->ref, &test)) {
+        if (path_angle_tangent(f->p, f->w, f->c_w, scr_cth(f->p), &t_w, arr_t_theta_trial(f->p),
+                               &det, &f->ref, &test)) {
             f->failed = 1;
             return 0;
         }
@@ -214,7 +215,7 @@ static int frame_at_rate(step_frame *f, double omega, double sigma, int interpol
     double w = omega;
     if (f->angles) {
         if (path_correct_angles(p, omega, f->th, 1, scr_zero(p), 0, &w, f->th, &iters,
-                           LOCATE_NEWTON_MAX))
+                                LOCATE_NEWTON_MAX))
             return -1;
         f->w = w;
         f->a = tip_of(p->pub.chain, f->w, f->th);
@@ -305,7 +306,7 @@ static int path_crossings(nlink_path *p, double omega, int max, double *tip_r)
 /* The summary of the shape at (omega, a) with link angles th: from the angles on a step made
  * in them (angles), else from the tip shot; mirrored to a positive tip radius. */
 int path_shape_info(nlink_path *p, int angles, double omega, double a, const double *th,
-                      whirl_shape_info *info, double *r, double *z, double *t)
+                    whirl_shape_info *info, double *r, double *z, double *t)
 {
     const whirl_chain *c = p->pub.chain;
     const size_t n = c->n;
@@ -355,7 +356,8 @@ static int add_event(nlink_path *p, whirl_event_kind kind, step_frame *f, double
     }
     double *r = scr_nodes(p);
     whirl_shape_info info;
-    int status = path_shape_info(p, f->angles, f->w, f->a, th, &info, r, r + n + 1, r + 2 * (n + 1));
+    int status =
+        path_shape_info(p, f->angles, f->w, f->a, th, &info, r, r + n + 1, r + 2 * (n + 1));
     e->n_nodes = status == GSL_SUCCESS ? info.n_nodes : -1;
     return status;
 }

@@ -81,7 +81,7 @@ static inline void shoot_core(const whirl_chain *c, double omega, double a, shot
 }
 
 void path_shoot_embed(const whirl_chain *c, double omega, double a, shot *s, double *theta,
-                        double *embed)
+                      double *embed)
 {
     shoot_core(c, omega, a, s, theta, embed, 1);
 }
@@ -125,8 +125,8 @@ double path_shot_noise(const whirl_chain *c, double omega, double a, const shot 
 
 /* Newton's method on G = 0 and the row c . (x - x0) = sigma from (*w, *a). Returns 0 when it
  * converged (the last shot in *s), -1 otherwise. */
-int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c_w,
-                   double c_a, double sigma, double *w, double *a, shot *s, int *iters)
+int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c_w, double c_a,
+                 double sigma, double *w, double *a, shot *s, int *iters)
 {
     int final = 0;
     double prev = INFINITY;
@@ -152,7 +152,8 @@ int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c
         if (norm <= NEWTON_TOL) {
             final = 1;
             if (iters) *iters = it + 1;
-        } else if (it >= NEWTON_STALL_AFTER && norm <= NEWTON_FLOOR && norm >= NEWTON_STALL * prev) {
+        } else if (it >= NEWTON_STALL_AFTER && norm <= NEWTON_FLOOR &&
+                   norm >= NEWTON_STALL * prev) {
             /* no longer decreasing: the round-off floor of an ill-conditioned shot */
             if (iters) *iters = it + 1;
             p->s.floor_exit = 1;
@@ -165,8 +166,8 @@ int path_correct(nlink_path *p, const double *m0, double w0, double a0, double c
 
 /* The unit tangent at s (metric m) oriented against the previous direction (ref_w, ref_a) in the
  * metric m_ref; raw_sign: +1 if it is (G_a, -G_omega) normalised, -1 if its opposite. */
-void path_tangent(const shot *s, const double *m, const double *m_ref, double ref_w,
-                    double ref_a, double *t_w, double *t_a, int *raw_sign)
+void path_tangent(const shot *s, const double *m, const double *m_ref, double ref_w, double ref_a,
+                  double *t_w, double *t_a, int *raw_sign)
 {
     double r_w = s->g_a, r_a = -s->g_w;
     double norm = sqrt(metric_dot(m, r_w, r_a, r_w, r_a));
@@ -227,7 +228,8 @@ int path_to_shot(nlink_path *p)
     swap(&p->s.theta, &p->s.theta_trial);
     swap(&p->s.embed, &p->s.embed_trial);
     path_set_point(p, w, a, &s, -1);
-    path_tangent(&s, p->s.metric, p->s.metric, t_w, t_a, &p->pub.t_omega, &p->pub.t_tip, &p->s.raw_sign);
+    path_tangent(&s, p->s.metric, p->s.metric, t_w, t_a, &p->pub.t_omega, &p->pub.t_tip,
+                 &p->s.raw_sign);
     p->pub.angles = 0;
     p->s.index = -1;
     p->s.mu = p->s.mu_rate = NAN;
@@ -257,7 +259,8 @@ static void shot_begin(nlink_path *p, step_ctx *x)
     x->log_predictor = 0;
     if (p->s.have_last && a0 != 0 && p->s.last.a0 != 0 && (a0 > 0) == (p->s.last.a0 > 0)) {
         double back = -p->s.last.ds, lin = a0 + back * p->pub.t_tip;
-        double lg = a0 * exp(fmax(-LOG_PREDICT_MAX, fmin(LOG_PREDICT_MAX, back * p->pub.t_tip / a0)));
+        double lg =
+            a0 * exp(fmax(-LOG_PREDICT_MAX, fmin(LOG_PREDICT_MAX, back * p->pub.t_tip / a0)));
         x->log_predictor = fabs(lg - p->s.last.a0) < fabs(lin - p->s.last.a0);
     }
     x->crossing = 0;
@@ -315,7 +318,8 @@ static int shot_ready(nlink_path *p, step_ctx *x, step_trial *t)
 {
     t->noise = path_shot_noise(p->pub.chain, t->w, t->a, &t->s);
     if (p->pub.steps > 0 && t->noise > NOISE_UP && path_to_angles(p) == 0) return STEP_ANGLES;
-    if (p->pub.steps == 0 && x->a0 == 0 && t->noise > NOISE_UP && fabs(t->w / x->w0 - 1) < BIRTH_NEAR)
+    if (p->pub.steps == 0 && x->a0 == 0 && t->noise > NOISE_UP &&
+        fabs(t->w / x->w0 - 1) < BIRTH_NEAR)
         return path_begin_in_angles(p);
     return GSL_SUCCESS;
 }
