@@ -1,12 +1,8 @@
 /* The drivers of the N-link continuation (src/steady/nlink_path.c): a branch followed from its
  * birth over a set of rates (whirl_nlink_follow, whirl_nlink_branch, whirl_nlink_solve and
  * their _nodes and _opt variants), with the progress reports and the bound on the steps. */
-#include <float.h>
 #include <limits.h>
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"

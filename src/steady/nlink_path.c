@@ -48,12 +48,9 @@
  * The measurements behind the constants and the audits of these tests on random and uniform
  * chains against a 40-digit continuation (tests/tools/branch_mp.py): docs/validation/
  * continuation.md. */
-#include <float.h>
-#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"

@@ -3,12 +3,8 @@
  * src/steady/nlink_balance.c, the corrector by bordered solves, the tangent and its orientation
  * test, the eigenvalue of the Jacobian nearest zero, the hand-over from the shot, the first point
  * of a birth begun here, and the step in the link angles. */
-#include <float.h>
-#include <limits.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"

@@ -1,12 +1,7 @@
 /* The step tests of the N-link continuation (src/steady/nlink_path.c) that read a step's ends
  * only: the chord against the end tangents, the rate's cubic Hermite interpolant turning back,
  * and the sign changes of the nearest-zero eigenvalue's interpolant. */
-#include <float.h>
-#include <limits.h>
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"

@@ -2,12 +2,7 @@
  * points and returns to the hanging chain on the last step, and its crossings of a rate, each
  * located by Brent's method on the step's arclength sigma in [0, ds] (every evaluation a
  * corrector solve on the hyperplane at sigma), or by Newton's method at the rate. */
-#include <float.h>
-#include <limits.h>
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
 
 #include "core/error.h"

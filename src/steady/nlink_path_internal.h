@@ -7,6 +7,7 @@
 #define WHIRL_NLINK_PATH_INTERNAL_H
 
 #include <float.h>
+#include <math.h>
 #include <stddef.h>
 
 #include "steady/steady_internal.h"
@@ -358,12 +359,14 @@ typedef struct step_ops {
 extern const step_ops path_shot_ops, path_angle_ops;
 
 /* src/steady/nlink_path.c */
+nlink_path *path_alloc(const whirl_chain *c);
+void path_free(nlink_path *p);
 int path_name_mode(const nlink_path *p, int status);
+
+/* src/steady/nlink_path_step.c */
+int path_step(nlink_path *p);
 int path_stopped(const nlink_path *p);
 int path_fail_at(nlink_path *p, int status, double w0, double a0);
-void path_free(nlink_path *p);
-nlink_path *path_alloc(const whirl_chain *c);
-int path_step(nlink_path *p);
 
 /* src/steady/nlink_path_shot.c */
 void path_shoot_embed(const whirl_chain *c, double omega, double a, shot *s, double *theta,

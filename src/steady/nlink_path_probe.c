@@ -1,15 +1,19 @@
 /* The look ahead of the N-link continuation (src/steady/nlink_path.c): before a reversal of the
  * orientation test on a short step is taken for a branch point, a copy of the path (the probe)
  * goes on in the fine mode to see whether the curve only turns sharply there. */
-#include <float.h>
-#include <limits.h>
-#include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"
+
+/* A member of nlink_path beside pub, s, its own resources and the block would not be copied: */
+_Static_assert(offsetof(nlink_path, s) == sizeof(whirl_nlink_path) &&
+                   offsetof(nlink_path, balance) == offsetof(nlink_path, s) + sizeof(path_state) &&
+                   offsetof(nlink_path, probe) == offsetof(nlink_path, balance) + sizeof(void *) &&
+                   offsetof(nlink_path, block) == offsetof(nlink_path, probe) + sizeof(void *),
+               "nlink_path is pub, s, balance, probe and the block: path_copy copies pub, s and "
+               "the block");
 
 /* dst becomes a copy of src at its current point: its public part, its state and its block (the
  * arrays, addressed by offsets); dst's force balance and probe are its own. */

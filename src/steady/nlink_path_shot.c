@@ -4,11 +4,7 @@
  * hyperplane, the tangent, the shot's round-off, the hand-over back from the link angles, and
  * the step on the shot. */
 #include <float.h>
-#include <limits.h>
 #include <math.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
 
 #include "core/error.h"
 #include "steady/nlink_path_internal.h"
