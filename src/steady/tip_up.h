@@ -12,8 +12,8 @@
  * angles ~ H/V << 1: T_i = V_i to relative order (H/V)^2) it is the linear shot, the shape
  * of small a.
  *
- * The variants the callers need, each keeping its own rounding (the results are bitwise those
- * of the recursions this replaced):
+ * The variants the callers need, each with the rounding its callers' results are defined by
+ * (an order of operations changed moves roots and counts in the last bits):
  *  - precision: double (tip_up), long double (tip_up_ext: 64 bits of mantissa on x86-64) and
  *    quadruple (tip_up_quad, nlink_quad: 113 bits), one text instantiated three times;
  *  - the tension T (tip_up_tension): hypot; the square root of H^2 + V^2, alone or with hypot
