@@ -38,7 +38,7 @@ static void constructor_status(void **state)
     assert_null(whirl_nlink_path_alloc(NULL));
     assert_int_equal(whirl_last_status(), GSL_EINVAL);
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(NULL, 2, 1, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_nlink_solve(NULL, 2, 1, &info), GSL_EINVAL);
     assert_string_equal(whirl_last_error(), "a chain needs at least one link");
 }
 
