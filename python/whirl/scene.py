@@ -79,7 +79,7 @@ def run_scene(path, set=None, trace=False):
     keep = [ffi.new("char[]", s.encode()) for s in items]
     over = ffi.new("char *[]", keep) if keep else ffi.NULL
     scene = ffi.new("whirl_scene *")
-    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene))
+    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene), "run_scene")
     work = ffi.NULL
     try:
         if every is not None:
@@ -108,9 +108,9 @@ def run_scene(path, set=None, trace=False):
         out.row = on_row
         out.frame = on_frame if trace is not False else ffi.NULL
         res = ffi.new("whirl_scene_result *")
-        with _lib.interruptible():
+        with _lib.interruptible("run_scene"):
             status = lib.whirl_scene_work_run(work, out, res)
-        check(status)
+        check(status, "run_scene")
         units = {"physical": bool(scene.physical), "length": scene.chain_length,
                  "mass": scene.chain_mass, "gravity": scene.gravity}
         trace_t = np.array(frames_t) if trace is not False else None
