@@ -20,7 +20,7 @@ class Table:
     float64, with NaN for an empty field; text columns such as ``verdict`` or ``state`` as
     arrays of str), ``units`` (the file's "# units:" line as a whirl.Units; dimensionless when
     it has none), ``comments`` (the "#" lines, without "# "), ``summary`` (the key=value pairs of
-    the first comment line, e.g. a shape's omega, mode, node_count), and for a trace ``t``
+    the comment lines, the first of each key: e.g. a shape's omega, mode, node_count), and for a trace ``t``
     (frame times) and ``x`` (frames, pivot + N masses, 3) [inertial frame]. ``table["omega"]``
     is ``table.data["omega"]``."""
 
@@ -107,7 +107,9 @@ def read_csv(path: Union[str, "os.PathLike[str]"]) -> Table:
     for j, name in enumerate(columns):
         data[name] = _column([r[j] for r in rows])
     summary: Dict[str, Any] = {}
-    if comments:
-        summary = dict(_SUMMARY.findall(comments[0]))
+    for c in comments:  # the first of each key, the units line aside
+        if not c.startswith("units:"):
+            for k, v in _SUMMARY.findall(c):
+                summary.setdefault(k, v)
     return Table(columns=columns, data=data, units=_units(comments), comments=comments,
                  summary=summary)

@@ -195,7 +195,10 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     frames_x: List[np.ndarray] = []
     frames_a: List[float] = []
     record = every is not None
-    interval = as_float(every, "every", positive=True) / u.time if record else 1.0
+    # the observer's times split the steps: without frames, the command line's interval (once
+    # per time unit, or t_max / 100 on a short run), so that a run is the command line's run
+    interval = (as_float(every, "every", positive=True) / u.time if record
+                else min(1.0, p.t_max / 100))
     if record and (p.t_max / interval + 1) * chain.n > WORK_MAX:
         raise ValueError("every=%g asks for %.3g frames of %d links: links x frames must be "
                          "<= %g" % (every, p.t_max / interval, chain.n, WORK_MAX))

@@ -197,8 +197,9 @@ WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("ope
                          ("at", "f8")])
 
 
-def stability_windows(mode: int, links: Union[None, int, Chain] = None, omega_min: float = 1.0,
-                      omega_max: float = 10.0, scan_step: float = 0.25, tol: float = 1e-9,
+def stability_windows(mode: int, links: Union[None, int, Chain] = None,
+                      omega_min: Optional[float] = None, omega_max: Optional[float] = None,
+                      scan_step: Optional[float] = None, tol: Optional[float] = None,
                       krylov: bool = True, max_windows: int = 1024, degree: Optional[int] = None,
                       tip_mass: float = 0.0, length: Optional[float] = None,
                       mass: Optional[float] = None, gravity: Optional[float] = None,
@@ -207,7 +208,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None, omega_mi
     a Chain) or, with links=None, of the continuous chain (its string equations linearised by
     Chebyshev collocation on elements of ``degree``, default the library's 16, with a point mass
     ``tip_mass`` [M, or kg] at the free end),
-    for rates in [omega_min, omega_max] [sqrt(g/L), or rad/s; scan_step and tol too], as
+    for rates in [omega_min, omega_max] [sqrt(g/L), or rad/s; scan_step and tol too; the
+    defaults, as the command line's, 1, 10, 0.25 and 1e-9 sqrt(g/L)], as
     ``whirl stability --windows``: the edges are the rates where two eigenvalues collide (Krein
     collision), located to ``tol`` after a scan with spacing ``scan_step``. Returns (windows,
     stats): a structured array with fields from, to (the unstable interval), open_from, open_to
@@ -221,13 +223,17 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None, omega_mi
     if links is not None and (degree is not None or tip_mass):
         raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
     p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
-    p.omega_min = as_float(omega_min, "omega_min", positive=True) / u.rate
-    p.omega_max = as_float(omega_max, "omega_max", positive=True) / u.rate
+    # defaults (None) are the command line's, in the dimensionless units: 1, 10, 0.25, 1e-9
+    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
+                                                         positive=True) / u.rate
+    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
+                                                          positive=True) / u.rate
     if not p.omega_min < p.omega_max:
-        raise ValueError("omega_min must be < omega_max, got %g and %g" % (p.omega_min,
-                                                                          p.omega_max))
-    p.scan_step = as_float(scan_step, "scan_step", positive=True) / u.rate
-    p.tol = as_float(tol, "tol", positive=True) / u.rate
+        raise ValueError("omega_min must be < omega_max, got %g and %g"
+                         % (p.omega_min * u.rate, p.omega_max * u.rate))
+    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
+                                                          positive=True) / u.rate
+    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
     p.krylov = 1 if krylov else 0
     cap = _lib.bounded(as_int(max_windows, "max_windows", minimum=1), "max_windows", 64)
     found = ffi.new("whirl_window[]", cap)
