@@ -171,7 +171,7 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
         status = lib.whirl_nlink_branch_nodes(chain._c, mode, n, _lib.dptr(w), info,
                                               ffi.cast("int *", ffi.from_buffer(exists)),
                                               _lib.dptr(r), _lib.dptr(z), _lib.dptr(tension))
-    check(status, "mode %d" % mode)
+    check(status, "stability_map of mode %d" % mode)
     ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     growth = ffi.new("double *")
     rows = np.flatnonzero(exists)
@@ -182,7 +182,7 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
             status = lib.whirl_stability_linearise(ws, m, _lib.dptr(r[j]), _lib.dptr(z[j]))
             if status == _lib.GSL_SUCCESS:
                 status = lib.whirl_stability_growth(ws, growth)
-            check(status, "omega %.17g" % w[j])
+            check(status, "stability_map at omega %.17g" % (w[j] * u.rate))
             out[i] = (w[j], info[j].tip_r, growth[0])
             if _lib.stop_requested():
                 break
