@@ -80,7 +80,7 @@ class Error(Exception):
         self.message = message
         super().__init__(message)
 
-    def __reduce__(self):  # type: ignore[override]
+    def __reduce__(self) -> Tuple[Any, Tuple[int, str]]:
         return (type(self), (self.status, self.message))
 
 

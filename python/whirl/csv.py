@@ -71,9 +71,9 @@ def _trace(path: str, comments: List[str], lines: List[str]) -> Table:
     if len(sizes) > 1:
         raise ValueError("%s: the trace's frames have different sizes %s" % (path, sorted(sizes)))
     t = np.array(times)
-    x = np.array(frames, dtype=np.float64).reshape(len(frames), -1, 3)
+    positions = np.array(frames, dtype=np.float64).reshape(len(frames), -1, 3)
     return Table(columns=["t"], data={"t": t}, units=_units(comments), comments=comments,
-                 summary={}, t=t, x=x)
+                 summary={}, t=t, x=positions)
 
 
 def read_csv(path: Union[str, "os.PathLike[str]"]) -> Table:
@@ -95,12 +95,12 @@ def read_csv(path: Union[str, "os.PathLike[str]"]) -> Table:
         raise ValueError("%s: no header line (column names)" % path)
     columns = [c.strip() for c in lines[i].split(",")]
     rows: List[List[str]] = []
-    for k, line in enumerate(lines[i + 1:], start=i + 2):
+    for number, line in enumerate(lines[i + 1:], start=i + 2):
         if not line.strip() or line.startswith("#"):
             continue
         fields = line.split(",")
         if len(fields) != len(columns):
-            raise ValueError("%s:%d: %d fields, the header has %d" % (path, k, len(fields),
+            raise ValueError("%s:%d: %d fields, the header has %d" % (path, number, len(fields),
                                                                      len(columns)))
         rows.append(fields)
     data: Dict[str, np.ndarray] = {}
@@ -109,7 +109,7 @@ def read_csv(path: Union[str, "os.PathLike[str]"]) -> Table:
     summary: Dict[str, Any] = {}
     for c in comments:  # the first of each key, the units line aside
         if not c.startswith("units:"):
-            for k, v in _SUMMARY.findall(c):
-                summary.setdefault(k, v)
+            for key, value in _SUMMARY.findall(c):
+                summary.setdefault(key, value)
     return Table(columns=columns, data=data, units=_units(comments), comments=comments,
                  summary=summary)

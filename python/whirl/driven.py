@@ -200,8 +200,8 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     interval = (as_float(every, "every", positive=True) / u.time if record
                 else min(1.0, p.t_max / 100))
     if record and (p.t_max / interval + 1) * chain.n > WORK_MAX:
-        raise ValueError("every=%g asks for %.3g frames of %d links: links x frames must be "
-                         "<= %g" % (every, p.t_max / interval, chain.n, WORK_MAX))
+        raise ValueError("every asks for %.3g frames of %d links: links x frames must be "
+                         "<= %g" % (p.t_max / interval, chain.n, WORK_MAX))
     if record:
         _lib.bounded(int(p.t_max / interval) + 2, "frames (t_max / every)", 24 * chain.n + 16)
 

@@ -69,7 +69,7 @@ def _eigenvalues(w: Any) -> np.ndarray:
 
 
 @ffi.callback("int(double, double, void *)")
-def _observe_stop(t, ratio, data):
+def _observe_stop(t: float, ratio: float, data: Any) -> int:
     """The perturbed run's observer: stops it (WHIRL_EINTERRUPTED) once a stop is requested."""
     return lib.WHIRL_EINTERRUPTED if lib.whirl_stop_requested() else 0
 
@@ -248,6 +248,7 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
         with _lib.interruptible("stability_windows"):
             status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)
     else:
+        assert chain is not None
         ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
         with _lib.interruptible("stability_windows"):
             status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)

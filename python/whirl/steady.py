@@ -134,8 +134,9 @@ class Chain:
     by its lengths, masses and gravity; equal chains compare equal."""
 
     def __init__(self, links: Optional[int] = None, tip_mass: float = 0.0,
-                 lengths: Optional[Sequence[float]] = None,
-                 masses: Optional[Sequence[float]] = None, gravity: float = 1.0) -> None:
+                 lengths: Optional[Union[Sequence[float], np.ndarray]] = None,
+                 masses: Optional[Union[Sequence[float], np.ndarray]] = None,
+                 gravity: float = 1.0) -> None:
         if links is not None:
             if lengths is not None or masses is not None:
                 raise TypeError("give either links or lengths and masses, not both")
@@ -414,6 +415,7 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
     u = units_of(length, mass, gravity, units)
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
         modes = [int(modes)]
+    assert not isinstance(modes, (bool, int))
     w = as_array(omega, "omega", positive=True) / u.rate
     _lib.bounded(w.size, "len(omega)", 256 + (0 if links is None else 64), hard=POINTS_MAX)
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
@@ -441,7 +443,7 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
             f = info[j]
             a[i] = (w[j] * u.rate, f.tip_r * u.length, f.max_r * u.length,
                     f.top_tension * u.force, f.depth * u.length, f.n_nodes + 1)
-        _lib.finite("the branch of mode %d" % k, *(a[c] for c in BRANCH_DTYPE.names[:5]))
+        _lib.finite("the branch of mode %d" % k, *(a[c] for c in ("omega", "tip_r", "max_r", "top_tension", "depth")))
         out[k] = a
     return out
 
