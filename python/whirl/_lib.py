@@ -17,7 +17,7 @@ import numbers
 import os
 import signal
 import threading
-from typing import Any, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, ContextManager, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 from cffi import FFI
@@ -169,6 +169,12 @@ def interruptible(what: str) -> Iterator[None]:
         handler(signal.SIGINT, None)
 
 
+def interruptible_if(long: bool, what: str) -> ContextManager[None]:
+    """interruptible(what) around a call that may be long; nothing around one that cannot be
+    (installing and restoring the handlers costs a few system calls, tens of microseconds)."""
+    return interruptible(what) if long else contextlib.nullcontext()
+
+
 def stop_requested() -> bool:
     """True once the library's stop request is raised (by Ctrl-C inside interruptible())."""
     return bool(lib.whirl_stop_requested())
@@ -277,6 +283,6 @@ def finite(name: str, *values: Any) -> None:
     units before the work; a value of the library times a unit scale can still leave the
     doubles)."""
     for v in values:
-        if not np.all(np.isfinite(v)):
+        if not (math.isfinite(v) if isinstance(v, float) else np.isfinite(v).all()):
             raise ValueError("%s is not finite in these units (inf or NaN): choose units "
                              "nearer to the chain's own scales" % name)

@@ -306,7 +306,9 @@ def _solve(chain: Optional[Chain], omega: float, mode: int, m: float, guess: flo
     """nodes: (r, z, tension) arrays of N + 1 for the N-link chain's nodes, which come from the
     branch's link angles (at high rates the tip radius alone does not fix them)."""
     info = ffi.new("whirl_shape_info *")
-    with _lib.interruptible("shape"):
+    # milliseconds below these sizes: no signal handlers to install
+    long = (chain.n >= SHORT_LINKS) if chain is not None else mode > lib.WHIRL_MODE_MAX
+    with _lib.interruptible_if(long, "shape"):
         if chain is None:
             status = lib.whirl_continuum_solve(omega, mode, m, guess, info)
         elif nodes is None:
@@ -321,6 +323,9 @@ def _solve(chain: Optional[Chain], omega: float, mode: int, m: float, guess: flo
 
 # the command line's bound on the continuum's samples (whirl shape --points)
 POINTS_MAX = 10000000
+# shapes of fewer links or points take milliseconds: their calls skip the signal handlers
+SHORT_LINKS = 1000
+SHORT_POINTS = 100000
 
 
 def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
@@ -361,7 +366,7 @@ def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_ma
                 pass
         raise _lib.error(status, msg)
     if chain is None:
-        with _lib.interruptible("shape"):
+        with _lib.interruptible_if(n > SHORT_POINTS, "shape"):
             status = lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
                                                 _lib.dptr(z), _lib.dptr(t))
         check(status, "shape")
@@ -379,14 +384,16 @@ def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_ma
                                                 crossings.size, _lib.dptr(crossings),
                                                 _lib.ffi.NULL)
         crossings = crossings[:min(count, crossings.size)]
+    if u.physical:
+        L, F = u.length, u.force
+        crossings, s, r, z, t = crossings * L, s * L, r * L, z * L, t * F
+        _lib.finite("the shape", r, z, t, info.omega * u.rate, info.top_tension * F)
+    else:
+        L = F = 1.0
     out = Shape(omega=info.omega * u.rate, mode=int(info.mode), node_count=info.n_nodes + 1,
-                tip_r=info.tip_r * u.length, max_r=info.max_r * u.length,
-                top_tension=info.top_tension * u.force, depth=info.depth * u.length,
-                crossings=crossings * u.length, s=s * u.length, r=r * u.length,
-                z=z * u.length, tension=t * u.force, units=u, chain=chain,
-                tip_mass=float(tip_mass))
-    _lib.finite("the shape", out.omega, out.tip_r, out.max_r, out.top_tension, out.depth,
-                out.r, out.z, out.tension)
+                tip_r=info.tip_r * L, max_r=info.max_r * L, top_tension=info.top_tension * F,
+                depth=info.depth * L, crossings=crossings, s=s, r=r, z=z, tension=t, units=u,
+                chain=chain, tip_mass=float(tip_mass))
     if out.node_count != mode:
         import warnings
         warnings.warn("the shape of mode %d at omega=%.17g has %d nodes: its node count "
