@@ -4,8 +4,8 @@ its default meaning and ends the process (killed by SIGTERM, not an exception a 
 ``except KeyboardInterrupt`` would swallow). The child sets Python's own dispositions, as an
 interactive session has them, also where the suite runs with SIGINT ignored.
 
-WHIRL_SIGNAL_REPORT=FILE appends one line per run: call, signal, seconds from the signal to the
-exit."""
+The signal comes one second of the child's processor time into the call. WHIRL_SIGNAL_REPORT=FILE
+appends one line per run: call, signal, seconds from the signal to the exit."""
 import os
 import signal
 import subprocess
@@ -49,6 +49,13 @@ print("finished", flush=True)
 """
 
 
+def _cpu(pid):
+    """Processor seconds of the process (user and system, /proc/PID/stat)."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 def _run(tmp_path, name, sig):
     scene = tmp_path / "long.ini"
     scene.write_text("[chain]\ndim = 3\nlinks = 100\n[start]\nomega = 3\nmode = 2\n"
@@ -58,7 +65,11 @@ def _run(tmp_path, name, sig):
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
                          preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert p.stdout.readline().strip() == "ready"
-    time.sleep(1.0)  # inside the call
+    # inside the call: one second of the child's processor time after "ready" (a fixed wait
+    # on a loaded machine could fall before the call starts)
+    start = _cpu(p.pid)
+    while _cpu(p.pid) < start + 1.0 and p.poll() is None:
+        time.sleep(0.02)
     assert p.poll() is None, p.communicate()
     p.send_signal(sig)
     start = time.monotonic()

@@ -63,7 +63,9 @@ def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: fl
         m.samples = as_int(samples, "samples", minimum=2, maximum=FIT_MAX_SAMPLES)
     mode = as_int(mode, "mode", minimum=0, maximum=lib.WHIRL_MODE_MAX)
     limit = as_float(max_residual, "max_residual", positive=True)
-    rr, zz = r / u.length, z / u.length
+    # the command line's arithmetic (times 1 / L): the optimiser's stop depends on the last bit
+    scale = 1.0 / u.length
+    rr, zz = r * scale, z * scale
     res = ffi.new("whirl_fit_result *")
     with _lib.interruptible("fit"):
         status = lib.whirl_fit(m, r.size, _lib.dptr(rr), _lib.dptr(zz), mode, res)
