@@ -2,7 +2,8 @@
 
 The library comes from the source tree this directory sits in (python/ of the whirl
 repository): ``make -C .. build/libwhirl.so`` is run first (WHIRL_BUILD=DIR: another build
-directory), and its file is copied into the package, which loads it before any other copy
+directory; WHIRL_PREBUILT=FILE: that library, without make), and its file is copied into the
+package, which loads it before any other copy
 (whirl.LIBRARY_PATH). Without the repository, or when make fails, the build stops with one line
 saying what to run. The wheel is tagged for this platform (it carries a shared library); the
 library's own dependencies (GSL, NLopt, LAPACKE, inih, OpenMP) stay the system's (scripts/deps.sh
@@ -43,7 +44,15 @@ def _version():
 
 
 def _library():
-    """The path of the library just built (make's target is up to date when nothing changed)."""
+    """The path of the library just built (make's target is up to date when nothing changed),
+    or WHIRL_PREBUILT: a libwhirl.so built already (a packager's, or another build's such as the
+    sanitizer build, whose flags make would otherwise replace), copied as it is."""
+    prebuilt = os.environ.get("WHIRL_PREBUILT")
+    if prebuilt:
+        if not os.path.isfile(prebuilt):
+            _fail("WHIRL_PREBUILT=%s is not a file: build it with `make` in %s" % (prebuilt,
+                                                                                   REPO))
+        return os.path.realpath(prebuilt)
     build = os.path.abspath(os.environ.get("WHIRL_BUILD", os.path.join(REPO, "build")))
     if not os.path.exists(os.path.join(REPO, "Makefile")):
         _fail("no Makefile in %s: build the package from the whirl repository" % REPO)

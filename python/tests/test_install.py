@@ -26,7 +26,9 @@ def source(tmp_path, repo):
                     ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__", "tests",
                                                   "examples", "bench", "libwhirl.so"))
     build = os.environ.get("WHIRL_BUILD", os.path.join(repo, "build"))
-    env = dict(os.environ, WHIRL_SOURCE=repo, WHIRL_BUILD=build)
+    # the library under test as it is (make would rebuild the sanitizer build with plain flags)
+    env = dict(os.environ, WHIRL_SOURCE=repo,
+               WHIRL_PREBUILT=os.path.join(build, "libwhirl.so"))
     env.pop("WHIRL_LIBRARY", None)
     env.pop("PYTHONPATH", None)
     return dst, env
@@ -72,6 +74,21 @@ def test_wheel_holds_the_library(tmp_path, source):
     subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--no-index",
                     str(wheel)], check=True, env=env)
     _probe(python, env, tmp_path / "venv")
+
+
+def test_pip_runs_make(tmp_path, source, repo):
+    # without WHIRL_PREBUILT setup.py runs make for build/libwhirl.so (up to date here: the
+    # plain build; the sanitizer half's library is another build's)
+    src, env = source
+    del env["WHIRL_PREBUILT"]
+    if os.environ.get("WHIRL_SANITIZE"):
+        env["WHIRL_BUILD"] = os.path.join(repo, "build")
+    python = _venv(tmp_path, "venv")
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-build-isolation",
+                    "--no-deps", "--no-index", str(src)], check=True, env=env)
+    out = subprocess.run([str(python), "-c", "import whirl; print(whirl.LIBRARY_PATH)"],
+                         cwd="/", env=env, check=True, capture_output=True, text=True).stdout
+    assert out.strip().startswith(str(tmp_path / "venv"))
 
 
 def test_build_without_the_repository_fails_in_one_line(tmp_path, source):
