@@ -7,6 +7,7 @@ read back with whirl.read_csv, whose units must be the call's.
 WHIRL_PARITY_REPORT=FILE appends one line per function: the numbers compared and the largest
 relative difference."""
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -207,3 +208,23 @@ def test_simulation(whirl_program, tmp_path):
     c("energy", tr.energy, t["energy"])
     c("deviation", tr.deviation, t["deviation"])
     c.done()
+
+
+@pytest.mark.parametrize("args,call", [
+    (["shape", "--omega", "10", "--mode", "3", "--links", "20"],
+     lambda: whirl.shape(10, 3, links=20, **SI)),
+    (["stability", "--omega", "3", "--mode", "2", "--links", "10", "--linear"],
+     lambda: whirl.stability(3.0, 2, 10, linear=True, **SI)),
+])
+def test_messages_in_the_same_units(whirl_program, args, call):
+    # a refused mode: the rates in rad/s in both messages, to the digits the command line shows
+    done = subprocess.run([whirl_program, *args, *SI_ARGS], capture_output=True, text=True)
+    assert done.returncode != 0
+    cli = done.stderr.strip().split(": ", 1)[1]
+    with pytest.raises(whirl.InvalidInput) as e:
+        call()
+    py = str(e.value).split(": ", 1)[1] if str(e.value).startswith(args[0] + ":") else str(e.value)
+    assert "rad/s" in cli and "rad/s" in py
+    to_numbers = lambda text: [float(x) for x in re.findall(r"=(-?[0-9.]+(?:e[-+]?[0-9]+)?)", text)]
+    np.testing.assert_allclose(to_numbers(py), to_numbers(cli), rtol=1e-14)
+    assert re.sub(r"[0-9.]+", "#", py) == re.sub(r"[0-9.]+", "#", cli)

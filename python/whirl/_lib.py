@@ -15,6 +15,7 @@ import ctypes.util
 import math
 import numbers
 import os
+import re
 import signal
 import threading
 from typing import Any, ContextManager, Iterator, List, Optional, Sequence, Tuple
@@ -106,15 +107,39 @@ def interrupted(what: str) -> KeyboardInterrupt:
     return KeyboardInterrupt("whirl: %s interrupted" % what)
 
 
-def check(status: int, context: Optional[str] = None) -> None:
+# "omega 3.2", "omega_3=4.3", "tip radius = 0.1" in a library message (the command line's
+# cli_library_error): the quantities it shows in the user's units
+_QUANTITY = re.compile(r"(?<![A-Za-z0-9_])(omega(?:_[A-Za-z0-9]+)?|tip radius)( = |=| )"
+                       r"(-?[0-9][0-9.]*(?:[eE][-+]?[0-9]+)?)")
+
+
+def in_units(message: str, units: Any) -> str:
+    """The library's message with its rates and tip radii in the user's units (SI: "omega
+    4.86 rad/s"; dimensionless: as it is)."""
+    if units is None or not units.physical:
+        return message
+
+    def convert(m: "re.Match[str]") -> str:
+        number = m.group(3)
+        digits = len(number.split("e")[0].split("E")[0].replace("-", "").replace(".", "")
+                     .lstrip("0"))
+        rate = m.group(1).startswith("omega")
+        value = float(number) * (units.rate if rate else units.length)
+        return "%s%s%.*g %s" % (m.group(1), m.group(2), min(max(digits, 6), 15), value,
+                                "rad/s" if rate else "m")
+
+    return _QUANTITY.sub(convert, message)
+
+
+def check(status: int, context: Optional[str] = None, units: Any = None) -> None:
     """Raises KeyboardInterrupt for WHIRL_EINTERRUPTED, InvalidInput for bad values and
-    whirl.Error for any other failure."""
+    whirl.Error for any other failure, the library's message in the user's units."""
     if status == GSL_SUCCESS:
         return
     if status == lib.WHIRL_EINTERRUPTED:
         lib.whirl_stop_clear()
         raise interrupted(context or last_error())
-    msg = last_error()
+    msg = in_units(last_error(), units)
     if context and not msg.startswith(context + ":"):  # the library may name it already
         msg = "%s: %s" % (context, msg)
     raise error(status, msg)

@@ -88,7 +88,7 @@ def driven(omega: float, mode: Optional[int], drive_radius: float, air_drag: flo
         else:
             guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,)) / u.length
             status = lib.whirl_driven_solve(c, p, _lib.dptr(guess), info)
-    check(status, "driven")
+    check(status, "driven", u)
     if chain is None:
         n = _lib.bounded(as_int(points, "points", minimum=2), "points", 40, hard=POINTS_MAX)
     else:
@@ -219,7 +219,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     res = ffi.new("whirl_regime_result *")
     with _lib.interruptible("spin_up"):
         status = lib.whirl_regime_run(w, p, res)
-    check(status, "spin_up")
+    check(status, "spin_up", u)
     state = ffi.string(lib.whirl_regime_state_name(res.state)).decode()
     if res.state == lib.WHIRL_REGIME_FAILED:
         raise _lib.Error(5, "the spin-up failed: " + _lib.last_error())

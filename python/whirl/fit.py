@@ -69,7 +69,7 @@ def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: fl
     res = ffi.new("whirl_fit_result *")
     with _lib.interruptible("fit"):
         status = lib.whirl_fit(m, r.size, _lib.dptr(rr), _lib.dptr(zz), mode, res)
-    check(status, "fit")
+    check(status, "fit", u)
     if not res.rms_residual <= limit:
         which = "mode %d" % mode if mode else "no mode"
         raise _lib.error(1, "fit: %s explains the shape: the best fit (mode %d, omega=%.6g%s) "

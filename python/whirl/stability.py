@@ -111,7 +111,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
             info = ffi.new("whirl_shape_info *")
             status = lib.whirl_stability_mode(ws, m, mode, 0.0, info, growth)
             nodes = int(info.n_nodes) + 1
-    check(status, "stability")
+    check(status, "stability", u)
     g = float(growth[0])
     res = StabilityResult(omega=w * u.rate, mode=mode, tip_r=info.tip_r * u.length,
                           node_count=nodes, eig_growth=g * u.rate,
@@ -134,7 +134,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     out = ffi.new("whirl_stability_run_result *")
     with _lib.interruptible("stability"):
         status = lib.whirl_stability_run_shape(m, x[0], y[0], z[0], p, out)
-    check(status, "stability")
+    check(status, "stability", u)
     res.sim_growth = out.sim_growth * u.rate
     res.max_deviation = out.max_deviation
     res.duration = out.duration * u.time
@@ -171,7 +171,7 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
         status = lib.whirl_nlink_branch_nodes(chain._c, mode, n, _lib.dptr(w), info,
                                               ffi.cast("int *", ffi.from_buffer(exists)),
                                               _lib.dptr(r), _lib.dptr(z), _lib.dptr(tension))
-    check(status, "stability_map of mode %d" % mode)
+    check(status, "stability_map of mode %d" % mode, u)
     ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     growth = ffi.new("double *")
     rows = np.flatnonzero(exists)
@@ -252,7 +252,7 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
         ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
         with _lib.interruptible("stability_windows"):
             status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
-    check(status, "stability_windows of mode %d" % mode)
+    check(status, "stability_windows of mode %d" % mode, u)
     out = np.empty(count[0], dtype=WINDOW_DTYPE)
     for i in range(count[0]):
         f = found[i]

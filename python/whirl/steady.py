@@ -239,14 +239,14 @@ def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: fl
                                                              modes))
         with _lib.interruptible("critical"):
             status = lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out))
-        check(status, "critical")
+        check(status, "critical", u)
     else:
         if modes > chain.n:
             raise ValueError("a chain of %d links has modes 1..%d, asked for %d"
                              % (chain.n, chain.n, modes))
         with _lib.interruptible("critical"):
             status = lib.whirl_nlink_critical(chain._c, modes, _lib.dptr(out))
-        check(status, "critical")
+        check(status, "critical", u)
     out *= u.rate
     _lib.finite("critical rates", out)
     return out
@@ -354,7 +354,7 @@ def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_ma
     s, r, z, t = (np.empty(n) for _ in range(4))
     status, info = _solve(chain, w, mode, m, guess, None if chain is None else (r, z, t))
     if status != _lib.GSL_SUCCESS:
-        msg = _lib.last_error()
+        msg = _lib.in_units(_lib.last_error(), u)
         if status == 1:  # GSL_EDOM: name where the mode is born, as the command line does
             try:
                 wk = critical(mode, links=chain, tip_mass=0 if chain else tip_mass, units=u)[-1]
@@ -369,7 +369,7 @@ def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_ma
         with _lib.interruptible_if(n > SHORT_POINTS, "shape"):
             status = lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
                                                 _lib.dptr(z), _lib.dptr(t))
-        check(status, "shape")
+        check(status, "shape", u)
         # the continuum's first WHIRL_SHAPE_NODES from the pivot (n_nodes counts them all)
         crossings = np.array([info.node_s[j]
                               for j in range(min(info.n_nodes, lib.WHIRL_SHAPE_NODES))])
@@ -443,7 +443,7 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
                 status = lib.whirl_continuum_branch(k, m, n, _lib.dptr(w), info, ex)
             else:
                 status = lib.whirl_nlink_branch(chain._c, k, n, _lib.dptr(w), info, ex)
-        check(status, "sweep of mode %d" % k)
+        check(status, "sweep of mode %d" % k, u)
         rows = np.flatnonzero(exists)
         a = np.empty(rows.size, dtype=BRANCH_DTYPE)
         for i, j in enumerate(rows):
@@ -494,7 +494,7 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
     out = ffi.new("whirl_equilibria **")
     with _lib.interruptible("equilibria"):
         status = lib.whirl_equilibria_find(ffi.NULL if chain is None else chain._c, m, w, p, out)
-    check(status, "equilibria")
+    check(status, "equilibria", u)
     e = ffi.gc(out[0], lib.whirl_equilibria_free)
     rows = np.empty(e.count, dtype=EQUILIBRIA_DTYPE)
     for i in range(e.count):
