@@ -14,6 +14,7 @@ typedef void gsl_error_handler_t(const char *reason, const char *file, int line,
 gsl_error_handler_t *gsl_set_error_handler_off(void);
 
 const char *whirl_last_error(void);
+const char *whirl_version(void);
 void whirl_stop_request(void);
 int whirl_stop_requested(void);
 void whirl_stop_clear(void);
