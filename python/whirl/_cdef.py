@@ -14,6 +14,7 @@ typedef void gsl_error_handler_t(const char *reason, const char *file, int line,
 gsl_error_handler_t *gsl_set_error_handler_off(void);
 
 const char *whirl_last_error(void);
+const char *whirl_version(void);
 int whirl_last_status(void);
 char *whirl_last_error_in_units(char *buf, size_t size, int physical, double length,
                                 double mass, double gravity, int rate_hz);
