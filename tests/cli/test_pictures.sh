@@ -71,4 +71,35 @@ expect_error "plot: a file not of whirl's" 'not a file of whirl' plot "$tmp/othe
 expect_error "plot: no -o" '-o is required|--output is required' plot "$tmp/s2.csv"
 expect_error "plot: a missing file" 'cannot read' plot "$tmp/none.csv" -o "$tmp/pics/x.png"
 [ -z "$(ls -A "$tmp/pics")" ] && pass "plot: failures leave no file" || fail "plot: files left: $(ls -A "$tmp/pics")"
+
+# simulate --animate: the teacher's run as MP4 and as GIF (under 1 MB for 5 s), cropped to what
+# is drawn (ffprobe's size below the frame gnuplot draws, 640 x 736); a trace by whirl plot
+scene=$(dirname "$0")/../../data/scenes/classroom.ini
+expect_ok "simulate --animate MP4" simulate "$scene" --set start.omega=4Hz --set run.t_end=2 \
+  --animate "$tmp/run.mp4"
+[ ! -s "$tmp/stdout" ] && pass "--animate without -o: no CSV on stdout" || fail "--animate: CSV on stdout"
+probe() { ffprobe -v error -select_streams v:0 -count_frames -show_entries \
+  stream=codec_name,width,height,nb_read_frames -of csv=p=0 "$1"; }
+info=$(probe "$tmp/run.mp4")
+echo "# run.mp4: $info"
+echo "$info" | awk -F, '{ exit !($1 == "h264" && $2 < 640 && $3 < 736 && $4 == 51) }' &&
+  pass "MP4: H.264, cropped, 51 frames for 2 s (t = 0 to 2 s every 1/25 s)" || fail "MP4: $info"
+expect_ok "simulate --animate GIF, 5 s" simulate "$scene" --set start.omega=4Hz --animate "$tmp/run.gif"
+size=$(wc -c <"$tmp/run.gif")
+info=$(probe "$tmp/run.gif")
+echo "# run.gif: $size bytes, $info"
+[ "$size" -lt 1000000 ] && echo "$info" | awk -F, '{ exit !($1 == "gif" && $4 == 126) }' &&
+  pass "GIF: under 1 MB for 5 s (126 frames)" || fail "GIF: $size bytes, $info"
+expect_error "--animate: an unknown extension" 'an animation is written as .mp4, .webm or .gif' \
+  simulate "$scene" --animate "$tmp/pics/run.avi"
+"$WHIRL" simulate "$scene" --set run.dt=0.5 --set run.t_end=1 --animate "$tmp/pics/run.mp4" \
+  -o "$tmp/pics/out.csv" 2>"$tmp/stderr" && fail "--animate: a failed run exits 0" ||
+  { grep -q 'dt = 0.5 s is larger than a quarter of the rotation period (0.25 s)' "$tmp/stderr" &&
+    grep -q 'no file written' "$tmp/stderr" && pass "--animate: a failed run, dt named, no file" ||
+    fail "--animate: a failed run: $(cat "$tmp/stderr")"; }
+[ -z "$(ls -A "$tmp/pics")" ] && pass "animate: failures leave no file" || fail "animate: left $(ls -A "$tmp/pics")"
+"$WHIRL" simulate "$scene" --set run.t_end=0.4 --set output.trace="$tmp/t.dat" -o "$tmp/t.csv"
+expect_ok "plot: a trace to WebM" plot "$tmp/t.dat" -o "$tmp/t.webm"
+probe "$tmp/t.webm" | grep -q '^vp9,' && pass "WebM: VP9" || fail "WebM: $(probe "$tmp/t.webm")"
+expect_error "plot: a trace to PNG" 'an animation is written as' plot "$tmp/t.dat" -o "$tmp/pics/t.png"
 finish
