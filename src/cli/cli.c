@@ -226,6 +226,14 @@ const char *cli_units_name(const cli_units *u, cli_unit kind)
     return u->physical ? si_names[kind] : unit_names[kind];
 }
 
+const char *cli_rate_words(const cli_units *u, double omega, char *buf, size_t size)
+{
+    const double w = omega * cli_units_rate(u);
+    if (u->physical) snprintf(buf, size, "%.4g rad/s (%.4g Hz)", w, w / 6.283185307179586);
+    else snprintf(buf, size, "%.4g sqrt(g/L)", w);
+    return buf;
+}
+
 void cli_units_comment(FILE *fp, const cli_units *u)
 {
     whirl_write_units_line(fp, u->physical, u->length, u->mass, u->gravity);

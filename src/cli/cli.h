@@ -169,6 +169,9 @@ double cli_units_force(const cli_units *u);   /* M g */
 double cli_units_scale(const cli_units *u, cli_unit kind);
 /* The name of the user's unit of the kind: "m", "rad/s", ... or "L", "sqrt(g/L)", ... */
 const char *cli_units_name(const cli_units *u, cli_unit kind);
+/* A rate (dimensionless in) in words, short (4 significant digits): "25.13 rad/s (4 Hz)" in SI
+ * units, "4.5 sqrt(g/L)" dimensionless; into buf (size bytes), returned. */
+const char *cli_rate_words(const cli_units *u, double omega, char *buf, size_t size);
 /* Writes the "# units: ..." comment line; in SI units without --mass, a second one:
  *   # mass: M=1 kg assumed (no --mass given); masses, forces and tensions scale with M */
 void cli_units_comment(FILE *fp, const cli_units *u);
