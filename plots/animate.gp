@@ -27,8 +27,11 @@ eps = eps_s eq "" ? 0 : real(eps_s)
 ul = u_len(trace); ut = u_time(trace); ur = u_rate(trace)
 w = real(omega)
 caption = sprintf("%s links, omega = %.4g %s", links, w, ur) . (physical(trace) ? sprintf(" (%.3g Hz)", w / (2 * pi)) : "")
-if (eps != 0) { caption = caption . sprintf(", eps = %.3g %s", eps, ul) }
-if (real(drag) != 0 || real(drag2) != 0) { caption = caption . sprintf(", drag %.3g, %.3g", real(drag), real(drag2)) }
+nl = "\n"
+# eps and the drag, when not zero, on a second line
+extra = eps != 0 ? sprintf("eps = %.3g %s", eps, ul) : ""
+if (real(drag) != 0 || real(drag2) != 0) { extra = extra . (strlen(extra) > 0 ? ", " : "") . sprintf("drag C = %.3g, C2 = %.3g", real(drag), real(drag2)) }
+if (strlen(extra) > 0) { caption = caption . nl . extra }
 
 # extent of the whole run, so that the axes stay fixed
 stats trace using 1 nooutput
@@ -44,9 +47,8 @@ ztop = max(zmax, 0) + 0.06 * (max(zmax, 0) - zmin)
 zbot = zmin - 0.06 * (max(zmax, 0) - zmin)
 planar = (ymin == 0 && ymax == 0)
 
-# a round tick step near x (1, 2 or 5 times a power of ten), ticks within +-R only
-nice(x) = (m = x / 10**floor(log10(x)), (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * 10**floor(log10(x)))
-tstep = nice(R / 2)
+# a round tick step (style.gp), ticks within +-R only
+tstep = nice(R / 1.2)
 tend = floor(0.98 * R / tstep) * tstep
 
 unset key
@@ -63,7 +65,7 @@ if (planar) {
     set arrow 1 from 0, zbot to 0, ztop nohead ls 11
     if (eps > 0) { set arrow 2 from -eps, 0 to eps, 0 nohead ls 12 }
 } else {
-    set view @view, 1.1
+    set view @view, 1.0
     set view equal xyz
     set xrange [-R:R]
     set yrange [-R:R]
@@ -77,17 +79,19 @@ if (planar) {
     set print $circle
     do for [k = 0:64] { print sprintf("%.6g %.6g 0", eps * cos(2 * pi * k / 64), eps * sin(2 * pi * k / 64)) }
     set print
-    ztext = ztop + 0.1 * (ztop - zbot)
+    ztext = ztop + 0.14 * (ztop - zbot)
 }
 # one frame: block i, with its time
 if (planar) {
-    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set title sprintf('%s, t = %.2f %s', caption, STATS_min, ut) font ',12'; plot trace index i using 1:3 with linespoints lt 1 pt 7 ps 0.6"
+    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set title sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) font ',12'; plot trace index i using 1:3 with linespoints lt 1 pt 7 ps 0.6"
 } else {
-    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set label 2 sprintf('%s, t = %.2f %s', caption, STATS_min, ut) at 0, 0, ztext center font ',12'; splot trace index i using 1:2:3 with linespoints lt 1 pt 7 ps 0.5, $circle using 1:2:3 with lines ls 12"
+    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set label 2 sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) at 0, 0, ztext center font ',12'; splot trace index i using 1:2:3 with linespoints lt 1 pt 7 ps 0.5, $circle using 1:2:3 with lines ls 12"
 }
 
 # the frames at the movie's width (then cropped)
-height = planar ? width : int(1.15 * width)
+# a tall chain (its height over its diameter, aspect) a taller canvas: the 3D box fits, the crop takes the rest
+aspect = (ztop - zbot) / (2 * R)
+height = planar ? width : int(width * max(1.15, 0.8 * aspect))
 frames = system("mktemp -d")
 set terminal pngcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white" size width, height
 k = 0

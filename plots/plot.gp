@@ -83,7 +83,7 @@ if (kind eq "shape") {
     set output
 }
 if (kind eq "branches") {
-    set terminal @term size 1200, 500
+    set terminal @term size (1200) * px, (500) * px
     set output out
     set multiplot layout 1, 2 title system(sprintf("basename '%s'", file))
     set xlabel "omega [".u_rate(file)."]"

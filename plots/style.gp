@@ -37,3 +37,6 @@ meta(f, key) = system(sprintf("grep -m 1 -o '[ #]%s=[^ ,;]*' '%s' | head -1 | cu
 # -> "4 Hz"), else omega=W with its unit; short (4 significant digits)
 rate_text(f) = system(sprintf("sed -n 's/^# rate: \\([^(]*[^ (]\\).*/\\1/p' '%s' | head -1", f))
 rate_label(f) = strlen(rate_text(f)) > 0 ? rate_text(f) : sprintf("omega = %.4g %s", real(meta(f, "omega")), u_rate(f))
+# a round tick step near x > 0: 1, 2 or 5 times a power of ten (set ytics nice(span / 4): four or
+# five labelled ticks, whatever the panel's height)
+nice(x) = (nice_m = x / 10**floor(log10(x)), (nice_m < 1.5 ? 1 : nice_m < 3.5 ? 2 : nice_m < 7.5 ? 5 : 10) * 10**floor(log10(x)))

@@ -74,4 +74,5 @@ def main():
     print('none' if count == 0 else '%d %d %d %d %d' % (box[0], box[1], box[2], box[3], count))
 
 
-main()
+if __name__ == '__main__':
+    main()
