@@ -20,7 +20,8 @@
  * ODE: GSL's rk8pd (Prince & Dormand 1981), scaled error control.
  *
  * N-link chain (mass i at the lower end of link i, mass n the tip), the exact discrete recursion
- * from the tip up (physics notes section 4, here in 3D, drag weight l_i as in dynamics.h):
+ * from the tip up (the manual's theory, "N-link statics", here in 3D, drag weight l_i as in
+ * dynamics.h):
  *     r_n = (X, Y, 0),  F_i = F_{i+1} + b_i(r_i)  (F_{n+1} = 0),  r_{i-1} = r_i + l_i F_i/|F_i|,
  * b_i = -f(r_i)|_{wm = m_i, wl = l_i}; T_i = |F_i| is the tension of link i, and every mass is in
  * force balance by construction: T_i t_i - T_{i+1} t_{i+1} + f_i = 0.
