@@ -61,19 +61,25 @@ if (kind eq "shape") {
     # the key to the right of the box: as wide as its longest title (7 px a character at 11 pt)
     keylen = 0
     do for [f in files] { t = strlen(sprintf("mode %s, %s", meta(f, "mode"), rate_label(f))); keylen = t > keylen ? t : keylen }
-    lm = 80; rm = 90 + 7.5 * keylen; tm = 50; bm = 60
+    # (below the box when the box is narrow: a tall figure)
+    nfiles = words(files)
+    below = pw < 420
+    lm = 80; rm = below ? 40 : 100 + 8 * keylen; tm = 50; bm = below ? 88 + 18 * nfiles : 60
     set terminal @term size (pw + lm + rm) * px, (ph + tm + bm) * px
     set output out
     set lmargin at screen lm / (pw + lm + rm); set rmargin at screen (lm + pw) / (pw + lm + rm)
     set bmargin at screen bm / (ph + tm + bm); set tmargin at screen (bm + ph) / (ph + tm + bm)
     set xrange [x0:x1]; set yrange [y0:y1]
+    # a labelled tick every 90 px across and 60 px down at most, on round values
+    set xtics nice((x1 - x0) * 90 / pw); set ytics nice((y1 - y0) * 60 / ph)
     set size ratio -1
     L = meta(file, "L"); M = meta(file, "M")
     set title (physical(file) ? sprintf("Steady shapes of a chain, L = %s m, M = %s kg", L, M) : \
                "Steady shapes of a chain (L = M = g = 1)") noenhanced
     set xlabel "r, distance from the rotation axis [".ul."]"
     set ylabel "z, height (pivot at 0) [".ul."]"
-    set key at screen (lm + pw + 12) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced
+    if (below) { set key at screen 10.0 / (pw + lm + rm), (bm - 62) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } \
+    else { set key at screen (lm + pw + 12) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced }
     set arrow 1 from 0, y0 to 0, y1 nohead dt 2 lc rgb "#666666"
     set label 1 "rotation axis" at 0, y0 rotate by 90 offset -1, 0.6 left textcolor rgb "#666666"
     set label 2 "pivot" at 0, 0 offset 0.8, -0.8 left

@@ -33,9 +33,10 @@ u_force(f) = physical(f) ? "N" : "M g"
 skip_of(f) = int(system(sprintf("grep -n -m 1 -v '^#' '%s' | cut -d: -f1", f)))
 # the value of key=... on the first comment line that has it ("" if none)
 meta(f, key) = system(sprintf("grep -m 1 -o '[ #]%s=[^ ,;]*' '%s' | head -1 | cut -d= -f2", key, f))
-# the rate of a file as its writer gave it, from its "# rate: " line ("4 Hz (omega=25.13 rad/s)"
-# -> "4 Hz"), else omega=W with its unit; short (4 significant digits)
-rate_text(f) = system(sprintf("sed -n 's/^# rate: \\([^(]*[^ (]\\).*/\\1/p' '%s' | head -1", f))
+# the rate of a file as its writer gave it, from its "# rate: " line up to " (" ("4 Hz
+# (omega=25.13 rad/s)" -> "4 Hz", "omega=3 sqrt(g/L)" whole), else omega=W with its unit; short
+# (4 significant digits)
+rate_text(f) = system(sprintf("sed -n '/^# rate: /{s/^# rate: //;s/ (.*//;p;q}' '%s'", f))
 rate_label(f) = strlen(rate_text(f)) > 0 ? rate_text(f) : sprintf("omega = %.4g %s", real(meta(f, "omega")), u_rate(f))
 # a round tick step near x > 0: 1, 2 or 5 times a power of ten (set ytics nice(span / 4): four or
 # five labelled ticks, whatever the panel's height)

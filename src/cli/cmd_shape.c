@@ -17,13 +17,13 @@
  *   rate: 4 Hz (omega=25.13 rad/s)       (given in Hz)
  *   rate: 240 rpm (omega=25.13 rad/s, 4 Hz)
  *   rate: 25.13 rad/s (4 Hz)             (SI, given in rad/s)
- *   rate: omega=4.5 sqrt(g/L)            (dimensionless)
+ *   rate: omega = 4.5 sqrt(g/L)          (dimensionless)
  * with 4 significant digits. */
 static void rate_line(char *buf, size_t size, const cli_units *u, double omega,
                       const char *suffix)
 {
     const double w = omega * cli_units_rate(u), hz = w / 6.283185307179586; /* 2 pi */
-    if (!u->physical) snprintf(buf, size, "rate: omega=%.4g sqrt(g/L)", omega);
+    if (!u->physical) snprintf(buf, size, "rate: omega = %.4g sqrt(g/L)", omega);
     else if (strcmp(suffix, "Hz") == 0)
         snprintf(buf, size, "rate: %.4g Hz (omega=%.4g rad/s)", hz, w);
     else if (strcmp(suffix, "rpm") == 0)

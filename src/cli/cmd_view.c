@@ -108,7 +108,9 @@ static int read_source(const cli_command *cmd, source *s)
             if (s->links == 0 && nl >= 1 && nl < 1e9) s->links = (int)nl;
             if (strncmp(line, "# rate: ", 8) == 0 && s->rate[0] == '\0') {
                 snprintf(s->rate, sizeof s->rate, "%.*s", (int)sizeof s->rate - 1, line + 8);
-                s->rate[strcspn(s->rate, "(\r\n")] = '\0';
+                s->rate[strcspn(s->rate, "\r\n")] = '\0';
+                char *paren = strstr(s->rate, " ("); /* "4 Hz (omega=...)": the rate as given */
+                if (paren) *paren = '\0';
                 for (size_t n = strlen(s->rate); n > 0 && s->rate[n - 1] == ' '; n--)
                     s->rate[n - 1] = '\0';
             }

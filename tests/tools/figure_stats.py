@@ -2,11 +2,13 @@
 """Size and blank fraction of pictures (PNG, GIF, MP4, WebM), for the gallery's before/after table.
 
 usage: figure_stats.py FILE...
-Prints one line per file: "FILE bytes WxH blank=F frames=N" where blank is the fraction of the
-canvas outside the smallest box holding every pixel that is not the background (the colour of
-the top-left pixel, to within 24 in each channel): the white margins. For a movie the frame is
-the one at its middle, and the box is the union over ten frames spread over the movie (ffmpeg
-writes them as PNG). Reads PNG with png_extent.read_png (standard library only)."""
+Prints one line per file: "FILE bytes WxH blank=F empty=E frames=N": blank is the fraction of
+the canvas outside the smallest box holding every pixel that is not the background (the colour
+of the top-left pixel, to within 24 in each channel): the white margins; empty is the fraction of
+the canvas farther than 20 px from any such pixel (in cells of 10 x 10 px): white space inside
+the box too, such as a small drawing in a large frame. For a movie both are taken over ten
+frames spread over it (ffmpeg writes them as PNG): the union of their boxes and of their inked
+cells. Reads PNG with png_extent.read_png (standard library only)."""
 import os
 import subprocess
 import sys
@@ -16,7 +18,11 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from png_extent import read_png  # noqa: E402
 
 
-def ink_box(path):
+CELL = 10
+
+
+def ink_box(path, cells):
+    """The box of the pixels that are not the background; their 10-px cells added to cells."""
     width, height, bpp, rows = read_png(path)
     bg = rows[0][0:3]
     x0, y0, x1, y1 = width, height, -1, -1
@@ -29,7 +35,20 @@ def ink_box(path):
                 if x > x1: x1 = x
                 if y < y0: y0 = y
                 if y > y1: y1 = y
+                cells.add((x // CELL, y // CELL))
     return width, height, (x0, y0, x1, y1)
+
+
+def empty_fraction(width, height, cells):
+    """Cells farther than two cells from an inked one, over all cells."""
+    nx, ny = (width + CELL - 1) // CELL, (height + CELL - 1) // CELL
+    near = set()
+    for (cx, cy) in cells:
+        for dx in range(-2, 3):
+            for dy in range(-2, 3):
+                near.add((cx + dx, cy + dy))
+    covered = sum(1 for cx in range(nx) for cy in range(ny) if (cx, cy) in near)
+    return 1 - covered / float(nx * ny)
 
 
 def frames_of(path, tmp):
@@ -50,8 +69,9 @@ def frames_of(path, tmp):
 def main():
     for path in sys.argv[1:]:
         size = os.path.getsize(path)
+        cells = set()
         if path.endswith('.png'):
-            w, h, (x0, y0, x1, y1) = ink_box(path)
+            w, h, (x0, y0, x1, y1) = ink_box(path, cells)
             n = 1
         else:
             with tempfile.TemporaryDirectory() as tmp:
@@ -59,10 +79,11 @@ def main():
                 x0 = y0 = 10 ** 9
                 x1 = y1 = -1
                 for f in pngs:
-                    w, h, b = ink_box(f)
+                    w, h, b = ink_box(f, cells)
                     x0, y0, x1, y1 = min(x0, b[0]), min(y0, b[1]), max(x1, b[2]), max(y1, b[3])
         blank = 1 - max(0, x1 - x0 + 1) * max(0, y1 - y0 + 1) / float(w * h)
-        print('%s %d %dx%d blank=%.2f frames=%d' % (path, size, w, h, blank, n))
+        print('%s %d %dx%d blank=%.2f empty=%.2f frames=%d'
+              % (path, size, w, h, blank, empty_fraction(w, h, cells), n))
 
 
 main()
