@@ -61,10 +61,29 @@ if (kind eq "shape") {
     # the key to the right of the box: as wide as its longest title (7 px a character at 11 pt)
     keylen = 0
     do for [f in files] { t = strlen(sprintf("mode %s, %s", meta(f, "mode"), rate_label(f))); keylen = t > keylen ? t : keylen }
-    # (below the box when the box is narrow: a tall figure)
+    # the key inside the box where no curve runs (a corner or the middle of a side, checked on
+    # every point of every file, 8 px a character and 18 px a line, 10 px from the frame),
+    # else to the right of the box, or below it when the box is narrow (a tall figure)
     nfiles = words(files)
-    below = pw < 420
-    lm = 80; rm = below ? 40 : 100 + 8 * keylen; tm = 50; bm = below ? 88 + 18 * nfiles : 60
+    kw = (60 + 8 * keylen) / scale; kh = (10 + 18 * nfiles) / scale; gap = 10 / scale
+    inside = 0
+    do for [c = 1:5] {
+        if (!inside) {
+            # candidate c: right middle, bottom right, top right, bottom left, top left
+            kx = c <= 3 ? x1 - gap - kw : x0 + gap
+            ky = c == 1 ? 0.5 * (y0 + y1) - kh / 2 : (c == 2 || c == 4) ? y0 + gap : y1 - gap - kh
+            hits = 0
+            do for [f in files] {
+                stats [*:*][*:*] f skip skip_of(f) using (($2 > kx - gap && $2 < kx + kw + gap && $3 > ky - gap && $3 < ky + kh + gap) ? 1 : 0) nooutput
+                hits = hits + STATS_sum
+            }
+            # the pivot and the axis label are drawn too
+            if (kx - gap < 0 && kx + kw + gap > 0) { hits = hits + 1 }
+            if (hits == 0 && kw + 2 * gap < x1 - x0) { inside = c }
+        }
+    }
+    below = !inside && pw < 420
+    lm = 80; rm = inside || below ? 40 : 100 + 8 * keylen; tm = 50; bm = below ? 88 + 18 * nfiles : 60
     set terminal @term size (pw + lm + rm) * px, (ph + tm + bm) * px
     set output out
     set lmargin at screen lm / (pw + lm + rm); set rmargin at screen (lm + pw) / (pw + lm + rm)
@@ -78,8 +97,9 @@ if (kind eq "shape") {
                "Steady shapes of a chain (L = M = g = 1)") noenhanced
     set xlabel "r, distance from the rotation axis [".ul."]"
     set ylabel "z, height (pivot at 0) [".ul."]"
-    if (below) { set key at screen 10.0 / (pw + lm + rm), (bm - 62) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } \
-    else { set key at screen (lm + pw + 12) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced }
+    if (inside) { set key at first kx, first ky + kh left top Left reverse box opaque samplen 2 spacing 1.2 noenhanced } \
+    else { if (below) { set key at screen 10.0 / (pw + lm + rm), (bm - 62) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } \
+    else { set key at screen (lm + pw + 12) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } }
     set arrow 1 from 0, y0 to 0, y1 nohead dt 2 lc rgb "#666666"
     set label 1 "rotation axis" at 0, y0 rotate by 90 offset -1, 0.6 left textcolor rgb "#666666"
     set label 2 "pivot" at 0, 0 offset 0.8, -0.8 left

@@ -45,6 +45,15 @@ grep -q '^# mass:' "$tmp/a.csv" && fail "no mass line with --mass" || pass "no m
 grep -q '^# rate: 4 Hz (omega=25.13 rad/s)$' "$tmp/a.csv" && pass "shape: the rate in Hz" ||
   fail "shape: the rate in Hz"
 
+# where the modes are born, in Hz: omega_k = (j_0,k / 2) sqrt(g/L) for the continuum (the zeros of
+# the Bessel function J0), divided by 2 pi
+want=$(awk 'BEGIN { split("2.404825557695773 5.520078110286311 8.653727912911013", j, " ");
+  r = sqrt(9.80665 / 0.6); pi = 4 * atan2(1, 1); s = "# in Hz:"
+  for (k = 1; k <= 3; k++) s = s sprintf("%s mode %d from %.4g Hz", k > 1 ? "," : "", k, j[k] / 2 * r / (2 * pi))
+  print s }')
+"$WHIRL" critical --modes 3 --length 60cm --mass 50g -o "$tmp/c.csv"
+grep -qxF "$want" "$tmp/c.csv" && pass "critical: the births in Hz ($want)" || fail "critical: $(grep 'in Hz' "$tmp/c.csv") vs $want"
+
 # a sweep where a mode does not exist
 expect_error "sweep: no mode on the grid" \
   "no mode exists on the grid 1 rad/s \(0.1592 Hz\) to 3 rad/s \(0.4775 Hz\): mode 3 exists only above 17.49 rad/s \(2.784 Hz\)" \
