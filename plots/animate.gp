@@ -21,6 +21,7 @@ if (!exists("width")) { width = 640 }
 if (!exists("view")) { view = "70,30" }
 
 max(a, b) = a > b ? a : b
+min(a, b) = a < b ? a : b
 omega = meta(trace, "omega"); eps_s = meta(trace, "eps"); links = meta(trace, "links")
 drag = meta(trace, "drag"); drag2 = meta(trace, "drag_quadratic")
 eps = eps_s eq "" ? 0 : real(eps_s)
@@ -48,8 +49,10 @@ zbot = zmin - 0.06 * (max(zmax, 0) - zmin)
 planar = (ymin == 0 && ymax == 0)
 
 # a round tick step (style.gp), ticks within +-R only
+# (the outermost ticks within 0.8 R: labels at the box's corners collide)
 tstep = nice(R / 1.2)
-tend = floor(0.98 * R / tstep) * tstep
+if (floor(0.8 * R / tstep) < 1) { tstep = nice(R / 2.5) }
+tend = floor(0.8 * R / tstep) * tstep
 
 unset key
 set style line 11 lc rgb "#999999" dt 2 lw 1
@@ -89,9 +92,12 @@ if (planar) {
 }
 
 # the frames at the movie's width (then cropped)
-# a tall chain (its height over its diameter, aspect) a taller canvas: the 3D box fits, the crop takes the rest
+# a tall chain (its height over its diameter, aspect) a taller canvas, up to 1.6 times its width:
+# the 3D box fits, the crop takes the rest
 aspect = (ztop - zbot) / (2 * R)
-height = planar ? width : int(width * max(1.15, 0.8 * aspect))
+height = planar ? width : int(width * min(1.6, max(1.15, 0.8 * aspect)))
+# taller still: the whole 3D box drawn smaller (its height at scale 1 is about 0.8 aspect widths)
+if (!planar) { set view @view, min(1.0, 1.6 / (0.8 * aspect)) }
 frames = system("mktemp -d")
 set terminal pngcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white" size width, height
 k = 0
