@@ -363,8 +363,8 @@ static void print_help(const cli_command *cmd, const cli_option *opts, size_t no
     for (size_t i = 0; i < nopts; i++) has_units |= opts[i].unit == CLI_UNIT_SET_LENGTH;
     if (has_units)
         printf("Units: dimensionless (length L, mass M, time sqrt(L/g)) unless --length, --mass "
-               "or --gravity is given; then SI (m, kg, s, rad/s, N). Rates also as 4Hz or "
-               "240rpm.\n");
+               "or --gravity is given; then SI (m, kg, s, rad/s, N), and values may carry "
+               "their unit: 4Hz, 240rpm, 60cm, 50g (a unit without --length is an error).\n");
     printf("\noptions:\n");
     const cli_units dimensionless = {1, 1, 1, 0}, si = {1, 1, 1, 1};
     for (size_t i = 0; i < nopts; i++) {

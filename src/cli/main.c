@@ -53,7 +53,8 @@ static void usage(FILE *fp)
                 "       whirl --version           (the program's and the library's version)\n\n"
                 "whirl computes the steady shapes, dynamics and stability of a chain spun about\n"
                 "the vertical axis. Units: dimensionless (L = M = g = 1) unless --length,\n"
-                "--mass or --gravity is given, then SI; rates also as 4Hz or 240rpm.\n"
+                "--mass or --gravity is given, then SI, with units on values: 4Hz, 240rpm,\n"
+                "60cm, 50g. Pictures: shape --plot, simulate --animate, plot, view.\n"
                 "Rate grids: --omega-min A --omega-max B --omega-count N, N rates, both ends.\n\n"
                 "commands:\n");
     for (size_t i = 0; i < n_commands; i++)
