@@ -76,7 +76,7 @@ if (planar) {
     set xyplane at zbot
     set ytics -tend, tstep, tend
     set ylabel "y [".ul."]"
-    set zlabel "z [".ul."]" rotate parallel offset 2, 0
+    set zlabel "z [".ul."]" norotate offset 6, 7.5
     set arrow 1 from 0, 0, zbot to 0, 0, ztop nohead ls 11
     # the pivot's circle, as data
     set print $circle
