@@ -170,7 +170,7 @@ def _solve(chain, omega, mode, m, guess, nodes=None):
     if chain is None:
         status = lib.whirl_continuum_solve(omega, mode, m, guess, info)
     elif nodes is None:
-        status = lib.whirl_nlink_solve(chain._c, omega, mode, guess, info)
+        status = lib.whirl_nlink_solve(chain._c, omega, mode, info)
     else:
         status = lib.whirl_nlink_solve_nodes(chain._c, omega, mode, info,
                                              *(_lib.dptr(a) for a in nodes))
