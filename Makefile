@@ -43,12 +43,16 @@ test_source = $(filter %/$(1).c,$(TEST_SRC) $(BENCH_SRC))
 # fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
-FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o)
+FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o figure.o) \
+  $(BUILD)/gen/plots_gp.o
 REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 # The page of `whirl view`: src/cli/view.html as a NULL-terminated table of lines (C string
 # literals are kept short: ISO C only promises 4095 characters in one).
 VIEW_GEN := $(BUILD)/gen/view_html.c
 CLI_OBJ  += $(BUILD)/gen/view_html.o
+PLOTS_GP  := $(sort $(wildcard plots/*.gp))
+PLOTS_GEN := $(BUILD)/gen/plots_gp.c
+CLI_OBJ   += $(BUILD)/gen/plots_gp.o
 
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
@@ -80,6 +84,15 @@ $(VIEW_GEN): src/cli/view.html
 	  END { print "    0};" }' $< >$@.tmp && mv $@.tmp $@
 
 $(BUILD)/gen/view_html.o: $(VIEW_GEN)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
+
+# The gnuplot scripts of plots/ in the program (whirl plot, shape --plot, simulate --animate write
+# them to a temporary folder and run gnuplot on them): a table of {file, line}, NULL-terminated.
+$(PLOTS_GEN): $(PLOTS_GP) scripts/plots_c.awk
+	@mkdir -p $(dir $@)
+	awk -f scripts/plots_c.awk $(PLOTS_GP) >$@.tmp && mv $@.tmp $@
+
+$(BUILD)/gen/plots_gp.o: $(PLOTS_GEN)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
 
 $(BUILD)/libwhirl.a: $(LIB_OBJ)
