@@ -80,7 +80,7 @@ int whirl_error_restore_first(const whirl_error_record *r, size_t n)
 int whirl_error_keep(whirl_error_record *slot, int status)
 {
     if (status == GSL_SUCCESS) return status;
-#pragma omp critical(whirl_error_keep)
+#pragma omp critical /* unnamed: a named one would be an exported symbol of the library */
     if (slot->status == GSL_SUCCESS) {
         whirl_error_save(slot);
         slot->status = status;

@@ -69,7 +69,7 @@ int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
                 continue;
             }
             if (progress) {
-#pragma omp critical(whirl_stability_map_progress)
+#pragma omp critical /* unnamed: a named one would be an exported symbol */
                 progress(ctx, ++done);
             }
         }
