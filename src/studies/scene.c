@@ -17,6 +17,7 @@
 #include "whirl/scene.h"
 #include "whirl/common.h"
 #include "core/error.h"
+#include "core/input.h"
 
 static const char *const section_names[] = {"chain", "start", "run", "output", "units"};
 enum { N_SECTIONS = sizeof section_names / sizeof section_names[0] };
@@ -75,15 +76,19 @@ const char *whirl_column_name(whirl_column c)
     return (c >= 0 && c < WHIRL_NCOLUMNS) ? column_names[c] : NULL;
 }
 
+/* The bounds of a scene file: its longest line (a list of 10^5 link lengths in full precision
+ * is under 3 MiB) and its size; the reader checks both as it reads (core/input.h). */
+#define WHIRL_SCENE_LINE_MAX ((size_t)16 << 20)
+#define WHIRL_SCENE_BYTES_MAX ((size_t)64 << 20)
+
 /* Placeholder handed to inih for the value of a line too long for its buffer. */
 #define LONG_VALUE "\x01"
 
 /* State of the first pass. */
 typedef struct collect {
     const char *path;
-    FILE *fp;
-    char *line;          /* the current physical line (getline) */
-    size_t line_cap;
+    whirl_line_reader in; /* the bounded reader (core/input.h) */
+    char *line;          /* the current physical line (in.line) */
     int lineno;          /* number of the current line */
     int continuation;    /* the current line is indented: it continues the previous key */
     char *long_value;    /* the value of the current line if it was too long for inih */
@@ -158,13 +163,20 @@ static char *trim(char *s)
 static char *read_line(char *str, int num, void *stream)
 {
     collect *c = stream;
-    ssize_t len = getline(&c->line, &c->line_cap, c->fp);
-    if (len < 0) return NULL;
+    const int got = whirl_line_read(&c->in);
+    if (got < 0) { /* too long, too much, out of memory, unreadable, interrupted */
+        c->status = c->in.status;
+        c->error_line = (int)c->in.lineno;
+        return NULL;
+    }
+    if (got == 0) return NULL;
+    c->line = c->in.line;
+    const size_t len = c->in.len;
     c->lineno++;
     free(c->long_value);
     c->long_value = NULL;
 
-    if (strlen(c->line) != (size_t)len) {
+    if (strlen(c->line) != len) {
         collect_error(c, "NUL byte at column %zu (a binary file?)", strlen(c->line) + 1);
         return NULL;
     }
@@ -190,8 +202,8 @@ static char *read_line(char *str, int num, void *stream)
                               "line of its own)", trim(end + 1));
         }
     }
-    if (len < num - 1) {
-        memcpy(str, c->line, (size_t)len + 1);
+    if (len < (size_t)num - 1) {
+        memcpy(str, c->line, len + 1);
         return str;
     }
     if (comment) {
@@ -764,11 +776,12 @@ static int convert_output(const convert *v)
 static int collect_stream(collect *c, FILE *fp, const char *path)
 {
     c->path = path;
-    c->fp = fp;
+    c->in = whirl_line_reader_init(fp, path, WHIRL_SCENE_LINE_MAX, WHIRL_SCENE_BYTES_MAX);
     int rc = ini_parse_stream(read_line, c, on_key, c);
-    if (ferror(c->fp) && c->status == GSL_SUCCESS)
+    if (ferror(fp) && c->status == GSL_SUCCESS)
         c->status = whirl_fail(GSL_EFAILED, "%s: read error", path);
-    c->fp = NULL;
+    whirl_line_reader_free(&c->in);
+    c->line = NULL;
     /* inih's own (syntax) error, unless ours came first */
     if (rc > 0 && (c->status == GSL_SUCCESS || rc < c->error_line))
         c->status = whirl_fail(GSL_EINVAL, "%s:%d: syntax error: expected [section] or key = value",
@@ -799,7 +812,6 @@ int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *over
         if (status == GSL_SUCCESS) status = convert_output(&v);
     }
     for (int k = 0; k < WHIRL_SCENE_NKEYS; k++) free(c.raw[k]);
-    free(c.line);
     free(c.long_value);
     if (status != GSL_SUCCESS) whirl_scene_free(scene);
     return status;
@@ -809,10 +821,10 @@ int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_o
                       whirl_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
-    FILE *fp = fopen(path, "r");
-    if (fp == NULL)
-        return whirl_fail(GSL_EFAILED, "%s: cannot read: %s", path, strerror(errno));
-    int status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
+    FILE *fp;
+    int status = whirl_input_open(path, &fp);
+    if (status != GSL_SUCCESS) return status;
+    status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
     fclose(fp);
     return status;
 }
