@@ -85,7 +85,17 @@ def test_driven_fit_and_spin_up_errors():
     _library_error(lambda: whirl.fit(r, -r, mode=3, omega_max=2.0), "EDOM", "")
 
 
-def test_ctrl_c_interrupts_a_long_run_and_restores_python_handler():
+@pytest.fixture
+def python_sigint():
+    """Python's own SIGINT handler for the test, however the suite was started: a shell starts
+    background jobs (`make check &`, nohup, CI) with SIGINT ignored, and Python then keeps it
+    ignored, so no KeyboardInterrupt would come after the library restored it."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
+def test_ctrl_c_interrupts_a_long_run_and_restores_python_handler(python_sigint):
     handler = signal.getsignal(signal.SIGINT)
     sim = whirl.Simulation(400, omega=3.0, method="rk4")
     sim.set_steady(2)

@@ -17,6 +17,7 @@ const char *whirl_last_error(void);
 void whirl_stop_request(void);
 int whirl_stop_requested(void);
 void whirl_stop_clear(void);
+int whirl_stop_signal(void);
 int whirl_stop_catch_signals(void);
 void whirl_stop_restore_signals(void);
 

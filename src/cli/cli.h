@@ -211,11 +211,17 @@ void cli_trace_header(FILE *fp, const cli_units *u, const char *what, double ome
 void cli_put_num(FILE *fp, double x);
 
 /* ---- long runs ---- */
-/* SIGINT/SIGTERM raise the library's stop request (whirl_stop_request) once
- * cli_catch_interrupts() ran: a long loop stops and keeps its output. */
+/* SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGPIPE and SIGXFSZ raise the library's stop request
+ * (whirl_stop_catch_signals) once cli_catch_interrupts() ran: a long loop stops and keeps its
+ * output. */
 #define cli_interrupted whirl_stop_requested()
-#define CLI_EXIT_INTERRUPTED 130 /* exit status after SIGINT/SIGTERM (128 + SIGINT) */
+#define CLI_EXIT_INTERRUPTED 130 /* a command's status after a stop (128 + SIGINT) */
 void cli_catch_interrupts(void);
+/* The program's exit status for a command's status rc: after a stop raised by a signal, a
+ * failure (rc 1 or CLI_EXIT_INTERRUPTED) exits 128 + the signal's number (SIGINT 130, SIGTERM
+ * 143, SIGHUP 129, SIGQUIT 131, SIGPIPE 141, SIGXFSZ 153), as a shell reports a process killed by
+ * it; otherwise rc. */
+int cli_exit_status(int rc);
 /* Progress of a long loop over a known number of items, on a terminal only:
  *   whirl CMD: points 42/120 (35%), 1m02s elapsed, about 1m55s left
  * rewritten in place, at most every 0.2 s; the estimate comes from the items done in this run

@@ -73,13 +73,13 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < n_commands; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
-            /* SIGINT and SIGTERM raise the stop request: every long loop ends soon after, the
-             * command removes its temporary files and fails; a failure after a stop request
-             * exits CLI_EXIT_INTERRUPTED */
+            /* SIGINT, SIGTERM, SIGQUIT, SIGHUP (SIGPIPE and SIGXFSZ as write errors) raise the
+             * stop request: every long loop ends soon after, the command keeps the rows it
+             * has, removes its temporary files and fails; a failure after a stop request exits
+             * with 128 + the signal's number (cli_exit_status) */
             cli_catch_interrupts();
             int rc = commands[i].run(&commands[i], argc - 1, argv + 1);
-            if (rc == 1 && whirl_stop_requested()) rc = CLI_EXIT_INTERRUPTED;
-            return rc == 2 ? 0 : rc; /* 2: help was printed */
+            return rc == 2 ? 0 : cli_exit_status(rc); /* 2: help was printed */
         }
     fprintf(stderr, "whirl: unknown command '%s' (whirl --help lists them)\n", argv[1]);
     return 1;
