@@ -37,7 +37,9 @@
  *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
- *            of every mass's position, path relative to the working directory; default none),
+ *            of every mass's position; in the file a path relative to the scene's folder,
+ *            neither absolute nor with a ".." component; in an override a path relative to
+ *            the working directory; default none),
  *            trace_every (> 0, default every), reference_mode (K >= 1: the deviation is
  *            measured from the N-link steady shape of mode K at the [run] omega, 3D only;
  *            default: from the start's unperturbed steady or hanging shape)

@@ -47,7 +47,7 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     const cli_option opts[] = {
         {"--shape", NULL, CLI_STRING, &shape, NULL, "FILE",
          "CSV of measured points with columns r and z, lengths in the units of --length (- reads stdin)",
-         NULL, NULL, NULL, ""},
+         NULL, NULL, NULL, "", .input = 1},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)",
          "[1, 64]"},
         STEADY_CLI_MODEL_OPTIONS(m),

@@ -339,15 +339,15 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
                 CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
         regime_cli_write_result(out.fp, o, &r);
     }
-    if (trace_open) { /* an interrupted run keeps its trace so far */
-        if (rc == 0 || rc == CLI_EXIT_INTERRUPTED) {
-            if (cli_out_commit(cmd, &trace) != 0 && rc == 0) rc = 1;
-        } else {
-            cli_out_abort(&trace);
-        }
+    cli_out *const outs[2] = {&out, &trace};
+    if (rc == 0) rc = cli_out_commit_all(cmd, outs, trace_open ? 2 : 1); /* both or neither */
+    else if (rc == CLI_EXIT_INTERRUPTED && trace_open) { /* it keeps its trace so far */
+        cli_out_abort(&out);
+        if (cli_out_commit(cmd, &trace) != 0) rc = 1;
+    } else {
+        cli_out_abort(&out);
+        if (trace_open) cli_out_abort(&trace);
     }
-    if (rc == 0) rc = cli_out_commit(cmd, &out);
-    else cli_out_abort(&out);
     whirl_regime_free(w);
     return rc;
 }

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "whirl/scene.h"
@@ -93,13 +94,37 @@ static int simulate(run *r)
     return 0;
 }
 
+/* The files of the run before it starts (cli_check_files): the CSV and the trace, not one file,
+ * neither the scene; a trace named by the scene file (not by --set) replaces no file unless
+ * --overwrite is given. */
+static int check_trace(run *r, const char *scene_path, const char *output, int overwrite)
+{
+    const cli_path outs[2] = {{"--output", output}, {"[output] trace", r->scene.trace}};
+    const cli_path in = {"scene", scene_path};
+    if (cli_check_files(r->cmd, outs, r->scene.trace ? 2 : 1, &in, 1)) return 1;
+    struct stat st;
+    if (r->scene.trace && r->scene.line[WHIRL_KEY_OUTPUT_TRACE] > 0 && !overwrite &&
+        lstat(r->scene.trace, &st) == 0)
+    {
+        char where[512];
+        return cli_error(r->cmd, "%s: '%s' exists: a scene file replaces no file (give "
+                         "--overwrite, or --set output.trace=PATH)",
+                         whirl_scene_where(&r->scene, WHIRL_KEY_OUTPUT_TRACE, where, sizeof where),
+                         r->scene.trace);
+    }
+    return 0;
+}
+
 int cmd_simulate(const cli_command *cmd, int argc, char **argv)
 {
     const char *output = NULL, *set_help = NULL; /* --set is taken out before cli_parse */
+    int overwrite = 0;
     const cli_option opts[] = {
         {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
         {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
          "override a key of the scene (repeatable)"},
+        {"--overwrite", NULL, CLI_FLAG, &overwrite, NULL, "",
+         "let the scene's [output] trace replace an existing file"},
     };
     /* --set may repeat: take every one out before the common parser sees the rest */
     const char **sets = malloc((size_t)argc * sizeof *sets);
@@ -124,7 +149,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     rest[n_rest] = NULL;
     const char *scene_path = NULL;
-    if (rc == 0) rc = cli_parse(cmd, n_rest, rest, opts, 2, &scene_path, 1);
+    if (rc == 0) rc = cli_parse(cmd, n_rest, rest, opts, sizeof opts / sizeof *opts, &scene_path, 1);
     if (rc == 0 && scene_path == NULL) rc = cli_error(cmd, "missing the scene file (see --help)");
 
     run r;
@@ -137,6 +162,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     if (rc != 0) return rc;
     if (r.scene.trace && strcmp(r.scene.trace, "-") == 0)
         rc = key_error(&r, WHIRL_KEY_OUTPUT_TRACE, "must be a file, not standard output");
+    if (rc == 0) rc = check_trace(&r, scene_path, output, overwrite);
     if (rc == 0 && (r.work = whirl_scene_work_alloc(&r.scene)) == NULL)
         rc = cli_error(cmd, "%s", whirl_last_error());
     if (rc == 0) rc = cli_out_open(cmd, &r.csv, output);
@@ -147,13 +173,10 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     if (rc == 0) {
         rc = simulate(&r);
-        /* whatever the outcome, the rows written so far are kept */
-        if (r.trace_open) {
-            r.trace_open = 0;
-            if (cli_out_commit(cmd, &r.trace) != 0 && rc == 0) rc = 1;
-        }
-        r.csv_open = 0;
-        if (cli_out_commit(cmd, &r.csv) != 0 && rc == 0) rc = 1;
+        /* whatever the outcome, the rows written so far are kept: both files, or neither */
+        cli_out *const outs[2] = {&r.csv, &r.trace};
+        if (cli_out_commit_all(cmd, outs, r.trace_open ? 2 : 1) != 0 && rc == 0) rc = 1;
+        r.csv_open = r.trace_open = 0;
     }
     if (r.csv_open) cli_out_abort(&r.csv);
     if (r.trace_open) cli_out_abort(&r.trace);

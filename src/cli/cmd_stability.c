@@ -465,12 +465,17 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
         free(expect);
         return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
     }
-    char line[STABILITY_LINE_MAX];
-    size_t pos = 0;
+    char line[STABILITY_LINE_MAX], why[160];
+    size_t pos = 0, fields = 1;
     int rc = 0;
+    long lineno = 0;
     *already = 0;
+    /* the columns: the header block's last line */
+    for (const char *c = expect + expect_len - (expect_len > 0); c > expect && c[-1] != '\n'; c--)
+        fields += *c == ',';
     while (rc == 0 && fgets(line, sizeof line, in)) {
         const size_t len = strlen(line);
+        lineno++;
         if (pos < expect_len) { /* the header block, line by line */
             if (strncmp(expect + pos, line, len) != 0)
                 rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
@@ -479,6 +484,12 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
             continue;
         }
         if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
+        /* a complete row must be whole and finite: a file that holds others cannot be trusted */
+        if (cli_row_check(line, fields, why, sizeof why) != 0) {
+            rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
+                           "row, or start the map afresh)", o->output, lineno, why);
+            break;
+        }
         char rate[64];
         int mode;
         if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) continue;
@@ -676,11 +687,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     free(pts);
     free(nodes);
     whirl_chain_free(c);
-    if (cli_out_commit(cmd, &out)) {
-        cli_out_abort(&trace);
-        return 1;
-    }
-    if (o.trace && cli_out_commit(cmd, &trace)) return 1;
+    cli_out *const outs[2] = {&out, &trace};
+    if (cli_out_commit_all(cmd, outs, o.trace ? 2 : 1)) return 1;
     if (written < count) {
         if (o.min_given && o.output && strcmp(o.output, "-") != 0)
             cli_error(cmd, "interrupted: %zu of %zu points in '%s' (continue with --resume)",

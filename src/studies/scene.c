@@ -742,6 +742,36 @@ static int convert_columns(const convert *v)
     return status;
 }
 
+/* The trace file of the scene: as given when it comes from an override (the command line,
+ * relative to the working directory); from the file, a path relative to the scene's folder that
+ * stays inside it: not absolute, no ".." component (a scene shared as data cannot write
+ * anywhere else). */
+static int trace_path(const convert *v, const char *value, char **out)
+{
+    const whirl_scene *s = v->scene;
+    if (s->line[WHIRL_KEY_OUTPUT_TRACE] < 0) {
+        if ((*out = copy_string(value)) == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+        return GSL_SUCCESS;
+    }
+    if (value[0] == '/')
+        return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must be a path relative to the scene's "
+                         "folder, not an absolute path");
+    for (const char *p = value; *p;) {
+        const size_t len = strcspn(p, "/");
+        if (len == 2 && p[0] == '.' && p[1] == '.')
+            return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must stay in the scene's folder (no "
+                             "'..'); give another place with --set output.trace=PATH");
+        p += len;
+        if (*p == '/') p++;
+    }
+    const char *slash = strrchr(s->path, '/');
+    const size_t dir = slash ? (size_t)(slash - s->path) + 1 : 0, len = strlen(value);
+    if ((*out = malloc(dir + len + 1)) == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    memcpy(*out, s->path, dir);
+    memcpy(*out + dir, value, len + 1);
+    return GSL_SUCCESS;
+}
+
 static int convert_output(const convert *v)
 {
     whirl_scene *s = v->scene;
@@ -764,8 +794,7 @@ static int convert_output(const convert *v)
     if (given(v, WHIRL_KEY_OUTPUT_TRACE)) {
         if (v->raw[WHIRL_KEY_OUTPUT_TRACE][0] == '\0')
             return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must not be empty");
-        if ((s->trace = copy_string(v->raw[WHIRL_KEY_OUTPUT_TRACE])) == NULL)
-            return whirl_fail(GSL_ENOMEM, "out of memory");
+        TRY(trace_path(v, v->raw[WHIRL_KEY_OUTPUT_TRACE], &s->trace));
     } else if (given(v, WHIRL_KEY_OUTPUT_TRACE_EVERY))
         return key_error(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, "given without [output] trace");
     return GSL_SUCCESS;

@@ -88,7 +88,7 @@ else fail "nohup: SIGHUP stays ignored (rc=$rc, $(head -c 200 "$tmp/nohup.out"))
 ( "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=1e4 2>"$tmp/pipe.err"; echo $? >"$tmp/pipe.rc" ) |
   head -n 1 >/dev/null
 rc=$(cat "$tmp/pipe.rc")
-if [ "$rc" -eq 141 ] && grep -q 'error writing standard output' "$tmp/pipe.err"; then
+if [ "$rc" -eq 141 ] && grep -q 'cannot write standard output: Broken pipe' "$tmp/pipe.err"; then
   pass "SIGPIPE: | head -1 ends the run with a write error, exit 141"
 else fail "SIGPIPE: | head -1 (rc=$rc, $(head -c 200 "$tmp/pipe.err"))"; fi
 
