@@ -167,7 +167,7 @@ int cli_check_options_files(const cli_command *cmd, const cli_option *opts, size
         else if (!o->input && n_out < CLI_FILES_MAX) out[n_out++] = f;
     }
     for (size_t k = 0; k < npos && n_in <= CLI_FILES_MAX; k++)
-        in[n_in++] = (cli_path){"argument", positional[k]};
+        in[n_in++] = (cli_path){"file", positional[k]};
     return cli_check_files(cmd, out, n_out, in, n_in);
 }
 

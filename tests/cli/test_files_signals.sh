@@ -36,6 +36,110 @@ printf '# trace: t\n0 0 0 0\n0 0 -1e200 0\n' >"$tmp/huge.dat"
 expect_error "view: coordinates of 1e200 are refused (the page would draw inf)" \
   "huge.dat:3: a trace line needs four finite numbers .* at most 1e\+100" view "$tmp/huge.dat" -o "$out"
 
+# ---- outputs that cannot destroy ----
+"$WHIRL" shape --omega 3.3 --mode 2 --points 50 -o "$tmp/d.csv"
+cp "$tmp/d.csv" "$tmp/d.keep"
+expect_error "sweep -o x --events x: two outputs on one file" \
+  "--events '.*x.csv' and --output '.*x.csv' are the same file" \
+  sweep --modes 1 --links 5 --omega-min 2 --omega-max 3 --omega-count 3 -o "$tmp/x.csv" \
+  --events "$tmp/x.csv"
+expect_error "stability -o y --trace ./y: the same file by another name" "are the same file" \
+  stability --omega 2 --mode 1 --links 5 -o "$tmp/y.csv" --trace "$tmp/./y.csv"
+expect_error "fit --shape d.csv -o d.csv: the output is the input" \
+  "--output '.*d.csv' is the input --shape '.*d.csv': it would be replaced" \
+  fit --shape "$tmp/d.csv" -o "$tmp/d.csv"
+cmp -s "$tmp/d.csv" "$tmp/d.keep" && pass "fit: the measured data are untouched" ||
+  fail "fit: the measured data were changed"
+cp "$scenes/mode2.ini" "$tmp/s.ini"
+expect_error "simulate s.ini -o s.ini: the scene is not replaced" "s.ini' is the input file '.*s.ini'" \
+  simulate "$tmp/s.ini" -o "$tmp/s.ini"
+expect_error "-o a -o b: an option given twice" "option --output given twice" \
+  shape --omega 2 --mode 1 -o "$tmp/a.csv" -o "$out"
+cp "$tmp/d.keep" "$tmp/ro.csv"; chmod 444 "$tmp/ro.csv"
+expect_error "-o on a read-only file is refused" "'.*ro.csv': the file is read-only" \
+  shape --omega 2 --mode 1 -o "$tmp/ro.csv"
+cmp -s "$tmp/ro.csv" "$tmp/d.keep" && pass "read-only file untouched" || fail "read-only file replaced"
+expect_error "-o in a folder that does not exist: refused before the work" \
+  "cannot write in '.*nodir'" fit --shape "$tmp/d.csv" -o "$tmp/nodir/fit.csv"
+ln -s nowhere.csv "$tmp/dangling.csv"
+expect_error "-o on a dangling symlink is refused" "a symbolic link to nothing" \
+  shape --omega 2 --mode 1 -o "$tmp/dangling.csv"
+cp "$tmp/d.keep" "$tmp/target.csv"; chmod 640 "$tmp/target.csv"; ln -s target.csv "$tmp/link.csv"
+"$WHIRL" shape --omega 2 --mode 1 -o "$tmp/link.csv" 2>"$tmp/stderr"
+if [ -L "$tmp/link.csv" ] && [ "$(stat -c %a "$tmp/target.csv")" = 640 ] &&
+   grep -q 'omega=2' "$tmp/target.csv" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
+  pass "-o through a symlink: the link kept, the target written with its mode 640"
+else fail "-o through a symlink ($(ls -l "$tmp/link.csv" "$tmp/target.csv"), $(cat "$tmp/stderr"))"; fi
+# a second output that fails: neither is written, the message names it
+rm -f "$out"
+"$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=0.5 --set output.trace=/dev/full -o "$out" \
+  2>"$tmp/stderr"
+rc=$?
+if [ $rc -ne 0 ] && [ ! -e "$out" ] && grep -q "cannot write /dev/full: No space left on device (no file written)" "$tmp/stderr" &&
+   [ -z "$(ls "$tmp" | grep '^out.csv.tmp')" ]; then
+  pass "--trace /dev/full: neither output written, the failing one named"
+else fail "--trace /dev/full (rc=$rc, $(ls "$tmp" | grep out.csv), $(head -c 300 "$tmp/stderr"))"; fi
+mkfifo "$tmp/wfifo"
+expect_error "-o on a FIFO with no reader: refused at once" "wfifo': a FIFO with no reader" \
+  shape --omega 2 --mode 1 -o "$tmp/wfifo"
+
+# ---- maps: one run at a time, rows checked on --resume ----
+fast="--links 8 --drag 0.25 --t-max 150 --t-ramp 10"
+big="--omega-min 1 --omega-max 4 --omega-count 40 --eps 0.05 $fast"
+# shellcheck disable=SC2086
+"$WHIRL" regime $big -o "$tmp/map.csv" 2>/dev/null &
+pid=$!
+i=0
+while [ "$(cat "$tmp/map.csv" 2>/dev/null | grep -c '^[0-9]')" -lt 1 ] && [ $i -lt 200 ]; do
+  sleep 0.05; i=$((i + 1))
+done
+# shellcheck disable=SC2086
+expect_error "regime --resume on a map another run writes: refused (locked)" \
+  "map.csv' is being written by another run \(locked\)" regime $big -o "$tmp/map.csv" --resume
+kill -INT $pid
+wait $pid
+rc=$?
+[ $rc -eq 130 ] && pass "the first run kept the map (exit 130)" || fail "the first run (rc=$rc)"
+for bad in nan inf 1e999 cut; do
+  cp "$tmp/map.csv" "$tmp/bad.csv"
+  row=$(grep -m 1 '^[0-9]' "$tmp/bad.csv")
+  if [ $bad = cut ]; then new=$(echo "$row" | cut -d, -f1-5)
+  else new=$(echo "$row" | awk -F, -v b=$bad 'BEGIN { OFS = "," } { $8 = b; print }'); fi
+  awk -v r="$row" -v n="$new" '$0 == r { print n; next } { print }' "$tmp/bad.csv" >"$tmp/bad2.csv"
+  mv "$tmp/bad2.csv" "$tmp/bad.csv"
+  # shellcheck disable=SC2086
+  expect_error "regime --resume: a row with $bad is refused, not kept" \
+    "bad.csv:[0-9]+: .*the file cannot be trusted" regime $big -o "$tmp/bad.csv" --resume
+done
+
+# ---- a scene cannot write outside its folder ----
+mkdir "$tmp/scn" "$tmp/elsewhere"
+for t in ../victim.txt /tmp/victim.txt sub/../../victim.txt; do
+  sed "s|^\[output\]|[output]\ntrace = $t|" "$scenes/mode2.ini" >"$tmp/scn/bad.ini"
+  grep -q "^trace = " "$tmp/scn/bad.ini" || printf '[output]\ntrace = %s\n' "$t" >>"$tmp/scn/bad.ini"
+  expect_error "scene: trace = $t is refused" "\[output\] trace: must" \
+    simulate "$tmp/scn/bad.ini" --set run.t_end=0.1 -o "$out"
+done
+sed "s|^\[output\]|[output]\ntrace = run.dat|" "$scenes/mode2.ini" >"$tmp/scn/ok.ini"
+grep -q "^trace = " "$tmp/scn/ok.ini" || printf '[output]\ntrace = run.dat\n' >>"$tmp/scn/ok.ini"
+whirl_abs=$(cd "$(dirname "$WHIRL")" && pwd)/$(basename "$WHIRL")
+(cd "$tmp/elsewhere" && "$whirl_abs" simulate ../scn/ok.ini --set run.t_end=0.1 -o out.csv 2>"$tmp/stderr")
+if [ -s "$tmp/scn/run.dat" ] && [ ! -e "$tmp/elsewhere/run.dat" ]; then
+  pass "scene: trace = run.dat is written beside the scene, not in the working directory"
+else fail "scene: trace beside the scene ($(cat "$tmp/stderr"))"; fi
+expect_error "scene: an existing trace is not replaced" "run.dat' exists: a scene file replaces no file" \
+  simulate "$tmp/scn/ok.ini" --set run.t_end=0.1 -o "$out"
+expect_ok "scene: --overwrite lets it replace the trace" \
+  simulate "$tmp/scn/ok.ini" --set run.t_end=0.1 --overwrite -o "$out"
+
+# ---- messages: control characters escaped ----
+"$WHIRL" simulate "$scenes/mode2.ini" --set "run.method=$(printf 'x\033]0;owned\007\nsecond')" \
+  -o "$out" 2>"$tmp/stderr"
+if [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && ! grep -q "$(printf '\033')" "$tmp/stderr" &&
+   grep -q 'x\\x1b]0;owned\\x07\\nsecond' "$tmp/stderr"; then
+  pass "a value with an escape sequence and a newline is echoed escaped, on one line"
+else fail "control characters in messages: $(od -c "$tmp/stderr" | head -5)"; fi
+
 # ---- signals: each terminating signal ends a long command like Ctrl-C, with 128 + its number ----
 # stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s;
 # the command must exit STATUS within 2 s of the signal, keep the output with its rows, leave no
