@@ -98,7 +98,7 @@ static int same_file(const file_id *a, const file_id *b)
 static int check_output(const cli_command *cmd, const cli_path *o)
 {
     const char *path = o->path;
-    if (path[0] == '\0') return cli_error(cmd, "%s: empty file name", o->what);
+    if (path[0] == '\0') return cli_error(cmd, "%s: empty output file name", o->what);
     struct stat lst, st;
     if (lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode) && stat(path, &st) != 0)
         return cli_error(cmd, "%s '%s': a symbolic link to nothing (%s)", o->what, path,

@@ -742,6 +742,38 @@ static int convert_columns(const convert *v)
     return status;
 }
 
+/* The rows, the trace's points and the work the output and the rotation force (whirl/scene.h:
+ * WHIRL_SCENE_ROWS_MAX, WHIRL_SCENE_TRACE_MAX, WHIRL_SCENE_WORK_MAX); the counts as doubles,
+ * before any is made an integer. */
+static int check_work(const convert *v)
+{
+    const whirl_scene *s = v->scene;
+    char size[32];
+    const double rows = s->t_end / s->every;
+    if (!(rows <= WHIRL_SCENE_ROWS_MAX))
+        return key_error(v, WHIRL_KEY_OUTPUT_EVERY, "t_end / every = %.3g rows exceeds the bound "
+                         "of %g rows (they would take about %s): raise every or shorten t_end",
+                         rows, WHIRL_SCENE_ROWS_MAX,
+                         whirl_bytes_words(size, sizeof size,
+                                           rows * 20.0 * (double)s->n_columns));
+    const double frames = given(v, WHIRL_KEY_OUTPUT_TRACE) ? s->t_end / s->trace_every : 0;
+    const double points = frames * (double)(s->links + 1);
+    if (!(points <= WHIRL_SCENE_TRACE_MAX))
+        return key_error(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, "t_end / trace_every x (links + 1) = "
+                         "%.3g trace points exceeds the bound of %g (they would take about %s): "
+                         "raise trace_every or shorten t_end", points, WHIRL_SCENE_TRACE_MAX,
+                         whirl_bytes_words(size, sizeof size, points * 60.0));
+    const double steps = (s->tol == 0 ? s->t_end / s->dt : 0) + rows + frames +
+                         fabs(s->omega) * s->t_end;
+    const double work = (double)s->links * steps;
+    if (!(work <= WHIRL_SCENE_WORK_MAX))
+        return key_error(v, WHIRL_KEY_RUN_T_END, "links x (steps + rows + frames + |omega| t_end) "
+                         "= %.3g link-steps exceeds the budget of %g (hours of work): shorten "
+                         "t_end, raise dt or every, lower omega or use fewer links", work,
+                         WHIRL_SCENE_WORK_MAX);
+    return GSL_SUCCESS;
+}
+
 /* The trace file of the scene: as given when it comes from an override (the command line,
  * relative to the working directory); from the file, a path relative to the scene's folder that
  * stays inside it: not absolute, no ".." component (a scene shared as data cannot write
@@ -778,6 +810,7 @@ static int convert_output(const convert *v)
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_EVERY, s->dt, 0, 1, &s->every));
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, s->every, 0, 1, &s->trace_every));
     TRY(convert_columns(v));
+    TRY(check_work(v));
     if (given(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE)) {
         long mode;
         TRY(get_integer(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, 1, 1, (long)s->links, &mode));

@@ -140,6 +140,19 @@ if [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && ! grep -q "$(printf '\033')" "$tmp/std
   pass "a value with an escape sequence and a newline is echoed escaped, on one line"
 else fail "control characters in messages: $(od -c "$tmp/stderr" | head -5)"; fi
 
+# ---- work bounds that count what forces work ----
+regress="$(dirname "$0")/../fuzz/regress/scene"
+expect_error "scene: every = 1e-9 (1e9 rows) is refused with the rows and their size" \
+  "\[output\] every: t_end / every = 1e\+09 rows exceeds the bound of 1e\+07 rows \(they would take about 149 GiB\)" \
+  simulate "$regress/every_tiny.ini" -o "$out"
+expect_error "scene: every = 1e-300 is refused before any count is made an integer" \
+  "t_end / every = 1e\+300 rows exceeds the bound" simulate "$regress/every_overflow.ini" -o "$out"
+expect_error "scene: omega x t_end counts in the work budget" \
+  "links x \(steps \+ rows \+ frames \+ \|omega\| t_end\) = 2e\+13 link-steps exceeds the budget of 1e\+10" \
+  simulate "$regress/omega_t_end.ini" -o "$out"
+expect_error "scene: trace points are bounded" "trace points exceeds the bound of 1e\+08" \
+  simulate "$scenes/mode2.ini" --set output.trace="$tmp/t.dat" --set output.trace_every=1e-6 -o "$out"
+
 # ---- signals: each terminating signal ends a long command like Ctrl-C, with 128 + its number ----
 # stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s;
 # the command must exit STATUS within 2 s of the signal, keep the output with its rows, leave no
