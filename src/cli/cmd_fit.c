@@ -16,7 +16,6 @@
 #include "cli/points_csv.h"
 #include "whirl/optimize.h"
 
-#define FIT_MAX_LINKS 2000
 
 /* The progress line: modes done of those tried, the current one and its evaluations. */
 typedef struct fit_progress {
@@ -60,8 +59,8 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
-    if (m.links_given && m.links > FIT_MAX_LINKS)
-        return cli_error(cmd, "--links must be at most %d, got %d", FIT_MAX_LINKS, m.links);
+    if (m.links_given && m.links > WHIRL_FIT_LINKS_MAX)
+        return cli_error(cmd, "--links must be at most %d, got %d", WHIRL_FIT_LINKS_MAX, m.links);
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;

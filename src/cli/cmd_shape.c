@@ -71,12 +71,21 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         status = whirl_continuum_sample(omega, tip_mass, info.tip_r, n, s, r, z, tension);
     }
     cli_out out;
-    if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
+    cli_progress_state progress;
+    cli_progress_begin(&progress, cmd, "", 0, 0);
+    if (n > 100000) cli_progress_text(&progress, "sampling and writing %zu points", n);
+    if (status == WHIRL_EINTERRUPTED)
+        rc = cli_error(cmd, "interrupted sampling the shape: %s", CLI_LIBRARY_ERROR(&m.units));
+    else if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     else rc = cli_out_open(cmd, &out, out_path);
     if (rc == 0) {
         steady_cli_write_shape(out.fp, &m, &info, n, s, r, z, tension, NULL);
-        rc = cli_out_commit(cmd, &out);
+        if (cli_interrupted) { /* a shape cut short is no shape: nothing is kept */
+            cli_out_abort(&out);
+            rc = cli_error(cmd, "interrupted while writing %zu points: nothing written", n);
+        } else rc = cli_out_commit(cmd, &out);
     }
+    cli_progress_clear(&progress);
     free(s);
     steady_cli_model_free(&m);
     return rc;

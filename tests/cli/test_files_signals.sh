@@ -153,6 +153,26 @@ expect_error "scene: omega x t_end counts in the work budget" \
 expect_error "scene: trace points are bounded" "trace points exceeds the bound of 1e\+08" \
   simulate "$scenes/mode2.ini" --set output.trace="$tmp/t.dat" --set output.trace_every=1e-6 -o "$out"
 
+# ---- long phases poll the stop request ----
+# prompt NAME ARGS...: SIGINT 2 s into a long phase ends it within a second, exit 130, no file
+prompt() {
+  name=$1; shift
+  rm -rf "$tmp/prompt"; mkdir "$tmp/prompt"
+  "$WHIRL" "$@" -o "$tmp/prompt/out.csv" >/dev/null 2>"$tmp/prompt.err" &
+  pid=$!
+  sleep 2
+  t0=$(date +%s.%N)
+  kill -INT $pid
+  wait $pid
+  rc=$?
+  late=$(echo "$(date +%s.%N) - $t0" | bc)
+  if [ $rc -eq 130 ] && [ -z "$(ls -A "$tmp/prompt")" ] && [ "$(echo "$late < 1" | bc)" -eq 1 ]; then
+    pass "SIGINT in $name: exit 130 in $late s, nothing written"
+  else fail "SIGINT in $name (rc=$rc, $late s, $(ls -A "$tmp/prompt"), $(head -c 200 "$tmp/prompt.err"))"; fi
+}
+prompt "the eigenvalues of 60000 links (348 s in one call before)" critical --links 60000 --modes 60000
+prompt "the sampling and writing of 10^7 points" shape --omega 3.3 --mode 2 --points 10000000
+
 # ---- signals: each terminating signal ends a long command like Ctrl-C, with 128 + its number ----
 # stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s;
 # the command must exit STATUS within 2 s of the signal, keep the output with its rows, leave no
