@@ -42,6 +42,7 @@ libsundials-dev  have_header cc arkode/arkode_erkstep.h && have_header cc cvode/
 chromium         have_cmd chromium
 ffmpeg           have_cmd ffmpeg
 bsdutils         have_cmd script
+locales          have_cmd localedef && test -f /usr/share/i18n/locales/de_DE
 '
 
 missing=""
