@@ -34,6 +34,7 @@
 #include <time.h>
 
 #include "cli/cli.h"
+#include "core/error.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
@@ -277,6 +278,19 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     p->sim_growth = res.sim_growth;
     p->max_deviation = res.max_deviation;
     p->verdict = res.verdict;
+    /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
+     * linear stretch was not integrated: a step beyond the method's stability interval makes
+     * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
+     * does. The default step stays inside the interval (whirl_default_step); a given one may
+     * not. */
+    if (o->dt > 0 && res.verdict == WHIRL_VERDICT_UNSTABLE &&
+        res.sim_growth > 2 * fmax(p->eig_growth, 0) + 0.1 * p->omega)
+        return whirl_fail(GSL_EFAILED, "the run with --dt %g grew at %g while the linearisation "
+                          "gives %g at omega %g: the step is beyond the stability interval of "
+                          "%s (an integration failure, not the chain); give a smaller --dt, or "
+                          "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
+                          res.sim_growth * unit(o, CLI_UNIT_RATE),
+                          p->eig_growth * unit(o, CLI_UNIT_RATE), p->omega, o->method);
     return GSL_SUCCESS;
 }
 

@@ -153,6 +153,10 @@ expect_error "scene: omega x t_end counts in the work budget" \
 expect_error "scene: trace points are bounded" "trace points exceeds the bound of 1e\+08" \
   simulate "$scenes/mode2.ini" --set output.trace="$tmp/t.dat" --set output.trace_every=1e-6 -o "$out"
 
+expect_error "stability --dt beyond rk4's stability interval: an integration failure, not 'unstable'" \
+  "the run with --dt 0.05 grew at [0-9.]+ while the linearisation gives 0 at omega 4: the step is beyond the stability interval of rk4" \
+  stability --omega 4 --mode 2 --links 60 --dt 0.05 -o "$out"
+
 # ---- long phases poll the stop request ----
 # prompt NAME ARGS...: SIGINT 2 s into a long phase ends it within a second, exit 130, no file
 prompt() {
