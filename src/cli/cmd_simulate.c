@@ -20,6 +20,7 @@ typedef struct run {
     int csv_open, trace_open;
     unsigned long frames;       /* written so far */
     cli_progress_state progress; /* output intervals done of all, time left */
+    char failure[CLI_MESSAGE_MAX]; /* how the run ended, printed once the files are settled */
 } run;
 
 /* "WHERE: message" for a key of the scene, as the one-line error of the command. */
@@ -81,11 +82,12 @@ static int simulate(run *r)
     if (status == GSL_SUCCESS) status = whirl_scene_work_run(r->work, &out, &res);
     cli_progress_update(&r->progress, intervals(s, res.t), 1);
     if (status == WHIRL_EINTERRUPTED) {
-        cli_error(r->cmd, "%s: %lu rows kept", whirl_last_error(), res.rows);
+        snprintf(r->failure, sizeof r->failure, "%s: %lu rows kept", whirl_last_error(), res.rows);
         return CLI_EXIT_INTERRUPTED;
     }
     if (status != GSL_SUCCESS) {
-        cli_error(r->cmd, "%s: %s; %lu rows kept", s->path, whirl_last_error(), res.rows);
+        snprintf(r->failure, sizeof r->failure, "%s: %s; %lu rows kept", s->path,
+                 whirl_last_error(), res.rows);
         return 1;
     }
     if (res.stopped)
@@ -173,9 +175,13 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     if (rc == 0) {
         rc = simulate(&r);
-        /* whatever the outcome, the rows written so far are kept: both files, or neither */
+        /* whatever the outcome, the rows written so far are kept: both files, or neither (a
+         * file that cannot be written is then the one error: the run's failure to write a row
+         * or a broken pipe says no more) */
         cli_out *const outs[2] = {&r.csv, &r.trace};
-        if (cli_out_commit_all(cmd, outs, r.trace_open ? 2 : 1) != 0 && rc == 0) rc = 1;
+        if (cli_out_commit_all(cmd, outs, r.trace_open ? 2 : 1) != 0) {
+            if (rc == 0) rc = 1;
+        } else if (r.failure[0]) cli_error(cmd, "%s", r.failure);
         r.csv_open = r.trace_open = 0;
     }
     if (r.csv_open) cli_out_abort(&r.csv);

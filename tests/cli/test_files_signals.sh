@@ -75,7 +75,8 @@ rm -f "$out"
 "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=0.5 --set output.trace=/dev/full -o "$out" \
   2>"$tmp/stderr"
 rc=$?
-if [ $rc -ne 0 ] && [ ! -e "$out" ] && grep -q "cannot write /dev/full: No space left on device (no file written)" "$tmp/stderr" &&
+if [ $rc -ne 0 ] && [ ! -e "$out" ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] &&
+   grep -q "cannot write /dev/full: No space left on device (no file written)" "$tmp/stderr" &&
    [ -z "$(ls "$tmp" | grep '^out.csv.tmp')" ]; then
   pass "--trace /dev/full: neither output written, the failing one named"
 else fail "--trace /dev/full (rc=$rc, $(ls "$tmp" | grep out.csv), $(head -c 300 "$tmp/stderr"))"; fi
@@ -229,7 +230,8 @@ else fail "nohup: SIGHUP stays ignored (rc=$rc, $(head -c 200 "$tmp/nohup.out"))
 ( "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=1e4 2>"$tmp/pipe.err"; echo $? >"$tmp/pipe.rc" ) |
   head -n 1 >/dev/null
 rc=$(cat "$tmp/pipe.rc")
-if [ "$rc" -eq 141 ] && grep -q 'cannot write standard output: Broken pipe' "$tmp/pipe.err"; then
+if [ "$rc" -eq 141 ] && [ "$(wc -l <"$tmp/pipe.err")" -eq 1 ] &&
+   grep -q 'cannot write standard output: Broken pipe' "$tmp/pipe.err"; then
   pass "SIGPIPE: | head -1 ends the run with a write error, exit 141"
 else fail "SIGPIPE: | head -1 (rc=$rc, $(head -c 200 "$tmp/pipe.err"))"; fi
 
