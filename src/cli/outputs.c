@@ -112,13 +112,18 @@ static int check_output(const cli_command *cmd, const cli_path *o)
             return cli_error(cmd, "%s '%s': the file is read-only (make it writable or remove "
                              "it first)", o->what, path);
     }
-    /* the temporary file goes beside the file (a symlink's target) */
-    char real[PATH_MAX], dir[PATH_MAX];
+    /* the temporary file goes beside the file (a symlink's target): one is made and removed
+     * now, the test that tells (access() says yes to root on a read-only file system or /proc) */
+    char real[PATH_MAX], dir[PATH_MAX], probe[PATH_MAX + 32];
     const char *base;
     split_path(realpath(path, real) ? real : path, dir, sizeof dir, &base);
-    if (access(dir, W_OK | X_OK) != 0)
+    snprintf(probe, sizeof probe, "%s/.whirl-probe.XXXXXX", dir);
+    int fd = mkstemp(probe);
+    if (fd < 0)
         return cli_error(cmd, "%s '%s': cannot write in '%s': %s", o->what, path, dir,
                          strerror(errno));
+    close(fd);
+    unlink(probe);
     return 0;
 }
 

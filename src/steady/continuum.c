@@ -630,7 +630,7 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
     for (size_t k = 0; k < npts && status == GSL_SUCCESS; k++) {
         size_t j = npts - 1 - k;
         double sigma = (double)k / (double)(npts - 1);
-        if (k % 4096 == 4095 && whirl_stop_requested()) { /* 10^7 points take seconds */
+        if (k % 1024 == 1023 && whirl_stop_requested()) { /* 10^7 points take seconds */
             status = whirl_fail(WHIRL_EINTERRUPTED, "stopped after %zu of %zu points", k, npts);
             break;
         }

@@ -159,7 +159,8 @@ expect_error "stability --dt beyond rk4's stability interval: an integration fai
   stability --omega 4 --mode 2 --links 60 --dt 0.05 -o "$out"
 
 # ---- long phases poll the stop request ----
-# prompt NAME ARGS...: SIGINT 2 s into a long phase ends it within a second, exit 130, no file
+# prompt NAME ARGS...: SIGINT 2 s into a long phase ends it within 2 s (about 0.1-0.3 s on an
+# idle machine; the margin is for a loaded one), exit 130, no file
 prompt() {
   name=$1; shift
   rm -rf "$tmp/prompt"; mkdir "$tmp/prompt"
@@ -171,7 +172,7 @@ prompt() {
   wait $pid
   rc=$?
   late=$(echo "$(date +%s.%N) - $t0" | bc)
-  if [ $rc -eq 130 ] && [ -z "$(ls -A "$tmp/prompt")" ] && [ "$(echo "$late < 1" | bc)" -eq 1 ]; then
+  if [ $rc -eq 130 ] && [ -z "$(ls -A "$tmp/prompt")" ] && [ "$(echo "$late < 2" | bc)" -eq 1 ]; then
     pass "SIGINT in $name: exit 130 in $late s, nothing written"
   else fail "SIGINT in $name (rc=$rc, $late s, $(ls -A "$tmp/prompt"), $(head -c 200 "$tmp/prompt.err"))"; fi
 }
