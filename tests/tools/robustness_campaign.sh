@@ -49,7 +49,7 @@ try() {
 signal() {
   cat=$1; sig=$2; want=$3; shift 3
   rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
-  (cd "$tmp/run/d" && exec timeout 60 "$W" "$@" >/dev/null 2>"$tmp/run/err") &
+  (cd "$tmp/run/d" && exec timeout 60 env --default-signal="$sig" "$W" "$@" >/dev/null 2>"$tmp/run/err") &
   pid=$!
   sleep 1
   pkill -"$sig" -P $pid -x whirl 2>/dev/null
@@ -121,12 +121,7 @@ while [ "$(cat "$tmp/map.csv" 2>/dev/null | grep -c '^[0-9]')" -lt 1 ] && [ $i -
 try outputs error regime $big -o "$tmp/map.csv" --resume
 kill -INT $pid; wait $pid
 for bad in nan inf 1e999 cut; do
-  cp "$tmp/map.csv" "$tmp/bad.csv"
-  row=$(grep -m 1 '^[0-9]' "$tmp/bad.csv")
-  if [ $bad = cut ]; then new=$(echo "$row" | cut -d, -f1-5)
-  else new=$(echo "$row" | awk -F, -v b=$bad 'BEGIN { OFS = "," } { $8 = b; print }'); fi
-  awk -v r="$row" -v n="$new" '$0 == r { print n; next } { print }' "$tmp/bad.csv" >"$tmp/bad2.csv"
-  mv "$tmp/bad2.csv" "$tmp/bad.csv"
+  sh "$(dirname "$0")/bad_row.sh" "$tmp/map.csv" "$tmp/bad.csv" $bad
   # shellcheck disable=SC2086
   try outputs error regime $big -o "$tmp/bad.csv" --resume
 done
