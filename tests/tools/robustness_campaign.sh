@@ -11,6 +11,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 results="$tmp/results"
 : >"$results"
+: >"$tmp/times"
 
 # judge CATEGORY WANT RC DIR: one outcome. WANT: "error" (a one-line error, exit 1) or an exit
 # status (a signal's 128 + n). A hang is exit 124 of timeout; a crash any other status >= 128
@@ -52,9 +53,12 @@ signal() {
   (cd "$tmp/run/d" && exec timeout 60 env --default-signal="$sig" "$W" "$@" >/dev/null 2>"$tmp/run/err") &
   pid=$!
   sleep 1
+  t0=$(date +%s.%N)
   pkill -"$sig" -P $pid -x whirl 2>/dev/null
   wait $pid
-  judge "$cat" "$want" $? "$tmp/run/d"
+  rc=$?
+  echo "$(echo "$(date +%s.%N) - $t0" | bc) SIG$sig whirl $*" >>"$tmp/times"
+  judge "$cat" "$want" $rc "$tmp/run/d"
 }
 
 map="stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 --periods 20 -o out.csv"
@@ -151,3 +155,6 @@ echo "|---|---|---|---|---|---|---|---|"
 awk '{ t[$1]++; for (k = 2; k <= 7; k++) s[$1, k] += $k; if (!($1 in o)) { o[$1] = ++n; name[n] = $1 } }
      END { for (i = 1; i <= n; i++) { c = name[i];
        printf "| %s | %d | %d | %d | %d | %d | %d | %d |\n", c, t[c], s[c,2], s[c,3], s[c,4], s[c,5], s[c,6], s[c,7] } }' "$results"
+echo
+echo "Time from the signal to the exit, slowest first (s):"
+sort -rn "$tmp/times" | head -n 5 | awk '{ printf "- %.3f %s\n", $1, substr($0, index($0, $2)) }'
