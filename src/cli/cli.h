@@ -146,8 +146,8 @@ int cli_check_files(const cli_command *cmd, const cli_path *outputs, size_t n_ou
 /* cli_check_files on an option table after cli_parse (given[i]: option i appeared). */
 int cli_check_options_files(const cli_command *cmd, const cli_option *opts, size_t nopts,
                             const char *given, const char *const *positional, size_t npos);
-/* Locks the open file fp (open for writing; path in messages) for this run alone (a POSIX
- * record lock on the whole file, released when the file is closed or the process ends):
+/* Locks the open file fp (path in messages) for this run alone (flock, released when fp is
+ * closed or the process ends):
  * 0, or 1 after an error when another run holds it or replaced the file. */
 int cli_lock(const cli_command *cmd, FILE *fp, const char *path);
 /* A row of a CSV being resumed: 0 if it has the header's count of fields and no field that is

@@ -31,6 +31,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "cli/cli.h"
@@ -627,12 +628,20 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     char **kept = calloc(count, sizeof *kept); /* rows read back by --resume */
     size_t already = 0;
-    if (kept == NULL) rc = cli_error(cmd, "out of memory");
-    else if (o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
+    /* a map file that exists is locked from before it is read until it is replaced: one run at
+     * a time writes it */
+    FILE *lock = NULL;
+    struct stat st;
+    if (kept && o.min_given && o.output && strcmp(o.output, "-") != 0 &&
+        stat(o.output, &st) == 0 && S_ISREG(st.st_mode) && (lock = fopen(o.output, "r")))
+        rc = cli_lock(cmd, lock, o.output);
+    if (rc == 0 && kept == NULL) rc = cli_error(cmd, "out of memory");
+    else if (rc == 0 && o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
     cli_out out = {0}, trace = {0};
     if (rc == 0) rc = cli_out_open(cmd, &out, o.output);
     if (rc == 0 && o.trace && (rc = cli_out_open(cmd, &trace, o.trace))) cli_out_abort(&out);
     if (rc) {
+        if (lock) fclose(lock);
         free_kept(kept, count);
         free(pts);
         free(nodes);
@@ -702,7 +711,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     free(nodes);
     whirl_chain_free(c);
     cli_out *const outs[2] = {&out, &trace};
-    if (cli_out_commit_all(cmd, outs, o.trace ? 2 : 1)) return 1;
+    const int committed = cli_out_commit_all(cmd, outs, o.trace ? 2 : 1);
+    if (lock) fclose(lock);
+    if (committed) return 1;
     if (written < count) {
         if (o.min_given && o.output && strcmp(o.output, "-") != 0)
             cli_error(cmd, "interrupted: %zu of %zu points in '%s' (continue with --resume)",

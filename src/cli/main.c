@@ -83,6 +83,8 @@ int main(int argc, char **argv)
             int rc = commands[i].run(&commands[i], argc - 1, argv + 1);
             return rc == 2 ? 0 : cli_exit_status(rc); /* 2: help was printed */
         }
-    fprintf(stderr, "whirl: unknown command '%s' (whirl --help lists them)\n", argv[1]);
+    fputs("whirl: unknown command '", stderr);
+    cli_put_escaped(stderr, argv[1]); /* no control characters from the command line echoed */
+    fputs("' (whirl --help lists them)\n", stderr);
     return 1;
 }

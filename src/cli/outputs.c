@@ -8,12 +8,14 @@
  *   - a lock on a map file while a run writes it; the rows a resumed file keeps, checked;
  *   - the exit status after a signal. */
 #define _XOPEN_SOURCE 700 /* realpath */
+#define _DEFAULT_SOURCE    /* flock */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -313,12 +315,10 @@ void cli_out_abort(cli_out *out)
 int cli_lock(const cli_command *cmd, FILE *fp, const char *path)
 {
     struct stat mine, now;
-    struct flock lk;
-    memset(&lk, 0, sizeof lk);
-    lk.l_type = F_WRLCK;
-    lk.l_whence = SEEK_SET; /* l_start = l_len = 0: the whole file */
-    if (fcntl(fileno(fp), F_SETLK, &lk) != 0)
-        return cli_error(cmd, errno == EACCES || errno == EAGAIN
+    /* flock, not a POSIX record lock: the latter ends when the process closes any descriptor
+     * of the file, as the reading of a resumed map does */
+    if (flock(fileno(fp), LOCK_EX | LOCK_NB) != 0)
+        return cli_error(cmd, errno == EWOULDBLOCK
                                   ? "'%s' is being written by another run (locked): wait for it "
                                     "or write another file"
                                   : "cannot lock '%s'", path);

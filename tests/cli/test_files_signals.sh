@@ -108,6 +108,24 @@ for bad in nan inf 1e999 cut; do
     "bad.csv:[0-9]+: .*the file cannot be trusted" regime $big -o "$tmp/bad.csv" --resume
 done
 
+# a stability map being resumed is locked too
+smap="stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 --periods 20"
+# shellcheck disable=SC2086
+"$WHIRL" $smap -o "$tmp/smap.csv" 2>/dev/null &
+pid=$!
+sleep 1; kill -INT $pid; wait $pid
+# shellcheck disable=SC2086
+"$WHIRL" $smap -o "$tmp/smap.csv" --resume 2>/dev/null &
+pid=$!
+sleep 1
+# shellcheck disable=SC2086
+expect_error "stability --resume on a map another run writes: refused (locked)" \
+  "smap.csv' is being written by another run \(locked\)" $smap -o "$tmp/smap.csv" --resume
+kill -INT $pid; wait $pid
+rc=$?
+[ $rc -eq 130 ] && [ "$(grep -c '^[0-9]' "$tmp/smap.csv")" -gt 1 ] &&
+  pass "the first stability run kept its map (exit 130)" || fail "the first stability run (rc=$rc)"
+
 # ---- a scene cannot write outside its folder ----
 mkdir "$tmp/scn" "$tmp/elsewhere"
 for t in ../victim.txt /tmp/victim.txt sub/../../victim.txt; do
