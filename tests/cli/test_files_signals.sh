@@ -191,6 +191,9 @@ prompt() {
 }
 prompt "the eigenvalues of 60000 links (348 s in one call before)" critical --links 60000 --modes 60000
 prompt "the sampling and writing of 10^7 points" shape --omega 3.3 --mode 2 --points 10000000
+# --t-max 1e300: the progress line's total once cast 1e300 to a long (UBSan float-cast-overflow in
+# the sanitizer half of make check)
+prompt "regime --t-max 1e300" regime --omega 3 --eps 0.1 --links 4 --t-max 1e300
 
 # ---- signals: each terminating signal ends a long command like Ctrl-C, with 128 + its number ----
 # stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s;
