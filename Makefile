@@ -43,7 +43,7 @@ test_source = $(filter %/$(1).c,$(TEST_SRC) $(BENCH_SRC))
 # fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
-FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o figure.o) \
+FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o outputs.o points_csv.o cmd_simulate.o figure.o) \
   $(BUILD)/gen/plots_gp.o
 REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 # The page of `whirl view`: src/cli/view.html as a NULL-terminated table of lines (C string
@@ -186,7 +186,8 @@ $(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_CLI
 # out/fuzz/NAME, crashes to out/fuzz/artifacts; the committed corpus tests/fuzz/corpus/NAME seeds
 # them. See tests/fuzz/README.md.
 FUZZ_TIME ?= 60
-FUZZ_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+FUZZ_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer \
+  -fno-sanitize-recover=all
 fuzz: deps
 	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 MPI=0 \
 	  XCFLAGS="$(FUZZ_FLAGS) -fsanitize=fuzzer-no-link" XLDFLAGS="$(FUZZ_FLAGS)" \
@@ -243,10 +244,12 @@ check-clang: deps
 objects: $(LIB_OBJ) $(CLI_OBJ)
 	@:
 
+# float-cast-overflow: a double cast to an integer type it does not fit (a count from 1e300)
+SANITIZE_FLAGS := -fsanitize=address,undefined,float-cast-overflow
 check-sanitize: deps
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
-	  XCFLAGS="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined" \
-	  XLDFLAGS="-fsanitize=address,undefined" all \
+	  XCFLAGS="$(SANITIZE_FLAGS) -fno-omit-frame-pointer -fno-sanitize-recover=all" \
+	  XLDFLAGS="$(SANITIZE_FLAGS)" all \
 	  $(TEST_BIN:$(BUILD)/%=build-sanitize/%) $(REPLAY_BIN:$(BUILD)/%=build-sanitize/%)
 	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize
 

@@ -47,6 +47,7 @@ bsdutils         have_cmd script
 python3-sphinx   have_py sphinx
 python3-myst-parser have_py myst_parser
 libjs-mathjax    test -f /usr/share/javascript/mathjax/MathJax.js
+locales          have_cmd localedef && test -f /usr/share/i18n/locales/de_DE
 '
 
 missing=""

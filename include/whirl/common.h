@@ -85,8 +85,8 @@ WHIRL_API int whirl_error_restore_first(const whirl_error_record *r, size_t n);
 WHIRL_API int whirl_error_keep(whirl_error_record *slot, int status);
 
 /* ---- stopping long work ----
- * One stop request per process, because the signals that raise it (SIGINT, SIGTERM) are
- * process-wide. Every long loop of the library (integrations, sweeps, maps, fits, root scans)
+ * One stop request per process, because the signals that raise it (SIGINT, SIGTERM, SIGQUIT,
+ * SIGHUP, SIGPIPE, SIGXFSZ) are process-wide. Every long loop of the library (integrations, sweeps, maps, fits, root scans)
  * polls it at least every ~0.1 s of work, inside steps, and then returns WHIRL_EINTERRUPTED with
  * a message saying how far it got; what it computed until then stays valid. The request stays
  * set until whirl_stop_clear(). C and Python callers can raise it themselves (a GUI button, a
@@ -97,10 +97,16 @@ WHIRL_API int whirl_error_keep(whirl_error_record *slot, int status);
 WHIRL_API void whirl_stop_request(void);
 /* Non-zero once a stop was requested and not cleared. */
 WHIRL_API int whirl_stop_requested(void);
+/* The number of the signal that raised the request (SIGINT, ...), 0 when none did (no request,
+ * or whirl_stop_request()). */
+WHIRL_API int whirl_stop_signal(void);
 /* Clears the request, so that new work runs to its end. */
 WHIRL_API void whirl_stop_clear(void);
-/* Installs SIGINT and SIGTERM handlers that call whirl_stop_request(), keeping the previous
- * handlers for whirl_stop_restore_signals(). Returns GSL_SUCCESS or GSL_EFAILED. */
+/* Installs handlers that raise the request on SIGINT, SIGTERM and SIGQUIT, and on SIGHUP,
+ * SIGPIPE and SIGXFSZ unless they are ignored (nohup; Python ignores the last two), keeping the
+ * previous handlers for whirl_stop_restore_signals(). A caught SIGPIPE or SIGXFSZ makes the
+ * write that raised it fail (EPIPE, EFBIG) instead of killing the process. Returns GSL_SUCCESS
+ * or GSL_EFAILED. */
 WHIRL_API int whirl_stop_catch_signals(void);
 /* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
 WHIRL_API void whirl_stop_restore_signals(void);

@@ -93,6 +93,11 @@ typedef struct whirl_fit_model {
     size_t samples;   /* points of the continuum's model polyline (default 4001) */
 } whirl_fit_model;
 
+/* The largest models a fit takes: every evaluation of the fit solves the model's shape (work
+ * and memory ~ links, ~ samples) and the N-link model first finds its N critical rates. */
+#define WHIRL_FIT_LINKS_MAX 2000
+#define WHIRL_FIT_SAMPLES_MAX 1000000
+
 /* Defaults: the continuum, no tip mass, omega_max 50, 4001 samples. */
 WHIRL_API whirl_fit_model whirl_fit_model_defaults(void);
 

@@ -37,7 +37,9 @@
  *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
- *            of every mass's position, path relative to the working directory; default none),
+ *            of every mass's position; in the file a path relative to the scene's folder,
+ *            neither absolute nor with a ".." component; in an override a path relative to
+ *            the working directory; default none),
  *            trace_every (> 0, default every), reference_mode (K >= 1: the deviation is
  *            measured from the N-link steady shape of mode K at the [run] omega, 3D only;
  *            default: from the start's unperturbed steady or hanging shape)
@@ -63,6 +65,14 @@ extern "C" {
 /* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): about an hour
  * of work with the implicit methods; larger runs are refused when the scene is read. */
 #define WHIRL_SCENE_WORK_MAX 1e10
+/* What the output and the rotation force on top of the steps, counted in the same budget: a row
+ * every [output] every and a trace frame every trace_every each end a step (links x t_end /
+ * every link-steps), and the adaptive methods take steps of order 1/omega in the rotating frame
+ * (links x |omega| x t_end). The rows and the trace's points are bounded apart, for the files
+ * they make: at most WHIRL_SCENE_ROWS_MAX rows (about 2 GB of CSV) and WHIRL_SCENE_TRACE_MAX
+ * points (about 6 GB of trace). */
+#define WHIRL_SCENE_ROWS_MAX 1e7
+#define WHIRL_SCENE_TRACE_MAX 1e8
 
 /* Every key of a scene; the index of whirl_scene.line. */
 typedef enum {

@@ -21,6 +21,7 @@ char *whirl_last_error_in_units(char *buf, size_t size, int physical, double len
 void whirl_stop_request(void);
 int whirl_stop_requested(void);
 void whirl_stop_clear(void);
+int whirl_stop_signal(void);
 int whirl_stop_catch_signals(void);
 void whirl_stop_restore_signals(void);
 

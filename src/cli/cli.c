@@ -15,11 +15,13 @@
 
 int cli_error(const cli_command *cmd, const char *fmt, ...)
 {
+    char msg[4096];
     va_list ap;
-    fprintf(stderr, "whirl %s: ", cmd->name);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    fprintf(stderr, "whirl %s: ", cmd->name);
+    cli_put_escaped(stderr, msg);
     fputc('\n', stderr);
     return 1;
 }
@@ -586,6 +588,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         size_t name_len = eq ? (size_t)(eq - arg) : strlen(arg);
         const cli_option *o = find_option(opts, nopts, arg, name_len);
         if (o == NULL) return unknown_option(cmd, opts, nopts, arg, name_len);
+        if (given[o - opts]) /* -o a -o b: which one was meant? */
+            return cli_error(cmd, "option %s given twice", o->name);
         given[o - opts] = 1;
         if (o->given) *o->given = 1;
         if (o->type == CLI_FLAG) {
@@ -611,88 +615,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
     if (cli_units_check(cmd, &u)) return 1;
     if (check_suffixes(cmd, opts, nopts, text_of)) return 1;
     convert_units(opts, nopts, given);
-    return check_table(cmd, opts, nopts, given);
-}
-
-int cli_out_open(const cli_command *cmd, cli_out *out, const char *path)
-{
-    out->fp = stdout;
-    out->path = NULL;
-    out->tmp = NULL;
-    if (path == NULL || strcmp(path, "-") == 0) return 0;
-    if (path[0] == '\0') return cli_error(cmd, "empty output file name");
-    struct stat st;
-    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
-        /* A device or a pipe (say /dev/null) is written in place: it cannot be renamed over. */
-        out->fp = fopen(path, "w");
-        if (out->fp == NULL) return cli_error(cmd, "cannot write '%s': %s", path, strerror(errno));
-        return 0;
-    }
-    size_t len = strlen(path);
-    out->path = malloc(len + 1);
-    out->tmp = malloc(len + 16);
-    if (out->path == NULL || out->tmp == NULL) {
-        cli_out_abort(out);
-        return cli_error(cmd, "out of memory");
-    }
-    memcpy(out->path, path, len + 1);
-    snprintf(out->tmp, len + 16, "%s.tmp.XXXXXX", path);
-    int fd = mkstemp(out->tmp);
-    if (fd < 0) {
-        int err = errno;
-        free(out->tmp);
-        out->tmp = NULL;
-        cli_out_abort(out);
-        return cli_error(cmd, "cannot write '%s': %s", path, strerror(err));
-    }
-    /* mkstemp creates the file 0600: give it the mode a plain fopen would (0666 less umask). */
-    mode_t mask = umask(0);
-    umask(mask);
-    fchmod(fd, 0666 & ~mask);
-    out->fp = fdopen(fd, "w");
-    if (out->fp == NULL) {
-        close(fd);
-        cli_out_abort(out);
-        return cli_error(cmd, "cannot write '%s': %s", path, strerror(errno));
-    }
-    return 0;
-}
-
-int cli_out_commit(const cli_command *cmd, cli_out *out)
-{
-    if (out->path == NULL) {
-        if (out->fp == stdout) {
-            if (fflush(stdout) != 0 || ferror(stdout))
-                return cli_error(cmd, "error writing standard output");
-            return 0;
-        }
-        int bad = ferror(out->fp) | (fclose(out->fp) != 0);
-        out->fp = NULL;
-        return bad ? cli_error(cmd, "error writing the output") : 0;
-    }
-    int bad = ferror(out->fp);
-    bad |= fclose(out->fp) != 0;
-    out->fp = NULL;
-    if (bad || rename(out->tmp, out->path) != 0) {
-        int err = errno;
-        cli_error(cmd, "cannot write '%s': %s", out->path, strerror(err));
-        cli_out_abort(out);
-        return 1;
-    }
-    free(out->tmp);
-    free(out->path);
-    out->tmp = out->path = NULL;
-    return 0;
-}
-
-void cli_out_abort(cli_out *out)
-{
-    if (out->fp && out->fp != stdout) fclose(out->fp);
-    out->fp = NULL;
-    if (out->tmp) remove(out->tmp);
-    free(out->tmp);
-    free(out->path);
-    out->tmp = out->path = NULL;
+    if (check_table(cmd, opts, nopts, given)) return 1;
+    return cli_check_options_files(cmd, opts, nopts, given, positional, npos_seen);
 }
 
 int cli_units_check(const cli_command *cmd, const cli_units *u)

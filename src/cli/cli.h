@@ -74,6 +74,8 @@ typedef struct cli_option {
     const char *excludes; /* options not allowed with this one; NULL: none */
     const char *required; /* NULL: optional, "": required, "--x ...": required unless one given */
     cli_unit unit;        /* physical kind (doubles); CLI_UNIT_NONE: a number */
+    int input;            /* a CLI_STRING with meta "FILE" names a file written (an output),
+                             unless this is 1: a file read (see cli_check_files) */
 } cli_option;
 
 typedef struct cli_command {
@@ -91,7 +93,9 @@ double cli_grid(double lo, double hi, int count, int i);
 
 /* Parses argv[1..argc-1] (argv[0] is the command name) into opts[0..nopts-1], converts the
  * physical values to dimensionless ones and makes the table's checks (required, needs,
- * excludes, range). Positional arguments go to positional[0..npos-1] (NULL if absent; more
+ * excludes, range; an option given twice is an error), then the checks of the files
+ * (cli_check_files: the options with meta "FILE" are outputs unless marked input, the
+ * positional arguments are inputs). Positional arguments go to positional[0..npos-1] (NULL if absent; more
  * than npos is an error). Returns 0 on success, 1 after printing a one-line error, 2 after
  * printing the help (--help). */
 int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *opts, size_t nopts,
@@ -104,18 +108,29 @@ const char *cli_suffix_name(const char *text);
 /* Levenshtein distance between a[0..alen-1] and the string b (for "did you mean"). */
 size_t cli_edit_distance(const char *a, size_t alen, const char *b);
 
-/* Prints "whirl CMD: message" on one line to stderr and returns 1 (the exit status). */
+/* Prints "whirl CMD: message" on one line to stderr and returns 1 (the exit status). Control
+ * characters in the message (a newline, an escape sequence from a value of a file or option it
+ * echoes) are written escaped, "\n", "\x1b" (cli_put_escaped): one line, and nothing that
+ * drives the terminal. */
 int cli_error(const cli_command *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
 
-/* ---- output written atomically: a temporary file beside the target, renamed at the end ---- */
+/* Writes s to fp with its control characters (below 0x20, and 0x7f) escaped as \n, \r, \t
+ * or \xNN. */
+void cli_put_escaped(FILE *fp, const char *s);
+
+/* ---- output written atomically: a temporary file beside the target, renamed at the end ----
+ * (src/cli/outputs.c; docs/guide/files-and-signals.md) A symlink is written through: the
+ * temporary file goes beside its target and replaces the target, with the target's mode and
+ * owner. A device or FIFO is written in place; a FIFO with no reader is an error at once. */
 typedef struct cli_out {
-    FILE *fp;   /* where to write */
-    char *path; /* final path, NULL for stdout */
-    char *tmp;  /* temporary path while open */
+    FILE *fp;          /* where to write */
+    char *path;        /* final path (a symlink's target), NULL for stdout or a device */
+    char *tmp;         /* temporary path while open */
+    const char *shown; /* the path as given, for messages (NULL: standard output) */
 } cli_out;
 
 /* Opens path (NULL or "-": standard output). Returns 0, or 1 after printing an error. */
@@ -123,8 +138,36 @@ int cli_out_open(const cli_command *cmd, cli_out *out, const char *path);
 /* Flushes, closes and renames into place. Returns 0, or 1 after printing an error (and removing
  * the temporary file). */
 int cli_out_commit(const cli_command *cmd, cli_out *out);
+/* Commits the n outputs all or none: every one is flushed and closed first; if any fails,
+ * none is renamed into place (all temporary files removed) and the error names it. */
+int cli_out_commit_all(const cli_command *cmd, cli_out *const *outs, size_t n);
 /* Removes the temporary file: nothing is left behind. */
 void cli_out_abort(cli_out *out);
+
+/* ---- the files of a command, checked before the work ----
+ * A file named by an option or a scene, with what names it in messages ("--output", "[output]
+ * trace"); path NULL or "-" is standard input or output. */
+typedef struct cli_path {
+    const char *what;
+    const char *path;
+} cli_path;
+#define CLI_FILES_MAX 16
+/* Refuses (1 after printing an error) an output that is empty, a directory, a dangling symlink,
+ * a read-only file (mode without write permission, even for root) or in a folder that cannot be
+ * written; two outputs that are the same file (same device and inode, or the same name in the
+ * same folder when not yet written; devices apart); an output that is one of the inputs. */
+int cli_check_files(const cli_command *cmd, const cli_path *outputs, size_t n_outputs,
+                    const cli_path *inputs, size_t n_inputs);
+/* cli_check_files on an option table after cli_parse (given[i]: option i appeared). */
+int cli_check_options_files(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                            const char *given, const char *const *positional, size_t npos);
+/* Locks the open file fp (path in messages) for this run alone (flock, released when fp is
+ * closed or the process ends):
+ * 0, or 1 after an error when another run holds it or replaced the file. */
+int cli_lock(const cli_command *cmd, FILE *fp, const char *path);
+/* A row of a CSV being resumed: 0 if it has the header's count of fields and no field that is
+ * a non-finite number (nan, inf, 1e999), else -1 with the reason in why. */
+int cli_row_check(const char *line, size_t fields, char *why, size_t size);
 
 /* ---- units: dimensionless by default (L = M = g = 1) ----
  * With any of --length, --mass, --gravity the command works in SI units: lengths in m, masses
@@ -235,11 +278,17 @@ void cli_trace_header(FILE *fp, const cli_units *u, const char *what, double ome
 void cli_put_num(FILE *fp, double x);
 
 /* ---- long runs ---- */
-/* SIGINT/SIGTERM raise the library's stop request (whirl_stop_request) once
- * cli_catch_interrupts() ran: a long loop stops and keeps its output. */
+/* SIGINT, SIGTERM, SIGQUIT, SIGHUP, SIGPIPE and SIGXFSZ raise the library's stop request
+ * (whirl_stop_catch_signals) once cli_catch_interrupts() ran: a long loop stops and keeps its
+ * output. */
 #define cli_interrupted whirl_stop_requested()
-#define CLI_EXIT_INTERRUPTED 130 /* exit status after SIGINT/SIGTERM (128 + SIGINT) */
+#define CLI_EXIT_INTERRUPTED 130 /* a command's status after a stop (128 + SIGINT) */
 void cli_catch_interrupts(void);
+/* The program's exit status for a command's status rc: after a stop raised by a signal, a
+ * failure (rc 1 or CLI_EXIT_INTERRUPTED) exits 128 + the signal's number (SIGINT 130, SIGTERM
+ * 143, SIGHUP 129, SIGQUIT 131, SIGPIPE 141, SIGXFSZ 153), as a shell reports a process killed by
+ * it; otherwise rc. */
+int cli_exit_status(int rc);
 /* Progress of a long loop over a known number of items, on a terminal only:
  *   whirl CMD: points 42/120 (35%), 1m02s elapsed, about 1m55s left
  * rewritten in place, at most every 0.2 s; the estimate comes from the items done in this run

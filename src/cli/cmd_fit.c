@@ -16,7 +16,6 @@
 #include "cli/points_csv.h"
 #include "whirl/optimize.h"
 
-#define FIT_MAX_LINKS 2000
 
 /* The progress line: modes done of those tried, the current one and its evaluations. */
 typedef struct fit_progress {
@@ -47,7 +46,7 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     const cli_option opts[] = {
         {"--shape", NULL, CLI_STRING, &shape, NULL, "FILE",
          "CSV of measured points with columns r and z, lengths in the units of --length (- reads stdin)",
-         NULL, NULL, NULL, ""},
+         NULL, NULL, NULL, "", .input = 1},
         {"--shape-unit", NULL, CLI_STRING, &shape_unit, NULL, "U",
          "the unit of the points' r and z: m, cm or mm (needs --length; default: m)"},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)",
@@ -62,8 +61,8 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
-    if (m.links_given && m.links > FIT_MAX_LINKS)
-        return cli_error(cmd, "--links must be at most %d, got %d", FIT_MAX_LINKS, m.links);
+    if (m.links_given && m.links > WHIRL_FIT_LINKS_MAX)
+        return cli_error(cmd, "--links must be at most %d, got %d", WHIRL_FIT_LINKS_MAX, m.links);
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;

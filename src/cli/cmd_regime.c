@@ -181,12 +181,16 @@ typedef struct observe_ctx {
     double t;                     /* the time reached [T] */
 } observe_ctx;
 
+/* A time in the user's unit as a count of the progress line: --t-max may be as large as a
+ * double (1e300), beyond any long, so the count stops at 1e15. */
+static long progress_count(double x) { return x < 1e15 ? (long)x : (long)1e15; }
+
 static int observe(void *ctx, double t, double angle, const double *pivot, const double *x,
                    size_t n)
 {
     observe_ctx *oc = ctx;
     oc->t = fmin(t, oc->bound);
-    cli_progress_update(&oc->progress, (long)(oc->t * oc->time), 0);
+    cli_progress_update(&oc->progress, progress_count(oc->t * oc->time), 0);
     return oc->trace ? trace_frame(oc->trace, t, angle, pivot, x, n) : GSL_SUCCESS;
 }
 
@@ -199,7 +203,7 @@ static void observe_begin(const cli_command *cmd, const regime_options *o, whirl
     oc->bound = bound;
     oc->t = 0;
     oc->time = regime_cli_user(o, CLI_UNIT_TIME, 1);
-    cli_progress_begin(&oc->progress, cmd, label, (long)ceil(bound * oc->time), 0);
+    cli_progress_begin(&oc->progress, cmd, label, progress_count(ceil(bound * oc->time)), 0);
     whirl_regime_observe(w, observe, oc, tc ? o->trace_every : fmin(1.0, bound / 100));
 }
 
@@ -227,7 +231,7 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
     observe_begin(cmd, o, w, &oc, trace_open ? &tc : NULL, "time", o->p.t_max);
     whirl_regime_result r;
     const int status = whirl_regime_run(w, &o->p, &r);
-    cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
+    cli_progress_update(&oc.progress, progress_count(oc.t * oc.time), 1);
     if (status == WHIRL_EINTERRUPTED)
         rc = CLI_EXIT_INTERRUPTED, cli_error(cmd, "interrupted: %s", CLI_LIBRARY_ERROR(&o->units));
     else if (status != GSL_SUCCESS)
@@ -243,15 +247,15 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
                 CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, o->eps)));
         regime_cli_write_result(out.fp, o, &r);
     }
-    if (trace_open) { /* an interrupted run keeps its trace so far */
-        if (rc == 0 || rc == CLI_EXIT_INTERRUPTED) {
-            if (cli_out_commit(cmd, &trace) != 0 && rc == 0) rc = 1;
-        } else {
-            cli_out_abort(&trace);
-        }
+    cli_out *const outs[2] = {&out, &trace};
+    if (rc == 0) rc = cli_out_commit_all(cmd, outs, trace_open ? 2 : 1); /* both or neither */
+    else if (rc == CLI_EXIT_INTERRUPTED && trace_open) { /* it keeps its trace so far */
+        cli_out_abort(&out);
+        if (cli_out_commit(cmd, &trace) != 0) rc = 1;
+    } else {
+        cli_out_abort(&out);
+        if (trace_open) cli_out_abort(&trace);
     }
-    if (rc == 0) rc = cli_out_commit(cmd, &out);
-    else cli_out_abort(&out);
     whirl_regime_free(w);
     return rc;
 }
@@ -280,7 +284,7 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
                   o->p.t_max + (double)(n - 1) * (o->t_change + o->p.t_max - o->p.t_ramp));
     size_t done = 0; /* points complete; on a stop, the rows written */
     const int status = whirl_regime_sweep(w, &o->p, omega, n, o->t_change, res, &done);
-    cli_progress_update(&oc.progress, (long)(oc.t * oc.time), 1);
+    cli_progress_update(&oc.progress, progress_count(oc.t * oc.time), 1);
     const int interrupted = status == WHIRL_EINTERRUPTED;
     char stopped[512] = "";
     if (interrupted)

@@ -69,12 +69,21 @@ static int one_shape(const cli_command *cmd, steady_cli_model *m, steady_cli_fol
     int rc;
     char rate[160];
     rate_line(rate, sizeof rate, &m->units, omega, suffix);
-    if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
+    cli_progress_state progress;
+    cli_progress_begin(&progress, cmd, "", 0, 0);
+    if (n > 100000) cli_progress_text(&progress, "sampling and writing %zu points", n);
+    if (status == WHIRL_EINTERRUPTED)
+        rc = cli_error(cmd, "interrupted sampling the shape: %s", CLI_LIBRARY_ERROR(&m->units));
+    else if (status != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
     else rc = cli_out_open(cmd, &out, path);
     if (rc == 0) {
         steady_cli_write_shape(out.fp, m, &info, n, s, r, z, tension, rate);
-        rc = cli_out_commit(cmd, &out);
+        if (cli_interrupted) { /* a shape cut short is no shape: nothing is kept */
+            cli_out_abort(&out);
+            rc = cli_error(cmd, "interrupted while writing %zu points: nothing written", n);
+        } else rc = cli_out_commit(cmd, &out);
     }
+    cli_progress_clear(&progress);
     free(s);
     return rc;
 }

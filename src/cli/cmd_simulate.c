@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/figure.h"
 #include "whirl/scene.h"
@@ -22,6 +23,7 @@ typedef struct run {
     int csv_open, trace_open;
     unsigned long frames;       /* written so far */
     cli_progress_state progress; /* output intervals done of all, time left */
+    char failure[CLI_MESSAGE_MAX]; /* how the run ended, printed once the files are settled */
 } run;
 
 /* "WHERE: message" for a key of the scene, as the one-line error of the command. */
@@ -83,16 +85,38 @@ static int simulate(run *r)
     if (status == GSL_SUCCESS) status = whirl_scene_work_run(r->work, &out, &res);
     cli_progress_update(&r->progress, intervals(s, res.t), 1);
     if (status == WHIRL_EINTERRUPTED) {
-        cli_error(r->cmd, "%s: %lu rows kept", whirl_last_error(), res.rows);
+        snprintf(r->failure, sizeof r->failure, "%s: %lu rows kept", whirl_last_error(), res.rows);
         return CLI_EXIT_INTERRUPTED;
     }
     if (status != GSL_SUCCESS) {
-        cli_error(r->cmd, "%s: %s; no file written", s->path, whirl_last_error());
+        snprintf(r->failure, sizeof r->failure, "%s: %s; no file written", s->path,
+                 whirl_last_error());
         return 1;
     }
     if (res.stopped)
         fprintf(stderr, "whirl %s: stopped at t = %.17g: deviation %.6g > %.6g\n", r->cmd->name,
                 res.t, res.deviation, s->stop_deviation);
+    return 0;
+}
+
+/* The files of the run before it starts (cli_check_files): the CSV and the trace, not one file,
+ * neither the scene; a trace named by the scene file (not by --set) replaces no file unless
+ * --overwrite is given. */
+static int check_trace(run *r, const char *scene_path, const char *output, int overwrite)
+{
+    const cli_path outs[2] = {{"--output", output}, {"[output] trace", r->scene.trace}};
+    const cli_path in = {"scene", scene_path};
+    if (cli_check_files(r->cmd, outs, r->scene.trace ? 2 : 1, &in, 1)) return 1;
+    struct stat st;
+    if (r->scene.trace && r->scene.line[WHIRL_KEY_OUTPUT_TRACE] > 0 && !overwrite &&
+        lstat(r->scene.trace, &st) == 0)
+    {
+        char where[512];
+        return cli_error(r->cmd, "%s: '%s' exists: a scene file replaces no file (give "
+                         "--overwrite, or --set output.trace=PATH)",
+                         whirl_scene_where(&r->scene, WHIRL_KEY_OUTPUT_TRACE, where, sizeof where),
+                         r->scene.trace);
+    }
     return 0;
 }
 
@@ -139,11 +163,14 @@ static int add_trace(run *r, const char *scene_path, const char **sets, size_t n
 int cmd_simulate(const cli_command *cmd, int argc, char **argv)
 {
     const char *output = NULL, *set_help = NULL; /* --set is taken out before cli_parse */
+    int overwrite = 0;
     const char *movie = NULL;
     const cli_option opts[] = {
         {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
         {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
          "override a key of the scene (repeatable)"},
+        {"--overwrite", NULL, CLI_FLAG, &overwrite, NULL, "",
+         "let the scene's [output] trace replace an existing file"},
         {"--animate", NULL, CLI_STRING, &movie, NULL, "MOVIE",
          "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
     };
@@ -196,6 +223,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     check_step(cmd, &r.scene);
     if (r.scene.trace && strcmp(r.scene.trace, "-") == 0)
         rc = key_error(&r, WHIRL_KEY_OUTPUT_TRACE, "must be a file, not standard output");
+    if (rc == 0) rc = check_trace(&r, scene_path, output, overwrite);
     if (rc == 0 && (r.work = whirl_scene_work_alloc(&r.scene)) == NULL)
         rc = cli_error(cmd, "%s", whirl_last_error());
     if (rc == 0) rc = cli_out_open(cmd, &r.csv, output);
@@ -206,16 +234,18 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     if (rc == 0) {
         rc = simulate(&r);
-        /* a failed run leaves no file (the outputs are aborted below); a run stopped by Ctrl-C
-         * keeps the rows written so far */
-        if (r.trace_open && rc != 1) {
-            r.trace_open = 0;
-            if (cli_out_commit(cmd, &r.trace) != 0 && rc == 0) rc = 1;
-        }
-        if (rc != 1) {
-            r.csv_open = 0;
-            if (cli_out_commit(cmd, &r.csv) != 0 && rc == 0) rc = 1;
-        }
+        /* A run stopped by a signal keeps the rows written so far: both files, or neither. A
+         * failed run leaves no file (aborted below), and says why; unless a file could not be
+         * written (a full disk, a broken pipe): that is then the one error. */
+        cli_out *const outs[2] = {&r.csv, &r.trace};
+        const size_t n_outs = r.trace_open ? 2 : 1;
+        const int write_failed = ferror(r.csv.fp) || (r.trace_open && ferror(r.trace.fp));
+        if (rc != 1 || write_failed) {
+            if (cli_out_commit_all(cmd, outs, n_outs) != 0) {
+                if (rc == 0) rc = 1;
+            } else if (r.failure[0]) cli_error(cmd, "%s", r.failure);
+            r.csv_open = r.trace_open = 0;
+        } else cli_error(cmd, "%s", r.failure);
     }
     if (r.csv_open) cli_out_abort(&r.csv);
     if (r.trace_open) cli_out_abort(&r.trace);

@@ -31,9 +31,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 
 #include "cli/cli.h"
+#include "core/error.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
@@ -277,6 +279,19 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     p->sim_growth = res.sim_growth;
     p->max_deviation = res.max_deviation;
     p->verdict = res.verdict;
+    /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
+     * linear stretch was not integrated: a step beyond the method's stability interval makes
+     * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
+     * does. The default step stays inside the interval (whirl_default_step); a given one may
+     * not. */
+    if (o->dt > 0 && res.verdict == WHIRL_VERDICT_UNSTABLE &&
+        res.sim_growth > 2 * fmax(p->eig_growth, 0) + 0.1 * p->omega)
+        return whirl_fail(GSL_EFAILED, "the run with --dt %g grew at %g while the linearisation "
+                          "gives %g at omega %g: the step is beyond the stability interval of "
+                          "%s (an integration failure, not the chain); give a smaller --dt, or "
+                          "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
+                          res.sim_growth * unit(o, CLI_UNIT_RATE),
+                          p->eig_growth * unit(o, CLI_UNIT_RATE), p->omega, o->method);
     return GSL_SUCCESS;
 }
 
@@ -518,12 +533,17 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
         free(expect);
         return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
     }
-    char line[STABILITY_LINE_MAX];
-    size_t pos = 0;
+    char line[STABILITY_LINE_MAX], why[160];
+    size_t pos = 0, fields = 1;
     int rc = 0;
+    long lineno = 0;
     *already = 0;
+    /* the columns: the header block's last line */
+    for (const char *c = expect + expect_len - (expect_len > 0); c > expect && c[-1] != '\n'; c--)
+        fields += *c == ',';
     while (rc == 0 && fgets(line, sizeof line, in)) {
         const size_t len = strlen(line);
+        lineno++;
         if (pos < expect_len) { /* the header block, line by line */
             if (strncmp(expect + pos, line, len) != 0)
                 rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
@@ -532,6 +552,12 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
             continue;
         }
         if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
+        /* a complete row must be whole and finite: a file that holds others cannot be trusted */
+        if (cli_row_check(line, fields, why, sizeof why) != 0) {
+            rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
+                           "row, or start the map afresh)", o->output, lineno, why);
+            break;
+        }
         char rate[64];
         int mode;
         if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) continue;
@@ -655,12 +681,20 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     char **kept = calloc(count, sizeof *kept); /* rows read back by --resume */
     size_t already = 0;
-    if (kept == NULL) rc = cli_error(cmd, "out of memory");
-    else if (o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
+    /* a map file that exists is locked from before it is read until it is replaced: one run at
+     * a time writes it */
+    FILE *lock = NULL;
+    struct stat st;
+    if (kept && o.min_given && o.output && strcmp(o.output, "-") != 0 &&
+        stat(o.output, &st) == 0 && S_ISREG(st.st_mode) && (lock = fopen(o.output, "r")))
+        rc = cli_lock(cmd, lock, o.output);
+    if (rc == 0 && kept == NULL) rc = cli_error(cmd, "out of memory");
+    else if (rc == 0 && o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
     cli_out out = {0}, trace = {0};
     if (rc == 0) rc = cli_out_open(cmd, &out, o.output);
     if (rc == 0 && o.trace && (rc = cli_out_open(cmd, &trace, o.trace))) cli_out_abort(&out);
     if (rc) {
+        if (lock) fclose(lock);
         free_kept(kept, count);
         free(pts);
         free(nodes);
@@ -734,11 +768,10 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     free(pts);
     free(nodes);
     whirl_chain_free(c);
-    if (cli_out_commit(cmd, &out)) {
-        cli_out_abort(&trace);
-        return 1;
-    }
-    if (o.trace && cli_out_commit(cmd, &trace)) return 1;
+    cli_out *const outs[2] = {&out, &trace};
+    const int committed = cli_out_commit_all(cmd, outs, o.trace ? 2 : 1);
+    if (lock) fclose(lock);
+    if (committed) return 1;
     if (written < count) {
         if (o.min_given && o.output && strcmp(o.output, "-") != 0)
             cli_error(cmd, "interrupted: %zu of %zu points in '%s' (continue with --resume)",

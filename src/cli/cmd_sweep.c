@@ -194,9 +194,9 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
                     event_name(rows.event[e].kind), CLI_NUM(rows.event[e].omega * rate),
                     CLI_NUM(rows.event[e].tip_r * len), CLI_NUM(rows.event[e].arclength),
                     rows.event[e].n_nodes + 1);
-        rc = cli_out_commit(cmd, &ev);
     }
-    if (rc == 0 && (rc = cli_out_open(cmd, &out, out_path)) == 0) {
+    if (rc == 0 && (rc = cli_out_open(cmd, &out, out_path)) != 0 && events_path) cli_out_abort(&ev);
+    if (rc == 0) {
         if (m.chain) {
             fprintf(out.fp, "# branches of the N-link chain (%d links), tip mass %s %s: each mode "
                     "followed from its birth by pseudo-arclength continuation, a row at every "
@@ -228,7 +228,8 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
                     CLI_NUM(f->tip_r * len), CLI_NUM(f->max_r * len),
                     CLI_NUM(f->top_tension * force), CLI_NUM(f->depth * len), f->n_nodes + 1);
         }
-        rc = cli_out_commit(cmd, &out);
+        cli_out *const outs[2] = {&out, &ev}; /* both files or neither */
+        rc = cli_out_commit_all(cmd, outs, events_path ? 2 : 1);
         if (rc == 0 && interrupted) {
             cli_error(cmd, "interrupted in mode %d: the %zu rows found until then are written",
                       interrupted, written);

@@ -18,8 +18,13 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "core/input.h"
 
-#define VIEW_LINE_MAX 4096
+#define VIEW_LINE_MAX 4096                  /* longest line read, with its newline */
+#define VIEW_BYTES_MAX ((size_t)256 << 20)  /* most bytes read from one file */
+/* The largest coordinate drawn: the page squares coordinates (distances, the projection), and
+ * 1e100 squared stays finite in the browser's doubles. */
+#define VIEW_COORD_MAX 1e100
 #define VIEW_INFO_MAX 24   /* comment lines shown per file */
 #define VIEW_FILES_MAX 16
 
@@ -87,18 +92,32 @@ static int column(const char *header, const char *name)
     }
 }
 
+/* 1 if x, y, z (and t) are finite and within the page's range. */
+static int drawable(double x, double y, double z, double t)
+{
+    return fabs(x) <= VIEW_COORD_MAX && fabs(y) <= VIEW_COORD_MAX && fabs(z) <= VIEW_COORD_MAX &&
+           isfinite(t);
+}
+
 static int read_source(const cli_command *cmd, source *s)
 {
-    FILE *fp = fopen(s->path, "r");
-    if (fp == NULL) return cli_error(cmd, "cannot read '%s': %s", s->path, strerror(errno));
-    char line[VIEW_LINE_MAX];
+    FILE *fp;
+    if (whirl_input_open(s->path, &fp) != GSL_SUCCESS)
+        return cli_error(cmd, "%s", whirl_last_error());
+    whirl_line_reader in = whirl_line_reader_init(fp, s->path, VIEW_LINE_MAX, VIEW_BYTES_MAX);
     int rc = 0, header = 0, cx = -1, cy = -1, cz = -1, cr = -1, ncols = 0;
     long lineno = 0;
     int block_open = 0;
     s->omega = s->eps = NAN;
     s->trace = -1;
-    while (rc == 0 && fgets(line, sizeof line, fp)) {
-        lineno++;
+    while (rc == 0 && whirl_line_read(&in) > 0) {
+        char *line = in.line;
+        lineno = in.lineno;
+        if (strlen(line) != in.len) {
+            rc = cli_error(cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", s->path,
+                           lineno, strlen(line) + 1);
+            continue;
+        }
         if (line[0] == '#') {
             double w = meta_value(line, "omega"), e = meta_value(line, "eps");
             double k = meta_value(line, "mode"), nl = meta_value(line, "links");
@@ -157,8 +176,9 @@ static int read_source(const cli_command *cmd, source *s)
                 continue;
             }
             double x = cx >= 0 ? v[cx] : v[cr], y = cx >= 0 && cy >= 0 ? v[cy] : 0, z = v[cz];
-            if (!isfinite(x) || !isfinite(y) || !isfinite(z)) {
-                rc = cli_error(cmd, "%s:%ld: a value is not finite", s->path, lineno);
+            if (!drawable(x, y, z, 0)) {
+                rc = cli_error(cmd, "%s:%ld: a coordinate is not finite or beyond %g", s->path,
+                               lineno, VIEW_COORD_MAX);
                 continue;
             }
             if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
@@ -166,10 +186,9 @@ static int read_source(const cli_command *cmd, source *s)
             continue;
         }
         double x, y, z, t;
-        if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !isfinite(x) || !isfinite(y) ||
-            !isfinite(z) || !isfinite(t)) {
-            rc = cli_error(cmd, "%s:%ld: a trace line needs four finite numbers x y z t", s->path,
-                           lineno);
+        if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !drawable(x, y, z, t)) {
+            rc = cli_error(cmd, "%s:%ld: a trace line needs four finite numbers x y z t (x, y, z "
+                           "at most %g)", s->path, lineno, VIEW_COORD_MAX);
             continue;
         }
         if (!block_open) {
@@ -180,7 +199,8 @@ static int read_source(const cli_command *cmd, source *s)
         if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
             rc = cli_error(cmd, "out of memory");
     }
-    if (rc == 0 && ferror(fp)) rc = cli_error(cmd, "error reading '%s'", s->path);
+    if (rc == 0 && in.status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
+    whirl_line_reader_free(&in);
     fclose(fp);
     if (rc == 0 && s->xyz.n < 6) rc = cli_error(cmd, "%s: no chain in it (at least two points)", s->path);
     s->planar = 1;
@@ -255,8 +275,8 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
         size_t per = src[k].trace && src[k].start.n > 1 ? (size_t)src[k].start.v[1] : a->n / 3;
         double l = 0;
         for (size_t i = 1; i < per; i++)
-            l += sqrt(pow(a->v[3 * i] - a->v[3 * i - 3], 2) + pow(a->v[3 * i + 1] - a->v[3 * i - 2], 2) +
-                      pow(a->v[3 * i + 2] - a->v[3 * i - 1], 2));
+            l += hypot(hypot(a->v[3 * i] - a->v[3 * i - 3], a->v[3 * i + 1] - a->v[3 * i - 2]),
+                       a->v[3 * i + 2] - a->v[3 * i - 1]);
         len = fmax(len, l);
         physical |= src[k].physical;
     }
@@ -296,7 +316,7 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
     if (src[0].trace) {
         const source *s = &src[0];
         fprintf(fp, "\"frames\": [\n");
-        for (size_t f = 0; f < s->start.n; f++) {
+        for (size_t f = 0; f < s->start.n && !cli_interrupted; f++) {
             size_t a = (size_t)s->start.v[f], b = f + 1 < s->start.n ? (size_t)s->start.v[f + 1]
                                                                    : s->xyz.n / 3;
             fprintf(fp, "%s{\"t\": %.17g, \"p\": ", f ? ",\n" : "", s->time.v[f]);
@@ -374,7 +394,10 @@ int cmd_view(const cli_command *cmd, int argc, char **argv)
                 if (strncmp(*l, "/*WHIRL_DATA*/", 14) == 0) write_data(out.fp, src, nsrc, camera, omega, eps);
                 else fputs(*l, out.fp);
             }
-            rc = cli_out_commit(cmd, &out);
+            if (cli_interrupted) {
+                cli_out_abort(&out);
+                rc = cli_error(cmd, "interrupted while writing the page: nothing written");
+            } else rc = cli_out_commit(cmd, &out);
         }
     }
     for (int k = 0; k < nsrc; k++) {

@@ -85,24 +85,26 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < n_commands; i++)
         if (strcmp(argv[1], commands[i].name) == 0) {
-            /* SIGINT and SIGTERM raise the stop request: every long loop ends soon after, the
-             * command removes its temporary files and fails; a failure after a stop request
-             * exits CLI_EXIT_INTERRUPTED */
+            /* SIGINT, SIGTERM, SIGQUIT, SIGHUP (SIGPIPE and SIGXFSZ as write errors) raise the
+             * stop request: every long loop ends soon after, the command keeps the rows it
+             * has, removes its temporary files and fails; a failure after a stop request exits
+             * with 128 + the signal's number (cli_exit_status) */
             cli_catch_interrupts();
             int rc = commands[i].run(&commands[i], argc - 1, argv + 1);
-            if (rc == 1 && whirl_stop_requested()) rc = CLI_EXIT_INTERRUPTED;
-            return rc == 2 ? 0 : rc; /* 2: help was printed */
+            return rc == 2 ? 0 : cli_exit_status(rc); /* 2: help was printed */
         }
-    /* the nearest command's name, if within two edits */
+    /* the nearest command's name, if within two edits; the name echoed with its control
+     * characters escaped */
     size_t best = n_commands, best_d = (size_t)-1;
     for (size_t i = 0; i < n_commands; i++) {
         const size_t d = cli_edit_distance(argv[1], strlen(argv[1]), commands[i].name);
         if (d < best_d) best_d = d, best = i;
     }
+    fputs("whirl: unknown command '", stderr);
+    cli_put_escaped(stderr, argv[1]);
     if (best < n_commands && best_d <= 2 && best_d < strlen(argv[1]))
-        fprintf(stderr, "whirl: unknown command '%s' (did you mean %s? whirl --help lists them)\n",
-                argv[1], commands[best].name);
+        fprintf(stderr, "' (did you mean %s? whirl --help lists them)\n", commands[best].name);
     else
-        fprintf(stderr, "whirl: unknown command '%s' (whirl --help lists them)\n", argv[1]);
+        fputs("' (whirl --help lists them)\n", stderr);
     return 1;
 }

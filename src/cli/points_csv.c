@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include "cli/points_csv.h"
+#include "core/input.h"
 
 static int points_push(points_csv *p, double r, double z)
 {
@@ -90,21 +91,16 @@ static int read_row(const cli_command *cmd, const char *name, long lineno, char 
 
 int points_csv_read(const cli_command *cmd, FILE *fp, const char *name, points_csv *p)
 {
-    char *line = NULL;
-    size_t cap = 0;
-    ssize_t len;
-    long lineno = 0, col_r = -1, col_z = -1;
-    int rc = 0, header_seen = 0;
-    while (rc == 0 && (len = getline(&line, &cap, fp)) >= 0) {
-        lineno++;
-        if (strlen(line) != (size_t)len) {
+    whirl_line_reader in =
+        whirl_line_reader_init(fp, name, POINTS_CSV_LINE_MAX, POINTS_CSV_BYTES_MAX);
+    long col_r = -1, col_z = -1;
+    int rc = 0, header_seen = 0, got;
+    while (rc == 0 && (got = whirl_line_read(&in)) > 0) {
+        char *line = in.line;
+        const long lineno = in.lineno;
+        if (strlen(line) != in.len) {
             rc = cli_error(cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", name, lineno,
                            strlen(line) + 1);
-            break;
-        }
-        if (len > POINTS_CSV_LINE_MAX - 1) {
-            rc = cli_error(cmd, "%s:%ld: line longer than %d characters", name, lineno,
-                           POINTS_CSV_LINE_MAX - 1);
             break;
         }
         if (is_blank_or_comment(line)) continue;
@@ -122,8 +118,8 @@ int points_csv_read(const cli_command *cmd, FILE *fp, const char *name, points_c
             rc = cli_error(cmd, "%s:%ld: the header has no column '%s' (columns r and z are "
                            "required)", name, lineno, col_r < 0 ? "r" : "z");
     }
-    free(line);
-    if (rc == 0 && ferror(fp)) rc = cli_error(cmd, "error reading '%s'", name);
+    if (rc == 0 && in.status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
+    whirl_line_reader_free(&in);
     if (rc == 0 && !header_seen)
         rc = cli_error(cmd, "%s: no header line (columns r and z are required)", name);
     return rc;
@@ -133,9 +129,10 @@ int points_csv_read_path(const cli_command *cmd, const char *path, points_csv *p
 {
     if (path[0] == '\0') return cli_error(cmd, "--shape: empty file name");
     const int std_in = strcmp(path, "-") == 0;
-    FILE *fp = std_in ? stdin : fopen(path, "r");
-    if (fp == NULL) return cli_error(cmd, "cannot read '%s': %s", path, strerror(errno));
-    int rc = points_csv_read(cmd, fp, path, p);
+    FILE *fp = stdin;
+    if (!std_in && whirl_input_open(path, &fp) != GSL_SUCCESS)
+        return cli_error(cmd, "%s", whirl_last_error());
+    int rc = points_csv_read(cmd, fp, std_in ? "standard input" : path, p);
     if (!std_in) fclose(fp);
     return rc;
 }

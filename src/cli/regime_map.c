@@ -12,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_math.h>
@@ -78,30 +79,23 @@ static long unpack(const double *buf, whirl_regime_result *r)
 /* Reads a map file written with the same parameter line: marks its complete rows in done[],
  * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
  * closing comments dropped). Returns 0 or 1 after an error. */
-static int resume_map(const cli_command *cmd, const regime_options *o, char *done, long n_points,
-                      long *n_done)
+static int resume_map(const cli_command *cmd, const regime_options *o, FILE *in, char *done,
+                      long n_points, long *n_done)
 {
-    FILE *in = fopen(o->output, "r");
-    if (in == NULL)
-        return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
     char expect[REGIME_LINE_MAX];
     FILE *mem = fmemopen(expect, sizeof expect, "w");
-    if (mem == NULL) {
-        fclose(in);
-        return cli_error(cmd, "out of memory");
-    }
+    if (mem == NULL) return cli_error(cmd, "out of memory");
     regime_cli_write_parameters(mem, o);
     fclose(mem);
     expect[strcspn(expect, "\n") + 1] = '\0'; /* the parameter line only */
     cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) {
-        fclose(in);
-        return 1;
-    }
-    char line[REGIME_LINE_MAX];
+    if (cli_out_open(cmd, &out, o->output) != 0) return 1;
+    char line[REGIME_LINE_MAX], why[160];
     int same = 0, header = 0, rc = 0;
+    long lineno = 0;
     *n_done = 0;
     while (rc == 0 && fgets(line, sizeof line, in)) {
+        lineno++;
         const size_t len = strlen(line);
         if (line[0] == '#') {
             if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
@@ -121,20 +115,29 @@ static int resume_map(const cli_command *cmd, const regime_options *o, char *don
                 fputs(line, out.fp);
             continue;
         }
-        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
-        int fields = 1;
-        for (const char *c = line; *c; c++) fields += *c == ',';
+        if (len == 0 || line[len - 1] != '\n') { /* unfinished: the last line, or too long */
+            if (fgets(line, sizeof line, in) == NULL) break;
+            rc = cli_error(cmd, "--resume: %s:%ld: a line longer than %d characters: the file "
+                           "cannot be trusted", o->output, lineno, REGIME_LINE_MAX - 2);
+            break;
+        }
+        /* a complete row must be whole and finite: a file that holds others cannot be trusted */
+        if (cli_row_check(line, REGIME_MAP_FIELDS, why, sizeof why) != 0) {
+            rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
+                           "row, or start the map afresh)", o->output, lineno, why);
+            break;
+        }
         char *end;
         const long index = strtol(line, &end, 10);
-        if (fields != REGIME_MAP_FIELDS || *end != ',' || index < 0 || index >= n_points) continue;
+        if (*end != ',' || index < 0 || index >= n_points) continue;
         if (!done[index]) {
             done[index] = 1;
             ++*n_done;
             fputs(line, out.fp);
         }
     }
+    if (rc == 0 && ferror(in)) rc = cli_error(cmd, "--resume: cannot read '%s'", o->output);
     if (rc == 0 && !header) rc = cli_error(cmd, "--resume: '%s' holds no map", o->output);
-    fclose(in);
     if (rc != 0) {
         cli_out_abort(&out);
         return rc;
@@ -259,11 +262,22 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
     long n_done = 0;
-    FILE *fp = NULL;
+    FILE *fp = NULL, *old = NULL;
     if (mc->rank == 0 && rc == 0) {
-        rc = o->resume ? resume_map(cmd, o, done, n_points, &n_done) : fresh_map(cmd, o, chain);
+        /* one run at a time writes a map: the file is locked from before it is read (the old
+         * one, read through the locked stream) until the run ends (the new one) */
+        if (o->resume && (old = fopen(o->output, "r+")) == NULL)
+            rc = cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
+        else if (!o->resume && access(o->output, F_OK) == 0 && (old = fopen(o->output, "r+")))
+            rc = cli_lock(cmd, old, o->output); /* not replaced while another run writes it */
+        if (rc == 0 && o->resume) rc = cli_lock(cmd, old, o->output);
+        if (rc == 0)
+            rc = o->resume ? resume_map(cmd, o, old, done, n_points, &n_done)
+                           : fresh_map(cmd, o, chain);
         if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
             rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
+        if (rc == 0) rc = cli_lock(cmd, fp, o->output);
+        if (old) fclose(old);
     }
     rc = all_max(mc, rc);
 #ifdef WHIRL_MPI

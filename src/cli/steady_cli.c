@@ -138,7 +138,8 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
     if (extra) fprintf(fp, "# %s\n", extra);
     cli_units_comment(fp, &m->units);
     fprintf(fp, "s,r,z,tension\n");
-    for (size_t i = 0; i < n; i++)
+    /* 10^7 points are 800 MB: the stop request is polled (the caller then drops the file) */
+    for (size_t i = 0; i < n && !(i % 16384 == 16383 && cli_interrupted); i++)
         fprintf(fp, "%s,%s,%s,%s\n", CLI_NUM(s[i] * len), CLI_NUM(r[i] * len),
                 CLI_NUM(z[i] * len), CLI_NUM(tension[i] * force));
 }

@@ -5,15 +5,37 @@
  * (IEEE 754-2008, 5.12.2); fewer digits often do. Printing with %.15g, then %.16g, then %.17g
  * and keeping the first that strtod converts back to the same value gives the shortest of these
  * three forms that loses nothing (15 digits or fewer always round-trip only when the value was
- * written with that many, which is the case users care about: grids, options, rates). */
+ * written with that many, which is the case users care about: grids, options, rates).
+ *
+ * Numbers are read and written in the C locale whatever the process set (setlocale): a program
+ * with a comma-decimal locale would otherwise write "0,5" and fail to read every scene. The
+ * thread switches to the C locale around each conversion (uselocale, per thread). */
 #include <errno.h>
+#include <locale.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "whirl/common.h"
+
+/* The C locale, made once (it is read-only and shared by the threads). */
+static pthread_once_t c_locale_once = PTHREAD_ONCE_INIT;
+static locale_t c_locale_made = (locale_t)0;
+static void make_c_locale(void) { c_locale_made = newlocale(LC_ALL_MASK, "C", (locale_t)0); }
+
+/* Switches the calling thread to the C locale; returns what to restore (0: nothing). */
+static locale_t enter_c_locale(void)
+{
+    pthread_once(&c_locale_once, make_c_locale);
+    return c_locale_made ? uselocale(c_locale_made) : (locale_t)0;
+}
+static void leave_c_locale(locale_t old)
+{
+    if (old) uselocale(old);
+}
 
 char *whirl_format_double(char *buf, double x)
 {
@@ -25,10 +47,12 @@ char *whirl_format_double(char *buf, double x)
         snprintf(buf, WHIRL_FORMAT_MAX, "%s", x > 0 ? "inf" : "-inf");
         return buf;
     }
+    const locale_t old = enter_c_locale();
     for (int digits = 15; digits <= 17; digits++) {
         snprintf(buf, WHIRL_FORMAT_MAX, "%.*g", digits, x);
         if (digits == 17 || strtod(buf, NULL) == x) break;
     }
+    leave_c_locale(old);
     return buf;
 }
 
@@ -74,7 +98,11 @@ int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value, i
     char *end;
     if (text == NULL || value == NULL) return -1;
     errno = 0;
+    const locale_t old = enter_c_locale();
     double v = strtod(text, &end);
+    const int err = errno;
+    leave_c_locale(old);
+    errno = err;
     if (end == text || errno == ERANGE || !isfinite(v)) return -1;
     if (suffixed) *suffixed = 0;
     /* "4Hz", "4 Hz", "4HZ": spaces before the suffix, which is matched without regard to case

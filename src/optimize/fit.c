@@ -28,6 +28,7 @@
 
 #include "whirl/optimize.h"
 #include "core/error.h"
+#include "core/input.h"
 
 #define FIT_MIN_POINTS 3
 #define FIT_SCAN_POINTS 24
@@ -236,6 +237,18 @@ static int check_model(const whirl_fit_model *m)
     if (m->links == 0 && m->samples < 2)
         return whirl_fail(GSL_EINVAL, "the model curve needs at least 2 samples, got %zu",
                           m->samples);
+    /* the counts that drive the work, bounded here and not only by the callers; the memory is
+     * the model's arrays (about 12 doubles a link, 3 a sample) */
+    char bytes[32];
+    if (m->links > WHIRL_FIT_LINKS_MAX)
+        return whirl_fail(GSL_EINVAL, "a fit takes at most %d links, got %zu (its model would "
+                          "need about %s and every evaluation a shape of that many links)",
+                          WHIRL_FIT_LINKS_MAX, m->links,
+                          whirl_bytes_words(bytes, sizeof bytes, 96.0 * (double)m->links));
+    if (m->links == 0 && m->samples > WHIRL_FIT_SAMPLES_MAX)
+        return whirl_fail(GSL_EINVAL, "a fit takes at most %d samples of the model curve, got %zu "
+                          "(about %s)", WHIRL_FIT_SAMPLES_MAX, m->samples,
+                          whirl_bytes_words(bytes, sizeof bytes, 24.0 * (double)m->samples));
     return GSL_SUCCESS;
 }
 

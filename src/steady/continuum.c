@@ -634,6 +634,10 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
     for (size_t k = 0; k < npts && status == GSL_SUCCESS; k++) {
         size_t j = npts - 1 - k;
         double sigma = (double)k / (double)(npts - 1);
+        if (k % 1024 == 1023 && whirl_stop_requested()) { /* 10^7 points take seconds */
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped after %zu of %zu points", k, npts);
+            break;
+        }
         if (k == npts - 1) sigma = 1;
         double yj[N_STATE];
         if (sigma <= sigma0) {
@@ -650,7 +654,7 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
         z[j] = yj[Y_Z];
         tension[j] = (sigma + tip_mass) * sqrt(1 + w->b2 * q * q);
     }
-    if (status != GSL_SUCCESS)
+    if (status != GSL_SUCCESS && status != WHIRL_EINTERRUPTED)
         status = whirl_fail(status, "ODE integration failed sampling the shape (omega=" WHIRL_Q_RATE
                             "%g)", omega);
     else

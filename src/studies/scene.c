@@ -17,6 +17,7 @@
 #include "whirl/scene.h"
 #include "whirl/common.h"
 #include "core/error.h"
+#include "core/input.h"
 
 static const char *const section_names[] = {"chain", "start", "run", "output", "units"};
 enum { N_SECTIONS = sizeof section_names / sizeof section_names[0] };
@@ -75,15 +76,19 @@ const char *whirl_column_name(whirl_column c)
     return (c >= 0 && c < WHIRL_NCOLUMNS) ? column_names[c] : NULL;
 }
 
+/* The bounds of a scene file: its longest line (a list of 10^5 link lengths in full precision
+ * is under 3 MiB) and its size; the reader checks both as it reads (core/input.h). */
+#define WHIRL_SCENE_LINE_MAX ((size_t)16 << 20)
+#define WHIRL_SCENE_BYTES_MAX ((size_t)64 << 20)
+
 /* Placeholder handed to inih for the value of a line too long for its buffer. */
 #define LONG_VALUE "\x01"
 
 /* State of the first pass. */
 typedef struct collect {
     const char *path;
-    FILE *fp;
-    char *line;          /* the current physical line (getline) */
-    size_t line_cap;
+    whirl_line_reader in; /* the bounded reader (core/input.h) */
+    char *line;          /* the current physical line (in.line) */
     int lineno;          /* number of the current line */
     int continuation;    /* the current line is indented: it continues the previous key */
     char *long_value;    /* the value of the current line if it was too long for inih */
@@ -158,13 +163,20 @@ static char *trim(char *s)
 static char *read_line(char *str, int num, void *stream)
 {
     collect *c = stream;
-    ssize_t len = getline(&c->line, &c->line_cap, c->fp);
-    if (len < 0) return NULL;
+    const int got = whirl_line_read(&c->in);
+    if (got < 0) { /* too long, too much, out of memory, unreadable, interrupted */
+        c->status = c->in.status;
+        c->error_line = (int)c->in.lineno;
+        return NULL;
+    }
+    if (got == 0) return NULL;
+    c->line = c->in.line;
+    const size_t len = c->in.len;
     c->lineno++;
     free(c->long_value);
     c->long_value = NULL;
 
-    if (strlen(c->line) != (size_t)len) {
+    if (strlen(c->line) != len) {
         collect_error(c, "NUL byte at column %zu (a binary file?)", strlen(c->line) + 1);
         return NULL;
     }
@@ -190,8 +202,8 @@ static char *read_line(char *str, int num, void *stream)
                               "line of its own)", trim(end + 1));
         }
     }
-    if (len < num - 1) {
-        memcpy(str, c->line, (size_t)len + 1);
+    if (len < (size_t)num - 1) {
+        memcpy(str, c->line, len + 1);
         return str;
     }
     if (comment) {
@@ -758,12 +770,75 @@ static int convert_columns(const convert *v)
     return status;
 }
 
+/* The rows, the trace's points and the work the output and the rotation force (whirl/scene.h:
+ * WHIRL_SCENE_ROWS_MAX, WHIRL_SCENE_TRACE_MAX, WHIRL_SCENE_WORK_MAX); the counts as doubles,
+ * before any is made an integer. */
+static int check_work(const convert *v)
+{
+    const whirl_scene *s = v->scene;
+    char size[32];
+    const double rows = s->t_end / s->every;
+    if (!(rows <= WHIRL_SCENE_ROWS_MAX))
+        return key_error(v, WHIRL_KEY_OUTPUT_EVERY, "t_end / every = %.3g rows exceeds the bound "
+                         "of %g rows (they would take about %s): raise every or shorten t_end",
+                         rows, WHIRL_SCENE_ROWS_MAX,
+                         whirl_bytes_words(size, sizeof size,
+                                           rows * 20.0 * (double)s->n_columns));
+    const double frames = given(v, WHIRL_KEY_OUTPUT_TRACE) ? s->t_end / s->trace_every : 0;
+    const double points = frames * (double)(s->links + 1);
+    if (!(points <= WHIRL_SCENE_TRACE_MAX))
+        return key_error(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, "t_end / trace_every x (links + 1) = "
+                         "%.3g trace points exceeds the bound of %g (they would take about %s): "
+                         "raise trace_every or shorten t_end", points, WHIRL_SCENE_TRACE_MAX,
+                         whirl_bytes_words(size, sizeof size, points * 60.0));
+    const double steps = (s->tol == 0 ? s->t_end / s->dt : 0) + rows + frames +
+                         fabs(s->omega) * s->t_end;
+    const double work = (double)s->links * steps;
+    if (!(work <= WHIRL_SCENE_WORK_MAX))
+        return key_error(v, WHIRL_KEY_RUN_T_END, "links x (steps + rows + frames + |omega| t_end) "
+                         "= %.3g link-steps exceeds the budget of %g (hours of work): shorten "
+                         "t_end, raise dt or every, lower omega or use fewer links", work,
+                         WHIRL_SCENE_WORK_MAX);
+    return GSL_SUCCESS;
+}
+
+/* The trace file of the scene: as given when it comes from an override (the command line,
+ * relative to the working directory); from the file, a path relative to the scene's folder that
+ * stays inside it: not absolute, no ".." component (a scene shared as data cannot write
+ * anywhere else). */
+static int trace_path(const convert *v, const char *value, char **out)
+{
+    const whirl_scene *s = v->scene;
+    if (s->line[WHIRL_KEY_OUTPUT_TRACE] < 0) {
+        if ((*out = copy_string(value)) == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+        return GSL_SUCCESS;
+    }
+    if (value[0] == '/')
+        return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must be a path relative to the scene's "
+                         "folder, not an absolute path");
+    for (const char *p = value; *p;) {
+        const size_t len = strcspn(p, "/");
+        if (len == 2 && p[0] == '.' && p[1] == '.')
+            return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must stay in the scene's folder (no "
+                             "'..'); give another place with --set output.trace=PATH");
+        p += len;
+        if (*p == '/') p++;
+    }
+    const char *slash = strrchr(s->path, '/');
+    const size_t dir = slash ? (size_t)(slash - s->path) + 1 : 0, len = strlen(value);
+    if ((*out = malloc(dir + len + 1)) == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    memcpy(*out, s->path, dir);
+    memcpy(*out + dir, value, len + 1);
+    return GSL_SUCCESS;
+}
+
 static int convert_output(const convert *v)
 {
     whirl_scene *s = v->scene;
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_EVERY, s->dt, 0, 1, &s->every));
     TRY(get_bounded(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, s->every, 0, 1, &s->trace_every));
     TRY(convert_columns(v));
+    TRY(check_work(v));
     if (given(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE)) {
         long mode;
         TRY(get_integer(v, WHIRL_KEY_OUTPUT_REFERENCE_MODE, 1, 1, (long)s->links, &mode));
@@ -780,8 +855,7 @@ static int convert_output(const convert *v)
     if (given(v, WHIRL_KEY_OUTPUT_TRACE)) {
         if (v->raw[WHIRL_KEY_OUTPUT_TRACE][0] == '\0')
             return key_error(v, WHIRL_KEY_OUTPUT_TRACE, "must not be empty");
-        if ((s->trace = copy_string(v->raw[WHIRL_KEY_OUTPUT_TRACE])) == NULL)
-            return whirl_fail(GSL_ENOMEM, "out of memory");
+        TRY(trace_path(v, v->raw[WHIRL_KEY_OUTPUT_TRACE], &s->trace));
     } else if (given(v, WHIRL_KEY_OUTPUT_TRACE_EVERY))
         return key_error(v, WHIRL_KEY_OUTPUT_TRACE_EVERY, "given without [output] trace");
     return GSL_SUCCESS;
@@ -792,11 +866,12 @@ static int convert_output(const convert *v)
 static int collect_stream(collect *c, FILE *fp, const char *path)
 {
     c->path = path;
-    c->fp = fp;
+    c->in = whirl_line_reader_init(fp, path, WHIRL_SCENE_LINE_MAX, WHIRL_SCENE_BYTES_MAX);
     int rc = ini_parse_stream(read_line, c, on_key, c);
-    if (ferror(c->fp) && c->status == GSL_SUCCESS)
+    if (ferror(fp) && c->status == GSL_SUCCESS)
         c->status = whirl_fail(GSL_EFAILED, "%s: read error", path);
-    c->fp = NULL;
+    whirl_line_reader_free(&c->in);
+    c->line = NULL;
     /* inih's own (syntax) error, unless ours came first */
     if (rc > 0 && (c->status == GSL_SUCCESS || rc < c->error_line))
         c->status = whirl_fail(GSL_EINVAL, "%s:%d: syntax error: expected [section] or key = value",
@@ -827,7 +902,6 @@ int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *over
         if (status == GSL_SUCCESS) status = convert_output(&v);
     }
     for (int k = 0; k < WHIRL_SCENE_NKEYS; k++) free(c.raw[k]);
-    free(c.line);
     free(c.long_value);
     if (status != GSL_SUCCESS) whirl_scene_free(scene);
     return status;
@@ -837,10 +911,10 @@ int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_o
                       whirl_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
-    FILE *fp = fopen(path, "r");
-    if (fp == NULL)
-        return whirl_fail(GSL_EFAILED, "%s: cannot read: %s", path, strerror(errno));
-    int status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
+    FILE *fp;
+    int status = whirl_input_open(path, &fp);
+    if (status != GSL_SUCCESS) return status;
+    status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
     fclose(fp);
     return status;
 }

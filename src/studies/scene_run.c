@@ -280,7 +280,10 @@ static int frame_out(whirl_scene_work *w, double t, const whirl_scene_output *ou
 /* The k-th output time of the interval every: k every, and t_end as the last (k = last). */
 static size_t last_index(double every, double t_end)
 {
-    return (size_t)ceil(t_end / every * (1 - 1e-12));
+    /* the scene bounds t_end / every (WHIRL_SCENE_ROWS_MAX); the cap keeps the cast defined for
+     * any scene built by hand */
+    const double k = ceil(t_end / every * (1 - 1e-12));
+    return k < 1e15 ? (size_t)k : (size_t)1e15;
 }
 static double output_time(size_t k, size_t last, double every, double t_end)
 {

@@ -55,7 +55,8 @@ expect_ok "interrupt: resume" regime $big -o "$tmp/big.csv" --resume
 if [ "$(rows "$tmp/big.csv" | cut -d, -f1 | tr '\n' ' ')" = "$(seq 0 39 | tr '\n' ' ')" ]; then
   pass "interrupt: resumed to 40 rows in order"; else fail "interrupt: resumed to 40 rows in order"; fi
 expect_error "resume with other parameters" "whirl regime: --resume: .* not written by a map with these parameters" \
-  regime $big --drag 0.3 -o "$tmp/big.csv" --resume
+  regime --omega-min 1 --omega-max 4 --omega-count 40 --eps 0.05 --links 8 --drag 0.3 --t-max 150 \
+  --t-ramp 10 -o "$tmp/big.csv" --resume
 
 # 2 MPI ranks: the same rows as the single process (under the sanitizers without leak detection:
 # Open MPI's plugins keep allocations past exit); a program built without MPI ran the map on 1 rank

@@ -116,8 +116,8 @@ expect_error "simulate: a drive rate of 1e308 is refused (wrote inf)" \
 expect_error "fit: more than 20000 points are refused" "a fit takes at most 20000 points, got 20001" \
   fit --shape "$tmp/many.csv" -o "$out"
 
-# ---- interrupts: SIGINT or SIGTERM ends every long command with exit 130, rows kept where the
-# command keeps rows, no temporary file left ----
+# ---- interrupts: SIGINT or SIGTERM ends every long command with exit 128 + the signal's number
+# (130, 143), rows kept where the command keeps rows, no temporary file left ----
 # interrupt NAME SIGNAL ROWS ARGS...: runs `whirl ARGS -o $tmp/int/out.csv`, sends SIGNAL after
 # 1 s; ROWS = keep: the output must then exist with its header and the rows done (possibly
 # none); rows: likewise with at least one row; none: no output.
@@ -138,7 +138,8 @@ interrupt() {
     *) [ ! -e "$tmp/int/out.csv" ] ;;
   esac
   output_ok=$?
-  if [ $rc -eq 130 ] && [ -z "$left" ] && [ $output_ok -eq 0 ]; then
+  case $sig in INT) want=130 ;; TERM) want=143 ;; *) want=none ;; esac
+  if [ $rc -eq $want ] && [ -z "$left" ] && [ $output_ok -eq 0 ]; then
     pass "interrupt ($sig): $name"
   else
     fail "interrupt ($sig): $name (rc=$rc, left: '$left', lines: $kept, stderr: $(head -c 200 "$tmp/int.stderr"))"

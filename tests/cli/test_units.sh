@@ -131,7 +131,7 @@ drive_radius = $(val "0.01 * L * 100")cm
 [output]
 every = $(val "0.5 / R")
 columns = t, tip_x, tip_y, tip_z, energy, lz, deviation
-trace = $tmp/b.trace
+trace = b.trace
 trace_every = $(val "1 / R")
 EOF
 cat >"$tmp/dimless.ini" <<EOF
@@ -150,7 +150,7 @@ drive_radius = 0.01
 [output]
 every = 0.5
 columns = t, tip_x, tip_y, tip_z, energy, lz, deviation
-trace = $tmp/a.trace
+trace = a.trace
 trace_every = 1
 EOF
 "$WHIRL" simulate "$tmp/dimless.ini" -o "$tmp/a.csv"

@@ -117,7 +117,7 @@ fi
 
 # ---- bad input ----
 expect_error "no file" "whirl view: give a trace or shape files" view -o "$tmp/out.csv"
-expect_error "missing file" "whirl view: cannot read" view "$tmp/none.csv" -o "$tmp/out.csv"
+expect_error "missing file" "whirl view: .*none.csv: cannot read" view "$tmp/none.csv" -o "$tmp/out.csv"
 expect_error "bad camera" "whirl view: --camera needs AZ,EL" view "$tmp/s2.csv" --camera 10 -o "$tmp/out.csv"
 expect_error "trace and shape" "whirl view: one trace, or any number of shapes" view "$tmp/run.dat" "$tmp/s2.csv" -o "$tmp/out.csv"
 printf 'a,b\n1,2\n' >"$tmp/ab.csv"

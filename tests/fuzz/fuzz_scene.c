@@ -14,6 +14,7 @@
 
 #define RUN_LINKS_MAX 8
 #define RUN_STEPS_MAX 40
+#define RUN_RADIANS_MAX 1e4 /* links x |omega| x t_end of a short run */
 
 /* A short run of the scene text in a temporary file, t_end cut to RUN_STEPS_MAX steps. */
 static void short_run(const uint8_t *data, size_t size, const whirl_scene *s)
@@ -29,9 +30,17 @@ static void short_run(const uint8_t *data, size_t size, const whirl_scene *s)
     }
     fwrite(data, 1, size, fp);
     fclose(fp);
-    const double step = s->tol > 0 ? s->every : s->dt;
+    /* fixed steps end at every output time too: rows every "every" force steps of at most it */
+    const double step = s->tol > 0 ? s->every : fmin(s->dt, s->every);
+    const double t_cut = fmin(s->t_end, RUN_STEPS_MAX * step);
+    /* the adaptive methods take steps ~ 1/omega in the rotating frame: a short run is one of
+     * few radians too (the library's bound counts links |omega| t_end, whirl/scene.h) */
+    if ((double)s->links * fabs(s->omega) * t_cut > RUN_RADIANS_MAX) {
+        unlink(path);
+        return;
+    }
     char t_end[64];
-    snprintf(t_end, sizeof t_end, "run.t_end=%.17g", fmin(s->t_end, RUN_STEPS_MAX * step));
+    snprintf(t_end, sizeof t_end, "run.t_end=%.17g", t_cut);
     char *argv[] = {"simulate", path, "--set", t_end, "-o", "/dev/null", NULL};
     static const cli_command cmd = {"simulate", "", "", cmd_simulate};
     FILE *saved = stderr;

@@ -557,6 +557,15 @@ static void test_fit_errors(void **state)
     m = whirl_fit_model_defaults();
     m.links = 3;
     assert_int_equal(whirl_fit(&m, 4, r, z, 4, &res), GSL_EDOM); /* 3 links: modes 1..3 */
+    /* the counts that drive the work are bounded in the library (10^7 links ran 12 minutes) */
+    m.links = 10000000;
+    assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
+    assert_non_null(strstr(whirl_last_error(), "at most 2000 links, got 10000000"));
+    assert_non_null(strstr(whirl_last_error(), "916 MiB"));
+    m = whirl_fit_model_default();
+    m.samples = (size_t)WHIRL_FIT_SAMPLES_MAX + 1;
+    assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
+    assert_non_null(strstr(whirl_last_error(), "at most 1000000 samples"));
 }
 
 int main(void)

@@ -123,7 +123,10 @@ static void test_default_columns_and_angles(void **state)
     assert_true(s.omega == 0);
     assert_true(s.seed_sigma[1] == 0.2 && s.seed_lambda[0] == 0.3 && s.tol == 1e-9);
     assert_true(s.every == 0.5 && s.trace_every == 0.5);
-    assert_string_equal(s.trace, "out.dat");
+    /* a trace named in the file is relative to the scene's folder */
+    char trace[sizeof dir + 16];
+    snprintf(trace, sizeof trace, "%s/out.dat", dir);
+    assert_string_equal(s.trace, trace);
     /* all columns but the deviation, in the documented order */
     assert_int_equal(s.n_columns, WHIRL_NCOLUMNS - 1);
     for (size_t c = 0; c < s.n_columns; c++) assert_int_equal(s.columns[c], (int)c);
@@ -410,6 +413,37 @@ static int teardown(void **state)
     return rmdir(dir);
 }
 
+/* A scene file's trace stays in its folder (not absolute, no ".."); an override is the command
+ * line's and is taken as given. */
+static void test_trace_confined(void **state)
+{
+    (void)state;
+    static const char *const bad[] = {"/tmp/victim.txt", "../victim.txt", "a/../../victim.txt",
+                                      "..", "a/.."};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char text[256];
+        snprintf(text, sizeof text, "[chain]\ndim = 2\nlinks = 2\n[start]\nhanging = true\n"
+                 "[run]\ndt = 0.01\nt_end = 1\n[output]\ntrace = %s\n", bad[i]);
+        whirl_scene s;
+        assert_int_equal(parse(text, NULL, 0, &s), GSL_EINVAL);
+        assert_non_null(strstr(whirl_last_error(), ":10: [output] trace: must"));
+    }
+    static const char *const set[] = {"output.trace=/tmp/elsewhere/run.dat"};
+    whirl_scene s;
+    assert_int_equal(parse("[chain]\ndim = 2\nlinks = 2\n[start]\nhanging = true\n[run]\n"
+                           "dt = 0.01\nt_end = 1\n[output]\ntrace = sub/..x/run.dat\n", set, 1, &s),
+                     GSL_SUCCESS);
+    assert_string_equal(s.trace, "/tmp/elsewhere/run.dat");
+    whirl_scene_free(&s);
+    assert_int_equal(parse("[chain]\ndim = 2\nlinks = 2\n[start]\nhanging = true\n[run]\n"
+                           "dt = 0.01\nt_end = 1\n[output]\ntrace = sub/..x/run.dat\n", NULL, 0, &s),
+                     GSL_SUCCESS);
+    char want[sizeof dir + 32];
+    snprintf(want, sizeof want, "%s/sub/..x/run.dat", dir); /* "..x" is a name, not ".." */
+    assert_string_equal(s.trace, want);
+    whirl_scene_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -420,6 +454,7 @@ int main(void)
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_missing_file),
+        cmocka_unit_test(test_trace_confined),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

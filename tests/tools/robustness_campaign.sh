@@ -1,0 +1,160 @@
+#!/bin/sh
+# The adversarial campaign of docs/validation/robustness.md, rerun: each input a hostile or
+# careless user might give, by category, and what came of it. Prints the table (Markdown):
+# category, tried, clean error, crash, hang, non-finite written, file left, wrong answer silently.
+# Usage: sh tests/tools/robustness_campaign.sh [BUILD]   (about two minutes; nice it)
+build=${1:-build}
+W=$(cd "$(dirname "$build/whirl")" && pwd)/whirl
+scenes=$(cd "$(dirname "$0")/../../data/scenes" && pwd)
+regress=$(cd "$(dirname "$0")/../fuzz/regress/scene" && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+results="$tmp/results"
+: >"$results"
+: >"$tmp/times"
+
+# judge CATEGORY WANT RC DIR: one outcome. WANT: "error" (a one-line error, exit 1) or an exit
+# status (a signal's 128 + n). A hang is exit 124 of timeout; a crash any other status >= 128
+# that was not wanted; non-finite: nan or inf in a file left in DIR; file left: a temporary file,
+# or after an error an output that was not there before (out*); wrong silently: exit 0 where
+# an error was wanted.
+judge() {
+  cat=$1; want=$2; rc=$3; dir=$4
+  crash=0; hang=0; nonfinite=0; left=0; wrong=0; clean=0
+  if [ "$rc" -eq 124 ]; then hang=1
+  elif [ "$want" = error ] && [ "$rc" -eq 0 ]; then wrong=1
+  elif [ "$want" = error ] && [ "$rc" -ge 128 ]; then crash=1
+  elif [ "$want" != error ] && [ "$rc" -ne "$want" ]; then
+    if [ "$rc" -ge 128 ]; then crash=1; else wrong=1; fi
+  fi
+  if [ -n "$(ls -A "$dir" | grep '\.tmp\.')" ]; then left=1; fi
+  if [ "$want" = error ] && [ -n "$(ls -A "$dir" | grep '^out')" ]; then left=1; fi
+  if cat "$dir"/* 2>/dev/null | grep -v '^#' | grep -Eqi '(^|[ ,])[-+]?(nan|inf)([ ,]|$)'; then
+    nonfinite=1; fi
+  if [ "$want" = error ] && [ "$(wc -l <"$dir/../err")" -ne 1 ]; then wrong=1; fi
+  [ $crash$hang$nonfinite$left$wrong = 00000 ] && clean=1
+  echo "$cat $clean $crash $hang $nonfinite $left $wrong" >>"$results"
+  [ $clean -eq 1 ] || echo "campaign: $cat: rc $rc, $(head -c 200 "$dir/../err")" >&2
+}
+
+# try CATEGORY WANT ARGS...: runs whirl ARGS in a fresh folder (the working directory), 60 s at
+# most, and judges it.
+try() {
+  cat=$1; want=$2; shift 2
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  (cd "$tmp/run/d" && timeout 60 "$W" "$@" >/dev/null 2>"$tmp/run/err" </dev/null)
+  judge "$cat" "$want" $? "$tmp/run/d"
+}
+
+# signal CATEGORY SIG WANT ARGS...: sends SIG 1 s into the run.
+signal() {
+  cat=$1; sig=$2; want=$3; shift 3
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  (cd "$tmp/run/d" && exec timeout 60 env --default-signal="$sig" "$W" "$@" >/dev/null 2>"$tmp/run/err") &
+  pid=$!
+  sleep 1
+  t0=$(date +%s.%N)
+  pkill -"$sig" -P $pid -x whirl 2>/dev/null
+  wait $pid
+  rc=$?
+  echo "$(echo "$(date +%s.%N) - $t0" | bc) SIG$sig whirl $*" >>"$tmp/times"
+  judge "$cat" "$want" $rc "$tmp/run/d"
+}
+
+map="stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 --periods 20 -o out.csv"
+sweep="sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001 -o out.csv"
+driven="driven --omega-min 1 --omega-max 4000 --eps 0.05 -o out.csv"
+rsweep="regime --sweep --omega-min 3 --omega-max 3.5 --omega-count 5000 --eps 0.1 --links 5 --t-max 60 -o out.csv"
+for s in HUP QUIT TERM INT; do
+  case $s in HUP) n=129 ;; QUIT) n=131 ;; TERM) n=143 ;; INT) n=130 ;; esac
+  # shellcheck disable=SC2086
+  { signal signals $s $n $map; signal signals $s $n $sweep; signal signals $s $n $driven
+    signal signals $s $n $rsweep; }
+done
+rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+(cd "$tmp/run/d" && { timeout 60 "$W" simulate "$scenes/mode2.ini" --set run.t_end=1e4 2>"$tmp/run/err"; echo $? >"$tmp/rc"; } | head -n 1 >/dev/null)
+judge signals 141 "$(cat "$tmp/rc")" "$tmp/run/d"
+rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+(cd "$tmp/run/d" && ulimit -f 64 && timeout 60 "$W" simulate "$scenes/mode2.ini" --set run.t_end=1e4 -o out.csv 2>"$tmp/run/err")
+judge signals 153 $? "$tmp/run/d"
+mkfifo "$tmp/fifo"
+try signals error shape --omega 2 --mode 1 -o "$tmp/fifo"
+try signals error simulate "$tmp/fifo"
+
+# endless or hostile input
+try input error fit --shape /dev/zero -o out.csv
+try input error simulate /dev/zero -o out.csv
+try input error view /dev/zero -o out.csv
+rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+(cd "$tmp/run/d" && timeout 60 "$W" fit --shape - -o out.csv </dev/zero 2>"$tmp/run/err")
+judge input error $? "$tmp/run/d"
+rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+(cd "$tmp/run/d" && yes '# c' | timeout 60 "$W" fit --shape - -o out.csv 2>"$tmp/run/err")
+judge input error $? "$tmp/run/d"
+head -c 17000000 /dev/zero | tr '\0' x >"$tmp/long.ini"
+try input error simulate "$tmp/long.ini" -o out.csv
+try input error simulate "$tmp" -o out.csv
+
+# long phases: stopped promptly by SIGINT (exit 130, nothing written)
+signal long INT 130 critical --links 60000 --modes 60000 -o out.csv
+signal long INT 130 shape --omega 3.3 --mode 2 --points 10000000 -o out.csv
+try long error fit --shape "$scenes/../fit_example.csv" --links 10000000 -o out.csv
+
+# outputs that destroy
+"$W" shape --omega 3.3 --mode 2 --points 50 -o "$tmp/d.csv"
+cp "$scenes/mode2.ini" "$tmp/s.ini"
+try outputs error sweep --modes 1 --links 5 --omega-min 2 --omega-max 3 --omega-count 3 -o x.csv --events x.csv
+try outputs error stability --omega 2 --mode 1 --links 5 -o y.csv --trace ./y.csv
+try outputs error fit --shape "$tmp/d.csv" -o "$tmp/d.csv"
+try outputs error simulate "$tmp/s.ini" -o "$tmp/s.ini"
+try outputs error shape --omega 2 --mode 1 -o a.csv -o b.csv
+cp "$tmp/d.csv" "$tmp/ro.csv"; chmod 444 "$tmp/ro.csv"
+try outputs error shape --omega 2 --mode 1 -o "$tmp/ro.csv"
+ln -s nowhere "$tmp/dangling"
+try outputs error shape --omega 2 --mode 1 -o "$tmp/dangling"
+try outputs error simulate "$scenes/mode2.ini" --set run.t_end=0.5 --set output.trace=/dev/full -o out.csv
+try outputs error fit --shape "$tmp/d.csv" -o "$tmp/no/dir/out.csv"
+fast="--links 8 --drag 0.25 --t-max 150 --t-ramp 10"
+big="--omega-min 1 --omega-max 4 --omega-count 40 --eps 0.05 $fast"
+# shellcheck disable=SC2086
+(cd "$tmp" && exec "$W" regime $big -o "$tmp/map.csv" 2>/dev/null) &
+pid=$!
+i=0
+while [ "$(cat "$tmp/map.csv" 2>/dev/null | grep -c '^[0-9]')" -lt 1 ] && [ $i -lt 200 ]; do sleep 0.05; i=$((i + 1)); done
+# shellcheck disable=SC2086
+try outputs error regime $big -o "$tmp/map.csv" --resume
+kill -INT $pid; wait $pid
+for bad in nan inf 1e999 cut; do
+  sh "$(dirname "$0")/bad_row.sh" "$tmp/map.csv" "$tmp/bad.csv" $bad
+  # shellcheck disable=SC2086
+  try outputs error regime $big -o "$tmp/bad.csv" --resume
+done
+
+# scenes that reach outside
+mkdir "$tmp/scn"
+for t in ../victim.txt /tmp/victim.txt a/../../victim.txt; do
+  sed "s|^\[output\]|[output]\ntrace = $t|" "$scenes/mode2.ini" >"$tmp/scn/bad.ini"
+  try scene error simulate "$tmp/scn/bad.ini" --set run.t_end=0.1 -o out.csv
+done
+sed "s|^\[output\]|[output]\ntrace = run.dat|" "$scenes/mode2.ini" >"$tmp/scn/ok.ini"
+echo keep >"$tmp/scn/run.dat"
+try scene error simulate "$tmp/scn/ok.ini" --set run.t_end=0.1 -o out.csv
+try scene error simulate "$scenes/mode2.ini" --set "run.method=$(printf 'x\033]0;t\007\nline')" -o out.csv
+
+# unbounded work from one key
+for f in every_tiny every_overflow omega_t_end; do try work error simulate "$regress/$f.ini" -o out.csv; done
+try work error simulate "$scenes/mode2.ini" --set output.trace=t.dat --set output.trace_every=1e-6 -o out.csv
+
+# silently wrong
+try wrong error stability --omega 4 --mode 2 --links 60 --dt 0.05 -o out.csv
+printf '# trace: t\n0 0 0 0\n0 0 -1e200 0\n' >"$tmp/huge.dat"
+try wrong error view "$tmp/huge.dat" -o out.csv
+
+echo "| category | tried | clean error | crash | hang | non-finite written | file left | wrong answer silently |"
+echo "|---|---|---|---|---|---|---|---|"
+awk '{ t[$1]++; for (k = 2; k <= 7; k++) s[$1, k] += $k; if (!($1 in o)) { o[$1] = ++n; name[n] = $1 } }
+     END { for (i = 1; i <= n; i++) { c = name[i];
+       printf "| %s | %d | %d | %d | %d | %d | %d | %d |\n", c, t[c], s[c,2], s[c,3], s[c,4], s[c,5], s[c,6], s[c,7] } }' "$results"
+echo
+echo "Time from the signal to the exit, slowest first (s):"
+sort -rn "$tmp/times" | head -n 5 | awk '{ printf "- %.3f %s\n", $1, substr($0, index($0, $2)) }'
