@@ -365,6 +365,8 @@ typedef struct whirl_cstab_params {
     double tip_mass;
     double shape_tol;
     double freq_max;
+    int solver;
+    double memory_mb;
 } whirl_cstab_params;
 whirl_cstab_params whirl_cstab_defaults(void);
 whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p);

@@ -10,7 +10,8 @@
  *  - the Krein signatures of modes 2 and 3 against the N-link chain's (whirl_windows_spectrum);
  *  - the window of mode 2 near omega = 4.4-4.6 against the N-link chain's edges extrapolated to
  *    N -> infinity, and each edge against the growth just inside and outside;
- *  - bad input and the stop request. */
+ *  - the Arnoldi iteration on the banded pencil against the dense block's eigenvalues;
+ *  - bad input, the memory bound and the stop request. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -252,6 +253,46 @@ static void test_window(void **state)
     whirl_cstab_free(w);
 }
 
+/* The kept mu by the Arnoldi iteration on the banded pencil against every mu of the dense block
+ * (solver 1): the same count, the same signatures, the same mu to 1e-8 relative (modes 2, 3 and
+ * 6 at rates with and without a window). */
+static void test_solvers(void **state)
+{
+    (void)state;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    whirl_cstab *fast = whirl_cstab_alloc(&p);
+    p.solver = 1;
+    whirl_cstab *dense = whirl_cstab_alloc(&p);
+    const struct { int mode; double omega; } cases[] = {{2, 2.8}, {2, 4.48}, {2, 9.9}, {3, 4.4},
+                                                        {3, 7.34}, {3, 10}, {6, 14}};
+    enum { K = 80 };
+    double re[2][K], im[2][K], worst = 0;
+    int sig[2][K];
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        size_t n[2];
+        double growth[2];
+        whirl_cstab *ws[2] = {fast, dense};
+        for (int s = 0; s < 2; s++) {
+            assert_int_equal(whirl_cstab_linearise(ws[s], cases[c].omega, cases[c].mode, 0, NULL),
+                             0);
+            n[s] = lowest(ws[s], 1, K, re[s], im[s], sig[s], &growth[s]);
+        }
+        assert_int_equal(n[0], n[1]);
+        assert_true(n[0] < K);
+        for (size_t i = 0; i < n[0]; i++) {
+            const double d = hypot(re[0][i] - re[1][i], fabs(im[0][i]) - fabs(im[1][i]));
+            worst = fmax(worst, d / fmax(1, hypot(re[1][i], im[1][i])));
+            assert_int_equal(sig[0][i], sig[1][i]);
+        }
+        assert_true(fabs(growth[0] - growth[1]) <= 1e-8 * fmax(1, growth[1]));
+    }
+    print_message("# Arnoldi against the dense block: largest relative difference of the mu %.2g\n",
+                  worst);
+    assert_true(worst <= 1e-8);
+    whirl_cstab_free(fast);
+    whirl_cstab_free(dense);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -276,10 +317,29 @@ static void test_errors(void **state)
     assert_int_equal(whirl_cstab_linearise(w, 0, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, NAN, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, 3, -1, 0, NULL), GSL_EINVAL);
-    /* a shape beyond the points' bound: a message, no huge pencil */
-    assert_int_equal(whirl_cstab_linearise(w, 40, 3, 0, NULL), GSL_EMAXITER);
-    assert_non_null(strstr(whirl_last_error(), "collocation points"));
-    assert_int_equal(whirl_cstab_spectrum(w, 0, &sp), GSL_EINVAL);
+    /* a shape beyond the memory bound (mode 8 at omega = 40 needs 1105 points, 16 MB hold
+     * about 700): a message naming the mode, the rate and the points, no pencil */
+    p.memory_mb = 8;
+    assert_null(whirl_cstab_alloc(&p));
+    assert_non_null(strstr(whirl_last_error(), "memory bound"));
+    p.memory_mb = 16;
+    whirl_cstab *small = whirl_cstab_alloc(&p);
+    assert_non_null(small);
+    assert_int_equal(whirl_cstab_linearise(small, 40, 8, 0, NULL), GSL_EMAXITER);
+    const char *msg = whirl_last_error();
+    assert_non_null(strstr(msg, "mode 8 at omega = 40 needs"));
+    assert_non_null(strstr(msg, "collocation points"));
+    assert_non_null(strstr(msg, "16 MB"));
+    assert_int_equal(whirl_cstab_spectrum(small, 0, &sp), GSL_EINVAL);
+    whirl_cstab_free(small);
+    /* the same shape with the default bound */
+    size_t ne, np;
+    assert_int_equal(whirl_cstab_linearise(w, 40, 8, 0, NULL), GSL_SUCCESS);
+    whirl_cstab_grid(w, &ne, &np);
+    assert_true(np > 800);
+    p = whirl_cstab_defaults();
+    p.solver = 2;
+    assert_null(whirl_cstab_alloc(&p));
     whirl_window win[2];
     size_t count;
     whirl_windows_stats st;
@@ -307,6 +367,7 @@ int main(void)
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_signatures),
         cmocka_unit_test(test_window),
+        cmocka_unit_test(test_solvers),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
