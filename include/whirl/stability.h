@@ -267,6 +267,13 @@ typedef struct whirl_window {
                                   (0 at an open end or where a mu passes through 0) */
     double max_growth;         /* largest growth rate inside [1/T] */
     double at;                 /* the rate where it occurs [sqrt(g/L)] (to about 1e-6) */
+    double err_from, err_to;   /* the continuum (whirl_cstab_windows): each closed edge is
+                                  located again on a refined discretisation (degree + 8, shape
+                                  tolerance / 100), which gives from and to; err is its change
+                                  from the edge of the search's discretisation, a bound of the
+                                  discretisation error of the coarser and so an estimate (on the
+                                  safe side) of the reported one's [sqrt(g/L)]; 0 at an open end,
+                                  for an edge where a mu passes through 0, for the N-link chain */
 } whirl_window;
 
 typedef struct whirl_windows_stats {

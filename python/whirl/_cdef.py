@@ -294,6 +294,7 @@ typedef struct whirl_window {
     double freq_from, freq_to;
     double max_growth;
     double at;
+    double err_from, err_to;
 } whirl_window;
 typedef struct whirl_windows_stats {
     double omega_from, omega_to;

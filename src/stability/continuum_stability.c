@@ -44,7 +44,10 @@
  * vertically (q = 0): about 0.03 for mode 3 at omega = 9, which one Chebyshev interval resolves
  * only with hundreds of points. Elements are halved (starting from four) until the last two
  * Chebyshev coefficients of r and q on each are below shape_tol of their largest value, so that
- * they are small near those points and large elsewhere, and the convergence is geometric in p.
+ * they are small near those points and large elsewhere, and the convergence is geometric in p;
+ * and until the phase of the fastest wave kept (element_phase) on each is resolved: near the free
+ * end the modes behave as J0(2 Omega sqrt(sigma)), whose Taylor coefficients in sigma fall only
+ * once k exceeds Omega sqrt(h) (an element of degree 16 from sigma = 0 had edges 1e-5 off).
  * Conditions, in the rows of the equations they replace (the pattern that makes the counts agree
  * with the orders above): at the right end of an element the equation rows of w, of the
  * constraint and of vh carry n0 . xi, t0 . xi and vh continuous with the next element (zero at
@@ -90,6 +93,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
+#include <gsl/gsl_roots.h>
 #include <lapacke.h>
 
 #include "whirl/continuum_stability.h"
@@ -511,6 +515,31 @@ static double tail(const whirl_cstab *w, const double *f, size_t e, double scale
     return scale > 0 ? big / scale : 0;
 }
 
+/* The largest phase of a wave on one element that degree p resolves to sqrt(shape_tol): the
+ * Chebyshev coefficients of sin(phi x / 2) on [-1, 1] fall as (phi / 2)^k / k!, so
+ * phi = 2 (sqrt(shape_tol) p!)^(1 / p) (6.1 for p = 16 and 1e-11). The highest frequencies kept
+ * need only be resolved enough to be ranked; those of the colliding pairs, lower, are then
+ * resolved much better (for a wave of a third of that phase the coefficients fall to 1e-12). */
+static double element_phase_max(const whirl_cstab *w)
+{
+    const double p = w->p.degree;
+    return 2 * exp((0.5 * log(w->p.shape_tol) + lgamma(p + 1)) / p);
+}
+
+/* An upper bound of the phase int Omega / sqrt(T0) dsigma on element e of the waves kept
+ * (Omega = max(freq_max, 3 omega) + omega, the highest frequency kept in the inertial frame):
+ * T0 = (sigma + m) S >= (sigma + m) min S, so the phase is at most
+ * 2 Omega (sqrt(b + m) - sqrt(a + m)) / sqrt(min S) (finite at the free end, where T0 = 0 and the
+ * modes behave as J0(2 Omega sqrt(sigma))). */
+static double element_phase(const whirl_cstab *w, double omega, size_t e)
+{
+    const size_t P = (size_t)w->p.degree + 1;
+    const double big = fmax(w->p.freq_max, 3 * omega) + omega, m = w->p.tip_mass;
+    double smin = HUGE_VAL;
+    for (size_t j = 0; j < P; j++) smin = fmin(smin, sqrt(1 + w->q[e * P + j] * w->q[e * P + j]));
+    return 2 * big * (sqrt(w->brk[e + 1] + m) - sqrt(w->brk[e] + m)) / sqrt(smin);
+}
+
 /* Room for the ends of ne elements and of their halves (3 ne + 2 values). */
 static int reserve_elements(whirl_cstab *w, size_t ne)
 {
@@ -554,13 +583,15 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         for (size_t g = 0; g < w->np && !wrong; g++)
             sr = fmax(sr, fabs(w->r[g])), sq = fmax(sq, fabs(w->q[g]));
         if ((status = reserve_elements(w, w->ne))) return status;
+        const double phase_max = element_phase_max(w);
         double *brk = w->brk + w->ne + 1; /* the new ends after the current ones */
         size_t nb = 0;
         for (int pass = 0; pass < 2; pass++) {
             nb = 0;
             brk[nb++] = 0;
             for (size_t e = 0; e < w->ne; e++) {
-                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol)
+                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol ||
+                    element_phase(w, omega, e) > phase_max)
                     brk[nb++] = (w->brk[e] + w->brk[e + 1]) / 2;
                 brk[nb++] = w->brk[e + 1];
             }
@@ -1101,6 +1132,102 @@ static int cstab_source_pair(void *data, double omega, double sigma, double *mu_
     return whirl_windows_arnoldi_pair(&c->w->kr, cstab_apply, c->w, sigma, mu_re, mu_im);
 }
 
+/* The collision discriminant D = Re (mu_1 - mu_2)^2 of the two mu nearest -freq^2 at omega on
+ * the workspace of an edge's refinement (stability_windows.c); NAN if not obtained. */
+typedef struct edge_args {
+    whirl_cstab *w;
+    int mode;
+    double sigma;
+    int status;
+} edge_args;
+
+static double edge_function(double omega, void *data)
+{
+    edge_args *a = data;
+    double re[2], im[2];
+    if (a->status) return NAN;
+    int status = whirl_cstab_linearise(a->w, omega, a->mode, 0, NULL);
+    if (!status) status = shifted_lu(a->w, a->sigma, 3);
+    if (!status && a->w->kr.q != N_DYNAMIC * a->w->np) {
+        whirl_windows_arnoldi_release(&a->w->kr);
+        if (whirl_windows_arnoldi_init(&a->w->kr, N_DYNAMIC * a->w->np))
+            status = whirl_fail(GSL_ENOMEM, "out of memory for the Arnoldi iteration");
+    }
+    if (!status)
+        status = whirl_windows_arnoldi_pair(&a->w->kr, cstab_apply, a->w, a->sigma, re, im) ==
+                         GSL_SUCCESS
+                     ? GSL_SUCCESS
+                     : whirl_fail(GSL_EFAILED, "mode %d: the pair at omega = %.10g did not "
+                                  "converge on the refined discretisation", a->mode, omega);
+    if (status) {
+        a->status = status;
+        return NAN;
+    }
+    if (im[0] != 0 && fabs(im[0] + im[1]) <= 1e-12 * fabs(im[0])) return -4 * im[0] * im[0];
+    const double dr = re[0] - re[1], di = im[0] - im[1];
+    return dr * dr - di * di;
+}
+
+/* The edge at *omega (collision frequency freq) located again on the refined workspace wr by
+ * Brent's method on D, from a bracket of +-1e-7 widened tenfold until D changes sign (at most
+ * +-1e-2): *omega becomes the new edge, *err the change. */
+static int refine_edge(whirl_cstab *wr, int mode, double *edge, double freq, double tol,
+                       double *err)
+{
+    const double omega = *edge;
+    edge_args a = {wr, mode, -freq * freq, 0};
+    gsl_function f = {edge_function, &a};
+    double h = 1e-7, lo = omega - h, hi = omega + h, flo = edge_function(lo, &a),
+           fhi = edge_function(hi, &a);
+    while (!a.status && !(flo * fhi < 0) && h < 1e-2) {
+        h *= 10;
+        lo = omega - h, hi = omega + h;
+        flo = edge_function(lo, &a), fhi = edge_function(hi, &a);
+    }
+    if (a.status) return a.status;
+    if (!(flo * fhi < 0))
+        return whirl_fail(GSL_EFAILED, "mode %d: the edge at omega = %.10g is not found within "
+                                       "1e-2 on the refined discretisation", mode, omega);
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    int status = gsl_root_fsolver_set(s, &f, lo, hi);
+    for (int iter = 0; iter < 100 && !status && !a.status; iter++) {
+        status = gsl_root_fsolver_iterate(s);
+        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS) break;
+    }
+    gsl_root_fsolver_free(s);
+    if (a.status) return a.status;
+    if (status) return whirl_fail(status, "mode %d: the refined edge near omega = %.10g was not "
+                                          "located", mode, omega);
+    *edge = (lo + hi) / 2;
+    *err = fabs(*edge - omega);
+    return GSL_SUCCESS;
+}
+
+/* The closed edges of windows[0..count-1] located again on a refined discretisation (degree
+ * + 8, shape tolerance / 100), their change the estimate of the error (whirl_window). */
+static int edge_errors(const whirl_cstab *w, int mode, double tol, whirl_window *windows,
+                       size_t count)
+{
+    whirl_cstab_params rp = w->p;
+    rp.degree = w->p.degree + 8 <= 64 ? w->p.degree + 8 : 64;
+    rp.shape_tol = fmax(1e-14, w->p.shape_tol / 100);
+    whirl_cstab *wr = whirl_cstab_alloc(&rp);
+    if (wr == NULL) return GSL_ENOMEM; /* the parameters are valid: no memory */
+    int status = GSL_SUCCESS;
+    for (size_t i = 0; i < count && !status; i++) {
+        whirl_window *x = &windows[i];
+        x->err_from = x->err_to = 0;
+        if (!x->open_from && x->freq_from > 0)
+            status = refine_edge(wr, mode, &x->from, x->freq_from, tol, &x->err_from);
+        if (!status && !x->open_to && x->freq_to > 0)
+            status = refine_edge(wr, mode, &x->to, x->freq_to, tol, &x->err_to);
+    }
+    whirl_cstab_free(wr);
+    return status;
+}
+
 int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                         whirl_window *windows, size_t max, size_t *count,
                         whirl_windows_stats *stats)
@@ -1135,6 +1262,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     windows_source src = {cstab_source_spectrum, p->krylov ? cstab_source_pair : NULL, &c, mode,
                           stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
+    if (!status) status = edge_errors(w, mode, p->tol, windows, *count);
     free(omega);
     free(info);
     free(exists);
