@@ -100,6 +100,15 @@ WHIRL_API int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, con
  * eigenvalues lie on the imaginary axis) is returned as exactly 0. */
 WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
 
+/* The index of the last linearisation: the number of negative eigenvalues of the symmetric part
+ * of K, the Hessian of the amended potential (gravity minus centrifugal) in the co-rotating
+ * frame (with air drag, of its symmetric part), eigenvalues within 1e-9 of the largest |K|
+ * (the symmetry's zero) not counted. 0: a minimum, stable in the energy sense (also with
+ * dissipation); > 0: a saddle, which without dissipation only the Coriolis coupling can hold
+ * (linearly neutral at best) and with any complete dissipation is unstable (Kelvin-Tait-Chetaev;
+ * Merkin, Gyroscopic Systems, 1956). GSL_EINVAL without a linearisation. */
+WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
+
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
  * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
  * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. At high
@@ -129,14 +138,27 @@ WHIRL_API int whirl_stability_driven_mode(whirl_stability *w, const whirl_model 
 /* ---- perturbed time-domain runs (src/stability_run.c) ---- */
 
 typedef enum {
-    WHIRL_VERDICT_STABLE = 0,    /* the deviation stayed below 100 times the initial one */
+    WHIRL_VERDICT_STABLE = 0,    /* the deviation stayed below 100 times the initial one; with
+                                    the index (whirl_verdict_refine) a minimum of the amended
+                                    potential: "stable (minimum)" */
     WHIRL_VERDICT_UNSTABLE = 1,  /* the deviation grew to 100 times the initial one */
-    WHIRL_VERDICT_CONVERGING = 2 /* (dissipation: internal damping or air drag) it fell to
+    WHIRL_VERDICT_CONVERGING = 2, /* (dissipation: internal damping or air drag) it fell to
                                     1/100 of the initial one */
+    WHIRL_VERDICT_NEUTRAL = 3    /* bounded, but a saddle of the amended potential (index > 0)
+                                    held by the Coriolis coupling: linearly neutral, not stable
+                                    in the energy sense, destabilised by any dissipation */
 } whirl_verdict;
 
-/* "stable", "unstable", "converging". */
+/* "stable (minimum)", "unstable", "converging", "neutral (gyroscopic)". */
 WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
+
+/* The verdict v of a run or of the eigenvalues with the index of the shape
+ * (whirl_stability_index): STABLE with index > 0 becomes NEUTRAL; others unchanged. */
+WHIRL_API whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
+
+/* The linear verdict from the growth rate (whirl_stability_growth) and the index: UNSTABLE if
+ * growth > 0, CONVERGING if < 0, else STABLE (index 0) or NEUTRAL (index > 0). */
+WHIRL_API whirl_verdict whirl_verdict_linear(double growth, int index);
 
 typedef struct whirl_stability_run_params {
     double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100; at

@@ -133,9 +133,13 @@ void whirl_stability_nodes(const whirl_stability *w, const double **x, const dou
 typedef enum {
     WHIRL_VERDICT_STABLE = 0,
     WHIRL_VERDICT_UNSTABLE = 1,
-    WHIRL_VERDICT_CONVERGING = 2
+    WHIRL_VERDICT_CONVERGING = 2,
+    WHIRL_VERDICT_NEUTRAL = 3
 } whirl_verdict;
 const char *whirl_verdict_name(whirl_verdict v);
+whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
+whirl_verdict whirl_verdict_linear(double growth, int index);
+int whirl_stability_index(const whirl_stability *w, int *index);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;
@@ -325,6 +329,7 @@ typedef struct whirl_equilibrium {
     int branch;
     double born_at;
     double eig_growth;
+    int index;
 } whirl_equilibrium;
 typedef struct whirl_equilibria {
     double omega;

@@ -13,12 +13,16 @@ class StabilityResult:
     eigenvalues, the rotation symmetry's zeros removed [1/T]), ``eigenvalues`` (complex array),
     and, unless linear, the perturbed run's ``sim_growth`` (fitted exponential rate, 0 unless
     unstable), ``max_deviation`` (largest deviation / the initial one), ``duration`` [T] and
-    ``stats``; ``verdict``: "stable", "unstable" or "converging" (linear: the sign of
-    eig_growth). ``tip_r``, ``nodes``: the shape's tip radius and node count."""
+    ``stats``; ``index``: the negative directions of the amended potential (gravity minus
+    centrifugal) at the shape; ``verdict``: "stable (minimum)" (bounded, index 0: an energy
+    minimum, stable also with dissipation), "neutral (gyroscopic)" (bounded, index > 0: a saddle
+    held by the Coriolis coupling, destabilised by any dissipation), "unstable" or "converging"
+    (linear: from the sign of eig_growth and the index). ``tip_r``, ``nodes``: the shape's tip
+    radius and node count."""
 
     def __repr__(self):
-        return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s)" % (
-            self.omega, self.mode, self.eig_growth, self.verdict)
+        return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s, index=%d)" % (
+            self.omega, self.mode, self.eig_growth, self.verdict, self.index)
 
 
 def _model(chain, omega, damping, drive_radius, air_drag, air_drag_quadratic):
@@ -83,12 +87,15 @@ def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, pert
         check(lib.whirl_stability_mode(ws, m, mode, 0.0, info, growth))
         res.tip_r, res.nodes = info.tip_r, info.n_nodes + 1
     res.eig_growth = growth[0]
+    index = ffi.new("int *")
+    check(lib.whirl_stability_index(ws, index))
+    res.index = index[0]
     res.eigenvalues = _eigenvalues(ws)
     res.sim_growth = res.max_deviation = res.duration = None
     res.stats = None
     if linear:
-        g = res.eig_growth
-        res.verdict = "unstable" if g > 0 else "converging" if g < 0 else "stable"
+        v = lib.whirl_verdict_linear(res.eig_growth, res.index)
+        res.verdict = ffi.string(lib.whirl_verdict_name(v)).decode()
         return res
     p = ffi.new("whirl_stability_run_params *", lib.whirl_stability_run_defaults())
     p.periods = as_float(periods, "periods", positive=True)
@@ -109,7 +116,8 @@ def stability(omega, mode, links, damping=0.0, linear=False, periods=100.0, pert
     res.sim_growth = out.sim_growth
     res.max_deviation = out.max_deviation
     res.duration = out.duration
-    res.verdict = ffi.string(lib.whirl_verdict_name(out.verdict)).decode()
+    v = lib.whirl_verdict_refine(out.verdict, res.index)
+    res.verdict = ffi.string(lib.whirl_verdict_name(v)).decode()
     s = out.stats
     res.stats = {"steps": s.steps, "rejected": s.rejected, "rhs_evals": s.rhs_evals,
                  "iterations": s.iterations}

@@ -1,12 +1,15 @@
 /* whirl stability: linear stability of the steady shapes (whirl/stability.h) and its check by
  * perturbed time-domain runs, at one rate (--omega) or over a range (--omega-min/--omega-max/
  * --omega-count, the stability map). One CSV row per rate and mode:
- *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict
+ *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index
  * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
  * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
  * perturbed run (whirl_stability_run_shape). With --linear no run is made: sim_growth and
  * max_deviation are left empty and the verdict is the linear one (eig_growth > 0: unstable, < 0:
- * converging, 0: stable). Rates where a mode of the map does not exist are left out.
+ * converging, 0: "stable (minimum)" or "neutral (gyroscopic)"). index: the negative directions
+ * of the amended potential (whirl_stability_index); a bounded run or a zero growth is "stable
+ * (minimum)" at index 0 (an energy minimum, stable also with dissipation) and "neutral
+ * (gyroscopic)" above (a saddle held by the Coriolis coupling, destabilised by dissipation). Rates where a mode of the map does not exist are left out.
  * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
  * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
  * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
@@ -58,6 +61,7 @@ typedef struct point {
     double tip[2]; /* driven: the tip's horizontal position */
     int nodes;     /* driven: node count */
     whirl_verdict verdict;
+    int index;     /* negative directions of the amended potential (whirl_stability_index) */
     int done;
     int absent;    /* driven map: the mode has no shape at this rate */
 } point;
@@ -241,11 +245,10 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
         status = whirl_stability_linearise(w, &m, p->r, p->z);
         if (!status) status = whirl_stability_growth(w, &p->eig_growth);
     }
+    if (!status) status = whirl_stability_index(w, &p->index);
     if (status) return status;
     if (o->linear) {
-        p->verdict = p->eig_growth > 0   ? WHIRL_VERDICT_UNSTABLE
-                     : p->eig_growth < 0 ? WHIRL_VERDICT_CONVERGING
-                                         : WHIRL_VERDICT_STABLE;
+        p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
         return GSL_SUCCESS;
     }
     whirl_stability_run_params rp = whirl_stability_run_defaults();
@@ -277,7 +280,7 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
                 CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
     p->sim_growth = res.sim_growth;
     p->max_deviation = res.max_deviation;
-    p->verdict = res.verdict;
+    p->verdict = whirl_verdict_refine(res.verdict, p->index);
     return GSL_SUCCESS;
 }
 
@@ -417,13 +420,17 @@ static void write_header(FILE *fp, const options *o)
                 CLI_NUM(o->dt * unit(o, CLI_UNIT_TIME)));
     if (o->linear)
         fprintf(fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
-                    "< 0, stable where 0\n");
+                    "< 0, where 0 stable (minimum) if index = 0, else neutral (gyroscopic)\n");
     else
         fprintf(fp, "# verdict: unstable once the deviation reaches 100 times the initial "
                     "one, converging (damping or drag > 0) once its largest value over a "
-                    "period falls to 1/100 (or to 1/10 by the end), else stable\n");
+                    "period falls to 1/100 (or to 1/10 by the end), else stable (minimum) if "
+                    "index = 0, neutral (gyroscopic) if not\n");
+    fprintf(fp, "# index: negative directions of the amended potential (gravity minus "
+                "centrifugal) at the shape; 0: a minimum, stable also with dissipation; > 0: a "
+                "saddle that only the Coriolis coupling can hold, destabilised by dissipation\n");
     cli_units_comment(fp, &o->units);
-    fprintf(fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
+    fprintf(fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index%s\n",
             driven(o) ? ",tip_x,tip_y,nodes" : "");
 }
 
@@ -431,12 +438,12 @@ static void write_row(FILE *fp, const options *o, const point *p)
 {
     const double rate = unit(o, CLI_UNIT_RATE), len = unit(o, CLI_UNIT_LENGTH);
     if (o->linear)
-        fprintf(fp, "%s,%d,%d,%s,,,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
-                CLI_NUM(p->eig_growth * rate), whirl_verdict_name(p->verdict));
+        fprintf(fp, "%s,%d,%d,%s,,,%s,%d", CLI_NUM(p->omega * rate), p->mode, o->links,
+                CLI_NUM(p->eig_growth * rate), whirl_verdict_name(p->verdict), p->index);
     else
-        fprintf(fp, "%s,%d,%d,%s,%s,%s,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
+        fprintf(fp, "%s,%d,%d,%s,%s,%s,%s,%d", CLI_NUM(p->omega * rate), p->mode, o->links,
                 CLI_NUM(p->eig_growth * rate), CLI_NUM(p->sim_growth * rate),
-                CLI_NUM(p->max_deviation), whirl_verdict_name(p->verdict));
+                CLI_NUM(p->max_deviation), whirl_verdict_name(p->verdict), p->index);
     if (driven(o))
         fprintf(fp, ",%s,%s,%d", CLI_NUM(p->tip[0] * len), CLI_NUM(p->tip[1] * len), p->nodes);
     fputc('\n', fp);

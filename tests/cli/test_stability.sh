@@ -30,7 +30,7 @@ csv_field() { grep -v '^#' "$1" | awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= 
 
 # An unstable shape: the run's growth agrees with the eigenvalue within 5%.
 if "$WHIRL" stability --omega 6.3 --mode 2 --links 12 -o "$tmp/u.csv" 2>"$tmp/err" \
-   && [ "$(grep -v '^#' "$tmp/u.csv" | head -1)" = "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict" ] \
+   && [ "$(grep -v '^#' "$tmp/u.csv" | head -1)" = "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index" ] \
    && [ "$(csv_field "$tmp/u.csv" verdict)" = unstable ] \
    && awk -v e="$(csv_field "$tmp/u.csv" eig_growth)" -v s="$(csv_field "$tmp/u.csv" sim_growth)" \
         'BEGIN { exit !(e > 0.01 && s > 0 && (s - e) / e < 0.05 && (e - s) / e < 0.05) }'; then
@@ -41,10 +41,11 @@ else fail "unstable mode 2: $(cat "$tmp/err" "$tmp/u.csv" 2>/dev/null | tail -2)
 # the deviation stays below 100 times the perturbation.
 if "$WHIRL" stability --omega 4.5 --mode 2 --links 12 --periods 60 -o "$tmp/s.csv" 2>"$tmp/err" \
    && [ "$(csv_field "$tmp/s.csv" eig_growth)" = 0 ] \
-   && [ "$(csv_field "$tmp/s.csv" verdict)" = stable ] \
+   && [ "$(csv_field "$tmp/s.csv" verdict)" = "neutral (gyroscopic)" ] \
+   && [ "$(csv_field "$tmp/s.csv" index)" = 2 ] \
    && [ "$(csv_field "$tmp/s.csv" sim_growth)" = 0 ] \
    && awk -v d="$(csv_field "$tmp/s.csv" max_deviation)" 'BEGIN { exit !(d >= 1 && d < 100) }'; then
-  pass "stabilised mode 2 (N = 12, omega 4.5): bounded deviation"
+  pass "stabilised mode 2 (N = 12, omega 4.5): bounded deviation, neutral (gyroscopic), index 2"
 else fail "stabilised mode 2: $(cat "$tmp/err" "$tmp/s.csv" 2>/dev/null | tail -2)"; fi
 
 # Kelvin-Tait-Chetaev: with damping, mode 1 converges and mode 2 (stable without) grows.
@@ -96,7 +97,7 @@ else fail "N = 100 mode 50 at omega 250: sim_growth within 2% of eig_growth"; fi
 
 # Hand-swung chain: mode 1 on the far side of the axis from the pivot trails and is unstable; the
 # run's growth agrees with the eigenvalue within 5% (linear and quadratic drag).
-driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,tip_x,tip_y,nodes"
+driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index,tip_x,tip_y,nodes"
 if "$WHIRL" stability --omega 3 --mode 1 --side -1 --links 12 --eps 0.05 --drag 0.1 \
      --drag-quadratic 0.05 -o "$tmp/du.csv" 2>"$tmp/err" \
    && [ "$(grep -v '^#' "$tmp/du.csv" | head -1)" = "$driven_header" ] \
@@ -128,7 +129,7 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | head -1)" = "$driven_header" ] \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 1' | wc -l)" -ge 3 ] \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 2' | wc -l)" -ge 1 ] \
-   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, 'NR > 1 && NF != 10' | wc -l)" -eq 0 ] \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, 'NR > 1 && NF != 11' | wc -l)" -eq 0 ] \
    && ! grep -qi nan "$tmp/dmap.csv"; then
   pass "driven map form"
 else fail "driven map form: $(cat "$tmp/err" "$tmp/dmap.csv" 2>/dev/null | tail -3)"; fi
