@@ -38,6 +38,7 @@
 #include <time.h>
 
 #include "cli/cli.h"
+#include "cli/stability_atlas.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
@@ -45,6 +46,7 @@ typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
     double scan_step, tol, tip_mass;
     int mode, links, steps, seed, linear, side, windows, full, resume, degree, links_given;
+    int atlas, eigenvalues, degree_given;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
@@ -81,6 +83,19 @@ static int method_known(const char *name)
 
 static int check_options(const cli_command *cmd, const options *o)
 {
+    if (!o->atlas && o->max_given && !o->min_given)
+        return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
+    if (!o->atlas && o->modes_given && !o->min_given)
+        return cli_error(cmd, "--modes needs --omega-min (or --atlas)");
+    if (o->atlas) {
+        for (int k = 0; k < o->modes.n; k++)
+            if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
+                return cli_error(cmd, "mode %d is out of range: the continuous chain takes "
+                                 "modes 1..%d", o->modes.v[k], WHIRL_MODE_MAX);
+        if (!(o->tol < o->scan_step))
+            return cli_error(cmd, "--tol must be smaller than --scan-step");
+        return 0;
+    }
     if (o->windows) {
         if (!(o->tol < o->scan_step))
             return cli_error(cmd, "--tol must be smaller than --scan-step");
@@ -395,6 +410,64 @@ static int run_windows(const cli_command *cmd, const options *o)
     return rc;
 }
 
+/* --eigenvalues: every eigenvalue of the linearisation at the one rate (the symmetry's zeros
+ * removed), in increasing real part, with the index and the verdict in comment lines. */
+static int run_eigenvalues(const cli_command *cmd, options *o)
+{
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
+    whirl_stability *w = whirl_stability_alloc((size_t)o->links);
+    if (c == NULL || w == NULL) {
+        whirl_chain_free(c);
+        whirl_stability_free(w);
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    }
+    size_t count = 0;
+    double *nodes = NULL;
+    point *pts = make_points(cmd, o, c, &count, &nodes);
+    int rc = pts ? 0 : 1;
+    o->linear = 1;
+    size_t n = 0;
+    const double *re = NULL, *im = NULL;
+    if (!rc && (analyse(o, c, w, &pts[0], NULL) != GSL_SUCCESS ||
+                whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS))
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
+    if (!rc && order == NULL) rc = cli_error(cmd, "out of memory");
+    cli_out out;
+    if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
+    if (!rc) {
+        for (size_t i = 0; i < n; i++) order[i] = i;
+        for (size_t i = 1; i < n; i++) /* by real part, then imaginary part */
+            for (size_t j = i; j > 0 && (re[order[j - 1]] > re[order[j]] ||
+                                         (re[order[j - 1]] == re[order[j]] &&
+                                          im[order[j - 1]] > im[order[j]]));
+                 j--) {
+                const size_t t = order[j];
+                order[j] = order[j - 1];
+                order[j - 1] = t;
+            }
+        const double rate = unit(o, CLI_UNIT_RATE);
+        fprintf(out.fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s; "
+                        "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
+                        "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
+                        "%s\n", CLI_NUM(pts[0].omega * rate), pts[0].mode, o->links,
+                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), n,
+                CLI_NUM(pts[0].eig_growth * rate), pts[0].index,
+                whirl_verdict_name(pts[0].verdict));
+        cli_units_comment(out.fp, &o->units);
+        fprintf(out.fp, "re,im\n");
+        for (size_t i = 0; i < n; i++)
+            fprintf(out.fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
+        if (cli_out_commit(cmd, &out)) rc = 1;
+    }
+    free(order);
+    free(pts);
+    free(nodes);
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+    return rc;
+}
+
 /* The comment lines and the header of the output: a map resumes only a file that starts with
  * exactly these lines. */
 static void write_header(FILE *fp, const options *o)
@@ -533,19 +606,20 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
         {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate (one point)",
-         "(0, inf)", "--mode", "--omega-min --modes", "--omega-min", CLI_UNIT_RATE},
+         "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
+         CLI_UNIT_RATE},
         {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K",
          "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
          "--omega"},
         {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
-         "(0, inf)", "--omega-max", "--trace", "--omega", CLI_UNIT_RATE},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate",
-         "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
+         "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B",
+         "map: last rate (--atlas: default 40)", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
         {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
          "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
         {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
-         "map: modes (default 1,2,3): 1..N (the hand-swung or the continuous chain: 1..64)",
-         "[1, inf)", "--omega-min"},
+         "map: modes (default 1,2,3; --atlas: 2-8): 1..N (the hand-swung or the continuous "
+         "chain: 1..64)", "[1, inf)"},
         {"--links", NULL, CLI_INT, &o.links, &o.links_given, "N",
          "links of the chain (default 25; with --windows the continuous chain unless given)",
          "[2, 100000]"},
@@ -579,18 +653,27 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
          "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
          "--windows"},
-        {"--degree", NULL, CLI_INT, &o.degree, NULL, "P",
+        {"--degree", NULL, CLI_INT, &o.degree, &o.degree_given, "P",
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
          "--windows", "--links"},
         {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m",
          "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
          NULL, CLI_UNIT_MASS},
+        {"--atlas", NULL, CLI_FLAG, &o.atlas, NULL, "",
+         "every window of the continuum's --modes from each birth to --omega-max, with the "
+         "Krein signatures at the edges (-o FILE, resumable)", NULL, "--output",
+         "--omega --omega-min --omega-count --windows --links --trace --periods --perturb --seed "
+         "--method --dt --damping --linear --eps --drag --drag-quadratic --drag-cd --side "
+         "--tip-mass --full --eigenvalues"},
+        {"--eigenvalues", NULL, CLI_FLAG, &o.eigenvalues, NULL, "",
+         "single rate: every eigenvalue lambda of the linearisation (re,im), not the run",
+         NULL, "--omega", "--trace --periods --perturb --seed --method --dt"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
          "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
         {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "",
-         "map: keep the rows already in -o FILE, compute the rest", NULL, "--omega-min --output",
+         "map, atlas: keep the rows already in -o FILE, compute the rest", NULL, "--output",
          "--windows"},
         CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
@@ -598,8 +681,23 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
     if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
+    if (o.atlas) {
+        if (!o.modes_given) {
+            o.modes.n = 7;
+            for (int k = 0; k < 7; k++) o.modes.v[k] = 2 + k;
+        }
+        if (!o.max_given) o.omega_max = 40;
+    }
     if ((rc = check_options(cmd, &o))) return rc;
+    if (o.resume && !o.atlas && !o.min_given)
+        return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
+    if (o.degree_given && !o.windows && !o.atlas)
+        return cli_error(cmd, "--degree needs --windows or --atlas");
+    if (o.atlas)
+        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
+                               o.output, o.resume);
     if (o.windows) return run_windows(cmd, &o);
+    if (o.eigenvalues) return run_eigenvalues(cmd, &o);
 
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));

@@ -234,4 +234,36 @@ if [ $? -eq 1 ] && grep -q "was not written by a map with these options" "$tmp/e
 else fail "--resume refuses a map of other options ($(cat "$tmp/err"))"; fi
 expect_error "resume to stdout" "whirl stability: --resume needs --output|--resume needs -o FILE" stability $map --resume
 
+# ---- --eigenvalues: every eigenvalue of the linearisation; the growth in the comment is the
+# largest real part, the spectrum is Hamiltonian (symmetric about both axes) without damping ----
+if "$WHIRL" stability --omega 4.5 --mode 2 --links 6 --eigenvalues -o "$tmp/ev.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/ev.csv" | head -1)" = "re,im" ] \
+   && [ "$(grep -vc '^#' "$tmp/ev.csv")" -eq 23 ] \
+   && grep -q "index 2, verdict unstable" "$tmp/ev.csv" \
+   && g=$(sed -n 's/.*growth \([^,]*\), index.*/\1/p' "$tmp/ev.csv") \
+   && grep -v '^[#r]' "$tmp/ev.csv" | awk -F, -v g="$g" '
+        { if ($1 > hi) hi = $1; if ($1 < lo) lo = $1; sr += $1; si += $2 }
+        END { exit !(g > 0.1 && hi - g < 1e-12 && hi + lo < 1e-12 && sr < 1e-9 && si < 1e-9 && si > -1e-9) }'; then
+  pass "--eigenvalues: 22 eigenvalues (4N - 2), the largest real part is the growth, Hamiltonian"
+else fail "--eigenvalues: $(cat "$tmp/err" "$tmp/ev.csv" 2>/dev/null | head -3)"; fi
+expect_error "eigenvalues without --omega" "--eigenvalues needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --eigenvalues
+
+# ---- --atlas: the windows of --windows, a Krein signature at each edge, resumable ----
+if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/atlas.csv" 2>"$tmp/err" \
+   && "$WHIRL" stability --windows --modes 2 --omega-min 1 --omega-max 6 -o "$tmp/aw.csv" \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | head -1)" = "mode,from,to,open_from,open_to,freq_from,freq_to,sig_from,sig_to,max_growth,at,err_from,err_to" ] \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | tail -n +2 | cut -d, -f2,3)" = "$(grep -v '^#' "$tmp/aw.csv" | tail -n +2 | cut -d, -f3,4)" ] \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | tail -n +2 | cut -d, -f8,9)" = "-1,1" ]; then
+  pass "atlas: mode 2 to omega 6 has the window of --windows, signatures -1 / 1 at its edges"
+else fail "atlas: $(cat "$tmp/err" "$tmp/atlas.csv" 2>/dev/null | tail -3)"; fi
+# a file with the second chunk undone: --resume computes it, and the file is the same again
+grep -v "^# done mode 2 omega 5 6" "$tmp/atlas.csv" >"$tmp/apart.csv"
+if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/apart.csv" --resume \
+   && cmp -s "$tmp/apart.csv" "$tmp/atlas.csv"; then
+  pass "atlas --resume completes the chunks not done"
+else fail "atlas --resume completes the chunks not done"; fi
+expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
+expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
+expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"
+
 finish
