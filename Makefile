@@ -1,6 +1,6 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
 # Targets: all (default), demo, check, check-clang, check-sanitize, bench, bench-quick, study,
-# python, deps, clean.
+# python, explore, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
@@ -53,7 +53,7 @@ CLI_OBJ  += $(BUILD)/gen/view_html.o
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
 .PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python deps clean fuzz \
-  install uninstall
+  install uninstall docs explore
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
@@ -98,20 +98,32 @@ $(BUILD)/libwhirl.so: $(SHLIB)
 	ln -sf libwhirl.so.$(MAJOR) $@
 
 # The manual page, generated from the program's --help (scripts/man.sh).
-$(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh
-	sh scripts/man.sh $(BUILD)/whirl >$@.tmp && mv $@.tmp $@
+$(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh include/whirl/scene.h $(DATADIR_H)
+	sh scripts/man.sh $(BUILD)/whirl '$(DATADIR)' >$@.tmp && mv $@.tmp $@
 
 # make install PREFIX=/usr/local DESTDIR=: the program, libwhirl.a and libwhirl.so, the headers,
-# whirl.pc for pkg-config, the manual page. make uninstall removes them.
+# whirl.pc for pkg-config, the manual page, the scenes, plot scripts and example data under
+# DATADIR. make uninstall removes them.
 PREFIX     ?= /usr/local
 BINDIR     ?= $(PREFIX)/bin
 LIBDIR     ?= $(PREFIX)/lib
 INCLUDEDIR ?= $(PREFIX)/include
 MANDIR     ?= $(PREFIX)/share/man
 PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
+# The scene files, the plot scripts and the example data (share/whirl/): the program's --help and
+# the manual page name this directory, compiled in (BUILD/gen/datadir.h, rewritten when it changes).
+DATADIR    ?= $(PREFIX)/share/whirl
+DATADIR_H  := $(BUILD)/gen/datadir.h
+# (a relative DATADIR, which make install refuses, leaves the header as it was)
+ifneq ($(MAKECMDGOALS),clean)
+$(shell case '$(DATADIR)' in (/*) ;; (*) exit 0 ;; esac; mkdir -p $(BUILD)/gen && printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' | \
+  cmp -s - $(DATADIR_H) || printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' >$(DATADIR_H))
+endif
+$(BUILD)/src/cli/main.o: $(DATADIR_H)
+$(BUILD)/src/cli/main.o: CPPFLAGS += -I$(BUILD)/gen
 INSTALL_VARS = BUILD='$(BUILD)' VERSION='$(VERSION)' MAJOR='$(MAJOR)' DESTDIR='$(DESTDIR)' \
   PREFIX='$(PREFIX)' BINDIR='$(BINDIR)' LIBDIR='$(LIBDIR)' INCLUDEDIR='$(INCLUDEDIR)' \
-  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)'
+  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)' DATADIR='$(DATADIR)'
 install: all
 	@$(INSTALL_VARS) sh scripts/install.sh install
 uninstall:
@@ -180,6 +192,19 @@ fuzz: deps
 	    out/fuzz/$$f.log; [ $$rc -eq 0 ] || exit 1; \
 	done
 
+# The manual (docs/, Sphinx with MyST): HTML into $(BUILD)/docs/, warnings are errors. The C API
+# pages are generated from include/whirl/*.h, the Python API from the package's docstrings (which
+# loads $(BUILD)/libwhirl.so). tests/cli/test_docs.sh builds it the same way in `make check`.
+DOCS_PKGS := python3-sphinx python3-myst-parser
+docs: $(BUILD)/whirl $(BUILD)/libwhirl.so
+	@$(PYTHON) -c 'import sphinx, myst_parser' 2>/dev/null || { echo "make docs: needs the \
+	Debian packages $(DOCS_PKGS) (sudo apt-get install -y $(DOCS_PKGS), or make deps as root)" >&2; \
+	exit 1; }
+	WHIRL_LIBRARY=$(abspath $(BUILD)/libwhirl.so) WHIRL_PROGRAM=$(abspath $(BUILD)/whirl) \
+	  $(PYTHON) -m sphinx -b html -W --keep-going -q \
+	  -d $(BUILD)/docs-doctrees docs $(BUILD)/docs
+	@echo "manual: $(BUILD)/docs/index.html"
+
 # Debian packages the build, the tests and the figures need; installed when run as root.
 deps:
 	@sh scripts/deps.sh
@@ -235,6 +260,11 @@ python: deps
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
 	cp $(BUILD)/libwhirl.so python/whirl/libwhirl.so
 	$(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
+
+# The live page (python/whirl/explore.py) over the library just built.
+explore: deps
+	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
+	PYTHONPATH=python WHIRL_LIBRARY=$(BUILD)/libwhirl.so $(PYTHON) -m whirl.explore
 
 clean:
 	rm -rf build build-* out

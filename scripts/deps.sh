@@ -40,8 +40,12 @@ python3-wheel    have_py wheel
 libmujoco-dev    have_header cc mujoco/mujoco.h
 libsundials-dev  have_header cc arkode/arkode_erkstep.h && have_header cc cvode/cvode.h
 chromium         have_cmd chromium
+python3-websocket have_py websocket
 ffmpeg           have_cmd ffmpeg
 bsdutils         have_cmd script
+python3-sphinx   have_py sphinx
+python3-myst-parser have_py myst_parser
+libjs-mathjax    test -f /usr/share/javascript/mathjax/MathJax.js
 '
 
 missing=""

@@ -1,9 +1,13 @@
 #!/bin/sh
 # Writes the manual page whirl(1) on stdout, generated from the program's own help: the overview
 # of `whirl --help`, then for every command its `whirl CMD --help` (usage line, description,
-# options, examples), so the page cannot drift from the program. Usage: man.sh PROGRAM
+# options, examples), so the page cannot drift from the program; the scene files' keys from the
+# opening comment of include/whirl/scene.h; DATADIR, where make install puts the scenes and plot
+# scripts. Usage: man.sh PROGRAM DATADIR
 set -e
-whirl=${1:?usage: man.sh PROGRAM}
+whirl=${1:?usage: man.sh PROGRAM DATADIR}
+datadir=${2:?usage: man.sh PROGRAM DATADIR}
+scene_h="$(dirname "$0")/../include/whirl/scene.h"
 version=$("$whirl" --version | sed -n 's/^whirl \([^ ]*\).*/\1/p')
 [ -n "$version" ] || { echo "man.sh: no version from $whirl --version" >&2; exit 1; }
 "$whirl" --help >/dev/null
@@ -55,6 +59,22 @@ END
     { sub(/^ +/, ""); print; print ".br" }'
 done
 cat <<'END'
+.SH SCENE FILES
+A scene (\fBwhirl simulate\fR \fISCENE\fR) is an INI file; examples are installed in
+END
+echo ".I $(echo "$datadir/scenes" | esc)"
+cat <<'END'
+(data/scenes in the source tree). Its sections and keys, from <whirl/scene.h>:
+.PP
+.nf
+END
+# the key list of the header's opening comment: from "[units]" to the line before "Syntax"
+awk 'NR == 1, /\*\// { print }' "$scene_h" | sed -n '/\[units\]/,/^ \* *$/p' | sed '$d' |
+  sed 's/^ \* \{0,1\}//' | esc
+cat <<'END'
+.fi
+.PP
+Overrides \fB\-\-set\fR \fIsection.key=value\fR replace or add keys after the file.
 .SH UNITS
 Dimensionless unless a command says otherwise: chain length L = 1, chain mass M = 1, gravity
 g = 1; rates in sqrt(g/L), times in sqrt(L/g), tensions in M g. z points up; the pivot is the
@@ -73,6 +93,13 @@ Seconds after which \fBshape\fR and \fBsweep\fR show their progress line on a te
 .TP
 .B OMP_NUM_THREADS
 Threads of the commands that run on several cores.
+.SH FILES
+.TP
+END
+echo "$datadir" | esc
+cat <<'END'
+The example scenes (scenes/), the gnuplot scripts (plots/) and the fit's example data
+(fit_example.csv, in cm).
 .SH EXIT STATUS
 0 on success, 130 when interrupted (Ctrl\-C; the rows written so far are kept), non\-zero on
 any error.

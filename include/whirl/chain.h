@@ -7,6 +7,10 @@
 
 #include "whirl/common.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct whirl_chain {
     size_t n;       /* number of links = number of point masses, >= 1 */
     double *length; /* length[i-1]: length of link i [L], > 0 */
@@ -30,5 +34,9 @@ WHIRL_API void whirl_chain_free(whirl_chain *c);
 /* Sum of the link lengths and of the masses. */
 WHIRL_API double whirl_chain_total_length(const whirl_chain *c);
 WHIRL_API double whirl_chain_total_mass(const whirl_chain *c);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

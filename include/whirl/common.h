@@ -17,6 +17,10 @@
 #include <gsl/gsl_errno.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* WHIRL_API marks the library's public functions. The shared library is compiled with
  * -fvisibility=hidden and exports these alone, so every symbol it exports starts with whirl_. */
 #if defined(__GNUC__)
@@ -102,5 +106,9 @@ WHIRL_API const char *whirl_quantity_suffixes(whirl_quantity kind);
  *   # units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), force M g) */
 WHIRL_API void whirl_write_units_line(FILE *fp, int physical, double length, double mass,
                                       double gravity);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -14,6 +14,10 @@
 #include "whirl/stability.h"
 #include "whirl/steady.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct whirl_cstab whirl_cstab; /* workspace of the continuum's linear analysis */
 
 typedef struct whirl_cstab_params {
@@ -68,5 +72,9 @@ WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectru
 WHIRL_API int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                                   whirl_window *windows, size_t max, size_t *count,
                                   whirl_windows_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -46,6 +46,10 @@
 #include "whirl/common.h"
 #include "whirl/dynamics.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Samples of the continuum's shape used to count its nodes. */
 #define WHIRL_DRIVEN_NODE_SAMPLES 1024
 /* The most folds whirl_driven_branch records. */
@@ -139,5 +143,9 @@ WHIRL_API void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a 
 WHIRL_API int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
                                   const whirl_driven_info *start, int direction, double omega_min,
                                   double omega_max, double step, whirl_driven_curve *curve);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -21,6 +21,10 @@
 #include "whirl/common.h"
 #include "whirl/integrator.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum { WHIRL_FRAME_INERTIAL = 0, WHIRL_FRAME_ROTATING = 1 } whirl_frame;
 typedef enum { WHIRL_FORMULATION_CARTESIAN = 0, WHIRL_FORMULATION_SEED = 1 } whirl_formulation;
 
@@ -191,5 +195,9 @@ WHIRL_API int whirl_dyn_system(whirl_dyn *d, whirl_system *sys);
  * owned): whirl_integrator_alloc_system on whirl_dyn_system(d). NULL on an unknown method (the
  * message lists the known ones), d NULL or no memory. */
 WHIRL_API whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -26,6 +26,10 @@
 
 #include "whirl/common.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* A system dy/dt = f(t, y). The integrator keeps a copy of the struct, not of params. */
 typedef struct whirl_system {
     /* dydt <- f(t, y); GSL's signature (a gsl_odeiv2_system function works); GSL_SUCCESS or a
@@ -114,5 +118,9 @@ WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *
                                        double h, double tol);
 
 WHIRL_API whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

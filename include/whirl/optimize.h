@@ -21,6 +21,10 @@
 #include "whirl/common.h"
 #include "whirl/steady.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* ---- the co-rotating potential of the planar N-link chain ---- */
 
 /* V(theta) of the chain c (theta: c->n link angles [rad]); if grad != NULL also dV/dtheta_j
@@ -135,5 +139,9 @@ typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last,
 WHIRL_API int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r,
                                  const double *z, int mode, whirl_fit_progress_fn progress,
                                  void *data, whirl_fit_result *result);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

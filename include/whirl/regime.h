@@ -46,6 +46,10 @@
 #include "whirl/common.h"
 #include "whirl/dynamics.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define WHIRL_REGIME_PERIOD_MAX 8    /* longest period tested, in drive periods */
 #define WHIRL_REGIME_PERIOD_CHECKS 8 /* samples that must repeat for a period */
 
@@ -143,5 +147,9 @@ WHIRL_API int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, 
 
 /* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
 WHIRL_API const char *whirl_regime_state_name(whirl_regime_state s);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

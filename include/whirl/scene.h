@@ -56,6 +56,10 @@
 #include "whirl/common.h"
 #include "whirl/dynamics.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): about an hour
  * of work with the implicit methods; larger runs are refused when the scene is read. */
 #define WHIRL_SCENE_WORK_MAX 1e10
@@ -270,5 +274,9 @@ WHIRL_API int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, c
  * (NULL: none), whirl_scene_work_free. Returns as whirl_scene_work_run (or the allocation's
  * failure). */
 WHIRL_API int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

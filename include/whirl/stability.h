@@ -37,6 +37,10 @@
 #include "whirl/dynamics.h"
 #include "whirl/steady.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct whirl_stability whirl_stability; /* workspace of the linear analysis of N links */
 
 /* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
@@ -322,5 +326,9 @@ typedef struct whirl_windows_stats {
 WHIRL_API int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
                                  const whirl_windows_params *p, whirl_window *windows, size_t max,
                                  size_t *count, whirl_windows_stats *stats);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

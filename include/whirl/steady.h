@@ -18,6 +18,10 @@
 #include "whirl/chain.h"
 #include "whirl/common.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* The node arclengths a whirl_shape_info holds: the first ones from the pivot. */
 #define WHIRL_SHAPE_NODES 64
 
@@ -478,5 +482,9 @@ WHIRL_API void whirl_equilibria_free(whirl_equilibria *e); /* NULL is a no-op */
 #define WHIRL_EQUILIBRIA_CONTINUUM_OMEGA_MAX 50.0 /* continuum: 31 shapes, each shot an ODE */
 #define WHIRL_EQUILIBRIA_LINKS_MAX 200 /* the budget: scans of O(N) shots, dense Newton
                                        * steps O(N^3) and eigen-solves O((4N)^3) per shape */
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

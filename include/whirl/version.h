@@ -5,6 +5,10 @@
 
 #include "whirl/common.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define WHIRL_VERSION_MAJOR 1
 #define WHIRL_VERSION_MINOR 2
 #define WHIRL_VERSION_PATCH 0
@@ -19,5 +23,9 @@
 /* The version of the library a program runs with, "MAJOR.MINOR.PATCH" (static storage); compare
  * it with WHIRL_VERSION to detect a library other than the one compiled against. */
 WHIRL_API const char *whirl_version(void);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

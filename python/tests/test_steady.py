@@ -151,7 +151,7 @@ def test_sharp_turn_against_the_mpmath_continuation():
               0.32922785172356628, 0.0724052084410058, 183.34632586580688, 111.71786576971722,
               0.0083645241425102553]
     script = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                          "tests", "branch_mp.py")
+                          "tests", "tools", "branch_mp.py")
     out = subprocess.run(["/usr/bin/python3", script, "--length", ",".join(map(repr, lengths)),
                           "--mass", ",".join(map(repr, masses)), "8", "--dps", "30"],
                          capture_output=True, text=True, check=True).stdout

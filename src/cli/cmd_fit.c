@@ -40,7 +40,7 @@ static void show_progress(void *data, int mode, int first, int last, int evaluat
 
 int cmd_fit(const cli_command *cmd, int argc, char **argv)
 {
-    const char *shape = NULL, *output = NULL;
+    const char *shape = NULL, *output = NULL, *shape_unit = NULL;
     int mode = 0, mode_given = 0, omega_max_given = 0;
     double omega_max = 0, max_residual = 0.02;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
@@ -48,6 +48,8 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
         {"--shape", NULL, CLI_STRING, &shape, NULL, "FILE",
          "CSV of measured points with columns r and z, lengths in the units of --length (- reads stdin)",
          NULL, NULL, NULL, ""},
+        {"--shape-unit", NULL, CLI_STRING, &shape_unit, NULL, "U",
+         "the unit of the points' r and z: m, cm or mm (needs --length; default: m)"},
         {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)",
          "[1, 64]"},
         STEADY_CLI_MODEL_OPTIONS(m),
@@ -65,6 +67,20 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
+    /* the points' unit, as the factor that takes them to the units of --length (m) */
+    double shape_scale = 1;
+    if (shape_unit) {
+        char one[32];
+        int suffixed = 0;
+        snprintf(one, sizeof one, "1%s", shape_unit);
+        if (!m.units.physical)
+            return cli_error(cmd, "--shape-unit %s needs --length (the chain's length in SI units)",
+                             shape_unit);
+        if (strlen(shape_unit) >= sizeof one - 1 ||
+            whirl_parse_quantity(one, WHIRL_QUANTITY_LENGTH, &shape_scale, &suffixed) != 0 ||
+            !suffixed)
+            return cli_error(cmd, "--shape-unit must be m, cm or mm, got '%s'", shape_unit);
+    }
     whirl_fit_model model = whirl_fit_model_default();
     model.links = m.links_given ? (size_t)m.links : 0;
     model.tip_mass = steady_cli_tip_mass(&m);
@@ -79,8 +95,8 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     for (size_t i = 0; i < p.n; i++) {
-        p.r[i] /= len;
-        p.z[i] /= len;
+        p.r[i] *= shape_scale / len;
+        p.z[i] *= shape_scale / len;
     }
     whirl_fit_result res;
     fit_progress progress = {.done = 0};

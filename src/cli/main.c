@@ -5,6 +5,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cli/cli.h"
+#include "datadir.h" /* WHIRL_DATADIR: where make install puts the scenes (BUILD/gen) */
 #include "whirl/version.h"
 
 /* Synopses are generated from each command's option table (cli_parse --help). */
@@ -23,13 +24,14 @@ static const cli_command commands[] = {
      "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability,
      "whirl stability --omega-min 1 --omega-max 8 --omega-count 29 --links 20 --linear -o map.csv"},
     {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
-     "Runs a scene file (see data/scenes/): the N-link chain in time.", cmd_simulate,
-     "whirl simulate data/scenes/mode2.ini --set run.t_end=20 -o run.csv"},
+     "Runs a scene file (examples in " WHIRL_DATADIR "/scenes, data/scenes in the source): "
+     "the N-link chain in time.", cmd_simulate,
+     "whirl simulate " WHIRL_DATADIR "/scenes/mode2.ini --set run.t_end=20 -o run.csv"},
     {"minimize", NULL,
      "The mode-1 shape as the minimum of the co-rotating potential (NLopt).", cmd_minimize,
      "whirl minimize --omega 3 --links 40 -o min.csv"},
     {"fit", NULL, "The rotation rate and mode that best explain a measured shape (NLopt).",
-     cmd_fit, "whirl fit --shape data/fit_example.csv --length 1.2"},
+     cmd_fit, "whirl fit --shape " WHIRL_DATADIR "/fit_example.csv --shape-unit cm --length 120cm"},
     {"driven", "--omega W | --omega-min A --omega-max B [--mode K] [OPTIONS]",
      "Steady shapes with the pivot driven on a circle and air drag; branches with folds.",
      cmd_driven, "whirl driven --omega-min 1 --omega-max 6 --mode 2 --eps 0.05 --drag-quadratic 0.015"},

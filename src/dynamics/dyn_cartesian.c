@@ -38,10 +38,9 @@
  *    relative tension error on the mode-2 shape at N = 10^5);
  *  - Q, a sum of N positive terms on a hanging chain (the tension is lambda_i = nu Q_i there),
  *    carries its rounding errors exactly (Knuth's TwoSum) in a second term off the serial path.
- * Measured relative tension error against the same system solved in binary128
- * (tests/bench/bench_scaling.c, part tension) at N = 10^4, 10^5, 10^6: hanging chain 2.2e-16, 3.3e-16,
- * 2.2e-16; a moving 3D state 1.0e-15, 1.1e-15, 1.4e-15; the mode-2 shape at omega = 4 1.3e-14,
- * 3.4e-14, 8.9e-14 (the earlier recursions in long double: 4.7e-14, 2.2e-14, 9.1e-12).
+ * The relative tension error against the same system solved in binary128 stays near round-off
+ * up to N = 10^6 (tests/bench/bench_scaling.c, part tension; the figures are in the manual's
+ * validation, "The chain in time").
  * Cost: two passes over the links that vectorise (the coefficients, then the accelerations;
  * one division per link) around two serial recursions of two floating-point operations' latency
  * per link each (tip-up (P, Q, rho) with one division per link off the serial path, then the
@@ -49,16 +48,15 @@
  * two passes are shared by k OpenMP threads (static blocks of links: every value is computed
  * as with one thread, so the results are bitwise the same); the recursions stay serial.
  * Projection: d_i <- l_i d_i / |d_i|, then d_i' <- d_i' - (d_i . d_i' / l_i^2) d_i, formed in long
- * double and rounded once: with the scale factor rounded to double first, the energy error of
- * gauss3 (5 links, h = 0.01) grew like t^0.62 to 7e-14 over 2 10^5 steps; rounded once, to
- * 4.8e-14 over 10^6 steps (tests/bench/bench_dynamics.c). The Gauss step followed by the projection is
- * neither symplectic nor symmetric on the constraint manifold, so its truncation error can
- * accumulate: over 10^7 steps (8 runs, tests/bench/bench_stress.c, case "long") the energy error has a
- * drift common to every run, -1.9e-12 at h = 0.005 and -4.2e-14 at h = 0.0025, and none
- * measurable at h = 0.00125 (5e-16 against a spread of 6.2e-15); the spread between the runs,
- * the round-off, grows like t^0.48 at every step (Brouwer's law: t^0.5). Hairer's symmetric
- * projection (pre-scaling each link by half the predicted correction) left the drift at
- * h = 0.0025 unchanged (-5.7e-14), so it is not used. */
+ * double and rounded once (a scale factor rounded to double first makes the energy error grow
+ * faster than the round-off's t^0.5). The Gauss step followed by the projection is neither
+ * symplectic nor symmetric on the constraint manifold, so its truncation error can accumulate:
+ * over 10^7 steps the energy error has a drift common to every run that falls fast with the
+ * step (none is measurable at h = 0.00125), while the spread between runs, the round-off,
+ * grows like t^0.5 (Brouwer's law).
+ * Hairer's symmetric projection (pre-scaling each link by half the predicted correction) does not
+ * reduce that drift, so it is not used (tests/bench/bench_stress.c, case "long"; the figures are in
+ * the manual's validation, "The chain in time"). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

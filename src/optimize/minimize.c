@@ -11,12 +11,13 @@
  * The force the masses below link j exert is F_j = (omega^2 X_j, -g M_j); at equilibrium it
  * points along the link, dV/dtheta_j = 0 says exactly that, and the tension is its projection
  *     T_j = g M_j cos(theta_j) + omega^2 X_j sin(theta_j)
- * (the recursion of the shooting solver, physics notes section 4).
+ * (the recursion of the shooting solver, the manual's theory, "N-link statics").
  * theta = 0 (hanging) is always stationary, with Hessian K - omega^2 M (K = diag(g l_j M_j),
  * M_jk = l_j l_k M_max(j,k)): positive definite exactly when omega is below the chain's first
  * critical rate, where it is the minimum and no mode-1 shape exists. Above it the minimum is the
  * mode-1 shape; mode k has k-1 negative in-plane directions of the Hessian (Kolodner 1955 for
- * the continuum; physics notes section 7), so a minimiser never finds modes >= 2.
+ * the continuum; the manual's theory, "Linearisation and Krein signatures"), so a minimiser
+ * never finds modes >= 2.
  * Minimisation: NLopt (Johnson, "The NLopt nonlinear-optimization package"; LD_LBFGS by
  * default: Nocedal 1980, Liu & Nocedal 1989), then optionally Newton steps on the analytic
  * Hessian (Cholesky, LAPACK dpotrf/dpotrs) to bring the gradient to round-off. */

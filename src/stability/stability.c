@@ -42,7 +42,7 @@
  * References: Meirovitch, Methods of Analytical Dynamics (1970), ch. 6 (gyroscopic systems,
  * Kelvin-Tait-Chetaev); Kirillov, Nonconservative Stability Problems of Modern Physics (2013)
  * (M q'' + (D + G) q' + (K + N) q = 0, circulatory forces N); Kolodner 1955 (whirling string);
- * physics notes, section 7. */
+ * the manual's theory, "Linearisation and Krein signatures". */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

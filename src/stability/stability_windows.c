@@ -48,11 +48,11 @@
 #include <string.h>
 
 #include <gsl/gsl_min.h>
-#include <gsl/gsl_roots.h>
 #include <lapacke.h>
 
 #include "whirl/stability.h"
 #include "core/error.h"
+#include "core/roots.h"
 #include "stability/windows_internal.h"
 #include "core/worker.h"
 
@@ -708,8 +708,6 @@ typedef struct root_args {
     int divergence;
     int status;
     double growth_sign; /* minimisation: -1 (maximise the growth of the pair near mu_c) */
-    double cache_omega[2], cache_value[2]; /* the bracket's ends, evaluated once */
-    int cached;
 } root_args;
 
 /* D(omega) or -growth(omega) near mu_c: by Arnoldi when asked and converged, else in full. */
@@ -718,8 +716,6 @@ static double pair_function(double omega, void *data)
     root_args *r = data;
     const windows_source *src = r->src;
     if (r->status) return NAN;
-    for (int i = 0; i < r->cached; i++)
-        if (omega == r->cache_omega[i]) return r->cache_value[i];
     int status = stop_check(src, omega);
     if (status) {
         r->status = status;
@@ -760,6 +756,14 @@ static double pair_function(double omega, void *data)
     return discriminant(sp.re, sp.im, sp.count, sp.level, r->divergence, &r->mu_c);
 }
 
+/* pair_function for the root finder: its failure in r->status */
+static int pair_value(double omega, void *data, double *value)
+{
+    root_args *r = data;
+    *value = pair_function(omega, r);
+    return r->status;
+}
+
 typedef struct edge {
     double omega, freq;
     int opens; /* 1: stable below, unstable above */
@@ -794,57 +798,38 @@ static int explore(search *s, point *a, point *b, int depth);
 static int locate(search *s, point *a, point *b, int depth)
 {
     const point *un = a->unstable ? a : b;
-    root_args r = {s->src, s->p, un->mu_c, 0, 0, 0, {0, 0}, {0, 0}, 0};
+    root_args r = {s->src, s->p, un->mu_c, 0, 0, 0};
     r.divergence = un->mu_c_im == 0 && un->mu_c > 0;
-    gsl_function f = {pair_function, &r};
     double lo = a->omega, hi = b->omega;
     int status = GSL_SUCCESS;
-    gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (solver == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
     /* D at the ends must have the signs of their stability (else several pairs act at once) */
     const double f_lo = pair_function(lo, &r);
     r.mu_c = un->mu_c;
     const double f_hi = pair_function(hi, &r);
-    r.cache_omega[0] = lo, r.cache_value[0] = f_lo;
-    r.cache_omega[1] = hi, r.cache_value[1] = f_hi;
-    r.cached = 2;
-    const int bracketed = !r.status && (f_lo > 0) == !a->unstable &&
-                          (f_hi > 0) == !b->unstable &&
-                          gsl_root_fsolver_set(solver, &f, lo, hi) == GSL_SUCCESS;
-    r.cached = 0;
-    if (r.status) {
-        gsl_root_fsolver_free(solver);
-        return r.status;
-    }
-    if (bracketed) {
-        for (int iter = 0; iter < 200 && status == GSL_SUCCESS; iter++) {
-            status = gsl_root_fsolver_iterate(solver);
-            if (r.status) break;
-            lo = gsl_root_fsolver_x_lower(solver);
-            hi = gsl_root_fsolver_x_upper(solver);
-            if (status == GSL_SUCCESS &&
-                gsl_root_test_interval(lo, hi, s->p->tol, 0) == GSL_SUCCESS)
-                break;
-        }
-        if (r.status) {
-            gsl_root_fsolver_free(solver);
-            return r.status;
-        }
-        if (status) {
-            gsl_root_fsolver_free(solver);
+    if (r.status) return r.status;
+    int bracketed = 0;
+    if ((f_lo > 0) == !a->unstable && (f_hi > 0) == !b->unstable) {
+        /* Brent's last bracket is taken after 200 iterations as it is */
+        const whirl_root_opts o = {s->p->tol, 0, 200, 1, f_lo, f_hi};
+        whirl_root root;
+        status = whirl_root_brent(pair_value, &r, lo, hi, &o, &root);
+        if (r.status) return r.status;
+        if (status == GSL_ENOMEM) return status;
+        bracketed = root.bracketed;
+        if (bracketed && status && status != GSL_EMAXITER)
             return whirl_fail(status, "mode %d: the window edge between omega = %.10g "
                                       "and omega = %.10g was not located", s->src->mode,
                               a->omega, b->omega);
-        }
-    } else { /* the discriminant does not bracket (several pairs): bisect on the stability */
+        if (bracketed) lo = root.lower, hi = root.upper;
+        status = GSL_SUCCESS;
+    }
+    if (!bracketed) { /* the discriminant does not bracket (several pairs): bisect on the
+                       * stability */
         point mid = {0};
         while (hi - lo > s->p->tol) {
             const double m = (lo + hi) / 2;
             status = evaluate(s->src, m, 0, &mid);
-            if (status) {
-                gsl_root_fsolver_free(solver);
-                return status;
-            }
+            if (status) return status;
             if (mid.unstable == a->unstable)
                 lo = m;
             else
@@ -852,7 +837,6 @@ static int locate(search *s, point *a, point *b, int depth)
             r.mu_c = mid.unstable ? mid.mu_c : r.mu_c;
         }
     }
-    gsl_root_fsolver_free(solver);
     const double omega = (lo + hi) / 2, freq = r.divergence ? 0 : sqrt(fmax(0, -r.mu_c));
     const double d = 100 * s->p->tol;
     if (omega - d <= a->omega || omega + d >= b->omega) /* too close to check: trust the pair */
@@ -911,7 +895,7 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
     const double g = c->gap[idx];
     if (isnan(g) || (!l && !r)) return GSL_SUCCESS;
     if ((l && !(g < l->gap[idx])) || (r && !(g < r->gap[idx]))) return GSL_SUCCESS;
-    root_args ra = {s->src, s->p, c->gap_mu[idx], 0, 0, 0, {0, 0}, {0, 0}, 0};
+    root_args ra = {s->src, s->p, c->gap_mu[idx], 0, 0, 0};
     gsl_function fn = {pair_function, &ra};
     double x = c->omega, fx = g, lo, flo, hi, fhi;
     if (l && r) {
@@ -1007,7 +991,7 @@ static int largest_growth(search *s, const point *end_from, const point *end_to,
         return whirl_fail(GSL_EFAILED, "mode %d: no growth inside the window (%.10g, %.10g)",
                           s->src->mode, win->from, win->to);
     if (best == 0 || best == SAMPLES + 1) return GSL_SUCCESS; /* at an end of the range */
-    root_args r = {s->src, s->p, mu[best], 0, 0, -1, {0, 0}, {0, 0}, 0};
+    root_args r = {s->src, s->p, mu[best], 0, 0, -1};
     gsl_function fn = {pair_function, &r};
     gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");

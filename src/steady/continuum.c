@@ -56,11 +56,12 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include <gsl/gsl_math.h>
 #include <gsl/gsl_odeiv2.h>
-#include <gsl/gsl_roots.h>
 #include <gsl/gsl_sf_bessel.h>
 
 #include "core/error.h"
+#include "core/roots.h"
 #include "steady/steady_internal.h"
 
 #define START_SIGMA 1e-4  /* sigma_0 (1 + omega^2) of the series start, tip mass 0 */
@@ -453,6 +454,13 @@ static double critical_determinant(double omega, void *params)
            (gsl_sf_bessel_Y1(x0) - 0.5 * x0 * gsl_sf_bessel_Y0(x0)) * gsl_sf_bessel_J0(x1);
 }
 
+/* critical_determinant for the root finder */
+static int critical_value(double omega, void *params, double *value)
+{
+    *value = critical_determinant(omega, params);
+    return GSL_SUCCESS;
+}
+
 /* The first n roots of critical_determinant (tip mass m > 0) in one sweep: sign changes are
  * bracketed once, in steps of 1/32 of the asymptotic spacing sp = pi (sqrt(1+m) + sqrt(m)) / 2
  * (the phase x1 - x0 = 2 omega (sqrt(1+m) - sqrt(m)) of the Bessel functions grows by pi per
@@ -468,9 +476,8 @@ static double critical_determinant(double omega, void *params)
 static int critical_sweep(double m, int n, double *omega, double *last)
 {
     double spacing = 0.5 * M_PI * (sqrt(1 + m) + sqrt(m));
-    gsl_function f = {critical_determinant, &m};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
+    /* Brent's estimate is taken after REFINE_MAX iterations, or a failed one, as it is */
+    const whirl_root_opts refine = {0, 2 * DBL_EPSILON, REFINE_MAX, 0, 0, 0};
     int status = GSL_SUCCESS, found = 0;
     double lo = 0.5, f_lo = critical_determinant(lo, &m);
     /* bounded: n roots need about 32 n steps (40 n + 80 with the margin of the first) */
@@ -488,15 +495,12 @@ static int critical_sweep(double m, int n, double *omega, double *last)
         double step = found == 0 ? fmin(0.05, spacing / 32) : spacing / 32;
         double hi = lo + step, f_hi = critical_determinant(hi, &m);
         if ((f_lo > 0) != (f_hi > 0)) {
-            gsl_root_fsolver_set(s, &f, lo, hi);
-            for (int k = 0; k < REFINE_MAX; k++) {
-                if (gsl_root_fsolver_iterate(s) != GSL_SUCCESS) break;
-                if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s),
-                                           gsl_root_fsolver_x_upper(s), 0,
-                                           2 * DBL_EPSILON) == GSL_SUCCESS)
-                    break;
+            whirl_root r;
+            if (whirl_root_brent(critical_value, &m, lo, hi, &refine, &r) == GSL_ENOMEM) {
+                status = GSL_ENOMEM;
+                break;
             }
-            double root = gsl_root_fsolver_root(s), k = ++found;
+            double root = r.root, k = ++found;
             if (root < (k - 1.1) * spacing || root > (k - 0.1) * spacing) {
                 status = whirl_fail(GSL_EFAILED, "critical rate %d with tip mass %g at omega=%g "
                                     "is off the roots' density (%g per unit omega): a root "
@@ -508,7 +512,6 @@ static int critical_sweep(double m, int n, double *omega, double *last)
         }
         lo = hi, f_lo = f_hi;
     }
-    gsl_root_fsolver_free(s);
     return status;
 }
 

@@ -20,7 +20,8 @@
  * ODE: GSL's rk8pd (Prince & Dormand 1981), scaled error control.
  *
  * N-link chain (mass i at the lower end of link i, mass n the tip), the exact discrete recursion
- * from the tip up (physics notes section 4, here in 3D, drag weight l_i as in dynamics.h):
+ * from the tip up (the manual's theory, "N-link statics", here in 3D, drag weight l_i as in
+ * dynamics.h):
  *     r_n = (X, Y, 0),  F_i = F_{i+1} + b_i(r_i)  (F_{n+1} = 0),  r_{i-1} = r_i + l_i F_i/|F_i|,
  * b_i = -f(r_i)|_{wm = m_i, wl = l_i}; T_i = |F_i| is the tension of link i, and every mass is in
  * force balance by construction: T_i t_i - T_{i+1} t_{i+1} + f_i = 0.
@@ -38,12 +39,13 @@
 #include <string.h>
 
 #include <gsl/gsl_linalg.h>
+#include <gsl/gsl_math.h>
 #include <gsl/gsl_odeiv2.h>
-#include <gsl/gsl_roots.h>
 
 #include "whirl/driven.h"
 #include "whirl/steady.h"
 #include "core/error.h"
+#include "core/roots.h"
 
 #define STATE 6                        /* r, F */
 #define NPAR 3                         /* X, Y, omega */
@@ -707,45 +709,37 @@ typedef struct fold_search {
     problem *pb;
     const double *u, *tau;
     double u_at[3]; /* the last corrected point */
-    int failed;
 } fold_search;
 
-/* D at the corrected point at arclength h (Brent's function). */
-static double fold_function_at(double h, void *params)
+/* D at the corrected point at arclength h into *d (the root finder's function); GSL_EFAILED
+ * where the point is not found. */
+static int fold_function_at(double h, void *params, double *d)
 {
     fold_search *fs = params;
     double R[3], J[3][3];
     int iterations;
     if (branch_step(fs->pb, fs->u, fs->tau, h, fs->u_at, &iterations) != GSL_SUCCESS ||
         pivot_miss(fs->pb, fs->u_at, R, J) != GSL_SUCCESS) {
-        fs->failed = 1;
-        return GSL_NAN;
+        *d = GSL_NAN;
+        return GSL_EFAILED;
     }
-    return J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    *d = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    return GSL_SUCCESS;
 }
 
 /* Locates the fold between u (arclength 0) and the corrected point at arclength h, where D
- * changes sign: ufold is the corrected point where D = 0. */
+ * changes sign: ufold is the corrected point where D = 0. Brent's estimate after 100 iterations
+ * is taken as it is. */
 static int locate_fold(problem *pb, const double *u, const double *tau, double h, double *ufold)
 {
-    fold_search fs = {pb, u, tau, {0}, 0};
-    gsl_function f = {fold_function_at, &fs};
-    gsl_root_fsolver *solver = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (solver == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the fold search");
-    int status = gsl_root_fsolver_set(solver, &f, 0, h);
-    for (int it = 0; it < 100 && status == GSL_SUCCESS && !fs.failed; it++) {
-        status = gsl_root_fsolver_iterate(solver);
-        if (status == GSL_SUCCESS &&
-            gsl_root_test_interval(gsl_root_fsolver_x_lower(solver),
-                                   gsl_root_fsolver_x_upper(solver), FOLD_TOL, 0) == GSL_SUCCESS)
-            break;
-    }
-    double root = gsl_root_fsolver_root(solver);
-    gsl_root_fsolver_free(solver);
-    if (status != GSL_SUCCESS || fs.failed)
+    fold_search fs = {pb, u, tau, {0}};
+    const whirl_root_opts o = {FOLD_TOL, 0, 100, 0, 0, 0};
+    whirl_root r;
+    double d;
+    int status = whirl_root_brent(fold_function_at, &fs, 0, h, &o, &r);
+    if (status == GSL_ENOMEM) return status;
+    if ((status && status != GSL_EMAXITER) || fold_function_at(r.root, &fs, &d))
         return whirl_fail(GSL_EFAILED, "the fold near omega %g could not be located", u[2]);
-    fold_function_at(root, &fs);
-    if (fs.failed) return whirl_fail(GSL_EFAILED, "the fold near omega %g could not be located", u[2]);
     memcpy(ufold, fs.u_at, sizeof fs.u_at);
     return GSL_SUCCESS;
 }

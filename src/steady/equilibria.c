@@ -105,11 +105,12 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <gsl/gsl_roots.h>
 #include <lapacke.h>
 
 #include "core/error.h"
+#include "core/roots.h"
 #include "steady/steady_internal.h"
+#include "steady/tip_up.h"
 #include "whirl/stability.h"
 
 #define SCAN_X_TOP 36.0      /* top of the scan: L - a = L e^-36 ~ 2e-16 L */
@@ -336,38 +337,24 @@ static int scan_settled(const scan_problem *pb, double x0, double x1, size_t n0,
 typedef struct brent_ctx {
     scan_fn f;
     void *ctx;
-    int status;
 } brent_ctx;
 
-static double brent_value(double x, void *p)
+static int brent_value(double x, void *p, double *g)
 {
     brent_ctx *b = p;
-    double g, d;
-    int status = b->f(b->ctx, x, &g, &d, NULL, NULL);
-    if (status && !b->status) b->status = status;
-    return g;
+    double d;
+    return b->f(b->ctx, x, g, &d, NULL, NULL);
 }
 
 /* The root in the bracket [lo, hi] to round-off. */
 static int polish(scan_fn f, void *ctx, double lo, double hi, double *x)
 {
-    brent_ctx b = {f, ctx, GSL_SUCCESS};
-    gsl_function fn = {brent_value, &b};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
-    int status = gsl_root_fsolver_set(s, &fn, lo, hi);
-    *x = 0.5 * (lo + hi);
-    for (int it = 0; status == GSL_SUCCESS; it++) {
-        status = gsl_root_fsolver_iterate(s);
-        if (b.status) status = b.status;
-        if (status) break;
-        *x = gsl_root_fsolver_root(s);
-        if (gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s),
-                                   1e-300, 2 * DBL_EPSILON) == GSL_SUCCESS)
-            break;
-        if (it == BRENT_MAX) status = GSL_EMAXITER;
-    }
-    gsl_root_fsolver_free(s);
+    brent_ctx b = {f, ctx};
+    const whirl_root_opts o = {1e-300, 2 * DBL_EPSILON, BRENT_MAX + 1, 0, 0, 0};
+    whirl_root r;
+    int status = whirl_root_brent(brent_value, &b, lo, hi, &o, &r);
+    if (status == GSL_ENOMEM) return status;
+    *x = r.root;
     if (status && status != WHIRL_EINTERRUPTED)
         status = whirl_fail(status, "a root in [%.17g, %.17g] was not polished", lo, hi);
     return status;
@@ -437,17 +424,15 @@ static int pivot_fn(void *ctx, double y, double *g, double *dg, double *sl, doub
 static void linear_loads(const whirl_chain *c, double omega, double *per_tip, double *per_top)
 {
     size_t n = c->n;
-    double w2 = omega * omega, u = 1, eta = 0, v = 0, worst = 0;
+    double w2 = omega * omega, worst = 0;
+    tip_up s = tip_up_start(c, w2, 1, 0, 1);
     for (size_t i = n; i >= 1; i--) {
-        eta += c->mass[i - 1] * w2 * u;
-        v += c->mass[i - 1] * c->gravity;
-        worst = fmax(worst, fabs(eta) / v);
-        u -= c->length[i - 1] * eta / v;
+        tip_up_link(&s, c, i, TIP_UP_LINEAR);
+        worst = fmax(worst, fabs(s.eta) / s.v);
     }
     *per_tip = worst;
     /* from the pivot: H_i / V_i = tan(theta_1) V_1 eta_i / V_i, eta_1 = 1 */
-    double v1 = v, x = 0;
-    eta = 1;
+    double v = s.v, v1 = v, x = 0, eta = 1;
     worst = 0;
     for (size_t i = 1; i <= n; i++) {
         worst = fmax(worst, v1 * fabs(eta) / v);

@@ -6,10 +6,10 @@
  * carries the resultant of those forces,
  *     H_i = sum_{j >= i} m_j omega^2 r_j,  V_i = g sum_{j >= i} m_j,  T_i = |(H_i, V_i)|,
  * and points along it: r_{i-1} = r_i - l_i H_i / T_i, z_{i-1} = z_i + l_i V_i / T_i.
- * Given the tip radius a = r_N this recursion up from the tip fixes the whole chain; the shape is
- * an equilibrium when the pivot lands on the axis, r_0(a) = 0; the branches of such shapes are
- * followed from their birth by pseudo-arclength continuation (nlink_path.c). Every mass's force
- * balance then holds by construction to round-off.
+ * Given the tip radius a = r_N this recursion up from the tip (steady/tip_up.h) fixes the whole
+ * chain; the shape is an equilibrium when the pivot lands on the axis, r_0(a) = 0; the branches
+ * of such shapes are followed from their birth by pseudo-arclength continuation (nlink_path.c).
+ * Every mass's force balance then holds by construction to round-off.
  *
  * Pivot-end shooting (a second formulation, for checks): V_1 = g sum m_j is known, so the top
  * link's angle theta_1 fixes H_1 = V_1 tan(theta_1); going down, r_i = r_{i-1} + l_i H_i / T_i,
@@ -48,6 +48,7 @@
 
 #include "core/error.h"
 #include "steady/steady_internal.h"
+#include "steady/tip_up.h"
 
 typedef struct nlink_ws {
     const whirl_chain *c;
@@ -80,21 +81,20 @@ static void nlink_ws_free(void *ws)
     free(w);
 }
 
-/* The recursion up from the tip; z relative to the pivot. */
+/* The recursion up from the tip (steady/tip_up.h) with a = 1 from r_N = tip_r: the radii and
+ * the horizontal loads themselves, m_i omega^2 as m_i omega omega; z relative to the pivot. */
 static void nlink_recurse(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension)
 {
     size_t n = c->n;
-    double h = 0, v = 0;
+    tip_up s = tip_up_start(c, omega, omega, 1, tip_r);
     r[n] = tip_r;
     z[n] = 0;
     for (size_t i = n; i >= 1; i--) {
-        h += c->mass[i - 1] * omega * omega * r[i];
-        v += c->mass[i - 1] * c->gravity;
-        double t = hypot(h, v);
-        tension[i] = t;
-        r[i - 1] = r[i] - c->length[i - 1] * h / t;
-        z[i - 1] = z[i] + c->length[i - 1] * v / t;
+        tip_up_link(&s, c, i, TIP_UP_HYPOT);
+        tension[i] = s.t;
+        r[i - 1] = s.u;
+        z[i - 1] = z[i] + c->length[i - 1] * s.v / s.t;
     }
     tension[0] = tension[1];
     double z_pivot = z[0];
@@ -169,22 +169,21 @@ static size_t tail_crossings(const whirl_chain *c, double omega, size_t b, doubl
     const double w2 = omega * omega;
     double s = s_b; /* arclength of mass i */
     for (size_t i = b + 1; i <= c->n; i++) s += c->length[i - 1];
-    double u = 1, eta = 0, v = 0;
+    tip_up t = tip_up_start(c, w2, 1, 0, 1);
     size_t found = 0;
     for (size_t i = c->n; i > b; i--) {
-        eta += c->mass[i - 1] * w2 * u;
-        v += c->mass[i - 1] * c->gravity;
-        const double up = u - c->length[i - 1] * eta / v; /* u_{i-1} */
+        const double u = t.u;
+        tip_up_link(&t, c, i, TIP_UP_LINEAR);
+        const double up = t.u; /* u_{i-1} */
         s -= c->length[i - 1];
         if ((up > 0 && u <= 0) || (up < 0 && u >= 0)) {
             const size_t j = first + (count - 1 - found);
             if (count > 0 && j < max) node_s[j] = s + c->length[i - 1] * up / (up - u);
             found++;
         }
-        u = up;
-        if (fabs(u) > 0x1p300) {
-            u *= 0x1p-300;
-            eta *= 0x1p-300;
+        if (fabs(t.u) > 0x1p300) {
+            t.u *= 0x1p-300;
+            t.eta *= 0x1p-300;
         }
     }
     return found;
@@ -282,23 +281,22 @@ void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *
                           double *slope, double *slope_a)
 {
     /* u_i = r_i / a, eta_i = H_i / a and their derivatives with respect to a */
-    double u = 1, u_a = 0, eta = 0, eta_a = 0, v = 0, q = 1, q_a = 0, w2 = omega * omega;
+    double u_a = 0, eta_a = 0, q = 1, q_a = 0, w2 = omega * omega;
+    tip_up s = tip_up_start(c, w2, 1, a, 1);
     for (size_t i = c->n; i >= 1; i--) {
         double m = c->mass[i - 1], l = c->length[i - 1];
-        eta += m * w2 * u;
+        tip_up_link(&s, c, i, TIP_UP_HYPOT);
         eta_a += m * w2 * u_a;
-        v += m * c->gravity;
-        double h = a * eta, h_a = eta + a * eta_a, t = hypot(h, v);
-        slope[i - 1] = h / v;
-        slope_a[i - 1] = h_a / v;
-        u -= l * eta / t;
-        u_a -= l * (eta_a / t - eta * (h / t) * (h_a / t) / t);
-        q += u * u;
-        q_a += 2 * u * u_a;
+        double h = s.h, h_a = s.eta + a * eta_a, t = s.t;
+        slope[i - 1] = h / s.v;
+        slope_a[i - 1] = h_a / s.v;
+        u_a -= l * (eta_a / t - s.eta * (h / t) * (h_a / t) / t);
+        q += s.u * s.u;
+        q_a += 2 * s.u * u_a;
     }
     double norm = sqrt(q);
-    *g = u / norm;
-    *g_a = u_a / norm - 0.5 * u * q_a / (q * norm);
+    *g = s.u / norm;
+    *g_a = u_a / norm - 0.5 * s.u * q_a / (q * norm);
 }
 
 /* The two shots again in quadruple precision (113 bits of mantissa against double's 53), the
@@ -309,37 +307,19 @@ void whirl_nlink_tip_shot(const whirl_chain *c, double omega, double a, double *
  * these refine such a root (src/equilibria.c). Same recursions as whirl_nlink_tip_shot and
  * whirl_nlink_pivot_shot, without the derivatives, and with the pivot shot's parameter
  * tan(theta_1) (no tangent in quadruple precision needed). The square root is Newton's
- * iteration from the long double one (which has quadruple precision's range; each step doubles
- * the correct bits, 64 -> 113 in one, a second for the rounding); the angles come out in
- * double, atan2 of the loads rounded to double (relative accuracy eps). */
-static nlink_quad sqrt_quad(nlink_quad x)
-{
-    nlink_quad y = sqrtl((long double)x);
-    y = (y + x / y) / 2;
-    return (y + x / y) / 2;
-}
-
-/* |(h, v)| for v > 0, without overflow */
-static nlink_quad hypot_quad(nlink_quad h, nlink_quad v)
-{
-    nlink_quad ah = h < 0 ? -h : h, big = ah > v ? ah : v, small = ah > v ? v : ah;
-    nlink_quad q = small / big;
-    return big * sqrt_quad(1 + q * q);
-}
-
+ * iteration from the long double one (steady/tip_up.h); the angles come out in double, atan2 of
+ * the loads rounded to double (relative accuracy eps). */
 nlink_quad whirl_nlink_tip_shot_quad(const whirl_chain *c, double omega, nlink_quad a,
                                      double *theta)
 {
-    nlink_quad u = 1, eta = 0, v = 0, q = 1, w2 = (nlink_quad)omega * omega;
+    nlink_quad q = 1, w2 = (nlink_quad)omega * omega;
+    tip_up_quad s = tip_up_quad_start(c, w2, 1, a, 1);
     for (size_t i = c->n; i >= 1; i--) {
-        eta += c->mass[i - 1] * w2 * u;
-        v += (nlink_quad)c->mass[i - 1] * c->gravity;
-        nlink_quad h = a * eta, t = hypot_quad(h, v);
-        if (theta) theta[i - 1] = atan2((double)h, (double)v);
-        u -= c->length[i - 1] * eta / t;
-        q += u * u;
+        tip_up_quad_link(&s, c, i, TIP_UP_HYPOT);
+        if (theta) theta[i - 1] = atan2((double)s.h, (double)s.v);
+        q += s.u * s.u;
     }
-    return u / sqrt_quad(q);
+    return s.u / tip_up_sqrt_quad(q);
 }
 
 nlink_quad whirl_nlink_pivot_shot_quad(const whirl_chain *c, double omega, nlink_quad tan_1,
@@ -349,7 +329,7 @@ nlink_quad whirl_nlink_pivot_shot_quad(const whirl_chain *c, double omega, nlink
     for (size_t i = 0; i < c->n; i++) v += (nlink_quad)c->mass[i] * c->gravity;
     nlink_quad h1 = v * tan_1, eta = 1, x = 0, w2 = (nlink_quad)omega * omega;
     for (size_t i = 1; i <= c->n; i++) {
-        nlink_quad he = h1 * eta, t = hypot_quad(he, v);
+        nlink_quad he = h1 * eta, t = tip_up_hypot_quad(he, v);
         if (theta) theta[i - 1] = atan2((double)he, (double)v);
         x += c->length[i - 1] * eta / t;
         eta -= c->mass[i - 1] * w2 * x;

@@ -12,9 +12,10 @@
 #include <limits.h>
 #include <math.h>
 
-#include <gsl/gsl_roots.h>
+#include <gsl/gsl_math.h>
 
 #include "core/error.h"
+#include "core/roots.h"
 #include "steady/steady_internal.h"
 
 #define A_MIN_FRACTION 1e-9  /* smallest tip radius tried, relative to a_max */
@@ -70,55 +71,44 @@ int whirl_steady_check_samples(double omega, size_t n, const double *r, const do
 typedef struct shot_call {
     steady_shot_fn shot;
     void *ws;
-    int status;         /* first failure of a shot inside Brent's iteration */
+    int status;         /* a shot's failure inside Brent's iteration */
     double known_a[2];  /* the bracket's ends, whose residuals are known: not shot again */
     double known_res[2];
 } shot_call;
 
-static double residual_of(double a, void *p)
+static int residual_of(double a, void *p, double *res)
 {
     shot_call *call = p;
     for (int i = 0; i < 2; i++)
-        if (a == call->known_a[i]) return call->known_res[i];
-    double res;
-    int crossings;
-    int status = call->shot(call->ws, a, &res, &crossings);
-    if (status != GSL_SUCCESS) {
-        if (call->status == GSL_SUCCESS) call->status = status;
-        return GSL_NAN;
-    }
-    return res;
-}
-
-/* Brent's method on residual(a) in [lo, hi] (opposite signs), to round-off. */
-static int polish(shot_call *call, double lo, double hi, double *a)
-{
-    gsl_function f = {residual_of, call};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the root solver");
-    int status = gsl_root_fsolver_set(s, &f, lo, hi);
-    for (int iter = 0; status == GSL_SUCCESS && iter < BRENT_MAX; iter++) {
-        status = gsl_root_fsolver_iterate(s);
-        if (call->status != GSL_SUCCESS) {
-            status = call->status;
-            break;
-        }
-        if (status != GSL_SUCCESS) {
-            status = whirl_fail(GSL_EFAILED, "Brent iteration failed on the tip radius");
-            break;
-        }
-        double x_lo = gsl_root_fsolver_x_lower(s), x_hi = gsl_root_fsolver_x_upper(s);
-        /* (a residual exactly 0 collapses the interval to the root) */
-        if (gsl_root_test_interval(x_lo, x_hi, 0, 4 * DBL_EPSILON) == GSL_SUCCESS) {
-            *a = gsl_root_fsolver_root(s);
-            gsl_root_fsolver_free(s);
+        if (a == call->known_a[i]) {
+            *res = call->known_res[i];
             return GSL_SUCCESS;
         }
-        if (iter == BRENT_MAX - 1)
-            status = whirl_fail(GSL_EMAXITER, "no convergence of the tip radius in %d Brent steps",
-                                BRENT_MAX);
+    int crossings;
+    int status = call->shot(call->ws, a, res, &crossings);
+    if (status != GSL_SUCCESS) {
+        call->status = status;
+        *res = GSL_NAN;
     }
-    gsl_root_fsolver_free(s);
+    return status;
+}
+
+/* Brent's method on residual(a) in [lo, hi] (opposite signs), to round-off (a residual exactly
+ * 0 collapses the interval to the root). */
+static int polish(shot_call *call, double lo, double hi, double *a)
+{
+    const whirl_root_opts o = {0, 4 * DBL_EPSILON, BRENT_MAX, 0, 0, 0};
+    whirl_root r;
+    int status = whirl_root_brent(residual_of, call, lo, hi, &o, &r);
+    if (status == GSL_SUCCESS) {
+        *a = r.root;
+        return GSL_SUCCESS;
+    }
+    if (call->status || status == GSL_ENOMEM) return status; /* with the message */
+    if (status == GSL_EMAXITER)
+        return whirl_fail(GSL_EMAXITER, "no convergence of the tip radius in %d Brent steps",
+                          BRENT_MAX);
+    if (r.bracketed) return whirl_fail(GSL_EFAILED, "Brent iteration failed on the tip radius");
     return status;
 }
 

@@ -23,6 +23,8 @@ major=${version%%.*}
 missing=""
 for f in bin/whirl lib/libwhirl.a lib/libwhirl.so.$version lib/libwhirl.so.$major lib/libwhirl.so \
          lib/pkgconfig/whirl.pc include/whirl.h share/man/man1/whirl.1 \
+         share/whirl/scenes/classroom.ini share/whirl/scenes/mode2.ini share/whirl/plots/animate.gp \
+         share/whirl/fit_example.csv \
          $(cd include && ls whirl/*.h); do
   case $f in whirl/*) f=include/$f ;; esac
   [ -e "$prefix/$f" ] || missing="$missing $f"
@@ -160,6 +162,39 @@ if cc -std=c11 -o "$name.static" "$name.c" $(pkg-config --cflags whirl) \
    && same_output "$repo/examples/$name.out" "$name.static.txt"; then
   pass "example $name linked statically (pkg-config --static) prints the same"
 else fail "example $name statically: $(head -c 300 "$name.err")"; fi
+# a C++ program: the headers' extern "C" guards give the library's C names, so g++ links
+cat >cxx_link.cpp <<'EOF'
+#include <cstdio>
+#include <whirl.h>
+int main()
+{
+    whirl_shape_info info;
+    if (whirl_continuum_solve(3.5, 2, 0.0, 0.0, &info) != GSL_SUCCESS) {
+        std::printf("%s\n", whirl_last_error());
+        return 1;
+    }
+    std::printf("%s %.6f\n", whirl_version(), info.tip_r);
+    return 0;
+}
+EOF
+if ! command -v g++ >/dev/null; then fail "C++ link: no g++ (build-essential)"
+elif g++ -std=c++11 -Wall -Wextra -Werror cxx_link.cpp $cflags $libs -o cxx_link 2>cxx.err \
+   && out=$(LD_LIBRARY_PATH="$prefix/lib" ./cxx_link) \
+   && [ "$out" = "$version 0.230209" ]; then
+  pass "a C++ program (g++ -std=c++11) includes <whirl.h>, links and runs: $out"
+else fail "C++ link: $(head -c 300 cxx.err) $out"; fi
+# the installed program names the installed scenes and example data, and they run
+if "$prefix/bin/whirl" simulate --help | grep -qF "$prefix/share/whirl/scenes" \
+   && "$prefix/bin/whirl" fit --help | grep -qF "$prefix/share/whirl/fit_example.csv" \
+   && grep -qF "$prefix/share/whirl" man.txt \
+   && "$prefix/bin/whirl" simulate "$prefix/share/whirl/scenes/mode2.ini" --set run.t_end=0.1 >/dev/null \
+   && PATH="$prefix/bin:$PATH" eval "$("$prefix/bin/whirl" fit --help | sed -n '/^example:/{n;p;}')" >/dev/null; then
+  pass "whirl simulate --help, whirl fit --help and whirl(1) name $prefix/share/whirl; its examples run"
+else fail "installed data directory: $("$prefix/bin/whirl" simulate --help | head -2 | tr '\n' ' ')"; fi
+for key in dim links t_end method stop_deviation reference_mode; do
+  grep -q "$key" man.txt || { fail "whirl(1) lacks the scene key $key"; key=""; break; }
+done
+[ -n "$key" ] && pass "whirl(1) lists the scene keys"
 cd "$repo" || exit 1
 
 # ---- staging with DESTDIR, uninstall ----
@@ -187,4 +222,9 @@ else fail "unwritable prefix (rc $rc): $(head -c 300 "$tmp/bad.err")"; fi
 if mk install PREFIX=relative/path >/dev/null 2>"$tmp/bad.err"; then fail "relative PREFIX accepted"
 elif grep -q "PREFIX must be an absolute path" "$tmp/bad.err"; then pass "relative PREFIX refused"
 else fail "relative PREFIX: $(head -c 300 "$tmp/bad.err")"; fi
+# the program in BUILD names the default data directory again (the installs above compiled in
+# theirs)
+if mk all >"$tmp/rebuild.out" 2>&1 && "$build/whirl" simulate --help | grep -q "/usr/local/share/whirl"; then
+  pass "make all after the installs: whirl names /usr/local/share/whirl again"
+else fail "rebuild after the installs: $(tail -n 3 "$tmp/rebuild.out")"; fi
 finish

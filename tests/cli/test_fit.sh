@@ -87,6 +87,18 @@ if "$WHIRL" fit --shape "$example" --length 120 --gravity 981 -o "$tmp/ex.csv" &
               exit !($3 == 2 && d < 0.01 * t && d < 3 * $2 && $2 < 0.01 * t && $4 > 0.06 && $4 < 0.24)}' "$tmp/ex.csv"; then
   pass "fit: data/fit_example.csv"
 else fail "fit: data/fit_example.csv ($(cat "$tmp/ex.csv"))"; fi
+# the same points read in cm by --shape-unit with the chain's length 120cm and standard gravity
+# (9.80665 m/s^2): the rate 3.2 sqrt(9.80665 / 1.2) rad/s, the residual 1e-3 L in m
+if "$WHIRL" fit --shape "$example" --shape-unit cm --length 120cm -o "$tmp/excm.csv" &&
+   grep -q '^# units: length=m .*L=1.2 ' "$tmp/excm.csv" &&
+   awk -F, '/^#/ {next} !h {h = 1; next} {t = 3.2 * sqrt(9.80665 / 1.2); d = $1 - t; if (d < 0) d = -d;
+              exit !($3 == 2 && d < 0.01 * t && d < 3 * $2 && $4 > 0.0006 && $4 < 0.0024)}' "$tmp/excm.csv"; then
+  pass "fit --shape-unit cm --length 120cm: data/fit_example.csv in SI"
+else fail "fit --shape-unit cm --length 120cm ($(cat "$tmp/excm.csv"))"; fi
+expect_error "fit: --shape-unit without --length" "^whirl fit: --shape-unit cm needs --length" \
+  fit --shape "$example" --shape-unit cm -o "$tmp/out.csv"
+expect_error "fit: bad --shape-unit" "^whirl fit: --shape-unit must be m, cm or mm, got 'kg'" \
+  fit --shape "$example" --shape-unit kg --length 1 -o "$tmp/out.csv"
 expect_ok "fit --help" fit --help
 
 # ---- fit: bad input ----

@@ -4,7 +4,8 @@
  * Model: whirl_model with dim = 3, the frame co-rotating at omega, internal damping D > 0
  * (Rayleigh function R = D/2 sum_i |w_i - w_{i-1}|^2, w_i the rate of the link direction u_i
  * relative to the frame co-rotating at omega; see whirl/dynamics.h). By Kelvin-Tait-Chetaev only
- * mode 1 is an attractor (physics notes, section 7); near it the deviation decays like
+ * mode 1 is an attractor (the manual's theory, "Linearisation and Krein signatures"); near it
+ * the deviation decays like
  * exp(sigma t), sigma < 0 the largest real part of the damped linearisation's eigenvalues
  * (whirl_stability_growth, the symmetry's zero removed).
  *

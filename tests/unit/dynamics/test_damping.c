@@ -2,8 +2,8 @@
  * damped linear analysis (whirl/stability.h) and the steady shapes (whirl_nlink_solve): two
  * independent formulations (Cartesian positions with tension multipliers for the runs; link
  * angles with the Hessians of the co-rotating Lagrangian and of the Rayleigh function for the
- * linearisation) and the shooting of the steady shape. Kelvin-Tait-Chetaev (physics notes,
- * section 7): with damping only mode 1 is an attractor, so
+ * linearisation) and the shooting of the steady shape. Kelvin-Tait-Chetaev (the manual's theory,
+ * "Linearisation and Krein signatures"): with damping only mode 1 is an attractor, so
  *  - from the hanging chain at omega = 2 (N = 8) the run converges to the mode-1 shape, to a
  *    floor of round-off, at the rate of a real eigenvalue of the damped linearisation: the orbit
  *    from the hanging chain arrives along the non-oscillating direction of the second slowest

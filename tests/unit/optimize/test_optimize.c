@@ -3,7 +3,8 @@
  * against the shooting solver's mode-1 shape (whirl_nlink_solve); the no-shape criterion against
  * the critical rates of the tridiagonal eigenproblem (whirl_nlink_critical); the shooting
  * solver's modes 2 and 3 as stationary points with 1 and 2 negative directions of the Hessian
- * (physics notes section 7), from which the minimiser falls to mode 1.
+ * (the manual's theory, "Linearisation and Krein signatures"), from which the minimiser falls
+ * to mode 1.
  * Fitting: shapes made by the steady solvers (continuum and N-link), shuffled, mirrored, with
  * and without Gaussian noise: recovery of omega and the mode, omega_err against the scatter of
  * a Monte-Carlo sample, the signed distances against points put off the curve along its normal,
