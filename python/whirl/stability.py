@@ -165,7 +165,7 @@ def stability_map(omega, mode, links, damping=0.0):
 
 WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
                          ("freq_from", "f8"), ("freq_to", "f8"), ("max_growth", "f8"),
-                         ("at", "f8")])
+                         ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
 
 
 def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step=0.25, tol=1e-9,
@@ -178,7 +178,9 @@ def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step
     collision), located to ``tol`` after a scan with spacing ``scan_step``. Returns (windows,
     stats): a structured array with fields from, to (the unstable interval), open_from, open_to
     (True: that end is the end of the range, not an edge), freq_from, freq_to (|Im lambda| where
-    the pair meets [1/T]), max_growth [1/T] and at (where it occurs), in increasing omega; stats
+    the pair meets [1/T]), max_growth [1/T], at (where it occurs) and err_from, err_to (the
+    continuum's estimate of each edge's discretisation error; 0 for the N-link chain), in
+    increasing omega; stats
     a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
     Ctrl-C raises KeyboardInterrupt."""
     chain = None if links is None else links if isinstance(links, Chain) else Chain(links)
@@ -215,7 +217,7 @@ def stability_windows(mode, links=None, omega_min=1.0, omega_max=10.0, scan_step
     for i in range(count[0]):
         f = found[i]
         out[i] = (getattr(f, "from"), f.to, bool(f.open_from), bool(f.open_to), f.freq_from, f.freq_to,
-                  f.max_growth, f.at)
+                  f.max_growth, f.at, f.err_from, f.err_to)
     stats = {k: getattr(st, k) for k in ("omega_from", "omega_to", "scan", "shapes",
                                           "solves_vectors", "solves_values", "solves_krylov",
                                           "approaches", "unresolved")}
