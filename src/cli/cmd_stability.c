@@ -21,9 +21,9 @@
  * N-link chain with --links N (whirl_windows_find) or else of the continuous chain
  * (whirl_cstab_windows: the string equations by collocation, --degree, --tip-mass), one row per
  * window:
- *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at,err_from,err_to
- * (links "inf" for the continuum; err_from, err_to: the continuum's estimate of each edge's
- * discretisation error, 0 for the N-link chain) and a comment line per mode with the eigen-solves used and
+ *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at[,err_from,err_to]
+ * (links "inf" for the continuum, which adds err_from, err_to: its estimate of each edge's
+ * discretisation error) and a comment line per mode with the eigen-solves used and
  * those of a grid of equal resolution.
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
@@ -392,16 +392,19 @@ static int run_windows(const cli_command *cmd, const options *o)
                     (st->omega_to - st->omega_from) / o->tol + 1);
         }
         cli_units_comment(out.fp, &o->units);
-        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at,"
-                        "err_from,err_to\n");
+        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
+                c ? "" : ",err_from,err_to");
         for (size_t k = 0; k < nmodes; k++)
             for (size_t i = 0; i < count[k]; i++) {
                 const whirl_window *x = win + k * WINDOWS_MAX + i;
-                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s,%s,%s\n", o->modes.v[k], links,
+                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
                         CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
                         CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
-                        CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate),
-                        CLI_NUM(x->err_from * rate), CLI_NUM(x->err_to * rate));
+                        CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
+                if (!c)
+                    fprintf(out.fp, ",%s,%s", CLI_NUM(x->err_from * rate),
+                            CLI_NUM(x->err_to * rate));
+                fputc('\n', out.fp);
             }
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
