@@ -1139,9 +1139,23 @@ typedef struct edge_args {
     int mode;
     double sigma;
     int status;
+    double at[2], value[2]; /* the last two evaluations (Brent's start evaluates its ends again) */
 } edge_args;
 
+static double edge_value(double omega, void *data);
+
 static double edge_function(double omega, void *data)
+{
+    edge_args *a = data;
+    for (int i = 0; i < 2; i++)
+        if (a->at[i] == omega) return a->value[i];
+    const double v = edge_value(omega, data);
+    a->at[1] = a->at[0], a->value[1] = a->value[0];
+    a->at[0] = omega, a->value[0] = v;
+    return v;
+}
+
+static double edge_value(double omega, void *data)
 {
     edge_args *a = data;
     double re[2], im[2];
@@ -1168,26 +1182,33 @@ static double edge_function(double omega, void *data)
     return dr * dr - di * di;
 }
 
-/* The edge at *omega (collision frequency freq) located again on the refined workspace wr by
- * Brent's method on D, from a bracket of +-1e-7 widened tenfold until D changes sign (at most
- * +-1e-2): *omega becomes the new edge, *err the change. */
-static int refine_edge(whirl_cstab *wr, int mode, double *edge, double freq, double tol,
-                       double *err)
+/* The edge at *omega (collision frequency freq; opens: stable below) located again on the refined
+ * workspace wr by Brent's method on D: D at *omega says on which side the new edge lies (D > 0
+ * on the stable side), steps of 1e-7 growing tenfold that way bracket it (at most 1e-2):
+ * *omega becomes the new edge, *err the change. */
+static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, double freq,
+                       double tol, double *err)
 {
     const double omega = *edge;
-    edge_args a = {wr, mode, -freq * freq, 0};
+    edge_args a = {wr, mode, -freq * freq, 0, {NAN, NAN}, {NAN, NAN}};
     gsl_function f = {edge_function, &a};
-    double h = 1e-7, lo = omega - h, hi = omega + h, flo = edge_function(lo, &a),
-           fhi = edge_function(hi, &a);
-    while (!a.status && !(flo * fhi < 0) && h < 1e-2) {
+    const double f0 = edge_function(omega, &a);
+    if (a.status) return a.status;
+    *err = 0;
+    if (f0 == 0) return GSL_SUCCESS;
+    const double dir = (f0 > 0) == (opens != 0) ? 1 : -1; /* towards the unstable side if stable */
+    double h = 1e-7, near = omega, far = omega + dir * h, ffar = edge_function(far, &a);
+    while (!a.status && !(f0 * ffar < 0) && h < 1e-2) {
+        near = far;
         h *= 10;
-        lo = omega - h, hi = omega + h;
-        flo = edge_function(lo, &a), fhi = edge_function(hi, &a);
+        far = omega + dir * h;
+        ffar = edge_function(far, &a);
     }
     if (a.status) return a.status;
-    if (!(flo * fhi < 0))
+    if (!(f0 * ffar < 0))
         return whirl_fail(GSL_EFAILED, "mode %d: the edge at omega = %.10g is not found within "
                                        "1e-2 on the refined discretisation", mode, omega);
+    double lo = fmin(near, far), hi = fmax(near, far);
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
     if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
     int status = gsl_root_fsolver_set(s, &f, lo, hi);
@@ -1220,9 +1241,9 @@ static int edge_errors(const whirl_cstab *w, int mode, double tol, whirl_window 
         whirl_window *x = &windows[i];
         x->err_from = x->err_to = 0;
         if (!x->open_from && x->freq_from > 0)
-            status = refine_edge(wr, mode, &x->from, x->freq_from, tol, &x->err_from);
+            status = refine_edge(wr, mode, &x->from, 1, x->freq_from, tol, &x->err_from);
         if (!status && !x->open_to && x->freq_to > 0)
-            status = refine_edge(wr, mode, &x->to, x->freq_to, tol, &x->err_to);
+            status = refine_edge(wr, mode, &x->to, 0, x->freq_to, tol, &x->err_to);
     }
     whirl_cstab_free(wr);
     return status;
