@@ -113,14 +113,9 @@ static int point_stability(const driven_options *o, const whirl_chain *chain,
     if (!status)
         status = whirl_driven_sample(chain, &at, q->tip, n, buf, buf + n, buf + 2 * n,
                                      buf + 3 * n, buf + 4 * n);
-    whirl_model m = {0};
-    m.chain = chain;
-    m.dim = 3;
-    m.frame = WHIRL_FRAME_ROTATING;
-    m.omega = q->omega;
-    m.drive_radius = o->eps;
-    m.air_drag = o->drag;
-    m.air_drag_quadratic = o->drag_quadratic;
+    const whirl_model m = {.chain = chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
+                           .omega = q->omega, .drive_radius = o->eps, .air_drag = o->drag,
+                           .air_drag_quadratic = o->drag_quadratic};
     if (!status) status = whirl_stability_linearise_3d(w, &m, buf + n, buf + 2 * n, buf + 3 * n);
     if (!status) status = whirl_stability_growth(w, growth);
     if (!status) status = whirl_stability_index(w, index);
