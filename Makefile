@@ -43,17 +43,21 @@ test_source = $(filter %/$(1).c,$(TEST_SRC) $(BENCH_SRC))
 # fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
-FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o)
+FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o points_csv.o cmd_simulate.o figure.o) \
+  $(BUILD)/gen/plots_gp.o
 REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 # The page of `whirl view`: src/cli/view.html as a NULL-terminated table of lines (C string
 # literals are kept short: ISO C only promises 4095 characters in one).
 VIEW_GEN := $(BUILD)/gen/view_html.c
 CLI_OBJ  += $(BUILD)/gen/view_html.o
+PLOTS_GP  := $(sort $(wildcard plots/*.gp))
+PLOTS_GEN := $(BUILD)/gen/plots_gp.c
+CLI_OBJ   += $(BUILD)/gen/plots_gp.o
 
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
-.PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python deps clean fuzz \
-  install uninstall docs explore
+.PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python wheel deps clean \
+  fuzz install uninstall docs explore
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
@@ -80,6 +84,15 @@ $(VIEW_GEN): src/cli/view.html
 	  END { print "    0};" }' $< >$@.tmp && mv $@.tmp $@
 
 $(BUILD)/gen/view_html.o: $(VIEW_GEN)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
+
+# The gnuplot scripts of plots/ in the program (whirl plot, shape --plot, simulate --animate write
+# them to a temporary folder and run gnuplot on them): a table of {file, line}, NULL-terminated.
+$(PLOTS_GEN): $(PLOTS_GP) scripts/plots_c.awk
+	@mkdir -p $(dir $@)
+	awk -f scripts/plots_c.awk $(PLOTS_GP) >$@.tmp && mv $@.tmp $@
+
+$(BUILD)/gen/plots_gp.o: $(PLOTS_GEN)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
 
 $(BUILD)/libwhirl.a: $(LIB_OBJ)
@@ -251,15 +264,27 @@ study: deps
 	@$(MAKE) --no-print-directory all
 	@sh scripts/study.sh all out/study $(BUILD)
 
-# The Python package (python/) with the shared library copied into it, installed by pip without
-# network access. As root on Debian pip installs into /usr/local/lib/python3.*/dist-packages,
-# apart from apt's packages, once told to (--break-system-packages: Debian marks its Python as
-# managed by apt). Inside a venv: make python PYTHON=venv/bin/python PIP_FLAGS=
-PIP_FLAGS ?= --break-system-packages
+# The Python package (python/) with its own copy of the shared library inside
+# (python/setup.py builds $(BUILD)/libwhirl.so and copies it into the package), installed by pip
+# without network access into the interpreter PYTHON, which it names. Debian marks its own Python
+# as managed by apt: there pip needs --break-system-packages and installs into
+# /usr/local/lib/python3.*/dist-packages, apart from apt's packages; inside a venv it needs
+# nothing:   make python PYTHON=venv/bin/python
+# make wheel: build/wheel/whirl-VERSION-*.whl, the package with libwhirl inside, for
+# `pip install build/wheel/whirl-*.whl` anywhere GSL, NLopt, LAPACKE and inih are installed.
+PIP_FLAGS ?= $(shell $(PYTHON) -c 'import sys; print("" if sys.prefix != sys.base_prefix else "--break-system-packages")' 2>/dev/null)
 python: deps
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
-	cp $(BUILD)/libwhirl.so python/whirl/libwhirl.so
-	$(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
+	@echo "make python: installing the whirl package into $$($(PYTHON) -c 'import sys; print(sys.prefix)') ($(PYTHON)$(if $(PIP_FLAGS), $(PIP_FLAGS): the system interpreter,; a venv))"
+	WHIRL_BUILD=$(abspath $(BUILD)) $(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
+	@cd / && $(PYTHON) -c 'import whirl; print("make python: whirl", whirl.__version__, "in", whirl.__file__.rsplit("/", 1)[0], "with", whirl.LIBRARY_PATH)'
+
+wheel: deps
+	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
+	@rm -rf $(BUILD)/wheel python/build
+	WHIRL_BUILD=$(abspath $(BUILD)) $(PYTHON) -m pip wheel --no-build-isolation --no-deps --no-index -w $(BUILD)/wheel ./python
+	@rm -rf python/build python/whirl.egg-info
+	@echo "make wheel: $$(ls $(BUILD)/wheel/whirl-*.whl)"
 
 # The live page (python/whirl/explore.py) over the library just built.
 explore: deps

@@ -76,7 +76,7 @@ int main(void)
     whirl_chain *chain = whirl_chain_alloc_uniform(N, 0);
     whirl_shape_info info;
     double r[N + 1], z[N + 1], tension[N + 1], links[3 * N], ref[3 * N];
-    if (chain == NULL || whirl_nlink_solve(chain, omega, 1, 0, &info) ||
+    if (chain == NULL || whirl_nlink_solve(chain, omega, 1, &info) ||
         whirl_nlink_positions(chain, omega, info.tip_r, r, z, tension) ||
         whirl_shape_links(N, r, NULL, z, links)) {
         fprintf(stderr, "seeded_shape: %s\n", whirl_last_error());

@@ -71,7 +71,7 @@ int main(void)
         whirl_chain *chain = whirl_chain_alloc_uniform(n, 0);
         if (chain == NULL) check(GSL_ENOMEM, "chain");
         whirl_shape_info links;
-        check(whirl_nlink_solve(chain, omega, 2, 0, &links), "N-link shape");
+        check(whirl_nlink_solve(chain, omega, 2, &links), "N-link shape");
         err[j] = fabs(links.tip_r - info.tip_r);
         printf("  N = %zu: tip_r = %.6f, error %.3e", n, links.tip_r, err[j]);
         if (j > 0) {

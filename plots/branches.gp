@@ -2,11 +2,11 @@
 # tension of modes 1-3, the continuum's critical rates omega_k = j0k/2 marked, the 10-link chain as points.
 # Each continuum branch starts where it bifurcates from the hanging chain, at (omega_k, tip
 # radius 0, top tension M g): the linear theory's exact point, prepended to the sweep's rows.
-# Usage: gnuplot -e "dir='out/demo'" plots/branches.gp
+# Usage: gnuplot -e "dir='out/demo'" plots/branches.gp   (fmt='svg' or 'pdf': branches.svg, .pdf)
 if (!exists("dir")) { dir = 'out/demo' }
 load system("dirname '".ARG0."'")."/style.gp"
-set terminal @term size 1400,560
-set output dir.'/branches.png'
+set terminal @term size (1400) * px, (560) * px
+set output dir.'/branches.'.fmt
 set datafile commentschars '#'
 crit = dir.'/critical.csv'
 stats crit using ($1 == 1 ? $2 : 1/0) every ::1 nooutput

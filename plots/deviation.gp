@@ -22,7 +22,7 @@ t_from = (t0 > 0 ? t0 : 0.9 * t_end)
 stats [*:*][*:*] csv skip skip_of(csv) using ($1 >= t_from ? $1 : NaN):2 nooutput
 t_a = (eig != 0 ? STATS_pos_max_y : 0)
 d_a = (eig != 0 ? STATS_max_y : 1)
-set terminal @term size 900, 500
+set terminal @term size (900) * px, (500) * px
 set output out
 set logscale y
 set format y "10^{%L}"

@@ -19,7 +19,7 @@ branch_title(f) = sprintf("eps = %s %s, %s", meta(f, "eps"), u_len(f), \
 if (exists("branch")) {
     if (!exists("out")) { out = word(branch, 1) . ".png" }
     f1 = word(branch, 1)
-    set terminal @term size 900, 760
+    set terminal @term size (900) * px, (760) * px
     set output out
     set multiplot layout 2, 1 margins 0.1, 0.97, 0.08, 0.92 spacing 0, 0.04 \
         title sprintf("Hand-swung chain, mode-%s branches (drag C = %s): folds as black dots", \
@@ -54,7 +54,7 @@ if (exists("shape")) {
     set print $circle
     do for [k = 0:64] { print sprintf("%.6g,%.6g,0", eps * cos(2 * pi * k / 64), eps * sin(2 * pi * k / 64)) }
     set print
-    set terminal @term size 1100, 560
+    set terminal @term size (1100) * px, (560) * px
     set output out
     set multiplot layout 1, 2 title sprintf("Hand-swung chain: mode %s, omega = %s %s, eps = %s %s, drag C = %s, C2 = %s (co-rotating frame)", \
         meta(shape, "mode"), meta(shape, "omega"), u_rate(shape), meta(shape, "eps"), ul, \
@@ -62,7 +62,11 @@ if (exists("shape")) {
     unset key
     set xlabel "x [".ul."]"; set ylabel "y [".ul."]"; set zlabel "z [".ul."]" rotate parallel
     set xrange [-rmax:rmax]; set yrange [-rmax:rmax]
-    set view 65, 30
+    # round tick steps from the extent: two or three labels per axis, none colliding at the corners
+    stats shape skip skip using 4 nooutput
+    depth = -STATS_min > 0 ? -STATS_min : 1
+    set xtics nice(rmax / 1.5); set ytics nice(rmax / 1.5); set ztics nice(depth / 2)
+    set view 65, 30, 1.15
     set view equal xyz
     set ticslevel 0
     set title "true to scale; dashed: the rotation axis; orange: the pivot's circle"
@@ -72,6 +76,7 @@ if (exists("shape")) {
     set title "from above (rotation counter-clockwise)"
     set size ratio -1
     set view map
+    set xtics nice(rmax / 2.5); set ytics nice(rmax / 2.5)
     plot shape skip skip using 2:3 with lines lt 1, \
          shape skip skip every ::0::0 using 2:3 with points pt 7 ps 1.5 lc rgb "black", \
          $circle using 1:2 with lines lc rgb "#e67e22", \

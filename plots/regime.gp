@@ -36,7 +36,7 @@ if (exists("map")) {
     dw = n_omega > 1 ? (wmax - wmin) / (n_omega - 1) : 0.1
     de = n_eps > 1 ? (emax - emin) / (n_eps - 1) : 0.01
     crit = system(sprintf("sed -n 's/^# critical rates of the free chain (modes 1..[0-9]*)://p' '%s'", map))
-    set terminal @term size 1000, 600
+    set terminal @term size (1000) * px, (600) * px
     set output out
     set tmargin 4
     set title title_text noenhanced offset 0, 1
@@ -66,7 +66,7 @@ if (exists("map")) {
 if (exists("sweep")) {
     if (!exists("out")) { out = sweep . ".png" }
     skip = skip_of(sweep)
-    set terminal @term size 900, 420
+    set terminal @term size (900) * px, (420) * px
     set output out
     set title title_text noenhanced
     set xlabel "omega [".u_rate(sweep)."]"

@@ -15,9 +15,9 @@ label(n) = n eq "tip_x" ? "tip x [".ul."]" : n eq "tip_y" ? "tip y [".ul."]" : \
     n eq "jacobi" ? "Jacobi integral - at t=0 [".uf." ".ul."]" : \
     n eq "lz" ? "angular momentum L_z - L_z(0)" : n eq "constraint" ? "link length error [".ul."]" : \
     n eq "deviation" ? "deviation from the start shape [".ul."]" : n
-set terminal @term size 900, 170 * (ncol - 1) + 80
+set terminal @term size (900) * px, (170 * (ncol - 1) + 80) * px
 set output out
-set multiplot layout ncol - 1, 1 margins 0.16, 0.97, 0.07, 0.94 spacing 0, 0.02 \
+set multiplot layout ncol - 1, 1 margins 0.16, 0.97, 0.07, 0.94 spacing 0, 0.04 \
     title system(sprintf("sed -n '2s/^# //p' '%s' | cut -c1-95", csv)) noenhanced
 unset key
 do for [c = 2:ncol] {
@@ -33,15 +33,19 @@ do for [c = 2:ncol] {
         # a conserved quantity: its change from the first row, which is what measures the run
         first = real(system(sprintf("grep -v '^#' '%s' | sed -n 2p | cut -d, -f%d", csv, c)))
         unset logscale y
-        set format y "%.1e"
+        set format y "%g"
         set ylabel label(name) noenhanced
-        if (flat) { set yrange [-1e-15:1e-15] } else { set yrange [*:*] }
+        # four or five ticks from the data's span (short labels that cannot overlap)
+        lo = real(word(range, 1)) - first; hi = real(word(range, 2)) - first
+        if (flat) { set yrange [-1e-15:1e-15]; set ytics autofreq } else { set yrange [*:*]; set ytics nice((hi - lo) / 4) }
         plot csv skip skip using 1:(column(c) - first) with lines lt 1
     } else {
         if (name eq "constraint" || name eq "deviation") { set logscale y } else { unset logscale y }
         set format y "%g"
         set ylabel label(name) noenhanced
         if (flat) { if (v > 0) { set yrange [v / 10 : v * 10] } else { set yrange [v - 1 : v + 1] } } else { set yrange [*:*] }
+        hi = real(word(range, 2)); lo = real(word(range, 1))
+        if (logscale || flat) { set ytics autofreq } else { set ytics nice((hi - lo) / 4) }
         plot csv skip skip using 1:c with lines lt 1
     }
 }

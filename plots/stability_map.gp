@@ -10,7 +10,7 @@ load system("dirname '".ARG0."'")."/style.gp"
 if (!exists("out")) { out = "stability_map.png" }
 if (!exists("modes")) { modes = 3 }
 f1 = word(files, 1)
-set terminal @term size 900, 260 * modes + 60
+set terminal @term size (900) * px, (260 * modes + 60) * px
 set output out
 set multiplot layout modes, 1 margins 0.12, 0.97, 0.08, 0.93 spacing 0, 0.03 \
     title "Stability of the steady shapes: largest growth rate of a perturbation (> 0: unstable)"

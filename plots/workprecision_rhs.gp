@@ -10,7 +10,7 @@ load system("dirname '".ARG0."'")."/style.gp"
 if (!exists("csv")) { csv = "data/workprecision/rhs_before_after.csv" }
 if (!exists("out")) { out = "workprecision_rhs.png" }
 if (!exists("ylabel")) { ylabel = "processor time [s]" }
-set terminal @term size 1200, 520
+set terminal @term size (1200) * px, (520) * px
 set output out
 skip = skip_of(csv)
 methods = "rk8 rk4"

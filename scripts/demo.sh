@@ -1,6 +1,7 @@
 #!/bin/sh
 # The whirl demo: runs the program on showcase cases, writes CSV under out/demo/ and renders the
-# PNG figures with the gnuplot scripts of plots/. Usage: sh scripts/demo.sh [BUILD_DIR]
+# figures with the gnuplot scripts of plots/, each as PNG and SVG, and the animations as GIF and
+# MP4. Usage: sh scripts/demo.sh [BUILD_DIR]
 # A plain sequential script: each part appends its own steps below.
 set -e
 build=${1:-build}
@@ -15,6 +16,11 @@ plot() {
     echo "demo: gnuplot printed warnings for $*:" >&2; cat "$out/gnuplot.err" >&2; exit 1
   fi
   rm -f "$out/gnuplot.err"
+}
+# figure VARS SCRIPT OUT: the figure as OUT.png and OUT.svg (out='...' in VARS is added)
+figure() {
+  plot -e "$1; out='$3.png'" "$2"
+  plot -e "$1; out='$3.svg'" "$2"
 }
 
 # ---- steady shapes: branches of modes 1-3 for omega 1..10, shapes at a few rates ----
@@ -33,9 +39,20 @@ for k in 1 2 3; do
     [ $i -eq 2 ] && "$whirl" shape --omega $w --mode $k --links 12 -o "$out/shape_k${k}_n12.csv"
   done
 done
-plot -e "dir='$out'" plots/shapes.gp
-plot -e "dir='$out'" plots/branches.gp
-echo "demo: wrote $out/shapes.png $out/branches.png"
+for fmt in png svg; do
+  plot -e "dir='$out'; fmt='$fmt'" plots/shapes.gp
+  plot -e "dir='$out'; fmt='$fmt'" plots/branches.gp
+done
+echo "demo: wrote $out/shapes.png $out/branches.png (and .svg)"
+
+# ---- the teacher's figure: a 60 cm, 50 g chain at 2, 4 and 6 Hz in its 2-node shape ----
+echo "demo: the classroom chain"
+for ext in png svg; do
+  "$whirl" shape --length 60cm --mass 50g --omega 2Hz,4Hz,6Hz --mode 2 --plot "$out/classroom_shapes.$ext"
+done
+"$whirl" simulate data/scenes/classroom.ini --set start.omega=4Hz --animate "$out/classroom_4hz.mp4"
+"$whirl" simulate data/scenes/classroom.ini --set start.omega=4Hz --animate "$out/classroom_4hz.gif"
+echo "demo: wrote $out/classroom_shapes.png (and .svg) $out/classroom_4hz.mp4 $out/classroom_4hz.gif"
 
 # ---- dynamics: the 100-link chain seeded with its mode-2 shape, animated; the seed's double pendulum ----
 echo "demo: dynamics"
@@ -44,7 +61,7 @@ echo "demo: dynamics"
 plot -e "trace='$out/mode2.dat'; out='$out/mode2.gif'; mp4='$out/mode2.mp4'" plots/animate.gp
 "$whirl" view "$out/mode2.dat" -o "$out/mode2.html"
 "$whirl" simulate data/scenes/double_pendulum.ini --set run.t_end=20 -o "$out/double_pendulum.csv"
-plot -e "csv='$out/double_pendulum.csv'; out='$out/double_pendulum.png'" plots/simulate.gp
+figure "csv='$out/double_pendulum.csv'" plots/simulate.gp "$out/double_pendulum"
 echo "demo: wrote $out/mode2.gif $out/mode2.mp4 $out/mode2.html $out/double_pendulum.png"
 
 # ---- stability: the map (linear analysis) at N = 25 and 50, and two perturbed runs ----
@@ -53,14 +70,14 @@ for n in 25 50; do
   "$whirl" stability --omega-min 1 --omega-max 10 --omega-count 181 --links $n --linear \
     -o "$out/stability_map_N$n.csv"
 done
-plot -e "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'; out='$out/stability_map.png'" \
-  plots/stability_map.gp
+figure "files='$out/stability_map_N25.csv $out/stability_map_N50.csv'" plots/stability_map.gp \
+  "$out/stability_map"
 "$whirl" stability --omega 9 --mode 2 --links 25 --periods 1000 --trace "$out/unstable_trace.csv" \
   -o "$out/unstable_row.csv"
-plot -e "csv='$out/unstable_trace.csv'; out='$out/deviation_unstable.png'" plots/deviation.gp
+figure "csv='$out/unstable_trace.csv'" plots/deviation.gp "$out/deviation_unstable"
 "$whirl" stability --omega 2 --mode 1 --links 25 --damping 0.01 --perturb 0.01 \
   --trace "$out/damped_trace.csv" -o "$out/damped_row.csv"
-plot -e "csv='$out/damped_trace.csv'; out='$out/deviation_damped.png'" plots/deviation.gp
+figure "csv='$out/damped_trace.csv'" plots/deviation.gp "$out/deviation_damped"
 echo "demo: wrote $out/stability_map.png $out/deviation_unstable.png $out/deviation_damped.png"
 
 # ---- the hand-swung chain: mode-1 branches with the pivot on a circle, and a trailing shape ----
@@ -71,9 +88,9 @@ for e in 0.01 0.05; do
       -o "$out/driven_eps${e}_side$side.csv"
   done
 done
-plot -e "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'; out='$out/driven_branches.png'" plots/driven.gp
+figure "branch='$(ls "$out"/driven_eps*_side*.csv | tr '\n' ' ')'" plots/driven.gp "$out/driven_branches"
 "$whirl" driven --omega 1.6 --eps 0.05 --drag 0.05 -o "$out/driven_shape.csv"
-plot -e "shape='$out/driven_shape.csv'; out='$out/driven_shape.png'" plots/driven.gp
+figure "shape='$out/driven_shape.csv'" plots/driven.gp "$out/driven_shape"
 echo "demo: wrote $out/driven_branches.png $out/driven_shape.png"
 
 # ---- from rest: spin-ups into 1, 2 and 3 nodes (strong linear drag, so that they settle fast) ----

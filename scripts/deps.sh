@@ -37,6 +37,7 @@ python3-ipykernel have_py ipykernel
 python3-pip      have_py pip
 python3-setuptools have_py setuptools
 python3-wheel    have_py wheel
+python3-mypy     have_py mypy
 libmujoco-dev    have_header cc mujoco/mujoco.h
 libsundials-dev  have_header cc arkode/arkode_erkstep.h && have_header cc cvode/cvode.h
 chromium         have_cmd chromium

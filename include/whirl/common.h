@@ -91,8 +91,8 @@ typedef enum {
 /* Standard gravity [m/s^2] (CGPM 1901): g when SI units are chosen and no gravity is given. */
 #define WHIRL_STANDARD_GRAVITY 9.80665
 
-/* Reads text, all of it: a finite double, optionally followed (no space needed) by one of the
- * kind's suffixes, which multiplies it by the suffix's factor. Returns 0 and sets *value (and
+/* Reads text, all of it: a finite double, optionally followed (spaces allowed: "4Hz", "4 Hz") by
+ * one of the kind's suffixes, in any case ("4HZ"), which multiplies it by the suffix's factor. Returns 0 and sets *value (and
  * *suffixed to whether a suffix was given, if suffixed is not NULL), or -1 for anything else:
  * no number, trailing text that is not a suffix of the kind, overflow, inf, nan. */
 WHIRL_API int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value,

@@ -128,13 +128,13 @@ WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *
  * (whirl_nlink_path). The force balance of every mass holds to round-off. info->n_nodes is
  * the shape's own crossing count, which on a coarse chain at a high rate can differ from k - 1
  * (several equilibria then share a node count; the branch decides which one is mode k).
- * tip_r_guess is not used (kept for the continuum's signature). GSL_EDOM with a message naming
+ * GSL_EDOM with a message naming
  * the rates the branch reaches if it does not reach omega (omega below its lowest rate, which
  * is omega_k unless the branch first turns to lower rates; or k > c->n); GSL_EFAILED if the
  * continuation fails (the message names the rate reached); GSL_EMAXITER at the bound on its
  * steps (whirl_nlink_follow_options); WHIRL_EINTERRUPTED on a stop request. */
-WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info);
+WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode,
+                                whirl_shape_info *info);
 
 /* whirl_nlink_solve with the shape's nodes: r[i], z[i] of mass i (i = 0: the pivot, z relative
  * to it) and tension[i] of link i (tension[0] = tension[1]), arrays of c->n + 1. At high rates
@@ -198,7 +198,7 @@ WHIRL_API int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n,
 /* ---- N-link chain: branches by pseudo-arclength continuation ----
  * The relative equilibria of the N-link chain are the zeros of one function of two variables,
  * G(omega, a) = r_0 / |r|: the pivot's radius, divided by the norm of the radii of all the nodes,
- * when the shape is built up from the tip with tip radius a (src/nlink_path.c). G depends on a only through a^2 and is finite at a = 0,
+ * when the shape is built up from the tip with tip radius a (src/steady/nlink_path.c). G depends on a only through a^2 and is finite at a = 0,
  * where its zeros in omega are the critical rates: a branch is a curve of G = 0 in the
  * (omega, a) plane, born at (omega_k, 0). whirl_nlink_path follows such a curve with arclength
  * measured in (ln omega, link angles): ds^2 = (d omega / omega)^2 + the mean over the links of
@@ -225,7 +225,9 @@ typedef struct whirl_branch_event {
 #define WHIRL_PATH_EVENTS_MAX 4 /* events one step can hold */
 
 /* A path along a branch: alloc, start (at a birth or an equilibrium), step, free. The fields
- * are read-only for the caller. */
+ * are read-only for the caller, but for ds, which it may shorten before a step; the path's
+ * workspace follows them in the allocation (opaque: a path exists only as
+ * whirl_nlink_path_alloc returns it). */
 typedef struct whirl_nlink_path {
     const whirl_chain *chain; /* read, not owned */
     int mode;         /* the branch's mode when started at a birth, 0 from an equilibrium */
@@ -236,10 +238,6 @@ typedef struct whirl_nlink_path {
                             * d tip_r / ds) */
     int angles;       /* 1 while the path is continued in (omega, link angles), 0 in
                        * (omega, tip radius) */
-    double noise;     /* the round-off of the tip shot at the current point, as a distance
-                       * from the curve in the metric above */
-    int stay, backoff; /* steps the path stays in the link angles before it tries the shot
-                        * again, and the next such wait */
     double arclength; /* travelled since the start */
     double ds;        /* the next step's length; adapted to the Newton convergence and the
                        * turning of the tangent */
@@ -250,51 +248,9 @@ typedef struct whirl_nlink_path {
     int n_events;     /* events in the last step, in the order met */
     whirl_branch_event event[WHIRL_PATH_EVENTS_MAX];
     int ended;        /* 1 once the path returned to the hanging chain (a = 0) */
-    /* workspace */
-    double metric[3]; /* at the current point: g_ww, g_wa, g_aa */
-    int raw_sign;     /* orientation of the tangent against (G_a, -G_w) */
-    double *theta;    /* link angles at the current point, c->n [rad] */
-    double *theta_trial;
-    double *t_theta;  /* the tangent's link-angle part, c->n (set in the link angles) */
-    double *t_theta_trial;
-    int det_sign;     /* in the link angles: sign of det [J; tangent] (branch points) */
-    int index;        /* in the link angles: the number of negative eigenvalues of the force
-                       * balance's Jacobian in theta (it changes by one at a fold or a branch
-                       * point); -1 on the tip shot */
-    double mu, mu_rate; /* in the link angles: the eigenvalue of that Jacobian nearest zero and
-                         * its rate along the tangent (d mu / ds); NAN where not known */
-    double *eig, *eig_trial; /* its eigenvector (largest component 1), c->n each */
-    double *cross_theta; /* the link angles of the crossings of the last
-                          * whirl_nlink_path_crossings, (WHIRL_PATH_EVENTS_MAX + 1) x c->n */
-    int cross_angles[WHIRL_PATH_EVENTS_MAX + 1]; /* 1: that crossing was resolved in the link
-                                                  * angles, 0: by the tip shot */
-    double *event_theta; /* the link angles of the events of the last step, EVENTS_MAX x c->n */
-    double *scratch;  /* 7 c->n + 3 */
-    void *balance;    /* the force balance in the link angles (src/nlink_balance.c) */
-    const char *why;  /* what rejected the last trial step */
-    int floor_exit;   /* the last Newton's method on the shot stopped at its round-off floor */
-    double *embed;    /* the tangent in (ln omega, theta / sqrt(N)), c->n + 1 (+ c->n scratch) */
-    double *embed_trial;
-    double *work;     /* the block the arrays point into */
-    int have_last;    /* the last step below is set (cleared by a start or a reversal) */
-    struct {
-        double m0[3], w0, a0, t_w, t_a, ds; /* its start: metric, point, tangent; its length */
-        int raw_sign;
-        int angles;       /* the step was made in the link angles: */
-        double *theta0, *t_theta0; /* its start's link angles and tangent, c->n each */
-        int det_sign, index;
-        double mu, mu_rate;
-    } last;
-    double fine_end;  /* the arclength up to which the path takes a reversal of its orientation
-                       * test for a branch point only at its smallest step, having looked ahead
-                       * and found a sharp turn of the curve there (0: none) */
-    struct whirl_nlink_path *probe; /* the path that looks ahead (allocated when first needed) */
-    int rate_sign;    /* the sign of t_omega at the last point where it is resolved (in the link
-                       * angles: where the eigenvalue mu is not round-off); a fold is where it
-                       * changes. 0 until known (at a birth) */
-    int last_rate_sign; /* that sign at the last step's start */
-    double probe_end; /* the arclength up to which a reversal is taken for a branch point without
-                       * looking ahead again: the probe found one there at the finer scale */
+    int cross_angles[WHIRL_PATH_EVENTS_MAX + 1]; /* 1: that crossing of the last
+                                                  * whirl_nlink_path_crossings was resolved in
+                                                  * the link angles, 0: by the tip shot */
 } whirl_nlink_path;
 
 /* NULL (with whirl_last_error) on no memory or a chain of no links. */
@@ -322,6 +278,13 @@ WHIRL_API int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega,
 /* Reverses the direction of travel. */
 WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
 
+/* The link angles at the current point, c->n [rad] (valid until the next step or start). */
+WHIRL_API const double *whirl_nlink_path_theta(const whirl_nlink_path *p);
+
+/* The link angles of the crossings found by the last whirl_nlink_path_crossings, crossing k at
+ * k c->n .. (k + 1) c->n - 1 [rad] (valid until the next call, step or start). */
+WHIRL_API const double *whirl_nlink_path_cross_theta(const whirl_nlink_path *p);
+
 /* One accepted step: predictor along the tangent, Newton corrector on the arclength hyperplane.
  * A trial step is rejected and halved when Newton needs many iterations, the tangent turns by
  * more than 0.2 rad, a link angle changes by more than 0.2 rad or the step's chord is not that
@@ -340,8 +303,8 @@ WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
  * step is cut at its folds, so it can cross a rate more than once): the tip radii of the first
  * max crossings, in the order of travel, into tip_r[], each found by Newton's method at omega
  * from the step's interpolation (Brent's method on the step's arclength where that lands off the
- * piece), and their link angles in p->cross_theta (p->cross_angles[k]: resolved on the link
- * angles). Returns their number (0: no crossing), or minus a status on failure. */
+ * piece), and their link angles in whirl_nlink_path_cross_theta (p->cross_angles[k]: resolved
+ * on the link angles). Returns their number (0: no crossing), or minus a status on failure. */
 WHIRL_API int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
 
 /* What whirl_nlink_follow reports: a crossing of the rate omega[j] (event NULL) or an event

@@ -54,7 +54,7 @@ rp, zp, tp = (ffi.cast("double *", ffi.from_buffer(a)) for a in (r, z, t))
 
 
 def c_shape():
-    lib.whirl_nlink_solve(chain._c, OMEGA, MODE, 0.0, info)
+    lib.whirl_nlink_solve(chain._c, OMEGA, MODE, info)
     lib.whirl_nlink_positions(chain._c, OMEGA, info.tip_r, rp, zp, tp)
 
 
@@ -77,7 +77,7 @@ rp2, zp2, tp2 = (ffi.cast("double *", ffi.from_buffer(a)) for a in (r2, z2, t2))
 
 
 def c_small():
-    lib.whirl_nlink_solve(small._c, OMEGA, MODE, 0.0, info)
+    lib.whirl_nlink_solve(small._c, OMEGA, MODE, info)
     lib.whirl_nlink_positions(small._c, OMEGA, info.tip_r, rp2, zp2, tp2)
 
 

@@ -34,7 +34,7 @@ def _same(a, b):
 def _compare_rows(rows, cli_rows, units=1.0):
     assert len(rows) == len(cli_rows)
     for r, c in zip(rows, cli_rows):
-        assert r["nodes"] == int(c["nodes"])
+        assert r["node_count"] == int(c["nodes"])
         if c["branch"] == "isolated":
             assert r["branch"] == 0
         elif c["branch"] in ("unidentified", ""):
@@ -73,8 +73,8 @@ def test_continuum_is_kolodner_as_the_cli(whirl_program):
     comments, cli = _cli(whirl_program, "equilibria", "--omega", "5")
     _compare_rows(rows, cli)
     # Kolodner: one shape per mode born below omega, mode k with k - 1 crossings
-    assert ev["born"] == 3 and sorted(rows["nodes"]) == [1, 2, 3]
-    assert list(rows["branch"]) == list(rows["nodes"])
+    assert ev["born"] == 3 and sorted(rows["node_count"]) == [1, 2, 3]
+    assert list(rows["branch"]) == list(rows["node_count"])
     assert ev["tip_roots"] == 3 and ev["matched"] == 3
 
 
@@ -121,7 +121,7 @@ def test_continuum_windows_as_the_cli(whirl_program):
 def test_continuum_windows_bad_input():
     with pytest.raises(ValueError):
         whirl.stability_windows(2, 10, 4.39, 4.41, degree=12)
-    with pytest.raises(whirl.Error):
+    with pytest.raises(ValueError, match="degree must be >= 6"):
         whirl.stability_windows(2, None, 4.39, 4.41, degree=3)
     with pytest.raises(whirl.Error):
         whirl.stability_windows(3, None, 1.0, 2.0)  # mode 3 is born at 4.3

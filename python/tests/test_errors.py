@@ -60,9 +60,7 @@ def test_mode_that_does_not_exist():
 
 def test_library_rejects_bad_model_and_state():
     # an _alloc function returns NULL and leaves its message: EFAILED
-    _library_error(lambda: whirl.Simulation(3, dim=4), "EFAILED", "dim")
     _library_error(lambda: whirl.Simulation(3, dim=2, frame="rotating"), "EFAILED", "")
-    _library_error(lambda: whirl.Simulation(3, method="euler"), "EFAILED", "gauss2")
     sim = whirl.Simulation(3)
     x = np.array([[0, 0, -0.3], [0, 0, -0.6], [0, 0, -0.9]])  # links of 0.3, not 1/3
     _library_error(lambda: sim.set_state(x, np.zeros((3, 3))), "EINVAL", "")
@@ -85,6 +83,15 @@ def test_driven_fit_and_spin_up_errors():
     _library_error(lambda: whirl.fit(r, -r, mode=3, omega_max=2.0), "EDOM", "")
 
 
+@pytest.fixture(autouse=True)
+def python_sigint():
+    """Python's own SIGINT handler, as in an interactive session, also where the suite runs
+    with SIGINT ignored (started in the background): a call is interruptible only then."""
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
 def test_ctrl_c_interrupts_a_long_run_and_restores_python_handler():
     handler = signal.getsignal(signal.SIGINT)
     sim = whirl.Simulation(400, omega=3.0, method="rk4")
@@ -92,10 +99,10 @@ def test_ctrl_c_interrupts_a_long_run_and_restores_python_handler():
     timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
     timer.start()
     start = time.monotonic()
-    with pytest.raises(KeyboardInterrupt):
-        sim.run(1e4, 1e-4, every=1e4, positions=False)  # hours if not interrupted
+    with pytest.raises(KeyboardInterrupt, match="Simulation.run at t = .* interrupted"):
+        sim.run(1e3, 1e-4, every=1e3, positions=False)  # hours if not interrupted
     assert time.monotonic() - start < 5
-    assert 0 < sim.t < 1e4
+    assert 0 < sim.t < 1e3
     assert signal.getsignal(signal.SIGINT) is handler
     assert not whirl.stop_requested()
     # Python's own handler is back: SIGINT outside a library call is Python's KeyboardInterrupt
@@ -110,7 +117,7 @@ def test_ctrl_c_interrupts_a_spin_up():
     timer.start()
     start = time.monotonic()
     with pytest.raises(KeyboardInterrupt):
-        whirl.spin_up(4.0, 0.05, 200, air_drag=0.05, t_max=1e6)
+        whirl.spin_up(4.0, 0.05, 200, air_drag=0.05, t_max=2e4)
     assert time.monotonic() - start < 5
 
 

@@ -52,7 +52,7 @@ def test_high_rate_shapes_come_from_the_branch():
 
 def test_driven_shape_trails_and_counts_its_node():
     d = whirl.driven(3.0, 1, 0.05, air_drag=0.1)
-    assert d.nodes == 1 and d.residual < 1e-9
+    assert d.node_count == 1 and d.residual < 1e-9
     assert d.tip[1] < 0  # the drag makes the tip trail behind the pivot
     assert d.x[0] == pytest.approx(0.05) and d.z[-1] < 0
     free = whirl.driven(3.0, 1, 0.0)

@@ -96,15 +96,16 @@ def test_shape_matches_the_command_line_csv(tmp_path, whirl_program, args, kwarg
     for name in ("tip_r", "max_r", "top_tension", "depth"):
         assert getattr(s, name) == pytest.approx(float(summary[name]), rel=1e-15, abs=1e-16)
     nodes = [float(v) for v in summary["nodes"].split(";") if v]
-    np.testing.assert_allclose(s.nodes, nodes, rtol=1e-15)
+    np.testing.assert_allclose(s.crossings, nodes, rtol=1e-15)
     assert s.mode == int(summary["mode"])
+    assert s.node_count == int(summary["node_count"])
 
 
 def test_shape_physics_nodes_and_tension():
     s = whirl.shape(4.9, 3)
-    assert len(s.nodes) == 2 and s.r[-1] > 0 and s.z[-1] < 0
+    assert len(s.crossings) == 2 and s.r[-1] > 0 and s.z[-1] < 0
     # r changes sign at the reported nodes
-    for node in s.nodes:
+    for node in s.crossings:
         i = np.searchsorted(s.s, node)
         assert s.r[i - 1] * s.r[i] <= 0
     # the vertical force balance at the pivot: T cos(angle) = weight (dimensionless: 1)
@@ -120,8 +121,8 @@ def test_shape_counts_the_underflowed_tail():
     s = whirl.shape(1186.557, 500, links=500)
     last = np.nonzero(np.abs(s.r) >= np.finfo(float).tiny)[0][-1]
     assert s.r[-1] == 0 and 300 < last < 450
-    assert len(s.nodes) == 499 and np.all(np.diff(s.nodes) > 0)
-    assert 0 < s.nodes[0] and s.nodes[-1] < 1 and np.sum(s.nodes > s.s[last]) > 100
+    assert len(s.crossings) == 499 and np.all(np.diff(s.crossings) > 0)
+    assert 0 < s.crossings[0] and s.crossings[-1] < 1 and np.sum(s.crossings > s.s[last]) > 100
 
 
 def test_sweep_agrees_with_single_shapes():

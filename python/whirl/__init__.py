@@ -3,20 +3,28 @@ C library libwhirl, through cffi).
 
 Steady shapes: critical, shape, sweep, equilibria. Dynamics: Chain, Simulation. Stability:
 stability, stability_map, stability_windows. The hand-swung chain: driven, spin_up. Measured
-shapes: fit. Scene files: run_scene.
-Units are dimensionless (chain length, mass and gravity = 1) unless length [m], mass [kg] and
-gravity [m/s^2] are given. Library failures raise whirl.Error with the library's message;
-Ctrl-C during a long call raises KeyboardInterrupt."""
-from ._lib import Error, LIBRARY_PATH, methods, stop_requested
-from .steady import Units, Chain, Shape, critical, equilibria, shape, sweep
+shapes: fit. Scene files: run_scene. whirl's CSV files: read_csv.
+Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
+gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
+SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
+message (bad values: whirl.InvalidInput, also a ValueError); Ctrl-C during a long call raises
+KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy.
+``whirl.__version__`` is the library's version; ``whirl.LIBRARY_PATH`` the library in use."""
+from ._lib import (Error, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, methods,
+                   stop_requested)
+from .steady import (STANDARD_GRAVITY, Units, Chain, Shape, critical, equilibria, shape,
+                     sweep)
 from .dynamics import Simulation, Trajectory
 from .stability import StabilityResult, stability, stability_map, stability_windows
 from .driven import DrivenShape, SpinUp, driven, spin_up
 from .fit import FitResult, fit
 from .scene import SceneRun, run_scene
+from .csv import Table, read_csv
 
-__all__ = ["Error", "LIBRARY_PATH", "methods", "stop_requested", "Units", "Chain", "Shape",
-           "critical", "equilibria", "shape", "sweep", "Simulation", "Trajectory",
-           "StabilityResult",
-           "stability", "stability_map", "stability_windows", "DrivenShape", "SpinUp", "driven", "spin_up",
-           "FitResult", "fit", "SceneRun", "run_scene"]
+__version__ = LIBRARY_VERSION
+
+__all__ = ["Error", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
+           "STANDARD_GRAVITY", "Units", "Chain", "Shape", "critical", "equilibria", "shape",
+           "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
+           "stability_map", "stability_windows", "DrivenShape", "SpinUp", "driven", "spin_up",
+           "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]

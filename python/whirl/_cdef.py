@@ -14,6 +14,7 @@ typedef void gsl_error_handler_t(const char *reason, const char *file, int line,
 gsl_error_handler_t *gsl_set_error_handler_off(void);
 
 const char *whirl_last_error(void);
+const char *whirl_version(void);
 void whirl_stop_request(void);
 int whirl_stop_requested(void);
 void whirl_stop_clear(void);
@@ -51,8 +52,7 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
 int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                            whirl_shape_info *info, int *exists);
 int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
-int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, double tip_r_guess,
-                      whirl_shape_info *info);
+int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, whirl_shape_info *info);
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
 size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega, const double *r,

@@ -1,18 +1,24 @@
-"""Loading libwhirl, its errors as Python exceptions, and Ctrl-C around long calls.
+"""Loading libwhirl, its errors as Python exceptions, Ctrl-C around long calls, and the checks
+every argument passes before it reaches the library.
 
 The shared library is looked for, in this order:
   1. the file named by the environment variable WHIRL_LIBRARY;
-  2. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
+  2. libwhirl.so inside the package (a wheel from ``make wheel``, or ``pip install ./python``,
+     carries its own);
+  3. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
      so that ``PYTHONPATH=python`` uses the library just built;
-  3. libwhirl.so inside the installed package (``make python`` copies it there);
   4. the system's libwhirl (an installed prefix known to the dynamic linker).
+``whirl.LIBRARY_PATH`` names the copy in use.
 """
 import contextlib
 import ctypes.util
 import math
 import numbers
 import os
+import re
+import signal
 import threading
+from typing import Any, ContextManager, Iterator, List, Optional, Sequence, Tuple
 
 import numpy as np
 from cffi import FFI
@@ -25,19 +31,19 @@ ffi.cdef(CDEF)
 _HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def _candidates():
+def _candidates() -> List[str]:
     env = os.environ.get("WHIRL_LIBRARY")
     if env:
         return [env]
-    found = [os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so"),
-             os.path.join(_HERE, "libwhirl.so")]
+    found = [os.path.join(_HERE, "libwhirl.so"),
+             os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so"))]
     system = ctypes.util.find_library("whirl")
     found += [system] if system else []
     return found + ["libwhirl.so"]
 
 
-def _load():
-    tried = []
+def _load() -> Tuple[Any, str]:
+    tried: List[str] = []
     for path in _candidates():
         if os.sep in path and not os.path.exists(path):
             tried.append(path + " (missing)")
@@ -53,6 +59,7 @@ def _load():
 
 
 lib, LIBRARY_PATH = _load()
+LIBRARY_VERSION: str = ffi.string(lib.whirl_version()).decode()
 # GSL's default error handler aborts the process: the library reports every failure by status.
 lib.gsl_set_error_handler_off()
 
@@ -65,69 +72,176 @@ class Error(Exception):
     """A failure reported by libwhirl: ``message`` is the library's one-line message
     (whirl_last_error()), ``status`` its GSL status code (``status_name``: "EDOM" for a mode
     that does not exist at the rate, "EINVAL" for bad input, ...; "EFAILED" when an _alloc
-    function of the library returned NULL: bad parameters, named in the message, or no memory)."""
+    function of the library returned NULL: bad parameters, named in the message, or no memory).
+    Bad values (EINVAL, EDOM) raise the subclass InvalidInput, which is also a ValueError."""
 
-    def __init__(self, status, message):
+    def __init__(self, status: int, message: str) -> None:
         self.status = status
         self.status_name = _STATUS_NAMES.get(status, str(status))
         self.message = message
         super().__init__(message)
 
+    def __reduce__(self) -> Tuple[Any, Tuple[int, str]]:
+        return (type(self), (self.status, self.message))
 
-def last_error():
+
+class InvalidInput(Error, ValueError):
+    """A value the library refuses (status EINVAL, or EDOM: a mode that does not exist at the
+    rate): both a whirl.Error and a ValueError."""
+
+
+_VALUE_STATUS = (1, 4)  # GSL_EDOM, GSL_EINVAL
+
+
+def error(status: int, message: str) -> Error:
+    """The exception for a library status: InvalidInput for bad values, else Error."""
+    return (InvalidInput if status in _VALUE_STATUS else Error)(status, message)
+
+
+def last_error() -> str:
     """The library's message of the last failure in this thread."""
     return ffi.string(lib.whirl_last_error()).decode("utf-8", "replace")
 
 
-def check(status, context=None):
-    """Raises KeyboardInterrupt for WHIRL_EINTERRUPTED and whirl.Error for any other failure."""
+def interrupted(what: str) -> KeyboardInterrupt:
+    return KeyboardInterrupt("whirl: %s interrupted" % what)
+
+
+# "omega 3.2", "omega_3=4.3", "tip radius = 0.1" in a library message (the command line's
+# cli_library_error): the quantities it shows in the user's units
+_QUANTITY = re.compile(r"(?<![A-Za-z0-9_])(omega(?:_[A-Za-z0-9]+)?|tip radius)( = |=| )"
+                       r"(-?[0-9][0-9.]*(?:[eE][-+]?[0-9]+)?)")
+
+
+def in_units(message: str, units: Any) -> str:
+    """The library's message with its rates and tip radii in the user's units (SI: "omega
+    4.86 rad/s"; dimensionless: as it is)."""
+    if units is None or not units.physical:
+        return message
+
+    def convert(m: "re.Match[str]") -> str:
+        number = m.group(3)
+        digits = len(number.split("e")[0].split("E")[0].replace("-", "").replace(".", "")
+                     .lstrip("0"))
+        rate = m.group(1).startswith("omega")
+        value = float(number) * (units.rate if rate else units.length)
+        return "%s%s%.*g %s" % (m.group(1), m.group(2), min(max(digits, 6), 15), value,
+                                "rad/s" if rate else "m")
+
+    return _QUANTITY.sub(convert, message)
+
+
+def check(status: int, context: Optional[str] = None, units: Any = None) -> None:
+    """Raises KeyboardInterrupt for WHIRL_EINTERRUPTED, InvalidInput for bad values and
+    whirl.Error for any other failure, the library's message in the user's units."""
     if status == GSL_SUCCESS:
         return
     if status == lib.WHIRL_EINTERRUPTED:
         lib.whirl_stop_clear()
-        raise KeyboardInterrupt(last_error())
-    msg = last_error()
+        raise interrupted(context or last_error())
+    msg = in_units(last_error(), units)
     if context and not msg.startswith(context + ":"):  # the library may name it already
         msg = "%s: %s" % (context, msg)
-    raise Error(status, msg)
+    raise error(status, msg)
 
 
-def check_ptr(ptr, free=None):
+def check_ptr(ptr: Any, free: Any = None) -> Any:
     """A pointer from an _alloc function, or whirl.Error with the library's message."""
     if ptr == ffi.NULL:
-        raise Error(5, last_error() or "allocation failed")
+        msg = last_error() or "allocation failed"
+        # NULL with a message: bad parameters (named in it), or no memory
+        raise (MemoryError(msg) if "memory" in msg else InvalidInput(5, msg))
     return ffi.gc(ptr, free) if free is not None else ptr
 
 
+# The signals besides SIGINT that whirl_stop_catch_signals may take over: each keeps the meaning
+# Python gave it (SIGTERM: terminate), so that a scheduler's kill is never taken for Ctrl-C.
+_KEEP = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP", "SIGQUIT")
+              if hasattr(signal, name))
+
+
 @contextlib.contextmanager
-def interruptible():
-    """Around a long library call: Ctrl-C (SIGINT) and SIGTERM raise the library's stop request
-    (its own handlers, installed for the duration), which its long loops poll; afterwards
-    Python's handlers are back and a request that came in raises KeyboardInterrupt. Outside the
-    main thread (where Python handles no signals) it does nothing."""
+def interruptible(what: str) -> Iterator[None]:
+    """Around a long library call named ``what``: Ctrl-C (SIGINT) raises the library's stop
+    request (its handler, installed for the duration), which its long loops poll; afterwards
+    Python's handler is back and a request that came in raises KeyboardInterrupt("whirl: WHAT
+    interrupted") (a handler of the user's own is called instead). SIGTERM and the other
+    terminating signals keep Python's disposition throughout. SIGINT ignored (a background
+    job): the call is not interruptible, as Python would have it. Outside the main thread
+    (where Python handles no signals) it does nothing."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
+    handler = signal.getsignal(signal.SIGINT)
+    if handler in (signal.SIG_IGN, None):
+        yield
+        return
+    keep = [(sig, signal.getsignal(sig)) for sig in _KEEP]
     lib.whirl_stop_clear()
     if lib.whirl_stop_catch_signals() != GSL_SUCCESS:
         raise Error(5, "cannot install the library's signal handlers")
     try:
+        for sig, old in keep:
+            if old is not None:
+                signal.signal(sig, old)
         yield
     finally:
         lib.whirl_stop_restore_signals()
     if lib.whirl_stop_requested():
         lib.whirl_stop_clear()
-        raise KeyboardInterrupt("interrupted")
+        if handler is signal.default_int_handler or not callable(handler):
+            raise interrupted(what)
+        handler(signal.SIGINT, None)
 
 
-def stop_requested():
+def interruptible_if(long: bool, what: str) -> ContextManager[None]:
+    """interruptible(what) around a call that may be long; nothing around one that cannot be
+    (installing and restoring the handlers costs a few system calls, tens of microseconds)."""
+    return interruptible(what) if long else contextlib.nullcontext()
+
+
+def stop_requested() -> bool:
     """True once the library's stop request is raised (by Ctrl-C inside interruptible())."""
     return bool(lib.whirl_stop_requested())
 
 
+def _physical_memory() -> int:
+    try:
+        return int(os.sysconf("SC_PHYS_PAGES")) * int(os.sysconf("SC_PAGE_SIZE"))
+    except (ValueError, OSError, AttributeError):
+        return 1 << 34
+
+
+MEMORY = _physical_memory()
+
+
+def _bytes(n: float) -> str:
+    for unit in ("B", "KB", "MB", "GB", "TB", "PB"):
+        if n < 1000 or unit == "PB":
+            return "%.3g %s" % (n, unit)
+        n /= 1000
+    return "%.3g PB" % n
+
+
+def bounded(value: int, name: str, bytes_each: float, power: int = 1,
+            hard: Optional[int] = None) -> int:
+    """A count that drives memory or work, refused (ValueError naming the limit and the memory
+    the count would need) when bytes_each * value**power exceeds half the machine's memory, or
+    value exceeds ``hard`` (a limit the command line has too)."""
+    limit = int((MEMORY / 2 / bytes_each) ** (1.0 / power))
+    if hard is not None:
+        limit = min(limit, hard)
+    if value > limit:
+        need = bytes_each * float(value) ** power
+        raise ValueError("%s must be <= %d, got %d (it would need about %s of memory; this "
+                         "machine has %s)" % (name, limit, value, _bytes(need), _bytes(MEMORY)))
+    return value
+
+
 # ---- argument checks: Python exceptions before anything reaches the library ----
 
-def as_int(value, name, minimum=None, maximum=None):
+def as_int(value: Any, name: str, minimum: Optional[int] = None,
+           maximum: Optional[int] = None) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise TypeError("%s must be an integer, got %r" % (name, value))
     value = int(value)
@@ -138,7 +252,7 @@ def as_int(value, name, minimum=None, maximum=None):
     return value
 
 
-def as_float(value, name, positive=False, nonnegative=False):
+def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = False) -> float:
     if type(value) is not float:  # the common case skips the abstract-class checks
         if isinstance(value, bool) or not isinstance(value, numbers.Real):
             raise TypeError("%s must be a real number, got %r" % (name, value))
@@ -152,7 +266,8 @@ def as_float(value, name, positive=False, nonnegative=False):
     return value
 
 
-def as_array(values, name, shape=None, positive=False, allow_empty=False):
+def as_array(values: Any, name: str, shape: Optional[Sequence[int]] = None,
+             positive: bool = False, allow_empty: bool = False) -> np.ndarray:
     """A C-contiguous float64 copy of values (a 1-D sequence, or of the given shape), finite."""
     try:
         a = np.array(values, dtype=np.float64, order="C")
@@ -172,16 +287,27 @@ def as_array(values, name, shape=None, positive=False, allow_empty=False):
     return a
 
 
-def dptr(a):
+def dptr(a: np.ndarray) -> Any:
     """The double * of a C-contiguous float64 array (which must outlive the call)."""
     return ffi.from_buffer("double[]", a)
 
 
-def methods():
+def methods() -> List[str]:
     """The integrator names the library knows (whirl_integrator_methods)."""
-    out, p = [], lib.whirl_integrator_methods()
+    out: List[str] = []
+    p = lib.whirl_integrator_methods()
     i = 0
     while p[i] != ffi.NULL:
         out.append(ffi.string(p[i]).decode())
         i += 1
     return out
+
+
+def finite(name: str, *values: Any) -> None:
+    """Refuses a result that overflowed in the user's units (the command line refuses such
+    units before the work; a value of the library times a unit scale can still leave the
+    doubles)."""
+    for v in values:
+        if not (math.isfinite(v) if isinstance(v, float) else np.isfinite(v).all()):
+            raise ValueError("%s is not finite in these units (inf or NaN): choose units "
+                             "nearer to the chain's own scales" % name)

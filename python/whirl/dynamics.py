@@ -3,17 +3,23 @@ integrator of the library, and returns its run as numpy arrays.
 
 Units: dimensionless (L = M = g = 1 for the uniform chain; a Chain of your own is in its own
 units): time in sqrt(L/g), positions in L, energy in M g L."""
+from dataclasses import dataclass, field
+from typing import Any, Dict, Optional, Tuple, Union
+
 import numpy as np
 
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float, as_array
-from .steady import Chain, _mode
+from .steady import Chain, Units, _mode, links_count, units_of
 
 _FRAMES = {"inertial": 0, "rotating": 1}
 _FORMULATIONS = {"default": 0, "seed": 1}
+# The largest fixed-step run, links x steps: the scenes' bound (WHIRL_SCENE_WORK_MAX, about an
+# hour of work with the implicit methods); and the most output rows x links a run may write.
+WORK_MAX = 1e10
 
 
-def _choice(value, name, table):
+def _choice(value: Any, name: str, table: Dict[str, int]) -> int:
     if not isinstance(value, str):
         raise TypeError("%s must be a string, got %r" % (name, value))
     if value not in table:
@@ -21,27 +27,50 @@ def _choice(value, name, table):
     return table[value]
 
 
+def _method(method: Any) -> str:
+    if not isinstance(method, str):
+        raise TypeError("method must be a string, got %r" % (method,))
+    known = _lib.methods()
+    if method not in known:
+        raise ValueError("method must be one of %s, got %r" % (", ".join(known), method))
+    return method
+
+
+def _stats(s: Any) -> Dict[str, int]:
+    return {"steps": int(s.steps), "rejected": int(s.rejected), "rhs_evals": int(s.rhs_evals),
+            "iterations": int(s.iterations)}
+
+
+@dataclass
 class Trajectory:
     """The output of Simulation.run: arrays over the output times ``t`` [T]: ``x`` (shape
-    (len(t), N, 3): every mass's position in the inertial frame [L]), ``energy`` (kinetic plus
-    potential, inertial frame), ``jacobi`` (energy - omega L_z), ``lz``, ``constraint`` (the
-    largest link-length error [L]), ``deviation`` (RMS distance of the masses from the start
-    shape, minimised over a rotation about z [L]); ``stats`` the integrator's counters (steps,
-    rejected, rhs_evals, iterations) over the run."""
+    (len(t), N, 3): every mass's position in the inertial frame [L]; None with
+    positions=False), ``energy`` (kinetic plus potential, inertial frame [M g L]), ``jacobi``
+    (energy - omega L_z), ``lz`` [M L sqrt(g L)], ``constraint`` (the largest link-length error
+    [L]), ``deviation`` (RMS distance of the masses from the start shape, minimised over a
+    rotation about z [L]); ``stats`` the integrator's counters (steps, rejected, rhs_evals,
+    iterations) over the run; ``interrupted`` True when Ctrl-C ended it early (the rows so far;
+    only with Simulation.run(..., keep_interrupted=True)). Units: the Simulation's."""
 
-    def __init__(self, t, x, diag, deviation, stats):
-        self.t = t
-        self.x = x
-        self.energy, self.jacobi, self.lz, self.constraint = (diag[:, k] for k in range(4))
-        self.deviation = deviation
-        self.stats = stats
+    t: np.ndarray
+    x: Optional[np.ndarray]
+    energy: np.ndarray
+    jacobi: np.ndarray
+    lz: np.ndarray
+    constraint: np.ndarray
+    deviation: np.ndarray
+    stats: Dict[str, int]
+    units: Units = field(default_factory=Units)
+    interrupted: bool = False
 
     @property
-    def tip(self):
+    def tip(self) -> np.ndarray:
         """The free end's position over the run, shape (len(t), 3) [L]."""
+        if self.x is None:
+            raise ValueError("the run kept no positions (positions=False)")
         return self.x[:, -1, :]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Trajectory(%d rows, t = %g..%g, %d steps)" % (
             self.t.size, self.t[0], self.t[-1], self.stats["steps"])
 
@@ -51,8 +80,8 @@ class Simulation:
 
     Simulation(chain, dim=3, frame="inertial", omega=0, drive_radius=0, air_drag=0,
     air_drag_quadratic=0, internal_damping=0, formulation="default", method="gauss2",
-    threads=1)
-      chain: a Chain or a link count N (the uniform chain);
+    threads=1, length=None, mass=None, gravity=None, units=None)
+      chain: a Chain or a link count N (the uniform chain); fixed for the Simulation's life;
       dim: 2 (planar, x-z) or 3; frame: "inertial" or "rotating" (co-rotating at omega, 3D);
       omega: rate of the rotating frame and of the pivot drive [1/T];
       drive_radius: the pivot moves on the horizontal circle of this radius [L] at omega;
@@ -61,81 +90,111 @@ class Simulation:
       formulation: "default" (link vectors and tensions, O(N)) or "seed" (angles, O(N^3));
       method: any of whirl.methods() (gauss2, gauss3, rk4, rk8, gsl-...);
       threads: cores for one right-hand side of a long chain (N >= 4096; whirl_dyn_set_threads:
-        the same numbers, faster only on idle cores).
-    Start it with set_steady, set_hanging or set_state, then run()."""
+        the same numbers, faster only on idle cores);
+      length/mass/gravity or units: the units of every argument and result (see whirl.Units;
+        default dimensionless: times in sqrt(L/g), lengths in L, energies in M g L).
+    Start it with set_steady, set_hanging or set_state, then run(). Pickles and copies (its
+    configuration, time and state; the integrator starts afresh, its counters at zero)."""
 
-    def __init__(self, chain, dim=3, frame="inertial", omega=0.0, drive_radius=0.0,
-                 air_drag=0.0, air_drag_quadratic=0.0, internal_damping=0.0,
-                 formulation="default", method="gauss2", threads=1):
-        self.chain = chain if isinstance(chain, Chain) else Chain(chain)
+    def __init__(self, chain: Union[int, Chain], dim: int = 3, frame: str = "inertial",
+                 omega: float = 0.0, drive_radius: float = 0.0, air_drag: float = 0.0,
+                 air_drag_quadratic: float = 0.0, internal_damping: float = 0.0,
+                 formulation: str = "default", method: str = "gauss2", threads: int = 1,
+                 length: Optional[float] = None, mass: Optional[float] = None,
+                 gravity: Optional[float] = None, units: Optional[Units] = None) -> None:
+        u = units_of(length, mass, gravity, units)
+        self.units = u
+        self._chain = chain if isinstance(chain, Chain) else Chain(links_count(chain))
+        self._args = dict(dim=dim, frame=frame, omega=omega, drive_radius=drive_radius,
+                          air_drag=air_drag, air_drag_quadratic=air_drag_quadratic,
+                          internal_damping=internal_damping, formulation=formulation,
+                          method=method, threads=threads)
         self._model = ffi.new("whirl_model *")
         m = self._model
-        m.chain = self.chain._c
+        m.chain = self._chain._c  # self._chain owns it for as long as the model lives
         m.dim = as_int(dim, "dim")
+        if m.dim not in (2, 3):
+            raise ValueError("dim must be 2 or 3, got %d" % m.dim)
         m.frame = _choice(frame, "frame", _FRAMES)
-        m.omega = as_float(omega, "omega")
-        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True)
-        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True)
+        m.omega = as_float(omega, "omega") / u.rate
+        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True) / u.length
+        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
         m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                        nonnegative=True)
-        m.internal_damping = as_float(internal_damping, "internal_damping", nonnegative=True)
+                                        nonnegative=True) / u.drag2
+        m.internal_damping = as_float(internal_damping, "internal_damping",
+                                      nonnegative=True) / u.damping
         f = _choice(formulation, "formulation", _FORMULATIONS)
+        if f == 1:
+            links_count(self._chain.n, "links", dense=True)  # O(N^2) memory, O(N^3) work
         self._dyn = _lib.check_ptr(lib.whirl_dyn_alloc(m, f), lib.whirl_dyn_free)
         check(lib.whirl_dyn_set_threads(self._dyn, as_int(threads, "threads", minimum=1)))
-        if not isinstance(method, str):
-            raise TypeError("method must be a string, got %r" % (method,))
-        self.method = method
+        self.method = _method(method)
         self._it = _lib.check_ptr(lib.whirl_integrator_alloc(method.encode(), self._dyn),
                                   lib.whirl_integrator_free)
-        self.n = self.chain.n
+        self.n = self._chain.n
         self._y = np.zeros(lib.whirl_dyn_size(self._dyn))
         self._t = ffi.new("double *", 0.0)
         self._x = np.zeros(3 * self.n)
         self._v = np.zeros(3 * self.n)
-        self._ref = None
+        self._ref: Optional[np.ndarray] = None
         self._diag = ffi.new("whirl_dyn_diagnostics *")
 
     @property
-    def t(self):
-        """The current time [T]."""
-        return self._t[0]
+    def chain(self) -> Chain:
+        """The chain (read-only: the library's model refers to it)."""
+        return self._chain
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        state = (self._t[0], self._y.copy(), None if self._ref is None else self._ref.copy())
+        return (_simulation_from, (self._chain, self._args, self.units, state))
 
     @property
-    def omega(self):
-        return self._model.omega
+    def t(self) -> float:
+        """The current time [T]."""
+        return float(self._t[0]) * self.units.time
 
-    def set_state(self, x, v, t=0.0):
-        """Starts from the positions x and velocities v of masses 1..N (arrays (N, 3), in the
-        model's frame at time t; 2D: y components 0). They must satisfy the link constraints to
-        1e-9 relative (whirl.Error otherwise). The deviation is measured from x."""
-        x = as_array(x, "x", shape=(self.n, 3)).ravel()
-        v = as_array(v, "v", shape=(self.n, 3)).ravel()
-        t = as_float(t, "t")
+    @property
+    def omega(self) -> float:
+        return float(self._model.omega) * self.units.rate
+
+    def set_state(self, x: Any, v: Any, t: float = 0.0) -> None:
+        """Starts from the positions x [L] and velocities v of masses 1..N (arrays (N, 3), in
+        the model's frame at time t [T]; 2D: y components 0). They must satisfy the link
+        constraints to 1e-9 relative (whirl.InvalidInput otherwise). The deviation is measured
+        from x."""
+        u = self.units
+        x = as_array(x, "x", shape=(self.n, 3)).ravel() / u.length
+        v = as_array(v, "v", shape=(self.n, 3)).ravel() / (u.length / u.time)
+        t = as_float(t, "t") / u.time
         check(lib.whirl_dyn_set_state(self._dyn, t, _lib.dptr(x), _lib.dptr(v),
                                       _lib.dptr(self._y)))
         self._t[0] = t
         self._ref = self._inertial()
 
-    def set_steady(self, mode, omega=None, perturb=0.0, seed=1):
-        """Starts from the exact steady shape of ``mode`` at ``omega`` (default: the model's
-        omega) in the x-z plane, turning rigidly at omega about z (3D), placed as the library
-        places it (whirl_dyn_state_from_shape: the pivot at (drive_radius, 0, 0), in the
+    def set_steady(self, mode: int, omega: Optional[float] = None, perturb: float = 0.0,
+                   seed: int = 1) -> None:
+        """Starts from the exact steady shape of ``mode`` at ``omega`` [1/T] (default: the
+        model's omega) in the x-z plane, turning rigidly at omega about z (3D), placed as the
+        library places it (whirl_dyn_state_from_shape: the pivot at (drive_radius, 0, 0), in the
         inertial frame turned by the drive's phase at t = 0).
 
         perturb: each link direction turned by this angle [rad] towards a random direction
         perpendicular to it (the library's one perturbation rule, whirl_perturb_links: GSL's
         MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
         The deviation is measured from the unperturbed shape."""
-        w = self.omega if omega is None else as_float(omega, "omega", positive=True)
-        mode = _mode(mode, self.chain)
+        w = (self._model.omega if omega is None
+             else as_float(omega, "omega", positive=True) / self.units.rate)
+        mode = _mode(mode, self._chain)
         perturb = as_float(perturb, "perturb", nonnegative=True)
         seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
         if self._model.dim != 3:
             raise ValueError("a steady start needs dim = 3")
         info = ffi.new("whirl_shape_info *")
         r, z, tension = (np.empty(self.n + 1) for _ in range(3))
-        check(lib.whirl_nlink_solve_nodes(self.chain._c, w, mode, info, _lib.dptr(r),
-                                          _lib.dptr(z), _lib.dptr(tension)))
+        with _lib.interruptible("set_steady"):
+            status = lib.whirl_nlink_solve_nodes(self._chain._c, w, mode, info, _lib.dptr(r),
+                                                 _lib.dptr(z), _lib.dptr(tension))
+        check(status, "set_steady")
         links = np.empty(3 * self.n)
         check(lib.whirl_shape_links(self.n, _lib.dptr(r), ffi.NULL, _lib.dptr(z),
                                     _lib.dptr(links)))
@@ -148,55 +207,69 @@ class Simulation:
             check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
                                                  _lib.dptr(self._y)))
 
-    def set_hanging(self):
+    def set_hanging(self) -> None:
         """Starts from the chain hanging straight down at rest (pivot on the axis)."""
         if self._model.drive_radius != 0:
             raise ValueError("set_hanging needs the pivot on the axis (drive_radius = 0)")
         x = np.zeros((self.n, 3))
-        x[:, 2] = -np.cumsum(self.chain.lengths)
+        x[:, 2] = -np.cumsum(self._chain.lengths) * self.units.length
         self.set_state(x, np.zeros((self.n, 3)))
 
-    def _inertial(self):
+    def _inertial(self) -> np.ndarray:
         check(lib.whirl_dyn_get_state(self._dyn, self._t[0], _lib.dptr(self._y), 0,
                                       _lib.dptr(self._x), _lib.dptr(self._v)))
         return self._x.reshape(self.n, 3).copy()
 
-    def positions(self):
+    def positions(self) -> np.ndarray:
         """The masses' positions in the inertial frame now, (N, 3) [L]."""
-        return self._inertial()
+        return self._inertial() * self.units.length
 
-    def tensions(self):
+    def tensions(self) -> np.ndarray:
         """The link tensions now, N values [M g]."""
         out = np.empty(self.n)
         check(lib.whirl_dyn_tensions(self._dyn, self._t[0], _lib.dptr(self._y), _lib.dptr(out)))
-        return out
+        return out * self.units.force
 
-    def stats(self):
+    def stats(self) -> Dict[str, int]:
         """The integrator's counters since it was made: steps, rejected, rhs_evals,
         iterations."""
-        s = lib.whirl_integrator_get_stats(self._it)
-        return {"steps": s.steps, "rejected": s.rejected, "rhs_evals": s.rhs_evals,
-                "iterations": s.iterations}
+        return _stats(lib.whirl_integrator_get_stats(self._it))
 
-    def run(self, t_end, dt, every=None, tol=0.0, positions=True):
+    def run(self, t_end: float, dt: float, every: Optional[float] = None, tol: float = 0.0,
+            positions: bool = True, keep_interrupted: bool = False) -> Trajectory:
         """Integrates from the current time to t_end [T] with steps dt (tol = 0: fixed steps;
         tol > 0: adaptive with that tolerance, dt the first step), writing a row at the start,
         every ``every`` (default dt) and at t_end. positions=False skips the (rows, N, 3) array.
-        Returns a Trajectory. Ctrl-C raises KeyboardInterrupt (the state stays at the last step
-        taken); a failing step raises whirl.Error with the time."""
+        The work is bounded before it starts (ValueError naming the bound and the memory):
+        links x steps <= 1e10 for fixed steps, links x rows <= 1e10, and the rows' arrays
+        within half the machine's memory. Returns a Trajectory. Ctrl-C raises
+        KeyboardInterrupt (the state stays at the last step taken), or with
+        keep_interrupted=True returns the rows so far marked interrupted; a failing step raises
+        whirl.Error with the time."""
         if self._ref is None:
             raise RuntimeError("no start state: call set_steady, set_hanging or set_state first")
+        u = self.units
         t0 = self._t[0]
-        t_end = as_float(t_end, "t_end")
+        t_end = as_float(t_end, "t_end") / u.time
         if not t_end > t0:
-            raise ValueError("t_end must be > the current time %g, got %g" % (t0, t_end))
-        dt = as_float(dt, "dt", positive=True)
-        every = dt if every is None else as_float(every, "every", positive=True)
+            raise ValueError("t_end must be > the current time %g, got %g"
+                             % (t0 * u.time, t_end * u.time))
+        dt = as_float(dt, "dt", positive=True) / u.time
+        every = dt if every is None else as_float(every, "every", positive=True) / u.time
         tol = as_float(tol, "tol", nonnegative=True)
         span = t_end - t0
-        last = int(np.ceil(span / every * (1 - 1e-12)))
-        times = np.array([t0 + k * every for k in range(last)] + [t_end])
-        rows = times.size
+        steps = span / dt
+        if tol == 0 and steps * self.n > WORK_MAX:
+            raise ValueError("the run needs %.3g fixed steps of %d links: links x steps must be "
+                             "<= %g (a larger dt, or tol > 0)" % (steps, self.n, WORK_MAX))
+        rows_f = np.ceil(span / every * (1 - 1e-12)) + 1
+        if rows_f * self.n > WORK_MAX:
+            raise ValueError("the run asks for %.3g rows of %d links: links x rows must be <= %g "
+                             "(a larger every)" % (rows_f, self.n, WORK_MAX))
+        rows = _lib.bounded(int(rows_f), "rows (t_end / every)",
+                            8 * (5 + (3 * self.n if positions else 0)))
+        times = t0 + every * np.arange(rows, dtype=np.float64)
+        times[-1] = t_end
         xs = np.empty((rows, self.n, 3)) if positions else None
         diag = np.empty((rows, 4))
         dev = np.empty(rows)
@@ -204,28 +277,52 @@ class Simulation:
         y = _lib.dptr(self._y)
         ref = _lib.dptr(np.ascontiguousarray(self._ref).ravel())
         chunk = 256 * dt  # fixed steps: at most 256 per call, so that Ctrl-C is seen promptly
-        with _lib.interruptible():
-            for k in range(rows):
-                while self._t[0] < times[k]:
-                    t1 = times[k]
-                    if tol == 0 and self._t[0] + chunk * (1 + 1e-9) < t1:
-                        t1 = self._t[0] + chunk
-                    status = lib.whirl_integrator_advance(self._it, self._t, y, t1, dt, tol)
-                    if status != _lib.GSL_SUCCESS:
-                        check(status, "at t = %.17g" % self._t[0])
+        done = 0
+        try:
+            with _lib.interruptible("Simulation.run"):
+                for k in range(rows):
+                    while self._t[0] < times[k]:
+                        t1 = times[k]
+                        if tol == 0 and self._t[0] + chunk * (1 + 1e-9) < t1:
+                            t1 = self._t[0] + chunk
+                        status = lib.whirl_integrator_advance(self._it, self._t, y, t1, dt, tol)
+                        if status != _lib.GSL_SUCCESS:
+                            check(status, "Simulation.run at t = %.17g" % (self._t[0] * u.time))
+                        if _lib.stop_requested():
+                            break
                     if _lib.stop_requested():
                         break
-                if _lib.stop_requested():
-                    break
-                x = self._inertial()
-                if positions:
-                    xs[k] = x
-                check(lib.whirl_dyn_diagnose(self._dyn, self._t[0], y, self._diag))
-                d = self._diag
-                diag[k] = (d.energy, d.jacobi, d.lz, d.constraint)
-                dev[k] = lib.whirl_deviation(self.n, _lib.dptr(self._x), ref)
-                if not (np.all(np.isfinite(diag[k])) and np.isfinite(dev[k])):
-                    raise _lib.Error(9, "the state is not finite at t = %.17g" % self._t[0])
+                    x = self._inertial()
+                    if xs is not None:
+                        xs[k] = x
+                    check(lib.whirl_dyn_diagnose(self._dyn, self._t[0], y, self._diag))
+                    d = self._diag
+                    diag[k] = (d.energy, d.jacobi, d.lz, d.constraint)
+                    dev[k] = lib.whirl_deviation(self.n, _lib.dptr(self._x), ref)
+                    if not (np.all(np.isfinite(diag[k])) and np.isfinite(dev[k])):
+                        raise _lib.Error(9, "the state is not finite at t = %.17g"
+                                         % (self._t[0] * u.time))
+                    done = k + 1
+        except KeyboardInterrupt:
+            if not keep_interrupted:
+                raise
         after = self.stats()
         stats = {k: after[k] - before[k] for k in after}
-        return Trajectory(times, xs, diag, dev, stats)
+        energy = u.mass * u.gravity * u.length
+        lz = u.mass * u.length * u.length / u.time
+        return Trajectory(t=times[:done] * u.time,
+                          x=None if xs is None else xs[:done] * u.length,
+                          energy=diag[:done, 0] * energy, jacobi=diag[:done, 1] * energy,
+                          lz=diag[:done, 2] * lz, constraint=diag[:done, 3] * u.length,
+                          deviation=dev[:done] * u.length, stats=stats, units=u,
+                          interrupted=done < rows)
+
+
+def _simulation_from(chain: Chain, args: Dict[str, Any], units: Units,
+                     state: Tuple[float, np.ndarray, Optional[np.ndarray]]) -> Simulation:
+    sim = Simulation(chain, units=units, **args)
+    t, y, ref = state
+    sim._t[0] = t
+    sim._y[:] = y
+    sim._ref = ref
+    return sim

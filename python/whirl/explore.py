@@ -157,11 +157,11 @@ def shape_answer(sc):
             d = _driven(sc.w, sc.mode, sc.eps / L, air_drag_quadratic=sc.c2, links=links,
                         tip_mass=0.0 if links else sc.m_tip)
             x, y, z, t = d.x, d.y, d.z, d.tension
-            node_count, tip_r = int(d.nodes), float(d.tip_r)
+            node_count, tip_r = int(d.node_count), float(d.tip_r)
         else:
             s = _shape(sc.w, sc.mode, links=links, tip_mass=0.0 if links else sc.m_tip)
             x, y, z, t = s.r, np.zeros_like(s.r), s.z, s.tension
-            node_count, tip_r = 1 + int(np.asarray(s.nodes).size), float(s.tip_r)
+            node_count, tip_r = int(s.node_count), float(s.tip_r)
     except _lib.Error as e:
         raise _missing_mode(sc, links, e) from None
     out.update(x=(x * L).tolist(), y=(y * L).tolist(), z=(z * L).tolist(),

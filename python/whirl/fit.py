@@ -1,48 +1,82 @@
 """Fitting the rotation rate and mode to a measured shape (whirl/optimize.h, ``whirl fit``)."""
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float, as_array
-from .steady import Units
+from .steady import Units, units_of
+
+# the command line's bounds (whirl fit --links; the library refuses more than 20000 points)
+FIT_MAX_LINKS = 2000
+FIT_MAX_SAMPLES = 10000000
 
 
+@dataclass
 class FitResult:
     """``omega`` and its standard error ``omega_err`` [sqrt(g/L), or rad/s], ``mode``,
     ``rms_residual`` (RMS distance of the points to the model curve [L, or m]), ``mirrored``
-    (the points lie on the side r < 0), ``evaluations`` and ``failures`` of the model."""
+    (the points lie on the side r < 0), ``evaluations`` and ``failures`` of the model,
+    ``units``."""
 
-    def __repr__(self):
+    omega: float
+    omega_err: float
+    mode: int
+    rms_residual: float
+    mirrored: bool
+    evaluations: int
+    failures: int
+    units: Units = field(default_factory=Units)
+
+    def __repr__(self) -> str:
         return "FitResult(omega=%.8g +- %.2g, mode=%d, rms_residual=%.3g)" % (
             self.omega, self.omega_err, self.mode, self.rms_residual)
 
 
-def fit(r, z, mode=0, links=None, tip_mass=0.0, omega_max=None, samples=None, length=1.0,
-        mass=1.0, gravity=1.0):
+def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: float = 0.0,
+        omega_max: Optional[float] = None, samples: Optional[int] = None,
+        max_residual: float = 0.02, length: Optional[float] = None,
+        mass: Optional[float] = None, gravity: Optional[float] = None,
+        units: Optional[Units] = None) -> FitResult:
     """The rotation rate and mode that best explain measured points (r[i], z[i]) (signed
-    distance from the axis and height, the pivot at the origin, any order; [L, or the unit of
-    ``length``]), by least squares on the distance of each point to the model curve.
-    mode=0: the best mode; K >= 1: mode K only. links=None: the continuous chain; N: the uniform
-    N-link chain. omega_max: the highest rate tried (default 50 sqrt(g/L)); samples: points of
-    the continuum's model polyline (default 4001). With length [m] and gravity [m/s^2] the
-    rates are in rad/s. Returns a FitResult; whirl.Error if no mode fits."""
-    u = Units(length, mass, gravity)
+    distance from the axis and height, the pivot at the origin, any order; [L, or m with
+    length given]), by least squares on the distance of each point to the model curve, as
+    ``whirl fit``.
+    mode=0: the best mode; K >= 1: mode K only. links=None: the continuous chain; N (at most
+    2000): the uniform N-link chain. omega_max: the highest rate tried (default 50 sqrt(g/L));
+    samples: points of the continuum's model polyline (default 4001). Units as everywhere
+    (see Units): with length [m] the rates are in rad/s. Returns a FitResult; raises
+    whirl.InvalidInput (a ValueError) when no mode has a shape in the range, or when the best
+    fit leaves an rms residual above ``max_residual`` (a fraction of the chain's length, default
+    0.02, the command line's --max-residual): no mode explains the points. Ctrl-C raises
+    KeyboardInterrupt."""
+    u = units_of(length, mass, gravity, units)
     r = as_array(r, "r")
     z = as_array(z, "z", shape=r.shape)
     if r.size < 3:
         raise ValueError("a fit needs at least 3 points, got %d" % r.size)
     m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_default())
-    m.links = 0 if links is None else as_int(links, "links", minimum=1)
+    m.links = 0 if links is None else as_int(links, "links", minimum=1, maximum=FIT_MAX_LINKS)
     m.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     if omega_max is not None:
         m.omega_max = as_float(omega_max, "omega_max", positive=True) / u.rate
     if samples is not None:
-        m.samples = as_int(samples, "samples", minimum=2)
+        m.samples = as_int(samples, "samples", minimum=2, maximum=FIT_MAX_SAMPLES)
     mode = as_int(mode, "mode", minimum=0, maximum=lib.WHIRL_MODE_MAX)
-    rr, zz = r / u.length, z / u.length
+    limit = as_float(max_residual, "max_residual", positive=True)
+    # the command line's arithmetic (times 1 / L): the optimiser's stop depends on the last bit
+    scale = 1.0 / u.length
+    rr, zz = r * scale, z * scale
     res = ffi.new("whirl_fit_result *")
-    with _lib.interruptible():
+    with _lib.interruptible("fit"):
         status = lib.whirl_fit(m, r.size, _lib.dptr(rr), _lib.dptr(zz), mode, res)
-    check(status)
-    out = FitResult()
-    out.omega, out.omega_err = res.omega * u.rate, res.omega_err * u.rate
-    out.mode, out.rms_residual = res.mode, res.rms_residual * u.length
-    out.mirrored, out.evaluations, out.failures = bool(res.mirrored), res.evaluations, res.failures
-    return out
+    check(status, "fit", u)
+    if not res.rms_residual <= limit:
+        which = "mode %d" % mode if mode else "no mode"
+        raise _lib.error(1, "fit: %s explains the shape: the best fit (mode %d, omega=%.6g%s) "
+                            "leaves an rms residual of %.3g L, above max_residual %g"
+                         % (which, res.mode, res.omega * u.rate,
+                            " rad/s" if u.physical else "", res.rms_residual, limit))
+    return FitResult(omega=res.omega * u.rate, omega_err=res.omega_err * u.rate,
+                     mode=int(res.mode), rms_residual=res.rms_residual * u.length,
+                     mirrored=bool(res.mirrored), evaluations=int(res.evaluations),
+                     failures=int(res.failures), units=u)

@@ -3,6 +3,7 @@
 
 Units: the scene's own ([units] system = dimensionless or SI; SceneRun.units says which)."""
 import os
+from typing import Any, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 
@@ -21,7 +22,8 @@ class SceneRun:
     ``stats`` the integrator's counters; ``units`` a dict: physical (bool), length, mass,
     gravity (the chain's, in the scene's units)."""
 
-    def __init__(self, columns, rows, trace_t, trace_x, res, units):
+    def __init__(self, columns: List[str], rows: List[float], trace_t: Optional[np.ndarray],
+                 trace_x: Optional[np.ndarray], res: Any, units: Dict[str, Any]) -> None:
         self.columns = columns
         table = np.array(rows, dtype=np.float64).reshape(-1, len(columns))
         self.data = {name: table[:, k].copy() for k, name in enumerate(columns)}
@@ -34,16 +36,16 @@ class SceneRun:
                       for k in ("steps", "rejected", "rhs_evals", "iterations")}
         self.units = units
 
-    def __getitem__(self, name):
+    def __getitem__(self, name: str) -> np.ndarray:
         return self.data[name]
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "SceneRun(%d rows of %s, t = %g%s)" % (
             len(self.data["t"]), ", ".join(self.columns), self.t,
             ", stopped" if self.stopped else "")
 
 
-def _overrides(set):
+def _overrides(set: Union[None, str, Dict[str, Any], Sequence[str]]) -> List[str]:
     if set is None:
         return []
     if isinstance(set, dict):
@@ -58,7 +60,9 @@ def _overrides(set):
     return items
 
 
-def run_scene(path, set=None, trace=False):
+def run_scene(path: Union[str, "os.PathLike[str]"],
+              set: Union[None, str, Dict[str, Any], Sequence[str]] = None,
+              trace: Union[bool, float] = False) -> SceneRun:
     """Runs the scene file ``path`` (see include/whirl/scene.h and the README for its keys) and
     returns a SceneRun.
 
@@ -79,7 +83,7 @@ def run_scene(path, set=None, trace=False):
     keep = [ffi.new("char[]", s.encode()) for s in items]
     over = ffi.new("char *[]", keep) if keep else ffi.NULL
     scene = ffi.new("whirl_scene *")
-    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene))
+    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene), "run_scene")
     work = ffi.NULL
     try:
         if every is not None:
@@ -88,15 +92,17 @@ def run_scene(path, set=None, trace=False):
         columns = [ffi.string(lib.whirl_column_name(scene.columns[c])).decode()
                    for c in range(scene.n_columns)]
         index = [scene.columns[c] for c in range(scene.n_columns)]
-        rows, frames_t, frames_x = [], [], []
+        rows: List[float] = []
+        frames_t: List[float] = []
+        frames_x: List[np.ndarray] = []
 
         @ffi.callback("int(void *, const double *)")
-        def on_row(ctx, value):
+        def on_row(ctx: Any, value: Any) -> int:
             rows.extend(value[i] for i in index)
             return 0
 
         @ffi.callback("int(void *, double, const double *, const double *, size_t)")
-        def on_frame(ctx, t, pivot, x, n):
+        def on_frame(ctx: Any, t: float, pivot: Any, x: Any, n: int) -> int:
             frame = np.empty((n + 1, 3))
             frame[0] = ffi.unpack(pivot, 3)
             frame[1:] = np.frombuffer(ffi.buffer(x, 3 * n * 8), dtype=np.float64).reshape(n, 3)
@@ -108,9 +114,9 @@ def run_scene(path, set=None, trace=False):
         out.row = on_row
         out.frame = on_frame if trace is not False else ffi.NULL
         res = ffi.new("whirl_scene_result *")
-        with _lib.interruptible():
+        with _lib.interruptible("run_scene"):
             status = lib.whirl_scene_work_run(work, out, res)
-        check(status)
+        check(status, "run_scene")
         units = {"physical": bool(scene.physical), "length": scene.chain_length,
                  "mass": scene.chain_mass, "gravity": scene.gravity}
         trace_t = np.array(frames_t) if trace is not False else None

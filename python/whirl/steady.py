@@ -5,28 +5,123 @@ sqrt(g/L), lengths in L, tensions in M g). Give ``length`` [m], ``mass`` [kg] an
 [m/s^2] (the command line's --length, --mass, --gravity) to work in SI units instead: rates are
 then in rad/s, lengths in m, tensions in N, tip masses in kg."""
 import math
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 
+STANDARD_GRAVITY = 9.80665  # WHIRL_STANDARD_GRAVITY [m/s^2]: g once SI units are on
+UNIT_MIN, UNIT_MAX = 1e-30, 1e30  # the command line's range of each unit (CLI_UNIT_MIN/MAX)
+
+# A count of links whose arrays and continuation work would fill memory is refused before it
+# reaches the library: about this many bytes per link for the N-link solvers (banded Newton
+# systems, the path's history), ...
+LINK_BYTES = 1024
+# ... and for the linearisation: four (2N)^2 blocks, the (4N)^2 companion matrix and LAPACK's
+# copy, about 640 N^2 bytes.
+DENSE_BYTES = 640
+
 
 class Units:
-    """The scales of the physical units: chain length [m], chain mass [kg], gravity [m/s^2]
-    (all 1: dimensionless). ``rate`` = sqrt(g/L) [1/s], ``force`` = M g [N], ``time`` =
-    sqrt(L/g) [s]."""
+    """The scales of the physical units, with the command line's rule: no argument (or all None)
+    is dimensionless (chain length L, mass M, gravity g all 1: rates in sqrt(g/L), lengths in L,
+    times in sqrt(L/g), forces in M g); any of ``length`` [m], ``mass`` [kg], ``gravity``
+    [m/s^2] switches to SI units, the others defaulting to 1 m, 1 kg and 9.80665 m/s^2 (as
+    ``--length``, ``--mass``, ``--gravity`` do). Each in [1e-30, 1e30].
+    Derived scales: ``rate`` sqrt(g/L) [1/s], ``time`` [s], ``force`` M g [N], ``drag``
+    (linear drag per unit length) M sqrt(g/L) / L, ``drag2`` M / L^2, ``damping`` M L^2
+    sqrt(g/L). Immutable; pickles."""
 
-    def __init__(self, length=1.0, mass=1.0, gravity=1.0):
-        self.length = as_float(length, "length", positive=True)
-        self.mass = as_float(mass, "mass", positive=True)
-        self.gravity = as_float(gravity, "gravity", positive=True)
-        self.rate = math.sqrt(self.gravity / self.length)
-        self.time = 1.0 / self.rate
-        self.force = self.mass * self.gravity
+    __slots__ = ("length", "mass", "gravity", "physical")
+    length: float
+    mass: float
+    gravity: float
+    physical: bool
 
-    def __repr__(self):
-        return "Units(length=%g, mass=%g, gravity=%g)" % (self.length, self.mass, self.gravity)
+    def __init__(self, length: Optional[float] = None, mass: Optional[float] = None,
+                 gravity: Optional[float] = None) -> None:
+        physical = not (length is None and mass is None and gravity is None)
+        values = {}
+        for name, value, default in (("length", length, 1.0), ("mass", mass, 1.0),
+                                     ("gravity", gravity,
+                                      STANDARD_GRAVITY if physical else 1.0)):
+            v = default if value is None else as_float(value, name, positive=True)
+            if not UNIT_MIN <= v <= UNIT_MAX:
+                raise ValueError("%s must be in [%g, %g], got %r" % (name, UNIT_MIN, UNIT_MAX,
+                                                                     v))
+            values[name] = v
+        object.__setattr__(self, "length", values["length"])
+        object.__setattr__(self, "mass", values["mass"])
+        object.__setattr__(self, "gravity", values["gravity"])
+        object.__setattr__(self, "physical", physical)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("Units are immutable")
+
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        if not self.physical:
+            return (Units, ())
+        return (Units, (self.length, self.mass, self.gravity))
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Units) and self.physical == other.physical
+                and (self.length, self.mass, self.gravity)
+                == (other.length, other.mass, other.gravity))
+
+    def __hash__(self) -> int:
+        return hash((self.physical, self.length, self.mass, self.gravity))
+
+    @property
+    def rate(self) -> float:
+        return math.sqrt(self.gravity / self.length)
+
+    @property
+    def time(self) -> float:
+        return 1.0 / self.rate
+
+    @property
+    def force(self) -> float:
+        return self.mass * self.gravity
+
+    @property
+    def drag(self) -> float:
+        return self.mass * self.rate / self.length
+
+    @property
+    def drag2(self) -> float:
+        return self.mass / (self.length * self.length)
+
+    @property
+    def damping(self) -> float:
+        return self.mass * self.length * self.length * self.rate
+
+    def __repr__(self) -> str:
+        if not self.physical:
+            return "Units()"
+        return "Units(length=%r, mass=%r, gravity=%r)" % (self.length, self.mass, self.gravity)
+
+
+def units_of(length: Optional[float] = None, mass: Optional[float] = None,
+             gravity: Optional[float] = None, units: Optional[Units] = None) -> Units:
+    """The Units of a call: ``units`` (a Units object) or length/mass/gravity, not both."""
+    if units is None:
+        return Units(length, mass, gravity)
+    if not isinstance(units, Units):
+        raise TypeError("units must be a whirl.Units, got %r" % (units,))
+    if not (length is None and mass is None and gravity is None):
+        raise TypeError("give either units or length/mass/gravity, not both")
+    return units
+
+
+def links_count(links: Any, name: str = "links", dense: bool = False) -> int:
+    """A link count as an int >= 1, refused if its work would not fit in memory."""
+    n = as_int(links, name, minimum=1)
+    if dense:
+        return _lib.bounded(n, name, DENSE_BYTES, power=2)
+    return _lib.bounded(n, name, LINK_BYTES)
 
 
 class Chain:
@@ -35,47 +130,68 @@ class Chain:
     Chain(links, tip_mass=0): N equal links and masses, total length 1 and mass 1, g = 1, the
     tip mass [M] added to the last mass (the discrete model of the uniform chain).
     Chain(lengths=[...], masses=[...], gravity=1): any links [L] and masses [M].
-    Attributes: ``n``, ``lengths``, ``masses`` (numpy copies), ``gravity``."""
+    Attributes: ``n``, ``lengths``, ``masses`` (numpy copies), ``gravity``. Pickles and copies
+    by its lengths, masses and gravity; equal chains compare equal."""
 
-    def __init__(self, links=None, tip_mass=0.0, lengths=None, masses=None, gravity=1.0):
+    def __init__(self, links: Optional[int] = None, tip_mass: float = 0.0,
+                 lengths: Optional[Union[Sequence[float], np.ndarray]] = None,
+                 masses: Optional[Union[Sequence[float], np.ndarray]] = None,
+                 gravity: float = 1.0) -> None:
         if links is not None:
             if lengths is not None or masses is not None:
                 raise TypeError("give either links or lengths and masses, not both")
-            n = as_int(links, "links", minimum=1)
+            n = links_count(links)
             tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True)
             ptr = lib.whirl_chain_alloc_uniform(n, tip_mass)
         else:
             if lengths is None or masses is None:
                 raise TypeError("Chain needs links, or both lengths and masses")
             length = as_array(lengths, "lengths", positive=True)
+            links_count(length.size, "len(lengths)")
             mass = as_array(masses, "masses", shape=length.shape, positive=True)
             g = as_float(gravity, "gravity", positive=True)
             ptr = lib.whirl_chain_alloc(length.size, _lib.dptr(length), _lib.dptr(mass), g)
         self._c = _lib.check_ptr(ptr, lib.whirl_chain_free)
 
+    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+        return (_chain_from, (self.lengths, self.masses, self.gravity))
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Chain) and self.n == other.n
+                and self.gravity == other.gravity
+                and bool(np.array_equal(self.lengths, other.lengths))
+                and bool(np.array_equal(self.masses, other.masses)))
+
+    __hash__ = None  # type: ignore[assignment]
+
     @property
-    def n(self):
+    def n(self) -> int:
         return int(self._c.n)
 
     @property
-    def lengths(self):
+    def lengths(self) -> np.ndarray:
         return np.frombuffer(ffi.buffer(self._c.length, 8 * self.n), dtype=np.float64).copy()
 
     @property
-    def masses(self):
+    def masses(self) -> np.ndarray:
         return np.frombuffer(ffi.buffer(self._c.mass, 8 * self.n), dtype=np.float64).copy()
 
     @property
-    def gravity(self):
+    def gravity(self) -> float:
         return float(self._c.gravity)
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return "Chain(n=%d, length=%g, mass=%g, gravity=%g)" % (
             self.n, lib.whirl_chain_total_length(self._c), lib.whirl_chain_total_mass(self._c),
             self.gravity)
 
 
-def _chain(links, tip_mass):
+def _chain_from(lengths: np.ndarray, masses: np.ndarray, gravity: float) -> Chain:
+    return Chain(lengths=lengths, masses=masses, gravity=gravity)
+
+
+def _chain(links: Union[None, int, Chain], tip_mass: float,
+           dense: bool = False) -> Optional[Chain]:
     """None for the continuum, else a Chain (an int builds the uniform chain)."""
     if links is None:
         return None
@@ -83,11 +199,13 @@ def _chain(links, tip_mass):
         if tip_mass:
             raise ValueError("tip_mass applies to a uniform chain given by its link count; "
                              "put it into the Chain's masses")
+        if dense:
+            links_count(links.n, "links", dense=True)
         return links
-    return Chain(links, tip_mass)
+    return Chain(links_count(links, dense=dense), tip_mass)
 
 
-def _mode(mode, chain, continuum_max=None):
+def _mode(mode: Any, chain: Optional[Chain], continuum_max: Optional[int] = None) -> int:
     """The N-link chain has modes 1..N (any N), the continuum's steady shapes
     1..WHIRL_CONTINUUM_MODE_MAX (continuum_max: the limit of a model built on them)."""
     if chain is None:
@@ -100,14 +218,17 @@ def _mode(mode, chain, continuum_max=None):
     return mode
 
 
-def critical(modes=3, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.0):
+def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
+             length: Optional[float] = None, mass: Optional[float] = None,
+             gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
     """The linear critical rates omega_1..omega_modes at which modes 1..modes bifurcate from the
     hanging chain, as an array [sqrt(g/L), or rad/s with physical units].
 
     links=None: the continuous chain (j_{0,k}/2 without a tip mass; with a tip mass [M, or kg]
     the roots of a J0/Y0 determinant); links=N or a Chain: the normal-mode frequencies of the
-    hanging N-link chain. ``whirl critical`` on the command line."""
-    u = Units(length, mass, gravity)
+    hanging N-link chain. ``whirl critical`` on the command line (the same units rule: see
+    Units)."""
+    u = units_of(length, mass, gravity, units)
     modes = as_int(modes, "modes", minimum=1)
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     chain = _chain(links, m)
@@ -116,140 +237,198 @@ def critical(modes=3, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.
         if modes > lib.WHIRL_CONTINUUM_MODE_MAX:
             raise ValueError("modes must be <= %d, got %d" % (lib.WHIRL_CONTINUUM_MODE_MAX,
                                                              modes))
-        check(lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out)))
+        with _lib.interruptible("critical"):
+            status = lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out))
+        check(status, "critical", u)
     else:
         if modes > chain.n:
             raise ValueError("a chain of %d links has modes 1..%d, asked for %d"
                              % (chain.n, chain.n, modes))
-        check(lib.whirl_nlink_critical(chain._c, modes, _lib.dptr(out)))
-    return out * u.rate
+        with _lib.interruptible("critical"):
+            status = lib.whirl_nlink_critical(chain._c, modes, _lib.dptr(out))
+        check(status, "critical", u)
+    out *= u.rate
+    _lib.finite("critical rates", out)
+    return out
 
 
+@dataclass
 class Shape:
     """A steady shape (``whirl shape``): arrays ``s`` (arclength from the pivot), ``r`` (signed
     distance from the axis, the free end at r > 0), ``z`` (height, pivot 0, z <= 0) and
     ``tension`` [L, L, L, M g; or m, m, m, N], from the pivot to the free end (N-link chain:
     the pivot, then masses 1..N, tension of the link above); the summary ``omega``, ``mode``,
-    ``tip_r``, ``max_r``, ``top_tension``, ``depth``, ``nodes`` (arclengths of the axis
-    crossings below the pivot: all of them for the N-link chain, the first 64 for the
-    continuum; where an N-link shape's radii underflow towards the tip, r is 0 or subnormal and
-    the crossings there come from the force balance linearised about the hanging chain), and
-    the branch it lies on: ``critical`` (omega_k where mode k is born) and ``links`` (None: the
-    continuum)."""
+    ``node_count`` (the pivot plus the axis crossings, as the command line's node_count: equal
+    to the mode on its branch; a warning is issued where it differs), ``tip_r``, ``max_r``,
+    ``top_tension``, ``depth``, ``crossings`` (arclengths of the axis crossings below the pivot:
+    all of them for the N-link chain, the first 64 for the continuum; where an N-link shape's
+    radii underflow towards the tip, r is 0 or subnormal and the crossings there come from the
+    force balance linearised about the hanging chain; the command line's ``nodes=``), ``units``,
+    and the branch it lies on: ``critical`` (omega_k where mode k is born), ``chain`` (None:
+    the continuum) and ``tip_mass``. A dataclass: pickles and copies."""
 
-    def __init__(self, info, nodes, s, r, z, tension, u, critical_args, links):
-        self.omega = info.omega * u.rate
-        self.mode = int(info.mode)
-        self.tip_r = info.tip_r * u.length
-        self.max_r = info.max_r * u.length
-        self.top_tension = info.top_tension * u.force
-        self.depth = info.depth * u.length
-        self.nodes = nodes * u.length
-        self.s, self.r, self.z = s * u.length, r * u.length, z * u.length
-        self.tension = tension * u.force
-        self._critical_args = critical_args
-        self.links = links
-        self.units = u
+    omega: float
+    mode: int
+    node_count: int
+    tip_r: float
+    max_r: float
+    top_tension: float
+    depth: float
+    crossings: np.ndarray
+    s: np.ndarray
+    r: np.ndarray
+    z: np.ndarray
+    tension: np.ndarray
+    units: Units = field(default_factory=Units)
+    chain: Optional[Chain] = None
+    tip_mass: float = 0.0
 
     @property
-    def critical(self):
+    def links(self) -> Optional[int]:
+        """The link count (None: the continuum)."""
+        return None if self.chain is None else self.chain.n
+
+    @property
+    def critical(self) -> float:
         """omega_k: the rate where this shape's mode is born [sqrt(g/L), or rad/s]."""
-        mode, kwargs = self._critical_args
-        return critical(mode, **kwargs)[-1]
+        return float(critical(self.mode, links=self.chain,
+                              tip_mass=0.0 if self.chain else self.tip_mass,
+                              units=self.units)[-1])
 
-    def __repr__(self):
-        return ("Shape(omega=%.10g, mode=%d, tip_r=%.10g, top_tension=%.10g, depth=%.10g, "
-                "%d points)" % (self.omega, self.mode, self.tip_r, self.top_tension, self.depth,
-                                self.s.size))
+    def __repr__(self) -> str:
+        return ("Shape(omega=%.10g, mode=%d, node_count=%d, tip_r=%.10g, top_tension=%.10g, "
+                "depth=%.10g, %d points)" % (self.omega, self.mode, self.node_count, self.tip_r,
+                                             self.top_tension, self.depth, self.s.size))
 
 
-def _solve(chain, omega, mode, m, guess, nodes=None):
+def _solve(chain: Optional[Chain], omega: float, mode: int, m: float, guess: float,
+           nodes: Optional[Tuple[np.ndarray, ...]] = None) -> Tuple[int, Any]:
     """nodes: (r, z, tension) arrays of N + 1 for the N-link chain's nodes, which come from the
     branch's link angles (at high rates the tip radius alone does not fix them)."""
     info = ffi.new("whirl_shape_info *")
-    if chain is None:
-        status = lib.whirl_continuum_solve(omega, mode, m, guess, info)
-    elif nodes is None:
-        status = lib.whirl_nlink_solve(chain._c, omega, mode, guess, info)
-    else:
-        status = lib.whirl_nlink_solve_nodes(chain._c, omega, mode, info,
-                                             *(_lib.dptr(a) for a in nodes))
+    # milliseconds below these sizes: no signal handlers to install
+    long = (chain.n >= SHORT_LINKS) if chain is not None else mode > lib.WHIRL_MODE_MAX
+    with _lib.interruptible_if(long, "shape"):
+        if chain is None:
+            status = lib.whirl_continuum_solve(omega, mode, m, guess, info)
+        elif nodes is None:
+            status = lib.whirl_nlink_solve(chain._c, omega, mode, info)
+        else:
+            status = lib.whirl_nlink_solve_nodes(chain._c, omega, mode, info,
+                                                 *(_lib.dptr(a) for a in nodes))
+    if status == lib.WHIRL_EINTERRUPTED:
+        check(status, "shape")
     return status, info
 
 
-def shape(omega, mode, links=None, tip_mass=0.0, points=201, tip_r_guess=0.0, length=1.0,
-          mass=1.0, gravity=1.0):
+# the command line's bound on the continuum's samples (whirl shape --points)
+POINTS_MAX = 10000000
+# shapes of fewer links or points take milliseconds: their calls skip the signal handlers
+SHORT_LINKS = 1000
+SHORT_POINTS = 100000
+
+
+def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
+          points: int = 201, tip_r_guess: float = 0.0, length: Optional[float] = None,
+          mass: Optional[float] = None, gravity: Optional[float] = None,
+          units: Optional[Units] = None) -> Shape:
     """The steady shape of mode ``mode`` (node count: the pivot plus mode-1 axis crossings) at
     the rotation rate ``omega`` [sqrt(g/L), or rad/s with length/mass/gravity given].
 
     links=None: the continuous chain sampled at ``points`` equally spaced arclengths (default
-    201); links=N (or a Chain): the exact relative equilibrium of the N-link chain, one point per
-    node. tip_mass [M, or kg]: a point mass at the free end. tip_r_guess > 0 seeds the root
-    search (continuation). Returns a Shape. Raises whirl.Error (status_name "EDOM") if the mode
-    does not exist at omega, naming its critical rate."""
-    u = Units(length, mass, gravity)
+    201, at most 10^7); links=N (or a Chain): the exact relative equilibrium of the N-link
+    chain, one point per node. tip_mass [M, or kg]: a point mass at the free end. tip_r_guess
+    > 0 seeds the root search (continuation). Returns a Shape. Raises whirl.InvalidInput (a
+    ValueError; status_name "EDOM") if the mode does not exist at omega, naming its critical
+    rate. Ctrl-C raises KeyboardInterrupt."""
+    u = units_of(length, mass, gravity, units)
     w = as_float(omega, "omega", positive=True) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True) / u.length
     chain = _chain(links, m)
     mode = _mode(mode, chain)
     if chain is None:
-        n = as_int(points, "points", minimum=2)
+        n = _lib.bounded(as_int(points, "points", minimum=2), "points", 32, hard=POINTS_MAX)
     else:
         n = chain.n + 1
     s, r, z, t = (np.empty(n) for _ in range(4))
     status, info = _solve(chain, w, mode, m, guess, None if chain is None else (r, z, t))
     if status != _lib.GSL_SUCCESS:
-        msg = _lib.last_error()
+        msg = _lib.in_units(_lib.last_error(), u)
         if status == 1:  # GSL_EDOM: name where the mode is born, as the command line does
             try:
-                wk = critical(mode, links=chain, tip_mass=0 if chain else tip_mass,
-                              length=length, mass=mass, gravity=gravity)[-1]
+                wk = critical(mode, links=chain, tip_mass=0 if chain else tip_mass, units=u)[-1]
                 if omega < wk:
-                    msg = ("mode %d does not exist at omega=%.17g: it exists only above "
-                           "omega_%d=%.17g" % (mode, omega, mode, wk))
+                    msg = ("mode %d does not exist at omega=%.17g%s: it exists only above "
+                           "omega_%d=%.17g%s" % (mode, omega, _rate_unit(u), mode, wk,
+                                                  _rate_unit(u)))
             except (ValueError, _lib.Error):
                 pass
-        raise _lib.Error(status, msg)
+        raise _lib.error(status, msg)
     if chain is None:
-        check(lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
-                                         _lib.dptr(z), _lib.dptr(t)))
+        with _lib.interruptible_if(n > SHORT_POINTS, "shape"):
+            status = lib.whirl_continuum_sample(w, m, info.tip_r, n, _lib.dptr(s), _lib.dptr(r),
+                                                _lib.dptr(z), _lib.dptr(t))
+        check(status, "shape", u)
         # the continuum's first WHIRL_SHAPE_NODES from the pivot (n_nodes counts them all)
-        nodes = np.array([info.node_s[j]
-                          for j in range(min(info.n_nodes, lib.WHIRL_SHAPE_NODES))])
+        crossings = np.array([info.node_s[j]
+                              for j in range(min(info.n_nodes, lib.WHIRL_SHAPE_NODES))])
     else:
         # the nodes of the branch's own link angles (at high rates the tip radius alone does
         # not fix the shape to round-off); every axis crossing, not only the first
         # WHIRL_SHAPE_NODES the summary holds
         s[0] = 0
         np.cumsum(chain.lengths, out=s[1:])
-        nodes = np.empty(max(info.n_nodes, 1))
-        count = lib.whirl_nlink_node_arclengths(chain._c, info.omega, _lib.dptr(r), nodes.size,
-                                                _lib.dptr(nodes), _lib.ffi.NULL)
-        nodes = nodes[:min(count, nodes.size)]
-    crit = (mode, dict(links=chain, tip_mass=0 if chain else tip_mass, length=length, mass=mass,
-                       gravity=gravity))
-    return Shape(info, nodes, s, r, z, t, u, crit, None if chain is None else chain.n)
+        crossings = np.empty(max(info.n_nodes, 1))
+        count = lib.whirl_nlink_node_arclengths(chain._c, info.omega, _lib.dptr(r),
+                                                crossings.size, _lib.dptr(crossings),
+                                                _lib.ffi.NULL)
+        crossings = crossings[:min(count, crossings.size)]
+    if u.physical:
+        L, F = u.length, u.force
+        crossings, s, r, z, t = crossings * L, s * L, r * L, z * L, t * F
+        _lib.finite("the shape", r, z, t, info.omega * u.rate, info.top_tension * F)
+    else:
+        L = F = 1.0
+    out = Shape(omega=info.omega * u.rate, mode=int(info.mode), node_count=info.n_nodes + 1,
+                tip_r=info.tip_r * L, max_r=info.max_r * L, top_tension=info.top_tension * F,
+                depth=info.depth * L, crossings=crossings, s=s, r=r, z=z, tension=t, units=u,
+                chain=chain, tip_mass=float(tip_mass))
+    if out.node_count != mode:
+        import warnings
+        warnings.warn("the shape of mode %d at omega=%.17g has %d nodes: its node count "
+                      "differs from the mode" % (mode, omega, out.node_count), stacklevel=2)
+    return out
+
+
+def _rate_unit(u: Units) -> str:
+    return " rad/s" if u.physical else ""
 
 
 BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
-                         ("top_tension", "f8"), ("depth", "f8"), ("n_nodes", "i4")])
+                         ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")])
 
 
-def sweep(modes, omega, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=1.0):
+def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, Chain] = None,
+          tip_mass: float = 0.0, length: Optional[float] = None, mass: Optional[float] = None,
+          gravity: Optional[float] = None,
+          units: Optional[Units] = None) -> Dict[int, np.ndarray]:
     """The branches of the given modes over the rates ``omega`` (an array, any order;
     [sqrt(g/L), or rad/s]), each followed by continuation on all OpenMP threads (``whirl
     sweep``). Returns a dict {mode: structured array with fields omega, tip_r, max_r,
-    top_tension, depth, n_nodes}, one row per rate where the mode exists, in the order of
-    ``omega``. Ctrl-C raises KeyboardInterrupt."""
-    u = Units(length, mass, gravity)
+    top_tension, depth, node_count (the pivot plus the axis crossings, the command line's
+    ``nodes`` column)}, one row per rate where the mode exists, in the order of ``omega``.
+    Ctrl-C raises KeyboardInterrupt."""
+    u = units_of(length, mass, gravity, units)
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
-        modes = [modes]
+        modes = [int(modes)]
+    assert not isinstance(modes, (bool, int))
     w = as_array(omega, "omega", positive=True) / u.rate
+    _lib.bounded(w.size, "len(omega)", 256 + (0 if links is None else 64), hard=POINTS_MAX)
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
     chain = _chain(links, m)
     try:
-        modes = [_mode(k, chain) for k in modes]
+        mode_list = [_mode(k, chain) for k in modes]
     except TypeError:
         raise TypeError("modes must be an integer or a sequence of integers, got %r"
                         % (modes,)) from None
@@ -258,24 +437,25 @@ def sweep(modes, omega, links=None, tip_mass=0.0, length=1.0, mass=1.0, gravity=
     info = ffi.new("whirl_shape_info[]", n)
     exists = np.zeros(n, dtype=np.intc)
     ex = ffi.cast("int *", ffi.from_buffer(exists))
-    for k in modes:
-        with _lib.interruptible():
+    for k in mode_list:
+        with _lib.interruptible("sweep of mode %d" % k):
             if chain is None:
                 status = lib.whirl_continuum_branch(k, m, n, _lib.dptr(w), info, ex)
             else:
                 status = lib.whirl_nlink_branch(chain._c, k, n, _lib.dptr(w), info, ex)
-        check(status, "mode %d" % k)
+        check(status, "sweep of mode %d" % k, u)
         rows = np.flatnonzero(exists)
         a = np.empty(rows.size, dtype=BRANCH_DTYPE)
         for i, j in enumerate(rows):
             f = info[j]
             a[i] = (w[j] * u.rate, f.tip_r * u.length, f.max_r * u.length,
-                    f.top_tension * u.force, f.depth * u.length, f.n_nodes)
+                    f.top_tension * u.force, f.depth * u.length, f.n_nodes + 1)
+        _lib.finite("the branch of mode %d" % k, *(a[c] for c in ("omega", "tip_r", "max_r", "top_tension", "depth")))
         out[k] = a
     return out
 
 
-EQUILIBRIA_DTYPE = np.dtype([("nodes", "i4"), ("branch", "i4"), ("born_at", "f8"),
+EQUILIBRIA_DTYPE = np.dtype([("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
                              ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
                              ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")])
 
@@ -286,33 +466,36 @@ EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_level
                        "coincident")
 
 
-def equilibria(omega, links=None, tip_mass=0.0, stability=True, branches=True,
-               follow_factor=2.0, shot_budget=20000000, length=1.0, mass=1.0, gravity=1.0):
+def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
+               stability: bool = True, branches: bool = True, follow_factor: float = 2.0,
+               shot_budget: int = 20000000, length: Optional[float] = None,
+               mass: Optional[float] = None, gravity: Optional[float] = None,
+               units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """Every planar relative equilibrium at the rate ``omega`` [sqrt(g/L), or rad/s] (mirror
     images r -> -r counted once), as ``whirl equilibria``: of the N-link chain (links=N or a
     Chain) or of the continuous chain (links=None, Kolodner's shapes). Returns (rows, evidence):
-    a structured array in increasing tip radius with fields nodes (the pivot plus the axis
-    crossings), branch (k: on the branch born at omega_k; 0: isolated; -1: not identified, or
-    branches=False), born_at (omega_k, or the lowest fold of an isolated curve; NaN if none),
-    tip_r, max_r, depth, top_tension, eig_growth (largest real part of the linearisation;
-    NaN for the continuum or stability=False) and index (negative directions of the amended
-    potential; -1 where eig_growth is NaN); and a dict of the completeness evidence (the
-    counts of the two scans and the continuation, tip_floor in lengths, balance the largest
-    force across a link over its tension). branches=False skips the continuation (the scans
-    only). Ctrl-C raises KeyboardInterrupt."""
-    u = Units(length, mass, gravity)
+    a structured array in increasing tip radius with fields node_count (the pivot plus the axis
+    crossings; the command line's ``nodes``), branch (k: on the branch born at omega_k; 0:
+    isolated; -1: not identified, or branches=False), born_at (omega_k, or the lowest fold of an
+    isolated curve; NaN if none), tip_r, max_r, depth, top_tension, eig_growth (largest real
+    part of the linearisation; NaN for the continuum or stability=False) and index (negative
+    directions of the amended potential; -1 where eig_growth is NaN); and a dict of the
+    completeness evidence (the counts of the two scans and the continuation, tip_floor in
+    lengths, balance the largest force across a link over its tension). branches=False skips
+    the continuation (the scans only). Ctrl-C raises KeyboardInterrupt."""
+    u = units_of(length, mass, gravity, units)
     w = as_float(omega, "omega", positive=True) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
-    chain = _chain(links, m)
+    chain = _chain(links, m, dense=bool(stability))
     p = ffi.new("whirl_equilibria_params *", lib.whirl_equilibria_defaults())
     p.stability = 1 if stability else 0
     p.continuation = 1 if branches else 0
     p.follow_factor = as_float(follow_factor, "follow_factor", positive=True)
     p.shot_budget = as_int(shot_budget, "shot_budget", minimum=1)
     out = ffi.new("whirl_equilibria **")
-    with _lib.interruptible():
+    with _lib.interruptible("equilibria"):
         status = lib.whirl_equilibria_find(ffi.NULL if chain is None else chain._c, m, w, p, out)
-    check(status)
+    check(status, "equilibria", u)
     e = ffi.gc(out[0], lib.whirl_equilibria_free)
     rows = np.empty(e.count, dtype=EQUILIBRIA_DTYPE)
     for i in range(e.count):
@@ -320,6 +503,8 @@ def equilibria(omega, links=None, tip_mass=0.0, stability=True, branches=True,
         rows[i] = (q.info.n_nodes + 1, q.branch, q.born_at * u.rate, q.info.tip_r * u.length,
                    q.info.max_r * u.length, q.info.depth * u.length,
                    q.info.top_tension * u.force, q.eig_growth * u.rate, q.index)
+    _lib.finite("the equilibria", *(rows[c] for c in ("tip_r", "max_r", "depth",
+                                                      "top_tension")))
     evidence = {k: getattr(e, k) for k in EQUILIBRIA_EVIDENCE}
     evidence["tip_floor"] *= u.length
     return rows, evidence

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -51,12 +52,67 @@ static int parse_int(const char *s, const char **end_out, int *out)
     return 0;
 }
 
+const char *cli_suffix_name(const char *text)
+{
+    static const char *const names[] = {"rad/s", "Hz", "rpm", "m", "cm", "mm", "kg", "g", "s",
+                                        "ms"};
+    char *end;
+    strtod(text, &end);
+    while (*end == ' ') end++;
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++)
+        if (strcasecmp(end, names[i]) == 0) return names[i];
+    return "";
+}
+
+size_t cli_edit_distance(const char *a, size_t alen, const char *b)
+{
+    /* one row of the dynamic programme, for names up to 63 chars */
+    size_t row[64], blen = strlen(b);
+    if (alen > 63 || blen > 63) return (size_t)-1;
+    for (size_t j = 0; j <= blen; j++) row[j] = j;
+    for (size_t i = 1; i <= alen; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= blen; j++) {
+            const size_t up = row[j];
+            size_t best = diag + (a[i - 1] != b[j - 1]);
+            if (up + 1 < best) best = up + 1;
+            if (row[j - 1] + 1 < best) best = row[j - 1] + 1;
+            row[j] = best;
+            diag = up;
+        }
+    }
+    return row[blen];
+}
+
+/* A comma list of quantities of the option's kind. */
+static int parse_double_list(const cli_option *o, const char *text)
+{
+    cli_double_list *list = o->value;
+    list->n = 0;
+    for (const char *p = text;;) {
+        const char *comma = strchr(p, ',');
+        const size_t len = comma ? (size_t)(comma - p) : strlen(p);
+        char item[64];
+        if (list->n == CLI_LIST_MAX || len == 0 || len >= sizeof item) return -1;
+        memcpy(item, p, len);
+        item[len] = '\0';
+        if (whirl_parse_quantity(item, quantity_of(o->unit), &list->v[list->n], NULL) != 0)
+            return -1;
+        list->suffix[list->n++] = cli_suffix_name(item);
+        if (comma == NULL) return 0;
+        p = comma + 1;
+    }
+}
+
 static int parse_value(const cli_option *o, const char *text)
 {
     const char *end;
     switch (o->type) {
     case CLI_DOUBLE:
         return whirl_parse_quantity(text, quantity_of(o->unit), o->value, NULL);
+    case CLI_DOUBLE_LIST:
+        return parse_double_list(o, text);
     case CLI_INT:
         return (parse_int(text, &end, o->value) == 0 && *end == '\0') ? 0 : -1;
     case CLI_STRING:
@@ -91,7 +147,7 @@ static int parse_value(const cli_option *o, const char *text)
     return -1;
 }
 
-/* What option o takes, in words (buf: room for the longest, 80 chars). */
+/* What option o takes, in words (buf: room for the longest, 96 chars). */
 static const char *type_words(const cli_option *o, char *buf, size_t size)
 {
     switch (o->type) {
@@ -103,6 +159,13 @@ static const char *type_words(const cli_option *o, char *buf, size_t size)
     }
     case CLI_INT: return "an integer";
     case CLI_INT_LIST: return "a comma-separated list of integers or ranges A-B";
+    case CLI_DOUBLE_LIST: {
+        const whirl_quantity q = quantity_of(o->unit);
+        if (q == WHIRL_QUANTITY_NUMBER) return "a finite number or a comma list of them";
+        snprintf(buf, size, "a finite number (optionally with %s) or a comma list of them",
+                 whirl_quantity_suffixes(q));
+        return buf;
+    }
     default: return "a value";
     }
 }
@@ -173,9 +236,20 @@ const char *cli_units_name(const cli_units *u, cli_unit kind)
     return u->physical ? si_names[kind] : unit_names[kind];
 }
 
+const char *cli_rate_words(const cli_units *u, double omega, char *buf, size_t size)
+{
+    const double w = omega * cli_units_rate(u);
+    if (u->physical) snprintf(buf, size, "%.4g rad/s (%.4g Hz)", w, w / 6.283185307179586);
+    else snprintf(buf, size, "%.4g sqrt(g/L)", w);
+    return buf;
+}
+
 void cli_units_comment(FILE *fp, const cli_units *u)
 {
     whirl_write_units_line(fp, u->physical, u->length, u->mass, u->gravity);
+    if (u->physical && !u->mass_given)
+        fprintf(fp, "# mass: M=%s kg assumed (no --mass given); masses, forces and tensions "
+                    "scale with M\n", CLI_NUM(u->mass));
 }
 
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2)
@@ -299,8 +373,8 @@ static void print_help(const cli_command *cmd, const cli_option *opts, size_t no
     for (size_t i = 0; i < nopts; i++) has_units |= opts[i].unit == CLI_UNIT_SET_LENGTH;
     if (has_units)
         printf("Units: dimensionless (length L, mass M, time sqrt(L/g)) unless --length, --mass "
-               "or --gravity is given; then SI (m, kg, s, rad/s, N). Rates also as 4Hz or "
-               "240rpm.\n");
+               "or --gravity is given; then SI (m, kg, s, rad/s, N), and values may carry "
+               "their unit: 4Hz, 240rpm, 60cm, 50g (a unit without --length is an error).\n");
     printf("\noptions:\n");
     const cli_units dimensionless = {1, 1, 1, 0}, si = {1, 1, 1, 1};
     for (size_t i = 0; i < nopts; i++) {
@@ -369,11 +443,18 @@ static int check_ranges(const cli_command *cmd, const cli_option *opts, size_t n
         } else if (o->type == CLI_INT) {
             int x = *(int *)o->value;
             if (!in_range(&r, x)) return cli_error(cmd, "%s %s, got %d", o->name, words, x);
+        } else if (o->type == CLI_DOUBLE_LIST) {
+            const cli_double_list *l = o->value;
+            for (int k = 0; k < l->n; k++)
+                if (!in_range(&r, l->v[k]))
+                    return cli_error(cmd, "%s%s %s, got %s", o->name,
+                                     l->n > 1 ? ": each entry" : "", words, CLI_NUM(l->v[k]));
         } else if (o->type == CLI_INT_LIST) {
             const cli_int_list *l = o->value;
             for (int k = 0; k < l->n; k++)
                 if (!in_range(&r, l->v[k]))
-                    return cli_error(cmd, "%s: each entry %s, got %d", o->name, words, l->v[k]);
+                    return cli_error(cmd, "%s%s %s, got %d", o->name,
+                                     l->n > 1 ? ": each entry" : "", words, l->v[k]);
         }
     }
     return 0;
@@ -395,7 +476,7 @@ static cli_units given_units(const cli_option *opts, size_t nopts)
 /* Converts the physical values given to dimensionless ones. */
 static void convert_units(const cli_option *opts, size_t nopts, const char *given)
 {
-    cli_units u = {1, 1, 1, 0};
+    cli_units u = CLI_UNITS_INIT;
     double *gravity = NULL;
     int gravity_given = 0;
     for (size_t i = 0; i < nopts; i++) {
@@ -412,10 +493,73 @@ static void convert_units(const cli_option *opts, size_t nopts, const char *give
     if (u.physical && gravity && !gravity_given) *gravity = CLI_STANDARD_GRAVITY;
     if (gravity) u.gravity = *gravity;
     else if (u.physical) u.gravity = CLI_STANDARD_GRAVITY;
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        /* --length and --gravity report SI units on (cli_units.physical), --mass its own
+         * presence (cli_units.mass_given) */
+        if (u.physical && o->given && (o->unit == CLI_UNIT_SET_LENGTH ||
+                                       o->unit == CLI_UNIT_SET_GRAVITY))
+            *o->given = 1;
+        if (!given[i] || o->unit == CLI_UNIT_NONE || o->unit >= CLI_UNIT_SET_LENGTH) continue;
+        const double scale = cli_units_scale(&u, o->unit);
+        if (o->type == CLI_DOUBLE) *(double *)o->value /= scale;
+        if (o->type == CLI_DOUBLE_LIST) {
+            cli_double_list *l = o->value;
+            for (int k = 0; k < l->n; k++) l->v[k] /= scale;
+        }
+    }
+}
+
+/* A value written with a physical unit (4Hz, 5cm, 10g) where the command works in dimensionless
+ * units: the scale is unknown, so it is an error naming the option that gives it. Returns 0, or
+ * 1 after printing the error. */
+static int check_suffixes(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                          const char *const *text)
+{
+    int physical = 0, has_units = 0;
     for (size_t i = 0; i < nopts; i++)
-        if (given[i] && opts[i].type == CLI_DOUBLE && opts[i].unit != CLI_UNIT_NONE &&
-            opts[i].unit < CLI_UNIT_SET_LENGTH)
-            *(double *)opts[i].value /= cli_units_scale(&u, opts[i].unit);
+        if (opts[i].unit >= CLI_UNIT_SET_LENGTH) {
+            has_units = 1;
+            physical |= text[i] != NULL;
+        }
+    if (physical) return 0;
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        if (text[i] == NULL || o->unit == CLI_UNIT_NONE || o->unit >= CLI_UNIT_SET_LENGTH)
+            continue;
+        const char *suffix = "";
+        if (o->type == CLI_DOUBLE) suffix = cli_suffix_name(text[i]);
+        else if (o->type == CLI_DOUBLE_LIST)
+            for (int k = 0; k < ((const cli_double_list *)o->value)->n && !suffix[0]; k++)
+                suffix = ((const cli_double_list *)o->value)->suffix[k];
+        if (suffix[0] == '\0') continue;
+        const int mass = o->unit == CLI_UNIT_MASS;
+        if (!has_units)
+            return cli_error(cmd, "%s %s: this command takes %s as a number in units of %s, "
+                             "without a unit", o->name, text[i], o->meta,
+                             cli_units_name(&(cli_units)CLI_UNITS_INIT, o->unit));
+        return cli_error(cmd, "%s %s needs the chain's %s: give %s (SI units), or %s as a "
+                         "number in units of %s", o->name, text[i], mass ? "mass" : "length",
+                         mass ? "--mass" : "--length", o->meta,
+                         cli_units_name(&(cli_units)CLI_UNITS_INIT, o->unit));
+    }
+    return 0;
+}
+
+/* "unknown option '--omgea' (did you mean --omega? see --help)". */
+static int unknown_option(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                          const char *arg, size_t len)
+{
+    const cli_option *best = NULL;
+    size_t best_d = (size_t)-1;
+    for (size_t i = 0; i < nopts; i++) {
+        const size_t d = cli_edit_distance(arg, len, opts[i].name);
+        if (d < best_d) best_d = d, best = &opts[i];
+    }
+    if (best && best_d <= 2 && best_d < len / 2)
+        return cli_error(cmd, "unknown option '%.*s' (did you mean %s? see --help)", (int)len,
+                         arg, best->name);
+    return cli_error(cmd, "unknown option '%.*s' (see --help)", (int)len, arg);
 }
 
 #define CLI_MAX_OPTIONS 256
@@ -425,6 +569,7 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
 {
     size_t npos_seen = 0;
     char given[CLI_MAX_OPTIONS] = {0};
+    const char *text_of[CLI_MAX_OPTIONS] = {0}; /* the text of each value given */
     if (nopts > CLI_MAX_OPTIONS) return cli_error(cmd, "too many options in the table");
     for (size_t k = 0; k < npos; k++) positional[k] = NULL;
     for (int i = 1; i < argc; i++) {
@@ -442,7 +587,7 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         const char *eq = strchr(arg, '=');
         size_t name_len = eq ? (size_t)(eq - arg) : strlen(arg);
         const cli_option *o = find_option(opts, nopts, arg, name_len);
-        if (o == NULL) return cli_error(cmd, "unknown option '%.*s' (see --help)", (int)name_len, arg);
+        if (o == NULL) return unknown_option(cmd, opts, nopts, arg, name_len);
         given[o - opts] = 1;
         if (o->given) *o->given = 1;
         if (o->type == CLI_FLAG) {
@@ -452,7 +597,8 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
         }
         const char *text = eq ? eq + 1 : (i + 1 < argc ? argv[++i] : NULL);
         if (text == NULL) return cli_error(cmd, "option %s needs a value (%s)", o->name, o->meta);
-        char words[80];
+        char words[96];
+        text_of[o - opts] = text;
         if (parse_value(o, text) != 0)
             return cli_error(cmd, "option %s needs %s, got '%s'", o->name,
                              type_words(o, words, sizeof words), text);
@@ -461,6 +607,7 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
     if (check_ranges(cmd, opts, nopts, given, 1)) return 1;
     const cli_units u = given_units(opts, nopts);
     if (cli_units_check(cmd, &u)) return 1;
+    if (check_suffixes(cmd, opts, nopts, text_of)) return 1;
     convert_units(opts, nopts, given);
     return check_table(cmd, opts, nopts, given);
 }

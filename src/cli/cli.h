@@ -14,6 +14,8 @@ typedef enum {
     CLI_INT,      /* int */
     CLI_STRING,   /* const char * (points into argv) */
     CLI_INT_LIST, /* comma list of ints or ranges A-B into a cli_int_list */
+    CLI_DOUBLE_LIST, /* comma list of finite doubles (each with the option's unit, converted like
+                      * a CLI_DOUBLE) into a cli_double_list */
     CLI_FLAG      /* int set to 1, takes no value */
 } cli_type;
 
@@ -22,6 +24,12 @@ typedef struct cli_int_list {
     int n;
     int v[CLI_LIST_MAX];
 } cli_int_list;
+typedef struct cli_double_list {
+    int n;
+    double v[CLI_LIST_MAX];
+    const char *suffix[CLI_LIST_MAX]; /* the unit each entry was written in, as cli_suffix_name
+                                       * gives it ("Hz", "rpm", "cm"), or "" for none */
+} cli_double_list;
 
 /* Physical kind of a double option, for units (see cli_units below). A value given on the
  * command line is converted to the library's dimensionless units right after parsing, so the
@@ -89,6 +97,13 @@ double cli_grid(double lo, double hi, int count, int i);
 int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *opts, size_t nopts,
               const char **positional, size_t npos);
 
+/* The unit suffix ending a quantity's text, in its usual spelling: "4 hz" -> "Hz", "60CM" ->
+ * "cm", "25.1rad/s" -> "rad/s"; "" if the text ends in no known suffix. */
+const char *cli_suffix_name(const char *text);
+
+/* Levenshtein distance between a[0..alen-1] and the string b (for "did you mean"). */
+size_t cli_edit_distance(const char *a, size_t alen, const char *b);
+
 /* Prints "whirl CMD: message" on one line to stderr and returns 1 (the exit status). */
 int cli_error(const cli_command *cmd, const char *fmt, ...)
 #if defined(__GNUC__)
@@ -124,14 +139,16 @@ typedef struct cli_units {
     double mass;    /* M [kg], --mass (default 1) */
     double gravity; /* g [m/s^2], --gravity (default 1; 9.80665 once a unit option is given) */
     int physical;   /* set by cli_parse: 1 if any of the three was given */
+    int mass_given; /* --mass was given (else, in SI units, M = 1 kg is assumed and the units
+                     * comment says so) */
 } cli_units;
-#define CLI_UNITS_INIT {1, 1, 1, 0}
+#define CLI_UNITS_INIT {1, 1, 1, 0, 0}
 #define CLI_STANDARD_GRAVITY WHIRL_STANDARD_GRAVITY /* g when SI units are on and no --gravity */
 #define CLI_UNITS_OPTIONS(u)                                                                   \
     {"--length", NULL, CLI_DOUBLE, &(u).length, &(u).physical, "L",                             \
      "chain length: switches to SI units (m; e.g. 0.6 or 60cm)", "(0, inf)", NULL, NULL, NULL,  \
      CLI_UNIT_SET_LENGTH},                                                                      \
-    {"--mass", NULL, CLI_DOUBLE, &(u).mass, &(u).physical, "M",                                 \
+    {"--mass", NULL, CLI_DOUBLE, &(u).mass, &(u).mass_given, "M",                               \
      "chain mass: switches to SI units (kg; e.g. 0.05 or 50g)", "(0, inf)", NULL, NULL, NULL,   \
      CLI_UNIT_SET_MASS},                                                                        \
     {"--gravity", NULL, CLI_DOUBLE, &(u).gravity, &(u).physical, "G",                           \
@@ -152,7 +169,11 @@ double cli_units_force(const cli_units *u);   /* M g */
 double cli_units_scale(const cli_units *u, cli_unit kind);
 /* The name of the user's unit of the kind: "m", "rad/s", ... or "L", "sqrt(g/L)", ... */
 const char *cli_units_name(const cli_units *u, cli_unit kind);
-/* Writes the "# units: ..." comment line. */
+/* A rate (dimensionless in) in words, short (4 significant digits): "25.13 rad/s (4 Hz)" in SI
+ * units, "4.5 sqrt(g/L)" dimensionless; into buf (size bytes), returned. */
+const char *cli_rate_words(const cli_units *u, double omega, char *buf, size_t size);
+/* Writes the "# units: ..." comment line; in SI units without --mass, a second one:
+ *   # mass: M=1 kg assumed (no --mass given); masses, forces and tensions scale with M */
 void cli_units_comment(FILE *fp, const cli_units *u);
 /* The library's last message (whirl_last_error) with its rates and tip radii in the user's
  * units, written into buf (size bytes); returns buf. CLI_LIBRARY_ERROR(u) gives it in a buffer
@@ -258,6 +279,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv);
 int cmd_minimize(const cli_command *cmd, int argc, char **argv);
 int cmd_fit(const cli_command *cmd, int argc, char **argv);
 int cmd_driven(const cli_command *cmd, int argc, char **argv);
+int cmd_plot(const cli_command *cmd, int argc, char **argv);
 int cmd_regime(const cli_command *cmd, int argc, char **argv);
 int cmd_view(const cli_command *cmd, int argc, char **argv);
 

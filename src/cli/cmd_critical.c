@@ -62,6 +62,14 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
             CLI_NUM(m.tip_mass * m.units.mass), cli_units_name(&m.units, CLI_UNIT_MASS),
             cli_units_name(&m.units, CLI_UNIT_RATE));
     if (m.chain) fprintf(out.fp, "# links=%d\n", m.links);
+    /* in SI units the first births also in Hz, short: the frequency a turning hand counts */
+    if (m.units.physical) {
+        fprintf(out.fp, "# in Hz:");
+        for (int k = 1; k <= modes && k <= 8; k++)
+            fprintf(out.fp, "%s mode %d from %.4g Hz", k > 1 ? "," : "", k,
+                    omega[k - 1] * rate / 6.283185307179586);
+        fprintf(out.fp, "%s\n", modes > 8 ? ", ..." : "");
+    }
     cli_units_comment(out.fp, &m.units);
     fprintf(out.fp, "mode,omega\n");
     for (int k = 1; k <= modes; k++) fprintf(out.fp, "%d,%s\n", k, CLI_NUM(omega[k - 1] * rate));

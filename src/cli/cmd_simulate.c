@@ -1,13 +1,16 @@
-/* whirl simulate SCENE [-o FILE] [--set section.key=value ...]: runs the scene (whirl/scene.h:
- * the start state, the rows and the trace are the library's whirl_scene_work_run) and writes the
- * asked columns as CSV, and optionally the trace of every mass.
+/* whirl simulate SCENE [-o FILE] [--set section.key=value ...] [--animate MOVIE]: runs the scene
+ * (whirl/scene.h: the start state, the rows and the trace are the library's whirl_scene_work_run)
+ * and writes the asked columns as CSV, optionally the trace of every mass, and with --animate a
+ * movie of the trace (figure.h: MP4, WebM or GIF; the trace, unless the scene names one, is
+ * taken every 1/25 s of the run's time in SI units, at most 250 frames, and played at 25 frames
+ * a second: real time up to 10 s).
  * Exit status: 0 (also when the stop condition ends the run, with a note on stderr); 1 on bad
- * input (nothing written) or a failed run (the rows so far kept); 130 after Ctrl-C (rows kept). */
+ * input or a failed run (nothing written); 130 after Ctrl-C (the rows so far kept). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/cli.h"
+#include "cli/figure.h"
 #include "whirl/scene.h"
 
 /* Everything one run needs. */
@@ -84,7 +87,7 @@ static int simulate(run *r)
         return CLI_EXIT_INTERRUPTED;
     }
     if (status != GSL_SUCCESS) {
-        cli_error(r->cmd, "%s: %s; %lu rows kept", s->path, whirl_last_error(), res.rows);
+        cli_error(r->cmd, "%s: %s; no file written", s->path, whirl_last_error());
         return 1;
     }
     if (res.stopped)
@@ -93,16 +96,60 @@ static int simulate(run *r)
     return 0;
 }
 
+/* A step that cannot resolve the motion: dt above a quarter of the rotation period, or above
+ * half the period of the chain's fastest swing, pi sqrt(L/g) / N (the top mode of N links
+ * hanging, frequency about 2 N sqrt(g/L): links of length L/N under the tension of the whole
+ * chain); a message on stderr, the run goes on. */
+static void check_step(const cli_command *cmd, const whirl_scene *s)
+{
+    const double pi = 3.141592653589793;
+    const double g = s->physical ? s->gravity : 1, len = s->physical ? s->chain_length : 1;
+    const double t_fast = pi * sqrt(len / g) / (double)s->links;
+    const double t_rot = s->omega > 0 ? 2 * pi / s->omega : HUGE_VAL;
+    const char *unit = s->physical ? " s" : " sqrt(L/g)";
+    if (s->tol > 0) return;
+    if (s->dt > 0.25 * t_rot)
+        fprintf(stderr, "whirl %s: dt = %.3g%s is larger than a quarter of the rotation period "
+                "(%.3g%s): the steps cannot follow the turning chain\n", cmd->name, s->dt, unit,
+                t_rot, unit);
+    else if (s->dt > 0.5 * t_fast)
+        fprintf(stderr, "whirl %s: dt = %.3g%s is larger than half the period of the chain's "
+                "fastest swing (%.3g%s, pi sqrt(L/g) / N): the steps cannot follow it\n",
+                cmd->name, s->dt, unit, t_fast, unit);
+}
+
+/* With --animate and no trace in the scene: the scene parsed again with a trace in the movie's
+ * work folder, a frame every 1/25 s (SI) or every t_end/125 (dimensionless), at most 250. */
+static int add_trace(run *r, const char *scene_path, const char **sets, size_t n_sets,
+                     const char *dir, char *trace, size_t size)
+{
+    char every[64];
+    double dt = r->scene.physical ? 0.04 : r->scene.t_end / 125;
+    if (r->scene.t_end / dt > 250) dt = r->scene.t_end / 250;
+    snprintf(trace, size, "output.trace=%s/trace.dat", dir);
+    snprintf(every, sizeof every, "output.trace_every=%.17g", dt);
+    sets[n_sets] = trace;
+    sets[n_sets + 1] = every;
+    whirl_scene_free(&r->scene);
+    if (whirl_scene_parse(scene_path, sets, n_sets + 2, &r->scene) != GSL_SUCCESS)
+        return cli_error(r->cmd, "%s", whirl_last_error());
+    return 0;
+}
+
 int cmd_simulate(const cli_command *cmd, int argc, char **argv)
 {
     const char *output = NULL, *set_help = NULL; /* --set is taken out before cli_parse */
+    const char *movie = NULL;
     const cli_option opts[] = {
         {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
         {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
          "override a key of the scene (repeatable)"},
+        {"--animate", NULL, CLI_STRING, &movie, NULL, "MOVIE",
+         "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
     };
-    /* --set may repeat: take every one out before the common parser sees the rest */
-    const char **sets = malloc((size_t)argc * sizeof *sets);
+    /* --set may repeat: take every one out before the common parser sees the rest (room for two
+     * more: the trace --animate adds) */
+    const char **sets = malloc(((size_t)argc + 2) * sizeof *sets);
     char **rest = malloc(((size_t)argc + 1) * sizeof *rest);
     if (sets == NULL || rest == NULL) {
         free(sets);
@@ -124,17 +171,29 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     rest[n_rest] = NULL;
     const char *scene_path = NULL;
-    if (rc == 0) rc = cli_parse(cmd, n_rest, rest, opts, 2, &scene_path, 1);
+    if (rc == 0) rc = cli_parse(cmd, n_rest, rest, opts, sizeof opts / sizeof *opts, &scene_path, 1);
     if (rc == 0 && scene_path == NULL) rc = cli_error(cmd, "missing the scene file (see --help)");
+    if (rc == 0 && movie && cli_figure_check_out(cmd, "--animate", movie, 1)) rc = 1;
+    if (rc == 0 && movie && output == NULL) output = "/dev/null"; /* the movie alone */
 
     run r;
     memset(&r, 0, sizeof r);
     r.cmd = cmd;
+    char *dir = NULL, trace_set[4200];
     if (rc == 0 && whirl_scene_parse(scene_path, sets, n_sets, &r.scene) != GSL_SUCCESS)
         rc = cli_error(cmd, "%s", whirl_last_error());
+    if (rc == 0 && movie && r.scene.trace == NULL) {
+        if ((dir = cli_figure_work_dir(cmd, movie)) == NULL) rc = 1;
+        else rc = add_trace(&r, scene_path, sets, n_sets, dir, trace_set, sizeof trace_set);
+    }
     free(sets);
     free(rest);
-    if (rc != 0) return rc;
+    if (rc != 0) {
+        whirl_scene_free(&r.scene);
+        cli_figure_remove_dir(dir);
+        return rc;
+    }
+    check_step(cmd, &r.scene);
     if (r.scene.trace && strcmp(r.scene.trace, "-") == 0)
         rc = key_error(&r, WHIRL_KEY_OUTPUT_TRACE, "must be a file, not standard output");
     if (rc == 0 && (r.work = whirl_scene_work_alloc(&r.scene)) == NULL)
@@ -147,16 +206,24 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     if (rc == 0) {
         rc = simulate(&r);
-        /* whatever the outcome, the rows written so far are kept */
-        if (r.trace_open) {
+        /* a failed run leaves no file (the outputs are aborted below); a run stopped by Ctrl-C
+         * keeps the rows written so far */
+        if (r.trace_open && rc != 1) {
             r.trace_open = 0;
             if (cli_out_commit(cmd, &r.trace) != 0 && rc == 0) rc = 1;
         }
-        r.csv_open = 0;
-        if (cli_out_commit(cmd, &r.csv) != 0 && rc == 0) rc = 1;
+        if (rc != 1) {
+            r.csv_open = 0;
+            if (cli_out_commit(cmd, &r.csv) != 0 && rc == 0) rc = 1;
+        }
     }
     if (r.csv_open) cli_out_abort(&r.csv);
     if (r.trace_open) cli_out_abort(&r.trace);
+    if (rc == 0 && movie) {
+        const char *trace = r.scene.trace;
+        rc = cli_figure_draw(cmd, &trace, 1, movie);
+    }
+    cli_figure_remove_dir(dir);
     whirl_scene_work_free(r.work);
     whirl_scene_free(&r.scene);
     return rc;

@@ -11,6 +11,7 @@
  * the rate reached and why, exit status 1 (its rows would stop short of the grid's end). */
 #include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli/steady_cli.h"
 
@@ -147,6 +148,40 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
         }
     }
     steady_cli_follow_end(&follow);
+    /* a mode with no row on the grid (not stopped early): its birth, above the grid's end, or a
+     * branch that does not reach the grid; the sweep fails when no mode has a row */
+    int modes_with_rows = 0;
+    char absent[1024] = "";
+    for (int i = 0; i < modes.n && rc == 0 && !interrupted; i++) {
+        size_t count_i = 0;
+        for (size_t j = 0; j < (m.chain ? rows.n : n); j++)
+            count_i += m.chain ? rows.info[j].mode == modes.v[i] : exists[i * n + j] != 0;
+        if (count_i > 0) {
+            modes_with_rows++;
+            continue;
+        }
+        double birth = 0;
+        char words[64], hi[64];
+        size_t used = strlen(absent);
+        if (steady_cli_critical(cmd, &m, modes.v[i], &birth)) {
+            rc = 1;
+            break;
+        }
+        snprintf(absent + used, sizeof absent - used, "%smode %d exists only above %s", used ? "; " : "",
+                 modes.v[i], cli_rate_words(&m.units, birth, words, sizeof words));
+        if (birth < omega_max)
+            snprintf(absent + strlen(absent), sizeof absent - strlen(absent),
+                     " and has no shape at the grid's rates up to %s",
+                     cli_rate_words(&m.units, omega_max, hi, sizeof hi));
+    }
+    if (rc == 0 && absent[0] && modes_with_rows == 0) {
+        char lo[64], hi[64];
+        rc = cli_error(cmd, "no mode exists on the grid %s to %s: %s",
+                       cli_rate_words(&m.units, omega_min, lo, sizeof lo),
+                       cli_rate_words(&m.units, omega_max, hi, sizeof hi), absent);
+    } else if (rc == 0 && absent[0]) {
+        fprintf(stderr, "whirl %s: note: %s (no rows)\n", cmd->name, absent);
+    }
     cli_out out, ev;
     if (rc == 0 && events_path && (rc = cli_out_open(cmd, &ev, events_path)) == 0) {
         fprintf(ev.fp, "# events on the branches of the N-link chain (%d links), tip mass %s %s; "
@@ -178,6 +213,7 @@ int cmd_sweep(const cli_command *cmd, int argc, char **argv)
                     "mode exists\n", CLI_NUM(m.tip_mass * m.units.mass),
                     cli_units_name(&m.units, CLI_UNIT_MASS));
         }
+        if (absent[0]) fprintf(out.fp, "# no rows: %s\n", absent);
         if (interrupted)
             fprintf(out.fp, "# interrupted in mode %d (%s): the rows found until then\n",
                     interrupted, stopped);

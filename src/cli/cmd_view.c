@@ -6,8 +6,10 @@
  *   - or one or more shapes (`whirl shape`, `whirl minimize`, `whirl driven --omega`): CSV with
  *     columns r and z (a planar shape, in the co-rotating frame) or x, y and z; the comment
  *     line "# omega=..." gives the rate at which it turns in the inertial view.
- * The page plays the motion (play/pause, speed), in the inertial or the co-rotating frame, and
- * lists the files' comment lines (the parameters). The page's template is src/cli/view.html; the
+ * The page plays the motion (play/pause, speed; a trace also with a time slider and frame
+ * stepping), in the inertial or the co-rotating frame, labels each shape "mode K, RATE" (the rate
+ * as the file's writer gave it), lists the files' comment lines (the parameters) and saves the
+ * current view as a PNG. Planar shapes are first seen from the side (camera 0,0: true lengths). The page's template is src/cli/view.html; the
  * Makefile turns it into the string table cli_view_html. */
 #include <ctype.h>
 #include <errno.h>
@@ -48,7 +50,11 @@ typedef struct source {
     const char *path;
     int trace;            /* 1: a trace, 0: a shape */
     double omega, eps;    /* NAN when not stated */
+    int mode;             /* mode=K of a shape's summary line; 0 if none */
+    int links;            /* links=N of a trace's line; 0 if none */
+    char rate[96];        /* a shape's "# rate: " line up to " (": the rate as its writer gave it */
     int physical;         /* the units line says SI */
+    int planar;           /* every point has y = 0 */
     char info[VIEW_INFO_MAX][256];
     int n_info;
     vec xyz;              /* points */
@@ -95,8 +101,19 @@ static int read_source(const cli_command *cmd, source *s)
         lineno++;
         if (line[0] == '#') {
             double w = meta_value(line, "omega"), e = meta_value(line, "eps");
+            double k = meta_value(line, "mode"), nl = meta_value(line, "links");
             if (isnan(s->omega) && isfinite(w)) s->omega = w;
             if (isnan(s->eps) && isfinite(e)) s->eps = e;
+            if (s->mode == 0 && k >= 1 && k < 1e9) s->mode = (int)k;
+            if (s->links == 0 && nl >= 1 && nl < 1e9) s->links = (int)nl;
+            if (strncmp(line, "# rate: ", 8) == 0 && s->rate[0] == '\0') {
+                snprintf(s->rate, sizeof s->rate, "%.*s", (int)sizeof s->rate - 1, line + 8);
+                s->rate[strcspn(s->rate, "\r\n")] = '\0';
+                char *paren = strstr(s->rate, " ("); /* "4 Hz (omega=...)": the rate as given */
+                if (paren) *paren = '\0';
+                for (size_t n = strlen(s->rate); n > 0 && s->rate[n - 1] == ' '; n--)
+                    s->rate[n - 1] = '\0';
+            }
             if (strncmp(line, "# units: length=m", 17) == 0) s->physical = 1;
             if (strncmp(line, "# t = ", 6) != 0 && s->n_info < VIEW_INFO_MAX) {
                 snprintf(s->info[s->n_info], sizeof s->info[0], "%s", line + 1 + (line[1] == ' '));
@@ -166,6 +183,8 @@ static int read_source(const cli_command *cmd, source *s)
     if (rc == 0 && ferror(fp)) rc = cli_error(cmd, "error reading '%s'", s->path);
     fclose(fp);
     if (rc == 0 && s->xyz.n < 6) rc = cli_error(cmd, "%s: no chain in it (at least two points)", s->path);
+    s->planar = 1;
+    for (size_t i = 1; i < s->xyz.n && s->planar; i += 3) s->planar = s->xyz.v[i] == 0;
     if (rc == 0 && s->trace) { /* every frame must have the same number of points */
         size_t per = s->start.n > 1 ? (size_t)s->start.v[1] : s->xyz.n / 3;
         for (size_t k = 0; k < s->start.n; k++) {
@@ -200,6 +219,26 @@ static void put_points(FILE *fp, const double *v, size_t n)
     fputc(']', fp);
 }
 
+/* What a file shows, short: "mode 2, 4 Hz" (a shape, its rate as given), "mode 2, omega = 3
+ * sqrt(g/L)", or "30 links, omega = 25.13 rad/s (4 Hz), eps = 0.01 m" (a trace). */
+static void label_of(const source *s, char *buf, size_t size)
+{
+    char mode[32] = "", rate[128] = "";
+    const double w = isfinite(s->omega) ? s->omega : 0;
+    if (s->rate[0]) snprintf(rate, sizeof rate, "%s", s->rate);
+    else if (s->physical) snprintf(rate, sizeof rate, "omega = %.4g rad/s (%.4g Hz)", w,
+                                   w / 6.283185307179586);
+    else snprintf(rate, sizeof rate, "omega = %.4g sqrt(g/L)", w);
+    if (s->trace) {
+        int n = snprintf(buf, size, "%d links, %s", s->links, rate);
+        if (isfinite(s->eps) && s->eps > 0 && n > 0 && (size_t)n < size)
+            snprintf(buf + n, size - (size_t)n, ", eps = %.3g %s", s->eps, s->physical ? "m" : "L");
+        return;
+    }
+    if (s->mode > 0) snprintf(mode, sizeof mode, "mode %d, ", s->mode);
+    snprintf(buf, size, "%s%s", mode, rate);
+}
+
 static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], double omega,
                        double eps)
 {
@@ -229,17 +268,14 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
             physical ? "s" : "sqrt(L/g)");
     fprintf(fp, "\"extent\": {\"r\": %.7g, \"zmin\": %.7g, \"zmax\": %.7g, \"len\": %.7g},\n", r,
             zmin, zmax, len > 0 ? len : 1);
-    /* the summary: each file's line that names omega (else its first comment line), of a trace
-     * line only the parameters */
+    /* the summary, short: each shape's label (mode and rate as given), or the trace's links, rate
+     * (and its frequency in Hz in SI units) and eps */
     char summary[1024] = "";
     for (int k = 0; k < nsrc; k++) {
-        const char *pick = src[k].n_info ? src[k].info[0] : "";
-        for (int i = src[k].n_info - 1; i >= 0; i--)
-            if (strstr(src[k].info[i], "omega=")) pick = src[k].info[i];
-        const char *tail = strrchr(pick, ';'); /* a trace line: its parameters, after the ';' */
-        if (tail && tail[1] == ' ') pick = tail + 2;
+        char one[256];
+        label_of(&src[k], one, sizeof one);
         size_t used = strlen(summary);
-        snprintf(summary + used, sizeof summary - used, "%s%s", k ? " | " : "", pick);
+        snprintf(summary + used, sizeof summary - used, "%s%s", k ? "; " : "", one);
     }
     fprintf(fp, "\"summary\": ");
     put_string(fp, summary);
@@ -271,11 +307,10 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
     } else {
         fprintf(fp, "\"shapes\": [\n");
         for (int k = 0; k < nsrc; k++) {
-            char label[64] = "";
-            if (isfinite(src[k].omega))
-                snprintf(label, sizeof label, "omega %s", CLI_NUM(src[k].omega));
+            char label[256];
+            label_of(&src[k], label, sizeof label);
             fprintf(fp, "%s{\"label\": ", k ? ",\n" : "");
-            put_string(fp, nsrc > 1 ? label : "");
+            put_string(fp, label);
             fprintf(fp, ", \"omega\": %.17g, \"p\": ", isfinite(src[k].omega) ? src[k].omega : 0);
             put_points(fp, src[k].xyz.v, src[k].xyz.n);
             fputc('}', fp);
@@ -287,11 +322,13 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
 int cmd_view(const cli_command *cmd, int argc, char **argv)
 {
     const char *output = NULL, *camera_text = "30,15";
+    int camera_given = 0;
     double omega = 0, eps = 0;
     int omega_given = 0, eps_given = 0;
     const cli_option opts[] = {
-        {"--camera", NULL, CLI_STRING, &camera_text, NULL, "AZ,EL",
-         "first view: azimuth and elevation in degrees (default 30,15; 0,0 looks along +y)"},
+        {"--camera", NULL, CLI_STRING, &camera_text, &camera_given, "AZ,EL",
+         "first view: azimuth and elevation in degrees (default 0,0, the true side view, for "
+         "planar shapes; else 30,15; 0,0 looks along +y)"},
         {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W",
          "rate of the co-rotating view, in the file's rate unit (default: from the file)",
          "[0, inf)"},
@@ -324,6 +361,10 @@ int cmd_view(const cli_command *cmd, int argc, char **argv)
     for (int k = 1; k < nsrc && rc == 0; k++)
         if (src[k].trace || src[0].trace)
             rc = cli_error(cmd, "one trace, or any number of shapes: not both");
+    /* planar shapes: the side view, in which every length in the plane is true */
+    int planar = rc == 0;
+    for (int k = 0; k < nsrc && rc == 0; k++) planar &= !src[k].trace && src[k].planar;
+    if (planar && !camera_given) camera[0] = camera[1] = 0;
     if (rc == 0) {
         if (!omega_given) omega = isfinite(src[0].omega) ? src[0].omega : 0;
         if (!eps_given) eps = isfinite(src[0].eps) ? src[0].eps : 0;

@@ -38,6 +38,9 @@ static const cli_command commands[] = {
     {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-count N (--eps E | --eps-min C --eps-max D --eps-count M) [OPTIONS]",
      "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.",
      cmd_regime, "whirl regime --omega 4Hz --eps 3cm --length 0.5 --mass 50g --drag-quadratic 0.0029"},
+    {"plot", "FILE... -o PICTURE",
+     "A figure (PNG, SVG, PDF) of whirl's CSV files, or a trace's animation (MP4, WebM, GIF).",
+     cmd_plot, "whirl plot s2.csv s4.csv s6.csv -o shapes.png"},
     {"view", "TRACE | SHAPE... [--camera AZ,EL] [--omega W] [--eps E] [-o FILE]",
      "One self-contained HTML page showing a trace or shapes in 3D (rotatable, animated).",
      cmd_view, "whirl view run.dat -o run.html"},
@@ -46,11 +49,12 @@ static const size_t n_commands = sizeof commands / sizeof commands[0];
 
 static void usage(FILE *fp)
 {
-    fprintf(fp, "usage: whirl COMMAND [OPTIONS]   (whirl COMMAND --help for its options)\n"
+    fprintf(fp, "usage: whirl COMMAND [OPTIONS]   (whirl help COMMAND: its options)\n"
                 "       whirl --version           (the program's and the library's version)\n\n"
                 "whirl computes the steady shapes, dynamics and stability of a chain spun about\n"
                 "the vertical axis. Units: dimensionless (L = M = g = 1) unless --length,\n"
-                "--mass or --gravity is given, then SI; rates also as 4Hz or 240rpm.\n"
+                "--mass or --gravity is given, then SI, with units on values: 4Hz, 240rpm,\n"
+                "60cm, 50g. Pictures: shape --plot, simulate --animate, plot, view.\n"
                 "Rate grids: --omega-min A --omega-max B --omega-count N, N rates, both ends.\n\n"
                 "commands:\n");
     for (size_t i = 0; i < n_commands; i++)
@@ -64,8 +68,14 @@ int main(int argc, char **argv)
         usage(stderr);
         return 1;
     }
-    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
-        strcmp(argv[1], "help") == 0) {
+    /* whirl help CMD: CMD's help, as whirl CMD --help */
+    char help_flag[] = "--help";
+    char *help_argv[] = {argv[0], argc > 2 ? argv[2] : NULL, help_flag, NULL};
+    if (strcmp(argv[1], "help") == 0 && argc > 2) {
+        argc = 3;
+        argv = help_argv;
+    } else if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+               strcmp(argv[1], "help") == 0) {
         usage(stdout);
         return 0;
     }
@@ -83,6 +93,16 @@ int main(int argc, char **argv)
             if (rc == 1 && whirl_stop_requested()) rc = CLI_EXIT_INTERRUPTED;
             return rc == 2 ? 0 : rc; /* 2: help was printed */
         }
-    fprintf(stderr, "whirl: unknown command '%s' (whirl --help lists them)\n", argv[1]);
+    /* the nearest command's name, if within two edits */
+    size_t best = n_commands, best_d = (size_t)-1;
+    for (size_t i = 0; i < n_commands; i++) {
+        const size_t d = cli_edit_distance(argv[1], strlen(argv[1]), commands[i].name);
+        if (d < best_d) best_d = d, best = i;
+    }
+    if (best < n_commands && best_d <= 2 && best_d < strlen(argv[1]))
+        fprintf(stderr, "whirl: unknown command '%s' (did you mean %s? whirl --help lists them)\n",
+                argv[1], commands[best].name);
+    else
+        fprintf(stderr, "whirl: unknown command '%s' (whirl --help lists them)\n", argv[1]);
     return 1;
 }

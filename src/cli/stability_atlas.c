@@ -253,7 +253,7 @@ int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double om
     if (rc == CLI_EXIT_INTERRUPTED)
         cli_error(cmd, "interrupted: %ld of %ld chunks in '%s' (continue with --resume)",
                   finished, total, output);
-    else if (!rc && finished == already && write_atlas(cmd, output, &a, modes, omega_max, degree))
+    else if (!rc && write_atlas(cmd, output, &a, modes, omega_max, degree)) /* all chunks */
         rc = 1;
     whirl_cstab_free(w);
     free(a.rows), free(a.done), free(win), free(sig);

@@ -1,5 +1,6 @@
 /* The N-link chain's parameters. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -9,6 +10,13 @@
 
 static whirl_chain *chain_new(size_t n)
 {
+    /* n * sizeof(double) must not wrap round: a wrapped size allocates a short array that the
+     * fill then overruns. */
+    if (n > SIZE_MAX / (2 * sizeof(double))) {
+        whirl_fail(GSL_ENOMEM, "a chain of %zu links needs more memory than can be addressed "
+                               "(%zu links at most)", n, SIZE_MAX / (2 * sizeof(double)));
+        return NULL;
+    }
     whirl_chain *c = calloc(1, sizeof *c);
     if (c == NULL) goto fail;
     c->n = n;

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 #include "whirl/common.h"
 
@@ -40,7 +41,6 @@ typedef struct suffix {
 
 static const suffix rate_suffixes[] = {{"rad/s", 1},
                                        {"Hz", 6.283185307179586476925286766559},
-                                       {"hz", 6.283185307179586476925286766559},
                                        {"rpm", 0.10471975511965977461542144610932},
                                        {NULL, 0}};
 static const suffix length_suffixes[] = {{"m", 1}, {"cm", 0.01}, {"mm", 0.001}, {NULL, 0}};
@@ -77,9 +77,12 @@ int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value, i
     double v = strtod(text, &end);
     if (end == text || errno == ERANGE || !isfinite(v)) return -1;
     if (suffixed) *suffixed = 0;
+    /* "4Hz", "4 Hz", "4HZ": spaces before the suffix, which is matched without regard to case
+     * (no two suffixes of a kind differ only in case) */
+    while (*end == ' ') end++;
     if (*end != '\0') {
         const suffix *u = suffixes_of(kind);
-        while (u && u->text && strcmp(u->text, end) != 0) u++;
+        while (u && u->text && strcasecmp(u->text, end) != 0) u++;
         if (u == NULL || u->text == NULL) return -1;
         v *= u->factor;
         if (!isfinite(v)) return -1;

@@ -8,6 +8,7 @@
  * the other side. A process that exits meanwhile (the command line's exit 130) ends the worker
  * with it; the worker writes only its own memory, so that is safe. */
 #include <pthread.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -182,6 +183,10 @@ int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, 
         *info = (int)dgeev(jobvl, jobvr, m, a, lda, re, im, v, ldv, work, (lapack_int)lwork);
         return GSL_SUCCESS;
     }
+    /* 2 m^2 + 2 m + lwork doubles, without wrapping round */
+    if (m > SIZE_MAX / (8 * sizeof(double)) / m || (size_t)lwork > SIZE_MAX / (4 * sizeof(double)))
+        return whirl_fail(GSL_ENOMEM, "an eigen-solve of %zu rows needs more memory than can be "
+                                      "addressed", m);
     dgeev_job *j = calloc(1, sizeof *j);
     const size_t size = 2 * m * m + 2 * m + (size_t)lwork;
     if (j == NULL || (j->a = malloc(size * sizeof(double))) == NULL) {
@@ -261,6 +266,11 @@ static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapa
         *info = (int)lu_call(parts, n, nrhs, a, lda, ipiv, b, ldb);
         return GSL_SUCCESS;
     }
+    /* n^2 + n nrhs doubles, without wrapping round */
+    if ((n > 0 && n > SIZE_MAX / (4 * sizeof(double)) / n) ||
+        (nrhs > 0 && n > SIZE_MAX / (4 * sizeof(double)) / nrhs))
+        return whirl_fail(GSL_ENOMEM, "a linear solve of %zu rows needs more memory than can be "
+                                      "addressed", n);
     lu_job *j = calloc(1, sizeof *j);
     const size_t nb = (parts & LU_SOLVE) ? n * nrhs : 0;
     if (j == NULL || (j->a = malloc((n * n + nb) * sizeof(double))) == NULL ||

@@ -602,7 +602,7 @@ int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *param
     int status = problem_init(&pb, chain, params);
     if (status) return status;
     whirl_shape_info free_shape;
-    status = chain ? whirl_nlink_solve(chain, params->omega, mode, 0, &free_shape)
+    status = chain ? whirl_nlink_solve(chain, params->omega, mode, &free_shape)
                    : whirl_continuum_solve(params->omega, mode, params->tip_mass, 0, &free_shape);
     double u[3] = {side * free_shape.tip_r, 0, params->omega}, rnorm;
     int iterations = 0;

@@ -790,7 +790,7 @@ static int follow_curve(whirl_nlink_path *p, double omega, double omega_max, con
             size_t before = l->n;
             /* from the crossing's own link angles (the tip radius alone does not fix the
              * shape where roots crowd) */
-            memcpy(aw->theta, p->cross_theta + (size_t)k * l->links, l->links * sizeof *aw->theta);
+            memcpy(aw->theta, whirl_nlink_path_cross_theta(p) + (size_t)k * l->links, l->links * sizeof *aw->theta);
             if ((status = angle_polish(aw, &a))) {
                 if (status == WHIRL_EINTERRUPTED || status == GSL_ENOMEM) return -status;
                 cv->failed = 1;

@@ -350,11 +350,27 @@ static int require(const convert *v, whirl_scene_key key, const char *why)
     return key_error(v, key, "missing%s%s", why ? " " : "", why ? why : "");
 }
 
-/* A finite number, the whole text. */
-static int parse_number(const char *text, whirl_quantity kind, double *out)
+/* A finite number, the whole text; *suffixed: whether it carries a unit. */
+static int parse_number(const char *text, whirl_quantity kind, double *out, int *suffixed)
 {
-    return whirl_parse_quantity(text, kind, out, NULL);
+    return whirl_parse_quantity(text, kind, out, suffixed);
 }
+
+/* The unit of a dimensionless scene's rate, length, mass or time, for messages. */
+static const char *dimensionless_unit(whirl_quantity kind)
+{
+    switch (kind) {
+    case WHIRL_QUANTITY_RATE: return "sqrt(g/L)";
+    case WHIRL_QUANTITY_LENGTH: return "L";
+    case WHIRL_QUANTITY_MASS: return "M";
+    case WHIRL_QUANTITY_TIME: return "sqrt(L/g)";
+    default: return "";
+    }
+}
+
+/* A value written with a unit (4Hz, 5cm) in a dimensionless scene has no scale to convert it
+ * with: an error that says how to switch to SI. */
+static int unit_in_dimensionless(const convert *v, whirl_scene_key key, const char *text);
 
 /* What the numbers of key may look like, for messages: "a finite number (optionally with
  * m, cm or mm)". */
@@ -372,9 +388,11 @@ static int get_double(const convert *v, whirl_scene_key key, double dflt, double
     *out = dflt;
     if (!given(v, key)) return GSL_SUCCESS;
     char words[80];
-    if (parse_number(v->raw[key], key_names[key].kind, out) != 0)
+    int suffixed = 0;
+    if (parse_number(v->raw[key], key_names[key].kind, out, &suffixed) != 0)
         return key_error(v, key, "must be %s, got '%s'", number_words(key, words, sizeof words),
                          v->raw[key]);
+    if (suffixed && !v->scene->physical) return unit_in_dimensionless(v, key, v->raw[key]);
     return GSL_SUCCESS;
 }
 
@@ -431,9 +449,12 @@ static int get_list(const convert *v, whirl_scene_key key, size_t n, int positiv
         if (comma) *comma = '\0';
         char *t = trim(p);
         char words[80];
-        if (parse_number(t, key_names[key].kind, &x[i]) != 0)
+        int suffixed = 0;
+        if (parse_number(t, key_names[key].kind, &x[i], &suffixed) != 0)
             status = key_error(v, key, "value %zu must be %s, got '%s'", i + 1,
                                number_words(key, words, sizeof words), t);
+        else if (suffixed && !v->scene->physical)
+            status = unit_in_dimensionless(v, key, t);
         else if (positive && !(x[i] > 0))
             status = key_error(v, key, "value %zu must be > 0, got %s", i + 1, t);
         p = comma ? comma + 1 : p;
@@ -445,6 +466,13 @@ static int get_list(const convert *v, whirl_scene_key key, size_t n, int positiv
     }
     *out = x;
     return GSL_SUCCESS;
+}
+
+static int unit_in_dimensionless(const convert *v, whirl_scene_key key, const char *text)
+{
+    return key_error(v, key, "%s has a unit, but the scene is dimensionless: give [units] system "
+                     "= SI (lengths in m, masses in kg, rates in rad/s), or a number in units of "
+                     "%s", text, dimensionless_unit(key_names[key].kind));
 }
 
 /* One of the words[0..n-1] (case-insensitive): its index. */

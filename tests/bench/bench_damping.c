@@ -36,7 +36,7 @@ static double shape_of(const whirl_chain *c, double omega, int mode, double *r, 
                        double *tension)
 {
     whirl_shape_info info;
-    if (whirl_nlink_solve(c, omega, mode, 0, &info)) bench_die("whirl_nlink_solve");
+    if (whirl_nlink_solve(c, omega, mode, &info)) bench_die("whirl_nlink_solve");
     if (whirl_nlink_positions(c, omega, info.tip_r, r, z, tension)) bench_die("positions");
     return info.tip_r;
 }
@@ -300,7 +300,7 @@ static void part_c(const char *dir)
         double tip[4];
         for (int j = 0; j < 4; j++) {
             whirl_shape_info info;
-            if (whirl_nlink_solve(c, cols[j].omega, cols[j].mode, 0, &info)) bench_die("shape");
+            if (whirl_nlink_solve(c, cols[j].omega, cols[j].mode, &info)) bench_die("shape");
             tip[j] = info.tip_r;
         }
         printf("eig_growth / D at N = %zu:\n%10s %14s %14s %14s %14s\n", n, "D", "mode 1 (w 2)",

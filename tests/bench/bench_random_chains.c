@@ -88,7 +88,7 @@ static void run_chain(FILE *csv, int seed, int index, size_t n, const double *le
         fprintf(csv, "%d,%d,%zu,%d,%d,%ld,%ld,%ld,%ld", seed, index, n, k, status, p->steps,
                 folds, branch_points, returns);
         for (int i = 0; i < nmax; i++) {
-            if (!status && i < (int)n) fprintf(csv, ",%.17g", p->cross_theta[i]);
+            if (!status && i < (int)n) fprintf(csv, ",%.17g", whirl_nlink_path_cross_theta(p)[i]);
             else fputs(",", csv);
         }
         fputc('\n', csv);

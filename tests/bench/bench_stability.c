@@ -80,7 +80,7 @@ int main(int argc, char **argv)
             if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) bench_die("analysis");
             double t1 = bench_now();
             t_cpu[r] = cpu_now() - c0;
-            if (whirl_nlink_solve(c, omega, mode, 0, &info)) bench_die("shape");
+            if (whirl_nlink_solve(c, omega, mode, &info)) bench_die("shape");
             double t2 = bench_now();
             if (whirl_stability_shape(w, &m, info.tip_r, &growth)) bench_die("linearisation");
             double t3 = bench_now();

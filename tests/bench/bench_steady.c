@@ -111,7 +111,7 @@ static void bench_nlink_rate(FILE *summary)
         double t0 = omp_get_wtime();
         for (int k = 1; k <= 3; k++)
             for (int j = 0; j < n; j++)
-                if (whirl_nlink_solve(c, omega[j], k, 0, &info) != GSL_SUCCESS) bench_die("nlink solve");
+                if (whirl_nlink_solve(c, omega[j], k, &info) != GSL_SUCCESS) bench_die("nlink solve");
         if (rep > 0) t[rep - 1] = omp_get_wtime() - t0;
     }
     double fresh = 3 * n / bench_median(t, REPEATS);
@@ -157,7 +157,7 @@ static void bench_convergence(const char *dir)
                 whirl_chain *c = whirl_chain_alloc_uniform(sizes[s], tip_masses[t]);
                 whirl_shape_info d;
                 double crit[3];
-                if (whirl_nlink_solve(c, omega, k, 0, &d) != GSL_SUCCESS ||
+                if (whirl_nlink_solve(c, omega, k, &d) != GSL_SUCCESS ||
                     whirl_nlink_critical(c, 3, crit) != GSL_SUCCESS)
                     bench_die("nlink solve");
                 double e[4] = {rel(d.tip_r, cont.tip_r), rel(d.top_tension, cont.top_tension),

@@ -170,7 +170,7 @@ static double follow_d(double omega, void *data)
     whirl_shape_info info;
     double re[2], im[2];
     a->evals++;
-    if (!a->status) a->status = whirl_nlink_solve(a->c, omega, a->mode, 0, &info);
+    if (!a->status) a->status = whirl_nlink_solve(a->c, omega, a->mode, &info);
     if (!a->status)
         a->status = whirl_nlink_positions(a->c, omega, info.tip_r, a->r, a->z, a->tension);
     if (!a->status) a->status = whirl_stability_linearise(a->lin, &m, a->r, a->z);
@@ -195,7 +195,7 @@ static double full_growth(follow_args *a, double omega)
     m.omega = omega;
     whirl_shape_info info;
     whirl_spectrum sp;
-    if (whirl_nlink_solve(a->c, omega, a->mode, 0, &info) ||
+    if (whirl_nlink_solve(a->c, omega, a->mode, &info) ||
         whirl_nlink_positions(a->c, omega, info.tip_r, a->r, a->z, a->tension) ||
         whirl_stability_linearise(a->lin, &m, a->r, a->z) ||
         whirl_windows_spectrum(a->w, a->lin, 0, &sp))

@@ -69,7 +69,7 @@ else fail "fit --links: omega to 1e-9, mode 2"; fi
 # continuum, shuffled, on the side r < 0, with an extra column first, read from stdin
 "$WHIRL" shape --omega 4.1 --mode 2 --points 37 |
   awk -F, '/^#/ {print; next} !h {h = 1; print "id,z,r"; next} {print NR "," $3 "," (-$2)}' |
-  awk 'NR <= 4 {print; next} {print (NR * 7919) % 101 "\t" $0}' | sort -n | cut -f2- >"$tmp/c2.csv"
+  awk '/^#/ || $0 == "id,z,r" {print; next} {print (NR * 7919) % 101 "\t" $0}' | sort -n | cut -f2- >"$tmp/c2.csv"
 if "$WHIRL" fit --shape - <"$tmp/c2.csv" >"$tmp/fit2.csv" && close "$(fit_value "$tmp/fit2.csv" 1)" 4.1 1e-6 &&
    [ "$(fit_value "$tmp/fit2.csv" 3)" = 2 ] && grep -q 'side=r<0' "$tmp/fit2.csv"; then
   pass "fit: continuum mode 2, shuffled, mirrored, stdin: omega to 1e-6"

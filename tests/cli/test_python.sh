@@ -1,6 +1,6 @@
 #!/bin/sh
-# The Python package (python/) over build/libwhirl.so: its pytest suite, notebooks included, as
-# TAP (one line per test, then the plan). In the sanitizer half the library is the ASan/UBSan
+# The Python package (python/) over build/libwhirl.so: its pytest suite, notebooks included, and
+# mypy over its type hints, as TAP (one line per test, then the plan). In the sanitizer half the library is the ASan/UBSan
 # build, and the interpreter gets the sanitizer runtimes preloaded (ASan must come first in the
 # process); leak detection is off there (the interpreter itself keeps memory to its exit: the
 # pytest suite measures growth over 10^4 calls instead) and so is ASan's quarantine of freed
@@ -35,6 +35,16 @@ else
     echo "not ok - python: pytest exited with status $rc" >>"$results"
   else
     tail -n 1 "$log" | sed 's/^/# /'
+  fi
+fi
+# the type hints (python/pyproject.toml's [tool.mypy]); once, in the plain half
+if [ -z "$WHIRL_SANITIZE" ]; then
+  if out=$(cd python && /usr/bin/python3 -m mypy whirl 2>&1); then
+    echo "ok - python: mypy: $(echo "$out" | tail -n 1)" >>"$results"
+  else
+    echo "$out" | tail -n 20
+    echo "not ok - python: mypy found type errors" >>"$results"
+    rc=1
   fi
 fi
 cat "$results"

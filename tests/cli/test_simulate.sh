@@ -172,15 +172,18 @@ expect_error "mode that does not exist at omega" "mode3.ini:[0-9]+: \[start\] mo
 expect_error "missing scene file" "none.ini: cannot read" simulate "$tmp/none.ini" -o "$tmp/out.csv"
 expect_error "no scene" "missing the scene file" simulate -o "$tmp/out.csv"
 
-# ---- a run that blows up stops, names time and step, keeps its rows ----
-rm -f "$tmp/out.csv"
+# ---- a run that blows up stops, names time and step, and leaves no file ----
+rm -f "$tmp/out.csv" "$tmp/trace.dat"
 "$WHIRL" simulate "$scenes/driven.ini" --set run.method=rk4 --set run.dt=0.1 --set run.t_end=50 \
-  --set output.every=0.1 -o "$tmp/out.csv" 2>"$tmp/stderr"
+  --set output.every=0.1 --set output.trace="$tmp/trace.dat" -o "$tmp/out.csv" 2>"$tmp/stderr"
 rc=$?
-if [ $rc -ne 0 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
-   && grep -Eq 'after t = [0-9.e-]+ \(step [0-9]+\)' "$tmp/stderr" && valid_csv "$tmp/out.csv" \
-   && [ -z "$(ls "$tmp" | grep '^out.csv.')" ]; then pass "non-finite state: message, rows kept"
-else fail "non-finite state: message, rows kept (rc=$rc, $(cat "$tmp/stderr"))"; fi
+# (the step, 0.1, is above half the period of the 50 links' fastest swing: a message says so first)
+if [ $rc -ne 0 ] && [ "$(wc -l <"$tmp/stderr")" -eq 2 ] \
+   && head -1 "$tmp/stderr" | grep -q 'dt = 0.1 sqrt(L/g) is larger than half the period' \
+   && grep -Eq 'after t = [0-9.e-]+ \(step [0-9]+\)' "$tmp/stderr" && [ ! -e "$tmp/out.csv" ] \
+   && [ ! -e "$tmp/trace.dat" ] && [ -z "$(ls "$tmp" | grep -E '^(out.csv|trace.dat).')" ]; then
+  pass "non-finite state: message, no file"
+else fail "non-finite state: message, no file (rc=$rc, $(cat "$tmp/stderr"))"; fi
 
 # ---- Ctrl-C ends a run cleanly with its rows ----
 rm -f "$tmp/out.csv"

@@ -262,6 +262,10 @@ if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/apart.csv" --resu
    && cmp -s "$tmp/apart.csv" "$tmp/atlas.csv"; then
   pass "atlas --resume completes the chunks not done"
 else fail "atlas --resume completes the chunks not done"; fi
+if "$WHIRL" stability --atlas --modes 2-3,5 --omega-max 1 -o "$tmp/a1.csv" \
+   && [ "$(grep -c '^# done mode' "$tmp/a1.csv")" -eq 3 ] && [ "$(grep -vc '^#' "$tmp/a1.csv")" -eq 1 ]; then
+  pass "atlas below every birth: the chunks done, no window"
+else fail "atlas below every birth"; fi
 expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
 expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
 expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"

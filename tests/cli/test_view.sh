@@ -15,8 +15,17 @@ browser() {
   grep 'CONSOLE' "$tmp/chromium.log" >"$tmp/console"
 }
 
+# dom URL: the page's body tag after its script ran (its data- attributes), in an 800 x 600 window
+dom() {
+  timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-background-networking \
+    --hide-scrollbars --enable-logging=stderr --v=0 --window-size=800,600 --dump-dom "file://$1" \
+    2>"$tmp/chromium.log" | grep -o '<body[^>]*>'
+  grep 'CONSOLE' "$tmp/chromium.log" >"$tmp/console"
+}
+attr() { echo "$1" | sed -n "s/.* data-$2=\"\([^\"]*\)\".*/\1/p"; }
+
 # ---- a mode-2 shape, seen from the front (camera 0,0): the page's layout puts the shape's height
-# over 84% of the canvas (800 x 536 below the 64-pixel bar) unless its width limits it ----
+# over 84% of the canvas (800 wide, below the bar) unless its width limits it ----
 "$WHIRL" shape --omega 3 --mode 2 --points 81 -o "$tmp/s2.csv"
 expect_ok "view of a shape" view "$tmp/s2.csv" --camera 0,0 -o "$tmp/s2.html"
 if grep -q '"kind": "shapes"' "$tmp/s2.html" && grep -q '"omega": 3,' "$tmp/s2.html" &&
@@ -27,11 +36,15 @@ if [ -z "$WHIRL_SANITIZE" ]; then
   browser "$tmp/s2.html" "$tmp/s2.png"
   if [ -s "$tmp/s2.png" ] && [ ! -s "$tmp/console" ]; then pass "shape page loads without console messages"
   else fail "shape page loads without console messages ($(head -c 300 "$tmp/console"))"; fi
-  box=$(/usr/bin/python3 "$here/../tools/png_extent.py" "$tmp/s2.png" 1f4e9c 64)
-  expect=$(awk -F, '!/^#/ && NR > 1 && $1 != "s" { if (!n++) { x0 = x1 = $2; z0 = z1 = $3 }
+  # the canvas below the bar (the bar's height from the page), the labels left out (#nolabels)
+  browser "$tmp/s2.html#nolabels" "$tmp/s2.png"
+  top=$(attr "$(dom "$tmp/s2.html")" canvas | cut -d' ' -f3)
+  cw=800 ch=$((600 - top))
+  box=$(/usr/bin/python3 "$here/../tools/png_extent.py" "$tmp/s2.png" 1f4e9c "$top")
+  expect=$(awk -F, -v cw="$cw" -v ch="$ch" '!/^#/ && NR > 1 && $1 != "s" { if (!n++) { x0 = x1 = $2; z0 = z1 = $3 }
       if ($2 < x0) x0 = $2; if ($2 > x1) x1 = $2; if ($3 < z0) z0 = $3; if ($3 > z1) z1 = $3 }
       END { r = (x1 > -x0 ? x1 : -x0); h = (z1 > 0 ? z1 : 0) - z0
-            s = 800 * 0.84 / (2 * r); t = 536 * 0.84 / h; if (t < s) s = t
+            s = cw * 0.84 / (2 * r); t = ch * 0.84 / h; if (t < s) s = t
             printf "%.1f %.1f", (x1 - x0) * s, h * s }' "$tmp/s2.csv")
   echo "# chain pixels: $box; expected width and height $expect"
   check_box() {
@@ -54,6 +67,52 @@ if [ -z "$WHIRL_SANITIZE" ]; then
   box=$(/usr/bin/python3 "$here/../tools/png_extent.py" "$tmp/run.png" 1f4e9c 64)
   if [ ! -s "$tmp/console" ] && [ "$box" != none ]; then pass "trace page: loads without console messages, draws the chain"
   else fail "trace page: loads without console messages, draws the chain ($box; $(head -c 300 "$tmp/console"))"; fi
+fi
+
+# ---- the teacher's shapes (60 cm, 50 g; 2, 4, 6 Hz): labels "mode 2, F Hz" inside the 800-px
+# window, the summary not clipped, no clock, the side view by default (the same pixels as
+# --camera 0,0), a PNG of the view ----
+for f in 2 4 6; do "$WHIRL" shape --length 60cm --mass 50g --omega ${f}Hz --mode 2 -o "$tmp/h$f.csv"; done
+expect_ok "view of three shapes in Hz" view "$tmp/h2.csv" "$tmp/h4.csv" "$tmp/h6.csv" -o "$tmp/h.html"
+grep -q '"label": "mode 2, 2 Hz"' "$tmp/h.html" && grep -q '"label": "mode 2, 6 Hz"' "$tmp/h.html" &&
+  grep -q '"summary": "mode 2, 2 Hz; mode 2, 4 Hz; mode 2, 6 Hz"' "$tmp/h.html" &&
+  pass "labels and summary: mode and rate in Hz as given" || fail "labels and summary in Hz"
+"$WHIRL" view "$tmp/s2.csv" -o "$tmp/s2side.html"
+if [ -z "$WHIRL_SANITIZE" ]; then
+  body=$(dom "$tmp/h.html#export")
+  echo "# $body"
+  [ ! -s "$tmp/console" ] && pass "shapes page: no console messages" || fail "console: $(head -c 300 "$tmp/console")"
+  canvas=$(attr "$body" canvas)
+  if [ "$(attr "$body" labels | tr ';' '\n' | awk -v c="$canvas" 'BEGIN { split(c, w, " ") }
+      NF == 4 && $1 >= 0 && $3 <= w[1] && $2 >= 0 && $4 <= w[2] { k++ } END { print k + 0 }')" = 3 ]; then
+    pass "three labels, each inside the canvas ($canvas)"; else fail "labels: $(attr "$body" labels) in $canvas"; fi
+  [ "$(attr "$body" summary-fits)" = yes ] && pass "the summary fits at 800 px" || fail "the summary is clipped"
+  [ -z "$(attr "$body" clock)" ] && grep -q 'id="timeline" hidden' "$tmp/h.html" &&
+    pass "no clock on static shapes" || fail "a clock on static shapes"
+  [ "$(attr "$body" camera)" = "0 0" ] && pass "planar shapes: the side view by default" ||
+    fail "camera $(attr "$body" camera)"
+  attr "$body" export | grep -Eq '^data:image/png;base64, [0-9]{4,}$' && pass "export: a PNG of the view" ||
+    fail "export: $(attr "$body" export)"
+  # the default view of the planar shape draws the same pixels as the side view asked for
+  a=$(attr "$(dom "$tmp/s2.html")" extent); b=$(attr "$(dom "$tmp/s2side.html")" extent)
+  [ -n "$a" ] && [ "$a" = "$b" ] && pass "default view = --camera 0,0 ($a)" || fail "default view $b, side view $a"
+fi
+
+# ---- a trace: the time slider and frame stepping, the clock, the summary ----
+"$WHIRL" simulate data/scenes/classroom.ini --set run.t_end=1 --set output.trace="$tmp/c.dat" \
+  --set output.trace_every=0.1 -o /dev/null
+expect_ok "view of the classroom trace" view "$tmp/c.dat" -o "$tmp/c.html"
+grep -q '"summary": "30 links, omega = 25.13 rad/s (4 Hz)"' "$tmp/c.html" &&
+  pass "trace summary: links, rate in rad/s and Hz" || fail "trace summary"
+if [ -z "$WHIRL_SANITIZE" ]; then
+  body=$(dom "$tmp/c.html#step=3")
+  echo "# $body"
+  [ ! -s "$tmp/console" ] && [ "$(attr "$body" frame)" = 3 ] &&
+    [ "$(attr "$body" clock)" = "t = 0.30 s (inertial)" ] &&
+    pass "three steps forward: frame 3, t = 0.30 s, no console messages" ||
+    fail "stepping: frame $(attr "$body" frame), clock $(attr "$body" clock), $(head -c 200 "$tmp/console")"
+  grep -q 'id="slider"' "$tmp/c.html" && [ "$(attr "$body" summary-fits)" = yes ] &&
+    pass "trace page: a slider, the summary fits" || fail "trace page: slider or summary"
 fi
 
 # ---- bad input ----

@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """Pixel box of one colour in a PNG (8-bit RGB or RGBA, not interlaced), for tests/cli/test_view.sh.
 
-usage: png_extent.py FILE RRGGBB [TOP]
+usage: png_extent.py FILE RRGGBB [TOP [X0,Y0,X1,Y1]]
 Prints "x0 y0 x1 y1 count": the smallest box holding every pixel within a distance of 60 (in
-RGB) of the colour, at rows >= TOP (default 0), and how many there are; "none" if no pixel is.
+RGB) of the colour, at rows >= TOP (default 0) and outside the box X0,Y0,X1,Y1 if given (a label
+to leave out), and how many there are; "none" if no pixel is.
 Only the standard library: the PNG is inflated with zlib and its rows unfiltered (PNG spec,
 section 9: filter types 0-4)."""
 import struct
@@ -57,6 +58,7 @@ def read_png(path):
 def main():
     path, hexcolour = sys.argv[1], sys.argv[2]
     top = int(sys.argv[3]) if len(sys.argv) > 3 else 0
+    skip = [int(v) for v in sys.argv[4].split(',')] if len(sys.argv) > 4 else [0, 0, -1, -1]
     want = [int(hexcolour[i:i + 2], 16) for i in (0, 2, 4)]
     width, height, bpp, rows = read_png(path)
     box, count = [width, height, -1, -1], 0
@@ -64,10 +66,13 @@ def main():
         line = rows[y]
         for x in range(width):
             r, g, b = line[x * bpp:x * bpp + 3]
+            if skip[0] <= x <= skip[2] and skip[1] <= y <= skip[3]:
+                continue
             if (r - want[0]) ** 2 + (g - want[1]) ** 2 + (b - want[2]) ** 2 <= 3600:
                 count += 1
                 box = [min(box[0], x), min(box[1], y), max(box[2], x), max(box[3], y)]
     print('none' if count == 0 else '%d %d %d %d %d' % (box[0], box[1], box[2], box[3], count))
 
 
-main()
+if __name__ == '__main__':
+    main()

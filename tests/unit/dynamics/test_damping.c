@@ -54,7 +54,7 @@ static void setup_mode1(fixture *f, double omega)
     f->model = (whirl_model){.chain = f->chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
                              .omega = omega, .internal_damping = DAMPING};
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(f->chain, omega, 1, 0, &info), 0);
+    assert_int_equal(whirl_nlink_solve(f->chain, omega, 1, &info), 0);
     assert_int_equal(whirl_nlink_positions(f->chain, omega, info.tip_r, f->r, f->z, f->tension), 0);
     for (size_t i = 0; i < LINKS; i++) {
         f->ref[3 * i] = f->r[i + 1];

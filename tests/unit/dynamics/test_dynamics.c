@@ -424,7 +424,7 @@ static void test_steady_shape_fixed_point(void **state)
         const size_t n = cases[k].n;
         whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, cases[k].omega, cases[k].mode, 0, &info),
+        assert_int_equal(whirl_nlink_solve(c, cases[k].omega, cases[k].mode, &info),
                          GSL_SUCCESS);
         double *r = malloc((n + 1) * sizeof *r), *zz = malloc((n + 1) * sizeof *zz),
                *ten = malloc((n + 1) * sizeof *ten);

@@ -106,7 +106,7 @@ static void test_steady_shape_is_equilibrium(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(LINKS, 0);
     const double omega = 3.385; /* mode 2 exists above omega_2 ~ 2.76 */
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(c, omega, 2, 0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 2, &info), GSL_SUCCESS);
     double r[LINKS + 1], z[LINKS + 1], tension[LINKS + 1], links[3 * LINKS];
     assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, tension), GSL_SUCCESS);
     assert_int_equal(whirl_shape_links(LINKS, r, NULL, z, links), GSL_SUCCESS);

@@ -217,10 +217,10 @@ static void test_near_critical(void **unused)
     double crit[2];
     assert_int_equal(whirl_nlink_critical(c, 2, crit), GSL_SUCCESS);
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(c, crit[1] * (1 - 1e-6), 2, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, crit[1] * (1 - 1e-6), 2, &info), GSL_EDOM);
     assert_true(strlen(whirl_last_error()) > 0);
     const double omega = crit[1] * (1 + 1e-6);
-    assert_int_equal(whirl_nlink_solve(c, omega, 2, 0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 2, &info), GSL_SUCCESS);
     assert_true(info.tip_r > 1e-5 && info.tip_r < 0.1);
     const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
     whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);

@@ -410,7 +410,7 @@ static void test_steady_shape(void **state)
     const double omega = 3.5;
     whirl_chain *c = whirl_chain_alloc_uniform(n, 0);
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(c, omega, 2, 0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 2, &info), GSL_SUCCESS);
     double r[31], z[31], ten[31], x[90] = {0}, v[90] = {0}, y[180], xt[90];
     assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, ten), GSL_SUCCESS);
     for (size_t i = 0; i < n; i++) x[3 * i] = r[i + 1] - r[0], x[3 * i + 2] = z[i + 1] - z[0];

@@ -111,7 +111,7 @@ static void compare_with_shooting(const whirl_chain *c, double omega, double tol
     assert_int_equal(whirl_minimize_shape(c, omega, NULL, NULL, theta, &st), GSL_SUCCESS);
     whirl_shape_info mine, ref;
     whirl_angles_shape(c, omega, theta, r, z, t, &mine);
-    assert_int_equal(whirl_nlink_solve(c, omega, 1, 0.0, &ref), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 1, &ref), GSL_SUCCESS);
     assert_int_equal(whirl_nlink_positions(c, omega, ref.tip_r, r2, z2, t2), GSL_SUCCESS);
     assert_int_equal(mine.mode, 1);
     assert_int_equal(mine.n_nodes, 0);
@@ -237,7 +237,7 @@ static void test_algorithms(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(8, 0.0);
     const double omega = 2.385;
     whirl_shape_info ref, got;
-    assert_int_equal(whirl_nlink_solve(c, omega, 1, 0.0, &ref), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 1, &ref), GSL_SUCCESS);
     for (size_t a = 0; a < sizeof algs / sizeof algs[0]; a++) {
         whirl_minimize_options o = whirl_minimize_options_default();
         o.algorithm = algs[a];
@@ -264,9 +264,9 @@ static void test_higher_modes_are_saddles(void **state)
     double *r = vec(n + 1), *z = vec(n + 1), *t = vec(n + 1), *theta = vec(n), *grad = vec(n);
     double *out = vec(n);
     whirl_shape_info mode1, info;
-    assert_int_equal(whirl_nlink_solve(c, omega, 1, 0.0, &mode1), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, 1, &mode1), GSL_SUCCESS);
     for (int k = 1; k <= 3; k++) {
-        assert_int_equal(whirl_nlink_solve(c, omega, k, 0.0, &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, omega, k, &info), GSL_SUCCESS);
         assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, t), GSL_SUCCESS);
         angles_of(n, r, z, theta);
         whirl_potential(c, omega, theta, grad);
@@ -315,7 +315,7 @@ static void nlink_points(const whirl_chain *c, double omega, int mode, int mirro
     const size_t n = c->n;
     double *pr = vec(n + 1), *pz = vec(n + 1), *pt = vec(n + 1);
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(c, omega, mode, 0.0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, omega, mode, &info), GSL_SUCCESS);
     assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, pr, pz, pt), GSL_SUCCESS);
     size_t *order = malloc(n * sizeof *order);
     for (size_t i = 0; i < n; i++) order[i] = i + 1;

@@ -207,7 +207,7 @@ static void test_nlink_converges(void **state)
                 double crit[3];
                 assert_int_equal(whirl_nlink_critical(c, 3, crit), GSL_SUCCESS);
                 err_crit[s] = fabs(crit[k - 1] - crit_cont);
-                assert_int_equal(whirl_nlink_solve(c, omega, k, 0, &disc[s]), GSL_SUCCESS);
+                assert_int_equal(whirl_nlink_solve(c, omega, k, &disc[s]), GSL_SUCCESS);
                 whirl_chain_free(c);
             }
             /* relative errors of tip_r, top_tension, depth: order 1, and the Richardson

@@ -38,7 +38,7 @@ static double rel_diff(double a, double b) { return fabs(a - b) / fmax(fabs(b), 
 static void check_free(const whirl_chain *chain, double omega, int mode, double tip_mass)
 {
     whirl_shape_info ref;
-    int status = chain ? whirl_nlink_solve(chain, omega, mode, 0, &ref)
+    int status = chain ? whirl_nlink_solve(chain, omega, mode, &ref)
                        : whirl_continuum_solve(omega, mode, tip_mass, 0, &ref);
     assert_int_equal(status, GSL_SUCCESS);
     whirl_driven_params p = params(omega, 0, 0, 0, tip_mass);

@@ -97,7 +97,7 @@ static void test_five_links(void **state)
         }
         on_branch[q->branch]++;
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, 0, &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, &info), GSL_SUCCESS);
         assert_true(fabs(info.tip_r - q->info.tip_r) <= 1e-9 * q->info.tip_r);
         double crit[5];
         assert_int_equal(whirl_nlink_critical(c, 5, crit), GSL_SUCCESS);
@@ -276,7 +276,7 @@ static void test_ten_links_high_rate(void **state)
         }
         on_branch[q->branch]++;
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, 0, &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, omega, q->branch, &info), GSL_SUCCESS);
         assert_true(fabs(info.tip_r - q->info.tip_r) <= 1e-9 * q->info.tip_r);
         assert_int_equal(info.n_nodes, q->info.n_nodes);
     }

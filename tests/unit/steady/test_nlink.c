@@ -88,7 +88,7 @@ static void test_conical_pendulum(void **state)
     for (double f = 1.0001; f < 100; f *= 3.7) {
         double omega = f * crit;
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, omega, 1, 0, &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, omega, 1, &info), GSL_SUCCESS);
         double cos_t = g / (omega * omega * l);
         double sin_t = sqrt((1 - cos_t) * (1 + cos_t));
         assert_float_equal(info.tip_r, l * sin_t, 1e-13 * l * sin_t);
@@ -97,8 +97,8 @@ static void test_conical_pendulum(void **state)
         assert_int_equal(info.n_nodes, 0);
     }
     whirl_shape_info info;
-    assert_int_equal(whirl_nlink_solve(c, 0.999 * crit, 1, 0, &info), GSL_EDOM);
-    assert_int_equal(whirl_nlink_solve(c, 2 * crit, 2, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 0.999 * crit, 1, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 2 * crit, 2, &info), GSL_EDOM);
     whirl_chain_free(c);
 }
 
@@ -194,7 +194,7 @@ static void check_modes(const whirl_chain *c, const double *omega_crit, int max_
     for (int k = 1; k <= max_mode; k++) {
         double omega = omega_over > 0 ? omega_over : omega_crit[k - 1] * factor;
         whirl_shape_info info;
-        int status = whirl_nlink_solve(c, omega, k, 0, &info);
+        int status = whirl_nlink_solve(c, omega, k, &info);
         if (status) print_message("mode %d omega %.17g: %s\n", k, omega, whirl_last_error());
         assert_int_equal(status, GSL_SUCCESS);
         assert_int_equal(info.mode, k);
@@ -218,12 +218,12 @@ static void test_modes_everywhere(void **state)
         check_modes(c, crit, 6, 30, 0); /* high rate */
         /* near-critical the tip radius is small and grows like sqrt(omega - omega_k) */
         whirl_shape_info a, b;
-        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 + 1e-6), 3, 0, &a), GSL_SUCCESS);
-        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 + 4e-6), 3, 0, &b), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 + 1e-6), 3, &a), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 + 4e-6), 3, &b), GSL_SUCCESS);
         assert_true(a.tip_r < 1e-2);
         assert_float_equal(b.tip_r / a.tip_r, 2, 1e-3);
         /* just below the critical rate the mode does not exist */
-        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-6), 3, 0, &a), GSL_EDOM);
+        assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-6), 3, &a), GSL_EDOM);
         whirl_chain_free(c);
     }
     whirl_chain *c = irregular_chain(23);
@@ -249,7 +249,7 @@ static void test_branch_equals_fresh(void **state)
         assert_int_equal(exists[j], omega[j] > crit[1]);
         if (!exists[j]) continue;
         whirl_shape_info fresh;
-        assert_int_equal(whirl_nlink_solve(c, omega[j], 2, 0, &fresh), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, omega[j], 2, &fresh), GSL_SUCCESS);
         assert_float_equal(info[j].tip_r, fresh.tip_r, 1e-13 * fresh.tip_r);
         assert_float_equal(info[j].node_s[0], fresh.node_s[0], 1e-12);
     }
@@ -262,13 +262,13 @@ static void test_errors(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
     whirl_shape_info info;
     double omega[6];
-    assert_int_equal(whirl_nlink_solve(c, 0, 1, 0, &info), GSL_EINVAL);
-    assert_int_equal(whirl_nlink_solve(c, NAN, 1, 0, &info), GSL_EINVAL);
-    assert_int_equal(whirl_nlink_solve(c, 3, 0, 0, &info), GSL_EINVAL);
-    assert_int_equal(whirl_nlink_solve(c, 30, 6, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 0, 1, &info), GSL_EINVAL);
+    assert_int_equal(whirl_nlink_solve(c, NAN, 1, &info), GSL_EINVAL);
+    assert_int_equal(whirl_nlink_solve(c, 3, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_nlink_solve(c, 30, 6, &info), GSL_EDOM);
     assert_int_equal(whirl_nlink_critical(c, 6, omega), GSL_EINVAL);
     assert_int_equal(whirl_nlink_critical(c, 0, omega), GSL_EINVAL);
-    assert_int_equal(whirl_nlink_solve(c, 2.0, 2, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 2.0, 2, &info), GSL_EDOM);
     assert_non_null(strstr(whirl_last_error(), "omega_2="));
     whirl_chain_free(c);
 }

@@ -43,6 +43,7 @@
 #include <gsl/gsl_matrix.h>
 #include <gsl/gsl_sort_vector.h>
 
+#include "steady/nlink_path_internal.h"
 #include "whirl/steady.h"
 
 /* The largest force imbalance of a mass, relative to the largest force on it, at (omega, tip_r);
@@ -249,12 +250,12 @@ static void test_branch_continuous(void **state)
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     assert_int_equal(whirl_nlink_path_birth(p, 4), GSL_SUCCESS);
     double th0[5], th1[5], worst = 0, jump = 0, per_weight;
-    for (int i = 0; i < 5; i++) th0[i] = p->theta[i];
+    for (int i = 0; i < 5; i++) th0[i] = whirl_nlink_path_theta(p)[i];
     while (p->omega < 45) {
         double ds = p->ds;
         assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
-        worst = fmax(worst, angle_residual(c, p->omega, p->theta, &per_weight));
-        for (int i = 0; i < 5; i++) th1[i] = p->theta[i];
+        worst = fmax(worst, angle_residual(c, p->omega, whirl_nlink_path_theta(p), &per_weight));
+        for (int i = 0; i < 5; i++) th1[i] = whirl_nlink_path_theta(p)[i];
         for (int i = 0; i < 5; i++) {
             jump = fmax(jump, fabs(th1[i] - th0[i]) / ds);
             th0[i] = th1[i];
@@ -301,7 +302,7 @@ static void test_birth_linear_shape(void **state)
         for (int e = 0; e < 2; e++) {
             double omega = omega_k * (1 + eps[e]);
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, omega, (int)mode, 0, &info), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, omega, (int)mode, &info), GSL_SUCCESS);
             assert_int_equal(info.n_nodes, (int)mode - 1);
             assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, t), GSL_SUCCESS);
             /* both normalised to their tip value */
@@ -534,15 +535,15 @@ static void test_every_mode(void **state)
         /* the case: mode 15 of 15 at 26.85 (omega_15 = 26.8401) */
         if (n == 15) {
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, 26.85, 15, 0, &info), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, 26.85, 15, &info), GSL_SUCCESS);
             assert_int_equal(info.n_nodes, 14);
         }
         /* beyond N and below the birth: GSL_EDOM, the message naming the mode */
         if (n == 200) {
             whirl_shape_info info;
-            assert_int_equal(whirl_nlink_solve(c, 1000, 201, 0, &info), GSL_EDOM);
+            assert_int_equal(whirl_nlink_solve(c, 1000, 201, &info), GSL_EDOM);
             assert_non_null(strstr(whirl_last_error(), "mode 201"));
-            assert_int_equal(whirl_nlink_solve(c, crit[149] * (1 - 1e-6), 150, 0, &info),
+            assert_int_equal(whirl_nlink_solve(c, crit[149] * (1 - 1e-6), 150, &info),
                              GSL_EDOM);
             assert_non_null(strstr(whirl_last_error(), "mode 150"));
         }
@@ -686,7 +687,7 @@ static void test_branch_birth_gap(void **state)
         assert_int_equal(whirl_nlink_branch(c, k, 3, omega, info, exists), GSL_SUCCESS);
         for (int j = 0; j < 3; j++) {
             assert_true(exists[j]);
-            assert_int_equal(whirl_nlink_solve(c, omega[j], k, 0, &one), GSL_SUCCESS);
+            assert_int_equal(whirl_nlink_solve(c, omega[j], k, &one), GSL_SUCCESS);
             assert_true(info[j].omega == omega[j] && info[j].tip_r == one.tip_r &&
                         info[j].max_r == one.max_r && info[j].n_nodes == one.n_nodes);
         }
@@ -719,7 +720,7 @@ static void follow_high(const whirl_chain *c, int mode, double omega_top, double
     assert_int_equal(whirl_nlink_path_birth(p, mode), GSL_SUCCESS);
     double *prev = malloc(n * sizeof *prev), pw;
     assert_non_null(prev);
-    for (size_t i = 0; i < n; i++) prev[i] = p->theta[i];
+    for (size_t i = 0; i < n; i++) prev[i] = whirl_nlink_path_theta(p)[i];
     memset(h, 0, sizeof *h);
     int found = 0;
     while (!found) {
@@ -728,13 +729,13 @@ static void follow_high(const whirl_chain *c, int mode, double omega_top, double
         if (status) print_message("N %zu mode %d: %s\n", n, mode, whirl_last_error());
         assert_int_equal(status, GSL_SUCCESS);
         assert_false(p->ended);
-        h->worst = fmax(h->worst, angle_residual(c, p->omega, p->theta, &pw));
+        h->worst = fmax(h->worst, angle_residual(c, p->omega, whirl_nlink_path_theta(p), &pw));
         h->per_weight = fmax(h->per_weight, pw);
-        h->per_ulp = fmax(h->per_ulp, angle_residual(c, p->omega, p->theta, &pw) /
-                                          ulp_floor(c, p->omega, p->theta));
+        h->per_ulp = fmax(h->per_ulp, angle_residual(c, p->omega, whirl_nlink_path_theta(p), &pw) /
+                                          ulp_floor(c, p->omega, whirl_nlink_path_theta(p)));
         for (size_t i = 0; i < n; i++) {
-            h->jump = fmax(h->jump, fabs(p->theta[i] - prev[i]) / ds);
-            prev[i] = p->theta[i];
+            h->jump = fmax(h->jump, fabs(whirl_nlink_path_theta(p)[i] - prev[i]) / ds);
+            prev[i] = whirl_nlink_path_theta(p)[i];
         }
         h->angle_steps += p->angles;
         double a;
@@ -743,7 +744,7 @@ static void follow_high(const whirl_chain *c, int mode, double omega_top, double
         assert_true(p->steps < 20000);
     }
     if (theta_top)
-        for (size_t i = 0; i < n; i++) theta_top[i] = p->cross_theta[i];
+        for (size_t i = 0; i < n; i++) theta_top[i] = whirl_nlink_path_cross_theta(p)[i];
     h->steps = p->steps;
     h->omega_reached = p->omega;
     free(prev);
@@ -831,7 +832,7 @@ static void test_every_mode_high(void **state)
             /* the tip's sign only where the tail is resolved: mode 1000's tip radius is 1e-160
              * of its largest, below what link angles in double resolve */
             assert_true(p->angles && p->omega > p->omega_birth && (k == 1000 || p->tip_r > 0));
-            double pw, res = angle_residual(c1000, p->omega, p->theta, &pw);
+            double pw, res = angle_residual(c1000, p->omega, whirl_nlink_path_theta(p), &pw);
             assert_true(res < 200 * 1000 * DBL_EPSILON);
         }
         print_message("N = 1000 mode %d: born at %.10g, three steps in the link angles to %.10g\n",
@@ -862,7 +863,7 @@ static void test_retrace_high(void **state)
                 assert_true(found >= 0);
                 if (!found) continue;
                 double *dst = dir == 0 ? up[j] : down[j];
-                for (size_t i = 0; i < n; i++) dst[i] = p->cross_theta[i];
+                for (size_t i = 0; i < n; i++) dst[i] = whirl_nlink_path_cross_theta(p)[i];
                 (dir == 0 ? seen_up : seen_down)[j]++;
             }
             assert_true(p->steps < 20000);
@@ -890,13 +891,13 @@ static void test_errors(void **state)
     double crit[5];
     assert_int_equal(whirl_nlink_critical(c, 5, crit), GSL_SUCCESS);
     /* above N */
-    assert_int_equal(whirl_nlink_solve(c, 30, 6, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, 30, 6, &info), GSL_EDOM);
     assert_non_null(strstr(whirl_last_error(), "modes 1..5"));
     /* below the birth: says so, naming omega_k */
-    assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-9), 3, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, crit[2] * (1 - 1e-9), 3, &info), GSL_EDOM);
     assert_non_null(strstr(whirl_last_error(), "exists only above omega_3="));
     /* exactly at the birth: the hanging chain, not a shape of the mode */
-    assert_int_equal(whirl_nlink_solve(c, crit[2], 3, 0, &info), GSL_EDOM);
+    assert_int_equal(whirl_nlink_solve(c, crit[2], 3, &info), GSL_EDOM);
     whirl_nlink_path *p = whirl_nlink_path_alloc(c);
     assert_int_equal(whirl_nlink_path_birth(p, 0), GSL_EINVAL);
     assert_int_equal(whirl_nlink_path_birth(p, 6), GSL_EINVAL);
@@ -905,11 +906,11 @@ static void test_errors(void **state)
     assert_int_equal(whirl_nlink_path_birth(p, 2), GSL_SUCCESS);
     whirl_stop_request();
     assert_int_equal(whirl_nlink_path_step(p), WHIRL_EINTERRUPTED);
-    assert_int_equal(whirl_nlink_solve(c, 10, 2, 0, &info), WHIRL_EINTERRUPTED);
+    assert_int_equal(whirl_nlink_solve(c, 10, 2, &info), WHIRL_EINTERRUPTED);
     whirl_stop_clear();
     assert_int_equal(whirl_nlink_path_step(p), GSL_SUCCESS);
     /* a start from an equilibrium found by the birth path, in both directions */
-    assert_int_equal(whirl_nlink_solve(c, 7.3, 2, 0, &info), GSL_SUCCESS);
+    assert_int_equal(whirl_nlink_solve(c, 7.3, 2, &info), GSL_SUCCESS);
     assert_int_equal(whirl_nlink_path_start(p, 7.3, info.tip_r, -1), GSL_SUCCESS);
     assert_float_equal(p->tip_r, info.tip_r, 1e-13 * info.tip_r);
     assert_true(p->t_omega < 0);
@@ -1056,7 +1057,7 @@ static long path_end(const whirl_chain *c, int mode, double omega_top, double ca
         assert_true(found >= 0);
         assert_true(p->steps < 20000);
     }
-    for (size_t i = 0; i < c->n; i++) theta[i] = p->cross_theta[i];
+    for (size_t i = 0; i < c->n; i++) theta[i] = whirl_nlink_path_cross_theta(p)[i];
     const long steps = p->steps;
     whirl_nlink_path_free(p);
     return steps;
@@ -1192,8 +1193,8 @@ static void test_near_births(void **state)
          * would be many times that */
         assert_true(h.jump <= 1.15 * sqrt((double)c->n));
         whirl_shape_info info;
-        assert_int_equal(whirl_nlink_solve(c, 10 * crit[runs[k].mode - 1], runs[k].mode, 0,
-                                           &info), GSL_SUCCESS);
+        assert_int_equal(whirl_nlink_solve(c, 10 * crit[runs[k].mode - 1], runs[k].mode, &info),
+                         GSL_SUCCESS);
         if (runs[k].n == 5) assert_true(fabs(info.tip_r / 4.9718259981491416e-07 - 1) < 1e-8);
         whirl_chain_free(c);
     }
@@ -1235,8 +1236,8 @@ static void to_ten(size_t n, const double *length, const double *mass, int mode,
     assert_int_equal(found, 1);
     double same = 0, mirror = 0;
     for (size_t i = 0; i < n; i++) {
-        same = fmax(same, fabs(p->cross_theta[i] - end[i]));
-        mirror = fmax(mirror, fabs(p->cross_theta[i] + end[i]));
+        same = fmax(same, fabs(whirl_nlink_path_cross_theta(p)[i] - end[i]));
+        mirror = fmax(mirror, fabs(whirl_nlink_path_cross_theta(p)[i] + end[i]));
     }
     r->steps = p->steps;
     r->distance = fmin(same, mirror);
@@ -1537,7 +1538,7 @@ static void test_stalled_branch(void **state)
     /* the drivers: the same failure and message */
     whirl_shape_info info;
     int exists;
-    assert_int_equal(whirl_nlink_solve(c, target, 4, 0, &info), GSL_EFAILED);
+    assert_int_equal(whirl_nlink_solve(c, target, 4, &info), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
     assert_int_equal(whirl_nlink_branch(c, 4, 1, &target, &info, &exists), GSL_EFAILED);
     assert_string_equal(whirl_last_error(), message);
@@ -1564,7 +1565,7 @@ static void test_unlocated_event(void **state)
     double crit[12];
     assert_int_equal(whirl_nlink_critical(c, 12, crit), GSL_SUCCESS);
     whirl_shape_info info;
-    const int status = whirl_nlink_solve(c, 10 * crit[4], 5, 0, &info);
+    const int status = whirl_nlink_solve(c, 10 * crit[4], 5, &info);
     const char *message = whirl_last_error();
     print_message("12 links, mode 5 at 10 times its birth: %s\n", message);
     if (status == GSL_SUCCESS) {
@@ -1628,7 +1629,10 @@ static int fold_list(const whirl_chain *c, int mode, double omega_max, double ca
         /* the index of the force balance changes by one at each fold, and nowhere else */
         int singular = 0;
         for (int e = 0; e < p->n_events; e++) singular += p->event[e].kind != WHIRL_EVENT_RETURN;
-        if (p->angles && p->last.angles) assert_int_equal(abs(p->index - p->last.index), singular);
+        /* the index and the last step's: the path's state (src/steady/nlink_path_internal.h) */
+        const path_state *st = &path_of(p)->s;
+        if (p->angles && st->last.angles)
+            assert_int_equal(abs(st->index - st->last.index), singular);
         for (int e = 0; e < p->n_events; e++)
             if (p->event[e].kind == WHIRL_EVENT_FOLD) {
                 assert_true(nf < max);

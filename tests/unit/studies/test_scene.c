@@ -313,6 +313,13 @@ static const bad_case bad_cases[] = {
     {CHAIN3 HANG RUN "formulation = angles\n", NULL,
      ":9: [run] formulation: must be one of default, seed, got 'angles'"},
     {CHAIN3 HANG RUN "omega = x\n", NULL, ":9: [run] omega: must be a finite number (optionally with rad/s, Hz or rpm), got 'x'"},
+    /* a unit in a dimensionless scene: no scale to convert it with */
+    {CHAIN3 HANG RUN "omega = 4Hz\n", NULL, ":9: [run] omega: 4Hz has a unit, but the scene is "
+     "dimensionless: give [units] system = SI (lengths in m, masses in kg, rates in rad/s), or a "
+     "number in units of sqrt(g/L)"},
+    {CHAIN3 HANG "[run]\ndt = 1ms\nt_end = 1\n", NULL, ":7: [run] dt: 1ms has a unit, but the "
+     "scene is dimensionless: give [units] system = SI (lengths in m, masses in kg, rates in "
+     "rad/s), or a number in units of sqrt(L/g)"},
     {CHAIN3 HANG RUN "drive_radius = -0.1\n", NULL, ":9: [run] drive_radius: must be >= 0, got -0.1"},
     {CHAIN3 HANG RUN "air_drag = -1\n", NULL, ":9: [run] air_drag: must be >= 0, got -1"},
     {CHAIN3 HANG RUN "air_drag_quadratic = -1\n", NULL,

@@ -1,0 +1,105 @@
+#!/bin/sh
+# Pictures: `whirl shape --plot` (several rates on one figure, true to scale, labels in the
+# user's units), `whirl plot` (the kind of a file from its header; files of different kinds or
+# units refused), no partial picture on failure; checked on the SVG's curves (their extent against
+# the CSV's, independently of the program) and the PNG's header.
+. "$(dirname "$0")/lib.sh"
+tools=$(dirname "$0")/../tools
+si="--length 60cm --mass 50g"
+
+# the teacher's figure: three rates in Hz, one mode
+expect_ok "shape: 2Hz,4Hz,6Hz --mode 2 --plot PNG" shape $si --omega 2Hz,4Hz,6Hz --mode 2 \
+  --plot "$tmp/shapes.png"
+if [ "$(head -c 8 "$tmp/shapes.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ]; then
+  pass "shape --plot: a PNG"; else fail "shape --plot: a PNG"; fi
+expect_ok "shape --plot SVG" shape $si --omega 2Hz,4Hz,6Hz --mode 2 --plot "$tmp/shapes.svg"
+expect_ok "shape --plot PDF" shape $si --omega 2Hz,4Hz,6Hz --mode 2 --plot "$tmp/shapes.pdf"
+head -c 5 "$tmp/shapes.pdf" | grep -q '%PDF-' && pass "shape --plot: a PDF" || fail "shape --plot: a PDF"
+# each curve labelled with its mode and its rate as given, short
+for f in 2 4 6; do
+  grep -q ">mode 2, $f Hz<" "$tmp/shapes.svg" && pass "label 'mode 2, $f Hz'" ||
+    fail "label 'mode 2, $f Hz'"
+done
+grep -q '>pivot<' "$tmp/shapes.svg" && grep -q '>rotation axis<' "$tmp/shapes.svg" &&
+  pass "the pivot and the rotation axis named" || fail "the pivot and the rotation axis named"
+# true aspect ratio: the 2 Hz curve's extent in the picture over its extent in the CSV, the same
+# scale across and down (to 2%, the picture's coordinates having 2 decimals)
+"$WHIRL" shape $si --omega 2Hz --mode 2 -o "$tmp/s2.csv"
+box=$(python3 "$tools/svg_extent.py" "$tmp/shapes.svg" 31,78,156)
+data=$(grep -v '^#' "$tmp/s2.csv" | tail -n +2 | awk -F, 'NR == 1 { r0 = r1 = $2; z0 = z1 = $3 }
+  { if ($2 < r0) r0 = $2; if ($2 > r1) r1 = $2; if ($3 < z0) z0 = $3; if ($3 > z1) z1 = $3 }
+  END { print r1 - r0, z1 - z0 }')
+if echo "$box $data" | awk '{ sx = ($3 - $1) / $6; sy = ($4 - $2) / $7; d = sx / sy - 1;
+     if (d < 0) d = -d; print "# px per m across " sx ", down " sy; exit !($5 > 100 && d < 0.02) }'; then
+  pass "true to scale: the same px per m across and down"; else fail "true to scale ($box / $data)"; fi
+# the CSV names the rate as given
+grep -q '^# rate: 2 Hz (omega=12.57 rad/s)$' "$tmp/s2.csv" && pass "shape: '# rate: 2 Hz (omega=12.57 rad/s)'" ||
+  fail "shape: the rate line ($(grep '^# rate' "$tmp/s2.csv"))"
+"$WHIRL" shape $si --omega 240rpm --mode 2 -o "$tmp/r.csv"
+grep -q '^# rate: 240 rpm (omega=25.13 rad/s, 4 Hz)$' "$tmp/r.csv" && pass "shape: rpm and Hz" ||
+  fail "shape: rpm ($(grep '^# rate' "$tmp/r.csv"))"
+# one mode per rate
+expect_ok "shape: a mode per rate" shape $si --omega 2Hz,6Hz --mode 1,3 --plot "$tmp/m.svg"
+grep -q '>mode 1, 2 Hz<' "$tmp/m.svg" && grep -q '>mode 3, 6 Hz<' "$tmp/m.svg" &&
+  pass "labels of a mode per rate" || fail "labels of a mode per rate"
+
+# bad input: one line, non-zero, no picture (not even a temporary one)
+rm -rf "$tmp/pics"; mkdir "$tmp/pics"
+expect_error "--plot: an unknown extension" 'a figure is written as .png, .svg or .pdf' \
+  shape $si --omega 4Hz --mode 2 --plot "$tmp/pics/x.jpg"
+expect_error "--mode: neither one nor one per rate" 'one per rate' shape $si --omega 2Hz,4Hz,6Hz \
+  --mode 1,2 --plot "$tmp/pics/x.png"
+expect_error "several rates without --plot" 'draw them with --plot' shape $si --omega 2Hz,4Hz --mode 1
+expect_error "a mode that does not exist at one rate: no picture" 'mode 2 does not exist' \
+  shape $si --omega 1Hz,4Hz --mode 2 --plot "$tmp/pics/x.png"
+[ -z "$(ls -A "$tmp/pics")" ] && pass "failures leave no file in the picture's folder" ||
+  fail "failures leave files: $(ls -A "$tmp/pics")"
+
+# whirl plot: shapes from files, a sweep, a stability map; refusals
+"$WHIRL" shape $si --omega 4Hz --mode 2 -o "$tmp/s4.csv"
+expect_ok "plot: two shape files" plot "$tmp/s2.csv" "$tmp/s4.csv" -o "$tmp/p.svg"
+grep -q '>mode 2, 4 Hz<' "$tmp/p.svg" && pass "plot: labels from the files" || fail "plot: labels"
+"$WHIRL" sweep --modes 1,2 --omega-min 2 --omega-max 6 --omega-count 9 -o "$tmp/b.csv"
+expect_ok "plot: branches" plot "$tmp/b.csv" -o "$tmp/b.png"
+"$WHIRL" shape --omega 4 --mode 2 -o "$tmp/d.csv"
+expect_error "plot: files of different kinds" 'one figure shows files of one kind' \
+  plot "$tmp/s2.csv" "$tmp/b.csv" -o "$tmp/pics/x.png"
+expect_error "plot: files in different units" 'in different units' \
+  plot "$tmp/s2.csv" "$tmp/d.csv" -o "$tmp/pics/x.png"
+printf 'a,b\n1,2\n' >"$tmp/other.csv"
+expect_error "plot: a file not of whirl's" 'not a file of whirl' plot "$tmp/other.csv" -o "$tmp/pics/x.png"
+expect_error "plot: no -o" '-o is required|--output is required' plot "$tmp/s2.csv"
+expect_error "plot: a missing file" 'cannot read' plot "$tmp/none.csv" -o "$tmp/pics/x.png"
+[ -z "$(ls -A "$tmp/pics")" ] && pass "plot: failures leave no file" || fail "plot: files left: $(ls -A "$tmp/pics")"
+
+# simulate --animate: the teacher's run as MP4 and as GIF (under 1 MB for 5 s), cropped to what
+# is drawn (ffprobe's size below the frame gnuplot draws, 640 x 736); a trace by whirl plot
+scene=$(dirname "$0")/../../data/scenes/classroom.ini
+expect_ok "simulate --animate MP4" simulate "$scene" --set start.omega=4Hz --set run.t_end=2 \
+  --animate "$tmp/run.mp4"
+[ ! -s "$tmp/stdout" ] && pass "--animate without -o: no CSV on stdout" || fail "--animate: CSV on stdout"
+probe() { ffprobe -v error -select_streams v:0 -count_frames -show_entries \
+  stream=codec_name,width,height,nb_read_frames -of csv=p=0 "$1"; }
+info=$(probe "$tmp/run.mp4")
+echo "# run.mp4: $info"
+echo "$info" | awk -F, '{ exit !($1 == "h264" && $2 < 640 && $3 < 736 && $4 == 51) }' &&
+  pass "MP4: H.264, cropped, 51 frames for 2 s (t = 0 to 2 s every 1/25 s)" || fail "MP4: $info"
+expect_ok "simulate --animate GIF, 5 s" simulate "$scene" --set start.omega=4Hz --animate "$tmp/run.gif"
+size=$(wc -c <"$tmp/run.gif")
+info=$(probe "$tmp/run.gif")
+echo "# run.gif: $size bytes, $info"
+[ "$size" -lt 1000000 ] && echo "$info" | awk -F, '{ exit !($1 == "gif" && $4 == 126) }' &&
+  pass "GIF: under 1 MB for 5 s (126 frames)" || fail "GIF: $size bytes, $info"
+expect_error "--animate: an unknown extension" 'an animation is written as .mp4, .webm or .gif' \
+  simulate "$scene" --animate "$tmp/pics/run.avi"
+"$WHIRL" simulate "$scene" --set run.dt=0.5 --set run.t_end=1 --animate "$tmp/pics/run.mp4" \
+  -o "$tmp/pics/out.csv" 2>"$tmp/stderr" && fail "--animate: a failed run exits 0" ||
+  { grep -q 'dt = 0.5 s is larger than a quarter of the rotation period (0.25 s)' "$tmp/stderr" &&
+    grep -q 'no file written' "$tmp/stderr" && pass "--animate: a failed run, dt named, no file" ||
+    fail "--animate: a failed run: $(cat "$tmp/stderr")"; }
+[ -z "$(ls -A "$tmp/pics")" ] && pass "animate: failures leave no file" || fail "animate: left $(ls -A "$tmp/pics")"
+"$WHIRL" simulate "$scene" --set run.t_end=0.4 --set output.trace="$tmp/t.dat" -o "$tmp/t.csv"
+expect_ok "plot: a trace to WebM" plot "$tmp/t.dat" -o "$tmp/t.webm"
+probe "$tmp/t.webm" | grep -q '^vp9,' && pass "WebM: VP9" || fail "WebM: $(probe "$tmp/t.webm")"
+expect_error "plot: a trace to PNG" 'an animation is written as' plot "$tmp/t.dat" -o "$tmp/pics/t.png"
+finish
