@@ -13,12 +13,13 @@
  * by integrating the full nonlinear motion from the shape with every link turned by 1e-6 rad at
  * random and watching the deviation: "unstable" once it reaches 100 times the initial one, with
  * the exponential rate fitted to its growth.
- *  - mode 1 at omega = 4: linearly neutral; the run must stay "stable" (deviation bounded).
+ *  - mode 1 at omega = 4: linearly neutral and a minimum of the amended potential (index 0); the
+ *    run must stay bounded: "stable (minimum)".
  *  - mode 2 at omega = 9: linearly unstable (growth about 0.449 per unit time); the run must be
  *    "unstable" with a fitted rate within 5% of the linear one.
  *
  * Expected output (examples/stability_verdict.out; `make check` compares it):
- *     mode 1 at omega = 4: linear growth 0 -> stable; run: stable, rate 0, largest deviation 1 x ...
+ *     mode 1 at omega = 4: linear growth 0 -> stable (minimum); run: stable (minimum), rate 0, ...
  *       run: 35000 steps, 648660 right-hand sides
  *     mode 2 at omega = 9: linear growth 0.4486 -> unstable; run: unstable, rate 0.4486, ...
  *       run: 10292 steps, 177880 right-hand sides
@@ -56,11 +57,14 @@ int main(void)
         whirl_shape_info info;
         double growth;
         check(whirl_stability_mode(w, &model, cases[c].mode, 0, &info, &growth), "linear analysis");
-        const whirl_verdict linear = growth > 0 ? WHIRL_VERDICT_UNSTABLE : WHIRL_VERDICT_STABLE;
+        int index; /* negative directions of the amended potential: 0 for mode 1 (a minimum) */
+        check(whirl_stability_index(w, &index), "index");
+        const whirl_verdict linear = whirl_verdict_linear(growth, index);
 
         whirl_stability_run_params params = whirl_stability_run_defaults(); /* 100 periods */
         whirl_stability_run_result run;
         check(whirl_stability_run(&model, info.tip_r, &params, &run), "perturbed run");
+        run.verdict = whirl_verdict_refine(run.verdict, index);
         printf("mode %d at omega = %g: linear growth %.4g -> %s; run: %s, rate %.4g, largest "
                "deviation %.3g x initial\n",
                cases[c].mode, cases[c].omega, growth, whirl_verdict_name(linear),

@@ -29,6 +29,12 @@ typedef struct whirl_cstab_params {
     double freq_max;  /* eigenvalues with |mu| <= max(freq_max, 3 omega)^2 are kept, the rest
                          (unresolved frequencies and the constraint's infinite eigenvalues)
                          dropped [sqrt(g/L)]; 30; > 0 */
+    int solver;       /* 0: the kept mu by the Arnoldi iteration on the banded pencil (dense
+                         fall-back if it does not converge); 1: every mu of the dense block
+                         (the reference, O(np^3)); 0 */
+    double memory_mb; /* the workspace's bound [MB]: shapes needing more collocation points
+                         than it holds are refused (GSL_EMAXITER naming the mode, the rate and
+                         the points); 1024; 16..1048576 */
 } whirl_cstab_params;
 
 /* The defaults above. */
@@ -43,8 +49,8 @@ WHIRL_API void whirl_cstab_free(whirl_cstab *w); /* NULL is a no-op */
  * tip_r_guess, 0: its own bracket; then the shape re-solved by collocation on elements refined
  * until shape_tol is met), or with mode 0 about the hanging chain (omega >= 0). *tip_r (may be
  * NULL) receives the collocation's tip radius [L]. GSL_EDOM if the mode does not exist at omega,
- * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more than 360 points or
- * does not reproduce the shooting's shape, WHIRL_EINTERRUPTED on a stop request. */
+ * GSL_EINVAL on bad arguments, GSL_EMAXITER if the collocation needs more points than memory_mb
+ * holds or does not reproduce the shooting's shape, WHIRL_EINTERRUPTED on a stop request. */
 WHIRL_API int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
                                     double *tip_r);
 
@@ -60,8 +66,10 @@ WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectru
  * whirl_windows_find: scan step, tolerance, range, and krylov: near the edges the colliding pair
  * by shift-and-invert Arnoldi on the collocation's pencil), the shapes those of the branch
  * (whirl_continuum_branch over the scan), in increasing omega, into windows[0..max-1], their
- * number into *count (GSL_EINVAL if more than max). GSL_EDOM if the mode does not exist in the
- * range, GSL_EINVAL beyond WHIRL_CONTINUUM_OMEGA_MAX, WHIRL_EINTERRUPTED on a stop request
+ * number into *count (GSL_EINVAL if more than max). Every closed edge is then located again on a
+ * refined discretisation (degree + 8, shape_tol / 100; a second workspace allocated for it):
+ * that edge is returned, its change in err_from / err_to. GSL_EDOM if the mode does not exist
+ * in the range, GSL_EINVAL beyond WHIRL_CONTINUUM_OMEGA_MAX, WHIRL_EINTERRUPTED on a stop request
  * (between eigen-solves). */
 WHIRL_API int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                                   whirl_window *windows, size_t max, size_t *count,

@@ -104,6 +104,15 @@ WHIRL_API int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, con
  * eigenvalues lie on the imaginary axis) is returned as exactly 0. */
 WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
 
+/* The index of the last linearisation: the number of negative eigenvalues of the symmetric part
+ * of K, the Hessian of the amended potential (gravity minus centrifugal) in the co-rotating
+ * frame (with air drag, of its symmetric part), eigenvalues within 1e-9 of the largest |K|
+ * (the symmetry's zero) not counted. 0: a minimum, stable in the energy sense (also with
+ * dissipation); > 0: a saddle, which without dissipation only the Coriolis coupling can hold
+ * (linearly neutral at best) and with any complete dissipation is unstable (Kelvin-Tait-Chetaev;
+ * Merkin, Gyroscopic Systems, 1956). GSL_EINVAL without a linearisation. */
+WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
+
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
  * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
  * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. At high
@@ -142,6 +151,7 @@ typedef struct whirl_stability_point {
     double growth;       /* out: the growth rate of whirl_stability_growth [sqrt(g/L)] */
     int status;          /* out: GSL_SUCCESS once analysed, its failure, or -1 if not reached
                           * (skipped, or after a stop request) */
+    int index;           /* out: the index of the shape (whirl_stability_index) */
 } whirl_stability_point;
 
 /* Called once per point analysed with the count analysed so far by this call, from the thread
@@ -149,7 +159,8 @@ typedef struct whirl_stability_point {
 typedef void (*whirl_stability_map_progress)(void *ctx, size_t done);
 
 /* The linear stability of the free shapes pts[0..n) of the chain c with internal damping
- * damping (whirl_stability_linearise and whirl_stability_growth in the co-rotating frame, 3D),
+ * damping (whirl_stability_linearise, whirl_stability_growth and whirl_stability_index in the
+ * co-rotating frame, 3D),
  * the points shared over the OpenMP threads, a workspace each (the growth of a point does not
  * depend on the sharing). progress may be NULL. Returns GSL_SUCCESS; the failure of the earliest
  * point that failed, with its message (its status in pts[i].status); GSL_ENOMEM; or
@@ -161,17 +172,27 @@ WHIRL_API int whirl_stability_map(const whirl_chain *c, double damping, size_t n
 /* ---- perturbed time-domain runs (src/stability_run.c) ---- */
 
 typedef enum {
-    WHIRL_VERDICT_STABLE = 0,    /* the deviation stayed below 100 times the initial one */
+    WHIRL_VERDICT_STABLE = 0,    /* the deviation stayed below 100 times the initial one; with
+                                    the index (whirl_verdict_refine) a minimum of the amended
+                                    potential: "stable (minimum)" */
     WHIRL_VERDICT_UNSTABLE = 1,  /* the deviation grew to 100 times the initial one */
-    WHIRL_VERDICT_CONVERGING = 2 /* (dissipation: internal damping or air drag) it fell to
+    WHIRL_VERDICT_CONVERGING = 2, /* (dissipation: internal damping or air drag) it fell to
                                     1/100 of the initial one */
+    WHIRL_VERDICT_NEUTRAL = 3    /* bounded, but a saddle of the amended potential (index > 0)
+                                    held by the Coriolis coupling: linearly neutral, not stable
+                                    in the energy sense, destabilised by any dissipation */
 } whirl_verdict;
 
-/* "stable", "unstable", "converging". */
+/* "stable (minimum)", "unstable", "converging", "neutral (gyroscopic)". */
 WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
-/* The verdict of the linearisation alone from a growth rate: unstable (> 0), converging (< 0),
- * stable (0: the conservative chain's eigenvalues on the imaginary axis). */
-WHIRL_API whirl_verdict whirl_verdict_linear(double growth);
+
+/* The verdict v of a run or of the eigenvalues with the index of the shape
+ * (whirl_stability_index): STABLE with index > 0 becomes NEUTRAL; others unchanged. */
+WHIRL_API whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
+
+/* The linear verdict from the growth rate (whirl_stability_growth) and the index: UNSTABLE if
+ * growth > 0, CONVERGING if < 0, else STABLE (index 0) or NEUTRAL (index > 0). */
+WHIRL_API whirl_verdict whirl_verdict_linear(double growth, int index);
 
 typedef struct whirl_stability_run_params {
     double periods;      /* P > 0: length of the run in rotation periods 2 pi / omega; 100; at
@@ -302,6 +323,13 @@ typedef struct whirl_window {
                                   (0 at an open end or where a mu passes through 0) */
     double max_growth;         /* largest growth rate inside [1/T] */
     double at;                 /* the rate where it occurs [sqrt(g/L)] (to about 1e-6) */
+    double err_from, err_to;   /* the continuum (whirl_cstab_windows): each closed edge is
+                                  located again on a refined discretisation (degree + 8, shape
+                                  tolerance / 100), which gives from and to; err is its change
+                                  from the edge of the search's discretisation, a bound of the
+                                  discretisation error of the coarser and so an estimate (on the
+                                  safe side) of the reported one's [sqrt(g/L)]; 0 at an open end,
+                                  for an edge where a mu passes through 0, for the N-link chain */
 } whirl_window;
 
 typedef struct whirl_windows_stats {

@@ -360,6 +360,8 @@ typedef struct whirl_equilibrium {
                       * unidentified or no fold was found */
     double eig_growth; /* largest real part of the linearisation's eigenvalues [sqrt(g/L)]
                         * (whirl_stability_shape); NaN for the continuum or when not asked */
+    int index;       /* negative directions of the amended potential (whirl_stability_index);
+                      * -1 with eig_growth NaN */
 } whirl_equilibrium;
 
 typedef struct whirl_equilibria_params {

@@ -108,7 +108,7 @@ def test_continuum_windows_as_the_cli(whirl_program):
     assert len(windows) == len(cli) == 1
     w, c = windows[0], cli[0]
     assert c["links"] == "inf"
-    for field in ("from", "to", "freq_from", "freq_to", "max_growth", "at"):
+    for field in ("from", "to", "freq_from", "freq_to", "max_growth", "at", "err_from", "err_to"):
         assert _same(float(w[field]), _num(c[field])), field
     assert bool(w["open_from"]) == (c["open_from"] == "1")
     assert bool(w["open_to"]) == (c["open_to"] == "1")

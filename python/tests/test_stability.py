@@ -16,7 +16,7 @@ def test_mode2_unstable_run_grows_at_the_eigenvalue_rate():
 
 def test_mode1_is_stable_and_damping_makes_it_converge():
     r = whirl.stability(2.385, 1, 10, periods=30)
-    assert r.verdict == "stable" and r.eig_growth == 0
+    assert r.verdict == "stable (minimum)" and r.eig_growth == 0 and r.index == 0
     # conservative: eigenvalues on the imaginary axis, in conjugate pairs
     assert np.max(np.abs(r.eigenvalues.real)) < 1e-8
     d = whirl.stability(2.385, 1, 10, damping=0.01, linear=True)
@@ -72,3 +72,12 @@ def test_windows_edges_agree_with_the_full_linearisation():
             assert whirl.stability(outside, 2, 20, linear=True).eig_growth == 0
     with pytest.raises(whirl.Error):
         whirl.stability_windows(3, 20, 1.0, 2.0)  # mode 3 is born at 4.3
+
+
+def test_mode2_is_a_saddle_held_by_the_coriolis_coupling():
+    # mode 2 outside its windows: linearly neutral, yet two negative directions of the amended
+    # potential; with damping it grows (Kelvin-Tait-Chetaev), mode 1 (a minimum) converges
+    r = whirl.stability(4.5, 2, 12, linear=True)
+    assert r.eig_growth == 0 and r.index == 2 and r.verdict == "neutral (gyroscopic)"
+    d = whirl.stability(4.5, 2, 12, damping=0.001, linear=True)
+    assert d.eig_growth > 0 and d.index == 2 and d.verdict == "unstable"

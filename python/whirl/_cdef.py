@@ -137,21 +137,25 @@ void whirl_stability_nodes(const whirl_stability *w, const double **x, const dou
 typedef enum {
     WHIRL_VERDICT_STABLE = 0,
     WHIRL_VERDICT_UNSTABLE = 1,
-    WHIRL_VERDICT_CONVERGING = 2
+    WHIRL_VERDICT_CONVERGING = 2,
+    WHIRL_VERDICT_NEUTRAL = 3
 } whirl_verdict;
 const char *whirl_verdict_name(whirl_verdict v);
-whirl_verdict whirl_verdict_linear(double growth);
 typedef struct whirl_stability_point {
     double omega;
     const double *r, *z;
     int skip;
     double growth;
     int status;
+    int index;
 } whirl_stability_point;
 typedef void (*whirl_stability_map_progress)(void *ctx, size_t done);
 int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
                         whirl_stability_point *pts, whirl_stability_map_progress progress,
                         void *ctx);
+whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
+whirl_verdict whirl_verdict_linear(double growth, int index);
+int whirl_stability_index(const whirl_stability *w, int *index);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;
@@ -310,6 +314,7 @@ typedef struct whirl_window {
     double freq_from, freq_to;
     double max_growth;
     double at;
+    double err_from, err_to;
 } whirl_window;
 typedef struct whirl_windows_stats {
     double omega_from, omega_to;
@@ -340,6 +345,7 @@ typedef struct whirl_equilibrium {
     int branch;
     double born_at;
     double eig_growth;
+    int index;
 } whirl_equilibrium;
 typedef struct whirl_equilibria {
     double omega;
@@ -381,6 +387,8 @@ typedef struct whirl_cstab_params {
     double tip_mass;
     double shape_tol;
     double freq_max;
+    int solver;
+    double memory_mb;
 } whirl_cstab_params;
 whirl_cstab_params whirl_cstab_defaults(void);
 whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p);

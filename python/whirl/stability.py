@@ -19,8 +19,11 @@ class StabilityResult:
     eigenvalues, the rotation symmetry's zeros removed [1/T]), ``eigenvalues`` (complex array
     [1/T]), and, unless linear, the perturbed run's ``sim_growth`` (fitted exponential rate, 0
     unless unstable), ``max_deviation`` (largest deviation / the initial one), ``duration`` [T]
-    and ``stats``; ``verdict``: "stable", "unstable" or "converging" (linear: the sign of
-    eig_growth). ``tip_r``, ``node_count``: the shape's tip radius [L] and node count (the pivot
+    and ``stats``; ``index``: the negative directions of the amended potential (gravity minus
+    centrifugal) at the shape; ``verdict``: "stable (minimum)" (bounded, index 0: an energy
+    minimum, stable also with dissipation), "neutral (gyroscopic)" (bounded, index > 0: a saddle
+    held by the Coriolis coupling, destabilised by any dissipation), "unstable" or "converging"
+    (linear: from the sign of eig_growth and the index). ``tip_r``, ``node_count``: the shape's tip radius [L] and node count (the pivot
     plus the axis crossings); ``units``."""
 
     omega: float
@@ -30,6 +33,7 @@ class StabilityResult:
     eig_growth: float
     eigenvalues: np.ndarray
     verdict: str
+    index: int
     sim_growth: Optional[float] = None
     max_deviation: Optional[float] = None
     duration: Optional[float] = None
@@ -37,8 +41,8 @@ class StabilityResult:
     units: Units = field(default_factory=Units)
 
     def __repr__(self) -> str:
-        return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s)" % (
-            self.omega, self.mode, self.eig_growth, self.verdict)
+        return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s, index=%d)" % (
+            self.omega, self.mode, self.eig_growth, self.verdict, self.index)
 
 
 def _model(chain: Chain, omega: float, damping: float, drive_radius: float, air_drag: float,
@@ -113,11 +117,14 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
             nodes = int(info.n_nodes) + 1
     check(status, "stability", u)
     g = float(growth[0])
+    index = ffi.new("int *")
+    check(lib.whirl_stability_index(ws, index), "stability", u)
+    linear_verdict = lib.whirl_verdict_linear(g, index[0])
     res = StabilityResult(omega=w * u.rate, mode=mode, tip_r=info.tip_r * u.length,
                           node_count=nodes, eig_growth=g * u.rate,
                           eigenvalues=_eigenvalues(ws) * u.rate,
-                          verdict="unstable" if g > 0 else "converging" if g < 0 else "stable",
-                          units=u)
+                          verdict=ffi.string(lib.whirl_verdict_name(linear_verdict)).decode(),
+                          index=int(index[0]), units=u)
     _lib.finite("the stability", res.omega, res.tip_r, res.eig_growth, res.eigenvalues)
     if linear:
         return res
@@ -138,7 +145,8 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     res.sim_growth = out.sim_growth * u.rate
     res.max_deviation = out.max_deviation
     res.duration = out.duration * u.time
-    res.verdict = ffi.string(lib.whirl_verdict_name(out.verdict)).decode()
+    res.verdict = ffi.string(lib.whirl_verdict_name(
+        lib.whirl_verdict_refine(out.verdict, res.index))).decode()
     res.stats = _stats(out.stats)
     return res
 
@@ -195,7 +203,7 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
 
 WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
                          ("freq_from", "f8"), ("freq_to", "f8"), ("max_growth", "f8"),
-                         ("at", "f8")])
+                         ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
 
 
 def stability_windows(mode: int, links: Union[None, int, Chain] = None,
@@ -215,7 +223,9 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     collision), located to ``tol`` after a scan with spacing ``scan_step``. Returns (windows,
     stats): a structured array with fields from, to (the unstable interval), open_from, open_to
     (True: that end is the end of the range, not an edge), freq_from, freq_to (|Im lambda| where
-    the pair meets [1/T]), max_growth [1/T] and at (where it occurs), in increasing omega; stats
+    the pair meets [1/T]), max_growth [1/T], at (where it occurs) and err_from, err_to (the
+    continuum's estimate of each edge's discretisation error; 0 for the N-link chain), in
+    increasing omega; stats
     a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
     Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
@@ -258,8 +268,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     for i in range(count[0]):
         f = found[i]
         out[i] = (getattr(f, "from"), f.to, bool(f.open_from), bool(f.open_to), f.freq_from, f.freq_to,
-                  f.max_growth, f.at)
-    for name in ("from", "to", "freq_from", "freq_to", "max_growth", "at"):
+                  f.max_growth, f.at, f.err_from, f.err_to)
+    for name in ("from", "to", "freq_from", "freq_to", "max_growth", "at", "err_from", "err_to"):
         out[name] *= u.rate
     stats = {k: getattr(st, k) for k in ("omega_from", "omega_to", "scan", "shapes",
                                           "solves_vectors", "solves_values", "solves_krylov",

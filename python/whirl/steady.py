@@ -457,7 +457,7 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
 
 EQUILIBRIA_DTYPE = np.dtype([("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
                              ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
-                             ("top_tension", "f8"), ("eig_growth", "f8")])
+                             ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")])
 
 EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_levels",
                        "tip_unresolved", "check_roots", "check_shots", "check_levels", "matched",
@@ -477,8 +477,9 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
     a structured array in increasing tip radius with fields node_count (the pivot plus the axis
     crossings; the command line's ``nodes``), branch (k: on the branch born at omega_k; 0:
     isolated; -1: not identified, or branches=False), born_at (omega_k, or the lowest fold of an
-    isolated curve; NaN if none), tip_r, max_r, depth, top_tension and eig_growth (largest real
-    part of the linearisation; NaN for the continuum or stability=False); and a dict of the
+    isolated curve; NaN if none), tip_r, max_r, depth, top_tension, eig_growth (largest real
+    part of the linearisation; NaN for the continuum or stability=False) and index (negative
+    directions of the amended potential; -1 where eig_growth is NaN); and a dict of the
     completeness evidence (the counts of the two scans and the continuation, tip_floor in
     lengths, balance the largest force across a link over its tension). branches=False skips
     the continuation (the scans only). Ctrl-C raises KeyboardInterrupt."""
@@ -501,7 +502,7 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
         q = e.eq[i]
         rows[i] = (q.info.n_nodes + 1, q.branch, q.born_at * u.rate, q.info.tip_r * u.length,
                    q.info.max_r * u.length, q.info.depth * u.length,
-                   q.info.top_tension * u.force, q.eig_growth * u.rate)
+                   q.info.top_tension * u.force, q.eig_growth * u.rate, q.index)
     _lib.finite("the equilibria", *(rows[c] for c in ("tip_r", "max_r", "depth",
                                                       "top_tension")))
     evidence = {k: getattr(e, k) for k in EQUILIBRIA_EVIDENCE}

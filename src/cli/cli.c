@@ -127,6 +127,16 @@ static int parse_value(const cli_option *o, const char *text)
             if (list->n == CLI_LIST_MAX) return -1;
             if (parse_int(p, &end, &list->v[list->n]) != 0) return -1;
             list->n++;
+            if (*end == '-') { /* a range A-B, A <= B */
+                int last;
+                if (parse_int(end + 1, &end, &last) != 0 || last < list->v[list->n - 1])
+                    return -1;
+                while (list->v[list->n - 1] < last) {
+                    if (list->n == CLI_LIST_MAX) return -1;
+                    list->v[list->n] = list->v[list->n - 1] + 1;
+                    list->n++;
+                }
+            }
             if (*end == '\0') return 0;
             if (*end != ',') return -1;
             p = end + 1;
@@ -149,7 +159,7 @@ static const char *type_words(const cli_option *o, char *buf, size_t size)
         return buf;
     }
     case CLI_INT: return "an integer";
-    case CLI_INT_LIST: return "a comma-separated list of integers";
+    case CLI_INT_LIST: return "a comma-separated list of integers or ranges A-B";
     case CLI_DOUBLE_LIST: {
         const whirl_quantity q = quantity_of(o->unit);
         if (q == WHIRL_QUANTITY_NUMBER) return "a finite number or a comma list of them";

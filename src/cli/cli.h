@@ -13,7 +13,7 @@ typedef enum {
     CLI_DOUBLE,   /* finite double */
     CLI_INT,      /* int */
     CLI_STRING,   /* const char * (points into argv) */
-    CLI_INT_LIST, /* comma list of ints into a cli_int_list */
+    CLI_INT_LIST, /* comma list of ints or ranges A-B into a cli_int_list */
     CLI_DOUBLE_LIST, /* comma list of finite doubles (each with the option's unit, converted like
                       * a CLI_DOUBLE) into a cli_double_list */
     CLI_FLAG      /* int set to 1, takes no value */

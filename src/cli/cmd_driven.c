@@ -5,20 +5,24 @@
  * A branch (--omega-min, --omega-max): comment lines (parameters, one "# fold omega=..." per
  * fold), then the CSV omega,tip_x,tip_y,tip_r,top_tension,nodes,fold along the continued branch;
  * the branch starts at --omega (default omega_max) from mode K and leaves it towards smaller
- * omega (--up: larger). Ctrl-C (SIGINT, SIGTERM) stops a branch within a step: its points so far
+ * omega (--up: larger). With --stability (N-link chain) each point of the branch gets the
+ * columns eig_growth,index,verdict of its linearisation (whirl_stability_linearise_3d): every
+ * shape of the branch, also the small near-axis one a forced chain has below resonance beyond
+ * the folds. Ctrl-C (SIGINT, SIGTERM) stops a branch within a step: its points so far
  * are written (a comment line says where it stopped) and the exit status is 130. */
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "cli/cli.h"
 #include "whirl/driven.h"
+#include "whirl/stability.h"
 
 
 typedef struct driven_options {
     double omega, omega_min, omega_max, eps, drag, drag_quadratic, tip_mass, step;
     cli_units units;
     cli_air air;
-    int mode, side, links, points, max_points, up;
+    int mode, side, links, points, max_points, up, stability;
     int omega_given, min_given, max_given, points_given, step_given, max_points_given,
         up_given;
     const char *output;
@@ -33,6 +37,9 @@ static int check_options(const cli_command *cmd, const driven_options *o)
         return cli_error(cmd, "--omega (the branch's start) is outside [--omega-min, --omega-max]");
     if (o->side != 1 && o->side != -1)
         return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
+    if (o->stability && !(o->links > 0 && branch))
+        return cli_error(cmd, "--stability needs --links N and a branch (--omega-min, "
+                         "--omega-max)");
     if (o->eps == 0 && (o->drag > 0 || o->drag_quadratic > 0))
         return cli_error(cmd, "air drag needs --eps > 0: with the pivot on the axis nothing "
                          "balances the drag's torque");
@@ -92,6 +99,31 @@ done:
     return rc;
 }
 
+/* The growth and index of the linearisation about the branch's shape q (N-link chain). */
+static int point_stability(const driven_options *o, const whirl_chain *chain,
+                           const whirl_driven_params *p, const whirl_driven_info *q,
+                           double *growth, int *index)
+{
+    const size_t n = chain->n + 1;
+    whirl_driven_params at = *p;
+    at.omega = q->omega;
+    double *buf = malloc(5 * n * sizeof *buf);
+    whirl_stability *w = whirl_stability_alloc(chain->n);
+    int status = buf && w ? GSL_SUCCESS : GSL_ENOMEM;
+    if (!status)
+        status = whirl_driven_sample(chain, &at, q->tip, n, buf, buf + n, buf + 2 * n,
+                                     buf + 3 * n, buf + 4 * n);
+    const whirl_model m = {.chain = chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
+                           .omega = q->omega, .drive_radius = o->eps, .air_drag = o->drag,
+                           .air_drag_quadratic = o->drag_quadratic};
+    if (!status) status = whirl_stability_linearise_3d(w, &m, buf + n, buf + 2 * n, buf + 3 * n);
+    if (!status) status = whirl_stability_growth(w, growth);
+    if (!status) status = whirl_stability_index(w, index);
+    whirl_stability_free(w);
+    free(buf);
+    return status;
+}
+
 /* A branch by continuation from mode K at the start rate. */
 static int run_branch(const cli_command *cmd, const driven_options *o, const whirl_chain *chain,
                       whirl_driven_params *p)
@@ -104,7 +136,7 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
                          cli_units_name(&o->units, CLI_UNIT_RATE), CLI_LIBRARY_ERROR(&o->units));
     whirl_driven_curve *curve = whirl_driven_curve_alloc((size_t)o->max_points);
     if (curve == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    int rc = 1;
+    int rc = 1, rc_stab = 0;
     char stopped[512] = "";
     const int status = whirl_driven_branch(chain, p, &start, o->up ? 1 : -1, o->omega_min,
                                            o->omega_max, o->step, curve);
@@ -127,12 +159,28 @@ static int run_branch(const cli_command *cmd, const driven_options *o, const whi
     if (stopped[0]) fprintf(out.fp, "# interrupted (%s): the points found until then\n", stopped);
     for (size_t k = 0; k < curve->n_folds; k++)
         fprintf(out.fp, "# fold omega=%s\n", CLI_NUM(curve->fold_omega[k] * rate));
-    fprintf(out.fp, "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold\n");
-    for (size_t j = 0; j < curve->n; j++) {
+    fprintf(out.fp, "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold%s\n",
+            o->stability ? ",eig_growth,index,verdict" : "");
+    for (size_t j = 0; j < curve->n && !rc_stab; j++) {
         const whirl_driven_info *q = &curve->point[j];
-        fprintf(out.fp, "%s,%s,%s,%s,%s,%d,%d\n", CLI_NUM(q->omega * rate), CLI_NUM(q->tip[0] * len),
+        fprintf(out.fp, "%s,%s,%s,%s,%s,%d,%d", CLI_NUM(q->omega * rate), CLI_NUM(q->tip[0] * len),
                 CLI_NUM(q->tip[1] * len), CLI_NUM(q->tip_r * len),
                 CLI_NUM(user(o, CLI_UNIT_FORCE, q->top_tension)), q->nodes, curve->fold[j]);
+        if (o->stability) {
+            double growth;
+            int index;
+            rc_stab = point_stability(o, chain, p, q, &growth, &index);
+            if (rc_stab) break;
+            fprintf(out.fp, ",%s,%d,%s", CLI_NUM(growth * rate), index,
+                    whirl_verdict_name(whirl_verdict_linear(growth, index)));
+        }
+        fputc('\n', out.fp);
+    }
+    if (rc_stab) {
+        cli_out_abort(&out);
+        cli_error(cmd, "stability at omega %s: %s", CLI_NUM(curve->point[0].omega * rate),
+                  CLI_LIBRARY_ERROR(&o->units));
+        goto done;
     }
     rc = cli_out_commit(cmd, &out);
     if (rc == 0 && stopped[0]) {
@@ -176,6 +224,9 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv)
          "branch: most points (default 100000)", "[2, 10000000]", "--omega-min"},
         {"--up", NULL, CLI_FLAG, &o.up, &o.up_given, "", "branch: leave the start towards larger omega",
          NULL, "--omega-min"},
+        {"--stability", NULL, CLI_FLAG, &o.stability, NULL, "",
+         "branch of the N-link chain: eig_growth, index and verdict of every shape", NULL,
+         "--omega-min --links"},
         CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},

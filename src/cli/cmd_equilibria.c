@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "cli/steady_cli.h"
+#include "whirl/stability.h"
 
 int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
 {
@@ -15,7 +16,7 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
          "", CLI_UNIT_RATE},
         STEADY_CLI_MODEL_OPTIONS(m),
         {"--no-stability", NULL, CLI_FLAG, &no_stability, NULL, NULL,
-         "N-link: leave eig_growth and verdict empty (faster on long chains)", NULL,
+         "N-link: leave eig_growth, verdict and index empty (faster on long chains)", NULL,
          "--links"},
         {"--no-branches", NULL, CLI_FLAG, &no_branches, NULL, NULL,
          "N-link: the two scans only, no continuation (branch and born_at empty; for counts at "
@@ -88,11 +89,11 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
                 "%ld shots); shapes solved mode by mode: %zu, each alone in a sign change: %zu "
                 "(Kolodner: exactly one shape per mode born)\n", e->tip_roots, e->tip_levels,
                 e->tip_shots, e->check_roots, e->matched);
-        fprintf(fp, "# branch: the mode; born_at: its critical rate; eig_growth, verdict: not "
-                "computed for the continuum (use --links N)\n");
+        fprintf(fp, "# branch: the mode; born_at: its critical rate; eig_growth, verdict, index: "
+                "not computed for the continuum (use --links N)\n");
     }
     cli_units_comment(fp, &m.units);
-    fprintf(fp, "nodes,branch,born_at,tip_r,max_r,depth,top_tension,eig_growth,verdict\n");
+    fprintf(fp, "nodes,branch,born_at,tip_r,max_r,depth,top_tension,eig_growth,verdict,index\n");
     for (size_t i = 0; i < e->count; i++) {
         const whirl_equilibrium *q = &e->eq[i];
         char branch[32];
@@ -104,10 +105,10 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
                 CLI_NUM(q->info.tip_r * len), CLI_NUM(q->info.max_r * len),
                 CLI_NUM(q->info.depth * len), CLI_NUM(q->info.top_tension * force));
         if (isfinite(q->eig_growth))
-            fprintf(fp, "%s,%s\n", CLI_NUM(q->eig_growth * rate),
-                    q->eig_growth > 0 ? "unstable" : "stable");
+            fprintf(fp, "%s,%s,%d\n", CLI_NUM(q->eig_growth * rate),
+                    whirl_verdict_name(whirl_verdict_linear(q->eig_growth, q->index)), q->index);
         else
-            fprintf(fp, ",\n");
+            fprintf(fp, ",,\n");
     }
     whirl_equilibria_free(e);
     steady_cli_model_free(&m);

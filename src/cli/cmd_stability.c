@@ -1,12 +1,15 @@
 /* whirl stability: linear stability of the steady shapes (whirl/stability.h) and its check by
  * perturbed time-domain runs, at one rate (--omega) or over a range (--omega-min/--omega-max/
  * --omega-count, the stability map). One CSV row per rate and mode:
- *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict
+ *   omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index
  * eig_growth: the largest real part of the eigenvalues of the linearisation in the co-rotating
  * frame, the symmetry's zero eigenvalues removed; sim_growth, max_deviation, verdict: the
  * perturbed run (whirl_stability_run_shape). With --linear no run is made: sim_growth and
  * max_deviation are left empty and the verdict is the linear one (eig_growth > 0: unstable, < 0:
- * converging, 0: stable). Rates where a mode of the map does not exist are left out.
+ * converging, 0: "stable (minimum)" or "neutral (gyroscopic)"). index: the negative directions
+ * of the amended potential (whirl_stability_index); a bounded run or a zero growth is "stable
+ * (minimum)" at index 0 (an energy minimum, stable also with dissipation) and "neutral
+ * (gyroscopic)" above (a saddle held by the Coriolis coupling, destabilised by dissipation). Rates where a mode of the map does not exist are left out.
  * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
  * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
  * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
@@ -18,8 +21,9 @@
  * N-link chain with --links N (whirl_windows_find) or else of the continuous chain
  * (whirl_cstab_windows: the string equations by collocation, --degree, --tip-mass), one row per
  * window:
- *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at
- * (links "inf" for the continuum) and a comment line per mode with the eigen-solves used and
+ *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at[,err_from,err_to]
+ * (links "inf" for the continuum, which adds err_from, err_to: its estimate of each edge's
+ * discretisation error) and a comment line per mode with the eigen-solves used and
  * those of a grid of equal resolution.
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
@@ -36,6 +40,7 @@
 
 #include "cli/cli.h"
 #include "core/error.h"
+#include "cli/stability_atlas.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
@@ -43,6 +48,7 @@ typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
     double scan_step, tol, tip_mass;
     int mode, links, steps, seed, linear, side, windows, full, resume, degree, links_given;
+    int atlas, eigenvalues, degree_given;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
@@ -60,6 +66,7 @@ typedef struct point {
     int nodes;     /* driven: node count */
     whirl_verdict verdict;
     int linearised; /* free shapes: eig_growth known (whirl_stability_map) */
+    int index;     /* negative directions of the amended potential (whirl_stability_index) */
     int done;
     int absent;    /* driven map: the mode has no shape at this rate */
 } point;
@@ -79,6 +86,19 @@ static int method_known(const char *name)
 
 static int check_options(const cli_command *cmd, const options *o)
 {
+    if (!o->atlas && o->max_given && !o->min_given)
+        return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
+    if (!o->atlas && o->modes_given && !o->min_given)
+        return cli_error(cmd, "--modes needs --omega-min (or --atlas)");
+    if (o->atlas) {
+        for (int k = 0; k < o->modes.n; k++)
+            if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
+                return cli_error(cmd, "mode %d is out of range: the continuous chain takes "
+                                 "modes 1..%d", o->modes.v[k], WHIRL_MODE_MAX);
+        if (!(o->tol < o->scan_step))
+            return cli_error(cmd, "--tol must be smaller than --scan-step");
+        return 0;
+    }
     if (o->windows) {
         if (!(o->tol < o->scan_step))
             return cli_error(cmd, "--tol must be smaller than --scan-step");
@@ -244,9 +264,10 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
         /* eig_growth from the map; the run needs the linearisation's nodes (same shape) */
         status = whirl_stability_linearise(w, &m, p->r, p->z);
     }
+    if (!status) status = whirl_stability_index(w, &p->index);
     if (status) return status;
     if (o->linear) {
-        p->verdict = whirl_verdict_linear(p->eig_growth);
+        p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
         return GSL_SUCCESS;
     }
     whirl_stability_run_params rp = whirl_stability_run_defaults();
@@ -278,7 +299,7 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
                 CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
     p->sim_growth = res.sim_growth;
     p->max_deviation = res.max_deviation;
-    p->verdict = res.verdict;
+    p->verdict = whirl_verdict_refine(res.verdict, p->index);
     /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
      * linear stretch was not integrated: a step beyond the method's stability interval makes
      * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
@@ -291,7 +312,8 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
                           "%s (an integration failure, not the chain); give a smaller --dt, or "
                           "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
                           res.sim_growth * unit(o, CLI_UNIT_RATE),
-                          p->eig_growth * unit(o, CLI_UNIT_RATE), p->omega, o->method);
+                          p->eig_growth * unit(o, CLI_UNIT_RATE),
+                          p->omega * unit(o, CLI_UNIT_RATE), o->method);
     return GSL_SUCCESS;
 }
 
@@ -388,18 +410,81 @@ static int run_windows(const cli_command *cmd, const options *o)
                     (st->omega_to - st->omega_from) / o->tol + 1);
         }
         cli_units_comment(out.fp, &o->units);
-        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at\n");
+        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
+                c ? "" : ",err_from,err_to");
         for (size_t k = 0; k < nmodes; k++)
             for (size_t i = 0; i < count[k]; i++) {
                 const whirl_window *x = win + k * WINDOWS_MAX + i;
-                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s\n", o->modes.v[k], links,
+                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
                         CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
                         CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
                         CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
+                if (!c)
+                    fprintf(out.fp, ",%s,%s", CLI_NUM(x->err_from * rate),
+                            CLI_NUM(x->err_to * rate));
+                fputc('\n', out.fp);
             }
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
     free(win), free(count), free(stats), free(seconds), free(status), free(err);
+    whirl_chain_free(c);
+    return rc;
+}
+
+/* --eigenvalues: every eigenvalue of the linearisation at the one rate (the symmetry's zeros
+ * removed), in increasing real part, with the index and the verdict in comment lines. */
+static int run_eigenvalues(const cli_command *cmd, options *o)
+{
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
+    whirl_stability *w = whirl_stability_alloc((size_t)o->links);
+    if (c == NULL || w == NULL) {
+        whirl_chain_free(c);
+        whirl_stability_free(w);
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    }
+    size_t count = 0;
+    double *nodes = NULL;
+    point *pts = make_points(cmd, o, c, &count, &nodes);
+    int rc = pts ? 0 : 1;
+    o->linear = 1;
+    size_t n = 0;
+    const double *re = NULL, *im = NULL;
+    if (!rc && (analyse(o, c, w, &pts[0], NULL) != GSL_SUCCESS ||
+                whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS))
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
+    if (!rc && order == NULL) rc = cli_error(cmd, "out of memory");
+    cli_out out;
+    if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
+    if (!rc) {
+        for (size_t i = 0; i < n; i++) order[i] = i;
+        for (size_t i = 1; i < n; i++) /* by real part, then imaginary part */
+            for (size_t j = i; j > 0 && (re[order[j - 1]] > re[order[j]] ||
+                                         (re[order[j - 1]] == re[order[j]] &&
+                                          im[order[j - 1]] > im[order[j]]));
+                 j--) {
+                const size_t t = order[j];
+                order[j] = order[j - 1];
+                order[j - 1] = t;
+            }
+        const double rate = unit(o, CLI_UNIT_RATE);
+        fprintf(out.fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s; "
+                        "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
+                        "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
+                        "%s\n", CLI_NUM(pts[0].omega * rate), pts[0].mode, o->links,
+                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), n,
+                CLI_NUM(pts[0].eig_growth * rate), pts[0].index,
+                whirl_verdict_name(pts[0].verdict));
+        cli_units_comment(out.fp, &o->units);
+        fprintf(out.fp, "re,im\n");
+        for (size_t i = 0; i < n; i++)
+            fprintf(out.fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
+        if (cli_out_commit(cmd, &out)) rc = 1;
+    }
+    free(order);
+    free(pts);
+    free(nodes);
+    whirl_stability_free(w);
     whirl_chain_free(c);
     return rc;
 }
@@ -429,13 +514,17 @@ static void write_header(FILE *fp, const options *o)
                 CLI_NUM(o->dt * unit(o, CLI_UNIT_TIME)));
     if (o->linear)
         fprintf(fp, "# verdict (linear): unstable where eig_growth > 0, converging where "
-                    "< 0, stable where 0\n");
+                    "< 0, where 0 stable (minimum) if index = 0, else neutral (gyroscopic)\n");
     else
         fprintf(fp, "# verdict: unstable once the deviation reaches 100 times the initial "
                     "one, converging (damping or drag > 0) once its largest value over a "
-                    "period falls to 1/100 (or to 1/10 by the end), else stable\n");
+                    "period falls to 1/100 (or to 1/10 by the end), else stable (minimum) if "
+                    "index = 0, neutral (gyroscopic) if not\n");
+    fprintf(fp, "# index: negative directions of the amended potential (gravity minus "
+                "centrifugal) at the shape; 0: a minimum, stable also with dissipation; > 0: a "
+                "saddle that only the Coriolis coupling can hold, destabilised by dissipation\n");
     cli_units_comment(fp, &o->units);
-    fprintf(fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict%s\n",
+    fprintf(fp, "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index%s\n",
             driven(o) ? ",tip_x,tip_y,nodes" : "");
 }
 
@@ -443,12 +532,12 @@ static void write_row(FILE *fp, const options *o, const point *p)
 {
     const double rate = unit(o, CLI_UNIT_RATE), len = unit(o, CLI_UNIT_LENGTH);
     if (o->linear)
-        fprintf(fp, "%s,%d,%d,%s,,,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
-                CLI_NUM(p->eig_growth * rate), whirl_verdict_name(p->verdict));
+        fprintf(fp, "%s,%d,%d,%s,,,%s,%d", CLI_NUM(p->omega * rate), p->mode, o->links,
+                CLI_NUM(p->eig_growth * rate), whirl_verdict_name(p->verdict), p->index);
     else
-        fprintf(fp, "%s,%d,%d,%s,%s,%s,%s", CLI_NUM(p->omega * rate), p->mode, o->links,
+        fprintf(fp, "%s,%d,%d,%s,%s,%s,%s,%d", CLI_NUM(p->omega * rate), p->mode, o->links,
                 CLI_NUM(p->eig_growth * rate), CLI_NUM(p->sim_growth * rate),
-                CLI_NUM(p->max_deviation), whirl_verdict_name(p->verdict));
+                CLI_NUM(p->max_deviation), whirl_verdict_name(p->verdict), p->index);
     if (driven(o))
         fprintf(fp, ",%s,%s,%d", CLI_NUM(p->tip[0] * len), CLI_NUM(p->tip[1] * len), p->nodes);
     fputc('\n', fp);
@@ -484,9 +573,10 @@ static int linear_map(const options *o, const whirl_chain *c, point *pts, size_t
     for (size_t i = 0; i < count; i++) {
         if (mp[i].status != GSL_SUCCESS) continue;
         pts[i].eig_growth = mp[i].growth;
+        pts[i].index = mp[i].index;
         pts[i].linearised = 1;
         if (!o->linear) continue;
-        pts[i].verdict = whirl_verdict_linear(mp[i].growth);
+        pts[i].verdict = whirl_verdict_linear(mp[i].growth, mp[i].index);
         pts[i].done = 1;
         ++*finished;
     }
@@ -602,19 +692,20 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
         {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate (one point)",
-         "(0, inf)", "--mode", "--omega-min --modes", "--omega-min", CLI_UNIT_RATE},
+         "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
+         CLI_UNIT_RATE},
         {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K",
          "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
          "--omega"},
         {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
-         "(0, inf)", "--omega-max", "--trace", "--omega", CLI_UNIT_RATE},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B", "map: last rate",
-         "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
+         "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
+        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B",
+         "map: last rate (--atlas: default 40)", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
         {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
          "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
         {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
-         "map: modes (default 1,2,3): 1..N (the hand-swung or the continuous chain: 1..64)",
-         "[1, inf)", "--omega-min"},
+         "map: modes (default 1,2,3; --atlas: 2-8): 1..N (the hand-swung or the continuous "
+         "chain: 1..64)", "[1, inf)"},
         {"--links", NULL, CLI_INT, &o.links, &o.links_given, "N",
          "links of the chain (default 25; with --windows the continuous chain unless given)",
          "[2, 100000]"},
@@ -648,18 +739,27 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
          "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
          "--windows"},
-        {"--degree", NULL, CLI_INT, &o.degree, NULL, "P",
+        {"--degree", NULL, CLI_INT, &o.degree, &o.degree_given, "P",
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
          "--windows", "--links"},
         {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m",
          "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
          NULL, CLI_UNIT_MASS},
+        {"--atlas", NULL, CLI_FLAG, &o.atlas, NULL, "",
+         "every window of the continuum's --modes from each birth to --omega-max, with the "
+         "Krein signatures at the edges (-o FILE, resumable)", NULL, "--output",
+         "--omega --omega-min --omega-count --windows --links --trace --periods --perturb --seed "
+         "--method --dt --damping --linear --eps --drag --drag-quadratic --drag-cd --side "
+         "--tip-mass --full --eigenvalues"},
+        {"--eigenvalues", NULL, CLI_FLAG, &o.eigenvalues, NULL, "",
+         "single rate: every eigenvalue lambda of the linearisation (re,im), not the run",
+         NULL, "--omega", "--trace --periods --perturb --seed --method --dt"},
         {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
          "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
         {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
          "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
         {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "",
-         "map: keep the rows already in -o FILE, compute the rest", NULL, "--omega-min --output",
+         "map, atlas: keep the rows already in -o FILE, compute the rest", NULL, "--output",
          "--windows"},
         CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
@@ -667,8 +767,23 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
     if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
+    if (o.atlas) {
+        if (!o.modes_given) {
+            o.modes.n = 7;
+            for (int k = 0; k < 7; k++) o.modes.v[k] = 2 + k;
+        }
+        if (!o.max_given) o.omega_max = 40;
+    }
     if ((rc = check_options(cmd, &o))) return rc;
+    if (o.resume && !o.atlas && !o.min_given)
+        return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
+    if (o.degree_given && !o.windows && !o.atlas)
+        return cli_error(cmd, "--degree needs --windows or --atlas");
+    if (o.atlas)
+        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
+                               o.output, o.resume);
     if (o.windows) return run_windows(cmd, &o);
+    if (o.eigenvalues) return run_eigenvalues(cmd, &o);
 
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));

@@ -44,7 +44,10 @@
  * vertically (q = 0): about 0.03 for mode 3 at omega = 9, which one Chebyshev interval resolves
  * only with hundreds of points. Elements are halved (starting from four) until the last two
  * Chebyshev coefficients of r and q on each are below shape_tol of their largest value, so that
- * they are small near those points and large elsewhere, and the convergence is geometric in p.
+ * they are small near those points and large elsewhere, and the convergence is geometric in p;
+ * and until the phase of the fastest wave kept (element_phase) on each is resolved: near the free
+ * end the modes behave as J0(2 Omega sqrt(sigma)), whose Taylor coefficients in sigma fall only
+ * once k exceeds Omega sqrt(h) (an element of degree 16 from sigma = 0 had edges 1e-5 off).
  * Conditions, in the rows of the equations they replace (the pattern that makes the counts agree
  * with the orders above): at the right end of an element the equation rows of w, of the
  * constraint and of vh carry n0 . xi, t0 . xi and vh continuous with the next element (zero at
@@ -54,13 +57,27 @@
  * equation n0 . (E_u, E_w), the row of w tau = 0 (m > 0: the rows of u, w, vh the tip mass's
  * equations). The steady shape is solved by the same collocation (Newton; r continuous at right
  * ends, q at left ends), seeded by the shooting of continuum.c, whose tip radius it reproduces.
+ * Structure: with the unknowns ordered point by point (u, w, tau, vh at each point) every row
+ * couples only the points of its element and, for the continuity rows at an element's left end,
+ * those of the previous one, so A is banded with kl = 4 (p + 1) + 3 sub- and ku = 4 p + 3
+ * super-diagonals, and B couples only the fields of one point (4 x 4 blocks). The shifted pencil
+ * A - s B is factored by LAPACK's banded LU (dgbtrf, partial pivoting: O(np p^2) instead of
+ * O(np^3)), and the steady shape's Newton iteration is banded likewise (2 fields, kl = ku =
+ * 2 p + 1).
  * Eigenvalues, in real arithmetic: the columns of tau in B are zero, so the finite mu are
  * mu = s + 1 / theta with theta the eigenvalues of the block of (A - s B)^-1 B on the rows and
- * columns of (u, w, vh) (a real shift s; one LU factorisation of the pencil, then LAPACK's dgeev
- * on 3/4 of its size; the constraint's infinite mu become theta = 0), and its eigenvectors are
- * the modes' (u, w, vh). Against LAPACK's QZ (dggev) on the whole pencil (Moler & Stewart 1973)
- * the same mu to 1e-8 relative, about 4 times faster. The collocation's round-off limits the mu to
- * about 1e-9 relative (the second-derivative matrices of short elements are large).
+ * columns of (u, w, vh) (a real shift s; the constraint's infinite mu become theta = 0), and its
+ * eigenvectors are the modes' (u, w, vh). Only the few mu with |mu| <= cut are kept (some tens
+ * of the 3 np): they are the theta of largest modulus, which the Arnoldi iteration on that block
+ * (shift-and-invert; one banded solve per step, full re-orthogonalisation; Saad 2011, ch. 6-7)
+ * finds first; it runs until every Ritz value with |theta| >= 0.8 / (cut + |s|) has a residual
+ * |h_{m+1,m} e_m^T y| below 1e-12 |theta| (Ritz pairs: theta and the eigenvector V y), and at
+ * least k + 16 steps for k such values. If that takes more than CS_KRYLOV_MAX steps, or on
+ * request (solver = 1, the reference), the block is formed in full by 3 np banded solves and all
+ * its eigenvalues computed by LAPACK's dgeev (about 100 times the work at 300 points). Against
+ * LAPACK's QZ (dggev) on the whole dense pencil (Moler & Stewart 1973) the dense block gives the
+ * same mu to 1e-8 relative. The collocation's round-off limits the mu to about 1e-9 relative (the
+ * second-derivative matrices of short elements are large).
  * The rotation about z (v = r, u = w = tau = 0, mu = 0) is removed as the kept mu nearest 0.
  * Krein signature of a neutral mu = -w^2 with eigenvector (u, w, tau, vh) (lambda = i w,
  * v = vh / lambda): the mode's energy w^2 <xi, M xi> + <xi, K xi> = 2 w^2 <xi, xi> - i w <xi, G xi>
@@ -76,6 +93,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
+#include <gsl/gsl_roots.h>
 #include <lapacke.h>
 
 #include "whirl/continuum_stability.h"
@@ -84,11 +102,10 @@
 #include "stability/windows_internal.h"
 
 #define CS_ELEMENTS_START 4   /* uniform elements before refinement */
-#define CS_ELEMENTS_MAX 64    /* elements at most */
-#define CS_POINTS_MAX 360     /* collocation points at most: a pencil of 1440 (5 dense copies,
-                                 83 MB; an eigen-solve of about 5 s on one idle core) */
 #define CS_SAMPLES 2001       /* samples of the shooting's shape seeding the Newton iteration */
 #define CS_NEWTON_MAX 40      /* Newton iterations per element set */
+#define CS_KRYLOV_MAX 400     /* Arnoldi steps of a full spectrum before the dense fall-back */
+#define CS_DENSE_POINTS 700   /* the dense block (3 np)^2 at most for this many points */
 
 enum { F_U, F_W, F_TAU, F_V, N_FIELDS }; /* fields, and the equations in their rows (F_TAU: the
                                             constraint) */
@@ -98,31 +115,44 @@ enum { N_DYNAMIC = 3 };                  /* fields with a mass: u, w, vh */
 struct whirl_cstab {
     whirl_cstab_params p;
     size_t cap;               /* points allocated for */
+    size_t ecap;              /* element ends allocated for */
     size_t ne, np;            /* elements and points of the last linearisation */
+    size_t kl, ku, ldab;      /* the pencil's bands (point-major order) and LAPACK's ldab */
+    size_t nkl, nldab;        /* the shape's Newton bands (kl = ku) and ldab */
     int mode;
     double omega;
-    double shift;             /* the shift s of the last eigen-solve [1/T^2] */
-    double brk[CS_ELEMENTS_MAX + 1]; /* element ends, 0 = brk[0] < ... < brk[ne] = 1 */
+    double shift;             /* the shift s of the last factorisation [1/T^2] */
+    double *brk;              /* element ends, 0 = brk[0] < ... < brk[ne] = 1 */
     double *dref;             /* (p + 1)^2 differentiation on [0, 1], row-major */
     double *cw;               /* (p + 1) Clenshaw-Curtis weights on [0, 1] */
     double *sig, *r, *q, *wq; /* per point: sigma, the shape, quadrature weight */
     double *t0, *rp, *zp;     /* per point: tension, r', z' */
-    double *jac, *res;        /* Newton: (2 np)^2 column-major, 2 np */
+    double *jac, *res;        /* Newton: the banded Jacobian (nldab x 2 np), the residual */
     lapack_int *ipiv;
-    double *a0, *b0;          /* the pencil (4 np)^2 column-major */
-    double *a, *b, *vr;       /* dggev's copies and eigenvectors */
-    double *alphar, *alphai, *work; /* theta (3 np) and dgeev's workspace */
-    lapack_int lwork;
+    double *ab;               /* A in LAPACK's band storage (ldab x 4 np, rows kl..) */
+    double *bb;               /* B: a 4 x 4 block per point, [g][row field][column field] */
+    double *lu;               /* the banded LU of R (A - s B) */
+    double *row_a;            /* the row equilibration R (4 np) */
+    double *ra, *rb, *ta, *tb; /* one row of the pencil, field-major (4 np; zero between uses) */
+    double *solve;            /* one right-hand side (4 np) */
     double *mu_re, *mu_im;    /* kept mu */
+    size_t *kept;             /* their index among the Ritz values or dgeev's eigenvalues */
     int *sig_out;
-    double *row_a, *row_b;    /* one row of the pencil (4 np) */
     double *ls, *lr, *lq;     /* samples of the shooting (CS_SAMPLES each) */
+    /* the Arnoldi iteration of the spectrum: basis (3 np x (CS_KRYLOV_MAX + 1)), Hessenberg
+     * matrix, its eigen-solve; the Ritz vectors of the energies (2 x 3 np) */
+    double *basis, *hess, *hcopy, *hre, *him, *hvec, *hwork, *ritz;
+    lapack_int hlwork, dlwork;
+    size_t hm;                /* Arnoldi steps of the last spectrum (0: it was dense) */
+    /* the dense fall-back: the block (3 np)^2, eigenvectors, right-hand sides (4 np x 3 np) */
+    double *dc, *dvr, *dx, *dre, *dim, *dwork;
+    size_t dcap;
     windows_arnoldi kr;       /* the window search's Arnoldi iteration (3 np) */
 };
 
 whirl_cstab_params whirl_cstab_defaults(void)
 {
-    whirl_cstab_params p = {16, 0, 1e-11, 30};
+    whirl_cstab_params p = {16, 0, 1e-11, 30, 0, 1024};
     return p;
 }
 
@@ -139,19 +169,36 @@ static int check_params(const whirl_cstab_params *p)
     if (!(p->freq_max > 0 && isfinite(p->freq_max)))
         return whirl_fail(GSL_EINVAL, "the highest frequency kept must be > 0, got %g",
                           p->freq_max);
+    if (p->solver != 0 && p->solver != 1)
+        return whirl_fail(GSL_EINVAL, "the solver must be 0 (Arnoldi) or 1 (dense), got %d",
+                          p->solver);
+    if (!(p->memory_mb >= 16 && p->memory_mb <= 1048576))
+        return whirl_fail(GSL_EINVAL, "the memory bound must be in 16..1048576 MB, got %g",
+                          p->memory_mb);
     return GSL_SUCCESS;
+}
+
+static void release_dense(whirl_cstab *w)
+{
+    double *arrays[] = {w->dc, w->dvr, w->dx, w->dre, w->dim, w->dwork};
+    for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
+    w->dc = w->dvr = w->dx = w->dre = w->dim = w->dwork = NULL;
+    w->dcap = 0;
 }
 
 void whirl_cstab_free(whirl_cstab *w)
 {
     if (w == NULL) return;
-    double *arrays[] = {w->dref, w->cw,    w->sig,    w->r,      w->q,    w->wq,    w->t0,
-                        w->rp,   w->zp,    w->jac,    w->res,    w->a0,   w->b0,    w->a,
-                        w->b,    w->vr,    w->alphar, w->alphai, w->work,  w->mu_re,
-                        w->mu_im, w->row_a, w->row_b, w->ls,     w->lr,   w->lq};
+    double *arrays[] = {w->brk,  w->dref, w->cw,    w->sig,   w->r,     w->q,    w->wq,
+                        w->t0,   w->rp,   w->zp,    w->jac,   w->res,   w->ab,   w->bb,
+                        w->lu,   w->row_a, w->ra,   w->rb,    w->ta,    w->tb,   w->solve,
+                        w->mu_re, w->mu_im, w->ls,  w->lr,    w->lq,    w->basis, w->hess,
+                        w->hcopy, w->hre,  w->him,  w->hvec,  w->hwork, w->ritz};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->ipiv);
+    free(w->kept);
     free(w->sig_out);
+    release_dense(w);
     whirl_windows_arnoldi_release(&w->kr);
     free(w);
 }
@@ -162,13 +209,31 @@ whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p)
     whirl_cstab *w = calloc(1, sizeof *w);
     if (w == NULL) goto fail;
     w->p = *p;
-    const size_t pp = (size_t)p->degree, P = pp + 1;
+    const size_t pp = (size_t)p->degree, P = pp + 1, km = CS_KRYLOV_MAX;
+    w->kl = 4 * P + 3;
+    w->ku = 4 * pp + 3;
+    w->ldab = 2 * w->kl + w->ku + 1;
+    w->nkl = 2 * P + 1;
+    w->nldab = 3 * w->nkl + 1;
     w->dref = malloc(P * P * sizeof(double));
     w->cw = malloc(P * sizeof(double));
     w->ls = malloc(CS_SAMPLES * sizeof(double));
     w->lr = malloc(CS_SAMPLES * sizeof(double));
     w->lq = malloc(CS_SAMPLES * sizeof(double));
-    if (!w->dref || !w->cw || !w->ls || !w->lr || !w->lq) goto fail;
+    w->hess = calloc((km + 1) * km, sizeof(double));
+    w->hcopy = malloc(km * km * sizeof(double));
+    w->hre = malloc(km * sizeof(double));
+    w->him = malloc(km * sizeof(double));
+    w->hvec = malloc(km * km * sizeof(double));
+    if (!w->dref || !w->cw || !w->ls || !w->lr || !w->lq || !w->hess || !w->hcopy || !w->hre ||
+        !w->him || !w->hvec)
+        goto fail;
+    double size;
+    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->hcopy, (lapack_int)km,
+                           w->hre, w->him, NULL, 1, w->hvec, (lapack_int)km, &size, -1) != 0)
+        goto fail;
+    w->hlwork = (lapack_int)size;
+    if ((w->hwork = malloc((size_t)w->hlwork * sizeof(double))) == NULL) goto fail;
     /* Chebyshev points x_j = cos(j pi / p) (Trefethen 2000, cheb.m), t = (1 - x) / 2 on [0, 1]
      * increasing with j, d/dt = -2 d/dx; off-diagonal entries exact, the diagonal as minus the
      * row sum */
@@ -212,53 +277,80 @@ fail:
     return NULL;
 }
 
+/* Bytes of the workspace per collocation point (the bound on the points is memory_mb over
+ * this): the pencil's band and its LU, the Newton band, the Arnoldi basis, the vectors. */
+static size_t bytes_per_point(const whirl_cstab *w)
+{
+    const size_t band = N_FIELDS * (w->ldab + (w->kl + w->ku + 1)) + 2 * w->nldab;
+    const size_t krylov = N_DYNAMIC * (CS_KRYLOV_MAX + 3);
+    return (band + krylov + 16 + 14 * N_FIELDS + 12) * sizeof(double);
+}
+
+/* The most points memory_mb holds. */
+static size_t points_max(const whirl_cstab *w)
+{
+    return (size_t)(w->p.memory_mb * 1048576.0 / (double)bytes_per_point(w));
+}
+
 /* Room for np points. */
 static int reserve(whirl_cstab *w, size_t np)
 {
     if (np <= w->cap) return GSL_SUCCESS;
-    const size_t n = N_FIELDS * np, nn = 2 * np;
+    const size_t n = N_FIELDS * np, ny = N_DYNAMIC * np;
     double **per_point[] = {&w->sig, &w->r, &w->q, &w->wq, &w->t0, &w->rp, &w->zp};
-    for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++) {
-        free(*per_point[i]);
+    double **vec[] = {&w->row_a, &w->ra, &w->rb, &w->ta, &w->tb, &w->solve, &w->mu_re, &w->mu_im};
+    for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++) free(*per_point[i]);
+    for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) free(*vec[i]);
+    for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++)
         *per_point[i] = malloc(np * sizeof(double));
-    }
-    double **square[] = {&w->a0, &w->b0, &w->a, &w->b, &w->vr};
-    for (size_t i = 0; i < sizeof square / sizeof square[0]; i++) {
-        free(*square[i]);
-        *square[i] = malloc(n * n * sizeof(double));
-    }
-    double **vec[] = {&w->alphar, &w->alphai, &w->mu_re, &w->mu_im, &w->row_a,
-                      &w->row_b};
-    for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) {
-        free(*vec[i]);
-        *vec[i] = malloc(n * sizeof(double));
-    }
-    free(w->jac);
-    free(w->res);
-    free(w->ipiv);
-    free(w->sig_out);
-    free(w->work);
-    w->jac = malloc(nn * nn * sizeof(double));
-    w->res = malloc(nn * sizeof(double));
+    for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) *vec[i] = calloc(n, sizeof(double));
+    free(w->jac), free(w->res), free(w->ipiv), free(w->sig_out), free(w->kept);
+    free(w->ab), free(w->bb), free(w->lu), free(w->basis), free(w->ritz);
+    w->jac = malloc(w->nldab * 2 * np * sizeof(double));
+    w->res = malloc(2 * np * sizeof(double));
     w->ipiv = malloc(n * sizeof(lapack_int));
     w->sig_out = malloc(n * sizeof(int));
-    w->work = NULL;
+    w->kept = malloc(n * sizeof(size_t));
+    w->ab = malloc(w->ldab * n * sizeof(double));
+    w->bb = malloc(N_FIELDS * N_FIELDS * np * sizeof(double));
+    w->lu = malloc(w->ldab * n * sizeof(double));
+    w->basis = malloc(ny * (CS_KRYLOV_MAX + 1) * sizeof(double));
+    w->ritz = malloc(2 * ny * sizeof(double));
     w->cap = 0;
-    int ok = w->jac && w->res && w->ipiv && w->sig_out;
+    int ok = w->jac && w->res && w->ipiv && w->sig_out && w->kept && w->ab && w->bb && w->lu &&
+             w->basis && w->ritz;
     for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++) ok = ok && *per_point[i];
-    for (size_t i = 0; i < sizeof square / sizeof square[0]; i++) ok = ok && *square[i];
     for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) ok = ok && *vec[i];
     if (!ok) return whirl_fail(GSL_ENOMEM, "out of memory for %zu collocation points", np);
+    w->cap = np;
+    return GSL_SUCCESS;
+}
+
+/* Room for the dense fall-back of np points (CS_DENSE_POINTS at most). */
+static int reserve_dense(whirl_cstab *w, size_t np)
+{
+    if (np <= w->dcap) return GSL_SUCCESS;
+    if (np > CS_DENSE_POINTS)
+        return whirl_fail(GSL_EMAXITER, "the dense eigen-solve of %zu collocation points is "
+                                        "beyond its bound of %d points", np, CS_DENSE_POINTS);
+    release_dense(w);
+    const size_t n = N_FIELDS * np, ny = N_DYNAMIC * np;
+    w->dc = malloc(ny * ny * sizeof(double));
+    w->dvr = malloc(ny * ny * sizeof(double));
+    w->dx = malloc(n * ny * sizeof(double));
+    w->dre = malloc(ny * sizeof(double));
+    w->dim = malloc(ny * sizeof(double));
+    if (!w->dc || !w->dvr || !w->dx || !w->dre || !w->dim)
+        return whirl_fail(GSL_ENOMEM, "out of memory for the dense eigen-solve of %zu points", np);
     double size;
-    const size_t ny = N_DYNAMIC * np;
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->a,
-                                         (lapack_int)ny, w->alphar, w->alphai, NULL, 1, w->vr,
+    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->dc,
+                                         (lapack_int)ny, w->dre, w->dim, NULL, 1, w->dvr,
                                          (lapack_int)ny, &size, -1);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgeev workspace query failed (%d)", (int)info);
-    w->lwork = (lapack_int)size;
-    w->work = malloc((size_t)w->lwork * sizeof(double));
-    if (w->work == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the eigen-solver");
-    w->cap = np;
+    w->dlwork = (lapack_int)size;
+    w->dwork = malloc((size_t)size * sizeof(double));
+    if (w->dwork == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the eigen-solver");
+    w->dcap = np;
     return GSL_SUCCESS;
 }
 
@@ -325,45 +417,50 @@ static void seed_shape(whirl_cstab *w)
     }
 }
 
-/* Newton's method on the collocation equations of the shape (header comment). */
+/* Newton's method on the collocation equations of the shape (header comment); the unknowns
+ * and equations point by point, (r, q) at each, so the Jacobian is banded. */
 static int newton_shape(whirl_cstab *w, double omega)
 {
-    const size_t P = (size_t)w->p.degree + 1, np = w->np, nn = 2 * np;
+    const size_t P = (size_t)w->p.degree + 1, np = w->np, nn = 2 * np, kl = w->nkl;
+    const size_t ldab = w->nldab;
     const double m = w->p.tip_mass, w2 = omega * omega;
     double *jac = w->jac, *f = w->res;
     for (int iter = 0; iter < CS_NEWTON_MAX; iter++) {
-        memset(jac, 0, nn * nn * sizeof(double));
-#define J(i, k) jac[(i) + (k) * nn]
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = %g: stopped by request",
+                              omega);
+        memset(jac, 0, ldab * nn * sizeof(double));
+#define J(i, k) jac[2 * kl + (i) - (k) + (k) * ldab]
         for (size_t e = 0; e < w->ne; e++)
             for (size_t j = 0; j < P; j++) {
-                const size_t g = e * P + j, ir = g, iq = np + g;
+                const size_t g = e * P + j, ir = 2 * g, iq = 2 * g + 1;
                 const double s = sqrt(1 + w->q[g] * w->q[g]);
                 /* r row: r' + q / S, or r continuous / zero at the right end */
                 if (j == P - 1) {
                     f[ir] = w->r[g] - (e + 1 < w->ne ? w->r[g + 1] : 0);
-                    J(ir, g) = 1;
-                    if (e + 1 < w->ne) J(ir, g + 1) = -1;
+                    J(ir, 2 * g) = 1;
+                    if (e + 1 < w->ne) J(ir, 2 * (g + 1)) = -1;
                 } else {
                     double d = 0;
                     for (size_t k = 0; k < P; k++) {
                         const double dk = dmat(w, e, j, k);
                         d += dk * w->r[e * P + k];
-                        J(ir, e * P + k) += dk;
+                        J(ir, 2 * (e * P + k)) += dk;
                     }
                     f[ir] = d + w->q[g] / s;
-                    J(ir, np + g) += 1 / (s * s * s);
+                    J(ir, 2 * g + 1) += 1 / (s * s * s);
                 }
                 /* q row: (sigma + m) q' + q - omega^2 r, or q continuous / the tip condition
                  * at the left end */
                 if (j == 0) {
                     if (e == 0) {
                         f[iq] = w->q[g] - w2 * w->r[g];
-                        J(iq, np + g) = 1;
-                        J(iq, g) = -w2;
+                        J(iq, 2 * g + 1) = 1;
+                        J(iq, 2 * g) = -w2;
                     } else {
                         f[iq] = w->q[g] - w->q[g - 1];
-                        J(iq, np + g) = 1;
-                        J(iq, np + g - 1) = -1;
+                        J(iq, 2 * g + 1) = 1;
+                        J(iq, 2 * (g - 1) + 1) = -1;
                     }
                 } else {
                     const double wt = w->sig[g] + m;
@@ -371,29 +468,28 @@ static int newton_shape(whirl_cstab *w, double omega)
                     for (size_t k = 0; k < P; k++) {
                         const double dk = dmat(w, e, j, k);
                         d += dk * w->q[e * P + k];
-                        J(iq, np + e * P + k) += wt * dk;
+                        J(iq, 2 * (e * P + k) + 1) += wt * dk;
                     }
                     f[iq] = wt * d + w->q[g] - w2 * w->r[g];
-                    J(iq, np + g) += 1;
-                    J(iq, g) -= w2;
+                    J(iq, 2 * g + 1) += 1;
+                    J(iq, 2 * g) -= w2;
                 }
             }
 #undef J
-        int info; /* on a worker thread when large: a stop request ends the call at once */
-        const int status = whirl_worker_dgesv(nn, 1, jac, nn, w->ipiv, f, nn, &info);
-        if (status) return status;
+        lapack_int info = LAPACKE_dgbsv_work(LAPACK_COL_MAJOR, (lapack_int)nn, (lapack_int)kl,
+                                             (lapack_int)kl, 1, jac, (lapack_int)ldab, w->ipiv,
+                                             f, (lapack_int)nn);
         if (info != 0)
-            return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = " WHIRL_Q_RATE
-                              "%g is singular (dgesv info "
-                              "%d)", omega, (int)info);
+            return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = "
+                              WHIRL_Q_RATE "%g is singular (dgbsv info %d)", omega, (int)info);
         double step = 0, scale = 1;
         for (size_t g = 0; g < np; g++) {
-            w->r[g] -= f[g];
-            w->q[g] -= f[np + g];
+            w->r[g] -= f[2 * g];
+            w->q[g] -= f[2 * g + 1];
             if (!isfinite(w->r[g]) || !isfinite(w->q[g]))
                 return whirl_fail(GSL_ERANGE, "the collocation of the shape at omega = "
                                   WHIRL_Q_RATE "%g diverged", omega);
-            step = fmax(step, fmax(fabs(f[g]), fabs(f[np + g])));
+            step = fmax(step, fmax(fabs(f[2 * g]), fabs(f[2 * g + 1])));
             scale = fmax(scale, fabs(w->q[g]));
         }
         if (step <= 1e-13 * scale) return GSL_SUCCESS;
@@ -419,16 +515,54 @@ static double tail(const whirl_cstab *w, const double *f, size_t e, double scale
     return scale > 0 ? big / scale : 0;
 }
 
+/* The largest phase of a wave on one element that degree p resolves to sqrt(shape_tol): the
+ * Chebyshev coefficients of sin(phi x / 2) on [-1, 1] fall as (phi / 2)^k / k!, so
+ * phi = 2 (sqrt(shape_tol) p!)^(1 / p) (6.1 for p = 16 and 1e-11). The highest frequencies kept
+ * need only be resolved enough to be ranked; those of the colliding pairs, lower, are then
+ * resolved much better (for a wave of a third of that phase the coefficients fall to 1e-12). */
+static double element_phase_max(const whirl_cstab *w)
+{
+    const double p = w->p.degree;
+    return 2 * exp((0.5 * log(w->p.shape_tol) + lgamma(p + 1)) / p);
+}
+
+/* An upper bound of the phase int Omega / sqrt(T0) dsigma on element e of the waves kept
+ * (Omega = max(freq_max, 3 omega) + omega, the highest frequency kept in the inertial frame):
+ * T0 = (sigma + m) S >= (sigma + m) min S, so the phase is at most
+ * 2 Omega (sqrt(b + m) - sqrt(a + m)) / sqrt(min S) (finite at the free end, where T0 = 0 and the
+ * modes behave as J0(2 Omega sqrt(sigma))). */
+static double element_phase(const whirl_cstab *w, double omega, size_t e)
+{
+    const size_t P = (size_t)w->p.degree + 1;
+    const double big = fmax(w->p.freq_max, 3 * omega) + omega, m = w->p.tip_mass;
+    double smin = HUGE_VAL;
+    for (size_t j = 0; j < P; j++) smin = fmin(smin, sqrt(1 + w->q[e * P + j] * w->q[e * P + j]));
+    return 2 * big * (sqrt(w->brk[e + 1] + m) - sqrt(w->brk[e] + m)) / sqrt(smin);
+}
+
+/* Room for the ends of ne elements and of their halves (3 ne + 2 values). */
+static int reserve_elements(whirl_cstab *w, size_t ne)
+{
+    const size_t need = 3 * ne + 2;
+    if (need <= w->ecap) return GSL_SUCCESS;
+    double *b = realloc(w->brk, 2 * need * sizeof(double));
+    if (b == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu elements", ne);
+    w->brk = b;
+    w->ecap = 2 * need;
+    return GSL_SUCCESS;
+}
+
 /* The shape on elements refined until the tails meet shape_tol. On too coarse elements Newton's
  * method may fail or find another solution of the collocation equations (the hanging chain,
  * or a shape of no mode): then (a tip radius 25% off the shooting's), or where the resolved
  * tip radius differs from the shooting's by more than max(1e-7, 1e3 shape_tol) relative, every
- * element is halved. */
+ * element is halved. The points are bounded by the memory bound (points_max). */
 static int solve_shape(whirl_cstab *w, double omega, double tip_r)
 {
     int status = sample_shape(w, omega, tip_r);
     if (status) return status;
     w->ne = CS_ELEMENTS_START;
+    if ((status = reserve_elements(w, w->ne))) return status;
     for (size_t e = 0; e <= w->ne; e++) w->brk[e] = (double)e / (double)w->ne;
     const size_t P = (size_t)w->p.degree + 1;
     const char *why = "";
@@ -448,13 +582,16 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         double sr = 0, sq = 0;
         for (size_t g = 0; g < w->np && !wrong; g++)
             sr = fmax(sr, fabs(w->r[g])), sq = fmax(sq, fabs(w->q[g]));
-        double brk[2 * CS_ELEMENTS_MAX + 1];
+        if ((status = reserve_elements(w, w->ne))) return status;
+        const double phase_max = element_phase_max(w);
+        double *brk = w->brk + w->ne + 1; /* the new ends after the current ones */
         size_t nb = 0;
         for (int pass = 0; pass < 2; pass++) {
             nb = 0;
             brk[nb++] = 0;
             for (size_t e = 0; e < w->ne; e++) {
-                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol)
+                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol ||
+                    element_phase(w, omega, e) > phase_max)
                     brk[nb++] = (w->brk[e] + w->brk[e + 1]) / 2;
                 brk[nb++] = w->brk[e + 1];
             }
@@ -463,26 +600,26 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
             wrong = 1; /* resolved, yet not the shooting's shape: every element halved */
         }
         why = status ? "Newton's method failed" : wrong ? "not the shooting's shape" : "";
-        if (nb - 1 > CS_ELEMENTS_MAX || (nb - 1) * P > CS_POINTS_MAX)
-            return whirl_fail(GSL_EMAXITER, "the shape of omega = " WHIRL_Q_RATE "%g needs more "
-                              "than %d collocation points (elements of degree %d, shape tolerance "
-                              "%g%s%s): lower the rate or the degree", omega, CS_POINTS_MAX,
-                              w->p.degree, w->p.shape_tol, *why ? "; " : "", why);
+        if ((nb - 1) * P > points_max(w))
+            return whirl_fail(GSL_EMAXITER, "mode %d at omega = " WHIRL_Q_RATE "%g needs %zu "
+                              "collocation points (elements of degree %d, shape tolerance %g%s%s), "
+                              "more than the %zu that %g MB hold: lower the rate or raise the "
+                              "memory bound", w->mode, omega,
+                              (nb - 1) * P, w->p.degree, w->p.shape_tol, *why ? "; " : "", why,
+                              points_max(w), w->p.memory_mb);
+        memmove(w->brk, brk, nb * sizeof(double));
         w->ne = nb - 1;
-        memcpy(w->brk, brk, nb * sizeof(double));
     }
 }
 
 /* ---- the pencil ---- */
 
 /* The interior equation of field eq at point g (element e, local j) into the rows ra, rb
- * (zeroed first). */
+ * (field-major, zero on entry). */
 static void equation_row(const whirl_cstab *w, int eq, size_t e, size_t j, double *ra, double *rb)
 {
-    const size_t P = (size_t)w->p.degree + 1, np = w->np, n = N_FIELDS * np, g = e * P + j;
+    const size_t P = (size_t)w->p.degree + 1, np = w->np, g = e * P + j;
     const double om = w->omega, w2 = om * om;
-    memset(ra, 0, n * sizeof(double));
-    memset(rb, 0, n * sizeof(double));
     if (eq == F_TAU) { /* constraint r' u' + z' w' = 0 */
         for (size_t k = 0; k < P; k++) {
             const double d = dmat(w, e, j, k);
@@ -512,42 +649,62 @@ static void equation_row(const whirl_cstab *w, int eq, size_t e, size_t j, doubl
     }
 }
 
-static void store_row(whirl_cstab *w, size_t i, const double *ra, const double *rb)
+/* The points whose columns a row of element e may touch: those of the previous element (the
+ * continuity of derivatives at its left end), its own, the first of the next. */
+static void window(const whirl_cstab *w, size_t e, size_t *lo, size_t *hi)
 {
-    const size_t n = N_FIELDS * w->np;
-    for (size_t k = 0; k < n; k++) {
-        w->a0[i + k * n] = ra[k];
-        w->b0[i + k * n] = rb[k];
-    }
+    const size_t P = (size_t)w->p.degree + 1;
+    *lo = e > 0 ? (e - 1) * P : 0;
+    *hi = (e + 1) * P < w->np ? (e + 1) * P : w->np - 1;
+}
+
+/* Row (f, g) of the pencil from the field-major rows ra, rb (zeroed again over the window of
+ * element e) into the band of A (point-major, LAPACK's layout) and the blocks of B. */
+static void store_row(whirl_cstab *w, int f, size_t g, size_t e, double *ra, double *rb)
+{
+    const size_t np = w->np, off = w->kl + w->ku, i = N_FIELDS * g + (size_t)f;
+    size_t lo, hi;
+    window(w, e, &lo, &hi);
+    for (int c = 0; c < N_FIELDS; c++)
+        for (size_t h = lo; h <= hi; h++) {
+            const size_t k = (size_t)c * np + h, col = N_FIELDS * h + (size_t)c;
+            if (ra[k] != 0) w->ab[off + i - col + col * w->ldab] = ra[k];
+            if (rb[k] != 0) w->bb[(g * N_FIELDS + (size_t)f) * N_FIELDS + (size_t)c] = rb[k];
+            ra[k] = rb[k] = 0;
+        }
 }
 
 /* The tangential (sign = +1) or normal (-1) combination of the u and w equations at (e, j). */
 static void combined_row(whirl_cstab *w, int tangential, size_t e, size_t j, double *ra,
                          double *rb, double *ta, double *tb)
 {
-    const size_t P = (size_t)w->p.degree + 1, n = N_FIELDS * w->np, g = e * P + j;
+    const size_t P = (size_t)w->p.degree + 1, np = w->np, g = e * P + j;
     const double cu = tangential ? w->rp[g] : -w->zp[g], cw = tangential ? w->zp[g] : w->rp[g];
     equation_row(w, F_U, e, j, ra, rb);
     equation_row(w, F_W, e, j, ta, tb);
-    for (size_t k = 0; k < n; k++) {
-        ra[k] = cu * ra[k] + cw * ta[k];
-        rb[k] = cu * rb[k] + cw * tb[k];
-    }
+    size_t lo, hi;
+    window(w, e, &lo, &hi);
+    for (int c = 0; c < N_FIELDS; c++)
+        for (size_t h = lo; h <= hi; h++) {
+            const size_t k = (size_t)c * np + h;
+            ra[k] = cu * ra[k] + cw * ta[k];
+            rb[k] = cu * rb[k] + cw * tb[k];
+            ta[k] = tb[k] = 0;
+        }
 }
 
 static void assemble(whirl_cstab *w)
 {
     const size_t P = (size_t)w->p.degree + 1, np = w->np, n = N_FIELDS * np;
     const double m = w->p.tip_mass, om = w->omega;
-    double *ra = w->row_a, *rb = w->row_b, *ta = w->alphar, *tb = w->alphai; /* scratch rows */
+    double *ra = w->ra, *rb = w->rb, *ta = w->ta, *tb = w->tb; /* scratch rows, zero */
+    memset(w->ab, 0, w->ldab * n * sizeof(double));
+    memset(w->bb, 0, N_FIELDS * N_FIELDS * np * sizeof(double));
     for (size_t e = 0; e < w->ne; e++)
         for (size_t j = 0; j < P; j++) {
             const size_t g = e * P + j;
             for (int f = 0; f < N_FIELDS; f++) {
-                const size_t i = f * np + g;
                 if (j == P - 1 && f != F_U) { /* continuity with the next element, or the pivot */
-                    memset(ra, 0, n * sizeof(double));
-                    memset(rb, 0, n * sizeof(double));
                     const int next = e + 1 < w->ne;
                     if (f == F_V) {
                         ra[F_V * np + g] = 1;
@@ -562,8 +719,6 @@ static void assemble(whirl_cstab *w)
                     combined_row(w, 1, e, j, ra, rb, ta, tb);
                 } else if (j == 0 && e > 0 && f != F_TAU) {
                     /* continuity of n0 . xi', tau, vh' with the previous element */
-                    memset(ra, 0, n * sizeof(double));
-                    memset(rb, 0, n * sizeof(double));
                     if (f == F_W) {
                         ra[F_TAU * np + g - 1] = 1;
                         ra[F_TAU * np + g] = -1;
@@ -585,15 +740,11 @@ static void assemble(whirl_cstab *w)
                     if (f == F_U) {
                         combined_row(w, 0, e, j, ra, rb, ta, tb);
                     } else if (f == F_W) {
-                        memset(ra, 0, n * sizeof(double));
-                        memset(rb, 0, n * sizeof(double));
                         ra[F_TAU * np + g] = 1;
                     } else {
                         equation_row(w, f, e, j, ra, rb);
                     }
                 } else if (j == 0 && e == 0 && f != F_TAU) { /* the tip mass */
-                    memset(ra, 0, n * sizeof(double));
-                    memset(rb, 0, n * sizeof(double));
                     for (size_t k = 0; k < P; k++) ra[f * np + k] = w->t0[g] * dmat(w, 0, 0, k);
                     rb[f * np + g] = m;
                     if (f == F_U) {
@@ -609,7 +760,7 @@ static void assemble(whirl_cstab *w)
                 } else {
                     equation_row(w, f, e, j, ra, rb);
                 }
-                store_row(w, i, ra, rb);
+                store_row(w, f, g, e, ra, rb);
             }
         }
 }
@@ -630,6 +781,7 @@ int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_g
     int status;
     if (mode == 0) {
         w->ne = CS_ELEMENTS_START;
+        if ((status = reserve_elements(w, w->ne))) return status;
         for (size_t e = 0; e <= w->ne; e++) w->brk[e] = (double)e / (double)w->ne;
         const size_t np = w->ne * ((size_t)w->p.degree + 1);
         if ((status = reserve(w, np))) return status;
@@ -680,116 +832,248 @@ static double mode_energy(const whirl_cstab *w, const double *xr, const double *
     return e;
 }
 
-/* The energy of kept mode k of the last eigen-solve (its eigenvector in w->vr). */
+/* The energy of kept mode k of the last spectrum: its eigenvector from dgeev's (dense) or the
+ * Ritz vector V y (Arnoldi). */
 static double cstab_energy(void *data, size_t k)
 {
     whirl_cstab *w = data;
-    const size_t ny = N_DYNAMIC * w->np, i = (size_t)w->ipiv[k];
-    const double *xr = w->vr + i * ny, *xi = NULL;
-    if (w->alphai[i] > 0) xi = w->vr + (i + 1) * ny;
-    if (w->alphai[i] < 0) xr = w->vr + (i - 1) * ny, xi = w->vr + i * ny;
-    return mode_energy(w, xr, xi, -w->mu_re[k]);
+    const size_t ny = N_DYNAMIC * w->np, i = w->kept[k];
+    const double *im = w->hm ? w->him : w->dim, *vec = w->hm ? w->hvec : w->dvr;
+    const size_t len = w->hm ? w->hm : ny;
+    size_t cr = i, ci = i;
+    if (im[i] > 0) ci = i + 1;
+    if (im[i] < 0) cr = i - 1;
+    if (!w->hm) return mode_energy(w, vec + cr * len, im[i] != 0 ? vec + ci * len : NULL, -w->mu_re[k]);
+    double *xr = w->ritz, *xi = w->ritz + ny;
+    for (size_t t = 0; t < ny; t++) xr[t] = xi[t] = 0;
+    for (size_t j = 0; j < len; j++) {
+        const double *v = w->basis + j * ny, yr = vec[j + cr * len];
+        const double yi = im[i] != 0 ? vec[j + ci * len] : 0;
+        for (size_t t = 0; t < ny; t++) xr[t] += yr * v[t], xi[t] += yi * v[t];
+    }
+    return mode_energy(w, xr, im[i] != 0 ? xi : NULL, -w->mu_re[k]);
 }
 
-/* The LU factors of R (A - s B) into w->a (pivots w->ipiv), R the row equilibration (w->row_a):
- * s = shift, or if that is an eigenvalue shift 1.7^k (k < tries). */
+/* The banded LU factors of R (A - s B) into w->lu (pivots w->ipiv), R the row equilibration
+ * (w->row_a): s = shift, or if that is an eigenvalue shift 1.7^k (k < tries). */
 static int shifted_lu(whirl_cstab *w, double shift, int tries)
 {
-    const size_t n = N_FIELDS * w->np;
+    const size_t np = w->np, n = N_FIELDS * np, ldab = w->ldab, off = w->kl + w->ku;
     int info = 1;
     for (int k = 0; k < tries && info != 0; k++) { /* s an eigenvalue: another s */
         w->shift = shift * pow(1.7, k);
-        for (size_t i = 0; i < n * n; i++) w->a[i] = w->a0[i] - w->shift * w->b0[i];
+        memcpy(w->lu, w->ab, ldab * n * sizeof(double));
+        for (size_t g = 0; g < np; g++)
+            for (size_t a = 0; a < N_FIELDS; a++)
+                for (size_t c = 0; c < N_FIELDS; c++) {
+                    const double b = w->bb[(g * N_FIELDS + a) * N_FIELDS + c];
+                    const size_t i = N_FIELDS * g + a, col = N_FIELDS * g + c;
+                    if (b != 0) w->lu[off + i - col + col * ldab] -= w->shift * b;
+                }
         /* rows equilibrated (the rows of the second derivatives on short elements are ~1e8
          * times those of the conditions): the same solutions, less round-off */
         for (size_t i = 0; i < n; i++) w->row_a[i] = 0;
-        for (size_t j = 0; j < n; j++)
-            for (size_t i = 0; i < n; i++) w->row_a[i] = fmax(w->row_a[i], fabs(w->a[i + j * n]));
+        for (size_t col = 0; col < n; col++) {
+            const size_t i0 = col > w->ku ? col - w->ku : 0, i1 = col + w->kl < n ? col + w->kl : n - 1;
+            for (size_t i = i0; i <= i1; i++)
+                w->row_a[i] = fmax(w->row_a[i], fabs(w->lu[off + i - col + col * ldab]));
+        }
         for (size_t i = 0; i < n; i++) w->row_a[i] = w->row_a[i] > 0 ? 1 / w->row_a[i] : 1;
-        for (size_t j = 0; j < n; j++)
-            for (size_t i = 0; i < n; i++) w->a[i + j * n] *= w->row_a[i];
-        const int status = whirl_worker_dgetrf(n, w->a, n, w->ipiv, &info); /* see dgesv */
-        if (status) return status;
+        for (size_t col = 0; col < n; col++) {
+            const size_t i0 = col > w->ku ? col - w->ku : 0, i1 = col + w->kl < n ? col + w->kl : n - 1;
+            for (size_t i = i0; i <= i1; i++) w->lu[off + i - col + col * ldab] *= w->row_a[i];
+        }
+        info = LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n,
+                                   (lapack_int)w->kl, (lapack_int)w->ku, w->lu, (lapack_int)ldab,
+                                   w->ipiv);
+        if (info < 0) return whirl_fail(GSL_EFAILED, "dgbtrf info %d", (int)info);
     }
     if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgetrf info %d)",
+        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgbtrf info %d)",
                           (int)info);
     return GSL_SUCCESS;
 }
 
+/* b = R B x for x = (u, w, vh) (3 np, field-major), b point-major (4 np). */
+static void apply_b(const whirl_cstab *w, const double *x, double *b)
+{
+    const size_t np = w->np;
+    const size_t src[N_FIELDS] = {0, np, 0, 2 * np}; /* where field c of x starts (tau: none) */
+    for (size_t g = 0; g < np; g++)
+        for (size_t a = 0; a < N_FIELDS; a++) {
+            const double *row = w->bb + (g * N_FIELDS + a) * N_FIELDS;
+            double sum = 0;
+            for (size_t c = 0; c < N_FIELDS; c++)
+                if (c != F_TAU && row[c] != 0) sum += row[c] * x[src[c] + g];
+            b[N_FIELDS * g + a] = sum * w->row_a[N_FIELDS * g + a];
+        }
+}
+
 /* y = the (u, w, vh) rows of (A - s B)^-1 B x, x = (u, w, vh) (3 np): one step of the Arnoldi
- * iteration on the block of shifted_eigen, with the factors of shifted_lu. */
+ * iteration, with the factors of shifted_lu. */
 static int cstab_apply(void *data, const double *x, double *y)
 {
     whirl_cstab *w = data;
     const size_t np = w->np, n = N_FIELDS * np;
-    const size_t col[N_DYNAMIC] = {F_U, F_W, F_V};
-    double *b = w->row_b;
-    for (size_t i = 0; i < n; i++) b[i] = 0;
-    for (size_t k = 0; k < N_DYNAMIC; k++)
-        for (size_t j = 0; j < np; j++) {
-            const double xj = x[k * np + j];
-            if (xj == 0) continue;
-            const double *c = w->b0 + (col[k] * np + j) * n;
-            for (size_t i = 0; i < n; i++) b[i] += c[i] * xj;
-        }
-    for (size_t i = 0; i < n; i++) b[i] *= w->row_a[i];
-    lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, 1, w->a,
-                                          (lapack_int)n, w->ipiv, b, (lapack_int)n);
+    double *b = w->solve;
+    apply_b(w, x, b);
+    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
+                                          (lapack_int)w->ku, 1, w->lu, (lapack_int)w->ldab,
+                                          w->ipiv, b, (lapack_int)n);
     if (info != 0) return GSL_CONTINUE;
-    for (size_t k = 0; k < N_DYNAMIC; k++) memcpy(y + k * np, b + col[k] * np, np * sizeof(double));
+    for (size_t g = 0; g < np; g++) {
+        y[g] = b[N_FIELDS * g + F_U];
+        y[np + g] = b[N_FIELDS * g + F_W];
+        y[2 * np + g] = b[N_FIELDS * g + F_V];
+    }
     return GSL_SUCCESS;
 }
 
-/* The finite eigenvalues of the pencil A x = mu B x through theta = 1 / (mu - s), the eigenvalues
- * of (A - s B)^-1 B: B's columns of tau are zero, so only the block of the rows and columns of
- * (u, w, vh) is needed (size 3 np instead of 4 np, and a standard eigenproblem: dgeev), whose
- * eigenvectors are the (u, w, vh) of the modes; infinite mu become theta = 0. Into w->alphar,
- * w->alphai (theta) and w->vr. */
-static int shifted_eigen(whirl_cstab *w, int vectors)
+/* The eigenvalues theta of the block C of (A - s B)^-1 B on (u, w, vh) in full: C formed by
+ * 3 np banded solves, then dgeev (into w->dre, w->dim, eigenvectors w->dvr). */
+static int dense_eigen(whirl_cstab *w, int vectors)
 {
     const size_t np = w->np, n = N_FIELDS * np, ny = N_DYNAMIC * np;
-    const size_t col[N_DYNAMIC] = {F_U, F_W, F_V}; /* field of block k of y */
-    int status = shifted_lu(w, CS_SHIFT, 4);
+    int status = reserve_dense(w, np);
     if (status) return status;
-    int info;
-    double *x = w->b; /* n x ny: B's columns of (u, w, vh), then solved */
-    for (size_t k = 0; k < N_DYNAMIC; k++)
-        memcpy(x + k * np * n, w->b0 + col[k] * np * n, np * n * sizeof(double));
+    double *x = w->dx, *e = w->ritz; /* n x ny right-hand sides; a unit vector */
+    for (size_t t = 0; t < ny; t++) e[t] = 0;
+    for (size_t j = 0; j < ny; j++) {
+        e[j] = 1;
+        apply_b(w, e, x + j * n);
+        e[j] = 0;
+    }
+    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
+                                          (lapack_int)w->ku, (lapack_int)ny, w->lu,
+                                          (lapack_int)w->ldab, w->ipiv, x, (lapack_int)n);
+    if (info != 0) return whirl_fail(GSL_EFAILED, "dgbtrs info %d", (int)info);
     for (size_t j = 0; j < ny; j++)
-        for (size_t i = 0; i < n; i++) x[i + j * n] *= w->row_a[i];
-    status = whirl_worker_dgetrs(n, ny, w->a, n, w->ipiv, x, n, &info);
+        for (size_t g = 0; g < np; g++) {
+            w->dc[j * ny + g] = x[j * n + N_FIELDS * g + F_U];
+            w->dc[j * ny + np + g] = x[j * n + N_FIELDS * g + F_W];
+            w->dc[j * ny + 2 * np + g] = x[j * n + N_FIELDS * g + F_V];
+        }
+    int inf;
+    status = whirl_worker_dgeev('N', vectors ? 'V' : 'N', ny, w->dc, ny, w->dre, w->dim, w->dvr,
+                                ny, w->dwork, (int)w->dlwork, &inf);
     if (status) return status;
-    if (info != 0) return whirl_fail(GSL_EFAILED, "dgetrs info %d", info);
-    double *c = w->a; /* ny x ny: the rows of (u, w, vh) */
-    for (size_t j = 0; j < ny; j++)
-        for (size_t k = 0; k < N_DYNAMIC; k++)
-            memcpy(c + j * ny + k * np, x + j * n + col[k] * np, np * sizeof(double));
-    status = whirl_worker_dgeev('N', vectors ? 'V' : 'N', ny, c, ny, w->alphar, w->alphai, w->vr,
-                                ny, w->work, (int)w->lwork, &info);
-    if (status) return status;
-    if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)",
-                          (int)info);
+    if (inf != 0)
+        return whirl_fail(GSL_EFAILED, "the eigenvalue iteration failed (dgeev info %d)", inf);
     return GSL_SUCCESS;
+}
+
+/* The Ritz values of the m-step Arnoldi factorisation into w->hre, w->him (eigenvectors of the
+ * Hessenberg matrix in w->hvec); *done: every one with |theta| >= floor has a residual below
+ * 1e-12 |theta|; *wanted: how many have |theta| >= floor. */
+static int ritz(whirl_cstab *w, size_t m, double floor, int *done, size_t *wanted)
+{
+    const size_t km = CS_KRYLOV_MAX;
+    for (size_t j = 0; j < m; j++)
+        for (size_t i = 0; i < m; i++) w->hcopy[i + j * m] = w->hess[i + j * (km + 1)];
+    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, w->hcopy,
+                                         (lapack_int)m, w->hre, w->him, NULL, 1, w->hvec,
+                                         (lapack_int)m, w->hwork, w->hlwork);
+    if (info != 0)
+        return whirl_fail(GSL_EFAILED, "the Ritz values' eigen-solve failed (dgeev info %d)",
+                          (int)info);
+    const double beta = m < km ? w->hess[m + (m - 1) * (km + 1)] : 0;
+    *done = 1;
+    *wanted = 0;
+    for (size_t i = 0; i < m; i++) {
+        const double mod = hypot(w->hre[i], w->him[i]);
+        if (!(mod >= floor)) continue;
+        ++*wanted;
+        size_t cr = i, ci = i;
+        const int cplx = w->him[i] != 0;
+        if (cplx && w->him[i] > 0) ci = i + 1;
+        if (cplx && w->him[i] < 0) cr = i - 1;
+        const double last = hypot(w->hvec[m - 1 + cr * m], cplx ? w->hvec[m - 1 + ci * m] : 0);
+        double len = 0;
+        for (size_t r = 0; r < m; r++)
+            len = hypot(len, hypot(w->hvec[r + cr * m], cplx ? w->hvec[r + ci * m] : 0));
+        if (!(fabs(beta) * last <= 1e-12 * mod * len)) *done = 0;
+    }
+    return GSL_SUCCESS;
+}
+
+/* The theta of largest modulus of the block C by the Arnoldi iteration (header comment): into
+ * w->hre, w->him (w->hm of them); GSL_CONTINUE if not converged in CS_KRYLOV_MAX steps. */
+static int arnoldi_eigen(whirl_cstab *w, double cut)
+{
+    const size_t ny = N_DYNAMIC * w->np, km = CS_KRYLOV_MAX < ny ? CS_KRYLOV_MAX : ny;
+    const double floor = 0.8 / (cut + fabs(w->shift));
+    double *v = w->basis, *h = w->hess;
+    memset(h, 0, (CS_KRYLOV_MAX + 1) * CS_KRYLOV_MAX * sizeof(double));
+    double norm = 0;
+    for (size_t i = 0; i < ny; i++) {
+        v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
+        norm += v[i] * v[i];
+    }
+    norm = sqrt(norm);
+    for (size_t i = 0; i < ny; i++) v[i] /= norm;
+    size_t next = 24; /* the next look at the Ritz values */
+    w->hm = 0;
+    for (size_t step = 0; step < km; step++) {
+        const double *x = v + step * ny;
+        double *y = v + (step + 1) * ny;
+        if (cstab_apply(w, x, y) != GSL_SUCCESS)
+            return whirl_fail(GSL_EFAILED, "the banded solve failed");
+        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
+            for (size_t j = 0; j <= step; j++) {
+                double dot = 0;
+                const double *vj = v + j * ny;
+                for (size_t i = 0; i < ny; i++) dot += vj[i] * y[i];
+                for (size_t i = 0; i < ny; i++) y[i] -= dot * vj[i];
+                h[j + step * (CS_KRYLOV_MAX + 1)] += dot;
+            }
+        norm = 0; /* the vectors are O(1): no scaling needed */
+        for (size_t i = 0; i < ny; i++) norm += y[i] * y[i];
+        norm = sqrt(norm);
+        h[step + 1 + step * (CS_KRYLOV_MAX + 1)] = norm;
+        const int breakdown = !(norm > 1e-300);
+        if (!breakdown)
+            for (size_t i = 0; i < ny; i++) y[i] /= norm;
+        const size_t m = step + 1;
+        if (m < next && !breakdown && m < km) continue;
+        next = m + (m / 8 > 4 ? m / 8 : 4);
+        int done = 0;
+        size_t wanted = 0;
+        int status = ritz(w, m, floor, &done, &wanted);
+        if (status) return status;
+        if (breakdown || m == ny || (done && m >= wanted + 16)) {
+            w->hm = m;
+            return GSL_SUCCESS;
+        }
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "the eigen-solve at omega = %g: stopped by "
+                                                  "request", w->omega);
+    }
+    return GSL_CONTINUE;
 }
 
 int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
 {
     if (w->np == 0) return whirl_fail(GSL_EINVAL, "no linearisation to solve");
-    const size_t ny = N_DYNAMIC * w->np;
-    int status = shifted_eigen(w, signatures);
-    if (status) return status;
     const double fmax_kept = fmax(w->p.freq_max, 3 * w->omega);
     const double cut = fmax_kept * fmax_kept;
+    int status = shifted_lu(w, CS_SHIFT, 4);
+    if (status) return status;
+    status = w->p.solver == 1 ? GSL_CONTINUE : arnoldi_eigen(w, cut);
+    if (status == GSL_CONTINUE) { /* the reference, or the fall-back */
+        w->hm = 0;
+        status = dense_eigen(w, signatures);
+    }
+    if (status) return status;
+    const size_t nt = w->hm ? w->hm : N_DYNAMIC * w->np;
+    const double *tre = w->hm ? w->hre : w->dre, *tim = w->hm ? w->him : w->dim;
     size_t count = 0, zero = 0;
     double big = 0;
-    for (size_t i = 0; i < ny; i++) {
-        const double tr = w->alphar[i], ti = w->alphai[i], t2 = tr * tr + ti * ti;
+    for (size_t i = 0; i < nt; i++) {
+        const double tr = tre[i], ti = tim[i], t2 = tr * tr + ti * ti;
         if (!(t2 > 0)) continue;
         const double re = w->shift + tr / t2, im = -ti / t2;
         if (!isfinite(re) || !isfinite(im) || hypot(re, im) > cut) continue;
-        w->ipiv[count] = (lapack_int)i;
+        w->kept[count] = i;
         w->mu_re[count] = re;
         w->mu_im[count] = im;
         if (hypot(re, im) < hypot(w->mu_re[zero], w->mu_im[zero])) zero = count;
@@ -801,7 +1085,7 @@ int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
         for (size_t k = zero; k < count; k++) {
             w->mu_re[k] = w->mu_re[k + 1];
             w->mu_im[k] = w->mu_im[k + 1];
-            w->ipiv[k] = w->ipiv[k + 1];
+            w->kept[k] = w->kept[k + 1];
         }
     }
     const double level = 1e-8 * sqrt(big);
@@ -848,6 +1132,123 @@ static int cstab_source_pair(void *data, double omega, double sigma, double *mu_
     return whirl_windows_arnoldi_pair(&c->w->kr, cstab_apply, c->w, sigma, mu_re, mu_im);
 }
 
+/* The collision discriminant D = Re (mu_1 - mu_2)^2 of the two mu nearest -freq^2 at omega on
+ * the workspace of an edge's refinement (stability_windows.c); NAN if not obtained. */
+typedef struct edge_args {
+    whirl_cstab *w;
+    int mode;
+    double sigma;
+    int status;
+    double at[2], value[2]; /* the last two evaluations (Brent's start evaluates its ends again) */
+} edge_args;
+
+static double edge_value(double omega, void *data);
+
+static double edge_function(double omega, void *data)
+{
+    edge_args *a = data;
+    for (int i = 0; i < 2; i++)
+        if (a->at[i] == omega) return a->value[i];
+    const double v = edge_value(omega, data);
+    a->at[1] = a->at[0], a->value[1] = a->value[0];
+    a->at[0] = omega, a->value[0] = v;
+    return v;
+}
+
+static double edge_value(double omega, void *data)
+{
+    edge_args *a = data;
+    double re[2], im[2];
+    if (a->status) return NAN;
+    int status = whirl_cstab_linearise(a->w, omega, a->mode, 0, NULL);
+    if (!status) status = shifted_lu(a->w, a->sigma, 3);
+    if (!status && a->w->kr.q != N_DYNAMIC * a->w->np) {
+        whirl_windows_arnoldi_release(&a->w->kr);
+        if (whirl_windows_arnoldi_init(&a->w->kr, N_DYNAMIC * a->w->np))
+            status = whirl_fail(GSL_ENOMEM, "out of memory for the Arnoldi iteration");
+    }
+    if (!status)
+        status = whirl_windows_arnoldi_pair(&a->w->kr, cstab_apply, a->w, a->sigma, re, im) ==
+                         GSL_SUCCESS
+                     ? GSL_SUCCESS
+                     : whirl_fail(GSL_EFAILED, "mode %d: the pair at omega = %.10g did not "
+                                  "converge on the refined discretisation", a->mode, omega);
+    if (status) {
+        a->status = status;
+        return NAN;
+    }
+    if (im[0] != 0 && fabs(im[0] + im[1]) <= 1e-12 * fabs(im[0])) return -4 * im[0] * im[0];
+    const double dr = re[0] - re[1], di = im[0] - im[1];
+    return dr * dr - di * di;
+}
+
+/* The edge at *omega (collision frequency freq; opens: stable below) located again on the refined
+ * workspace wr by Brent's method on D: D at *omega says on which side the new edge lies (D > 0
+ * on the stable side), steps of 1e-7 growing tenfold that way bracket it (at most 1e-2):
+ * *omega becomes the new edge, *err the change. */
+static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, double freq,
+                       double tol, double *err)
+{
+    const double omega = *edge;
+    edge_args a = {wr, mode, -freq * freq, 0, {NAN, NAN}, {NAN, NAN}};
+    gsl_function f = {edge_function, &a};
+    const double f0 = edge_function(omega, &a);
+    if (a.status) return a.status;
+    *err = 0;
+    if (f0 == 0) return GSL_SUCCESS;
+    const double dir = (f0 > 0) == (opens != 0) ? 1 : -1; /* towards the unstable side if stable */
+    double h = 1e-7, near = omega, far = omega + dir * h, ffar = edge_function(far, &a);
+    while (!a.status && !(f0 * ffar < 0) && h < 1e-2) {
+        near = far;
+        h *= 10;
+        far = omega + dir * h;
+        ffar = edge_function(far, &a);
+    }
+    if (a.status) return a.status;
+    if (!(f0 * ffar < 0))
+        return whirl_fail(GSL_EFAILED, "mode %d: the edge at omega = %.10g is not found within "
+                                       "1e-2 on the refined discretisation", mode, omega);
+    double lo = fmin(near, far), hi = fmax(near, far);
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
+    int status = gsl_root_fsolver_set(s, &f, lo, hi);
+    for (int iter = 0; iter < 100 && !status && !a.status; iter++) {
+        status = gsl_root_fsolver_iterate(s);
+        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS) break;
+    }
+    gsl_root_fsolver_free(s);
+    if (a.status) return a.status;
+    if (status) return whirl_fail(status, "mode %d: the refined edge near omega = %.10g was not "
+                                          "located", mode, omega);
+    *edge = (lo + hi) / 2;
+    *err = fabs(*edge - omega);
+    return GSL_SUCCESS;
+}
+
+/* The closed edges of windows[0..count-1] located again on a refined discretisation (degree
+ * + 8, shape tolerance / 100), their change the estimate of the error (whirl_window). */
+static int edge_errors(const whirl_cstab *w, int mode, double tol, whirl_window *windows,
+                       size_t count)
+{
+    whirl_cstab_params rp = w->p;
+    rp.degree = w->p.degree + 8 <= 64 ? w->p.degree + 8 : 64;
+    rp.shape_tol = fmax(1e-14, w->p.shape_tol / 100);
+    whirl_cstab *wr = whirl_cstab_alloc(&rp);
+    if (wr == NULL) return GSL_ENOMEM; /* the parameters are valid: no memory */
+    int status = GSL_SUCCESS;
+    for (size_t i = 0; i < count && !status; i++) {
+        whirl_window *x = &windows[i];
+        x->err_from = x->err_to = 0;
+        if (!x->open_from && x->freq_from > 0)
+            status = refine_edge(wr, mode, &x->from, 1, x->freq_from, tol, &x->err_from);
+        if (!status && !x->open_to && x->freq_to > 0)
+            status = refine_edge(wr, mode, &x->to, 0, x->freq_to, tol, &x->err_to);
+    }
+    whirl_cstab_free(wr);
+    return status;
+}
+
 int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                         whirl_window *windows, size_t max, size_t *count,
                         whirl_windows_stats *stats)
@@ -883,6 +1284,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     windows_source src = {cstab_source_spectrum, p->krylov ? cstab_source_pair : NULL, &c, mode,
                           stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
+    if (!status) status = edge_errors(w, mode, p->tol, windows, *count);
     free(omega);
     free(info);
     free(exists);

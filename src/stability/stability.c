@@ -531,6 +531,31 @@ int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double 
     return GSL_SUCCESS;
 }
 
+int whirl_stability_index(const whirl_stability *w, int *index)
+{
+    *index = 0;
+    const double *k = whirl_stability_get_matrix(w, WHIRL_STABILITY_STIFFNESS);
+    if (!w->linearised || k == NULL)
+        return whirl_fail(GSL_EINVAL, "no linearisation for the index");
+    const size_t q = 2 * w->n;
+    double *a = malloc(q * q * sizeof *a), *ev = malloc(q * sizeof *ev);
+    if (a == NULL || ev == NULL) {
+        free(a), free(ev);
+        return whirl_fail(GSL_ENOMEM, "out of memory for the index of %zu links", w->n);
+    }
+    for (size_t i = 0; i < q; i++) /* the symmetric part */
+        for (size_t j = 0; j < q; j++) a[i * q + j] = (k[i * q + j] + k[j * q + i]) / 2;
+    lapack_int info = LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', (lapack_int)q, a, (lapack_int)q, ev);
+    if (info == 0) {
+        double big = 0;
+        for (size_t i = 0; i < q; i++) big = fmax(big, fabs(ev[i]));
+        for (size_t i = 0; i < q; i++) *index += ev[i] < -1e-9 * big;
+    }
+    free(a), free(ev);
+    if (info != 0) return whirl_fail(GSL_EFAILED, "the index's eigen-solve failed (dsyev %d)", (int)info);
+    return GSL_SUCCESS;
+}
+
 int whirl_stability_growth(whirl_stability *w, double *growth)
 {
     size_t count;

@@ -9,14 +9,8 @@
 #include "whirl/stability.h"
 #include "core/error.h"
 
-whirl_verdict whirl_verdict_linear(double growth)
-{
-    return growth > 0   ? WHIRL_VERDICT_UNSTABLE
-           : growth < 0 ? WHIRL_VERDICT_CONVERGING
-                        : WHIRL_VERDICT_STABLE;
-}
-
-/* The growth rate of one point (whirl_stability_shape's model: 3D, co-rotating frame). */
+/* The growth rate and the index of one point (whirl_stability_shape's model: 3D, co-rotating
+ * frame). */
 static int point_growth(whirl_stability *w, const whirl_chain *c, double damping,
                         whirl_stability_point *p)
 {
@@ -28,6 +22,7 @@ static int point_growth(whirl_stability *w, const whirl_chain *c, double damping
     m.internal_damping = damping;
     int status = whirl_stability_linearise(w, &m, p->r, p->z);
     if (!status) status = whirl_stability_growth(w, &p->growth);
+    if (!status) status = whirl_stability_index(w, &p->index);
     return status;
 }
 

@@ -47,8 +47,21 @@ const char *whirl_verdict_name(whirl_verdict v)
     switch (v) {
     case WHIRL_VERDICT_UNSTABLE: return "unstable";
     case WHIRL_VERDICT_CONVERGING: return "converging";
-    default: return "stable";
+    case WHIRL_VERDICT_NEUTRAL: return "neutral (gyroscopic)";
+    default: return "stable (minimum)";
     }
+}
+
+whirl_verdict whirl_verdict_refine(whirl_verdict v, int index)
+{
+    return v == WHIRL_VERDICT_STABLE && index > 0 ? WHIRL_VERDICT_NEUTRAL : v;
+}
+
+whirl_verdict whirl_verdict_linear(double growth, int index)
+{
+    if (growth > 0) return WHIRL_VERDICT_UNSTABLE;
+    if (growth < 0) return WHIRL_VERDICT_CONVERGING;
+    return whirl_verdict_refine(WHIRL_VERDICT_STABLE, index);
 }
 
 whirl_stability_run_params whirl_stability_run_defaults(void)

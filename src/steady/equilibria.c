@@ -620,6 +620,7 @@ static int list_add(eq_list *l, double tip_r, const double *theta, int source)
     e->branch = -1;
     e->born_at = GSL_NAN;
     e->eig_growth = GSL_NAN;
+    e->index = -1;
     if (l->links) memcpy(l->theta + l->n * l->links, theta, l->links * sizeof *theta);
     l->source[l->n++] = source;
     return GSL_SUCCESS;
@@ -1137,6 +1138,7 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
         res->unidentified += e->branch < 0;
         if (w && !(status = whirl_stability_linearise(w, &model, aw->r, aw->z)))
             status = whirl_stability_growth(w, &e->eig_growth);
+        if (w && !status) status = whirl_stability_index(w, &e->index);
     }
     if (aw) res->balance = aw->worst;
     angle_ws_free(aw);

@@ -37,7 +37,7 @@ for n in 25 50; do
     $4 == 0 && gmax > 0 { if (gmax > 0.01) print at, mode, gmax; gmax = 0 }
     END { if (gmax > 0.01) print at, mode, gmax }' | sort -u -k2,2n -k1,1g >"$out/stability_points_N$n.txt"
   csv="$out/stability_runs_N$n.csv"
-  echo "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict" >"$csv"
+  echo "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index" >"$csv"
   start=$(date +%s)
   while read -r w k g; do
     p=$(awk -v g="$g" -v w="$w" 'BEGIN { p = 100; if (g > 0) { q = (log(1e4) + 6) / g * w / (2 * 3.141592653589793) + 20; if (q > p) p = int(q) } print p }')

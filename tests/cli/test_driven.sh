@@ -50,4 +50,25 @@ expect_error "mode below its rate" "whirl driven: .*does not exist" driven --ome
 expect_error "start outside range" "whirl driven: --omega \(the branch's start\) is outside" driven --omega 3 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "not a number" "whirl driven: option --eps needs a finite number" driven --omega 2 --eps abc -o "$tmp/out.csv"
 expect_error "unknown option" "whirl driven: unknown option '--bogus'" driven --omega 2 --bogus 1 -o "$tmp/out.csv"
+# --stability: the verdict of every shape of a branch. Mode 1 with the pivot's circle eps = 0.05
+# (20 links): the branch seeded on the pivot's side runs down below resonance to the small
+# near-axis shape and is a minimum all along; the far-side branch is unstable (index 1) up to its
+# fold, then neutral; a point's growth equals that of whirl stability's own shape at that rate.
+if "$WHIRL" driven --omega-min 0.6 --omega-max 1.6 --omega 1.6 --mode 1 --eps 0.05 --links 20 \
+     --stability -o "$tmp/bs.csv" 2>"$tmp/err" \
+   && "$WHIRL" driven --omega-min 0.6 --omega-max 1.6 --omega 1.6 --mode 1 --eps 0.05 --links 20 \
+     --side -1 --stability -o "$tmp/bm.csv" 2>>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/bs.csv" | head -1)" = "omega,tip_x,tip_y,tip_r,top_tension,nodes,fold,eig_growth,index,verdict" ] \
+   && grep -v '^[#o]' "$tmp/bs.csv" | awk -F, '{ n++; if ($10 != "stable (minimum)") bad++; if ($1 < m || m == "") m = $1; if (m == $1) r = $4 }
+        END { exit !(n > 20 && !bad && m < 0.65 && r < 0.1) }' \
+   && grep -v '^[#o]' "$tmp/bm.csv" | head -1 | awk -F, '{ exit !($10 == "unstable" && $9 == 1) }' \
+   && grep -v '^[#o]' "$tmp/bm.csv" | tail -1 | awk -F, '{ exit !($10 == "neutral (gyroscopic)") }'; then
+  w=$(grep -v '^[#o]' "$tmp/bm.csv" | head -1 | cut -d, -f1); g=$(grep -v '^[#o]' "$tmp/bm.csv" | head -1 | cut -d, -f8)
+  g2=$("$WHIRL" stability --omega "$w" --mode 1 --links 20 --eps 0.05 --side -1 --linear | grep -v '^[#o]' | cut -d, -f4)
+  if awk -v a="$g" -v b="$g2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0.1 && d < 1e-8 * a) }'; then
+    pass "driven --stability: near-axis branch a minimum down to omega 0.6, far side unstable then neutral; growth $g as whirl stability's"
+  else fail "driven --stability: growth $g against whirl stability's $g2 at omega $w"; fi
+else fail "driven --stability: $(cat "$tmp/err" | tail -2)"; fi
+expect_error "stability without links" "--stability needs --links" driven --omega-min 1 --omega-max 2 --eps 0.05 --stability
+
 finish

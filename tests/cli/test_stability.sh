@@ -30,7 +30,7 @@ csv_field() { grep -v '^#' "$1" | awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= 
 
 # An unstable shape: the run's growth agrees with the eigenvalue within 5%.
 if "$WHIRL" stability --omega 6.3 --mode 2 --links 12 -o "$tmp/u.csv" 2>"$tmp/err" \
-   && [ "$(grep -v '^#' "$tmp/u.csv" | head -1)" = "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict" ] \
+   && [ "$(grep -v '^#' "$tmp/u.csv" | head -1)" = "omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index" ] \
    && [ "$(csv_field "$tmp/u.csv" verdict)" = unstable ] \
    && awk -v e="$(csv_field "$tmp/u.csv" eig_growth)" -v s="$(csv_field "$tmp/u.csv" sim_growth)" \
         'BEGIN { exit !(e > 0.01 && s > 0 && (s - e) / e < 0.05 && (e - s) / e < 0.05) }'; then
@@ -41,10 +41,11 @@ else fail "unstable mode 2: $(cat "$tmp/err" "$tmp/u.csv" 2>/dev/null | tail -2)
 # the deviation stays below 100 times the perturbation.
 if "$WHIRL" stability --omega 4.5 --mode 2 --links 12 --periods 60 -o "$tmp/s.csv" 2>"$tmp/err" \
    && [ "$(csv_field "$tmp/s.csv" eig_growth)" = 0 ] \
-   && [ "$(csv_field "$tmp/s.csv" verdict)" = stable ] \
+   && [ "$(csv_field "$tmp/s.csv" verdict)" = "neutral (gyroscopic)" ] \
+   && [ "$(csv_field "$tmp/s.csv" index)" = 2 ] \
    && [ "$(csv_field "$tmp/s.csv" sim_growth)" = 0 ] \
    && awk -v d="$(csv_field "$tmp/s.csv" max_deviation)" 'BEGIN { exit !(d >= 1 && d < 100) }'; then
-  pass "stabilised mode 2 (N = 12, omega 4.5): bounded deviation"
+  pass "stabilised mode 2 (N = 12, omega 4.5): bounded deviation, neutral (gyroscopic), index 2"
 else fail "stabilised mode 2: $(cat "$tmp/err" "$tmp/s.csv" 2>/dev/null | tail -2)"; fi
 
 # Kelvin-Tait-Chetaev: with damping, mode 1 converges and mode 2 (stable without) grows.
@@ -96,7 +97,7 @@ else fail "N = 100 mode 50 at omega 250: sim_growth within 2% of eig_growth"; fi
 
 # Hand-swung chain: mode 1 on the far side of the axis from the pivot trails and is unstable; the
 # run's growth agrees with the eigenvalue within 5% (linear and quadratic drag).
-driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,tip_x,tip_y,nodes"
+driven_header="omega,mode,links,eig_growth,sim_growth,max_deviation,verdict,index,tip_x,tip_y,nodes"
 if "$WHIRL" stability --omega 3 --mode 1 --side -1 --links 12 --eps 0.05 --drag 0.1 \
      --drag-quadratic 0.05 -o "$tmp/du.csv" 2>"$tmp/err" \
    && [ "$(grep -v '^#' "$tmp/du.csv" | head -1)" = "$driven_header" ] \
@@ -128,7 +129,7 @@ if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | head -1)" = "$driven_header" ] \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 1' | wc -l)" -ge 3 ] \
    && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, '$2 == 2' | wc -l)" -ge 1 ] \
-   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, 'NR > 1 && NF != 10' | wc -l)" -eq 0 ] \
+   && [ "$(grep -v '^#' "$tmp/dmap.csv" | awk -F, 'NR > 1 && NF != 11' | wc -l)" -eq 0 ] \
    && ! grep -qi nan "$tmp/dmap.csv"; then
   pass "driven map form"
 else fail "driven map form: $(cat "$tmp/err" "$tmp/dmap.csv" 2>/dev/null | tail -3)"; fi
@@ -232,5 +233,41 @@ if [ $? -eq 1 ] && grep -q "was not written by a map with these options" "$tmp/e
   pass "--resume refuses a map of other options"
 else fail "--resume refuses a map of other options ($(cat "$tmp/err"))"; fi
 expect_error "resume to stdout" "whirl stability: --resume needs --output|--resume needs -o FILE" stability $map --resume
+
+# ---- --eigenvalues: every eigenvalue of the linearisation; the growth in the comment is the
+# largest real part, the spectrum is Hamiltonian (symmetric about both axes) without damping ----
+if "$WHIRL" stability --omega 4.5 --mode 2 --links 6 --eigenvalues -o "$tmp/ev.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/ev.csv" | head -1)" = "re,im" ] \
+   && [ "$(grep -vc '^#' "$tmp/ev.csv")" -eq 23 ] \
+   && grep -q "index 2, verdict unstable" "$tmp/ev.csv" \
+   && g=$(sed -n 's/.*growth \([^,]*\), index.*/\1/p' "$tmp/ev.csv") \
+   && grep -v '^[#r]' "$tmp/ev.csv" | awk -F, -v g="$g" '
+        { if ($1 > hi) hi = $1; if ($1 < lo) lo = $1; sr += $1; si += $2 }
+        END { exit !(g > 0.1 && hi - g < 1e-12 && hi + lo < 1e-12 && sr < 1e-9 && si < 1e-9 && si > -1e-9) }'; then
+  pass "--eigenvalues: 22 eigenvalues (4N - 2), the largest real part is the growth, Hamiltonian"
+else fail "--eigenvalues: $(cat "$tmp/err" "$tmp/ev.csv" 2>/dev/null | head -3)"; fi
+expect_error "eigenvalues without --omega" "--eigenvalues needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --eigenvalues
+
+# ---- --atlas: the windows of --windows, a Krein signature at each edge, resumable ----
+if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/atlas.csv" 2>"$tmp/err" \
+   && "$WHIRL" stability --windows --modes 2 --omega-min 1 --omega-max 6 -o "$tmp/aw.csv" \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | head -1)" = "mode,from,to,open_from,open_to,freq_from,freq_to,sig_from,sig_to,max_growth,at,err_from,err_to" ] \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | tail -n +2 | cut -d, -f2,3)" = "$(grep -v '^#' "$tmp/aw.csv" | tail -n +2 | cut -d, -f3,4)" ] \
+   && [ "$(grep -v '^#' "$tmp/atlas.csv" | tail -n +2 | cut -d, -f8,9)" = "-1,1" ]; then
+  pass "atlas: mode 2 to omega 6 has the window of --windows, signatures -1 / 1 at its edges"
+else fail "atlas: $(cat "$tmp/err" "$tmp/atlas.csv" 2>/dev/null | tail -3)"; fi
+# a file with the second chunk undone: --resume computes it, and the file is the same again
+grep -v "^# done mode 2 omega 5 6" "$tmp/atlas.csv" >"$tmp/apart.csv"
+if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/apart.csv" --resume \
+   && cmp -s "$tmp/apart.csv" "$tmp/atlas.csv"; then
+  pass "atlas --resume completes the chunks not done"
+else fail "atlas --resume completes the chunks not done"; fi
+if "$WHIRL" stability --atlas --modes 2-3,5 --omega-max 1 -o "$tmp/a1.csv" \
+   && [ "$(grep -c '^# done mode' "$tmp/a1.csv")" -eq 3 ] && [ "$(grep -vc '^#' "$tmp/a1.csv")" -eq 1 ]; then
+  pass "atlas below every birth: the chunks done, no window"
+else fail "atlas below every birth"; fi
+expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
+expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
+expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"
 
 finish

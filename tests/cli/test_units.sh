@@ -74,7 +74,7 @@ same "fit: omega in rad/s" "$tmp/a.csv" "$tmp/b.csv" "$R 0 - 0"
 "$WHIRL" stability --omega 2.5 --mode 1 --links 10 --damping 0.01 --linear -o "$tmp/a.csv"
 "$WHIRL" stability --omega "$(val "2.5 * R")" --mode 1 --links 10 --damping "$(val "0.01 * $D")" \
   --linear $units -o "$tmp/b.csv"
-same "stability: growth rates in 1/s, damping in kg m^2/s" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 -"
+same "stability: growth rates in 1/s, damping in kg m^2/s" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 - -"
 
 # stability: the hand-swung map, eps in cm, linear drag in kg/(m s)
 "$WHIRL" stability --omega-min 2 --omega-max 3 --omega-count 2 --modes 1 --links 8 --eps 0.03 \
@@ -82,7 +82,7 @@ same "stability: growth rates in 1/s, damping in kg m^2/s" "$tmp/a.csv" "$tmp/b.
 "$WHIRL" stability --omega-min "$(val "2 * R")" --omega-max "$(val "3 * R")" --omega-count 2 \
   --modes 1 --links 8 --eps "$(val "0.03 * L * 100")cm" --drag "$(val "0.1 * $C1")" --linear $units \
   -o "$tmp/b.csv"
-same "stability --eps --drag: map in SI units" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 - $L $L -"
+same "stability --eps --drag: map in SI units" "$tmp/a.csv" "$tmp/b.csv" "$R - - $R 0 0 - - $L $L -"
 
 # driven: one shape with both drags
 "$WHIRL" driven --omega 1.6 --eps 0.05 --drag 0.05 --drag-quadratic 0.02 --points 21 -o "$tmp/a.csv"

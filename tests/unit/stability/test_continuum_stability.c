@@ -4,13 +4,15 @@
  *    +-omega in the co-rotating frame; with a tip mass against the roots of the J0/Y0 determinant
  *    (whirl_continuum_critical); the Krein signatures against the frequencies (negative energy
  *    exactly for the co-rotating modes slower than the frame);
- *  - spectral convergence: on four fixed elements the mu of the mode-2 shape converge
- *    geometrically in the degree, to the values of the refined elements; the collocation's tip
+ *  - spectral convergence: on elements bounded by the shape's tolerance and the phase of the
+ *    waves kept (4 to 7 from degree 16) the mu of the mode-2 shape converge geometrically in the
+ *    degree, to the values of the refined elements; the collocation's tip
  *    radius against the shooting's;
  *  - the Krein signatures of modes 2 and 3 against the N-link chain's (whirl_windows_spectrum);
  *  - the window of mode 2 near omega = 4.4-4.6 against the N-link chain's edges extrapolated to
  *    N -> infinity, and each edge against the growth just inside and outside;
- *  - bad input and the stop request. */
+ *  - the Arnoldi iteration on the banded pencil against the dense block's eigenvalues;
+ *  - bad input, the memory bound and the stop request. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -161,18 +163,19 @@ static void test_convergence(void **state)
         assert_int_equal(whirl_cstab_linearise(w, omega, 2, 0, NULL), 0);
         size_t ne, np;
         whirl_cstab_grid(w, &ne, &np);
-        assert_int_equal(ne, 4);
+        assert_true(ne >= 4);
         assert_int_equal(lowest(w, 0, 8, re, im, NULL, &g), 8);
         err[k] = fabs(g - ref_g);
         for (int i = 0; i < 8; i++) err[k] = fmax(err[k], hypot(re[i] - ref_re[i], fabs(im[i]) - fabs(ref_im[i])));
-        print_message("# degree %2d, %3zu points: largest error of the 8 lowest mu and the growth "
-                      "%.2g\n", degree[k], np, err[k]);
+        print_message("# degree %2d, %2zu elements, %3zu points: largest error of the 8 lowest mu and the growth "
+                      "%.2g\n", degree[k], ne, np, err[k]);
         whirl_cstab_free(w);
     }
-    /* geometric: each step of 4 in the degree gains a factor 5 at least, down to the round-off
-     * of the mu (about 1e-8 of their size) */
-    for (int k = 0; k + 1 < LEVELS; k++) assert_true(err[k + 1] < fmax(err[k] / 5, 3e-8));
-    assert_true(err[0] > 1e-2); /* the coarsest is really coarse */
+    /* geometric: from degree 16, where the elements of the waves' phase (shape tolerance 1e-3:
+     * a phase bound for 3e-2) are 4 to 7 for every degree, each step of 4 in the degree gains a
+     * factor 5 at least, down to the round-off of the mu (about 1e-8 of their size) */
+    for (int k = 2; k + 1 < LEVELS; k++) assert_true(err[k + 1] < fmax(err[k] / 5, 3e-8));
+    assert_true(err[0] > 1e-6); /* the coarsest is really coarse */
     assert_true(err[LEVELS - 1] < 1e-7);
 }
 
@@ -252,6 +255,46 @@ static void test_window(void **state)
     whirl_cstab_free(w);
 }
 
+/* The kept mu by the Arnoldi iteration on the banded pencil against every mu of the dense block
+ * (solver 1): the same count, the same signatures, the same mu to 1e-8 relative (modes 2, 3 and
+ * 6 at rates with and without a window). */
+static void test_solvers(void **state)
+{
+    (void)state;
+    whirl_cstab_params p = whirl_cstab_defaults();
+    whirl_cstab *fast = whirl_cstab_alloc(&p);
+    p.solver = 1;
+    whirl_cstab *dense = whirl_cstab_alloc(&p);
+    const struct { int mode; double omega; } cases[] = {{2, 2.8}, {2, 4.48}, {2, 9.9}, {3, 4.4},
+                                                        {3, 7.34}, {3, 10}, {6, 14}};
+    enum { K = 80 };
+    double re[2][K], im[2][K], worst = 0;
+    int sig[2][K];
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        size_t n[2];
+        double growth[2];
+        whirl_cstab *ws[2] = {fast, dense};
+        for (int s = 0; s < 2; s++) {
+            assert_int_equal(whirl_cstab_linearise(ws[s], cases[c].omega, cases[c].mode, 0, NULL),
+                             0);
+            n[s] = lowest(ws[s], 1, K, re[s], im[s], sig[s], &growth[s]);
+        }
+        assert_int_equal(n[0], n[1]);
+        assert_true(n[0] < K);
+        for (size_t i = 0; i < n[0]; i++) {
+            const double d = hypot(re[0][i] - re[1][i], fabs(im[0][i]) - fabs(im[1][i]));
+            worst = fmax(worst, d / fmax(1, hypot(re[1][i], im[1][i])));
+            assert_int_equal(sig[0][i], sig[1][i]);
+        }
+        assert_true(fabs(growth[0] - growth[1]) <= 1e-8 * fmax(1, growth[1]));
+    }
+    print_message("# Arnoldi against the dense block: largest relative difference of the mu %.2g\n",
+                  worst);
+    assert_true(worst <= 1e-8);
+    whirl_cstab_free(fast);
+    whirl_cstab_free(dense);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -276,10 +319,29 @@ static void test_errors(void **state)
     assert_int_equal(whirl_cstab_linearise(w, 0, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, NAN, 2, 0, NULL), GSL_EINVAL);
     assert_int_equal(whirl_cstab_linearise(w, 3, -1, 0, NULL), GSL_EINVAL);
-    /* a shape beyond the points' bound: a message, no huge pencil */
-    assert_int_equal(whirl_cstab_linearise(w, 40, 3, 0, NULL), GSL_EMAXITER);
-    assert_non_null(strstr(whirl_last_error(), "collocation points"));
-    assert_int_equal(whirl_cstab_spectrum(w, 0, &sp), GSL_EINVAL);
+    /* a shape beyond the memory bound (mode 8 at omega = 40 needs 1105 points, 16 MB hold
+     * about 700): a message naming the mode, the rate and the points, no pencil */
+    p.memory_mb = 8;
+    assert_null(whirl_cstab_alloc(&p));
+    assert_non_null(strstr(whirl_last_error(), "memory bound"));
+    p.memory_mb = 16;
+    whirl_cstab *small = whirl_cstab_alloc(&p);
+    assert_non_null(small);
+    assert_int_equal(whirl_cstab_linearise(small, 40, 8, 0, NULL), GSL_EMAXITER);
+    const char *msg = whirl_last_error();
+    assert_non_null(strstr(msg, "mode 8 at omega = 40 needs"));
+    assert_non_null(strstr(msg, "collocation points"));
+    assert_non_null(strstr(msg, "16 MB"));
+    assert_int_equal(whirl_cstab_spectrum(small, 0, &sp), GSL_EINVAL);
+    whirl_cstab_free(small);
+    /* the same shape with the default bound */
+    size_t ne, np;
+    assert_int_equal(whirl_cstab_linearise(w, 40, 8, 0, NULL), GSL_SUCCESS);
+    whirl_cstab_grid(w, &ne, &np);
+    assert_true(np > 800);
+    p = whirl_cstab_defaults();
+    p.solver = 2;
+    assert_null(whirl_cstab_alloc(&p));
     whirl_window win[2];
     size_t count;
     whirl_windows_stats st;
@@ -307,6 +369,7 @@ int main(void)
         cmocka_unit_test(test_convergence),
         cmocka_unit_test(test_signatures),
         cmocka_unit_test(test_window),
+        cmocka_unit_test(test_solvers),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

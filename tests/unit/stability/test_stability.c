@@ -550,6 +550,9 @@ static void test_negative_directions_and_damping(void **state)
             for (size_t j = 0; j < n; j++) half[i * n + j] = kk[i * q + j];
         symmetric_eigenvalues(n, half, eval);
         assert_int_equal(count_below(n, eval, -tol), (size_t)(mode - 1));
+        int index;
+        assert_int_equal(whirl_stability_index(w, &index), 0);
+        assert_int_equal(index, 2 * (mode - 1));
 
         /* without damping: Hamiltonian spectrum (symmetric about the imaginary axis) */
         size_t count;
@@ -575,6 +578,10 @@ static void test_negative_directions_and_damping(void **state)
         print_message("# mode %d omega %g: conservative max Re %.3g, damped growth %.6g, %zu "
                       "growing\n", mode, omega, hi, growth, growing);
         assert_int_equal(growing, (size_t)(2 * (mode - 1)));
+        assert_int_equal(whirl_stability_index(w, &index), 0); /* Kelvin-Tait-Chetaev */
+        assert_int_equal(growing, (size_t)index);
+        assert_int_equal(whirl_verdict_linear(growth, index),
+                         mode == 1 ? WHIRL_VERDICT_CONVERGING : WHIRL_VERDICT_UNSTABLE);
         assert_true(mode == 1 ? growth < 0 : growth > 0);
     }
     whirl_stability_free(w);
@@ -680,7 +687,15 @@ static void test_perturbed_runs(void **state)
     p = whirl_stability_run_defaults();
     p.method = "euler";
     assert_int_equal(whirl_stability_run(&m, info.tip_r, &p, &r), GSL_EINVAL);
-    assert_string_equal(whirl_verdict_name(WHIRL_VERDICT_STABLE), "stable");
+    assert_string_equal(whirl_verdict_name(WHIRL_VERDICT_STABLE), "stable (minimum)");
+    assert_string_equal(whirl_verdict_name(WHIRL_VERDICT_NEUTRAL), "neutral (gyroscopic)");
+    assert_int_equal(whirl_verdict_refine(WHIRL_VERDICT_STABLE, 2), WHIRL_VERDICT_NEUTRAL);
+    assert_int_equal(whirl_verdict_refine(WHIRL_VERDICT_STABLE, 0), WHIRL_VERDICT_STABLE);
+    assert_int_equal(whirl_verdict_refine(WHIRL_VERDICT_UNSTABLE, 2), WHIRL_VERDICT_UNSTABLE);
+    assert_int_equal(whirl_verdict_linear(0, 0), WHIRL_VERDICT_STABLE);
+    assert_int_equal(whirl_verdict_linear(0, 4), WHIRL_VERDICT_NEUTRAL);
+    assert_int_equal(whirl_verdict_linear(1e-3, 0), WHIRL_VERDICT_UNSTABLE);
+    assert_int_equal(whirl_verdict_linear(-1e-3, 2), WHIRL_VERDICT_CONVERGING);
     whirl_stability_free(w);
     whirl_chain_free(c);
 }
@@ -1508,8 +1523,11 @@ static void test_map(void **state)
         assert_int_equal(whirl_stability_linearise(w, &m, r[j], z[j]), GSL_SUCCESS);
         assert_int_equal(whirl_stability_growth(w, &growth), GSL_SUCCESS);
         assert_memory_equal(&growth, &pts[j].growth, sizeof growth);
-        assert_int_equal(whirl_verdict_linear(growth), growth > 0 ? WHIRL_VERDICT_UNSTABLE
-                                                                  : WHIRL_VERDICT_CONVERGING);
+        int index;
+        assert_int_equal(whirl_stability_index(w, &index), GSL_SUCCESS);
+        assert_int_equal(index, pts[j].index);
+        assert_int_equal(whirl_verdict_linear(growth, index), growth > 0 ? WHIRL_VERDICT_UNSTABLE
+                                                                         : WHIRL_VERDICT_CONVERGING);
     }
     /* two bad points: the earlier one's failure is reported */
     pts[3].omega = -1;

@@ -1,0 +1,12 @@
+/* whirl stability --atlas (stability_atlas.c). */
+#ifndef WHIRL_CLI_STABILITY_ATLAS_H
+#define WHIRL_CLI_STABILITY_ATLAS_H
+
+#include "cli/cli.h"
+
+/* The atlas of the continuum's windows of the modes to omega_max into output (rewritten after
+ * every chunk; resume: keep the chunks already in it). Returns the exit status. */
+int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double omega_max,
+                    int degree, double tol, double scan_step, const char *output, int resume);
+
+#endif
