@@ -56,7 +56,7 @@ int main(void)
                                    .omega = cases[c].omega};
         whirl_shape_info info;
         double growth;
-        check(whirl_stability_mode(w, &model, cases[c].mode, 0, &info, &growth), "linear analysis");
+        check(whirl_stability_mode(w, &model, cases[c].mode, &info, &growth), "linear analysis");
         int index; /* negative directions of the amended potential: 0 for mode 1 (a minimum) */
         check(whirl_stability_index(w, &index), "index");
         const whirl_verdict linear = whirl_verdict_linear(growth, index);

@@ -125,11 +125,10 @@ WHIRL_API int whirl_stability_shape(whirl_stability *w, const whirl_model *model
 
 /* The steady shape of mode k at model->omega (whirl_nlink_solve_nodes: the nodes from the
  * branch's link angles, an equilibrium to round-off at any rate), its linearisation and growth
- * rate. tip_r_guess is not used (kept for the signature; the branch is continued from its
- * birth). info may be NULL. GSL_EDOM if the mode does not exist; GSL_EINVAL with a drive or
+ * rate (the branch is continued from its birth). info may be NULL. GSL_EDOM if the mode does not exist; GSL_EINVAL with a drive or
  * air drag (see whirl_stability_driven_mode). */
 WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
-                                   double tip_r_guess, whirl_shape_info *info, double *growth);
+                                   whirl_shape_info *info, double *growth);
 
 /* The shape of the hand-swung chain of mode k at model->omega with the pivot's circle
  * model->drive_radius and the air drag of the model (whirl_driven_mode with side = +1 / -1: the

@@ -169,6 +169,10 @@ typedef struct whirl_nlink_follow_options {
     void *progress_ctx;               /* passed to progress */
 } whirl_nlink_follow_options;
 
+/* The default options for the chain c: steps_max the bound above (100000 or 200 per link,
+ * whichever is more; 100000 for c NULL), no progress function. */
+WHIRL_API whirl_nlink_follow_options whirl_nlink_follow_defaults(const whirl_chain *c);
+
 /* whirl_nlink_solve_nodes with the options opt (may be NULL). The middle modes of long chains
  * fold thousands of times on their way up (1000 links, mode 334: about 5000 folds from its
  * birth at omega 530 to 700, 120000 steps). */

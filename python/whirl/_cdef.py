@@ -285,7 +285,7 @@ STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_ramp", "whirl_model", "whir
 
 CDEF += r"""
 int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
-                         double tip_r_guess, whirl_shape_info *info, double *growth);
+                         whirl_shape_info *info, double *growth);
 """
 
 CDEF += r"""

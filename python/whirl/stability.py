@@ -113,7 +113,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
             nodes = int(info.nodes)
         else:
             info = ffi.new("whirl_shape_info *")
-            status = lib.whirl_stability_mode(ws, m, mode, 0.0, info, growth)
+            status = lib.whirl_stability_mode(ws, m, mode, info, growth)
             nodes = int(info.n_nodes) + 1
     check(status, "stability", u)
     g = float(growth[0])

@@ -76,7 +76,10 @@ static void follow_progress(void *ctx, const whirl_nlink_progress *at)
 void steady_cli_follow_begin(steady_cli_follow *f, const cli_command *cmd,
                              const steady_cli_model *m, double target, int count)
 {
-    f->opt = (whirl_nlink_follow_options){f->max_steps, follow_progress, f};
+    f->opt = whirl_nlink_follow_defaults(m->chain);
+    if (f->max_steps > 0) f->opt.steps_max = f->max_steps;
+    f->opt.progress = follow_progress;
+    f->opt.progress_ctx = f;
     f->m = m;
     f->target = target;
     f->index = 1;

@@ -584,7 +584,7 @@ int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double t
 }
 
 int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
-                         double tip_r_guess, whirl_shape_info *info, double *growth)
+                         whirl_shape_info *info, double *growth)
 {
     int status = check_free_model(w, model);
     if (status) return status;
@@ -592,7 +592,6 @@ int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
     whirl_shape_info *out = info ? info : &local;
     /* the nodes from the branch's link angles: at high rates the tip radius no longer fixes
      * the shape (whirl_nlink_solve_nodes), and its rebuilt nodes are off the equilibrium */
-    (void)tip_r_guess;
     status = whirl_nlink_solve_nodes(model->chain, model->omega, mode, out, w->x, w->z,
                                      w->tension);
     if (!status) status = whirl_stability_linearise(w, model, w->x, w->z);

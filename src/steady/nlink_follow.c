@@ -22,6 +22,12 @@ static long steps_max(const whirl_chain *c)
                                 : STEPS_MIN;
 }
 
+whirl_nlink_follow_options whirl_nlink_follow_defaults(const whirl_chain *c)
+{
+    whirl_nlink_follow_options o = {c != NULL ? steps_max(c) : STEPS_MIN, NULL, NULL};
+    return o;
+}
+
 /* The shape of the branch at omega between its birth and the first point of a path begun in the
  * link angles (birth_gap), into info and, where r is not NULL, r, z, tension. */
 static int gap_shape(nlink_path *p, double omega, whirl_shape_info *info, double *r,

@@ -74,10 +74,10 @@ int main(int argc, char **argv)
         whirl_shape_info info;
         double growth, t_total[REPEATS], t_shape[REPEATS], t_lin[REPEATS], t_gsl[REPEATS];
         double t_cpu[REPEATS];
-        if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) bench_die("warm-up");
+        if (whirl_stability_mode(w, &m, mode, &info, &growth)) bench_die("warm-up");
         for (int r = 0; r < REPEATS; r++) {
             double c0 = cpu_now(), t0 = bench_now();
-            if (whirl_stability_mode(w, &m, mode, 0, &info, &growth)) bench_die("analysis");
+            if (whirl_stability_mode(w, &m, mode, &info, &growth)) bench_die("analysis");
             double t1 = bench_now();
             t_cpu[r] = cpu_now() - c0;
             if (whirl_nlink_solve(c, omega, mode, &info)) bench_die("shape");

@@ -86,7 +86,7 @@ static void cost(FILE *fp, size_t n)
     m.omega = 7.2;
     whirl_shape_info info;
     double g4, t[KINDS][9];
-    if (whirl_stability_mode(lin, &m, 3, 0, &info, &g4)) bench_die("shape");
+    if (whirl_stability_mode(lin, &m, 3, &info, &g4)) bench_die("shape");
     whirl_spectrum sp;
     if (whirl_windows_spectrum(w, lin, 0, &sp)) bench_die("spectrum");
     /* the shift: the real part of the fastest-growing pair */

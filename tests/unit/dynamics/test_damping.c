@@ -140,7 +140,7 @@ static void test_mode2_grows(void **state)
     whirl_shape_info info;
     double r[LINKS + 1], z[LINKS + 1], tension[LINKS + 1], neutral, eig;
     /* neutrally stable without damping, growing with it */
-    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, &info, &neutral), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 2, &info, &neutral), 0);
     assert_true(neutral == 0);
     m.internal_damping = DAMPING;
     assert_int_equal(whirl_stability_shape(w, &m, info.tip_r, &eig), 0);

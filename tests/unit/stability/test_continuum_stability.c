@@ -200,7 +200,7 @@ static void test_signatures(void **state)
         whirl_model mod = {0};
         mod.chain = c, mod.dim = 3, mod.frame = WHIRL_FRAME_ROTATING, mod.omega = cases[k].omega;
         double gn;
-        assert_int_equal(whirl_stability_mode(lin, &mod, cases[k].mode, 0, NULL, &gn), 0);
+        assert_int_equal(whirl_stability_mode(lin, &mod, cases[k].mode, NULL, &gn), 0);
         whirl_spectrum sp;
         assert_int_equal(whirl_windows_spectrum(nw, lin, 1, &sp), 0);
         int nneg = 0;

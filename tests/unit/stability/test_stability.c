@@ -604,7 +604,7 @@ static void test_with_steady_module(void **state)
         assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
         assert_int_equal(whirl_stability_growth(w, &own), 0);
         whirl_shape_info info;
-        assert_int_equal(whirl_stability_mode(w, &m, mode, 0, &info, &theirs), 0);
+        assert_int_equal(whirl_stability_mode(w, &m, mode, &info, &theirs), 0);
         assert_int_equal(info.mode, mode);
         assert_true(fabs(info.tip_r - r[n]) < 1e-9);
         assert_true(fabs(own - theirs) < 1e-9 * fmax(1, fabs(own)));
@@ -640,7 +640,7 @@ static void test_perturbed_runs(void **state)
     whirl_shape_info info;
     double growth;
     /* mode 2 of the 12-link chain at 6.3 is unstable without damping (see above) */
-    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, &info, &growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 2, &info, &growth), 0);
     assert_true(growth > 0.05);
     const char *methods[] = {"gauss2", "rk4"};
     for (int k = 0; k < 2; k++) {
@@ -665,7 +665,7 @@ static void test_perturbed_runs(void **state)
     }
     /* with damping mode 1 converges */
     m.internal_damping = 0.02;
-    assert_int_equal(whirl_stability_mode(w, &m, 1, 0, &info, &growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 1, &info, &growth), 0);
     assert_true(growth < 0);
     whirl_stability_run_params p = whirl_stability_run_defaults();
     whirl_stability_run_result r;
@@ -1080,7 +1080,7 @@ static void test_planar_reduction(void **state)
     assert_true(worst < 1e-9 * scale);
     /* the driven module at eps = c = 0 gives the free shape and the same growth */
     double free_growth, driven_growth;
-    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, NULL, &free_growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 2, NULL, &free_growth), 0);
     for (int side = -1; side <= 1; side += 2) {
         assert_int_equal(whirl_stability_driven_mode(w, &m, 2, side, NULL, &driven_growth), 0);
         assert_true(fabs(driven_growth - free_growth) < 1e-9 * fabs(free_growth));
@@ -1201,7 +1201,7 @@ static void test_worker_spectrum(void **state)
     whirl_model m = model_of(c, 4.3, 0.02);
     whirl_stability *w = whirl_stability_alloc(n);
     double growth;
-    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, NULL, &growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 2, NULL, &growth), 0);
     size_t count;
     const double *re, *im;
     assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);
@@ -1246,7 +1246,7 @@ static void test_worker_stop(void **state)
     whirl_shape_info info;
     double growth, again = -1;
     whirl_stop_clear();
-    assert_int_equal(whirl_stability_mode(w, &m, 2, 0, &info, &growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 2, &info, &growth), 0);
     /* linearised again, then the stop 5 ms into the call whose only work is the solve */
     const double *x, *y, *z;
     whirl_stability_nodes(w, &x, &y, &z);
@@ -1311,7 +1311,7 @@ static void test_high_rate_shape(void **state)
     whirl_shape_info info;
     double growth, r[NMAX + 1], z[NMAX + 1], t[NMAX + 1];
     /* the premise: the tip radius alone does not give the shape at this rate */
-    assert_int_equal(whirl_stability_mode(w, &m, 7, 0, &info, &growth), GSL_SUCCESS);
+    assert_int_equal(whirl_stability_mode(w, &m, 7, &info, &growth), GSL_SUCCESS);
     assert_int_equal(whirl_nlink_positions(c, omega, info.tip_r, r, z, t), GSL_SUCCESS);
     const double miss = fabs(r[0]);
     const double *x, *y, *zz;
@@ -1333,7 +1333,7 @@ static void test_high_rate_shape(void **state)
     assert_true(fabs(run.sim_growth - growth) < 0.03 * growth);
     /* mode 3: neutral, and a run stays below 100 times its perturbation */
     double neutral;
-    assert_int_equal(whirl_stability_mode(w, &m, 3, 0, NULL, &neutral), GSL_SUCCESS);
+    assert_int_equal(whirl_stability_mode(w, &m, 3, NULL, &neutral), GSL_SUCCESS);
     whirl_stability_nodes(w, &x, &y, &zz);
     const double across3 = force_across(c, omega, x, zz);
     assert_int_equal(whirl_stability_run_shape(&m, x, y, zz, &p, &run), GSL_SUCCESS);
@@ -1403,7 +1403,7 @@ static void test_errors(void **state)
     assert_int_equal(whirl_stability_linearise(w, &m, r, z), GSL_EINVAL);
     /* a mode that does not exist */
     m = model_of(c, 0.5, 0);
-    assert_int_equal(whirl_stability_mode(w, &m, 1, 0, NULL, &growth), GSL_EDOM);
+    assert_int_equal(whirl_stability_mode(w, &m, 1, NULL, &growth), GSL_EDOM);
     whirl_chain_free(other);
     whirl_stability_free(w);
     whirl_stability_free(NULL);
@@ -1432,7 +1432,7 @@ static void test_high_mode_by_rhs_jacobian(void **state)
     whirl_stability *w = whirl_stability_alloc(N);
     assert_non_null(w);
     double growth;
-    assert_int_equal(whirl_stability_mode(w, &m, 50, 0, NULL, &growth), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, 50, NULL, &growth), 0);
     size_t count;
     const double *re, *im;
     assert_int_equal(whirl_stability_eigenvalues(w, &count, &re, &im), 0);

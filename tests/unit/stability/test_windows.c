@@ -73,7 +73,7 @@ static double growth4(whirl_stability *w, const whirl_chain *c, int mode, double
     whirl_model m = model_of(c, omega);
     whirl_shape_info info;
     double g;
-    assert_int_equal(whirl_stability_mode(w, &m, mode, 0, &info, &g), 0);
+    assert_int_equal(whirl_stability_mode(w, &m, mode, &info, &g), 0);
     return g;
 }
 
@@ -93,7 +93,7 @@ static void test_reduced_spectrum(void **state)
             whirl_model m = model_of(c, omega);
             whirl_shape_info info;
             double g4;
-            assert_int_equal(whirl_stability_mode(lin, &m, mode, 0, &info, &g4), 0);
+            assert_int_equal(whirl_stability_mode(lin, &m, mode, &info, &g4), 0);
             size_t count4;
             const double *re4, *im4;
             assert_int_equal(whirl_stability_eigenvalues(lin, &count4, &re4, &im4), 0);
@@ -177,7 +177,7 @@ static void test_worker_spectrum(void **state)
         for (int j = 0; j < 3; j++) {
             whirl_model m = model_of(c, crit[mode - 1] * (1.1 + 0.7 * j));
             double g4;
-            assert_int_equal(whirl_stability_mode(lin, &m, mode, 0, NULL, &g4), 0);
+            assert_int_equal(whirl_stability_mode(lin, &m, mode, NULL, &g4), 0);
             size_t count4;
             const double *re4, *im4;
             assert_int_equal(whirl_stability_eigenvalues(lin, &count4, &re4, &im4), 0);
@@ -303,7 +303,7 @@ static void test_runs_at_edges(void **state)
             whirl_model m = model_of(c, omega);
             whirl_shape_info info;
             double g;
-            assert_int_equal(whirl_stability_mode(lin, &m, 2, 0, &info, &g), 0);
+            assert_int_equal(whirl_stability_mode(lin, &m, 2, &info, &g), 0);
             whirl_stability_run_params rp = whirl_stability_run_defaults();
             rp.method = "rk4";
             rp.perturbation = 1e-7;
@@ -361,7 +361,7 @@ static void test_errors(void **state)
     whirl_model m = model_of(c, 4);
     m.internal_damping = 0.01;
     double g;
-    assert_int_equal(whirl_stability_mode(lin, &m, 2, 0, NULL, &g), 0);
+    assert_int_equal(whirl_stability_mode(lin, &m, 2, NULL, &g), 0);
     whirl_spectrum sp;
     assert_int_equal(whirl_windows_spectrum(w, lin, 0, &sp), GSL_EINVAL);
     whirl_windows_free(NULL);

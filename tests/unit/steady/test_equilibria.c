@@ -140,7 +140,7 @@ static void test_five_links(void **state)
     for (size_t i = 0; i < e->count; i++) {
         if (e->eq[i].branch != 1 && e->eq[i].branch != 2) continue;
         double growth;
-        assert_int_equal(whirl_stability_mode(w, &model, e->eq[i].branch, 0, NULL, &growth),
+        assert_int_equal(whirl_stability_mode(w, &model, e->eq[i].branch, NULL, &growth),
                          GSL_SUCCESS);
         assert_true(fabs(growth - e->eq[i].eig_growth) <= 1e-8 * (1 + fabs(growth)));
         if (e->eq[i].branch == 1) assert_true(e->eq[i].eig_growth == 0);

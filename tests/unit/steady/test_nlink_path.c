@@ -1737,7 +1737,14 @@ static void test_follow_options(void **state)
     double crit[80];
     assert_int_equal(whirl_nlink_critical(c, 80, crit), GSL_SUCCESS);
     progress_check k = {0, 0, 0, 0, 0};
-    whirl_nlink_follow_options opt = {0, check_progress, &k};
+    whirl_nlink_follow_options opt = whirl_nlink_follow_defaults(c);
+    assert_int_equal(opt.steps_max, 100000); /* 200 per link is less for 250 links */
+    assert_null(opt.progress);
+    whirl_chain *long_chain = whirl_chain_alloc_uniform(1000, 0);
+    assert_int_equal(whirl_nlink_follow_defaults(long_chain).steps_max, 200000);
+    whirl_chain_free(long_chain);
+    opt.progress = check_progress;
+    opt.progress_ctx = &k;
     assert_int_equal(whirl_nlink_follow_opt(c, 80, 2 * crit[79], 0, NULL, count_folds, &k, &opt),
                      GSL_SUCCESS);
     print_message("  N = 250 mode 80 to twice its birth: %ld progress reports, %ld folds\n",
