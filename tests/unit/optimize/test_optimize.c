@@ -562,7 +562,7 @@ static void test_fit_errors(void **state)
     assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
     assert_non_null(strstr(whirl_last_error(), "at most 2000 links, got 10000000"));
     assert_non_null(strstr(whirl_last_error(), "916 MiB"));
-    m = whirl_fit_model_default();
+    m = whirl_fit_model_defaults();
     m.samples = (size_t)WHIRL_FIT_SAMPLES_MAX + 1;
     assert_int_equal(whirl_fit(&m, 4, r, z, 0, &res), GSL_EINVAL);
     assert_non_null(strstr(whirl_last_error(), "at most 1000000 samples"));
