@@ -449,8 +449,17 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     o->linear = 1;
     size_t n = 0;
     const double *re = NULL, *im = NULL;
-    if (!rc && (analyse(o, c, w, &pts[0], NULL) != GSL_SUCCESS ||
-                whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS))
+    if (!rc && analyse(o, c, w, &pts[0], NULL) != GSL_SUCCESS)
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    /* a free shape's growth is the map's (whirl_stability_map), not run here: from the
+     * linearisation analyse made */
+    if (!rc && !driven(o)) {
+        if (whirl_stability_growth(w, &pts[0].eig_growth) != GSL_SUCCESS)
+            rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+        else
+            pts[0].verdict = whirl_verdict_linear(pts[0].eig_growth, pts[0].index);
+    }
+    if (!rc && whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS)
         rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
     if (!rc && order == NULL) rc = cli_error(cmd, "out of memory");

@@ -93,11 +93,11 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <gsl/gsl_roots.h>
 #include <lapacke.h>
 
 #include "whirl/continuum_stability.h"
 #include "core/error.h"
+#include "core/roots.h"
 #include "core/worker.h"
 #include "stability/windows_internal.h"
 
@@ -427,8 +427,8 @@ static int newton_shape(whirl_cstab *w, double omega)
     double *jac = w->jac, *f = w->res;
     for (int iter = 0; iter < CS_NEWTON_MAX; iter++) {
         if (whirl_stop_requested())
-            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = %g: stopped by request",
-                              omega);
+            return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = " WHIRL_Q_RATE
+                              "%g: stopped by request", omega);
         memset(jac, 0, ldab * nn * sizeof(double));
 #define J(i, k) jac[2 * kl + (i) - (k) + (k) * ldab]
         for (size_t e = 0; e < w->ne; e++)
@@ -1045,8 +1045,8 @@ static int arnoldi_eigen(whirl_cstab *w, double cut)
             return GSL_SUCCESS;
         }
         if (whirl_stop_requested())
-            return whirl_fail(WHIRL_EINTERRUPTED, "the eigen-solve at omega = %g: stopped by "
-                                                  "request", w->omega);
+            return whirl_fail(WHIRL_EINTERRUPTED, "the eigen-solve at omega = " WHIRL_Q_RATE
+                              "%g: stopped by request", w->omega);
     }
     return GSL_CONTINUE;
 }
@@ -1171,8 +1171,9 @@ static double edge_value(double omega, void *data)
         status = whirl_windows_arnoldi_pair(&a->w->kr, cstab_apply, a->w, a->sigma, re, im) ==
                          GSL_SUCCESS
                      ? GSL_SUCCESS
-                     : whirl_fail(GSL_EFAILED, "mode %d: the pair at omega = %.10g did not "
-                                  "converge on the refined discretisation", a->mode, omega);
+                     : whirl_fail(GSL_EFAILED, "mode %d: the pair at omega = " WHIRL_Q_RATE
+                                  "%.10g did not converge on the refined discretisation",
+                                  a->mode, omega);
     if (status) {
         a->status = status;
         return NAN;
@@ -1180,6 +1181,16 @@ static double edge_value(double omega, void *data)
     if (im[0] != 0 && fabs(im[0] + im[1]) <= 1e-12 * fabs(im[0])) return -4 * im[0] * im[0];
     const double dr = re[0] - re[1], di = im[0] - im[1];
     return dr * dr - di * di;
+}
+
+#define REFINE_ITER_MAX 100 /* Brent iterations locating a refined edge (each an eigen-solve) */
+
+/* edge_function for the root finder: its status is the evaluation's */
+static int edge_root(double x, void *ctx, double *fx)
+{
+    edge_args *a = ctx;
+    *fx = edge_function(x, a);
+    return a->status;
 }
 
 /* The edge at *omega (collision frequency freq; opens: stable below) located again on the refined
@@ -1191,7 +1202,6 @@ static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, doubl
 {
     const double omega = *edge;
     edge_args a = {wr, mode, -freq * freq, 0, {NAN, NAN}, {NAN, NAN}};
-    gsl_function f = {edge_function, &a};
     const double f0 = edge_function(omega, &a);
     if (a.status) return a.status;
     *err = 0;
@@ -1206,21 +1216,18 @@ static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, doubl
     }
     if (a.status) return a.status;
     if (!(f0 * ffar < 0))
-        return whirl_fail(GSL_EFAILED, "mode %d: the edge at omega = %.10g is not found within "
-                                       "1e-2 on the refined discretisation", mode, omega);
-    double lo = fmin(near, far), hi = fmax(near, far);
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (s == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    int status = gsl_root_fsolver_set(s, &f, lo, hi);
-    for (int iter = 0; iter < 100 && !status && !a.status; iter++) {
-        status = gsl_root_fsolver_iterate(s);
-        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
-        if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS) break;
-    }
-    gsl_root_fsolver_free(s);
+        return whirl_fail(GSL_EFAILED, "mode %d: the edge at omega = " WHIRL_Q_RATE
+                          "%.10g is not found within 1e-2 on the refined discretisation", mode,
+                          omega);
+    const whirl_root_opts opts = {tol, 0, REFINE_ITER_MAX, 0, 0, 0};
+    whirl_root root;
+    int status = whirl_root_brent(edge_root, &a, fmin(near, far), fmax(near, far), &opts, &root);
     if (a.status) return a.status;
-    if (status) return whirl_fail(status, "mode %d: the refined edge near omega = %.10g was not "
-                                          "located", mode, omega);
+    if (status == GSL_EMAXITER) status = GSL_SUCCESS; /* the bracket reached is the edge */
+    if (status)
+        return whirl_fail(status, "mode %d: the refined edge near omega = " WHIRL_Q_RATE
+                          "%.10g was not located", mode, omega);
+    const double lo = root.lower, hi = root.upper;
     *edge = (lo + hi) / 2;
     *err = fabs(*edge - omega);
     return GSL_SUCCESS;
