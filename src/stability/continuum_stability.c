@@ -552,12 +552,88 @@ static int reserve_elements(whirl_cstab *w, size_t ne)
     return GSL_SUCCESS;
 }
 
-/* The shape on elements refined until the tails meet shape_tol. On too coarse elements Newton's
- * method may fail or find another solution of the collocation equations (the hanging chain,
- * or a shape of no mode): then (a tip radius 25% off the shooting's), or where the resolved
- * tip radius differs from the shooting's by more than max(1e-7, 1e3 shape_tol) relative, every
- * element is halved. The points are bounded by the memory bound (points_max). */
-static int solve_shape(whirl_cstab *w, double omega, double tip_r)
+/* The shape of the previous element set (ends obrk[0..one], r and q at its points) at the
+ * points of the current one, each of whose elements lies inside one previous element (the
+ * refinement only halves): the barycentric formula on the Chebyshev points (Berrut & Trefethen
+ * 2004, SIAM Rev. 46:501; weights (-1)^j, halved at the ends), exact to the tails. */
+static void interpolate_shape(whirl_cstab *w, const double *obrk, size_t one, const double *orr,
+                              const double *oq)
+{
+    const size_t P = (size_t)w->p.degree + 1;
+    size_t oe = 0;
+    for (size_t g = 0; g < w->np; g++) {
+        const size_t e = g / P;
+        const double mid = (w->brk[e] + w->brk[e + 1]) / 2;
+        while (oe + 1 < one && obrk[oe + 1] <= mid) oe++;
+        const double a = obrk[oe], x = (w->sig[g] - a) / (obrk[oe + 1] - a);
+        double nr = 0, nq = 0, den = 0;
+        size_t j = 0;
+        for (; j < P; j++) {
+            const double st = sin(M_PI * (double)j / (2.0 * (double)(P - 1))), d = x - st * st;
+            if (d == 0) break;
+            const double c = (j % 2 ? -1.0 : 1.0) * (j == 0 || j == P - 1 ? 0.5 : 1.0) / d;
+            nr += c * orr[oe * P + j], nq += c * oq[oe * P + j], den += c;
+        }
+        w->r[g] = j < P ? orr[oe * P + j] : nr / den;
+        w->q[g] = j < P ? oq[oe * P + j] : nq / den;
+    }
+}
+
+/* The ends of the elements halved where keep(w, omega, e) is false, into w->brk + ne + 1
+ * (reserve_elements first); *nb the count of new ends. */
+static void halve(whirl_cstab *w, double omega, int all,
+                  int (*keep)(const whirl_cstab *w, double omega, size_t e, double sr, double sq),
+                  double sr, double sq, size_t *nb)
+{
+    double *brk = w->brk + w->ne + 1;
+    size_t n = 0;
+    brk[n++] = 0;
+    for (size_t e = 0; e < w->ne; e++) {
+        if (all || !keep(w, omega, e, sr, sq)) brk[n++] = (w->brk[e] + w->brk[e + 1]) / 2;
+        brk[n++] = w->brk[e + 1];
+    }
+    *nb = n;
+}
+
+/* The phase of the fastest wave kept resolved on element e (element_phase). */
+static int phase_resolved(const whirl_cstab *w, double omega, size_t e, double sr, double sq)
+{
+    (void)sr, (void)sq;
+    return element_phase(w, omega, e) <= element_phase_max(w);
+}
+
+/* The shape resolved on element e: its tails below shape_tol, and the phase resolved. */
+static int shape_resolved(const whirl_cstab *w, double omega, size_t e, double sr, double sq)
+{
+    return fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) <= w->p.shape_tol &&
+           phase_resolved(w, omega, e, sr, sq);
+}
+
+/* The failure of (nb - 1) elements beyond the memory bound; why: the reason of the last
+ * refinement ("" if none). */
+static int too_many_points(const whirl_cstab *w, double omega, size_t nb, const char *why)
+{
+    const size_t P = (size_t)w->p.degree + 1;
+    return whirl_fail(GSL_EMAXITER, "mode %d at omega = " WHIRL_Q_RATE "%g needs %zu "
+                      "collocation points (elements of degree %d, shape tolerance %g%s%s), "
+                      "more than the %zu that %g MB hold: lower the rate or raise the "
+                      "memory bound", w->mode, omega,
+                      (nb - 1) * P, w->p.degree, w->p.shape_tol, *why ? "; " : "", why,
+                      points_max(w), w->p.memory_mb);
+}
+
+/* The shape on elements refined until the tails meet shape_tol. First, from the shooting's
+ * shape alone (no Newton iteration), the elements are halved until the phase of the fastest
+ * wave kept is resolved (that bound needs S only to a few digits). Then Newton's method, and
+ * the elements whose tails or phase fail are halved, the next Newton iteration seeded by the
+ * shape interpolated from the previous elements (its error is that of the tails, so one or two
+ * iterations suffice). On too coarse elements Newton's method may fail or find another
+ * solution of the collocation equations (the hanging chain, or a shape of no mode): then (a tip
+ * radius 25% off the shooting's), or where the resolved tip radius differs from the shooting's
+ * by more than max(1e-7, 1e3 shape_tol) relative, every element is halved and seeded by the
+ * shooting again. The points are bounded by the memory bound (points_max); old (*cap doubles)
+ * holds the previous element set. */
+static int solve_shape_in(whirl_cstab *w, double omega, double tip_r, double **old, size_t *cap)
 {
     int status = sample_shape(w, omega, tip_r);
     if (status) return status;
@@ -565,6 +641,18 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
     if ((status = reserve_elements(w, w->ne))) return status;
     for (size_t e = 0; e <= w->ne; e++) w->brk[e] = (double)e / (double)w->ne;
     const size_t P = (size_t)w->p.degree + 1;
+    size_t nb = 0, one = 0; /* one: elements of the previous set to interpolate (0: none) */
+    for (;;) { /* the phase, from the shooting's shape */
+        if (w->ne * P > points_max(w)) return too_many_points(w, omega, w->ne + 1, "");
+        w->np = w->ne * P;
+        if ((status = reserve(w, w->np)) || (status = reserve_elements(w, w->ne))) return status;
+        set_points(w);
+        seed_shape(w);
+        halve(w, omega, 0, phase_resolved, 0, 0, &nb);
+        if (nb == w->ne + 1) break;
+        memmove(w->brk, w->brk + w->ne + 1, nb * sizeof(double));
+        w->ne = nb - 1;
+    }
     const char *why = "";
     for (;;) {
         if (whirl_stop_requested())
@@ -573,7 +661,12 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         w->np = w->ne * P;
         if ((status = reserve(w, w->np))) return status;
         set_points(w);
-        seed_shape(w);
+        if (one) {
+            const double *o = *old;
+            interpolate_shape(w, o, one, o + one + 1, o + one + 1 + one * P);
+        } else {
+            seed_shape(w);
+        }
         status = newton_shape(w, omega);
         if (status == WHIRL_EINTERRUPTED || status == GSL_ENOMEM) return status;
         /* another solution: 25% off the shooting's tip radius; at the end max(1e-7, 1e3 tol) */
@@ -583,33 +676,39 @@ static int solve_shape(whirl_cstab *w, double omega, double tip_r)
         for (size_t g = 0; g < w->np && !wrong; g++)
             sr = fmax(sr, fabs(w->r[g])), sq = fmax(sq, fabs(w->q[g]));
         if ((status = reserve_elements(w, w->ne))) return status;
-        const double phase_max = element_phase_max(w);
-        double *brk = w->brk + w->ne + 1; /* the new ends after the current ones */
-        size_t nb = 0;
         for (int pass = 0; pass < 2; pass++) {
-            nb = 0;
-            brk[nb++] = 0;
-            for (size_t e = 0; e < w->ne; e++) {
-                if (wrong || fmax(tail(w, w->r, e, sr), tail(w, w->q, e, sq)) > w->p.shape_tol ||
-                    element_phase(w, omega, e) > phase_max)
-                    brk[nb++] = (w->brk[e] + w->brk[e + 1]) / 2;
-                brk[nb++] = w->brk[e + 1];
-            }
+            halve(w, omega, wrong, shape_resolved, sr, sq, &nb);
             if (nb > w->ne + 1 || wrong) break;
             if (off <= fmax(1e-7, 1e3 * w->p.shape_tol)) return GSL_SUCCESS;
             wrong = 1; /* resolved, yet not the shooting's shape: every element halved */
         }
         why = status ? "Newton's method failed" : wrong ? "not the shooting's shape" : "";
-        if ((nb - 1) * P > points_max(w))
-            return whirl_fail(GSL_EMAXITER, "mode %d at omega = " WHIRL_Q_RATE "%g needs %zu "
-                              "collocation points (elements of degree %d, shape tolerance %g%s%s), "
-                              "more than the %zu that %g MB hold: lower the rate or raise the "
-                              "memory bound", w->mode, omega,
-                              (nb - 1) * P, w->p.degree, w->p.shape_tol, *why ? "; " : "", why,
-                              points_max(w), w->p.memory_mb);
-        memmove(w->brk, brk, nb * sizeof(double));
+        if ((nb - 1) * P > points_max(w)) return too_many_points(w, omega, nb, why);
+        one = 0;
+        if (!wrong) { /* the next seed: this shape */
+            const size_t need = w->ne + 1 + 2 * w->np;
+            if (need > *cap) {
+                double *o = realloc(*old, 2 * need * sizeof(double));
+                if (o == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the shape");
+                *old = o, *cap = 2 * need;
+            }
+            memcpy(*old, w->brk, (w->ne + 1) * sizeof(double));
+            memcpy(*old + w->ne + 1, w->r, w->np * sizeof(double));
+            memcpy(*old + w->ne + 1 + w->np, w->q, w->np * sizeof(double));
+            one = w->ne;
+        }
+        memmove(w->brk, w->brk + w->ne + 1, nb * sizeof(double));
         w->ne = nb - 1;
     }
+}
+
+static int solve_shape(whirl_cstab *w, double omega, double tip_r)
+{
+    double *old = NULL;
+    size_t cap = 0;
+    const int status = solve_shape_in(w, omega, tip_r, &old, &cap);
+    free(old);
+    return status;
 }
 
 /* ---- the pencil ---- */
