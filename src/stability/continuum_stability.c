@@ -102,7 +102,7 @@
 #include "stability/windows_internal.h"
 
 #define CS_ELEMENTS_START 4   /* uniform elements before refinement */
-#define CS_SAMPLES 2001       /* samples of the shooting's shape seeding the Newton iteration */
+#define CS_SAMPLES 513        /* samples of the shooting's shape seeding the Newton iteration */
 #define CS_NEWTON_MAX 40      /* Newton iterations per element set */
 #define CS_KRYLOV_MAX 400     /* Arnoldi steps of a full spectrum before the dense fall-back */
 #define CS_DENSE_POINTS 700   /* the dense block (3 np)^2 at most for this many points */
@@ -424,7 +424,7 @@ static int newton_shape(whirl_cstab *w, double omega)
     const size_t P = (size_t)w->p.degree + 1, np = w->np, nn = 2 * np, kl = w->nkl;
     const size_t ldab = w->nldab;
     const double m = w->p.tip_mass, w2 = omega * omega;
-    double *jac = w->jac, *f = w->res;
+    double *jac = w->jac, *f = w->res, last = HUGE_VAL;
     for (int iter = 0; iter < CS_NEWTON_MAX; iter++) {
         if (whirl_stop_requested())
             return whirl_fail(WHIRL_EINTERRUPTED, "the shape at omega = " WHIRL_Q_RATE
@@ -492,7 +492,11 @@ static int newton_shape(whirl_cstab *w, double omega)
             step = fmax(step, fmax(fabs(f[2 * g]), fabs(f[2 * g + 1])));
             scale = fmax(scale, fabs(w->q[g]));
         }
-        if (step <= 1e-13 * scale) return GSL_SUCCESS;
+        /* converged: the step below 1e-13, or the next one predicted below it (the rate
+         * step / last, on the safe side of Newton's quadratic convergence) */
+        if (step <= 1e-13 * scale || (step <= 1e-8 * scale && step * (step / last) <= 1e-13 * scale))
+            return GSL_SUCCESS;
+        last = step;
     }
     return whirl_fail(GSL_EMAXITER, "the collocation of the shape at omega = " WHIRL_Q_RATE "%g "
                       "did not converge in %d Newton steps", omega, CS_NEWTON_MAX);
@@ -727,12 +731,16 @@ static void equation_row(const whirl_cstab *w, int eq, size_t e, size_t j, doubl
         }
         return;
     }
-    /* (T0 f')' = sum_l D_jl T0_l sum_k D_lk f_k on the element */
+    /* (T0 f')' = sum_l D_jl T0_l sum_k D_lk f_k on the element (D = dref / h; the row is zero
+     * on entry) */
     const int f = eq;
+    const double h = w->brk[e + 1] - w->brk[e], ih2 = 1 / (h * h);
+    double *out = ra + f * np + e * P;
     for (size_t l = 0; l < P; l++) {
-        const double djl = dmat(w, e, j, l) * w->t0[e * P + l];
-        for (size_t k = 0; k < P; k++) ra[f * np + e * P + k] += djl * dmat(w, e, l, k);
+        const double djl = w->dref[j * P + l] * w->t0[e * P + l], *dl = w->dref + l * P;
+        for (size_t k = 0; k < P; k++) out[k] += djl * dl[k];
     }
+    for (size_t k = 0; k < P; k++) out[k] *= ih2;
     rb[f * np + g] = 1;
     if (eq == F_U || eq == F_W) { /* + (tau r')' or (tau z')' */
         const double *c = eq == F_U ? w->rp : w->zp;
@@ -1095,6 +1103,22 @@ static int ritz(whirl_cstab *w, size_t m, double floor, int *done, size_t *wante
     return GSL_SUCCESS;
 }
 
+/* The dot product of a and b (n), in four partial sums: independent additions, which the
+ * processor overlaps (a single sum waits for each addition in turn). */
+static double dot4(const double *a, const double *b, size_t n)
+{
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        s0 += a[i] * b[i];
+        s1 += a[i + 1] * b[i + 1];
+        s2 += a[i + 2] * b[i + 2];
+        s3 += a[i + 3] * b[i + 3];
+    }
+    for (; i < n; i++) s0 += a[i] * b[i];
+    return (s0 + s1) + (s2 + s3);
+}
+
 /* The theta of largest modulus of the block C by the Arnoldi iteration (header comment): into
  * w->hre, w->him (w->hm of them); GSL_CONTINUE if not converged in CS_KRYLOV_MAX steps. */
 static int arnoldi_eigen(whirl_cstab *w, double cut)
@@ -1119,9 +1143,7 @@ static int arnoldi_eigen(whirl_cstab *w, double cut)
             return whirl_fail(GSL_EFAILED, "the banded solve failed");
         for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
             for (size_t j = 0; j <= step; j++) {
-                double dot = 0;
-                const double *vj = v + j * ny;
-                for (size_t i = 0; i < ny; i++) dot += vj[i] * y[i];
+                const double *vj = v + j * ny, dot = dot4(vj, y, ny);
                 for (size_t i = 0; i < ny; i++) y[i] -= dot * vj[i];
                 h[j + step * (CS_KRYLOV_MAX + 1)] += dot;
             }
@@ -1139,6 +1161,7 @@ static int arnoldi_eigen(whirl_cstab *w, double cut)
         size_t wanted = 0;
         int status = ritz(w, m, floor, &done, &wanted);
         if (status) return status;
+        if (next < wanted + 16) next = wanted + 16; /* no stop before (wanted grows with m) */
         if (breakdown || m == ny || (done && m >= wanted + 16)) {
             w->hm = m;
             return GSL_SUCCESS;
@@ -1202,13 +1225,21 @@ typedef struct cstab_search {
     whirl_windows_stats *stats;
 } cstab_search;
 
+/* The linearisation at omega, seeded by the tip radius of the nearest scan rate below; kept if it
+ * is the workspace's already (the search evaluates some rates twice: a pair's extremum in full). */
+static int source_linearise(cstab_search *c, double omega)
+{
+    if (c->w->np > 0 && c->w->omega == omega) return GSL_SUCCESS;
+    size_t j = 0;
+    while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
+    c->stats->shapes++;
+    return whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
+}
+
 static int cstab_source_spectrum(void *data, double omega, int signatures, whirl_spectrum *out)
 {
     cstab_search *c = data;
-    size_t j = 0; /* the seed: the tip radius of the nearest scan rate below */
-    while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
-    int status = whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
-    c->stats->shapes++;
+    int status = source_linearise(c, omega);
     if (!status) status = whirl_cstab_spectrum(c->w, signatures, out);
     return status;
 }
@@ -1217,10 +1248,7 @@ static int cstab_source_spectrum(void *data, double omega, int signatures, whirl
 static int cstab_source_pair(void *data, double omega, double sigma, double *mu_re, double *mu_im)
 {
     cstab_search *c = data;
-    size_t j = 0;
-    while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
-    int status = whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
-    c->stats->shapes++;
+    int status = source_linearise(c, omega);
     if (status) return status;
     if (shifted_lu(c->w, sigma, 1)) return GSL_CONTINUE; /* sigma is an eigenvalue */
     if (c->w->kr.q != N_DYNAMIC * c->w->np) {
@@ -1386,6 +1414,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
                                 "%g", mode, omega[j]);
     }
     w->mode = mode;
+    w->np = 0; /* no linearisation of this search yet */
     cstab_search c = {w, omega, tip, npts, stats};
     windows_source src = {cstab_source_spectrum, p->krylov ? cstab_source_pair : NULL, &c, mode,
                           stats};
