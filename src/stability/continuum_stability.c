@@ -1360,26 +1360,60 @@ static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, doubl
     return GSL_SUCCESS;
 }
 
-/* The closed edges of windows[0..count-1] located again on a refined discretisation (degree
- * + 8, shape tolerance / 100), their change the estimate of the error (whirl_window). */
+/* The refinements of an edge: degree + 8 per level (64 at most), shape tolerance / 100. The
+ * first level's change is the estimate where it is at most EDGE_TARGET; otherwise the edge is
+ * refined further until two successive levels agree to EDGE_AGREE, or EDGE_LEVELS levels are
+ * spent (the last change is then the estimate: above EDGE_AGREE, it says so). */
+#define EDGE_LEVELS 3
+#define EDGE_TARGET 1e-8
+#define EDGE_AGREE 1e-9
+
+/* The workspace of refinement level (1..EDGE_LEVELS) of w, allocated at first use. */
+static int level_workspace(const whirl_cstab *w, int level, whirl_cstab **wr)
+{
+    if (*wr != NULL) return GSL_SUCCESS;
+    whirl_cstab_params rp = w->p;
+    rp.degree = w->p.degree + 8 * level <= 64 ? w->p.degree + 8 * level : 64;
+    rp.shape_tol = fmax(1e-14, w->p.shape_tol / 100);
+    *wr = whirl_cstab_alloc(&rp);
+    return *wr == NULL ? GSL_ENOMEM : GSL_SUCCESS; /* the parameters are valid: no memory */
+}
+
+/* The edge *edge (opens, collision frequency freq) refined by levels (EDGE_LEVELS above): the
+ * edge of the finest level into *edge, the last change into *err. The levels after the first
+ * locate the edge to tol / 10, so that their agreement to EDGE_AGREE is not the root finder's. */
+static int refine_levels(const whirl_cstab *w, whirl_cstab **wr, int mode, double *edge,
+                         int opens, double freq, double tol, double *err)
+{
+    int status = GSL_SUCCESS;
+    for (int level = 1; level <= EDGE_LEVELS && !status; level++) {
+        const int last_degree = w->p.degree + 8 * (level - 1) >= 64;
+        if (level > 1 && (*err <= EDGE_AGREE || last_degree)) break;
+        if (level == 2 && *err <= EDGE_TARGET) break;
+        status = level_workspace(w, level, &wr[level - 1]);
+        if (!status)
+            status = refine_edge(wr[level - 1], mode, edge, opens, freq, level > 1 ? tol / 10 : tol,
+                                 err);
+    }
+    return status;
+}
+
+/* The closed edges of windows[0..count-1] located again on refined discretisations
+ * (refine_levels), their last change the estimate of the error (whirl_window). */
 static int edge_errors(const whirl_cstab *w, int mode, double tol, whirl_window *windows,
                        size_t count)
 {
-    whirl_cstab_params rp = w->p;
-    rp.degree = w->p.degree + 8 <= 64 ? w->p.degree + 8 : 64;
-    rp.shape_tol = fmax(1e-14, w->p.shape_tol / 100);
-    whirl_cstab *wr = whirl_cstab_alloc(&rp);
-    if (wr == NULL) return GSL_ENOMEM; /* the parameters are valid: no memory */
+    whirl_cstab *wr[EDGE_LEVELS] = {NULL};
     int status = GSL_SUCCESS;
     for (size_t i = 0; i < count && !status; i++) {
         whirl_window *x = &windows[i];
         x->err_from = x->err_to = 0;
         if (!x->open_from && x->freq_from > 0)
-            status = refine_edge(wr, mode, &x->from, 1, x->freq_from, tol, &x->err_from);
+            status = refine_levels(w, wr, mode, &x->from, 1, x->freq_from, tol, &x->err_from);
         if (!status && !x->open_to && x->freq_to > 0)
-            status = refine_edge(wr, mode, &x->to, 0, x->freq_to, tol, &x->err_to);
+            status = refine_levels(w, wr, mode, &x->to, 0, x->freq_to, tol, &x->err_to);
     }
-    whirl_cstab_free(wr);
+    for (int level = 0; level < EDGE_LEVELS; level++) whirl_cstab_free(wr[level]);
     return status;
 }
 
