@@ -56,7 +56,9 @@
  * vh' continuous, the constraint is kept; at the free end (m = 0) the row of u carries the normal
  * equation n0 . (E_u, E_w), the row of w tau = 0 (m > 0: the rows of u, w, vh the tip mass's
  * equations). The steady shape is solved by the same collocation (Newton; r continuous at right
- * ends, q at left ends), seeded by the shooting of continuum.c, whose tip radius it reproduces.
+ * ends, q at left ends), seeded by the shooting of continuum.c, whose tip radius it reproduces;
+ * the elements for the phase are found from the shooting's shape before any Newton iteration,
+ * and each further halving is seeded by the shape interpolated from the previous elements.
  * Structure: with the unknowns ordered point by point (u, w, tau, vh at each point) every row
  * couples only the points of its element and, for the continuity rows at an element's left end,
  * those of the previous one, so A is banded with kl = 4 (p + 1) + 3 sub- and ku = 4 p + 3
@@ -85,6 +87,11 @@
  *     E = int (w^2 (|u|^2 + |w|^2) + |vh|^2 + 2 omega Re(conj(u) vh)) dsigma + (m times the
  *         same at sigma = 0),
  * by Clenshaw-Curtis quadrature on each element (Trefethen 2000, ch. 12).
+ * Windows (whirl_cstab_windows): the search of stability_windows.c on these spectra, then each
+ * closed edge located again as the root of the collision discriminant on refined
+ * discretisations (degree + 8, shape_tol / 100; where that moves it by more than 1e-8, degree
+ * + 16 and + 24 until two successive levels agree to 1e-9): near such an edge the pair
+ * separates slowly, dD/domega is small, and an error of mu moves the edge by much more.
  * References: Kolodner 1955, Comm. Pure Appl. Math. 8:395 (the steady shapes); Caughey 1958,
  * J. Appl. Mech. 25:465 (whirling of a heavy chain); Trefethen 2000 (collocation); Mackay 1986
  * (Krein signature); Moler & Stewart 1973, SIAM J. Numer. Anal. 10:241 (QZ). */
@@ -1223,17 +1230,25 @@ typedef struct cstab_search {
     const double *scan, *tip; /* the branch's tip radii at the scan's rates, for the seeds */
     size_t nscan;
     whirl_windows_stats *stats;
+    double last_omega, last_tip; /* the last linearisation's rate and tip radius (0: none) */
 } cstab_search;
 
-/* The linearisation at omega, seeded by the tip radius of the nearest scan rate below; kept if it
- * is the workspace's already (the search evaluates some rates twice: a pair's extremum in full). */
+/* The linearisation at omega, seeded by the tip radius of the nearest scan rate below or of the
+ * last linearisation if that is nearer (the shooting then brackets its root in fewer shots); kept
+ * if it is the workspace's already (the search evaluates some rates twice: a pair's extremum in
+ * full). */
 static int source_linearise(cstab_search *c, double omega)
 {
     if (c->w->np > 0 && c->w->omega == omega) return GSL_SUCCESS;
     size_t j = 0;
     while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
+    const int last = c->last_tip > 0 && fabs(omega - c->last_omega) < fabs(omega - c->scan[j]);
     c->stats->shapes++;
-    return whirl_cstab_linearise(c->w, omega, c->w->mode, c->tip[j], NULL);
+    int status = whirl_cstab_linearise(c->w, omega, c->w->mode, last ? c->last_tip : c->tip[j],
+                                       &c->last_tip);
+    c->last_omega = omega;
+    if (status) c->last_tip = 0;
+    return status;
 }
 
 static int cstab_source_spectrum(void *data, double omega, int signatures, whirl_spectrum *out)
@@ -1449,7 +1464,7 @@ int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,
     }
     w->mode = mode;
     w->np = 0; /* no linearisation of this search yet */
-    cstab_search c = {w, omega, tip, npts, stats};
+    cstab_search c = {w, omega, tip, npts, stats, 0, 0};
     windows_source src = {cstab_source_spectrum, p->krylov ? cstab_source_pair : NULL, &c, mode,
                           stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);

@@ -12,6 +12,8 @@
  *  - the window of mode 2 near omega = 4.4-4.6 against the N-link chain's edges extrapolated to
  *    N -> infinity, and each edge against the growth just inside and outside;
  *  - the Arnoldi iteration on the banded pencil against the dense block's eigenvalues;
+ *  - two edges that need more than one refinement against the root of their discriminant on a
+ *    finer discretisation with the dense block, within their error estimates;
  *  - bad input, the memory bound and the stop request. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -295,6 +297,86 @@ static void test_solvers(void **state)
     whirl_cstab_free(dense);
 }
 
+/* D = Re (mu_1 - mu_2)^2 of the two mu nearest -freq^2 at omega (-4 (Im mu)^2 for a complex
+ * pair), every mu from the workspace's solver */
+static double discriminant_at(whirl_cstab *w, int mode, double omega, double freq)
+{
+    assert_int_equal(whirl_cstab_linearise(w, omega, mode, 0, NULL), 0);
+    whirl_spectrum sp;
+    assert_int_equal(whirl_cstab_spectrum(w, 0, &sp), 0);
+    assert_true(sp.count >= 2);
+    const double c = -freq * freq;
+    size_t a = 0, b = 1;
+    for (size_t i = 0; i < sp.count; i++) {
+        const double d = hypot(sp.re[i] - c, sp.im[i]);
+        if (d < hypot(sp.re[a] - c, sp.im[a])) b = a, a = i;
+        else if (i != a && (b == a || d < hypot(sp.re[b] - c, sp.im[b]))) b = i;
+    }
+    if (sp.im[a] != 0) return -4 * sp.im[a] * sp.im[a];
+    const double dr = sp.re[a] - sp.re[b], di = sp.im[a] - sp.im[b];
+    return dr * dr - di * di;
+}
+
+/* An edge of the windows against the root of the collision discriminant on an independent
+ * discretisation and solver (degree 48, shape tolerance 1e-13, every mu from the dense block,
+ * regula falsi to 1e-11): within the edge's error estimate plus the root finders' tolerances
+ * (1e-10). The mode-2 edge near 9.746 (its pair, mu about -52, separates slowly: the search's
+ * discretisation has it 1.4e-5 off) and the mode-3 edge near 7.480 need more than one refinement. */
+static void test_refined_edges(void **state)
+{
+    (void)state;
+    const struct { int mode; double from, to; int closing; } cases[] = {{2, 9.7, 9.8, 0},
+                                                                        {3, 7.4, 7.5, 1}};
+    whirl_cstab_params p = whirl_cstab_defaults();
+    whirl_cstab *w = whirl_cstab_alloc(&p);
+    p.degree = 48, p.shape_tol = 1e-13, p.solver = 1;
+    whirl_cstab *ref = whirl_cstab_alloc(&p);
+    assert_non_null(w);
+    assert_non_null(ref);
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        whirl_windows_params wp = whirl_windows_defaults();
+        wp.omega_min = cases[c].from, wp.omega_max = cases[c].to;
+        whirl_window win[2];
+        size_t count;
+        whirl_windows_stats st;
+        assert_int_equal(whirl_cstab_windows(w, cases[c].mode, &wp, win, 2, &count, &st), 0);
+        assert_int_equal(count, 1);
+        const int closing = cases[c].closing;
+        const double edge = closing ? win[0].to : win[0].from;
+        const double err = closing ? win[0].err_to : win[0].err_from;
+        const double freq = closing ? win[0].freq_to : win[0].freq_from;
+        assert_true(closing ? !win[0].open_to : !win[0].open_from);
+        /* D > 0 on the stable side, < 0 inside */
+        double lo = edge - 2e-8, hi = edge + 2e-8;
+        double flo = discriminant_at(ref, cases[c].mode, lo, freq);
+        double fhi = discriminant_at(ref, cases[c].mode, hi, freq);
+        assert_true(closing ? (flo < 0 && fhi > 0) : (flo > 0 && fhi < 0));
+        int side = 0;
+        while (hi - lo > 1e-11) { /* regula falsi, Illinois */
+            const double x = (lo * fhi - hi * flo) / (fhi - flo);
+            const double fx = discriminant_at(ref, cases[c].mode, x, freq);
+            if (fx == 0) lo = hi = x;
+            else if ((fx > 0) == (flo > 0)) {
+                lo = x, flo = fx;
+                if (side == -1) fhi /= 2;
+                side = -1;
+            } else {
+                hi = x, fhi = fx;
+                if (side == 1) flo /= 2;
+                side = 1;
+            }
+            if (fabs(hi - lo) <= 1e-11) break;
+        }
+        const double root = (lo + hi) / 2;
+        print_message("# mode %d: edge %.12f (estimate %.2g), degree 48 and the dense block %.12f: "
+                      "difference %.2g\n", cases[c].mode, edge, err, root, fabs(edge - root));
+        assert_true(err <= 1e-8);
+        assert_true(fabs(edge - root) <= err + 1e-10);
+    }
+    whirl_cstab_free(w);
+    whirl_cstab_free(ref);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -370,6 +452,7 @@ int main(void)
         cmocka_unit_test(test_signatures),
         cmocka_unit_test(test_window),
         cmocka_unit_test(test_solvers),
+        cmocka_unit_test(test_refined_edges),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
