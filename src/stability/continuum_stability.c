@@ -136,6 +136,8 @@ struct whirl_cstab {
     double *t0, *rp, *zp;     /* per point: tension, r', z' */
     double *jac, *res;        /* Newton: the banded Jacobian (nldab x 2 np), the residual */
     lapack_int *ipiv;
+    size_t *lnz, *unz;        /* per column of the LU: the last nonzero multiplier of L and the
+                                 farthest nonzero of U above the diagonal (offsets) */
     double *ab;               /* A in LAPACK's band storage (ldab x 4 np, rows kl..) */
     double *bb;               /* B: a 4 x 4 block per point, [g][row field][column field] */
     double *lu;               /* the banded LU of R (A - s B) */
@@ -203,6 +205,8 @@ void whirl_cstab_free(whirl_cstab *w)
                         w->hcopy, w->hre,  w->him,  w->hvec,  w->hwork, w->ritz};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->ipiv);
+    free(w->lnz);
+    free(w->unz);
     free(w->kept);
     free(w->sig_out);
     release_dense(w);
@@ -312,10 +316,13 @@ static int reserve(whirl_cstab *w, size_t np)
         *per_point[i] = malloc(np * sizeof(double));
     for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) *vec[i] = calloc(n, sizeof(double));
     free(w->jac), free(w->res), free(w->ipiv), free(w->sig_out), free(w->kept);
+    free(w->lnz), free(w->unz);
     free(w->ab), free(w->bb), free(w->lu), free(w->basis), free(w->ritz);
     w->jac = malloc(w->nldab * 2 * np * sizeof(double));
     w->res = malloc(2 * np * sizeof(double));
     w->ipiv = malloc(n * sizeof(lapack_int));
+    w->lnz = malloc(n * sizeof(size_t));
+    w->unz = malloc(n * sizeof(size_t));
     w->sig_out = malloc(n * sizeof(int));
     w->kept = malloc(n * sizeof(size_t));
     w->ab = malloc(w->ldab * n * sizeof(double));
@@ -324,7 +331,8 @@ static int reserve(whirl_cstab *w, size_t np)
     w->basis = malloc(ny * (CS_KRYLOV_MAX + 1) * sizeof(double));
     w->ritz = malloc(2 * ny * sizeof(double));
     w->cap = 0;
-    int ok = w->jac && w->res && w->ipiv && w->sig_out && w->kept && w->ab && w->bb && w->lu &&
+    int ok = w->jac && w->res && w->ipiv && w->lnz && w->unz && w->sig_out && w->kept && w->ab &&
+             w->bb && w->lu &&
              w->basis && w->ritz;
     for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++) ok = ok && *per_point[i];
     for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) ok = ok && *vec[i];
@@ -381,6 +389,111 @@ static double dmat(const whirl_cstab *w, size_t e, size_t j, size_t k)
 {
     const size_t P = (size_t)w->p.degree + 1;
     return w->dref[j * P + k] / (w->brk[e + 1] - w->brk[e]);
+}
+
+/* ---- banded LU ---- */
+
+/* A banded matrix in LAPACK's band storage (dgbtrf: ldab >= 2 kl + ku + 1, the kl rows of fill
+ * zero), its pivots, and per column the extents of its LU factors (band_lu). */
+typedef struct band {
+    double *a;
+    size_t n, kl, ku, ldab;
+    lapack_int *ipiv;
+    size_t *lnz, *unz; /* per column: the last nonzero multiplier of L, the farthest nonzero of U
+                          above the diagonal (offsets); n each */
+} band;
+
+/* LAPACK's dgbtrf on m: the LU factors with partial pivoting in its band storage and pivots
+ * (from 1), for dgbtrs and band_solve; 0, or j + 1 if the pivot of column j is zero. The same
+ * elimination, unblocked, but each row and column only to its last nonzero (tracked as the fill
+ * grows): a row of an element's equations couples only the points of the element (and its
+ * neighbours' ends), so that about half of the band stays zero and the updates are some four
+ * times fewer than those of the full band. */
+static int band_lu(const band *m)
+{
+    const size_t n = m->n, kl = m->kl, ku = m->ku, kd = kl + ku, ldab = m->ldab;
+    double *restrict a = m->a;
+    size_t *bottom = m->lnz, *right = m->unz; /* the last nonzero row of a column, column of a row */
+#define A(r, c) a[kd + (r) - (c) + (c) * ldab]
+    for (size_t c = 0; c < n; c++) {
+        size_t r = c + kl < n - 1 ? c + kl : n - 1;
+        while (r > c && A(r, c) == 0) r--;
+        bottom[c] = r;
+    }
+    for (size_t r = 0; r < n; r++) {
+        size_t c = r + ku < n - 1 ? r + ku : n - 1;
+        while (c > r && A(r, c) == 0) c--;
+        right[r] = c;
+    }
+    for (size_t j = 0; j < n; j++) {
+        const size_t last = bottom[j] > j ? bottom[j] : j; /* rows j..last of column j */
+        size_t p = j;
+        double big = fabs(A(j, j));
+        for (size_t r = j + 1; r <= last; r++)
+            if (fabs(A(r, j)) > big) big = fabs(A(r, j)), p = r;
+        m->ipiv[j] = (lapack_int)(p + 1);
+        if (big == 0) return (int)j + 1;
+        if (p != j) {
+            const size_t end = right[j] > right[p] ? right[j] : right[p];
+            for (size_t c = j; c <= end; c++) {
+                const double t = A(j, c);
+                A(j, c) = A(p, c), A(p, c) = t;
+                if (t != 0 && bottom[c] < p) bottom[c] = p; /* row j's entries moved down to p */
+            }
+            const size_t t = right[j];
+            right[j] = right[p], right[p] = t;
+        }
+        const double inv = 1 / A(j, j);
+        double *restrict l = &A(j + 1, j);
+        for (size_t i = 0; i < last - j; i++) l[i] *= inv;
+        for (size_t c = j + 1; c <= right[j]; c++) {
+            const double t = A(j, c);
+            if (t == 0) continue;
+            double *restrict col = &A(j + 1, c);
+            for (size_t i = 0; i < last - j; i++) col[i] -= l[i] * t;
+            if (bottom[c] < last) bottom[c] = last;
+        }
+        for (size_t r = j + 1; r <= last; r++)
+            if (right[r] < right[j]) right[r] = right[j];
+    }
+#undef A
+    for (size_t col = 0; col < n; col++) { /* the extents of the factors' columns */
+        const double *c = a + col * ldab;
+        size_t l = kl, u = kd;
+        while (l > 0 && c[kd + l] == 0) l--;
+        while (u > 0 && c[kd - u] == 0) u--;
+        m->lnz[col] = l, m->unz[col] = u;
+    }
+    return 0;
+}
+
+/* b = (P L U)^-1 b with the factors of band_lu: the two triangular solves of LAPACK's dgbtrs for
+ * one right-hand side (the row interchanges and the multipliers of each column of L, then U by
+ * columns), the same operations in the same order, but each column only to its extent. */
+static void band_solve(const band *m, double *restrict b)
+{
+    const size_t n = m->n, kl = m->kl, kd = m->kl + m->ku, ldab = m->ldab;
+    const double *restrict lu = m->a;
+    for (size_t j = 0; j + 1 < n; j++) {
+        const size_t l = (size_t)m->ipiv[j] - 1, lm = kl < n - 1 - j ? kl : n - 1 - j;
+        if (l != j) {
+            const double t = b[l];
+            b[l] = b[j], b[j] = t;
+        }
+        const double bj = b[j], *col = lu + kd + 1 + j * ldab;
+        double *out = b + j + 1;
+        const size_t end = m->lnz[j] < lm ? m->lnz[j] : lm;
+        if (bj != 0)
+            for (size_t i = 0; i < end; i++) out[i] -= col[i] * bj;
+    }
+    for (size_t j = n; j-- > 0;) {
+        const double *col = lu + j * ldab; /* col[kd] the diagonal, col[kd - i] row j - i */
+        b[j] /= col[kd];
+        const double bj = b[j];
+        const size_t lim = m->unz[j] < j ? m->unz[j] : j;
+        if (bj != 0)
+            for (size_t i = 1; i <= lim; i++) b[j - i] -= col[kd - i] * bj;
+    }
 }
 
 /* ---- the steady shape by collocation ---- */
@@ -483,12 +596,12 @@ static int newton_shape(whirl_cstab *w, double omega)
                 }
             }
 #undef J
-        lapack_int info = LAPACKE_dgbsv_work(LAPACK_COL_MAJOR, (lapack_int)nn, (lapack_int)kl,
-                                             (lapack_int)kl, 1, jac, (lapack_int)ldab, w->ipiv,
-                                             f, (lapack_int)nn);
+        const band jb = {jac, nn, kl, kl, ldab, w->ipiv, w->lnz, w->unz};
+        const int info = band_lu(&jb);
         if (info != 0)
             return whirl_fail(GSL_EFAILED, "the collocation of the shape at omega = "
-                              WHIRL_Q_RATE "%g is singular (dgbsv info %d)", omega, (int)info);
+                              WHIRL_Q_RATE "%g is singular (zero pivot in column %d)", omega, info);
+        band_solve(&jb, f);
         double step = 0, scale = 1;
         for (size_t g = 0; g < np; g++) {
             w->r[g] -= f[2 * g];
@@ -968,6 +1081,13 @@ static double cstab_energy(void *data, size_t k)
     return mode_energy(w, xr, im[i] != 0 ? xi : NULL, -w->mu_re[k]);
 }
 
+/* The pencil's factors of shifted_lu as a band. */
+static band pencil_band(const whirl_cstab *w)
+{
+    band m = {w->lu, N_FIELDS * w->np, w->kl, w->ku, w->ldab, w->ipiv, w->lnz, w->unz};
+    return m;
+}
+
 /* The banded LU factors of R (A - s B) into w->lu (pivots w->ipiv), R the row equilibration
  * (w->row_a): s = shift, or if that is an eigenvalue shift 1.7^k (k < tries). */
 static int shifted_lu(whirl_cstab *w, double shift, int tries)
@@ -997,14 +1117,12 @@ static int shifted_lu(whirl_cstab *w, double shift, int tries)
             const size_t i0 = col > w->ku ? col - w->ku : 0, i1 = col + w->kl < n ? col + w->kl : n - 1;
             for (size_t i = i0; i <= i1; i++) w->lu[off + i - col + col * ldab] *= w->row_a[i];
         }
-        info = LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n,
-                                   (lapack_int)w->kl, (lapack_int)w->ku, w->lu, (lapack_int)ldab,
-                                   w->ipiv);
-        if (info < 0) return whirl_fail(GSL_EFAILED, "dgbtrf info %d", (int)info);
+        const band m = pencil_band(w);
+        info = band_lu(&m);
     }
     if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (dgbtrf info %d)",
-                          (int)info);
+        return whirl_fail(GSL_EFAILED, "the shifted pencil is singular (zero pivot in column %d)",
+                          info);
     return GSL_SUCCESS;
 }
 
@@ -1028,13 +1146,11 @@ static void apply_b(const whirl_cstab *w, const double *x, double *b)
 static int cstab_apply(void *data, const double *x, double *y)
 {
     whirl_cstab *w = data;
-    const size_t np = w->np, n = N_FIELDS * np;
+    const size_t np = w->np;
     double *b = w->solve;
     apply_b(w, x, b);
-    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
-                                          (lapack_int)w->ku, 1, w->lu, (lapack_int)w->ldab,
-                                          w->ipiv, b, (lapack_int)n);
-    if (info != 0) return GSL_CONTINUE;
+    const band m = pencil_band(w);
+    band_solve(&m, b);
     for (size_t g = 0; g < np; g++) {
         y[g] = b[N_FIELDS * g + F_U];
         y[np + g] = b[N_FIELDS * g + F_W];
