@@ -63,9 +63,10 @@
  * couples only the points of its element and, for the continuity rows at an element's left end,
  * those of the previous one, so A is banded with kl = 4 (p + 1) + 3 sub- and ku = 4 p + 3
  * super-diagonals, and B couples only the fields of one point (4 x 4 blocks). The shifted pencil
- * A - s B is factored by LAPACK's banded LU (dgbtrf, partial pivoting: O(np p^2) instead of
- * O(np^3)), and the steady shape's Newton iteration is banded likewise (2 fields, kl = ku =
- * 2 p + 1).
+ * A - s B is factored by the elimination of LAPACK's banded LU (dgbtrf, partial pivoting:
+ * O(np p^2) instead of O(np^3)) in its band storage, each row and column only to its last
+ * nonzero (band_lu: within an element's rows about half of the band stays zero), and the steady
+ * shape's Newton iteration is banded likewise (2 fields, kl = ku = 2 p + 1).
  * Eigenvalues, in real arithmetic: the columns of tau in B are zero, so the finite mu are
  * mu = s + 1 / theta with theta the eigenvalues of the block of (A - s B)^-1 B on the rows and
  * columns of (u, w, vh) (a real shift s; the constraint's infinite mu become theta = 0), and its
