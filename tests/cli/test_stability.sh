@@ -139,7 +139,7 @@ R="--omega-min 1 --omega-max 10"
 expect_error "windows with --omega" "omega" stability --windows --omega 3 -o "$tmp/out.csv"
 expect_error "windows without a range" "omega-min" stability --windows -o "$tmp/out.csv"
 expect_error "windows with --mode" "mode" stability --windows $R --mode 2 -o "$tmp/out.csv"
-expect_error "windows with damping" "damping" stability --windows $R --damping 0.1 -o "$tmp/out.csv"
+expect_error "windows with damping, no links" "damping.*links" stability --windows $R --damping 0.1 -o "$tmp/out.csv"
 expect_error "windows with a run option" "periods" stability --windows $R --periods 5 -o "$tmp/out.csv"
 expect_error "windows with a count" "omega-count" stability --windows $R --omega-count 5 -o "$tmp/out.csv"
 expect_error "windows tolerance 0" "tol" stability --windows $R --tol 0 -o "$tmp/out.csv"
@@ -165,6 +165,38 @@ if "$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 5
     pass "windows: mode 2 (N = 10) edges [$from, $to] change the linear verdict within 1e-6"
   else fail "windows: the edges [$from, $to] disagree with the linear map"; fi
 else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; fi
+
+# --windows with dissipation: the intervals where the growth has one sign, edges its roots.
+expect_error "windows of the hand-swung chain without dissipation" "dissipation" stability --windows $R --links 10 --eps 0.02 -o "$tmp/out.csv"
+expect_error "windows with damping and --full" "full" stability --windows $R --links 10 --damping 1e-3 --full -o "$tmp/out.csv"
+expect_error "windows with too little damping" "round-off" stability --windows $R --links 10 --modes 2 --damping 1e-14 -o "$tmp/out.csv"
+# Kelvin-Tait-Chetaev: with internal damping the minimum (mode 1) converges, the saddle (mode 2)
+# grows, over the whole range
+if "$WHIRL" stability --windows --links 10 --modes 1,2 --omega-min 2 --omega-max 6 --damping 1e-3 \
+     -o "$tmp/dw.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/dw.csv" | head -1)" = "mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict" ] \
+   && grep -q '^# whirl stability --windows: 10 links, tip mass 0, damping 0.001' "$tmp/dw.csv" \
+   && [ "$(grep -v '^#' "$tmp/dw.csv" | sed 1d | cut -d, -f1,3-6,11 | tr '\n' ' ')" = \
+        "1,2,6,1,1,converging 2,$(grep '^# mode 2' "$tmp/dw.csv" | sed 's/.*examined \([^.]*\.[0-9]*\)\.\..*/\1/'),6,1,1,unstable " ]; then
+  pass "windows with damping: mode 1 converging and mode 2 unstable over the whole range"
+else fail "windows with damping: $(cat "$tmp/err" "$tmp/dw.csv" 2>/dev/null | tail -4)"; fi
+# the hand-swung chain with linear drag, far side: an unstable interval between two converging
+# ones; each edge against the linear growth 1e-6 either side
+D="--links 10 --eps 0.02 --drag 0.01 --side -1"
+if "$WHIRL" stability --windows $D --modes 2 --omega-min 2 --omega-max 6 -o "$tmp/dd.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/dd.csv" | sed 1d | cut -d, -f11 | tr '\n' ' ')" = "converging unstable converging " ]; then
+  from=$(grep -v '^#' "$tmp/dd.csv" | sed -n 3p | cut -d, -f3); to=$(grep -v '^#' "$tmp/dd.csv" | sed -n 3p | cut -d, -f4)
+  ok=1
+  for w in "$from -1e-6 0" "$from 1e-6 1" "$to -1e-6 1" "$to 1e-6 0"; do
+    set -- $w
+    at=$(awk -v a="$1" -v d="$2" 'BEGIN { printf "%.12f", a + d }')
+    g=$("$WHIRL" stability --omega "$at" --mode 2 $D --linear | grep -v '^[#o]' | cut -d, -f4)
+    awk -v g="$g" -v u="$3" 'BEGIN { exit !((g > 0) == u) }' || ok=0
+  done
+  if [ $ok -eq 1 ]; then
+    pass "windows with drag: mode 2 (N = 10, far side) unstable on [$from, $to], the linear growth changes sign within 1e-6"
+  else fail "windows with drag: the edges [$from, $to] disagree with the linear growth"; fi
+else fail "windows with drag: $(cat "$tmp/err" "$tmp/dd.csv" 2>/dev/null | tail -4)"; fi
 
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
