@@ -306,8 +306,10 @@ int whirl_windows_dissipative(const whirl_model *model, int mode, int side,
     if (!s.lin || !s.r || !s.y || !s.z || !s.tension || !pts ||
         (!s.driven && (!nr || !nz || !nt || !info || !exists)))
         status = whirl_fail(GSL_ENOMEM, "out of memory for the search of mode %d", mode);
-    if (!status && !s.driven)
+    if (!status && !s.driven) {
         status = whirl_nlink_branch_nodes(c, mode, npts, omega, info, exists, nr, nz, nt);
+        stats->shapes += npts;
+    }
     for (size_t j = 0; j < npts && !status; j++) {
         if (!s.driven && !exists[j]) {
             status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = " WHIRL_Q_RATE "%g on "
