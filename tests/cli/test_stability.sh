@@ -301,5 +301,36 @@ else fail "atlas below every birth"; fi
 expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
 expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
 expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"
+# Ctrl-C: SIGINT in the middle of the atlas stops it within a second (2 s allowed on a loaded
+# machine), exit 130, the chunks finished kept as complete rows; --resume then completes it to
+# the file of an uninterrupted run. The signal's default disposition is restored for whirl:
+# the suite may run in the background, where a shell starts jobs with SIGINT ignored.
+atl="stability --atlas --modes 2 --omega-max 30"
+# shellcheck disable=SC2086
+"$WHIRL" $atl -o "$tmp/afull.csv" 2>/dev/null
+# shellcheck disable=SC2086
+env --default-signal=INT "$WHIRL" $atl -o "$tmp/aint.csv" >/dev/null 2>"$tmp/aint.err" &
+pid=$!
+i=0
+while ! grep -q '^# done mode 2 omega 5 10' "$tmp/aint.csv" 2>/dev/null && [ $i -lt 1200 ]; do
+  sleep 0.02; i=$((i + 1))
+done
+t0=$(date +%s.%N)
+kill -INT $pid
+wait $pid
+rc=$?
+late=$(echo "$(date +%s.%N) - $t0" | bc)
+done_chunks=$(grep -c '^# done mode 2' "$tmp/aint.csv" 2>/dev/null)
+# every row complete: 13 fields, finite numbers
+bad_rows=$(grep -v '^#' "$tmp/aint.csv" | sed 1d | awk -F, 'NF != 13 || /nan|inf/' | wc -l)
+if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] && [ "$done_chunks" -ge 2 ] &&
+   [ "$done_chunks" -lt 6 ] && [ "$bad_rows" -eq 0 ] && grep -q interrupted "$tmp/aint.err" &&
+   [ "$(grep -v '^#' "$tmp/aint.csv" | sed -n 2p)" = "$(grep -v '^#' "$tmp/afull.csv" | sed -n 2p)" ]; then
+  pass "atlas: SIGINT stops it in $late s, exit 130, $done_chunks of 6 chunks kept with their windows"
+else fail "atlas SIGINT (rc=$rc, $late s, $done_chunks chunks, $bad_rows bad rows, $(head -c 200 "$tmp/aint.err"))"; fi
+# shellcheck disable=SC2086
+if "$WHIRL" $atl -o "$tmp/aint.csv" --resume 2>"$tmp/err" && cmp -s "$tmp/aint.csv" "$tmp/afull.csv"; then
+  pass "atlas --resume after SIGINT: the file of the uninterrupted run"
+else fail "atlas --resume after SIGINT: $(cat "$tmp/err"; diff "$tmp/aint.csv" "$tmp/afull.csv" | head -5)"; fi
 
 finish
