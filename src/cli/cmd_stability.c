@@ -24,7 +24,9 @@
  *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at[,err_from,err_to]
  * (links "inf" for the continuum, which adds err_from, err_to: its estimate of each edge's
  * discretisation error) and a comment line per mode with the eigen-solves used and
- * those of a grid of equal resolution.
+ * those of a grid of equal resolution. With --links and dissipation (--damping, or the
+ * hand-swung chain's drag) the intervals where each mode is unstable or converging
+ * (stability_dissipative.c).
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
  * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
@@ -750,7 +752,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
          "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
         {"--windows", NULL, CLI_FLAG, &o.windows, NULL, "",
-         "the intervals of omega where each mode is unstable, edges located exactly", NULL,
+         "the intervals of omega where each mode is unstable, edges located exactly (with --links "
+         "and --damping or drag: unstable or converging)", NULL,
          "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
          "--linear"},
         {"--scan-step", NULL, CLI_DOUBLE, &o.scan_step, NULL, "H",
