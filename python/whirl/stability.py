@@ -206,6 +206,24 @@ WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("ope
                          ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
 
 
+def _windows_params(omega_min: Optional[float], omega_max: Optional[float],
+                    scan_step: Optional[float], tol: Optional[float], u: Units) -> Any:
+    """The whirl_windows_params of a window search; the defaults (None) are the command line's,
+    in the dimensionless units: 1, 10, 0.25, 1e-9."""
+    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
+    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
+                                                         positive=True) / u.rate
+    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
+                                                          positive=True) / u.rate
+    if not p.omega_min < p.omega_max:
+        raise ValueError("omega_min must be < omega_max, got %g and %g"
+                         % (p.omega_min * u.rate, p.omega_max * u.rate))
+    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
+                                                          positive=True) / u.rate
+    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+    return p
+
+
 def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                       omega_min: Optional[float] = None, omega_max: Optional[float] = None,
                       scan_step: Optional[float] = None, tol: Optional[float] = None,
@@ -233,18 +251,7 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     mode = _mode(mode, chain, lib.WHIRL_MODE_MAX)
     if links is not None and (degree is not None or tip_mass):
         raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
-    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
-    # defaults (None) are the command line's, in the dimensionless units: 1, 10, 0.25, 1e-9
-    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
-                                                         positive=True) / u.rate
-    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
-                                                          positive=True) / u.rate
-    if not p.omega_min < p.omega_max:
-        raise ValueError("omega_min must be < omega_max, got %g and %g"
-                         % (p.omega_min * u.rate, p.omega_max * u.rate))
-    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
-                                                          positive=True) / u.rate
-    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+    p = _windows_params(omega_min, omega_max, scan_step, tol, u)
     p.krylov = 1 if krylov else 0
     cap = _lib.bounded(as_int(max_windows, "max_windows", minimum=1), "max_windows", 64)
     found = ffi.new("whirl_window[]", cap)
@@ -313,17 +320,7 @@ def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
     m = _model(chain, 0.0, damping, drive_radius, air_drag, air_drag_quadratic, u)
-    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
-    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
-                                                         positive=True) / u.rate
-    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
-                                                          positive=True) / u.rate
-    if not p.omega_min < p.omega_max:
-        raise ValueError("omega_min must be < omega_max, got %g and %g"
-                         % (p.omega_min * u.rate, p.omega_max * u.rate))
-    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
-                                                          positive=True) / u.rate
-    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+    p = _windows_params(omega_min, omega_max, scan_step, tol, u)
     cap = _lib.bounded(as_int(max_intervals, "max_intervals", minimum=1), "max_intervals", 64)
     found = ffi.new("whirl_dissipative_interval[]", cap)
     count = ffi.new("size_t *")

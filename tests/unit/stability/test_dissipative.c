@@ -30,12 +30,7 @@
 
 static whirl_model model_of(const whirl_chain *c, double omega)
 {
-    whirl_model m = {0};
-    m.chain = c;
-    m.dim = 3;
-    m.frame = WHIRL_FRAME_ROTATING;
-    m.omega = omega;
-    return m;
+    return (whirl_model){.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
 }
 
 /* Largest real part of the eigenvalues of the last linearisation, not rounded to 0. */
