@@ -188,6 +188,10 @@ static int extreme_growth(dissip_search *s, whirl_dissipative_interval *iv,
     iv->growth = pts[best].growth;
     iv->at = pts[best].omega;
     if (best == 0 || best + 1 == n) return GSL_SUCCESS; /* at an end: nothing to bracket */
+    /* a flat growth (the drag's uniform decay) equal at the neighbours: no bracket, no refinement */
+    if (!(sign * pts[best].growth < sign * pts[best - 1].growth &&
+          sign * pts[best].growth < sign * pts[best + 1].growth))
+        return GSL_SUCCESS;
     extreme_args a = {s, sign, GSL_SUCCESS};
     gsl_function fn = {extreme_fn, &a};
     gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
