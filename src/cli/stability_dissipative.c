@@ -4,10 +4,12 @@
  *   mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict
  * growth: the largest growth rate inside an unstable interval, the most negative one inside a
  * converging interval, at the rate at; freq: |Im lambda| of the eigenvalue that crosses the
- * imaginary axis at each edge. The modes run one per thread; Ctrl-C stops them (exit 130,
- * nothing written: a mode's intervals are complete only at its end). */
+ * imaginary axis at each edge. The modes run one per thread, the modes done shown on a
+ * terminal; Ctrl-C stops them: the modes finished are written (a mode's intervals are complete
+ * only at its end), the others marked "# mode K: interrupted, not done", exit 130. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli/cli.h"
 #include "cli/stability_dissipative.h"
@@ -27,24 +29,36 @@ int stability_dissipative(const cli_command *cmd, const cli_int_list *modes, int
     whirl_windows_stats *stats = calloc(nmodes, sizeof *stats);
     double *seconds = calloc(nmodes, sizeof *seconds);
     whirl_error_record *err = calloc(nmodes, sizeof *err); /* each mode's failure */
+    int *status = calloc(nmodes, sizeof *status);
     int rc = 0;
-    if (!iv || !count || !stats || !seconds || !err) rc = cli_error(cmd, "out of memory");
+    if (!iv || !count || !stats || !seconds || !err || !status)
+        rc = cli_error(cmd, "out of memory");
     whirl_model m = *model;
     m.chain = c;
     cli_catch_interrupts();
+    cli_progress_state progress;
+    long finished = 0;
+    cli_progress_begin(&progress, cmd, "modes", (long)nmodes, 0);
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
         const double t0 = cli_wall_seconds();
-        const int status = whirl_windows_dissipative(&m, modes->v[k], side, p,
-                                                     iv + k * DISSIPATIVE_MAX, DISSIPATIVE_MAX,
-                                                     &count[k], &stats[k]);
-        whirl_error_keep(&err[k], status);
+        status[k] = whirl_windows_dissipative(&m, modes->v[k], side, p,
+                                              iv + k * DISSIPATIVE_MAX, DISSIPATIVE_MAX,
+                                              &count[k], &stats[k]);
+        whirl_error_keep(&err[k], status[k]);
         seconds[k] = cli_wall_seconds() - t0;
+#pragma omp critical
+        cli_progress_update(&progress, ++finished, 0);
     }
-    const int failed = rc ? GSL_SUCCESS : whirl_error_restore_first(err, nmodes);
-    if (failed) {
-        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(units));
-        rc = failed == WHIRL_EINTERRUPTED ? CLI_EXIT_INTERRUPTED : 1;
+    cli_progress_update(&progress, finished, 1);
+    /* a failure other than a stop: nothing written; a stop: the modes finished are written */
+    size_t done = 0;
+    for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
+        done += status[k] == GSL_SUCCESS;
+        if (status[k] != GSL_SUCCESS && status[k] != WHIRL_EINTERRUPTED && !rc) {
+            whirl_error_restore(&err[k]);
+            rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(units));
+        }
     }
     cli_out out;
     if (!rc && cli_out_open(cmd, &out, output)) rc = 1;
@@ -62,16 +76,19 @@ int stability_dissipative(const cli_command *cmd, const cli_int_list *modes, int
                 CLI_NUM(p->omega_max * rate), CLI_NUM(p->scan_step * rate),
                 CLI_NUM(p->tol * rate));
         for (size_t k = 0; k < nmodes; k++)
-            fprintf(out.fp, "# mode %d: examined %s..%s, %zu intervals, %zu scan points, %zu "
-                            "eigen-solves, %zu shapes, %.3g s\n",
-                    modes->v[k], CLI_NUM(stats[k].omega_from * rate),
-                    CLI_NUM(stats[k].omega_to * rate), count[k], stats[k].scan,
-                    stats[k].solves_values, stats[k].shapes, seconds[k]);
+            if (status[k] != GSL_SUCCESS)
+                fprintf(out.fp, "# mode %d: interrupted, not done\n", modes->v[k]);
+            else
+                fprintf(out.fp, "# mode %d: examined %s..%s, %zu intervals, %zu scan points, "
+                                "%zu eigen-solves, %zu shapes, %.3g s\n",
+                        modes->v[k], CLI_NUM(stats[k].omega_from * rate),
+                        CLI_NUM(stats[k].omega_to * rate), count[k], stats[k].scan,
+                        stats[k].solves_values, stats[k].shapes, seconds[k]);
         cli_units_comment(out.fp, units);
         fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,"
                         "verdict\n");
         for (size_t k = 0; k < nmodes; k++)
-            for (size_t i = 0; i < count[k]; i++) {
+            for (size_t i = 0; status[k] == GSL_SUCCESS && i < count[k]; i++) {
                 const whirl_dissipative_interval *x = iv + k * DISSIPATIVE_MAX + i;
                 fprintf(out.fp, "%d,%d,%s,%s,%d,%d,%s,%s,%s,%s,%s\n", modes->v[k], links,
                         CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from,
@@ -81,7 +98,13 @@ int stability_dissipative(const cli_command *cmd, const cli_int_list *modes, int
             }
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
-    free(iv), free(count), free(stats), free(seconds), free(err);
+    if (!rc && done < nmodes) {
+        const int file = output != NULL && strcmp(output, "-") != 0;
+        cli_error(cmd, "interrupted: %zu of %zu modes done%s%s%s", done, nmodes,
+                  file ? " in '" : "", file ? output : "", file ? "'" : "");
+        rc = CLI_EXIT_INTERRUPTED;
+    }
+    free(iv), free(count), free(stats), free(seconds), free(err), free(status);
     whirl_chain_free(c);
     return rc;
 }

@@ -198,6 +198,29 @@ if "$WHIRL" stability --windows $D --modes 2 --omega-min 2 --omega-max 6 -o "$tm
   else fail "windows with drag: the edges [$from, $to] disagree with the linear growth"; fi
 else fail "windows with drag: $(cat "$tmp/err" "$tmp/dd.csv" 2>/dev/null | tail -4)"; fi
 
+# Ctrl-C in a dissipative --windows run: the modes finished are written whole (the rows of a
+# run of that mode alone), the others marked not done, exit 130 within 2 s. One thread, so mode 8
+# (about 2 s) is done before the signal at 5 s and mode 2 (10 s more) is not.
+dwin="stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3"
+# shellcheck disable=SC2086
+"$WHIRL" $dwin --modes 8 -o "$tmp/d8.csv" 2>/dev/null
+# shellcheck disable=SC2086
+OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $dwin --modes 8,2 -o "$tmp/dint.csv" \
+  >/dev/null 2>"$tmp/dint.err" &
+pid=$!
+sleep 5
+t0=$(date +%s.%N)
+kill -INT $pid
+wait $pid
+rc=$?
+late=$(echo "$(date +%s.%N) - $t0" | bc)
+if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
+   grep -q "interrupted: 1 of 2 modes done in '$tmp/dint.csv'" "$tmp/dint.err" &&
+   grep -q '^# mode 2: interrupted, not done$' "$tmp/dint.csv" &&
+   [ "$(grep -v '^#' "$tmp/dint.csv")" = "$(grep -v '^#' "$tmp/d8.csv")" ]; then
+  pass "windows with damping: SIGINT stops it in $late s, exit 130, mode 8 kept whole, mode 2 marked not done"
+else fail "windows with damping, SIGINT (rc=$rc, $late s, $(cat "$tmp/dint.err"; grep '^# mode' "$tmp/dint.csv"))"; fi
+
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
 expect_error "continuum windows: degree with --links" "degree.*links|links.*degree" stability --windows $R --links 10 --degree 12 -o "$tmp/out.csv"
