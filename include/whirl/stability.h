@@ -388,7 +388,9 @@ typedef struct whirl_dissipative_interval {
  * scan step can be missed. A scan rate without a hand-swung shape ends an interval (open end).
  * GSL_EINVAL without dissipation (the conservative windows are whirl_windows_find's), with a
  * growth within round-off of 0 at a scan rate (1e-10 max |lambda|: too little dissipation to
- * decide), or on bad parameters; GSL_EDOM if the mode does not exist in the range;
+ * decide), or on bad parameters; GSL_EDOM if the mode does not exist in the range, or the
+ * hand-swung shape disappears between two scan rates of opposite growth; GSL_EFAILED if the
+ * growth jumps there instead of passing through 0 (a shape that changes branch);
  * WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
 WHIRL_API int whirl_windows_dissipative(const whirl_model *model, int mode, int side,
                                         const whirl_windows_params *p,

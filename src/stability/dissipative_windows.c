@@ -10,7 +10,9 @@
  * g is continuous in omega (the eigenvalues are continuous) but only piecewise smooth: where
  * the eigenvalue of largest real part changes, g has a kink. So the edges are located by a
  * bracketing method that needs continuity alone: Brent's (core/roots.h), on every bracket of
- * consecutive scan rates where g changes sign. An interval of either kind narrower than the
+ * consecutive scan rates where g changes sign; at the root found |g| must be below 100 tol times
+ * the bracket's secant slope, else g jumped there (a hand-swung shape that changes branch) and
+ * the search fails rather than report a jump as an edge. An interval of either kind narrower than the
  * scan step can be passed over (no discriminant as in the conservative search,
  * stability_windows.c, gives it away: here the crossing eigenvalue meets no partner).
  * Kelvin-Tait-Chetaev (Merkin 1956; Kirillov 2013, ch. 2): with complete dissipation (C
@@ -153,6 +155,13 @@ static int locate_edge(dissip_search *s, const dissip_point *a, const dissip_poi
     if (!at.exists)
         return whirl_fail(GSL_EDOM, "mode %d: no hand-swung shape at the edge omega = "
                           WHIRL_Q_RATE "%.10g", s->mode, root.root);
+    /* a root, not a jump of the growth (a shape that changes branch between the scan rates):
+     * within tol of a root a continuous growth is at most about tol times its slope */
+    const double secant = (fabs(a->growth) + fabs(b->growth)) / (b->omega - a->omega);
+    if (!(fabs(at.growth) <= 100 * tol * secant + at.level))
+        return whirl_fail(GSL_EFAILED, "mode %d: the growth jumps from %.3g to %.3g at omega = "
+                          WHIRL_Q_RATE "%.10g instead of passing through 0 (the shape changes "
+                          "there)", s->mode, a->growth, b->growth, root.root);
     *freq = at.freq;
     return GSL_SUCCESS;
 }
