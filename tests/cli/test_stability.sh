@@ -209,11 +209,7 @@ OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $dwin --modes 8,2 -o "$tmp/d
   >/dev/null 2>"$tmp/dint.err" &
 pid=$!
 sleep 5
-t0=$(date +%s.%N)
-kill -INT $pid
-wait $pid
-rc=$?
-late=$(echo "$(date +%s.%N) - $t0" | bc)
+interrupt $pid
 if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
    grep -q "interrupted: 1 of 2 modes done in '$tmp/dint.csv'" "$tmp/dint.err" &&
    grep -q '^# mode 2: interrupted, not done$' "$tmp/dint.csv" &&
@@ -338,11 +334,7 @@ i=0
 while ! grep -q '^# done mode 2 omega 5 10' "$tmp/aint.csv" 2>/dev/null && [ $i -lt 1200 ]; do
   sleep 0.02; i=$((i + 1))
 done
-t0=$(date +%s.%N)
-kill -INT $pid
-wait $pid
-rc=$?
-late=$(echo "$(date +%s.%N) - $t0" | bc)
+interrupt $pid
 done_chunks=$(grep -c '^# done mode 2' "$tmp/aint.csv" 2>/dev/null)
 # every row complete: 13 fields, finite numbers
 bad_rows=$(grep -v '^#' "$tmp/aint.csv" | sed 1d | awk -F, 'NF != 13 || /nan|inf/' | wc -l)
