@@ -69,8 +69,9 @@ WHIRL_API int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectru
  * number into *count (GSL_EINVAL if more than max). Every closed edge is then located again on a
  * refined discretisation (degree + 8, shape_tol / 100; a second workspace allocated for it);
  * where that moves it by more than 1e-8, again at degree + 16 and + 24 (64 at most) until two
- * successive refinements agree to 1e-9: the last edge is returned, its last change in err_from /
- * err_to (above 1e-9 only if the levels ran out). GSL_EDOM if the mode does not exist
+ * successive refinements agree to 1e-8 or the change grows (the round-off of the higher degree:
+ * then the previous level's edge): that edge is returned, its last change in err_from / err_to
+ * (above 1e-8 where the target was not reached). GSL_EDOM if the mode does not exist
  * in the range, GSL_EINVAL beyond WHIRL_CONTINUUM_OMEGA_MAX, WHIRL_EINTERRUPTED on a stop request
  * (between eigen-solves). */
 WHIRL_API int whirl_cstab_windows(whirl_cstab *w, int mode, const whirl_windows_params *p,

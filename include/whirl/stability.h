@@ -325,7 +325,7 @@ typedef struct whirl_window {
     double err_from, err_to;   /* the continuum (whirl_cstab_windows): each closed edge is
                                   located again on a refined discretisation (degree + 8, shape
                                   tolerance / 100; where it moves by more than 1e-8, degree + 16
-                                  and + 24 until two agree to 1e-9), which gives from and to; err
+                                  and + 24 until two agree to 1e-8), which gives from and to; err
                                   is its last change, a bound of the discretisation error of the
                                   coarser and so an estimate (on the safe side) of the reported
                                   one's [sqrt(g/L)]; 0 at an open end, for an edge where a mu

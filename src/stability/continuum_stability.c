@@ -91,7 +91,8 @@
  * Windows (whirl_cstab_windows): the search of stability_windows.c on these spectra, then each
  * closed edge located again as the root of the collision discriminant on refined
  * discretisations (degree + 8, shape_tol / 100; where that moves it by more than 1e-8, degree
- * + 16 and + 24 until two successive levels agree to 1e-9): near such an edge the pair
+ * + 16 and + 24 until two successive levels agree to 1e-8, or the change grows, the round-off of
+ * the higher degree: refine_levels): near such an edge the pair
  * separates slowly, dD/domega is small, and an error of mu moves the edge by much more.
  * References: Kolodner 1955, Comm. Pure Appl. Math. 8:395 (the steady shapes); Caughey 1958,
  * J. Appl. Mech. 25:465 (whirling of a heavy chain); Trefethen 2000 (collocation); Mackay 1986
@@ -1492,13 +1493,14 @@ static int refine_edge(whirl_cstab *wr, int mode, double *edge, int opens, doubl
     return GSL_SUCCESS;
 }
 
-/* The refinements of an edge: degree + 8 per level (64 at most), shape tolerance / 100. The
- * first level's change is the estimate where it is at most EDGE_TARGET; otherwise the edge is
- * refined further until two successive levels agree to EDGE_AGREE, or EDGE_LEVELS levels are
- * spent (the last change is then the estimate: above EDGE_AGREE, it says so). */
+/* The refinements of an edge: degree + 8 per level (64 at most), shape tolerance / 100, until
+ * two successive levels agree to EDGE_TARGET, or EDGE_LEVELS levels are spent, or the change
+ * grows from one level to the next (no longer the discretisation's error converging but the
+ * round-off of the higher degree, whose differentiation matrices grow as p^2 / h: at some edges
+ * degree 40 moved by 1e-7 where degrees 24 and 32 agreed to 2e-9): the last change is the
+ * estimate, above EDGE_TARGET where the target was not reached. */
 #define EDGE_LEVELS 3
 #define EDGE_TARGET 1e-8
-#define EDGE_AGREE 1e-9
 
 /* The workspace of refinement level (1..EDGE_LEVELS) of w, allocated at first use. */
 static int level_workspace(const whirl_cstab *w, int level, whirl_cstab **wr)
@@ -1512,20 +1514,24 @@ static int level_workspace(const whirl_cstab *w, int level, whirl_cstab **wr)
 }
 
 /* The edge *edge (opens, collision frequency freq) refined by levels (EDGE_LEVELS above): the
- * edge of the finest level into *edge, the last change into *err. The levels after the first
- * locate the edge to tol / 10, so that their agreement to EDGE_AGREE is not the root finder's. */
+ * edge of the finest level into *edge and the last change into *err; where the change grew, the
+ * previous level's edge and the larger change. The levels after the first locate the edge to
+ * tol / 10, so that their agreement is not the root finder's. */
 static int refine_levels(const whirl_cstab *w, whirl_cstab **wr, int mode, double *edge,
                          int opens, double freq, double tol, double *err)
 {
     int status = GSL_SUCCESS;
     for (int level = 1; level <= EDGE_LEVELS && !status; level++) {
-        const int last_degree = w->p.degree + 8 * (level - 1) >= 64;
-        if (level > 1 && (*err <= EDGE_AGREE || last_degree)) break;
-        if (level == 2 && *err <= EDGE_TARGET) break;
+        if (level > 1 && (*err <= EDGE_TARGET || w->p.degree + 8 * (level - 1) >= 64)) break;
+        const double before = *edge, before_err = *err;
         status = level_workspace(w, level, &wr[level - 1]);
         if (!status)
             status = refine_edge(wr[level - 1], mode, edge, opens, freq, level > 1 ? tol / 10 : tol,
                                  err);
+        if (!status && level > 1 && *err > before_err) { /* no longer converging */
+            *edge = before;
+            break;
+        }
     }
     return status;
 }
