@@ -126,6 +126,44 @@ rc=$?
 [ $rc -eq 130 ] && [ "$(grep -c '^[0-9]' "$tmp/smap.csv")" -gt 1 ] &&
   pass "the first stability run kept its map (exit 130)" || fail "the first stability run (rc=$rc)"
 
+# two runs started together on a map file that does not exist yet: the one that makes it holds
+# the lock, the other is refused at once with one line; the file holds every row of the first
+# (the two ask for different rows, so that the file tells which one wrote it)
+# together NAME ROWS_A ARGS_A ROWS_B ARGS_B: ROWS_X, the data rows run X writes
+together() {
+  name=$1; rows_a=$2; args_a=$3; rows_b=$4; args_b=$5
+  rm -rf "$tmp/tog"; mkdir "$tmp/tog"
+  # shellcheck disable=SC2086
+  "$WHIRL" $args_a -o "$tmp/tog/map.csv" >/dev/null 2>"$tmp/tog_a.err" &
+  pa=$!
+  # shellcheck disable=SC2086
+  "$WHIRL" $args_b -o "$tmp/tog/map.csv" >/dev/null 2>"$tmp/tog_b.err" &
+  pb=$!
+  wait $pa; ra=$?; wait $pb; rb=$?
+  want=-1 loser=/dev/null
+  if [ $ra -eq 0 ] && [ $rb -eq 1 ]; then want=$rows_a loser=$tmp/tog_b.err
+  elif [ $rb -eq 0 ] && [ $ra -eq 1 ]; then want=$rows_b loser=$tmp/tog_a.err; fi
+  rows=$(grep -v '^#' "$tmp/tog/map.csv" 2>/dev/null | tail -n +2 | wc -l)
+  if [ "$want" -ge 0 ] && [ "$rows" -eq "$want" ] && [ "$(wc -l <"$loser")" -eq 1 ] &&
+     grep -q "map.csv' is being written by another run (locked)" "$loser" &&
+     [ "$(ls -A "$tmp/tog")" = map.csv ]; then
+    pass "$name: one run writes the new file ($rows rows), the other is refused"
+  else fail "$name: two runs on a new file (rc $ra and $rb, $rows rows, $(ls -A "$tmp/tog"), $(cat "$tmp/tog_a.err" "$tmp/tog_b.err" | head -c 300))"; fi
+}
+rsw="regime --sweep --omega-min 3 --omega-max 3.5 --eps 0.1 --links 5 --t-max 60"
+together "regime --sweep" 79 "$rsw --omega-count 40" 81 "$rsw --omega-count 41"
+rmap="regime --omega-max 4 --omega-count 40 --eps 0.05 $fast"
+together "regime map" 40 "$rmap --omega-min 1" 40 "$rmap --omega-min 1.5"
+smap2="stability --omega-max 8 --links 8 --periods 20 --omega-count 101"
+# the map's rows: the modes present at each of the 101 rates, counted from a run alone
+# shellcheck disable=SC2086
+"$WHIRL" $smap2 --omega-min 2 -o "$tmp/s2a.csv" && "$WHIRL" $smap2 --omega-min 2.5 -o "$tmp/s2b.csv"
+together "stability map" "$(grep -v '^#' "$tmp/s2a.csv" | tail -n +2 | wc -l)" "$smap2 --omega-min 2" \
+  "$(grep -v '^#' "$tmp/s2b.csv" | tail -n +2 | wc -l)" "$smap2 --omega-min 2.5"
+# a run that fails after making the file removes it (no empty map left)
+expect_error "stability map: a run that fails leaves no empty file it made" "beyond the stability interval" \
+  stability --omega-min 3.9 --omega-max 4 --omega-count 2 --links 60 --dt 0.05 -o "$tmp/out.csv"
+
 # ---- a scene cannot write outside its folder ----
 mkdir "$tmp/scn" "$tmp/elsewhere"
 for t in ../victim.txt /tmp/victim.txt sub/../../victim.txt; do
