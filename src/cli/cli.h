@@ -334,6 +334,10 @@ void cli_progress_text(cli_progress_state *p, const char *fmt, ...)
     ;
 /* Erases the line if one is drawn, leaving the cursor at the start of the empty line. */
 void cli_progress_clear(cli_progress_state *p);
+/* How long a run goes before a progress line that waits shows [s]: 1, or the environment's
+ * WHIRL_PROGRESS_AFTER (a number in [0, 3600]; 0 shows the line from the first report, for
+ * scripts and tests; anything else keeps 1). */
+double cli_progress_after(void);
 /* Seconds on the monotonic clock. */
 double cli_wall_seconds(void);
 
