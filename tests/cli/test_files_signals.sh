@@ -36,6 +36,52 @@ printf '# trace: t\n0 0 0 0\n0 0 -1e200 0\n' >"$tmp/huge.dat"
 expect_error "view: coordinates of 1e200 are refused (the page would draw inf)" \
   "huge.dat:3: a trace line needs four finite numbers .* at most 1e\+100" view "$tmp/huge.dat" -o "$out"
 
+# ---- out of memory while reading: reported as such, never as the end of the file ----
+# Under a limit on the address space (ulimit -v) a little above what a short input needs, a long
+# one runs out of memory while it is read: its line (the scene's reader) or its points (fit,
+# view) need 8 MiB and more beyond the limit. The limit is found by bisection on the short input
+# (the program, its libraries and a short read), to 1 MiB. Not under the sanitizers, whose
+# shadow memory needs terabytes of address space.
+# least_vm PATTERN ARGS...: the least limit in KiB at which `whirl ARGS` prints PATTERN (0: none
+# up to 4 GiB)
+least_vm() {
+  pat=$1; shift
+  lo=1024 hi=4194304
+  if ! (ulimit -v $hi; exec "$WHIRL" "$@") 2>&1 | grep -Eq "$pat"; then echo 0; return; fi
+  while [ $((hi - lo)) -gt 1024 ]; do
+    mid=$(((lo + hi) / 2))
+    if (ulimit -v $mid; exec "$WHIRL" "$@") 2>&1 | grep -Eq "$pat"; then hi=$mid; else lo=$mid; fi
+  done
+  echo $hi
+}
+# out_of_memory NAME SHORT_PATTERN SHORT_FILE LONG_FILE PATTERN CMD...: CMD on SHORT_FILE gives
+# SHORT_PATTERN under its least limit; on LONG_FILE under that limit plus 4 MiB, one line that
+# matches PATTERN, exit 1, no output
+out_of_memory() {
+  name=$1; short_pat=$2; short=$3; long=$4; pat=$5; shift 5
+  vm=$(least_vm "$short_pat" "$@" "$short")
+  rm -f "$out"
+  (ulimit -v $((vm + 4096)); exec "$WHIRL" "$@" "$long") >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  if [ "$vm" -gt 0 ] && [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] &&
+     grep -Eq "$pat" "$tmp/stderr" && [ ! -e "$out" ] && [ ! -s "$tmp/stdout" ]; then
+    pass "$name: out of memory under ulimit -v $((vm + 4096)) KiB, said as such"
+  else fail "$name: out of memory (least limit $vm KiB, rc=$rc, $(head -c 300 "$tmp/stderr"))"; fi
+}
+if [ -z "$WHIRL_SANITIZE" ]; then
+  printf '; a scene with nothing in it\n' >"$tmp/short.ini"
+  { printf '; '; head -c 12000000 /dev/zero | tr '\0' x; printf '\n[chain]\n'; } >"$tmp/longline.ini"
+  out_of_memory "scene: a line of 12 MB" '\[chain\] dim: missing' "$tmp/short.ini" "$tmp/longline.ini" \
+    'longline.ini:1: out of memory reading a line of [0-9]+ MiB$' simulate -o "$out"
+  printf 'r,z\n0.1,-0.5\n' >"$tmp/short.csv"
+  awk 'BEGIN {print "r,z"; for (i = 0; i < 1500000; i++) print "0.1,-0.5"}' >"$tmp/long.csv"
+  out_of_memory "fit --shape: 1.5e6 points" 'has 1 points' "$tmp/short.csv" "$tmp/long.csv" \
+    'long.csv:[0-9]+: out of memory for the points \([0-9]+ read\)$' fit -o "$out" --shape
+  out_of_memory "view: 1.5e6 points" 'no chain in it' "$tmp/short.csv" "$tmp/long.csv" \
+    'long.csv:[0-9]+: out of memory for the points \([0-9]+ read\)$' view -o "$out"
+  rm -f "$tmp/longline.ini" "$tmp/long.csv"
+fi
+
 # ---- outputs that cannot destroy ----
 "$WHIRL" shape --omega 3.3 --mode 2 --points 50 -o "$tmp/d.csv"
 cp "$tmp/d.csv" "$tmp/d.keep"
