@@ -116,6 +116,19 @@ if [ -L "$tmp/link.csv" ] && [ "$(stat -c %a "$tmp/target.csv")" = 640 ] &&
    grep -q 'omega=2' "$tmp/target.csv" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
   pass "-o through a symlink: the link kept, the target written with its mode 640"
 else fail "-o through a symlink ($(ls -l "$tmp/link.csv" "$tmp/target.csv"), $(cat "$tmp/stderr"))"; fi
+# ... and the target's owner: a file of another user (uid and gid 65534, nobody), which only root
+# can make and write, keeps them
+if [ "$(id -u)" -eq 0 ]; then
+  cp "$tmp/d.keep" "$tmp/theirs.csv"; chown 65534:65534 "$tmp/theirs.csv"; chmod 604 "$tmp/theirs.csv"
+  ln -s theirs.csv "$tmp/their_link.csv"
+  "$WHIRL" shape --omega 2 --mode 1 -o "$tmp/their_link.csv" 2>"$tmp/stderr"
+  if [ -L "$tmp/their_link.csv" ] && [ "$(stat -c '%u:%g %a' "$tmp/theirs.csv")" = "65534:65534 604" ] &&
+     grep -q 'omega=2' "$tmp/theirs.csv" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
+    pass "-o through a symlink as root: the target keeps its owner 65534:65534 and mode 604"
+  else fail "-o through a symlink as root ($(stat -c '%u:%g %a' "$tmp/theirs.csv"), $(cat "$tmp/stderr"))"; fi
+else
+  pass "-o through a symlink keeps the target's owner # skip not root: only root can write another user's file"
+fi
 # a second output that fails: neither is written, the message names it
 rm -f "$out"
 "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=0.5 --set output.trace=/dev/full -o "$out" \
