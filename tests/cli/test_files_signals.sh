@@ -330,6 +330,10 @@ stop "driven branch" QUIT 131 driven --omega-min 1 --omega-max 4000 --eps 0.05
 stop "regime sweep" HUP 129 regime --sweep --omega-min 3 --omega-max 3.5 --omega-count 5000 \
   --eps 0.1 --links 5 --t-max 60
 
+# the fuzz timeout at omega 4.6e6 (tests/fuzz/regress/scene): within the work budget, hours of
+# adaptive steps of order 1/omega, stopped at once with its rows
+stop "simulate at omega 4.6e6 in the rotating frame" INT 130 simulate "$regress/omega_4.6e6_rk8pd.ini"
+
 # nohup: SIGHUP ignored stays ignored (the run ends normally)
 nohup "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=2 -o "$tmp/nohup.csv" \
   >"$tmp/nohup.out" 2>&1 &
