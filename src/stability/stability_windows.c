@@ -24,7 +24,8 @@
  *     E / 2 = w^2 a^H Ma a + c^H Mb c - Re(a^H Gab c).
  * Modes of opposite signs of E are the only ones that can leave the imaginary axis when they meet
  * (Krein collision); modes of one sign pass or avoid each other and stay neutral. At a stable rate
- * the number of modes with E < 0 equals the number of negative eigenvalues of K (Mackay 1986).
+ * the number of modes with E < 0 is half the number of negative eigenvalues of K (Mackay 1986;
+ * the count below).
  * Windows: a scan at a coarse step computes the mu and their signatures. Between two neutral scan
  * points, a window can open and close only through a collision of opposite signatures, which
  * swaps their order in frequency: the "ranks" (for each mode with E < 0, the number of modes with
@@ -131,7 +132,7 @@ struct whirl_windows {
     double *ab;            /* banded LU of the augmented K' + sigma B (BAND_LD x 8N) */
     lapack_int *bpiv;      /* its pivots (8N) */
     double *bx;            /* 8N scratch: right-hand side, the sums g */
-    double *lv;            /* l = B^T (0, s_b) (2N) */
+    double *lv;            /* l = B^T (0, s_b) (2N), then 2N scratch */
     double bomega;         /* the rate of the structured form */
     int fast;              /* 1: scan points by the banded path (p->krylov) */
     size_t bm;             /* steps of the banded path's last Ritz values */
@@ -177,7 +178,7 @@ whirl_windows *whirl_windows_alloc(size_t n)
     w->ab = malloc(BAND_LD * 8 * n * sizeof(double));
     w->bpiv = malloc(8 * n * sizeof(lapack_int));
     w->bx = malloc(8 * n * sizeof(double));
-    w->lv = malloc(q * sizeof(double));
+    w->lv = malloc(2 * q * sizeof(double));
     w->kept = malloc(WINDOWS_BAND_KRYLOV * sizeof(int));
     if (!w->al || !w->be || !w->ga || !w->tl || !w->ms || !w->tri || !w->ab || !w->bpiv ||
         !w->bx || !w->lv || !w->kept || whirl_windows_arnoldi_init_steps(&w->kband, q, WINDOWS_BAND_KRYLOV))
@@ -221,6 +222,9 @@ whirl_stability *whirl_windows_linearisation(whirl_windows *w) { return w->lin; 
 
 size_t whirl_windows_fallbacks(const whirl_windows *w) { return w->fallbacks; }
 
+/* max(a, b), a if it is NaN (so that a NaN fails the checks below; inline where fmax is a call) */
+static inline double dmax(double a, double b) { return a >= b || isnan(a) ? a : b; }
+
 /* The blocks Ma, Mb, Ka, Kb, Gab of the last linearisation in lin, after checking the split
  * (planar, conservative) to round-off. */
 static int split_blocks(whirl_windows *w, const whirl_stability *lin)
@@ -232,16 +236,16 @@ static int split_blocks(whirl_windows *w, const whirl_stability *lin)
     const double *kk = whirl_stability_get_matrix(lin, WHIRL_STABILITY_STIFFNESS);
     double scale = 0, off = 0, damp = 0;
     for (size_t i = 0; i < q * q; i++) {
-        scale = fmax(scale, fmax(fabs(mm[i]), fmax(fabs(gg[i]), fabs(kk[i]))));
-        damp = fmax(damp, fabs(cc[i]));
+        scale = dmax(fabs(mm[i]), dmax(fabs(gg[i]), dmax(fabs(kk[i]), scale)));
+        damp = dmax(fabs(cc[i]), damp);
     }
     for (size_t i = 0; i < n; i++)
         for (size_t j = 0; j < n; j++) {
             const size_t aa = i * q + j, ab = i * q + n + j, ba = (n + i) * q + j,
                          bb = (n + i) * q + n + j;
-            off = fmax(off, fmax(fmax(fabs(mm[ab]), fabs(mm[ba])), fmax(fabs(kk[ab]), fabs(kk[ba]))));
-            off = fmax(off, fmax(fabs(gg[aa]), fabs(gg[bb])));
-            off = fmax(off, fabs(gg[ab] + gg[(n + j) * q + i]));
+            off = dmax(fabs(mm[ab]), dmax(fabs(mm[ba]), dmax(fabs(kk[ab]), dmax(fabs(kk[ba]), off))));
+            off = dmax(fabs(gg[aa]), dmax(fabs(gg[bb]), off));
+            off = dmax(fabs(gg[ab] + gg[(n + j) * q + i]), off);
             w->ma[i * n + j] = mm[aa];
             w->mb[i * n + j] = mm[bb];
             w->ka[i * n + j] = kk[aa];
@@ -484,8 +488,8 @@ static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
     }
     double scale = 0, off = 0, mu = 0;
     for (size_t i = 0; i < n * n; i++)
-        scale = fmax(scale, fmax(fmax(fabs(w->ma[i]), fabs(w->mb[i])),
-                                 fmax(fabs(w->gab[i]), fmax(fabs(w->ka[i]), fabs(w->kb[i])))));
+        scale = dmax(fabs(w->ma[i]), dmax(fabs(w->mb[i]), dmax(fabs(w->gab[i]),
+                     dmax(fabs(w->ka[i]), dmax(fabs(w->kb[i]), scale)))));
     for (size_t h = n; h-- > 0;) { /* entries (j, k) with max(j, k) = h */
         mu += w->ms[h];
         for (size_t t = 0; t <= h; t++)
@@ -494,10 +498,10 @@ static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
                 const double tl = j == k ? w->tl[j] : 0;
                 const double ma = mu * (w->al[j] * w->al[k] + w->be[j] * w->be[k]);
                 const double mb = mu * w->ga[j] * w->ga[k];
-                off = fmax(off, fmax(fabs(w->ma[jk] - ma), fabs(w->mb[jk] - mb)));
-                off = fmax(off, fabs(w->gab[jk] + 2 * omega * mu * w->al[j] * w->ga[k]));
-                off = fmax(off, fabs(w->ka[jk] - (tl - om2 * mu * w->al[j] * w->al[k])));
-                off = fmax(off, fabs(w->kb[jk] - (tl - om2 * mb)));
+                off = dmax(fabs(w->ma[jk] - ma), dmax(fabs(w->mb[jk] - mb), off));
+                off = dmax(fabs(w->gab[jk] + 2 * omega * mu * w->al[j] * w->ga[k]), off);
+                off = dmax(fabs(w->ka[jk] - (tl - om2 * mu * w->al[j] * w->al[k])), off);
+                off = dmax(fabs(w->kb[jk] - (tl - om2 * mb)), off);
             }
     }
     if (!(off <= 1e-11 * scale)) return 0;
@@ -678,7 +682,17 @@ static double band_energy(void *data, size_t i)
         }
         xr[r] = sr, xi[r] = si;
     }
-    return full_energy(w, xr, cplx ? xi : NULL, -w->re[i]);
+    /* E / 2 = x^T F^T (S (x) C_E) F x, C_E = [[w^2, 0, omega], [0, w^2, 0], [omega, 0, 1]]
+     * (the form of full_energy in the structured form), O(N) */
+    const double w2 = -w->re[i], om = w->bomega;
+    const double ce[9] = {w2, 0, om, 0, w2, 0, om, 0, 1};
+    double energy = 0, *y = w->lv + q;
+    for (int part = 0; part < 1 + cplx; part++) {
+        const double *xp = part ? xi : xr;
+        structured_product(w, ce, xp, y);
+        for (size_t r = 0; r < q; r++) energy += xp[r] * y[r];
+    }
+    return energy;
 }
 
 #define BAND_TOL 1e-12 /* Ritz residual / |theta| accepted */
