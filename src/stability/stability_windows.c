@@ -461,6 +461,58 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
     return GSL_SUCCESS;
 }
 
+/* Arnoldi step: v_(step+1) from apply(v_step), orthogonalised (Gram-Schmidt, twice) into column
+ * step of the Hessenberg matrix; its norm h_(step+1,step) into *norm. GSL_CONTINUE if apply
+ * failed. */
+static int arnoldi_step(windows_arnoldi *k, size_t step,
+                        int (*apply)(void *data, const double *x, double *y), void *data,
+                        double *norm)
+{
+    const size_t km = k->km, q = k->q;
+    double *v = k->basis, *h = k->hess;
+    const double *x = v + step * q;
+    double *y = v + (step + 1) * q;
+    if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t j = 0; j <= step; j++) {
+            double dot = 0;
+            for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
+            for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
+            h[j + step * (km + 1)] += dot;
+        }
+    double nrm = 0;
+    for (size_t i = 0; i < q; i++) nrm = hypot(nrm, y[i]);
+    h[step + 1 + step * (km + 1)] = nrm;
+    if (nrm > 0)
+        for (size_t i = 0; i < q; i++) y[i] /= nrm;
+    *norm = nrm;
+    return GSL_SUCCESS;
+}
+
+/* The Ritz values theta (hre, him) and vectors (hvec, m x m) of the leading m x m Hessenberg
+ * block: the LAPACK info. */
+static lapack_int ritz_values(windows_arnoldi *k, size_t m)
+{
+    for (size_t j = 0; j < m; j++)
+        for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = k->hess[i + j * (k->km + 1)];
+    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
+                              k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m, k->hwork,
+                              (lapack_int)k->hlwork);
+}
+
+/* The residual |h_(m+1,m) e_m^T s| / |s| of Ritz value i (its vector s: column i, or (re, im) at
+ * (i, i + 1) / (i - 1, i) for a complex one). */
+static double ritz_residual(const windows_arnoldi *k, size_t m, size_t i, double norm)
+{
+    const int cplx = k->him[i] != 0;
+    const size_t cr = cplx && k->him[i] < 0 ? i - 1 : i, ci = cplx && k->him[i] > 0 ? i + 1 : i;
+    const double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
+    double len = 0;
+    for (size_t r = 0; r < m; r++)
+        len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
+    return norm * last / len;
+}
+
 /* ---- the banded path (header comment: the structured form) ---- */
 
 /* The structured form of the last linearisation in lin (its blocks in w by split_blocks) of the
@@ -598,6 +650,10 @@ static int band_apply_any(whirl_windows *w, int project, const double *x, double
 }
 
 static int band_apply(void *data, const double *x, double *y) { return band_apply_any(data, 0, x, y); }
+static int band_apply_projected(void *data, const double *x, double *y)
+{
+    return band_apply_any(data, 1, x, y);
+}
 
 /* Eigenvalues below s of the symmetric tridiagonal matrix with diagonal d and squared
  * off-diagonal e2 (e2[i] couples i and i + 1): the negative pivots of its LDL^T - s (Sturm;
@@ -719,7 +775,7 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
     else
         memset(lv, 0, q * sizeof *lv);
     windows_arnoldi *k = &w->kband;
-    const size_t km = k->km < q - (snorm > 0) ? k->km : q - (snorm > 0);
+    const size_t dim = q - (snorm > 0), km = k->km < dim ? k->km : dim; /* dim: of ker l^T */
     double *v = k->basis, *h = k->hess;
     memset(h, 0, (k->km + 1) * k->km * sizeof(double));
     for (size_t i = 0; i < q; i++) w->x[i] = sin(0.7 * (double)i + 0.3) + 0.5;
@@ -730,31 +786,13 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
     for (size_t i = 0; i < q; i++) v[i] /= norm;
     double hmax = 0;
     for (size_t step = 0; step < km; step++) {
-        double *y = v + (step + 1) * q;
-        if (band_apply_any(w, 1, v + step * q, y) != GSL_SUCCESS) return GSL_CONTINUE;
-        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
-            for (size_t j = 0; j <= step; j++) {
-                double dot = 0;
-                for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
-                for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
-                h[j + step * (k->km + 1)] += dot;
-            }
-        norm = 0;
-        for (size_t i = 0; i < q; i++) norm = hypot(norm, y[i]);
-        h[step + 1 + step * (k->km + 1)] = norm;
-        for (size_t j = 0; j <= step; j++) hmax = fmax(hmax, fabs(h[j + step * (k->km + 1)]));
+        if (arnoldi_step(k, step, band_apply_projected, w, &norm)) return GSL_CONTINUE;
+        for (size_t j = 0; j <= step + 1; j++) hmax = fmax(hmax, fabs(h[j + step * (k->km + 1)]));
         const size_t m = step + 1;
-        const int whole = m == km || !(norm > 1e-14 * hmax);
-        if (norm > 0)
-            for (size_t i = 0; i < q; i++) y[i] /= norm;
+        const int whole = m == dim || !(norm > 1e-14 * hmax); /* an invariant subspace */
         if (!whole && (m < WINDOWS_BAND_START || (m - WINDOWS_BAND_START) % WINDOWS_BAND_EVERY))
             continue;
-        for (size_t j = 0; j < m; j++)
-            for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = h[i + j * (k->km + 1)];
-        lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy,
-                                             (lapack_int)m, k->hre, k->him, NULL, 1, k->hvec,
-                                             (lapack_int)m, k->hwork, (lapack_int)k->hlwork);
-        if (info != 0) return GSL_CONTINUE;
+        if (ritz_values(k, m) != 0) return GSL_CONTINUE;
         w->bm = m;
         /* the Ritz values by decreasing |theta| (increasing |mu - sigma|), each converged, up to
          * the first neutral one beyond omega^2 */
@@ -770,13 +808,8 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
         for (; keep < m; keep++) {
             const size_t i = (size_t)order[keep];
             const int cplx = k->him[i] != 0;
-            const size_t cr = cplx && k->him[i] < 0 ? i - 1 : i, ci = cr + 1;
-            double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
-            double len = 0;
-            for (size_t r = 0; r < m; r++)
-                len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
             const double mod = hypot(k->hre[i], k->him[i]);
-            if (!whole && !(norm * last / len <= BAND_TOL * mod)) break;
+            if (!whole && !(ritz_residual(k, m, i, norm) <= BAND_TOL * mod)) break;
             const double mu = sigma + k->hre[i] / (mod * mod);
             w->re[keep] = mu;
             w->im[keep] = -k->him[i] / (mod * mod);
@@ -787,7 +820,8 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
             }
         }
         if (!done && !whole) continue;
-        if (!done) keep = m; /* the whole invariant subspace: every mu */
+        /* not done: every mu of the invariant subspace reached, the whole space with a start
+         * vector that has a component along every eigenvector */
         double big = 0;
         const int index = band_index(w, &big);
         for (size_t i = 0; i < keep; i++) big = fmax(big, hypot(w->re[i], w->im[i]));
@@ -1041,10 +1075,9 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
                                int (*apply)(void *data, const double *x, double *y), void *data,
                                double sigma, double *mu_re, double *mu_im)
 {
-    lapack_int info;
     const size_t km = k->km, q = k->q;
-    double *v = k->basis, *h = k->hess;
-    memset(h, 0, (km + 1) * km * sizeof(double));
+    double *v = k->basis;
+    memset(k->hess, 0, (km + 1) * km * sizeof(double));
     double norm = 0;
     for (size_t i = 0; i < q; i++) {
         v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
@@ -1052,30 +1085,11 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
     }
     for (size_t i = 0; i < q; i++) v[i] /= norm;
     for (size_t step = 0; step < km; step++) {
-        const double *x = v + step * q;
-        double *y = v + (step + 1) * q;
-        if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
-        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
-            for (size_t j = 0; j <= step; j++) {
-                double dot = 0;
-                for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
-                for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
-                h[j + step * (km + 1)] += dot;
-            }
-        norm = 0;
-        for (size_t i = 0; i < q; i++) norm = hypot(norm, y[i]);
-        h[step + 1 + step * (km + 1)] = norm;
-        if (norm > 0)
-            for (size_t i = 0; i < q; i++) y[i] /= norm;
+        if (arnoldi_step(k, step, apply, data, &norm)) return GSL_CONTINUE;
         const size_t m = step + 1;
         if (m < 4 && norm > 0) continue;
-        for (size_t j = 0; j < m; j++)
-            for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = h[i + j * (km + 1)];
-        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy,
-                                  (lapack_int)m, k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m,
-                                  k->hwork, (lapack_int)k->hlwork);
-        if (info != 0) return GSL_CONTINUE;
-        /* the two Ritz values of largest modulus and their residuals |h_{m+1,m} e_m^T s| / |s| */
+        if (ritz_values(k, m) != 0) return GSL_CONTINUE;
+        /* the two Ritz values of largest modulus and their residuals */
         size_t best[2] = {0, 0};
         double big[2] = {-1, -1};
         for (size_t i = 0; i < m; i++) {
@@ -1088,20 +1102,8 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
             }
         }
         int converged = big[1] > 0;
-        for (int t = 0; t < 2 && converged; t++) {
-            const size_t i = best[t];
-            /* eigenvector columns: real i, or (re, im) at (i, i + 1) / (i - 1, i) */
-            size_t cr = i, ci = i;
-            int cplx = k->him[i] != 0;
-            if (cplx && k->him[i] > 0) ci = i + 1;
-            if (cplx && k->him[i] < 0) cr = i - 1;
-            double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
-            double len = 0;
-            for (size_t r = 0; r < m; r++)
-                len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
-            const double resid = norm * last / len;
-            if (!(resid <= 1e-13 * big[t])) converged = 0;
-        }
+        for (int t = 0; t < 2 && converged; t++)
+            if (!(ritz_residual(k, m, best[t], norm) <= 1e-13 * big[t])) converged = 0;
         if (converged || norm == 0) {
             if (!converged) return GSL_CONTINUE;
             for (int t = 0; t < 2; t++) {

@@ -39,11 +39,7 @@ static whirl_chain *uneven_chain(size_t n)
 static int compare_at(whirl_windows *w, whirl_stability *lin, const whirl_chain *c, int mode,
                       double omega)
 {
-    whirl_model m = {0};
-    m.chain = c;
-    m.dim = 3;
-    m.frame = WHIRL_FRAME_ROTATING;
-    m.omega = omega;
+    whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega};
     whirl_shape_info info;
     double g4;
     assert_int_equal(whirl_stability_mode(lin, &m, mode, &info, &g4), 0);
