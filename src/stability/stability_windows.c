@@ -41,18 +41,19 @@
  * LU factorisation and a few solves instead of the full Hessenberg QR; Saad 2011, ch. 7), with a
  * fall-back to the full eigenvalues when the Ritz values do not converge.
  * Which mu can collide. Write q^H (lambda^2 M + lambda G + K) q = 0 as lambda^2 m + i lambda g
- * + k = 0 (m = q^H M q > 0, i g = q^H G q, k = q^H K q real). Below, M = F^T (S (x) I) F,
- * G = 2 omega F^T (S (x) Z) F and K = diag(T l) - omega^2 F^T (S (x) P) F with S positive
- * definite, |Z| = 1, 0 <= P <= I and tensions T > 0, so |g| <= 2 omega m (Cauchy-Schwarz in the
- * S (x) I product) and k >= -omega^2 m. A lambda off the imaginary axis needs g^2 + 4 m k < 0
+ * + k = 0 (m = q^H M q > 0, i g = q^H G q, k = q^H K q real). By stability.c's formulas,
+ * M = F^T (S (x) I) F, G = 2 omega F^T (S (x) Z) F and K = diag(T l) - omega^2 F^T (S (x) P) F
+ * with F = diag(l_j E_j) (3N x 2N), S_jk = mu_max(j,k) positive definite, Z = z^x (|Z| = 1),
+ * P = diag(1, 1, 0) and tensions T > 0, so |g| <= 2 omega m (Cauchy-Schwarz in the S (x) I
+ * product) and k >= -omega^2 m. A lambda off the imaginary axis needs g^2 + 4 m k < 0
  * and then |lambda|^2 = -k / m <= omega^2; a neutral mode lambda = i w has
  * E / 2 >= (w^2 - omega w)(|a|_Ma^2 + |b|_Mb^2) (|Re(a^H Gab c)| <= 2 omega w |a|_Ma |b|_Mb),
  * positive for w > omega. So every unstable mu and every mode of negative energy lie in
  * |mu| <= omega^2, and the ranks and gaps need only those and the first neutral mu beyond
  * omega^2 (the mode of positive energy next above the highest of negative energy).
  * The banded path (the scan and the pair near an edge; the dense path above is the reference,
- * whirl_windows_params.krylov = 0). With S_jk = mu_max(j,k) = (L^T diag(m) L)_jk (L the lower
- * triangle of ones) and per link alpha_j = l_j e1_j . x, beta_j = l_j e1_j . z, gamma_j = l_j
+ * whirl_windows_params.krylov = 0). With S = L^T diag(m) L (L the lower triangle of ones) and
+ * per link alpha_j = l_j e1_j . x, beta_j = l_j e1_j . z, gamma_j = l_j
  * (e1_j = (-u_z, 0, u_x), e2_j = y for a shape in the x-z plane, stability.c's chart):
  *     Ma = Da S Da + Db S Db,  Mb = Dg S Dg,  Gab = -2 omega Da S Dg,
  *     Ka = diag(T l) - omega^2 Da S Da,  Kb = diag(T l) - omega^2 Dg S Dg,
@@ -69,8 +70,8 @@
  * l^T A' = 0, and carrying the deflated spectrum; each vector is projected on it), with full
  * reorthogonalisation: the Ritz values by decreasing |theta| (increasing |mu - sigma|) are kept
  * while converged (residual <= 1e-12 |theta|) up to the first neutral mu < -omega^2, so the disc
- * kept holds |mu| <= omega^2. The Ritz vectors V s are A''s eigenvectors in ker l^T, the P [0; y]
- * of the dense path, and give the signatures. Check (Mackay 1986): a pair lambda = +-i w of
+ * kept holds |mu| <= omega^2. The Ritz vectors V s are the eigenvectors of A' in ker l^T, the
+ * P [0; y] of the dense path, and give the signatures. Check (Mackay 1986): a pair lambda = +-i w of
  * negative energy carries two negative directions of the Hamiltonian, a real pair one, a complex
  * quadruplet two, so 2 #(neutral, E < 0) + #(non-neutral mu) must equal the index of K. That index
  * costs O(N): Kb is the Schur complement of W = L^-1 diag(1 / m) L^-T / omega^2 (tridiagonal,
