@@ -5,6 +5,7 @@
 # narrower than 0.12 are drawn 0.12 wide to be seen.
 # atlas.csv: mode,from,to,open_from,open_to,freq_from,freq_to,sig_from,sig_to,max_growth,at,...
 # usage: gnuplot -e "csv='atlas.csv'; out='atlas.png'" plots/atlas.gp
+# optional: note='TEXT' (e.g. where the windows come from), printed under the plot
 if (!exists("csv")) { print "usage: gnuplot -e \"csv='atlas.csv'; out='atlas.png'\" plots/atlas.gp"; exit status 1 }
 if (!exists("out")) out = "atlas.png"
 load system("dirname '".ARG0."'")."/style.gp"
@@ -23,6 +24,7 @@ set logscale cb
 set cblabel "largest growth rate in the window [sqrt(g/L)]"
 set palette defined (0 "#fde725", 0.35 "#35b779", 0.7 "#31688e", 1 "#440154")
 set title "Windows of instability of the whirling chain (continuum), births marked"
+if (exists("note")) { set label 1 note at screen 0.01, screen 0.02 left font ",9"; set bmargin 5 }
 # the births: omega_k = j_{0,k} / 2 from the zeros of J0 (asymptotic form, exact to 1e-3 for k >= 2)
 j0(k) = (k - 0.25) * pi + 1 / (8 * (k - 0.25) * pi)
 set samples kmax - kmin + 1

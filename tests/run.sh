@@ -21,6 +21,7 @@ failed=0
 run_one() {
   t=$1
   echo "== $t"
+  start=$(date +%s)
   case $t in
     *.sh) { WHIRL="$build/whirl" sh "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
     *) { "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
@@ -49,6 +50,7 @@ run_one() {
   failed=$((failed + notok))
   [ -n "$why" ] && failed=$((failed + 1))
   [ "$notok" -gt 0 ] && why="$why; $notok not ok"
+  echo "== $t: $(($(date +%s) - start)) s"
   if [ -n "$why" ] || [ "$rc" -ne 0 ]; then
     why="${why#; }"
     echo "== FAILED $t: ${why:-exit status $rc}"
@@ -56,16 +58,27 @@ run_one() {
   fi
 }
 
-if [ $# -gt 0 ] && [ "$1" != --also ]; then
+# listed T: T is one of the TESTs after --except
+listed() {
+  for x in $except; do [ "$x" = "$1" ] && return 0; done
+  return 1
+}
+except=
+if [ $# -gt 0 ] && [ "$1" != --also ] && [ "$1" != --except ]; then
   for t in "$@"; do run_one "$t"; done
 else
+  mode=${1:---also}
   [ $# -gt 0 ] && shift
+  if [ "$mode" = --except ]; then
+    except="$*"
+    set --
+  fi
   for t in "$build"/tests/test_*; do
     case $t in *.d) continue ;; esac
-    [ -x "$t" ] && run_one "$t"
+    [ -x "$t" ] && ! listed "$t" && run_one "$t"
   done
   for t in tests/cli/test_*.sh; do
-    [ -f "$t" ] && run_one "$t"
+    [ -f "$t" ] && ! listed "$t" && run_one "$t"
   done
   for t in "$@"; do run_one "$t"; done
 fi

@@ -358,6 +358,47 @@ WHIRL_API int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mod
                                  const whirl_windows_params *p, whirl_window *windows, size_t max,
                                  size_t *count, whirl_windows_stats *stats);
 
+/* ---- intervals of the dissipative chain (src/stability/dissipative_windows.c) ----
+ * With internal damping or air drag the growth g(omega) = max Re lambda of the linearisation
+ * (the rotation's zero removed) is positive (unstable) or negative (converging) except at
+ * isolated rates, the edges, where an eigenvalue crosses the imaginary axis. */
+
+typedef struct whirl_dissipative_interval {
+    double from, to;           /* an interval of rates with one sign of the growth [sqrt(g/L)] */
+    int open_from, open_to;    /* 1: that end is not an edge but the end of the range examined,
+                                  or the last scan rate where the hand-swung shape exists */
+    whirl_verdict verdict;     /* WHIRL_VERDICT_UNSTABLE (growth > 0) or
+                                  WHIRL_VERDICT_CONVERGING (growth < 0) inside */
+    double freq_from, freq_to; /* |Im lambda| of the eigenvalue that crosses at each edge [1/T]
+                                  (0 at an open end) */
+    double growth;             /* the extreme growth inside [1/T]: the largest if unstable, the
+                                  most negative (fastest convergence) if converging */
+    double at;                 /* the rate where it occurs [sqrt(g/L)] (to about 1e-6) */
+} whirl_dissipative_interval;
+
+/* The intervals where mode k of the N-link chain model->chain is unstable or converging with
+ * the model's dissipation, over the range of p (p->krylov is not used), in increasing omega,
+ * into out[0..max-1], their number into *count (GSL_EINVAL if more than max); stats counts the
+ * scan points, shapes and eigen-solves (full ones, solves_values). The model needs internal
+ * damping D > 0 or air drag (c or c2 > 0, which needs drive_radius > 0); its omega, frame and
+ * dim are not used. Shapes: without a drive the free ones of the branch born at omega_k, with
+ * a drive (drive_radius > 0) the hand-swung ones of whirl_driven_mode with side (+1 / -1; not
+ * used without a drive). The growth is computed on a scan of step p->scan_step from
+ * max(p->omega_min, omega_k (1 + 1e-6)) to p->omega_max; between two scan rates with growths of
+ * opposite signs the edge is the root of the growth by Brent's method to p->tol, and the
+ * frequency there is that of the eigenvalue of largest real part. An interval narrower than the
+ * scan step can be missed. A scan rate without a hand-swung shape ends an interval (open end).
+ * GSL_EINVAL without dissipation (the conservative windows are whirl_windows_find's), with a
+ * growth within round-off of 0 at a scan rate (1e-10 max |lambda|: too little dissipation to
+ * decide), or on bad parameters; GSL_EDOM if the mode does not exist in the range, or the
+ * hand-swung shape disappears between two scan rates of opposite growth; GSL_EFAILED if the
+ * growth jumps there instead of passing through 0 (a shape that changes branch);
+ * WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
+WHIRL_API int whirl_windows_dissipative(const whirl_model *model, int mode, int side,
+                                        const whirl_windows_params *p,
+                                        whirl_dissipative_interval *out, size_t max,
+                                        size_t *count, whirl_windows_stats *stats);
+
 #ifdef __cplusplus
 }
 #endif

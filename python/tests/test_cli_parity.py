@@ -143,6 +143,22 @@ def test_stability_windows(whirl_program, tmp_path):
     c.done()
 
 
+@pytest.mark.parametrize("extra,kw", [(["--damping", "1e-5"], dict(damping=1e-5)),
+                                      (["--eps", "0.012", "--drag", "0.0002", "--side", "-1"],
+                                       dict(drive_radius=0.012, air_drag=0.0002, side=-1))])
+def test_dissipative_windows(whirl_program, tmp_path, extra, kw):
+    t = _cli(whirl_program, tmp_path, "stability", "--windows", "--links", "6", "--modes", "2",
+             "--omega-min", "8", "--omega-max", "20", *extra)
+    w, stats = whirl.dissipative_windows(2, 6, omega_min=8, omega_max=20, **kw, **SI)
+    c = Compare("dissipative_windows")
+    for name in ("from", "to", "freq_from", "freq_to", "growth", "at"):
+        c(name, w[name], t[name])
+    c("open", np.concatenate([w["open_from"], w["open_to"]]),
+      np.concatenate([t["open_from"], t["open_to"]]))
+    assert list(w["verdict"]) == list(t["verdict"])
+    c.done()
+
+
 @pytest.mark.parametrize("links", [None, 5])
 def test_driven(whirl_program, tmp_path, links):
     extra = ["--points", "9", "--drag", "0.001"] if links is None else ["--links", str(links)]

@@ -81,3 +81,22 @@ def test_mode2_is_a_saddle_held_by_the_coriolis_coupling():
     assert r.eig_growth == 0 and r.index == 2 and r.verdict == "neutral (gyroscopic)"
     d = whirl.stability(4.5, 2, 12, damping=0.001, linear=True)
     assert d.eig_growth > 0 and d.index == 2 and d.verdict == "unstable"
+
+
+def test_dissipative_windows_edges_are_roots_of_the_growth():
+    # the hand-swung chain with linear drag, tip opposite the pivot: converging, unstable, converging
+    kw = dict(drive_radius=0.02, air_drag=0.01, side=-1)
+    w, stats = whirl.dissipative_windows(2, 10, omega_min=2, omega_max=6, **kw)
+    assert list(w["verdict"]) == ["converging", "unstable", "converging"]
+    assert stats["scan"] > 10
+    for edge in (w["to"][0], w["to"][1]):
+        below = whirl.stability(edge - 1e-6, 2, 10, linear=True, **kw).eig_growth
+        above = whirl.stability(edge + 1e-6, 2, 10, linear=True, **kw).eig_growth
+        assert below * above < 0
+    # internal damping: a saddle grows at every rate (Kelvin-Tait-Chetaev)
+    d, _ = whirl.dissipative_windows(2, 10, damping=1e-3, omega_min=3, omega_max=6)
+    assert list(d["verdict"]) == ["unstable"] and d["open_from"][0] and d["open_to"][0]
+    with pytest.raises(whirl.Error, match="no dissipation"):
+        whirl.dissipative_windows(2, 10)
+    with pytest.raises(ValueError, match="side"):
+        whirl.dissipative_windows(2, 10, damping=1e-3, side=0)

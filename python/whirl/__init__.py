@@ -2,7 +2,7 @@
 C library libwhirl, through cffi).
 
 Steady shapes: critical, shape, sweep, equilibria. Dynamics: Chain, Simulation. Stability:
-stability, stability_map, stability_windows. The hand-swung chain: driven, spin_up. Measured
+stability, stability_map, stability_windows, dissipative_windows. The hand-swung chain: driven, spin_up. Measured
 shapes: fit. Scene files: run_scene. whirl's CSV files: read_csv.
 Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
@@ -15,7 +15,8 @@ from ._lib import (Error, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, methods,
 from .steady import (STANDARD_GRAVITY, Units, Chain, Shape, critical, equilibria, shape,
                      sweep)
 from .dynamics import Simulation, Trajectory
-from .stability import StabilityResult, stability, stability_map, stability_windows
+from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
+                        stability_windows)
 from .driven import DrivenShape, SpinUp, driven, spin_up
 from .fit import FitResult, fit
 from .scene import SceneRun, run_scene
@@ -26,5 +27,6 @@ __version__ = LIBRARY_VERSION
 __all__ = ["Error", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
            "STANDARD_GRAVITY", "Units", "Chain", "Shape", "critical", "equilibria", "shape",
            "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
-           "stability_map", "stability_windows", "DrivenShape", "SpinUp", "driven", "spin_up",
+           "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
+           "driven", "spin_up",
            "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]

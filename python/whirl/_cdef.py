@@ -333,6 +333,22 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
 STRUCTS += ["whirl_windows_params", "whirl_window", "whirl_windows_stats"]
 
 CDEF += r"""
+typedef struct whirl_dissipative_interval {
+    double from, to;
+    int open_from, open_to;
+    whirl_verdict verdict;
+    double freq_from, freq_to;
+    double growth;
+    double at;
+} whirl_dissipative_interval;
+int whirl_windows_dissipative(const whirl_model *model, int mode, int side,
+                              const whirl_windows_params *p,
+                              whirl_dissipative_interval *out, size_t max,
+                              size_t *count, whirl_windows_stats *stats);
+"""
+STRUCTS += ["whirl_dissipative_interval"]
+
+CDEF += r"""
 typedef struct whirl_equilibria_params {
     int stability;
     double follow_factor;

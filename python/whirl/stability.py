@@ -206,6 +206,24 @@ WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("ope
                          ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
 
 
+def _windows_params(omega_min: Optional[float], omega_max: Optional[float],
+                    scan_step: Optional[float], tol: Optional[float], u: Units) -> Any:
+    """The whirl_windows_params of a window search; the defaults (None) are the command line's,
+    in the dimensionless units: 1, 10, 0.25, 1e-9."""
+    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
+    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
+                                                         positive=True) / u.rate
+    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
+                                                          positive=True) / u.rate
+    if not p.omega_min < p.omega_max:
+        raise ValueError("omega_min must be < omega_max, got %g and %g"
+                         % (p.omega_min * u.rate, p.omega_max * u.rate))
+    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
+                                                          positive=True) / u.rate
+    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+    return p
+
+
 def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                       omega_min: Optional[float] = None, omega_max: Optional[float] = None,
                       scan_step: Optional[float] = None, tol: Optional[float] = None,
@@ -233,18 +251,7 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     mode = _mode(mode, chain, lib.WHIRL_MODE_MAX)
     if links is not None and (degree is not None or tip_mass):
         raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
-    p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
-    # defaults (None) are the command line's, in the dimensionless units: 1, 10, 0.25, 1e-9
-    p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
-                                                         positive=True) / u.rate
-    p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
-                                                          positive=True) / u.rate
-    if not p.omega_min < p.omega_max:
-        raise ValueError("omega_min must be < omega_max, got %g and %g"
-                         % (p.omega_min * u.rate, p.omega_max * u.rate))
-    p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
-                                                          positive=True) / u.rate
-    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+    p = _windows_params(omega_min, omega_max, scan_step, tol, u)
     p.krylov = 1 if krylov else 0
     cap = _lib.bounded(as_int(max_windows, "max_windows", minimum=1), "max_windows", 64)
     found = ffi.new("whirl_window[]", cap)
@@ -274,6 +281,62 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     stats = {k: getattr(st, k) for k in ("omega_from", "omega_to", "scan", "shapes",
                                           "solves_vectors", "solves_values", "solves_krylov",
                                           "approaches", "unresolved")}
+    stats["omega_from"] *= u.rate
+    stats["omega_to"] *= u.rate
+    return out, stats
+
+
+DISSIPATIVE_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
+                              ("freq_from", "f8"), ("freq_to", "f8"), ("growth", "f8"),
+                              ("at", "f8"), ("verdict", "U10")])
+
+
+def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.0,
+                        drive_radius: float = 0.0, air_drag: float = 0.0,
+                        air_drag_quadratic: float = 0.0, side: int = 1,
+                        omega_min: Optional[float] = None, omega_max: Optional[float] = None,
+                        scan_step: Optional[float] = None, tol: Optional[float] = None,
+                        max_intervals: int = 1024, length: Optional[float] = None,
+                        mass: Optional[float] = None, gravity: Optional[float] = None,
+                        units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
+    """The intervals of rates where ``mode`` of the N-link chain ``links`` (N or a Chain) is
+    unstable or converging with dissipation, as ``whirl stability --windows --links N`` with
+    --damping or the hand-swung chain's drag (damping, drive_radius, air_drag,
+    air_drag_quadratic in the units of --damping, --eps, --drag, --drag-quadratic; ``side`` of
+    the hand-swung shape, +1 or -1). The growth max Re lambda is scanned with spacing
+    ``scan_step`` over [omega_min, omega_max] (defaults as stability_windows's) and its roots,
+    the edges, located to ``tol`` by Brent's method. Returns (intervals, stats): a structured
+    array with fields from, to, open_from, open_to (True: the end of the range or of the
+    hand-swung shape's existence, not an edge), freq_from, freq_to (|Im lambda| of the eigenvalue
+    crossing at each edge [1/T]), growth (the largest growth of an unstable interval, the most
+    negative of a converging one [1/T]), at (where) and verdict ("unstable" or "converging"),
+    in increasing omega; stats a dict of the search's counters. whirl.Error without
+    dissipation or if the mode does not exist in the range; Ctrl-C raises KeyboardInterrupt."""
+    u = units_of(length, mass, gravity, units)
+    chain = _chain(links, 0.0, dense=True)
+    assert chain is not None
+    mode = _mode(mode, chain)
+    side = as_int(side, "side")
+    if side not in (1, -1):
+        raise ValueError("side must be 1 or -1, got %d" % side)
+    m = _model(chain, 0.0, damping, drive_radius, air_drag, air_drag_quadratic, u)
+    p = _windows_params(omega_min, omega_max, scan_step, tol, u)
+    cap = _lib.bounded(as_int(max_intervals, "max_intervals", minimum=1), "max_intervals", 64)
+    found = ffi.new("whirl_dissipative_interval[]", cap)
+    count = ffi.new("size_t *")
+    st = ffi.new("whirl_windows_stats *")
+    with _lib.interruptible("dissipative_windows"):
+        status = lib.whirl_windows_dissipative(m, mode, side, p, found, cap, count, st)
+    check(status, "dissipative_windows of mode %d" % mode, u)
+    out = np.empty(count[0], dtype=DISSIPATIVE_DTYPE)
+    for i in range(count[0]):
+        f = found[i]
+        out[i] = (getattr(f, "from"), f.to, bool(f.open_from), bool(f.open_to), f.freq_from,
+                  f.freq_to, f.growth, f.at, ffi.string(lib.whirl_verdict_name(f.verdict)).decode())
+    for name in ("from", "to", "freq_from", "freq_to", "growth", "at"):
+        out[name] *= u.rate
+    stats = {k: getattr(st, k) for k in ("omega_from", "omega_to", "scan", "shapes",
+                                          "solves_values")}
     stats["omega_from"] *= u.rate
     stats["omega_to"] *= u.rate
     return out, stats

@@ -24,7 +24,9 @@
  *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at[,err_from,err_to]
  * (links "inf" for the continuum, which adds err_from, err_to: its estimate of each edge's
  * discretisation error) and a comment line per mode with the eigen-solves used and
- * those of a grid of equal resolution.
+ * those of a grid of equal resolution. With --links and dissipation (--damping, or the
+ * hand-swung chain's drag) the intervals where each mode is unstable or converging
+ * (stability_dissipative.c).
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
  * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
@@ -41,6 +43,7 @@
 #include "cli/cli.h"
 #include "core/error.h"
 #include "cli/stability_atlas.h"
+#include "cli/stability_dissipative.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
@@ -77,6 +80,10 @@ static int driven(const options *o)
     return o->eps_given || o->drag_given || o->drag2_given || o->side_given;
 }
 
+/* Internal damping or the hand-swung chain: --windows then gives whirl_windows_dissipative's
+ * intervals. */
+static int dissipative(const options *o) { return o->damping > 0 || driven(o); }
+
 static int method_known(const char *name)
 {
     for (const char *const *m = whirl_integrator_methods(); *m != NULL; m++)
@@ -102,6 +109,15 @@ static int check_options(const cli_command *cmd, const options *o)
     if (o->windows) {
         if (!(o->tol < o->scan_step))
             return cli_error(cmd, "--tol must be smaller than --scan-step");
+        if (dissipative(o) && !o->links_given)
+            return cli_error(cmd, "--windows with --damping or air drag needs --links N (the "
+                             "continuous chain's linearisation has no dissipation)");
+        if (driven(o) && o->damping == 0 && o->drag == 0 && o->drag2 == 0)
+            return cli_error(cmd, "--windows of the hand-swung chain needs dissipation (--damping, "
+                             "--drag, --drag-quadratic or --drag-cd): the conservative windows "
+                             "are those of the free shapes");
+        if (dissipative(o) && o->full)
+            return cli_error(cmd, "--full applies to the conservative windows only");
     } else if (o->min_given && !o->steps_given) {
         return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
     }
@@ -736,9 +752,10 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
         {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
          "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
         {"--windows", NULL, CLI_FLAG, &o.windows, NULL, "",
-         "the intervals of omega where each mode is unstable, edges located exactly", NULL,
+         "the intervals of omega where each mode is unstable, edges located exactly (with --links "
+         "and --damping or drag: unstable or converging)", NULL,
          "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
-         "--damping --linear --eps --drag --drag-quadratic --drag-cd --side"},
+         "--linear"},
         {"--scan-step", NULL, CLI_DOUBLE, &o.scan_step, NULL, "H",
          "windows: spacing of the scan (default 0.25)", "(0, inf)", "--windows", NULL, NULL,
          CLI_UNIT_RATE},
@@ -792,6 +809,21 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     if (o.atlas)
         return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
                                o.output, o.resume);
+    if (o.windows && dissipative(&o)) {
+        whirl_model m = {0};
+        m.dim = 3;
+        m.internal_damping = o.damping;
+        m.drive_radius = o.eps;
+        m.air_drag = o.drag;
+        m.air_drag_quadratic = o.drag2;
+        whirl_windows_params p = whirl_windows_defaults();
+        p.omega_min = o.omega_min;
+        p.omega_max = o.omega_max;
+        p.scan_step = o.scan_step;
+        p.tol = o.tol;
+        return stability_dissipative(cmd, &o.modes, o.links, o.tip_mass, &m, o.side, &p,
+                                     &o.units, o.output);
+    }
     if (o.windows) return run_windows(cmd, &o);
     if (o.eigenvalues) return run_eigenvalues(cmd, &o);
 

@@ -33,4 +33,15 @@ expect_ok() {
   else fail "$name (stderr: $(head -c 300 "$tmp/stderr"))"; fi
 }
 
+# interrupt PID: sends SIGINT to the background command PID (started with
+# `env --default-signal=INT`: the suite may run with SIGINT ignored) and waits for it; sets rc to
+# its exit status and late to the seconds from the signal to its exit.
+interrupt() {
+  t0=$(date +%s.%N)
+  kill -INT "$1"
+  wait "$1"
+  rc=$?
+  late=$(echo "$(date +%s.%N) - $t0" | bc)
+}
+
 finish() { echo "1..$n"; [ $fails -eq 0 ]; exit $?; }

@@ -2,9 +2,9 @@
 # The manual: it builds with Sphinx with warnings as errors, its C API reference covers every
 # symbol libwhirl.so exports, and every block marked <!-- runnable --> in README.md and docs/ runs
 # as written, with the output the page shows (tests/tools/docs_test.py says how).
-# The manual documents the plain build: the sanitizer half of make check (WHIRL_SANITIZE) tests
-# build/ too, as a program or a Python interpreter linked with build-sanitize's library would need
-# the sanitizer runtimes first.
+# The manual documents the plain build, so the sanitizer half of make check leaves this test out;
+# run by hand with WHIRL_SANITIZE set it tests build/ too, as a program or a Python interpreter
+# linked with build-sanitize's library would need the sanitizer runtimes first.
 build=$(dirname "${WHIRL:-build/whirl}")
 [ -n "$WHIRL_SANITIZE" ] && build=build
 cd "$(dirname "$0")/../.." || exit 1

@@ -139,7 +139,7 @@ R="--omega-min 1 --omega-max 10"
 expect_error "windows with --omega" "omega" stability --windows --omega 3 -o "$tmp/out.csv"
 expect_error "windows without a range" "omega-min" stability --windows -o "$tmp/out.csv"
 expect_error "windows with --mode" "mode" stability --windows $R --mode 2 -o "$tmp/out.csv"
-expect_error "windows with damping" "damping" stability --windows $R --damping 0.1 -o "$tmp/out.csv"
+expect_error "windows with damping, no links" "damping.*links" stability --windows $R --damping 0.1 -o "$tmp/out.csv"
 expect_error "windows with a run option" "periods" stability --windows $R --periods 5 -o "$tmp/out.csv"
 expect_error "windows with a count" "omega-count" stability --windows $R --omega-count 5 -o "$tmp/out.csv"
 expect_error "windows tolerance 0" "tol" stability --windows $R --tol 0 -o "$tmp/out.csv"
@@ -165,6 +165,57 @@ if "$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 5
     pass "windows: mode 2 (N = 10) edges [$from, $to] change the linear verdict within 1e-6"
   else fail "windows: the edges [$from, $to] disagree with the linear map"; fi
 else fail "windows CSV: $(cat "$tmp/err" "$tmp/w.csv" 2>/dev/null | tail -3)"; fi
+
+# --windows with dissipation: the intervals where the growth has one sign, edges its roots.
+expect_error "windows of the hand-swung chain without dissipation" "dissipation" stability --windows $R --links 10 --eps 0.02 -o "$tmp/out.csv"
+expect_error "windows with damping and --full" "full" stability --windows $R --links 10 --damping 1e-3 --full -o "$tmp/out.csv"
+expect_error "windows with too little damping" "round-off" stability --windows $R --links 10 --modes 2 --damping 1e-14 -o "$tmp/out.csv"
+# Kelvin-Tait-Chetaev: with internal damping the minimum (mode 1) converges, the saddle (mode 2)
+# grows, over the whole range
+if "$WHIRL" stability --windows --links 10 --modes 1,2 --omega-min 2 --omega-max 6 --damping 1e-3 \
+     -o "$tmp/dw.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/dw.csv" | head -1)" = "mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict" ] \
+   && grep -q '^# whirl stability --windows: 10 links, tip mass 0, damping 0.001' "$tmp/dw.csv" \
+   && [ "$(grep -v '^#' "$tmp/dw.csv" | sed 1d | cut -d, -f1,3-6,11 | tr '\n' ' ')" = \
+        "1,2,6,1,1,converging 2,$(grep '^# mode 2' "$tmp/dw.csv" | sed 's/.*examined \([^.]*\.[0-9]*\)\.\..*/\1/'),6,1,1,unstable " ]; then
+  pass "windows with damping: mode 1 converging and mode 2 unstable over the whole range"
+else fail "windows with damping: $(cat "$tmp/err" "$tmp/dw.csv" 2>/dev/null | tail -4)"; fi
+# the hand-swung chain with linear drag, far side: an unstable interval between two converging
+# ones; each edge against the linear growth 1e-6 either side
+D="--links 10 --eps 0.02 --drag 0.01 --side -1"
+if "$WHIRL" stability --windows $D --modes 2 --omega-min 2 --omega-max 6 -o "$tmp/dd.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/dd.csv" | sed 1d | cut -d, -f11 | tr '\n' ' ')" = "converging unstable converging " ]; then
+  from=$(grep -v '^#' "$tmp/dd.csv" | sed -n 3p | cut -d, -f3); to=$(grep -v '^#' "$tmp/dd.csv" | sed -n 3p | cut -d, -f4)
+  ok=1
+  for w in "$from -1e-6 0" "$from 1e-6 1" "$to -1e-6 1" "$to 1e-6 0"; do
+    set -- $w
+    at=$(awk -v a="$1" -v d="$2" 'BEGIN { printf "%.12f", a + d }')
+    g=$("$WHIRL" stability --omega "$at" --mode 2 $D --linear | grep -v '^[#o]' | cut -d, -f4)
+    awk -v g="$g" -v u="$3" 'BEGIN { exit !((g > 0) == u) }' || ok=0
+  done
+  if [ $ok -eq 1 ]; then
+    pass "windows with drag: mode 2 (N = 10, far side) unstable on [$from, $to], the linear growth changes sign within 1e-6"
+  else fail "windows with drag: the edges [$from, $to] disagree with the linear growth"; fi
+else fail "windows with drag: $(cat "$tmp/err" "$tmp/dd.csv" 2>/dev/null | tail -4)"; fi
+
+# Ctrl-C in a dissipative --windows run: the modes finished are written whole (the rows of a
+# run of that mode alone), the others marked not done, exit 130 within 2 s. One thread, so mode 8
+# (about 2 s) is done before the signal at 5 s and mode 2 (10 s more) is not.
+dwin="stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3"
+# shellcheck disable=SC2086
+"$WHIRL" $dwin --modes 8 -o "$tmp/d8.csv" 2>/dev/null
+# shellcheck disable=SC2086
+OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $dwin --modes 8,2 -o "$tmp/dint.csv" \
+  >/dev/null 2>"$tmp/dint.err" &
+pid=$!
+sleep 5
+interrupt $pid
+if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
+   grep -q "interrupted: 1 of 2 modes done in '$tmp/dint.csv'" "$tmp/dint.err" &&
+   grep -q '^# mode 2: interrupted, not done$' "$tmp/dint.csv" &&
+   [ "$(grep -v '^#' "$tmp/dint.csv")" = "$(grep -v '^#' "$tmp/d8.csv")" ]; then
+  pass "windows with damping: SIGINT stops it in $late s, exit 130, mode 8 kept whole, mode 2 marked not done"
+else fail "windows with damping, SIGINT (rc=$rc, $late s, $(cat "$tmp/dint.err"; grep '^# mode' "$tmp/dint.csv"))"; fi
 
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
@@ -269,5 +320,32 @@ else fail "atlas below every birth"; fi
 expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
 expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
 expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"
+# Ctrl-C: SIGINT in the middle of the atlas stops it within a second (2 s allowed on a loaded
+# machine), exit 130, the chunks finished kept as complete rows; --resume then completes it to
+# the file of an uninterrupted run. The signal's default disposition is restored for whirl:
+# the suite may run in the background, where a shell starts jobs with SIGINT ignored.
+atl="stability --atlas --modes 2 --omega-max 30"
+# shellcheck disable=SC2086
+"$WHIRL" $atl -o "$tmp/afull.csv" 2>/dev/null
+# shellcheck disable=SC2086
+env --default-signal=INT "$WHIRL" $atl -o "$tmp/aint.csv" >/dev/null 2>"$tmp/aint.err" &
+pid=$!
+i=0
+while ! grep -q '^# done mode 2 omega 5 10' "$tmp/aint.csv" 2>/dev/null && [ $i -lt 1200 ]; do
+  sleep 0.02; i=$((i + 1))
+done
+interrupt $pid
+done_chunks=$(grep -c '^# done mode 2' "$tmp/aint.csv" 2>/dev/null)
+# every row complete: 13 fields, finite numbers
+bad_rows=$(grep -v '^#' "$tmp/aint.csv" | sed 1d | awk -F, 'NF != 13 || /nan|inf/' | wc -l)
+if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] && [ "$done_chunks" -ge 2 ] &&
+   [ "$done_chunks" -lt 6 ] && [ "$bad_rows" -eq 0 ] && grep -q interrupted "$tmp/aint.err" &&
+   [ "$(grep -v '^#' "$tmp/aint.csv" | sed -n 2p)" = "$(grep -v '^#' "$tmp/afull.csv" | sed -n 2p)" ]; then
+  pass "atlas: SIGINT stops it in $late s, exit 130, $done_chunks of 6 chunks kept with their windows"
+else fail "atlas SIGINT (rc=$rc, $late s, $done_chunks chunks, $bad_rows bad rows, $(head -c 200 "$tmp/aint.err"))"; fi
+# shellcheck disable=SC2086
+if "$WHIRL" $atl -o "$tmp/aint.csv" --resume 2>"$tmp/err" && cmp -s "$tmp/aint.csv" "$tmp/afull.csv"; then
+  pass "atlas --resume after SIGINT: the file of the uninterrupted run"
+else fail "atlas --resume after SIGINT: $(cat "$tmp/err"; diff "$tmp/aint.csv" "$tmp/afull.csv" | head -5)"; fi
 
 finish
