@@ -592,7 +592,6 @@ static void b_product(const whirl_windows *w, int transpose, const double *x, do
     structured_product(w, cb, x, y);
 }
 
-
 /* The banded LU factors of the augmented K' + sigma B (8N unknowns, header comment) into w->ab:
  * the LAPACK info (> 0: singular). */
 static lapack_int band_factor(whirl_windows *w, double sigma)
@@ -790,7 +789,8 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
         if (arnoldi_step(k, step, band_apply_projected, w, &norm)) return GSL_CONTINUE;
         for (size_t j = 0; j <= step + 1; j++) hmax = fmax(hmax, fabs(h[j + step * (k->km + 1)]));
         const size_t m = step + 1;
-        const int whole = m == dim || !(norm > 1e-14 * hmax); /* an invariant subspace */
+        const int whole = m == dim; /* the whole of ker l^T */
+        if (!whole && !(norm > 1e-14 * hmax)) return GSL_CONTINUE; /* invariant, maybe not all */
         if (!whole && (m < WINDOWS_BAND_START || (m - WINDOWS_BAND_START) % WINDOWS_BAND_EVERY))
             continue;
         if (ritz_values(k, m) != 0) return GSL_CONTINUE;
@@ -821,8 +821,7 @@ static int band_spectrum(whirl_windows *w, int signatures, const double *symmetr
             }
         }
         if (!done && !whole) continue;
-        /* not done: every mu of the invariant subspace reached, the whole space with a start
-         * vector that has a component along every eigenvector */
+        /* not done: the whole space, every mu */
         double big = 0;
         const int index = band_index(w, &big);
         for (size_t i = 0; i < keep; i++) big = fmax(big, hypot(w->re[i], w->im[i]));
