@@ -5,7 +5,8 @@
  *  - the kept mu: every dense mu with |mu| <= omega^2 is kept, each kept mu is a dense mu to
  *    1e-10 of max(|mu|, omega^2) with the same Krein signature, the kept ones beyond omega^2 are
  *    neutral and of positive energy (the first of them ends the set), and the growth is the
- *    dense one; at neutral and unstable rates of modes 2-4, on a uniform and a non-uniform chain;
+ *    dense one; at neutral and unstable rates of modes 2-4 (and 2 and 6 up to omega = 25), on a
+ *    uniform and a non-uniform chain;
  *  - the windows of a search by the banded path against those of the dense path (--full), with
  *    no evaluation handed over to the dense one. */
 #include <setjmp.h>
@@ -120,6 +121,13 @@ static void test_spectrum(void **state)
     whirl_stability *lin = whirl_stability_alloc(c->n);
     assert_true(compare_at(w, lin, c, 2, 4.47));
     assert_true(compare_at(w, lin, c, 2, 9.9));
+    /* high rates: some tens of mu kept */
+    for (int mode = 2; mode <= 6; mode += 4)
+        for (double omega = 14.3; omega < 25; omega += 5.4)
+            if (compare_at(w, lin, c, mode, omega))
+                unstable++;
+            else
+                neutral++;
     whirl_stability_free(lin);
     whirl_windows_free(w);
     whirl_chain_free(c);
