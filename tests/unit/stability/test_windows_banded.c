@@ -5,7 +5,7 @@
  *  - the kept mu: every dense mu with |mu| <= omega^2 is kept, each kept mu is a dense mu to
  *    1e-10 of max(|mu|, omega^2) with the same Krein signature, the kept ones beyond omega^2 are
  *    neutral and of positive energy (the first of them ends the set), and the growth is the
- *    dense one; at neutral and unstable rates of modes 2-4 (and 2 and 6 up to omega = 25), on a
+ *    dense one; at neutral and unstable rates of modes 2-4 (and 2 and 6 at omega 14.3, 19.7), on a
  *    uniform and a non-uniform chain;
  *  - the windows of a search by the banded path against those of the dense path (--full), with
  *    no evaluation handed over to the dense one. */
