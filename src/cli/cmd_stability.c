@@ -763,7 +763,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
          NULL, NULL, CLI_UNIT_RATE},
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
-         "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
+         "windows: full eigen-solves near the edges, for the N-link chain at every rate "
+         "(default: shift-and-invert Arnoldi)", NULL,
          "--windows"},
         {"--degree", NULL, CLI_INT, &o.degree, &o.degree_given, "P",
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
