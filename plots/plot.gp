@@ -3,6 +3,9 @@
 #   s,x,y,z,tension             a hand-swung shape (whirl driven --omega)       -> driven.gp
 #   omega,mode,tip_r,...        branches (whirl sweep): tip radius and top tension against omega
 #   omega,mode,links,eig_growth stability (whirl stability, a map)             -> stability_map.gp
+#   mode,from,to,...            the stability atlas (whirl stability --atlas)    -> atlas.gp
+#   mode,links,from,to,...      windows (whirl stability --windows, with or without
+#                               dissipation)                                      -> atlas.gp
 #   omega,tip_x,tip_y,...       a hand-swung branch (whirl driven --omega-min)  -> driven.gp
 #   index,omega,eps,state,...   a regime map (whirl regime)                     -> regime.gp
 #   leg,omega,state,...         a hysteresis sweep (whirl regime --sweep)       -> regime.gp
@@ -24,6 +27,8 @@ kind = strstrt(header, ",") == 0 ? "trace" : \
        strstrt(header, "omega,mode,links,eig_growth") == 1 ? "stability" : \
        strstrt(header, "omega,mode,tip_r") == 1 ? "branches" : \
        strstrt(header, "omega,tip_x,tip_y") == 1 ? "driven_branch" : \
+       strstrt(header, "mode,from,to,") == 1 ? "windows" : \
+       strstrt(header, "mode,links,from,to,") == 1 ? "windows" : \
        strstrt(header, "index,omega,eps,state") == 1 ? "regime_map" : \
        strstrt(header, "leg,omega,state") == 1 ? "regime_sweep" : \
        strstrt(header, "t,") == 1 ? "run" : "unknown"
@@ -34,6 +39,7 @@ if (kind eq "trace") { trace = file; load here."/animate.gp" }
 if (kind eq "driven_shape") { shape = file; load here."/driven.gp" }
 if (kind eq "driven_branch") { branch = file; load here."/driven.gp" }
 if (kind eq "stability") { files = file; load here."/stability_map.gp" }
+if (kind eq "windows") { csv = file; load here."/atlas.gp" }
 if (kind eq "regime_map") { map = file; load here."/regime.gp" }
 if (kind eq "regime_sweep") { sweep = file; load here."/regime.gp" }
 if (kind eq "run") { csv = file; load here."/simulate.gp" }

@@ -62,8 +62,8 @@
 extern "C" {
 #endif
 
-/* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): about an hour
- * of work with the implicit methods; larger runs are refused when the scene is read. */
+/* The largest fixed-step run a scene may ask for, links x t_end / dt (link-steps): a few hours
+ * of work (about 1 us per link-step); larger runs are refused when the scene is read. */
 #define WHIRL_SCENE_WORK_MAX 1e10
 /* What the output and the rotation force on top of the steps, counted in the same budget: a row
  * every [output] every and a trace frame every trace_every each end a step (links x t_end /

@@ -308,8 +308,10 @@ typedef struct whirl_windows_params {
                                     100000 scan points (GSL_EINVAL beyond) */
     double tol;                  /* edges located to this in omega [sqrt(g/L)]; 1e-9 */
     int krylov;                  /* 1: near an edge only the colliding pair, by shift-and-invert
-                                    Arnoldi (full solve if it does not converge); 0: every
-                                    evaluation a full solve; 1 */
+                                    Arnoldi (full solve if it does not converge), and for the
+                                    N-link chain every rate by the banded path (the mu with
+                                    |mu| <= omega^2, stability_windows.c); 0: every evaluation a
+                                    full (dense) solve; 1 */
 } whirl_windows_params;
 
 /* The defaults above. */

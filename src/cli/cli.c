@@ -731,6 +731,14 @@ void cli_progress_clear(cli_progress_state *p)
     p->drawn = 0;
 }
 
+double cli_progress_after(void)
+{
+    const char *env = getenv("WHIRL_PROGRESS_AFTER");
+    char *end = NULL;
+    const double after = env ? strtod(env, &end) : 1;
+    return env && end != env && *end == '\0' && after >= 0 && after <= 3600 ? after : 1;
+}
+
 /* The library's messages in the user's units: the library types the rates and lengths of its
  * messages (whirl_last_error_in_units), so nothing here reads their text. */
 const char *cli_library_error(const cli_units *u, char *buf, size_t size)

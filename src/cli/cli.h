@@ -161,10 +161,26 @@ int cli_check_files(const cli_command *cmd, const cli_path *outputs, size_t n_ou
 /* cli_check_files on an option table after cli_parse (given[i]: option i appeared). */
 int cli_check_options_files(const cli_command *cmd, const cli_option *opts, size_t nopts,
                             const char *given, const char *const *positional, size_t npos);
-/* Locks the open file fp (path in messages) for this run alone (flock, released when fp is
- * closed or the process ends):
- * 0, or 1 after an error when another run holds it or replaced the file. */
-int cli_lock(const cli_command *cmd, FILE *fp, const char *path);
+/* A map file written by one run at a time (flock on the file, released when the run ends
+ * however it ends): taken from before the file is read until the run's last row. */
+typedef struct cli_lock {
+    FILE *fp;   /* the file locked, open for reading (a resumed map is read through it); NULL:
+                 * no lock held */
+    int made;   /* this run made it (empty): removed at the release if still empty */
+    char *path;
+} cli_lock;
+/* Locks the map file path: a regular file that exists, or with make (a run that starts the map
+ * afresh) one that does not yet, made empty first (O_EXCL) so that two runs started together on
+ * a new path are kept apart too; path NULL, "-" or a device: no lock, and a missing file without
+ * make: no lock. 0, or 1 after the error "'PATH' is being written by another run (locked): wait
+ * for it or write another file" (or that another run replaced it while this one started). */
+int cli_lock_take(const cli_command *cmd, cli_lock *l, const char *path, int make);
+/* Commits out, the map's new contents at l's path, with the map locked throughout: the lock
+ * passes to the new file before it is renamed into place (no other run can take the map
+ * between). 0, or 1 after an error (out aborted). */
+int cli_lock_commit(const cli_command *cmd, cli_lock *l, cli_out *out);
+/* Releases the lock; the empty file the run made is removed if the path still names it. */
+void cli_lock_release(cli_lock *l);
 /* A row of a CSV being resumed: 0 if it has the header's count of fields and no field that is
  * a non-finite number (nan, inf, 1e999), else -1 with the reason in why. */
 int cli_row_check(const char *line, size_t fields, char *why, size_t size);
@@ -318,6 +334,10 @@ void cli_progress_text(cli_progress_state *p, const char *fmt, ...)
     ;
 /* Erases the line if one is drawn, leaving the cursor at the start of the empty line. */
 void cli_progress_clear(cli_progress_state *p);
+/* How long a run goes before a progress line that waits shows [s]: 1, or the environment's
+ * WHIRL_PROGRESS_AFTER (a number in [0, 3600]; 0 shows the line from the first report, for
+ * scripts and tests; anything else keeps 1). */
+double cli_progress_after(void);
 /* Seconds on the monotonic clock. */
 double cli_wall_seconds(void);
 

@@ -274,6 +274,15 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
         whirl_regime_free(w);
         return cli_error(cmd, "out of memory");
     }
+    /* the output is locked for the whole run: two sweeps on one file, even one that does not
+     * exist yet, would each replace the other's rows */
+    cli_lock lock;
+    if (cli_lock_take(cmd, &lock, o->output, 1)) {
+        free(omega);
+        free(res);
+        whirl_regime_free(w);
+        return 1;
+    }
     for (size_t j = 0; j < n; j++) /* up, then down again */
         omega[j] = cli_grid(o->omega_min, o->omega_max, o->omega_steps,
                               (int)(j < n_up ? j : n - 1 - j));
@@ -324,6 +333,7 @@ static int run_sweep(const cli_command *cmd, const regime_options *o, const whir
             rc = CLI_EXIT_INTERRUPTED;
         }
     }
+    cli_lock_release(&lock);
     free(omega);
     free(res);
     whirl_regime_free(w);

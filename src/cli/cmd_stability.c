@@ -763,7 +763,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
          "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
          NULL, NULL, CLI_UNIT_RATE},
         {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
-         "windows: full eigen-solves near the edges (default: shift-and-invert Arnoldi)", NULL,
+         "windows: full eigen-solves near the edges, for the N-link chain at every rate "
+         "(default: shift-and-invert Arnoldi)", NULL,
          "--windows"},
         {"--degree", NULL, CLI_INT, &o.degree, &o.degree_given, "P",
          "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
@@ -837,20 +838,18 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     }
     char **kept = calloc(count, sizeof *kept); /* rows read back by --resume */
     size_t already = 0;
-    /* a map file that exists is locked from before it is read until it is replaced: one run at
-     * a time writes it */
-    FILE *lock = NULL;
-    struct stat st;
-    if (kept && o.min_given && o.output && strcmp(o.output, "-") != 0 &&
-        stat(o.output, &st) == 0 && S_ISREG(st.st_mode) && (lock = fopen(o.output, "r")))
-        rc = cli_lock(cmd, lock, o.output);
+    /* the map file is locked from before it is read until it is replaced: one run at a time
+     * writes it (a new path is made empty by the run that starts it, so that two runs started
+     * on it together are kept apart) */
+    cli_lock lock = {0};
+    if (kept && o.min_given) rc = cli_lock_take(cmd, &lock, o.output, !o.resume);
     if (rc == 0 && kept == NULL) rc = cli_error(cmd, "out of memory");
     else if (rc == 0 && o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
     cli_out out = {0}, trace = {0};
     if (rc == 0) rc = cli_out_open(cmd, &out, o.output);
     if (rc == 0 && o.trace && (rc = cli_out_open(cmd, &trace, o.trace))) cli_out_abort(&out);
     if (rc) {
-        if (lock) fclose(lock);
+        cli_lock_release(&lock);
         free_kept(kept, count);
         free(pts);
         free(nodes);
@@ -907,6 +906,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     if (failed) {
         cli_out_abort(&out);
         cli_out_abort(&trace);
+        cli_lock_release(&lock);
         free_kept(kept, count);
         free(pts);
         free(nodes);
@@ -926,7 +926,7 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     whirl_chain_free(c);
     cli_out *const outs[2] = {&out, &trace};
     const int committed = cli_out_commit_all(cmd, outs, o.trace ? 2 : 1);
-    if (lock) fclose(lock);
+    cli_lock_release(&lock);
     if (committed) return 1;
     if (written < count) {
         if (o.min_given && o.output && strcmp(o.output, "-") != 0)

@@ -10,12 +10,20 @@
  * stepping), in the inertial or the co-rotating frame, labels each shape "mode K, RATE" (the rate
  * as the file's writer gave it), lists the files' comment lines (the parameters) and saves the
  * current view as a PNG. Planar shapes are first seen from the side (camera 0,0: true lengths). The page's template is src/cli/view.html; the
- * Makefile turns it into the string table cli_view_html. */
+ * Makefile turns it into the string table cli_view_html.
+ * A large file (up to VIEW_BYTES_MAX, some 10^7 points) takes seconds to read and to write into
+ * the page: both poll the stop request, and on a terminal, once the run has taken a second, a
+ * progress line says how far they are:
+ *   whirl view: reading run.dat: 120/240 MiB (50%), 3s elapsed
+ *   whirl view: writing the page: 1200000/3000000 points (40%), 5s elapsed
+ * erased at the end. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/cli.h"
 #include "core/input.h"
@@ -27,6 +35,8 @@
 #define VIEW_COORD_MAX 1e100
 #define VIEW_INFO_MAX 24   /* comment lines shown per file */
 #define VIEW_FILES_MAX 16
+#define VIEW_POLL_LINES 4096    /* lines read between looks at the clock */
+#define VIEW_POLL_VALUES 16384  /* numbers written between looks at the stop request */
 
 extern const char *const cli_view_html[]; /* the template, one line per entry, NULL-terminated */
 
@@ -66,6 +76,35 @@ typedef struct source {
     vec start, time;      /* trace: first point of each frame (as a double) and its time */
 } source;
 
+/* The progress line of the reading and the writing. */
+typedef struct view_progress {
+    cli_progress_state line;
+    double after;          /* the line shows once the run has taken this long [s] */
+    size_t written, total; /* points written into the page, of all */
+} view_progress;
+
+static int progress_due(const view_progress *p)
+{
+    return p->line.tty && (p->line.drawn || cli_wall_seconds() - p->line.start >= p->after);
+}
+
+/* cli_error with the progress line erased first. */
+static int read_error(view_progress *vp, const cli_command *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static int read_error(view_progress *vp, const cli_command *cmd, const char *fmt, ...)
+{
+    char msg[4096];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    cli_progress_clear(&vp->line);
+    return cli_error(cmd, "%s", msg);
+}
+
 /* The value of key=... in a comment line, or NAN. */
 static double meta_value(const char *line, const char *key)
 {
@@ -99,11 +138,13 @@ static int drawable(double x, double y, double z, double t)
            isfinite(t);
 }
 
-static int read_source(const cli_command *cmd, source *s)
+static int read_source(const cli_command *cmd, source *s, view_progress *vp)
 {
     FILE *fp;
     if (whirl_input_open(s->path, &fp) != GSL_SUCCESS)
-        return cli_error(cmd, "%s", whirl_last_error());
+        return read_error(vp, cmd, "%s", whirl_last_error());
+    struct stat st;
+    const double mib = fstat(fileno(fp), &st) == 0 ? (double)st.st_size / 1048576 : 0;
     whirl_line_reader in = whirl_line_reader_init(fp, s->path, VIEW_LINE_MAX, VIEW_BYTES_MAX);
     int rc = 0, header = 0, cx = -1, cy = -1, cz = -1, cr = -1, ncols = 0;
     long lineno = 0;
@@ -113,9 +154,13 @@ static int read_source(const cli_command *cmd, source *s)
     while (rc == 0 && whirl_line_read(&in) > 0) {
         char *line = in.line;
         lineno = in.lineno;
+        if (lineno % VIEW_POLL_LINES == 0 && progress_due(vp))
+            cli_progress_text(&vp->line, "reading %s: %.0f/%.0f MiB (%.0f%%)", s->path,
+                              (double)in.total / 1048576, mib,
+                              mib > 0 ? 100 * (double)in.total / 1048576 / mib : 100);
         if (strlen(line) != in.len) {
-            rc = cli_error(cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", s->path,
-                           lineno, strlen(line) + 1);
+            rc = read_error(vp, cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", s->path,
+                            lineno, strlen(line) + 1);
             continue;
         }
         if (line[0] == '#') {
@@ -156,8 +201,8 @@ static int read_source(const cli_command *cmd, source *s)
                 for (const char *c = line; *c; c++) ncols += *c == ',';
                 ncols++;
                 if (cz < 0 || (cr < 0 && cx < 0))
-                    rc = cli_error(cmd, "%s:%ld: a shape needs columns r and z, or x, y and z",
-                                   s->path, lineno);
+                    rc = read_error(vp, cmd, "%s:%ld: a shape needs columns r and z, or x, y and z",
+                                    s->path, lineno);
                 continue;
             }
             double v[64];
@@ -172,37 +217,41 @@ static int read_source(const cli_command *cmd, source *s)
             }
             const int need = (cx > cr ? cx : cr) > cz ? (cx > cr ? cx : cr) : cz;
             if (n <= need || (cy >= 0 && n <= cy)) {
-                rc = cli_error(cmd, "%s:%ld: too few values", s->path, lineno);
+                rc = read_error(vp, cmd, "%s:%ld: too few values", s->path, lineno);
                 continue;
             }
             double x = cx >= 0 ? v[cx] : v[cr], y = cx >= 0 && cy >= 0 ? v[cy] : 0, z = v[cz];
             if (!drawable(x, y, z, 0)) {
-                rc = cli_error(cmd, "%s:%ld: a coordinate is not finite or beyond %g", s->path,
-                               lineno, VIEW_COORD_MAX);
+                rc = read_error(vp, cmd, "%s:%ld: a coordinate is not finite or beyond %g", s->path,
+                                lineno, VIEW_COORD_MAX);
                 continue;
             }
             if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
-                rc = cli_error(cmd, "out of memory");
+                rc = read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)",
+                                s->path, lineno, s->xyz.n / 3);
             continue;
         }
         double x, y, z, t;
         if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !drawable(x, y, z, t)) {
-            rc = cli_error(cmd, "%s:%ld: a trace line needs four finite numbers x y z t (x, y, z "
-                           "at most %g)", s->path, lineno, VIEW_COORD_MAX);
+            rc = read_error(vp, cmd, "%s:%ld: a trace line needs four finite numbers x y z t (x, "
+                            "y, z at most %g)", s->path, lineno, VIEW_COORD_MAX);
             continue;
         }
         if (!block_open) {
             block_open = 1;
             if (vec_push(&s->start, (double)(s->xyz.n / 3)) || vec_push(&s->time, t))
-                rc = cli_error(cmd, "out of memory");
+                rc = read_error(vp, cmd, "%s:%ld: out of memory for the frames (%zu read)",
+                                s->path, lineno, s->start.n);
         }
         if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
-            rc = cli_error(cmd, "out of memory");
+            rc = read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)", s->path,
+                            lineno, s->xyz.n / 3);
     }
-    if (rc == 0 && in.status != GSL_SUCCESS) rc = cli_error(cmd, "%s", whirl_last_error());
+    if (rc == 0 && in.status != GSL_SUCCESS) rc = read_error(vp, cmd, "%s", whirl_last_error());
     whirl_line_reader_free(&in);
     fclose(fp);
-    if (rc == 0 && s->xyz.n < 6) rc = cli_error(cmd, "%s: no chain in it (at least two points)", s->path);
+    if (rc == 0 && s->xyz.n < 6)
+        rc = read_error(vp, cmd, "%s: no chain in it (at least two points)", s->path);
     s->planar = 1;
     for (size_t i = 1; i < s->xyz.n && s->planar; i += 3) s->planar = s->xyz.v[i] == 0;
     if (rc == 0 && s->trace) { /* every frame must have the same number of points */
@@ -210,8 +259,8 @@ static int read_source(const cli_command *cmd, source *s)
         for (size_t k = 0; k < s->start.n; k++) {
             size_t end = k + 1 < s->start.n ? (size_t)s->start.v[k + 1] : s->xyz.n / 3;
             if (end - (size_t)s->start.v[k] != per)
-                return cli_error(cmd, "%s: frame %zu has %zu points, the first %zu", s->path,
-                                 k + 1, end - (size_t)s->start.v[k], per);
+                return read_error(vp, cmd, "%s: frame %zu has %zu points, the first %zu", s->path,
+                                  k + 1, end - (size_t)s->start.v[k], per);
         }
     }
     return rc;
@@ -231,11 +280,22 @@ static void put_string(FILE *fp, const char *s)
     fputc('"', fp);
 }
 
-/* A point list as a JSON array, 7 significant digits (far below a pixel). */
-static void put_points(FILE *fp, const double *v, size_t n)
+/* A point list (n numbers, x y z of each point) as a JSON array, 7 significant digits (far
+ * below a pixel); stops early on a stop request (the page is then not written). */
+static void put_points(FILE *fp, const double *v, size_t n, view_progress *vp)
 {
     fputc('[', fp);
-    for (size_t i = 0; i < n; i++) fprintf(fp, "%s%.7g", i ? "," : "", v[i]);
+    for (size_t i = 0; i < n; i++) {
+        if (i % VIEW_POLL_VALUES == VIEW_POLL_VALUES - 1) {
+            if (cli_interrupted) break;
+            if (progress_due(vp))
+                cli_progress_text(&vp->line, "writing the page: %zu/%zu points (%.0f%%)",
+                                  vp->written + i / 3, vp->total,
+                                  100 * (double)(vp->written + i / 3) / (double)vp->total);
+        }
+        fprintf(fp, "%s%.7g", i ? "," : "", v[i]);
+    }
+    vp->written += n / 3;
     fputc(']', fp);
 }
 
@@ -260,8 +320,10 @@ static void label_of(const source *s, char *buf, size_t size)
 }
 
 static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], double omega,
-                       double eps)
+                       double eps, view_progress *vp)
 {
+    vp->written = vp->total = 0;
+    for (int k = 0; k < nsrc; k++) vp->total += src[k].xyz.n / 3;
     /* extent: radius from the axis, heights, and the chain's length (first frame) */
     double r = eps > 0 ? eps : 0, zmin = 0, zmax = 0, len = 0;
     int physical = 0;
@@ -320,7 +382,7 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
             size_t a = (size_t)s->start.v[f], b = f + 1 < s->start.n ? (size_t)s->start.v[f + 1]
                                                                    : s->xyz.n / 3;
             fprintf(fp, "%s{\"t\": %.17g, \"p\": ", f ? ",\n" : "", s->time.v[f]);
-            put_points(fp, s->xyz.v + 3 * a, 3 * (b - a));
+            put_points(fp, s->xyz.v + 3 * a, 3 * (b - a), vp);
             fputc('}', fp);
         }
         fprintf(fp, "]};\n");
@@ -332,7 +394,7 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
             fprintf(fp, "%s{\"label\": ", k ? ",\n" : "");
             put_string(fp, label);
             fprintf(fp, ", \"omega\": %.17g, \"p\": ", isfinite(src[k].omega) ? src[k].omega : 0);
-            put_points(fp, src[k].xyz.v, src[k].xyz.n);
+            put_points(fp, src[k].xyz.v, src[k].xyz.n, vp);
             fputc('}', fp);
         }
         fprintf(fp, "]};\n");
@@ -374,9 +436,11 @@ int cmd_view(const cli_command *cmd, int argc, char **argv)
                          camera_text);
     source *src = calloc((size_t)nsrc, sizeof *src);
     if (src == NULL) return cli_error(cmd, "out of memory");
+    view_progress vp = {.after = cli_progress_after()};
+    cli_progress_begin(&vp.line, cmd, "", 0, 0);
     for (int k = 0; k < nsrc && rc == 0; k++) {
         src[k].path = files[k];
-        rc = read_source(cmd, &src[k]);
+        rc = read_source(cmd, &src[k], &vp);
     }
     for (int k = 1; k < nsrc && rc == 0; k++)
         if (src[k].trace || src[0].trace)
@@ -391,9 +455,11 @@ int cmd_view(const cli_command *cmd, int argc, char **argv)
         cli_out out;
         if ((rc = cli_out_open(cmd, &out, output)) == 0) {
             for (const char *const *l = cli_view_html; *l; l++) {
-                if (strncmp(*l, "/*WHIRL_DATA*/", 14) == 0) write_data(out.fp, src, nsrc, camera, omega, eps);
+                if (strncmp(*l, "/*WHIRL_DATA*/", 14) == 0)
+                    write_data(out.fp, src, nsrc, camera, omega, eps, &vp);
                 else fputs(*l, out.fp);
             }
+            cli_progress_clear(&vp.line);
             if (cli_interrupted) {
                 cli_out_abort(&out);
                 rc = cli_error(cmd, "interrupted while writing the page: nothing written");

@@ -27,6 +27,11 @@ static const struct {
              {"omega,tip_x,tip_y", CLI_FIGURE_DRIVEN_BRANCH, "a hand-swung branch"},
              {"index,omega,eps,state", CLI_FIGURE_REGIME_MAP, "a regime map"},
              {"leg,omega,state", CLI_FIGURE_REGIME_SWEEP, "a hysteresis sweep"},
+             {"mode,from,to,open_from,", CLI_FIGURE_ATLAS, "a stability atlas"},
+             {"mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,",
+              CLI_FIGURE_WINDOWS, "windows of instability"},
+             {"=mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict",
+              CLI_FIGURE_INTERVALS, "intervals with dissipation"},
              {"t,", CLI_FIGURE_RUN, "a run"}};
 
 static const char *kind_name(cli_figure_kind k)
@@ -66,7 +71,9 @@ static int read_kind(const cli_command *cmd, const char *path, cli_figure_kind *
     fclose(fp);
     if (*kind == CLI_FIGURE_UNKNOWN)
         return cli_error(cmd, "%s: not a file of whirl's (its header is none of a shape, "
-                         "branches, a stability map, a run, a trace, ...)", path);
+                         "branches, a stability map, windows, a run, a trace, ...)", path);
+    /* the atlas is of the dimensionless continuum only: its first line says so, no units line */
+    if (units[0] == '\0' && *kind == CLI_FIGURE_ATLAS) snprintf(units, size, "dimensionless");
     if (units[0] == '\0') return cli_error(cmd, "%s: no '# units:' line", path);
     return 0;
 }

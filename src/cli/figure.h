@@ -24,6 +24,9 @@ typedef enum {
     CLI_FIGURE_DRIVEN_BRANCH, /* omega,tip_x,tip_y,...: whirl driven --omega-min */
     CLI_FIGURE_REGIME_MAP,    /* index,omega,eps,state,...: whirl regime (a map) */
     CLI_FIGURE_REGIME_SWEEP,  /* leg,omega,state,...: whirl regime --sweep */
+    CLI_FIGURE_ATLAS,         /* mode,from,to,...: whirl stability --atlas */
+    CLI_FIGURE_WINDOWS,       /* mode,links,from,to,...,max_growth: stability --windows */
+    CLI_FIGURE_INTERVALS,     /* mode,links,from,to,...,growth,at,verdict: --windows, dissipation */
     CLI_FIGURE_RUN,           /* t,...: whirl simulate */
     CLI_FIGURE_TRACE          /* "# trace:" blocks x y z t: simulate's or regime's trace */
 } cli_figure_kind;

@@ -312,22 +312,101 @@ void cli_out_abort(cli_out *out)
 
 /* ---- maps written by one run at a time ---- */
 
-int cli_lock(const cli_command *cmd, FILE *fp, const char *path)
+/* The message of a lock another run holds. */
+static int locked_error(const cli_command *cmd, const char *path)
 {
-    struct stat mine, now;
-    /* flock, not a POSIX record lock: the latter ends when the process closes any descriptor
-     * of the file, as the reading of a resumed map does */
-    if (flock(fileno(fp), LOCK_EX | LOCK_NB) != 0)
-        return cli_error(cmd, errno == EWOULDBLOCK
-                                  ? "'%s' is being written by another run (locked): wait for it "
-                                    "or write another file"
-                                  : "cannot lock '%s'", path);
-    /* the file locked must still be the one the path names (another run may have replaced it
-     * between the open and the lock) */
-    if (fstat(fileno(fp), &mine) != 0 || stat(path, &now) != 0 || mine.st_dev != now.st_dev ||
-        mine.st_ino != now.st_ino)
-        return cli_error(cmd, "'%s' was replaced by another run while this one started", path);
+    return cli_error(cmd, "'%s' is being written by another run (locked): wait for it or write "
+                     "another file", path);
+}
+
+int cli_lock_take(const cli_command *cmd, cli_lock *l, const char *path, int make)
+{
+    memset(l, 0, sizeof *l);
+    if (path == NULL || strcmp(path, "-") == 0) return 0;
+    /* the file that exists, or a new one made by this run (O_EXCL: one run makes it); the path
+     * may change between the two tries (another run made or replaced it): a few tries */
+    for (int tries = 0; tries < 8; tries++) {
+        struct stat st, now;
+        int fd, made = 0;
+        if (stat(path, &st) == 0) {
+            if (!S_ISREG(st.st_mode)) return 0; /* a device: written in place, not locked */
+            /* O_NONBLOCK: never wait in open() (a FIFO put there since) */
+            fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
+        } else if (!make) return 0;
+        else if ((fd = open(path, O_RDWR | O_CREAT | O_EXCL | O_NOCTTY, 0666)) >= 0) made = 1;
+        if (fd < 0 && (errno == ENOENT || errno == EEXIST)) continue;
+        if (fd < 0) return cli_error(cmd, "cannot lock '%s': %s", path, strerror(errno));
+        /* flock, not a POSIX record lock: the latter ends when the process closes any
+         * descriptor of the file, as the reading of a resumed map does */
+        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+            const int err = errno;
+            close(fd); /* a file made here and locked by another run first is that run's now */
+            return err == EWOULDBLOCK ? locked_error(cmd, path)
+                                      : cli_error(cmd, "cannot lock '%s': %s", path, strerror(err));
+        }
+        /* the file locked must still be the one the path names (another run may have replaced
+         * it between the open and the lock) */
+        if (fstat(fd, &st) != 0 || stat(path, &now) != 0 || st.st_dev != now.st_dev ||
+            st.st_ino != now.st_ino || !S_ISREG(st.st_mode)) {
+            close(fd);
+            return cli_error(cmd, "'%s' was replaced by another run while this one started", path);
+        }
+        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+        l->path = malloc(strlen(path) + 1);
+        l->fp = l->path ? fdopen(fd, "r") : NULL;
+        if (l->fp == NULL) {
+            if (made) unlink(path);
+            close(fd);
+            free(l->path);
+            l->path = NULL;
+            return cli_error(cmd, "out of memory");
+        }
+        strcpy(l->path, path);
+        l->made = made;
+        return 0;
+    }
+    return cli_error(cmd, "cannot lock '%s': other runs keep making and removing it", path);
+}
+
+int cli_lock_commit(const cli_command *cmd, cli_lock *l, cli_out *out)
+{
+    if (l->fp == NULL || out->tmp == NULL) return cli_out_commit(cmd, out);
+    /* the new file is locked before it is renamed over the old one (nobody else can hold it:
+     * it has no name yet but its temporary one) */
+    const int fd = dup(fileno(out->fp));
+    if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        const int err = errno;
+        if (fd >= 0) close(fd);
+        cli_out_abort(out);
+        return cli_error(cmd, "cannot lock '%s': %s", l->path, strerror(err));
+    }
+    if (cli_out_commit(cmd, out)) {
+        close(fd);
+        return 1;
+    }
+    FILE *fp = fdopen(fd, "r");
+    if (fp == NULL) { /* the new file stays unlocked: say so rather than go on unguarded */
+        close(fd);
+        return cli_error(cmd, "cannot lock '%s': %s", l->path, strerror(errno));
+    }
+    fclose(l->fp); /* the old file's lock: it was replaced */
+    l->fp = fp;
+    l->made = 0;
     return 0;
+}
+
+void cli_lock_release(cli_lock *l)
+{
+    if (l->fp) {
+        struct stat mine, now;
+        /* the empty file made to hold the lock, when the run wrote nothing in its place */
+        if (l->made && fstat(fileno(l->fp), &mine) == 0 && mine.st_size == 0 &&
+            stat(l->path, &now) == 0 && mine.st_dev == now.st_dev && mine.st_ino == now.st_ino)
+            unlink(l->path);
+        fclose(l->fp);
+    }
+    free(l->path);
+    memset(l, 0, sizeof *l);
 }
 
 /* ---- rows of a file being resumed ---- */

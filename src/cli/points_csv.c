@@ -85,7 +85,9 @@ static int read_row(const cli_command *cmd, const char *name, long lineno, char 
     }
     if (!have[0] || !have[1])
         return cli_error(cmd, "%s:%ld: no value in column '%s'", name, lineno, have[0] ? "z" : "r");
-    if (points_push(p, v[0], v[1]) != 0) return cli_error(cmd, "out of memory reading '%s'", name);
+    if (points_push(p, v[0], v[1]) != 0)
+        return cli_error(cmd, "%s:%ld: out of memory for the points (%zu read)", name, lineno,
+                         p->n);
     return 0;
 }
 

@@ -79,9 +79,10 @@ static long unpack(const double *buf, whirl_regime_result *r)
 /* Reads a map file written with the same parameter line: marks its complete rows in done[],
  * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
  * closing comments dropped). Returns 0 or 1 after an error. */
-static int resume_map(const cli_command *cmd, const regime_options *o, FILE *in, char *done,
-                      long n_points, long *n_done)
+static int resume_map(const cli_command *cmd, const regime_options *o, cli_lock *lock,
+                      char *done, long n_points, long *n_done)
 {
+    FILE *in = lock->fp;
     char expect[REGIME_LINE_MAX];
     FILE *mem = fmemopen(expect, sizeof expect, "w");
     if (mem == NULL) return cli_error(cmd, "out of memory");
@@ -142,10 +143,11 @@ static int resume_map(const cli_command *cmd, const regime_options *o, FILE *in,
         cli_out_abort(&out);
         return rc;
     }
-    return cli_out_commit(cmd, &out);
+    return cli_lock_commit(cmd, lock, &out);
 }
 
-static int fresh_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain)
+static int fresh_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
+                     cli_lock *lock)
 {
     cli_out out;
     if (cli_out_open(cmd, &out, o->output) != 0) return 1;
@@ -154,7 +156,7 @@ static int fresh_map(const cli_command *cmd, const regime_options *o, const whir
     regime_cli_write_parameters(out.fp, o);
     regime_cli_write_critical(out.fp, o, chain);
     fprintf(out.fp, "%s\n", regime_cli_map_columns);
-    return cli_out_commit(cmd, &out);
+    return cli_lock_commit(cmd, lock, &out);
 }
 
 /* ---- the map ---- */
@@ -262,22 +264,22 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
     long n_done = 0;
-    FILE *fp = NULL, *old = NULL;
+    FILE *fp = NULL;
+    cli_lock lock = {0};
     if (mc->rank == 0 && rc == 0) {
         /* one run at a time writes a map: the file is locked from before it is read (the old
-         * one, read through the locked stream) until the run ends (the new one) */
-        if (o->resume && (old = fopen(o->output, "r+")) == NULL)
+         * one, read through the lock's stream; a new path made empty by this run, so that two
+         * runs started on it together are kept apart) until the run ends (the new one) */
+        if (o->resume && access(o->output, F_OK) != 0)
             rc = cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
-        else if (!o->resume && access(o->output, F_OK) == 0 && (old = fopen(o->output, "r+")))
-            rc = cli_lock(cmd, old, o->output); /* not replaced while another run writes it */
-        if (rc == 0 && o->resume) rc = cli_lock(cmd, old, o->output);
+        if (rc == 0) rc = cli_lock_take(cmd, &lock, o->output, !o->resume);
+        if (rc == 0 && o->resume && lock.fp == NULL)
+            rc = cli_error(cmd, "--resume: '%s' is not a regular file", o->output);
         if (rc == 0)
-            rc = o->resume ? resume_map(cmd, o, old, done, n_points, &n_done)
-                           : fresh_map(cmd, o, chain);
+            rc = o->resume ? resume_map(cmd, o, &lock, done, n_points, &n_done)
+                           : fresh_map(cmd, o, chain, &lock);
         if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
             rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
-        if (rc == 0) rc = cli_lock(cmd, fp, o->output);
-        if (old) fclose(old);
     }
     rc = all_max(mc, rc);
 #ifdef WHIRL_MPI
@@ -335,6 +337,7 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
                                 "--resume)", already + written, n_points, o->output);
         if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
     }
+    cli_lock_release(&lock);
     for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
     free(ws);
     free(err);

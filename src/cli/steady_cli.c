@@ -84,12 +84,7 @@ void steady_cli_follow_begin(steady_cli_follow *f, const cli_command *cmd,
     f->target = target;
     f->index = 1;
     f->count = count;
-    /* WHIRL_PROGRESS_AFTER: a delay in seconds, for scripts that want the line at once (a
-     * value that is not a number in [0, 3600] keeps the default) */
-    const char *env = getenv("WHIRL_PROGRESS_AFTER");
-    char *end = NULL;
-    double after = env ? strtod(env, &end) : 1;
-    f->after = env && end != env && *end == '\0' && after >= 0 && after <= 3600 ? after : 1;
+    f->after = cli_progress_after();
     cli_progress_begin(&f->line, cmd, "", 0, 0);
 }
 

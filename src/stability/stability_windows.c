@@ -24,8 +24,9 @@
  *     E / 2 = w^2 a^H Ma a + c^H Mb c - Re(a^H Gab c).
  * Modes of opposite signs of E are the only ones that can leave the imaginary axis when they meet
  * (Krein collision); modes of one sign pass or avoid each other and stay neutral. At a stable rate
- * the number of modes with E < 0 equals the number of negative eigenvalues of K (Mackay 1986).
- * Windows: a scan at a coarse step computes every mu and the signatures. Between two neutral scan
+ * the number of modes with E < 0 is half the number of negative eigenvalues of K (Mackay 1986;
+ * the count below).
+ * Windows: a scan at a coarse step computes the mu and their signatures. Between two neutral scan
  * points, a window can open and close only through a collision of opposite signatures, which
  * swaps their order in frequency: the "ranks" (for each mode with E < 0, the number of modes with
  * E > 0 below it in frequency) then differ, and bisection finds the unstable rate between. An
@@ -39,10 +40,55 @@
  * nearest a real shift sigma, by Arnoldi's method on (A' - sigma)^-1 = -(K' + sigma B)^-1 B (one
  * LU factorisation and a few solves instead of the full Hessenberg QR; Saad 2011, ch. 7), with a
  * fall-back to the full eigenvalues when the Ritz values do not converge.
+ * Which mu can collide. Write q^H (lambda^2 M + lambda G + K) q = 0 as lambda^2 m + i lambda g
+ * + k = 0 (m = q^H M q > 0, i g = q^H G q, k = q^H K q real). By stability.c's formulas,
+ * M = F^T (S (x) I) F, G = 2 omega F^T (S (x) Z) F and K = diag(T l) - omega^2 F^T (S (x) P) F
+ * with F = diag(l_j E_j) (3N x 2N), S_jk = mu_max(j,k) positive definite, Z = z^x (|Z| = 1),
+ * P = diag(1, 1, 0) and tensions T > 0, so |g| <= 2 omega m (Cauchy-Schwarz in the S (x) I
+ * product) and k >= -omega^2 m. A lambda off the imaginary axis needs g^2 + 4 m k < 0
+ * and then |lambda|^2 = -k / m <= omega^2; a neutral mode lambda = i w has
+ * E / 2 >= (w^2 - omega w)(|a|_Ma^2 + |b|_Mb^2) (|Re(a^H Gab c)| <= 2 omega w |a|_Ma |b|_Mb),
+ * positive for w > omega. So every unstable mu and every mode of negative energy lie in
+ * |mu| <= omega^2, and the ranks and gaps need only those and the first neutral mu beyond
+ * omega^2 (the mode of positive energy next above the highest of negative energy).
+ * The banded path (the scan and the pair near an edge; the dense path above is the reference,
+ * whirl_windows_params.krylov = 0). With S = L^T diag(m) L (L the lower triangle of ones) and
+ * per link alpha_j = l_j e1_j . x, beta_j = l_j e1_j . z, gamma_j = l_j
+ * (e1_j = (-u_z, 0, u_x), e2_j = y for a shape in the x-z plane, stability.c's chart):
+ *     Ma = Da S Da + Db S Db,  Mb = Dg S Dg,  Gab = -2 omega Da S Dg,
+ *     Ka = diag(T l) - omega^2 Da S Da,  Kb = diag(T l) - omega^2 Dg S Dg,
+ * so K' + sigma B = diag(T l) + F^T (S (x) C) F, F x = (alpha_j a_j, beta_j a_j, gamma_j c_j)_j
+ * on the components (x, z, y), C = [[sigma - omega^2, 0, -2 omega], [0, sigma, 0],
+ * [2 omega sigma, 0, sigma - omega^2]] (B x the same with dC/dsigma). With the partial sums
+ * w_j = w_(j-1) + (F x)_j and u_j = u_(j+1) + m_j C w_j, (K' + sigma B) x = r reads
+ * T_j l_j a_j + alpha_j u_j,x + beta_j u_j,z = r_a,j and T_j l_j c_j + gamma_j u_j,y = r_c,j: 8
+ * unknowns per link, a band of 8 sub- and 8 super-diagonals, LU with partial pivoting (dgbtrf)
+ * in O(N) and each solve in O(N), where the dense LU and dgeev cost O(N^3). The form is built
+ * from the nodes and T_j l_j = Kb_jj + omega^2 Mb_jj, and used only if it reproduces the five
+ * dense blocks to 1e-11 of their largest entry. The mu that can collide come from Arnoldi's
+ * method on (A' - sigma)^-1, sigma = omega^2 / 4, restricted to ker l^T (invariant, since
+ * l^T A' = 0, and carrying the deflated spectrum; each vector is projected on it), with full
+ * reorthogonalisation: the Ritz values by decreasing |theta| (increasing |mu - sigma|) are kept
+ * while converged (residual <= 1e-12 |theta|) up to the first neutral mu < -omega^2, so the disc
+ * kept holds |mu| <= omega^2. The Ritz vectors V s are the eigenvectors of A' in ker l^T, the
+ * P [0; y] of the dense path, and give the signatures. Check (Mackay 1986): a pair lambda = +-i w of
+ * negative energy carries two negative directions of the Hamiltonian, a real pair one, a complex
+ * quadruplet two, so 2 #(neutral, E < 0) + #(non-neutral mu) must equal the index of K. That index
+ * costs O(N): Kb is the Schur complement of W = L^-1 diag(1 / m) L^-T / omega^2 (tridiagonal,
+ * definite) in [[diag(T l), Dg], [Dg, W]], whose other Schur complement is the tridiagonal
+ * T_b = W - Dg diag(T l)^-1 Dg, so In(Kb) = In(T_b) (Haynsworth's inertia additivity, T > 0), and
+ * likewise Ka with Da; Sturm counts below -1e-9 |T| (the rotation's zero of Kb not counted). The
+ * round-off level 1e-10 sqrt(max |mu|) takes max |mu| from the out-of-plane block without the
+ * Coriolis coupling: the largest eigenvalue of the tridiagonal diag(T l)^1/2 Mb^-1 diag(T l)^1/2
+ * less omega^2 (bisection). Not converged in 240 steps, or the count differs: the dense path at
+ * that rate.
  * References: Krein 1950; Mackay, "Stability of equilibria of Hamiltonian systems", in Nonlinear
  * Phenomena and Chaos (1986); Kirillov, Nonconservative Stability Problems of Modern Physics
  * (2013), ch. 2 (gyroscopic systems, Krein signature); Saad, Numerical Methods for Large
- * Eigenvalue Problems (2011); Brent 1973 (root and minimum finding, as in GSL). */
+ * Eigenvalue Problems (2011); Brent 1973 (root and minimum finding, as in GSL); Haynsworth,
+ * "Determination of the inertia of a partitioned Hermitian matrix", Linear Algebra Appl. 1 (1968);
+ * Golub and Van Loan, Matrix Computations (2013), 4.3 (banded LU) and 8.4 (Sturm sequences). */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,6 +102,12 @@
 #include "stability/windows_internal.h"
 #include "core/worker.h"
 
+#define WINDOWS_BAND_KRYLOV 240 /* most Arnoldi steps of the banded path */
+#define WINDOWS_BAND_START 20   /* steps before its first Ritz values */
+#define WINDOWS_BAND_EVERY 10   /* steps between Ritz values */
+#define BAND_KL 8               /* sub- and super-diagonals of the augmented matrix */
+#define BAND_LD (3 * BAND_KL + 1) /* its LAPACK band storage: 2 kl + ku + 1 rows */
+#define BAND_AT(row, col) ((size_t)(2 * BAND_KL + (int)(row) - (int)(col)) + (size_t)(col) * BAND_LD)
 
 struct whirl_windows {
     size_t n;              /* links N */
@@ -74,6 +126,20 @@ struct whirl_windows {
     lapack_int *ipiv;      /* LU pivots (2N) */
     windows_arnoldi kr;    /* the Arnoldi iteration's workspace (vectors of 2N) */
     double *r, *z, *tension; /* nodes of a shape (N + 1) */
+    /* the structured form (header comment) of the last linearisation, per link j */
+    double *al, *be, *ga;  /* l_j e1_j . x, l_j e1_j . z, l_j */
+    double *tl, *ms;       /* T_j l_j, m_j */
+    double *tri;           /* 4N: the tridiagonal matrices of the index and of max |mu| */
+    double *ab;            /* banded LU of the augmented K' + sigma B (BAND_LD x 8N) */
+    lapack_int *bpiv;      /* its pivots (8N) */
+    double *bx;            /* 8N scratch: right-hand side, the sums g */
+    double *lv;            /* l = B^T (0, s_b) (2N), then 2N scratch */
+    double bomega;         /* the rate of the structured form */
+    int fast;              /* 1: scan points by the banded path (p->krylov) */
+    size_t bm;             /* steps of the banded path's last Ritz values */
+    size_t fallbacks;      /* evaluations where the banded path gave way to the dense one */
+    windows_arnoldi kband;   /* the banded path's Arnoldi iteration (WINDOWS_BAND_KRYLOV steps) */
+    int *kept;             /* Ritz column of each kept mu (WINDOWS_BAND_KRYLOV) */
     const whirl_chain *chain; /* of the current search */
     int mode;
     double lin_omega;      /* the rate of the linearisation in lin (NAN: none) */
@@ -107,6 +173,17 @@ whirl_windows *whirl_windows_alloc(size_t n)
     w->r = malloc((n + 1) * sizeof(double));
     w->z = malloc((n + 1) * sizeof(double));
     w->tension = malloc((n + 1) * sizeof(double));
+    double **links[] = {&w->al, &w->be, &w->ga, &w->tl, &w->ms};
+    for (size_t i = 0; i < sizeof links / sizeof links[0]; i++) *links[i] = malloc(n * sizeof(double));
+    w->tri = malloc(4 * n * sizeof(double));
+    w->ab = malloc(BAND_LD * 8 * n * sizeof(double));
+    w->bpiv = malloc(8 * n * sizeof(lapack_int));
+    w->bx = malloc(8 * n * sizeof(double));
+    w->lv = malloc(2 * q * sizeof(double));
+    w->kept = malloc(WINDOWS_BAND_KRYLOV * sizeof(int));
+    if (!w->al || !w->be || !w->ga || !w->tl || !w->ms || !w->tri || !w->ab || !w->bpiv ||
+        !w->bx || !w->lv || !w->kept || whirl_windows_arnoldi_init_steps(&w->kband, q, WINDOWS_BAND_KRYLOV))
+        goto fail;
     if (!w->lin || !w->ma || !w->mb || !w->ka || !w->kb || !w->gab || !w->a || !w->hv || !w->re ||
         !w->im || !w->sig || !w->vl || !w->x || !w->ipiv || !w->r || !w->z || !w->tension ||
         whirl_windows_arnoldi_init(&w->kr, q))
@@ -130,15 +207,24 @@ void whirl_windows_free(whirl_windows *w)
     if (w == NULL) return;
     whirl_stability_free(w->lin);
     double *arrays[] = {w->ma, w->mb, w->ka, w->kb, w->gab, w->a, w->hv, w->re, w->im, w->vl,
-                        w->x, w->work, w->r, w->z, w->tension};
+                        w->x, w->work, w->r, w->z, w->tension, w->al, w->be, w->ga, w->tl,
+                        w->ms, w->tri, w->ab, w->bx, w->lv};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->sig);
     free(w->ipiv);
+    free(w->bpiv);
+    free(w->kept);
     whirl_windows_arnoldi_release(&w->kr);
+    whirl_windows_arnoldi_release(&w->kband);
     free(w);
 }
 
 whirl_stability *whirl_windows_linearisation(whirl_windows *w) { return w->lin; }
+
+size_t whirl_windows_fallbacks(const whirl_windows *w) { return w->fallbacks; }
+
+/* max(a, b), a if it is NaN (so that a NaN fails the checks below; inline where fmax is a call) */
+static inline double dmax(double a, double b) { return a >= b || isnan(a) ? a : b; }
 
 /* The blocks Ma, Mb, Ka, Kb, Gab of the last linearisation in lin, after checking the split
  * (planar, conservative) to round-off. */
@@ -151,16 +237,16 @@ static int split_blocks(whirl_windows *w, const whirl_stability *lin)
     const double *kk = whirl_stability_get_matrix(lin, WHIRL_STABILITY_STIFFNESS);
     double scale = 0, off = 0, damp = 0;
     for (size_t i = 0; i < q * q; i++) {
-        scale = fmax(scale, fmax(fabs(mm[i]), fmax(fabs(gg[i]), fabs(kk[i]))));
-        damp = fmax(damp, fabs(cc[i]));
+        scale = dmax(fabs(mm[i]), dmax(fabs(gg[i]), dmax(fabs(kk[i]), scale)));
+        damp = dmax(fabs(cc[i]), damp);
     }
     for (size_t i = 0; i < n; i++)
         for (size_t j = 0; j < n; j++) {
             const size_t aa = i * q + j, ab = i * q + n + j, ba = (n + i) * q + j,
                          bb = (n + i) * q + n + j;
-            off = fmax(off, fmax(fmax(fabs(mm[ab]), fabs(mm[ba])), fmax(fabs(kk[ab]), fabs(kk[ba]))));
-            off = fmax(off, fmax(fabs(gg[aa]), fabs(gg[bb])));
-            off = fmax(off, fabs(gg[ab] + gg[(n + j) * q + i]));
+            off = dmax(fabs(mm[ab]), dmax(fabs(mm[ba]), dmax(fabs(kk[ab]), dmax(fabs(kk[ba]), off))));
+            off = dmax(fabs(gg[aa]), dmax(fabs(gg[bb]), off));
+            off = dmax(fabs(gg[ab] + gg[(n + j) * q + i]), off);
             w->ma[i * n + j] = mm[aa];
             w->mb[i * n + j] = mm[bb];
             w->ka[i * n + j] = kk[aa];
@@ -273,24 +359,15 @@ static double neutral_level(const double *re, const double *im, size_t count)
     return 1e-10 * sqrt(big);
 }
 
-/* E / 2 of the header comment for the eigenvector y (2N - deflated, real part yr, imaginary
- * part yi or NULL) of the deflated matrix, mu = -w2. */
-static double mode_energy(whirl_windows *w, const double *yr, const double *yi, double w2)
+/* E / 2 of the header comment for the eigenvector x = xr + i xi (full space, 2N; xi NULL for a
+ * real one) of A', mu = -w2. */
+static double full_energy(const whirl_windows *w, const double *xr, const double *xi, double w2)
 {
-    const size_t n = w->n, q = 2 * n, d = w->deflated;
+    const size_t n = w->n;
     double energy = 0;
     for (int part = 0; part < 2; part++) {
-        const double *y = part == 0 ? yr : yi;
-        if (y == NULL) continue;
-        double *x = w->x + part * q;
-        /* x = P [0; y] */
-        for (size_t i = 0; i < d; i++) x[i] = 0;
-        for (size_t i = d; i < q; i++) x[i] = y[i - d];
-        if (d) {
-            double s = 0;
-            for (size_t i = 0; i < q; i++) s += w->hv[i] * x[i];
-            for (size_t i = 0; i < q; i++) x[i] -= w->hv_tau * s * w->hv[i];
-        }
+        const double *x = part == 0 ? xr : xi;
+        if (x == NULL) continue;
         const double *a = x, *c = x + n;
         for (size_t i = 0; i < n; i++) {
             double ma = 0, mb = 0, gc = 0;
@@ -303,6 +380,26 @@ static double mode_energy(whirl_windows *w, const double *yr, const double *yi, 
         }
     }
     return energy;
+}
+
+/* E / 2 for the eigenvector y (2N - deflated, real part yr, imaginary part yi or NULL) of the
+ * deflated matrix, mu = -w2: full_energy of x = P [0; y]. */
+static double mode_energy(whirl_windows *w, const double *yr, const double *yi, double w2)
+{
+    const size_t q = 2 * w->n, d = w->deflated;
+    for (int part = 0; part < 2; part++) {
+        const double *y = part == 0 ? yr : yi;
+        if (y == NULL) continue;
+        double *x = w->x + part * q;
+        for (size_t i = 0; i < d; i++) x[i] = 0;
+        for (size_t i = d; i < q; i++) x[i] = y[i - d];
+        if (d) {
+            double s = 0;
+            for (size_t i = 0; i < q; i++) s += w->hv[i] * x[i];
+            for (size_t i = 0; i < q; i++) x[i] -= w->hv_tau * s * w->hv[i];
+        }
+    }
+    return full_energy(w, w->x, yi ? w->x + q : NULL, w2);
 }
 
 void whirl_windows_classify(whirl_spectrum *out, size_t count, const double *re, const double *im,
@@ -365,6 +462,390 @@ int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int sig
     return GSL_SUCCESS;
 }
 
+/* Arnoldi step: v_(step+1) from apply(v_step), orthogonalised (Gram-Schmidt, twice) into column
+ * step of the Hessenberg matrix; its norm h_(step+1,step) into *norm. GSL_CONTINUE if apply
+ * failed. */
+static int arnoldi_step(windows_arnoldi *k, size_t step,
+                        int (*apply)(void *data, const double *x, double *y), void *data,
+                        double *norm)
+{
+    const size_t km = k->km, q = k->q;
+    double *v = k->basis, *h = k->hess;
+    const double *x = v + step * q;
+    double *y = v + (step + 1) * q;
+    if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
+    for (int pass = 0; pass < 2; pass++)
+        for (size_t j = 0; j <= step; j++) {
+            double dot = 0;
+            for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
+            for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
+            h[j + step * (km + 1)] += dot;
+        }
+    double nrm = 0;
+    for (size_t i = 0; i < q; i++) nrm = hypot(nrm, y[i]);
+    h[step + 1 + step * (km + 1)] = nrm;
+    if (nrm > 0)
+        for (size_t i = 0; i < q; i++) y[i] /= nrm;
+    *norm = nrm;
+    return GSL_SUCCESS;
+}
+
+/* The Ritz values theta (hre, him) and vectors (hvec, m x m) of the leading m x m Hessenberg
+ * block: the LAPACK info. */
+static lapack_int ritz_values(windows_arnoldi *k, size_t m)
+{
+    for (size_t j = 0; j < m; j++)
+        for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = k->hess[i + j * (k->km + 1)];
+    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
+                              k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m, k->hwork,
+                              (lapack_int)k->hlwork);
+}
+
+/* The residual |h_(m+1,m) e_m^T s| / |s| of Ritz value i (its vector s: column i, or (re, im) at
+ * (i, i + 1) / (i - 1, i) for a complex one). */
+static double ritz_residual(const windows_arnoldi *k, size_t m, size_t i, double norm)
+{
+    const int cplx = k->him[i] != 0;
+    const size_t cr = cplx && k->him[i] < 0 ? i - 1 : i, ci = cplx && k->him[i] > 0 ? i + 1 : i;
+    const double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
+    double len = 0;
+    for (size_t r = 0; r < m; r++)
+        len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
+    return norm * last / len;
+}
+
+/* ---- the banded path (header comment: the structured form) ---- */
+
+/* The structured form of the last linearisation in lin (its blocks in w by split_blocks) of the
+ * chain c at omega: alpha, beta, gamma from the nodes and the lengths, T_j l_j from the diagonal
+ * of Kb (Kb_jj + omega^2 Mb_jj). 1 if it reproduces the five dense blocks to 1e-11 of their
+ * largest entry, else 0 (then the dense path is used). */
+static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
+                        const whirl_stability *lin)
+{
+    const size_t n = w->n;
+    const double om2 = omega * omega;
+    const double *x, *y, *z;
+    w->bomega = NAN;
+    if (c == NULL || c->n != n || !(omega > 0)) return 0;
+    whirl_stability_nodes(lin, &x, &y, &z);
+    for (size_t j = 0; j < n; j++) {
+        const double dx = x[j + 1] - x[j], dy = y[j + 1] - y[j], dz = z[j + 1] - z[j];
+        const double len = sqrt(dx * dx + dy * dy + dz * dz), l = c->length[j];
+        if (!(len > 0) || !(fabs(dy) <= 1e-14 * len)) return 0; /* not in the x-z plane */
+        w->al[j] = -l * dz / len; /* e1 = u x y = (-u_z, 0, u_x), e2 = y (stability.c's chart) */
+        w->be[j] = l * dx / len;
+        w->ga[j] = l;
+        w->ms[j] = c->mass[j];
+        w->tl[j] = w->kb[j * n + j] + om2 * w->mb[j * n + j];
+    }
+    double scale = 0, off = 0, mu = 0;
+    for (size_t i = 0; i < n * n; i++)
+        scale = dmax(fabs(w->ma[i]), dmax(fabs(w->mb[i]), dmax(fabs(w->gab[i]),
+                     dmax(fabs(w->ka[i]), dmax(fabs(w->kb[i]), scale)))));
+    for (size_t h = n; h-- > 0;) { /* entries (j, k) with max(j, k) = h */
+        mu += w->ms[h];
+        for (size_t t = 0; t <= h; t++)
+            for (int side = 0; side < 2; side++) {
+                const size_t j = side ? t : h, k = side ? h : t, jk = j * n + k;
+                const double tl = j == k ? w->tl[j] : 0;
+                const double ma = mu * (w->al[j] * w->al[k] + w->be[j] * w->be[k]);
+                const double mb = mu * w->ga[j] * w->ga[k];
+                off = dmax(fabs(w->ma[jk] - ma), dmax(fabs(w->mb[jk] - mb), off));
+                off = dmax(fabs(w->gab[jk] + 2 * omega * mu * w->al[j] * w->ga[k]), off);
+                off = dmax(fabs(w->ka[jk] - (tl - om2 * mu * w->al[j] * w->al[k])), off);
+                off = dmax(fabs(w->kb[jk] - (tl - om2 * mb)), off);
+            }
+    }
+    if (!(off <= 1e-11 * scale)) return 0;
+    w->bomega = omega;
+    return 1;
+}
+
+/* y = F^T (S (x) C3) F x of the header comment for the 3 x 3 coupling C3 (row-major, components
+ * in the order x, z, y), by the two sums w = L p and u = L^T g. */
+static void structured_product(const whirl_windows *w, const double *c3, const double *x,
+                               double *y)
+{
+    const size_t n = w->n;
+    double *g = w->bx, s[3] = {0, 0, 0};
+    for (size_t j = 0; j < n; j++) {
+        s[0] += w->al[j] * x[j];
+        s[1] += w->be[j] * x[j];
+        s[2] += w->ga[j] * x[n + j];
+        for (int r = 0; r < 3; r++)
+            g[3 * j + r] = w->ms[j] * (c3[3 * r] * s[0] + c3[3 * r + 1] * s[1] + c3[3 * r + 2] * s[2]);
+    }
+    s[0] = s[1] = s[2] = 0;
+    for (size_t j = n; j-- > 0;) {
+        for (int r = 0; r < 3; r++) s[r] += g[3 * j + r];
+        y[j] = w->al[j] * s[0] + w->be[j] * s[1];
+        y[n + j] = w->ga[j] * s[2];
+    }
+}
+
+/* B x (transpose 0) or B^T x (1): C3 = dC/dsigma of the header comment. */
+static void b_product(const whirl_windows *w, int transpose, const double *x, double *y)
+{
+    const double g = 2 * w->bomega;
+    const double cb[9] = {1, 0, transpose ? g : 0, 0, 1, 0, transpose ? 0 : g, 0, 1};
+    structured_product(w, cb, x, y);
+}
+
+/* The banded LU factors of the augmented K' + sigma B (8N unknowns, header comment) into w->ab:
+ * the LAPACK info (> 0: singular). */
+static lapack_int band_factor(whirl_windows *w, double sigma)
+{
+    const size_t n = w->n, nb = 8 * n;
+    const double om = w->bomega, om2 = om * om;
+    const double cs[9] = {sigma - om2, 0, -2 * om, 0, sigma, 0, 2 * om * sigma, 0, sigma - om2};
+    double *ab = w->ab;
+    memset(ab, 0, BAND_LD * nb * sizeof *ab);
+    for (size_t j = 0; j < n; j++) {
+        const size_t b = 8 * j; /* a, c, w (x, z, y), u (x, z, y) */
+        ab[BAND_AT(b, b)] = w->tl[j];
+        ab[BAND_AT(b, b + 5)] = w->al[j];
+        ab[BAND_AT(b, b + 6)] = w->be[j];
+        ab[BAND_AT(b + 1, b + 1)] = w->tl[j];
+        ab[BAND_AT(b + 1, b + 7)] = w->ga[j];
+        for (size_t r = 0; r < 3; r++) { /* w_j - w_{j-1} - p_j = 0 */
+            ab[BAND_AT(b + 2 + r, b + 2 + r)] = 1;
+            if (j > 0) ab[BAND_AT(b + 2 + r, b - 6 + r)] = -1;
+        }
+        ab[BAND_AT(b + 2, b)] = -w->al[j];
+        ab[BAND_AT(b + 3, b)] = -w->be[j];
+        ab[BAND_AT(b + 4, b + 1)] = -w->ga[j];
+        for (size_t r = 0; r < 3; r++) { /* u_j - u_{j+1} - m_j C w_j = 0 */
+            ab[BAND_AT(b + 5 + r, b + 5 + r)] = 1;
+            if (j + 1 < n) ab[BAND_AT(b + 5 + r, b + 13 + r)] = -1;
+            for (size_t k = 0; k < 3; k++)
+                if (cs[3 * r + k] != 0)
+                    ab[BAND_AT(b + 5 + r, b + 2 + k)] = -w->ms[j] * cs[3 * r + k];
+        }
+    }
+    return LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)nb, (lapack_int)nb, BAND_KL, BAND_KL,
+                               ab, BAND_LD, w->bpiv);
+}
+
+/* y = (A' - sigma)^-1 x = -(K' + sigma B)^-1 B x with band_factor's factors; with project, y is
+ * then projected on l^T y = 0 (the deflation). */
+static int band_apply_any(whirl_windows *w, int project, const double *x, double *y)
+{
+    const size_t n = w->n, q = 2 * n, nb = 8 * n;
+    b_product(w, 0, x, y);
+    double *r = w->bx;
+    memset(r, 0, nb * sizeof *r);
+    for (size_t j = 0; j < n; j++) r[8 * j] = -y[j], r[8 * j + 1] = -y[n + j];
+    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)nb, BAND_KL, BAND_KL,
+                                          1, w->ab, BAND_LD, w->bpiv, r, (lapack_int)nb);
+    if (info != 0) return GSL_CONTINUE;
+    for (size_t j = 0; j < n; j++) y[j] = r[8 * j], y[n + j] = r[8 * j + 1];
+    if (project) {
+        double ly = 0, ll = 0;
+        for (size_t i = 0; i < q; i++) ly += w->lv[i] * y[i], ll += w->lv[i] * w->lv[i];
+        if (ll > 0)
+            for (size_t i = 0; i < q; i++) y[i] -= ly / ll * w->lv[i];
+    }
+    return GSL_SUCCESS;
+}
+
+static int band_apply(void *data, const double *x, double *y) { return band_apply_any(data, 0, x, y); }
+static int band_apply_projected(void *data, const double *x, double *y)
+{
+    return band_apply_any(data, 1, x, y);
+}
+
+/* Eigenvalues below s of the symmetric tridiagonal matrix with diagonal d and squared
+ * off-diagonal e2 (e2[i] couples i and i + 1): the negative pivots of its LDL^T - s (Sturm;
+ * backward stable, as LAPACK's dlaebz). */
+static size_t sturm_count(const double *d, const double *e2, size_t n, double s, double pivmin)
+{
+    size_t count = 0;
+    double piv = 1;
+    for (size_t i = 0; i < n; i++) {
+        piv = d[i] - s - (i > 0 ? e2[i - 1] / piv : 0);
+        if (fabs(piv) < pivmin) piv = -pivmin;
+        count += piv < 0;
+    }
+    return count;
+}
+
+/* The index of K (negative eigenvalues, the rotation's zero not counted) from the tridiagonal
+ * matrices T_a, T_b of the header comment, and in *big the largest |mu| of the out-of-plane
+ * block without the Coriolis coupling (the eigenvalues of the tridiagonal
+ * T^1/2 l Mb^-1 l T^1/2, less omega^2). -1 if the tensions are not all positive. */
+static int band_index(whirl_windows *w, double *big)
+{
+    const size_t n = w->n;
+    const double om2 = w->bomega * w->bomega;
+    double *d = w->tri, *e2 = w->tri + n, *sd = w->tri + 2 * n, *se = w->tri + 3 * n;
+    for (size_t i = 0; i < n; i++) { /* S^-1 = L^-1 diag(1 / m) L^-T: sd diagonal, se below */
+        if (!(w->tl[i] > 0)) return -1;
+        sd[i] = 1 / w->ms[i] + (i > 0 ? 1 / w->ms[i - 1] : 0);
+        se[i] = i + 1 < n ? -1 / w->ms[i] : 0;
+    }
+    int index = 0;
+    for (int plane = 0; plane < 2; plane++) {
+        const double *f = plane == 0 ? w->al : w->ga;
+        double norm = 0, emax = 0;
+        for (size_t i = 0; i < n; i++) {
+            d[i] = sd[i] / om2 - f[i] * f[i] / w->tl[i];
+            e2[i] = se[i] * se[i] / (om2 * om2);
+            norm = fmax(norm, fabs(d[i]) + 2 * sqrt(e2[i]));
+            emax = fmax(emax, e2[i]);
+        }
+        const double pivmin = fmax(DBL_MIN, DBL_MIN * emax);
+        index += (int)sturm_count(d, e2, n, -1e-9 * norm, pivmin);
+    }
+    /* the largest eigenvalue of T^1/2 Mb^-1 T^1/2 (Mb^-1 = l^-1 S^-1 l^-1) by bisection */
+    double hi = 0, emax = 0;
+    for (size_t i = 0; i < n; i++) {
+        d[i] = w->tl[i] * sd[i] / (w->ga[i] * w->ga[i]);
+        e2[i] = i + 1 < n ? w->tl[i] * w->tl[i + 1] * se[i] * se[i] /
+                                (w->ga[i] * w->ga[i] * w->ga[i + 1] * w->ga[i + 1])
+                          : 0;
+        emax = fmax(emax, e2[i]);
+    }
+    for (size_t i = 0; i < n; i++)
+        hi = fmax(hi, d[i] + sqrt(e2[i]) + (i > 0 ? sqrt(e2[i - 1]) : 0));
+    double lo = 0;
+    const double pivmin = fmax(DBL_MIN, DBL_MIN * emax);
+    for (int it = 0; it < 60 && hi - lo > 1e-12 * hi; it++) {
+        const double mid = (lo + hi) / 2;
+        if (sturm_count(d, e2, n, mid, pivmin) >= n)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    *big = fmax(0, hi - om2);
+    return index;
+}
+
+/* The energy of kept mu i of the banded path: its Ritz vector V s (full space). */
+static double band_energy(void *data, size_t i)
+{
+    whirl_windows *w = data;
+    windows_arnoldi *k = &w->kband;
+    const size_t q = 2 * w->n, m = w->bm, col = (size_t)w->kept[i];
+    const int cplx = k->him[col] != 0;
+    const size_t cr = cplx && k->him[col] < 0 ? col - 1 : col, ci = cr + 1;
+    double *xr = w->x, *xi = w->x + q;
+    for (size_t r = 0; r < q; r++) {
+        double sr = 0, si = 0;
+        for (size_t t = 0; t < m; t++) {
+            sr += k->basis[t * q + r] * k->hvec[t + cr * m];
+            if (cplx) si += k->basis[t * q + r] * k->hvec[t + ci * m];
+        }
+        xr[r] = sr, xi[r] = si;
+    }
+    /* E / 2 = x^T F^T (S (x) C_E) F x, C_E = [[w^2, 0, omega], [0, w^2, 0], [omega, 0, 1]]
+     * (the form of full_energy in the structured form), O(N) */
+    const double w2 = -w->re[i], om = w->bomega;
+    const double ce[9] = {w2, 0, om, 0, w2, 0, om, 0, 1};
+    double energy = 0, *y = w->lv + q;
+    for (int part = 0; part < 1 + cplx; part++) {
+        const double *xp = part ? xi : xr;
+        structured_product(w, ce, xp, y);
+        for (size_t r = 0; r < q; r++) energy += xp[r] * y[r];
+    }
+    return energy;
+}
+
+#define BAND_TOL 1e-12 /* Ritz residual / |theta| accepted */
+
+/* The mu of the deflated A' with |mu - sigma| up to the first neutral mu beyond omega^2 (header
+ * comment), sigma = omega^2 / 4, by shift-and-invert Arnoldi on ker l^T with the banded factors,
+ * into w->re, w->im (nearest sigma first), with the signatures if asked, into out. GSL_CONTINUE
+ * when the dense path must be taken (not converged, or the index check failed). */
+static int band_spectrum(whirl_windows *w, int signatures, const double *symmetry,
+                         whirl_spectrum *out)
+{
+    const size_t n = w->n, q = 2 * n;
+    const double om2 = w->bomega * w->bomega;
+    double sigma = om2 / 4;
+    int tries = 0;
+    while (band_factor(w, sigma) != 0)
+        if (++tries == 4) return GSL_CONTINUE;
+        else sigma *= 1.1;
+    double *lv = w->lv, snorm = 0;
+    for (size_t i = 0; i < q; i++) w->x[i] = i < n ? 0 : symmetry[i];
+    for (size_t i = n; i < q; i++) snorm = fmax(snorm, fabs(symmetry[i]));
+    if (snorm > 0)
+        b_product(w, 1, w->x, lv);
+    else
+        memset(lv, 0, q * sizeof *lv);
+    windows_arnoldi *k = &w->kband;
+    const size_t dim = q - (snorm > 0), km = k->km < dim ? k->km : dim; /* dim: of ker l^T */
+    double *v = k->basis, *h = k->hess;
+    memset(h, 0, (k->km + 1) * k->km * sizeof(double));
+    for (size_t i = 0; i < q; i++) w->x[i] = sin(0.7 * (double)i + 0.3) + 0.5;
+    double norm = 0;
+    band_apply_any(w, 1, w->x, v); /* a start in ker l^T, smoothed once */
+    for (size_t i = 0; i < q; i++) norm = hypot(norm, v[i]);
+    if (!(norm > 0)) return GSL_CONTINUE;
+    for (size_t i = 0; i < q; i++) v[i] /= norm;
+    double hmax = 0;
+    for (size_t step = 0; step < km; step++) {
+        if (arnoldi_step(k, step, band_apply_projected, w, &norm)) return GSL_CONTINUE;
+        for (size_t j = 0; j <= step + 1; j++) hmax = fmax(hmax, fabs(h[j + step * (k->km + 1)]));
+        const size_t m = step + 1;
+        const int whole = m == dim; /* the whole of ker l^T */
+        if (!whole && !(norm > 1e-14 * hmax)) return GSL_CONTINUE; /* invariant, maybe not all */
+        if (!whole && (m < WINDOWS_BAND_START || (m - WINDOWS_BAND_START) % WINDOWS_BAND_EVERY))
+            continue;
+        if (ritz_values(k, m) != 0) return GSL_CONTINUE;
+        w->bm = m;
+        /* the Ritz values by decreasing |theta| (increasing |mu - sigma|), each converged, up to
+         * the first neutral one beyond omega^2 */
+        int *order = w->kept, done = 0;
+        for (size_t i = 0; i < m; i++) {
+            size_t at = i;
+            const double mod = hypot(k->hre[i], k->him[i]);
+            for (; at > 0 && hypot(k->hre[order[at - 1]], k->him[order[at - 1]]) < mod; at--)
+                order[at] = order[at - 1];
+            order[at] = (int)i;
+        }
+        size_t keep = 0;
+        for (; keep < m; keep++) {
+            const size_t i = (size_t)order[keep];
+            const int cplx = k->him[i] != 0;
+            const double mod = hypot(k->hre[i], k->him[i]);
+            if (!whole && !(ritz_residual(k, m, i, norm) <= BAND_TOL * mod)) break;
+            const double mu = sigma + k->hre[i] / (mod * mod);
+            w->re[keep] = mu;
+            w->im[keep] = -k->him[i] / (mod * mod);
+            if (!cplx && mu < -om2 * (1 + 1e-8)) {
+                done = 1;
+                keep++;
+                break;
+            }
+        }
+        if (!done && !whole) continue;
+        /* not done: the whole space, every mu */
+        double big = 0;
+        const int index = band_index(w, &big);
+        for (size_t i = 0; i < keep; i++) big = fmax(big, hypot(w->re[i], w->im[i]));
+        whirl_windows_classify(out, keep, w->re, w->im, 1e-10 * sqrt(big),
+                               signatures ? w->sig : NULL, band_energy, w);
+        if (!signatures) return GSL_SUCCESS;
+        /* Mackay's count: 2 (neutral, E < 0) + (complex) + (real positive) = index of K */
+        int count2 = 0;
+        for (size_t i = 0; i < keep; i++)
+            count2 += w->sig[i] < 0 ? 2 : (root_re(w->re[i], w->im[i]) > out->level);
+        return count2 == index ? GSL_SUCCESS : GSL_CONTINUE;
+    }
+    return GSL_CONTINUE;
+}
+
+int whirl_windows_spectrum_banded(whirl_windows *w, const whirl_chain *c, double omega,
+                                  const whirl_stability *lin, int signatures, whirl_spectrum *out)
+{
+    int status = split_blocks(w, lin);
+    if (status) return status;
+    if (!structure_of(w, c, omega, lin)) return GSL_CONTINUE;
+    return band_spectrum(w, signatures, whirl_stability_symmetry(lin), out);
+}
+
 /* ---- the search ---- */
 
 typedef struct point {
@@ -425,19 +906,33 @@ static int nlink_spectrum(void *data, double omega, int signatures, whirl_spectr
 {
     whirl_windows *w = data;
     int status = linearise_at(w, omega);
+    if (!status && w->fast) {
+        status = whirl_windows_spectrum_banded(w, w->chain, omega, w->lin, signatures, out);
+        if (status != GSL_CONTINUE) return status;
+        w->fallbacks++;
+        status = GSL_SUCCESS;
+    }
     if (!status) status = whirl_windows_spectrum(w, w->lin, signatures, out);
     return status;
 }
 
 static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu_im);
+static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
+                        const whirl_stability *lin);
+static lapack_int band_factor(whirl_windows *w, double sigma);
+static int band_apply(void *data, const double *x, double *y);
 
 static int nlink_pair(void *data, double omega, double sigma, double *mu_re, double *mu_im)
 {
     whirl_windows *w = data;
     int status = linearise_at(w, omega);
     if (!status) status = split_blocks(w, w->lin);
-    if (!status) status = krylov_pair(w, sigma, mu_re, mu_im);
-    return status;
+    if (status) return status;
+    if (w->fast && structure_of(w, w->chain, omega, w->lin)) { /* the banded factors */
+        if (band_factor(w, sigma) != 0) return GSL_CONTINUE;
+        return whirl_windows_arnoldi_pair(&w->kr, band_apply, w, sigma, mu_re, mu_im);
+    }
+    return krylov_pair(w, sigma, mu_re, mu_im);
 }
 
 /* A full evaluation: every mu, and with signatures the ranks. */
@@ -545,9 +1040,14 @@ static double discriminant(const double *re, const double *im, size_t count, dou
 
 int whirl_windows_arnoldi_init(windows_arnoldi *k, size_t q)
 {
-    const size_t km = WINDOWS_KRYLOV_MAX;
+    return whirl_windows_arnoldi_init_steps(k, q, WINDOWS_KRYLOV_MAX);
+}
+
+int whirl_windows_arnoldi_init_steps(windows_arnoldi *k, size_t q, size_t km)
+{
     memset(k, 0, sizeof *k);
     k->q = q;
+    k->km = km;
     k->basis = malloc(q * (km + 1) * sizeof(double));
     k->hess = malloc((km + 1) * km * sizeof(double));
     k->hcopy = malloc(km * km * sizeof(double));
@@ -575,10 +1075,9 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
                                int (*apply)(void *data, const double *x, double *y), void *data,
                                double sigma, double *mu_re, double *mu_im)
 {
-    lapack_int info;
-    const size_t km = WINDOWS_KRYLOV_MAX, q = k->q;
-    double *v = k->basis, *h = k->hess;
-    memset(h, 0, (km + 1) * km * sizeof(double));
+    const size_t km = k->km, q = k->q;
+    double *v = k->basis;
+    memset(k->hess, 0, (km + 1) * km * sizeof(double));
     double norm = 0;
     for (size_t i = 0; i < q; i++) {
         v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
@@ -586,30 +1085,11 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
     }
     for (size_t i = 0; i < q; i++) v[i] /= norm;
     for (size_t step = 0; step < km; step++) {
-        const double *x = v + step * q;
-        double *y = v + (step + 1) * q;
-        if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
-        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
-            for (size_t j = 0; j <= step; j++) {
-                double dot = 0;
-                for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
-                for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
-                h[j + step * (km + 1)] += dot;
-            }
-        norm = 0;
-        for (size_t i = 0; i < q; i++) norm = hypot(norm, y[i]);
-        h[step + 1 + step * (km + 1)] = norm;
-        if (norm > 0)
-            for (size_t i = 0; i < q; i++) y[i] /= norm;
+        if (arnoldi_step(k, step, apply, data, &norm)) return GSL_CONTINUE;
         const size_t m = step + 1;
         if (m < 4 && norm > 0) continue;
-        for (size_t j = 0; j < m; j++)
-            for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = h[i + j * (km + 1)];
-        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy,
-                                  (lapack_int)m, k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m,
-                                  k->hwork, (lapack_int)k->hlwork);
-        if (info != 0) return GSL_CONTINUE;
-        /* the two Ritz values of largest modulus and their residuals |h_{m+1,m} e_m^T s| / |s| */
+        if (ritz_values(k, m) != 0) return GSL_CONTINUE;
+        /* the two Ritz values of largest modulus and their residuals */
         size_t best[2] = {0, 0};
         double big[2] = {-1, -1};
         for (size_t i = 0; i < m; i++) {
@@ -622,20 +1102,8 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
             }
         }
         int converged = big[1] > 0;
-        for (int t = 0; t < 2 && converged; t++) {
-            const size_t i = best[t];
-            /* eigenvector columns: real i, or (re, im) at (i, i + 1) / (i - 1, i) */
-            size_t cr = i, ci = i;
-            int cplx = k->him[i] != 0;
-            if (cplx && k->him[i] > 0) ci = i + 1;
-            if (cplx && k->him[i] < 0) cr = i - 1;
-            double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
-            double len = 0;
-            for (size_t r = 0; r < m; r++)
-                len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
-            const double resid = norm * last / len;
-            if (!(resid <= 1e-13 * big[t])) converged = 0;
-        }
+        for (int t = 0; t < 2 && converged; t++)
+            if (!(ritz_residual(k, m, best[t], norm) <= 1e-13 * big[t])) converged = 0;
         if (converged || norm == 0) {
             if (!converged) return GSL_CONTINUE;
             for (int t = 0; t < 2; t++) {
@@ -1159,6 +1627,8 @@ int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
             status = whirl_fail(GSL_EFAILED, "mode %d: no shape at omega = " WHIRL_Q_RATE "%g on "
                                 "its branch", mode, omega[j]);
     }
+    w->fast = p->krylov != 0;
+    w->fallbacks = 0;
     windows_source src = {nlink_spectrum, p->krylov ? nlink_pair : NULL, w, mode, stats};
     if (!status) status = whirl_windows_search(&src, p, omega, npts, windows, max, count);
     w->lin_omega = NAN;

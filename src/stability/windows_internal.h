@@ -32,14 +32,17 @@ void whirl_windows_classify(whirl_spectrum *out, size_t count, const double *re,
 #define WINDOWS_KRYLOV_MAX 40
 typedef struct windows_arnoldi {
     size_t q;                   /* vector length */
+    size_t km;                  /* most steps (WINDOWS_KRYLOV_MAX unless set at init) */
     double *basis;              /* q x (WINDOWS_KRYLOV_MAX + 1), column j at j * q */
     double *hess;               /* (WINDOWS_KRYLOV_MAX + 1) x WINDOWS_KRYLOV_MAX, column-major */
     double *hcopy, *hre, *him, *hvec, *hwork; /* its eigen-solve */
     int hlwork;
 } windows_arnoldi;
 
-/* Allocates the arrays of k for vectors of length q (GSL_ENOMEM; release frees what was got). */
+/* Allocates the arrays of k for vectors of length q (GSL_ENOMEM; release frees what was got),
+ * for WINDOWS_KRYLOV_MAX steps, or km steps (the arrays' sizes below with km). */
 int whirl_windows_arnoldi_init(windows_arnoldi *k, size_t q);
+int whirl_windows_arnoldi_init_steps(windows_arnoldi *k, size_t q, size_t km);
 void whirl_windows_arnoldi_release(windows_arnoldi *k);
 
 /* The two eigenvalues mu = sigma + 1 / theta nearest sigma, theta the eigenvalues of largest
@@ -61,5 +64,16 @@ int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, d
 int whirl_windows_search(const windows_source *src, const whirl_windows_params *p,
                          const double *omega, size_t npts, whirl_window *windows, size_t max,
                          size_t *count);
+
+/* The mu of the last linearisation in lin (of the chain c at omega) that can collide, by the
+ * banded path of stability_windows.c (its header comment): every mu with |mu| <= omega^2 and
+ * the first neutral one beyond, with the signatures if asked. GSL_CONTINUE when that path does
+ * not apply or did not converge (the dense whirl_windows_spectrum then gives them), GSL_EINVAL
+ * as whirl_windows_spectrum. */
+int whirl_windows_spectrum_banded(whirl_windows *w, const whirl_chain *c, double omega,
+                                  const whirl_stability *lin, int signatures, whirl_spectrum *out);
+
+/* Evaluations of the last whirl_windows_find where the banded path gave way to the dense one. */
+size_t whirl_windows_fallbacks(const whirl_windows *w);
 
 #endif

@@ -112,6 +112,12 @@ static int check_chain(const whirl_chain *c)
 
 int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega)
 {
+    return whirl_nlink_critical_report(c, nmodes, omega, NULL, NULL);
+}
+
+int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
+                                whirl_nlink_critical_progress_fn progress, void *ctx)
+{
     int status = check_chain(c);
     if (status != GSL_SUCCESS) return status;
     size_t n = c->n;
@@ -154,8 +160,10 @@ int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega)
         if (info != 0 || found != (lapack_int)(iu - il + 1))
             status = whirl_fail(GSL_EFAILED, "tridiagonal eigensolver (dstebz) failed: info %d",
                                 (int)info);
-        else
+        else {
             for (size_t k = 0; k < (size_t)found; k++) omega[il - 1 + k] = sqrt(lambda[k]);
+            if (progress) progress(ctx, iu, nmodes);
+        }
     }
     free(work);
     free(iblock);

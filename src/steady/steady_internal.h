@@ -30,6 +30,13 @@ typedef int (*steady_shot_fn)(void *ws, double a, double *residual, int *crossin
 int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max,
                             double scan_ratio, double guess, double *a);
 
+/* whirl_nlink_critical with a report of the work done: the rates come in blocks (one call of
+ * dstebz each, about 0.02 s), the stop request polled between blocks, and after each block
+ * progress(ctx, done, nmodes) with the rates found so far (progress NULL: none). */
+typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
+int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
+                                whirl_nlink_critical_progress_fn progress, void *ctx);
+
 /* A model for branch following: a workspace per thread and a solve with a seed. */
 typedef struct steady_model {
     void *(*ws_alloc)(const void *params);

@@ -36,6 +36,52 @@ printf '# trace: t\n0 0 0 0\n0 0 -1e200 0\n' >"$tmp/huge.dat"
 expect_error "view: coordinates of 1e200 are refused (the page would draw inf)" \
   "huge.dat:3: a trace line needs four finite numbers .* at most 1e\+100" view "$tmp/huge.dat" -o "$out"
 
+# ---- out of memory while reading: reported as such, never as the end of the file ----
+# Under a limit on the address space (ulimit -v) a little above what a short input needs, a long
+# one runs out of memory while it is read: its line (the scene's reader) or its points (fit,
+# view) need 8 MiB and more beyond the limit. The limit is found by bisection on the short input
+# (the program, its libraries and a short read), to 1 MiB. Not under the sanitizers, whose
+# shadow memory needs terabytes of address space.
+# least_vm PATTERN ARGS...: the least limit in KiB at which `whirl ARGS` prints PATTERN (0: none
+# up to 4 GiB)
+least_vm() {
+  pat=$1; shift
+  lo=1024 hi=4194304
+  if ! (ulimit -v $hi; exec "$WHIRL" "$@") 2>&1 | grep -Eq "$pat"; then echo 0; return; fi
+  while [ $((hi - lo)) -gt 1024 ]; do
+    mid=$(((lo + hi) / 2))
+    if (ulimit -v $mid; exec "$WHIRL" "$@") 2>&1 | grep -Eq "$pat"; then hi=$mid; else lo=$mid; fi
+  done
+  echo $hi
+}
+# out_of_memory NAME SHORT_PATTERN SHORT_FILE LONG_FILE PATTERN CMD...: CMD on SHORT_FILE gives
+# SHORT_PATTERN under its least limit; on LONG_FILE under that limit plus 4 MiB, one line that
+# matches PATTERN, exit 1, no output
+out_of_memory() {
+  name=$1; short_pat=$2; short=$3; long=$4; pat=$5; shift 5
+  vm=$(least_vm "$short_pat" "$@" "$short")
+  rm -f "$out"
+  (ulimit -v $((vm + 4096)); exec "$WHIRL" "$@" "$long") >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  if [ "$vm" -gt 0 ] && [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] &&
+     grep -Eq "$pat" "$tmp/stderr" && [ ! -e "$out" ] && [ ! -s "$tmp/stdout" ]; then
+    pass "$name: out of memory under ulimit -v $((vm + 4096)) KiB, said as such"
+  else fail "$name: out of memory (least limit $vm KiB, rc=$rc, $(head -c 300 "$tmp/stderr"))"; fi
+}
+if [ -z "$WHIRL_SANITIZE" ]; then
+  printf '; a scene with nothing in it\n' >"$tmp/short.ini"
+  { printf '; '; head -c 12000000 /dev/zero | tr '\0' x; printf '\n[chain]\n'; } >"$tmp/longline.ini"
+  out_of_memory "scene: a line of 12 MB" '\[chain\] dim: missing' "$tmp/short.ini" "$tmp/longline.ini" \
+    'longline.ini:1: out of memory reading a line of [0-9]+ MiB$' simulate -o "$out"
+  printf 'r,z\n0.1,-0.5\n' >"$tmp/short.csv"
+  awk 'BEGIN {print "r,z"; for (i = 0; i < 1500000; i++) print "0.1,-0.5"}' >"$tmp/long.csv"
+  out_of_memory "fit --shape: 1.5e6 points" 'has 1 points' "$tmp/short.csv" "$tmp/long.csv" \
+    'long.csv:[0-9]+: out of memory for the points \([0-9]+ read\)$' fit -o "$out" --shape
+  out_of_memory "view: 1.5e6 points" 'no chain in it' "$tmp/short.csv" "$tmp/long.csv" \
+    'long.csv:[0-9]+: out of memory for the points \([0-9]+ read\)$' view -o "$out"
+  rm -f "$tmp/longline.ini" "$tmp/long.csv"
+fi
+
 # ---- outputs that cannot destroy ----
 "$WHIRL" shape --omega 3.3 --mode 2 --points 50 -o "$tmp/d.csv"
 cp "$tmp/d.csv" "$tmp/d.keep"
@@ -70,6 +116,19 @@ if [ -L "$tmp/link.csv" ] && [ "$(stat -c %a "$tmp/target.csv")" = 640 ] &&
    grep -q 'omega=2' "$tmp/target.csv" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
   pass "-o through a symlink: the link kept, the target written with its mode 640"
 else fail "-o through a symlink ($(ls -l "$tmp/link.csv" "$tmp/target.csv"), $(cat "$tmp/stderr"))"; fi
+# ... and the target's owner: a file of another user (uid and gid 65534, nobody), which only root
+# can make and write, keeps them
+if [ "$(id -u)" -eq 0 ]; then
+  cp "$tmp/d.keep" "$tmp/theirs.csv"; chown 65534:65534 "$tmp/theirs.csv"; chmod 604 "$tmp/theirs.csv"
+  ln -s theirs.csv "$tmp/their_link.csv"
+  "$WHIRL" shape --omega 2 --mode 1 -o "$tmp/their_link.csv" 2>"$tmp/stderr"
+  if [ -L "$tmp/their_link.csv" ] && [ "$(stat -c '%u:%g %a' "$tmp/theirs.csv")" = "65534:65534 604" ] &&
+     grep -q 'omega=2' "$tmp/theirs.csv" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
+    pass "-o through a symlink as root: the target keeps its owner 65534:65534 and mode 604"
+  else fail "-o through a symlink as root ($(stat -c '%u:%g %a' "$tmp/theirs.csv"), $(cat "$tmp/stderr"))"; fi
+else
+  pass "-o through a symlink keeps the target's owner # skip not root: only root can write another user's file"
+fi
 # a second output that fails: neither is written, the message names it
 rm -f "$out"
 "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=0.5 --set output.trace=/dev/full -o "$out" \
@@ -108,16 +167,17 @@ for bad in nan inf 1e999 cut; do
     "bad.csv:[0-9]+: .*the file cannot be trusted" regime $big -o "$tmp/bad.csv" --resume
 done
 
-# a stability map being resumed is locked too
+# a stability map being resumed is locked too (2 s into each run: its linearisation of the 1201
+# rates comes first, a second and more on a loaded machine, before any row)
 smap="stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 --periods 20"
 # shellcheck disable=SC2086
 "$WHIRL" $smap -o "$tmp/smap.csv" 2>/dev/null &
 pid=$!
-sleep 1; kill -INT $pid; wait $pid
+sleep 2; kill -INT $pid; wait $pid
 # shellcheck disable=SC2086
 "$WHIRL" $smap -o "$tmp/smap.csv" --resume 2>/dev/null &
 pid=$!
-sleep 1
+sleep 2
 # shellcheck disable=SC2086
 expect_error "stability --resume on a map another run writes: refused (locked)" \
   "smap.csv' is being written by another run \(locked\)" $smap -o "$tmp/smap.csv" --resume
@@ -125,6 +185,44 @@ kill -INT $pid; wait $pid
 rc=$?
 [ $rc -eq 130 ] && [ "$(grep -c '^[0-9]' "$tmp/smap.csv")" -gt 1 ] &&
   pass "the first stability run kept its map (exit 130)" || fail "the first stability run (rc=$rc)"
+
+# two runs started together on a map file that does not exist yet: the one that makes it holds
+# the lock, the other is refused at once with one line; the file holds every row of the first
+# (the two ask for different rows, so that the file tells which one wrote it)
+# together NAME ROWS_A ARGS_A ROWS_B ARGS_B: ROWS_X, the data rows run X writes
+together() {
+  name=$1; rows_a=$2; args_a=$3; rows_b=$4; args_b=$5
+  rm -rf "$tmp/tog"; mkdir "$tmp/tog"
+  # shellcheck disable=SC2086
+  "$WHIRL" $args_a -o "$tmp/tog/map.csv" >/dev/null 2>"$tmp/tog_a.err" &
+  pa=$!
+  # shellcheck disable=SC2086
+  "$WHIRL" $args_b -o "$tmp/tog/map.csv" >/dev/null 2>"$tmp/tog_b.err" &
+  pb=$!
+  wait $pa; ra=$?; wait $pb; rb=$?
+  want=-1 loser=/dev/null
+  if [ $ra -eq 0 ] && [ $rb -eq 1 ]; then want=$rows_a loser=$tmp/tog_b.err
+  elif [ $rb -eq 0 ] && [ $ra -eq 1 ]; then want=$rows_b loser=$tmp/tog_a.err; fi
+  rows=$(grep -v '^#' "$tmp/tog/map.csv" 2>/dev/null | tail -n +2 | wc -l)
+  if [ "$want" -ge 0 ] && [ "$rows" -eq "$want" ] && [ "$(wc -l <"$loser")" -eq 1 ] &&
+     grep -q "map.csv' is being written by another run (locked)" "$loser" &&
+     [ "$(ls -A "$tmp/tog")" = map.csv ]; then
+    pass "$name: one run writes the new file ($rows rows), the other is refused"
+  else fail "$name: two runs on a new file (rc $ra and $rb, $rows rows, $(ls -A "$tmp/tog"), $(cat "$tmp/tog_a.err" "$tmp/tog_b.err" | head -c 300))"; fi
+}
+rsw="regime --sweep --omega-min 3 --omega-max 3.5 --eps 0.1 --links 5 --t-max 60"
+together "regime --sweep" 79 "$rsw --omega-count 40" 81 "$rsw --omega-count 41"
+rmap="regime --omega-max 4 --omega-count 40 --eps 0.05 $fast"
+together "regime map" 40 "$rmap --omega-min 1" 40 "$rmap --omega-min 1.5"
+smap2="stability --omega-max 8 --links 8 --periods 20 --omega-count 101"
+# the map's rows: the modes present at each of the 101 rates, counted from a run alone
+# shellcheck disable=SC2086
+"$WHIRL" $smap2 --omega-min 2 -o "$tmp/s2a.csv" && "$WHIRL" $smap2 --omega-min 2.5 -o "$tmp/s2b.csv"
+together "stability map" "$(grep -v '^#' "$tmp/s2a.csv" | tail -n +2 | wc -l)" "$smap2 --omega-min 2" \
+  "$(grep -v '^#' "$tmp/s2b.csv" | tail -n +2 | wc -l)" "$smap2 --omega-min 2.5"
+# a run that fails after making the file removes it (no empty map left)
+expect_error "stability map: a run that fails leaves no empty file it made" "beyond the stability interval" \
+  stability --omega-min 3.9 --omega-max 4 --omega-count 2 --links 60 --dt 0.05 -o "$tmp/out.csv"
 
 # ---- a scene cannot write outside its folder ----
 mkdir "$tmp/scn" "$tmp/elsewhere"
@@ -196,7 +294,8 @@ prompt "the sampling and writing of 10^7 points" shape --omega 3.3 --mode 2 --po
 prompt "regime --t-max 1e300" regime --omega 3 --eps 0.1 --links 4 --t-max 1e300
 
 # ---- signals: each terminating signal ends a long command like Ctrl-C, with 128 + its number ----
-# stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s;
+# stop NAME SIGNAL STATUS ARGS...: runs `whirl ARGS -o $tmp/sig/out.csv`, sends SIGNAL after 1 s
+# ($stop_after s if set);
 # the command must exit STATUS within 2 s of the signal, keep the output with its rows, leave no
 # temporary file and say it was interrupted. Prints the time from the signal to the exit.
 stop() {
@@ -206,7 +305,7 @@ stop() {
   # ignores SIGHUP, and whirl rightly keeps an ignored SIGHUP ignored: tested below)
   env --default-signal="$sig" "$WHIRL" "$@" -o "$tmp/sig/out.csv" >/dev/null 2>"$tmp/sig.err" &
   pid=$!
-  sleep 1
+  sleep "${stop_after:-1}"
   t0=$(date +%s.%N)
   kill -"$sig" $pid
   wait $pid
@@ -222,16 +321,22 @@ stop() {
   fi
 }
 map="stability --omega-min 2 --omega-max 8 --omega-count 1201 --links 8 --periods 20"
+stop_after=2 # the map's linearisation first: a second and more on a loaded machine, no row
 # shellcheck disable=SC2086
 stop "stability map" HUP 129 $map
 # shellcheck disable=SC2086
 stop "stability map" QUIT 131 $map
 # shellcheck disable=SC2086
 stop "stability map" TERM 143 $map
+stop_after=
 stop "sweep" HUP 129 sweep --modes 1,2,3 --omega-min 2 --omega-max 4000 --omega-count 30001
 stop "driven branch" QUIT 131 driven --omega-min 1 --omega-max 4000 --eps 0.05
 stop "regime sweep" HUP 129 regime --sweep --omega-min 3 --omega-max 3.5 --omega-count 5000 \
   --eps 0.1 --links 5 --t-max 60
+
+# the fuzz timeout at omega 4.6e6 (tests/fuzz/regress/scene): within the work budget, hours of
+# adaptive steps of order 1/omega, stopped at once with its rows
+stop "simulate at omega 4.6e6 in the rotating frame" INT 130 simulate "$regress/omega_4.6e6_rk8pd.ini"
 
 # nohup: SIGHUP ignored stays ignored (the run ends normally)
 nohup "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=2 -o "$tmp/nohup.csv" \

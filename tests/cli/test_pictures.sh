@@ -68,6 +68,52 @@ expect_error "plot: files in different units" 'in different units' \
   plot "$tmp/s2.csv" "$tmp/d.csv" -o "$tmp/pics/x.png"
 printf 'a,b\n1,2\n' >"$tmp/other.csv"
 expect_error "plot: a file not of whirl's" 'not a file of whirl' plot "$tmp/other.csv" -o "$tmp/pics/x.png"
+# whirl plot of the window files: the atlas (the committed one of the guide), windows of the
+# N-link chain and of the continuum, intervals with dissipation (the classroom chain, SI units:
+# a Hz axis), a file without windows; each to PNG and SVG through whirl, and through
+# plots/plot.gp by hand with nothing on gnuplot's stderr (no warning)
+gp=$(dirname "$0")/../../plots/plot.gp
+cp "$(dirname "$0")/../../docs/guide/atlas.csv" "$tmp/atlas.csv"
+"$WHIRL" stability --windows --links 10 --modes 2,3 --omega-min 4.3 --omega-max 8 -o "$tmp/wn.csv"
+"$WHIRL" stability --windows --modes 2 --omega-min 4.38 --omega-max 4.42 --scan-step 0.05 \
+  --tol 1e-7 -o "$tmp/wc.csv"
+"$WHIRL" stability --windows --links 10 --modes 1,2 --omega-min 6 --omega-max 40 --scan-step 0.5 \
+  $si --eps 1cm --drag 2.9e-3 --side -1 -o "$tmp/wd.csv"
+"$WHIRL" stability --windows --links 10 --modes 2 --omega-min 3 --omega-max 4 -o "$tmp/w0.csv"
+[ "$(grep -v '^#' "$tmp/w0.csv" | wc -l)" -eq 1 ] && pass "windows: 3..4 (N = 10) has none" ||
+  fail "windows: 3..4 has windows: $(cat "$tmp/w0.csv")"
+for f in atlas wn wc wd w0; do
+  expect_ok "plot: $f.csv to PNG" plot "$tmp/$f.csv" -o "$tmp/$f.png"
+  [ "$(head -c 8 "$tmp/$f.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] &&
+    pass "plot: $f.png is a PNG" || fail "plot: $f.png is not a PNG"
+  expect_ok "plot: $f.csv to SVG" plot "$tmp/$f.csv" -o "$tmp/$f.svg"
+  gnuplot -e "file='$tmp/$f.csv'; out='$tmp/g.svg'" "$gp" >"$tmp/gp.out" 2>&1
+  [ ! -s "$tmp/gp.out" ] && [ -s "$tmp/g.svg" ] && pass "plots/plot.gp: $f.csv without a warning" ||
+    fail "plots/plot.gp: $f.csv: $(head -3 "$tmp/gp.out")"
+done
+# what each figure says: its title, the rate's unit, the births (atlas), the legend
+has() { grep -qF ">$2<" "$tmp/$1.svg" && pass "plot: $1.svg shows '$2'" || fail "plot: $1.svg lacks '$2'"; }
+has atlas 'Windows of instability of the whirling chain (continuum), births marked'
+has atlas 'birth omega_k'
+has wn 'Windows of instability of the whirling chain (10 links)'
+has wn 'rotation rate omega [sqrt(g/L)]'
+has wc 'Windows of instability of the whirling chain (continuum)'
+has wd 'rotation rate omega [rad/s]'
+has wd 'rotation frequency omega / 2 pi [Hz]'
+has wd 'unstable (growth > 0)'
+has wd 'converging (growth &lt; 0)'
+has w0 'no window found in the examined ranges'
+has w0 'examined range'
+# one bar per interval in its verdict's colour (one more: the legend's sample)
+for v in 'unstable:192,  57,  43' 'converging: 31, 120, 180'; do
+  rows=$(grep -v '^#' "$tmp/wd.csv" | grep -c ",${v%%:*}\$")
+  bars=$(grep -cF "fill = 'rgb(${v#*:})'" "$tmp/wd.svg")
+  [ "$rows" -gt 0 ] && [ "$bars" -eq $((rows + 1)) ] && pass "plot: $rows ${v%%:*} intervals, $rows bars" ||
+    fail "plot: $rows ${v%%:*} intervals, $bars bars of its colour (with the legend's)"
+done
+# a header like a window file's but of no kind: refused in one line (expect_error), no picture
+printf '# units: dimensionless\nmode,links,from,to,something\n2,10,4,5,1\n' >"$tmp/odd.csv"
+expect_error "plot: an unknown window-like header" 'not a file of whirl' plot "$tmp/odd.csv" -o "$tmp/pics/x.png"
 expect_error "plot: no -o" '-o is required|--output is required' plot "$tmp/s2.csv"
 expect_error "plot: a missing file" 'cannot read' plot "$tmp/none.csv" -o "$tmp/pics/x.png"
 [ -z "$(ls -A "$tmp/pics")" ] && pass "plot: failures leave no file" || fail "plot: files left: $(ls -A "$tmp/pics")"

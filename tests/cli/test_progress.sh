@@ -1,10 +1,11 @@
 #!/bin/sh
-# Command-line tests of long continuations of the N-link chain (whirl shape, whirl sweep): the
-# progress line shows on a terminal only (the command run on a pseudo-terminal by util-linux's
-# script), says where the branch stands (rate reached of the target, steps and their bound,
-# folds; no estimate of the time left) and is erased at the end, and the CSV stays clean; the
-# bound on the steps (--max-steps) stops a run with one line naming the mode and the rate
-# reached, and no output.
+# Command-line tests of the progress lines of long phases: the continuations of the N-link chain
+# (whirl shape, whirl sweep), the critical rates of a long chain (whirl critical) and the reading
+# and writing of a large file (whirl view). The line shows on a terminal only (the command run on
+# a pseudo-terminal by util-linux's script), says where the work stands and is erased at the end,
+# and the output stays the same; Ctrl-C typed on the terminal while the line shows stops the
+# command within 2 s (exit 130, nothing written). The bound on the continuation steps
+# (--max-steps) stops a run with one line naming the mode and the rate reached, and no output.
 . "$(dirname "$0")/lib.sh"
 
 # Mode 100 of 1000 links (born at omega 156.81) up to 190: some 5000 steps and 160 folds, about
@@ -83,6 +84,90 @@ if [ $rc -eq 0 ] && [ ! -s "$tmp/sweep.err" ] && ! grep -q 'whirl' "$tmp/sweep_e
    && [ "$(grep -c '^1[0-9]*,100,' "$tmp/sweep_tty.csv")" -ge 3 ]; then
   pass "sweep: no progress line when standard error is not a terminal, the same CSV"
 else fail "sweep: no progress line when standard error is not a terminal, the same CSV (rc=$rc)"; fi
+
+# ctrl_c PATTERN ARGS...: runs `whirl ARGS` on a pseudo-terminal (the line asked for at once),
+# types Ctrl-C once the terminal shows PATTERN (the terminal's line discipline sends SIGINT),
+# and sets cc_rc (the exit status) and cc_late (seconds from the Ctrl-C to the exit); the
+# terminal's text in $tmp/cc.tty.
+ctrl_c() {
+  pattern=$1; shift
+  rm -f "$tmp/cc.tty" "$tmp/cc.rc" "$tmp/cc.t0" "$tmp/cc.t1"
+  { i=0
+    until grep -q "$pattern" "$tmp/cc.tty" 2>/dev/null || [ $i -ge 600 ]; do sleep 0.05; i=$((i + 1)); done
+    date +%s.%N >"$tmp/cc.t0"; printf '\003'
+    i=0; until [ -e "$tmp/cc.rc" ] || [ $i -ge 100 ]; do sleep 0.05; i=$((i + 1)); done; } |
+    { WHIRL_PROGRESS_AFTER=0 script -qfec "exec \"$WHIRL\" $*" /dev/null >"$tmp/cc.tty"
+      echo $? >"$tmp/cc.rc.new"; date +%s.%N >"$tmp/cc.t1"; mv "$tmp/cc.rc.new" "$tmp/cc.rc"; }
+  cc_rc=$(cat "$tmp/cc.rc")
+  cc_late=$(echo "$(cat "$tmp/cc.t1") - $(cat "$tmp/cc.t0")" | bc)
+}
+
+# ---- critical: the eigenvalues of a long chain, counted ----
+on_tty critical ">\"$tmp/crit_tty.csv\"" critical --links 2000 --modes 2000
+rc=$?
+# the lines drawn: the count of rates, the time and the time left (none in the last line,
+# drawn once every rate is found); any other line starting "whirl critical" is wrong
+tr '\r' '\n' <"$tmp/critical.tty" | sed 's/\x1b\[K$//' | grep '^whirl critical' >"$tmp/critical.all"
+grep -E '^whirl critical: critical rates [0-9]+/2000 \([0-9]+%\), [0-9]+s elapsed(, about [0-9hms]+ left)?$' \
+  "$tmp/critical.all" >"$tmp/critical.lines"
+grep -Ev '^whirl critical: critical rates [0-9]+/2000 \([0-9]+%\), [0-9]+s elapsed(, about [0-9hms]+ left)?$' \
+  "$tmp/critical.all" >"$tmp/critical.other"
+if [ $rc -eq 0 ] && [ -s "$tmp/critical.lines" ] && [ ! -s "$tmp/critical.other" ] &&
+   tail -c 4 "$tmp/critical.tty" | cmp -s - "$tmp/erase"; then
+  pass "critical: a progress line on a terminal ($(wc -l <"$tmp/critical.lines") drawn), erased at the end"
+else fail "critical: a progress line on a terminal (rc=$rc: $(tr '\r\033' '|^' <"$tmp/critical.tty" | head -c 300))"; fi
+# the counts grow, in blocks of dstebz, up to the modes asked for
+if awk '{split($0, f, /[ /]+/); k = f[5]; if (k <= last || k > 2000) bad = 1; last = k}
+        END {exit bad || NR == 0}' "$tmp/critical.lines"; then pass "critical: the count of rates grows to 2000"
+else fail "critical: the count of rates ($(head -n 3 "$tmp/critical.lines"))"; fi
+"$WHIRL" critical --links 2000 --modes 2000 >"$tmp/crit.csv" 2>"$tmp/crit.err"
+if cmp -s "$tmp/crit.csv" "$tmp/crit_tty.csv" && [ ! -s "$tmp/crit.err" ] &&
+   [ "$(grep -c '^[0-9]' "$tmp/crit.csv")" -eq 2000 ]; then
+  pass "critical: the same 2000 rates with or without the line, none on a file"
+else fail "critical: the same rates with or without the line ($(head -c 200 "$tmp/crit.err"))"; fi
+# a run shorter than a second shows nothing by default
+script -qfec "\"$WHIRL\" critical --links 300 --modes 300 >/dev/null" /dev/null </dev/null \
+  >"$tmp/crit_short.tty"
+if ! grep -q whirl "$tmp/crit_short.tty"; then pass "critical: no line for a run under a second"
+else fail "critical: no line for a run under a second ($(tr '\r\033' '|^' <"$tmp/crit_short.tty" | head -c 200))"; fi
+# Ctrl-C while the line shows: the eigenvalues of 60000 links (minutes) stop at once
+rm -rf "$tmp/cc_out"; mkdir "$tmp/cc_out"
+ctrl_c 'critical rates [0-9]' critical --links 60000 --modes 60000 -o "$tmp/cc_out/c.csv"
+if [ "$cc_rc" -eq 130 ] && [ "$(echo "$cc_late < 2" | bc)" -eq 1 ] && [ -z "$(ls -A "$tmp/cc_out")" ] &&
+   tr '\r' '\n' <"$tmp/cc.tty" | grep -q 'whirl critical: stopped after [0-9]* of 60000 critical rates'; then
+  pass "critical: Ctrl-C on the terminal stops 60000 links in $cc_late s (exit 130, no file)"
+else fail "critical: Ctrl-C (rc=$cc_rc, $cc_late s, $(ls -A "$tmp/cc_out"), $(tr '\r\033' '|^' <"$tmp/cc.tty" | tail -c 200))"; fi
+
+# ---- view: the reading and the writing of a large file ----
+# a shape of 2e6 points (84 MB): some seconds to read, one to write
+awk 'BEGIN {print "# omega=3 mode=2"; print "s,r,z,tension"
+            for (i = 0; i < 2000000; i++) printf "%.15g,%.15g,%.15g,1\n", i * 1e-7, 0.1 * sin(i * 1e-6), -i * 3.3e-7}' \
+  >"$tmp/big.csv"
+on_tty view ">/dev/null" view "$tmp/big.csv" -o "$tmp/big_tty.html"
+rc=$?
+progress_lines view view 'reading .*big\.csv: [0-9]+/[0-9]+ MiB \([0-9]+%\)'
+cp "$tmp/view.lines" "$tmp/view_r.lines"
+progress_lines view view 'writing the page: [0-9]+/2000000 points \([0-9]+%\)'
+if [ $rc -eq 0 ] && [ -s "$tmp/view_r.lines" ] && [ -s "$tmp/view.lines" ] &&
+   tail -c 4 "$tmp/view.tty" | cmp -s - "$tmp/erase"; then
+  pass "view: progress lines for the reading and the writing, erased at the end"
+else fail "view: progress lines (rc=$rc: $(tr '\r\033' '|^' <"$tmp/view.tty" | head -c 300))"; fi
+"$WHIRL" view "$tmp/big.csv" -o "$tmp/big.html" 2>"$tmp/view.err"
+if cmp -s "$tmp/big.html" "$tmp/big_tty.html" && [ ! -s "$tmp/view.err" ]; then
+  pass "view: the same page with or without the line"
+else fail "view: the same page with or without the line ($(head -c 200 "$tmp/view.err"))"; fi
+rm -f "$tmp/big.html" "$tmp/big_tty.html"
+for phase in reading 'writing the page'; do
+  rm -rf "$tmp/cc_out"; mkdir "$tmp/cc_out"
+  ctrl_c "view: $phase" view "$tmp/big.csv" -o "$tmp/cc_out/big.html"
+  case $phase in reading) said='big.csv:[0-9]+: interrupted while reading' ;;
+                 *) said='interrupted while writing the page: nothing written' ;; esac
+  if [ "$cc_rc" -eq 130 ] && [ "$(echo "$cc_late < 2" | bc)" -eq 1 ] && [ -z "$(ls -A "$tmp/cc_out")" ] &&
+     tr '\r' '\n' <"$tmp/cc.tty" | grep -Eq "whirl view: (.*/)?$said"; then
+    pass "view: Ctrl-C while $phase stops it in $cc_late s (exit 130, no file)"
+  else fail "view: Ctrl-C while $phase (rc=$cc_rc, $cc_late s, $(ls -A "$tmp/cc_out"), $(tr '\r\033' '|^' <"$tmp/cc.tty" | tail -c 200))"; fi
+done
+rm -f "$tmp/big.csv"
 
 # ---- --max-steps: a bound on the continuation steps of each branch ----
 expect_error "shape: --max-steps 10 stops a long continuation, no file" \

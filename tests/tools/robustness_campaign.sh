@@ -10,6 +10,7 @@ regress=$(cd "$(dirname "$0")/../fuzz/regress/scene" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 results="$tmp/results"
+said=""
 : >"$results"
 : >"$tmp/times"
 
@@ -17,7 +18,7 @@ results="$tmp/results"
 # status (a signal's 128 + n). A hang is exit 124 of timeout; a crash any other status >= 128
 # that was not wanted; non-finite: nan or inf in a file left in DIR; file left: a temporary file,
 # or after an error an output that was not there before (out*); wrong silently: exit 0 where
-# an error was wanted.
+# an error was wanted, or an error that does not say what $said (grep -E; empty: anything) says.
 judge() {
   cat=$1; want=$2; rc=$3; dir=$4
   crash=0; hang=0; nonfinite=0; left=0; wrong=0; clean=0
@@ -32,6 +33,7 @@ judge() {
   if cat "$dir"/* 2>/dev/null | grep -v '^#' | grep -Eqi '(^|[ ,])[-+]?(nan|inf)([ ,]|$)'; then
     nonfinite=1; fi
   if [ "$want" = error ] && [ "$(wc -l <"$dir/../err")" -ne 1 ]; then wrong=1; fi
+  if [ -n "$said" ] && ! grep -Eq "$said" "$dir/../err"; then wrong=1; fi
   [ $crash$hang$nonfinite$left$wrong = 00000 ] && clean=1
   echo "$cat $clean $crash $hang $nonfinite $left $wrong" >>"$results"
   [ $clean -eq 1 ] || echo "campaign: $cat: rc $rc, $(head -c 200 "$dir/../err")" >&2
@@ -94,11 +96,48 @@ judge input error $? "$tmp/run/d"
 head -c 17000000 /dev/zero | tr '\0' x >"$tmp/long.ini"
 try input error simulate "$tmp/long.ini" -o out.csv
 try input error simulate "$tmp" -o out.csv
+# out of memory while reading, under ulimit -v a little above what a short input needs (found by
+# bisection, to 1 MiB): said as such, not as the end of the file
+# least_vm PATTERN ARGS...: the least limit in KiB at which `whirl ARGS` prints PATTERN
+least_vm() {
+  pat=$1; shift
+  lo=1024 hi=4194304
+  while [ $((hi - lo)) -gt 1024 ]; do
+    mid=$(((lo + hi) / 2))
+    if (ulimit -v $mid; exec "$W" "$@") 2>&1 | grep -Eq "$pat"; then hi=$mid; else lo=$mid; fi
+  done
+  echo $hi
+}
+printf '; nothing\n' >"$tmp/short.ini"
+{ printf '; '; head -c 12000000 /dev/zero | tr '\0' x; printf '\n[chain]\n'; } >"$tmp/longline.ini"
+printf 'r,z\n0.1,-0.5\n' >"$tmp/short.csv"
+awk 'BEGIN {print "r,z"; for (i = 0; i < 1500000; i++) print "0.1,-0.5"}' >"$tmp/long.csv"
+vm=$(least_vm 'dim: missing' simulate "$tmp/short.ini" -o /dev/null)
+said='out of memory'
+rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+(cd "$tmp/run/d" && ulimit -v $((vm + 4096)) && timeout 60 "$W" simulate "$tmp/longline.ini" -o out.csv 2>"$tmp/run/err")
+judge input error $? "$tmp/run/d"
+for c in fit view; do
+  case $c in fit) opt=--shape short='has 1 points' ;; view) opt= short='no chain in it' ;; esac
+  said=''
+  vm=$(least_vm "$short" $c $opt "$tmp/short.csv" -o /dev/null)
+  said='out of memory'
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  (cd "$tmp/run/d" && ulimit -v $((vm + 4096)) && timeout 60 "$W" $c $opt "$tmp/long.csv" -o out.csv 2>"$tmp/run/err")
+  judge input error $? "$tmp/run/d"
+done
+said=''
+rm -f "$tmp/longline.ini" "$tmp/long.csv"
 
 # long phases: stopped promptly by SIGINT (exit 130, nothing written)
 signal long INT 130 critical --links 60000 --modes 60000 -o out.csv
 signal long INT 130 shape --omega 3.3 --mode 2 --points 10000000 -o out.csv
 try long error fit --shape "$scenes/../fit_example.csv" --links 10000000 -o out.csv
+awk 'BEGIN {print "# omega=3 mode=2"; print "s,r,z,tension"
+            for (i = 0; i < 3000000; i++) printf "%.15g,%.15g,%.15g,1\n", i * 1e-7, 0.1 * sin(i * 1e-6), -i * 3.3e-7}' \
+  >"$tmp/big.csv"
+signal long INT 130 view "$tmp/big.csv" -o out.html
+rm -f "$tmp/big.csv"
 
 # outputs that destroy
 "$W" shape --omega 3.3 --mode 2 --points 50 -o "$tmp/d.csv"
@@ -130,6 +169,48 @@ for bad in nan inf 1e999 cut; do
   try outputs error regime $big -o "$tmp/bad.csv" --resume
 done
 
+# two runs started together on a map file that does not exist yet: one writes it, the other is
+# refused with one line (clean); both exiting 0, or rows other than the winner's, is wrong
+# together ROWS_A ARGS_A ROWS_B ARGS_B
+together() {
+  rows_a=$1; args_a=$2; rows_b=$3; args_b=$4
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  # shellcheck disable=SC2086
+  (cd "$tmp/run/d" && exec timeout 60 "$W" $args_a -o map.csv >/dev/null 2>"$tmp/run/err_a") &
+  pa=$!
+  # shellcheck disable=SC2086
+  (cd "$tmp/run/d" && exec timeout 60 "$W" $args_b -o map.csv >/dev/null 2>"$tmp/run/err_b") &
+  pb=$!
+  wait $pa; ra=$?; wait $pb; rb=$?
+  rows=$(grep -v '^#' "$tmp/run/d/map.csv" 2>/dev/null | tail -n +2 | wc -l)
+  if [ $ra -eq 0 ] && [ $rb -eq 1 ] && [ "$rows" -eq "$rows_a" ]; then cp "$tmp/run/err_b" "$tmp/run/err"; rc=1
+  elif [ $rb -eq 0 ] && [ $ra -eq 1 ] && [ "$rows" -eq "$rows_b" ]; then cp "$tmp/run/err_a" "$tmp/run/err"; rc=1
+  elif [ $ra -ge 124 ] || [ $rb -ge 124 ]; then rc=$((ra > rb ? ra : rb)); : >"$tmp/run/err"
+  else rc=0; cat "$tmp/run/err_a" "$tmp/run/err_b" >"$tmp/run/err"; fi
+  mv "$tmp/run/d/map.csv" "$tmp/run/map.csv" 2>/dev/null # the winner's map: not an output left
+  said="is being written by another run"
+  judge outputs error $rc "$tmp/run/d"
+  said=''
+}
+rsw="regime --sweep --omega-min 3 --omega-max 3.5 --eps 0.1 --links 5 --t-max 60"
+together 79 "$rsw --omega-count 40" 81 "$rsw --omega-count 41"
+smap="stability --omega-max 8 --links 8 --periods 20 --omega-count 101"
+# shellcheck disable=SC2086
+"$W" $smap --omega-min 2 -o "$tmp/s2a.csv" && "$W" $smap --omega-min 2.5 -o "$tmp/s2b.csv"
+together "$(grep -v '^#' "$tmp/s2a.csv" | tail -n +2 | wc -l)" "$smap --omega-min 2" \
+  "$(grep -v '^#' "$tmp/s2b.csv" | tail -n +2 | wc -l)" "$smap --omega-min 2.5"
+# through a symlink to another user's file (as root): its owner and mode kept, else wrong
+if [ "$(id -u)" -eq 0 ]; then
+  cp "$tmp/d.csv" "$tmp/theirs.csv"; chown 65534:65534 "$tmp/theirs.csv"; chmod 604 "$tmp/theirs.csv"
+  ln -s "$tmp/theirs.csv" "$tmp/their_link.csv"
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  (cd "$tmp/run/d" && timeout 60 "$W" shape --omega 2 --mode 1 -o "$tmp/their_link.csv" >/dev/null 2>"$tmp/run/err")
+  rc=$?
+  [ $rc -eq 0 ] && [ "$(stat -c '%u:%g %a' "$tmp/theirs.csv")" = "65534:65534 604" ] && [ -L "$tmp/their_link.csv" ] && rc=keep
+  # judged as an outcome wanted "keep": 0 with the owner and mode kept
+  judge outputs 0 "$([ "$rc" = keep ] && echo 0 || echo 1)" "$tmp/run/d"
+else echo "campaign: the symlink to another user's file skipped: not root" >&2; fi
+
 # scenes that reach outside
 mkdir "$tmp/scn"
 for t in ../victim.txt /tmp/victim.txt a/../../victim.txt; do
@@ -144,6 +225,11 @@ try scene error simulate "$scenes/mode2.ini" --set "run.method=$(printf 'x\033]0
 # unbounded work from one key
 for f in every_tiny every_overflow omega_t_end; do try work error simulate "$regress/$f.ini" -o out.csv; done
 try work error simulate "$scenes/mode2.ini" --set output.trace=t.dat --set output.trace_every=1e-6 -o out.csv
+# the fuzz timeouts at omega 2.5e6 and 4.6e6 in the rotating frame: beyond the budget refused,
+# within it stopped at once by SIGINT with its rows
+try work error simulate "$regress/omega_4.6e6_rk8pd.ini" --set run.t_end=2000 -o out.csv
+signal work INT 130 simulate "$regress/omega_4.6e6_rk8pd.ini" -o out.csv
+signal work INT 130 simulate "$regress/omega_2.5e6_rk8.ini" -o out.csv
 
 # silently wrong
 try wrong error stability --omega 4 --mode 2 --links 60 --dt 0.05 -o out.csv

@@ -8,6 +8,8 @@
  *    saddle) grows over the whole range;
  *  - the hand-swung chain with linear drag: the intervals against the sign of the growth on a
  *    grid of rates, and each edge against the growth just outside it on both sides;
+ *  - a sign change of the growth between two scan rates that is a jump (the hand-swung shape
+ *    found changes branch), shown to be one by the growth on a fine grid: refused, not an edge;
  *  - bad input and the stop request. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -239,6 +241,46 @@ static void test_driven_intervals(void **state)
     whirl_chain_free(c);
 }
 
+/* 10 links, eps 0.1, drag 0.1, mode 3, tip on the pivot's side: from omega = 4.276 to 4.280 the
+ * hand-swung shape found (whirl_driven_mode) is another branch (index 3, tip 0.18 from the axis,
+ * growing at 0.58) than at the rates around it (index 4, tip 0.14, converging at -0.05). A scan
+ * of 4.27 and 4.28 sees the growth change sign; Brent's method then converges on the jump at
+ * 4.2755, which must be refused rather than reported as an edge. */
+static void test_jump_refused(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(10, 0);
+    whirl_stability *w = whirl_stability_alloc(10);
+    whirl_model m = model_of(c, 0);
+    m.drive_radius = 0.1;
+    m.air_drag = 0.1;
+    /* the jump, independently: on a grid of 1e-3 the growth is smooth (steps below 0.01) but
+     * for one step across which it changes by more than 0.5, from < 0 to > 0, and back */
+    double prev = driven_growth(w, m, 3, 1, 4.270);
+    int up = 0, down = 0;
+    for (int i = 1; i <= 15; i++) {
+        const double om = 4.270 + 1e-3 * i, g = driven_growth(w, m, 3, 1, om);
+        assert_false(isnan(g));
+        if (prev < 0 && g > 0 && g - prev > 0.5) up++;
+        else if (prev > 0 && g < 0 && prev - g > 0.5) down++;
+        else assert_true(fabs(g - prev) < 0.01);
+        prev = g;
+    }
+    assert_int_equal(up, 1);
+    assert_int_equal(down, 1);
+    /* the scan's rates 4.27 and 4.28 straddle it: opposite growths, and no edge */
+    assert_true(driven_growth(w, m, 3, 1, 4.27) < 0 && driven_growth(w, m, 3, 1, 4.28) > 0);
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = 4.27, p.omega_max = 4.28, p.scan_step = 0.01;
+    whirl_dissipative_interval iv[IMAX];
+    size_t count;
+    whirl_windows_stats st;
+    assert_int_equal(whirl_windows_dissipative(&m, 3, 1, &p, iv, IMAX, &count, &st), GSL_EFAILED);
+    assert_non_null(strstr(whirl_last_error(), "the growth jumps"));
+    whirl_stability_free(w);
+    whirl_chain_free(c);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -289,6 +331,7 @@ int main(void)
         cmocka_unit_test(test_small_damping_slope),
         cmocka_unit_test(test_kelvin_tait_chetaev),
         cmocka_unit_test(test_driven_intervals),
+        cmocka_unit_test(test_jump_refused),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
