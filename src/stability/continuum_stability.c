@@ -291,12 +291,14 @@ fail:
 }
 
 /* Bytes of the workspace per collocation point (the bound on the points is memory_mb over
- * this): the pencil's band and its LU, the Newton band, the Arnoldi basis, the vectors. */
+ * this): the pencil's band and its LU, the Newton band, the Arnoldi basis, the vectors, the
+ * LU's extents. */
 static size_t bytes_per_point(const whirl_cstab *w)
 {
     const size_t band = N_FIELDS * (w->ldab + (w->kl + w->ku + 1)) + 2 * w->nldab;
     const size_t krylov = N_DYNAMIC * (CS_KRYLOV_MAX + 3);
-    return (band + krylov + 16 + 14 * N_FIELDS + 12) * sizeof(double);
+    const size_t extents = 2 * N_FIELDS * sizeof(size_t) / sizeof(double); /* lnz, unz */
+    return (band + krylov + 16 + 14 * N_FIELDS + 12 + extents) * sizeof(double);
 }
 
 /* The most points memory_mb holds. */
