@@ -145,6 +145,10 @@ static int check_options(const cli_command *cmd, const options *o)
         return cli_error(cmd, "--resume needs -o FILE, not standard output");
     if (!method_known(o->method))
         return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
+    if (o->resume && !o->min_given)
+        return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
+    if (o->degree_given && !o->windows)
+        return cli_error(cmd, "--degree needs --windows or --atlas");
     return 0;
 }
 
@@ -697,244 +701,313 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
     return rc;
 }
 
-int cmd_stability(const cli_command *cmd, int argc, char **argv)
+/* The defaults of the options; the perturbed runs' are the library's (the method apart: rk4
+ * here). */
+static void set_defaults(options *o)
 {
-    options o = {0};
-    o.links = 25;
-    /* the perturbed runs' defaults are the library's (the method apart: rk4 here) */
+    *o = (options){0};
+    o->links = 25;
     const whirl_stability_run_params run = whirl_stability_run_defaults();
-    o.periods = run.periods;
-    o.perturb = run.perturbation;
-    o.seed = (int)run.seed;
-    o.method = "rk4";
-    o.modes.n = 3;
-    o.modes.v[0] = 1, o.modes.v[1] = 2, o.modes.v[2] = 3;
-    o.side = 1;
-    o.scan_step = 0.25;
-    o.tol = 1e-9;
-    o.degree = whirl_cstab_defaults().degree;
-    o.units = (cli_units)CLI_UNITS_INIT;
-    o.air = (cli_air)CLI_AIR_INIT(o.units);
-    const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &o.omega, &o.omega_given, "W", "rotation rate (one point)",
-         "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
-         CLI_UNIT_RATE},
-        {"--mode", NULL, CLI_INT, &o.mode, &o.mode_given, "K",
-         "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
-         "--omega"},
-        {"--omega-min", NULL, CLI_DOUBLE, &o.omega_min, &o.min_given, "A", "map: first rate",
-         "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
-        {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B",
-         "map: last rate (--atlas: default 40)", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
-        {"--omega-count", NULL, CLI_INT, &o.steps, &o.steps_given, "N",
-         "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
-        {"--modes", NULL, CLI_INT_LIST, &o.modes, &o.modes_given, "LIST",
-         "map: modes (default 1,2,3; --atlas: 2-8): 1..N (the hand-swung or the continuous "
-         "chain: 1..64)", "[1, inf)"},
-        {"--links", NULL, CLI_INT, &o.links, &o.links_given, "N",
-         "links of the chain (default 25; with --windows the continuous chain unless given)",
-         "[2, 100000]"},
-        {"--periods", NULL, CLI_DOUBLE, &o.periods, NULL, "P",
-         "run length in rotation periods (default 100)", "(0, inf)"},
-        {"--perturb", NULL, CLI_DOUBLE, &o.perturb, NULL, "EPS",
-         "turn of each link direction [rad] (default 1e-10)", "(0, 1)"},
-        {"--seed", NULL, CLI_INT, &o.seed, NULL, "S", "seed of the perturbation (default 1)",
-         "[0, inf)"},
-        {"--damping", NULL, CLI_DOUBLE, &o.damping, NULL, "D",
-         "internal damping of the joints (default 0)", "[0, inf)", NULL, NULL, NULL,
-         CLI_UNIT_DAMPING},
-        {"--method", NULL, CLI_STRING, &o.method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
-        {"--dt", NULL, CLI_DOUBLE, &o.dt, NULL, "H",
-         "time step (default: from the highest frequency, see stability.h)", "[0, inf)", NULL,
-         NULL, NULL, CLI_UNIT_TIME},
-        CLI_DRAG_OPTIONS(o.eps, &o.eps_given, o.drag, &o.drag_given, o.drag2, &o.drag2_given,
-                         o.air),
-        {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S",
-         "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
-        {"--windows", NULL, CLI_FLAG, &o.windows, NULL, "",
-         "the intervals of omega where each mode is unstable, edges located exactly (with --links "
-         "and --damping or drag: unstable or converging)", NULL,
-         "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
-         "--linear"},
-        {"--scan-step", NULL, CLI_DOUBLE, &o.scan_step, NULL, "H",
-         "windows: spacing of the scan (default 0.25)", "(0, inf)", "--windows", NULL, NULL,
-         CLI_UNIT_RATE},
-        {"--tol", NULL, CLI_DOUBLE, &o.tol, NULL, "T",
-         "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
-         NULL, NULL, CLI_UNIT_RATE},
-        {"--full", NULL, CLI_FLAG, &o.full, NULL, "",
-         "windows: full eigen-solves near the edges, for the N-link chain at every rate "
-         "(default: shift-and-invert Arnoldi)", NULL,
-         "--windows"},
-        {"--degree", NULL, CLI_INT, &o.degree, &o.degree_given, "P",
-         "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
-         "--windows", "--links"},
-        {"--tip-mass", NULL, CLI_DOUBLE, &o.tip_mass, NULL, "m",
-         "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
-         NULL, CLI_UNIT_MASS},
-        {"--atlas", NULL, CLI_FLAG, &o.atlas, NULL, "",
-         "every window of the continuum's --modes from each birth to --omega-max, with the "
-         "Krein signatures at the edges (-o FILE, resumable)", NULL, "--output",
-         "--omega --omega-min --omega-count --windows --links --trace --periods --perturb --seed "
-         "--method --dt --damping --linear --eps --drag --drag-quadratic --drag-cd --side "
-         "--tip-mass --full --eigenvalues"},
-        {"--eigenvalues", NULL, CLI_FLAG, &o.eigenvalues, NULL, "",
-         "single rate: every eigenvalue lambda of the linearisation (re,im), not the run",
-         NULL, "--omega", "--trace --periods --perturb --seed --method --dt"},
-        {"--linear", NULL, CLI_FLAG, &o.linear, NULL, "",
-         "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
-        {"--trace", NULL, CLI_STRING, &o.trace, NULL, "FILE",
-         "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
-        {"--resume", NULL, CLI_FLAG, &o.resume, NULL, "",
-         "map, atlas: keep the rows already in -o FILE, compute the rest", NULL, "--output",
-         "--windows"},
-        CLI_UNITS_OPTIONS(o.units),
-        {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE", "output file (default stdout)"},
-    };
-    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
-    if (rc) return rc;
-    if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
-    if (o.atlas) {
-        if (!o.modes_given) {
-            o.modes.n = 7;
-            for (int k = 0; k < 7; k++) o.modes.v[k] = 2 + k;
-        }
-        if (!o.max_given) o.omega_max = 40;
-    }
-    if ((rc = check_options(cmd, &o))) return rc;
-    if (o.resume && !o.atlas && !o.min_given)
-        return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
-    if (o.degree_given && !o.windows && !o.atlas)
-        return cli_error(cmd, "--degree needs --windows or --atlas");
-    if (o.atlas)
-        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
-                               o.output, o.resume);
-    if (o.windows && dissipative(&o)) {
-        whirl_model m = {0};
-        m.dim = 3;
-        m.internal_damping = o.damping;
-        m.drive_radius = o.eps;
-        m.air_drag = o.drag;
-        m.air_drag_quadratic = o.drag2;
-        whirl_windows_params p = whirl_windows_defaults();
-        p.omega_min = o.omega_min;
-        p.omega_max = o.omega_max;
-        p.scan_step = o.scan_step;
-        p.tol = o.tol;
-        return stability_dissipative(cmd, &o.modes, o.links, o.tip_mass, &m, o.side, &p,
-                                     &o.units, o.output);
-    }
-    if (o.windows) return run_windows(cmd, &o);
-    if (o.eigenvalues) return run_eigenvalues(cmd, &o);
+    o->periods = run.periods;
+    o->perturb = run.perturbation;
+    o->seed = (int)run.seed;
+    o->method = "rk4";
+    o->modes.n = 3;
+    o->modes.v[0] = 1, o->modes.v[1] = 2, o->modes.v[2] = 3;
+    o->side = 1;
+    o->scan_step = 0.25;
+    o->tol = 1e-9;
+    o->degree = whirl_cstab_defaults().degree;
+    o->units = (cli_units)CLI_UNITS_INIT;
+    o->air = (cli_air)CLI_AIR_INIT(o->units);
+}
 
-    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
-    if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
-    size_t count = 0;
-    double *nodes = NULL;
-    point *pts = make_points(cmd, &o, c, &count, &nodes);
-    if (pts == NULL) {
-        whirl_chain_free(c);
+#define STABILITY_OPTIONS_MAX 48
+
+/* The option table of o; returns its length. */
+static size_t declare_options(options *o, cli_option *opts)
+{
+        const cli_option table[] = {
+            {"--omega", NULL, CLI_DOUBLE, &o->omega, &o->omega_given, "W", "rotation rate (one point)",
+             "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
+             CLI_UNIT_RATE},
+            {"--mode", NULL, CLI_INT, &o->mode, &o->mode_given, "K",
+             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
+             "--omega"},
+            {"--omega-min", NULL, CLI_DOUBLE, &o->omega_min, &o->min_given, "A", "map: first rate",
+             "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
+            {"--omega-max", NULL, CLI_DOUBLE, &o->omega_max, &o->max_given, "B",
+             "map: last rate (--atlas: default 40)", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
+            {"--omega-count", NULL, CLI_INT, &o->steps, &o->steps_given, "N",
+             "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
+            {"--modes", NULL, CLI_INT_LIST, &o->modes, &o->modes_given, "LIST",
+             "map: modes (default 1,2,3; --atlas: 2-8): 1..N (the hand-swung or the continuous "
+             "chain: 1..64)", "[1, inf)"},
+            {"--links", NULL, CLI_INT, &o->links, &o->links_given, "N",
+             "links of the chain (default 25; with --windows the continuous chain unless given)",
+             "[2, 100000]"},
+            {"--periods", NULL, CLI_DOUBLE, &o->periods, NULL, "P",
+             "run length in rotation periods (default 100)", "(0, inf)"},
+            {"--perturb", NULL, CLI_DOUBLE, &o->perturb, NULL, "EPS",
+             "turn of each link direction [rad] (default 1e-10)", "(0, 1)"},
+            {"--seed", NULL, CLI_INT, &o->seed, NULL, "S", "seed of the perturbation (default 1)",
+             "[0, inf)"},
+            {"--damping", NULL, CLI_DOUBLE, &o->damping, NULL, "D",
+             "internal damping of the joints (default 0)", "[0, inf)", NULL, NULL, NULL,
+             CLI_UNIT_DAMPING},
+            {"--method", NULL, CLI_STRING, &o->method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
+            {"--dt", NULL, CLI_DOUBLE, &o->dt, NULL, "H",
+             "time step (default: from the highest frequency, see stability.h)", "[0, inf)", NULL,
+             NULL, NULL, CLI_UNIT_TIME},
+            CLI_DRAG_OPTIONS(o->eps, &o->eps_given, o->drag, &o->drag_given, o->drag2, &o->drag2_given,
+                             o->air),
+            {"--side", NULL, CLI_INT, &o->side, &o->side_given, "S",
+             "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
+            {"--windows", NULL, CLI_FLAG, &o->windows, NULL, "",
+             "the intervals of omega where each mode is unstable, edges located exactly (with --links "
+             "and --damping or drag: unstable or converging)", NULL,
+             "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
+             "--linear"},
+            {"--scan-step", NULL, CLI_DOUBLE, &o->scan_step, NULL, "H",
+             "windows: spacing of the scan (default 0.25)", "(0, inf)", "--windows", NULL, NULL,
+             CLI_UNIT_RATE},
+            {"--tol", NULL, CLI_DOUBLE, &o->tol, NULL, "T",
+             "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
+             NULL, NULL, CLI_UNIT_RATE},
+            {"--full", NULL, CLI_FLAG, &o->full, NULL, "",
+             "windows: full eigen-solves near the edges, for the N-link chain at every rate "
+             "(default: shift-and-invert Arnoldi)", NULL,
+             "--windows"},
+            {"--degree", NULL, CLI_INT, &o->degree, &o->degree_given, "P",
+             "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
+             "--windows", "--links"},
+            {"--tip-mass", NULL, CLI_DOUBLE, &o->tip_mass, NULL, "m",
+             "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
+             NULL, CLI_UNIT_MASS},
+            {"--atlas", NULL, CLI_FLAG, &o->atlas, NULL, "",
+             "every window of the continuum's --modes from each birth to --omega-max, with the "
+             "Krein signatures at the edges (-o FILE, resumable)", NULL, "--output",
+             "--omega --omega-min --omega-count --windows --links --trace --periods --perturb --seed "
+             "--method --dt --damping --linear --eps --drag --drag-quadratic --drag-cd --side "
+             "--tip-mass --full --eigenvalues"},
+            {"--eigenvalues", NULL, CLI_FLAG, &o->eigenvalues, NULL, "",
+             "single rate: every eigenvalue lambda of the linearisation (re,im), not the run",
+             NULL, "--omega", "--trace --periods --perturb --seed --method --dt"},
+            {"--linear", NULL, CLI_FLAG, &o->linear, NULL, "",
+             "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
+            {"--trace", NULL, CLI_STRING, &o->trace, NULL, "FILE",
+             "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
+            {"--resume", NULL, CLI_FLAG, &o->resume, NULL, "",
+             "map, atlas: keep the rows already in -o FILE, compute the rest", NULL, "--output",
+             "--windows"},
+            CLI_UNITS_OPTIONS(o->units),
+            {"--output", "-o", CLI_STRING, &o->output, NULL, "FILE", "output file (default stdout)"},
+        };
+    _Static_assert(sizeof table / sizeof *table <= STABILITY_OPTIONS_MAX, "option table");
+    memcpy(opts, table, sizeof table);
+    return sizeof table / sizeof *table;
+}
+
+/* Parses and checks the options: 0, or the exit status after an error. */
+static int parse_options(const cli_command *cmd, int argc, char **argv, options *o)
+{
+    set_defaults(o);
+    cli_option opts[STABILITY_OPTIONS_MAX];
+    const size_t nopts = declare_options(o, opts);
+    int rc = cli_parse(cmd, argc, argv, opts, nopts, NULL, 0);
+    if (rc) return rc;
+    if ((rc = cli_drag_apply(cmd, &o->air, &o->drag2))) return rc;
+    if (o->atlas) {
+        if (!o->modes_given) {
+            o->modes.n = 7;
+            for (int k = 0; k < 7; k++) o->modes.v[k] = 2 + k;
+        }
+        if (!o->max_given) o->omega_max = 40;
+    }
+    return check_options(cmd, o);
+}
+
+/* --windows with dissipation (internal damping or the hand-swung chain's drag): the intervals
+ * where each mode is unstable or converging. */
+static int run_windows_dissipative(const cli_command *cmd, const options *o)
+{
+    whirl_model m = {0};
+    m.dim = 3;
+    m.internal_damping = o->damping;
+    m.drive_radius = o->eps;
+    m.air_drag = o->drag;
+    m.air_drag_quadratic = o->drag2;
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = o->omega_min;
+    p.omega_max = o->omega_max;
+    p.scan_step = o->scan_step;
+    p.tol = o->tol;
+    return stability_dissipative(cmd, &o->modes, o->links, o->tip_mass, &m, o->side, &p,
+                                 &o->units, o->output);
+}
+
+/* The points of a single rate or of a map, with what holds them from the setup to the end. */
+typedef struct point_run {
+    whirl_chain *c;
+    point *pts;
+    size_t count;
+    double *nodes;
+    char **kept; /* rows read back by --resume */
+    size_t already;
+    cli_lock lock;
+    cli_out out, trace;
+} point_run;
+
+static void point_run_free(point_run *r)
+{
+    cli_lock_release(&r->lock);
+    free_kept(r->kept, r->count);
+    free(r->pts);
+    free(r->nodes);
+    whirl_chain_free(r->c);
+}
+
+/* The chain and its points, the map file locked and read back (--resume), the outputs open.
+ * 0, or the exit status after an error (r freed). */
+static int point_run_setup(const cli_command *cmd, const options *o, point_run *r)
+{
+    *r = (point_run){0};
+    r->c = whirl_chain_alloc_uniform((size_t)o->links, 0);
+    if (r->c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    r->pts = make_points(cmd, o, r->c, &r->count, &r->nodes);
+    if (r->pts == NULL) {
+        whirl_chain_free(r->c);
         return 1;
     }
-    char **kept = calloc(count, sizeof *kept); /* rows read back by --resume */
-    size_t already = 0;
+    r->kept = calloc(r->count, sizeof *r->kept);
+    int rc = 0;
     /* the map file is locked from before it is read until it is replaced: one run at a time
      * writes it (a new path is made empty by the run that starts it, so that two runs started
      * on it together are kept apart) */
-    cli_lock lock = {0};
-    if (kept && o.min_given) rc = cli_lock_take(cmd, &lock, o.output, !o.resume);
-    if (rc == 0 && kept == NULL) rc = cli_error(cmd, "out of memory");
-    else if (rc == 0 && o.resume) rc = resume(cmd, &o, pts, count, kept, &already);
-    cli_out out = {0}, trace = {0};
-    if (rc == 0) rc = cli_out_open(cmd, &out, o.output);
-    if (rc == 0 && o.trace && (rc = cli_out_open(cmd, &trace, o.trace))) cli_out_abort(&out);
-    if (rc) {
-        cli_lock_release(&lock);
-        free_kept(kept, count);
-        free(pts);
-        free(nodes);
-        whirl_chain_free(c);
-        return rc;
-    }
-    cli_catch_interrupts();
+    if (r->kept && o->min_given) rc = cli_lock_take(cmd, &r->lock, o->output, !o->resume);
+    if (rc == 0 && r->kept == NULL) rc = cli_error(cmd, "out of memory");
+    else if (rc == 0 && o->resume) rc = resume(cmd, o, r->pts, r->count, r->kept, &r->already);
+    if (rc == 0) rc = cli_out_open(cmd, &r->out, o->output);
+    if (rc == 0 && o->trace && (rc = cli_out_open(cmd, &r->trace, o->trace)))
+        cli_out_abort(&r->out);
+    if (rc) point_run_free(r);
+    return rc;
+}
+
+/* The perturbed runs (and the hand-swung chain's linear analysis) of the points not done, on
+ * all threads. Returns 0, or 1 with the message of the first failure (a stop is no failure). */
+static int analyse_points(const options *o, point_run *r, cli_progress_state *progress,
+                          long *finished, char *message, size_t size)
+{
     int failed = 0;
-    char message[512] = "";
-    long finished = (long)already;
-    cli_progress_state progress;
-    cli_progress_begin(&progress, cmd, "points", (long)count, (long)already);
-    if (!driven(&o) && linear_map(&o, c, pts, count, &progress, &finished, message,
-                                  sizeof message))
-        failed = 1;
 #pragma omp parallel
     {
-        whirl_stability *w = whirl_stability_alloc((size_t)o.links);
+        whirl_stability *w = whirl_stability_alloc((size_t)o->links);
         if (w == NULL) {
 #pragma omp critical(stability_error)
             if (!failed) {
-                cli_library_error(&o.units, message, sizeof message);
+                cli_library_error(&o->units, message, size);
 #pragma omp atomic write
                 failed = 1;
             }
         }
 #pragma omp for schedule(dynamic, 1)
-        for (size_t i = 0; i < count; i++) {
+        for (size_t i = 0; i < r->count; i++) {
+            point *p = &r->pts[i];
             int stop;
 #pragma omp atomic read
             stop = failed;
-            if (stop || w == NULL || cli_interrupted || pts[i].done ||
-                (!driven(&o) && !pts[i].linearised))
+            if (stop || w == NULL || cli_interrupted || p->done || (!driven(o) && !p->linearised))
                 continue;
-            if (analyse(&o, c, w, &pts[i], o.trace ? trace.fp : NULL) != GSL_SUCCESS) {
+            if (analyse(o, r->c, w, p, o->trace ? r->trace.fp : NULL) != GSL_SUCCESS) {
                 if (cli_interrupted) continue;
 #pragma omp critical(stability_error)
                 if (!failed) {
-                    snprintf(message, sizeof message, "omega %s, mode %d: %s",
-                             CLI_NUM(pts[i].omega * unit(&o, CLI_UNIT_RATE)), pts[i].mode,
-                             CLI_LIBRARY_ERROR(&o.units));
+                    snprintf(message, size, "omega %s, mode %d: %s",
+                             CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), p->mode,
+                             CLI_LIBRARY_ERROR(&o->units));
 #pragma omp atomic write
                     failed = 1;
                 }
                 continue;
             }
-            pts[i].done = 1;
+            p->done = 1;
 #pragma omp critical(stability_progress)
-            cli_progress_update(&progress, ++finished, 0);
+            cli_progress_update(progress, ++*finished, 0);
         }
         whirl_stability_free(w);
     }
-    cli_progress_update(&progress, finished, 1);
-    if (failed) {
-        cli_out_abort(&out);
-        cli_out_abort(&trace);
-        cli_lock_release(&lock);
-        free_kept(kept, count);
-        free(pts);
-        free(nodes);
-        whirl_chain_free(c);
-        return cli_error(cmd, "%s", message);
-    }
-    write_header(out.fp, &o);
+    return failed;
+}
+
+/* Writes the rows kept and computed, in map order, and commits the outputs; 0, 1 after an
+ * error, or CLI_EXIT_INTERRUPTED when points are missing (r freed). */
+static int write_points(const cli_command *cmd, const options *o, point_run *r)
+{
+    write_header(r->out.fp, o);
     size_t written = 0;
+    const size_t count = r->count;
     for (size_t i = 0; i < count; i++) {
-        if (kept[i]) fputs(kept[i], out.fp);
-        else if (pts[i].done && !pts[i].absent) write_row(out.fp, &o, &pts[i]);
-        written += kept[i] || pts[i].done;
+        if (r->kept[i]) fputs(r->kept[i], r->out.fp);
+        else if (r->pts[i].done && !r->pts[i].absent) write_row(r->out.fp, o, &r->pts[i]);
+        written += r->kept[i] || r->pts[i].done;
     }
-    free_kept(kept, count);
-    free(pts);
-    free(nodes);
-    whirl_chain_free(c);
-    cli_out *const outs[2] = {&out, &trace};
-    const int committed = cli_out_commit_all(cmd, outs, o.trace ? 2 : 1);
+    cli_lock lock = r->lock;
+    r->lock = (cli_lock){0}; /* held until the outputs are in place */
+    point_run_free(r);
+    cli_out *const outs[2] = {&r->out, &r->trace};
+    const int committed = cli_out_commit_all(cmd, outs, o->trace ? 2 : 1);
     cli_lock_release(&lock);
     if (committed) return 1;
     if (written < count) {
-        if (o.min_given && o.output && strcmp(o.output, "-") != 0)
+        if (o->min_given && o->output && strcmp(o->output, "-") != 0)
             cli_error(cmd, "interrupted: %zu of %zu points in '%s' (continue with --resume)",
-                      written, count, o.output);
+                      written, count, o->output);
         else
             cli_error(cmd, "interrupted after %zu of %zu points", written, count);
         return CLI_EXIT_INTERRUPTED;
     }
     return 0;
+}
+
+/* The single rate or the map: the linear analysis of the free shapes, the perturbed runs, the
+ * rows. */
+static int run_points(const cli_command *cmd, const options *o)
+{
+    point_run r;
+    int rc = point_run_setup(cmd, o, &r);
+    if (rc) return rc;
+    cli_catch_interrupts();
+    int failed = 0;
+    char message[512] = "";
+    long finished = (long)r.already;
+    cli_progress_state progress;
+    cli_progress_begin(&progress, cmd, "points", (long)r.count, (long)r.already);
+    if (!driven(o) && linear_map(o, r.c, r.pts, r.count, &progress, &finished, message,
+                                 sizeof message))
+        failed = 1;
+    if (!failed && analyse_points(o, &r, &progress, &finished, message, sizeof message))
+        failed = 1;
+    cli_progress_update(&progress, finished, 1);
+    if (failed) {
+        cli_out_abort(&r.out);
+        cli_out_abort(&r.trace);
+        point_run_free(&r);
+        return cli_error(cmd, "%s", message);
+    }
+    return write_points(cmd, o, &r);
+}
+
+int cmd_stability(const cli_command *cmd, int argc, char **argv)
+{
+    options o;
+    const int rc = parse_options(cmd, argc, argv, &o);
+    if (rc) return rc;
+    if (o.atlas)
+        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
+                               o.output, o.resume);
+    if (o.windows && dissipative(&o)) return run_windows_dissipative(cmd, &o);
+    if (o.windows) return run_windows(cmd, &o);
+    if (o.eigenvalues) return run_eigenvalues(cmd, &o);
+    return run_points(cmd, &o);
 }
