@@ -362,6 +362,61 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
     return status;
 }
 
+/* The first comment line of --windows: the chain (c; NULL: the continuum) and the search. */
+static void write_windows_title(FILE *fp, const options *o, const whirl_chain *c)
+{
+    const double rate = unit(o, CLI_UNIT_RATE);
+    char chain[160];
+    if (c)
+        snprintf(chain, sizeof chain, "%d links, tip mass %s", o->links,
+                 CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)));
+    else
+        snprintf(chain, sizeof chain, "continuous chain, tip mass %s (Chebyshev collocation "
+                 "of degree %d on elements)", CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)),
+                 o->degree);
+    fprintf(fp, "# whirl stability --windows: %s, omega %s..%s, scan step %s, edges "
+                "to %s, refinement %s\n", chain, CLI_NUM(o->omega_min * rate),
+            CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
+            o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
+}
+
+/* The windows of each mode k (count[k] of them from win + k WINDOWS_MAX, found in seconds[k]
+ * with stats[k]) as CSV, after a comment line per mode with its eigen-solves. */
+static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
+                          const whirl_window *win, const size_t *count,
+                          const whirl_windows_stats *stats, const double *seconds)
+{
+    const double rate = unit(o, CLI_UNIT_RATE);
+    write_windows_title(fp, o, c);
+    for (int k = 0; k < o->modes.n; k++) {
+        const whirl_windows_stats *st = &stats[k];
+        fprintf(fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
+                    "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
+                    "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
+                o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
+                count[k], st->scan, st->solves_vectors + st->solves_values + st->solves_krylov,
+                st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes,
+                seconds[k], CLI_NUM(o->tol * rate), (st->omega_to - st->omega_from) / o->tol + 1);
+    }
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
+            c ? "" : ",err_from,err_to");
+    char links[16];
+    if (c) snprintf(links, sizeof links, "%d", o->links);
+    else snprintf(links, sizeof links, "inf");
+    for (int k = 0; k < o->modes.n; k++)
+        for (size_t i = 0; i < count[k]; i++) {
+            const whirl_window *x = win + (size_t)k * WINDOWS_MAX + i;
+            fprintf(fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
+                    CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
+                    CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
+                    CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
+            if (!c)
+                fprintf(fp, ",%s,%s", CLI_NUM(x->err_from * rate), CLI_NUM(x->err_to * rate));
+            fputc('\n', fp);
+        }
+}
+
 /* --windows: every mode of the list, one per thread. */
 static int run_windows(const cli_command *cmd, const options *o)
 {
@@ -401,49 +456,7 @@ static int run_windows(const cli_command *cmd, const options *o)
     cli_out out;
     if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
     if (!rc) {
-        const double rate = unit(o, CLI_UNIT_RATE);
-        char chain[160], links[16];
-        if (c) {
-            snprintf(chain, sizeof chain, "%d links, tip mass %s", o->links,
-                     CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)));
-            snprintf(links, sizeof links, "%d", o->links);
-        } else {
-            snprintf(chain, sizeof chain, "continuous chain, tip mass %s (Chebyshev collocation "
-                     "of degree %d on elements)", CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)),
-                     o->degree);
-            snprintf(links, sizeof links, "inf");
-        }
-        fprintf(out.fp, "# whirl stability --windows: %s, omega %s..%s, scan step %s, edges "
-                        "to %s, refinement %s\n", chain, CLI_NUM(o->omega_min * rate),
-                CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
-                o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
-        for (size_t k = 0; k < nmodes; k++) {
-            const whirl_windows_stats *st = &stats[k];
-            fprintf(out.fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
-                            "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
-                            "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
-                    o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
-                    count[k], st->scan,
-                    st->solves_vectors + st->solves_values + st->solves_krylov,
-                    st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes,
-                    seconds[k], CLI_NUM(o->tol * rate),
-                    (st->omega_to - st->omega_from) / o->tol + 1);
-        }
-        cli_units_comment(out.fp, &o->units);
-        fprintf(out.fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
-                c ? "" : ",err_from,err_to");
-        for (size_t k = 0; k < nmodes; k++)
-            for (size_t i = 0; i < count[k]; i++) {
-                const whirl_window *x = win + k * WINDOWS_MAX + i;
-                fprintf(out.fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
-                        CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
-                        CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
-                        CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
-                if (!c)
-                    fprintf(out.fp, ",%s,%s", CLI_NUM(x->err_from * rate),
-                            CLI_NUM(x->err_to * rate));
-                fputc('\n', out.fp);
-            }
+        write_windows(out.fp, o, c, win, count, stats, seconds);
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
     free(win), free(count), free(stats), free(seconds), free(status), free(err);
