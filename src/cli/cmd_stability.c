@@ -152,6 +152,75 @@ static int check_options(const cli_command *cmd, const options *o)
     return 0;
 }
 
+/* The work arrays of make_points: the map's rates, the shapes' summaries and existence, the
+ * tensions of the solves. */
+typedef struct point_work {
+    double *omega;
+    whirl_shape_info *info;
+    int *exists;
+    double *tension;
+} point_work;
+
+static void point_work_free(point_work *w)
+{
+    free(w->omega);
+    free(w->info);
+    free(w->exists);
+    free(w->tension);
+}
+
+/* The single point at --omega, with its free shape's nodes (r then z, N + 1 each) unless the
+ * chain is the hand-swung one. 0, or 1 after an error. */
+static int single_point(const cli_command *cmd, const options *o, const whirl_chain *c,
+                        point *p, double *nodes, double *tension)
+{
+    p->omega = o->omega;
+    p->mode = o->mode;
+    if (driven(o)) return 0;
+    /* the nodes from the branch's link angles: at high rates the tip radius alone does not fix
+     * the shape to round-off */
+    const size_t links = c->n + 1;
+    whirl_shape_info one;
+    if (whirl_nlink_solve_nodes(c, o->omega, o->mode, &one, nodes, nodes + links, tension) !=
+        GSL_SUCCESS)
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    p->tip_r = one.tip_r;
+    p->r = nodes;
+    p->z = nodes + links;
+    return 0;
+}
+
+/* The map's points, mode by mode, in *n: for the free shapes the rates where the mode exists,
+ * with their nodes (mode k's r and z from nodes + 2 k steps (N + 1)); for the hand-swung chain
+ * every rate (its shapes are found in analyse()). 0, or 1 after an error. */
+static int map_points(const cli_command *cmd, const options *o, const whirl_chain *c,
+                      point *p, size_t *n, double *nodes, point_work *w)
+{
+    const size_t links = c->n + 1, steps = (size_t)o->steps;
+    for (size_t j = 0; j < steps; j++)
+        w->omega[j] = cli_grid(o->omega_min, o->omega_max, o->steps, (int)j);
+    *n = 0;
+    for (int k = 0; k < o->modes.n; k++) {
+        const int mode = o->modes.v[k];
+        double *r = nodes ? nodes + 2 * (size_t)k * steps * links : NULL;
+        double *z = r ? r + steps * links : NULL;
+        if (!driven(o) && whirl_nlink_branch_nodes(c, mode, steps, w->omega, w->info, w->exists,
+                                                   r, z, w->tension) != GSL_SUCCESS)
+            return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units)); /* it names the mode */
+        for (size_t j = 0; j < steps; j++) {
+            if (driven(o)) {
+                p[*n] = (point){.omega = w->omega[j], .mode = mode};
+                ++*n;
+            } else if (w->exists[j]) {
+                p[*n] = (point){.omega = w->omega[j], .mode = mode, .tip_r = w->info[j].tip_r,
+                                .r = r + j * links, .z = z + j * links};
+                ++*n;
+            }
+        }
+    }
+    return 0;
+}
+
 /* The points of the single form or of the map (rates where the mode exists); *count of them,
  * their free shapes' nodes in *nodes (NULL for the hand-swung chain; the caller frees both).
  * Returns NULL after printing an error. */
@@ -161,76 +230,21 @@ static point *make_points(const cli_command *cmd, const options *o, const whirl_
     const size_t links = c->n + 1;
     const size_t steps = o->omega_given ? 1 : (size_t)o->steps;
     const size_t nmodes = o->omega_given ? 1 : (size_t)o->modes.n;
-    double *omega = malloc(steps * sizeof *omega);
-    whirl_shape_info *info = malloc(steps * sizeof *info);
-    int *exists = malloc(steps * sizeof *exists);
-    double *tension = driven(o) ? NULL : malloc(steps * links * sizeof *tension);
+    point_work w = {malloc(steps * sizeof *w.omega), malloc(steps * sizeof *w.info),
+                    malloc(steps * sizeof *w.exists),
+                    driven(o) ? NULL : malloc(steps * links * sizeof *w.tension)};
     *nodes = driven(o) ? NULL : malloc(2 * nmodes * steps * links * sizeof **nodes);
     point *p = calloc(steps * nmodes, sizeof *p);
-    size_t n = 0;
-    if (!omega || !info || !exists || !p || (!driven(o) && (!tension || !*nodes))) {
-        cli_error(cmd, "out of memory");
-        goto fail;
-    }
-    if (o->omega_given) {
-        p->omega = o->omega;
-        p->mode = o->mode;
-        if (!driven(o)) {
-            /* the nodes from the branch's link angles: at high rates the tip radius alone does
-             * not fix the shape to round-off */
-            whirl_shape_info one;
-            if (whirl_nlink_solve_nodes(c, o->omega, o->mode, &one, *nodes, *nodes + links,
-                                        tension) != GSL_SUCCESS) {
-                cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-                goto fail;
-            }
-            p->tip_r = one.tip_r;
-            p->r = *nodes;
-            p->z = *nodes + links;
-        }
-        free(omega);
-        free(info);
-        free(exists);
-        free(tension);
-        *count = 1;
-        return p;
-    }
-    for (size_t j = 0; j < steps; j++)
-        omega[j] = cli_grid(o->omega_min, o->omega_max, o->steps, (int)j);
-    for (size_t k = 0; k < nmodes && driven(o); k++) /* shapes found in analyse() */
-        for (size_t j = 0; j < steps; j++) {
-            p[n].omega = omega[j];
-            p[n].mode = o->modes.v[k];
-            n++;
-        }
-    for (size_t k = 0; k < nmodes && !driven(o); k++) {
-        double *r = *nodes + 2 * k * steps * links, *z = r + steps * links;
-        if (whirl_nlink_branch_nodes(c, o->modes.v[k], steps, omega, info, exists, r, z,
-                                     tension) != GSL_SUCCESS) {
-            cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units)); /* it names the mode */
-            goto fail;
-        }
-        for (size_t j = 0; j < steps; j++)
-            if (exists[j]) {
-                p[n].omega = omega[j];
-                p[n].mode = o->modes.v[k];
-                p[n].tip_r = info[j].tip_r;
-                p[n].r = r + j * links;
-                p[n].z = z + j * links;
-                n++;
-            }
-    }
-    free(omega);
-    free(info);
-    free(exists);
-    free(tension);
-    *count = n;
-    return p;
-fail:
-    free(omega);
-    free(info);
-    free(exists);
-    free(tension);
+    int rc = 0;
+    if (!w.omega || !w.info || !w.exists || !p || (!driven(o) && (!w.tension || !*nodes)))
+        rc = cli_error(cmd, "out of memory");
+    else if (o->omega_given)
+        rc = single_point(cmd, o, c, p, *nodes, w.tension);
+    else
+        rc = map_points(cmd, o, c, p, count, *nodes, &w);
+    if (rc == 0 && o->omega_given) *count = 1;
+    point_work_free(&w);
+    if (rc == 0) return p;
     free(*nodes);
     *nodes = NULL;
     free(p);
