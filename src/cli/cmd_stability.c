@@ -267,6 +267,59 @@ static int observe(double t, double ratio, void *data)
     return cli_interrupted ? GSL_EFAILED : GSL_SUCCESS;
 }
 
+/* The perturbed run of the point p of model m from the shape linearised in w (its nodes);
+ * trace: where the samples go (NULL: nowhere). */
+static int perturbed_run(const options *o, const whirl_model *m, whirl_stability *w, point *p,
+                         FILE *trace)
+{
+    whirl_stability_run_params rp = whirl_stability_run_defaults();
+    rp.periods = o->periods;
+    rp.perturbation = o->perturb;
+    rp.seed = (unsigned long)o->seed;
+    rp.method = o->method;
+    rp.dt = o->dt;
+    rp.observe = observe;
+    trace_sink sink = {trace, unit(o, CLI_UNIT_TIME)};
+    rp.observe_data = &sink;
+    whirl_stability_run_result res;
+    if (trace != NULL)
+        fprintf(trace, "# omega %s, mode %d, links %d, damping %s, eps %s, drag "
+                       "%s, drag_quadratic %s, eig_growth %s\nt,deviation\n",
+                CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), p->mode, o->links,
+                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)),
+                CLI_NUM(m->drive_radius * unit(o, CLI_UNIT_LENGTH)),
+                CLI_NUM(m->air_drag * unit(o, CLI_UNIT_DRAG)),
+                CLI_NUM(m->air_drag_quadratic * unit(o, CLI_UNIT_DRAG2)),
+                CLI_NUM(p->eig_growth * unit(o, CLI_UNIT_RATE)));
+    const double *x, *y, *z;
+    whirl_stability_nodes(w, &x, &y, &z);
+    const int status = whirl_stability_run_shape(m, x, y, z, &rp, &res);
+    if (status) return status;
+    if (trace != NULL)
+        fprintf(trace, "# sim_growth %s fitted from t = %s to %s, verdict %s\n",
+                CLI_NUM(res.sim_growth * unit(o, CLI_UNIT_RATE)),
+                CLI_NUM(res.fit_from * unit(o, CLI_UNIT_TIME)),
+                CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
+    p->sim_growth = res.sim_growth;
+    p->max_deviation = res.max_deviation;
+    p->verdict = whirl_verdict_refine(res.verdict, p->index);
+    /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
+     * linear stretch was not integrated: a step beyond the method's stability interval makes
+     * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
+     * does. The default step stays inside the interval (whirl_default_step); a given one may
+     * not. */
+    if (o->dt > 0 && res.verdict == WHIRL_VERDICT_UNSTABLE &&
+        res.sim_growth > 2 * fmax(p->eig_growth, 0) + 0.1 * p->omega)
+        return whirl_fail(GSL_EFAILED, "the run with --dt %g grew at %g while the linearisation "
+                          "gives %g at omega %g: the step is beyond the stability interval of "
+                          "%s (an integration failure, not the chain); give a smaller --dt, or "
+                          "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
+                          res.sim_growth * unit(o, CLI_UNIT_RATE),
+                          p->eig_growth * unit(o, CLI_UNIT_RATE),
+                          p->omega * unit(o, CLI_UNIT_RATE), o->method);
+    return GSL_SUCCESS;
+}
+
 /* The perturbed run of one point (unless --linear), and for the hand-swung chain its linear
  * analysis (that of the free shapes is whirl_stability_map's, before); trace: where the samples
  * of the run go (NULL: nowhere). A driven map point whose shape does not exist is marked absent. */
@@ -304,51 +357,7 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
         p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
         return GSL_SUCCESS;
     }
-    whirl_stability_run_params rp = whirl_stability_run_defaults();
-    rp.periods = o->periods;
-    rp.perturbation = o->perturb;
-    rp.seed = (unsigned long)o->seed;
-    rp.method = o->method;
-    rp.dt = o->dt;
-    rp.observe = observe;
-    trace_sink sink = {trace, unit(o, CLI_UNIT_TIME)};
-    rp.observe_data = &sink;
-    whirl_stability_run_result res;
-    if (trace != NULL)
-        fprintf(trace, "# omega %s, mode %d, links %d, damping %s, eps %s, drag "
-                       "%s, drag_quadratic %s, eig_growth %s\nt,deviation\n",
-                CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), p->mode, o->links,
-                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)),
-                CLI_NUM(m.drive_radius * unit(o, CLI_UNIT_LENGTH)),
-                CLI_NUM(m.air_drag * unit(o, CLI_UNIT_DRAG)),
-                CLI_NUM(m.air_drag_quadratic * unit(o, CLI_UNIT_DRAG2)),
-                CLI_NUM(p->eig_growth * unit(o, CLI_UNIT_RATE)));
-    const double *x, *y, *z;
-    whirl_stability_nodes(w, &x, &y, &z);
-    if ((status = whirl_stability_run_shape(&m, x, y, z, &rp, &res))) return status;
-    if (trace != NULL)
-        fprintf(trace, "# sim_growth %s fitted from t = %s to %s, verdict %s\n",
-                CLI_NUM(res.sim_growth * unit(o, CLI_UNIT_RATE)),
-                CLI_NUM(res.fit_from * unit(o, CLI_UNIT_TIME)),
-                CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
-    p->sim_growth = res.sim_growth;
-    p->max_deviation = res.max_deviation;
-    p->verdict = whirl_verdict_refine(res.verdict, p->index);
-    /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
-     * linear stretch was not integrated: a step beyond the method's stability interval makes
-     * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
-     * does. The default step stays inside the interval (whirl_default_step); a given one may
-     * not. */
-    if (o->dt > 0 && res.verdict == WHIRL_VERDICT_UNSTABLE &&
-        res.sim_growth > 2 * fmax(p->eig_growth, 0) + 0.1 * p->omega)
-        return whirl_fail(GSL_EFAILED, "the run with --dt %g grew at %g while the linearisation "
-                          "gives %g at omega %g: the step is beyond the stability interval of "
-                          "%s (an integration failure, not the chain); give a smaller --dt, or "
-                          "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
-                          res.sim_growth * unit(o, CLI_UNIT_RATE),
-                          p->eig_growth * unit(o, CLI_UNIT_RATE),
-                          p->omega * unit(o, CLI_UNIT_RATE), o->method);
-    return GSL_SUCCESS;
+    return perturbed_run(o, &m, w, p, trace);
 }
 
 #define WINDOWS_MAX 256
