@@ -487,6 +487,57 @@ static int run_windows(const cli_command *cmd, const options *o)
     return rc;
 }
 
+/* order: 0..n-1 sorted by the real part of the eigenvalues (re, im), then the imaginary part. */
+static void sort_eigenvalues(size_t *order, const double *re, const double *im, size_t n)
+{
+    for (size_t i = 0; i < n; i++) order[i] = i;
+    for (size_t i = 1; i < n; i++) /* by real part, then imaginary part */
+        for (size_t j = i; j > 0 && (re[order[j - 1]] > re[order[j]] ||
+                                     (re[order[j - 1]] == re[order[j]] &&
+                                      im[order[j - 1]] > im[order[j]]));
+             j--) {
+            const size_t t = order[j];
+            order[j] = order[j - 1];
+            order[j - 1] = t;
+        }
+}
+
+/* The n eigenvalues of the point p in the given order, after a comment line with its growth,
+ * index and verdict. */
+static void write_eigenvalues(FILE *fp, const options *o, const point *p, size_t n,
+                              const double *re, const double *im, const size_t *order)
+{
+    const double rate = unit(o, CLI_UNIT_RATE);
+    fprintf(fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s; "
+                "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
+                "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
+                "%s\n", CLI_NUM(p->omega * rate), p->mode, o->links,
+            CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), n, CLI_NUM(p->eig_growth * rate),
+            p->index, whirl_verdict_name(p->verdict));
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "re,im\n");
+    for (size_t i = 0; i < n; i++)
+        fprintf(fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
+}
+
+/* The linearisation at the single point p in w, with its growth and verdict: 0, or 1 after an
+ * error. */
+static int linearise_point(const cli_command *cmd, options *o, const whirl_chain *c,
+                           whirl_stability *w, point *p)
+{
+    o->linear = 1;
+    if (analyse(o, c, w, p, NULL) != GSL_SUCCESS)
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    /* a free shape's growth is the map's (whirl_stability_map), not run here: from the
+     * linearisation analyse made */
+    if (!driven(o)) {
+        if (whirl_stability_growth(w, &p->eig_growth) != GSL_SUCCESS)
+            return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+        p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
+    }
+    return 0;
+}
+
 /* --eigenvalues: every eigenvalue of the linearisation at the one rate (the symmetry's zeros
  * removed), in increasing real part, with the index and the verdict in comment lines. */
 static int run_eigenvalues(const cli_command *cmd, options *o)
@@ -501,20 +552,9 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     size_t count = 0;
     double *nodes = NULL;
     point *pts = make_points(cmd, o, c, &count, &nodes);
-    int rc = pts ? 0 : 1;
-    o->linear = 1;
+    int rc = pts ? linearise_point(cmd, o, c, w, &pts[0]) : 1;
     size_t n = 0;
     const double *re = NULL, *im = NULL;
-    if (!rc && analyse(o, c, w, &pts[0], NULL) != GSL_SUCCESS)
-        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    /* a free shape's growth is the map's (whirl_stability_map), not run here: from the
-     * linearisation analyse made */
-    if (!rc && !driven(o)) {
-        if (whirl_stability_growth(w, &pts[0].eig_growth) != GSL_SUCCESS)
-            rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-        else
-            pts[0].verdict = whirl_verdict_linear(pts[0].eig_growth, pts[0].index);
-    }
     if (!rc && whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS)
         rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
@@ -522,28 +562,8 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     cli_out out;
     if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
     if (!rc) {
-        for (size_t i = 0; i < n; i++) order[i] = i;
-        for (size_t i = 1; i < n; i++) /* by real part, then imaginary part */
-            for (size_t j = i; j > 0 && (re[order[j - 1]] > re[order[j]] ||
-                                         (re[order[j - 1]] == re[order[j]] &&
-                                          im[order[j - 1]] > im[order[j]]));
-                 j--) {
-                const size_t t = order[j];
-                order[j] = order[j - 1];
-                order[j - 1] = t;
-            }
-        const double rate = unit(o, CLI_UNIT_RATE);
-        fprintf(out.fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s; "
-                        "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
-                        "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
-                        "%s\n", CLI_NUM(pts[0].omega * rate), pts[0].mode, o->links,
-                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), n,
-                CLI_NUM(pts[0].eig_growth * rate), pts[0].index,
-                whirl_verdict_name(pts[0].verdict));
-        cli_units_comment(out.fp, &o->units);
-        fprintf(out.fp, "re,im\n");
-        for (size_t i = 0; i < n; i++)
-            fprintf(out.fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
+        sort_eigenvalues(order, re, im, n);
+        write_eigenvalues(out.fp, o, &pts[0], n, re, im, order);
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
     free(order);
