@@ -91,38 +91,43 @@ static int method_known(const char *name)
     return 0;
 }
 
-static int check_options(const cli_command *cmd, const options *o)
+static int check_scan(const cli_command *cmd, const options *o)
 {
-    if (!o->atlas && o->max_given && !o->min_given)
-        return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
-    if (!o->atlas && o->modes_given && !o->min_given)
-        return cli_error(cmd, "--modes needs --omega-min (or --atlas)");
-    if (o->atlas) {
-        for (int k = 0; k < o->modes.n; k++)
-            if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
-                return cli_error(cmd, "mode %d is out of range: the continuous chain takes "
-                                 "modes 1..%d", o->modes.v[k], WHIRL_MODE_MAX);
-        if (!(o->tol < o->scan_step))
-            return cli_error(cmd, "--tol must be smaller than --scan-step");
-        return 0;
-    }
-    if (o->windows) {
-        if (!(o->tol < o->scan_step))
-            return cli_error(cmd, "--tol must be smaller than --scan-step");
-        if (dissipative(o) && !o->links_given)
-            return cli_error(cmd, "--windows with --damping or air drag needs --links N (the "
-                             "continuous chain's linearisation has no dissipation)");
-        if (driven(o) && o->damping == 0 && o->drag == 0 && o->drag2 == 0)
-            return cli_error(cmd, "--windows of the hand-swung chain needs dissipation (--damping, "
-                             "--drag, --drag-quadratic or --drag-cd): the conservative windows "
-                             "are those of the free shapes");
-        if (dissipative(o) && o->full)
-            return cli_error(cmd, "--full applies to the conservative windows only");
-    } else if (o->min_given && !o->steps_given) {
-        return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
-    }
-    /* the N-link chain has modes 1..N; the continuum and the hand-swung chain (seeded by the
-     * continuum's shapes) 1..WHIRL_MODE_MAX */
+    if (!(o->tol < o->scan_step))
+        return cli_error(cmd, "--tol must be smaller than --scan-step");
+    return 0;
+}
+
+/* --atlas: the continuum's modes, the scan. */
+static int check_atlas(const cli_command *cmd, const options *o)
+{
+    for (int k = 0; k < o->modes.n; k++)
+        if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
+            return cli_error(cmd, "mode %d is out of range: the continuous chain takes "
+                             "modes 1..%d", o->modes.v[k], WHIRL_MODE_MAX);
+    return check_scan(cmd, o);
+}
+
+/* --windows: the scan, and dissipation only for the N-link chain. */
+static int check_windows(const cli_command *cmd, const options *o)
+{
+    if (check_scan(cmd, o)) return 1;
+    if (dissipative(o) && !o->links_given)
+        return cli_error(cmd, "--windows with --damping or air drag needs --links N (the "
+                         "continuous chain's linearisation has no dissipation)");
+    if (driven(o) && o->damping == 0 && o->drag == 0 && o->drag2 == 0)
+        return cli_error(cmd, "--windows of the hand-swung chain needs dissipation (--damping, "
+                         "--drag, --drag-quadratic or --drag-cd): the conservative windows "
+                         "are those of the free shapes");
+    if (dissipative(o) && o->full)
+        return cli_error(cmd, "--full applies to the conservative windows only");
+    return 0;
+}
+
+/* The mode (or modes) within the chain's: the N-link chain has modes 1..N; the continuum and
+ * the hand-swung chain (seeded by the continuum's shapes) 1..WHIRL_MODE_MAX. */
+static int check_modes(const cli_command *cmd, const options *o)
+{
     const int continuum = (o->windows && !o->links_given) || (!o->windows && driven(o));
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
     for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
@@ -134,6 +139,21 @@ static int check_options(const cli_command *cmd, const options *o)
             return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
                              mode, top, top);
     }
+    return 0;
+}
+
+/* What the option table cannot say: 0, or 1 after an error. */
+static int check_options(const cli_command *cmd, const options *o)
+{
+    if (!o->atlas && o->max_given && !o->min_given)
+        return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
+    if (!o->atlas && o->modes_given && !o->min_given)
+        return cli_error(cmd, "--modes needs --omega-min (or --atlas)");
+    if (o->atlas) return check_atlas(cmd, o);
+    if (o->windows && check_windows(cmd, o)) return 1;
+    if (!o->windows && o->min_given && !o->steps_given)
+        return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
+    if (check_modes(cmd, o)) return 1;
     if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
     if (o->side != 1 && o->side != -1)
