@@ -708,34 +708,79 @@ static void free_kept(char **kept, size_t count)
     free(kept);
 }
 
+/* The points of a single rate or of a map, with what holds them from the setup to the end. */
+typedef struct point_run {
+    whirl_chain *c;
+    point *pts;
+    size_t count;
+    double *nodes;
+    char **kept; /* rows read back by --resume */
+    size_t already;
+    cli_lock lock;
+    cli_out out, trace;
+} point_run;
+
 #define STABILITY_LINE_MAX 1024
 
-/* --resume: reads the map in o->output, which must start with the lines write_header writes
- * for these options; each complete row whose rate and mode are those of a point of the map is
- * kept (kept[i], the line as read) and its point marked done; an unfinished last line is
- * dropped. *already: the points kept. Returns 0, or 1 after printing an error. */
-static int resume(const cli_command *cmd, const options *o, point *pts, size_t count, char **kept,
-                  size_t *already)
+/* The complete row line (len characters): kept for the point of the map whose rate and mode it
+ * has (r->kept[i], the line as read) and that point marked done. 0, or 1 after an error. */
+static int keep_row(const cli_command *cmd, const options *o, point_run *r, const char *line,
+                    size_t len)
 {
-    char *expect = NULL;
-    size_t expect_len = 0;
-    FILE *mem = open_memstream(&expect, &expect_len);
+    char rate[64];
+    int mode;
+    if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) return 0;
+    for (size_t i = 0; i < r->count; i++) {
+        point *p = &r->pts[i];
+        if (p->done || p->mode != mode ||
+            strcmp(CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
+            continue;
+        if ((r->kept[i] = malloc(len + 1)) == NULL) return cli_error(cmd, "out of memory");
+        memcpy(r->kept[i], line, len + 1);
+        p->done = 1;
+        r->already++;
+        return 0;
+    }
+    return 0;
+}
+
+/* The lines before the rows (write_header's) in *text (to free), their length in *len, and
+ * the count of the header's columns in *fields. 0, or 1 after an error. */
+static int expected_header(const cli_command *cmd, const options *o, char **text, size_t *len,
+                           size_t *fields)
+{
+    *text = NULL;
+    *len = 0;
+    FILE *mem = open_memstream(text, len);
     if (mem == NULL) return cli_error(cmd, "out of memory");
     write_header(mem, o);
     fclose(mem);
+    /* the columns: the header block's last line */
+    *fields = 1;
+    for (const char *c = *text + *len - (*len > 0); c > *text && c[-1] != '\n'; c--)
+        *fields += *c == ',';
+    return 0;
+}
+
+/* --resume: reads the map in o->output, which must start with the lines write_header writes
+ * for these options; each complete row whose rate and mode are those of a point of the map is
+ * kept (keep_row); an unfinished last line is dropped. r->already: the points kept. Returns 0,
+ * or 1 after printing an error. */
+static int resume(const cli_command *cmd, const options *o, point_run *r)
+{
+    char *expect = NULL;
+    size_t expect_len = 0, fields = 1;
+    if (expected_header(cmd, o, &expect, &expect_len, &fields)) return 1;
     FILE *in = fopen(o->output, "r");
     if (in == NULL) {
         free(expect);
         return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
     }
     char line[STABILITY_LINE_MAX], why[160];
-    size_t pos = 0, fields = 1;
+    size_t pos = 0;
     int rc = 0;
     long lineno = 0;
-    *already = 0;
-    /* the columns: the header block's last line */
-    for (const char *c = expect + expect_len - (expect_len > 0); c > expect && c[-1] != '\n'; c--)
-        fields += *c == ',';
+    r->already = 0;
     while (rc == 0 && fgets(line, sizeof line, in)) {
         const size_t len = strlen(line);
         lineno++;
@@ -748,27 +793,11 @@ static int resume(const cli_command *cmd, const options *o, point *pts, size_t c
         }
         if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
         /* a complete row must be whole and finite: a file that holds others cannot be trusted */
-        if (cli_row_check(line, fields, why, sizeof why) != 0) {
+        if (cli_row_check(line, fields, why, sizeof why) != 0)
             rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
                            "row, or start the map afresh)", o->output, lineno, why);
-            break;
-        }
-        char rate[64];
-        int mode;
-        if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) continue;
-        for (size_t i = 0; i < count; i++) {
-            if (pts[i].done || pts[i].mode != mode ||
-                strcmp(CLI_NUM(pts[i].omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
-                continue;
-            if ((kept[i] = malloc(len + 1)) == NULL) {
-                rc = cli_error(cmd, "out of memory");
-                break;
-            }
-            memcpy(kept[i], line, len + 1);
-            pts[i].done = 1;
-            ++*already;
-            break;
-        }
+        else
+            rc = keep_row(cmd, o, r, line, len);
     }
     if (rc == 0 && pos < expect_len)
         rc = cli_error(cmd, "--resume: '%s' holds no map of these options", o->output);
@@ -922,18 +951,6 @@ static int run_windows_dissipative(const cli_command *cmd, const options *o)
                                  &o->units, o->output);
 }
 
-/* The points of a single rate or of a map, with what holds them from the setup to the end. */
-typedef struct point_run {
-    whirl_chain *c;
-    point *pts;
-    size_t count;
-    double *nodes;
-    char **kept; /* rows read back by --resume */
-    size_t already;
-    cli_lock lock;
-    cli_out out, trace;
-} point_run;
-
 static void point_run_free(point_run *r)
 {
     cli_lock_release(&r->lock);
@@ -962,7 +979,7 @@ static int point_run_setup(const cli_command *cmd, const options *o, point_run *
      * on it together are kept apart) */
     if (r->kept && o->min_given) rc = cli_lock_take(cmd, &r->lock, o->output, !o->resume);
     if (rc == 0 && r->kept == NULL) rc = cli_error(cmd, "out of memory");
-    else if (rc == 0 && o->resume) rc = resume(cmd, o, r->pts, r->count, r->kept, &r->already);
+    else if (rc == 0 && o->resume) rc = resume(cmd, o, r);
     if (rc == 0) rc = cli_out_open(cmd, &r->out, o->output);
     if (rc == 0 && o->trace && (rc = cli_out_open(cmd, &r->trace, o->trace)))
         cli_out_abort(&r->out);
