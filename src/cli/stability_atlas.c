@@ -170,6 +170,81 @@ static int read_atlas(const cli_command *cmd, const char *path, atlas *a,
     return rc;
 }
 
+/* One run of the atlas: its options, workspace and progress. */
+typedef struct atlas_run {
+    const cli_command *cmd;
+    const cli_int_list *modes;
+    double omega_max, tol, scan_step;
+    int degree;
+    const char *output;
+    whirl_cstab *w;
+    whirl_window *win; /* a chunk's windows */
+    int *sig;          /* their edges' signatures */
+    cli_progress_state progress;
+    long finished;
+} atlas_run;
+
+/* The windows of mode in the chunk (lo, hi], with the Krein signatures of their closed edges
+ * (r->win, r->sig; *n of them): 0, CLI_EXIT_INTERRUPTED, or 1 after an error. */
+static int chunk_windows(atlas_run *r, int mode, double lo, double hi, size_t *n)
+{
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = fmax(lo, 1e-3);
+    p.omega_max = hi;
+    p.tol = r->tol;
+    p.scan_step = r->scan_step;
+    whirl_windows_stats st;
+    const whirl_window *win = r->win;
+    int *sig = r->sig;
+    int status = whirl_cstab_windows(r->w, mode, &p, r->win, ATLAS_CHUNK_WINDOWS, n, &st);
+    for (size_t i = 0; i < *n && !status; i++) {
+        sig[2 * i] = sig[2 * i + 1] = 0;
+        if (!win[i].open_from && win[i].freq_from > 0)
+            status = edge_signature(r->w, mode, win[i].from - ATLAS_SIDE, win[i].freq_from,
+                                    &sig[2 * i]);
+        if (!status && !win[i].open_to && win[i].freq_to > 0)
+            status = edge_signature(r->w, mode, win[i].to + ATLAS_SIDE, win[i].freq_to,
+                                    &sig[2 * i + 1]);
+    }
+    if (status == WHIRL_EINTERRUPTED) return CLI_EXIT_INTERRUPTED;
+    if (status)
+        return cli_error(r->cmd, "mode %d, omega %s..%s: %s", mode, CLI_NUM(p.omega_min),
+                         CLI_NUM(hi), whirl_last_error());
+    return 0;
+}
+
+/* The chunks of mode k not done yet, the file rewritten after each: 0, CLI_EXIT_INTERRUPTED,
+ * or 1 after an error. */
+static int atlas_mode(atlas_run *r, atlas *a, int k)
+{
+    const int mode = r->modes->v[k];
+    double birth;
+    if (whirl_continuum_critical(mode, 0, &birth))
+        return cli_error(r->cmd, "%s", whirl_last_error());
+    for (size_t j = 0; j < a->nchunks; j++) {
+        int *done = &a->done[(size_t)k * a->nchunks + j];
+        if (*done) continue;
+        double lo, hi;
+        chunk_range(r->omega_max, j, &lo, &hi);
+        if (hi <= birth * (1 + 1e-6)) { /* the mode does not exist yet */
+            *done = 1;
+            cli_progress_update(&r->progress, ++r->finished, 0);
+            continue;
+        }
+        size_t n = 0;
+        int rc = chunk_windows(r, mode, lo, hi, &n);
+        if (rc) return rc;
+        if (add_rows(a, mode, r->win, n, r->sig))
+            return cli_error(r->cmd, "more than %d windows", ATLAS_WINDOWS);
+        *done = 1;
+        qsort(a->rows, a->count, sizeof *a->rows, compare_rows);
+        rc = write_atlas(r->cmd, r->output, a, r->modes, r->omega_max, r->degree) ? 1 : 0;
+        cli_progress_update(&r->progress, ++r->finished, 0);
+        if (rc) return rc;
+    }
+    return 0;
+}
+
 int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double omega_max,
                     int degree, double tol, double scan_step, const char *output, int resume)
 {
@@ -182,80 +257,28 @@ int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double om
     a.nchunks = (size_t)ceil(omega_max / ATLAS_CHUNK - 1e-12);
     a.rows = calloc(ATLAS_WINDOWS, sizeof *a.rows);
     a.done = calloc((size_t)modes->n * a.nchunks, sizeof *a.done);
-    whirl_window *win = calloc(ATLAS_CHUNK_WINDOWS, sizeof *win);
-    int *sig = calloc(2 * ATLAS_CHUNK_WINDOWS, sizeof *sig);
+    atlas_run r = {cmd, modes, omega_max, tol, scan_step, degree, output, NULL,
+                   calloc(ATLAS_CHUNK_WINDOWS, sizeof *r.win),
+                   calloc(2 * ATLAS_CHUNK_WINDOWS, sizeof *r.sig), {0}, 0};
     whirl_cstab_params cp = whirl_cstab_defaults();
     cp.degree = degree;
-    whirl_cstab *w = whirl_cstab_alloc(&cp);
+    r.w = whirl_cstab_alloc(&cp);
     int rc = 0;
-    if (!a.rows || !a.done || !win || !sig || !w) rc = cli_error(cmd, "out of memory");
+    if (!a.rows || !a.done || !r.win || !r.sig || !r.w) rc = cli_error(cmd, "out of memory");
     if (!rc && resume) rc = read_atlas(cmd, output, &a, modes);
     long total = (long)modes->n * (long)a.nchunks, already = 0;
     for (long i = 0; i < total && !rc; i++) already += a.done[i];
-    cli_progress_state progress;
-    cli_progress_begin(&progress, cmd, "chunks", total, already);
-    long finished = already;
+    cli_progress_begin(&r.progress, cmd, "chunks", total, already);
+    r.finished = already;
     cli_catch_interrupts();
-    for (int k = 0; k < modes->n && !rc; k++) {
-        const int mode = modes->v[k];
-        double birth;
-        if (whirl_continuum_critical(mode, 0, &birth)) {
-            rc = cli_error(cmd, "%s", whirl_last_error());
-            break;
-        }
-        for (size_t j = 0; j < a.nchunks && !rc; j++) {
-            int *done = &a.done[(size_t)k * a.nchunks + j];
-            if (*done) continue;
-            double lo, hi;
-            chunk_range(omega_max, j, &lo, &hi);
-            if (hi <= birth * (1 + 1e-6)) { /* the mode does not exist yet */
-                *done = 1;
-                cli_progress_update(&progress, ++finished, 0);
-                continue;
-            }
-            whirl_windows_params p = whirl_windows_defaults();
-            p.omega_min = fmax(lo, 1e-3);
-            p.omega_max = hi;
-            p.tol = tol;
-            p.scan_step = scan_step;
-            size_t n = 0;
-            whirl_windows_stats st;
-            int status = whirl_cstab_windows(w, mode, &p, win, ATLAS_CHUNK_WINDOWS, &n, &st);
-            for (size_t i = 0; i < n && !status; i++) {
-                sig[2 * i] = sig[2 * i + 1] = 0;
-                if (!win[i].open_from && win[i].freq_from > 0)
-                    status = edge_signature(w, mode, win[i].from - ATLAS_SIDE, win[i].freq_from,
-                                            &sig[2 * i]);
-                if (!status && !win[i].open_to && win[i].freq_to > 0)
-                    status = edge_signature(w, mode, win[i].to + ATLAS_SIDE, win[i].freq_to,
-                                            &sig[2 * i + 1]);
-            }
-            if (status == WHIRL_EINTERRUPTED) {
-                rc = CLI_EXIT_INTERRUPTED;
-                break;
-            }
-            if (status) {
-                rc = cli_error(cmd, "mode %d, omega %s..%s: %s", mode, CLI_NUM(p.omega_min),
-                               CLI_NUM(hi), whirl_last_error());
-                break;
-            }
-            if (add_rows(&a, mode, win, n, sig)) {
-                rc = cli_error(cmd, "more than %d windows", ATLAS_WINDOWS);
-                break;
-            }
-            *done = 1;
-            qsort(a.rows, a.count, sizeof *a.rows, compare_rows);
-            if (write_atlas(cmd, output, &a, modes, omega_max, degree)) rc = 1;
-            cli_progress_update(&progress, ++finished, 0);
-        }
-    }
-    cli_progress_update(&progress, finished, 1);
+    for (int k = 0; k < modes->n && !rc; k++) rc = atlas_mode(&r, &a, k);
+    cli_progress_update(&r.progress, r.finished, 1);
     if (rc == CLI_EXIT_INTERRUPTED)
         cli_error(cmd, "interrupted: %ld of %ld chunks in '%s' (continue with --resume)",
-                  finished, total, output);
+                  r.finished, total, output);
     else if (!rc && write_atlas(cmd, output, &a, modes, omega_max, degree)) /* all chunks */
         rc = 1;
-    whirl_cstab_free(w);
-    free(a.rows), free(a.done), free(win), free(sig);
+    whirl_cstab_free(r.w);
+    free(a.rows), free(a.done), free(r.win), free(r.sig);
     return rc;
 }
