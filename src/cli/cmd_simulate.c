@@ -160,6 +160,59 @@ static int add_trace(run *r, const char *scene_path, const char **sets, size_t n
     return 0;
 }
 
+/* Takes every --set out of argv (sets[0..*n_sets)) and leaves the rest, argv[0] first, in
+ * rest[0..*n_rest) (NULL after): 0, or 1 after an error. */
+static int take_sets(const cli_command *cmd, int argc, char **argv, const char **sets,
+                     size_t *n_sets, char **rest, int *n_rest)
+{
+    rest[(*n_rest)++] = argv[0];
+    int rc = 0;
+    for (int i = 1; i < argc && rc == 0; i++) {
+        if (strcmp(argv[i], "--set") == 0) {
+            if (i + 1 == argc) rc = cli_error(cmd, "option --set needs a value (SEC.KEY=V)");
+            else sets[(*n_sets)++] = argv[++i];
+        } else if (strncmp(argv[i], "--set=", 6) == 0)
+            sets[(*n_sets)++] = argv[i] + 6;
+        else
+            rest[(*n_rest)++] = argv[i];
+    }
+    rest[*n_rest] = NULL;
+    return rc;
+}
+
+/* Opens the outputs, runs the scene and commits them (or aborts): 0, or the exit status. */
+static int run_scene(run *r, const char *output)
+{
+    const cli_command *cmd = r->cmd;
+    int rc = 0;
+    if ((r->work = whirl_scene_work_alloc(&r->scene)) == NULL)
+        rc = cli_error(cmd, "%s", whirl_last_error());
+    if (rc == 0) rc = cli_out_open(cmd, &r->csv, output);
+    if (rc == 0) r->csv_open = 1;
+    if (rc == 0 && r->scene.trace) {
+        rc = cli_out_open(cmd, &r->trace, r->scene.trace);
+        if (rc == 0) r->trace_open = 1;
+    }
+    if (rc == 0) {
+        rc = simulate(r);
+        /* A run stopped by a signal keeps the rows written so far: both files, or neither. A
+         * failed run leaves no file (aborted below), and says why; unless a file could not be
+         * written (a full disk, a broken pipe): that is then the one error. */
+        cli_out *const outs[2] = {&r->csv, &r->trace};
+        const size_t n_outs = r->trace_open ? 2 : 1;
+        const int write_failed = ferror(r->csv.fp) || (r->trace_open && ferror(r->trace.fp));
+        if (rc != 1 || write_failed) {
+            if (cli_out_commit_all(cmd, outs, n_outs) != 0) {
+                if (rc == 0) rc = 1;
+            } else if (r->failure[0]) cli_error(cmd, "%s", r->failure);
+            r->csv_open = r->trace_open = 0;
+        } else cli_error(cmd, "%s", r->failure);
+    }
+    if (r->csv_open) cli_out_abort(&r->csv);
+    if (r->trace_open) cli_out_abort(&r->trace);
+    return rc;
+}
+
 int cmd_simulate(const cli_command *cmd, int argc, char **argv)
 {
     const char *output = NULL, *set_help = NULL; /* --set is taken out before cli_parse */
@@ -185,18 +238,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     }
     size_t n_sets = 0;
     int n_rest = 0;
-    rest[n_rest++] = argv[0];
-    int rc = 0;
-    for (int i = 1; i < argc && rc == 0; i++) {
-        if (strcmp(argv[i], "--set") == 0) {
-            if (i + 1 == argc) rc = cli_error(cmd, "option --set needs a value (SEC.KEY=V)");
-            else sets[n_sets++] = argv[++i];
-        } else if (strncmp(argv[i], "--set=", 6) == 0)
-            sets[n_sets++] = argv[i] + 6;
-        else
-            rest[n_rest++] = argv[i];
-    }
-    rest[n_rest] = NULL;
+    int rc = take_sets(cmd, argc, argv, sets, &n_sets, rest, &n_rest);
     const char *scene_path = NULL;
     if (rc == 0) rc = cli_parse(cmd, n_rest, rest, opts, sizeof opts / sizeof *opts, &scene_path, 1);
     if (rc == 0 && scene_path == NULL) rc = cli_error(cmd, "missing the scene file (see --help)");
@@ -224,31 +266,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     if (r.scene.trace && strcmp(r.scene.trace, "-") == 0)
         rc = key_error(&r, WHIRL_KEY_OUTPUT_TRACE, "must be a file, not standard output");
     if (rc == 0) rc = check_trace(&r, scene_path, output, overwrite);
-    if (rc == 0 && (r.work = whirl_scene_work_alloc(&r.scene)) == NULL)
-        rc = cli_error(cmd, "%s", whirl_last_error());
-    if (rc == 0) rc = cli_out_open(cmd, &r.csv, output);
-    if (rc == 0) r.csv_open = 1;
-    if (rc == 0 && r.scene.trace) {
-        rc = cli_out_open(cmd, &r.trace, r.scene.trace);
-        if (rc == 0) r.trace_open = 1;
-    }
-    if (rc == 0) {
-        rc = simulate(&r);
-        /* A run stopped by a signal keeps the rows written so far: both files, or neither. A
-         * failed run leaves no file (aborted below), and says why; unless a file could not be
-         * written (a full disk, a broken pipe): that is then the one error. */
-        cli_out *const outs[2] = {&r.csv, &r.trace};
-        const size_t n_outs = r.trace_open ? 2 : 1;
-        const int write_failed = ferror(r.csv.fp) || (r.trace_open && ferror(r.trace.fp));
-        if (rc != 1 || write_failed) {
-            if (cli_out_commit_all(cmd, outs, n_outs) != 0) {
-                if (rc == 0) rc = 1;
-            } else if (r.failure[0]) cli_error(cmd, "%s", r.failure);
-            r.csv_open = r.trace_open = 0;
-        } else cli_error(cmd, "%s", r.failure);
-    }
-    if (r.csv_open) cli_out_abort(&r.csv);
-    if (r.trace_open) cli_out_abort(&r.trace);
+    if (rc == 0) rc = run_scene(&r, output);
     if (rc == 0 && movie) {
         const char *trace = r.scene.trace;
         rc = cli_figure_draw(cmd, &trace, 1, movie);
