@@ -29,6 +29,71 @@ static void show_progress(void *data, int evaluations, int max_evaluations)
     cli_progress_update(&p->state, evaluations, 0);
 }
 
+/* whirl_minimize_shape with a progress line on a terminal: its status, its time in *elapsed. */
+static int minimize(const cli_command *cmd, const whirl_chain *c, double omega,
+                    whirl_minimize_options mo, double *theta, whirl_minimize_stats *st,
+                    double *elapsed)
+{
+    minimize_progress progress = {.done = 0};
+    cli_progress_begin(&progress.state, cmd, "evaluations (the time left: to the cap)",
+                       mo.max_evaluations > 0 ? mo.max_evaluations : 100000, 0);
+    mo.progress = show_progress;
+    mo.progress_data = &progress;
+    const double t0 = cli_wall_seconds();
+    const int status = whirl_minimize_shape(c, omega, &mo, NULL, theta, st);
+    *elapsed = cli_wall_seconds() - t0;
+    if (progress.state.shown > progress.state.start) /* a line was shown: end it */
+        cli_progress_update(&progress.state,
+                            status == GSL_SUCCESS ? st->evaluations : progress.done, 1);
+    return status;
+}
+
+/* The error of a failed minimisation; returns 1. */
+static int minimize_error(const cli_command *cmd, const steady_cli_model *m, double omega,
+                          int status)
+{
+    if (status == GSL_EDOM) {
+        const double rate = cli_units_rate(&m->units);
+        double omega_1;
+        if (steady_cli_critical(cmd, m, 1, &omega_1) == 0)
+            cli_error(cmd, "no mode-1 shape at omega=%s: up to omega_1=%s the hanging "
+                      "chain is the minimum", CLI_NUM(omega * rate), CLI_NUM(omega_1 * rate));
+        return 1;
+    }
+    return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m->units));
+}
+
+/* The shape of the link angles theta as `whirl shape --links N` writes it, with the minimiser's
+ * statistics as an extra comment line; r: room for 3 (N + 1) numbers. 0, or 1 after an error. */
+static int write_minimum(const cli_command *cmd, const steady_cli_model *m, double omega,
+                         const double *theta, double *r, const char *algorithm,
+                         const whirl_minimize_stats *st, double elapsed, const char *output)
+{
+    const double len = m->units.length, force = cli_units_force(&m->units);
+    const size_t n = m->chain->n;
+    double *z = r + (n + 1), *tension = z + (n + 1);
+    whirl_shape_info info;
+    whirl_angles_shape(m->chain, omega, theta, r, z, tension, &info);
+    char stats[512];
+    snprintf(stats, sizeof stats, "minimum of V: algorithm=%s evaluations=%d nlopt_result=%s "
+             "newton_steps=%d potential=%s gradient_norm=%.3g min_curvature=%s seconds=%.3g",
+             algorithm, st->evaluations, nlopt_result_to_string((nlopt_result)st->nlopt_result),
+             st->newton_steps, CLI_NUM(st->potential * force * len),
+             st->gradient_norm * force * len, CLI_NUM(st->min_curvature * force * len), elapsed);
+    double *s = malloc((n + 1) * sizeof *s);
+    if (s == NULL) return cli_error(cmd, "out of memory for %zu links", n);
+    s[0] = 0;
+    for (size_t i = 1; i <= n; i++) s[i] = s[i - 1] + m->chain->length[i - 1];
+    cli_out out;
+    if (cli_out_open(cmd, &out, output)) {
+        free(s);
+        return 1;
+    }
+    steady_cli_write_shape(out.fp, m, &info, n + 1, s, r, z, tension, stats);
+    free(s);
+    return cli_out_commit(cmd, &out);
+}
+
 int cmd_minimize(const cli_command *cmd, int argc, char **argv)
 {
     double omega = 0;
@@ -58,69 +123,21 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
-    const double rate = cli_units_rate(&m.units), len = m.units.length;
-    const double force = cli_units_force(&m.units);
     const size_t n = m.chain->n;
     double *theta = malloc(n * sizeof *theta), *r = malloc(3 * (n + 1) * sizeof *r);
-    rc = 1;
-    if (theta == NULL || r == NULL) {
-        cli_error(cmd, "out of memory for %zu links", n);
-        goto done;
-    }
-    double *z = r + (n + 1), *tension = z + (n + 1);
     whirl_minimize_options mo = whirl_minimize_options_defaults();
     mo.algorithm = algorithm;
     mo.polish = !no_polish;
     mo.max_evaluations = max_evaluations;
-    minimize_progress progress = {.done = 0};
-    cli_progress_begin(&progress.state, cmd, "evaluations (the time left: to the cap)",
-                       mo.max_evaluations > 0 ? mo.max_evaluations : 100000, 0);
-    mo.progress = show_progress;
-    mo.progress_data = &progress;
     whirl_minimize_stats st;
-    const double t0 = cli_wall_seconds();
-    const int status = whirl_minimize_shape(m.chain, omega, &mo, NULL, theta, &st);
-    const double elapsed = cli_wall_seconds() - t0;
-    if (progress.state.shown > progress.state.start) /* a line was shown: end it */
-        cli_progress_update(&progress.state, status == GSL_SUCCESS ? st.evaluations : progress.done,
-                            1);
-    if (status == GSL_EDOM) {
-        double omega_1;
-        if (steady_cli_critical(cmd, &m, 1, &omega_1) == 0)
-            cli_error(cmd, "no mode-1 shape at omega=%s: up to omega_1=%s the hanging "
-                      "chain is the minimum", CLI_NUM(omega * rate), CLI_NUM(omega_1 * rate));
-        goto done;
-    }
-    if (status != GSL_SUCCESS) {
-        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
-        goto done;
-    }
-    whirl_shape_info info;
-    whirl_angles_shape(m.chain, omega, theta, r, z, tension, &info);
-
-    /* as `whirl shape --links N`, with the minimiser's statistics as an extra comment line */
-    char stats[512];
-    snprintf(stats, sizeof stats, "minimum of V: algorithm=%s evaluations=%d nlopt_result=%s "
-             "newton_steps=%d potential=%s gradient_norm=%.3g min_curvature=%s seconds=%.3g",
-             algorithm, st.evaluations, nlopt_result_to_string((nlopt_result)st.nlopt_result),
-             st.newton_steps, CLI_NUM(st.potential * force * len), st.gradient_norm * force * len,
-             CLI_NUM(st.min_curvature * force * len), elapsed);
-    double *s = malloc((n + 1) * sizeof *s);
-    if (s == NULL) {
-        cli_error(cmd, "out of memory for %zu links", n);
-        goto done;
-    }
-    s[0] = 0;
-    for (size_t i = 1; i <= n; i++) s[i] = s[i - 1] + m.chain->length[i - 1];
-    cli_out out;
-    if (cli_out_open(cmd, &out, output)) {
-        free(s);
-        goto done;
-    }
-    steady_cli_write_shape(out.fp, &m, &info, n + 1, s, r, z, tension, stats);
-    free(s);
-    rc = cli_out_commit(cmd, &out);
-done:
+    double elapsed = 0;
+    int status = GSL_SUCCESS;
+    if (theta == NULL || r == NULL)
+        rc = cli_error(cmd, "out of memory for %zu links", n);
+    else if ((status = minimize(cmd, m.chain, omega, mo, theta, &st, &elapsed)) != GSL_SUCCESS)
+        rc = minimize_error(cmd, &m, omega, status);
+    else
+        rc = write_minimum(cmd, &m, omega, theta, r, algorithm, &st, elapsed, output);
     free(theta);
     free(r);
     steady_cli_model_free(&m);
