@@ -37,6 +37,55 @@ static void show_progress(void *data, int mode, int first, int last, int evaluat
     cli_progress_update(&f->state, f->done, 0);
 }
 
+/* The factor that takes the points, in shape_unit (NULL: m), to the units of --length (m): 0,
+ * or 1 after an error. */
+static int shape_scale(const cli_command *cmd, const cli_units *units, const char *shape_unit,
+                       double *scale)
+{
+    *scale = 1;
+    if (!shape_unit) return 0;
+    char one[32];
+    int suffixed = 0;
+    snprintf(one, sizeof one, "1%s", shape_unit);
+    if (!units->physical)
+        return cli_error(cmd, "--shape-unit %s needs --length (the chain's length in SI units)",
+                         shape_unit);
+    if (strlen(shape_unit) >= sizeof one - 1 ||
+        whirl_parse_quantity(one, WHIRL_QUANTITY_LENGTH, scale, &suffixed) != 0 || !suffixed)
+        return cli_error(cmd, "--shape-unit must be m, cm or mm, got '%s'", shape_unit);
+    return 0;
+}
+
+/* whirl_fit_observed with a progress line on a terminal; returns its status. */
+static int fit(const cli_command *cmd, const whirl_fit_model *model, const points_csv *p,
+               int mode, whirl_fit_result *res)
+{
+    fit_progress progress = {.done = 0};
+    cli_progress_begin(&progress.state, cmd, "modes done", 0, 0);
+    const int status = whirl_fit_observed(model, p->n, p->r, p->z, mode, show_progress,
+                                          &progress, res);
+    if (progress.state.total > 0)
+        cli_progress_update(&progress.state, status ? progress.done : progress.state.total, 1);
+    return status;
+}
+
+/* The fit as CSV: 0, or 1 after an error. */
+static int write_fit(const cli_command *cmd, const steady_cli_model *m, const points_csv *p,
+                     const whirl_fit_result *res, const char *output)
+{
+    const double rate = cli_units_rate(&m->units), len = m->units.length;
+    cli_out out;
+    if (cli_out_open(cmd, &out, output)) return 1;
+    fprintf(out.fp, "# model=%s points=%zu side=%s evaluations=%d solver_failures=%d\n",
+            m->links_given ? "n-link" : "continuum", p->n, res->mirrored ? "r<0" : "r>0",
+            res->evaluations, res->failures);
+    cli_units_comment(out.fp, &m->units);
+    fprintf(out.fp, "omega,omega_err,mode,rms_residual\n%s,%s,%d,%s\n",
+            CLI_NUM(res->omega * rate), CLI_NUM(res->omega_err * rate), res->mode,
+            CLI_NUM(res->rms_residual * len));
+    return cli_out_commit(cmd, &out);
+}
+
 int cmd_fit(const cli_command *cmd, int argc, char **argv)
 {
     const char *shape = NULL, *output = NULL, *shape_unit = NULL;
@@ -66,19 +115,10 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     if (steady_cli_model_setup(cmd, &m)) return 1;
 
     const double rate = cli_units_rate(&m.units), len = m.units.length;
-    /* the points' unit, as the factor that takes them to the units of --length (m) */
-    double shape_scale = 1;
-    if (shape_unit) {
-        char one[32];
-        int suffixed = 0;
-        snprintf(one, sizeof one, "1%s", shape_unit);
-        if (!m.units.physical)
-            return cli_error(cmd, "--shape-unit %s needs --length (the chain's length in SI units)",
-                             shape_unit);
-        if (strlen(shape_unit) >= sizeof one - 1 ||
-            whirl_parse_quantity(one, WHIRL_QUANTITY_LENGTH, &shape_scale, &suffixed) != 0 ||
-            !suffixed)
-            return cli_error(cmd, "--shape-unit must be m, cm or mm, got '%s'", shape_unit);
+    double scale;
+    if (shape_scale(cmd, &m.units, shape_unit, &scale)) {
+        steady_cli_model_free(&m);
+        return 1;
     }
     whirl_fit_model model = whirl_fit_model_defaults();
     model.links = m.links_given ? (size_t)m.links : 0;
@@ -86,46 +126,24 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     if (omega_max_given) model.omega_max = omega_max;
 
     points_csv p = {0, 0, NULL, NULL};
-    rc = points_csv_read_path(cmd, shape, &p);
-    if (rc) goto done;
-    rc = 1;
-    if (p.n < 3) {
-        cli_error(cmd, "%s has %zu points; a fit needs at least 3", shape, p.n);
-        goto done;
-    }
-    for (size_t i = 0; i < p.n; i++) {
-        p.r[i] *= shape_scale / len;
-        p.z[i] *= shape_scale / len;
-    }
     whirl_fit_result res;
-    fit_progress progress = {.done = 0};
-    cli_progress_begin(&progress.state, cmd, "modes done", 0, 0);
-    const int status = whirl_fit_observed(&model, p.n, p.r, p.z, mode, show_progress, &progress,
-                                          &res);
-    if (progress.state.total > 0)
-        cli_progress_update(&progress.state, status ? progress.done : progress.state.total, 1);
-    if (status != GSL_SUCCESS) {
-        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
-        goto done;
+    rc = points_csv_read_path(cmd, shape, &p);
+    if (rc == 0 && p.n < 3)
+        rc = cli_error(cmd, "%s has %zu points; a fit needs at least 3", shape, p.n);
+    for (size_t i = 0; rc == 0 && i < p.n; i++) {
+        p.r[i] *= scale / len;
+        p.z[i] *= scale / len;
     }
-    if (!(res.rms_residual <= max_residual)) {
+    if (rc == 0 && fit(cmd, &model, &p, mode, &res) != GSL_SUCCESS)
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&m.units));
+    if (rc == 0 && !(res.rms_residual <= max_residual)) {
         char which[32] = "no mode";
         if (mode_given) snprintf(which, sizeof which, "mode %d", mode);
-        cli_error(cmd, "%s explains the shape: the best fit (mode %d, omega=%.6g) leaves an rms "
-                  "residual of %.3g L, above --max-residual %g", which, res.mode, res.omega * rate,
-                  res.rms_residual, max_residual);
-        goto done;
+        rc = cli_error(cmd, "%s explains the shape: the best fit (mode %d, omega=%.6g) leaves an "
+                       "rms residual of %.3g L, above --max-residual %g", which, res.mode,
+                       res.omega * rate, res.rms_residual, max_residual);
     }
-    cli_out out;
-    if (cli_out_open(cmd, &out, output)) goto done;
-    fprintf(out.fp, "# model=%s points=%zu side=%s evaluations=%d solver_failures=%d\n",
-            m.links_given ? "n-link" : "continuum", p.n, res.mirrored ? "r<0" : "r>0",
-            res.evaluations, res.failures);
-    cli_units_comment(out.fp, &m.units);
-    fprintf(out.fp, "omega,omega_err,mode,rms_residual\n%s,%s,%d,%s\n", CLI_NUM(res.omega * rate),
-            CLI_NUM(res.omega_err * rate), res.mode, CLI_NUM(res.rms_residual * len));
-    rc = cli_out_commit(cmd, &out);
-done:
+    if (rc == 0) rc = write_fit(cmd, &m, &p, &res, output);
     points_csv_free(&p);
     steady_cli_model_free(&m);
     return rc;
