@@ -138,119 +138,104 @@ static int drawable(double x, double y, double z, double t)
            isfinite(t);
 }
 
-static int read_source(const cli_command *cmd, source *s, view_progress *vp)
+/* A comment line: the rate, eps, mode and links it gives (the first of each), the rate as the
+ * writer gave it ("# rate: "), SI units, and the line kept for the page's list. */
+static void read_comment(source *s, const char *line)
 {
-    FILE *fp;
-    if (whirl_input_open(s->path, &fp) != GSL_SUCCESS)
-        return read_error(vp, cmd, "%s", whirl_last_error());
-    struct stat st;
-    const double mib = fstat(fileno(fp), &st) == 0 ? (double)st.st_size / 1048576 : 0;
-    whirl_line_reader in = whirl_line_reader_init(fp, s->path, VIEW_LINE_MAX, VIEW_BYTES_MAX);
-    int rc = 0, header = 0, cx = -1, cy = -1, cz = -1, cr = -1, ncols = 0;
-    long lineno = 0;
-    int block_open = 0;
-    s->omega = s->eps = NAN;
-    s->trace = -1;
-    while (rc == 0 && whirl_line_read(&in) > 0) {
-        char *line = in.line;
-        lineno = in.lineno;
-        if (lineno % VIEW_POLL_LINES == 0 && progress_due(vp))
-            cli_progress_text(&vp->line, "reading %s: %.0f/%.0f MiB (%.0f%%)", s->path,
-                              (double)in.total / 1048576, mib,
-                              mib > 0 ? 100 * (double)in.total / 1048576 / mib : 100);
-        if (strlen(line) != in.len) {
-            rc = read_error(vp, cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", s->path,
-                            lineno, strlen(line) + 1);
-            continue;
-        }
-        if (line[0] == '#') {
-            double w = meta_value(line, "omega"), e = meta_value(line, "eps");
-            double k = meta_value(line, "mode"), nl = meta_value(line, "links");
-            if (isnan(s->omega) && isfinite(w)) s->omega = w;
-            if (isnan(s->eps) && isfinite(e)) s->eps = e;
-            if (s->mode == 0 && k >= 1 && k < 1e9) s->mode = (int)k;
-            if (s->links == 0 && nl >= 1 && nl < 1e9) s->links = (int)nl;
-            if (strncmp(line, "# rate: ", 8) == 0 && s->rate[0] == '\0') {
-                snprintf(s->rate, sizeof s->rate, "%.*s", (int)sizeof s->rate - 1, line + 8);
-                s->rate[strcspn(s->rate, "\r\n")] = '\0';
-                char *paren = strstr(s->rate, " ("); /* "4 Hz (omega=...)": the rate as given */
-                if (paren) *paren = '\0';
-                for (size_t n = strlen(s->rate); n > 0 && s->rate[n - 1] == ' '; n--)
-                    s->rate[n - 1] = '\0';
-            }
-            if (strncmp(line, "# units: length=m", 17) == 0) s->physical = 1;
-            if (strncmp(line, "# t = ", 6) != 0 && s->n_info < VIEW_INFO_MAX) {
-                snprintf(s->info[s->n_info], sizeof s->info[0], "%s", line + 1 + (line[1] == ' '));
-                s->info[s->n_info][strcspn(s->info[s->n_info], "\r\n")] = '\0';
-                s->n_info++;
-            }
-            continue;
-        }
-        const char *p = line;
-        while (isspace((unsigned char)*p)) p++;
-        if (*p == '\0') { /* a blank line ends a trace's block */
-            block_open = 0;
-            continue;
-        }
-        if (s->trace < 0) s->trace = strchr(line, ',') == NULL;
-        if (!s->trace) {
-            if (!header) { /* the CSV header */
-                header = 1;
-                cx = column(line, "x"), cy = column(line, "y"), cz = column(line, "z");
-                cr = column(line, "r");
-                for (const char *c = line; *c; c++) ncols += *c == ',';
-                ncols++;
-                if (cz < 0 || (cr < 0 && cx < 0))
-                    rc = read_error(vp, cmd, "%s:%ld: a shape needs columns r and z, or x, y and z",
-                                    s->path, lineno);
-                continue;
-            }
-            double v[64];
-            int n = 0;
-            char *q = line, *end;
-            while (n < 64 && n < ncols) {
-                v[n++] = strtod(q, &end);
-                if (end == q) break;
-                q = end;
-                if (*q != ',') break;
-                q++;
-            }
-            const int need = (cx > cr ? cx : cr) > cz ? (cx > cr ? cx : cr) : cz;
-            if (n <= need || (cy >= 0 && n <= cy)) {
-                rc = read_error(vp, cmd, "%s:%ld: too few values", s->path, lineno);
-                continue;
-            }
-            double x = cx >= 0 ? v[cx] : v[cr], y = cx >= 0 && cy >= 0 ? v[cy] : 0, z = v[cz];
-            if (!drawable(x, y, z, 0)) {
-                rc = read_error(vp, cmd, "%s:%ld: a coordinate is not finite or beyond %g", s->path,
-                                lineno, VIEW_COORD_MAX);
-                continue;
-            }
-            if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
-                rc = read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)",
-                                s->path, lineno, s->xyz.n / 3);
-            continue;
-        }
-        double x, y, z, t;
-        if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !drawable(x, y, z, t)) {
-            rc = read_error(vp, cmd, "%s:%ld: a trace line needs four finite numbers x y z t (x, "
-                            "y, z at most %g)", s->path, lineno, VIEW_COORD_MAX);
-            continue;
-        }
-        if (!block_open) {
-            block_open = 1;
-            if (vec_push(&s->start, (double)(s->xyz.n / 3)) || vec_push(&s->time, t))
-                rc = read_error(vp, cmd, "%s:%ld: out of memory for the frames (%zu read)",
-                                s->path, lineno, s->start.n);
-        }
-        if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
-            rc = read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)", s->path,
-                            lineno, s->xyz.n / 3);
+    double w = meta_value(line, "omega"), e = meta_value(line, "eps");
+    double k = meta_value(line, "mode"), nl = meta_value(line, "links");
+    if (isnan(s->omega) && isfinite(w)) s->omega = w;
+    if (isnan(s->eps) && isfinite(e)) s->eps = e;
+    if (s->mode == 0 && k >= 1 && k < 1e9) s->mode = (int)k;
+    if (s->links == 0 && nl >= 1 && nl < 1e9) s->links = (int)nl;
+    if (strncmp(line, "# rate: ", 8) == 0 && s->rate[0] == '\0') {
+        snprintf(s->rate, sizeof s->rate, "%.*s", (int)sizeof s->rate - 1, line + 8);
+        s->rate[strcspn(s->rate, "\r\n")] = '\0';
+        char *paren = strstr(s->rate, " ("); /* "4 Hz (omega=...)": the rate as given */
+        if (paren) *paren = '\0';
+        for (size_t n = strlen(s->rate); n > 0 && s->rate[n - 1] == ' '; n--)
+            s->rate[n - 1] = '\0';
     }
-    if (rc == 0 && in.status != GSL_SUCCESS) rc = read_error(vp, cmd, "%s", whirl_last_error());
-    whirl_line_reader_free(&in);
-    fclose(fp);
-    if (rc == 0 && s->xyz.n < 6)
+    if (strncmp(line, "# units: length=m", 17) == 0) s->physical = 1;
+    if (strncmp(line, "# t = ", 6) != 0 && s->n_info < VIEW_INFO_MAX) {
+        snprintf(s->info[s->n_info], sizeof s->info[0], "%s", line + 1 + (line[1] == ' '));
+        s->info[s->n_info][strcspn(s->info[s->n_info], "\r\n")] = '\0';
+        s->n_info++;
+    }
+}
+
+/* The columns of a shape's CSV (-1: absent), from its header. */
+typedef struct shape_columns {
+    int header, x, y, z, r, n;
+} shape_columns;
+
+/* A line of a shape's CSV: the header (cols), then a point per row. 0, or 1 after an error. */
+static int read_shape_line(const cli_command *cmd, view_progress *vp, source *s, char *line,
+                           long lineno, shape_columns *cols)
+{
+    if (!cols->header) { /* the CSV header */
+        cols->header = 1;
+        cols->x = column(line, "x"), cols->y = column(line, "y"), cols->z = column(line, "z");
+        cols->r = column(line, "r");
+        for (const char *c = line; *c; c++) cols->n += *c == ',';
+        cols->n++;
+        if (cols->z < 0 || (cols->r < 0 && cols->x < 0))
+            return read_error(vp, cmd, "%s:%ld: a shape needs columns r and z, or x, y and z",
+                              s->path, lineno);
+        return 0;
+    }
+    const int cx = cols->x, cy = cols->y, cz = cols->z, cr = cols->r;
+    double v[64];
+    int n = 0;
+    char *q = line, *end;
+    while (n < 64 && n < cols->n) {
+        v[n++] = strtod(q, &end);
+        if (end == q) break;
+        q = end;
+        if (*q != ',') break;
+        q++;
+    }
+    const int need = (cx > cr ? cx : cr) > cz ? (cx > cr ? cx : cr) : cz;
+    if (n <= need || (cy >= 0 && n <= cy))
+        return read_error(vp, cmd, "%s:%ld: too few values", s->path, lineno);
+    double x = cx >= 0 ? v[cx] : v[cr], y = cx >= 0 && cy >= 0 ? v[cy] : 0, z = v[cz];
+    if (!drawable(x, y, z, 0))
+        return read_error(vp, cmd, "%s:%ld: a coordinate is not finite or beyond %g", s->path,
+                          lineno, VIEW_COORD_MAX);
+    if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
+        return read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)", s->path,
+                          lineno, s->xyz.n / 3);
+    return 0;
+}
+
+/* A line "x y z t" of a trace; the first of a block (*block_open 0) starts a frame. 0, or 1
+ * after an error. */
+static int read_trace_line(const cli_command *cmd, view_progress *vp, source *s,
+                           const char *line, long lineno, int *block_open)
+{
+    double x, y, z, t;
+    if (sscanf(line, "%lf %lf %lf %lf", &x, &y, &z, &t) != 4 || !drawable(x, y, z, t))
+        return read_error(vp, cmd, "%s:%ld: a trace line needs four finite numbers x y z t (x, "
+                          "y, z at most %g)", s->path, lineno, VIEW_COORD_MAX);
+    int rc = 0;
+    if (!*block_open) {
+        *block_open = 1;
+        if (vec_push(&s->start, (double)(s->xyz.n / 3)) || vec_push(&s->time, t))
+            rc = read_error(vp, cmd, "%s:%ld: out of memory for the frames (%zu read)", s->path,
+                            lineno, s->start.n);
+    }
+    if (vec_push(&s->xyz, x) || vec_push(&s->xyz, y) || vec_push(&s->xyz, z))
+        rc = read_error(vp, cmd, "%s:%ld: out of memory for the points (%zu read)", s->path,
+                        lineno, s->xyz.n / 3);
+    return rc;
+}
+
+/* After the reading: at least two points, planar or not, and a trace's frames of equal size.
+ * 0, or 1 after an error. */
+static int check_source(const cli_command *cmd, view_progress *vp, source *s)
+{
+    int rc = 0;
+    if (s->xyz.n < 6)
         rc = read_error(vp, cmd, "%s: no chain in it (at least two points)", s->path);
     s->planar = 1;
     for (size_t i = 1; i < s->xyz.n && s->planar; i += 3) s->planar = s->xyz.v[i] == 0;
@@ -264,6 +249,50 @@ static int read_source(const cli_command *cmd, source *s, view_progress *vp)
         }
     }
     return rc;
+}
+
+static int read_source(const cli_command *cmd, source *s, view_progress *vp)
+{
+    FILE *fp;
+    if (whirl_input_open(s->path, &fp) != GSL_SUCCESS)
+        return read_error(vp, cmd, "%s", whirl_last_error());
+    struct stat st;
+    const double mib = fstat(fileno(fp), &st) == 0 ? (double)st.st_size / 1048576 : 0;
+    whirl_line_reader in = whirl_line_reader_init(fp, s->path, VIEW_LINE_MAX, VIEW_BYTES_MAX);
+    int rc = 0, block_open = 0;
+    shape_columns cols = {0, -1, -1, -1, -1, 0};
+    s->omega = s->eps = NAN;
+    s->trace = -1;
+    while (rc == 0 && whirl_line_read(&in) > 0) {
+        char *line = in.line;
+        const long lineno = in.lineno;
+        if (lineno % VIEW_POLL_LINES == 0 && progress_due(vp))
+            cli_progress_text(&vp->line, "reading %s: %.0f/%.0f MiB (%.0f%%)", s->path,
+                              (double)in.total / 1048576, mib,
+                              mib > 0 ? 100 * (double)in.total / 1048576 / mib : 100);
+        if (strlen(line) != in.len) {
+            rc = read_error(vp, cmd, "%s:%ld: NUL byte at column %zu (a binary file?)", s->path,
+                            lineno, strlen(line) + 1);
+            continue;
+        }
+        if (line[0] == '#') {
+            read_comment(s, line);
+            continue;
+        }
+        const char *p = line;
+        while (isspace((unsigned char)*p)) p++;
+        if (*p == '\0') { /* a blank line ends a trace's block */
+            block_open = 0;
+            continue;
+        }
+        if (s->trace < 0) s->trace = strchr(line, ',') == NULL;
+        if (!s->trace) rc = read_shape_line(cmd, vp, s, line, lineno, &cols);
+        else rc = read_trace_line(cmd, vp, s, line, lineno, &block_open);
+    }
+    if (rc == 0 && in.status != GSL_SUCCESS) rc = read_error(vp, cmd, "%s", whirl_last_error());
+    whirl_line_reader_free(&in);
+    fclose(fp);
+    return rc ? rc : check_source(cmd, vp, s);
 }
 
 /* A JSON string. */
