@@ -247,40 +247,91 @@ static int all_max(const mpi_context *mc, int v)
     return v;
 }
 
+/* Rank 0: the map file locked (one run at a time writes a map: from before the old one is read,
+ * through the lock's stream, or a new path is made empty by this run so that two runs started
+ * on it together are kept apart, until the run ends), started (a fresh map's header, or the old
+ * rows read back into done, *n_done of them) and opened for appending (*fp). 0, or 1 after an
+ * error. */
+static int open_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
+                    cli_lock *lock, char *done, long n_points, long *n_done, FILE **fp)
+{
+    int rc = 0;
+    if (o->resume && access(o->output, F_OK) != 0)
+        rc = cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
+    if (rc == 0) rc = cli_lock_take(cmd, lock, o->output, !o->resume);
+    if (rc == 0 && o->resume && lock->fp == NULL)
+        rc = cli_error(cmd, "--resume: '%s' is not a regular file", o->output);
+    if (rc == 0)
+        rc = o->resume ? resume_map(cmd, o, lock, done, n_points, n_done)
+                       : fresh_map(cmd, o, chain, lock);
+    if (rc == 0 && (*fp = fopen(o->output, "a")) == NULL)
+        rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
+    return rc;
+}
+
+/* Rank 0: the rows of a round of `round` points gathered in buf (point k of the round: rank
+ * k % K, its k / K-th, at slot (k % K) block + k / K); returns the count written. */
+static long write_round(FILE *fp, const regime_options *o, const mpi_context *mc,
+                        const double *buf, long round, long block)
+{
+    long written = 0;
+    for (long k = 0; k < round; k++) {
+        whirl_regime_result r;
+        const long slot = (k % mc->size) * block + k / mc->size;
+        const long index = unpack(buf + slot * RESULT_FIELDS, &r);
+        if (index < 0) continue;
+        write_map_row(fp, o, index, &r);
+        written++;
+    }
+    return written;
+}
+
+/* The state of a map's run on this rank. */
+typedef struct map_run {
+    long n_points, already, written;
+    int threads, stop;
+    double start; /* wall seconds */
+    FILE *fp;     /* rank 0: the map */
+} map_run;
+
+/* Rank 0 at the end: the closing comment, the file closed, a stop reported, the folds. rc: the
+ * run's status so far; returns the final one. */
+static int close_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
+                     const mpi_context *mc, map_run *m, cli_progress_state *progress, int rc)
+{
+    const double seconds = cli_wall_seconds() - m->start;
+    cli_progress_update(progress, m->already + m->written, 1);
+    if (rc == 0 && !m->stop)
+        fprintf(m->fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
+                m->written, seconds, mc->size, m->threads);
+    if (fclose(m->fp) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o->output);
+    if (rc == 0 && m->stop)
+        rc = 130, cli_error(cmd, "interrupted: %ld of %ld points in '%s' (continue with "
+                            "--resume)", m->already + m->written, m->n_points, o->output);
+    if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
+    return rc;
+}
+
 int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
                    const mpi_context *mc)
 {
-    const long n_points = (long)o->omega_steps * o->eps_steps;
-    const int threads = max_threads();
-    const long block = all_max(mc, 4 * threads); /* points per rank and round */
+    map_run m = {(long)o->omega_steps * o->eps_steps, 0, 0, max_threads(), 0, 0, NULL};
+    const long n_points = m.n_points;
+    const long block = all_max(mc, 4 * m.threads); /* points per rank and round */
     char *done = calloc((size_t)n_points, 1);
     long *pending = malloc((size_t)n_points * sizeof *pending);
     long *mine = malloc((size_t)block * sizeof *mine);
     double *buf = malloc((size_t)(block * mc->size) * RESULT_FIELDS * sizeof *buf);
-    whirl_regime **ws = calloc((size_t)threads, sizeof *ws);
+    whirl_regime **ws = calloc((size_t)m.threads, sizeof *ws);
     whirl_error_record *err = malloc((size_t)block * sizeof *err);
     int rc = done && pending && mine && buf && ws && err ? 0 : 1;
-    for (int k = 0; rc == 0 && k < threads; k++)
+    for (int k = 0; rc == 0 && k < m.threads; k++)
         if ((ws[k] = whirl_regime_alloc(chain)) == NULL) rc = 1;
     if (rc) cli_error(cmd, "out of memory");
     long n_done = 0;
-    FILE *fp = NULL;
     cli_lock lock = {0};
-    if (mc->rank == 0 && rc == 0) {
-        /* one run at a time writes a map: the file is locked from before it is read (the old
-         * one, read through the lock's stream; a new path made empty by this run, so that two
-         * runs started on it together are kept apart) until the run ends (the new one) */
-        if (o->resume && access(o->output, F_OK) != 0)
-            rc = cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
-        if (rc == 0) rc = cli_lock_take(cmd, &lock, o->output, !o->resume);
-        if (rc == 0 && o->resume && lock.fp == NULL)
-            rc = cli_error(cmd, "--resume: '%s' is not a regular file", o->output);
-        if (rc == 0)
-            rc = o->resume ? resume_map(cmd, o, &lock, done, n_points, &n_done)
-                           : fresh_map(cmd, o, chain, &lock);
-        if (rc == 0 && (fp = fopen(o->output, "a")) == NULL)
-            rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));
-    }
+    if (mc->rank == 0 && rc == 0)
+        rc = open_map(cmd, o, chain, &lock, done, n_points, &n_done, &m.fp);
     rc = all_max(mc, rc);
 #ifdef WHIRL_MPI
     if (rc == 0 && mc->size > 1) MPI_Bcast(done, (int)n_points, MPI_CHAR, 0, MPI_COMM_WORLD);
@@ -288,13 +339,11 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
     long n_pending = 0;
     for (long i = 0; rc == 0 && i < n_points; i++)
         if (!done[i]) pending[n_pending++] = i;
-    const long already = n_points - n_pending;
-    const double start = cli_wall_seconds();
+    m.already = n_points - n_pending;
+    m.start = cli_wall_seconds();
     cli_progress_state progress;
-    cli_progress_begin(&progress, cmd, "points", n_points, already);
+    cli_progress_begin(&progress, cmd, "points", n_points, m.already);
     cli_catch_interrupts();
-    long written = 0;
-    int stop = 0;
     for (long first = 0; rc == 0 && first < n_pending; first += block * mc->size) {
         const long round = GSL_MIN(block * mc->size, n_pending - first);
         long count = 0;
@@ -310,35 +359,17 @@ int regime_cli_run_map(const cli_command *cmd, const regime_options *o, const wh
                        MPI_COMM_WORLD);
 #endif
         if (mc->rank == 0) {
-            for (long k = 0; k < round; k++) { /* point k of the round: rank k % K, its k / K */
-                whirl_regime_result r;
-                const long slot = (k % mc->size) * block + k / mc->size;
-                const long index = unpack(buf + slot * RESULT_FIELDS, &r);
-                if (index < 0) continue;
-                write_map_row(fp, o, index, &r);
-                written++;
-            }
-            if (fflush(fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
-            cli_progress_update(&progress, already + written, 0);
+            m.written += write_round(m.fp, o, mc, buf, round, block);
+            if (fflush(m.fp) != 0) failed = cli_error(cmd, "cannot write '%s'", o->output);
+            cli_progress_update(&progress, m.already + m.written, 0);
         }
         rc = all_max(mc, failed);
-        stop = all_max(mc, cli_interrupted != 0);
-        if (stop) break;
+        m.stop = all_max(mc, cli_interrupted != 0);
+        if (m.stop) break;
     }
-    const double seconds = cli_wall_seconds() - start;
-    if (mc->rank == 0 && fp) {
-        cli_progress_update(&progress, already + written, 1);
-        if (rc == 0 && !stop)
-            fprintf(fp, "# computed %ld points in %.3f s wall on %d rank(s) x %d thread(s)\n",
-                    written, seconds, mc->size, threads);
-        if (fclose(fp) != 0 && rc == 0) rc = cli_error(cmd, "cannot write '%s'", o->output);
-        if (rc == 0 && stop)
-            rc = 130, cli_error(cmd, "interrupted: %ld of %ld points in '%s' (continue with "
-                                "--resume)", already + written, n_points, o->output);
-        if (rc == 0 && o->folds) rc = write_folds(cmd, o, chain);
-    }
+    if (mc->rank == 0 && m.fp) rc = close_map(cmd, o, chain, mc, &m, &progress, rc);
     cli_lock_release(&lock);
-    for (int k = 0; ws && k < threads; k++) whirl_regime_free(ws[k]);
+    for (int k = 0; ws && k < m.threads; k++) whirl_regime_free(ws[k]);
     free(ws);
     free(err);
     free(buf);
