@@ -348,12 +348,10 @@ static void label_of(const source *s, char *buf, size_t size)
     snprintf(buf, size, "%s%s", mode, rate);
 }
 
-static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], double omega,
-                       double eps, view_progress *vp)
+/* The units and the extent of the sources: radius from the axis, heights, and the chain's
+ * length (first frame). */
+static void write_extent(FILE *fp, const source *src, int nsrc, double eps)
 {
-    vp->written = vp->total = 0;
-    for (int k = 0; k < nsrc; k++) vp->total += src[k].xyz.n / 3;
-    /* extent: radius from the axis, heights, and the chain's length (first frame) */
     double r = eps > 0 ? eps : 0, zmin = 0, zmax = 0, len = 0;
     int physical = 0;
     for (int k = 0; k < nsrc; k++) {
@@ -372,15 +370,16 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
         physical |= src[k].physical;
     }
     if (!(r > 0)) r = 0.05 * (len > 0 ? len : 1);
-    fprintf(fp, "var WHIRL = {\"kind\": \"%s\", \"camera\": [%.7g, %.7g], ",
-            src[0].trace ? "trace" : "shapes", camera[0], camera[1]);
-    fprintf(fp, "\"omega\": %.17g, \"eps\": %.17g, \"time_unit_seconds\": 1,\n", omega, eps);
     fprintf(fp, "\"units\": {\"length\": \"%s\", \"time\": \"%s\"},\n", physical ? "m" : "L",
             physical ? "s" : "sqrt(L/g)");
     fprintf(fp, "\"extent\": {\"r\": %.7g, \"zmin\": %.7g, \"zmax\": %.7g, \"len\": %.7g},\n", r,
             zmin, zmax, len > 0 ? len : 1);
-    /* the summary, short: each shape's label (mode and rate as given), or the trace's links, rate
-     * (and its frequency in Hz in SI units) and eps */
+}
+
+/* The summary, short: each shape's label (mode and rate as given), or the trace's links, rate
+ * (and its frequency in Hz in SI units) and eps; then each file's comment lines. */
+static void write_info(FILE *fp, const source *src, int nsrc)
+{
     char summary[1024] = "";
     for (int k = 0; k < nsrc; k++) {
         char one[256];
@@ -391,43 +390,61 @@ static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], 
     fprintf(fp, "\"summary\": ");
     put_string(fp, summary);
     fprintf(fp, ",\n\"info\": [");
-    int first = 1;
     for (int k = 0; k < nsrc; k++) {
         char head[300];
         snprintf(head, sizeof head, "%s:", src[k].path);
-        if (!first) fputs(", ", fp);
+        if (k) fputs(", ", fp);
         put_string(fp, head);
-        first = 0;
         for (int i = 0; i < src[k].n_info; i++) {
             fputs(", ", fp);
             put_string(fp, src[k].info[i]);
         }
     }
     fprintf(fp, "],\n");
-    if (src[0].trace) {
-        const source *s = &src[0];
-        fprintf(fp, "\"frames\": [\n");
-        for (size_t f = 0; f < s->start.n && !cli_interrupted; f++) {
-            size_t a = (size_t)s->start.v[f], b = f + 1 < s->start.n ? (size_t)s->start.v[f + 1]
-                                                                   : s->xyz.n / 3;
-            fprintf(fp, "%s{\"t\": %.17g, \"p\": ", f ? ",\n" : "", s->time.v[f]);
-            put_points(fp, s->xyz.v + 3 * a, 3 * (b - a), vp);
-            fputc('}', fp);
-        }
-        fprintf(fp, "]};\n");
-    } else {
-        fprintf(fp, "\"shapes\": [\n");
-        for (int k = 0; k < nsrc; k++) {
-            char label[256];
-            label_of(&src[k], label, sizeof label);
-            fprintf(fp, "%s{\"label\": ", k ? ",\n" : "");
-            put_string(fp, label);
-            fprintf(fp, ", \"omega\": %.17g, \"p\": ", isfinite(src[k].omega) ? src[k].omega : 0);
-            put_points(fp, src[k].xyz.v, src[k].xyz.n, vp);
-            fputc('}', fp);
-        }
-        fprintf(fp, "]};\n");
+}
+
+/* A trace's frames, each with its time. */
+static void write_frames(FILE *fp, const source *s, view_progress *vp)
+{
+    fprintf(fp, "\"frames\": [\n");
+    for (size_t f = 0; f < s->start.n && !cli_interrupted; f++) {
+        size_t a = (size_t)s->start.v[f], b = f + 1 < s->start.n ? (size_t)s->start.v[f + 1]
+                                                               : s->xyz.n / 3;
+        fprintf(fp, "%s{\"t\": %.17g, \"p\": ", f ? ",\n" : "", s->time.v[f]);
+        put_points(fp, s->xyz.v + 3 * a, 3 * (b - a), vp);
+        fputc('}', fp);
     }
+    fprintf(fp, "]};\n");
+}
+
+/* The shapes, each with its label and rate. */
+static void write_shapes(FILE *fp, const source *src, int nsrc, view_progress *vp)
+{
+    fprintf(fp, "\"shapes\": [\n");
+    for (int k = 0; k < nsrc; k++) {
+        char label[256];
+        label_of(&src[k], label, sizeof label);
+        fprintf(fp, "%s{\"label\": ", k ? ",\n" : "");
+        put_string(fp, label);
+        fprintf(fp, ", \"omega\": %.17g, \"p\": ", isfinite(src[k].omega) ? src[k].omega : 0);
+        put_points(fp, src[k].xyz.v, src[k].xyz.n, vp);
+        fputc('}', fp);
+    }
+    fprintf(fp, "]};\n");
+}
+
+static void write_data(FILE *fp, source *src, int nsrc, const double camera[2], double omega,
+                       double eps, view_progress *vp)
+{
+    vp->written = vp->total = 0;
+    for (int k = 0; k < nsrc; k++) vp->total += src[k].xyz.n / 3;
+    fprintf(fp, "var WHIRL = {\"kind\": \"%s\", \"camera\": [%.7g, %.7g], ",
+            src[0].trace ? "trace" : "shapes", camera[0], camera[1]);
+    fprintf(fp, "\"omega\": %.17g, \"eps\": %.17g, \"time_unit_seconds\": 1,\n", omega, eps);
+    write_extent(fp, src, nsrc, eps);
+    write_info(fp, src, nsrc);
+    if (src[0].trace) write_frames(fp, &src[0], vp);
+    else write_shapes(fp, src, nsrc, vp);
 }
 
 int cmd_view(const cli_command *cmd, int argc, char **argv)
