@@ -214,9 +214,10 @@ int whirl_worker_dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, 
     return GSL_SUCCESS;
 }
 
-/* ---- LU (dgetrf, dgetrs, dgesv) on a worker ---- */
+/* ---- LU (dgetrf, dgetrs, dgesv) and Cholesky (dposv) on a worker ---- */
 
-typedef enum { LU_FACTOR = 1, LU_SOLVE = 2 } lu_part; /* dgesv: both */
+/* dgesv: LU_FACTOR | LU_SOLVE; dposv: LU_CHOLESKY alone (factor and solve, no pivots) */
+typedef enum { LU_FACTOR = 1, LU_SOLVE = 2, LU_CHOLESKY = 4 } lu_part;
 
 typedef struct lu_job {
     int parts;
@@ -238,6 +239,9 @@ static lapack_int lu_call(int parts, size_t n, size_t nrhs, double *a, size_t ld
                           lapack_int *ipiv, double *b, size_t ldb)
 {
     lapack_int info = 0;
+    if (parts & LU_CHOLESKY)
+        return LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, (lapack_int)nrhs, a,
+                                  (lapack_int)lda, b, (lapack_int)ldb);
     if (parts & LU_FACTOR)
         info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, a,
                                    (lapack_int)lda, ipiv);
@@ -260,8 +264,9 @@ static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapa
                    double *b, size_t ldb, int *info)
 {
     const double dn = (double)n;
-    const double flops = ((parts & LU_FACTOR) ? 2.0 / 3.0 * dn * dn * dn : 0) +
-                         ((parts & LU_SOLVE) ? 2.0 * dn * dn * (double)nrhs : 0);
+    const int factor = parts & (LU_FACTOR | LU_CHOLESKY), solve = parts & (LU_SOLVE | LU_CHOLESKY);
+    const double flops = (factor ? 2.0 / 3.0 * dn * dn * dn : 0) +
+                         (solve ? 2.0 * dn * dn * (double)nrhs : 0);
     if (flops <= WORKER_INLINE_FLOPS) {
         *info = (int)lu_call(parts, n, nrhs, a, lda, ipiv, b, ldb);
         return GSL_SUCCESS;
@@ -272,7 +277,7 @@ static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapa
         return whirl_fail(GSL_ENOMEM, "a linear solve of %zu rows needs more memory than can be "
                                       "addressed", n);
     lu_job *j = calloc(1, sizeof *j);
-    const size_t nb = (parts & LU_SOLVE) ? n * nrhs : 0;
+    const size_t nb = solve ? n * nrhs : 0;
     if (j == NULL || (j->a = malloc((n * n + nb) * sizeof(double))) == NULL ||
         (j->ipiv = malloc((n ? n : 1) * sizeof(lapack_int))) == NULL) {
         if (j) free(j->a);
@@ -284,15 +289,13 @@ static int lu_work(int parts, size_t n, size_t nrhs, double *a, size_t lda, lapa
     j->nrhs = nrhs;
     j->b = j->a + n * n;
     copy_columns(j->a, n, a, lda, n, n);
-    if (!(parts & LU_FACTOR)) memcpy(j->ipiv, ipiv, n * sizeof(lapack_int));
+    if (parts == LU_SOLVE) memcpy(j->ipiv, ipiv, n * sizeof(lapack_int));
     if (nb) copy_columns(j->b, n, b, ldb, n, nrhs);
     if (whirl_worker_run(lu_run, j, lu_release) != GSL_SUCCESS)
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during a linear solve");
     *info = (int)j->info;
-    if (parts & LU_FACTOR) {
-        copy_columns(a, lda, j->a, n, n, n);
-        memcpy(ipiv, j->ipiv, n * sizeof(lapack_int));
-    }
+    if (factor) copy_columns(a, lda, j->a, n, n, n);
+    if (parts & LU_FACTOR) memcpy(ipiv, j->ipiv, n * sizeof(lapack_int));
     if (nb) copy_columns(b, ldb, j->b, n, n, nrhs);
     lu_release(j);
     return GSL_SUCCESS;
@@ -314,4 +317,61 @@ int whirl_worker_dgesv(size_t n, size_t nrhs, double *a, size_t lda, lapack_int 
                        size_t ldb, int *info)
 {
     return lu_work(LU_FACTOR | LU_SOLVE, n, nrhs, a, lda, ipiv, b, ldb, info);
+}
+
+int whirl_worker_dposv(size_t n, size_t nrhs, double *a, size_t lda, double *b, size_t ldb,
+                       int *info)
+{
+    return lu_work(LU_CHOLESKY, n, nrhs, a, lda, NULL, b, ldb, info);
+}
+
+/* ---- dsyev (eigenvalues only) on a worker ---- */
+
+typedef struct dsyev_job {
+    size_t n;
+    double *a, *ev; /* one block: a (n x n), then ev (n) */
+    lapack_int info;
+} dsyev_job;
+
+static void dsyev_release(void *data)
+{
+    dsyev_job *j = data;
+    free(j->a);
+    free(j);
+}
+
+static void dsyev_run(void *data, const whirl_worker *self)
+{
+    (void)self; /* one LAPACK call: nothing to poll */
+    dsyev_job *j = data;
+    j->info = LAPACKE_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)j->n, j->a, (lapack_int)j->n,
+                            j->ev);
+}
+
+int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info)
+{
+    const double dn = (double)n;
+    if (4.0 / 3.0 * dn * dn * dn <= WORKER_INLINE_FLOPS) { /* the tridiagonal reduction */
+        *info = (int)LAPACKE_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)n, a, (lapack_int)lda,
+                                   ev);
+        return GSL_SUCCESS;
+    }
+    if (n > SIZE_MAX / (4 * sizeof(double)) / n)
+        return whirl_fail(GSL_ENOMEM, "an eigen-solve of %zu rows needs more memory than can be "
+                                      "addressed", n);
+    dsyev_job *j = calloc(1, sizeof *j);
+    if (j == NULL || (j->a = malloc((n * n + n) * sizeof(double))) == NULL) {
+        free(j);
+        return whirl_fail(GSL_ENOMEM, "out of memory for an eigen-solve of %zu rows", n);
+    }
+    j->n = n;
+    j->ev = j->a + n * n;
+    copy_columns(j->a, n, a, lda, n, n);
+    if (whirl_worker_run(dsyev_run, j, dsyev_release) != GSL_SUCCESS)
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during an eigen-solve");
+    *info = (int)j->info;
+    memcpy(ev, j->ev, n * sizeof(double));
+    copy_columns(a, lda, j->a, n, n, n);
+    dsyev_release(j);
+    return GSL_SUCCESS;
 }

@@ -60,4 +60,18 @@ int whirl_worker_dgetrs(size_t n, size_t nrhs, const double *a, size_t lda,
 int whirl_worker_dgesv(size_t n, size_t nrhs, double *a, size_t lda, lapack_int *ipiv, double *b,
                        size_t ldb, int *info);
 
+/* LAPACK's dposv (column-major, lower triangle 'L'): the Cholesky factor of the symmetric
+ * positive definite n x n matrix a into its lower triangle, and the n x nrhs right-hand sides b
+ * solved in place. As the LU helpers above: above WORKER_INLINE_FLOPS on copies in a worker.
+ * *info is LAPACK's; returns GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; a, b untouched) or
+ * GSL_ENOMEM. */
+int whirl_worker_dposv(size_t n, size_t nrhs, double *a, size_t lda, double *b, size_t ldb,
+                       int *info);
+
+/* LAPACK's dsyev without eigenvectors (column-major, upper triangle 'U'): the eigenvalues of the
+ * symmetric n x n matrix a (leading dimension lda, overwritten as dsyev does) in ascending order
+ * into ev. Above WORKER_INLINE_FLOPS on copies in a worker. *info is LAPACK's; returns
+ * GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; a, ev untouched) or GSL_ENOMEM. */
+int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info);
+
 #endif

@@ -545,7 +545,13 @@ int whirl_stability_index(const whirl_stability *w, int *index)
     }
     for (size_t i = 0; i < q; i++) /* the symmetric part */
         for (size_t j = 0; j < q; j++) a[i * q + j] = (k[i * q + j] + k[j * q + i]) / 2;
-    lapack_int info = LAPACKE_dsyev(LAPACK_ROW_MAJOR, 'N', 'U', (lapack_int)q, a, (lapack_int)q, ev);
+    /* symmetric: the row-major array is its own column-major transpose */
+    int info;
+    const int status = whirl_worker_dsyev(q, a, q, ev, &info);
+    if (status) { /* a stop request: the solve runs on a worker */
+        free(a), free(ev);
+        return status;
+    }
     if (info == 0) {
         double big = 0;
         for (size_t i = 0; i < q; i++) big = fmax(big, fabs(ev[i]));

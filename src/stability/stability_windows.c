@@ -277,12 +277,17 @@ static int reduced_matrix(whirl_windows *w)
         }
     double *factor = w->a; /* N x N scratch before A' is written */
     memcpy(factor, w->ma, n * n * sizeof(double));
-    lapack_int info = LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, (lapack_int)q,
-                                         factor, (lapack_int)n, y1, (lapack_int)n);
+    int info;
+    int status = whirl_worker_dposv(n, q, factor, n, y1, n, &info);
+    if (status) return status; /* a stop request: the solve runs on a worker */
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the in-plane mass matrix is not positive definite "
                                        "(dposv info %d)", (int)info);
     for (size_t col = 0; col < q; col++) {
+        /* N^2 operations a column: the stop request is read every column */
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request while forming the reduced "
+                                                  "matrix");
         const double *v = y1 + col * n;
         for (size_t i = 0; i < n; i++) {
             double sum = col >= n ? -w->kb[i * n + col - n] : 0.0;
@@ -291,8 +296,8 @@ static int reduced_matrix(whirl_windows *w)
         }
     }
     memcpy(factor, w->mb, n * n * sizeof(double));
-    info = LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, (lapack_int)q, factor,
-                              (lapack_int)n, y2, (lapack_int)n);
+    status = whirl_worker_dposv(n, q, factor, n, y2, n, &info);
+    if (status) return status;
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the out-of-plane mass matrix is not positive definite "
                                        "(dposv info %d)", (int)info);
@@ -1152,8 +1157,9 @@ static int krylov_pair(whirl_windows *w, double sigma, double *mu_re, double *mu
             a[n + i + j * q] = -sigma * w->gab[j * n + i];
             a[n + i + (n + j) * q] = w->kb[i * n + j] + sigma * w->mb[i * n + j];
         }
-    lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)q, (lapack_int)q, a,
-                                          (lapack_int)q, w->ipiv);
+    int info;
+    const int status = whirl_worker_dgetrf(q, a, q, w->ipiv, &info);
+    if (status) return status; /* a stop request: the factorisation runs on a worker */
     if (info != 0) return GSL_CONTINUE; /* sigma is an eigenvalue: use the full solve */
     return whirl_windows_arnoldi_pair(&w->kr, nlink_apply, w, sigma, mu_re, mu_im);
 }
