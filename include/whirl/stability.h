@@ -53,7 +53,9 @@ WHIRL_API void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
  * (model->drive_radius, 0, 0) and mass i at the pivot plus sum_{j<=i} l_j u0_j. GSL_EINVAL if the
  * model is not supported (see above), the links' lengths differ from the chain's by more than
  * 1e-9 relative, or the shape is not an equilibrium (the load below some link has a component
- * across it larger than 1e-8 of M (g + omega^2 L) + (c + c2 omega L) omega L^2). */
+ * across it larger than 1e-8 of M (g + omega^2 L) + (c + c2 omega L) omega L^2). For more than
+ * 32 links (O(N^2) entries, a second at a few thousand links) the stop request is read at every
+ * row: WHIRL_EINTERRUPTED (message set) and no linearisation. */
 WHIRL_API int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model,
                                            const double *x, const double *y, const double *z);
 
@@ -110,7 +112,9 @@ WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
  * (the symmetry's zero) not counted. 0: a minimum, stable in the energy sense (also with
  * dissipation); > 0: a saddle, which without dissipation only the Coriolis coupling can hold
  * (linearly neutral at best) and with any complete dissipation is unstable (Kelvin-Tait-Chetaev;
- * Merkin, Gyroscopic Systems, 1956). GSL_EINVAL without a linearisation. */
+ * Merkin, Gyroscopic Systems, 1956). GSL_EINVAL without a linearisation. The dense solve
+ * (O(N^3)) runs as whirl_stability_eigenvalues's: on a stop request WHIRL_EINTERRUPTED at once
+ * (the linearisation kept). */
 WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
 
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or

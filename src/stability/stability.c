@@ -347,6 +347,8 @@ int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, c
     double *cc = sv->mat[WHIRL_STABILITY_DAMPING], *kk = sv->mat[WHIRL_STABILITY_STIFFNESS];
     double mu = 0, tail[9] = {0}; /* mu_j = sum_{i>=j} m_i, S_j = sum_{i>=j} B_i */
     for (size_t j = n; j-- > 0;) {
+        if (n > STABILITY_INLINE_LINKS && whirl_stop_requested()) /* O(N) pairs a row */
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the linearisation");
         mu += c->mass[j];
         for (int k = 0; k < 9; k++) tail[k] += w->drag[9 * j + k];
         for (size_t k = 0; k <= j; k++) {

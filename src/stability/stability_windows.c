@@ -237,10 +237,16 @@ static int split_blocks(whirl_windows *w, const whirl_stability *lin)
     const double *kk = whirl_stability_get_matrix(lin, WHIRL_STABILITY_STIFFNESS);
     double scale = 0, off = 0, damp = 0;
     for (size_t i = 0; i < q * q; i++) {
+        if (i % q == 0 && whirl_stop_requested()) /* O(N) entries a row, O(N^2) in all */
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request while reading the "
+                                                  "linearisation");
         scale = dmax(fabs(mm[i]), dmax(fabs(gg[i]), dmax(fabs(kk[i]), scale)));
         damp = dmax(fabs(cc[i]), damp);
     }
-    for (size_t i = 0; i < n; i++)
+    for (size_t i = 0; i < n; i++) {
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request while reading the "
+                                                  "linearisation");
         for (size_t j = 0; j < n; j++) {
             const size_t aa = i * q + j, ab = i * q + n + j, ba = (n + i) * q + j,
                          bb = (n + i) * q + n + j;
@@ -253,6 +259,7 @@ static int split_blocks(whirl_windows *w, const whirl_stability *lin)
             w->kb[i * n + j] = kk[bb];
             w->gab[i * n + j] = gg[ab];
         }
+    }
     if (damp > 0)
         return whirl_fail(GSL_EINVAL, "the window search needs the conservative chain (no "
                                       "damping or drag)");
@@ -524,7 +531,8 @@ static double ritz_residual(const windows_arnoldi *k, size_t m, size_t i, double
 /* The structured form of the last linearisation in lin (its blocks in w by split_blocks) of the
  * chain c at omega: alpha, beta, gamma from the nodes and the lengths, T_j l_j from the diagonal
  * of Kb (Kb_jj + omega^2 Mb_jj). 1 if it reproduces the five dense blocks to 1e-11 of their
- * largest entry, else 0 (then the dense path is used). */
+ * largest entry, else 0 (then the dense path is used); -1 (WHIRL_EINTERRUPTED set) on a stop
+ * request, read every row of the O(N^2) comparison. */
 static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
                         const whirl_stability *lin)
 {
@@ -549,6 +557,10 @@ static int structure_of(whirl_windows *w, const whirl_chain *c, double omega,
         scale = dmax(fabs(w->ma[i]), dmax(fabs(w->mb[i]), dmax(fabs(w->gab[i]),
                      dmax(fabs(w->ka[i]), dmax(fabs(w->kb[i]), scale)))));
     for (size_t h = n; h-- > 0;) { /* entries (j, k) with max(j, k) = h */
+        if (whirl_stop_requested()) {
+            whirl_fail(WHIRL_EINTERRUPTED, "stopped by request while reading the linearisation");
+            return -1;
+        }
         mu += w->ms[h];
         for (size_t t = 0; t <= h; t++)
             for (int side = 0; side < 2; side++) {
@@ -847,7 +859,9 @@ int whirl_windows_spectrum_banded(whirl_windows *w, const whirl_chain *c, double
 {
     int status = split_blocks(w, lin);
     if (status) return status;
-    if (!structure_of(w, c, omega, lin)) return GSL_CONTINUE;
+    const int banded = structure_of(w, c, omega, lin);
+    if (banded < 0) return WHIRL_EINTERRUPTED;
+    if (!banded) return GSL_CONTINUE;
     return band_spectrum(w, signatures, whirl_stability_symmetry(lin), out);
 }
 
@@ -933,7 +947,9 @@ static int nlink_pair(void *data, double omega, double sigma, double *mu_re, dou
     int status = linearise_at(w, omega);
     if (!status) status = split_blocks(w, w->lin);
     if (status) return status;
-    if (w->fast && structure_of(w, w->chain, omega, w->lin)) { /* the banded factors */
+    const int banded = w->fast ? structure_of(w, w->chain, omega, w->lin) : 0;
+    if (banded < 0) return WHIRL_EINTERRUPTED;
+    if (banded) { /* the banded factors */
         if (band_factor(w, sigma) != 0) return GSL_CONTINUE;
         return whirl_windows_arnoldi_pair(&w->kr, band_apply, w, sigma, mu_re, mu_im);
     }
