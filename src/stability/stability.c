@@ -545,8 +545,13 @@ int whirl_stability_index(const whirl_stability *w, int *index)
         free(a), free(ev);
         return whirl_fail(GSL_ENOMEM, "out of memory for the index of %zu links", w->n);
     }
-    for (size_t i = 0; i < q; i++) /* the symmetric part */
+    for (size_t i = 0; i < q; i++) { /* the symmetric part; O(N^2) strided reads */
+        if (w->n > STABILITY_INLINE_LINKS && whirl_stop_requested()) {
+            free(a), free(ev);
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request before the index");
+        }
         for (size_t j = 0; j < q; j++) a[i * q + j] = (k[i * q + j] + k[j * q + i]) / 2;
+    }
     /* symmetric: the row-major array is its own column-major transpose */
     int info;
     const int status = whirl_worker_dsyev(q, a, q, ev, &info);

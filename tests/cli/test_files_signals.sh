@@ -373,4 +373,21 @@ if [ $rc -eq 153 ] && [ -z "$(ls -A "$tmp/fsz")" ] && grep -q 'File too large' "
   pass "SIGXFSZ: a file-size limit is a write error, exit 153, no file left"
 else fail "SIGXFSZ: file-size limit (rc=$rc, left '$(ls -A "$tmp/fsz")', $(head -c 200 "$tmp/fsz.err"))"; fi
 
+# SIGINT into the dense O(N^3) phases of a large chain (LAPACK's Cholesky, LU, dsyev and dgeev
+# cannot read the stop request: they run on a worker thread while the command polls it): the
+# window search with --full (the reduced matrix, then dgeev of 2000 rows) and --eigenvalues (the
+# index's dsyev, then dgeev of 4000 rows), each minutes long at 1000 links, end within 2 s.
+for dense in "--windows --links 1000 --modes 2 --omega-min 3 --omega-max 4 --full" \
+             "--omega 4 --mode 2 --links 1000 --eigenvalues"; do
+  mkdir -p "$tmp/dense"
+  # shellcheck disable=SC2086 # the options are words
+  env --default-signal=INT "$WHIRL" stability $dense -o "$tmp/dense/out.csv" 2>"$tmp/dense.err" &
+  sleep 2
+  interrupt $!
+  if [ "$rc" -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] && [ -z "$(ls -A "$tmp/dense")" ] \
+     && grep -q 'stopped by request\|interrupted' "$tmp/dense.err"; then
+    pass "stability $dense: SIGINT in the dense phase exits 130 within 2 s (${late} s)"
+  else fail "stability $dense: SIGINT (rc=$rc, ${late} s, left '$(ls -A "$tmp/dense")', $(head -c 200 "$tmp/dense.err"))"; fi
+done
+
 finish
