@@ -45,6 +45,7 @@
 
 #include "whirl/dynamics.h"
 #include "whirl/stability.h"
+#include "whirl/steady.h"
 #include "stop_soon.h"
 
 #define NMAX 16
@@ -1276,6 +1277,58 @@ static void test_worker_stop(void **state)
     whirl_chain_free(c);
 }
 
+/* The O(N^2) and O(N^3) steps before the eigen-solve read the stop request too (stability.h):
+ * above 32 links a linearisation with a stop pending returns WHIRL_EINTERRUPTED and none is
+ * kept; at 32 links and fewer it runs as before. The index of 400 links (dsyev of 800 rows, on a
+ * worker) stopped 5 ms in returns WHIRL_EINTERRUPTED with the linearisation kept, and after the
+ * stop is cleared gives the index it gave before. */
+static void test_stop_before_solve(void **state)
+{
+    (void)state;
+    const size_t n = 400;
+    whirl_chain *c = whirl_chain_alloc_uniform(n, 0), *small = whirl_chain_alloc_uniform(20, 0);
+    whirl_model m = model_of(c, 5.1, 0), ms = model_of(small, 5.1, 0);
+    whirl_stability *w = whirl_stability_alloc(n), *ws = whirl_stability_alloc(20);
+    double *r = malloc(4 * (n + 1) * sizeof *r), *z = r + n + 1, *t = z + n + 1, *rs = t + n + 1;
+    whirl_shape_info info;
+    whirl_stop_clear();
+    assert_int_equal(whirl_nlink_solve_nodes(c, 5.1, 2, &info, r, z, t), 0);
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    int index = -1, again = -1;
+    assert_int_equal(whirl_stability_index(w, &index), 0);
+    /* a stop pending: no linearisation of 400 links; one of 20 links as before */
+    assert_int_equal(whirl_nlink_solve_nodes(small, 5.1, 2, &info, rs, rs + 21, rs + 42), 0);
+    whirl_stop_request();
+    const int stopped = whirl_stability_linearise(w, &m, r, z);
+    char message[256];
+    snprintf(message, sizeof message, "%s", whirl_last_error());
+    const int small_status = whirl_stability_linearise(ws, &ms, rs, rs + 21);
+    whirl_stop_clear();
+    assert_int_equal(stopped, WHIRL_EINTERRUPTED);
+    assert_non_null(strstr(message, "stopped by request during the linearisation"));
+    assert_int_equal(whirl_stability_index(w, &again), GSL_EINVAL); /* none kept */
+    assert_int_equal(small_status, 0);
+    /* the index stopped while it runs */
+    assert_int_equal(whirl_stability_linearise(w, &m, r, z), 0);
+    pthread_t stopper;
+    assert_int_equal(pthread_create(&stopper, NULL, request_stop_soon, NULL), 0);
+    const int status = whirl_stability_index(w, &again);
+    pthread_join(stopper, NULL);
+    snprintf(message, sizeof message, "%s", whirl_last_error());
+    whirl_stop_clear();
+    assert_int_equal(status, WHIRL_EINTERRUPTED);
+    assert_non_null(strstr(message, "stopped by request"));
+    assert_int_equal(whirl_stability_index(w, &again), 0); /* the linearisation kept */
+    print_message("# 400 links, mode 2 at 5.1: index %d, after the stop %d\n", index, again);
+    assert_int_equal(again, index);
+    assert_true(index > 0); /* mode 2 is a saddle of the amended potential */
+    free(r);
+    whirl_stability_free(w);
+    whirl_stability_free(ws);
+    whirl_chain_free(c);
+    whirl_chain_free(small);
+}
+
 /* ---- high rates: the shape from the branch's link angles ---- */
 
 /* The largest force across a link of the planar shape (r[i], z[i]) at omega, from the loads
@@ -1560,6 +1613,7 @@ int main(void)
         cmocka_unit_test(test_driven_runs),
         cmocka_unit_test(test_worker_spectrum),
         cmocka_unit_test(test_worker_stop),
+        cmocka_unit_test(test_stop_before_solve),
         cmocka_unit_test(test_high_rate_shape),
         cmocka_unit_test(test_high_mode_by_rhs_jacobian),
         cmocka_unit_test(test_errors),
