@@ -76,6 +76,7 @@ typedef struct stability_solve {
     lapack_int lwork;
     int deflated;      /* number of removed zero eigenvalues: 0, 1 or 2 */
     size_t count;      /* eigenvalues found */
+    int touched;       /* mat[] written once (their pages mapped) */
     whirl_error_record error; /* of the last solve (its status GSL_SUCCESS if it worked) */
 } stability_solve;
 
@@ -343,6 +344,16 @@ int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model, c
     stability_solve *sv = w->solve;
     const whirl_chain *c = model->chain;
     const size_t n = w->n, q = 2 * n;
+    /* The loop below writes the matrices by columns as well as rows: on fresh memory each of
+     * those writes maps a page of its own, N^2 / 2 page faults in the first rows (seconds at
+     * thousands of links, between two reads of the stop request). The first linearisation maps
+     * them row by row instead, reading the stop request every row. */
+    for (size_t i = 0; i < 4 * q && !sv->touched; i++) {
+        if (n > STABILITY_INLINE_LINKS && whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during the linearisation");
+        memset(sv->mat[i / q] + (i % q) * q, 0, q * sizeof(double));
+    }
+    sv->touched = 1;
     const double d = model->internal_damping;
     double *cc = sv->mat[WHIRL_STABILITY_DAMPING], *kk = sv->mat[WHIRL_STABILITY_STIFFNESS];
     double mu = 0, tail[9] = {0}; /* mu_j = sum_{i>=j} m_i, S_j = sum_{i>=j} B_i */

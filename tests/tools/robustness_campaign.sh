@@ -132,6 +132,11 @@ rm -f "$tmp/longline.ini" "$tmp/long.csv"
 # long phases: stopped promptly by SIGINT (exit 130, nothing written)
 signal long INT 130 critical --links 60000 --modes 60000 -o out.csv
 signal long INT 130 shape --omega 3.3 --mode 2 --points 10000000 -o out.csv
+# the dense O(N^3) phases of 3000 links (LAPACK on a worker thread) and the banded window search
+signal long INT 130 stability --windows --links 3000 --modes 2 --omega-min 3 --omega-max 4 --full -o out.csv
+signal long TERM 143 stability --windows --links 3000 --modes 2 --omega-min 3 --omega-max 4 --full -o out.csv
+signal long INT 130 stability --omega 4 --mode 2 --links 3000 --eigenvalues -o out.csv
+signal long INT 130 stability --windows --links 3000 --modes 2 --omega-min 3 --omega-max 4 -o out.csv
 try long error fit --shape "$scenes/../fit_example.csv" --links 10000000 -o out.csv
 awk 'BEGIN {print "# omega=3 mode=2"; print "s,r,z,tension"
             for (i = 0; i < 3000000; i++) printf "%.15g,%.15g,%.15g,1\n", i * 1e-7, 0.1 * sin(i * 1e-6), -i * 3.3e-7}' \
