@@ -220,6 +220,54 @@ if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
   pass "windows with damping: SIGINT stops it in $late s, exit 130, mode 8 kept whole, mode 2 marked not done"
 else fail "windows with damping, SIGINT (rc=$rc, $late s, $(cat "$tmp/dint.err"; grep '^# mode' "$tmp/dint.csv"))"; fi
 
+# Ctrl-C in a conservative --windows run of the continuum: the modes finished are written whole
+# (the rows of a run of that mode alone), the others marked not done, exit 130 within 2 s. One
+# thread; the signal comes at three times the time mode 2 alone just took (mode 4 takes about
+# six times as long as mode 2, so it is still running then, however loaded the machine).
+cwin="stability --windows --omega-min 1 --omega-max 15"
+t0=$(date +%s.%N)
+# shellcheck disable=SC2086
+OMP_NUM_THREADS=1 "$WHIRL" $cwin --modes 2 -o "$tmp/c2.csv" 2>/dev/null
+wait2=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
+# shellcheck disable=SC2086
+OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $cwin --modes 2,4 -o "$tmp/cint.csv" \
+  >/dev/null 2>"$tmp/cint.err" &
+pid=$!
+sleep "$wait2"
+interrupt $pid
+if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
+   grep -q "interrupted: 1 of 2 modes done in '$tmp/cint.csv'" "$tmp/cint.err" &&
+   grep -q '^# mode 4: interrupted, not done$' "$tmp/cint.csv" &&
+   grep -q '^# mode 2: examined' "$tmp/cint.csv" &&
+   [ "$(grep -v '^#' "$tmp/cint.csv")" = "$(grep -v '^#' "$tmp/c2.csv")" ]; then
+  pass "continuum windows: SIGINT stops it in $late s, exit 130, mode 2 kept whole, mode 4 marked not done"
+else fail "continuum windows, SIGINT (rc=$rc, $late s, $(cat "$tmp/cint.err"; grep '^# mode' "$tmp/cint.csv"))"; fi
+
+# --memory: the collocation's bound. Mode 8 at 20.5 needs 731 points, more than the 720 of
+# 16 MB: that mode fails naming the option (exit 1), mode 2 is written whole, mode 8 marked with
+# the failure; 32 MB hold it.
+mwin="stability --windows --omega-min 20 --omega-max 21"
+# shellcheck disable=SC2086
+"$WHIRL" $mwin --modes 2,8 --memory 16 -o "$tmp/mem.csv" 2>"$tmp/mem.err"
+rc=$?
+# shellcheck disable=SC2086
+if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/mem.err")" -eq 1 ] &&
+   grep -q "mode 8 at omega = 20.5 needs 731 collocation points.*more than the 720 that 16 MB hold: lower the rate or raise the memory bound (--memory MB); 1 of 2 modes written to '$tmp/mem.csv'" "$tmp/mem.err" &&
+   grep -q '^# mode 8: not done: mode 8 at omega = 20.5 needs 731' "$tmp/mem.csv" &&
+   "$WHIRL" $mwin --modes 2 -o "$tmp/mem2.csv" &&
+   [ "$(grep -v '^#' "$tmp/mem.csv")" = "$(grep -v '^#' "$tmp/mem2.csv")" ] &&
+   "$WHIRL" $mwin --modes 8 --memory 32 -o "$tmp/mem8.csv" && grep -q '^# mode 8: examined' "$tmp/mem8.csv"; then
+  pass "--memory 16: mode 8 beyond the bound names --memory, mode 2 kept whole; --memory 32 holds mode 8"
+else fail "--memory (rc=$rc, $(cat "$tmp/mem.err"; grep '^# mode' "$tmp/mem.csv"))"; fi
+expect_error "--memory with --links" "--memory applies to the continuum" stability --windows $R --links 10 --memory 100 -o "$tmp/out.csv"
+expect_error "--memory without windows" "--memory applies to the continuum" stability --omega 3 --mode 1 --memory 100 -o "$tmp/out.csv"
+expect_error "--memory below 16 MB" "memory" stability --windows $R --memory 8 -o "$tmp/out.csv"
+physical=$(awk '/^MemTotal:/ { printf "%d", $2 / 1024 }' /proc/meminfo)
+if [ "$physical" -gt 0 ] && [ "$physical" -lt 1000000 ]; then
+  expect_error "--memory beyond the machine's memory ($physical MB)" \
+    "--memory 1e\+06 MB is more than the machine's [0-9]+ MB" stability --windows $R --memory 1e6 -o "$tmp/out.csv"
+fi
+
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
 expect_error "continuum windows: degree with --links" "degree.*links|links.*degree" stability --windows $R --links 10 --degree 12 -o "$tmp/out.csv"
@@ -300,6 +348,12 @@ if "$WHIRL" stability --omega 4.5 --mode 2 --links 6 --eigenvalues -o "$tmp/ev.c
         END { exit !(g > 0.1 && hi - g < 1e-12 && hi + lo < 1e-12 && sr < 1e-9 && si < 1e-9 && si > -1e-9) }'; then
   pass "--eigenvalues: 22 eigenvalues (4N - 2), the largest real part is the growth, Hamiltonian"
 else fail "--eigenvalues: $(cat "$tmp/err" "$tmp/ev.csv" 2>/dev/null | head -3)"; fi
+# the hand-swung chain's eigenvalues: the header records its eps, drag and side
+if "$WHIRL" stability --omega 3 --mode 1 --links 12 --eps 0.05 --drag 0.1 --side -1 --eigenvalues \
+     -o "$tmp/evd.csv" 2>"$tmp/err" \
+   && grep -q '^# whirl stability --eigenvalues: omega 3, mode 1, 12 links, damping 0, hand-swung: eps 0.05, drag 0.1, drag_quadratic 0, side -1;' "$tmp/evd.csv"; then
+  pass "--eigenvalues of the hand-swung chain: eps, drag, drag_quadratic and side in the header"
+else fail "--eigenvalues of the hand-swung chain's header: $(cat "$tmp/err"; head -1 "$tmp/evd.csv")"; fi
 expect_error "eigenvalues without --omega" "--eigenvalues needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --eigenvalues
 
 # ---- --atlas: the windows of --windows, a Krein signature at each edge, resumable ----
