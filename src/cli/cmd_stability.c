@@ -406,10 +406,52 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
 
 #define WINDOWS_MAX 256
 
-/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL). */
+/* The progress line of --windows on a terminal: the modes done and, for the continuum, the rate
+ * the search of a running mode has reached (whirl_cstab_params.progress). */
+typedef struct windows_progress {
+    cli_progress_state line;
+    const options *o;
+    double after; /* the line shows after this long (cli_progress_after) [s] */
+    double *reached; /* per mode: the highest rate linearised so far (NULL: not kept) */
+    long done;
+} windows_progress;
+
+/* The line after mode (0: none) reached omega in its scan and linearises at now; called inside
+ * the critical section. */
+static void windows_progress_show(windows_progress *wp, int mode, double omega, double now)
+{
+    const options *o = wp->o;
+    if (!wp->line.drawn && cli_wall_seconds() - wp->line.start < wp->after) return;
+    const double rate = unit(o, CLI_UNIT_RATE);
+    char at[96] = "";
+    if (mode > 0)
+        snprintf(at, sizeof at, "; mode %d: omega %.6g of %.6g (now %.6g)", mode, omega * rate,
+                 o->omega_max * rate, now * rate);
+    cli_progress_text(&wp->line, "windows: %ld of %d modes done%s", wp->done, o->modes.n, at);
+}
+
+/* whirl_cstab_params.progress: the rate mode's search reached. */
+static void windows_progress_rate(void *ctx, int mode, double omega)
+{
+    windows_progress *wp = ctx;
+    const double now = omega;
+#pragma omp critical(windows_progress)
+    {
+        for (int k = 0; wp->reached && k < wp->o->modes.n; k++)
+            if (wp->o->modes.v[k] == mode) {
+                wp->reached[k] = fmax(wp->reached[k], omega);
+                omega = wp->reached[k];
+                break;
+            }
+        windows_progress_show(wp, mode, omega, now);
+    }
+}
+
+/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL); wp: the
+ * progress line. */
 static int find_windows(const options *o, const whirl_chain *c, int mode,
                         const whirl_windows_params *p, whirl_window *win, size_t *count,
-                        whirl_windows_stats *stats)
+                        whirl_windows_stats *stats, windows_progress *wp)
 {
     int status;
     if (c) {
@@ -422,6 +464,8 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
         cp.degree = o->degree;
         cp.tip_mass = o->tip_mass;
         cp.memory_mb = o->memory;
+        cp.progress = windows_progress_rate;
+        cp.progress_ctx = wp;
         whirl_cstab *w = whirl_cstab_alloc(&cp);
         status = w ? whirl_cstab_windows(w, mode, p, win, WINDOWS_MAX, count, stats)
                    : whirl_last_status();
@@ -527,18 +571,29 @@ static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
         }
 }
 
-/* The windows of the first n modes (all, or none after a failed allocation), one per thread. */
-static void find_all_windows(const options *o, const whirl_chain *c, size_t n,
-                             const whirl_windows_params *p, windows_found *f)
+/* The windows of the first n modes (all, or none after a failed allocation), one per thread,
+ * with a progress line on a terminal. */
+static void find_all_windows(const cli_command *cmd, const options *o, const whirl_chain *c,
+                             size_t n, const whirl_windows_params *p, windows_found *f)
 {
+    windows_progress wp = {.o = o, .after = cli_progress_after(),
+                           .reached = calloc((size_t)o->modes.n, sizeof *wp.reached)};
+    cli_progress_begin(&wp.line, cmd, "", 0, 0);
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t k = 0; k < n; k++) {
         const double t0 = cli_wall_seconds();
         f->status[k] = find_windows(o, c, o->modes.v[k], p, f->win + k * WINDOWS_MAX,
-                                    &f->count[k], &f->stats[k]);
+                                    &f->count[k], &f->stats[k], &wp);
         whirl_error_keep(&f->err[k], f->status[k]);
-        f->seconds[k] = cli_wall_seconds() - t0;
+#pragma omp critical(windows_progress)
+        {
+            f->seconds[k] = cli_wall_seconds() - t0;
+            wp.done++;
+            windows_progress_show(&wp, 0, 0, 0);
+        }
     }
+    cli_progress_clear(&wp.line);
+    free(wp.reached);
 }
 
 /* The file of the modes done (none: no file) and the exit status: 0; after a failure its
@@ -594,7 +649,7 @@ static int run_windows(const cli_command *cmd, const options *o)
     p.tol = o->tol;
     p.krylov = !o->full;
     cli_catch_interrupts();
-    find_all_windows(o, c, rc ? 0 : nmodes, &p, &f);
+    find_all_windows(cmd, o, c, rc ? 0 : nmodes, &p, &f);
     if (!rc) rc = finish_windows(cmd, o, c, &f);
     windows_found_free(&f);
     whirl_chain_free(c);
