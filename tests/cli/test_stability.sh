@@ -262,6 +262,11 @@ else fail "--memory (rc=$rc, $(cat "$tmp/mem.err"; grep '^# mode' "$tmp/mem.csv"
 expect_error "--memory with --links" "--memory applies to the continuum" stability --windows $R --links 10 --memory 100 -o "$tmp/out.csv"
 expect_error "--memory without windows" "--memory applies to the continuum" stability --omega 3 --mode 1 --memory 100 -o "$tmp/out.csv"
 expect_error "--memory below 16 MB" "memory" stability --windows $R --memory 8 -o "$tmp/out.csv"
+# the atlas takes the bound too: mode 20 at its birth (31.0243) needs 765 points, more than the
+# 720 of 16 MB (the default 1024 MB hold them)
+expect_error "--atlas --memory 16: the shape at the birth of mode 20 is beyond it" \
+  "mode 20, omega 30\.\.31\.5: mode 20 at omega = 31\.0243 needs 765 collocation points.*720 that 16 MB hold.*\(--memory MB\)" \
+  stability --atlas --modes 20 --omega-max 31.5 --memory 16 -o "$tmp/out.csv"
 physical=$(awk '/^MemTotal:/ { printf "%d", $2 / 1024 }' /proc/meminfo)
 if [ "$physical" -gt 0 ] && [ "$physical" -lt 1000000 ]; then
   expect_error "--memory beyond the machine's memory ($physical MB)" \
