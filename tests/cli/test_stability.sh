@@ -198,50 +198,35 @@ if "$WHIRL" stability --windows $D --modes 2 --omega-min 2 --omega-max 6 -o "$tm
   else fail "windows with drag: the edges [$from, $to] disagree with the linear growth"; fi
 else fail "windows with drag: $(cat "$tmp/err" "$tmp/dd.csv" 2>/dev/null | tail -4)"; fi
 
-# Ctrl-C in a dissipative --windows run: the modes finished are written whole (the rows of a
-# run of that mode alone), the others marked not done, exit 130 within 2 s. One thread; the
-# signal comes at three times the time mode 8 alone just took (mode 2 takes about five times
-# as long as mode 8, so it is still running then, however loaded the machine).
-dwin="stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3"
-t0=$(date +%s.%N)
-# shellcheck disable=SC2086
-OMP_NUM_THREADS=1 "$WHIRL" $dwin --modes 8 -o "$tmp/d8.csv" 2>/dev/null
-wait8=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
-# shellcheck disable=SC2086
-OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $dwin --modes 8,2 -o "$tmp/dint.csv" \
-  >/dev/null 2>"$tmp/dint.err" &
-pid=$!
-sleep "$wait8"
-interrupt $pid
-if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
-   grep -q "interrupted: 1 of 2 modes done in '$tmp/dint.csv'" "$tmp/dint.err" &&
-   grep -q '^# mode 2: interrupted, not done$' "$tmp/dint.csv" &&
-   [ "$(grep -v '^#' "$tmp/dint.csv")" = "$(grep -v '^#' "$tmp/d8.csv")" ]; then
-  pass "windows with damping: SIGINT stops it in $late s, exit 130, mode 8 kept whole, mode 2 marked not done"
-else fail "windows with damping, SIGINT (rc=$rc, $late s, $(cat "$tmp/dint.err"; grep '^# mode' "$tmp/dint.csv"))"; fi
-
-# Ctrl-C in a conservative --windows run of the continuum: the modes finished are written whole
-# (the rows of a run of that mode alone), the others marked not done, exit 130 within 2 s. One
-# thread; the signal comes at three times the time mode 2 alone just took (mode 4 takes about
-# six times as long as mode 2, so it is still running then, however loaded the machine).
-cwin="stability --windows --omega-min 1 --omega-max 15"
-t0=$(date +%s.%N)
-# shellcheck disable=SC2086
-OMP_NUM_THREADS=1 "$WHIRL" $cwin --modes 2 -o "$tmp/c2.csv" 2>/dev/null
-wait2=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
-# shellcheck disable=SC2086
-OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $cwin --modes 2,4 -o "$tmp/cint.csv" \
-  >/dev/null 2>"$tmp/cint.err" &
-pid=$!
-sleep "$wait2"
-interrupt $pid
-if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
-   grep -q "interrupted: 1 of 2 modes done in '$tmp/cint.csv'" "$tmp/cint.err" &&
-   grep -q '^# mode 4: interrupted, not done$' "$tmp/cint.csv" &&
-   grep -q '^# mode 2: examined' "$tmp/cint.csv" &&
-   [ "$(grep -v '^#' "$tmp/cint.csv")" = "$(grep -v '^#' "$tmp/c2.csv")" ]; then
-  pass "continuum windows: SIGINT stops it in $late s, exit 130, mode 2 kept whole, mode 4 marked not done"
-else fail "continuum windows, SIGINT (rc=$rc, $late s, $(cat "$tmp/cint.err"; grep '^# mode' "$tmp/cint.csv"))"; fi
+# windows_sigint NAME "ARGS" FAST SLOW: Ctrl-C in a --windows run of modes FAST,SLOW (ARGS
+# without --modes): the mode finished is written whole (the rows of a run of that mode alone),
+# the other marked not done, exit 130 within 2 s. One thread; the signal comes at three times
+# the time mode FAST alone just took (SLOW takes five or more times as long, so it is still
+# running then, however loaded the machine).
+windows_sigint() {
+  t0=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  OMP_NUM_THREADS=1 "$WHIRL" $2 --modes "$3" -o "$tmp/wfast.csv" 2>/dev/null
+  wait_fast=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
+  # shellcheck disable=SC2086
+  OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $2 --modes "$3,$4" -o "$tmp/wint.csv" \
+    >/dev/null 2>"$tmp/wint.err" &
+  pid=$!
+  sleep "$wait_fast"
+  interrupt $pid
+  if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
+     grep -q "interrupted: 1 of 2 modes done in '$tmp/wint.csv'" "$tmp/wint.err" &&
+     grep -q "^# mode $4: interrupted, not done\$" "$tmp/wint.csv" &&
+     grep -q "^# mode $3: examined" "$tmp/wint.csv" &&
+     [ "$(grep -v '^#' "$tmp/wint.csv")" = "$(grep -v '^#' "$tmp/wfast.csv")" ]; then
+    pass "$1: SIGINT stops it in $late s, exit 130, mode $3 kept whole, mode $4 marked not done"
+  else fail "$1, SIGINT (rc=$rc, $late s, $(cat "$tmp/wint.err"; grep '^# mode' "$tmp/wint.csv"))"; fi
+}
+# mode 2 of the damped chain takes about five times as long as mode 8, mode 4 of the continuum
+# about six times as long as mode 2
+windows_sigint "windows with damping" \
+  "stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3" 8 2
+windows_sigint "continuum windows" "stability --windows --omega-min 1 --omega-max 15" 2 4
 
 # --memory: the collocation's bound. Mode 8 at 20.5 needs 731 points, more than the 720 of
 # 16 MB: that mode fails naming the option (exit 1), mode 2 is written whole, mode 8 marked with
