@@ -132,6 +132,12 @@ static int check_modes(const cli_command *cmd, const options *o)
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
     for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
         const int mode = o->mode_given ? o->mode : o->modes.v[k];
+        if (mode == 0 && !driven(o))
+            return cli_error(cmd, "mode 0 (the near-axis shape) is the hand-swung chain's: it "
+                             "needs --eps");
+        if (mode == 0 && o->side_given)
+            return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
+                             "shape) has none");
         if (mode > top && continuum)
             return cli_error(cmd, "mode %d is out of range: the %s takes modes 1..%d", mode,
                              o->windows ? "continuous chain" : "hand-swung chain", top);
@@ -837,7 +843,8 @@ static size_t declare_options(options *o, cli_option *opts)
              "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
              CLI_UNIT_RATE},
             {"--mode", NULL, CLI_INT, &o->mode, &o->mode_given, "K",
-             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
+             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64, or 0: its "
+             "near-axis shape)", "[0, inf)",
              "--omega"},
             {"--omega-min", NULL, CLI_DOUBLE, &o->omega_min, &o->min_given, "A", "map: first rate",
              "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
