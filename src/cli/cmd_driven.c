@@ -1,7 +1,10 @@
 /* whirl driven: steady shapes of the hand-swung chain (pivot driven on a circle of radius eps,
  * air drag in the inertial frame), in the frame co-rotating at omega (include/whirl/driven.h).
  *
- * One shape (--omega): the summary comment line, then the CSV s,x,y,z,tension from the pivot.
+ * One shape (--omega): the summary comment line (with --stability, N-link chain, a second one:
+ * eig_growth, index, verdict), then the CSV s,x,y,z,tension from the pivot. --mode 0 is the
+ * near-axis shape (whirl_driven_mode from the hanging chain): with --mode 1 --side 1 and -1 the
+ * three shapes a forced chain has at one rate past the fold.
  * A branch (--omega-min, --omega-max): comment lines (parameters, one "# fold omega=..." per
  * fold), then the CSV omega,tip_x,tip_y,tip_r,top_tension,nodes,fold along the continued branch;
  * the branch starts at --omega (default omega_max) from mode K and leaves it towards smaller

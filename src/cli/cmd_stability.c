@@ -12,7 +12,8 @@
  * (gyroscopic)" above (a saddle held by the Coriolis coupling, destabilised by dissipation). Rates where a mode of the map does not exist are left out.
  * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
  * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
- * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
+ * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1; mode 0:
+ * the near-axis shape, continued from the hanging chain), are
  * three-dimensional and have no rotation symmetry. Three columns are added:
  *   ...,verdict,tip_x,tip_y,nodes
  * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
