@@ -27,8 +27,16 @@ import sys
 
 
 def read_rows(path):
-    with open(path, newline='') as f:
-        return list(csv.DictReader(line for line in f if not line.startswith('#')))
+    try:
+        with open(path, newline='') as f:
+            rows = list(csv.DictReader(line for line in f if not line.startswith('#')))
+    except OSError as e:
+        sys.exit('extrapolate_edges: %s: %s' % (path, e.strerror))
+    need = {'mode', 'from', 'to', 'open_from', 'open_to', 'freq_from', 'freq_to'}
+    if not rows or not need <= set(rows[0]):
+        sys.exit('extrapolate_edges: %s: not a windows CSV of whirl stability (columns %s)'
+                 % (path, ', '.join(sorted(need))))
+    return rows
 
 
 def edges_of(row):
@@ -67,6 +75,8 @@ def main():
     runs = {}  # N -> mode -> list of (kind, omega, freq)
     for path in a.nlink:
         for r in read_rows(path):
+            if r.get('links', 'inf') == 'inf':
+                sys.exit('extrapolate_edges: %s: not an N-link run (no --links)' % path)
             n = int(r['links'])
             runs.setdefault(n, {}).setdefault(int(r['mode']), []).extend(edges_of(r))
     ns = sorted(runs)
