@@ -93,21 +93,24 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     ``periods`` rotation periods from the shape with every link turned by ``perturb`` [rad]
     (``seed`` of the random directions) with ``method`` (default rk4) and step ``dt`` (0: the
     library's default). With drive_radius > 0 (and air_drag, air_drag_quadratic) the shape is
-    the hand-swung chain's trailing shape on ``side`` +1 or -1. Returns a StabilityResult;
+    the hand-swung chain's trailing shape on ``side`` +1 or -1, or with mode=0 its near-axis
+    shape. Returns a StabilityResult;
     whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
     w = as_float(omega, "omega", positive=True) / u.rate
-    mode = _mode(mode, chain)
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
     m = _model(chain, w, damping, drive_radius, air_drag, air_drag_quadratic, u)
+    driven = m.drive_radius > 0 or m.air_drag > 0 or m.air_drag_quadratic > 0
+    # mode 0: the hand-swung chain's near-axis shape (whirl_driven_mode)
+    mode = 0 if driven and as_int(mode, "mode") == 0 else _mode(mode, chain)
     ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     growth = ffi.new("double *")
     with _lib.interruptible("stability"):
-        if m.drive_radius > 0 or m.air_drag > 0 or m.air_drag_quadratic > 0:
+        if driven:
             info = ffi.new("whirl_driven_info *")
             status = lib.whirl_stability_driven_mode(ws, m, mode, side, info, growth)
             nodes = int(info.nodes)

@@ -12,7 +12,8 @@
  * (gyroscopic)" above (a saddle held by the Coriolis coupling, destabilised by dissipation). Rates where a mode of the map does not exist are left out.
  * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
  * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
- * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
+ * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1; mode 0:
+ * the near-axis shape, continued from the hanging chain), are
  * three-dimensional and have no rotation symmetry. Three columns are added:
  *   ...,verdict,tip_x,tip_y,nodes
  * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
@@ -133,6 +134,12 @@ static int check_modes(const cli_command *cmd, const options *o)
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
     for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
         const int mode = o->mode_given ? o->mode : o->modes.v[k];
+        if (mode == 0 && !driven(o))
+            return cli_error(cmd, "mode 0 (the near-axis shape) is the hand-swung chain's: it "
+                             "needs --eps");
+        if (mode == 0 && o->side_given)
+            return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
+                             "shape) has none");
         if (mode > top && continuum)
             return cli_error(cmd, "mode %d is out of range: the %s takes modes 1..%d", mode,
                              o->windows ? "continuous chain" : "hand-swung chain", top);
@@ -993,7 +1000,8 @@ static size_t declare_options(options *o, cli_option *opts)
              "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
              CLI_UNIT_RATE},
             {"--mode", NULL, CLI_INT, &o->mode, &o->mode_given, "K",
-             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
+             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64, or 0: its "
+             "near-axis shape)", "[0, inf)",
              "--omega"},
             {"--omega-min", NULL, CLI_DOUBLE, &o->omega_min, &o->min_given, "A", "map: first rate",
              "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},

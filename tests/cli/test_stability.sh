@@ -123,6 +123,47 @@ if "$WHIRL" stability --omega 3.5 --mode 2 --side -1 --links 12 --eps 0.05 --dra
   pass "driven mode 2, upper lobe on the pivot's side: converging"
 else fail "driven mode 2: $(cat "$tmp/err" "$tmp/ds.csv" "$tmp/ds2.csv" 2>/dev/null | tail -3)"; fi
 
+# The three shapes of the forced chain at one rate past the fold (omega 1.5, eps 0.05, 20 links),
+# each checked by a perturbed run of 30 periods: mode 0 (the near-axis shape, far side) neutral,
+# index 2; mode 1 on the pivot's side a minimum; mode 1 on the far side unstable, the run growing
+# at the eigenvalue's rate within 1%. With linear drag c the near-axis shape converges at -c/2 (the
+# uniform chain's drag damps every motion alike) and so does the run.
+T="--omega 1.5 --links 20 --eps 0.05 --periods 30"
+if "$WHIRL" stability $T --mode 0 -o "$tmp/n0.csv" 2>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 1 -o "$tmp/n1.csv" 2>>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 1 --side -1 -o "$tmp/n2.csv" 2>>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 0 --drag 0.05 -o "$tmp/n3.csv" 2>>"$tmp/err" \
+   && [ "$(csv_field "$tmp/n0.csv" verdict),$(csv_field "$tmp/n0.csv" index)" = "neutral (gyroscopic),2" ] \
+   && [ "$(csv_field "$tmp/n1.csv" verdict),$(csv_field "$tmp/n1.csv" index)" = "stable (minimum),0" ] \
+   && [ "$(csv_field "$tmp/n2.csv" verdict),$(csv_field "$tmp/n2.csv" index)" = "unstable,1" ] \
+   && [ "$(csv_field "$tmp/n3.csv" verdict)" = converging ] \
+   && awk -v a="$(csv_field "$tmp/n0.csv" tip_x)" -v b="$(csv_field "$tmp/n2.csv" tip_x)" -v c="$(csv_field "$tmp/n1.csv" tip_x)" \
+        'BEGIN { exit !(b < a && a < 0 && a > -0.25 && c > 0.5) }' \
+   && awk -v d0="$(csv_field "$tmp/n0.csv" max_deviation)" -v d1="$(csv_field "$tmp/n1.csv" max_deviation)" \
+        'BEGIN { exit !(d0 < 10 && d1 < 10) }' \
+   && awk -v e="$(csv_field "$tmp/n2.csv" eig_growth)" -v s="$(csv_field "$tmp/n2.csv" sim_growth)" \
+        'BEGIN { exit !(e > 0.1 && (s - e) / e < 0.01 && (e - s) / e < 0.01) }' \
+   && awk -v e="$(csv_field "$tmp/n3.csv" eig_growth)" 'BEGIN { exit !(e > -0.025 - 1e-9 && e < -0.025 + 1e-9) }'; then
+  pass "driven, one rate: near-axis neutral, pivot side a minimum, far side unstable (runs agree); drag: -c/2"
+else fail "driven, one rate, three shapes: $(cat "$tmp/err" "$tmp/n0.csv" "$tmp/n1.csv" "$tmp/n2.csv" "$tmp/n3.csv" 2>/dev/null | grep -v '^#' | tail -5)"; fi
+# The near-axis shape of a tiny drive is the hanging chain seen from the rotating frame: its
+# eigenvalues are i (nu_k +- omega), nu_k the hanging chain's pendulum frequencies, which are the
+# rates where the free whirling modes are born (whirl critical).
+if "$WHIRL" stability --omega 1.5 --mode 0 --links 20 --eps 1e-6 --eigenvalues --linear \
+     -o "$tmp/ev.csv" 2>"$tmp/err" && "$WHIRL" critical --links 20 -o "$tmp/crit.csv" 2>>"$tmp/err"; then
+  bad=$(grep -v '^[#m]' "$tmp/crit.csv" | head -3 | while IFS=, read -r k nu; do
+    for f in $(awk -v n="$nu" 'BEGIN { printf "%.15g %.15g\n", n + 1.5, (n > 1.5 ? n - 1.5 : 1.5 - n) }'); do
+      grep -v '^[#r]' "$tmp/ev.csv" | awk -F, -v f="$f" '{ d = $2 - f; if (d < 0) d = -d; if (d < 1e-6 && ($1 < 0 ? -$1 : $1) < 1e-9) hit = 1 }
+        END { if (!hit) print f }'
+    done; done)
+  if [ -z "$bad" ] && [ "$(grep -vc '^[#r]' "$tmp/ev.csv")" -eq 80 ]; then
+    pass "near-axis eigenvalues: i (nu_k +- omega) for k = 1..3"
+  else fail "near-axis eigenvalues: missing $bad"; fi
+else fail "near-axis eigenvalues: $(tail -1 "$tmp/err")"; fi
+expect_error "near-axis without a drive" "mode 0 .*needs --eps" stability --omega 1.5 --mode 0 --links 20 -o "$tmp/out.csv"
+expect_error "near-axis with a side" "--side picks the seed" stability --omega 1.5 --mode 0 --links 20 --eps 0.05 --side -1 -o "$tmp/out.csv"
+expect_error "near-axis between birth and fold" "could not be followed" stability --omega 1.3 --mode 0 --links 20 --eps 0.05 -o "$tmp/out.csv"
+
 # The driven map: rows where the shapes exist, with the tip columns.
 if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --links 10 --eps 0.03 \
      --drag 0.1 --linear -o "$tmp/dmap.csv" 2>"$tmp/err" \
