@@ -338,9 +338,11 @@ static int perturbed_run(const options *o, const whirl_model *m, whirl_stability
     const double *x, *y, *z;
     whirl_stability_nodes(w, &x, &y, &z);
     const int status = whirl_stability_run_shape(m, x, y, z, &rp, &res);
-    /* a given step: the failure names it (the run's steps are at most --dt and the spacing of
-     * its 50 samples per period, stability.h: the integrator names the step it took) */
-    if (status && status != WHIRL_EINTERRUPTED && o->dt > 0)
+    /* a given step that the integration could not take (an implicit stage iteration that
+     * diverges or does not converge): the failure names it (the run's steps are at most --dt
+     * and the spacing of its 50 samples per period, stability.h: the integrator names the step
+     * it took) */
+    if (status == GSL_EMAXITER && o->dt > 0)
         return whirl_fail(status, "the run with --dt %g failed (steps of at most --dt and of "
                           "the spacing of the 50 samples per period): %s; give a smaller --dt, "
                           "or none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
