@@ -35,6 +35,10 @@ typedef struct whirl_cstab_params {
     double memory_mb; /* the workspace's bound [MB]: shapes needing more collocation points
                          than it holds are refused (GSL_EMAXITER naming the mode, the rate and
                          the points); 1024; 16..1048576 */
+    void (*progress)(void *ctx, int mode, double omega); /* called by whirl_cstab_windows, on
+                         its thread, before each rate of the search it linearises at (a
+                         progress display); NULL: none (default) */
+    void *progress_ctx;
 } whirl_cstab_params;
 
 /* The defaults above. */

@@ -100,6 +100,13 @@ WHIRL_API int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_pa
  * at params->omega (whirl_continuum_solve or whirl_nlink_solve) with its tip on the pivot's side
  * of the axis (side = +1) or on the opposite side (side = -1), then followed by natural
  * continuation from eps = 0 to params->drive_radius (no drag), then from no drag to params' drag.
+ * Mode 0 is the near-axis shape: seeded by the hanging chain (tip on the axis, a free shape at
+ * every rate; side is checked but plays no part), it is the small response that the drive pulls
+ * out of the vertical chain: below the first birth omega_1 in phase with the pivot (the shape
+ * of mode 1, side +1, continued below omega_1), above it opposite to the pivot; past the fold
+ * where it meets mode 1's shape of side -1 it is the smallest of the triple-valued response
+ * (mode 1 with side +1 and -1, and mode 0). It does not exist at a birth omega_k itself nor
+ * between a birth and that fold (GSL_EDOM).
  * GSL_EDOM if mode k has no free shape at params->omega, or if the continuation breaks down:
  * the shape disappears at a fold on the way, in eps (small shapes near omega_k) or in the drag
  * (the support's torque eps F_y(top) must equal the drag's omega int (c + c2 omega rho) rho^2 ds,

@@ -125,3 +125,18 @@ def test_continuum_windows_bad_input():
         whirl.stability_windows(2, None, 4.39, 4.41, degree=3)
     with pytest.raises(whirl.Error):
         whirl.stability_windows(3, None, 1.0, 2.0)  # mode 3 is born at 4.3
+    with pytest.raises(ValueError, match="memory_mb must be in"):
+        whirl.stability_windows(2, None, 4.39, 4.41, memory_mb=8)
+    with pytest.raises(ValueError, match="memory_mb must be in"):
+        whirl.stability_windows(2, None, 4.39, 4.41, memory_mb=1e7)
+    with pytest.raises(ValueError, match="memory_mb"):
+        whirl.stability_windows(2, 10, 4.39, 4.41, memory_mb=100)
+
+
+def test_continuum_windows_memory_bound():
+    # mode 8 at 20.5 needs 731 collocation points, more than the 720 that 16 MB hold (the
+    # command line's test_stability.sh); 32 MB hold them
+    with pytest.raises(whirl.Error, match="731 collocation points.*16 MB hold"):
+        whirl.stability_windows(8, None, 20, 21, memory_mb=16)
+    windows, stats = whirl.stability_windows(8, None, 20, 21, memory_mb=32)
+    assert stats["scan"] > 0

@@ -100,3 +100,22 @@ def test_dissipative_windows_edges_are_roots_of_the_growth():
         whirl.dissipative_windows(2, 10)
     with pytest.raises(ValueError, match="side"):
         whirl.dissipative_windows(2, 10, damping=1e-3, side=0)
+
+
+def test_three_driven_shapes_at_one_rate():
+    # past the fold (omega 1.5, eps 0.05, 20 links) the forced chain has three shapes: mode 1 on
+    # the pivot's side (a minimum), on the far side (unstable, index 1) and mode 0, the near-axis
+    # one on the far side (neutral, index 2); below resonance mode 0 alone, a minimum
+    near = whirl.stability(1.5, 0, 20, linear=True, drive_radius=0.05)
+    assert (near.verdict, near.index, near.eig_growth) == ("neutral (gyroscopic)", 2, 0)
+    big = whirl.stability(1.5, 1, 20, linear=True, drive_radius=0.05)
+    assert (big.verdict, big.index) == ("stable (minimum)", 0)
+    far = whirl.stability(1.5, 1, 20, linear=True, drive_radius=0.05, side=-1)
+    assert (far.verdict, far.index) == ("unstable", 1) and far.eig_growth > 0.1
+    assert near.tip_r < 0.25 < far.tip_r < big.tip_r
+    shape = whirl.driven(1.5, 0, 0.05, links=20)
+    assert shape.tip[0] < 0 and shape.tip_r == pytest.approx(near.tip_r, rel=1e-12)
+    low = whirl.stability(0.8, 0, 20, linear=True, drive_radius=0.05)
+    assert (low.verdict, low.index) == ("stable (minimum)", 0)
+    with pytest.raises(ValueError):
+        whirl.stability(1.5, 0, 20, linear=True)  # mode 0 is the hand-swung chain's

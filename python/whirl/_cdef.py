@@ -405,6 +405,8 @@ typedef struct whirl_cstab_params {
     double freq_max;
     int solver;
     double memory_mb;
+    void (*progress)(void *ctx, int mode, double omega);
+    void *progress_ctx;
 } whirl_cstab_params;
 whirl_cstab_params whirl_cstab_defaults(void);
 whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p);

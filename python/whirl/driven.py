@@ -69,10 +69,13 @@ def driven(omega: float, mode: Optional[int], drive_radius: float, air_drag: flo
     shape whose tip is found by Newton's method from that horizontal tip position (``mode`` may
     then be None; the result has its own node count). Returns a DrivenShape; whirl.InvalidInput
     (EDOM) if the shape does not exist or cannot be reached by continuation, whirl.Error
-    (EMAXITER) if Newton does not converge from tip_guess."""
+    (EMAXITER) if Newton does not converge from tip_guess. mode=0: the near-axis shape, the
+    hanging chain pulled out by the drive (the smallest of the triple-valued response past the
+    fold; side plays no part)."""
     u = units_of(length, mass, gravity, units)
     if tip_guess is None or mode is not None:
-        mode = _mode(mode, None, lib.WHIRL_MODE_MAX)  # seeded by the continuum's shape
+        # seeded by the continuum's shape; mode 0: the near-axis shape (the hanging chain's)
+        mode = 0 if as_int(mode, "mode") == 0 else _mode(mode, None, lib.WHIRL_MODE_MAX)
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)

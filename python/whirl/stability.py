@@ -93,21 +93,24 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     ``periods`` rotation periods from the shape with every link turned by ``perturb`` [rad]
     (``seed`` of the random directions) with ``method`` (default rk4) and step ``dt`` (0: the
     library's default). With drive_radius > 0 (and air_drag, air_drag_quadratic) the shape is
-    the hand-swung chain's trailing shape on ``side`` +1 or -1. Returns a StabilityResult;
+    the hand-swung chain's trailing shape on ``side`` +1 or -1, or with mode=0 its near-axis
+    shape. Returns a StabilityResult;
     whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
     w = as_float(omega, "omega", positive=True) / u.rate
-    mode = _mode(mode, chain)
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
     m = _model(chain, w, damping, drive_radius, air_drag, air_drag_quadratic, u)
+    driven = m.drive_radius > 0 or m.air_drag > 0 or m.air_drag_quadratic > 0
+    # mode 0: the hand-swung chain's near-axis shape (whirl_driven_mode)
+    mode = 0 if driven and as_int(mode, "mode") == 0 else _mode(mode, chain)
     ws = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     growth = ffi.new("double *")
     with _lib.interruptible("stability"):
-        if m.drive_radius > 0 or m.air_drag > 0 or m.air_drag_quadratic > 0:
+        if driven:
             info = ffi.new("whirl_driven_info *")
             status = lib.whirl_stability_driven_mode(ws, m, mode, side, info, growth)
             nodes = int(info.nodes)
@@ -224,17 +227,30 @@ def _windows_params(omega_min: Optional[float], omega_max: Optional[float],
     return p
 
 
+def _memory_mb(value: Any) -> float:
+    """The continuum's workspace bound [MB]: 16 up to the machine's memory (ValueError)."""
+    mb = as_float(value, "memory_mb")
+    machine = _lib.MEMORY / 1048576
+    if not 16 <= mb <= min(machine, 1048576):
+        raise ValueError("memory_mb must be in [16, %.0f] (the machine's memory), got %g"
+                         % (min(machine, 1048576), mb))
+    return mb
+
+
 def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                       omega_min: Optional[float] = None, omega_max: Optional[float] = None,
                       scan_step: Optional[float] = None, tol: Optional[float] = None,
                       krylov: bool = True, max_windows: int = 1024, degree: Optional[int] = None,
-                      tip_mass: float = 0.0, length: Optional[float] = None,
+                      tip_mass: float = 0.0, memory_mb: Optional[float] = None,
+                      length: Optional[float] = None,
                       mass: Optional[float] = None, gravity: Optional[float] = None,
                       units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """The windows of instability of ``mode`` of the conservative N-link chain (``links``: N or
     a Chain) or, with links=None, of the continuous chain (its string equations linearised by
     Chebyshev collocation on elements of ``degree``, default the library's 16, with a point mass
-    ``tip_mass`` [M, or kg] at the free end),
+    ``tip_mass`` [M, or kg] at the free end; ``memory_mb``: the bound of its workspace, default
+    the library's 1024 MB, 16 up to the machine's memory, as ``--memory``: a shape that needs
+    more collocation points than it holds is refused with whirl.Error),
     for rates in [omega_min, omega_max] [sqrt(g/L), or rad/s; scan_step and tol too; the
     defaults, as the command line's, 1, 10, 0.25 and 1e-9 sqrt(g/L)], as
     ``whirl stability --windows``: the edges are the rates where two eigenvalues collide (Krein
@@ -249,8 +265,9 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     mode = _mode(mode, chain, lib.WHIRL_MODE_MAX)
-    if links is not None and (degree is not None or tip_mass):
-        raise ValueError("degree and tip_mass apply to the continuous chain (links=None)")
+    if links is not None and (degree is not None or tip_mass or memory_mb is not None):
+        raise ValueError("degree, tip_mass and memory_mb apply to the continuous chain "
+                         "(links=None)")
     p = _windows_params(omega_min, omega_max, scan_step, tol, u)
     p.krylov = 1 if krylov else 0
     cap = _lib.bounded(as_int(max_windows, "max_windows", minimum=1), "max_windows", 64)
@@ -262,6 +279,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
         if degree is not None:
             cp.degree = as_int(degree, "degree", minimum=6, maximum=64)
         cp.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+        if memory_mb is not None:
+            cp.memory_mb = _memory_mb(memory_mb)
         ws = _lib.check_ptr(lib.whirl_cstab_alloc(cp), lib.whirl_cstab_free)
         with _lib.interruptible("stability_windows"):
             status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)

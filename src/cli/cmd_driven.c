@@ -1,7 +1,10 @@
 /* whirl driven: steady shapes of the hand-swung chain (pivot driven on a circle of radius eps,
  * air drag in the inertial frame), in the frame co-rotating at omega (include/whirl/driven.h).
  *
- * One shape (--omega): the summary comment line, then the CSV s,x,y,z,tension from the pivot.
+ * One shape (--omega): the summary comment line (with --stability, N-link chain, a second one:
+ * eig_growth, index, verdict), then the CSV s,x,y,z,tension from the pivot. --mode 0 is the
+ * near-axis shape (whirl_driven_mode from the hanging chain): with --mode 1 --side 1 and -1 the
+ * three shapes a forced chain has at one rate past the fold.
  * A branch (--omega-min, --omega-max): comment lines (parameters, one "# fold omega=..." per
  * fold), then the CSV omega,tip_x,tip_y,tip_r,top_tension,nodes,fold along the continued branch;
  * the branch starts at --omega (default omega_max) from mode K and leaves it towards smaller
@@ -23,7 +26,7 @@ typedef struct driven_options {
     cli_units units;
     cli_air air;
     int mode, side, links, points, max_points, up, stability;
-    int omega_given, min_given, max_given, points_given, step_given, max_points_given,
+    int side_given, omega_given, min_given, max_given, points_given, step_given, max_points_given,
         up_given;
     const char *output;
 } driven_options;
@@ -37,9 +40,11 @@ static int check_options(const cli_command *cmd, const driven_options *o)
         return cli_error(cmd, "--omega (the branch's start) is outside [--omega-min, --omega-max]");
     if (o->side != 1 && o->side != -1)
         return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
-    if (o->stability && !(o->links > 0 && branch))
-        return cli_error(cmd, "--stability needs --links N and a branch (--omega-min, "
-                         "--omega-max)");
+    if (o->stability && !(o->links > 0))
+        return cli_error(cmd, "--stability needs --links N (the N-link chain's linearisation)");
+    if (o->mode == 0 && o->side_given)
+        return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
+                         "shape) has none");
     if (o->eps == 0 && (o->drag > 0 || o->drag_quadratic > 0))
         return cli_error(cmd, "air drag needs --eps > 0: with the pivot on the axis nothing "
                          "balances the drag's torque");
@@ -63,43 +68,7 @@ static void print_parameters(FILE *fp, const driven_options *o)
     cli_units_comment(fp, &o->units);
 }
 
-/* One shape: summary and samples. */
-static int run_shape(const cli_command *cmd, const driven_options *o, const whirl_chain *chain,
-                     const whirl_driven_params *p)
-{
-    whirl_driven_info info;
-    if (whirl_driven_mode(chain, p, o->mode, o->side, &info) != GSL_SUCCESS)
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    const size_t n = chain ? chain->n + 1 : (size_t)o->points;
-    double *buf = malloc(5 * n * sizeof *buf);
-    if (buf == NULL) return cli_error(cmd, "out of memory for %zu points", n);
-    double *s = buf, *x = s + n, *y = x + n, *z = y + n, *tension = z + n;
-    int rc = 1;
-    if (whirl_driven_sample(chain, p, info.tip, n, s, x, y, z, tension) != GSL_SUCCESS) {
-        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-        goto done;
-    }
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output)) goto done;
-    print_parameters(out.fp, o);
-    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
-    const double force = cli_units_scale(&o->units, CLI_UNIT_FORCE);
-    fprintf(out.fp, "# omega=%s mode=%d nodes=%d tip_x=%s tip_y=%s tip_z=%s tip_r=%s "
-            "top_tension=%s residual=%.3g\n", CLI_NUM(user(o, CLI_UNIT_RATE, info.omega)), o->mode,
-            info.nodes, CLI_NUM(info.tip[0] * len), CLI_NUM(info.tip[1] * len),
-            CLI_NUM(info.tip[2] * len), CLI_NUM(info.tip_r * len), CLI_NUM(info.top_tension * force),
-            info.residual);
-    fprintf(out.fp, "s,x,y,z,tension\n");
-    for (size_t i = 0; i < n; i++)
-        fprintf(out.fp, "%s,%s,%s,%s,%s\n", CLI_NUM(s[i] * len), CLI_NUM(x[i] * len),
-                CLI_NUM(y[i] * len), CLI_NUM(z[i] * len), CLI_NUM(tension[i] * force));
-    rc = cli_out_commit(cmd, &out);
-done:
-    free(buf);
-    return rc;
-}
-
-/* The growth and index of the linearisation about the branch's shape q (N-link chain). */
+/* The growth and index of the linearisation about the shape q (N-link chain). */
 static int point_stability(const driven_options *o, const whirl_chain *chain,
                            const whirl_driven_params *p, const whirl_driven_info *q,
                            double *growth, int *index)
@@ -122,6 +91,49 @@ static int point_stability(const driven_options *o, const whirl_chain *chain,
     whirl_stability_free(w);
     free(buf);
     return status;
+}
+
+/* One shape: summary and samples. */
+static int run_shape(const cli_command *cmd, const driven_options *o, const whirl_chain *chain,
+                     const whirl_driven_params *p)
+{
+    whirl_driven_info info;
+    if (whirl_driven_mode(chain, p, o->mode, o->side, &info) != GSL_SUCCESS)
+        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    const size_t n = chain ? chain->n + 1 : (size_t)o->points;
+    double *buf = malloc(5 * n * sizeof *buf);
+    if (buf == NULL) return cli_error(cmd, "out of memory for %zu points", n);
+    double *s = buf, *x = s + n, *y = x + n, *z = y + n, *tension = z + n;
+    int rc = 1;
+    double growth = 0;
+    int index = 0;
+    if (whirl_driven_sample(chain, p, info.tip, n, s, x, y, z, tension) != GSL_SUCCESS ||
+        (o->stability && point_stability(o, chain, p, &info, &growth, &index) != GSL_SUCCESS)) {
+        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+        goto done;
+    }
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->output)) goto done;
+    print_parameters(out.fp, o);
+    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
+    const double force = cli_units_scale(&o->units, CLI_UNIT_FORCE);
+    fprintf(out.fp, "# omega=%s mode=%d nodes=%d tip_x=%s tip_y=%s tip_z=%s tip_r=%s "
+            "top_tension=%s residual=%.3g\n", CLI_NUM(user(o, CLI_UNIT_RATE, info.omega)), o->mode,
+            info.nodes, CLI_NUM(info.tip[0] * len), CLI_NUM(info.tip[1] * len),
+            CLI_NUM(info.tip[2] * len), CLI_NUM(info.tip_r * len), CLI_NUM(info.top_tension * force),
+            info.residual);
+    if (o->stability)
+        fprintf(out.fp, "# eig_growth=%s index=%d verdict=%s\n",
+                CLI_NUM(user(o, CLI_UNIT_RATE, growth)), index,
+                whirl_verdict_name(whirl_verdict_linear(growth, index)));
+    fprintf(out.fp, "s,x,y,z,tension\n");
+    for (size_t i = 0; i < n; i++)
+        fprintf(out.fp, "%s,%s,%s,%s,%s\n", CLI_NUM(s[i] * len), CLI_NUM(x[i] * len),
+                CLI_NUM(y[i] * len), CLI_NUM(z[i] * len), CLI_NUM(tension[i] * force));
+    rc = cli_out_commit(cmd, &out);
+done:
+    free(buf);
+    return rc;
 }
 
 /* A branch by continuation from mode K at the start rate. */
@@ -206,9 +218,10 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv)
          "branch: lower end of the rates", "(0, inf)", "--omega-max", NULL, "--omega", CLI_UNIT_RATE},
         {"--omega-max", NULL, CLI_DOUBLE, &o.omega_max, &o.max_given, "B",
          "branch: upper end (default start)", "(0, inf)", "--omega-min", NULL, NULL, CLI_UNIT_RATE},
-        {"--mode", NULL, CLI_INT, &o.mode, NULL, "K", "seed: the free shape of mode K (default 1)",
-         "[1, 64]"},
-        {"--side", NULL, CLI_INT, &o.side, NULL, "S", "seed's tip on the pivot's side (1, default) or opposite (-1)"},
+        {"--mode", NULL, CLI_INT, &o.mode, NULL, "K",
+         "seed: the free shape of mode K (default 1; 0: the hanging chain, the near-axis shape)",
+         "[0, 64]"},
+        {"--side", NULL, CLI_INT, &o.side, &o.side_given, "S", "seed's tip on the pivot's side (1, default) or opposite (-1)"},
         CLI_DRAG_OPTIONS(o.eps, NULL, o.drag, NULL, o.drag_quadratic, NULL, o.air),
         {"--links", NULL, CLI_INT, &o.links, NULL, "N", "N-link chain (default 0: the continuum)",
          "[0, 100000]"},
@@ -225,8 +238,8 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv)
         {"--up", NULL, CLI_FLAG, &o.up, &o.up_given, "", "branch: leave the start towards larger omega",
          NULL, "--omega-min"},
         {"--stability", NULL, CLI_FLAG, &o.stability, NULL, "",
-         "branch of the N-link chain: eig_growth, index and verdict of every shape", NULL,
-         "--omega-min --links"},
+         "N-link chain: eig_growth, index and verdict of the shape (a branch: of every shape)",
+         NULL, "--links"},
         CLI_UNITS_OPTIONS(o.units),
         {"--output", "-o", CLI_STRING, &o.output, NULL, "FILE",
          "write the CSV to FILE (default: standard output)"},

@@ -12,7 +12,8 @@
  * (gyroscopic)" above (a saddle held by the Coriolis coupling, destabilised by dissipation). Rates where a mode of the map does not exist are left out.
  * The hand-swung chain (--eps, --drag, --drag-quadratic, --side; whirl/driven.h): the pivot on a
  * circle of radius eps, inertial-frame air drag; the shapes come from whirl_driven_mode (mode K
- * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1), are
+ * continued from the free one with its tip on the pivot's side, --side 1, or opposite, -1; mode 0:
+ * the near-axis shape, continued from the hanging chain), are
  * three-dimensional and have no rotation symmetry. Three columns are added:
  *   ...,verdict,tip_x,tip_y,nodes
  * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
@@ -39,6 +40,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli/cli.h"
 #include "core/error.h"
@@ -49,11 +51,11 @@
 
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    double scan_step, tol, tip_mass;
+    double scan_step, tol, tip_mass, memory;
     int mode, links, steps, seed, linear, side, windows, full, resume, degree, links_given;
     int atlas, eigenvalues, degree_given;
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
-    int eps_given, drag_given, drag2_given, side_given;
+    int eps_given, drag_given, drag2_given, side_given, memory_given;
     cli_int_list modes;
     const char *method, *output, *trace;
     cli_units units;
@@ -132,6 +134,12 @@ static int check_modes(const cli_command *cmd, const options *o)
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
     for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
         const int mode = o->mode_given ? o->mode : o->modes.v[k];
+        if (mode == 0 && !driven(o))
+            return cli_error(cmd, "mode 0 (the near-axis shape) is the hand-swung chain's: it "
+                             "needs --eps");
+        if (mode == 0 && o->side_given)
+            return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
+                             "shape) has none");
         if (mode > top && continuum)
             return cli_error(cmd, "mode %d is out of range: the %s takes modes 1..%d", mode,
                              o->windows ? "continuous chain" : "hand-swung chain", top);
@@ -143,8 +151,24 @@ static int check_modes(const cli_command *cmd, const options *o)
 }
 
 /* What the option table cannot say: 0, or 1 after an error. */
+/* --memory: the continuum's windows or atlas only, and within the machine's memory. */
+static int check_memory(const cli_command *cmd, const options *o)
+{
+    if (!o->memory_given) return 0;
+    if (!o->atlas && !(o->windows && !o->links_given))
+        return cli_error(cmd, "--memory applies to the continuum's --windows (no --links) or "
+                         "--atlas");
+    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    const double physical = pages > 0 && size > 0 ? (double)pages * (double)size / 1048576 : 0;
+    if (physical > 0 && o->memory > physical)
+        return cli_error(cmd, "--memory %g MB is more than the machine's %.0f MB", o->memory,
+                         physical);
+    return 0;
+}
+
 static int check_options(const cli_command *cmd, const options *o)
 {
+    if (check_memory(cmd, o)) return 1;
     if (!o->atlas && o->max_given && !o->min_given)
         return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
     if (!o->atlas && o->modes_given && !o->min_given)
@@ -314,6 +338,15 @@ static int perturbed_run(const options *o, const whirl_model *m, whirl_stability
     const double *x, *y, *z;
     whirl_stability_nodes(w, &x, &y, &z);
     const int status = whirl_stability_run_shape(m, x, y, z, &rp, &res);
+    /* a given step that the integration could not take (an implicit stage iteration that
+     * diverges or does not converge): the failure names it (the run's steps are at most --dt
+     * and the spacing of its 50 samples per period, stability.h: the integrator names the step
+     * it took) */
+    if (status == GSL_EMAXITER && o->dt > 0)
+        return whirl_fail(status, "the run with --dt %g failed (steps of at most --dt and of "
+                          "the spacing of the 50 samples per period): %s; give a smaller --dt, "
+                          "or none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
+                          whirl_error_marked());
     if (status) return status;
     if (trace != NULL)
         fprintf(trace, "# sim_growth %s fitted from t = %s to %s, verdict %s\n",
@@ -382,10 +415,52 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
 
 #define WINDOWS_MAX 256
 
-/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL). */
+/* The progress line of --windows on a terminal: the modes done and, for the continuum, the rate
+ * the search of a running mode has reached (whirl_cstab_params.progress). */
+typedef struct windows_progress {
+    cli_progress_state line;
+    const options *o;
+    double after; /* the line shows after this long (cli_progress_after) [s] */
+    double *reached; /* per mode: the highest rate linearised so far (NULL: not kept) */
+    long done;
+} windows_progress;
+
+/* The line after mode (0: none) reached omega in its scan and linearises at now; called inside
+ * the critical section. */
+static void windows_progress_show(windows_progress *wp, int mode, double omega, double now)
+{
+    const options *o = wp->o;
+    if (!wp->line.drawn && cli_wall_seconds() - wp->line.start < wp->after) return;
+    const double rate = unit(o, CLI_UNIT_RATE);
+    char at[96] = "";
+    if (mode > 0)
+        snprintf(at, sizeof at, "; mode %d: omega %.6g of %.6g (now %.6g)", mode, omega * rate,
+                 o->omega_max * rate, now * rate);
+    cli_progress_text(&wp->line, "windows: %ld of %d modes done%s", wp->done, o->modes.n, at);
+}
+
+/* whirl_cstab_params.progress: the rate mode's search reached. */
+static void windows_progress_rate(void *ctx, int mode, double omega)
+{
+    windows_progress *wp = ctx;
+    const double now = omega;
+#pragma omp critical(windows_progress)
+    {
+        for (int k = 0; wp->reached && k < wp->o->modes.n; k++)
+            if (wp->o->modes.v[k] == mode) {
+                wp->reached[k] = fmax(wp->reached[k], omega);
+                omega = wp->reached[k];
+                break;
+            }
+        windows_progress_show(wp, mode, omega, now);
+    }
+}
+
+/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL); wp: the
+ * progress line. */
 static int find_windows(const options *o, const whirl_chain *c, int mode,
                         const whirl_windows_params *p, whirl_window *win, size_t *count,
-                        whirl_windows_stats *stats)
+                        whirl_windows_stats *stats, windows_progress *wp)
 {
     int status;
     if (c) {
@@ -397,9 +472,13 @@ static int find_windows(const options *o, const whirl_chain *c, int mode,
         whirl_cstab_params cp = whirl_cstab_defaults();
         cp.degree = o->degree;
         cp.tip_mass = o->tip_mass;
+        cp.memory_mb = o->memory;
+        cp.progress = windows_progress_rate;
+        cp.progress_ctx = wp;
         whirl_cstab *w = whirl_cstab_alloc(&cp);
         status = w ? whirl_cstab_windows(w, mode, p, win, WINDOWS_MAX, count, stats)
                    : whirl_last_status();
+        status = stability_memory_failure(status);
         whirl_cstab_free(w);
     }
     return status;
@@ -423,24 +502,65 @@ static void write_windows_title(FILE *fp, const options *o, const whirl_chain *c
             o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
 }
 
-/* The windows of each mode k (count[k] of them from win + k WINDOWS_MAX, found in seconds[k]
- * with stats[k]) as CSV, after a comment line per mode with its eigen-solves. */
+/* The windows of each mode k: count[k] of them from win + k WINDOWS_MAX, found in seconds[k]
+ * with stats[k] and status[k] (err[k]: its failure). */
+typedef struct windows_found {
+    whirl_window *win;
+    size_t *count;
+    whirl_windows_stats *stats;
+    double *seconds;
+    whirl_error_record *err;
+    int *status;
+} windows_found;
+
+static int windows_found_alloc(windows_found *f, size_t nmodes)
+{
+    f->win = calloc(nmodes * WINDOWS_MAX, sizeof *f->win);
+    f->count = calloc(nmodes, sizeof *f->count);
+    f->stats = calloc(nmodes, sizeof *f->stats);
+    f->seconds = calloc(nmodes, sizeof *f->seconds);
+    f->err = calloc(nmodes, sizeof *f->err);
+    f->status = calloc(nmodes, sizeof *f->status);
+    return f->win && f->count && f->stats && f->seconds && f->err && f->status ? 0 : -1;
+}
+
+static void windows_found_free(windows_found *f)
+{
+    free(f->win), free(f->count), free(f->stats), free(f->seconds), free(f->err);
+    free(f->status);
+}
+
+/* The comment line of mode k: its eigen-solves, or why it was not done. */
+static void write_windows_mode(FILE *fp, const options *o, const windows_found *f, int k)
+{
+    const double rate = unit(o, CLI_UNIT_RATE);
+    if (f->status[k] == WHIRL_EINTERRUPTED) {
+        fprintf(fp, "# mode %d: interrupted, not done\n", o->modes.v[k]);
+        return;
+    }
+    if (f->status[k] != GSL_SUCCESS) {
+        whirl_error_restore(&f->err[k]);
+        fprintf(fp, "# mode %d: not done: %s\n", o->modes.v[k], CLI_LIBRARY_ERROR(&o->units));
+        return;
+    }
+    const whirl_windows_stats *st = &f->stats[k];
+    fprintf(fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
+                "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
+                "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
+            o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
+            f->count[k], st->scan, st->solves_vectors + st->solves_values + st->solves_krylov,
+            st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes, f->seconds[k],
+            CLI_NUM(o->tol * rate), (st->omega_to - st->omega_from) / o->tol + 1);
+}
+
+/* The windows of the modes done as CSV, after a comment line per mode with its eigen-solves
+ * (or that it was not done). */
 static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
-                          const whirl_window *win, const size_t *count,
-                          const whirl_windows_stats *stats, const double *seconds)
+                          const windows_found *f)
 {
     const double rate = unit(o, CLI_UNIT_RATE);
     write_windows_title(fp, o, c);
-    for (int k = 0; k < o->modes.n; k++) {
-        const whirl_windows_stats *st = &stats[k];
-        fprintf(fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
-                    "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
-                    "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
-                o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
-                count[k], st->scan, st->solves_vectors + st->solves_values + st->solves_krylov,
-                st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes,
-                seconds[k], CLI_NUM(o->tol * rate), (st->omega_to - st->omega_from) / o->tol + 1);
-    }
+    for (int k = 0; k < o->modes.n; k++) write_windows_mode(fp, o, f, k);
     cli_units_comment(fp, &o->units);
     fprintf(fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
             c ? "" : ",err_from,err_to");
@@ -448,8 +568,8 @@ static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
     if (c) snprintf(links, sizeof links, "%d", o->links);
     else snprintf(links, sizeof links, "inf");
     for (int k = 0; k < o->modes.n; k++)
-        for (size_t i = 0; i < count[k]; i++) {
-            const whirl_window *x = win + (size_t)k * WINDOWS_MAX + i;
+        for (size_t i = 0; f->status[k] == GSL_SUCCESS && i < f->count[k]; i++) {
+            const whirl_window *x = f->win + (size_t)k * WINDOWS_MAX + i;
             fprintf(fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
                     CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
                     CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
@@ -460,22 +580,77 @@ static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
         }
 }
 
-/* --windows: every mode of the list, one per thread. */
+/* The windows of the first n modes (all, or none after a failed allocation), one per thread,
+ * with a progress line on a terminal. */
+static void find_all_windows(const cli_command *cmd, const options *o, const whirl_chain *c,
+                             size_t n, const whirl_windows_params *p, windows_found *f)
+{
+    windows_progress wp = {.o = o, .after = cli_progress_after(),
+                           .reached = calloc((size_t)o->modes.n, sizeof *wp.reached)};
+    cli_progress_begin(&wp.line, cmd, "", 0, 0);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (size_t k = 0; k < n; k++) {
+        const double t0 = cli_wall_seconds();
+        f->status[k] = find_windows(o, c, o->modes.v[k], p, f->win + k * WINDOWS_MAX,
+                                    &f->count[k], &f->stats[k], &wp);
+        whirl_error_keep(&f->err[k], f->status[k]);
+#pragma omp critical(windows_progress)
+        {
+            f->seconds[k] = cli_wall_seconds() - t0;
+            wp.done++;
+            windows_progress_show(&wp, 0, 0, 0);
+        }
+    }
+    cli_progress_clear(&wp.line);
+    free(wp.reached);
+}
+
+/* The file of the modes done (none: no file) and the exit status: 0; after a failure its
+ * message, 1; after a stop, CLI_EXIT_INTERRUPTED (a failure first). */
+static int finish_windows(const cli_command *cmd, const options *o, const whirl_chain *c,
+                          const windows_found *f)
+{
+    const size_t nmodes = (size_t)o->modes.n;
+    size_t done = 0;
+    for (size_t k = 0; k < nmodes; k++) done += f->status[k] == GSL_SUCCESS;
+    cli_out out;
+    if (done > 0) {
+        if (cli_out_open(cmd, &out, o->output)) return 1;
+        write_windows(out.fp, o, c, f);
+        if (cli_out_commit(cmd, &out)) return 1;
+    }
+    if (done == nmodes) return 0;
+    const int file = done > 0 && o->output != NULL && strcmp(o->output, "-") != 0;
+    char where[CLI_MESSAGE_MAX / 2] = "";
+    if (file)
+        snprintf(where, sizeof where, "; %zu of %zu modes written to '%s'", done, nmodes,
+                 o->output);
+    const int failed = whirl_error_restore_first(f->err, nmodes);
+    if (failed != WHIRL_EINTERRUPTED) {
+        cli_error(cmd, "%s%s", CLI_LIBRARY_ERROR(&o->units), where);
+        return 1;
+    }
+    for (size_t k = 0; k < nmodes; k++) /* a failure beside the stop is named first */
+        if (f->status[k] != GSL_SUCCESS && f->status[k] != WHIRL_EINTERRUPTED) {
+            whirl_error_restore(&f->err[k]);
+            cli_error(cmd, "%s%s", CLI_LIBRARY_ERROR(&o->units), where);
+            return 1;
+        }
+    cli_error(cmd, "interrupted: %zu of %zu modes done%s%s%s", done, nmodes,
+              file ? " in '" : "", file ? o->output : "", file ? "'" : "");
+    return CLI_EXIT_INTERRUPTED;
+}
+
+/* --windows: every mode of the list, one per thread; a stop or a failure keeps the modes
+ * finished (each whole), the others marked. */
 static int run_windows(const cli_command *cmd, const options *o)
 {
     whirl_chain *c = NULL;
     if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, o->tip_mass)) == NULL)
         return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     const size_t nmodes = (size_t)o->modes.n;
-    whirl_window *win = calloc(nmodes * WINDOWS_MAX, sizeof *win);
-    size_t *count = calloc(nmodes, sizeof *count);
-    whirl_windows_stats *stats = calloc(nmodes, sizeof *stats);
-    double *seconds = calloc(nmodes, sizeof *seconds);
-    int *status = calloc(nmodes, sizeof *status);
-    whirl_error_record *err = calloc(nmodes, sizeof *err); /* each mode's failure */
-    int rc = 0;
-    if (!win || !count || !stats || !seconds || !status || !err)
-        rc = cli_error(cmd, "out of memory");
+    windows_found f;
+    int rc = windows_found_alloc(&f, nmodes) ? cli_error(cmd, "out of memory") : 0;
     whirl_windows_params p = whirl_windows_defaults();
     p.omega_min = o->omega_min;
     p.omega_max = o->omega_max;
@@ -483,26 +658,9 @@ static int run_windows(const cli_command *cmd, const options *o)
     p.tol = o->tol;
     p.krylov = !o->full;
     cli_catch_interrupts();
-#pragma omp parallel for schedule(dynamic, 1)
-    for (size_t k = 0; k < (rc ? 0 : nmodes); k++) {
-        const double t0 = cli_wall_seconds();
-        status[k] = find_windows(o, c, o->modes.v[k], &p, win + k * WINDOWS_MAX, &count[k],
-                                 &stats[k]);
-        whirl_error_keep(&err[k], status[k]);
-        seconds[k] = cli_wall_seconds() - t0;
-    }
-    const int failed = rc ? GSL_SUCCESS : whirl_error_restore_first(err, nmodes);
-    if (failed) {
-        cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-        rc = failed == WHIRL_EINTERRUPTED ? CLI_EXIT_INTERRUPTED : 1;
-    }
-    cli_out out;
-    if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
-    if (!rc) {
-        write_windows(out.fp, o, c, win, count, stats, seconds);
-        if (cli_out_commit(cmd, &out)) rc = 1;
-    }
-    free(win), free(count), free(stats), free(seconds), free(status), free(err);
+    find_all_windows(cmd, o, c, rc ? 0 : nmodes, &p, &f);
+    if (!rc) rc = finish_windows(cmd, o, c, &f);
+    windows_found_free(&f);
     whirl_chain_free(c);
     return rc;
 }
@@ -528,12 +686,18 @@ static void write_eigenvalues(FILE *fp, const options *o, const point *p, size_t
                               const double *re, const double *im, const size_t *order)
 {
     const double rate = unit(o, CLI_UNIT_RATE);
-    fprintf(fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s; "
+    char hand[200] = "";
+    if (driven(o))
+        snprintf(hand, sizeof hand, ", hand-swung: eps %s, drag %s, drag_quadratic %s, side %d",
+                 CLI_NUM(o->eps * unit(o, CLI_UNIT_LENGTH)),
+                 CLI_NUM(o->drag * unit(o, CLI_UNIT_DRAG)),
+                 CLI_NUM(o->drag2 * unit(o, CLI_UNIT_DRAG2)), o->side);
+    fprintf(fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s%s; "
                 "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
                 "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
                 "%s\n", CLI_NUM(p->omega * rate), p->mode, o->links,
-            CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), n, CLI_NUM(p->eig_growth * rate),
-            p->index, whirl_verdict_name(p->verdict));
+            CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), hand, n,
+            CLI_NUM(p->eig_growth * rate), p->index, whirl_verdict_name(p->verdict));
     cli_units_comment(fp, &o->units);
     fprintf(fp, "re,im\n");
     for (size_t i = 0; i < n; i++)
@@ -823,6 +987,7 @@ static void set_defaults(options *o)
     o->scan_step = 0.25;
     o->tol = 1e-9;
     o->degree = whirl_cstab_defaults().degree;
+    o->memory = whirl_cstab_defaults().memory_mb;
     o->units = (cli_units)CLI_UNITS_INIT;
     o->air = (cli_air)CLI_AIR_INIT(o->units);
 }
@@ -837,7 +1002,8 @@ static size_t declare_options(options *o, cli_option *opts)
              "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
              CLI_UNIT_RATE},
             {"--mode", NULL, CLI_INT, &o->mode, &o->mode_given, "K",
-             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64)", "[1, inf)",
+             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64, or 0: its "
+             "near-axis shape)", "[0, inf)",
              "--omega"},
             {"--omega-min", NULL, CLI_DOUBLE, &o->omega_min, &o->min_given, "A", "map: first rate",
              "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
@@ -886,6 +1052,9 @@ static size_t declare_options(options *o, cli_option *opts)
             {"--degree", NULL, CLI_INT, &o->degree, &o->degree_given, "P",
              "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
              "--windows", "--links"},
+            {"--memory", NULL, CLI_DOUBLE, &o->memory, &o->memory_given, "MB",
+             "windows of the continuum, atlas: memory bound of the collocation (default 1024; "
+             "at most the machine's)", "[16, 1048576]"},
             {"--tip-mass", NULL, CLI_DOUBLE, &o->tip_mass, NULL, "m",
              "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
              NULL, CLI_UNIT_MASS},
@@ -1097,8 +1266,8 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     const int rc = parse_options(cmd, argc, argv, &o);
     if (rc) return rc;
     if (o.atlas)
-        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.tol, o.scan_step,
-                               o.output, o.resume);
+        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.memory, o.tol,
+                               o.scan_step, o.output, o.resume);
     if (o.windows && dissipative(&o)) return run_windows_dissipative(cmd, &o);
     if (o.windows) return run_windows(cmd, &o);
     if (o.eigenvalues) return run_eigenvalues(cmd, &o);

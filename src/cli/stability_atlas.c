@@ -17,6 +17,7 @@
 
 #include "cli/cli.h"
 #include "cli/stability_atlas.h"
+#include "core/error.h"
 #include "whirl/continuum_stability.h"
 #include "whirl/steady.h"
 
@@ -207,7 +208,7 @@ static int chunk_windows(atlas_run *r, int mode, double lo, double hi, size_t *n
                                     &sig[2 * i + 1]);
     }
     if (status == WHIRL_EINTERRUPTED) return CLI_EXIT_INTERRUPTED;
-    if (status)
+    if ((status = stability_memory_failure(status)))
         return cli_error(r->cmd, "mode %d, omega %s..%s: %s", mode, CLI_NUM(p.omega_min),
                          CLI_NUM(hi), whirl_last_error());
     return 0;
@@ -245,8 +246,16 @@ static int atlas_mode(atlas_run *r, atlas *a, int k)
     return 0;
 }
 
+int stability_memory_failure(int status)
+{
+    if (status == GSL_EMAXITER && strstr(whirl_last_error(), "raise the memory bound"))
+        return whirl_fail(status, "%s (--memory MB)", whirl_error_marked());
+    return status;
+}
+
 int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double omega_max,
-                    int degree, double tol, double scan_step, const char *output, int resume)
+                    int degree, double memory_mb, double tol, double scan_step,
+                    const char *output, int resume)
 {
     if (!(omega_max > 0 && omega_max <= WHIRL_CONTINUUM_OMEGA_MAX))
         return cli_error(cmd, "--omega-max must be in (0, %g] for the atlas",
@@ -262,6 +271,7 @@ int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double om
                    calloc(2 * ATLAS_CHUNK_WINDOWS, sizeof *r.sig), {0}, 0};
     whirl_cstab_params cp = whirl_cstab_defaults();
     cp.degree = degree;
+    cp.memory_mb = memory_mb;
     r.w = whirl_cstab_alloc(&cp);
     int rc = 0;
     if (!a.rows || !a.done || !r.win || !r.sig || !r.w) rc = cli_error(cmd, "out of memory");

@@ -7,6 +7,11 @@
 /* The atlas of the continuum's windows of the modes to omega_max into output (rewritten after
  * every chunk; resume: keep the chunks already in it). Returns the exit status. */
 int stability_atlas(const cli_command *cmd, const cli_int_list *modes, double omega_max,
-                    int degree, double tol, double scan_step, const char *output, int resume);
+                    int degree, double memory_mb, double tol, double scan_step,
+                    const char *output, int resume);
+
+/* status, or after a failure of the continuum's collocation beyond its memory bound
+ * (GSL_EMAXITER asking to raise it) the same failure with the option that raises it named. */
+int stability_memory_failure(int status);
 
 #endif

@@ -1364,6 +1364,7 @@ static int source_linearise(cstab_search *c, double omega)
     while (j + 1 < c->nscan && c->scan[j + 1] <= omega) j++;
     const int last = c->last_tip > 0 && fabs(omega - c->last_omega) < fabs(omega - c->scan[j]);
     c->stats->shapes++;
+    if (c->w->p.progress) c->w->p.progress(c->w->p.progress_ctx, c->w->mode, omega);
     int status = whirl_cstab_linearise(c->w, omega, c->w->mode, last ? c->last_tip : c->tip[j],
                                        &c->last_tip);
     c->last_omega = omega;

@@ -595,16 +595,20 @@ static int homotopy(problem *pb, double *u, double eps, double c, double c2)
 int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *params, int mode,
                       int side, whirl_driven_info *info)
 {
-    if (mode < 1 || mode > WHIRL_MODE_MAX)
-        return whirl_fail(GSL_EINVAL, "mode must be in 1..%d, got %d", WHIRL_MODE_MAX, mode);
+    if (mode < 0 || mode > WHIRL_MODE_MAX)
+        return whirl_fail(GSL_EINVAL, "mode must be in 0..%d, got %d", WHIRL_MODE_MAX, mode);
     if (side != 1 && side != -1)
         return whirl_fail(GSL_EINVAL, "side must be +1 or -1, got %d", side);
     problem pb;
     int status = problem_init(&pb, chain, params);
     if (status) return status;
-    whirl_shape_info free_shape;
-    status = chain ? whirl_nlink_solve(chain, params->omega, mode, &free_shape)
-                   : whirl_continuum_solve(params->omega, mode, params->tip_mass, 0, &free_shape);
+    /* mode 0: the hanging chain (tip on the axis), a free shape at every rate; its pivot-miss
+       Jacobian is singular only at the births omega_k, where the message below names the rate */
+    whirl_shape_info free_shape = {.tip_r = 0};
+    if (mode > 0)
+        status = chain ? whirl_nlink_solve(chain, params->omega, mode, &free_shape)
+                       : whirl_continuum_solve(params->omega, mode, params->tip_mass, 0,
+                                               &free_shape);
     double u[3] = {side * free_shape.tip_r, 0, params->omega}, rnorm;
     int iterations = 0;
     if (status == GSL_SUCCESS) {

@@ -42,7 +42,8 @@ expect_error "inverted range" "whirl driven: need --omega-min < --omega-max" dri
 expect_error "drag without drive" "whirl driven: air drag needs --eps > 0" driven --omega 2 --drag 0.1 -o "$tmp/out.csv"
 expect_error "negative eps" "whirl driven: --eps must be in" driven --omega 2 --eps -0.1 -o "$tmp/out.csv"
 expect_error "negative drag" "whirl driven: --drag must be >= 0" driven --omega 2 --eps 0.1 --drag -1 -o "$tmp/out.csv"
-expect_error "bad mode" "whirl driven: --mode must be between" driven --omega 2 --mode 0 -o "$tmp/out.csv"
+expect_error "bad mode" "whirl driven: --mode must be between" driven --omega 2 --mode -1 -o "$tmp/out.csv"
+expect_error "side of the near-axis shape" "whirl driven: --side picks the seed" driven --omega 2 --mode 0 --side -1 --eps 0.05 -o "$tmp/out.csv"
 expect_error "bad side" "whirl driven: --side must be 1 or -1" driven --omega 2 --side 0 -o "$tmp/out.csv"
 expect_error "points with links" "whirl driven: --points cannot be given with --links" driven --omega 2 --links 5 --points 9 -o "$tmp/out.csv"
 expect_error "step without branch" "whirl driven: --arc-step needs --omega-min" driven --omega 2 --arc-step 0.1 -o "$tmp/out.csv"
@@ -70,5 +71,30 @@ if "$WHIRL" driven --omega-min 0.6 --omega-max 1.6 --omega 1.6 --mode 1 --eps 0.
   else fail "driven --stability: growth $g against whirl stability's $g2 at omega $w"; fi
 else fail "driven --stability: $(cat "$tmp/err" | tail -2)"; fi
 expect_error "stability without links" "--stability needs --links" driven --omega-min 1 --omega-max 2 --eps 0.05 --stability
+expect_error "stability of one shape without links" "--stability needs --links" driven --omega 1.5 --eps 0.05 --stability
+
+# One rate, every shape: --mode 0 is the near-axis shape. At omega 1.5 (20 links, eps 0.05, past
+# the fold near 1.38) the forced chain has three shapes: mode 1 on the pivot's side a minimum,
+# mode 1 on the far side unstable (index 1), the near-axis one on the far side neutral (index 2);
+# the near-axis one has the growth and tip of the far-side branch's small end at the same rate.
+# Below resonance (omega 0.8) the near-axis shape is the only one: the pivot-side branch
+# continued down, a minimum.
+one() { "$WHIRL" driven --omega "$1" --eps 0.05 --links 20 --stability $2 2>>"$tmp/err" | grep '^# '"$3"; }
+verdicts=$(for a in "--mode 0" "--mode 1" "--mode 1 --side -1"; do one 1.5 "$a" eig_growth; done | tr '\n' ';')
+if [ "$verdicts" = "# eig_growth=0 index=2 verdict=neutral (gyroscopic);# eig_growth=0 index=0 verdict=stable (minimum);$(one 1.5 "--mode 1 --side -1" eig_growth | grep 'index=1 verdict=unstable$');" ] \
+   && one 1.5 "--mode 1 --side -1" eig_growth | awk '{ split($2, a, "="); exit !(a[2] > 0.1) }'; then
+  pass "driven --omega --stability: the three shapes at omega 1.5, neutral / minimum / unstable"
+else fail "driven --omega --stability: the three shapes at omega 1.5: $verdicts $(tail -1 "$tmp/err")"; fi
+row=$(grep -v '^[#o]' "$tmp/bm.csv" | tail -1)
+w=$(echo "$row" | cut -d, -f1)
+x=$(one "$w" "--mode 0" omega= | sed 's/.* tip_x=\([^ ]*\) .*/\1/')
+if [ -n "$x" ] && awk -v a="$x" -v b="$(echo "$row" | cut -d, -f2)" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a < 0 && d < 1e-9) }' \
+   && [ "$(one "$w" "--mode 0" eig_growth)" = "# eig_growth=0 index=$(echo "$row" | cut -d, -f9) verdict=$(echo "$row" | cut -d, -f10)" ]; then
+  pass "driven --mode 0 at omega $w: the far-side branch's small end (tip $x, its verdict)"
+else fail "driven --mode 0 at omega $w: tip $x against the branch's $row"; fi
+if [ "$(one 0.8 "--mode 0" eig_growth)" = "# eig_growth=0 index=0 verdict=stable (minimum)" ] \
+   && one 0.8 "--mode 0" omega= | grep -q 'tip_x=0\.1'; then
+  pass "driven --mode 0 below resonance: in phase with the pivot, a minimum"
+else fail "driven --mode 0 below resonance: $(one 0.8 "--mode 0" omega=) $(tail -1 "$tmp/err")"; fi
 
 finish

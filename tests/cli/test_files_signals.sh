@@ -270,6 +270,9 @@ expect_error "scene: trace points are bounded" "trace points exceeds the bound o
 expect_error "stability --dt beyond rk4's stability interval: an integration failure, not 'unstable'" \
   "the run with --dt 0.05 grew at [0-9.]+ while the linearisation gives 0 at omega 4: the step is beyond the stability interval of rk4" \
   stability --omega 4 --mode 2 --links 60 --dt 0.05 -o "$out"
+expect_error "stability --dt beyond gauss2's reach: the failure names the step given" \
+  "the run with --dt 0.05 failed \(steps of at most --dt .*\): the Gauss stage iteration diverges.*give a smaller --dt" \
+  stability --omega 4 --mode 2 --links 60 --method gauss2 --dt 0.05 -o "$out"
 
 # ---- long phases poll the stop request ----
 # prompt NAME ARGS...: SIGINT 2 s into a long phase ends it within 2 s (about 0.1-0.3 s on an

@@ -196,6 +196,25 @@ for bad in 2.5 1e3 ten ''; do
 done
 expect_error "shape: --max-steps needs --links" "^whirl shape: --max-steps needs --links\$" \
   shape --mode 2 --omega 4 --max-steps 100 -o "$tmp/out.csv"
+# ---- stability --windows of the continuum: the modes done and the rate each search reached ----
+cwin="stability --windows --modes 2 --omega-min 5 --omega-max 8"
+on_tty cwin "-o \"$tmp/cwin_tty.csv\"" $cwin
+rc=$?
+progress_lines cwin stability \
+  'windows: [01] of 1 modes done(; mode 2: omega [0-9.]+ of 8 \(now [0-9.]+\))?'
+# shellcheck disable=SC2086
+"$WHIRL" $cwin -o "$tmp/cwin.csv" 2>"$tmp/cwin.err"
+if [ $rc -eq 0 ] && [ -s "$tmp/cwin.lines" ] && ! grep -q 'left' "$tmp/cwin.tty" &&
+   awk '/mode 2:/ {split($0, f, /[ (),]+/); hi = f[12]; now = f[16]
+                   if (!(hi >= 5 && hi <= 8 && now >= 5 && now <= hi && hi >= last)) bad = 1
+                   last = hi; n++}
+        END {exit bad || n == 0}' "$tmp/cwin.lines" &&
+   tail -c 4 "$tmp/cwin.tty" | cmp -s - "$tmp/erase" &&
+   [ ! -s "$tmp/cwin.err" ] &&
+   [ "$(grep -v '^# mode' "$tmp/cwin_tty.csv")" = "$(grep -v '^# mode' "$tmp/cwin.csv")" ]; then
+  pass "stability --windows (continuum): a progress line with the rate reached, erased at the end, the same CSV"
+else fail "stability --windows progress (rc=$rc: $(head -n 2 "$tmp/cwin.lines"; tr '\r\033' '|^' <"$tmp/cwin.tty" | head -c 300))"; fi
+
 if "$WHIRL" shape --help | grep -q -- '--max-steps S .*(default max(100000, 200 N))' \
    && "$WHIRL" sweep --help | grep -q -- '--max-steps S '; then pass "--max-steps in the help"
 else fail "--max-steps in the help"; fi

@@ -123,6 +123,47 @@ if "$WHIRL" stability --omega 3.5 --mode 2 --side -1 --links 12 --eps 0.05 --dra
   pass "driven mode 2, upper lobe on the pivot's side: converging"
 else fail "driven mode 2: $(cat "$tmp/err" "$tmp/ds.csv" "$tmp/ds2.csv" 2>/dev/null | tail -3)"; fi
 
+# The three shapes of the forced chain at one rate past the fold (omega 1.5, eps 0.05, 20 links),
+# each checked by a perturbed run of 30 periods: mode 0 (the near-axis shape, far side) neutral,
+# index 2; mode 1 on the pivot's side a minimum; mode 1 on the far side unstable, the run growing
+# at the eigenvalue's rate within 1%. With linear drag c the near-axis shape converges at -c/2 (the
+# uniform chain's drag damps every motion alike) and so does the run.
+T="--omega 1.5 --links 20 --eps 0.05 --periods 30"
+if "$WHIRL" stability $T --mode 0 -o "$tmp/n0.csv" 2>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 1 -o "$tmp/n1.csv" 2>>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 1 --side -1 -o "$tmp/n2.csv" 2>>"$tmp/err" \
+   && "$WHIRL" stability $T --mode 0 --drag 0.05 -o "$tmp/n3.csv" 2>>"$tmp/err" \
+   && [ "$(csv_field "$tmp/n0.csv" verdict),$(csv_field "$tmp/n0.csv" index)" = "neutral (gyroscopic),2" ] \
+   && [ "$(csv_field "$tmp/n1.csv" verdict),$(csv_field "$tmp/n1.csv" index)" = "stable (minimum),0" ] \
+   && [ "$(csv_field "$tmp/n2.csv" verdict),$(csv_field "$tmp/n2.csv" index)" = "unstable,1" ] \
+   && [ "$(csv_field "$tmp/n3.csv" verdict)" = converging ] \
+   && awk -v a="$(csv_field "$tmp/n0.csv" tip_x)" -v b="$(csv_field "$tmp/n2.csv" tip_x)" -v c="$(csv_field "$tmp/n1.csv" tip_x)" \
+        'BEGIN { exit !(b < a && a < 0 && a > -0.25 && c > 0.5) }' \
+   && awk -v d0="$(csv_field "$tmp/n0.csv" max_deviation)" -v d1="$(csv_field "$tmp/n1.csv" max_deviation)" \
+        'BEGIN { exit !(d0 < 10 && d1 < 10) }' \
+   && awk -v e="$(csv_field "$tmp/n2.csv" eig_growth)" -v s="$(csv_field "$tmp/n2.csv" sim_growth)" \
+        'BEGIN { exit !(e > 0.1 && (s - e) / e < 0.01 && (e - s) / e < 0.01) }' \
+   && awk -v e="$(csv_field "$tmp/n3.csv" eig_growth)" 'BEGIN { exit !(e > -0.025 - 1e-9 && e < -0.025 + 1e-9) }'; then
+  pass "driven, one rate: near-axis neutral, pivot side a minimum, far side unstable (runs agree); drag: -c/2"
+else fail "driven, one rate, three shapes: $(cat "$tmp/err" "$tmp/n0.csv" "$tmp/n1.csv" "$tmp/n2.csv" "$tmp/n3.csv" 2>/dev/null | grep -v '^#' | tail -5)"; fi
+# The near-axis shape of a tiny drive is the hanging chain seen from the rotating frame: its
+# eigenvalues are i (nu_k +- omega), nu_k the hanging chain's pendulum frequencies, which are the
+# rates where the free whirling modes are born (whirl critical).
+if "$WHIRL" stability --omega 1.5 --mode 0 --links 20 --eps 1e-6 --eigenvalues --linear \
+     -o "$tmp/ev.csv" 2>"$tmp/err" && "$WHIRL" critical --links 20 -o "$tmp/crit.csv" 2>>"$tmp/err"; then
+  bad=$(grep -v '^[#m]' "$tmp/crit.csv" | head -3 | while IFS=, read -r k nu; do
+    for f in $(awk -v n="$nu" 'BEGIN { printf "%.15g %.15g\n", n + 1.5, (n > 1.5 ? n - 1.5 : 1.5 - n) }'); do
+      grep -v '^[#r]' "$tmp/ev.csv" | awk -F, -v f="$f" '{ d = $2 - f; if (d < 0) d = -d; if (d < 1e-6 && ($1 < 0 ? -$1 : $1) < 1e-9) hit = 1 }
+        END { if (!hit) print f }'
+    done; done)
+  if [ -z "$bad" ] && [ "$(grep -vc '^[#r]' "$tmp/ev.csv")" -eq 80 ]; then
+    pass "near-axis eigenvalues: i (nu_k +- omega) for k = 1..3"
+  else fail "near-axis eigenvalues: missing $bad"; fi
+else fail "near-axis eigenvalues: $(tail -1 "$tmp/err")"; fi
+expect_error "near-axis without a drive" "mode 0 .*needs --eps" stability --omega 1.5 --mode 0 --links 20 -o "$tmp/out.csv"
+expect_error "near-axis with a side" "--side picks the seed" stability --omega 1.5 --mode 0 --links 20 --eps 0.05 --side -1 -o "$tmp/out.csv"
+expect_error "near-axis between birth and fold" "could not be followed" stability --omega 1.3 --mode 0 --links 20 --eps 0.05 -o "$tmp/out.csv"
+
 # The driven map: rows where the shapes exist, with the tip columns.
 if "$WHIRL" stability --omega-min 2 --omega-max 5 --omega-count 4 --modes 1,2 --links 10 --eps 0.03 \
      --drag 0.1 --linear -o "$tmp/dmap.csv" 2>"$tmp/err" \
@@ -198,27 +239,65 @@ if "$WHIRL" stability --windows $D --modes 2 --omega-min 2 --omega-max 6 -o "$tm
   else fail "windows with drag: the edges [$from, $to] disagree with the linear growth"; fi
 else fail "windows with drag: $(cat "$tmp/err" "$tmp/dd.csv" 2>/dev/null | tail -4)"; fi
 
-# Ctrl-C in a dissipative --windows run: the modes finished are written whole (the rows of a
-# run of that mode alone), the others marked not done, exit 130 within 2 s. One thread; the
-# signal comes at three times the time mode 8 alone just took (mode 2 takes about five times
-# as long as mode 8, so it is still running then, however loaded the machine).
-dwin="stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3"
-t0=$(date +%s.%N)
+# windows_sigint NAME "ARGS" FAST SLOW: Ctrl-C in a --windows run of modes FAST,SLOW (ARGS
+# without --modes): the mode finished is written whole (the rows of a run of that mode alone),
+# the other marked not done, exit 130 within 2 s. One thread; the signal comes at three times
+# the time mode FAST alone just took (SLOW takes five or more times as long, so it is still
+# running then, however loaded the machine).
+windows_sigint() {
+  t0=$(date +%s.%N)
+  # shellcheck disable=SC2086
+  OMP_NUM_THREADS=1 "$WHIRL" $2 --modes "$3" -o "$tmp/wfast.csv" 2>/dev/null
+  wait_fast=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
+  # shellcheck disable=SC2086
+  OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $2 --modes "$3,$4" -o "$tmp/wint.csv" \
+    >/dev/null 2>"$tmp/wint.err" &
+  pid=$!
+  sleep "$wait_fast"
+  interrupt $pid
+  if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
+     grep -q "interrupted: 1 of 2 modes done in '$tmp/wint.csv'" "$tmp/wint.err" &&
+     grep -q "^# mode $4: interrupted, not done\$" "$tmp/wint.csv" &&
+     grep -q "^# mode $3: examined" "$tmp/wint.csv" &&
+     [ "$(grep -v '^#' "$tmp/wint.csv")" = "$(grep -v '^#' "$tmp/wfast.csv")" ]; then
+    pass "$1: SIGINT stops it in $late s, exit 130, mode $3 kept whole, mode $4 marked not done"
+  else fail "$1, SIGINT (rc=$rc, $late s, $(cat "$tmp/wint.err"; grep '^# mode' "$tmp/wint.csv"))"; fi
+}
+# mode 2 of the damped chain takes about five times as long as mode 8, mode 4 of the continuum
+# about six times as long as mode 2
+windows_sigint "windows with damping" \
+  "stability --windows --links 60 --omega-min 3 --omega-max 14 --scan-step 0.05 --damping 1e-3" 8 2
+windows_sigint "continuum windows" "stability --windows --omega-min 1 --omega-max 15" 2 4
+
+# --memory: the collocation's bound. Mode 8 at 20.5 needs 731 points, more than the 720 of
+# 16 MB: that mode fails naming the option (exit 1), mode 2 is written whole, mode 8 marked with
+# the failure; 32 MB hold it.
+mwin="stability --windows --omega-min 20 --omega-max 21"
 # shellcheck disable=SC2086
-OMP_NUM_THREADS=1 "$WHIRL" $dwin --modes 8 -o "$tmp/d8.csv" 2>/dev/null
-wait8=$(echo "3 * ($(date +%s.%N) - $t0)" | bc)
+"$WHIRL" $mwin --modes 2,8 --memory 16 -o "$tmp/mem.csv" 2>"$tmp/mem.err"
+rc=$?
 # shellcheck disable=SC2086
-OMP_NUM_THREADS=1 env --default-signal=INT "$WHIRL" $dwin --modes 8,2 -o "$tmp/dint.csv" \
-  >/dev/null 2>"$tmp/dint.err" &
-pid=$!
-sleep "$wait8"
-interrupt $pid
-if [ $rc -eq 130 ] && [ "$(echo "$late < 2" | bc)" -eq 1 ] &&
-   grep -q "interrupted: 1 of 2 modes done in '$tmp/dint.csv'" "$tmp/dint.err" &&
-   grep -q '^# mode 2: interrupted, not done$' "$tmp/dint.csv" &&
-   [ "$(grep -v '^#' "$tmp/dint.csv")" = "$(grep -v '^#' "$tmp/d8.csv")" ]; then
-  pass "windows with damping: SIGINT stops it in $late s, exit 130, mode 8 kept whole, mode 2 marked not done"
-else fail "windows with damping, SIGINT (rc=$rc, $late s, $(cat "$tmp/dint.err"; grep '^# mode' "$tmp/dint.csv"))"; fi
+if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/mem.err")" -eq 1 ] &&
+   grep -q "mode 8 at omega = 20.5 needs 731 collocation points.*more than the 720 that 16 MB hold: lower the rate or raise the memory bound (--memory MB); 1 of 2 modes written to '$tmp/mem.csv'" "$tmp/mem.err" &&
+   grep -q '^# mode 8: not done: mode 8 at omega = 20.5 needs 731' "$tmp/mem.csv" &&
+   "$WHIRL" $mwin --modes 2 -o "$tmp/mem2.csv" &&
+   [ "$(grep -v '^#' "$tmp/mem.csv")" = "$(grep -v '^#' "$tmp/mem2.csv")" ] &&
+   "$WHIRL" $mwin --modes 8 --memory 32 -o "$tmp/mem8.csv" && grep -q '^# mode 8: examined' "$tmp/mem8.csv"; then
+  pass "--memory 16: mode 8 beyond the bound names --memory, mode 2 kept whole; --memory 32 holds mode 8"
+else fail "--memory (rc=$rc, $(cat "$tmp/mem.err"; grep '^# mode' "$tmp/mem.csv"))"; fi
+expect_error "--memory with --links" "--memory applies to the continuum" stability --windows $R --links 10 --memory 100 -o "$tmp/out.csv"
+expect_error "--memory without windows" "--memory applies to the continuum" stability --omega 3 --mode 1 --memory 100 -o "$tmp/out.csv"
+expect_error "--memory below 16 MB" "memory" stability --windows $R --memory 8 -o "$tmp/out.csv"
+# the atlas takes the bound too: mode 20 at its birth (31.0243) needs 765 points, more than the
+# 720 of 16 MB (the default 1024 MB hold them)
+expect_error "--atlas --memory 16: the shape at the birth of mode 20 is beyond it" \
+  "mode 20, omega 30\.\.31\.5: mode 20 at omega = 31\.0243 needs 765 collocation points.*720 that 16 MB hold.*\(--memory MB\)" \
+  stability --atlas --modes 20 --omega-max 31.5 --memory 16 -o "$tmp/out.csv"
+physical=$(awk '/^MemTotal:/ { printf "%d", $2 / 1024 }' /proc/meminfo)
+if [ "$physical" -gt 0 ] && [ "$physical" -lt 1000000 ]; then
+  expect_error "--memory beyond the machine's memory ($physical MB)" \
+    "--memory 1e\+06 MB is more than the machine's [0-9]+ MB" stability --windows $R --memory 1e6 -o "$tmp/out.csv"
+fi
 
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
@@ -300,6 +379,12 @@ if "$WHIRL" stability --omega 4.5 --mode 2 --links 6 --eigenvalues -o "$tmp/ev.c
         END { exit !(g > 0.1 && hi - g < 1e-12 && hi + lo < 1e-12 && sr < 1e-9 && si < 1e-9 && si > -1e-9) }'; then
   pass "--eigenvalues: 22 eigenvalues (4N - 2), the largest real part is the growth, Hamiltonian"
 else fail "--eigenvalues: $(cat "$tmp/err" "$tmp/ev.csv" 2>/dev/null | head -3)"; fi
+# the hand-swung chain's eigenvalues: the header records its eps, drag and side
+if "$WHIRL" stability --omega 3 --mode 1 --links 12 --eps 0.05 --drag 0.1 --side -1 --eigenvalues \
+     -o "$tmp/evd.csv" 2>"$tmp/err" \
+   && grep -q '^# whirl stability --eigenvalues: omega 3, mode 1, 12 links, damping 0, hand-swung: eps 0.05, drag 0.1, drag_quadratic 0, side -1;' "$tmp/evd.csv"; then
+  pass "--eigenvalues of the hand-swung chain: eps, drag, drag_quadratic and side in the header"
+else fail "--eigenvalues of the hand-swung chain's header: $(cat "$tmp/err"; head -1 "$tmp/evd.csv")"; fi
 expect_error "eigenvalues without --omega" "--eigenvalues needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --eigenvalues
 
 # ---- --atlas: the windows of --windows, a Krein signature at each edge, resumable ----

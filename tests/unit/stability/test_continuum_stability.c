@@ -228,10 +228,29 @@ static double growth_at(whirl_cstab *w, double omega)
     return g;
 }
 
+/* whirl_cstab_params.progress: the calls, their mode and their range of rates. */
+typedef struct progress_seen {
+    size_t calls;
+    int other_mode;
+    double lo, hi;
+} progress_seen;
+
+static void count_progress(void *ctx, int mode, double omega)
+{
+    progress_seen *s = ctx;
+    s->calls++;
+    s->other_mode |= mode != 2;
+    s->lo = fmin(s->lo, omega);
+    s->hi = fmax(s->hi, omega);
+}
+
 static void test_window(void **state)
 {
     (void)state;
     whirl_cstab_params cp = whirl_cstab_defaults();
+    progress_seen seen = {0, 0, INFINITY, -INFINITY};
+    cp.progress = count_progress;
+    cp.progress_ctx = &seen;
     whirl_cstab *w = whirl_cstab_alloc(&cp);
     whirl_windows_params p = whirl_windows_defaults();
     p.omega_min = 4.3, p.omega_max = 4.65;
@@ -240,6 +259,10 @@ static void test_window(void **state)
     whirl_windows_stats st;
     assert_int_equal(whirl_cstab_windows(w, 2, &p, win, 4, &count, &st), 0);
     assert_int_equal(count, 1);
+    /* one report before each shape of the search, within its range */
+    assert_int_equal(seen.calls, st.shapes);
+    assert_false(seen.other_mode);
+    assert_true(seen.lo >= p.omega_min && seen.hi <= p.omega_max && seen.lo < seen.hi);
     print_message("# mode 2: window [%.10f, %.10f], growth %.6g at %.6f (%zu solves); N-link "
                   "chain extrapolated [4.403221 +- 2e-6, 4.567784 +- 4e-7]\n", win[0].from,
                   win[0].to, win[0].max_growth, win[0].at,

@@ -97,6 +97,40 @@ static void test_linear_response(void **state)
     }
 }
 
+/* Mode 0, the near-axis shape: for a small drive the linear response eps / J0(2 omega) on either
+ * side of omega_1 (in phase below, opposite above); at eps = 0 the hanging chain; at a rate with
+ * the triple-valued response (omega = 1.5, eps = 0.05, past the fold at about 1.39) the smallest
+ * of three distinct shapes, on the far side from the pivot; between omega_1 and that fold it does
+ * not exist (it has met mode 1's far-side shape at the fold). */
+static void test_near_axis(void **state)
+{
+    (void)state;
+    const double omegas[] = {0.7, 1.5, 1.9, 3.3};
+    whirl_driven_info info;
+    for (size_t k = 0; k < sizeof omegas / sizeof omegas[0]; k++) {
+        const double omega = omegas[k], eps = 1e-6, linear = eps / gsl_sf_bessel_J0(2 * omega);
+        whirl_driven_params p = params(omega, eps, 0, 0, 0);
+        assert_int_equal(whirl_driven_mode(NULL, &p, 0, 1, &info), GSL_SUCCESS);
+        assert_true(rel_diff(info.tip[0], linear) < 1e-8);
+        p.drive_radius = 0;
+        assert_int_equal(whirl_driven_mode(NULL, &p, 0, 1, &info), GSL_SUCCESS);
+        assert_true(info.tip_r == 0);
+    }
+    whirl_driven_params p = params(1.5, 0.05, 0, 0, 0);
+    whirl_driven_info near, in_phase, far;
+    assert_int_equal(whirl_driven_mode(NULL, &p, 0, 1, &near), GSL_SUCCESS);
+    assert_int_equal(whirl_driven_mode(NULL, &p, 1, 1, &in_phase), GSL_SUCCESS);
+    assert_int_equal(whirl_driven_mode(NULL, &p, 1, -1, &far), GSL_SUCCESS);
+    assert_true(near.tip[0] < 0 && far.tip[0] < near.tip[0] - 0.3 && in_phase.tip[0] > 0.5);
+    assert_true(near.residual < 1e-12);
+    /* the small shape is the one the linear response seeds */
+    const double guess[2] = {0.05 / gsl_sf_bessel_J0(3.0), 0};
+    assert_int_equal(whirl_driven_solve(NULL, &p, guess, &info), GSL_SUCCESS);
+    assert_true(fabs(info.tip[0] - near.tip[0]) < 1e-10);
+    p.omega = 1.3;
+    assert_int_equal(whirl_driven_mode(NULL, &p, 0, 1, &info), GSL_EDOM);
+}
+
 /* A non-uniform chain with eps, linear and quadratic drag: every mass in force balance. */
 static void test_nlink_force_balance(void **state)
 {
@@ -352,8 +386,9 @@ static void test_errors(void **state)
     assert_int_equal(whirl_driven_solve(chain, &tipped, guess, &info), GSL_EINVAL);
     whirl_driven_params undriven = params(1.5, 0, 0.05, 0, 0);
     assert_int_equal(whirl_driven_solve(NULL, &undriven, guess, &info), GSL_EDOM);
-    assert_int_equal(whirl_driven_mode(NULL, &p, 0, 1, &info), GSL_EINVAL);
+    assert_int_equal(whirl_driven_mode(NULL, &p, -1, 1, &info), GSL_EINVAL);
     assert_int_equal(whirl_driven_mode(NULL, &p, 1, 0, &info), GSL_EINVAL);
+    assert_int_equal(whirl_driven_mode(NULL, &p, 0, 0, &info), GSL_EINVAL);
     whirl_driven_params slow = params(2.0, 0.01, 0, 0, 0); /* mode 2 needs omega > 2.76 */
     assert_int_equal(whirl_driven_mode(NULL, &slow, 2, 1, &info), GSL_EDOM);
     double buf[5][6];
@@ -384,6 +419,7 @@ int main(void)
         cmocka_unit_test(test_free_nlink),
         cmocka_unit_test(test_free_continuum),
         cmocka_unit_test(test_linear_response),
+        cmocka_unit_test(test_near_axis),
         cmocka_unit_test(test_nlink_force_balance),
         cmocka_unit_test(test_fixed_point_of_dynamics),
         cmocka_unit_test(test_trailing_and_torque),
