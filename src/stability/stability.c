@@ -54,6 +54,7 @@
 
 #include "whirl/stability.h"
 #include "core/error.h"
+#include "core/input.h"
 #include "core/worker.h"
 
 /* The eigen-solve of one linearisation: its matrices (written by the linearisation), their
@@ -174,7 +175,10 @@ whirl_stability *whirl_stability_alloc(size_t n)
     return w;
 fail:
     whirl_stability_free(w);
-    whirl_fail(GSL_ENOMEM, "out of memory for the linear analysis of %zu links", n);
+    char need[32]; /* M, G, C, K, the factor (2N x 2N), the right-hand sides, the 4N x 4N form */
+    const double bytes = 44.0 * sizeof(double) * (double)n * (double)n;
+    whirl_fail(GSL_ENOMEM, "out of memory for the linear analysis of %zu links (it needs about "
+               "%s)", n, whirl_bytes_words(need, sizeof need, bytes));
     return NULL;
 }
 

@@ -98,6 +98,7 @@
 
 #include "whirl/stability.h"
 #include "core/error.h"
+#include "core/input.h"
 #include "core/roots.h"
 #include "stability/windows_internal.h"
 #include "core/worker.h"
@@ -198,7 +199,10 @@ whirl_windows *whirl_windows_alloc(size_t n)
     return w;
 fail:
     whirl_windows_free(w);
-    whirl_fail(GSL_ENOMEM, "out of memory for the window search of %zu links", n);
+    char need[32]; /* its 2N x 2N and N x N blocks, and the linearisation's (stability.c) */
+    const double bytes = 57.0 * sizeof(double) * (double)n * (double)n;
+    whirl_fail(GSL_ENOMEM, "out of memory for the window search of %zu links (it needs about %s)",
+               n, whirl_bytes_words(need, sizeof need, bytes));
     return NULL;
 }
 
