@@ -117,6 +117,12 @@ WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
  * (the linearisation kept). */
 WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
 
+/* tick(data) is called on the calling thread about every 20 ms while a dense solve of w runs on
+ * its worker thread (whirl_stability_eigenvalues and whirl_stability_index above 32 links, whose
+ * solves take minutes at a few thousand links): for a progress display. It must not call w.
+ * NULL (the default) for none. */
+WHIRL_API void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *data), void *data);
+
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
  * whirl_nlink_branch at model->omega, nodes from whirl_nlink_positions) and returns its growth.
  * The model must have no drive and no air drag (GSL_EINVAL): those shapes are free ones. At high

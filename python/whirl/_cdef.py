@@ -156,6 +156,7 @@ int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
 whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
 whirl_verdict whirl_verdict_linear(double growth, int index);
 int whirl_stability_index(const whirl_stability *w, int *index);
+void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *data), void *data);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;

@@ -722,6 +722,20 @@ static int linearise_point(const cli_command *cmd, options *o, const whirl_chain
     return 0;
 }
 
+/* The progress line while the dense solves of --eigenvalues run (whirl_stability_set_tick). */
+typedef struct solve_line {
+    cli_progress_state line;
+    long links;
+    double after; /* cli_progress_after() */
+} solve_line;
+
+static void solve_tick(void *data)
+{
+    solve_line *s = data;
+    if (cli_wall_seconds() - s->line.start < s->after) return;
+    cli_progress_text(&s->line, "eigen-solve of %ld links", s->links);
+}
+
 /* --eigenvalues: every eigenvalue of the linearisation at the one rate (the symmetry's zeros
  * removed), in increasing real part, with the index and the verdict in comment lines. */
 static int run_eigenvalues(const cli_command *cmd, options *o)
@@ -739,8 +753,12 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     int rc = pts ? linearise_point(cmd, o, c, w, &pts[0]) : 1;
     size_t n = 0;
     const double *re = NULL, *im = NULL;
-    if (!rc && whirl_stability_eigenvalues(w, &n, &re, &im) != GSL_SUCCESS)
-        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    solve_line progress = {.links = o->links, .after = cli_progress_after()};
+    cli_progress_begin(&progress.line, cmd, "eigen-solve", 0, 0);
+    whirl_stability_set_tick(w, solve_tick, &progress);
+    const int solved = rc ? GSL_SUCCESS : whirl_stability_eigenvalues(w, &n, &re, &im);
+    cli_progress_clear(&progress.line);
+    if (solved != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
     if (!rc && order == NULL) rc = cli_error(cmd, "out of memory");
     cli_out out;

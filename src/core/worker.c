@@ -348,7 +348,8 @@ static void dsyev_run(void *data, const whirl_worker *self)
                             j->ev);
 }
 
-int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info)
+int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info,
+                       void (*tick)(void *tick_data), void *tick_data)
 {
     const double dn = (double)n;
     if (4.0 / 3.0 * dn * dn * dn <= WORKER_INLINE_FLOPS) { /* the tridiagonal reduction */
@@ -367,7 +368,7 @@ int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info)
     j->n = n;
     j->ev = j->a + n * n;
     copy_columns(j->a, n, a, lda, n, n);
-    if (whirl_worker_run(dsyev_run, j, dsyev_release) != GSL_SUCCESS)
+    if (whirl_worker_run_ticked(dsyev_run, j, dsyev_release, tick, tick_data) != GSL_SUCCESS)
         return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request during an eigen-solve");
     *info = (int)j->info;
     memcpy(ev, j->ev, n * sizeof(double));

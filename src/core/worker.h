@@ -71,7 +71,9 @@ int whirl_worker_dposv(size_t n, size_t nrhs, double *a, size_t lda, double *b, 
 /* LAPACK's dsyev without eigenvectors (column-major, upper triangle 'U'): the eigenvalues of the
  * symmetric n x n matrix a (leading dimension lda, overwritten as dsyev does) in ascending order
  * into ev. Above WORKER_INLINE_FLOPS on copies in a worker. *info is LAPACK's; returns
- * GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; a, ev untouched) or GSL_ENOMEM. */
-int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info);
+ * GSL_SUCCESS, WHIRL_EINTERRUPTED (message set; a, ev untouched) or GSL_ENOMEM. tick(tick_data)
+ * as whirl_worker_run_ticked's (may be NULL). */
+int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info,
+                       void (*tick)(void *tick_data), void *tick_data);
 
 #endif

@@ -94,6 +94,8 @@ struct whirl_stability {
     double *x, *y, *z; /* the nodes (N + 1): input of the wrappers, then the linearised shape */
     double *re, *im;   /* eigenvalues (4N), copied from the solve */
     int linearised;    /* 1 after a successful whirl_stability_linearise */
+    void (*tick)(void *data); /* called while a dense solve runs on a worker (or NULL) */
+    void *tick_data;
 };
 
 static void solve_free(void *data)
@@ -533,7 +535,8 @@ int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double 
     stability_solve *s = w->solve;
     if (w->n <= STABILITY_INLINE_LINKS) {
         solve_run(s, NULL);
-    } else if (whirl_worker_run(solve_run, s, solve_free) != GSL_SUCCESS) {
+    } else if (whirl_worker_run_ticked(solve_run, s, solve_free, w->tick, w->tick_data) !=
+               GSL_SUCCESS) {
         /* the worker owns s now, until LAPACK returns; the next linearisation allocates anew */
         w->solve = NULL;
         w->linearised = 0;
@@ -569,7 +572,7 @@ int whirl_stability_index(const whirl_stability *w, int *index)
     }
     /* symmetric: the row-major array is its own column-major transpose */
     int info;
-    const int status = whirl_worker_dsyev(q, a, q, ev, &info);
+    const int status = whirl_worker_dsyev(q, a, q, ev, &info, w->tick, w->tick_data);
     if (status) { /* a stop request: the solve runs on a worker */
         free(a), free(ev);
         return status;
@@ -582,6 +585,12 @@ int whirl_stability_index(const whirl_stability *w, int *index)
     free(a), free(ev);
     if (info != 0) return whirl_fail(GSL_EFAILED, "the index's eigen-solve failed (dsyev %d)", (int)info);
     return GSL_SUCCESS;
+}
+
+void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *data), void *data)
+{
+    w->tick = tick;
+    w->tick_data = data;
 }
 
 int whirl_stability_growth(whirl_stability *w, double *growth)

@@ -219,4 +219,16 @@ if "$WHIRL" shape --help | grep -q -- '--max-steps S .*(default max(100000, 200 
    && "$WHIRL" sweep --help | grep -q -- '--max-steps S '; then pass "--max-steps in the help"
 else fail "--max-steps in the help"; fi
 
+# ---- stability --eigenvalues: the dense eigen-solve (minutes at thousands of links) ----
+eig="stability --omega 4 --mode 2 --links 150 --eigenvalues"
+on_tty eig "-o \"$tmp/eig_tty.csv\"" $eig
+rc=$?
+progress_lines eig stability 'eigen-solve of 150 links'
+# shellcheck disable=SC2086
+"$WHIRL" $eig -o "$tmp/eig.csv" 2>"$tmp/eig.err"
+if [ $rc -eq 0 ] && [ -s "$tmp/eig.lines" ] && tail -c 4 "$tmp/eig.tty" | cmp -s - "$tmp/erase" &&
+   [ ! -s "$tmp/eig.err" ] && cmp -s "$tmp/eig_tty.csv" "$tmp/eig.csv"; then
+  pass "stability --eigenvalues: a progress line while the eigen-solve runs, erased at the end, the same CSV"
+else fail "stability --eigenvalues: progress (rc=$rc, $(wc -l <"$tmp/eig.lines") lines, $(tail -c 80 "$tmp/eig.tty" | od -c | head -3))"; fi
+
 finish
