@@ -64,7 +64,7 @@ int main(void)
     check(whirl_continuum_solve(omega, 2, 0, 0, &info), "mode-2 shape");
     printf("mode-2 shape at omega = %g: tip_r = %.6f\n", omega, info.tip_r);
     printf("  top tension = %.6f, depth = %.6f, node at s = %.6f\n", info.top_tension, info.depth,
-           info.node_s[0]);
+           info.crossing_s[0]);
     double err[3];
     for (int j = 0; j < 3; j++) {
         const size_t n = 50u << j;

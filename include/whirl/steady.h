@@ -34,14 +34,24 @@ typedef struct whirl_shape_info {
     double max_r;       /* max over the chain of |r| [L] */
     double top_tension; /* tension at the pivot [M g] */
     double depth;       /* height of the pivot above the free end [L] */
-    int n_nodes;        /* axis crossings below the pivot (sign changes of r along the masses
-                         * for the N-link chain): mode - 1 for the continuum; on a coarse N-link
-                         * chain the branch of mode k can have another count at high rates;
-                         * all of them, also beyond WHIRL_SHAPE_NODES */
-    double node_s[WHIRL_SHAPE_NODES]; /* the arclengths from the pivot [L] of the first
-                                       * min(n_nodes, WHIRL_SHAPE_NODES) of them, increasing
-                                       * (an N-link shape's full list: whirl_nlink_node_arclengths
-                                       * on the r of whirl_nlink_solve_nodes) */
+    /* A node is a point of the chain on the rotation axis; the pivot is one. The node count k
+     * (mode, the command line's node_count) is 1 + the crossings below the pivot. n_nodes and
+     * node_s are the names of the fields before 2.2, kept as aliases of the same storage. */
+    union {
+        int n_crossings; /* axis crossings below the pivot (sign changes of r along the masses
+                          * for the N-link chain): mode - 1 for the continuum; on a coarse
+                          * N-link chain the branch of mode k can have another count at high
+                          * rates; all of them, also beyond WHIRL_SHAPE_NODES */
+        int n_nodes;
+    };
+    union {
+        double crossing_s[WHIRL_SHAPE_NODES]; /* the arclengths from the pivot [L] of the first
+                                               * min(n_crossings, WHIRL_SHAPE_NODES) crossings,
+                                               * increasing (an N-link shape's full list:
+                                               * whirl_nlink_node_arclengths on the r of
+                                               * whirl_nlink_solve_nodes) */
+        double node_s[WHIRL_SHAPE_NODES];
+    };
 } whirl_shape_info;
 
 /* ---- continuous chain ---- */
@@ -223,7 +233,10 @@ typedef struct whirl_branch_event {
     double omega;     /* where [sqrt(g/L)], located by Brent's method to ~1e-14 relative */
     double tip_r;     /* signed tip radius there [L] (positive on a branch from its birth) */
     double arclength; /* from the start of the path, in the metric above */
-    int n_nodes;      /* axis crossings below the pivot there */
+    union {
+        int n_crossings; /* axis crossings below the pivot there (node count - 1) */
+        int n_nodes;     /* its name before 2.2, kept: the same storage */
+    };
 } whirl_branch_event;
 
 #define WHIRL_PATH_EVENTS_MAX 4 /* events one step can hold */

@@ -81,7 +81,7 @@ def test_shape(whirl_program, tmp_path, links):
         c(name, getattr(s, name), t[name])
     for name in ("omega", "tip_r", "max_r", "top_tension", "depth"):
         c(name, getattr(s, name), float(t.summary[name]))
-    c("crossings", s.crossings, [float(v) for v in t.summary["nodes"].split(";") if v])
+    c("crossings", s.crossings, [float(v) for v in t.summary["crossing_s"].split(";") if v])
     assert s.node_count == int(t.summary["node_count"]) == 2
     c.done()
 
@@ -172,7 +172,7 @@ def test_driven(whirl_program, tmp_path, links):
     c("tip", d.tip, [float(t.summary["tip_" + k]) for k in "xyz"])
     for name in ("tip_r", "top_tension"):
         c(name, getattr(d, name), float(t.summary[name]))
-    assert d.node_count == int(t.summary["nodes"])
+    assert d.node_count == int(t.summary["node_count"])
     c.done()
 
 

@@ -95,7 +95,7 @@ def test_shape_matches_the_command_line_csv(tmp_path, whirl_program, args, kwarg
                                    err_msg=name)
     for name in ("tip_r", "max_r", "top_tension", "depth"):
         assert getattr(s, name) == pytest.approx(float(summary[name]), rel=1e-15, abs=1e-16)
-    nodes = [float(v) for v in summary["nodes"].split(";") if v]
+    nodes = [float(v) for v in summary["crossing_s"].split(";") if v]
     np.testing.assert_allclose(s.crossings, nodes, rtol=1e-15)
     assert s.mode == int(summary["mode"])
     assert s.node_count == int(summary["node_count"])

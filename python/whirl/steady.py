@@ -263,7 +263,7 @@ class Shape:
     ``top_tension``, ``depth``, ``crossings`` (arclengths of the axis crossings below the pivot:
     all of them for the N-link chain, the first 64 for the continuum; where an N-link shape's
     radii underflow towards the tip, r is 0 or subnormal and the crossings there come from the
-    force balance linearised about the hanging chain; the command line's ``nodes=``), ``units``,
+    force balance linearised about the hanging chain; the command line's ``crossing_s=``), ``units``,
     and the branch it lies on: ``critical`` (omega_k where mode k is born), ``chain`` (None:
     the continuum) and ``tip_mass``. A dataclass: pickles and copies."""
 

@@ -3,6 +3,7 @@
 #include <float.h>
 #include <limits.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,9 @@
 
 int cli_error(const cli_command *cmd, const char *fmt, ...)
 {
+    /* the reader of standard output has gone (SIGPIPE: `whirl shape ... | head -2`): the work
+     * stops without a word, as coreutils do; the exit status (141) still tells a script */
+    if (whirl_stop_signal() == SIGPIPE) return 1;
     char msg[4096];
     va_list ap;
     va_start(ap, fmt);
@@ -547,6 +551,40 @@ static int check_suffixes(const cli_command *cmd, const cli_option *opts, size_t
     return 0;
 }
 
+/* A chain's length or mass written as a bare number that is unlikely as meant: --length 60 is
+ * 60 m, --mass 0.0005 is half a gram (a hand-held chain is 0.1-10 m long and weighs grams to
+ * kilograms: the bounds below). A note, not an error: a 60 m cable is a chain too. */
+#define CLI_PLAUSIBLE_LENGTH_MAX 10.0 /* [m] */
+#define CLI_PLAUSIBLE_MASS_MIN 1e-3   /* [kg], a gram */
+static void note_implausible(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                             const char *const *text)
+{
+    for (size_t i = 0; i < nopts; i++) {
+        const cli_option *o = &opts[i];
+        if (text[i] == NULL || cli_suffix_name(text[i])[0] != '\0') continue;
+        const double v = *(const double *)o->value;
+        if (o->unit == CLI_UNIT_SET_LENGTH && v > CLI_PLAUSIBLE_LENGTH_MAX)
+            fprintf(stderr, "whirl %s: note: %s %s is %g m, longer than 10 m (write the unit if "
+                    "you meant otherwise: %gcm, %gmm)\n", cmd->name, o->name, text[i], v, v, v);
+        if (o->unit == CLI_UNIT_SET_MASS && v < CLI_PLAUSIBLE_MASS_MIN)
+            fprintf(stderr, "whirl %s: note: %s %s is %g kg (%g g), lighter than a gram (write "
+                    "the unit if you meant otherwise: 50g, 2kg)\n", cmd->name, o->name, text[i],
+                    v, v * 1e3);
+    }
+}
+
+/* "unexpected argument 'm.csv' (did you mean --shape m.csv?)": a file where the command reads
+ * one through an option (the first option that reads a FILE). */
+static int unexpected_argument(const cli_command *cmd, const cli_option *opts, size_t nopts,
+                               const char *arg)
+{
+    for (size_t i = 0; i < nopts; i++)
+        if (opts[i].input && opts[i].type == CLI_STRING && strcmp(opts[i].meta, "FILE") == 0)
+            return cli_error(cmd, "unexpected argument '%s' (did you mean %s %s?)", arg,
+                             opts[i].name, arg);
+    return cli_error(cmd, "unexpected argument '%s' (see --help)", arg);
+}
+
 /* "unknown option '--omgea' (did you mean --omega? see --help)". */
 static int unknown_option(const cli_command *cmd, const cli_option *opts, size_t nopts,
                           const char *arg, size_t len)
@@ -589,7 +627,7 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
             return 2;
         }
         if (arg[0] != '-' || strcmp(arg, "-") == 0) {
-            if (npos_seen == npos) return cli_error(cmd, "unexpected argument '%s'", arg);
+            if (npos_seen == npos) return unexpected_argument(cmd, opts, nopts, arg);
             positional[npos_seen++] = arg;
             continue;
         }
@@ -624,6 +662,7 @@ int cli_parse(const cli_command *cmd, int argc, char **argv, const cli_option *o
     const cli_units u = given_units(opts, nopts);
     if (cli_units_check(cmd, &u)) return 1;
     if (check_suffixes(cmd, opts, nopts, text_of)) return 1;
+    note_implausible(cmd, opts, nopts, text_of);
     convert_units(opts, nopts, given);
     if (check_table(cmd, opts, nopts, given)) return 1;
     return cli_check_options_files(cmd, opts, nopts, given, positional, npos_seen);

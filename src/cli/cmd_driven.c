@@ -117,7 +117,7 @@ static int run_shape(const cli_command *cmd, const driven_options *o, const whir
     print_parameters(out.fp, o);
     const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
     const double force = cli_units_scale(&o->units, CLI_UNIT_FORCE);
-    fprintf(out.fp, "# omega=%s mode=%d nodes=%d tip_x=%s tip_y=%s tip_z=%s tip_r=%s "
+    fprintf(out.fp, "# omega=%s mode=%d node_count=%d tip_x=%s tip_y=%s tip_z=%s tip_r=%s "
             "top_tension=%s residual=%.3g\n", CLI_NUM(user(o, CLI_UNIT_RATE, info.omega)), o->mode,
             info.nodes, CLI_NUM(info.tip[0] * len), CLI_NUM(info.tip[1] * len),
             CLI_NUM(info.tip[2] * len), CLI_NUM(info.tip_r * len), CLI_NUM(info.top_tension * force),

@@ -66,7 +66,7 @@ static void write_rows(FILE *fp, const steady_cli_model *m, const whirl_equilibr
         if (q->branch > 0) snprintf(branch, sizeof branch, "%d", q->branch);
         else if (no_branches && m->chain) branch[0] = 0;
         else snprintf(branch, sizeof branch, "%s", q->branch == 0 ? "isolated" : "unidentified");
-        fprintf(fp, "%d,%s,%s,%s,%s,%s,%s,", q->info.n_nodes + 1, branch,
+        fprintf(fp, "%d,%s,%s,%s,%s,%s,%s,", q->info.n_crossings + 1, branch,
                 isfinite(q->born_at) ? CLI_NUM(q->born_at * rate) : "",
                 CLI_NUM(q->info.tip_r * len), CLI_NUM(q->info.max_r * len),
                 CLI_NUM(q->info.depth * len), CLI_NUM(q->info.top_tension * force));

@@ -125,9 +125,8 @@ static int check_options(const cli_command *cmd, regime_options *o)
             if (*dash == '_') *dash = '-';
         return cli_error(cmd, "--%s: %s", field, msg);
     }
-    const char *const *m = whirl_integrator_methods();
-    while (*m && strcmp(*m, o->p.method) != 0) m++;
-    if (*m == NULL) return cli_error(cmd, "--method: unknown integrator '%s'", o->p.method);
+    if (whirl_integrator_type_find(o->p.method) == NULL)
+        return cli_error(cmd, "--method: %s", whirl_last_error());
     if (map && !o->sweep && o->output == NULL)
         return cli_error(cmd, "a map needs -o FILE (it is written as the points finish)");
     if (map && !o->sweep && strcmp(o->output, "-") == 0)

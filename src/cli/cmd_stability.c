@@ -86,13 +86,6 @@ static int driven(const options *o)
  * intervals. */
 static int dissipative(const options *o) { return o->damping > 0 || driven(o); }
 
-static int method_known(const char *name)
-{
-    for (const char *const *m = whirl_integrator_methods(); *m != NULL; m++)
-        if (strcmp(*m, name) == 0) return 1;
-    return 0;
-}
-
 static int check_scan(const cli_command *cmd, const options *o)
 {
     if (!(o->tol < o->scan_step))
@@ -187,8 +180,8 @@ static int check_options(const cli_command *cmd, const options *o)
                          "hanging chain is steady)");
     if (o->resume && strcmp(o->output, "-") == 0)
         return cli_error(cmd, "--resume needs -o FILE, not standard output");
-    if (!method_known(o->method))
-        return cli_error(cmd, "unknown --method '%s' (see whirl simulate --help)", o->method);
+    if (whirl_integrator_type_find(o->method) == NULL)
+        return cli_error(cmd, "--method: %s", whirl_last_error());
     if (o->resume && !o->min_given)
         return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
     if (o->degree_given && !o->windows)

@@ -233,7 +233,7 @@ static void write_events(FILE *fp, const sweep *s)
         const whirl_branch_event *ev = &s->rows.event[e];
         fprintf(fp, "%d,%s,%s,%s,%s,%d\n", s->rows.event_mode[e], event_name(ev->kind),
                 CLI_NUM(ev->omega * rate), CLI_NUM(ev->tip_r * len), CLI_NUM(ev->arclength),
-                ev->n_nodes + 1);
+                ev->n_crossings + 1);
     }
 }
 
@@ -248,13 +248,13 @@ static void write_comments(FILE *fp, const sweep *s)
         const char *len_unit = cli_units_name(&m->units, CLI_UNIT_LENGTH);
         fprintf(fp, "# branches of the N-link chain (%d links), tip mass %s %s: each mode "
                 "followed from its birth by pseudo-arclength continuation, a row at every "
-                "crossing of a grid rate, in the order along the branch; nodes: the shape's "
+                "crossing of a grid rate, in the order along the branch; node_count: the shape's "
                 "node count\n", m->links, CLI_NUM(m->tip_mass * m->units.mass), mass_unit);
         for (size_t e = 0; e < s->rows.ne; e++) {
             const whirl_branch_event *ev = &s->rows.event[e];
-            fprintf(fp, "# %s: mode=%d omega=%s %s tip_r=%s %s nodes=%d\n",
+            fprintf(fp, "# %s: mode=%d omega=%s %s tip_r=%s %s node_count=%d\n",
                     event_name(ev->kind), s->rows.event_mode[e], CLI_NUM(ev->omega * rate),
-                    rate_unit, CLI_NUM(ev->tip_r * len), len_unit, ev->n_nodes + 1);
+                    rate_unit, CLI_NUM(ev->tip_r * len), len_unit, ev->n_crossings + 1);
         }
     } else {
         fprintf(fp, "# branches of the continuous chain, tip mass %s %s; rows where the "
@@ -283,7 +283,7 @@ static size_t write_rows(FILE *fp, const sweep *s)
         written++;
         fprintf(fp, "%s,%d,%s,%s,%s,%s,%d\n", CLI_NUM(f->omega * rate), f->mode,
                 CLI_NUM(f->tip_r * len), CLI_NUM(f->max_r * len), CLI_NUM(f->top_tension * force),
-                CLI_NUM(f->depth * len), f->n_nodes + 1);
+                CLI_NUM(f->depth * len), f->n_crossings + 1);
     }
     return written;
 }

@@ -103,8 +103,10 @@ int main(int argc, char **argv)
     fputs("whirl: unknown command '", stderr);
     cli_put_escaped(stderr, argv[1]);
     if (best < n_commands && best_d <= 2 && best_d < strlen(argv[1]))
-        fprintf(stderr, "' (did you mean %s? whirl --help lists them)\n", commands[best].name);
+        fprintf(stderr, "' (did you mean %s? known:", commands[best].name);
     else
-        fputs("' (whirl --help lists them)\n", stderr);
+        fputs("' (known:", stderr);
+    for (size_t i = 0; i < n_commands; i++) fprintf(stderr, " %s", commands[i].name);
+    fputs(")\n", stderr);
     return 1;
 }

@@ -99,26 +99,26 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
     /* the N-link chain's nodes from its masses' radii: all of them (info holds the first
      * WHIRL_SHAPE_NODES) */
     double *node_s = NULL;
-    size_t nodes = info->n_nodes > 0 ? (size_t)info->n_nodes : 0;
+    size_t nodes = info->n_crossings > 0 ? (size_t)info->n_crossings : 0;
     if (m->chain && nodes > WHIRL_SHAPE_NODES && (node_s = malloc(n * sizeof *node_s)) != NULL)
         nodes = whirl_nlink_node_arclengths(m->chain, info->omega, r, n, node_s, NULL);
     else if (nodes > WHIRL_SHAPE_NODES)
         nodes = WHIRL_SHAPE_NODES;
     fprintf(fp, "# omega=%s mode=%d node_count=%d tip_r=%s max_r=%s top_tension=%s depth=%s "
-            "nodes=", CLI_NUM(info->omega * rate), info->mode, info->n_nodes + 1,
+            "crossing_s=", CLI_NUM(info->omega * rate), info->mode, info->n_crossings + 1,
             CLI_NUM(info->tip_r * len),
             CLI_NUM(info->max_r * len), CLI_NUM(info->top_tension * force),
             CLI_NUM(info->depth * len));
     for (size_t j = 0; j < nodes; j++)
-        fprintf(fp, "%s%s", j ? ";" : "", CLI_NUM((node_s ? node_s[j] : info->node_s[j]) * len));
+        fprintf(fp, "%s%s", j ? ";" : "", CLI_NUM((node_s ? node_s[j] : info->crossing_s[j]) * len));
     free(node_s);
     fprintf(fp, "\n# %s; s: arclength from the pivot, r: signed distance from the axis, "
             "z: height (pivot 0), tension: %s\n",
             m->chain ? "N-link chain: pivot then masses 1..N" : "continuous chain",
             m->chain ? "of the link above the node" : "at that point");
-    if ((int)nodes < info->n_nodes)
-        fprintf(fp, "# nodes: the first %zu of the %d axis crossings below the pivot\n", nodes,
-                info->n_nodes);
+    if ((int)nodes < info->n_crossings)
+        fprintf(fp, "# crossing_s: the first %zu of the %d axis crossings below the pivot\n", nodes,
+                info->n_crossings);
     /* an N-link shape whose radii decay below the smallest normal double towards the tip (the
      * top modes of 500 links and more near their birth): the CSV cannot show the signs of the
      * tail's radii, which the node count takes from the linearised force balance */
@@ -129,10 +129,10 @@ void steady_cli_write_shape(FILE *fp, const steady_cli_model *m, const whirl_sha
                 "subnormal here): their signs and nodes are those of the force balance "
                 "linearised about the hanging chain at this rate, from the tip up\n",
                 resolved + 1, n - 1);
-    if (info->n_nodes + 1 != info->mode)
+    if (info->n_crossings + 1 != info->mode)
         fprintf(fp, "# the branch of mode %d (born at omega_%d) has %d nodes at this rate: on a "
                 "coarse chain a branch can change its node count\n", info->mode, info->mode,
-                info->n_nodes + 1);
+                info->n_crossings + 1);
     if (extra) fprintf(fp, "# %s\n", extra);
     cli_units_comment(fp, &m->units);
     fprintf(fp, "s,r,z,tension\n");

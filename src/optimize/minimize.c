@@ -116,9 +116,9 @@ void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
     info->top_tension = tension ? tension[0] : NAN;
     for (size_t i = 1; i <= n; i++) info->max_r = fmax(info->max_r, fabs(r[i]));
     /* every crossing counted, the first WHIRL_SHAPE_NODES kept */
-    info->n_nodes =
-        (int)whirl_nlink_node_arclengths(c, omega, r, WHIRL_SHAPE_NODES, info->node_s, NULL);
-    info->mode = info->n_nodes + 1;
+    info->n_crossings =
+        (int)whirl_nlink_node_arclengths(c, omega, r, WHIRL_SHAPE_NODES, info->crossing_s, NULL);
+    info->mode = info->n_crossings + 1;
 }
 
 whirl_minimize_options whirl_minimize_options_defaults(void)
@@ -134,9 +134,21 @@ whirl_minimize_options whirl_minimize_options_defaults(void)
 int whirl_minimize_algorithm(const char *name, int *algorithm)
 {
     nlopt_algorithm a = name ? nlopt_algorithm_from_string(name) : (nlopt_algorithm)-1;
-    if ((int)a < 0 || (int)a >= NLOPT_NUM_ALGORITHMS)
-        return whirl_fail(GSL_EINVAL, "unknown NLopt algorithm '%s' (names like LD_LBFGS, LN_BOBYQA)",
-                          name ? name : "(null)");
+    if ((int)a < 0 || (int)a >= NLOPT_NUM_ALGORITHMS) {
+        /* the local algorithms' names (LD_*, LN_*: 22 of NLopt 2.7's 44, about 300 characters;
+         * all 44 would pass the 511 of a message) */
+        char known[400] = "";
+        size_t used = 0;
+        for (int k = 0; k < NLOPT_NUM_ALGORITHMS && used < sizeof known; k++) {
+            const char *s = nlopt_algorithm_to_string((nlopt_algorithm)k);
+            if (s && s[0] == 'L')
+                used += (size_t)snprintf(known + used, sizeof known - used, "%s%s",
+                                         used ? " " : "", s);
+        }
+        return whirl_fail(GSL_EINVAL, "unknown NLopt algorithm '%s' (local ones: %s; the global "
+                          "GN_*, GD_* of NLopt's list too)",
+                          name ? name : "(null)", known);
+    }
     *algorithm = (int)a;
     return GSL_SUCCESS;
 }

@@ -576,10 +576,10 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     info->max_r = run.max_abs_r;
     info->top_tension = (1 + w->p.tip_mass) * sqrt(1 + w->b2 * run.q_pivot * run.q_pivot);
     info->depth = run.z_pivot;
-    info->n_nodes = run.n_nodes;
+    info->n_crossings = run.n_nodes;
     /* the first nodes from the pivot are the last found from the tip */
     for (int j = 0; j < run.n_nodes && j < WHIRL_SHAPE_NODES; j++)
-        info->node_s[j] = 1 - run.node_sigma[(run.n_nodes - 1 - j) % WHIRL_SHAPE_NODES];
+        info->crossing_s[j] = 1 - run.node_sigma[(run.n_nodes - 1 - j) % WHIRL_SHAPE_NODES];
     return whirl_steady_check_info(info);
 }
 

@@ -249,8 +249,8 @@ static void nlink_info(const whirl_chain *c, const double *r, const double *z, c
     info->depth = -z[n];
     info->max_r = 0;
     for (size_t i = 1; i <= n; i++) info->max_r = fmax(info->max_r, fabs(r[i]));
-    info->n_nodes =
-        (int)whirl_nlink_node_arclengths(c, omega, r, WHIRL_SHAPE_NODES, info->node_s, NULL);
+    info->n_crossings =
+        (int)whirl_nlink_node_arclengths(c, omega, r, WHIRL_SHAPE_NODES, info->crossing_s, NULL);
 }
 
 void whirl_nlink_info_nodes(const whirl_chain *c, const double *r, const double *z,

@@ -353,7 +353,7 @@ static int add_event(nlink_path *p, whirl_event_kind kind, step_frame *f, double
     whirl_shape_info info;
     int status =
         path_shape_info(p, f->angles, f->w, f->a, th, &info, r, r + n + 1, r + 2 * (n + 1));
-    e->n_nodes = status == GSL_SUCCESS ? info.n_nodes : -1;
+    e->n_crossings = status == GSL_SUCCESS ? info.n_crossings : -1;
     return status;
 }
 

@@ -47,8 +47,8 @@ int whirl_steady_check_info(const whirl_shape_info *info)
             return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: %s is not finite "
                               "(%g): the rate or the tip mass is too large", info->mode,
                               info->omega, q[i].name, q[i].value);
-    for (int j = 0; j < info->n_nodes && j < WHIRL_SHAPE_NODES; j++)
-        if (!isfinite(info->node_s[j]))
+    for (int j = 0; j < info->n_crossings && j < WHIRL_SHAPE_NODES; j++)
+        if (!isfinite(info->crossing_s[j]))
             return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: node %d is not "
                               "finite", info->mode, info->omega, j + 1);
     return GSL_SUCCESS;

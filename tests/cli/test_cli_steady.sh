@@ -17,7 +17,7 @@ if awk -F, '/^#/ || /mode/ {next} {exit !(($2 / (1.2024127788478853 * sqrt(9.81 
 
 # shape: comment line, header, rows from the pivot to the free end
 expect_ok "shape runs" shape --omega 6.5 --mode 3 --points 51 -o "$tmp/shape.csv"
-if head -1 "$tmp/shape.csv" | grep -Eq '^# omega=6.5 mode=3 node_count=3 tip_r=[0-9.e-]+ max_r=[0-9.e-]+ top_tension=[0-9.e-]+ depth=[0-9.e-]+ nodes=[0-9.e-]+;[0-9.e-]+$' \
+if head -1 "$tmp/shape.csv" | grep -Eq '^# omega=6.5 mode=3 node_count=3 tip_r=[0-9.e-]+ max_r=[0-9.e-]+ top_tension=[0-9.e-]+ depth=[0-9.e-]+ crossing_s=[0-9.e-]+;[0-9.e-]+$' \
    && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,r,z,tension" ] \
    && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 52 ]; then
   pass "shape: comment, header, 51 rows"; else fail "shape: comment, header, 51 rows"; fi
@@ -55,7 +55,7 @@ else fail "shape mode N: 15 nodes"; fi
 # 149 crossings listed; 200 critical rates, increasing
 expect_ok "shape mode 150 of 200" shape --links 200 --mode 150 --omega 258 -o "$tmp/m150.csv"
 if head -1 "$tmp/m150.csv" | grep -q ' mode=150 node_count=150 ' \
-   && [ "$(head -1 "$tmp/m150.csv" | sed 's/.*nodes=//' | tr ';' '\n' | grep -c .)" -eq 149 ] \
+   && [ "$(head -1 "$tmp/m150.csv" | sed 's/.*crossing_s=//' | tr ';' '\n' | grep -c .)" -eq 149 ] \
    && [ "$(grep -vc '^#' "$tmp/m150.csv")" -eq 202 ]; then
   pass "shape mode 150 of 200: 150 nodes, 149 crossings listed"
 else fail "shape mode 150 of 200: 150 nodes, 149 crossings listed"; fi
@@ -78,8 +78,8 @@ else fail "sweep: mode 100 of 200 above its birth (160.93) only"; fi
 # counted, the first 64 listed and said so
 expect_ok "continuum mode 200" shape --mode 200 --omega 316.9 --points 11 -o "$tmp/c200s.csv"
 if head -1 "$tmp/c200s.csv" | grep -q ' mode=200 node_count=200 ' \
-   && [ "$(head -1 "$tmp/c200s.csv" | sed 's/.*nodes=//' | tr ';' '\n' | grep -c .)" -eq 64 ] \
-   && grep -q '^# nodes: the first 64 of the 199 axis crossings below the pivot$' "$tmp/c200s.csv"; then
+   && [ "$(head -1 "$tmp/c200s.csv" | sed 's/.*crossing_s=//' | tr ';' '\n' | grep -c .)" -eq 64 ] \
+   && grep -q '^# crossing_s: the first 64 of the 199 axis crossings below the pivot$' "$tmp/c200s.csv"; then
   pass "continuum mode 200: 200 nodes, the first 64 listed"
 else fail "continuum mode 200: 200 nodes, the first 64 listed"; fi
 
@@ -97,7 +97,7 @@ tail_said="the smallest normal double (0 or subnormal here): their signs and nod
 the force balance linearised about the hanging chain at this rate, from the tip up"
 if [ -n "$last" ] && [ "$last" -gt 300 ] && [ "$last" -lt 450 ] \
    && head -1 "$tmp/m500.csv" | grep -q ' mode=500 node_count=500 ' \
-   && head -1 "$tmp/m500.csv" | sed 's/.*nodes=//' | tr ';' '\n' \
+   && head -1 "$tmp/m500.csv" | sed 's/.*crossing_s=//' | tr ';' '\n' \
       | awk -v s="$last" '{n++; ok += ($1 > p && $1 < 1); p = $1; tail += ($1 > s / 500)}
                           END {exit !(n == 499 && ok == 499 && tail > 100)}' \
    && grep -q "^# the radii of masses $((last + 1))\.\.500 are below $tail_said\$" "$tmp/m500.csv" \

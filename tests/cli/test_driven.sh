@@ -5,7 +5,7 @@
 # one shape of the continuum: three comment lines (parameters, units, summary), the header, P rows from the pivot to the free end
 expect_ok "driven shape" driven --omega 1.6 --eps 0.05 --drag 0.05 --drag-quadratic 0.02 --points 41 -o "$tmp/shape.csv"
 if [ "$(grep -c '^#' "$tmp/shape.csv")" -eq 3 ] \
-   && grep -Eq '^# omega=1.6 mode=1 nodes=1 tip_x=[0-9.e-]+ tip_y=-[0-9.e-]+ tip_z=-[0-9.e-]+ tip_r=[0-9.e-]+ top_tension=[0-9.e-]+ residual=[0-9.e-]+$' "$tmp/shape.csv" \
+   && grep -Eq '^# omega=1.6 mode=1 node_count=1 tip_x=[0-9.e-]+ tip_y=-[0-9.e-]+ tip_z=-[0-9.e-]+ tip_r=[0-9.e-]+ top_tension=[0-9.e-]+ residual=[0-9.e-]+$' "$tmp/shape.csv" \
    && [ "$(grep -v '^#' "$tmp/shape.csv" | head -1)" = "s,x,y,z,tension" ] \
    && [ "$(grep -vc '^#' "$tmp/shape.csv")" -eq 42 ]; then
   pass "driven shape: comments, header, 41 rows"; else fail "driven shape: comments, header, 41 rows"; fi
@@ -16,7 +16,7 @@ if grep -v '^#' "$tmp/shape.csv" | sed -n 2p | awk -F, '{exit !($1 == 0 && ($2 -
 
 # N-link chain with a tip mass: N + 1 rows
 expect_ok "driven --links" driven --omega 3.5 --mode 2 --side -1 --eps 0.02 --drag 0.01 --links 30 --tip-mass 0.1 -o "$tmp/nl.csv"
-if [ "$(grep -vc '^#' "$tmp/nl.csv")" -eq 32 ] && grep -q ' nodes=2 ' "$tmp/nl.csv"; then
+if [ "$(grep -vc '^#' "$tmp/nl.csv")" -eq 32 ] && grep -q ' node_count=2 ' "$tmp/nl.csv"; then
   pass "driven --links: N+1 rows, 2 nodes"; else fail "driven --links: N+1 rows, 2 nodes"; fi
 
 # branch: the anti-phase mode-1 branch folds once above omega_1 = 1.2024

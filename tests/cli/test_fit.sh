@@ -25,7 +25,7 @@ fit_value() { grep -v '^#' "$1" | awk -F, -v c="$2" 'NR == 2 {print $c}'; }
 expect_ok "minimize runs" minimize --omega 2.385 --links 100 -o "$tmp/min.csv"
 "$WHIRL" shape --omega 2.385 --links 100 --mode 1 -o "$tmp/shp.csv"
 if close "$(field "$tmp/min.csv" tip_r)" "$(field "$tmp/shp.csv" tip_r)" 1e-9 &&
-   [ "$(field "$tmp/min.csv" mode)" = 1 ] && head -1 "$tmp/min.csv" | grep -q ' nodes=$'; then
+   [ "$(field "$tmp/min.csv" mode)" = 1 ] && head -1 "$tmp/min.csv" | grep -q ' crossing_s=$'; then
   pass "minimize: tip_r of shape --mode 1 at N = 100 to 1e-9"
 else fail "minimize: tip_r of shape --mode 1 at N = 100 to 1e-9"; fi
 if csv_close "$tmp/min.csv" "$tmp/shp.csv" 1e-9 &&
