@@ -10,13 +10,27 @@
 # usage: gnuplot -e "trace='run.dat'; out='run.mp4'" plots/animate.gp   (or out='run.gif', .webm)
 # optional: step=K (every K-th block), delay=D (hundredths of a second per frame), width=W
 #           (pixels of the movie), view='70,30' (gnuplot's set view), mp4='run.mp4' (a second
-#           movie, MP4).
+#           movie, MP4); box_w=W, box_h=H (the frames fit in W x H pixels, text scaled with
+#           them), present=1 (text 1.5 times larger), slow=F (the movie's time runs F times
+#           slower than the trace's: the frame rate from the blocks' spacing, at most 50 a
+#           second, blocks skipped above; instead of delay).
 if (!exists("trace")) { print "usage: gnuplot -e \"trace='run.dat'; out='run.gif'\" plots/animate.gp"; exit status 1 }
 load system("dirname '".ARG0."'")."/style.gp"
 set datafile separator whitespace
 if (!exists("out")) { out = trace . ".gif" }
 if (!exists("step")) { step = 1 }
 if (!exists("delay")) { delay = 4 }
+# slow motion: the frame rate from the time between two blocks (column 4), at most 50 a second
+if (exists("slow")) {
+    stats trace index 0 using 4 nooutput
+    t0 = STATS_min
+    stats trace index 1 using 4 nooutput
+    dtb = STATS_min - t0
+    if (!(dtb > 0)) { print "animate.gp: ".trace.": the blocks' times do not increase"; exit status 1 }
+    step = ceil(1.0 / (dtb * slow * 50) - 1e-9)
+    step = step < 1 ? 1 : step
+    delay = 100 * dtb * step * slow
+}
 if (!exists("width")) { width = 640 }
 if (!exists("view")) { view = "70,30" }
 
@@ -76,7 +90,10 @@ if (planar) {
     set xyplane at zbot
     set ytics -tend, tstep, tend
     set ylabel "y [".ul."]"
-    set zlabel "z [".ul."]" norotate offset 6, 7.5
+    # along the z axis, left of its tick labels (norotate at a fixed offset fell on a tick in a
+    # tall frame)
+    set zlabel "z [".ul."]" rotate parallel
+    set lmargin 8
     set arrow 1 from 0, 0, zbot to 0, 0, ztop nohead ls 11
     # the pivot's circle, as data
     set print $circle
@@ -86,20 +103,29 @@ if (planar) {
 }
 # one frame: block i, with its time
 if (planar) {
-    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set title sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) font ',12'; plot trace index i using 1:3 with linespoints lt 1 pt 7 ps 0.6"
+    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set title sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) font sprintf(',%g', 12 * fs * zoom); plot trace index i using 1:3 with linespoints lt 1 pt 7 ps 0.6 * fs * zoom"
 } else {
-    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set label 2 sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) at 0, 0, ztext center font ',12'; splot trace index i using 1:2:3 with linespoints lt 1 pt 7 ps 0.5, $circle using 1:2:3 with lines ls 12"
+    draw = "stats [*:*][*:*] trace index i using 4 nooutput; set label 2 sprintf('%s%st = %.2f %s', caption, nl, STATS_min, ut) at 0, 0, ztext center offset 0, 1 font sprintf(',%g', 12 * fs * zoom); splot trace index i using 1:2:3 with linespoints lt 1 pt 7 ps 0.5 * fs * zoom, $circle using 1:2:3 with lines ls 12"
 }
 
 # the frames at the movie's width (then cropped)
 # a tall chain (its height over its diameter, aspect) a taller canvas, up to 1.6 times its width:
 # the 3D box fits, the crop takes the rest
 aspect = (ztop - zbot) / (2 * R)
-height = planar ? width : int(width * min(1.6, max(1.15, 0.8 * aspect)))
+tall = planar ? 1.0 : min(1.6, max(1.15, 0.8 * aspect))
+# the box the frames fit in (style.gp's box_w, box_h): the width that fills it
+# (drawn at twice that, the crop then scaled to fill the box: the drawing of a chain covers about
+# half of its frame, and a crop scaled up would blur)
+boxed = box_w > 0 || box_h > 0
+if (boxed) { width = 2 * int(box_w > 0 && box_h > 0 ? min(box_w, box_h / tall) : box_w > 0 ? box_w : box_h / tall) }
+width = 2 * int(width / 2)
+height = int(width * tall)
+# the text and lines with the frame (11 pt at 640 px) and fs (style.gp: 1.5 to present)
+zoom = width / 640.0
 # taller still: the whole 3D box drawn smaller (its height at scale 1 is about 0.8 aspect widths)
 if (!planar) { set view @view, min(1.0, 1.6 / (0.8 * aspect)) }
 frames = system("mktemp -d")
-set terminal pngcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white" size width, height
+set terminal pngcairo enhanced font sprintf("DejaVu Sans,%g", 11 * fs * zoom) linewidth 1.3 * fs * zoom background rgb "white" size width, height
 k = 0
 do for [i = 0:nblocks - 1:step] {
     set output sprintf("%s/f%05d.png", frames, k)
@@ -112,6 +138,8 @@ set output
 crop = system(sprintf("ffmpeg -loglevel info -framerate 25 -i '%s/f%%05d.png' -vf negate,cropdetect=limit=1:round=2:reset=0 -f null - 2>&1 | grep -o 'crop=[0-9:]*' | tail -1 | awk -F'[=:]' -v W=%d -v H=%d '{ x = $4 - 8; y = $5 - 8; if (x < 0) x = 0; if (y < 0) y = 0; w = $2 + 16; h = $3 + 16; if (x + w > W) w = W - x; if (y + h > H) h = H - y; printf \"crop=%%d:%%d:%%d:%%d,\", w - w %% 2, h - h %% 2, x, y }'", frames, width, height))
 fps = 100.0 / delay
 scale = "scale=trunc(iw/2)*2:trunc(ih/2)*2"
+# the box: the cropped frames scaled to fit it (16384 px: a side left free)
+if (boxed) { scale = sprintf("scale=w=%d:h=%d:force_original_aspect_ratio=decrease:flags=lanczos,", box_w > 0 ? box_w : 16384, box_h > 0 ? box_h : 16384) . scale }
 # movie(file): the ffmpeg command for a file, by its extension
 movie(f) = f[strlen(f) - 3:] eq ".gif" ? \
     sprintf("ffmpeg -loglevel error -y -framerate %g -i '%s/f%%05d.png' -vf '%s%s,split[a][b];[a]palettegen=max_colors=16:stats_mode=diff[p];[b][p]paletteuse=dither=none:diff_mode=rectangle' -f gif '%s' && echo ok", fps, frames, crop, scale, f) : \

@@ -62,16 +62,18 @@ if (kind eq "shape") {
     # a narrow figure widened about the axis to 0.35 of its height (room for the key and ticks)
     if ((x1 - x0) < 0.35 * (y1 - y0)) { w = 0.35 * (y1 - y0); c = 0.5 * (x0 + x1); x0 = c - w / 2; x1 = c + w / 2 }
     scale = 720.0 / ((x1 - x0) > (y1 - y0) ? (x1 - x0) : (y1 - y0))
+    # the margins, the key and the labels in pixels of text: fs times larger to present
+    # (style.gp), the box as it is
     pw = (x1 - x0) * scale; ph = (y1 - y0) * scale
-    if (ph < 260) { ph = 260; c = 0.5 * (y0 + y1); y0 = c - 130 / scale; y1 = c + 130 / scale }
+    if (ph < 260) { ph = 260.0; c = 0.5 * (y0 + y1); y0 = c - 130 / scale; y1 = c + 130 / scale }
     # the key to the right of the box: as wide as its longest title (7 px a character at 11 pt)
     keylen = 0
     do for [f in files] { t = strlen(sprintf("mode %s, %s", meta(f, "mode"), rate_label(f))); keylen = t > keylen ? t : keylen }
     # the key inside the box where no curve runs (a corner or the middle of a side, checked on
-    # every point of every file, 8 px a character and 18 px a line, 10 px from the frame),
+    # every point of every file, 8.5 px a character and 18 px a line, 10 px from the frame),
     # else to the right of the box, or below it when the box is narrow (a tall figure)
     nfiles = words(files)
-    kw = (60 + 8 * keylen) / scale; kh = (10 + 18 * nfiles) / scale; gap = 10 / scale
+    kw = fs * (80 + 8.5 * keylen) / scale; kh = fs * (10 + 18 * nfiles) / scale; gap = 10 / scale
     inside = 0
     do for [c = 1:5] {
         if (!inside) {
@@ -89,8 +91,9 @@ if (kind eq "shape") {
         }
     }
     below = !inside && pw < 420
-    lm = 80; rm = inside || below ? 40 : 100 + 8 * keylen; tm = 50; bm = below ? 88 + 18 * nfiles : 60
-    set terminal @term size (pw + lm + rm) * px, (ph + tm + bm) * px
+    # (the top margin holds the title and, above the axis, the label of the pivot and the axis)
+    lm = 80 * fs; rm = fs * (inside || below ? 40 : 110 + 8.5 * keylen); tm = 70 * fs; bm = fs * (below ? 88 + 18 * nfiles : 60)
+    cw = pw + lm + rm; ch = ph + tm + bm; @canvas
     set output out
     set lmargin at screen lm / (pw + lm + rm); set rmargin at screen (lm + pw) / (pw + lm + rm)
     set bmargin at screen bm / (ph + tm + bm); set tmargin at screen (bm + ph) / (ph + tm + bm)
@@ -100,31 +103,46 @@ if (kind eq "shape") {
     set size ratio -1
     L = meta(file, "L"); M = meta(file, "M")
     set title (physical(file) ? sprintf("Steady shapes of a chain, L = %s m, M = %s kg", L, M) : \
-               "Steady shapes of a chain (L = M = g = 1)") noenhanced
+               "Steady shapes of a chain (L = M = g = 1)") noenhanced offset 0, 1.3
     set xlabel "r, distance from the rotation axis [".ul."]"
     set ylabel "z, height (pivot at 0) [".ul."]"
     if (inside) { set key at first kx, first ky + kh left top Left reverse box opaque samplen 2 spacing 1.2 noenhanced } \
-    else { if (below) { set key at screen 10.0 / (pw + lm + rm), (bm - 62) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } \
-    else { set key at screen (lm + pw + 12) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } }
+    else { if (below) { set key at screen 10.0 / (pw + lm + rm), (bm - 62 * fs) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } \
+    else { set key at screen (lm + pw + 12 * fs) / (pw + lm + rm), (bm + ph) / (ph + tm + bm) left top Left reverse box samplen 2 spacing 1.2 noenhanced } }
     set arrow 1 from 0, y0 to 0, y1 nohead dt 2 lc rgb "#666666"
-    set label 1 "rotation axis" at 0, y0 rotate by 90 offset -1, 0.6 left textcolor rgb "#666666"
-    set label 2 "pivot" at 0, 0 offset 0.8, -0.8 left
+    # the label above the box, clear of every curve
+    # (centred on the axis, or from it inwards when half of it, 7 px a character, would pass the
+    # box's edge)
+    axis_text = "pivot (dot) on the rotation axis (dashed)"
+    half = 3.5 * fs * strlen(axis_text)
+    just = -x0 * scale < half ? "left" : x1 * scale < half ? "right" : "center"
+    set label 1 axis_text at 0, y1 center offset 0, 0.8 textcolor rgb "#444444"
+    if (just eq "left") { set label 1 left offset -0.5, 0.8 }
+    if (just eq "right") { set label 1 right offset 0.5, 0.8 }
     plot for [f in files] f skip skip_of(f) using 2:3 with lines lw 2.5 \
            title sprintf("mode %s, %s", meta(f, "mode"), rate_label(f)), \
          '+' using (0):(0) every ::0::0 with points pt 7 ps 1.4 lc rgb "black" notitle
     set output
 }
 if (kind eq "branches") {
-    set terminal @term size (1200) * px, (500) * px
+    # tip radius and pivot tension against the rate, a curve per mode in the file: the modes
+    # read once (one pass of the file per mode drawn); the title names the file (name: the
+    # user's file, as whirl plot gives it)
+    skip = skip_of(file)
+    modes = system(sprintf("awk -F, 'NR > %d && !seen[$2]++ { print $2 }' '%s' | sort -n | tr '\\n' ' '", skip, file))
+    if (!exists("name")) { name = system(sprintf("basename '%s'", file)) }
+    cw = 1200; ch = 540; @canvas
     set output out
-    set multiplot layout 1, 2 title system(sprintf("basename '%s'", file))
+    set multiplot layout 1, 2 title "Branches of steady shapes: ".name noenhanced
+    # the key above the two panels, in one row (clear of the curves)
+    set tmargin 4.5
+    set key horizontal center bottom at screen 0.5, graph 1.04 reverse Left samplen 2 width 2 noenhanced
     set xlabel "omega [".u_rate(file)."]"
-    set key top left
     set ylabel "tip radius [".u_len(file)."]"
-    plot for [k = 1:64] file skip skip_of(file) using 1:($2 == k ? $3 : NaN) with lines \
-         title (system(sprintf("grep -v '^#' '%s' | cut -d, -f2 | grep -qx %d && echo y", file, k)) eq "y" ? sprintf("mode %d", k) : "")
+    plot for [m in modes] file skip skip using 1:(int($2) == int(m) ? $3 : NaN) with lines lt int(m) title "mode ".m
+    unset key
     set ylabel "tension at the pivot [".u_force(file)."]"
-    plot for [k = 1:64] file skip skip_of(file) using 1:($2 == k ? $5 : NaN) with lines notitle
+    plot for [m in modes] file skip skip using 1:(int($2) == int(m) ? $5 : NaN) with lines lt int(m) notitle
     unset multiplot
     set output
 }

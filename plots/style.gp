@@ -12,6 +12,22 @@ px = 1
 term = 'pngcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white"'
 if (fmt eq "svg") { term = 'svg enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white"' }
 if (fmt eq "pdf") { term = 'pdfcairo enhanced font "DejaVu Sans,11" linewidth 1.3 background rgb "white"'; px = 1.0 / 72 }
+# The picture's size and text (whirl plot --size, --present), for the figures that open their
+# output with: cw = W; ch = H; @canvas   (W x H: the figure's own size in pixels)
+#   box_w, box_h  the box the picture fits in, in pixels (0: that side free; both 0: W x H), the
+#                 whole figure scaled by one factor, zoom (its proportions kept, true to scale)
+#   present = 1   text and lines 1.5 times larger against the figure (fs), for a room: the
+#                 layout of a figure of plot.gp counts its margins in fs-scaled pixels
+if (!exists("box_w")) { box_w = 0 }
+if (!exists("box_h")) { box_h = 0 }
+if (!exists("present")) { present = 0 }
+fs = present ? 1.5 : 1.0
+fit_zoom(w, h) = box_w > 0 && box_h > 0 ? (box_w * h < box_h * w ? real(box_w) / w : real(box_h) / h) : \
+                 box_w > 0 ? real(box_w) / w : box_h > 0 ? real(box_h) / h : 1.0
+px_unit = px
+canvas = 'zoom = fit_zoom(cw, ch); px = px_unit * zoom; set terminal ' . \
+         (fmt eq "svg" ? "svg" : fmt eq "pdf" ? "pdfcairo" : "pngcairo") . \
+         ' enhanced font sprintf("DejaVu Sans,%g", 11 * fs * zoom) linewidth 1.3 * fs * zoom background rgb "white" size cw * px, ch * px'
 set linetype 1 lc rgb "#1f4e9c" lw 2 pt 7
 set linetype 2 lc rgb "#c0392b" lw 2 pt 5
 set linetype 3 lc rgb "#1e8449" lw 2 pt 9

@@ -7,15 +7,18 @@ int cmd_plot(const cli_command *cmd, int argc, char **argv)
 {
     const char *out = NULL;
     const char *files[CLI_LIST_MAX];
+    cli_figure_style style = {0};
     const cli_option opts[] = {
         {"--output", "-o", CLI_STRING, &out, NULL, "PICTURE",
          "the picture: .png, .svg or .pdf (a figure), .mp4, .webm or .gif (a trace's animation)",
          NULL, NULL, NULL, ""},
+        CLI_FIGURE_OPTIONS(style),
+        CLI_MOVIE_OPTIONS(style),
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, files, CLI_LIST_MAX);
     if (rc) return rc;
     size_t n = 0;
     while (n < CLI_LIST_MAX && files[n]) n++;
     if (n == 0) return cli_error(cmd, "missing the files to draw (see --help)");
-    return cli_figure_draw(cmd, files, n, out);
+    return cli_figure_draw(cmd, files, n, out, &style);
 }

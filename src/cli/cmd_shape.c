@@ -94,6 +94,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     cli_int_list mode = {0};
     int points = 201;
     const char *out_path = NULL, *plot_path = NULL;
+    cli_figure_style style = {0};
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     steady_cli_follow follow = {0};
     const cli_option opts[] = {
@@ -111,6 +112,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
          "write the CSV to FILE (default: standard output; one rate)"},
         {"--plot", NULL, CLI_STRING, &plot_path, NULL, "PICTURE",
          "draw the shapes on one figure, true to scale: PICTURE.png, .svg or .pdf (gnuplot)"},
+        CLI_FIGURE_OPTIONS(style),
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;
@@ -123,6 +125,10 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     if (omega.n > 1 && out_path)
         return cli_error(cmd, "-o writes one shape: give one rate, or --plot alone");
     if (plot_path && cli_figure_check_out(cmd, "--plot", plot_path, 0)) return 1;
+    if ((style.size || style.present) && plot_path == NULL)
+        return cli_error(cmd, "--size and --present shape the picture of --plot");
+    int box_w, box_h;
+    if (cli_figure_size(cmd, &style, &box_w, &box_h)) return 1;
     if (steady_cli_model_setup(cmd, &m)) return 1;
     if (plot_path == NULL) {
         rc = one_shape(cmd, &m, &follow, omega.v[0], omega.suffix[0], mode.v[0], points,
@@ -142,7 +148,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
         rc = one_shape(cmd, &m, &follow, omega.v[i], omega.suffix[i],
                        mode.v[mode.n == 1 ? 0 : i], points, names[i]);
     }
-    if (rc == 0) rc = cli_figure_draw(cmd, files, (size_t)omega.n, plot_path);
+    if (rc == 0) rc = cli_figure_draw(cmd, files, (size_t)omega.n, plot_path, &style);
     if (rc == 0 && out_path) {
         cli_out out;
         rc = cli_out_open(cmd, &out, out_path);

@@ -11,6 +11,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include <gsl/gsl_math.h>
+
 #include "cli/figure.h"
 #include "whirl/scene.h"
 
@@ -143,13 +145,35 @@ static void check_step(const cli_command *cmd, const whirl_scene *s)
 }
 
 /* With --animate and no trace in the scene: the scene parsed again with a trace in the movie's
- * work folder, a frame every 1/25 s (SI) or every t_end/125 (dimensionless), at most 250. */
+ * work folder, a frame every 1/25 s (SI) or every t_end/125 (dimensionless), at most 250; with
+ * --slow F a frame every 1/(25 F) s (25 frames a second of the movie), with --frames-per-turn K
+ * K frames a turn of the rotation (and F for 25 frames a second), at most 1500 (a minute of the
+ * movie: drawing them takes about as long). */
 static int add_trace(run *r, const char *scene_path, const char **sets, size_t n_sets,
-                     const char *dir, char *trace, size_t size)
+                     const char *dir, char *trace, size_t size, cli_figure_style *style,
+                     int frames_per_turn)
 {
+    /* 25 frames a second: a smooth movie in every format (GIF's delays are 1/100 s) */
+    const double fps = 25;
     char every[64];
-    double dt = r->scene.physical ? 0.04 : r->scene.t_end / 125;
-    if (r->scene.t_end / dt > 250) dt = r->scene.t_end / 250;
+    double dt = r->scene.physical ? 1 / fps : r->scene.t_end / 125, frames_max = 250;
+    if (frames_per_turn > 0) {
+        if (!(fabs(r->scene.omega) > 0))
+            return cli_error(r->cmd, "--frames-per-turn: the scene does not turn ([run] omega "
+                             "and [start] omega are 0)");
+        dt = 2 * M_PI / fabs(r->scene.omega) / frames_per_turn;
+        style->slow = 1 / (fps * dt);
+    } else if (style->slow > 0) {
+        dt = 1 / (fps * style->slow);
+    }
+    if (frames_per_turn > 0 || style->slow > 0) frames_max = 1500;
+    if (r->scene.t_end / dt > frames_max) {
+        if (frames_max > 250)
+            return cli_error(r->cmd, "the movie would have %.0f frames, over %.0f (a minute at 25 "
+                             "a second): a shorter run.t_end, or less --slow or "
+                             "--frames-per-turn", r->scene.t_end / dt, frames_max);
+        dt = r->scene.t_end / frames_max;
+    }
     snprintf(trace, size, "output.trace=%s/trace.dat", dir);
     snprintf(every, sizeof every, "output.trace_every=%.17g", dt);
     sets[n_sets] = trace;
@@ -218,6 +242,8 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     const char *output = NULL, *set_help = NULL; /* --set is taken out before cli_parse */
     int overwrite = 0;
     const char *movie = NULL;
+    cli_figure_style style = {0};
+    int frames_per_turn = 0;
     const cli_option opts[] = {
         {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
         {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
@@ -226,6 +252,11 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
          "let the scene's [output] trace replace an existing file"},
         {"--animate", NULL, CLI_STRING, &movie, NULL, "MOVIE",
          "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
+        CLI_FIGURE_OPTIONS(style),
+        CLI_MOVIE_OPTIONS(style),
+        {"--frames-per-turn", NULL, CLI_INT, &frames_per_turn, NULL, "K",
+         "K frames a turn of the rotation, 25 a second (slow motion to match)", "[2, 1000]",
+         NULL, "--slow"},
     };
     /* --set may repeat: take every one out before the common parser sees the rest (room for two
      * more: the trace --animate adds) */
@@ -244,6 +275,11 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     if (rc == 0 && scene_path == NULL) rc = cli_error(cmd, "missing the scene file (see --help)");
     if (rc == 0 && movie && cli_figure_check_out(cmd, "--animate", movie, 1)) rc = 1;
     if (rc == 0 && movie && output == NULL) output = "/dev/null"; /* the movie alone */
+    if (rc == 0 && !movie && (style.size || style.present || style.slow > 0 || frames_per_turn))
+        rc = cli_error(cmd, "--size, --present, --slow and --frames-per-turn shape the movie of "
+                       "--animate");
+    int box_w, box_h;
+    if (rc == 0 && cli_figure_size(cmd, &style, &box_w, &box_h)) rc = 1;
 
     run r;
     memset(&r, 0, sizeof r);
@@ -251,9 +287,13 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     char *dir = NULL, trace_set[4200];
     if (rc == 0 && whirl_scene_parse(scene_path, sets, n_sets, &r.scene) != GSL_SUCCESS)
         rc = cli_error(cmd, "%s", whirl_last_error());
+    if (rc == 0 && movie && r.scene.trace && frames_per_turn)
+        rc = cli_error(cmd, "--frames-per-turn spaces the movie's trace, but the scene writes "
+                       "its own ([output] trace): use --slow");
     if (rc == 0 && movie && r.scene.trace == NULL) {
         if ((dir = cli_figure_work_dir(cmd, movie)) == NULL) rc = 1;
-        else rc = add_trace(&r, scene_path, sets, n_sets, dir, trace_set, sizeof trace_set);
+        else rc = add_trace(&r, scene_path, sets, n_sets, dir, trace_set, sizeof trace_set,
+                            &style, frames_per_turn);
     }
     free(sets);
     free(rest);
@@ -269,7 +309,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     if (rc == 0) rc = run_scene(&r, output);
     if (rc == 0 && movie) {
         const char *trace = r.scene.trace;
-        rc = cli_figure_draw(cmd, &trace, 1, movie);
+        rc = cli_figure_draw(cmd, &trace, 1, movie, &style);
     }
     cli_figure_remove_dir(dir);
     whirl_scene_work_free(r.work);

@@ -216,8 +216,54 @@ static int run_gnuplot(const cli_command *cmd, const char *dir, const char *scri
     return cli_error(cmd, "gnuplot failed: %s", last[0] ? last : "(no message)");
 }
 
-int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, const char *out)
+int cli_figure_size(const cli_command *cmd, const cli_figure_style *style, int *w, int *h)
 {
+    /* 16 px: a picture smaller draws nothing legible; 16384 px: cairo's largest image side */
+    enum { SIDE_MIN = 16, SIDE_MAX = 16384 };
+    *w = *h = 0;
+    if (style == NULL) return 0;
+    if (style->size == NULL) {
+        if (style->present) *w = 1920, *h = 1080; /* a projector's full HD */
+        return 0;
+    }
+    const char *p = style->size;
+    char *end;
+    long a = strtol(p, &end, 10), b = 0;
+    int ok = end != p && p[0] >= '0' && p[0] <= '9';
+    if (ok && (*end == 'x' || *end == 'X')) {
+        p = end + 1;
+        b = strtol(p, &end, 10);
+        ok = end != p && p[0] >= '0' && p[0] <= '9';
+    }
+    if (!ok || *end != '\0')
+        return cli_error(cmd, "--size needs WxH or W in pixels (1920x1080, 1200), got '%s'",
+                         style->size);
+    if (a < SIDE_MIN || a > SIDE_MAX || (b != 0 && (b < SIDE_MIN || b > SIDE_MAX)))
+        return cli_error(cmd, "--size %s: each side must be %d to %d pixels", style->size,
+                         SIDE_MIN, SIDE_MAX);
+    *w = (int)a, *h = (int)b;
+    return 0;
+}
+
+/* name (a file's, as the user gave it) with its folders left out, as a gnuplot string between
+ * single quotes: a quote doubled, a control character as '?'; at most size - 1 bytes. */
+static void gnuplot_name(const char *path, char *buf, size_t size)
+{
+    const char *slash = strrchr(path, '/');
+    const char *p = slash && slash[1] ? slash + 1 : path;
+    size_t k = 0;
+    for (; *p && k + 3 < size; p++) {
+        if (*p == '\'') buf[k++] = '\'';
+        buf[k++] = (unsigned char)*p < 32 || *p == 127 ? '?' : *p;
+    }
+    buf[k] = '\0';
+}
+
+int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, const char *out,
+                    const cli_figure_style *style)
+{
+    int box_w, box_h;
+    if (cli_figure_size(cmd, style, &box_w, &box_h)) return 1;
     char units0[LINE_MAX_FIG], units[LINE_MAX_FIG], ext[8];
     cli_figure_kind kind0 = CLI_FIGURE_UNKNOWN, kind = CLI_FIGURE_UNKNOWN;
     if (n == 0) return cli_error(cmd, "no file to draw");
@@ -236,13 +282,23 @@ int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, 
         return cli_error(cmd, "%s: a figure of %s takes one file (several: shapes, stability "
                          "maps)", files[1], kind_name(kind0));
     if (cli_figure_check_out(cmd, "-o", out, kind0 == CLI_FIGURE_TRACE)) return 1;
+    if (style && style->slow > 0 && kind0 != CLI_FIGURE_TRACE)
+        return cli_error(cmd, "--slow applies to a movie (a trace drawn as .mp4, .webm, .gif)");
     extension(out, ext);
 
     char *dir = cli_figure_work_dir(cmd, out);
     if (dir == NULL) return 1;
     int rc = write_scripts(cmd, dir);
     /* the data copied in as f1.csv, f2.csv, ...: the scripts get names without spaces or quotes */
-    size_t vlen = 64 + n * (strlen(dir) + 16) + 2 * strlen(dir);
+    char name[512], style_vars[640]; /* the name and 5 numbers */
+    gnuplot_name(files[0], name, sizeof name);
+    snprintf(style_vars, sizeof style_vars, "; box_w=%d; box_h=%d; present=%d; name='%s'", box_w,
+             box_h, style && style->present, name);
+    if (style && style->slow > 0) {
+        const size_t used = strlen(style_vars);
+        snprintf(style_vars + used, sizeof style_vars - used, "; slow=%.17g", style->slow);
+    }
+    size_t vlen = 64 + n * (strlen(dir) + 16) + 2 * strlen(dir) + sizeof style_vars;
     char *vars = malloc(vlen), *list = malloc(vlen), path[LINE_MAX_FIG];
     if (rc == 0 && (vars == NULL || list == NULL)) rc = cli_error(cmd, "out of memory");
     if (rc == 0) list[0] = '\0';
@@ -256,9 +312,10 @@ int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, 
     snprintf(picture, sizeof picture, "%s/picture.%s", dir, ext);
     if (rc == 0) {
         if (kind0 == CLI_FIGURE_TRACE)
-            snprintf(vars, vlen, "trace='%s'; out='%s'", list, picture);
+            snprintf(vars, vlen, "trace='%s'; out='%s'%s", list, picture, style_vars);
         else
-            snprintf(vars, vlen, "files='%s'; out='%s'; fmt='%s'", list, picture, ext);
+            snprintf(vars, vlen, "files='%s'; out='%s'; fmt='%s'%s", list, picture, ext,
+                     style_vars);
         rc = run_gnuplot(cmd, dir, kind0 == CLI_FIGURE_TRACE ? "animate.gp" : "plot.gp", vars);
     }
     struct stat st;

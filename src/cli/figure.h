@@ -31,11 +31,39 @@ typedef enum {
     CLI_FIGURE_TRACE          /* "# trace:" blocks x y z t: simulate's or regime's trace */
 } cli_figure_kind;
 
+/* How a picture is drawn (whirl plot, shape --plot, simulate --animate): its size, its text, a
+ * movie's pace. {0}: the figure's own size and text, a movie at 25 frames a second, one a block
+ * of the trace. */
+typedef struct cli_figure_style {
+    const char *size; /* --size "WxH" or "W" (NULL: none): the picture fits in W x H pixels */
+    int present;      /* --present: for a room, text and lines 1.5 times larger, in 1920x1080
+                       * unless --size */
+    double slow;      /* --slow: a movie's time runs this many times slower than the motion's
+                       * (1: real time in SI units, a time unit a second without); 0: 25 frames
+                       * a second whatever the trace's spacing */
+} cli_figure_style;
+
+/* The option rows of a cli_figure_style st (a figure's: --size, --present). */
+#define CLI_FIGURE_OPTIONS(st)                                                                     \
+    {"--size", NULL, CLI_STRING, &(st).size, NULL, "WxH",                                         \
+     "the picture fits in W x H pixels (or W wide), scaled whole: 1920x1080 for a projector"},  \
+    {"--present", NULL, CLI_FLAG, &(st).present, NULL, "",                                        \
+     "a picture for a room: text and lines 1.5 times larger, 1920x1080 unless --size"}
+/* ... and a movie's: --slow */
+#define CLI_MOVIE_OPTIONS(st)                                                                      \
+    {"--slow", NULL, CLI_DOUBLE, &(st).slow, NULL, "F",                                           \
+     "slow motion: the movie runs F times slower than the motion (1: real time)", "(0, 1000]"}
+
 /* Draws the files (all of one kind and one units line; several only for shapes and stability
  * maps) into out, a picture by its extension: .png, .svg, .pdf for a figure, .mp4, .webm, .gif
- * for a trace's animation. The picture is written beside out and renamed into place: a failure
- * leaves nothing. Returns 0, or 1 after printing a one-line error. */
-int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, const char *out);
+ * for a trace's animation, as style says (NULL: {0}). The picture is written beside out and
+ * renamed into place: a failure leaves nothing. The title names the files as given. Returns 0,
+ * or 1 after printing a one-line error. */
+int cli_figure_draw(const cli_command *cmd, const char *const *files, size_t n, const char *out,
+                    const cli_figure_style *style);
+/* 0 if style's --size is "WxH" or "W" with sides of 16 to 16384 pixels (or absent), else 1 after
+ * printing an error; the sides in *w, *h (0: free; --present alone: 1920 x 1080). */
+int cli_figure_size(const cli_command *cmd, const cli_figure_style *style, int *w, int *h);
 
 /* 0 if path's extension is one cli_figure_draw writes for a figure (animation: 0, or for an
  * animation: 1), else 1 after printing an error naming the option (e.g. "--plot"). */

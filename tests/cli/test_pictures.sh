@@ -20,7 +20,7 @@ for f in 2 4 6; do
   grep -q ">mode 2, $f Hz<" "$tmp/shapes.svg" && pass "label 'mode 2, $f Hz'" ||
     fail "label 'mode 2, $f Hz'"
 done
-grep -q '>pivot<' "$tmp/shapes.svg" && grep -q '>rotation axis<' "$tmp/shapes.svg" &&
+grep -q '>pivot (dot) on the rotation axis (dashed)<' "$tmp/shapes.svg" &&
   pass "the pivot and the rotation axis named" || fail "the pivot and the rotation axis named"
 # true aspect ratio: the 2 Hz curve's extent in the picture over its extent in the CSV, the same
 # scale across and down (to 2%, the picture's coordinates having 2 decimals)
@@ -148,4 +148,69 @@ expect_error "--animate: an unknown extension" 'an animation is written as .mp4,
 expect_ok "plot: a trace to WebM" plot "$tmp/t.dat" -o "$tmp/t.webm"
 probe "$tmp/t.webm" | grep -q '^vp9,' && pass "WebM: VP9" || fail "WebM: $(probe "$tmp/t.webm")"
 expect_error "plot: a trace to PNG" 'an animation is written as' plot "$tmp/t.dat" -o "$tmp/pics/t.png"
+
+# a figure of flat shapes (drawn 260 px high, more than they need): the curves inside the
+# picture and true to scale (the box's margins were divided as integers: the box fell off the
+# bottom of the picture)
+"$WHIRL" shape --omega 3 --mode 1 -o "$tmp/f3.csv"
+expect_ok "shape --plot: flat shapes" shape --omega 3,5 --mode 1 --plot "$tmp/flat.svg"
+box=$(python3 "$tools/svg_extent.py" "$tmp/flat.svg" 31,78,156)
+height=$(grep -o ' height="[0-9.]*"' "$tmp/flat.svg" | head -1 | tr -dc '0-9.')
+data=$(grep -v '^#' "$tmp/f3.csv" | tail -n +2 | awk -F, 'NR == 1 { r0 = r1 = $2; z0 = z1 = $3 }
+  { if ($2 < r0) r0 = $2; if ($2 > r1) r1 = $2; if ($3 < z0) z0 = $3; if ($3 > z1) z1 = $3 }
+  END { print r1 - r0, z1 - z0 }')
+if echo "$box $height $data" | awk '{ sx = ($3 - $1) / $7; sy = ($4 - $2) / $8; d = sx / sy - 1;
+     if (d < 0) d = -d; exit !($5 > 100 && d < 0.02 && $2 > 0 && $4 < $6 && sx > 300) }'; then
+  pass "flat shapes: inside the picture, true to scale"; else fail "flat shapes ($box in $height / $data)"; fi
+
+# branches: the title names the user's file, not the copy whirl plot draws from
+expect_ok "plot: branches to SVG" plot "$tmp/b.csv" -o "$tmp/b.svg"
+grep -qF '>Branches of steady shapes: b.csv<' "$tmp/b.svg" && ! grep -q 'f1\.csv' "$tmp/b.svg" &&
+  pass "branches: titled with the file's name" || fail "branches: the title ($(grep -o 'Branches[^<]*' "$tmp/b.svg"))"
+grep -qF '>mode 1<' "$tmp/b.svg" && grep -qF '>mode 2<' "$tmp/b.svg" && ! grep -qF '>mode 3<' "$tmp/b.svg" &&
+  pass "branches: a key entry per mode in the file" || fail "branches: the key's entries"
+
+# --size, --present: the picture fits the box, whole (its proportions kept)
+png_size() { python3 -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24); print(*struct.unpack(">II", d[16:24]))' "$1"; }
+expect_ok "plot --size 800" plot "$tmp/b.csv" -o "$tmp/b800.png" --size 800
+[ "$(png_size "$tmp/b800.png")" = "800 360" ] && pass "--size 800: 800 x 360 (1200 x 540 scaled)" ||
+  fail "--size 800: $(png_size "$tmp/b800.png")"
+expect_ok "plot --present" plot "$tmp/b.csv" -o "$tmp/bp.png" --present
+[ "$(png_size "$tmp/bp.png")" = "1920 864" ] && pass "--present: 1920 x 864 in 1920 x 1080" ||
+  fail "--present: $(png_size "$tmp/bp.png")"
+expect_ok "shape --plot --present --size 1280x720" shape $si --omega 2Hz,4Hz,6Hz --mode 2 \
+  --plot "$tmp/sp.png" --present --size 1280x720
+png_size "$tmp/sp.png" | awk '{ exit !($1 <= 1280 && $2 <= 720 && ($1 >= 1279 || $2 >= 719)) }' &&
+  pass "shape --plot --size 1280x720: fits, one side full ($(png_size "$tmp/sp.png"))" ||
+  fail "shape --plot --size 1280x720: $(png_size "$tmp/sp.png")"
+expect_error "--size: not WxH" "--size needs WxH or W in pixels" plot "$tmp/b.csv" -o "$tmp/pics/x.png" --size big
+expect_error "--size: too small" "each side must be 16 to 16384 pixels" plot "$tmp/b.csv" -o "$tmp/pics/x.png" --size 800x5
+expect_error "--slow on a figure" "--slow applies to a movie" plot "$tmp/b.csv" -o "$tmp/pics/x.png" --slow 2
+expect_error "--size without --plot" "shape the picture of --plot" shape --omega 3 --mode 1 --size 800
+
+# movies: slow motion and frames per turn at 25 frames a second; a box
+rate() { ffprobe -v error -select_streams v:0 -count_frames -show_entries \
+  stream=r_frame_rate,nb_read_frames,width,height -of csv=p=0 "$1"; }
+expect_ok "simulate --animate --slow 4" simulate "$scene" --set run.t_end=0.2 --animate "$tmp/slow.mp4" --slow 4
+[ "$(rate "$tmp/slow.mp4" | cut -d, -f3-)" = "25/1,21" ] &&
+  pass "--slow 4: 21 frames for 0.2 s (one every 1/100 s), 25 a second" || fail "--slow 4: $(rate "$tmp/slow.mp4")"
+expect_ok "simulate --animate --frames-per-turn 24" simulate "$scene" --set run.t_end=0.25 \
+  --animate "$tmp/fpt.mp4" --frames-per-turn 24
+[ "$(rate "$tmp/fpt.mp4" | cut -d, -f3-)" = "25/1,25" ] &&
+  pass "--frames-per-turn 24 at 4 Hz: 25 frames for 0.25 s, 25 a second" || fail "--frames-per-turn: $(rate "$tmp/fpt.mp4")"
+expect_ok "simulate --animate --size 640x360" simulate "$scene" --set run.t_end=0.1 --animate "$tmp/box.mp4" --size 640x360
+rate "$tmp/box.mp4" | awk -F, '{ exit !($1 <= 640 && $2 <= 360 && ($1 >= 638 || $2 >= 358)) }' &&
+  pass "--size 640x360: the movie fits, one side full ($(rate "$tmp/box.mp4" | cut -d, -f1-2))" ||
+  fail "--size 640x360: $(rate "$tmp/box.mp4")"
+# whirl plot of a trace every 10 ms: --slow 2 is 50 frames a second, --slow 1 every other block
+"$WHIRL" simulate "$scene" --set run.t_end=0.2 --set output.trace="$tmp/t10.dat" -o /dev/null
+expect_ok "plot: a trace --slow 2" plot "$tmp/t10.dat" -o "$tmp/t2.mp4" --slow 2
+[ "$(rate "$tmp/t2.mp4" | cut -d, -f3-)" = "50/1,21" ] && pass "plot --slow 2: 21 frames, 50 a second" ||
+  fail "plot --slow 2: $(rate "$tmp/t2.mp4")"
+expect_ok "plot: a trace --slow 1" plot "$tmp/t10.dat" -o "$tmp/t1.mp4" --slow 1
+[ "$(rate "$tmp/t1.mp4" | cut -d, -f3-)" = "50/1,11" ] && pass "plot --slow 1: every other block, 11 frames, 50 a second" ||
+  fail "plot --slow 1: $(rate "$tmp/t1.mp4")"
+expect_error "--frames-per-turn: too many frames" "over 1500" simulate "$scene" --animate "$tmp/pics/x.mp4" --frames-per-turn 100
+expect_error "--slow without --animate" "shape the movie of --animate" simulate "$scene" --slow 2
+[ -z "$(ls -A "$tmp/pics")" ] && pass "sizes and movies: failures leave no file" || fail "left: $(ls -A "$tmp/pics")"
 finish
