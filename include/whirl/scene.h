@@ -270,6 +270,15 @@ WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
 WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res);
 
+/* The fastest decay rate the internal damping adds to the motion [1/T], about
+ * 16 D / min_i(m_i l_i^2) (16 D N^3 / (M L^2) for N equal links); 0 without damping. */
+WHIRL_API double whirl_scene_damping_rate(const whirl_scene *scene);
+/* 1 if the damping makes the scene's fixed step unstable for the explicit and fixed-point
+ * methods (dt x whirl_scene_damping_rate > 2, tol = 0, a method other than gsl-msbdf): a run
+ * that fails or blows up then needs a smaller dt or method = gsl-msbdf with tol (its failure
+ * message says so). The rate in *rate (may be NULL). */
+WHIRL_API int whirl_scene_stiff(const whirl_scene *scene, double *rate);
+
 /* CSV: the header (comment lines, the last the units line of whirl_write_units_line, then the
  * column names), one row (the scene's columns of
  * value[WHIRL_NCOLUMNS]), one trace frame ("# t = T", then "x y z t" of the pivot and of every

@@ -98,6 +98,12 @@ static int simulate(run *r)
     if (res.stopped)
         fprintf(stderr, "whirl %s: stopped at t = %.17g: deviation %.6g > %.6g\n", r->cmd->name,
                 res.t, res.deviation, s->stop_deviation);
+    double rate;
+    if (res.stopped && whirl_scene_stiff(s, &rate)) /* the steps' blow-up, not the chain's */
+        fprintf(stderr, "whirl %s: note: the internal damping makes the chain stiff (decay "
+                "rates up to about %.2g %s, dt x rate = %.2g): the deviation may be the steps' "
+                "instability; method = gsl-msbdf with tol (1e-6) steps over it\n", r->cmd->name,
+                rate, s->physical ? "/s" : "sqrt(g/L)", rate * s->dt);
     return 0;
 }
 

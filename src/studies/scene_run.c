@@ -290,6 +290,45 @@ static double output_time(size_t k, size_t last, double every, double t_end)
     return k >= last ? t_end : (double)k * every;
 }
 
+/* The fastest decay rate of the internal damping R = D/2 sum_i |w_i - w_{i-1}|^2 (w_i: the
+ * angular velocity of link i): a damping torque D over a link's moment m l^2, times about 4 for
+ * the alternating pattern (the damping's difference operator) and 4 for the link angles' mass
+ * matrix: 16 D / min_i(m_i l_i^2), 16 D N^3 / (M L^2) for equal links (data/scenes/spin_up_damped
+ * .ini). Measured on 100 equal links at dt = 1e-5: the Gauss stage iteration, a fixed point that
+ * converges for h rate < 2 sqrt(3) = 3.46 (the spectral radius of Gauss-2's matrix is
+ * 1/(2 sqrt 3)), fails between D = 0.0200 (h rate 3.20) and 0.0216 (3.46); rk4, stable for
+ * h rate < 2.785 on the negative real axis, between D = 0.0174 (2.78) and 0.0200 (3.20). */
+double whirl_scene_damping_rate(const whirl_scene *s)
+{
+    if (s == NULL || !(s->internal_damping > 0) || s->links == 0) return 0;
+    double least = HUGE_VAL;
+    for (size_t i = 0; i < s->links; i++)
+        least = GSL_MIN(least, s->mass[i] * s->length[i] * s->length[i]);
+    return 16 * s->internal_damping / least;
+}
+
+/* h rate above 2: past what a fixed step of the explicit and fixed-point methods takes (2.785
+ * for rk4, 3.46 for the Gauss fixed point; 2 leaves room for the estimate's 16) */
+#define STIFF_H_RATE 2.0
+
+int whirl_scene_stiff(const whirl_scene *s, double *rate)
+{
+    const double r = whirl_scene_damping_rate(s);
+    if (rate) *rate = r;
+    return r > 0 && s->tol == 0 && r * s->dt > STIFF_H_RATE &&
+           !(s->method && strcmp(s->method, "gsl-msbdf") == 0);
+}
+
+/* "the internal damping makes the chain stiff ...": what whirl_scene_stiff found, and the method
+ * that steps over it (GSL's BDF, implicit with a Newton iteration, adaptive) */
+static void stiff_words(const whirl_scene *s, double rate, char *buf, size_t size)
+{
+    snprintf(buf, size, "the internal damping makes the chain stiff (decay rates up to "
+             "about %.2g %s, dt x rate = %.2g): fixed steps need dt below about %.2g, or use "
+             "method = gsl-msbdf with tol (1e-6)", rate, s->physical ? "/s" : "sqrt(g/L)",
+             rate * s->dt, STIFF_H_RATE / rate);
+}
+
 int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res)
 {
@@ -334,10 +373,15 @@ int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
         status = whirl_integrator_advance(w->integrator, &t, w->y, t1, s->dt, s->tol);
         if (status == WHIRL_EINTERRUPTED) continue; /* reported at the top of the loop */
         if (status != GSL_SUCCESS) {
-            char copy[512];
+            char copy[512], stiff[256] = "";
             snprintf(copy, sizeof copy, "%s", whirl_error_marked());
-            status = whirl_fail(status, "the run failed after t = %.17g (step %lu): %s", t,
-                                whirl_integrator_get_stats(w->integrator).steps + 1, copy);
+            double rate;
+            if (whirl_scene_stiff(s, &rate)) {
+                stiff[0] = ';', stiff[1] = ' ';
+                stiff_words(s, rate, stiff + 2, sizeof stiff - 2);
+            }
+            status = whirl_fail(status, "the run failed after t = %.17g (step %lu): %s%s", t,
+                                whirl_integrator_get_stats(w->integrator).steps + 1, copy, stiff);
             break;
         }
         if (s->stop_deviation > 0) {

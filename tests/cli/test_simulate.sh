@@ -211,4 +211,28 @@ if [ -s "$tmp/one.csv" ] && [ "$(grep -vc '^#' "$tmp/one.csv")" -eq 7 ] && cmp -
 else fail "threads = 2: the same rows as one thread"; fi
 expect_error "threads = 0" "run.threads: must be in 1..256, got 0" simulate "$tmp/long.ini" --set run.threads=0
 
+# internal damping makes 100 links stiff (decay rates up to 16 D N^3 = 8e5 at D = 0.05): the
+# failure of the Gauss step, and of rk4, names the stiffness and the method that works; the
+# advised method runs; a failure without damping says nothing of it
+stiff="the internal damping makes the chain stiff (decay rates up to about 8e+05 sqrt(g/L)"
+stiff_re='the internal damping makes the chain stiff \(decay rates up to about 8e\+05 sqrt\(g/L\)'
+expect_error "damped 100 links, gauss2: the stiffness named" \
+  "Gauss stage iteration diverges.*; $stiff_re, dt x rate = 8\): fixed steps need dt below about 2.5e-06, or use method = gsl-msbdf with tol \(1e-6\); no file written" \
+  simulate "$scenes/mode2.ini" --set run.internal_damping=0.05 --set run.dt=1e-5 --set run.t_end=0.1 -o "$tmp/out.csv"
+grep -v stop_deviation "$scenes/mode2.ini" >"$tmp/nostop.ini"
+expect_error "damped 100 links, rk4: the stiffness named" \
+  "right-hand side is not finite.*; $stiff_re, dt x rate = 1.6e\+03\).*gsl-msbdf" \
+  simulate "$tmp/nostop.ini" --set run.internal_damping=0.05 --set run.method=rk4 --set run.t_end=0.1 -o "$tmp/out.csv"
+"$WHIRL" simulate "$scenes/mode2.ini" --set run.internal_damping=0.05 --set run.method=rk4 \
+  --set run.t_end=0.1 -o "$tmp/out.csv" 2>"$tmp/stderr"
+grep -q '^whirl simulate: stopped at t = ' "$tmp/stderr" && grep -q "note: $stiff" "$tmp/stderr" \
+  && grep -q 'the deviation may be the steps.* instability' "$tmp/stderr" &&
+  pass "damped rk4 stopped by its deviation: a note on the stiffness" || fail "damped rk4 stopped: $(cat "$tmp/stderr")"
+expect_ok "damped 100 links: method = gsl-msbdf with tol runs" simulate "$scenes/mode2.ini" \
+  --set run.internal_damping=0.05 --set run.method=gsl-msbdf --set run.tol=1e-6 --set run.t_end=0.1 -o "$tmp/out.csv"
+[ ! -s "$tmp/stderr" ] && [ "$(grep -vc '^#' "$tmp/out.csv")" -gt 2 ] && pass "gsl-msbdf: rows, no message" ||
+  fail "gsl-msbdf: $(cat "$tmp/stderr")"
+"$WHIRL" simulate "$tmp/nostop.ini" --set run.method=rk4 --set run.dt=0.3 --set run.t_end=3 -o "$tmp/out.csv" 2>"$tmp/stderr"
+! grep -q stiff "$tmp/stderr" && pass "no damping: nothing said of stiffness" || fail "no damping: $(cat "$tmp/stderr")"
+
 finish
