@@ -110,9 +110,11 @@ $(SHLIB): $(LIB_OBJ)
 $(BUILD)/libwhirl.so: $(SHLIB)
 	ln -sf libwhirl.so.$(MAJOR) $@
 
-# The manual page, generated from the program's --help (scripts/man.sh).
+# The manual page, generated from the program's --help (scripts/man.sh), naming the data folder
+# the program was built with (BUILD/gen/datadir.h).
 $(BUILD)/whirl.1: $(BUILD)/whirl scripts/man.sh include/whirl/scene.h $(DATADIR_H)
-	sh scripts/man.sh $(BUILD)/whirl '$(DATADIR)' >$@.tmp && mv $@.tmp $@
+	sh scripts/man.sh $(BUILD)/whirl "$$(sed -n 's/^#define WHIRL_DATADIR "\(.*\)"$$/\1/p' $(DATADIR_H))" \
+	  >$@.tmp && mv $@.tmp $@
 
 # make install PREFIX=/usr/local DESTDIR=: the program, libwhirl.a and libwhirl.so, the headers,
 # whirl.pc for pkg-config, the manual page, the scenes, plot scripts and example data under
@@ -124,20 +126,44 @@ INCLUDEDIR ?= $(PREFIX)/include
 MANDIR     ?= $(PREFIX)/share/man
 PKGCONFIGDIR ?= $(LIBDIR)/pkgconfig
 # The scene files, the plot scripts and the example data (share/whirl/): the program's --help and
-# the manual page name this directory, compiled in (BUILD/gen/datadir.h, rewritten when it changes).
+# the manual page name this directory, compiled in (a gen/datadir.h, rewritten when it changes).
+# The program of the build tree names the DATADIR of `make` (/usr/local/share/whirl by default);
+# make install builds the program it installs apart, in BUILD/install/ (its own main.o, link and
+# manual page with the install's DATADIR), so that installing with another PREFIX leaves
+# BUILD/whirl as it is (it would be relinked, and the next make would relink it back).
 DATADIR    ?= $(PREFIX)/share/whirl
 DATADIR_H  := $(BUILD)/gen/datadir.h
+INSTALL_BUILD := $(BUILD)/install
+INSTALL_DATADIR_H := $(INSTALL_BUILD)/gen/datadir.h
+INSTALLING := $(filter install deb,$(MAKECMDGOALS))
 # (a relative DATADIR, which make install refuses, leaves the header as it was)
+write_datadir = case '$(2)' in (/*) ;; (*) exit 0 ;; esac; mkdir -p $(dir $(1)) && \
+  printf '\043define WHIRL_DATADIR "%s"\n' '$(2)' | cmp -s - $(1) || \
+  printf '\043define WHIRL_DATADIR "%s"\n' '$(2)' >$(1)
 ifneq ($(MAKECMDGOALS),clean)
-$(shell case '$(DATADIR)' in (/*) ;; (*) exit 0 ;; esac; mkdir -p $(BUILD)/gen && printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' | \
-  cmp -s - $(DATADIR_H) || printf '#define WHIRL_DATADIR "%s"\n' '$(DATADIR)' >$(DATADIR_H))
+ifeq ($(INSTALLING),)
+$(shell $(call write_datadir,$(DATADIR_H),$(DATADIR)))
+else
+$(shell $(call write_datadir,$(INSTALL_DATADIR_H),$(DATADIR)))
+$(shell [ -f $(DATADIR_H) ] || { $(call write_datadir,$(DATADIR_H),/usr/local/share/whirl); })
+endif
 endif
 $(BUILD)/src/cli/main.o: $(DATADIR_H)
 $(BUILD)/src/cli/main.o: CPPFLAGS += -I$(BUILD)/gen
+$(INSTALL_BUILD)/main.o: src/cli/main.c $(INSTALL_DATADIR_H) $(BUILD)/flags
+	@mkdir -p $(dir $@)
+	$(CC) -I$(INSTALL_BUILD)/gen $(CPPFLAGS) $(ALL_CFLAGS) -c $< -o $@
+$(INSTALL_BUILD)/whirl: $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ)) $(INSTALL_BUILD)/main.o \
+  $(BUILD)/libwhirl.a
+	$(CC) $(ALL_LDFLAGS) $(filter-out $(BUILD)/libwhirl.a,$^) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
+$(INSTALL_BUILD)/whirl.1: $(INSTALL_BUILD)/whirl scripts/man.sh include/whirl/scene.h \
+  $(INSTALL_DATADIR_H)
+	sh scripts/man.sh $(INSTALL_BUILD)/whirl '$(DATADIR)' >$@.tmp && mv $@.tmp $@
 INSTALL_VARS = BUILD='$(BUILD)' VERSION='$(VERSION)' MAJOR='$(MAJOR)' DESTDIR='$(DESTDIR)' \
   PREFIX='$(PREFIX)' BINDIR='$(BINDIR)' LIBDIR='$(LIBDIR)' INCLUDEDIR='$(INCLUDEDIR)' \
-  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)' DATADIR='$(DATADIR)'
-install: all
+  MANDIR='$(MANDIR)' PKGCONFIGDIR='$(PKGCONFIGDIR)' DATADIR='$(DATADIR)' \
+  PROGRAM='$(INSTALL_BUILD)/whirl' MANPAGE='$(INSTALL_BUILD)/whirl.1'
+install: all $(INSTALL_BUILD)/whirl $(INSTALL_BUILD)/whirl.1
 	@$(INSTALL_VARS) sh scripts/install.sh install
 uninstall:
 	@$(INSTALL_VARS) sh scripts/install.sh uninstall
@@ -151,7 +177,7 @@ MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
 ifeq ($(MPI),1)
 $(BUILD)/src/cli/cmd_regime.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
 $(BUILD)/src/cli/regime_map.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
-$(BUILD)/whirl: PKG_LIBS += $(shell mpicc --showme:link)
+$(BUILD)/whirl $(BUILD)/install/whirl: PKG_LIBS += $(shell mpicc --showme:link)
 endif
 # --- end MPI
 
@@ -298,4 +324,4 @@ explore: deps
 clean:
 	rm -rf build build-* out
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d)
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d) $(INSTALL_BUILD)/main.d

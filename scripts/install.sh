@@ -2,7 +2,8 @@
 # Installs or uninstalls whirl: install.sh install|uninstall, with the variables the Makefile
 # passes: BUILD (the built files), VERSION, MAJOR, DESTDIR (staging root, may be empty), PREFIX,
 # BINDIR, LIBDIR, INCLUDEDIR, MANDIR, PKGCONFIGDIR, DATADIR (the scenes, plot scripts and example
-# data, which the program's --help names). Before installing anything every target
+# data, which the program's --help names), PROGRAM and MANPAGE (the program and its manual page
+# built for DATADIR; default BUILD/whirl, BUILD/whirl.1). Before installing anything every target
 # directory is created and written to once, so an unwritable prefix fails with one clear error
 # and leaves nothing half installed.
 set -e
@@ -36,13 +37,13 @@ for dir in "$d$BINDIR" "$d$LIBDIR" "$d$PKGCONFIGDIR" "$d$INCLUDEDIR/whirl" "$d$M
   rm -f "$probe"
 done
 
-install -m 755 "$BUILD/whirl" "$d$BINDIR/whirl"
+install -m 755 "${PROGRAM:-$BUILD/whirl}" "$d$BINDIR/whirl"
 install -m 644 "$BUILD/libwhirl.a" "$d$LIBDIR/libwhirl.a"
 install -m 755 "$BUILD/$real" "$d$LIBDIR/$real"
 ln -sf "$real" "$d$LIBDIR/libwhirl.so.$MAJOR"
 ln -sf "libwhirl.so.$MAJOR" "$d$LIBDIR/libwhirl.so"
 for h in $headers; do install -m 644 "include/$h" "$d$INCLUDEDIR/$h"; done
-install -m 644 "$BUILD/whirl.1" "$d$MANDIR/man1/whirl.1"
+install -m 644 "${MANPAGE:-$BUILD/whirl.1}" "$d$MANDIR/man1/whirl.1"
 for f in $shared; do
   case $f in plots/*) src=$f ;; *) src=data/$f ;; esac
   install -m 644 "$src" "$d$DATADIR/$f"

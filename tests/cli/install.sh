@@ -15,8 +15,19 @@ prefix=$tmp/prefix
 mk() { make -s --no-print-directory -C "$repo" BUILD="$build" "$@"; }
 
 # ---- install into a prefix ----
+before=$(stat -c '%Y.%i' "$build/whirl" "$build/whirl.1" "$build/gen/datadir.h" | tr '\n' ' ')
 if mk install PREFIX="$prefix" >"$tmp/install.out" 2>&1; then pass "make install PREFIX=..."
 else fail "make install PREFIX=...: $(tail -n 3 "$tmp/install.out")"; finish; fi
+# the build tree as it was: its program not relinked, and up to date for the next make
+after=$(stat -c '%Y.%i' "$build/whirl" "$build/whirl.1" "$build/gen/datadir.h" | tr '\n' ' ')
+if [ "$before" = "$after" ] && mk -q "$build/whirl" "$build/whirl.1" \
+   && ! "$WHIRL" simulate --help | grep -q "$prefix"; then
+  pass "make install PREFIX=...: the build tree's program untouched, still up to date"
+else fail "make install PREFIX=... changed the build tree ($before -> $after)"; fi
+if "$prefix/bin/whirl" simulate --help | grep -q "examples in $prefix/share/whirl/scenes" \
+   && grep -q "$prefix/share/whirl" "$prefix/share/man/man1/whirl.1"; then
+  pass "the installed program and manual page name $prefix/share/whirl"
+else fail "the installed program does not name its data: $("$prefix/bin/whirl" simulate --help | head -2)"; fi
 version=$(awk '$2 == "WHIRL_VERSION_MAJOR" { a = $3 } $2 == "WHIRL_VERSION_MINOR" { b = $3 }
                $2 == "WHIRL_VERSION_PATCH" { c = $3 } END { print a "." b "." c }' include/whirl/version.h)
 major=${version%%.*}
