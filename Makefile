@@ -171,6 +171,15 @@ uninstall:
 $(BUILD)/whirl: $(CLI_OBJ) $(BUILD)/libwhirl.a
 	$(CC) $(ALL_LDFLAGS) $(CLI_OBJ) $(BUILD)/libwhirl.a $(LDLIBS) -o $@
 
+# --- Debian package: make deb writes BUILD/whirl_VERSION-1_ARCH.deb (scripts/deb.sh: a staged
+# make install PREFIX=/usr built apart in BUILD/deb, runtime Depends from dpkg-shlibdeps, checked
+# by lintian when installed); tests/tools/deb_test.sh installs it with apt-get and runs the
+# README's first recipe with /usr/bin/whirl (as root; not part of make check).
+deb:
+	@BUILD='$(BUILD)' VERSION='$(VERSION)' MAKE='$(MAKE)' sh scripts/deb.sh
+.PHONY: deb
+# --- end Debian package
+
 # --- MPI (Open MPI): with mpicc present, `whirl regime` shares a map out over the ranks of
 # `mpirun -n K`; `make MPI=0` builds the single-process program without MPI.
 MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
