@@ -358,13 +358,13 @@ if [ $rc -eq 0 ] && [ "$(grep -v '^#' "$tmp/nohup.csv" | tail -n 1 | cut -d, -f1
   pass "nohup: SIGHUP stays ignored, the run completes"
 else fail "nohup: SIGHUP stays ignored (rc=$rc, $(head -c 200 "$tmp/nohup.out"))"; fi
 
-# SIGPIPE: a reader that goes away ends the run with a write error (141), not a kill
+# SIGPIPE: a reader that goes away ends the run (141, as a process killed by it), without a word
+# (as coreutils: the reader chose to stop reading)
 ( "$WHIRL" simulate "$scenes/mode2.ini" --set run.t_end=1e4 2>"$tmp/pipe.err"; echo $? >"$tmp/pipe.rc" ) |
   head -n 1 >/dev/null
 rc=$(cat "$tmp/pipe.rc")
-if [ "$rc" -eq 141 ] && [ "$(wc -l <"$tmp/pipe.err")" -eq 1 ] &&
-   grep -q 'cannot write standard output: Broken pipe' "$tmp/pipe.err"; then
-  pass "SIGPIPE: | head -1 ends the run with a write error, exit 141"
+if [ "$rc" -eq 141 ] && [ ! -s "$tmp/pipe.err" ]; then
+  pass "SIGPIPE: | head -1 ends the run silently, exit 141"
 else fail "SIGPIPE: | head -1 (rc=$rc, $(head -c 200 "$tmp/pipe.err"))"; fi
 
 # SIGXFSZ: a file-size limit is a write error (153), and no temporary file is left
