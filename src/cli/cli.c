@@ -561,8 +561,10 @@ static void note_implausible(const cli_command *cmd, const cli_option *opts, siz
 {
     for (size_t i = 0; i < nopts; i++) {
         const cli_option *o = &opts[i];
-        if (text[i] == NULL || cli_suffix_name(text[i])[0] != '\0') continue;
-        const double v = *(const double *)o->value;
+        if (text[i] == NULL || cli_suffix_name(text[i])[0] != '\0' ||
+            (o->unit != CLI_UNIT_SET_LENGTH && o->unit != CLI_UNIT_SET_MASS))
+            continue;
+        const double v = *(const double *)o->value; /* (a double: a unit option's value) */
         if (o->unit == CLI_UNIT_SET_LENGTH && v > CLI_PLAUSIBLE_LENGTH_MAX)
             fprintf(stderr, "whirl %s: note: %s %s is %g m, longer than 10 m (write the unit if "
                     "you meant otherwise: %gcm, %gmm)\n", cmd->name, o->name, text[i], v, v, v);
