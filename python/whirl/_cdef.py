@@ -24,6 +24,10 @@ void whirl_stop_clear(void);
 int whirl_stop_signal(void);
 int whirl_stop_catch_signals(void);
 void whirl_stop_restore_signals(void);
+#define WHIRL_THREADS_MAX 4096
+int whirl_set_max_threads(int threads);
+int whirl_max_threads(void);
+int whirl_forked_child(void);
 
 typedef struct whirl_chain {
     size_t n;
@@ -501,4 +505,4 @@ STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 # The constants whose values tests/test_layout.py checks against the C headers.
 CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_CONTINUUM_MODE_MAX",
              "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
-             "WHIRL_NCOLUMNS"]
+             "WHIRL_NCOLUMNS", "WHIRL_THREADS_MAX"]

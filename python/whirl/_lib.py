@@ -12,12 +12,13 @@ The shared library is looked for, in this order:
 """
 import contextlib
 import ctypes.util
+import functools
 import math
 import numbers
 import os
 import signal
 import threading
-from typing import Any, ContextManager, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, ContextManager, Iterator, List, Optional, Sequence, Tuple, TypeVar
 
 import numpy as np
 from cffi import FFI
@@ -300,3 +301,71 @@ def finite(name: str, *values: Any) -> None:
         if not (math.isfinite(v) if isinstance(v, float) else np.isfinite(v).all()):
             raise ValueError("%s is not finite in these units (inf or NaN): choose units "
                              "nearer to the chain's own scales" % name)
+
+
+# ---- threads ----
+
+def set_max_threads(threads: int) -> None:
+    """Caps the OpenMP threads of every parallel loop of the library (sweeps, stability maps, a
+    long chain's right-hand side) at ``threads``; 0 restores OpenMP's own count
+    (OMP_NUM_THREADS, or the cores). Results do not depend on it. In a child of fork() (the
+    default start method of multiprocessing on Linux) the library runs on one thread, since
+    the OpenMP threads of the parent do not survive a fork; asking for more there raises
+    ValueError (whirl.InvalidInput)."""
+    check(lib.whirl_set_max_threads(as_int(threads, "threads", minimum=0,
+                                           maximum=lib.WHIRL_THREADS_MAX)))
+
+
+def max_threads() -> int:
+    """The threads a parallel loop of the library takes now (1 in a child of fork())."""
+    return int(lib.whirl_max_threads())
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+class InUse(RuntimeError):
+    """An object with state (a Simulation) called from a second thread while a first is using
+    it: refused, since both would move the one state."""
+
+
+class Exclusive:
+    """The guard of an object with state: one thread at a time. A call from another thread
+    while one is inside raises InUse at once (nothing is changed); calls from the same thread
+    nest. Cheap: one non-blocking lock acquisition per call."""
+
+    __slots__ = ("_lock", "_owner", "_user")
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._owner: Optional[int] = None
+        self._user = ""
+
+    @contextlib.contextmanager
+    def __call__(self, what: str) -> Iterator[None]:
+        me = threading.get_ident()
+        if self._owner == me:
+            yield
+            return
+        if not self._lock.acquire(blocking=False):
+            raise InUse("%s: this object is in use by another thread (%s); an object with "
+                        "state serves one thread at a time: give each thread its own (a copy: "
+                        "copy.copy) or lock around the calls" % (what, self._user))
+        self._owner, self._user = me, what
+        try:
+            yield
+        finally:
+            self._owner, self._user = None, ""
+            self._lock.release()
+
+
+def exclusive(method: _F) -> _F:
+    """A method of an object with state (``self._guard``, an Exclusive): one thread at a
+    time."""
+    what = method.__qualname__
+
+    @functools.wraps(method)
+    def guarded(self: Any, *args: Any, **kwargs: Any) -> Any:
+        with self._guard(what):
+            return method(self, *args, **kwargs)
+    return guarded  # type: ignore[return-value]

@@ -94,7 +94,14 @@ class Simulation:
       length/mass/gravity or units: the units of every argument and result (see whirl.Units;
         default dimensionless: times in sqrt(L/g), lengths in L, energies in M g L).
     Start it with set_steady, set_hanging or set_state, then run(). Pickles and copies (its
-    configuration, time and state; the integrator starts afresh, its counters at zero)."""
+    configuration, time and state; the integrator starts afresh, its counters at zero).
+
+    Threads: a Simulation holds one state, so it serves one thread at a time. A call from a
+    second thread while a first is inside one of its methods (run, set_*, positions, ...)
+    raises whirl.InUse (a RuntimeError) at once and changes nothing; give each thread its own
+    Simulation (copy.copy(sim) copies one). Separate Simulations run in parallel threads
+    (the library releases the GIL). In a child of fork() (multiprocessing's default on Linux)
+    the library runs on one thread: see whirl.set_max_threads."""
 
     def __init__(self, chain: Union[int, Chain], dim: int = 3, frame: str = "inertial",
                  omega: float = 0.0, drive_radius: float = 0.0, air_drag: float = 0.0,
@@ -102,6 +109,7 @@ class Simulation:
                  formulation: str = "default", method: str = "gauss2", threads: int = 1,
                  length: Optional[float] = None, mass: Optional[float] = None,
                  gravity: Optional[float] = None, units: Optional[Units] = None) -> None:
+        self._guard = _lib.Exclusive()
         u = units_of(length, mass, gravity, units)
         self.units = u
         self._chain = chain if isinstance(chain, Chain) else Chain(links_count(chain))
@@ -144,6 +152,7 @@ class Simulation:
         """The chain (read-only: the library's model refers to it)."""
         return self._chain
 
+    @_lib.exclusive
     def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
         state = (self._t[0], self._y.copy(), None if self._ref is None else self._ref.copy())
         return (_simulation_from, (self._chain, self._args, self.units, state))
@@ -157,6 +166,7 @@ class Simulation:
     def omega(self) -> float:
         return float(self._model.omega) * self.units.rate
 
+    @_lib.exclusive
     def set_state(self, x: Any, v: Any, t: float = 0.0) -> None:
         """Starts from the positions x [L] and velocities v of masses 1..N (arrays (N, 3), in
         the model's frame at time t [T]; 2D: y components 0). They must satisfy the link
@@ -171,6 +181,7 @@ class Simulation:
         self._t[0] = t
         self._ref = self._inertial()
 
+    @_lib.exclusive
     def set_steady(self, mode: int, omega: Optional[float] = None, perturb: float = 0.0,
                    seed: int = 1) -> None:
         """Starts from the exact steady shape of ``mode`` at ``omega`` [1/T] (default: the
@@ -207,6 +218,7 @@ class Simulation:
             check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
                                                  _lib.dptr(self._y)))
 
+    @_lib.exclusive
     def set_hanging(self) -> None:
         """Starts from the chain hanging straight down at rest (pivot on the axis)."""
         if self._model.drive_radius != 0:
@@ -220,21 +232,25 @@ class Simulation:
                                       _lib.dptr(self._x), _lib.dptr(self._v)))
         return self._x.reshape(self.n, 3).copy()
 
+    @_lib.exclusive
     def positions(self) -> np.ndarray:
         """The masses' positions in the inertial frame now, (N, 3) [L]."""
         return self._inertial() * self.units.length
 
+    @_lib.exclusive
     def tensions(self) -> np.ndarray:
         """The link tensions now, N values [M g]."""
         out = np.empty(self.n)
         check(lib.whirl_dyn_tensions(self._dyn, self._t[0], _lib.dptr(self._y), _lib.dptr(out)))
         return out * self.units.force
 
+    @_lib.exclusive
     def stats(self) -> Dict[str, int]:
         """The integrator's counters since it was made: steps, rejected, rhs_evals,
         iterations."""
         return _stats(lib.whirl_integrator_get_stats(self._it))
 
+    @_lib.exclusive
     def run(self, t_end: float, dt: float, every: Optional[float] = None, tol: float = 0.0,
             positions: bool = True, keep_interrupted: bool = False) -> Trajectory:
         """Integrates from the current time to t_end [T] with steps dt (tol = 0: fixed steps;
