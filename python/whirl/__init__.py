@@ -15,8 +15,8 @@ one in a child of fork().
 ``whirl.__version__`` is the library's version; ``whirl.LIBRARY_PATH`` the library in use."""
 from ._lib import (Error, InUse, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, max_threads,
                    methods, set_max_threads, stop_requested)
-from .steady import (STANDARD_GRAVITY, Units, Chain, Shape, critical, equilibria, shape,
-                     sweep)
+from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, critical,
+                     equilibria, shape, sweep)
 from .dynamics import Simulation, Trajectory
 from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
                         stability_windows)
@@ -29,7 +29,8 @@ __version__ = LIBRARY_VERSION
 
 __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
            "max_threads", "set_max_threads",
-           "STANDARD_GRAVITY", "Units", "Chain", "Shape", "critical", "equilibria", "shape",
+           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "critical",
+           "equilibria", "shape",
            "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",

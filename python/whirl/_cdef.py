@@ -28,6 +28,15 @@ void whirl_stop_restore_signals(void);
 int whirl_set_max_threads(int threads);
 int whirl_max_threads(void);
 int whirl_forked_child(void);
+typedef enum {
+    WHIRL_QUANTITY_NUMBER,
+    WHIRL_QUANTITY_RATE,
+    WHIRL_QUANTITY_LENGTH,
+    WHIRL_QUANTITY_MASS,
+    WHIRL_QUANTITY_TIME
+} whirl_quantity;
+int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value, int *suffixed);
+const char *whirl_quantity_suffixes(whirl_quantity kind);
 
 typedef struct whirl_chain {
     size_t n;

@@ -41,8 +41,8 @@ def _stats(s: Any) -> Dict[str, int]:
             "iterations": int(s.iterations)}
 
 
-@dataclass
-class Trajectory:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class Trajectory(_lib.Result):
     """The output of Simulation.run: arrays over the output times ``t`` [T]: ``x`` (shape
     (len(t), N, 3): every mass's position in the inertial frame [L]; None with
     positions=False), ``energy`` (kinetic plus potential, inertial frame [M g L]), ``jacobi``
@@ -71,8 +71,9 @@ class Trajectory:
         return self.x[:, -1, :]
 
     def __repr__(self) -> str:
-        return "Trajectory(%d rows, t = %g..%g, %d steps)" % (
-            self.t.size, self.t[0], self.t[-1], self.stats["steps"])
+        span = ", t = %g..%g" % (self.t[0], self.t[-1]) if self.t.size else ""
+        return "Trajectory(%d rows%s, %d steps%s)" % (
+            self.t.size, span, self.stats["steps"], ", interrupted" if self.interrupted else "")
 
 
 class Simulation:
@@ -124,8 +125,9 @@ class Simulation:
         if m.dim not in (2, 3):
             raise ValueError("dim must be 2 or 3, got %d" % m.dim)
         m.frame = _choice(frame, "frame", _FRAMES)
-        m.omega = as_float(omega, "omega") / u.rate
-        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True) / u.length
+        m.omega = as_float(omega, "omega", kind="rate", units=u) / u.rate
+        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
+                                  kind="length", units=u) / u.length
         m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
         m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
                                         nonnegative=True) / u.drag2
@@ -146,6 +148,18 @@ class Simulation:
         self._v = np.zeros(3 * self.n)
         self._ref: Optional[np.ndarray] = None
         self._diag = ffi.new("whirl_dyn_diagnostics *")
+
+    def __repr__(self) -> str:
+        # no guard: a repr (a debugger's, a log's) never waits for or disturbs another thread
+        m, u = self._model, self.units
+        extra = "".join(", %s=%g" % (name, value) for name, value in (
+            ("drive_radius", m.drive_radius * u.length), ("air_drag", m.air_drag * u.drag),
+            ("air_drag_quadratic", m.air_drag_quadratic * u.drag2),
+            ("internal_damping", m.internal_damping * u.damping)) if value)
+        start = "no start state" if self._ref is None else "t=%g" % self.t
+        return "Simulation(%r, dim=%d, frame=%r, omega=%g%s, method=%r, %s%s)" % (
+            self._chain, m.dim, self._args["frame"], self.omega, extra, self.method, start,
+            ", %r" % u if u.physical else "")
 
     @property
     def chain(self) -> Chain:
@@ -175,7 +189,7 @@ class Simulation:
         u = self.units
         x = as_array(x, "x", shape=(self.n, 3)).ravel() / u.length
         v = as_array(v, "v", shape=(self.n, 3)).ravel() / (u.length / u.time)
-        t = as_float(t, "t") / u.time
+        t = as_float(t, "t", kind="time", units=u) / u.time
         check(lib.whirl_dyn_set_state(self._dyn, t, _lib.dptr(x), _lib.dptr(v),
                                       _lib.dptr(self._y)))
         self._t[0] = t
@@ -194,7 +208,8 @@ class Simulation:
         MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
         The deviation is measured from the unperturbed shape."""
         w = (self._model.omega if omega is None
-             else as_float(omega, "omega", positive=True) / self.units.rate)
+             else as_float(omega, "omega", positive=True,
+                           kind="rate", units=self.units) / self.units.rate)
         mode = _mode(mode, self._chain)
         perturb = as_float(perturb, "perturb", nonnegative=True)
         seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
@@ -266,12 +281,13 @@ class Simulation:
             raise RuntimeError("no start state: call set_steady, set_hanging or set_state first")
         u = self.units
         t0 = self._t[0]
-        t_end = as_float(t_end, "t_end") / u.time
+        t_end = as_float(t_end, "t_end", kind="time", units=u) / u.time
         if not t_end > t0:
             raise ValueError("t_end must be > the current time %g, got %g"
                              % (t0 * u.time, t_end * u.time))
-        dt = as_float(dt, "dt", positive=True) / u.time
-        every = dt if every is None else as_float(every, "every", positive=True) / u.time
+        dt = as_float(dt, "dt", positive=True, kind="time", units=u) / u.time
+        every = dt if every is None else as_float(every, "every", positive=True,
+                                                  kind="time", units=u) / u.time
         tol = as_float(tol, "tol", nonnegative=True)
         span = t_end - t0
         steps = span / dt

@@ -482,11 +482,13 @@ class Server(http.server.ThreadingHTTPServer):
                 pass
             self.shutdown_request(request)
             return
+        t = threading.Thread(target=self.process_request_thread, args=(request, client_address),
+                             daemon=True)
         try:
-            super().process_request(request, client_address)
-        except BaseException:
+            t.start()  # the thread releases the slot (a Ctrl-C here is the server's to handle)
+        except RuntimeError:  # no thread to be had
             self.connections.release()
-            raise
+            self.shutdown_request(request)
 
     def process_request_thread(self, request, client_address):
         try:
