@@ -288,3 +288,14 @@ def test_refusing_a_cross_site_request_is_quick(live):
     times.sort()
     print("explore: a cross-site request refused in %.2f ms (median of 100, over loopback, "
           "connection included)" % (1e3 * times[50]))
+
+
+def test_a_run_stops_once_the_page_stops_asking(live, monkeypatch):
+    monkeypatch.setattr(explore, "RUN_IDLE", 0.0)  # no poll since the start counts as gone
+    code, answer = live.json("POST", "/api/run/start", body=SHAPE + "&links=60")
+    assert code == 200, answer
+    run = live.server.runs[answer["id"]]
+    run.thread.join(60)  # nobody polls: the page has gone
+    assert run.done and run.cancelled.is_set()
+    assert run.error == "stopped: the page stopped asking for frames"
+    assert run.frames == []
