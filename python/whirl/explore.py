@@ -431,8 +431,10 @@ class Workers:
                 self.idle.append(w)
             w = None
         except (EOFError, OSError):
+            if w is not None:
+                w[0].join(1)
             raise Refused(500, "the computation's process ended (exit status %s)"
-                          % (w[0].exitcode if w else "?")) from None
+                          % (w[0].exitcode if w is not None else "?")) from None
         finally:
             if w is not None:
                 self._end(w)
