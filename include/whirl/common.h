@@ -111,6 +111,25 @@ WHIRL_API int whirl_stop_catch_signals(void);
 /* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
 WHIRL_API void whirl_stop_restore_signals(void);
 
+/* ---- threads ----
+ * The library's parallel loops (steady branches over many rates, stability maps, the right-hand
+ * side of a long chain with whirl_dyn_set_threads) run on OpenMP threads: at most
+ * whirl_max_threads() of them. GNU libgomp's threads do not survive fork(): a parallel region in
+ * a child forked after its parent ran one would wait forever for them. So in a child of fork()
+ * (multiprocessing's default on Linux) every loop of the library runs on one thread, and
+ * whirl_set_max_threads refuses more there. The setting is process-wide, like the stop
+ * request, and thread-safe. */
+#define WHIRL_THREADS_MAX 4096 /* a bound on the setting, far above any machine's cores */
+
+/* Caps the threads of every parallel loop of the library at threads (0: OpenMP's own count,
+ * OMP_NUM_THREADS or the cores; the default). GSL_EINVAL outside 0..WHIRL_THREADS_MAX, or
+ * other than 1 in a child of fork(). Results do not depend on it. */
+WHIRL_API int whirl_set_max_threads(int threads);
+/* The threads a parallel loop of the library takes now (1 in a child of fork()). */
+WHIRL_API int whirl_max_threads(void);
+/* 1 in a child of fork() (the process runs the library on one thread), else 0. */
+WHIRL_API int whirl_forked_child(void);
+
 /* ---- numbers as text ----
  * whirl_format_double writes x in the shortest of %.15g, %.16g, %.17g that strtod reads back
  * to the same double (17 digits always do), so 4.39 prints as 4.39 and not 4.3900000000000006,

@@ -103,7 +103,8 @@ WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);
  * serial. Every value is computed as with one thread: results are bitwise the same. Default 1
  * (opt-in: each right-hand side then forks and joins twice, which pays only on idle cores; see
  * the README's measurements). GSL_EINVAL outside 1..WHIRL_DYN_THREADS_MAX. Calls from inside an
- * OpenMP parallel region run on one thread (nested parallelism is off). */
+ * OpenMP parallel region run on one thread (nested parallelism is off); the count is capped by
+ * whirl_set_max_threads, and is 1 in a child of fork() (see whirl_max_threads). */
 #define WHIRL_DYN_THREADS_MIN_LINKS 4096
 #define WHIRL_DYN_THREADS_MAX 256
 WHIRL_API int whirl_dyn_set_threads(whirl_dyn *d, int threads);

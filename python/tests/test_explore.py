@@ -5,6 +5,7 @@ console errors; bad input gets a message next to its field and sends nothing; re
 another host are refused; a second server on a busy port takes another."""
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -189,8 +190,12 @@ def test_refuses_other_hosts_and_takes_a_free_port():
         finally:
             b.terminate()
             b.wait(timeout=10)
+        page = urllib.request.urlopen(url).read().decode()
+        token = re.search(r'name="whirl-token" content="([^"]+)"', page).group(1)
         with pytest.raises(urllib.error.HTTPError) as e:
-            urllib.request.urlopen(url + "api/shape?length=-1&mass=1&rate=1&mode=1")
+            urllib.request.urlopen(urllib.request.Request(
+                url + "api/shape?length=-1&mass=1&rate=1&mode=1",
+                headers={"X-Whirl-Token": token}))
         assert e.value.code == 400
         assert "length must be in" in json.loads(e.value.read())["error"]
     finally:

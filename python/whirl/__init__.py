@@ -9,11 +9,14 @@ gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Unit
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
 message (bad values: whirl.InvalidInput, also a ValueError); Ctrl-C during a long call raises
 KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy.
+Threads: a Simulation serves one thread at a time (a second thread gets whirl.InUse); the
+library's own parallel loops take whirl.max_threads() OpenMP threads (whirl.set_max_threads),
+one in a child of fork().
 ``whirl.__version__`` is the library's version; ``whirl.LIBRARY_PATH`` the library in use."""
-from ._lib import (Error, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, methods,
-                   stop_requested)
-from .steady import (STANDARD_GRAVITY, Units, Chain, Shape, critical, equilibria, shape,
-                     sweep)
+from ._lib import (Error, InUse, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, max_threads,
+                   methods, set_max_threads, stop_requested)
+from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, critical,
+                     equilibria, shape, sweep)
 from .dynamics import Simulation, Trajectory
 from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
                         stability_windows)
@@ -24,8 +27,10 @@ from .csv import Table, read_csv
 
 __version__ = LIBRARY_VERSION
 
-__all__ = ["Error", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
-           "STANDARD_GRAVITY", "Units", "Chain", "Shape", "critical", "equilibria", "shape",
+__all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
+           "max_threads", "set_max_threads",
+           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "critical",
+           "equilibria", "shape",
            "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",

@@ -24,6 +24,19 @@ void whirl_stop_clear(void);
 int whirl_stop_signal(void);
 int whirl_stop_catch_signals(void);
 void whirl_stop_restore_signals(void);
+#define WHIRL_THREADS_MAX 4096
+int whirl_set_max_threads(int threads);
+int whirl_max_threads(void);
+int whirl_forked_child(void);
+typedef enum {
+    WHIRL_QUANTITY_NUMBER,
+    WHIRL_QUANTITY_RATE,
+    WHIRL_QUANTITY_LENGTH,
+    WHIRL_QUANTITY_MASS,
+    WHIRL_QUANTITY_TIME
+} whirl_quantity;
+int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value, int *suffixed);
+const char *whirl_quantity_suffixes(whirl_quantity kind);
 
 typedef struct whirl_chain {
     size_t n;
@@ -501,4 +514,4 @@ STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 # The constants whose values tests/test_layout.py checks against the C headers.
 CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_CONTINUUM_MODE_MAX",
              "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
-             "WHIRL_NCOLUMNS"]
+             "WHIRL_NCOLUMNS", "WHIRL_THREADS_MAX"]

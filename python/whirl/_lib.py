@@ -12,12 +12,14 @@ The shared library is looked for, in this order:
 """
 import contextlib
 import ctypes.util
+import dataclasses
+import functools
 import math
 import numbers
 import os
 import signal
 import threading
-from typing import Any, ContextManager, Iterator, List, Optional, Sequence, Tuple
+from typing import Any, Callable, ContextManager, Iterator, List, Optional, Sequence, Tuple, TypeVar
 
 import numpy as np
 from cffi import FFI
@@ -58,6 +60,11 @@ def _load() -> Tuple[Any, str]:
 
 
 lib, LIBRARY_PATH = _load()
+# The library stays loaded to the process's end: after a stop request a dense LAPACK solve it
+# could not poll runs on in a thread of its own (src/core/worker.c), and the interpreter's
+# finalisation would otherwise unload the library under it (cffi's handle is closed with the
+# module), a crash at exit in about half the Ctrl-Cs of a stability map. ctypes never unloads.
+_PIN = ctypes.CDLL(LIBRARY_PATH, mode=os.RTLD_NOW | getattr(os, "RTLD_NODELETE", 0))
 LIBRARY_VERSION: str = ffi.string(lib.whirl_version()).decode()
 # GSL's default error handler aborts the process: the library reports every failure by status.
 lib.gsl_set_error_handler_off()
@@ -127,7 +134,11 @@ def check(status: int, context: Optional[str] = None, units: Any = None) -> None
         return
     if status == lib.WHIRL_EINTERRUPTED:
         lib.whirl_stop_clear()
-        raise interrupted(context or last_error())
+        if context is None and _active and threading.current_thread() is threading.main_thread():
+            context = _active[0]  # the call the user made, not the library's inner step
+        if context is None:
+            raise KeyboardInterrupt("whirl: %s" % (last_error() or "interrupted"))
+        raise interrupted(context)
     msg = last_error_in(units)
     if context and not msg.startswith(context + ":"):  # the library may name it already
         msg = "%s: %s" % (context, msg)
@@ -149,6 +160,10 @@ _KEEP = tuple(getattr(signal, name) for name in ("SIGTERM", "SIGHUP", "SIGQUIT")
               if hasattr(signal, name))
 
 
+_nested = [0]  # interruptible blocks open in the main thread (only the outermost acts)
+_active: List[str] = []  # the outermost one's name, while it is open
+
+
 @contextlib.contextmanager
 def interruptible(what: str) -> Iterator[None]:
     """Around a long library call named ``what``: Ctrl-C (SIGINT) raises the library's stop
@@ -157,8 +172,11 @@ def interruptible(what: str) -> Iterator[None]:
     interrupted") (a handler of the user's own is called instead). SIGTERM and the other
     terminating signals keep Python's disposition throughout. SIGINT ignored (a background
     job): the call is not interruptible, as Python would have it. Outside the main thread
-    (where Python handles no signals) it does nothing."""
-    if threading.current_thread() is not threading.main_thread():
+    (where Python handles no signals) it does nothing. Blocks nest: inside another one it does
+    nothing, so that a function around several library calls keeps the library's handler
+    between them too (a Ctrl-C in its own Python code is the library's stop request, seen by
+    its next call or at the end, and never Python's bare KeyboardInterrupt())."""
+    if threading.current_thread() is not threading.main_thread() or _nested[0] > 0:
         yield
         return
     handler = signal.getsignal(signal.SIGINT)
@@ -169,12 +187,16 @@ def interruptible(what: str) -> Iterator[None]:
     lib.whirl_stop_clear()
     if lib.whirl_stop_catch_signals() != GSL_SUCCESS:
         raise Error(5, "cannot install the library's signal handlers")
+    _nested[0] += 1
+    _active.append(what)
     try:
         for sig, old in keep:
             if old is not None:
                 signal.signal(sig, old)
         yield
     finally:
+        _nested[0] -= 1
+        _active.pop()
         lib.whirl_stop_restore_signals()
     if lib.whirl_stop_requested():
         lib.whirl_stop_clear()
@@ -241,10 +263,40 @@ def as_int(value: Any, name: str, minimum: Optional[int] = None,
     return value
 
 
-def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = False) -> float:
+# the kinds of quantity a text with a unit may give (whirl_quantity), by the name of the scale
+# that divides them (Units.rate, .length, .mass, .time)
+_QUANTITY = {"rate": 1, "length": 2, "mass": 3, "time": 4}
+
+
+def quantity(text: str, name: str, kind: str, units: Any = None) -> float:
+    """A number given as text, as the command line reads its options (whirl_parse_quantity):
+    "4Hz", "60 cm", "50g", "2ms" (the kind's suffixes, SI after it) or a plain number. A
+    suffix needs SI units (``units`` physical), as on the command line."""
+    q = _QUANTITY[kind]
+    v = ffi.new("double *")
+    suffixed = ffi.new("int *")
+    if lib.whirl_parse_quantity(text.encode("utf-8", "replace"), q, v, suffixed) != 0:
+        raise ValueError("%s must be a number, optionally with a unit (%s), got %r"
+                         % (name, ffi.string(lib.whirl_quantity_suffixes(q)).decode(), text))
+    if suffixed[0] and units is not None and not units.physical:
+        raise ValueError("%s=%r needs the chain's length: give length= (SI units), or %s as a "
+                         "number in the chain's units" % (name, text, name))
+    return float(v[0])
+
+
+def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = False,
+             kind: Optional[str] = None, units: Any = None) -> float:
+    """value as a finite float: a real number, a 0-d array, or (where ``kind`` names the
+    quantity: "rate", "length", "mass", "time") a text with a unit, as the command line takes
+    it (quantity())."""
     if type(value) is not float:  # the common case skips the abstract-class checks
-        if isinstance(value, bool) or not isinstance(value, numbers.Real):
-            raise TypeError("%s must be a real number, got %r" % (name, value))
+        if isinstance(value, str) and kind is not None:
+            value = quantity(value, name, kind, units)
+        elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+            value = float(value)
+        elif isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError("%s must be a real number%s, got %r"
+                            % (name, " (or a text with a unit)" if kind else "", value))
         value = float(value)
     if not math.isfinite(value):
         raise ValueError("%s must be finite, got %r" % (name, value))
@@ -263,6 +315,8 @@ def as_array(values: Any, name: str, shape: Optional[Sequence[int]] = None,
     except (TypeError, ValueError) as e:
         raise TypeError("%s must be an array of numbers: %s" % (name, e)) from None
     if shape is None:
+        if a.ndim == 0:  # one number (a 0-d array): an array of one
+            a = a.reshape(1)
         if a.ndim != 1:
             raise ValueError("%s must be one-dimensional, got shape %s" % (name, a.shape))
     elif a.shape != tuple(shape):
@@ -300,3 +354,114 @@ def finite(name: str, *values: Any) -> None:
         if not (math.isfinite(v) if isinstance(v, float) else np.isfinite(v).all()):
             raise ValueError("%s is not finite in these units (inf or NaN): choose units "
                              "nearer to the chain's own scales" % name)
+
+
+# ---- threads ----
+
+def set_max_threads(threads: int) -> None:
+    """Caps the OpenMP threads of every parallel loop of the library (sweeps, stability maps, a
+    long chain's right-hand side) at ``threads``; 0 restores OpenMP's own count
+    (OMP_NUM_THREADS, or the cores). Results do not depend on it. In a child of fork() (the
+    default start method of multiprocessing on Linux) the library runs on one thread, since
+    the OpenMP threads of the parent do not survive a fork; asking for more there raises
+    ValueError (whirl.InvalidInput)."""
+    check(lib.whirl_set_max_threads(as_int(threads, "threads", minimum=0,
+                                           maximum=lib.WHIRL_THREADS_MAX)))
+
+
+def max_threads() -> int:
+    """The threads a parallel loop of the library takes now (1 in a child of fork())."""
+    return int(lib.whirl_max_threads())
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+class InUse(RuntimeError):
+    """An object with state (a Simulation) called from a second thread while a first is using
+    it: refused, since both would move the one state."""
+
+
+class Exclusive:
+    """The guard of an object with state: one thread at a time. A call from another thread
+    while one is inside raises InUse at once (nothing is changed); calls from the same thread
+    nest. Cheap: one non-blocking lock acquisition per call."""
+
+    __slots__ = ("_lock", "_owner", "_user")
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._owner: Optional[int] = None
+        self._user = ""
+
+    @contextlib.contextmanager
+    def __call__(self, what: str) -> Iterator[None]:
+        me = threading.get_ident()
+        if self._owner == me:
+            yield
+            return
+        if not self._lock.acquire(blocking=False):
+            raise InUse("%s: this object is in use by another thread (%s); an object with "
+                        "state serves one thread at a time: give each thread its own (a copy: "
+                        "copy.copy) or lock around the calls" % (what, self._user))
+        self._owner, self._user = me, what
+        try:
+            yield
+        finally:
+            self._owner, self._user = None, ""
+            self._lock.release()
+
+
+def exclusive(method: _F) -> _F:
+    """A method of an object with state (``self._guard``, an Exclusive): one thread at a
+    time."""
+    what = method.__qualname__
+
+    @functools.wraps(method)
+    def guarded(self: Any, *args: Any, **kwargs: Any) -> Any:
+        with self._guard(what):
+            return method(self, *args, **kwargs)
+    return guarded  # type: ignore[return-value]
+
+
+# ---- results ----
+
+def same(a: Any, b: Any) -> bool:
+    """a and b hold the same values: arrays element by element (shape and dtype too; NaN equal
+    to NaN, so that a result equals its copy), dicts, lists, tuples and dataclasses field by
+    field, anything else by ==."""
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, np.ndarray):
+        if a.shape != b.shape or a.dtype != b.dtype:
+            return False
+        if a.dtype.names:
+            return all(same(a[name], b[name]) for name in a.dtype.names)
+        return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"))
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if isinstance(a, (list, tuple)):
+        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
+    if dataclasses.is_dataclass(a):
+        return all(same(getattr(a, f.name), getattr(b, f.name))
+                   for f in dataclasses.fields(a))
+    if isinstance(a, float) and a != a:
+        return b != b
+    return bool(a == b)
+
+
+class Result:
+    """The equality of whirl's results (dataclasses holding arrays): two results are equal when
+    they are of one type and every field holds the same values (same()), so that ``a == b``,
+    ``x in results`` and ``assert a == b`` work (the dataclasses' own == would compare arrays
+    into an array, whose truth is ambiguous). Results are mutable: not hashable."""
+
+    def __eq__(self, other: object) -> bool:
+        if type(other) is not type(self):
+            return NotImplemented
+        if dataclasses.is_dataclass(self):
+            return all(same(getattr(self, f.name), getattr(other, f.name))
+                       for f in dataclasses.fields(self))
+        return same(vars(self), vars(other))
+
+    __hash__ = None  # type: ignore[assignment]

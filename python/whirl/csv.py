@@ -8,14 +8,15 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
+from . import _lib
 from .steady import Units
 
 _UNITS_SI = re.compile(r"#\s*units:.*\bL=(\S+)\s+M=(\S+)\s+g=(\S+)")
 _SUMMARY = re.compile(r"([A-Za-z_][A-Za-z_0-9]*)=(\S*)")
 
 
-@dataclass
-class Table:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class Table(_lib.Result):
     """A whirl file read back: ``columns`` (names, in order), ``data`` (one array per column:
     float64, with NaN for an empty field; text columns such as ``verdict`` or ``state`` as
     arrays of str), ``units`` (the file's "# units:" line as a whirl.Units; dimensionless when
@@ -37,6 +38,11 @@ class Table:
 
     def __len__(self) -> int:
         return len(next(iter(self.data.values()))) if self.data else 0
+
+    def __repr__(self) -> str:
+        trace = "" if self.t is None else ", trace of %d frames" % len(self.t)
+        return "Table(%d rows of %s%s, %r)" % (len(self), ", ".join(self.columns) or "no columns",
+                                              trace, self.units)
 
 
 def _units(comments: List[str]) -> Units:

@@ -14,8 +14,8 @@ from .steady import POINTS_MAX, Chain, Units, _chain, _mode, links_count, units_
 from .dynamics import _choice, _FRAMES, _method
 
 
-@dataclass
-class DrivenShape:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class DrivenShape(_lib.Result):
     """A steady shape of the hand-swung chain: arrays ``s`` (arclength), ``x``, ``y``, ``z``
     (co-rotating frame, z from the pivot) and ``tension`` from the pivot to the free end;
     ``omega``; ``mode`` (the mode asked for: the free shape that seeded the continuation; None
@@ -46,12 +46,13 @@ class DrivenShape:
 def _params(omega: float, drive_radius: float, air_drag: float, air_drag_quadratic: float,
             tip_mass: float, u: Units) -> Any:
     p = ffi.new("whirl_driven_params *")
-    p.omega = as_float(omega, "omega", positive=True) / u.rate
-    p.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True) / u.length
+    p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
+    p.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
+                              kind="length", units=u) / u.length
     p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
                                     nonnegative=True) / u.drag2
-    p.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    p.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     return p
 
 
@@ -110,8 +111,8 @@ def driven(omega: float, mode: Optional[int], drive_radius: float, air_drag: flo
     return out
 
 
-@dataclass
-class SpinUp:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class SpinUp(_lib.Result):
     """A spin-up from rest (whirl_regime_run): ``state`` ("settled", "periodic",
     "quasiperiodic", "chaotic", "converging", "failed"), ``node_count`` (of the last shape; of
     the steady shape when settled), ``period`` (drive periods), ``t_end`` [T], ``change`` and
@@ -168,8 +169,9 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     u = units_of(length, mass, gravity, units)
     chain = links if isinstance(links, Chain) else Chain(links_count(links))
     p = ffi.new("whirl_regime_params *", lib.whirl_regime_defaults(chain.n))
-    p.omega = as_float(omega, "omega", positive=True) / u.rate
-    p.drive_radius = as_float(drive_radius, "drive_radius", positive=True) / u.length
+    p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
+    p.drive_radius = as_float(drive_radius, "drive_radius", positive=True,
+                              kind="length", units=u) / u.length
     p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
                                     nonnegative=True) / u.drag2
@@ -199,7 +201,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     record = every is not None
     # the observer's times split the steps: without frames, the command line's interval (once
     # per time unit, or t_max / 100 on a short run), so that a run is the command line's run
-    interval = (as_float(every, "every", positive=True) / u.time if record
+    interval = (as_float(every, "every", positive=True, kind="time", units=u) / u.time if record
                 else min(1.0, p.t_max / 100))
     if record and (p.t_max / interval + 1) * chain.n > WORK_MAX:
         raise ValueError("every asks for %.3g frames of %d links: links x frames must be "

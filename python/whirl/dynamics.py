@@ -41,8 +41,8 @@ def _stats(s: Any) -> Dict[str, int]:
             "iterations": int(s.iterations)}
 
 
-@dataclass
-class Trajectory:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class Trajectory(_lib.Result):
     """The output of Simulation.run: arrays over the output times ``t`` [T]: ``x`` (shape
     (len(t), N, 3): every mass's position in the inertial frame [L]; None with
     positions=False), ``energy`` (kinetic plus potential, inertial frame [M g L]), ``jacobi``
@@ -71,8 +71,9 @@ class Trajectory:
         return self.x[:, -1, :]
 
     def __repr__(self) -> str:
-        return "Trajectory(%d rows, t = %g..%g, %d steps)" % (
-            self.t.size, self.t[0], self.t[-1], self.stats["steps"])
+        span = ", t = %g..%g" % (self.t[0], self.t[-1]) if self.t.size else ""
+        return "Trajectory(%d rows%s, %d steps%s)" % (
+            self.t.size, span, self.stats["steps"], ", interrupted" if self.interrupted else "")
 
 
 class Simulation:
@@ -94,7 +95,14 @@ class Simulation:
       length/mass/gravity or units: the units of every argument and result (see whirl.Units;
         default dimensionless: times in sqrt(L/g), lengths in L, energies in M g L).
     Start it with set_steady, set_hanging or set_state, then run(). Pickles and copies (its
-    configuration, time and state; the integrator starts afresh, its counters at zero)."""
+    configuration, time and state; the integrator starts afresh, its counters at zero).
+
+    Threads: a Simulation holds one state, so it serves one thread at a time. A call from a
+    second thread while a first is inside one of its methods (run, set_*, positions, ...)
+    raises whirl.InUse (a RuntimeError) at once and changes nothing; give each thread its own
+    Simulation (copy.copy(sim) copies one). Separate Simulations run in parallel threads
+    (the library releases the GIL). In a child of fork() (multiprocessing's default on Linux)
+    the library runs on one thread: see whirl.set_max_threads."""
 
     def __init__(self, chain: Union[int, Chain], dim: int = 3, frame: str = "inertial",
                  omega: float = 0.0, drive_radius: float = 0.0, air_drag: float = 0.0,
@@ -102,6 +110,7 @@ class Simulation:
                  formulation: str = "default", method: str = "gauss2", threads: int = 1,
                  length: Optional[float] = None, mass: Optional[float] = None,
                  gravity: Optional[float] = None, units: Optional[Units] = None) -> None:
+        self._guard = _lib.Exclusive()
         u = units_of(length, mass, gravity, units)
         self.units = u
         self._chain = chain if isinstance(chain, Chain) else Chain(links_count(chain))
@@ -116,8 +125,9 @@ class Simulation:
         if m.dim not in (2, 3):
             raise ValueError("dim must be 2 or 3, got %d" % m.dim)
         m.frame = _choice(frame, "frame", _FRAMES)
-        m.omega = as_float(omega, "omega") / u.rate
-        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True) / u.length
+        m.omega = as_float(omega, "omega", kind="rate", units=u) / u.rate
+        m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
+                                  kind="length", units=u) / u.length
         m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
         m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
                                         nonnegative=True) / u.drag2
@@ -139,11 +149,24 @@ class Simulation:
         self._ref: Optional[np.ndarray] = None
         self._diag = ffi.new("whirl_dyn_diagnostics *")
 
+    def __repr__(self) -> str:
+        # no guard: a repr (a debugger's, a log's) never waits for or disturbs another thread
+        m, u = self._model, self.units
+        extra = "".join(", %s=%g" % (name, value) for name, value in (
+            ("drive_radius", m.drive_radius * u.length), ("air_drag", m.air_drag * u.drag),
+            ("air_drag_quadratic", m.air_drag_quadratic * u.drag2),
+            ("internal_damping", m.internal_damping * u.damping)) if value)
+        start = "no start state" if self._ref is None else "t=%g" % self.t
+        return "Simulation(%r, dim=%d, frame=%r, omega=%g%s, method=%r, %s%s)" % (
+            self._chain, m.dim, self._args["frame"], self.omega, extra, self.method, start,
+            ", %r" % u if u.physical else "")
+
     @property
     def chain(self) -> Chain:
         """The chain (read-only: the library's model refers to it)."""
         return self._chain
 
+    @_lib.exclusive
     def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
         state = (self._t[0], self._y.copy(), None if self._ref is None else self._ref.copy())
         return (_simulation_from, (self._chain, self._args, self.units, state))
@@ -157,6 +180,7 @@ class Simulation:
     def omega(self) -> float:
         return float(self._model.omega) * self.units.rate
 
+    @_lib.exclusive
     def set_state(self, x: Any, v: Any, t: float = 0.0) -> None:
         """Starts from the positions x [L] and velocities v of masses 1..N (arrays (N, 3), in
         the model's frame at time t [T]; 2D: y components 0). They must satisfy the link
@@ -165,12 +189,13 @@ class Simulation:
         u = self.units
         x = as_array(x, "x", shape=(self.n, 3)).ravel() / u.length
         v = as_array(v, "v", shape=(self.n, 3)).ravel() / (u.length / u.time)
-        t = as_float(t, "t") / u.time
+        t = as_float(t, "t", kind="time", units=u) / u.time
         check(lib.whirl_dyn_set_state(self._dyn, t, _lib.dptr(x), _lib.dptr(v),
                                       _lib.dptr(self._y)))
         self._t[0] = t
         self._ref = self._inertial()
 
+    @_lib.exclusive
     def set_steady(self, mode: int, omega: Optional[float] = None, perturb: float = 0.0,
                    seed: int = 1) -> None:
         """Starts from the exact steady shape of ``mode`` at ``omega`` [1/T] (default: the
@@ -183,7 +208,8 @@ class Simulation:
         MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
         The deviation is measured from the unperturbed shape."""
         w = (self._model.omega if omega is None
-             else as_float(omega, "omega", positive=True) / self.units.rate)
+             else as_float(omega, "omega", positive=True,
+                           kind="rate", units=self.units) / self.units.rate)
         mode = _mode(mode, self._chain)
         perturb = as_float(perturb, "perturb", nonnegative=True)
         seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
@@ -207,6 +233,7 @@ class Simulation:
             check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
                                                  _lib.dptr(self._y)))
 
+    @_lib.exclusive
     def set_hanging(self) -> None:
         """Starts from the chain hanging straight down at rest (pivot on the axis)."""
         if self._model.drive_radius != 0:
@@ -220,21 +247,25 @@ class Simulation:
                                       _lib.dptr(self._x), _lib.dptr(self._v)))
         return self._x.reshape(self.n, 3).copy()
 
+    @_lib.exclusive
     def positions(self) -> np.ndarray:
         """The masses' positions in the inertial frame now, (N, 3) [L]."""
         return self._inertial() * self.units.length
 
+    @_lib.exclusive
     def tensions(self) -> np.ndarray:
         """The link tensions now, N values [M g]."""
         out = np.empty(self.n)
         check(lib.whirl_dyn_tensions(self._dyn, self._t[0], _lib.dptr(self._y), _lib.dptr(out)))
         return out * self.units.force
 
+    @_lib.exclusive
     def stats(self) -> Dict[str, int]:
         """The integrator's counters since it was made: steps, rejected, rhs_evals,
         iterations."""
         return _stats(lib.whirl_integrator_get_stats(self._it))
 
+    @_lib.exclusive
     def run(self, t_end: float, dt: float, every: Optional[float] = None, tol: float = 0.0,
             positions: bool = True, keep_interrupted: bool = False) -> Trajectory:
         """Integrates from the current time to t_end [T] with steps dt (tol = 0: fixed steps;
@@ -250,12 +281,13 @@ class Simulation:
             raise RuntimeError("no start state: call set_steady, set_hanging or set_state first")
         u = self.units
         t0 = self._t[0]
-        t_end = as_float(t_end, "t_end") / u.time
+        t_end = as_float(t_end, "t_end", kind="time", units=u) / u.time
         if not t_end > t0:
             raise ValueError("t_end must be > the current time %g, got %g"
                              % (t0 * u.time, t_end * u.time))
-        dt = as_float(dt, "dt", positive=True) / u.time
-        every = dt if every is None else as_float(every, "every", positive=True) / u.time
+        dt = as_float(dt, "dt", positive=True, kind="time", units=u) / u.time
+        every = dt if every is None else as_float(every, "every", positive=True,
+                                                  kind="time", units=u) / u.time
         tol = as_float(tol, "tol", nonnegative=True)
         span = t_end - t0
         steps = span / dt

@@ -19,15 +19,27 @@ on a circle of the given radius and the shape is the trailing one (whirl driven)
 
 Only requests from this machine are answered: the socket is bound to 127.0.0.1, and a request
 from another address or whose Host header names another host (DNS rebinding) is refused (403).
+Only the page itself may use the API (403 otherwise): it carries a token made afresh by each
+server (a page of another site cannot read it), and a request whose Origin or Sec-Fetch-Site
+names another site is refused (cross-site request forgery); what starts or stops a run is a
+POST. Each computation runs in a worker process, at most a few at once (503 beyond), and is
+stopped (its process killed) once its client has gone or after COMPUTE_SECONDS; slow clients
+time out. Every request is answered (400 with a message for bad input).
 Ctrl-C stops the server and any run in progress."""
 import argparse
+import hmac
 import http.server
 import json
 import math
+import multiprocessing
 import os
+import secrets
+import select
 import signal
+import socket
 import sys
 import threading
+import time
 import urllib.parse
 import webbrowser
 
@@ -48,6 +60,26 @@ MAX_MODE = 12
 RUN_PERIODS = 40     # length of a perturbed run, in rotation periods
 RUN_FRAMES = 400     # frames sent for one run
 BRANCH_RATES = 120   # rates of the branch diagram
+# The server's bounds: one computation stops after COMPUTE_SECONDS (a shape takes ~0.1 s, the
+# windows of 400 links up to mode 12 would take minutes); at most MAX_COMPUTATIONS run at once
+# (a page asks for a shape, the branches and the windows together), a request waiting at most
+# QUEUE_SECONDS for its turn (503 after); a client slower than CLIENT_SECONDS to send its
+# request or read its answer is dropped; at most MAX_CONNECTIONS connections are served at once
+# (503 beyond); a run stops after RUN_SECONDS, or when the page has not polled for RUN_IDLE
+# seconds (it polls every 0.2 s). A computation watches its client every POLL_SECONDS.
+COMPUTE_SECONDS = 20.0
+MAX_COMPUTATIONS = 3
+QUEUE_SECONDS = 5.0
+CLIENT_SECONDS = 10.0
+MAX_CONNECTIONS = 32
+RUN_SECONDS = 600.0
+RUN_IDLE = 10.0
+POLL_SECONDS = 0.02
+MAX_FIELDS = 32      # fields of one query (the page sends at most 13)
+BODY_MAX = 4096      # bytes of a POST's form
+ENDPOINTS = ("/api/shape", "/api/branch", "/api/windows", "/api/csv/shape", "/api/csv/branch",
+             "/api/run/start", "/api/run/poll", "/api/run/cancel")
+CHANGES_STATE = ("/api/run/start", "/api/run/cancel")  # POST only
 PAGE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "explore.html")
 
 
@@ -155,15 +187,15 @@ def shape_answer(sc):
         if sc.drag:
             d = _driven(sc.w, sc.mode, sc.eps / L, air_drag_quadratic=sc.c2, links=links,
                         tip_mass=0.0 if links else sc.m_tip)
-            x, y, z, t = d.x, d.y, d.z, d.tension
+            arc, x, y, z, t = d.s, d.x, d.y, d.z, d.tension
             node_count, tip_r = int(d.node_count), float(d.tip_r)
         else:
             s = _shape(sc.w, sc.mode, links=links, tip_mass=0.0 if links else sc.m_tip)
-            x, y, z, t = s.r, np.zeros_like(s.r), s.z, s.tension
+            arc, x, y, z, t = s.s, s.r, np.zeros_like(s.r), s.z, s.tension
             node_count, tip_r = int(s.node_count), float(s.tip_r)
     except _lib.Error as e:
         raise _missing_mode(sc, links, e) from None
-    out.update(x=(x * L).tolist(), y=(y * L).tolist(), z=(z * L).tolist(),
+    out.update(s=(arc * L).tolist(), x=(x * L).tolist(), y=(y * L).tolist(), z=(z * L).tolist(),
                tension=(t * sc.mass * G).tolist(), tip_r=abs(tip_r) * L, node_count=node_count)
     out["born"] = sc.rate_of(_critical(sc.mode, links=links, tip_mass=0.0 if links else sc.m_tip)[-1])
     vl = sc.links or VERDICT_LINKS
@@ -216,7 +248,9 @@ def windows_answer(sc, mode, rate_max):
 
 class Run:
     """A perturbed run seeded with the shape, in a thread of its own; frames are read while it
-    runs and it stops at the next chunk once cancelled."""
+    runs. It stops at the next chunk (a tenth of a period) once cancelled: by the page, by a new
+    run, when the page has not asked for frames for RUN_IDLE seconds (it went away), or after
+    RUN_SECONDS."""
 
     def __init__(self, sc, frame):
         self.sc = sc
@@ -225,11 +259,23 @@ class Run:
         self.error = None
         self.done = False
         self.cancelled = threading.Event()
+        self.polled = time.monotonic()
         self.thread = threading.Thread(target=self._go, daemon=True)
         self.thread.start()
 
+    def _stop_reason(self, started):
+        if self.cancelled.is_set():
+            return "cancelled"
+        now = time.monotonic()
+        if now - self.polled > RUN_IDLE:
+            return "stopped: the page stopped asking for frames"
+        if now - started > RUN_SECONDS:
+            return "stopped after %g s, the page's bound on one run" % RUN_SECONDS
+        return None
+
     def _go(self):
         sc = self.sc
+        started = time.monotonic()
         try:
             sim = Simulation(_chain_of(sc, sc.links or VERDICT_LINKS), dim=3, frame=self.frame, omega=sc.w,
                              drive_radius=sc.eps / sc.length, air_drag_quadratic=sc.c2,
@@ -240,7 +286,13 @@ class Run:
             every = t_end / RUN_FRAMES
             dt = min(period / 200, every)
             t = 0.0
-            while t < t_end * (1 - 1e-12) and not self.cancelled.is_set():
+            while t < t_end * (1 - 1e-12):
+                reason = self._stop_reason(started)
+                if reason is not None:
+                    if reason != "cancelled":
+                        self.error = reason
+                    self.cancelled.set()
+                    break
                 t1 = min(t + every, t_end)
                 tr = sim.run(t1, dt, every=t1 - t)
                 x = tr.x[-1] * sc.length
@@ -253,15 +305,198 @@ class Run:
             self.done = True
 
 
+# ---- the computations, each in a process of its own ----
+# The library's stop request is one per process, so one request's computation cannot be stopped
+# in a process that runs others; a worker process can (it is killed). Workers are forked from
+# multiprocessing's fork server, a process that has imported whirl and computed nothing: a
+# fork of it is single-threaded and costs milliseconds, and an idle worker is kept for the next
+# request.
+
+def _compute(kind, args):
+    if kind == "shape":
+        return shape_answer(*args)
+    if kind == "branch":
+        return branch_answer(*args)
+    if kind == "windows":
+        return windows_answer(*args)
+    raise ValueError("unknown computation %r" % kind)
+
+
+def _worker_main(conn):
+    """A worker: answers (kind, args) with ("ok", answer), ("bad", message) for bad input (400),
+    or ("fail", message); ends when the server closes the pipe. Ctrl-C is the server's to
+    handle (the terminal sends it to the whole process group)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    while True:
+        try:
+            kind, args = conn.recv()
+        except (EOFError, OSError):
+            return
+        try:
+            reply = ("ok", _compute(kind, args))
+        except (InputError, ValueError, TypeError, _lib.Error) as e:
+            reply = ("bad", str(e).splitlines()[0] if str(e) else e.__class__.__name__)
+        except Exception as e:
+            reply = ("fail", "%s: %s" % (e.__class__.__name__, e))
+        try:
+            conn.send(reply)
+        except (BrokenPipeError, OSError):
+            return
+
+
+class Refused(Exception):
+    """A request not computed: answered with ``code`` and the message."""
+
+    def __init__(self, code, message):
+        super().__init__(message)
+        self.code = code
+
+
+class Workers:
+    """At most `size` computations at once, each in a worker process, each bounded in time and
+    cancelled (the worker killed) once its client has gone."""
+
+    def __init__(self, size, seconds):
+        self.size = size
+        self.seconds = seconds
+        self.slots = threading.BoundedSemaphore(size)
+        self.idle = []
+        self.all = set()
+        self.lock = threading.Lock()
+        self.ctx = multiprocessing.get_context("forkserver")
+        self.ctx.set_forkserver_preload(["whirl"])  # not whirl.explore: it may be __main__
+
+    def _take(self):
+        with self.lock:
+            while self.idle:
+                w = self.idle.pop()
+                if w[0].is_alive():
+                    return w
+                self._end(w)
+        here, there = self.ctx.Pipe()
+        p = self.ctx.Process(target=_worker_main, args=(there,), daemon=True)
+        p.start()
+        there.close()
+        w = (p, here)
+        with self.lock:
+            self.all.add(w)
+        return w
+
+    def warm(self):
+        """Starts the fork server and one idle worker in the background, so that the page's
+        first request does not wait for them (about the time whirl takes to import)."""
+        def start():
+            try:
+                w = self._take()
+            except OSError:
+                return  # the first request tries again, and reports
+            with self.lock:
+                self.idle.append(w)
+        threading.Thread(target=start, daemon=True).start()
+
+    def _end(self, w):
+        p, conn = w
+        if p.is_alive():
+            p.kill()
+        p.join(5)
+        conn.close()
+        with self.lock:
+            self.all.discard(w)
+
+    def run(self, kind, args, gone):
+        """The answer of _compute(kind, args); Refused with the code and message otherwise.
+        gone() is asked every POLL_SECONDS while waiting: True (the client left) kills the
+        worker."""
+        end = time.monotonic() + QUEUE_SECONDS
+        while not self.slots.acquire(timeout=POLL_SECONDS):
+            if gone():
+                raise Refused(499, "the client went away")
+            if time.monotonic() > end:
+                raise Refused(503, "the server is busy with %d computations; try again"
+                              % self.size)
+        w = None
+        try:
+            w = self._take()
+            w[1].send((kind, args))
+            deadline = time.monotonic() + self.seconds
+            while not w[1].poll(POLL_SECONDS):
+                if gone():
+                    raise Refused(499, "the client went away")
+                if time.monotonic() > deadline:
+                    raise Refused(503, "stopped after %g s, the page's bound on one "
+                                  "computation: fewer links or a lower rate (the command "
+                                  "line has no such bound)" % self.seconds)
+            status, answer = w[1].recv()
+            with self.lock:
+                self.idle.append(w)
+            w = None
+        except (EOFError, OSError):
+            if w is not None:
+                w[0].join(1)
+            raise Refused(500, "the computation's process ended (exit status %s)"
+                          % (w[0].exitcode if w is not None else "?")) from None
+        finally:
+            if w is not None:
+                self._end(w)
+            self.slots.release()
+        if status == "bad":
+            raise InputError(answer)
+        if status != "ok":
+            raise Refused(500, answer)
+        return answer
+
+    def close(self):
+        with self.lock:
+            every = list(self.all)
+        for w in every:
+            self._end(w)
+
+
 class Server(http.server.ThreadingHTTPServer):
+    """The page's server: one thread per connection, at most MAX_CONNECTIONS of them (503
+    beyond); at most MAX_COMPUTATIONS computations at once in worker processes (Workers)."""
+
     daemon_threads = True
 
-    def __init__(self, port):
-        super().__init__(("127.0.0.1", port), Handler)
+    def __init__(self, port, seconds=COMPUTE_SECONDS, computations=MAX_COMPUTATIONS,
+                 connections=MAX_CONNECTIONS):
+        self.token = secrets.token_urlsafe(32)
+        self.workers = Workers(computations, seconds)
+        self.connections = threading.BoundedSemaphore(connections)
         self.runs = {}
         self.next_run = 1
         self.cache = {}
         self.lock = threading.Lock()
+        super().__init__(("127.0.0.1", port), Handler)  # closes the server if it cannot bind
+
+    def origins(self):
+        port = self.server_address[1]
+        return ("http://127.0.0.1:%d" % port, "http://localhost:%d" % port)
+
+    def process_request(self, request, client_address):
+        if not self.connections.acquire(blocking=False):
+            body = b"busy: too many connections\n"
+            try:
+                request.sendall(b"HTTP/1.0 503 Service Unavailable\r\nContent-Type: text/plain\r\n"
+                                b"Content-Length: %d\r\nConnection: close\r\n\r\n%s"
+                                % (len(body), body))
+            except OSError:
+                pass
+            self.shutdown_request(request)
+            return
+        t = threading.Thread(target=self.process_request_thread, args=(request, client_address),
+                             daemon=True)
+        try:
+            t.start()  # the thread releases the slot (a Ctrl-C here is the server's to handle)
+        except RuntimeError:  # no thread to be had
+            self.connections.release()
+            self.shutdown_request(request)
+
+    def process_request_thread(self, request, client_address):
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self.connections.release()
 
     def cached(self, key, make):
         """make()'s answer, kept for the same key (the branch diagram and the windows depend on
@@ -276,9 +511,17 @@ class Server(http.server.ThreadingHTTPServer):
                 self.cache[key] = hit
         return hit
 
+    def server_close(self):
+        with self.lock:
+            for r in self.runs.values():
+                r.cancelled.set()
+        self.workers.close()
+        super().server_close()
+
 
 class Handler(http.server.BaseHTTPRequestHandler):
     server_version = "whirl-explore"
+    timeout = CLIENT_SECONDS  # a client that sends its request (or reads the answer) slower
 
     def log_message(self, fmt, *args):  # quiet: the terminal shows the address and errors
         pass
@@ -289,6 +532,7 @@ class Handler(http.server.BaseHTTPRequestHandler):
         self.send_header("Content-Type", ctype)
         self.send_header("Content-Length", str(len(data)))
         self.send_header("Cache-Control", "no-store")
+        self.send_header("X-Content-Type-Options", "nosniff")
         for k, v in (extra or {}).items():
             self.send_header(k, v)
         self.end_headers()
@@ -297,95 +541,177 @@ class Handler(http.server.BaseHTTPRequestHandler):
     def _json(self, obj, code=200):
         self._send(code, json.dumps(obj, allow_nan=False))
 
+    def _error(self, code, message):
+        self._json({"error": message}, code)
+
     def _allowed(self):
         host = (self.headers.get("Host") or "").rsplit(":", 1)[0].strip("[]")
         client = self.client_address[0]
         return client in ("127.0.0.1", "::1") and host in ("127.0.0.1", "localhost")
 
+    def _same_origin(self, q):
+        """None for a request of the page itself, else why not: the page's token (sent as the
+        X-Whirl-Token header, or a token field in a link), and no Origin or Sec-Fetch-Site
+        naming another site (browsers send them; a page elsewhere cannot read the token)."""
+        origin = self.headers.get("Origin")
+        if origin is not None and origin not in self.server.origins():
+            return "requests from %.60s are refused: only the page itself may ask" % origin
+        site = self.headers.get("Sec-Fetch-Site")
+        if site is not None and site != "same-origin":
+            return "%.20s requests are refused: only the page itself may ask" % site
+        token = self.headers.get("X-Whirl-Token") or q.get("token", [""])[0]
+        if not hmac.compare_digest(token.encode("utf-8", "replace"),
+                                   self.server.token.encode()):
+            return "the page's token is missing or wrong: reload the page"
+        return None
+
+    def _gone(self):
+        """True once the client has closed its connection (its end readable with nothing to
+        read) or reset it."""
+        try:
+            ready, _, _ = select.select([self.connection], [], [], 0)
+            return bool(ready) and self.connection.recv(1, socket.MSG_PEEK) == b""
+        except (OSError, ValueError):
+            return True
+
+    def _query(self, url):
+        try:
+            return urllib.parse.parse_qs(url.query, max_num_fields=MAX_FIELDS)
+        except ValueError:
+            raise InputError("a query has at most %d fields" % MAX_FIELDS) from None
+
+    def _compute(self, kind, *args):
+        return self.server.workers.run(kind, args, self._gone)
+
     def do_GET(self):
+        self._handle("GET")
+
+    def do_POST(self):
+        self._handle("POST")
+
+    def _body(self):
+        """The form fields of a POST (application/x-www-form-urlencoded), at most BODY_MAX
+        bytes."""
+        try:
+            n = int(self.headers.get("Content-Length") or 0)
+        except ValueError:
+            raise InputError("Content-Length: not a number") from None
+        if not 0 <= n <= BODY_MAX:
+            raise InputError("a request body has at most %d bytes" % BODY_MAX)
+        return self.rfile.read(n).decode("utf-8", "replace") if n else ""
+
+    def _handle(self, method):
         if not self._allowed():
             return self._send(403, "only this machine may use this page\n", "text/plain")
-        url = urllib.parse.urlsplit(self.path)
-        q = urllib.parse.parse_qs(url.query, max_num_fields=32)
         try:
+            url = urllib.parse.urlsplit(self.path)
             if url.path in ("/", "/index.html"):
+                if method != "GET":
+                    return self._send(405, "GET only\n", "text/plain", {"Allow": "GET"})
                 with open(PAGE, "rb") as f:
-                    return self._send(200, f.read(), "text/html; charset=utf-8")
-            if url.path == "/api/shape":
-                return self._json(shape_answer(Scene(q)))
-            if url.path in ("/api/branch", "/api/windows"):
-                sc = Scene(q, need_rate=False)
-                rate_max = _number(q, "rate_max", 1e-3, 1e5)
-                if rate_max * sc.UNITS[sc.unit] * sc.time > 200:
-                    raise InputError("rate_max above %s: beyond what the page computes live"
-                                     % sc.rate_text(200 / sc.time))
-                if url.path == "/api/branch":
-                    key, make = ("branch",), (lambda: branch_answer(sc, rate_max))
-                else:
-                    mode = _number(q, "mode", 1, MAX_MODE, integer=True)
-                    key, make = ("windows", mode), (lambda: windows_answer(sc, mode, rate_max))
-                return self._json(self.server.cached(key + sc.key() + (rate_max,), make))
-            if url.path == "/api/run/start":
-                sc = Scene(q)
-                frame = q.get("frame", ["rotating"])[0]
-                if frame not in ("rotating", "inertial"):
-                    raise InputError("frame must be rotating or inertial")
-                shape_answer(sc)  # refuses a mode that does not exist at the rate
-                with self.server.lock:
-                    for r in self.server.runs.values():
-                        r.cancelled.set()
-                    rid = self.server.next_run
-                    self.server.next_run += 1
-                    self.server.runs = {rid: Run(sc, frame)}
-                return self._json({"id": rid})
-            if url.path in ("/api/run/poll", "/api/run/cancel"):
-                rid = _number(q, "id", 1, 1e9, integer=True)
-                run = self.server.runs.get(rid)
-                if run is None:
-                    raise InputError("no run %d" % rid)
-                if url.path.endswith("cancel"):
-                    run.cancelled.set()
-                    return self._json({"cancelled": True})
-                start = _number(q, "from", 0, 1e9, default=0, integer=True)
-                frames = run.frames[start:]
-                return self._json({"frames": frames, "done": run.done,
-                                   "cancelled": run.cancelled.is_set(), "error": run.error,
-                                   "total": RUN_FRAMES})
-            if url.path in ("/api/csv/shape", "/api/csv/branch"):
-                return self._csv(url.path, q)
-            return self._send(404, "not found\n", "text/plain")
-        except (InputError, ValueError, TypeError, _lib.Error) as e:
-            return self._json({"error": str(e).splitlines()[0] if str(e) else "bad request"},
-                              400)
-        except (BrokenPipeError, ConnectionResetError):
+                    page = f.read().replace(b"{{WHIRL_TOKEN}}", self.server.token.encode())
+                return self._send(200, page, "text/html; charset=utf-8",
+                                  {"X-Frame-Options": "DENY",
+                                   "Content-Security-Policy": "frame-ancestors 'none'"})
+            if url.path not in ENDPOINTS:
+                return self._send(404, "not found\n", "text/plain")
+            q = self._query(url)
+            if method == "POST":
+                form = urllib.parse.urlsplit("?" + self._body())
+                for k, v in self._query(form).items():
+                    q.setdefault(k, []).extend(v)
+            why = self._same_origin(q)
+            if why is not None:
+                return self._error(403, why)
+            want = "POST" if url.path in CHANGES_STATE else "GET"
+            if method != want:
+                return self._error(405, "%s needs %s" % (url.path, want))
+            return self._api(url.path, q)
+        except InputError as e:
+            return self._error(400, str(e) or "bad request")
+        except Refused as e:
+            if e.code != 499:  # nobody is left to answer
+                return self._error(e.code, str(e))
+        except (BrokenPipeError, ConnectionResetError, socket.timeout):
             return None
+        except Exception as e:  # a defect: answered, and shown in the terminal
+            print("whirl explore: %s %s: %s: %s" % (method, self.path[:200],
+                                                   e.__class__.__name__, e), file=sys.stderr)
+            return self._error(500, "internal error: %s" % e.__class__.__name__)
 
-    def _csv(self, path, q):
-        if path.endswith("shape"):
-            sc = Scene(q)
-            a = shape_answer(sc)
-            lines = ["# whirl explore: steady shape, mode %d at %s; chain %g m, %g kg, tip %g kg, %s"
-                     % (sc.mode, sc.rate_text(sc.omega), sc.length, sc.mass, sc.tip,
-                        "%d links" % sc.links if sc.links else "continuum"),
-                     "# units: s [m], r [m], z [m], tension [N]", "s,r,z,tension"]
-            lines += ["%.10g,%.10g,%.10g,%.10g" % row
-                      for row in zip(a["s"], a["r"], a["z"], a["tension"])]
-            name = "shape.csv"
-        else:
+    def _api(self, path, q):
+        if path == "/api/shape":
+            return self._json(self._compute("shape", Scene(q)))
+        if path in ("/api/branch", "/api/windows", "/api/csv/branch"):
             sc = Scene(q, need_rate=False)
-            a = self.server.cached(("branch",) + sc.key() + (_number(q, "rate_max", 1e-3, 1e5),),
-                                   lambda: branch_answer(sc, _number(q, "rate_max", 1e-3, 1e5)))
-            unit = {"hz": "Hz", "rpm": "rpm", "rad/s": "rad/s"}[sc.unit]
-            lines = ["# whirl explore: branches; chain %g m, %g kg, tip %g kg, %s"
-                     % (sc.length, sc.mass, sc.tip,
-                        "%d links" % sc.links if sc.links else "continuum"),
-                     "# units: rate [%s], tip_r [m]" % unit, "mode,rate,tip_r"]
-            for m in a["modes"]:
-                lines += ["%d,%.10g,%.10g" % (m["mode"], f, r)
-                          for f, r in zip(m["rate"], m["tip_r"])]
-            name = "branches.csv"
+            rate_max = _number(q, "rate_max", 1e-3, 1e5)
+            if rate_max * sc.UNITS[sc.unit] * sc.time > 200:
+                raise InputError("rate_max above %s: beyond what the page computes live"
+                                 % sc.rate_text(200 / sc.time))
+            if path == "/api/windows":
+                mode = _number(q, "mode", 1, MAX_MODE, integer=True)
+                key, make = ("windows", mode), (lambda: self._compute("windows", sc, mode,
+                                                                      rate_max))
+            else:
+                key, make = ("branch",), (lambda: self._compute("branch", sc, rate_max))
+            answer = self.server.cached(key + sc.key() + (rate_max,), make)
+            if path == "/api/csv/branch":
+                return self._branch_csv(sc, answer)
+            return self._json(answer)
+        if path == "/api/csv/shape":
+            sc = Scene(q)
+            return self._shape_csv(sc, self._compute("shape", sc))
+        if path == "/api/run/start":
+            sc = Scene(q)
+            frame = q.get("frame", ["rotating"])[0]
+            if frame not in ("rotating", "inertial"):
+                raise InputError("frame must be rotating or inertial")
+            self._compute("shape", sc)  # refuses a mode that does not exist at the rate
+            with self.server.lock:
+                for r in self.server.runs.values():
+                    r.cancelled.set()
+                rid = self.server.next_run
+                self.server.next_run += 1
+                self.server.runs = {rid: Run(sc, frame)}
+            return self._json({"id": rid})
+        # /api/run/poll and /api/run/cancel
+        rid = _number(q, "id", 1, 1e9, integer=True)
+        with self.server.lock:
+            run = self.server.runs.get(rid)
+        if run is None:
+            raise InputError("no run %d" % rid)
+        if path.endswith("cancel"):
+            run.cancelled.set()
+            return self._json({"cancelled": True})
+        run.polled = time.monotonic()
+        start = _number(q, "from", 0, 1e9, default=0, integer=True)
+        frames = run.frames[start:]
+        return self._json({"frames": frames, "done": run.done,
+                           "cancelled": run.cancelled.is_set(), "error": run.error,
+                           "total": RUN_FRAMES})
+
+    def _shape_csv(self, sc, a):
+        lines = ["# whirl explore: steady shape, mode %d at %s; chain %g m, %g kg, tip %g kg, %s"
+                 % (sc.mode, sc.rate_text(sc.omega), sc.length, sc.mass, sc.tip,
+                    "%d links" % sc.links if sc.links else "continuum"),
+                 "# units: s [m], x [m], y [m], z [m], tension [N] (x-y: the co-rotating "
+                 "frame; without drag the shape lies in the x-z plane)", "s,x,y,z,tension"]
+        lines += ["%.10g,%.10g,%.10g,%.10g,%.10g" % row
+                  for row in zip(a["s"], a["x"], a["y"], a["z"], a["tension"])]
         self._send(200, "\n".join(lines) + "\n", "text/csv",
-                   {"Content-Disposition": 'attachment; filename="%s"' % name})
+                   {"Content-Disposition": 'attachment; filename="shape.csv"'})
+
+    def _branch_csv(self, sc, a):
+        unit = {"hz": "Hz", "rpm": "rpm", "rad/s": "rad/s"}[sc.unit]
+        lines = ["# whirl explore: branches; chain %g m, %g kg, tip %g kg, %s"
+                 % (sc.length, sc.mass, sc.tip,
+                    "%d links" % sc.links if sc.links else "continuum"),
+                 "# units: rate [%s], tip_r [m]" % unit, "mode,rate,tip_r"]
+        for m in a["modes"]:
+            lines += ["%d,%.10g,%.10g" % (m["mode"], f, r)
+                      for f, r in zip(m["rate"], m["tip_r"])]
+        self._send(200, "\n".join(lines) + "\n", "text/csv",
+                   {"Content-Disposition": 'attachment; filename="branches.csv"'})
 
 
 def serve(port=8470, browser=True, tries=50, out=sys.stdout):
@@ -399,6 +725,7 @@ def serve(port=8470, browser=True, tries=50, out=sys.stdout):
             continue
     if server is None:
         raise OSError("no free port in %d..%d" % (port, port + tries - 1))
+    server.workers.warm()
     url = "http://127.0.0.1:%d/" % server.server_address[1]
     print("whirl explore: %s (Ctrl-C stops)" % url, file=out, flush=True)
     if browser:
@@ -408,8 +735,6 @@ def serve(port=8470, browser=True, tries=50, out=sys.stdout):
     except KeyboardInterrupt:
         print("whirl explore: stopped", file=out, flush=True)
     finally:
-        for r in list(server.runs.values()):
-            r.cancelled.set()
         server.server_close()
     return 0
 
@@ -434,4 +759,6 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    # the module's own copy (not __main__'s), so that the worker processes find its functions
+    from whirl.explore import main as _main
+    sys.exit(_main())

@@ -1,18 +1,20 @@
 """Fitting the rotation rate and mode to a measured shape (whirl/optimize.h, ``whirl fit``)."""
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any, Optional, Tuple, Union
+
+import numpy as np
 
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float, as_array
-from .steady import Units, units_of
+from .steady import Chain, Units, units_of
 
 # the command line's bounds (whirl fit --links; the library refuses more than 20000 points)
 FIT_MAX_LINKS = 2000
 FIT_MAX_SAMPLES = 10000000
 
 
-@dataclass
-class FitResult:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class FitResult(_lib.Result):
     """``omega`` and its standard error ``omega_err`` [sqrt(g/L), or rad/s], ``mode``,
     ``rms_residual`` (RMS distance of the points to the model curve [L, or m]), ``mirrored``
     (the points lie on the side r < 0), ``evaluations`` and ``failures`` of the model,
@@ -32,7 +34,26 @@ class FitResult:
             self.omega, self.omega_err, self.mode, self.rms_residual)
 
 
-def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: float = 0.0,
+def _uniform(chain: Chain, tip_mass: Any) -> Tuple[int, float]:
+    """The link count and tip mass [M] of a Chain that is the uniform N-link chain (equal links
+    of total length 1, equal masses of total 1 but for a tip mass on the last, g = 1: what
+    Chain(N, tip_mass) builds), the only chain the fit's model has; ValueError otherwise."""
+    if tip_mass:
+        raise ValueError("tip_mass applies to a link count; a Chain carries its own masses")
+    n = chain.n
+    tip = float(chain.masses[-1] - chain.masses[0])
+    same = Chain(n, max(tip, 0.0))
+    # 1e-12: a chain typed in by hand (lengths [1/N] * N) differs from the library's in the
+    # last bits
+    if not (chain.gravity == 1.0 and np.allclose(chain.lengths, same.lengths, rtol=1e-12, atol=0)
+            and np.allclose(chain.masses, same.masses, rtol=1e-12, atol=0)):
+        raise ValueError("fit's model is the uniform N-link chain (links=N, tip_mass=...) or "
+                         "the continuum: %r has unequal links or masses, or gravity != 1" % chain)
+    return n, max(tip, 0.0)
+
+
+def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
+        tip_mass: float = 0.0,
         omega_max: Optional[float] = None, samples: Optional[int] = None,
         max_residual: float = 0.02, length: Optional[float] = None,
         mass: Optional[float] = None, gravity: Optional[float] = None,
@@ -42,7 +63,7 @@ def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: fl
     length given]), by least squares on the distance of each point to the model curve, as
     ``whirl fit``.
     mode=0: the best mode; K >= 1: mode K only. links=None: the continuous chain; N (at most
-    2000): the uniform N-link chain. omega_max: the highest rate tried (default 50 sqrt(g/L));
+    2000): the uniform N-link chain (or a Chain that is one, Chain(N, tip_mass)). omega_max: the highest rate tried (default 50 sqrt(g/L));
     samples: points of the continuum's model polyline (default 4001). Units as everywhere
     (see Units): with length [m] the rates are in rad/s. Returns a FitResult; raises
     whirl.InvalidInput (a ValueError) when no mode has a shape in the range, or when the best
@@ -55,10 +76,12 @@ def fit(r: Any, z: Any, mode: int = 0, links: Optional[int] = None, tip_mass: fl
     if r.size < 3:
         raise ValueError("a fit needs at least 3 points, got %d" % r.size)
     m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_defaults())
+    if isinstance(links, Chain):
+        links, tip_mass = _uniform(links, tip_mass)
     m.links = 0 if links is None else as_int(links, "links", minimum=1, maximum=FIT_MAX_LINKS)
-    m.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    m.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     if omega_max is not None:
-        m.omega_max = as_float(omega_max, "omega_max", positive=True) / u.rate
+        m.omega_max = as_float(omega_max, "omega_max", positive=True, kind="rate", units=u) / u.rate
     if samples is not None:
         m.samples = as_int(samples, "samples", minimum=2, maximum=FIT_MAX_SAMPLES)
     mode = as_int(mode, "mode", minimum=0, maximum=lib.WHIRL_MODE_MAX)

@@ -11,7 +11,7 @@ from . import _lib
 from ._lib import ffi, lib, check
 
 
-class SceneRun:
+class SceneRun(_lib.Result):
     """The output of run_scene.
 
     ``columns``: the names of the scene's [output] columns, in order ("t" first);

@@ -9,12 +9,12 @@ import numpy as np
 
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float, as_array
-from .steady import Chain, Units, _chain, _mode, units_of
+from .steady import Chain, Units, _absent, _chain, _grid_text, _mode, units_of
 from .dynamics import _method, _stats
 
 
-@dataclass
-class StabilityResult:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class StabilityResult(_lib.Result):
     """One shape's stability: ``eig_growth`` (largest real part of the linearisation's
     eigenvalues, the rotation symmetry's zeros removed [1/T]), ``eigenvalues`` (complex array
     [1/T]), and, unless linear, the perturbed run's ``sim_growth`` (fitted exponential rate, 0
@@ -54,7 +54,8 @@ def _model(chain: Chain, omega: float, damping: float, drive_radius: float, air_
     m.frame = 1
     m.omega = omega
     m.internal_damping = as_float(damping, "damping", nonnegative=True) / u.damping
-    m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True) / u.length
+    m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
+                              kind="length", units=u) / u.length
     m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
     m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
                                     nonnegative=True) / u.drag2
@@ -78,6 +79,7 @@ def _observe_stop(t: float, ratio: float, data: Any) -> int:
     return lib.WHIRL_EINTERRUPTED if lib.whirl_stop_requested() else 0
 
 
+@_lib.interruptible("stability")  # one block: Ctrl-C between its library calls too
 def stability(omega: float, mode: int, links: Union[int, Chain], damping: float = 0.0,
               linear: bool = False, periods: float = 100.0, perturb: float = 1e-10,
               method: str = "rk4", seed: int = 1, dt: float = 0.0, drive_radius: float = 0.0,
@@ -99,7 +101,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
-    w = as_float(omega, "omega", positive=True) / u.rate
+    w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     side = as_int(side, "side")
     if side not in (1, -1):
         raise ValueError("side must be 1 or -1, got %d" % side)
@@ -137,7 +139,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     p.seed = as_int(seed, "seed", minimum=0)
     name = ffi.new("char[]", _method(method).encode())
     p.method = name
-    p.dt = as_float(dt, "dt", nonnegative=True) / u.time
+    p.dt = as_float(dt, "dt", nonnegative=True, kind="time", units=u) / u.time
     p.observe = _observe_stop
     x, y, z = (ffi.new("const double **") for _ in range(3))
     lib.whirl_stability_nodes(ws, x, y, z)
@@ -157,13 +159,15 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
 MAP_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("growth", "f8")])
 
 
+@_lib.interruptible("stability_map")  # one block: Ctrl-C between its library calls too
 def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: float = 0.0,
                   length: Optional[float] = None, mass: Optional[float] = None,
                   gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
     """The linear growth rate of ``mode`` of the N-link chain over the rates ``omega`` (array,
     [sqrt(g/L), or rad/s]), the branch followed by continuation, as ``whirl stability
     --omega-min ... --linear``. Returns a structured array (omega, tip_r, growth [1/T]) with one
-    row per rate where the mode exists; growth > 0: unstable. Ctrl-C raises
+    row per rate where the mode exists; growth > 0: unstable. whirl.InvalidInput when the mode
+    exists at none of the rates (the message says where it is born). Ctrl-C raises
     KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
@@ -185,6 +189,9 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
     check(status, "stability_map of mode %d" % mode, u)
     # the growth of each shape: the library's map (whirl_stability_map, as the command line's)
     rows = np.flatnonzero(exists)
+    if rows.size == 0:
+        raise _lib.error(1, "stability_map: no rate of the grid %s has a shape of mode %d: %s"
+                         % (_grid_text(w, u), mode, _absent(mode, chain, 0.0, w, u)))
     pts = ffi.new("whirl_stability_point[]", max(rows.size, 1))
     for i, j in enumerate(rows):
         pts[i].omega = w[j]
@@ -215,15 +222,19 @@ def _windows_params(omega_min: Optional[float], omega_max: Optional[float],
     in the dimensionless units: 1, 10, 0.25, 1e-9."""
     p = ffi.new("whirl_windows_params *", lib.whirl_windows_defaults())
     p.omega_min = 1.0 if omega_min is None else as_float(omega_min, "omega_min",
-                                                         positive=True) / u.rate
+                                                         positive=True, kind="rate",
+                                                         units=u) / u.rate
     p.omega_max = 10.0 if omega_max is None else as_float(omega_max, "omega_max",
-                                                          positive=True) / u.rate
+                                                          positive=True, kind="rate",
+                                                          units=u) / u.rate
     if not p.omega_min < p.omega_max:
         raise ValueError("omega_min must be < omega_max, got %g and %g"
                          % (p.omega_min * u.rate, p.omega_max * u.rate))
     p.scan_step = 0.25 if scan_step is None else as_float(scan_step, "scan_step",
-                                                          positive=True) / u.rate
-    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True) / u.rate
+                                                          positive=True, kind="rate",
+                                                          units=u) / u.rate
+    p.tol = 1e-9 if tol is None else as_float(tol, "tol", positive=True,
+                                              kind="rate", units=u) / u.rate
     return p
 
 
@@ -278,7 +289,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
         cp = ffi.new("whirl_cstab_params *", lib.whirl_cstab_defaults())
         if degree is not None:
             cp.degree = as_int(degree, "degree", minimum=6, maximum=64)
-        cp.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+        cp.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True,
+                               kind="mass", units=u) / u.mass
         if memory_mb is not None:
             cp.memory_mb = _memory_mb(memory_mb)
         ws = _lib.check_ptr(lib.whirl_cstab_alloc(cp), lib.whirl_cstab_free)

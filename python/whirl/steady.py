@@ -5,6 +5,7 @@ sqrt(g/L), lengths in L, tensions in M g). Give ``length`` [m], ``mass`` [kg] an
 [m/s^2] (the command line's --length, --mass, --gravity) to work in SI units instead: rates are
 then in rad/s, lengths in m, tensions in N, tip masses in kg."""
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
@@ -30,7 +31,8 @@ class Units:
     is dimensionless (chain length L, mass M, gravity g all 1: rates in sqrt(g/L), lengths in L,
     times in sqrt(L/g), forces in M g); any of ``length`` [m], ``mass`` [kg], ``gravity``
     [m/s^2] switches to SI units, the others defaulting to 1 m, 1 kg and 9.80665 m/s^2 (as
-    ``--length``, ``--mass``, ``--gravity`` do). Each in [1e-30, 1e30].
+    ``--length``, ``--mass``, ``--gravity`` do). Each in [1e-30, 1e30]; length and mass may be
+    texts with a unit as on the command line ("60cm", "50 g").
     Derived scales: ``rate`` sqrt(g/L) [1/s], ``time`` [s], ``force`` M g [N], ``drag``
     (linear drag per unit length) M sqrt(g/L) / L, ``drag2`` M / L^2, ``damping`` M L^2
     sqrt(g/L). Immutable; pickles."""
@@ -48,7 +50,9 @@ class Units:
         for name, value, default in (("length", length, 1.0), ("mass", mass, 1.0),
                                      ("gravity", gravity,
                                       STANDARD_GRAVITY if physical else 1.0)):
-            v = default if value is None else as_float(value, name, positive=True)
+            # a unit in the text ("60cm", "50g") as the command line's --length, --mass
+            v = default if value is None else as_float(
+                value, name, positive=True, kind=None if name == "gravity" else name)
             if not UNIT_MIN <= v <= UNIT_MAX:
                 raise ValueError("%s must be in [%g, %g], got %r" % (name, UNIT_MIN, UNIT_MAX,
                                                                      v))
@@ -230,7 +234,7 @@ def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: fl
     Units)."""
     u = units_of(length, mass, gravity, units)
     modes = as_int(modes, "modes", minimum=1)
-    m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     chain = _chain(links, m)
     out = np.empty(modes)
     if chain is None:
@@ -252,8 +256,8 @@ def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: fl
     return out
 
 
-@dataclass
-class Shape:
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class Shape(_lib.Result):
     """A steady shape (``whirl shape``): arrays ``s`` (arclength from the pivot), ``r`` (signed
     distance from the axis, the free end at r > 0), ``z`` (height, pivot 0, z <= 0) and
     ``tension`` [L, L, L, M g; or m, m, m, N], from the pivot to the free end (N-link chain:
@@ -342,9 +346,10 @@ def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_ma
     ValueError; status_name "EDOM") if the mode does not exist at omega, naming its critical
     rate. Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
-    w = as_float(omega, "omega", positive=True) / u.rate
-    m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
-    guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True) / u.length
+    w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
+    m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
+    guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True,
+                     kind="length", units=u) / u.length
     chain = _chain(links, m)
     mode = _mode(mode, chain)
     if chain is None:
@@ -409,6 +414,7 @@ BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
                          ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")])
 
 
+@_lib.interruptible("sweep")  # one block: Ctrl-C between its library calls too
 def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, Chain] = None,
           tip_mass: float = 0.0, length: Optional[float] = None, mass: Optional[float] = None,
           gravity: Optional[float] = None,
@@ -417,15 +423,17 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
     [sqrt(g/L), or rad/s]), each followed by continuation on all OpenMP threads (``whirl
     sweep``). Returns a dict {mode: structured array with fields omega, tip_r, max_r,
     top_tension, depth, node_count (the pivot plus the axis crossings, the command line's
-    ``nodes`` column)}, one row per rate where the mode exists, in the order of ``omega``.
-    Ctrl-C raises KeyboardInterrupt."""
+    ``nodes`` column)}, one row per rate where the mode exists, in the order of ``omega``. A
+    mode with no shape at any of the rates gets an empty array and an EmptyBranchWarning
+    saying where it is born; when no mode asked for has one, whirl.InvalidInput (as the
+    command line's "no mode exists on the grid"). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
         modes = [int(modes)]
     assert not isinstance(modes, (bool, int))
     w = as_array(omega, "omega", positive=True) / u.rate
     _lib.bounded(w.size, "len(omega)", 256 + (0 if links is None else 64), hard=POINTS_MAX)
-    m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     chain = _chain(links, m)
     try:
         mode_list = [_mode(k, chain) for k in modes]
@@ -452,7 +460,39 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
                     f.top_tension * u.force, f.depth * u.length, f.n_nodes + 1)
         _lib.finite("the branch of mode %d" % k, *(a[c] for c in ("omega", "tip_r", "max_r", "top_tension", "depth")))
         out[k] = a
+    empty = [k for k in mode_list if out[k].size == 0]
+    if empty and len(empty) == len(set(mode_list)):  # nothing at all: the command line's error
+        raise _lib.error(1, "sweep: no mode exists on the grid %s: %s"
+                         % (_grid_text(w, u), _absent(empty[0], chain, m, w, u)))
+    for k in empty:
+        warnings.warn("sweep: no rows for mode %d: %s" % (k, _absent(k, chain, m, w, u)),
+                      EmptyBranchWarning, stacklevel=3)
     return out
+
+
+class EmptyBranchWarning(UserWarning):
+    """A mode asked for that has no shape at any of the rates given (an empty array)."""
+
+
+def _rate_text(w: float, u: Units) -> str:
+    return "%.6g %s" % (w * u.rate, "rad/s" if u.physical else "sqrt(g/L)")
+
+
+def _grid_text(w: np.ndarray, u: Units) -> str:
+    return "%s to %s" % (_rate_text(float(w.min()), u), _rate_text(float(w.max()), u))
+
+
+def _absent(mode: int, chain: Optional[Chain], tip_mass: float, w: np.ndarray, u: Units) -> str:
+    """Why mode has no shape on the grid w (dimensionless): where it is born, as the command
+    line says it."""
+    born = np.empty(mode)
+    if chain is None:
+        status = lib.whirl_continuum_critical_rates(mode, tip_mass, _lib.dptr(born))
+    else:
+        status = lib.whirl_nlink_critical(chain._c, mode, _lib.dptr(born))
+    if status == _lib.GSL_SUCCESS and w.max() < born[-1]:
+        return "mode %d exists only above %s" % (mode, _rate_text(float(born[-1]), u))
+    return "mode %d has no shape at these rates" % mode
 
 
 EQUILIBRIA_DTYPE = np.dtype([("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
@@ -484,8 +524,8 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
     lengths, balance the largest force across a link over its tension). branches=False skips
     the continuation (the scans only). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
-    w = as_float(omega, "omega", positive=True) / u.rate
-    m = as_float(tip_mass, "tip_mass", nonnegative=True) / u.mass
+    w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
+    m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     chain = _chain(links, m, dense=bool(stability))
     p = ffi.new("whirl_equilibria_params *", lib.whirl_equilibria_defaults())
     p.stability = 1 if stability else 0

@@ -63,6 +63,7 @@
 
 #include "dynamics/dyn_internal.h"
 #include "core/error.h"
+#include "core/threads.h"
 
 static int cart_alloc(whirl_dyn *d)
 {
@@ -363,7 +364,7 @@ static void solve_multipliers(whirl_dyn *d, double t, const double *y, field *f)
 {
     const size_t n = d->n;
     field_prepare(d, t, y, f);
-    const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? d->threads : 1;
+    const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? whirl_threads_for(d->threads) : 1;
     if (threads > 1) { /* links 0..N-2 in one static block per thread */
 #pragma omp parallel for num_threads(threads) schedule(static)
         for (int b = 0; b < threads; b++)
@@ -402,7 +403,7 @@ LINK_INLINE int accelerations(whirl_dyn *d, const field *f, const double *y, dou
         probe += accel_link(d, f, y, dydt, 0, dim, 1, 1);
     } else {
         probe += accel_link(d, f, y, dydt, 0, dim, 1, 0);
-        const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? d->threads : 1;
+        const int threads = n >= WHIRL_DYN_THREADS_MIN_LINKS ? whirl_threads_for(d->threads) : 1;
         if (threads > 1) { /* links 1..N-2 in one static block per thread */
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : probe)
             for (int b = 0; b < threads; b++) {

@@ -40,7 +40,7 @@ int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
     whirl_error_record no_workspace = {GSL_SUCCESS, ""};
     int failed = 0;
     size_t done = 0;
-#pragma omp parallel
+#pragma omp parallel num_threads(whirl_max_threads())
     {
         whirl_stability *w = whirl_stability_alloc(c->n);
         if (w == NULL) {

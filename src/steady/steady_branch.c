@@ -76,7 +76,7 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
     }
     size_t nblocks = 1;
 #ifdef _OPENMP
-    if (!omp_in_parallel()) nblocks = (size_t)omp_get_max_threads();
+    if (!omp_in_parallel()) nblocks = (size_t)whirl_max_threads();
 #endif
     if (nblocks > n / BLOCK_MIN) nblocks = n / BLOCK_MIN;
     if (nblocks < 1) nblocks = 1;
