@@ -14,7 +14,7 @@
  * the bracket's secant slope, else g jumped there (a hand-swung shape that changes branch) and
  * the search fails rather than report a jump as an edge. An interval of either kind narrower than the
  * scan step can be passed over (no discriminant as in the conservative search,
- * stability_windows.c, gives it away: here the crossing eigenvalue meets no partner).
+ * nlink_windows.c, gives it away: here the crossing eigenvalue meets no partner).
  * Kelvin-Tait-Chetaev (Merkin 1956; Kirillov 2013, ch. 2): with complete dissipation (C
  * definite on the non-symmetry directions, as the internal damping is) a shape of index > 0
  * (modes 2, 3, ...) is unstable at every rate, and a minimum (index 0, mode 1) converges;

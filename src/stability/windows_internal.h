@@ -1,12 +1,19 @@
-/* The window search of stability_windows.c over any source of squared eigenvalues mu = lambda^2
+/* The window search of windows_search.c over any source of squared eigenvalues mu = lambda^2
  * of a family of linearisations in omega (the N-link chain's reduced problem, the continuum's
  * collocation): internal to the library. */
 #ifndef WHIRL_WINDOWS_INTERNAL_H
 #define WHIRL_WINDOWS_INTERNAL_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "whirl/stability.h"
+
+/* Re sqrt(mu): the growth rate of the pair lambda = +-sqrt(mu) */
+static inline double root_re(double re, double im)
+{
+    return sqrt(fmax(0, (hypot(re, im) + re) / 2));
+}
 
 typedef struct windows_source {
     /* Every mu of the linearisation about the mode's shape at omega, with signatures if asked
@@ -39,6 +46,19 @@ typedef struct windows_arnoldi {
     int hlwork;
 } windows_arnoldi;
 
+/* Arnoldi step: v_(step+1) from apply(v_step), orthogonalised (Gram-Schmidt, twice) into column
+ * step of the Hessenberg matrix; its norm h_(step+1,step) into *norm. GSL_CONTINUE if apply
+ * failed. */
+int whirl_windows_arnoldi_step(windows_arnoldi *k, size_t step,
+                               int (*apply)(void *data, const double *x, double *y), void *data,
+                               double *norm);
+/* The Ritz values theta (hre, him) and vectors (hvec, m x m) of the leading m x m Hessenberg
+ * block: the LAPACK info. */
+int whirl_windows_ritz_values(windows_arnoldi *k, size_t m);
+/* The residual |h_(m+1,m) e_m^T s| / |s| of Ritz value i (its vector s: column i, or (re, im) at
+ * (i, i + 1) / (i - 1, i) for a complex one). */
+double whirl_windows_ritz_residual(const windows_arnoldi *k, size_t m, size_t i, double norm);
+
 /* Allocates the arrays of k for vectors of length q (GSL_ENOMEM; release frees what was got),
  * for WINDOWS_KRYLOV_MAX steps, or km steps (the arrays' sizes below with km). */
 int whirl_windows_arnoldi_init(windows_arnoldi *k, size_t q);
@@ -59,14 +79,14 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
 int whirl_windows_range(const whirl_windows_params *p, int mode, double birth, double **omega,
                         size_t *npts);
 
-/* The windows over the scan omega[0..npts-1] (stability_windows.c's header comment; the range's
+/* The windows over the scan omega[0..npts-1] (windows_search.c's header comment; the range's
  * end is p->omega_max). */
 int whirl_windows_search(const windows_source *src, const whirl_windows_params *p,
                          const double *omega, size_t npts, whirl_window *windows, size_t max,
                          size_t *count);
 
 /* The mu of the last linearisation in lin (of the chain c at omega) that can collide, by the
- * banded path of stability_windows.c (its header comment): every mu with |mu| <= omega^2 and
+ * banded path of nlink_banded.c (its header comment): every mu with |mu| <= omega^2 and
  * the first neutral one beyond, with the signatures if asked. GSL_CONTINUE when that path does
  * not apply or did not converge (the dense whirl_windows_spectrum then gives them), GSL_EINVAL
  * as whirl_windows_spectrum. */
