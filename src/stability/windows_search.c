@@ -17,8 +17,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_min.h>
-
 #include "whirl/stability.h"
 #include "core/error.h"
 #include "core/input.h"
@@ -378,7 +376,6 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
     if (isnan(g) || (!l && !r)) return GSL_SUCCESS;
     if ((l && !(g < l->gap[idx])) || (r && !(g < r->gap[idx]))) return GSL_SUCCESS;
     root_args ra = {s->src, s->p, c->gap_mu[idx], 0, 0, 0};
-    gsl_function fn = {pair_function, &ra};
     double x = c->omega, fx = g, lo, flo, hi, fhi;
     if (l && r) {
         lo = l->omega, flo = l->gap[idx], hi = r->omega, fhi = r->gap[idx];
@@ -395,25 +392,16 @@ static int approach(search *s, const point *pts, size_t npts, size_t j, size_t i
         *hit = 1;
         return evaluate(s->src, x, 1, found);
     }
-    gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-    if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    int status = gsl_min_fminimizer_set_with_values(m, &fn, x, fx, lo, flo, hi, fhi);
-    for (int iter = 0; iter < 60 && status == GSL_SUCCESS && !ra.status; iter++) {
-        status = gsl_min_fminimizer_iterate(m);
-        if (status || ra.status) break;
-        if (gsl_min_fminimizer_f_minimum(m) < 0) {
-            *hit = 1;
-            break;
-        }
-        /* Brent's minimisation shrinks the interval to about sqrt(eps) |x| at best (a finer
-         * tol ran all 60 iterations); there D is within O(D'' 1e-12) of its least value */
-        if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m),
-                                  fmax(s->p->tol, 1e-6), 0) == GSL_SUCCESS)
-            break;
-    }
-    x = gsl_min_fminimizer_x_minimum(m);
-    gsl_min_fminimizer_free(m);
+    /* Brent's minimisation shrinks the interval to about sqrt(eps) |x| at best (a finer tol ran
+     * all 60 iterations); there D is within O(D'' 1e-12) of its least value. A negative D ends
+     * it: an unstable rate. */
+    const whirl_min_opts o = {fmax(s->p->tol, 1e-6), 0, 60, 0};
+    whirl_min least;
+    const int status = whirl_min_brent(pair_value, &ra, x, fx, lo, flo, hi, fhi, &o, &least);
     if (ra.status) return ra.status;
+    if (status == GSL_ENOMEM) return status;
+    *hit = least.below;
+    x = least.x;
     /* GSL's Brent may stop on a flat D (GSL_FAILURE): no window there */
     if (*hit) return evaluate(s->src, x, 1, found);
     return GSL_SUCCESS;
@@ -474,22 +462,14 @@ static int largest_growth(search *s, const point *end_from, const point *end_to,
                           s->src->mode, win->from, win->to);
     if (best == 0 || best == SAMPLES + 1) return GSL_SUCCESS; /* at an end of the range */
     root_args r = {s->src, s->p, mu[best], 0, 0, -1};
-    gsl_function fn = {pair_function, &r};
-    gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-    if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    int status = gsl_min_fminimizer_set_with_values(m, &fn, x[best], f[best], x[best - 1],
-                                                    f[best - 1], x[best + 1], f[best + 1]);
-    for (int iter = 0; iter < 100 && status == GSL_SUCCESS && !r.status; iter++) {
-        status = gsl_min_fminimizer_iterate(m);
-        if (status || r.status) break;
-        /* the maximum is flat: its place is known to about sqrt(eps) relative at best */
-        if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m),
-                                  1e-6, 0) == GSL_SUCCESS)
-            break;
-    }
-    const double at = gsl_min_fminimizer_x_minimum(m);
-    gsl_min_fminimizer_free(m);
+    /* the maximum is flat: its place is known to about sqrt(eps) relative at best */
+    const whirl_min_opts o = {1e-6, 0, 100, -INFINITY};
+    whirl_min most;
+    int status = whirl_min_brent(pair_value, &r, x[best], f[best], x[best - 1], f[best - 1],
+                                 x[best + 1], f[best + 1], &o, &most);
+    const double at = most.x;
     if (r.status) return r.status;
+    if (status == GSL_ENOMEM) return status;
     if (status)
         return whirl_fail(status, "mode %d: the largest growth in (%.10g, %.10g) was not found",
                           s->src->mode, win->from, win->to);
