@@ -1,18 +1,37 @@
 /* Shift-and-invert Arnoldi (Saad, Numerical Methods for Large Eigenvalue Problems, 2011, ch. 6-7)
  * on an operator y = (A - sigma)^-1 x given by the caller: the step (Gram-Schmidt twice, full
- * reorthogonalisation), the Ritz values of the Hessenberg matrix and their residuals, and the pair
- * of eigenvalues nearest the shift (windows_internal.h). */
+ * reorthogonalisation), the Ritz values of the Hessenberg matrix and their residuals, and its two
+ * drivers (windows_internal.h): the pair of eigenvalues nearest the shift (the window search
+ * near an edge) and every eigenvalue above a floor in modulus (the continuum's spectrum); the
+ * N-link chain's banded path drives the same step and Ritz values itself (nlink_banded.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include <lapacke.h>
 
+#include "core/error.h"
 #include "stability/windows_internal.h"
+
+/* The dot product of a and b (n), in four partial sums: independent additions, which the
+ * processor overlaps (a single sum waits for each addition in turn). */
+static double dot4(const double *a, const double *b, size_t n)
+{
+    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
+    size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        s0 += a[i] * b[i];
+        s1 += a[i + 1] * b[i + 1];
+        s2 += a[i + 2] * b[i + 2];
+        s3 += a[i + 3] * b[i + 3];
+    }
+    for (; i < n; i++) s0 += a[i] * b[i];
+    return (s0 + s1) + (s2 + s3);
+}
 
 /* Arnoldi step: v_(step+1) from apply(v_step), orthogonalised (Gram-Schmidt, twice) into column
  * step of the Hessenberg matrix; its norm h_(step+1,step) into *norm. GSL_CONTINUE if apply
- * failed. */
+ * failed. The inner products and the norm by k->blocked (windows_internal.h). */
 int whirl_windows_arnoldi_step(windows_arnoldi *k, size_t step,
                         int (*apply)(void *data, const double *x, double *y), void *data,
                         double *norm)
@@ -24,15 +43,24 @@ int whirl_windows_arnoldi_step(windows_arnoldi *k, size_t step,
     if (apply(data, x, y) != GSL_SUCCESS) return GSL_CONTINUE;
     for (int pass = 0; pass < 2; pass++)
         for (size_t j = 0; j <= step; j++) {
+            const double *vj = v + j * q;
             double dot = 0;
-            for (size_t i = 0; i < q; i++) dot += v[j * q + i] * y[i];
-            for (size_t i = 0; i < q; i++) y[i] -= dot * v[j * q + i];
+            if (k->blocked)
+                dot = dot4(vj, y, q);
+            else
+                for (size_t i = 0; i < q; i++) dot += vj[i] * y[i];
+            for (size_t i = 0; i < q; i++) y[i] -= dot * vj[i];
             h[j + step * (km + 1)] += dot;
         }
     double nrm = 0;
-    for (size_t i = 0; i < q; i++) nrm = hypot(nrm, y[i]);
+    if (k->blocked) { /* the vectors are O(1): no scaling needed */
+        for (size_t i = 0; i < q; i++) nrm += y[i] * y[i];
+        nrm = sqrt(nrm);
+    } else {
+        for (size_t i = 0; i < q; i++) nrm = hypot(nrm, y[i]);
+    }
     h[step + 1 + step * (km + 1)] = nrm;
-    if (nrm > 0)
+    if (nrm > (k->blocked ? ARNOLDI_BREAKDOWN : 0))
         for (size_t i = 0; i < q; i++) y[i] /= nrm;
     *norm = nrm;
     return GSL_SUCCESS;
@@ -137,6 +165,73 @@ int whirl_windows_arnoldi_pair(windows_arnoldi *k,
             }
             return GSL_SUCCESS;
         }
+    }
+    return GSL_CONTINUE;
+}
+
+/* The Ritz values of the m-step factorisation (whirl_windows_ritz_values); *done: every one with
+ * |theta| >= floor has a residual |h_(m+1,m) e_m^T y| below 1e-12 |theta| |y|; *wanted: how many
+ * have |theta| >= floor. */
+static int ritz_above(windows_arnoldi *k, size_t m, double floor, int *done, size_t *wanted)
+{
+    const size_t km = k->km;
+    const int info = whirl_windows_ritz_values(k, m);
+    if (info != 0)
+        return whirl_fail(GSL_EFAILED, "the Ritz values' eigen-solve failed (dgeev info %d)",
+                          info);
+    const double beta = m < km ? k->hess[m + (m - 1) * (km + 1)] : 0;
+    *done = 1;
+    *wanted = 0;
+    for (size_t i = 0; i < m; i++) {
+        const double mod = hypot(k->hre[i], k->him[i]);
+        if (!(mod >= floor)) continue;
+        ++*wanted;
+        size_t cr = i, ci = i;
+        const int cplx = k->him[i] != 0;
+        if (cplx && k->him[i] > 0) ci = i + 1;
+        if (cplx && k->him[i] < 0) cr = i - 1;
+        const double last = hypot(k->hvec[m - 1 + cr * m], cplx ? k->hvec[m - 1 + ci * m] : 0);
+        double len = 0;
+        for (size_t r = 0; r < m; r++)
+            len = hypot(len, hypot(k->hvec[r + cr * m], cplx ? k->hvec[r + ci * m] : 0));
+        if (!(fabs(beta) * last <= 1e-12 * mod * len)) *done = 0;
+    }
+    return GSL_SUCCESS;
+}
+
+int whirl_windows_arnoldi_above(windows_arnoldi *k,
+                                int (*apply)(void *data, const double *x, double *y), void *data,
+                                double floor, size_t *steps)
+{
+    const size_t q = k->q, km = k->km < q ? k->km : q;
+    double *v = k->basis;
+    memset(k->hess, 0, (k->km + 1) * k->km * sizeof(double));
+    double norm = 0;
+    for (size_t i = 0; i < q; i++) {
+        v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
+        norm += v[i] * v[i];
+    }
+    norm = sqrt(norm);
+    for (size_t i = 0; i < q; i++) v[i] /= norm;
+    size_t next = 24; /* the next look at the Ritz values */
+    *steps = 0;
+    for (size_t step = 0; step < km; step++) {
+        if (whirl_windows_arnoldi_step(k, step, apply, data, &norm))
+            return whirl_fail(GSL_EFAILED, "the solve of the Arnoldi iteration failed");
+        const int breakdown = !(norm > ARNOLDI_BREAKDOWN);
+        const size_t m = step + 1;
+        if (m < next && !breakdown && m < km) continue;
+        next = m + (m / 8 > 4 ? m / 8 : 4);
+        int done = 0;
+        size_t wanted = 0;
+        int status = ritz_above(k, m, floor, &done, &wanted);
+        if (status) return status;
+        if (next < wanted + 16) next = wanted + 16; /* no stop before (wanted grows with m) */
+        if (breakdown || m == q || (done && m >= wanted + 16)) {
+            *steps = m;
+            return GSL_SUCCESS;
+        }
+        if (whirl_stop_requested()) return WHIRL_EINTERRUPTED;
     }
     return GSL_CONTINUE;
 }

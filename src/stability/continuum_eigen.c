@@ -59,7 +59,7 @@ static double cstab_energy(void *data, size_t k)
 {
     whirl_cstab *w = data;
     const size_t ny = N_DYNAMIC * w->np, i = w->kept[k];
-    const double *im = w->hm ? w->him : w->dim, *vec = w->hm ? w->hvec : w->dvr;
+    const double *im = w->hm ? w->ke.him : w->dim, *vec = w->hm ? w->ke.hvec : w->dvr;
     const size_t len = w->hm ? w->hm : ny;
     size_t cr = i, ci = i;
     if (im[i] > 0) ci = i + 1;
@@ -68,7 +68,7 @@ static double cstab_energy(void *data, size_t k)
     double *xr = w->ritz, *xi = w->ritz + ny;
     for (size_t t = 0; t < ny; t++) xr[t] = xi[t] = 0;
     for (size_t j = 0; j < len; j++) {
-        const double *v = w->basis + j * ny, yr = vec[j + cr * len];
+        const double *v = w->ke.basis + j * ny, yr = vec[j + cr * len];
         const double yi = im[i] != 0 ? vec[j + ci * len] : 0;
         for (size_t t = 0; t < ny; t++) xr[t] += yr * v[t], xi[t] += yi * v[t];
     }
@@ -108,108 +108,18 @@ static int dense_eigen(whirl_cstab *w, int vectors)
     return GSL_SUCCESS;
 }
 
-/* The Ritz values of the m-step Arnoldi factorisation into w->hre, w->him (eigenvectors of the
- * Hessenberg matrix in w->hvec); *done: every one with |theta| >= floor has a residual below
- * 1e-12 |theta|; *wanted: how many have |theta| >= floor. */
-static int ritz(whirl_cstab *w, size_t m, double floor, int *done, size_t *wanted)
-{
-    const size_t km = CS_KRYLOV_MAX;
-    for (size_t j = 0; j < m; j++)
-        for (size_t i = 0; i < m; i++) w->hcopy[i + j * m] = w->hess[i + j * (km + 1)];
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, w->hcopy,
-                                         (lapack_int)m, w->hre, w->him, NULL, 1, w->hvec,
-                                         (lapack_int)m, w->hwork, w->hlwork);
-    if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the Ritz values' eigen-solve failed (dgeev info %d)",
-                          (int)info);
-    const double beta = m < km ? w->hess[m + (m - 1) * (km + 1)] : 0;
-    *done = 1;
-    *wanted = 0;
-    for (size_t i = 0; i < m; i++) {
-        const double mod = hypot(w->hre[i], w->him[i]);
-        if (!(mod >= floor)) continue;
-        ++*wanted;
-        size_t cr = i, ci = i;
-        const int cplx = w->him[i] != 0;
-        if (cplx && w->him[i] > 0) ci = i + 1;
-        if (cplx && w->him[i] < 0) cr = i - 1;
-        const double last = hypot(w->hvec[m - 1 + cr * m], cplx ? w->hvec[m - 1 + ci * m] : 0);
-        double len = 0;
-        for (size_t r = 0; r < m; r++)
-            len = hypot(len, hypot(w->hvec[r + cr * m], cplx ? w->hvec[r + ci * m] : 0));
-        if (!(fabs(beta) * last <= 1e-12 * mod * len)) *done = 0;
-    }
-    return GSL_SUCCESS;
-}
-
-/* The dot product of a and b (n), in four partial sums: independent additions, which the
- * processor overlaps (a single sum waits for each addition in turn). */
-static double dot4(const double *a, const double *b, size_t n)
-{
-    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-    size_t i = 0;
-    for (; i + 4 <= n; i += 4) {
-        s0 += a[i] * b[i];
-        s1 += a[i + 1] * b[i + 1];
-        s2 += a[i + 2] * b[i + 2];
-        s3 += a[i + 3] * b[i + 3];
-    }
-    for (; i < n; i++) s0 += a[i] * b[i];
-    return (s0 + s1) + (s2 + s3);
-}
-
 /* The theta of largest modulus of the block C by the Arnoldi iteration (header comment): into
- * w->hre, w->him (w->hm of them); GSL_CONTINUE if not converged in CS_KRYLOV_MAX steps. */
+ * w->ke.hre, w->ke.him (w->hm of them); GSL_CONTINUE if not converged in CS_KRYLOV_MAX steps. */
 static int arnoldi_eigen(whirl_cstab *w, double cut)
 {
-    const size_t ny = N_DYNAMIC * w->np, km = CS_KRYLOV_MAX < ny ? CS_KRYLOV_MAX : ny;
-    const double floor = 0.8 / (cut + fabs(w->shift));
-    double *v = w->basis, *h = w->hess;
-    memset(h, 0, (CS_KRYLOV_MAX + 1) * CS_KRYLOV_MAX * sizeof(double));
-    double norm = 0;
-    for (size_t i = 0; i < ny; i++) {
-        v[i] = sin(0.7 * (double)i + 0.3) + 0.5;
-        norm += v[i] * v[i];
-    }
-    norm = sqrt(norm);
-    for (size_t i = 0; i < ny; i++) v[i] /= norm;
-    size_t next = 24; /* the next look at the Ritz values */
+    w->ke.q = N_DYNAMIC * w->np; /* the basis holds the points allocated for */
     w->hm = 0;
-    for (size_t step = 0; step < km; step++) {
-        const double *x = v + step * ny;
-        double *y = v + (step + 1) * ny;
-        if (cstab_apply(w, x, y) != GSL_SUCCESS)
-            return whirl_fail(GSL_EFAILED, "the banded solve failed");
-        for (int pass = 0; pass < 2; pass++) /* Gram-Schmidt, twice */
-            for (size_t j = 0; j <= step; j++) {
-                const double *vj = v + j * ny, dot = dot4(vj, y, ny);
-                for (size_t i = 0; i < ny; i++) y[i] -= dot * vj[i];
-                h[j + step * (CS_KRYLOV_MAX + 1)] += dot;
-            }
-        norm = 0; /* the vectors are O(1): no scaling needed */
-        for (size_t i = 0; i < ny; i++) norm += y[i] * y[i];
-        norm = sqrt(norm);
-        h[step + 1 + step * (CS_KRYLOV_MAX + 1)] = norm;
-        const int breakdown = !(norm > 1e-300);
-        if (!breakdown)
-            for (size_t i = 0; i < ny; i++) y[i] /= norm;
-        const size_t m = step + 1;
-        if (m < next && !breakdown && m < km) continue;
-        next = m + (m / 8 > 4 ? m / 8 : 4);
-        int done = 0;
-        size_t wanted = 0;
-        int status = ritz(w, m, floor, &done, &wanted);
-        if (status) return status;
-        if (next < wanted + 16) next = wanted + 16; /* no stop before (wanted grows with m) */
-        if (breakdown || m == ny || (done && m >= wanted + 16)) {
-            w->hm = m;
-            return GSL_SUCCESS;
-        }
-        if (whirl_stop_requested())
-            return whirl_fail(WHIRL_EINTERRUPTED, "the eigen-solve at omega = " WHIRL_Q_RATE
-                              "%g: stopped by request", w->omega);
-    }
-    return GSL_CONTINUE;
+    const int status = whirl_windows_arnoldi_above(&w->ke, cstab_apply, w,
+                                                   0.8 / (cut + fabs(w->shift)), &w->hm);
+    if (status == WHIRL_EINTERRUPTED)
+        return whirl_fail(WHIRL_EINTERRUPTED, "the eigen-solve at omega = " WHIRL_Q_RATE
+                          "%g: stopped by request", w->omega);
+    return status;
 }
 
 int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
@@ -226,7 +136,7 @@ int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out)
     }
     if (status) return status;
     const size_t nt = w->hm ? w->hm : N_DYNAMIC * w->np;
-    const double *tre = w->hm ? w->hre : w->dre, *tim = w->hm ? w->him : w->dim;
+    const double *tre = w->hm ? w->ke.hre : w->dre, *tim = w->hm ? w->ke.him : w->dim;
     size_t count = 0, zero = 0;
     double big = 0;
     for (size_t i = 0; i < nt; i++) {

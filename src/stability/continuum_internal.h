@@ -51,10 +51,11 @@ struct whirl_cstab {
     size_t *kept;             /* their index among the Ritz values or dgeev's eigenvalues */
     int *sig_out;
     double *ls, *lr, *lq;     /* samples of the shooting (CS_SAMPLES each) */
-    /* the Arnoldi iteration of the spectrum: basis (3 np x (CS_KRYLOV_MAX + 1)), Hessenberg
-     * matrix, its eigen-solve; the Ritz vectors of the energies (2 x 3 np) */
-    double *basis, *hess, *hcopy, *hre, *him, *hvec, *hwork, *ritz;
-    lapack_int hlwork, dlwork;
+    /* the Arnoldi iteration of the spectrum (blocked; its basis 3 cap x (CS_KRYLOV_MAX + 1),
+     * allocated with the points, the rest once); the Ritz vectors of the energies (2 x 3 np) */
+    windows_arnoldi ke;
+    double *ritz;
+    lapack_int dlwork;
     size_t hm;                /* Arnoldi steps of the last spectrum (0: it was dense) */
     /* the dense fall-back: the block (3 np)^2, eigenvectors, right-hand sides (4 np x 3 np) */
     double *dc, *dvr, *dx, *dre, *dim, *dwork;

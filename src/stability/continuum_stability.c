@@ -98,8 +98,8 @@ void whirl_cstab_free(whirl_cstab *w)
     double *arrays[] = {w->brk,  w->dref, w->cw,    w->sig,   w->r,     w->q,    w->wq,
                         w->t0,   w->rp,   w->zp,    w->jac,   w->res,   w->ab,   w->bb,
                         w->lu,   w->row_a, w->ra,   w->rb,    w->ta,    w->tb,   w->solve,
-                        w->mu_re, w->mu_im, w->ls,  w->lr,    w->lq,    w->basis, w->hess,
-                        w->hcopy, w->hre,  w->him,  w->hvec,  w->hwork, w->ritz};
+                        w->mu_re, w->mu_im, w->ls,  w->lr,    w->lq,    w->ke.basis, w->ke.hess,
+                        w->ke.hcopy, w->ke.hre,  w->ke.him,  w->ke.hvec,  w->ke.hwork, w->ritz};
     for (size_t i = 0; i < sizeof arrays / sizeof arrays[0]; i++) free(arrays[i]);
     free(w->ipiv);
     free(w->lnz);
@@ -128,20 +128,22 @@ whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p)
     w->ls = malloc(CS_SAMPLES * sizeof(double));
     w->lr = malloc(CS_SAMPLES * sizeof(double));
     w->lq = malloc(CS_SAMPLES * sizeof(double));
-    w->hess = calloc((km + 1) * km, sizeof(double));
-    w->hcopy = malloc(km * km * sizeof(double));
-    w->hre = malloc(km * sizeof(double));
-    w->him = malloc(km * sizeof(double));
-    w->hvec = malloc(km * km * sizeof(double));
-    if (!w->dref || !w->cw || !w->ls || !w->lr || !w->lq || !w->hess || !w->hcopy || !w->hre ||
-        !w->him || !w->hvec)
+    w->ke.hess = calloc((km + 1) * km, sizeof(double));
+    w->ke.hcopy = malloc(km * km * sizeof(double));
+    w->ke.hre = malloc(km * sizeof(double));
+    w->ke.him = malloc(km * sizeof(double));
+    w->ke.hvec = malloc(km * km * sizeof(double));
+    if (!w->dref || !w->cw || !w->ls || !w->lr || !w->lq || !w->ke.hess || !w->ke.hcopy || !w->ke.hre ||
+        !w->ke.him || !w->ke.hvec)
         goto fail;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->hcopy, (lapack_int)km,
-                           w->hre, w->him, NULL, 1, w->hvec, (lapack_int)km, &size, -1) != 0)
+    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->ke.hcopy, (lapack_int)km,
+                           w->ke.hre, w->ke.him, NULL, 1, w->ke.hvec, (lapack_int)km, &size, -1) != 0)
         goto fail;
-    w->hlwork = (lapack_int)size;
-    if ((w->hwork = malloc((size_t)w->hlwork * sizeof(double))) == NULL) goto fail;
+    w->ke.hlwork = (int)size;
+    w->ke.km = km;
+    w->ke.blocked = 1;
+    if ((w->ke.hwork = malloc((size_t)w->ke.hlwork * sizeof(double))) == NULL) goto fail;
     /* Chebyshev points x_j = cos(j pi / p) (Trefethen 2000, cheb.m), t = (1 - x) / 2 on [0, 1]
      * increasing with j, d/dt = -2 d/dx; off-diagonal entries exact, the diagonal as minus the
      * row sum */
@@ -216,7 +218,7 @@ int cstab_reserve(whirl_cstab *w, size_t np)
     for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) *vec[i] = calloc(n, sizeof(double));
     free(w->jac), free(w->res), free(w->ipiv), free(w->sig_out), free(w->kept);
     free(w->lnz), free(w->unz);
-    free(w->ab), free(w->bb), free(w->lu), free(w->basis), free(w->ritz);
+    free(w->ab), free(w->bb), free(w->lu), free(w->ke.basis), free(w->ritz);
     w->jac = malloc(w->nldab * 2 * np * sizeof(double));
     w->res = malloc(2 * np * sizeof(double));
     w->ipiv = malloc(n * sizeof(lapack_int));
@@ -227,12 +229,12 @@ int cstab_reserve(whirl_cstab *w, size_t np)
     w->ab = malloc(w->ldab * n * sizeof(double));
     w->bb = malloc(N_FIELDS * N_FIELDS * np * sizeof(double));
     w->lu = malloc(w->ldab * n * sizeof(double));
-    w->basis = malloc(ny * (CS_KRYLOV_MAX + 1) * sizeof(double));
+    w->ke.basis = malloc(ny * (CS_KRYLOV_MAX + 1) * sizeof(double));
     w->ritz = malloc(2 * ny * sizeof(double));
     w->cap = 0;
     int ok = w->jac && w->res && w->ipiv && w->lnz && w->unz && w->sig_out && w->kept && w->ab &&
              w->bb && w->lu &&
-             w->basis && w->ritz;
+             w->ke.basis && w->ritz;
     for (size_t i = 0; i < sizeof per_point / sizeof per_point[0]; i++) ok = ok && *per_point[i];
     for (size_t i = 0; i < sizeof vec / sizeof vec[0]; i++) ok = ok && *vec[i];
     if (!ok) return whirl_fail(GSL_ENOMEM, "out of memory for %zu collocation points", np);

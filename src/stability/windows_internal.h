@@ -44,7 +44,15 @@ typedef struct windows_arnoldi {
     double *hess;               /* (WINDOWS_KRYLOV_MAX + 1) x WINDOWS_KRYLOV_MAX, column-major */
     double *hcopy, *hre, *him, *hvec, *hwork; /* its eigen-solve */
     int hlwork;
+    /* the inner products and norms of a step: 0, one running sum and the norm by hypot (the
+     * N-link chain's); 1, four partial sums and the norm as the root of the sum of squares, the
+     * vectors normalised above ARNOLDI_BREAKDOWN (the continuum's long O(1) vectors). Each keeps
+     * its path's rounding as it was. */
+    int blocked;
 } windows_arnoldi;
+
+#define ARNOLDI_BREAKDOWN 1e-300 /* a blocked step's norm at or below this: an invariant subspace
+                                    (the O(1) vectors' round-off is some 1e-16) */
 
 /* Arnoldi step: v_(step+1) from apply(v_step), orthogonalised (Gram-Schmidt, twice) into column
  * step of the Hessenberg matrix; its norm h_(step+1,step) into *norm. GSL_CONTINUE if apply
@@ -72,6 +80,17 @@ void whirl_windows_arnoldi_release(windows_arnoldi *k);
 int whirl_windows_arnoldi_pair(windows_arnoldi *k,
                                int (*apply)(void *data, const double *x, double *y), void *data,
                                double sigma, double *mu_re, double *mu_im);
+
+/* Every eigenvalue theta of largest modulus of the operator apply (y = (A - s)^-1 x, vectors of
+ * length k->q, at most k->km steps): the steps go on until every Ritz value with |theta| >= floor
+ * has a residual below 1e-12 |theta|, and at least 16 more than there are of them, looking at the
+ * Ritz values every eighth of the steps done (at least 4, first at 24). The Ritz values and
+ * vectors of the *steps-step factorisation are in k->hre, k->him, k->hvec (basis k->basis).
+ * GSL_CONTINUE if not within the steps; GSL_EFAILED (message) if apply or the Ritz values
+ * fail; WHIRL_EINTERRUPTED, no message (the caller names the solve), on a stop request. */
+int whirl_windows_arnoldi_above(windows_arnoldi *k,
+                                int (*apply)(void *data, const double *x, double *y), void *data,
+                                double floor, size_t *steps);
 
 /* The scan's rates for mode k born at birth: from max(omega_min, birth (1 + 1e-6)) to omega_max
  * in steps of p->scan_step, both ends included; *omega malloc'ed (caller frees). GSL_EINVAL on
