@@ -190,7 +190,7 @@ static int level_workspace(const whirl_cstab *w, int level, whirl_cstab **wr)
     rp.degree = w->p.degree + 8 * level <= 64 ? w->p.degree + 8 * level : 64;
     rp.shape_tol = fmax(1e-14, w->p.shape_tol / 100);
     *wr = whirl_cstab_alloc(&rp);
-    return *wr == NULL ? GSL_ENOMEM : GSL_SUCCESS; /* the parameters are valid: no memory */
+    return *wr == NULL ? whirl_last_status() : GSL_SUCCESS;
 }
 
 /* The edge *edge (opens, collision frequency freq) refined by levels (EDGE_LEVELS above): the
