@@ -8,9 +8,10 @@ int cmd_plot(const cli_command *cmd, int argc, char **argv)
     const char *out = NULL;
     const char *files[CLI_LIST_MAX];
     const cli_option opts[] = {
-        {"--output", "-o", CLI_STRING, &out, NULL, "PICTURE",
-         "the picture: .png, .svg or .pdf (a figure), .mp4, .webm or .gif (a trace's animation)",
-         NULL, NULL, NULL, ""},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &out, .meta = "PICTURE",
+         .help = "the picture: .png, .svg or .pdf (a figure), .mp4, .webm or .gif (a trace's "
+                 "animation)",
+         .required = ""},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, files, CLI_LIST_MAX);
     if (rc) return rc;

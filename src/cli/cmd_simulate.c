@@ -219,13 +219,14 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     int overwrite = 0;
     const char *movie = NULL;
     const cli_option opts[] = {
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
-        {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
-         "override a key of the scene (repeatable)"},
-        {"--overwrite", NULL, CLI_FLAG, &overwrite, NULL, "",
-         "let the scene's [output] trace replace an existing file"},
-        {"--animate", NULL, CLI_STRING, &movie, NULL, "MOVIE",
-         "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
+         .help = "write the CSV to FILE (default stdout)"},
+        {.name = "--set", .type = CLI_STRING, .value = &set_help, .meta = "SEC.KEY=V",
+         .help = "override a key of the scene (repeatable)"},
+        {.name = "--overwrite", .type = CLI_FLAG, .value = &overwrite,
+         .help = "let the scene's [output] trace replace an existing file"},
+        {.name = "--animate", .type = CLI_STRING, .value = &movie, .meta = "MOVIE",
+         .help = "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
     };
     /* --set may repeat: take every one out before the common parser sees the rest (room for two
      * more: the trace --animate adds) */
