@@ -1,5 +1,5 @@
 """whirl.equilibria and the continuous chain's stability windows against the command line
-(``whirl equilibria``, ``whirl stability --windows`` without --links): the same rows to the
+(``whirl equilibria``, ``whirl windows`` without --links): the same rows to the
 digits printed, and the evidence the command's comment lines give."""
 import csv
 import io
