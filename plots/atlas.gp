@@ -1,12 +1,12 @@
 # Windows over the rotation rate, one row per mode, as horizontal bars, from any of the window
 # files of whirl stability (told apart by their header line):
-#   mode,from,to,...,sig_from,sig_to,max_growth,at,...        the atlas (whirl stability --atlas):
+#   mode,from,to,...,sig_from,sig_to,max_growth,at,...        the atlas (whirl windows --atlas):
 #       the continuous chain, dimensionless; each mode's birth omega_k (where it branches from the
 #       hanging chain: j_{0,k} / 2, Kolodner 1955) as a black diamond
 #   mode,links,from,to,...,max_growth,at[,err_from,err_to]    windows of instability (whirl
-#       stability --windows: the N-link chain with --links, else the continuum)
+#       windows: the N-link chain with --links, else the continuum)
 #   mode,links,from,to,...,growth,at,verdict                  intervals with dissipation (whirl
-#       stability --windows with --damping, or --eps with --drag): unstable and converging
+#       windows with --damping, or --eps with --drag): unstable and converging
 # Windows of instability are coloured by the largest growth rate in the window (log scale); the
 # intervals with dissipation by their verdict, unstable or converging. Each mode's examined range
 # ("# mode K: examined A..B"; the atlas: from the birth to the end of the last chunk done) is a

@@ -3,8 +3,8 @@
 #   s,x,y,z,tension             a hand-swung shape (whirl driven --omega)       -> driven.gp
 #   omega,mode,tip_r,...        branches (whirl sweep): tip radius and top tension against omega
 #   omega,mode,links,eig_growth stability (whirl stability, a map)             -> stability_map.gp
-#   mode,from,to,...            the stability atlas (whirl stability --atlas)    -> atlas.gp
-#   mode,links,from,to,...      windows (whirl stability --windows, with or without
+#   mode,from,to,...            the stability atlas (whirl windows --atlas)    -> atlas.gp
+#   mode,links,from,to,...      windows (whirl windows, with or without
 #                               dissipation)                                      -> atlas.gp
 #   omega,tip_x,tip_y,...       a hand-swung branch (whirl driven --omega-min)  -> driven.gp
 #   index,omega,eps,state,...   a regime map (whirl regime)                     -> regime.gp

@@ -1,7 +1,7 @@
 # Window edges of modes 2 and 3 against 1/N, with their continuum values (1/N -> 0, Richardson
 # extrapolation) as open circles with error bars (windows_continuum.csv of tests/bench/bench_windows.c:
 # mode,window,edge,N25,N50,N100,N200,N400,order,continuum,error), and with coll='FILE' the
-# continuous chain's windows by collocation (whirl stability --windows without --links) as crosses.
+# continuous chain's windows by collocation (whirl windows without --links) as crosses.
 # usage: gnuplot -e "csv='windows_continuum.csv'; coll='windows_collocation.csv'; out='windows_continuum.png'" plots/windows.gp
 if (!exists("csv")) { print "usage: gnuplot -e \"csv='windows_continuum.csv'; out='w.png'\" plots/windows.gp"; exit status 1 }
 if (!exists("out")) out = "windows_continuum.png"

@@ -105,9 +105,9 @@ done
 echo "demo: wrote $out/spinup_1.gif $out/spinup_2.gif $out/spinup_3.gif"
 
 # ---- the stability atlas of the continuum (modes 2-8 to omega 40): drawn from the committed
-# windows of docs/guide/atlas.csv, not computed here (the run, whirl stability --atlas --modes 2-8
+# windows of docs/guide/atlas.csv, not computed here (the run, whirl windows --atlas --modes 2-8
 # --omega-max 40, takes some 7 minutes of processor time); the figure says so ----
 echo "demo: stability atlas (drawn from docs/guide/atlas.csv)"
-figure "csv='docs/guide/atlas.csv'; note='windows from docs/guide/atlas.csv (whirl stability --atlas --modes 2-8 --omega-max 40), not recomputed by the demo'" \
+figure "csv='docs/guide/atlas.csv'; note='windows from docs/guide/atlas.csv (whirl windows --atlas --modes 2-8 --omega-max 40), not recomputed by the demo'" \
   plots/atlas.gp "$out/atlas"
 echo "demo: wrote $out/atlas.png (and .svg)"

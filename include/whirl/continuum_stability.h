@@ -1,7 +1,7 @@
 /* whirl: linear stability of the steady shapes of the continuous chain, computed in the
  * continuum (no N-link chain): the string equations linearised about the steady shape in the
  * co-rotating frame and discretised by Chebyshev collocation on elements in arclength
- * (src/continuum_stability.c states the equations). The chain is the uniform one of
+ * (src/stability/continuum_stability.c states the equations). The chain is the uniform one of
  * whirl/steady.h (length 1, mass 1, g = 1) with an optional point mass at its free end.
  * Eigenvalues are returned as mu = lambda^2 (the whirl_spectrum of whirl/stability.h): the shape
  * is neutrally stable when every mu is real and negative. */

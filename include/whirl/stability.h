@@ -268,7 +268,8 @@ WHIRL_API int whirl_stability_run(const whirl_model *model, double tip_r,
                                   const whirl_stability_run_params *params,
                                   whirl_stability_run_result *result);
 
-/* ---- exact stability windows of the free shapes (src/stability_windows.c) ----
+/* ---- exact stability windows of the free shapes (src/stability/nlink_windows.c, nlink_banded.c,
+ * windows_search.c) ----
  * For the conservative chain (no damping, drag or drive) about a planar shape, the linearisation
  * splits into in-plane and out-of-plane blocks coupled only by the Coriolis force, and
  * mu = lambda^2 solves a real eigenproblem of size 2N (half the first-order form's 4N): the
@@ -320,7 +321,7 @@ typedef struct whirl_windows_params {
     int krylov;                  /* 1: near an edge only the colliding pair, by shift-and-invert
                                     Arnoldi (full solve if it does not converge), and for the
                                     N-link chain every rate by the banded path (the mu with
-                                    |mu| <= omega^2, stability_windows.c); 0: every evaluation a
+                                    |mu| <= omega^2, nlink_banded.c); 0: every evaluation a
                                     full (dense) solve; 1 */
 } whirl_windows_params;
 

@@ -1,5 +1,5 @@
 """whirl.equilibria and the continuous chain's stability windows against the command line
-(``whirl equilibria``, ``whirl stability --windows`` without --links): the same rows to the
+(``whirl equilibria``, ``whirl windows`` without --links): the same rows to the
 digits printed, and the evidence the command's comment lines give."""
 import csv
 import io
@@ -103,7 +103,7 @@ def test_equilibria_bad_input():
 
 def test_continuum_windows_as_the_cli(whirl_program):
     windows, stats = whirl.stability_windows(2, None, 4.39, 4.41)
-    comments, cli = _cli(whirl_program, "stability", "--windows", "--modes", "2",
+    comments, cli = _cli(whirl_program, "windows", "--modes", "2",
                          "--omega-min", "4.39", "--omega-max", "4.41")
     assert len(windows) == len(cli) == 1
     w, c = windows[0], cli[0]

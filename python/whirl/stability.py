@@ -264,7 +264,7 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     more collocation points than it holds is refused with whirl.Error),
     for rates in [omega_min, omega_max] [sqrt(g/L), or rad/s; scan_step and tol too; the
     defaults, as the command line's, 1, 10, 0.25 and 1e-9 sqrt(g/L)], as
-    ``whirl stability --windows``: the edges are the rates where two eigenvalues collide (Krein
+    ``whirl windows``: the edges are the rates where two eigenvalues collide (Krein
     collision), located to ``tol`` after a scan with spacing ``scan_step``. Returns (windows,
     stats): a structured array with fields from, to (the unstable interval), open_from, open_to
     (True: that end is the end of the range, not an edge), freq_from, freq_to (|Im lambda| where
@@ -331,7 +331,7 @@ def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.
                         mass: Optional[float] = None, gravity: Optional[float] = None,
                         units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """The intervals of rates where ``mode`` of the N-link chain ``links`` (N or a Chain) is
-    unstable or converging with dissipation, as ``whirl stability --windows --links N`` with
+    unstable or converging with dissipation, as ``whirl windows --links N`` with
     --damping or the hand-swung chain's drag (damping, drive_radius, air_drag,
     air_drag_quadratic in the units of --damping, --eps, --drag, --drag-quadratic; ``side`` of
     the hand-swung shape, +1 or -1). The growth max Re lambda is scanned with spacing

@@ -49,7 +49,9 @@ typedef enum {
     CLI_UNIT_SET_GRAVITY  /* the option that sets g [m/s^2] (--gravity) */
 } cli_unit;
 
-/* One option. The first seven fields are the parser's; the rest, zero when left out, declare
+/* One option, written with designated initializers ({.name = "--omega", .type = CLI_DOUBLE,
+ * .value = &o->omega, ..., .needs = "--mode"}), the fields left out zero. The first seven fields
+ * are the parser's; the rest, zero when left out, declare
  * the checks cli_parse makes after reading the whole command line, in this order:
  *   required  NULL: optional; "": must be given; "--a --b": must be given unless one of the
  *             listed options is (an alternative form of the command);
@@ -206,15 +208,15 @@ typedef struct cli_units {
 #define CLI_UNITS_INIT {1, 1, 1, 0, 0}
 #define CLI_STANDARD_GRAVITY WHIRL_STANDARD_GRAVITY /* g when SI units are on and no --gravity */
 #define CLI_UNITS_OPTIONS(u)                                                                   \
-    {"--length", NULL, CLI_DOUBLE, &(u).length, &(u).physical, "L",                             \
-     "chain length: switches to SI units (m; e.g. 0.6 or 60cm)", "(0, inf)", NULL, NULL, NULL,  \
-     CLI_UNIT_SET_LENGTH},                                                                      \
-    {"--mass", NULL, CLI_DOUBLE, &(u).mass, &(u).mass_given, "M",                               \
-     "chain mass: switches to SI units (kg; e.g. 0.05 or 50g)", "(0, inf)", NULL, NULL, NULL,   \
-     CLI_UNIT_SET_MASS},                                                                        \
-    {"--gravity", NULL, CLI_DOUBLE, &(u).gravity, &(u).physical, "G",                           \
-     "gravity: switches to SI units (m/s^2; default 9.80665 then)", "(0, inf)", NULL, NULL, NULL,  \
-     CLI_UNIT_SET_GRAVITY}
+    {.name = "--length", .type = CLI_DOUBLE, .value = &(u).length, .given = &(u).physical,      \
+     .meta = "L", .help = "chain length: switches to SI units (m; e.g. 0.6 or 60cm)",           \
+     .range = "(0, inf)", .unit = CLI_UNIT_SET_LENGTH},                                         \
+    {.name = "--mass", .type = CLI_DOUBLE, .value = &(u).mass, .given = &(u).mass_given,        \
+     .meta = "M", .help = "chain mass: switches to SI units (kg; e.g. 0.05 or 50g)",            \
+     .range = "(0, inf)", .unit = CLI_UNIT_SET_MASS},                                           \
+    {.name = "--gravity", .type = CLI_DOUBLE, .value = &(u).gravity, .given = &(u).physical,    \
+     .meta = "G", .help = "gravity: switches to SI units (m/s^2; default 9.80665 then)",        \
+     .range = "(0, inf)", .unit = CLI_UNIT_SET_GRAVITY}
 /* The range of each unit: wide enough for any physical chain, narrow enough that results (rates,
  * tensions, lengths of order 1e-100 to 1e100 in the dimensionless units) times the products of
  * units in them stay finite. */
@@ -258,22 +260,24 @@ typedef struct cli_air {
 } cli_air;
 #define CLI_AIR_INIT(u) {0, 0, 1.204, &(u)}
 #define CLI_DRAG_OPTIONS(eps, eps_given, drag, drag_given, drag2, drag2_given, air)             \
-    {"--eps", NULL, CLI_DOUBLE, &(eps), eps_given, "E",                                          \
-     "radius of the pivot's circle (default 0)", "[0, 1)", NULL, NULL, NULL, CLI_UNIT_LENGTH},  \
-    {"--drag", NULL, CLI_DOUBLE, &(drag), drag_given, "C",                                       \
-     "linear air drag: force -C v per unit length (default 0)", "[0, inf)", NULL, NULL, NULL,   \
-     CLI_UNIT_DRAG},                                                                            \
-    {"--drag-quadratic", NULL, CLI_DOUBLE, &(drag2), drag2_given, "C2",                          \
-     "quadratic air drag: force -C2 |v| v per unit length (default 0)", "[0, inf)", NULL,       \
-     "--drag-cd", NULL, CLI_UNIT_DRAG2},                                                        \
-    {"--drag-cd", NULL, CLI_DOUBLE, &(air).cd, drag2_given, "CD",                                \
-     "drag coefficient of the chain (about 1.2): C2 = RHO CD D / 2", "(0, inf)",                \
-     "--diameter --length --mass"},                                                             \
-    {"--diameter", NULL, CLI_DOUBLE, &(air).diameter, NULL, "D",                                 \
-     "chain diameter for --drag-cd (e.g. 4mm)", "(0, inf)", "--drag-cd", NULL, NULL,            \
-     CLI_UNIT_LENGTH},                                                                          \
-    {"--air-density", NULL, CLI_DOUBLE, &(air).density, NULL, "RHO",                             \
-     "air density for --drag-cd [kg/m^3] (default 1.204)", "(0, inf)", "--drag-cd"}
+    {.name = "--eps", .type = CLI_DOUBLE, .value = &(eps), .given = eps_given, .meta = "E",     \
+     .help = "radius of the pivot's circle (default 0)", .range = "[0, 1)",                     \
+     .unit = CLI_UNIT_LENGTH},                                                                  \
+    {.name = "--drag", .type = CLI_DOUBLE, .value = &(drag), .given = drag_given, .meta = "C",  \
+     .help = "linear air drag: force -C v per unit length (default 0)", .range = "[0, inf)",    \
+     .unit = CLI_UNIT_DRAG},                                                                    \
+    {.name = "--drag-quadratic", .type = CLI_DOUBLE, .value = &(drag2), .given = drag2_given,   \
+     .meta = "C2", .help = "quadratic air drag: force -C2 |v| v per unit length (default 0)",   \
+     .range = "[0, inf)", .excludes = "--drag-cd", .unit = CLI_UNIT_DRAG2},                     \
+    {.name = "--drag-cd", .type = CLI_DOUBLE, .value = &(air).cd, .given = drag2_given,         \
+     .meta = "CD", .help = "drag coefficient of the chain (about 1.2): C2 = RHO CD D / 2",      \
+     .range = "(0, inf)", .needs = "--diameter --length --mass"},                               \
+    {.name = "--diameter", .type = CLI_DOUBLE, .value = &(air).diameter, .meta = "D",           \
+     .help = "chain diameter for --drag-cd (e.g. 4mm)", .range = "(0, inf)",                    \
+     .needs = "--drag-cd", .unit = CLI_UNIT_LENGTH},                                            \
+    {.name = "--air-density", .type = CLI_DOUBLE, .value = &(air).density, .meta = "RHO",       \
+     .help = "air density for --drag-cd [kg/m^3] (default 1.204)", .range = "(0, inf)",         \
+     .needs = "--drag-cd"}
 /* With --drag-cd given, sets *drag2 (dimensionless) from the description. Returns 0. */
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
 
@@ -347,6 +351,7 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv);
 int cmd_equilibria(const cli_command *cmd, int argc, char **argv);
 int cmd_sweep(const cli_command *cmd, int argc, char **argv);
 int cmd_stability(const cli_command *cmd, int argc, char **argv);
+int cmd_windows(const cli_command *cmd, int argc, char **argv);
 int cmd_simulate(const cli_command *cmd, int argc, char **argv);
 int cmd_minimize(const cli_command *cmd, int argc, char **argv);
 int cmd_fit(const cli_command *cmd, int argc, char **argv);

@@ -29,12 +29,12 @@ int cmd_critical(const cli_command *cmd, int argc, char **argv)
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--modes", NULL, CLI_INT, &modes, NULL, "K",
-         "modes 1..K (default 3; up to N with --links N, up to 3183 for the continuum)",
-         "[1, inf)"},
+        {.name = "--modes", .type = CLI_INT, .value = &modes, .meta = "K",
+         .help = "modes 1..K (default 3; up to N with --links N, up to 3183 for the continuum)",
+         .range = "[1, inf)"},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
-         "write the CSV to FILE (default: standard output)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &out_path, .meta = "FILE",
+         .help = "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;

@@ -85,22 +85,23 @@ int cmd_equilibria(const cli_command *cmd, int argc, char **argv)
     const char *out_path = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &omega, NULL, "W", "rotation rate", "(0, inf)", NULL, NULL,
-         "", CLI_UNIT_RATE},
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &omega, .meta = "W",
+         .help = "rotation rate", .range = "(0, inf)", .required = "", .unit = CLI_UNIT_RATE},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--no-stability", NULL, CLI_FLAG, &no_stability, NULL, NULL,
-         "N-link: leave eig_growth, verdict and index empty (faster on long chains)", NULL,
-         "--links"},
-        {"--no-branches", NULL, CLI_FLAG, &no_branches, NULL, NULL,
-         "N-link: the two scans only, no continuation (branch and born_at empty; for counts at "
-         "high rates)", NULL, "--links"},
-        {"--shot-budget", NULL, CLI_INT, &shot_budget, NULL, "E",
-         "N-link: most residual evaluations of one refinement level of a scan (default 2e7; "
-         "the count of equilibria grows about sevenfold per 5 in W at high rates, and the "
-         "scans' work with it)",
-         "[1000, inf)", "--links"},
-        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
-         "write the CSV to FILE (default: standard output)"},
+        {.name = "--no-stability", .type = CLI_FLAG, .value = &no_stability,
+         .help = "N-link: leave eig_growth, verdict and index empty (faster on long chains)",
+         .needs = "--links"},
+        {.name = "--no-branches", .type = CLI_FLAG, .value = &no_branches,
+         .help = "N-link: the two scans only, no continuation (branch and born_at empty; for "
+                 "counts at high rates)",
+         .needs = "--links"},
+        {.name = "--shot-budget", .type = CLI_INT, .value = &shot_budget, .meta = "E",
+         .help = "N-link: most residual evaluations of one refinement level of a scan (default "
+                 "2e7; the count of equilibria grows about sevenfold per 5 in W at high rates, and "
+                 "the scans' work with it)",
+         .range = "[1000, inf)", .needs = "--links"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &out_path, .meta = "FILE",
+         .help = "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;

@@ -93,20 +93,23 @@ int cmd_fit(const cli_command *cmd, int argc, char **argv)
     double omega_max = 0, max_residual = 0.02;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--shape", NULL, CLI_STRING, &shape, NULL, "FILE",
-         "CSV of measured points with columns r and z, lengths in the units of --length (- reads stdin)",
-         NULL, NULL, NULL, "", .input = 1},
-        {"--shape-unit", NULL, CLI_STRING, &shape_unit, NULL, "U",
-         "the unit of the points' r and z: m, cm or mm (needs --length; default: m)"},
-        {"--mode", NULL, CLI_INT, &mode, &mode_given, "K", "fit only mode K (default: the best mode)",
-         "[1, 64]"},
+        {.name = "--shape", .type = CLI_STRING, .value = &shape, .meta = "FILE",
+         .help = "CSV of measured points with columns r and z, lengths in the units of --length (- "
+                 "reads stdin)",
+         .required = "", .input = 1},
+        {.name = "--shape-unit", .type = CLI_STRING, .value = &shape_unit, .meta = "U",
+         .help = "the unit of the points' r and z: m, cm or mm (needs --length; default: m)"},
+        {.name = "--mode", .type = CLI_INT, .value = &mode, .given = &mode_given, .meta = "K",
+         .help = "fit only mode K (default: the best mode)", .range = "[1, 64]"},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--omega-max", NULL, CLI_DOUBLE, &omega_max, &omega_max_given, "W",
-         "highest rate tried (default 50 sqrt(g/L))", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
-        {"--max-residual", NULL, CLI_DOUBLE, &max_residual, NULL, "F",
-         "largest rms residual accepted, as a fraction of L (default 0.02)", "(0, inf)"},
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
-         "write the CSV to FILE (default: standard output)"},
+        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &omega_max, .given = &omega_max_given,
+         .meta = "W", .help = "highest rate tried (default 50 sqrt(g/L))", .range = "(0, inf)",
+         .unit = CLI_UNIT_RATE},
+        {.name = "--max-residual", .type = CLI_DOUBLE, .value = &max_residual, .meta = "F",
+         .help = "largest rms residual accepted, as a fraction of L (default 0.02)",
+         .range = "(0, inf)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
+         .help = "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;

@@ -101,17 +101,17 @@ int cmd_minimize(const cli_command *cmd, int argc, char **argv)
     const char *algorithm = "LD_LBFGS", *output = NULL;
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W", "rotation rate", "(0, inf)",
-         NULL, NULL, "", CLI_UNIT_RATE},
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &omega, .given = &omega_given, .meta = "W",
+         .help = "rotation rate", .range = "(0, inf)", .required = "", .unit = CLI_UNIT_RATE},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--algorithm", NULL, CLI_STRING, &algorithm, NULL, "NAME",
-         "NLopt algorithm (default LD_LBFGS; e.g. LD_TNEWTON, LN_BOBYQA)"},
-        {"--max-evaluations", NULL, CLI_INT, &max_evaluations, NULL, "E",
-         "cap on NLopt's evaluations of V (default 100000)", "[0, inf)"},
-        {"--no-polish", NULL, CLI_FLAG, &no_polish, NULL, "",
-         "skip the final Newton steps on the analytic Hessian"},
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
-         "write the CSV to FILE (default: standard output)"},
+        {.name = "--algorithm", .type = CLI_STRING, .value = &algorithm, .meta = "NAME",
+         .help = "NLopt algorithm (default LD_LBFGS; e.g. LD_TNEWTON, LN_BOBYQA)"},
+        {.name = "--max-evaluations", .type = CLI_INT, .value = &max_evaluations, .meta = "E",
+         .help = "cap on NLopt's evaluations of V (default 100000)", .range = "[0, inf)"},
+        {.name = "--no-polish", .type = CLI_FLAG, .value = &no_polish,
+         .help = "skip the final Newton steps on the analytic Hessian"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
+         .help = "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;

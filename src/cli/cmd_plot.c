@@ -9,9 +9,10 @@ int cmd_plot(const cli_command *cmd, int argc, char **argv)
     const char *files[CLI_LIST_MAX];
     cli_figure_style style = {0};
     const cli_option opts[] = {
-        {"--output", "-o", CLI_STRING, &out, NULL, "PICTURE",
-         "the picture: .png, .svg or .pdf (a figure), .mp4, .webm or .gif (a trace's animation)",
-         NULL, NULL, NULL, ""},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &out, .meta = "PICTURE",
+         .help = "the picture: .png, .svg or .pdf (a figure), .mp4, .webm or .gif (a trace's "
+                 "animation)",
+         .required = ""},
         CLI_FIGURE_OPTIONS(style),
         CLI_MOVIE_OPTIONS(style),
     };

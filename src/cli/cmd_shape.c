@@ -98,20 +98,23 @@ int cmd_shape(const cli_command *cmd, int argc, char **argv)
     steady_cli_model m = STEADY_CLI_MODEL_INIT;
     steady_cli_follow follow = {0};
     const cli_option opts[] = {
-        {"--omega", NULL, CLI_DOUBLE_LIST, &omega, NULL, "W",
-         "rotation rate, or a comma list of rates (2Hz,4Hz,6Hz) for --plot", "(0, inf)", NULL,
-         NULL, "", CLI_UNIT_RATE},
-        {"--mode", NULL, CLI_INT_LIST, &mode, NULL, "K",
-         "node count: the pivot plus K-1 axis crossings (1..N with --links N, 1..3183 for the "
-         "continuum); one for all rates or one per rate", "[1, inf)", NULL, NULL, ""},
+        {.name = "--omega", .type = CLI_DOUBLE_LIST, .value = &omega, .meta = "W",
+         .help = "rotation rate, or a comma list of rates (2Hz,4Hz,6Hz) for --plot",
+         .range = "(0, inf)", .required = "", .unit = CLI_UNIT_RATE},
+        {.name = "--mode", .type = CLI_INT_LIST, .value = &mode, .meta = "K",
+         .help = "node count: the pivot plus K-1 axis crossings (1..N with --links N, 1..3183 for "
+                 "the continuum); one for all rates or one per rate",
+         .range = "[1, inf)", .required = ""},
         STEADY_CLI_MODEL_OPTIONS(m),
-        {"--points", NULL, CLI_INT, &points, NULL, "P", "continuum: points sampled (default 201)",
-         "[2, 10000000]", NULL, "--links"},
+        {.name = "--points", .type = CLI_INT, .value = &points, .meta = "P",
+         .help = "continuum: points sampled (default 201)", .range = "[2, 10000000]",
+         .excludes = "--links"},
         STEADY_CLI_FOLLOW_OPTIONS(follow),
-        {"--output", "-o", CLI_STRING, &out_path, NULL, "FILE",
-         "write the CSV to FILE (default: standard output; one rate)"},
-        {"--plot", NULL, CLI_STRING, &plot_path, NULL, "PICTURE",
-         "draw the shapes on one figure, true to scale: PICTURE.png, .svg or .pdf (gnuplot)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &out_path, .meta = "FILE",
+         .help = "write the CSV to FILE (default: standard output; one rate)"},
+        {.name = "--plot", .type = CLI_STRING, .value = &plot_path, .meta = "PICTURE",
+         .help = "draw the shapes on one figure, true to scale: PICTURE.png, .svg or .pdf "
+                 "(gnuplot)"},
         CLI_FIGURE_OPTIONS(style),
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);

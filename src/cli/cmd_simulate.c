@@ -251,18 +251,19 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     cli_figure_style style = {0};
     int frames_per_turn = 0;
     const cli_option opts[] = {
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE", "write the CSV to FILE (default stdout)"},
-        {"--set", NULL, CLI_STRING, &set_help, NULL, "SEC.KEY=V",
-         "override a key of the scene (repeatable)"},
-        {"--overwrite", NULL, CLI_FLAG, &overwrite, NULL, "",
-         "let the scene's [output] trace replace an existing file"},
-        {"--animate", NULL, CLI_STRING, &movie, NULL, "MOVIE",
-         "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
+         .help = "write the CSV to FILE (default stdout)"},
+        {.name = "--set", .type = CLI_STRING, .value = &set_help, .meta = "SEC.KEY=V",
+         .help = "override a key of the scene (repeatable)"},
+        {.name = "--overwrite", .type = CLI_FLAG, .value = &overwrite,
+         .help = "let the scene's [output] trace replace an existing file"},
+        {.name = "--animate", .type = CLI_STRING, .value = &movie, .meta = "MOVIE",
+         .help = "a movie of the run: MOVIE.mp4, .webm or .gif (gnuplot and ffmpeg)"},
         CLI_FIGURE_OPTIONS(style),
         CLI_MOVIE_OPTIONS(style),
-        {"--frames-per-turn", NULL, CLI_INT, &frames_per_turn, NULL, "K",
-         "K frames a turn of the rotation, 25 a second (slow motion to match)", "[2, 1000]",
-         NULL, "--slow"},
+        {.name = "--frames-per-turn", .type = CLI_INT, .value = &frames_per_turn, .meta = "K",
+         .help = "K frames a turn of the rotation, 25 a second (slow motion to match)",
+         .range = "[2, 1000]", .excludes = "--slow"},
     };
     /* --set may repeat: take every one out before the common parser sees the rest (room for two
      * more: the trace --animate adds) */

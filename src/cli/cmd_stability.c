@@ -17,17 +17,8 @@
  * three-dimensional and have no rotation symmetry. Three columns are added:
  *   ...,verdict,tip_x,tip_y,nodes
  * the tip in the co-rotating frame (pivot at (eps, 0, 0)) and the node count of driven.h.
- * --windows: the intervals of omega in --omega-min..--omega-max where each mode of --modes is
- * linearly unstable, edges located by root-finding on the collision of two eigenvalues, of the
- * N-link chain with --links N (whirl_windows_find) or else of the continuous chain
- * (whirl_cstab_windows: the string equations by collocation, --degree, --tip-mass), one row per
- * window:
- *   mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at[,err_from,err_to]
- * (links "inf" for the continuum, which adds err_from, err_to: its estimate of each edge's
- * discretisation error) and a comment line per mode with the eigen-solves used and
- * those of a grid of equal resolution. With --links and dissipation (--damping, or the
- * hand-swung chain's drag) the intervals where each mode is unstable or converging
- * (stability_dissipative.c).
+ * --windows and --atlas: aliases of whirl windows (cmd_windows.c), kept for one release: the
+ * command line is handed to it without --windows.
  * A map shows its progress (points done, elapsed, time left) on a terminal. Ctrl-C stops it
  * within a run (the library polls the stop request): the rows of the points finished are
  * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
@@ -44,18 +35,14 @@
 
 #include "cli/cli.h"
 #include "core/error.h"
-#include "cli/stability_atlas.h"
-#include "cli/stability_dissipative.h"
-#include "whirl/continuum_stability.h"
 #include "whirl/stability.h"
 
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    double scan_step, tol, tip_mass, memory;
-    int mode, links, steps, seed, linear, side, windows, full, resume, degree, links_given;
-    int atlas, eigenvalues, degree_given;
+    int mode, links, steps, seed, linear, side, resume, links_given, eigenvalues;
+    int alias; /* --windows, --atlas: never parsed here (windows_alias), listed for the help */
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
-    int eps_given, drag_given, drag2_given, side_given, memory_given;
+    int eps_given, drag_given, drag2_given, side_given;
     cli_int_list modes;
     const char *method, *output, *trace;
     cli_units units;
@@ -82,48 +69,11 @@ static int driven(const options *o)
     return o->eps_given || o->drag_given || o->drag2_given || o->side_given;
 }
 
-/* Internal damping or the hand-swung chain: --windows then gives whirl_windows_dissipative's
- * intervals. */
-static int dissipative(const options *o) { return o->damping > 0 || driven(o); }
-
-static int check_scan(const cli_command *cmd, const options *o)
-{
-    if (!(o->tol < o->scan_step))
-        return cli_error(cmd, "--tol must be smaller than --scan-step");
-    return 0;
-}
-
-/* --atlas: the continuum's modes, the scan. */
-static int check_atlas(const cli_command *cmd, const options *o)
-{
-    for (int k = 0; k < o->modes.n; k++)
-        if (o->modes.v[k] < 1 || o->modes.v[k] > WHIRL_MODE_MAX)
-            return cli_error(cmd, "mode %d is out of range: the continuous chain takes "
-                             "modes 1..%d", o->modes.v[k], WHIRL_MODE_MAX);
-    return check_scan(cmd, o);
-}
-
-/* --windows: the scan, and dissipation only for the N-link chain. */
-static int check_windows(const cli_command *cmd, const options *o)
-{
-    if (check_scan(cmd, o)) return 1;
-    if (dissipative(o) && !o->links_given)
-        return cli_error(cmd, "--windows with --damping or air drag needs --links N (the "
-                         "continuous chain's linearisation has no dissipation)");
-    if (driven(o) && o->damping == 0 && o->drag == 0 && o->drag2 == 0)
-        return cli_error(cmd, "--windows of the hand-swung chain needs dissipation (--damping, "
-                         "--drag, --drag-quadratic or --drag-cd): the conservative windows "
-                         "are those of the free shapes");
-    if (dissipative(o) && o->full)
-        return cli_error(cmd, "--full applies to the conservative windows only");
-    return 0;
-}
-
-/* The mode (or modes) within the chain's: the N-link chain has modes 1..N; the continuum and
- * the hand-swung chain (seeded by the continuum's shapes) 1..WHIRL_MODE_MAX. */
+/* The mode (or modes) within the chain's: the N-link chain has modes 1..N; the hand-swung chain
+ * (seeded by the continuum's shapes) 1..WHIRL_MODE_MAX. */
 static int check_modes(const cli_command *cmd, const options *o)
 {
-    const int continuum = (o->windows && !o->links_given) || (!o->windows && driven(o));
+    const int continuum = driven(o);
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
     for (int k = 0; k < (o->mode_given ? 1 : o->modes.n); k++) {
         const int mode = o->mode_given ? o->mode : o->modes.v[k];
@@ -134,8 +84,8 @@ static int check_modes(const cli_command *cmd, const options *o)
             return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
                              "shape) has none");
         if (mode > top && continuum)
-            return cli_error(cmd, "mode %d is out of range: the %s takes modes 1..%d", mode,
-                             o->windows ? "continuous chain" : "hand-swung chain", top);
+            return cli_error(cmd, "mode %d is out of range: the hand-swung chain takes modes "
+                             "1..%d", mode, top);
         if (mode > top)
             return cli_error(cmd, "mode %d does not exist: a chain of %d links has modes 1..%d",
                              mode, top, top);
@@ -144,32 +94,14 @@ static int check_modes(const cli_command *cmd, const options *o)
 }
 
 /* What the option table cannot say: 0, or 1 after an error. */
-/* --memory: the continuum's windows or atlas only, and within the machine's memory. */
-static int check_memory(const cli_command *cmd, const options *o)
-{
-    if (!o->memory_given) return 0;
-    if (!o->atlas && !(o->windows && !o->links_given))
-        return cli_error(cmd, "--memory applies to the continuum's --windows (no --links) or "
-                         "--atlas");
-    const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    const double physical = pages > 0 && size > 0 ? (double)pages * (double)size / 1048576 : 0;
-    if (physical > 0 && o->memory > physical)
-        return cli_error(cmd, "--memory %g MB is more than the machine's %.0f MB", o->memory,
-                         physical);
-    return 0;
-}
-
 static int check_options(const cli_command *cmd, const options *o)
 {
-    if (check_memory(cmd, o)) return 1;
-    if (!o->atlas && o->max_given && !o->min_given)
-        return cli_error(cmd, "--omega-max needs --omega-min (or --atlas)");
-    if (!o->atlas && o->modes_given && !o->min_given)
-        return cli_error(cmd, "--modes needs --omega-min (or --atlas)");
-    if (o->atlas) return check_atlas(cmd, o);
-    if (o->windows && check_windows(cmd, o)) return 1;
-    if (!o->windows && o->min_given && !o->steps_given)
-        return cli_error(cmd, "--omega-min needs --omega-count (or --windows)");
+    if (o->max_given && !o->min_given)
+        return cli_error(cmd, "--omega-max needs --omega-min");
+    if (o->modes_given && !o->min_given)
+        return cli_error(cmd, "--modes needs --omega-min");
+    if (o->min_given && !o->steps_given)
+        return cli_error(cmd, "--omega-min needs --omega-count (windows: whirl windows)");
     if (check_modes(cmd, o)) return 1;
     if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
@@ -183,9 +115,8 @@ static int check_options(const cli_command *cmd, const options *o)
     if (whirl_integrator_type_find(o->method) == NULL)
         return cli_error(cmd, "--method: %s", whirl_last_error());
     if (o->resume && !o->min_given)
-        return cli_error(cmd, "--resume needs --omega-min (a map) or --atlas");
-    if (o->degree_given && !o->windows)
-        return cli_error(cmd, "--degree needs --windows or --atlas");
+        return cli_error(cmd, "--resume needs --omega-min (a map; the atlas: whirl windows "
+                         "--atlas --resume)");
     return 0;
 }
 
@@ -406,257 +337,6 @@ static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, p
     return perturbed_run(o, &m, w, p, trace);
 }
 
-#define WINDOWS_MAX 256
-
-/* The progress line of --windows on a terminal: the modes done and, for the continuum, the rate
- * the search of a running mode has reached (whirl_cstab_params.progress). */
-typedef struct windows_progress {
-    cli_progress_state line;
-    const options *o;
-    double after; /* the line shows after this long (cli_progress_after) [s] */
-    double *reached; /* per mode: the highest rate linearised so far (NULL: not kept) */
-    long done;
-} windows_progress;
-
-/* The line after mode (0: none) reached omega in its scan and linearises at now; called inside
- * the critical section. */
-static void windows_progress_show(windows_progress *wp, int mode, double omega, double now)
-{
-    const options *o = wp->o;
-    if (!wp->line.drawn && cli_wall_seconds() - wp->line.start < wp->after) return;
-    const double rate = unit(o, CLI_UNIT_RATE);
-    char at[96] = "";
-    if (mode > 0)
-        snprintf(at, sizeof at, "; mode %d: omega %.6g of %.6g (now %.6g)", mode, omega * rate,
-                 o->omega_max * rate, now * rate);
-    cli_progress_text(&wp->line, "windows: %ld of %d modes done%s", wp->done, o->modes.n, at);
-}
-
-/* whirl_cstab_params.progress: the rate mode's search reached. */
-static void windows_progress_rate(void *ctx, int mode, double omega)
-{
-    windows_progress *wp = ctx;
-    const double now = omega;
-#pragma omp critical(windows_progress)
-    {
-        for (int k = 0; wp->reached && k < wp->o->modes.n; k++)
-            if (wp->o->modes.v[k] == mode) {
-                wp->reached[k] = fmax(wp->reached[k], omega);
-                omega = wp->reached[k];
-                break;
-            }
-        windows_progress_show(wp, mode, omega, now);
-    }
-}
-
-/* The windows of one mode: of the N-link chain c, or of the continuum (c NULL); wp: the
- * progress line. */
-static int find_windows(const options *o, const whirl_chain *c, int mode,
-                        const whirl_windows_params *p, whirl_window *win, size_t *count,
-                        whirl_windows_stats *stats, windows_progress *wp)
-{
-    int status;
-    if (c) {
-        whirl_windows *w = whirl_windows_alloc((size_t)o->links);
-        status = w ? whirl_windows_find(w, c, mode, p, win, WINDOWS_MAX, count, stats)
-                   : whirl_last_status();
-        whirl_windows_free(w);
-    } else {
-        whirl_cstab_params cp = whirl_cstab_defaults();
-        cp.degree = o->degree;
-        cp.tip_mass = o->tip_mass;
-        cp.memory_mb = o->memory;
-        cp.progress = windows_progress_rate;
-        cp.progress_ctx = wp;
-        whirl_cstab *w = whirl_cstab_alloc(&cp);
-        status = w ? whirl_cstab_windows(w, mode, p, win, WINDOWS_MAX, count, stats)
-                   : whirl_last_status();
-        status = stability_memory_failure(status);
-        whirl_cstab_free(w);
-    }
-    return status;
-}
-
-/* The first comment line of --windows: the chain (c; NULL: the continuum) and the search. */
-static void write_windows_title(FILE *fp, const options *o, const whirl_chain *c)
-{
-    const double rate = unit(o, CLI_UNIT_RATE);
-    char chain[160];
-    if (c)
-        snprintf(chain, sizeof chain, "%d links, tip mass %s", o->links,
-                 CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)));
-    else
-        snprintf(chain, sizeof chain, "continuous chain, tip mass %s (Chebyshev collocation "
-                 "of degree %d on elements)", CLI_NUM(o->tip_mass * unit(o, CLI_UNIT_MASS)),
-                 o->degree);
-    fprintf(fp, "# whirl stability --windows: %s, omega %s..%s, scan step %s, edges "
-                "to %s, refinement %s\n", chain, CLI_NUM(o->omega_min * rate),
-            CLI_NUM(o->omega_max * rate), CLI_NUM(o->scan_step * rate), CLI_NUM(o->tol * rate),
-            o->full ? "full eigen-solves" : "shift-and-invert Arnoldi");
-}
-
-/* The windows of each mode k: count[k] of them from win + k WINDOWS_MAX, found in seconds[k]
- * with stats[k] and status[k] (err[k]: its failure). */
-typedef struct windows_found {
-    whirl_window *win;
-    size_t *count;
-    whirl_windows_stats *stats;
-    double *seconds;
-    whirl_error_record *err;
-    int *status;
-} windows_found;
-
-static int windows_found_alloc(windows_found *f, size_t nmodes)
-{
-    f->win = calloc(nmodes * WINDOWS_MAX, sizeof *f->win);
-    f->count = calloc(nmodes, sizeof *f->count);
-    f->stats = calloc(nmodes, sizeof *f->stats);
-    f->seconds = calloc(nmodes, sizeof *f->seconds);
-    f->err = calloc(nmodes, sizeof *f->err);
-    f->status = calloc(nmodes, sizeof *f->status);
-    return f->win && f->count && f->stats && f->seconds && f->err && f->status ? 0 : -1;
-}
-
-static void windows_found_free(windows_found *f)
-{
-    free(f->win), free(f->count), free(f->stats), free(f->seconds), free(f->err);
-    free(f->status);
-}
-
-/* The comment line of mode k: its eigen-solves, or why it was not done. */
-static void write_windows_mode(FILE *fp, const options *o, const windows_found *f, int k)
-{
-    const double rate = unit(o, CLI_UNIT_RATE);
-    if (f->status[k] == WHIRL_EINTERRUPTED) {
-        fprintf(fp, "# mode %d: interrupted, not done\n", o->modes.v[k]);
-        return;
-    }
-    if (f->status[k] != GSL_SUCCESS) {
-        whirl_error_restore(&f->err[k]);
-        fprintf(fp, "# mode %d: not done: %s\n", o->modes.v[k], CLI_LIBRARY_ERROR(&o->units));
-        return;
-    }
-    const whirl_windows_stats *st = &f->stats[k];
-    fprintf(fp, "# mode %d: examined %s..%s, %zu windows, %zu scan points, %zu "
-                "eigen-solves (%zu with vectors, %zu eigenvalues only, %zu Arnoldi), "
-                "%zu shapes, %.3g s; a grid of spacing %s needs %.3g solves\n",
-            o->modes.v[k], CLI_NUM(st->omega_from * rate), CLI_NUM(st->omega_to * rate),
-            f->count[k], st->scan, st->solves_vectors + st->solves_values + st->solves_krylov,
-            st->solves_vectors, st->solves_values, st->solves_krylov, st->shapes, f->seconds[k],
-            CLI_NUM(o->tol * rate), (st->omega_to - st->omega_from) / o->tol + 1);
-}
-
-/* The windows of the modes done as CSV, after a comment line per mode with its eigen-solves
- * (or that it was not done). */
-static void write_windows(FILE *fp, const options *o, const whirl_chain *c,
-                          const windows_found *f)
-{
-    const double rate = unit(o, CLI_UNIT_RATE);
-    write_windows_title(fp, o, c);
-    for (int k = 0; k < o->modes.n; k++) write_windows_mode(fp, o, f, k);
-    cli_units_comment(fp, &o->units);
-    fprintf(fp, "mode,links,from,to,open_from,open_to,freq_from,freq_to,max_growth,at%s\n",
-            c ? "" : ",err_from,err_to");
-    char links[16];
-    if (c) snprintf(links, sizeof links, "%d", o->links);
-    else snprintf(links, sizeof links, "inf");
-    for (int k = 0; k < o->modes.n; k++)
-        for (size_t i = 0; f->status[k] == GSL_SUCCESS && i < f->count[k]; i++) {
-            const whirl_window *x = f->win + (size_t)k * WINDOWS_MAX + i;
-            fprintf(fp, "%d,%s,%s,%s,%d,%d,%s,%s,%s,%s", o->modes.v[k], links,
-                    CLI_NUM(x->from * rate), CLI_NUM(x->to * rate), x->open_from, x->open_to,
-                    CLI_NUM(x->freq_from * rate), CLI_NUM(x->freq_to * rate),
-                    CLI_NUM(x->max_growth * rate), CLI_NUM(x->at * rate));
-            if (!c)
-                fprintf(fp, ",%s,%s", CLI_NUM(x->err_from * rate), CLI_NUM(x->err_to * rate));
-            fputc('\n', fp);
-        }
-}
-
-/* The windows of the first n modes (all, or none after a failed allocation), one per thread,
- * with a progress line on a terminal. */
-static void find_all_windows(const cli_command *cmd, const options *o, const whirl_chain *c,
-                             size_t n, const whirl_windows_params *p, windows_found *f)
-{
-    windows_progress wp = {.o = o, .after = cli_progress_after(),
-                           .reached = calloc((size_t)o->modes.n, sizeof *wp.reached)};
-    cli_progress_begin(&wp.line, cmd, "", 0, 0);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (size_t k = 0; k < n; k++) {
-        const double t0 = cli_wall_seconds();
-        f->status[k] = find_windows(o, c, o->modes.v[k], p, f->win + k * WINDOWS_MAX,
-                                    &f->count[k], &f->stats[k], &wp);
-        whirl_error_keep(&f->err[k], f->status[k]);
-#pragma omp critical(windows_progress)
-        {
-            f->seconds[k] = cli_wall_seconds() - t0;
-            wp.done++;
-            windows_progress_show(&wp, 0, 0, 0);
-        }
-    }
-    cli_progress_clear(&wp.line);
-    free(wp.reached);
-}
-
-/* The file of the modes done (none: no file) and the exit status: 0; after a failure its
- * message, 1; after a stop, CLI_EXIT_INTERRUPTED (a failure first). */
-static int finish_windows(const cli_command *cmd, const options *o, const whirl_chain *c,
-                          const windows_found *f)
-{
-    const size_t nmodes = (size_t)o->modes.n;
-    size_t done = 0;
-    for (size_t k = 0; k < nmodes; k++) done += f->status[k] == GSL_SUCCESS;
-    cli_out out;
-    if (done > 0) {
-        if (cli_out_open(cmd, &out, o->output)) return 1;
-        write_windows(out.fp, o, c, f);
-        if (cli_out_commit(cmd, &out)) return 1;
-    }
-    if (done == nmodes) return 0;
-    const int file = done > 0 && o->output != NULL && strcmp(o->output, "-") != 0;
-    char where[CLI_MESSAGE_MAX / 2] = "";
-    if (file)
-        snprintf(where, sizeof where, "; %zu of %zu modes written to '%s'", done, nmodes,
-                 o->output);
-    const int failed = whirl_error_restore_first(f->err, nmodes);
-    if (failed != WHIRL_EINTERRUPTED) {
-        cli_error(cmd, "%s%s", CLI_LIBRARY_ERROR(&o->units), where);
-        return 1;
-    }
-    for (size_t k = 0; k < nmodes; k++) /* a failure beside the stop is named first */
-        if (f->status[k] != GSL_SUCCESS && f->status[k] != WHIRL_EINTERRUPTED) {
-            whirl_error_restore(&f->err[k]);
-            cli_error(cmd, "%s%s", CLI_LIBRARY_ERROR(&o->units), where);
-            return 1;
-        }
-    cli_error(cmd, "interrupted: %zu of %zu modes done%s%s%s", done, nmodes,
-              file ? " in '" : "", file ? o->output : "", file ? "'" : "");
-    return CLI_EXIT_INTERRUPTED;
-}
-
-/* --windows: every mode of the list, one per thread; a stop or a failure keeps the modes
- * finished (each whole), the others marked. */
-static int run_windows(const cli_command *cmd, const options *o)
-{
-    whirl_chain *c = NULL;
-    if (o->links_given && (c = whirl_chain_alloc_uniform((size_t)o->links, o->tip_mass)) == NULL)
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    const size_t nmodes = (size_t)o->modes.n;
-    windows_found f;
-    int rc = windows_found_alloc(&f, nmodes) ? cli_error(cmd, "out of memory") : 0;
-    whirl_windows_params p = whirl_windows_defaults();
-    p.omega_min = o->omega_min;
-    p.omega_max = o->omega_max;
-    p.scan_step = o->scan_step;
-    p.tol = o->tol;
-    p.krylov = !o->full;
-    cli_catch_interrupts();
-    find_all_windows(cmd, o, c, rc ? 0 : nmodes, &p, &f);
-    if (!rc) rc = finish_windows(cmd, o, c, &f);
-    windows_found_free(&f);
-    whirl_chain_free(c);
-    return rc;
-}
 
 /* order: 0..n-1 sorted by the real part of the eigenvalues (re, im), then the imaginary part. */
 static void sort_eigenvalues(size_t *order, const double *re, const double *im, size_t n)
@@ -995,99 +675,83 @@ static void set_defaults(options *o)
     o->modes.n = 3;
     o->modes.v[0] = 1, o->modes.v[1] = 2, o->modes.v[2] = 3;
     o->side = 1;
-    o->scan_step = 0.25;
-    o->tol = 1e-9;
-    o->degree = whirl_cstab_defaults().degree;
-    o->memory = whirl_cstab_defaults().memory_mb;
     o->units = (cli_units)CLI_UNITS_INIT;
     o->air = (cli_air)CLI_AIR_INIT(o->units);
 }
 
-#define STABILITY_OPTIONS_MAX 48
+#define STABILITY_OPTIONS_MAX 40
 
 /* The option table of o; returns its length. */
 static size_t declare_options(options *o, cli_option *opts)
 {
-        const cli_option table[] = {
-            {"--omega", NULL, CLI_DOUBLE, &o->omega, &o->omega_given, "W", "rotation rate (one point)",
-             "(0, inf)", "--mode", "--omega-min --modes --atlas", "--omega-min --atlas",
-             CLI_UNIT_RATE},
-            {"--mode", NULL, CLI_INT, &o->mode, &o->mode_given, "K",
-             "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64, or 0: its "
-             "near-axis shape)", "[0, inf)",
-             "--omega"},
-            {"--omega-min", NULL, CLI_DOUBLE, &o->omega_min, &o->min_given, "A", "map: first rate",
-             "(0, inf)", "--omega-max", "--trace", "--omega --atlas", CLI_UNIT_RATE},
-            {"--omega-max", NULL, CLI_DOUBLE, &o->omega_max, &o->max_given, "B",
-             "map: last rate (--atlas: default 40)", "(0, inf)", NULL, NULL, NULL, CLI_UNIT_RATE},
-            {"--omega-count", NULL, CLI_INT, &o->steps, &o->steps_given, "N",
-             "map: number of rates, both ends included", "[1, 10000000]", "--omega-min"},
-            {"--modes", NULL, CLI_INT_LIST, &o->modes, &o->modes_given, "LIST",
-             "map: modes (default 1,2,3; --atlas: 2-8): 1..N (the hand-swung or the continuous "
-             "chain: 1..64)", "[1, inf)"},
-            {"--links", NULL, CLI_INT, &o->links, &o->links_given, "N",
-             "links of the chain (default 25; with --windows the continuous chain unless given)",
-             "[2, 100000]"},
-            {"--periods", NULL, CLI_DOUBLE, &o->periods, NULL, "P",
-             "run length in rotation periods (default 100)", "(0, inf)"},
-            {"--perturb", NULL, CLI_DOUBLE, &o->perturb, NULL, "EPS",
-             "turn of each link direction [rad] (default 1e-10)", "(0, 1)"},
-            {"--seed", NULL, CLI_INT, &o->seed, NULL, "S", "seed of the perturbation (default 1)",
-             "[0, inf)"},
-            {"--damping", NULL, CLI_DOUBLE, &o->damping, NULL, "D",
-             "internal damping of the joints (default 0)", "[0, inf)", NULL, NULL, NULL,
-             CLI_UNIT_DAMPING},
-            {"--method", NULL, CLI_STRING, &o->method, NULL, "M", "integrator (default rk4; gauss2 for a symplectic run)"},
-            {"--dt", NULL, CLI_DOUBLE, &o->dt, NULL, "H",
-             "time step (default: from the highest frequency, see stability.h)", "[0, inf)", NULL,
-             NULL, NULL, CLI_UNIT_TIME},
-            CLI_DRAG_OPTIONS(o->eps, &o->eps_given, o->drag, &o->drag_given, o->drag2, &o->drag2_given,
-                             o->air),
-            {"--side", NULL, CLI_INT, &o->side, &o->side_given, "S",
-             "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
-            {"--windows", NULL, CLI_FLAG, &o->windows, NULL, "",
-             "the intervals of omega where each mode is unstable, edges located exactly (with --links "
-             "and --damping or drag: unstable or converging)", NULL,
-             "--omega-min", "--omega-count --trace --periods --perturb --seed --method --dt "
-             "--linear"},
-            {"--scan-step", NULL, CLI_DOUBLE, &o->scan_step, NULL, "H",
-             "windows: spacing of the scan (default 0.25)", "(0, inf)", "--windows", NULL, NULL,
-             CLI_UNIT_RATE},
-            {"--tol", NULL, CLI_DOUBLE, &o->tol, NULL, "T",
-             "windows: edges located to T in omega (default 1e-9)", "[1e-13, inf)", "--windows",
-             NULL, NULL, CLI_UNIT_RATE},
-            {"--full", NULL, CLI_FLAG, &o->full, NULL, "",
-             "windows: full eigen-solves near the edges, for the N-link chain at every rate "
-             "(default: shift-and-invert Arnoldi)", NULL,
-             "--windows"},
-            {"--degree", NULL, CLI_INT, &o->degree, &o->degree_given, "P",
-             "windows of the continuum: Chebyshev degree per element (default 16)", "[6, 64]",
-             "--windows", "--links"},
-            {"--memory", NULL, CLI_DOUBLE, &o->memory, &o->memory_given, "MB",
-             "windows of the continuum, atlas: memory bound of the collocation (default 1024; "
-             "at most the machine's)", "[16, 1048576]"},
-            {"--tip-mass", NULL, CLI_DOUBLE, &o->tip_mass, NULL, "m",
-             "windows: point mass at the free end (default 0)", "[0, 1e12]", "--windows", NULL,
-             NULL, CLI_UNIT_MASS},
-            {"--atlas", NULL, CLI_FLAG, &o->atlas, NULL, "",
-             "every window of the continuum's --modes from each birth to --omega-max, with the "
-             "Krein signatures at the edges (-o FILE, resumable)", NULL, "--output",
-             "--omega --omega-min --omega-count --windows --links --trace --periods --perturb --seed "
-             "--method --dt --damping --linear --eps --drag --drag-quadratic --drag-cd --side "
-             "--tip-mass --full --eigenvalues"},
-            {"--eigenvalues", NULL, CLI_FLAG, &o->eigenvalues, NULL, "",
-             "single rate: every eigenvalue lambda of the linearisation (re,im), not the run",
-             NULL, "--omega", "--trace --periods --perturb --seed --method --dt"},
-            {"--linear", NULL, CLI_FLAG, &o->linear, NULL, "",
-             "eigenvalues only: no run (sim columns left empty)", NULL, NULL, "--trace"},
-            {"--trace", NULL, CLI_STRING, &o->trace, NULL, "FILE",
-             "single rate: the run's deviation / initial against t (CSV)", NULL, "--omega"},
-            {"--resume", NULL, CLI_FLAG, &o->resume, NULL, "",
-             "map, atlas: keep the rows already in -o FILE, compute the rest", NULL, "--output",
-             "--windows"},
-            CLI_UNITS_OPTIONS(o->units),
-            {"--output", "-o", CLI_STRING, &o->output, NULL, "FILE", "output file (default stdout)"},
-        };
+    const cli_option table[] = {
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &o->omega, .given = &o->omega_given,
+         .meta = "W", .help = "rotation rate (one point)", .range = "(0, inf)",
+         .needs = "--mode", .excludes = "--omega-min --modes",
+         .required = "--omega-min", .unit = CLI_UNIT_RATE},
+        {.name = "--mode", .type = CLI_INT, .value = &o->mode, .given = &o->mode_given,
+         .meta = "K",
+         .help = "mode (node count) at --omega: 1..N (the hand-swung chain: 1..64, or 0: its "
+                 "near-axis shape)",
+         .range = "[0, inf)", .needs = "--omega"},
+        {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o->omega_min,
+         .given = &o->min_given, .meta = "A", .help = "map: first rate", .range = "(0, inf)",
+         .needs = "--omega-max", .excludes = "--trace", .required = "--omega",
+         .unit = CLI_UNIT_RATE},
+        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &o->omega_max,
+         .given = &o->max_given, .meta = "B", .help = "map: last rate",
+         .range = "(0, inf)", .unit = CLI_UNIT_RATE},
+        {.name = "--omega-count", .type = CLI_INT, .value = &o->steps, .given = &o->steps_given,
+         .meta = "N", .help = "map: number of rates, both ends included",
+         .range = "[1, 10000000]", .needs = "--omega-min"},
+        {.name = "--modes", .type = CLI_INT_LIST, .value = &o->modes, .given = &o->modes_given,
+         .meta = "LIST",
+         .help = "map: modes (default 1,2,3): 1..N (the hand-swung chain: 1..64)",
+         .range = "[1, inf)"},
+        {.name = "--links", .type = CLI_INT, .value = &o->links, .given = &o->links_given,
+         .meta = "N",
+         .help = "links of the chain (default 25)",
+         .range = "[2, 100000]"},
+        {.name = "--periods", .type = CLI_DOUBLE, .value = &o->periods, .meta = "P",
+         .help = "run length in rotation periods (default 100)", .range = "(0, inf)"},
+        {.name = "--perturb", .type = CLI_DOUBLE, .value = &o->perturb, .meta = "EPS",
+         .help = "turn of each link direction [rad] (default 1e-10)", .range = "(0, 1)"},
+        {.name = "--seed", .type = CLI_INT, .value = &o->seed, .meta = "S",
+         .help = "seed of the perturbation (default 1)", .range = "[0, inf)"},
+        {.name = "--damping", .type = CLI_DOUBLE, .value = &o->damping, .meta = "D",
+         .help = "internal damping of the joints (default 0)", .range = "[0, inf)",
+         .unit = CLI_UNIT_DAMPING},
+        {.name = "--method", .type = CLI_STRING, .value = &o->method, .meta = "M",
+         .help = "integrator (default rk4; gauss2 for a symplectic run)"},
+        {.name = "--dt", .type = CLI_DOUBLE, .value = &o->dt, .meta = "H",
+         .help = "time step (default: from the highest frequency, see stability.h)",
+         .range = "[0, inf)", .unit = CLI_UNIT_TIME},
+        CLI_DRAG_OPTIONS(o->eps, &o->eps_given, o->drag, &o->drag_given, o->drag2, &o->drag2_given,
+                         o->air),
+        {.name = "--side", .type = CLI_INT, .value = &o->side, .given = &o->side_given,
+         .meta = "S",
+         .help = "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
+        {.name = "--windows", .type = CLI_FLAG, .value = &o->alias,
+         .help = "alias of whirl windows, kept for one release: the command line without "
+                 "--windows runs whirl windows"},
+        {.name = "--atlas", .type = CLI_FLAG, .value = &o->alias,
+         .help = "alias of whirl windows --atlas, kept for one release"},
+        {.name = "--eigenvalues", .type = CLI_FLAG, .value = &o->eigenvalues,
+         .help = "single rate: every eigenvalue lambda of the linearisation (re,im), not the "
+                 "run",
+         .needs = "--omega", .excludes = "--trace --periods --perturb --seed --method --dt"},
+        {.name = "--linear", .type = CLI_FLAG, .value = &o->linear,
+         .help = "eigenvalues only: no run (sim columns left empty)", .excludes = "--trace"},
+        {.name = "--trace", .type = CLI_STRING, .value = &o->trace, .meta = "FILE",
+         .help = "single rate: the run's deviation / initial against t (CSV)",
+         .needs = "--omega"},
+        {.name = "--resume", .type = CLI_FLAG, .value = &o->resume,
+         .help = "map: keep the rows already in -o FILE, compute the rest",
+         .needs = "--output"},
+        CLI_UNITS_OPTIONS(o->units),
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &o->output,
+         .meta = "FILE", .help = "output file (default stdout)"},
+    };
     _Static_assert(sizeof table / sizeof *table <= STABILITY_OPTIONS_MAX, "option table");
     memcpy(opts, table, sizeof table);
     return sizeof table / sizeof *table;
@@ -1102,34 +766,9 @@ static int parse_options(const cli_command *cmd, int argc, char **argv, options 
     int rc = cli_parse(cmd, argc, argv, opts, nopts, NULL, 0);
     if (rc) return rc;
     if ((rc = cli_drag_apply(cmd, &o->air, &o->drag2))) return rc;
-    if (o->atlas) {
-        if (!o->modes_given) {
-            o->modes.n = 7;
-            for (int k = 0; k < 7; k++) o->modes.v[k] = 2 + k;
-        }
-        if (!o->max_given) o->omega_max = 40;
-    }
     return check_options(cmd, o);
 }
 
-/* --windows with dissipation (internal damping or the hand-swung chain's drag): the intervals
- * where each mode is unstable or converging. */
-static int run_windows_dissipative(const cli_command *cmd, const options *o)
-{
-    whirl_model m = {0};
-    m.dim = 3;
-    m.internal_damping = o->damping;
-    m.drive_radius = o->eps;
-    m.air_drag = o->drag;
-    m.air_drag_quadratic = o->drag2;
-    whirl_windows_params p = whirl_windows_defaults();
-    p.omega_min = o->omega_min;
-    p.omega_max = o->omega_max;
-    p.scan_step = o->scan_step;
-    p.tol = o->tol;
-    return stability_dissipative(cmd, &o->modes, o->links, o->tip_mass, &m, o->side, &p,
-                                 &o->units, o->output);
-}
 
 static void point_run_free(point_run *r)
 {
@@ -1271,16 +910,32 @@ static int run_points(const cli_command *cmd, const options *o)
     return write_points(cmd, o, &r);
 }
 
+/* --windows or --atlas (the aliases of whirl windows, kept for one release): whirl windows on the
+ * command line without --windows; -1 when neither is given. */
+static int windows_alias(const cli_command *cmd, int argc, char **argv)
+{
+    int alias = 0;
+    for (int i = 1; i < argc; i++)
+        alias |= strcmp(argv[i], "--windows") == 0 || strcmp(argv[i], "--atlas") == 0;
+    if (!alias) return -1;
+    char **args = malloc((size_t)(argc + 1) * sizeof *args);
+    if (args == NULL) return cli_error(cmd, "out of memory");
+    int n = 0;
+    for (int i = 0; i < argc; i++)
+        if (i == 0 || strcmp(argv[i], "--windows") != 0) args[n++] = argv[i];
+    args[n] = NULL;
+    const int rc = cmd_windows(cmd, n, args);
+    free(args);
+    return rc;
+}
+
 int cmd_stability(const cli_command *cmd, int argc, char **argv)
 {
+    const int alias = windows_alias(cmd, argc, argv);
+    if (alias >= 0) return alias;
     options o;
     const int rc = parse_options(cmd, argc, argv, &o);
     if (rc) return rc;
-    if (o.atlas)
-        return stability_atlas(cmd, &o.modes, o.omega_max, o.degree, o.memory, o.tol,
-                               o.scan_step, o.output, o.resume);
-    if (o.windows && dissipative(&o)) return run_windows_dissipative(cmd, &o);
-    if (o.windows) return run_windows(cmd, &o);
     if (o.eigenvalues) return run_eigenvalues(cmd, &o);
     return run_points(cmd, &o);
 }

@@ -102,22 +102,23 @@ static void sweep_free(sweep *s)
 static int parse_sweep(const cli_command *cmd, int argc, char **argv, sweep *s)
 {
     const cli_option opts[] = {
-        {"--modes", NULL, CLI_INT_LIST, &s->modes, NULL, "LIST",
-         "modes, e.g. 1,2,3 (1..N with --links N, 1..3183 for the continuum)", "[1, inf)",
-         NULL, NULL, ""},
-        {"--omega-min", NULL, CLI_DOUBLE, &s->omega_min, NULL, "A", "lowest rate", "(0, inf)",
-         NULL, NULL, "", CLI_UNIT_RATE},
-        {"--omega-max", NULL, CLI_DOUBLE, &s->omega_max, NULL, "B", "highest rate", "(0, inf)",
-         NULL, NULL, "", CLI_UNIT_RATE},
-        {"--omega-count", NULL, CLI_INT, &s->count, NULL, "N",
-         "N equally spaced rates, both ends included", "[1, 10000000]", NULL, NULL, ""},
+        {.name = "--modes", .type = CLI_INT_LIST, .value = &s->modes, .meta = "LIST",
+         .help = "modes, e.g. 1,2,3 (1..N with --links N, 1..3183 for the continuum)",
+         .range = "[1, inf)", .required = ""},
+        {.name = "--omega-min", .type = CLI_DOUBLE, .value = &s->omega_min, .meta = "A",
+         .help = "lowest rate", .range = "(0, inf)", .required = "", .unit = CLI_UNIT_RATE},
+        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &s->omega_max, .meta = "B",
+         .help = "highest rate", .range = "(0, inf)", .required = "", .unit = CLI_UNIT_RATE},
+        {.name = "--omega-count", .type = CLI_INT, .value = &s->count, .meta = "N",
+         .help = "N equally spaced rates, both ends included", .range = "[1, 10000000]",
+         .required = ""},
         STEADY_CLI_MODEL_OPTIONS(s->m),
-        {"--events", NULL, CLI_STRING, &s->events_path, NULL, "FILE",
-         "write the folds, branch points and returns of the N-link branches to FILE (CSV)", NULL,
-         "--links", NULL, NULL},
+        {.name = "--events", .type = CLI_STRING, .value = &s->events_path, .meta = "FILE",
+         .help = "write the folds, branch points and returns of the N-link branches to FILE (CSV)",
+         .needs = "--links"},
         STEADY_CLI_FOLLOW_OPTIONS(s->follow),
-        {"--output", "-o", CLI_STRING, &s->out_path, NULL, "FILE",
-         "write the CSV to FILE (default: standard output)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &s->out_path,
+         .meta = "FILE", .help = "write the CSV to FILE (default: standard output)"},
     };
     const int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof *opts, NULL, 0);
     if (rc) return rc;

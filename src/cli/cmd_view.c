@@ -454,17 +454,18 @@ int cmd_view(const cli_command *cmd, int argc, char **argv)
     double omega = 0, eps = 0;
     int omega_given = 0, eps_given = 0;
     const cli_option opts[] = {
-        {"--camera", NULL, CLI_STRING, &camera_text, &camera_given, "AZ,EL",
-         "first view: azimuth and elevation in degrees (default 0,0, the true side view, for "
-         "planar shapes; else 30,15; 0,0 looks along +y)"},
-        {"--omega", NULL, CLI_DOUBLE, &omega, &omega_given, "W",
-         "rate of the co-rotating view, in the file's rate unit (default: from the file)",
-         "[0, inf)"},
-        {"--eps", NULL, CLI_DOUBLE, &eps, &eps_given, "E",
-         "radius of the pivot's circle, in the file's length unit (default: from the file)",
-         "[0, inf)"},
-        {"--output", "-o", CLI_STRING, &output, NULL, "FILE",
-         "write the HTML page to FILE (default: standard output)"},
+        {.name = "--camera", .type = CLI_STRING, .value = &camera_text, .given = &camera_given,
+         .meta = "AZ,EL",
+         .help = "first view: azimuth and elevation in degrees (default 0,0, the true side view, "
+                 "for planar shapes; else 30,15; 0,0 looks along +y)"},
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &omega, .given = &omega_given, .meta = "W",
+         .help = "rate of the co-rotating view, in the file's rate unit (default: from the file)",
+         .range = "[0, inf)"},
+        {.name = "--eps", .type = CLI_DOUBLE, .value = &eps, .given = &eps_given, .meta = "E",
+         .help = "radius of the pivot's circle, in the file's length unit (default: from the file)",
+         .range = "[0, inf)"},
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
+         .help = "write the HTML page to FILE (default: standard output)"},
     };
     const char *files[VIEW_FILES_MAX + 1];
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], files,

@@ -45,14 +45,16 @@ typedef struct cli_figure_style {
 
 /* The option rows of a cli_figure_style st (a figure's: --size, --present). */
 #define CLI_FIGURE_OPTIONS(st)                                                                     \
-    {"--size", NULL, CLI_STRING, &(st).size, NULL, "WxH",                                         \
-     "the picture fits in W x H pixels (or W wide), scaled whole: 1920x1080 for a projector"},  \
-    {"--present", NULL, CLI_FLAG, &(st).present, NULL, "",                                        \
-     "a picture for a room: text and lines 1.5 times larger, 1920x1080 unless --size"}
+    {.name = "--size", .type = CLI_STRING, .value = &(st).size, .meta = "WxH",                     \
+     .help = "the picture fits in W x H pixels (or W wide), scaled whole: 1920x1080 for a "       \
+             "projector"},                                                                         \
+    {.name = "--present", .type = CLI_FLAG, .value = &(st).present,                               \
+     .help = "a picture for a room: text and lines 1.5 times larger, 1920x1080 unless --size"}
 /* ... and a movie's: --slow */
 #define CLI_MOVIE_OPTIONS(st)                                                                      \
-    {"--slow", NULL, CLI_DOUBLE, &(st).slow, NULL, "F",                                           \
-     "slow motion: the movie runs F times slower than the motion (1: real time)", "(0, 1000]"}
+    {.name = "--slow", .type = CLI_DOUBLE, .value = &(st).slow, .meta = "F",                       \
+     .help = "slow motion: the movie runs F times slower than the motion (1: real time)",         \
+     .range = "(0, 1000]"}
 
 /* Draws the files (all of one kind and one units line; several only for shapes and stability
  * maps) into out, a picture by its extension: .png, .svg, .pdf for a figure, .mp4, .webm, .gif

@@ -23,6 +23,11 @@ static const cli_command commands[] = {
     {"stability", "--omega W --mode K | --omega-min A --omega-max B --omega-count N [--modes LIST] [OPTIONS]",
      "Linear stability of the steady shapes, checked by perturbed runs.", cmd_stability,
      "whirl stability --omega-min 1 --omega-max 8 --omega-count 29 --links 20 --linear -o map.csv"},
+    {"windows",
+     "--omega-min A --omega-max B [--modes LIST] [--links N] [OPTIONS] | --atlas [--modes LIST] "
+     "[--omega-max B] -o FILE [--resume]",
+     "Intervals of omega where each mode is unstable, edges located exactly; the atlas.",
+     cmd_windows, "whirl windows --omega-min 1 --omega-max 10 --modes 2,3 -o windows.csv"},
     {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
      "Runs a scene file (examples in " WHIRL_DATADIR "/scenes, data/scenes in the source): "
      "the N-link chain in time.", cmd_simulate,

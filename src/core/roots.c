@@ -2,9 +2,13 @@
  * "Algorithms for minimization without derivatives", ch. 4; GSL roots/brent.c), driven by one
  * loop: GSL's set on [lo, hi], then iterate until gsl_root_test_interval passes, f fails, GSL
  * fails or the count of iterations runs out. The ends' known values are handed to GSL's set
- * (which evaluates f at lo, then at hi) instead of f. */
+ * (which evaluates f at lo, then at hi) instead of f. The minimiser likewise: GSL's
+ * gsl_min_fminimizer_brent set with the three known values, then iterated until
+ * gsl_min_test_interval passes, the least value falls below a level, f fails, GSL fails or the
+ * count runs out. */
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_math.h>
+#include <gsl/gsl_min.h>
 #include <gsl/gsl_roots.h>
 
 #include "core/error.h"
@@ -67,5 +71,56 @@ int whirl_root_brent(whirl_root_fn f, void *ctx, double lo, double hi, const whi
         out->iterations = it;
     }
     gsl_root_fsolver_free(s);
+    return status;
+}
+
+typedef struct min_call {
+    whirl_root_fn f;
+    void *ctx;
+    int status; /* f's first failure */
+} min_call;
+
+static double min_value(double x, void *p)
+{
+    min_call *call = p;
+    if (call->status) return GSL_NAN;
+    double fx = GSL_NAN;
+    call->status = call->f(x, call->ctx, &fx);
+    return fx;
+}
+
+int whirl_min_brent(whirl_root_fn f, void *ctx, double x, double fx, double lo, double f_lo,
+                    double hi, double f_hi, const whirl_min_opts *o, whirl_min *out)
+{
+    const whirl_min start = {x, fx, lo, hi, 0, 0};
+    *out = start;
+    gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the minimiser");
+    min_call call = {f, ctx, GSL_SUCCESS};
+    gsl_function fn = {min_value, &call};
+    int status = gsl_min_fminimizer_set_with_values(m, &fn, x, fx, lo, f_lo, hi, f_hi);
+    const int set = status == GSL_SUCCESS;
+    int it = 0;
+    while (status == GSL_SUCCESS && it < o->max_iter) {
+        status = gsl_min_fminimizer_iterate(m);
+        it++;
+        if (call.status) status = call.status;
+        if (status) break;
+        if (gsl_min_fminimizer_f_minimum(m) < o->below) {
+            out->below = 1;
+            break;
+        }
+        if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m),
+                                  o->epsabs, o->epsrel) == GSL_SUCCESS)
+            break;
+    }
+    if (set) {
+        out->x = gsl_min_fminimizer_x_minimum(m);
+        out->f = gsl_min_fminimizer_f_minimum(m);
+        out->lower = gsl_min_fminimizer_x_lower(m);
+        out->upper = gsl_min_fminimizer_x_upper(m);
+    }
+    out->iterations = it;
+    gsl_min_fminimizer_free(m);
     return status;
 }

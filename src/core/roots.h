@@ -46,4 +46,33 @@ typedef struct whirl_root {
 int whirl_root_brent(whirl_root_fn f, void *ctx, double lo, double hi, const whirl_root_opts *o,
                      whirl_root *out);
 
+/* Brent's minimiser (Brent 1973, ch. 5; GSL's gsl_min_fminimizer_brent): golden sections and
+ * parabolic interpolation within a bracket lo < x < hi with f(x) below f(lo) and f(hi), one
+ * evaluation of f per iteration. The one minimisation loop of the library. */
+typedef struct whirl_min_opts {
+    /* converged when gsl_min_test_interval(lower, upper, epsabs, epsrel) succeeds */
+    double epsabs, epsrel;
+    int max_iter; /* iterations at most; the estimate after them is taken as it is */
+    double below; /* stop as soon as the least value found is below it (-INFINITY: never) */
+} whirl_min_opts;
+
+typedef struct whirl_min {
+    double x, f;         /* the least value found and where (the start's if no iteration) */
+    double lower, upper; /* the last bracket */
+    int iterations;      /* iterations done */
+    int below;           /* 1 if it stopped on f < o->below */
+} whirl_min;
+
+/* Brent's minimisation of f from x in [lo, hi], the values fx, f_lo, f_hi known (f is not called
+ * there). Returns
+ *  - GSL_SUCCESS when the bracket passed the test of o, f fell below o->below, or o->max_iter
+ *    iterations were done (out holds the last estimate);
+ *  - f's first failure status;
+ *  - GSL's status of a start it refuses (GSL_EINVAL: x outside (lo, hi) or f(x) not below both
+ *    ends) or of an iteration that fails (GSL_FAILURE: no progress on a flat f), no message;
+ *  - GSL_ENOMEM, with its message.
+ * out (all fields) is written in every case. */
+int whirl_min_brent(whirl_root_fn f, void *ctx, double x, double fx, double lo, double f_lo,
+                    double hi, double f_hi, const whirl_min_opts *o, whirl_min *out);
+
 #endif

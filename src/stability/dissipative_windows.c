@@ -14,7 +14,7 @@
  * the bracket's secant slope, else g jumped there (a hand-swung shape that changes branch) and
  * the search fails rather than report a jump as an edge. An interval of either kind narrower than the
  * scan step can be passed over (no discriminant as in the conservative search,
- * stability_windows.c, gives it away: here the crossing eigenvalue meets no partner).
+ * nlink_windows.c, gives it away: here the crossing eigenvalue meets no partner).
  * Kelvin-Tait-Chetaev (Merkin 1956; Kirillov 2013, ch. 2): with complete dissipation (C
  * definite on the non-symmetry directions, as the internal damping is) a shape of index > 0
  * (modes 2, 3, ...) is unstable at every rate, and a minimum (index 0, mode 1) converges;
@@ -30,8 +30,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-#include <gsl/gsl_min.h>
 
 #include "whirl/stability.h"
 #include "core/error.h"
@@ -172,21 +170,22 @@ typedef struct extreme_args {
     int status;
 } extreme_args;
 
-static double extreme_fn(double omega, void *ctx)
+static int extreme_fn(double omega, void *ctx, double *value)
 {
     extreme_args *a = ctx;
     dissip_point p;
-    if (a->status) return 0;
+    if (a->status) return a->status;
     a->status = evaluate(a->s, omega, NULL, NULL, &p);
     if (!a->status && !p.exists)
         a->status = whirl_fail(GSL_EDOM, "mode %d: no hand-swung shape at omega = "
                                WHIRL_Q_RATE "%.10g", a->s->mode, omega);
-    return a->status ? 0 : a->sign * p.growth;
+    *value = a->status ? 0 : a->sign * p.growth;
+    return a->status;
 }
 
 /* The extreme growth in the interval iv (largest if unstable, most negative if converging)
  * from the scan points x[0..n) inside it (ends included, value 0 at a located edge), refined
- * by Brent's minimisation (gsl_min) about the best interior one to 1e-6 in omega. */
+ * by Brent's minimisation (whirl_min_brent) about the best interior one to 1e-6 in omega. */
 static int extreme_growth(dissip_search *s, whirl_dissipative_interval *iv,
                           const dissip_point *pts, size_t n)
 {
@@ -202,22 +201,15 @@ static int extreme_growth(dissip_search *s, whirl_dissipative_interval *iv,
           sign * pts[best].growth < sign * pts[best + 1].growth))
         return GSL_SUCCESS;
     extreme_args a = {s, sign, GSL_SUCCESS};
-    gsl_function fn = {extreme_fn, &a};
-    gsl_min_fminimizer *m = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
-    if (m == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
-    int status = gsl_min_fminimizer_set_with_values(
-        m, &fn, pts[best].omega, sign * pts[best].growth, pts[best - 1].omega,
-        sign * pts[best - 1].growth, pts[best + 1].omega, sign * pts[best + 1].growth);
-    for (int iter = 0; iter < 100 && status == GSL_SUCCESS && !a.status; iter++) {
-        status = gsl_min_fminimizer_iterate(m);
-        if (status || a.status) break;
-        if (gsl_min_test_interval(gsl_min_fminimizer_x_lower(m), gsl_min_fminimizer_x_upper(m),
-                                  1e-6, 0) == GSL_SUCCESS)
-            break;
-    }
-    const double at = gsl_min_fminimizer_x_minimum(m), f = gsl_min_fminimizer_f_minimum(m);
-    gsl_min_fminimizer_free(m);
+    const whirl_min_opts o = {1e-6, 0, 100, -INFINITY};
+    whirl_min least;
+    const int status = whirl_min_brent(extreme_fn, &a, pts[best].omega, sign * pts[best].growth,
+                                       pts[best - 1].omega, sign * pts[best - 1].growth,
+                                       pts[best + 1].omega, sign * pts[best + 1].growth, &o,
+                                       &least);
+    const double at = least.x, f = least.f;
     if (a.status) return a.status;
+    if (status == GSL_ENOMEM) return status;
     if (status)
         return whirl_fail(status, "mode %d: the extreme growth in (%.10g, %.10g) was not found",
                           s->mode, iv->from, iv->to);

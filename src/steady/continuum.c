@@ -555,7 +555,7 @@ static int continuum_solve_ws(void *ws, double omega, int mode, double tip_r_gue
     if (status != GSL_SUCCESS) return status;
     if ((status = set_rate(w, omega)) != GSL_SUCCESS) return status;
     double a;
-    status = whirl_steady_shoot_root(continuum_shot, w, mode, 1, 0, tip_r_guess, &a);
+    status = whirl_steady_shoot_root(continuum_shot, w, mode, 1, tip_r_guess, &a);
     if (status == GSL_EDOM) {
         double omega_k;
         if (whirl_continuum_critical(mode, w->p.tip_mass, &omega_k) != GSL_SUCCESS)

@@ -111,7 +111,6 @@
 #include "core/roots.h"
 #include "steady/steady_internal.h"
 #include "steady/tip_up.h"
-#include "whirl/stability.h"
 
 #define SCAN_X_TOP 36.0      /* top of the scan: L - a = L e^-36 ~ 2e-16 L */
 #define SCAN_BELOW_FLOOR 9.0 /* the scan starts e^-9 ~ 1e-4 below the linear floor */
@@ -1089,8 +1088,9 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
     return status;
 }
 
-int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
-                          const whirl_equilibria_params *params, whirl_equilibria **out)
+int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
+                            const whirl_equilibria_params *params,
+                            const whirl_equilibria_verdict *verdict, whirl_equilibria **out)
 {
     *out = NULL;
     whirl_equilibria_params par = params ? *params : whirl_equilibria_defaults();
@@ -1113,19 +1113,11 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
     l.links = c ? c->n : 0;
     for (size_t i = 0; i < l.links; i++) l.window += 2 * MATCH_ANGLE * c->length[i];
     angle_ws *aw = c ? angle_ws_alloc(c, omega) : NULL;
-    int status = c && aw == NULL ? GSL_ENOMEM : GSL_SUCCESS;
+    int status = c && aw == NULL ? whirl_last_status() : GSL_SUCCESS;
     if (!status)
         status = c ? nlink_find(c, omega, &par, aw, res, &l) : continuum_find(tip_mass, omega, res, &l);
     /* the shapes (polished once more, from their tip radii) and their linear verdicts */
-    whirl_stability *w = NULL;
-    whirl_model model = {0};
-    if (!status && c && par.stability) {
-        if ((w = whirl_stability_alloc(c->n)) == NULL) status = GSL_ENOMEM;
-        model.chain = c;
-        model.dim = 3;
-        model.frame = WHIRL_FRAME_ROTATING;
-        model.omega = omega;
-    }
+    const int verdicts = c && par.stability && verdict != NULL;
     for (size_t i = 0; i < l.n && !status && c; i++) {
         whirl_equilibrium *e = &l.eq[i];
         if ((status = check_stop(i, l.n))) break;
@@ -1136,13 +1128,11 @@ int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
         if ((status = whirl_steady_check_info(&e->info))) break;
         res->isolated += e->branch == 0;
         res->unidentified += e->branch < 0;
-        if (w && !(status = whirl_stability_linearise(w, &model, aw->r, aw->z)))
-            status = whirl_stability_growth(w, &e->eig_growth);
-        if (w && !status) status = whirl_stability_index(w, &e->index);
+        if (verdicts)
+            status = verdict->judge(verdict->ctx, aw->r, aw->z, &e->eig_growth, &e->index);
     }
     if (aw) res->balance = aw->worst;
     angle_ws_free(aw);
-    whirl_stability_free(w);
     free(l.source);
     free(l.theta);
     if (status) {

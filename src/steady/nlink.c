@@ -264,7 +264,7 @@ int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
                      whirl_shape_info *info)
 {
     nlink_ws *w = nlink_ws_alloc(c);
-    if (w == NULL) return GSL_ENOMEM;
+    if (w == NULL) return whirl_last_status();
     int status = whirl_nlink_positions(c, omega, tip_r, w->r, w->z, w->tension);
     if (status == GSL_SUCCESS) {
         nlink_info(c, w->r, w->z, w->tension, omega, mode, info);

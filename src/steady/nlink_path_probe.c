@@ -35,7 +35,7 @@ static void path_copy(nlink_path *dst, const nlink_path *src)
 int path_look_ahead(nlink_path *p, double ds)
 {
     if (p->probe == NULL && (p->probe = path_alloc(p->pub.chain)) == NULL)
-        return GSL_ENOMEM;
+        return whirl_last_status();
     nlink_path *q = p->probe;
     path_copy(q, p);
     q->pub.ds = ds;

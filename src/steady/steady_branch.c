@@ -15,12 +15,6 @@
 #include "core/error.h"
 #include "steady/steady_internal.h"
 
-int whirl_steady_fail_missing(int mode, double omega, double omega_k)
-{
-    return whirl_fail(GSL_EDOM, "mode %d does not exist at omega=" WHIRL_Q_RATE "%.17g: it exists "
-                      "only above omega_%d=" WHIRL_Q_RATE "%.17g", mode, omega, mode, omega_k);
-}
-
 #define BLOCK_MIN 16 /* fewest rates per thread block */
 
 #define PREV_MAX 3 /* solutions the predictor extrapolates: quadratic */

@@ -21,14 +21,12 @@ typedef int (*steady_shot_fn)(void *ws, double a, double *residual, int *crossin
 
 /* The mode-k root a in (0, a_max) of a shooting problem: brackets it by the crossing count,
  * then polishes the residual's root with Brent's method to round-off. With guess > 0 the bracket
- * grows around the guess (continuation). Otherwise with scan_ratio <= 1 it bisects the whole
- * range (crossings known to decrease with a: the continuum), and with scan_ratio > 1 it scans
- * a_min * scan_ratio^j upwards and takes the smallest a where crossings drop below mode (the
- * N-link chain, whose count need not decrease monotonically at high rates). GSL_EDOM if
+ * grows around the guess (continuation). Otherwise it bisects the whole range (crossings known
+ * to decrease with a: the continuum, its one caller). GSL_EDOM if
  * crossings at the smallest radius tried (1e-9 a_max) is below mode: mode k does not exist at
  * this rate. */
-int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max,
-                            double scan_ratio, double guess, double *a);
+int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max, double guess,
+                            double *a);
 
 /* whirl_nlink_critical with a report of the work done: the rates come in blocks (one call of
  * dstebz each, about 0.02 s), the stop request polled between blocks, and after each block
@@ -36,6 +34,20 @@ int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_ma
 typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
 int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
                                 whirl_nlink_critical_progress_fn progress, void *ctx);
+
+/* The linear verdict of an N-link equilibrium, given by the module above (the stability module's
+ * whirl_equilibria_find: the steady module does not depend on it): from the nodes r, z (N + 1)
+ * of the shape at the search's rate, its growth and index; a GSL status. */
+typedef struct whirl_equilibria_verdict {
+    int (*judge)(void *ctx, const double *r, const double *z, double *growth, int *index);
+    void *ctx;
+} whirl_equilibria_verdict;
+
+/* whirl_equilibria_find (whirl/steady.h) with the verdicts of verdict (NULL: none; eig_growth
+ * and index left 0). */
+int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
+                            const whirl_equilibria_params *params,
+                            const whirl_equilibria_verdict *verdict, whirl_equilibria **out);
 
 /* A model for branch following: a workspace per thread and a solve with a seed. */
 typedef struct steady_model {

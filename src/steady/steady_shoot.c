@@ -23,51 +23,6 @@
 #define BISECT_MAX 300
 #define BRENT_MAX 200
 
-int whirl_steady_check_args(double omega, int mode, int mode_max)
-{
-    if (!(isfinite(omega) && omega > 0))
-        return whirl_fail(GSL_EINVAL, "omega must be > 0 and finite, got %g", omega);
-    if (whirl_check_omega_max(omega) != GSL_SUCCESS) return GSL_EINVAL;
-    if (mode < 1 && mode_max == INT_MAX)
-        return whirl_fail(GSL_EINVAL, "mode must be >= 1, got %d", mode);
-    if (mode < 1 || mode > mode_max)
-        return whirl_fail(GSL_EINVAL, "mode must be between 1 and %d, got %d", mode_max, mode);
-    return GSL_SUCCESS;
-}
-
-int whirl_steady_check_info(const whirl_shape_info *info)
-{
-    const struct {
-        const char *name;
-        double value;
-    } q[] = {{"tip_r", info->tip_r}, {"max_r", info->max_r},
-             {"top_tension", info->top_tension}, {"depth", info->depth}};
-    for (size_t i = 0; i < sizeof q / sizeof q[0]; i++)
-        if (!isfinite(q[i].value))
-            return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: %s is not finite "
-                              "(%g): the rate or the tip mass is too large", info->mode,
-                              info->omega, q[i].name, q[i].value);
-    for (int j = 0; j < info->n_crossings && j < WHIRL_SHAPE_NODES; j++)
-        if (!isfinite(info->crossing_s[j]))
-            return whirl_fail(GSL_ERANGE, "mode %d at omega=" WHIRL_Q_RATE "%g: node %d is not "
-                              "finite", info->mode, info->omega, j + 1);
-    return GSL_SUCCESS;
-}
-
-int whirl_steady_check_samples(double omega, size_t n, const double *r, const double *z,
-                               const double *tension)
-{
-    const double *a[3] = {r, z, tension};
-    static const char *const name[3] = {"r", "z", "tension"};
-    for (int k = 0; k < 3; k++)
-        for (size_t i = 0; a[k] != NULL && i < n; i++)
-            if (!isfinite(a[k][i]))
-                return whirl_fail(GSL_ERANGE, "the shape at omega=" WHIRL_Q_RATE "%g: %s of point "
-                                  "%zu is not finite (%g): the rate or the tip mass is too large",
-                                  omega, name[k], i, a[k][i]);
-    return GSL_SUCCESS;
-}
-
 typedef struct shot_call {
     steady_shot_fn shot;
     void *ws;
@@ -131,8 +86,8 @@ static int take_shot(steady_shot_fn shot, void *ws, double a, shot_point *p)
     return status;
 }
 
-int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max,
-                            double scan_ratio, double guess, double *a)
+int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max, double guess,
+                            double *a)
 {
     const double a_min = A_MIN_FRACTION * a_max;
     shot_point lo, hi;
@@ -165,15 +120,11 @@ int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_ma
         if ((status = take_shot(shot, ws, a_min, &lo)) != GSL_SUCCESS) return status;
         if (lo.total < mode)
             return whirl_fail(GSL_EDOM, "mode %d does not exist at this rate", mode);
-        /* the whole range, or a scan upwards for the smallest tip radius where it drops */
-        double next = scan_ratio > 1 ? fmin(lo.a * scan_ratio, a_max) : a_max;
-        for (;; lo = hi, next = fmin(lo.a * scan_ratio, a_max)) {
-            if ((status = take_shot(shot, ws, next, &hi)) != GSL_SUCCESS) return status;
-            if (hi.total < mode) break;
-            if (hi.a == a_max)
-                return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest tip "
-                                  "radius " WHIRL_Q_LENGTH "%g", mode, a_max);
-        }
+        /* the whole range */
+        if ((status = take_shot(shot, ws, a_max, &hi)) != GSL_SUCCESS) return status;
+        if (hi.total >= mode)
+            return whirl_fail(GSL_EFAILED, "mode %d: crossings persist up to the largest tip "
+                              "radius " WHIRL_Q_LENGTH "%g", mode, a_max);
     }
 
     /* narrow until the only event between lo and hi is the k-th zero leaving through the

@@ -1,4 +1,5 @@
-/* Benchmark and study of the exact stability windows (whirl/stability.h, src/stability_windows.c).
+/* Benchmark and study of the exact stability windows (whirl/stability.h,
+ * src/stability/nlink_windows.c).
  * Writes under argv[1] (default out/bench):
  *  - windows_cost.csv: the cost of one eigen-solve at N = 25..400 (mode 3 at omega 7.2, inside a
  *    window; median of repeats after a warm-up, one thread): the first-order form of size 4N with

@@ -8,7 +8,7 @@
 #  2. the stability maps of bench_stability.sh (step 0.01, the first-order form's eigenvalues),
 #     when present: every map point of modes 2 and 3 is unstable exactly when it lies inside a
 #     window (window edges from bench_windows);
-#  3. the continuous chain's own windows (whirl stability --windows without --links: the string
+#  3. the continuous chain's own windows (whirl windows without --links: the string
 #     equations linearised and solved by collocation, no N-link chain) against every extrapolated
 #     edge of windows_continuum.csv: each within its error estimate (windows_collocation.csv; an
 #     edge without an estimate fails);
@@ -61,7 +61,7 @@ done
 coll="$out/windows_collocation.csv"
 if [ -f "$out/windows_continuum.csv" ]; then
   start=$(date +%s)
-  if "$WHIRL" stability --windows --omega-min 1 --omega-max 10 --modes 2,3 -o "$coll"; then
+  if "$WHIRL" windows --omega-min 1 --omega-max 10 --modes 2,3 -o "$coll"; then
     echo "continuum windows by collocation, modes 2-3 over 1..10: $(( $(date +%s) - start )) s wall"
     # every extrapolated edge against the collocation's edge of the same mode and side nearest it
     grep -v '^#' "$coll" | awk -F, 'NR > 1 { print $1, "from", $3, $5; print $1, "to", $4, $6 }' \

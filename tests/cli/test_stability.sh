@@ -186,7 +186,7 @@ expect_error "windows with a count" "omega-count" stability --windows $R --omega
 expect_error "windows tolerance 0" "tol" stability --windows $R --tol 0 -o "$tmp/out.csv"
 expect_error "windows tolerance above the step" "tol" stability --windows $R --tol 0.5 -o "$tmp/out.csv"
 expect_error "windows scan step" "scan-step" stability --windows $R --scan-step -1 -o "$tmp/out.csv"
-expect_error "scan step without windows" "windows" stability --omega 3 --mode 2 --scan-step 0.1 -o "$tmp/out.csv"
+expect_error "scan step without windows: an option of whirl windows" "unknown option '--scan-step'" stability --omega 3 --mode 2 --scan-step 0.1 -o "$tmp/out.csv"
 expect_error "windows mode above N" "modes" stability --windows $R --links 10 --modes 11 -o "$tmp/out.csv"
 expect_error "windows below birth" "mode 3.*omega_3" stability --windows --links 10 --modes 3 --omega-min 1 --omega-max 4 -o "$tmp/out.csv"
 expect_error "windows reversed range" "omega-max" stability --windows --omega-min 5 --omega-max 4 -o "$tmp/out.csv"
@@ -286,7 +286,7 @@ if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/mem.err")" -eq 1 ] &&
   pass "--memory 16: mode 8 beyond the bound names --memory, mode 2 kept whole; --memory 32 holds mode 8"
 else fail "--memory (rc=$rc, $(cat "$tmp/mem.err"; grep '^# mode' "$tmp/mem.csv"))"; fi
 expect_error "--memory with --links" "--memory applies to the continuum" stability --windows $R --links 10 --memory 100 -o "$tmp/out.csv"
-expect_error "--memory without windows" "--memory applies to the continuum" stability --omega 3 --mode 1 --memory 100 -o "$tmp/out.csv"
+expect_error "--memory without windows: an option of whirl windows" "unknown option '--memory'" stability --omega 3 --mode 1 --memory 100 -o "$tmp/out.csv"
 expect_error "--memory below 16 MB" "memory" stability --windows $R --memory 8 -o "$tmp/out.csv"
 # the atlas takes the bound too: mode 20 at its birth (31.0243) needs 765 points, more than the
 # 720 of 16 MB (the default 1024 MB hold them)
@@ -302,7 +302,7 @@ fi
 # --windows without --links: the continuous chain (collocation of the string equations)
 expect_error "continuum windows: degree" "degree" stability --windows $R --degree 5 -o "$tmp/out.csv"
 expect_error "continuum windows: degree with --links" "degree.*links|links.*degree" stability --windows $R --links 10 --degree 12 -o "$tmp/out.csv"
-expect_error "tip mass without windows" "windows" stability --omega 3 --mode 2 --tip-mass 0.1 -o "$tmp/out.csv"
+expect_error "tip mass without windows: an option of whirl windows" "unknown option '--tip-mass'" stability --omega 3 --mode 2 --tip-mass 0.1 -o "$tmp/out.csv"
 expect_error "continuum windows: negative tip mass" "tip-mass" stability --windows $R --tip-mass -1 -o "$tmp/out.csv"
 expect_error "continuum windows below birth" "mode 3.*omega_3" stability --windows --modes 3 --omega-min 1 --omega-max 4 -o "$tmp/out.csv"
 if "$WHIRL" stability --windows --modes 2 --omega-min 4.38 --omega-max 4.42 --scan-step 0.05 --tol 1e-7 \
@@ -408,6 +408,26 @@ else fail "atlas below every birth"; fi
 expect_error "atlas to stdout" "--atlas needs --output" stability --atlas --modes 2
 expect_error "atlas mode 0" "--modes: each entry must be >= 1" stability --atlas --modes 0,65 -o "$tmp/a0.csv"
 expect_error "atlas with --links" "--atlas cannot be given with --links" stability --atlas --links 10 -o "$tmp/a0.csv"
+
+# ---- whirl windows: the command that --windows and --atlas are aliases of (for one release) ----
+# the same files (the comment line of each mode apart: its time)
+if "$WHIRL" windows --links 10 --modes 2 --omega-min 3 --omega-max 5 -o "$tmp/ww.csv" \
+   && [ "$(grep -v '^# mode' "$tmp/ww.csv")" = "$(grep -v '^# mode' "$tmp/w.csv")" ] \
+   && "$WHIRL" windows --atlas --modes 2 --omega-max 6 -o "$tmp/watlas.csv" \
+   && cmp -s "$tmp/watlas.csv" "$tmp/atlas.csv" \
+   && "$WHIRL" windows --links 10 --modes 1,2 --omega-min 2 --omega-max 6 --damping 1e-3 -o "$tmp/wdw.csv" \
+   && [ "$(grep -v '^# mode' "$tmp/wdw.csv")" = "$(grep -v '^# mode' "$tmp/dw.csv")" ]; then
+  pass "whirl windows: the files of stability --windows (N-link, damped) and --atlas"
+else fail "whirl windows: not the files of its aliases"; fi
+if "$WHIRL" stability --help | grep -q -- "--windows *alias of whirl windows, kept for one release" \
+   && "$WHIRL" stability --help | grep -q -- "--atlas *alias of whirl windows --atlas, kept for one release" \
+   && "$WHIRL" --help | grep -q "^  windows "; then
+  pass "stability --help names --windows and --atlas as aliases of whirl windows"
+else fail "stability --help: the aliases"; fi
+expect_error "windows without a range or --atlas" "--omega-min or --atlas is required" windows -o "$tmp/out.csv"
+expect_error "windows --resume without --atlas" "--resume needs --atlas" windows $R --resume -o "$tmp/out.csv"
+expect_error "windows: a point's option" "unknown option '--omega'" windows --omega 3 -o "$tmp/out.csv"
+expect_error "windows --atlas with --omega-min" "--omega-min cannot be given with --atlas|--atlas cannot be given with --omega-min" windows --atlas --omega-min 2 -o "$tmp/out.csv"
 # Ctrl-C: SIGINT in the middle of the atlas stops it within a second (2 s allowed on a loaded
 # machine), exit 130, the chunks finished kept as complete rows; --resume then completes it to
 # the file of an uninterrupted run. The signal's default disposition is restored for whirl:

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Extrapolates the N-link chain's window edges in 1/N and compares them with the continuum's.
 
-Reads the continuum's windows (the CSV of `whirl stability --atlas`, e.g. docs/guide/atlas.csv)
-and the N-link windows of `whirl stability --windows --links N` at several N (one CSV per N).
+Reads the continuum's windows (the CSV of `whirl windows --atlas`, e.g. docs/guide/atlas.csv)
+and the N-link windows of `whirl windows --links N` at several N (one CSV per N).
 Each closed edge of the continuum (and the opening edge of a window open at the range's end),
 for the modes asked and below --omega-max, is matched at each N to the N-link edge of the same
 kind (opening or closing) nearest in omega among those whose collision frequency agrees with the

@@ -1,4 +1,4 @@
-/* Tests of the continuum's linear stability (src/continuum_stability.c) against independent
+/* Tests of the continuum's linear stability (src/stability/continuum_*.c) against independent
  * results:
  *  - the hanging chain: its frequencies against the zeros of J0 (j_{0,n} / 2, GSL), shifted by
  *    +-omega in the co-rotating frame; with a tip mass against the roots of the J0/Y0 determinant

@@ -1,4 +1,4 @@
-/* Tests of the exact stability windows (src/stability_windows.c) against independent results:
+/* Tests of the exact stability windows (src/stability/nlink_windows.c) against independent results:
  *  - the reduced eigenvalues mu = lambda^2 (size 2N) against the squares of the first-order
  *    form's eigenvalues (size 4N, whirl_stability_eigenvalues), and the growth rates;
  *  - the Krein signatures: at a neutral rate the modes of negative energy number half the

@@ -1,4 +1,4 @@
-/* Tests of the banded path of the N-link window search (src/stability/stability_windows.c)
+/* Tests of the banded path of the N-link window search (src/stability/nlink_banded.c)
  * against the dense path (every mu of A' by dgeev, signatures from its eigenvectors):
  *  - the bound it rests on, on the dense spectrum: every mu with |mu| > omega^2 is neutral and of
  *    positive energy;
