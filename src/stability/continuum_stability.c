@@ -102,7 +102,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/continuum_stability.h"
 #include "core/error.h"
@@ -242,7 +242,7 @@ whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p)
         !w->him || !w->hvec)
         goto fail;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->hcopy, (lapack_int)km,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->hcopy, (lapack_int)km,
                            w->hre, w->him, NULL, 1, w->hvec, (lapack_int)km, &size, -1) != 0)
         goto fail;
     w->hlwork = (lapack_int)size;
@@ -362,7 +362,7 @@ static int reserve_dense(whirl_cstab *w, size_t np)
     if (!w->dc || !w->dvr || !w->dx || !w->dre || !w->dim)
         return whirl_fail(GSL_ENOMEM, "out of memory for the dense eigen-solve of %zu points", np);
     double size;
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->dc,
+    lapack_int info = whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->dc,
                                          (lapack_int)ny, w->dre, w->dim, NULL, 1, w->dvr,
                                          (lapack_int)ny, &size, -1);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgeev workspace query failed (%d)", (int)info);
@@ -1177,7 +1177,7 @@ static int dense_eigen(whirl_cstab *w, int vectors)
         apply_b(w, e, x + j * n);
         e[j] = 0;
     }
-    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
+    lapack_int info = whirl_la_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
                                           (lapack_int)w->ku, (lapack_int)ny, w->lu,
                                           (lapack_int)w->ldab, w->ipiv, x, (lapack_int)n);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgbtrs info %d", (int)info);
@@ -1204,7 +1204,7 @@ static int ritz(whirl_cstab *w, size_t m, double floor, int *done, size_t *wante
     const size_t km = CS_KRYLOV_MAX;
     for (size_t j = 0; j < m; j++)
         for (size_t i = 0; i < m; i++) w->hcopy[i + j * m] = w->hess[i + j * (km + 1)];
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, w->hcopy,
+    lapack_int info = whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, w->hcopy,
                                          (lapack_int)m, w->hre, w->him, NULL, 1, w->hvec,
                                          (lapack_int)m, w->hwork, w->hlwork);
     if (info != 0)

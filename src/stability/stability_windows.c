@@ -94,7 +94,7 @@
 #include <string.h>
 
 #include <gsl/gsl_min.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/stability.h"
 #include "core/error.h"
@@ -190,7 +190,7 @@ whirl_windows *whirl_windows_alloc(size_t n)
         whirl_windows_arnoldi_init(&w->kr, q))
         goto fail;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)q, w->a, (lapack_int)q, w->re,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)q, w->a, (lapack_int)q, w->re,
                            w->im, w->vl, (lapack_int)q, NULL, 1, &size, -1) != 0)
         goto fail;
     w->lwork = (lapack_int)size;
@@ -512,7 +512,7 @@ static lapack_int ritz_values(windows_arnoldi *k, size_t m)
 {
     for (size_t j = 0; j < m; j++)
         for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = k->hess[i + j * (k->km + 1)];
-    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
+    return whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
                               k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m, k->hwork,
                               (lapack_int)k->hlwork);
 }
@@ -644,7 +644,7 @@ static lapack_int band_factor(whirl_windows *w, double sigma)
                     ab[BAND_AT(b + 5 + r, b + 2 + k)] = -w->ms[j] * cs[3 * r + k];
         }
     }
-    return LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)nb, (lapack_int)nb, BAND_KL, BAND_KL,
+    return whirl_la_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)nb, (lapack_int)nb, BAND_KL, BAND_KL,
                                ab, BAND_LD, w->bpiv);
 }
 
@@ -657,7 +657,7 @@ static int band_apply_any(whirl_windows *w, int project, const double *x, double
     double *r = w->bx;
     memset(r, 0, nb * sizeof *r);
     for (size_t j = 0; j < n; j++) r[8 * j] = -y[j], r[8 * j + 1] = -y[n + j];
-    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)nb, BAND_KL, BAND_KL,
+    lapack_int info = whirl_la_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)nb, BAND_KL, BAND_KL,
                                           1, w->ab, BAND_LD, w->bpiv, r, (lapack_int)nb);
     if (info != 0) return GSL_CONTINUE;
     for (size_t j = 0; j < n; j++) y[j] = r[8 * j], y[n + j] = r[8 * j + 1];
@@ -1081,7 +1081,7 @@ int whirl_windows_arnoldi_init_steps(windows_arnoldi *k, size_t q, size_t km)
     k->hvec = malloc(km * km * sizeof(double));
     if (!k->basis || !k->hess || !k->hcopy || !k->hre || !k->him || !k->hvec) return GSL_ENOMEM;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, k->hcopy, (lapack_int)km,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, k->hcopy, (lapack_int)km,
                            k->hre, k->him, NULL, 1, k->hvec, (lapack_int)km, &size, -1) != 0)
         return GSL_EFAILED;
     k->hlwork = (int)size;
@@ -1158,7 +1158,7 @@ static int nlink_apply(void *data, const double *x, double *y)
         y[i] = -s1;
         y[n + i] = -s2;
     }
-    lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, w->a,
+    lapack_int info = whirl_la_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, w->a,
                                           (lapack_int)q, w->ipiv, y, (lapack_int)q);
     return info == 0 ? GSL_SUCCESS : GSL_CONTINUE;
 }
