@@ -335,3 +335,9 @@ $(WEB)/whirl-explore.html: src/web/explore.html src/web/worker.js $(WEB)/whirl-c
 	@echo "web: $@ ($$(wc -c <$@) bytes)"
 
 -include $(WEB_OBJ:.o=.d)
+
+# the page's work as WebAssembly under Node, against the native build (scripts/bench-web.sh)
+$(WEB)/bench_web.js: tests/bench/bench_web.c $(WEB_OBJ)
+	$(WEB_ENV) emcc $(CPPFLAGS) $(WEB_CFLAGS) -I"$$(cat $(WEB)/gsl.prefix)/include" \
+	  -sENVIRONMENT=node -sALLOW_MEMORY_GROWTH=1 $< $(WEB_OBJ) \
+	  -L"$$(cat $(WEB)/gsl.prefix)/lib" -lgsl -lgslcblas -o $@
