@@ -140,6 +140,28 @@ def parity(page_file, whirl):
         print(r)
 
 
+def windows(p, whirl, check):
+    """The shaded windows of mode 2 (60 cm, 50 g, up to 12 Hz: three times the rate) against
+    whirl stability --windows of the 30-link chain. Each edge is located to tol = 1e-9 in the
+    chain's rate unit sqrt(g/L) (the library's default), so two locations of one edge are held
+    to 2e-9 sqrt(g/L); the number of windows and the open end must agree exactly."""
+    p.wait("window.whirlState.windows && window.whirlState.branch")
+    a = p.eval("window.whirlState.windows")
+    out = subprocess.run([whirl, "stability", "--windows", "--links", "30", "--modes", "2",
+                          "--omega-min", "2Hz", "--omega-max", "12Hz", "--length", "60cm",
+                          "--mass", "50g"], capture_output=True, text=True, check=True).stdout
+    rows = [l.split(",") for l in out.splitlines() if not l.startswith("#")][1:]
+    unit = (9.80665 / 0.6) ** 0.5 / (2 * 3.141592653589793)  # Hz per sqrt(g/L)
+    cli = [(float(r[2]) / (2 * 3.141592653589793), float(r[3]) / (2 * 3.141592653589793))
+           for r in rows]
+    page = [(w[0], w[1]) for w in a["windows"]]
+    worst = max((abs(u - v) / unit for pw, cw in zip(page, cli) for u, v in zip(pw, cw)),
+                default=None)
+    check("the windows of mode 2 up to 12 Hz: %d, as whirl stability --windows, edges to "
+          "2e-9 sqrt(g/L) (largest difference %s)" % (len(cli), worst),
+          len(page) == len(cli) and len(cli) > 0 and worst <= 2e-9, "%s against %s" % (page, cli))
+
+
 def parity_cases(p, page_file, whirl, check):
     if True:
         cases = [  # (query, shape args, stability args or None)
@@ -193,6 +215,7 @@ def parity_cases(p, page_file, whirl, check):
                                                           row["verdict"], row["index"]))
             if k == 0:
                 check("the page loads from file:// within 10 s (%.2f s)" % load, load < 10)
+                windows(p, whirl, check)
         # a rate change: the slider's path (whirlSetRate), then the numbers of the new rate
         p.open(page_file, "?length=60cm&mass=50g&rate=2Hz&mode=2")
         p.eval("window.whirlSetRate('5Hz')")
