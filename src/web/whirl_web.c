@@ -374,6 +374,7 @@ char *whirl_web_shape(const char *query)
         put_key_number(&j, "omega", s.omega);
         put_key_number(&j, "period", 2 * M_PI / s.omega);
         put_key_number(&j, "born", born / s.time / s.unit);
+        put_key_number(&j, "length", s.length);
         put(&j, ",\"mode\":%d,\"links\":%d", s.mode, s.links);
         if (s.w > born && vc->n >= (size_t)s.mode && verdict(&s, vc, &j) != 0) {
             /* the verdict's chain (30 links for the continuum) may be born later: said, not

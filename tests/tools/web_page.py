@@ -216,6 +216,14 @@ def parity_cases(p, page_file, whirl, check):
             if k == 0:
                 check("the page loads from file:// within 10 s (%.2f s)" % load, load < 10)
                 windows(p, whirl, check)
+                csv = p.eval("fetch(document.getElementById('csv-shape').href).then(r => r.text())")
+                rows = [l.split(",") for l in csv.splitlines() if not l.startswith("#")]
+                check("shape.csv holds what is shown (%d rows)" % (len(rows) - 1),
+                      rows[0] == ["x", "z", "tension"] and len(rows) - 1 == len(a["x"]) and
+                      all(float(r[0]) == x and float(r[1]) == z
+                          for r, x, z in zip(rows[1:], a["x"], a["z"])), csv[:200])
+                png = p.eval("document.getElementById('png-shape').href.slice(0, 22)")
+                check("shape.png is the figure", png == "data:image/png;base64,", png)
         # a rate change: the slider's path (whirlSetRate), then the numbers of the new rate
         p.open(page_file, "?length=60cm&mass=50g&rate=2Hz&mode=2")
         p.eval("window.whirlSetRate('5Hz')")
@@ -233,6 +241,10 @@ def parity_cases(p, page_file, whirl, check):
         check("below the birth: the hanging chain and the rate of the birth (%s)" % text.strip()[:90],
               a and a.get("hanging") and close(a["born"], born, REL) and "born" in text,
               "%r, whirl critical %r" % (a, rows[-1]))
+        p.open(page_file, "?length=60cm&mass=50g&rate=3Hz&mode=2&present=1")
+        check("present=1 in the address: the presentation mode",
+              p.eval("document.body.classList.contains('present') && "
+                     "document.getElementById('share').href.endsWith('present=1')"))
         # bad input: a message next to the field, nothing drawn
         p.open(page_file, "?length=60cm&mass=5x&rate=4Hz&mode=2")
         msg = p.eval("document.getElementById('mass-msg').textContent")
