@@ -14,9 +14,10 @@ page=$build/web/whirl-explore.html
 echo "load (uptime): $(uptime)"
 echo "file: $page $(wc -c <"$page") bytes, gzip -9 $(gzip -9 <"$page" | wc -c) bytes"
 echo "chromium: $(/usr/bin/python3 tests/tools/web_page.py bench "$page" 40)"
-native=$("$build/tests/bench_web")
+# the native build on one thread, as the WebAssembly (no OpenMP)
+native=$(OMP_NUM_THREADS=1 "$build/tests/bench_web")
 wasm=$(node "$build/web/bench_web.js")
-echo "native (ms, median of 21):"; echo "$native"
+echo "native, one thread (ms, median of 21):"; echo "$native"
 echo "wasm under node $(node --version) (ms, median of 21):"; echo "$wasm"
 echo "$native
 $wasm" | awk '{ t[$2] = t[$2] " " $3 } END { for (k in t) { split(t[k], v, " "); printf "ratio wasm/native %s: %.2f\n", k, v[2] / v[1] } }'

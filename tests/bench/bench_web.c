@@ -1,7 +1,7 @@
 /* The work of one rate change on the page (make web), timed: the continuum's shape of mode 2 at
  * 4 Hz of a 60 cm chain (whirl_continuum_solve and 201 samples), the linear verdict of the
  * 30-link chain there (whirl_stability_mode and the index), and the page's whole call
- * (whirl_web_shape: both, and the JSON). The same source runs natively and as WebAssembly under
+ * (whirl_web_shape: both, and the JSON); and 1000 gauss2 steps of a 100-link chain. The same source runs natively and as WebAssembly under
  * Node (make web-bench; scripts/bench-web.sh prints the ratio): the median of REPEATS runs of
  * each, in milliseconds, one line "bench_web: NAME MS" per work. */
 #include <math.h>
@@ -14,6 +14,7 @@
 
 #include "whirl/chain.h"
 #include "whirl/dynamics.h"
+#include "whirl/integrator.h"
 #include "whirl/stability.h"
 #include "whirl/steady.h"
 #include "web/whirl_web.h"
@@ -60,6 +61,31 @@ static int verdict(void)
     return status;
 }
 
+/* 1000 gauss2 steps of the 100-link chain hanging with the lower half kicked sideways (the
+ * step 1e-3 sqrt(L/g): below the fixed-point iteration's bound h omega_max < 1, omega_max ~ 2N) */
+static int run100(void)
+{
+    enum { N = 100, STEPS = 1000 };
+    whirl_chain *c = whirl_chain_alloc_uniform(N, 0);
+    const whirl_model m = {.chain = c, .dim = 3};
+    whirl_dyn *d = c ? whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN) : NULL;
+    double x[3 * N] = {0}, v[3 * N] = {0}, y[6 * N];
+    double z = 0;
+    int status = d ? GSL_SUCCESS : GSL_ENOMEM;
+    for (size_t i = 0; c && i < N; i++) x[3 * i + 2] = z -= c->length[i];
+    for (size_t i = N / 2; i < N; i++) v[3 * i] = 0.01 * (double)(i - N / 2) / N;
+    if (status == GSL_SUCCESS) status = whirl_dyn_set_state(d, 0, x, v, y);
+    whirl_integrator *it = status == GSL_SUCCESS ? whirl_integrator_alloc("gauss2", d) : NULL;
+    const double h = 1e-3;
+    double t = 0;
+    if (it == NULL && status == GSL_SUCCESS) status = GSL_ENOMEM;
+    if (status == GSL_SUCCESS) status = whirl_integrator_advance(it, &t, y, STEPS * h, h, 0);
+    whirl_integrator_free(it);
+    whirl_dyn_free(d);
+    whirl_chain_free(c);
+    return status;
+}
+
 static int page_call(void)
 {
     char *a = whirl_web_shape("length=60cm&mass=50g&rate=4Hz&mode=2");
@@ -87,5 +113,6 @@ static int run(const char *name, int (*work)(void))
 int main(void)
 {
     gsl_set_error_handler_off();
-    return run("shape", shape) || run("verdict30", verdict) || run("page_call", page_call);
+    return run("shape", shape) || run("verdict30", verdict) || run("page_call", page_call) ||
+           run("run100_1000steps", run100);
 }
