@@ -12,7 +12,9 @@ root=$(cd "$here/../.." && pwd)
 build=$(cd "$(dirname "$WHIRL")" && pwd)
 page=$build/web/whirl-explore.html
 
-if make -s -C "$root" BUILD="$build" web >"$tmp/make.log" 2>&1 && [ -s "$page" ]; then
+# (WEB, not BUILD: a make with BUILD=$build but without the build's own flags would rewrite
+# $build/flags, and the next build of $build, a sanitizer's, would start over)
+if make -s -C "$root" WEB="$build/web" web >"$tmp/make.log" 2>&1 && [ -s "$page" ]; then
   pass "make web writes $(basename "$page") ($(wc -c <"$page") bytes)"
 else
   fail "make web ($(tail -n 5 "$tmp/make.log"))"
