@@ -1,6 +1,6 @@
 // The page's Worker (make web puts it after the library's WebAssembly module, whirlCore, in the
 // page): it calls the flat interface of src/web/whirl_web.c and posts the JSON back. No physics
-// here: a request is {id, kind, query}, the answer {id, kind, answer, ms}.
+// here: a request is {id, kind, query}, the answer {id, kind, answer, ms, memory: the module's memory in bytes}.
 "use strict";
 const CALLS = { shape: "whirl_web_shape", branches: "whirl_web_branches", windows: "whirl_web_windows" };
 let core = null;
@@ -21,5 +21,6 @@ onmessage = async (ev) => {
   } catch (e) {
     answer = { error: "the engine failed: " + String(e), field: "" };
   }
-  postMessage({ type: "answer", id, kind, answer, ms: performance.now() - t0 });
+  postMessage({ type: "answer", id, kind, answer, ms: performance.now() - t0,
+                memory: core.HEAP8.buffer.byteLength });
 };

@@ -292,10 +292,11 @@ def bench(page_file, n=40):
             lat.append(p.eval("window.whirlSetRate('%s')" % rate))
         lat.sort()
         mem = p.eval("performance.memory ? performance.memory.usedJSHeapSize : null")
+        wasm = p.eval("window.whirlState.wasmBytes")
         print(json.dumps({"load_s": loads, "latency_ms_median": statistics.median(lat),
                           "latency_ms_p95": lat[int(0.95 * (len(lat) - 1))],
                           "latency_ms_max": lat[-1], "changes": n, "branch_ms": t_branch,
-                          "js_heap_bytes": mem, "errors": p.console_errors}))
+                          "js_heap_bytes": mem, "wasm_memory_bytes": wasm, "errors": p.console_errors}))
     finally:
         p.close()
 
