@@ -295,7 +295,8 @@ lapack_int whirl_la_c_dgbtrf(lapack_int m, lapack_int n, lapack_int kl, lapack_i
                 for (lapack_int c = 1; c <= ju - j; c++) { /* the rank-1 update (dger) */
                     const double yc = AB(kv - c, j + c);
                     if (yc != 0)
-                        for (lapack_int i = 1; i <= km; i++) AB(kv + i - c, j + c) -= AB(kv + i, j) * yc;
+                        for (lapack_int i = 1; i <= km; i++)
+                            AB(kv + i - c, j + c) -= AB(kv + i, j) * yc;
                 }
             }
         } else if (info == 0)

@@ -205,7 +205,8 @@ static int read_int(web_state *s, const char *name, const char *text, int lo, in
     const long v = strtol(text, &end, 10);
     if (end == text || *end != 0)
         return state_fail(s, name, "%s: not a whole number: %.40s", name, text);
-    if (v < lo || v > hi) return state_fail(s, name, "%s: out of range %d..%d: %.40s", name, lo, hi, text);
+    if (v < lo || v > hi)
+        return state_fail(s, name, "%s: out of range %d..%d: %.40s", name, lo, hi, text);
     *out = (int)v;
     return 0;
 }
@@ -228,7 +229,8 @@ static int read_state(web_state *s, const char *query)
 {
     memset(s, 0, sizeof *s);
     if (query == NULL) return state_fail(s, "", "no query");
-    if (strlen(query) > QUERY_MAX) return state_fail(s, "", "the query is longer than %d bytes", QUERY_MAX);
+    if (strlen(query) > QUERY_MAX)
+        return state_fail(s, "", "the query is longer than %d bytes", QUERY_MAX);
     char copy[QUERY_MAX + 1];
     strcpy(copy, query);
     const char *length = NULL, *mass = NULL, *tip = NULL, *links = NULL, *rate = NULL,
@@ -263,7 +265,8 @@ static int read_state(web_state *s, const char *query)
         (links && read_int(s, "links", links, 0, MAX_LINKS, &s->links)) ||
         read_int(s, "mode", mode, 1, MAX_MODE, &s->mode))
         return -1;
-    if (s->links == 1) return state_fail(s, "links", "links: 0 (the continuum) or 2..%d", MAX_LINKS);
+    if (s->links == 1)
+        return state_fail(s, "links", "links: 0 (the continuum) or 2..%d", MAX_LINKS);
     if (s->links && s->mode > s->links)
         return state_fail(s, "mode", "mode %d needs at least %d links", s->mode, s->mode);
     rate_unit(s, rate);
@@ -469,7 +472,8 @@ char *whirl_web_windows(const char *query)
             p.omega_max = s.w_max;
             size_t count = 0;
             whirl_windows_stats st;
-            if (whirl_windows_find(ws, c, s.mode, &p, found, WINDOWS_MAX, &count, &st) != GSL_SUCCESS)
+            if (whirl_windows_find(ws, c, s.mode, &p, found, WINDOWS_MAX, &count, &st) !=
+                GSL_SUCCESS)
                 failed = library_fail(&s, "rmax");
             for (size_t i = 0; !failed && i < count; i++) {
                 put(&j, "%s[", i ? "," : "");
