@@ -213,6 +213,10 @@ def parity_cases(p, page_file, whirl, check):
                       a.get("verdict") == row["verdict"] and a.get("index") == int(row["index"]),
                       "%r index %r against %r index %r" % (a.get("verdict"), a.get("index"),
                                                           row["verdict"], row["index"]))
+                g = float(row["eig_growth"])  # [1/s]; 0 where no eigenvalue has Re > 0
+                check(name + ": growth rate %.6g 1/s equals whirl stability's to 1e-12" % g,
+                      close(a.get("growth", float("nan")), g, REL, 1e-300) if g else
+                      a.get("growth") == 0, "%r against %r" % (a.get("growth"), g))
             if k == 0:
                 check("the page loads from file:// within 10 s (%.2f s)" % load, load < 10)
                 windows(p, whirl, check)
