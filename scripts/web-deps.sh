@@ -21,7 +21,12 @@ GSL_ORIG=gsl_2.7.1+dfsg.orig.tar.gz
 GSL_ORIG_SHA256=e560d6b9c6e254e46769bbb03583c00ecafbdd51b062c55db23b3b9612868567
 GSL_DEBIAN=gsl_2.7.1+dfsg-5+deb12u1.debian.tar.xz
 GSL_DEBIAN_SHA256=c48c5cd287b15844092e9c392c12b9bc385f0ab86f157184de5cc23c8963652b
-CACHE=${WHIRL_WEB_CACHE:-/var/cache/whirl-web}
+# NLopt and inih are not built: only src/optimize and src/studies use them, and the page needs
+# neither (the Makefile leaves them out of the web build).
+# The cache: /var/cache/whirl-web for root, else the user's cache folder
+if [ "$(id -u)" = 0 ]; then default_cache=/var/cache/whirl-web
+else default_cache=${XDG_CACHE_HOME:-$HOME/.cache}/whirl-web; fi
+CACHE=${WHIRL_WEB_CACHE:-$default_cache}
 PREFIX=$CACHE/gsl-$GSL_SOURCE_VERSION
 
 say() { echo "web-deps: $*" >&2; }
