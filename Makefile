@@ -319,9 +319,11 @@ WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=whirlCore -sSINGLE_FILE=1 -sENVI
 .PHONY: web
 web: $(WEB)/whirl-explore.html
 
+# (rewritten only when the prefix changes: the objects are not rebuilt for an edit of the script)
 $(WEB)/gsl.prefix: scripts/web-deps.sh
 	@mkdir -p $(WEB)
-	sh scripts/web-deps.sh >$@.tmp && mv $@.tmp $@
+	sh scripts/web-deps.sh >$@.tmp
+	@if cmp -s $@.tmp $@; then rm $@.tmp; else mv $@.tmp $@; fi
 
 $(WEB)/obj/%.o: %.c $(WEB)/gsl.prefix
 	@mkdir -p $(dir $@)
