@@ -334,3 +334,47 @@ clean:
 	rm -rf build build-* out
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(TEST_BIN:=.d) $(BENCH_BIN:=.d) $(INSTALL_BUILD)/main.d
+
+# --- the page in any browser (make web): build/web/whirl-explore.html, one self-contained file,
+# the library compiled to WebAssembly by emscripten (scripts/web-deps.sh installs it and builds
+# GSL for it into a cache) and run in a Worker. The library's sources but those that need NLopt
+# or inih (src/optimize, src/studies), single-threaded (no OpenMP) and without LAPACK
+# (-DWHIRL_NO_LAPACK: src/core/linalg.h's C path).
+WEB       := $(BUILD)/web
+WEB_SRC   := $(filter-out src/optimize/% src/studies/%,$(LIB_SRC))
+WEB_OBJ   := $(WEB_SRC:%.c=$(WEB)/obj/%.o)
+WEB_ENV   := NODE_OPTIONS=--no-experimental-fetch NODE_PATH=/usr/share/nodejs
+WEB_CFLAGS := $(WFLAGS) -O2 -DWHIRL_NO_LAPACK
+WEB_EXPORTS := _whirl_web_shape,_whirl_web_branches,_whirl_web_windows,_whirl_web_free,_malloc,_free
+# MODULARIZE: a factory whirlCore() in the Worker; SINGLE_FILE: the module inside as base64;
+# ALLOW_MEMORY_GROWTH: the windows of 400 links want more than the initial 16 MiB
+WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=whirlCore -sSINGLE_FILE=1 -sENVIRONMENT=worker \
+  -sALLOW_MEMORY_GROWTH=1 -sEXPORTED_FUNCTIONS=$(WEB_EXPORTS) \
+  -sEXPORTED_RUNTIME_METHODS=ccall,UTF8ToString
+.PHONY: web
+web: $(WEB)/whirl-explore.html
+
+# (rewritten only when the prefix changes: the objects are not rebuilt for an edit of the script)
+$(WEB)/gsl.prefix: scripts/web-deps.sh
+	@mkdir -p $(WEB)
+	sh scripts/web-deps.sh >$@.tmp
+	@if cmp -s $@.tmp $@; then rm $@.tmp; else mv $@.tmp $@; fi
+
+$(WEB)/obj/%.o: %.c $(WEB)/gsl.prefix
+	@mkdir -p $(dir $@)
+	$(WEB_ENV) emcc $(CPPFLAGS) $(WEB_CFLAGS) -I"$$(cat $(WEB)/gsl.prefix)/include" -c $< -o $@
+
+$(WEB)/whirl-core.js: $(WEB_OBJ)
+	$(WEB_ENV) emcc $(WEB_LDFLAGS) $(WEB_OBJ) -L"$$(cat $(WEB)/gsl.prefix)/lib" -lgsl -lgslcblas -o $@
+
+$(WEB)/whirl-explore.html: src/web/explore.html src/web/worker.js $(WEB)/whirl-core.js scripts/web-page.sh
+	sh scripts/web-page.sh src/web/explore.html $(WEB)/whirl-core.js src/web/worker.js $@
+	@echo "web: $@ ($$(wc -c <$@) bytes)"
+
+-include $(WEB_OBJ:.o=.d)
+
+# the page's work as WebAssembly under Node, against the native build (scripts/bench-web.sh)
+$(WEB)/bench_web.js: tests/bench/bench_web.c $(WEB_OBJ)
+	$(WEB_ENV) emcc $(CPPFLAGS) $(WEB_CFLAGS) -I"$$(cat $(WEB)/gsl.prefix)/include" \
+	  -sENVIRONMENT=node -sALLOW_MEMORY_GROWTH=1 $< $(WEB_OBJ) \
+	  -L"$$(cat $(WEB)/gsl.prefix)/lib" -lgsl -lgslcblas -o $@

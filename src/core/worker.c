@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 #include <time.h>
 
 #include "whirl/common.h"
@@ -162,7 +162,7 @@ static void dgeev_release(void *data)
 static lapack_int dgeev(char jobvl, char jobvr, size_t m, double *a, size_t lda, double *re,
                         double *im, double *v, size_t ldv, double *work, lapack_int lwork)
 {
-    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, jobvl, jobvr, (lapack_int)m, a, (lapack_int)lda,
+    return whirl_la_dgeev_work(LAPACK_COL_MAJOR, jobvl, jobvr, (lapack_int)m, a, (lapack_int)lda,
                               re, im, jobvl == 'V' ? v : NULL, jobvl == 'V' ? (lapack_int)ldv : 1,
                               jobvr == 'V' ? v : NULL, jobvr == 'V' ? (lapack_int)ldv : 1, work,
                               lwork);
@@ -240,13 +240,13 @@ static lapack_int lu_call(int parts, size_t n, size_t nrhs, double *a, size_t ld
 {
     lapack_int info = 0;
     if (parts & LU_CHOLESKY)
-        return LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, (lapack_int)nrhs, a,
+        return whirl_la_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, (lapack_int)nrhs, a,
                                   (lapack_int)lda, b, (lapack_int)ldb);
     if (parts & LU_FACTOR)
-        info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, a,
+        info = whirl_la_dgetrf_work(LAPACK_COL_MAJOR, (lapack_int)n, (lapack_int)n, a,
                                    (lapack_int)lda, ipiv);
     if (info == 0 && (parts & LU_SOLVE))
-        info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)nrhs, a,
+        info = whirl_la_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)nrhs, a,
                                    (lapack_int)lda, ipiv, b, (lapack_int)ldb);
     return info;
 }
@@ -344,7 +344,7 @@ static void dsyev_run(void *data, const whirl_worker *self)
 {
     (void)self; /* one LAPACK call: nothing to poll */
     dsyev_job *j = data;
-    j->info = LAPACKE_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)j->n, j->a, (lapack_int)j->n,
+    j->info = whirl_la_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)j->n, j->a, (lapack_int)j->n,
                             j->ev);
 }
 
@@ -353,7 +353,7 @@ int whirl_worker_dsyev(size_t n, double *a, size_t lda, double *ev, int *info,
 {
     const double dn = (double)n;
     if (4.0 / 3.0 * dn * dn * dn <= WORKER_INLINE_FLOPS) { /* the tridiagonal reduction */
-        *info = (int)LAPACKE_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)n, a, (lapack_int)lda,
+        *info = (int)whirl_la_dsyev(LAPACK_COL_MAJOR, 'N', 'U', (lapack_int)n, a, (lapack_int)lda,
                                    ev);
         return GSL_SUCCESS;
     }

@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 typedef struct whirl_worker whirl_worker; /* the control block of one run */
 

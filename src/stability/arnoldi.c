@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "core/error.h"
 #include "stability/windows_internal.h"
@@ -72,7 +72,7 @@ int whirl_windows_ritz_values(windows_arnoldi *k, size_t m)
 {
     for (size_t j = 0; j < m; j++)
         for (size_t i = 0; i < m; i++) k->hcopy[i + j * m] = k->hess[i + j * (k->km + 1)];
-    return LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
+    return whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)m, k->hcopy, (lapack_int)m,
                               k->hre, k->him, NULL, 1, k->hvec, (lapack_int)m, k->hwork,
                               (lapack_int)k->hlwork);
 }
@@ -108,7 +108,7 @@ int whirl_windows_arnoldi_init_steps(windows_arnoldi *k, size_t q, size_t km)
     k->hvec = malloc(km * km * sizeof(double));
     if (!k->basis || !k->hess || !k->hcopy || !k->hre || !k->him || !k->hvec) return GSL_ENOMEM;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, k->hcopy, (lapack_int)km,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, k->hcopy, (lapack_int)km,
                            k->hre, k->him, NULL, 1, k->hvec, (lapack_int)km, &size, -1) != 0)
         return GSL_EFAILED;
     k->hlwork = (int)size;

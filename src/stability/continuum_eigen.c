@@ -26,7 +26,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/continuum_stability.h"
 #include "core/error.h"
@@ -89,7 +89,7 @@ static int dense_eigen(whirl_cstab *w, int vectors)
         cstab_apply_b(w, e, x + j * n);
         e[j] = 0;
     }
-    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
+    lapack_int info = whirl_la_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)n, (lapack_int)w->kl,
                                           (lapack_int)w->ku, (lapack_int)ny, w->lu,
                                           (lapack_int)w->ldab, w->ipiv, x, (lapack_int)n);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgbtrs info %d", (int)info);

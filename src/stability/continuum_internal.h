@@ -6,7 +6,7 @@
 
 #include <stddef.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/continuum_stability.h"
 #include "stability/windows_internal.h"

@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/continuum_stability.h"
 #include "core/error.h"

@@ -47,7 +47,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/continuum_stability.h"
 #include "core/error.h"
@@ -137,7 +137,7 @@ whirl_cstab *whirl_cstab_alloc(const whirl_cstab_params *p)
         !w->ke.him || !w->ke.hvec)
         goto fail;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->ke.hcopy, (lapack_int)km,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)km, w->ke.hcopy, (lapack_int)km,
                            w->ke.hre, w->ke.him, NULL, 1, w->ke.hvec, (lapack_int)km, &size, -1) != 0)
         goto fail;
     w->ke.hlwork = (int)size;
@@ -259,7 +259,7 @@ int cstab_reserve_dense(whirl_cstab *w, size_t np)
     if (!w->dc || !w->dvr || !w->dx || !w->dre || !w->dim)
         return whirl_fail(GSL_ENOMEM, "out of memory for the dense eigen-solve of %zu points", np);
     double size;
-    lapack_int info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->dc,
+    lapack_int info = whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'V', (lapack_int)ny, w->dc,
                                          (lapack_int)ny, w->dre, w->dim, NULL, 1, w->dvr,
                                          (lapack_int)ny, &size, -1);
     if (info != 0) return whirl_fail(GSL_EFAILED, "dgeev workspace query failed (%d)", (int)info);

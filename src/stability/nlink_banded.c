@@ -51,7 +51,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/stability.h"
 #include "core/error.h"
@@ -171,7 +171,7 @@ lapack_int windows_band_factor(whirl_windows *w, double sigma)
                     ab[BAND_AT(b + 5 + r, b + 2 + k)] = -w->ms[j] * cs[3 * r + k];
         }
     }
-    return LAPACKE_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)nb, (lapack_int)nb, BAND_KL, BAND_KL,
+    return whirl_la_dgbtrf_work(LAPACK_COL_MAJOR, (lapack_int)nb, (lapack_int)nb, BAND_KL, BAND_KL,
                                ab, BAND_LD, w->bpiv);
 }
 
@@ -184,7 +184,7 @@ static int band_apply_any(whirl_windows *w, int project, const double *x, double
     double *r = w->bx;
     memset(r, 0, nb * sizeof *r);
     for (size_t j = 0; j < n; j++) r[8 * j] = -y[j], r[8 * j + 1] = -y[n + j];
-    lapack_int info = LAPACKE_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)nb, BAND_KL, BAND_KL,
+    lapack_int info = whirl_la_dgbtrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)nb, BAND_KL, BAND_KL,
                                           1, w->ab, BAND_LD, w->bpiv, r, (lapack_int)nb);
     if (info != 0) return GSL_CONTINUE;
     for (size_t j = 0; j < n; j++) y[j] = r[8 * j], y[n + j] = r[8 * j + 1];

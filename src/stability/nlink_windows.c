@@ -43,7 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/stability.h"
 #include "core/error.h"
@@ -95,7 +95,7 @@ whirl_windows *whirl_windows_alloc(size_t n)
         whirl_windows_arnoldi_init(&w->kr, q))
         goto fail;
     double size;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)q, w->a, (lapack_int)q, w->re,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'V', 'N', (lapack_int)q, w->a, (lapack_int)q, w->re,
                            w->im, w->vl, (lapack_int)q, NULL, 1, &size, -1) != 0)
         goto fail;
     w->lwork = (lapack_int)size;
@@ -422,7 +422,7 @@ static int nlink_apply(void *data, const double *x, double *y)
         y[i] = -s1;
         y[n + i] = -s2;
     }
-    lapack_int info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, w->a,
+    lapack_int info = whirl_la_dgetrs_work(LAPACK_COL_MAJOR, 'N', (lapack_int)q, 1, w->a,
                                           (lapack_int)q, w->ipiv, y, (lapack_int)q);
     return info == 0 ? GSL_SUCCESS : GSL_CONTINUE;
 }

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/stability.h"
 #include "stability/windows_internal.h"

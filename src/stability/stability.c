@@ -50,7 +50,7 @@
 
 #include <gsl/gsl_linalg.h>
 #include <gsl/gsl_matrix.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "whirl/stability.h"
 #include "core/error.h"
@@ -138,7 +138,7 @@ static stability_solve *solve_alloc(size_t n)
     /* workspace query of dgeev for the largest matrix */
     double query;
     lapack_int ny = (lapack_int)y;
-    if (LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', ny, s->a->data, ny, s->re, s->im, NULL,
+    if (whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', ny, s->a->data, ny, s->re, s->im, NULL,
                            1, NULL, 1, &query, -1) != 0)
         goto fail;
     s->lwork = (lapack_int)query;
@@ -441,7 +441,7 @@ static int first_order_form(stability_solve *w)
             w->rhs[i + j * q] = kk[i * q + j];
             w->rhs[i + (q + j) * q] = gg[i * q + j] + cc[i * q + j];
         }
-    lapack_int info = LAPACKE_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)q, (lapack_int)y,
+    lapack_int info = whirl_la_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)q, (lapack_int)y,
                                          w->factor, (lapack_int)q, w->rhs, (lapack_int)q);
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the mass matrix is not positive definite (dposv info "
@@ -512,7 +512,7 @@ static void solve_run(void *data, const whirl_worker *self)
     /* the trailing block read as column-major is its transpose: same eigenvalues */
     lapack_int info = 0;
     if (!status)
-        info = LAPACKE_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)m,
+        info = whirl_la_dgeev_work(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)m,
                                   w->a->data + k * tda + k, (lapack_int)tda, w->re, w->im, NULL,
                                   1, NULL, 1, w->work, w->lwork);
     if (!status && info != 0)

@@ -105,7 +105,7 @@
 #include <string.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "core/error.h"
 #include "core/roots.h"

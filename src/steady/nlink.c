@@ -44,7 +44,7 @@
 #include <stdlib.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "core/error.h"
 #include "steady/steady_internal.h"
@@ -154,7 +154,7 @@ int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *ome
             break;
         }
         lapack_int found = 0, nsplit = 0;
-        lapack_int info = LAPACKE_dstebz('I', 'E', (lapack_int)n, 0, 0, (lapack_int)il,
+        lapack_int info = whirl_la_dstebz('I', 'E', (lapack_int)n, 0, 0, (lapack_int)il,
                                          (lapack_int)iu, 2 * DBL_MIN, d, e, &found, &nsplit,
                                          lambda, iblock, isplit);
         if (info != 0 || found != (lapack_int)(iu - il + 1))

@@ -41,7 +41,7 @@
 #include <stdlib.h>
 
 #include <gsl/gsl_math.h>
-#include <lapacke.h>
+#include "core/linalg.h"
 
 #include "core/error.h"
 #include "steady/steady_internal.h"
@@ -161,7 +161,7 @@ static int evaluate(nlink_balance *b, double omega, const double *theta, int jac
         b->a_d[i] = b->d[i];
         if (i + 1 < n) b->a_dl[i] = b->dl[i], b->a_du[i] = b->du[i];
     }
-    lapack_int info = LAPACKE_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
+    lapack_int info = whirl_la_dgttrf_work((lapack_int)n, b->dl, b->d, b->du, b->du2, b->ipiv);
     b->zero_pivot = info > 0;
     if (info < 0)
         return whirl_fail(GSL_EINVAL, "omega=" WHIRL_Q_RATE "%g: dgttrf rejects argument %d", omega,

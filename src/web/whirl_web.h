@@ -1,0 +1,16 @@
+/* The flat interface of the page (src/web/whirl_web.c): the page's state as a query in, one
+ * JSON object out (malloc'd; whirl_web_free), never NULL but for a lack of memory. */
+#ifndef WHIRL_WEB_H
+#define WHIRL_WEB_H
+
+/* The steady shape of the state's mode at its rate (x, z, tension at the nodes or at 201
+ * points of the continuum), its tip radius, node count and birth rate, and the linear verdict
+ * of the N-link chain (30 links for the continuum); below the birth {"hanging": true, ...}. */
+char *whirl_web_shape(const char *query);
+/* The tip radius against the rate up to rmax of the modes born below it (at most 6). */
+char *whirl_web_branches(const char *query);
+/* The windows of instability of the state's mode up to rmax: [from, to, largest growth]. */
+char *whirl_web_windows(const char *query);
+void whirl_web_free(char *answer);
+
+#endif
