@@ -50,6 +50,13 @@ for v in nan inf 1e999; do
   expect_refused "atlas: a row holding $v refused" "nf.csv:9: column 2 holds '$v', not a finite number" \
     "$tmp/nf.csv" $atl
 done
+# a non-finite number that the check of the rows once let through: after 70 zeros (a copy of
+# the field cut to 63 characters read 0), or followed by a space
+zeros=0000000000000000000000000000000000000000000000000000000000000000000000
+sed "s/^2,[0-9.]*,/2,${zeros}1e999,/" "$tmp/a6.csv" >"$tmp/nz.csv"
+# shellcheck disable=SC2086
+expect_refused "atlas: a row holding 1e999 after 70 zeros refused" "nz.csv:9: column 2 holds '0000.*', not a finite number" \
+  "$tmp/nz.csv" $atl
 sed 's/^3,/4,/' "$tmp/a6.csv" >"$tmp/m4.csv"
 # shellcheck disable=SC2086
 expect_refused "atlas: a row of mode 4 (not asked for) refused" "m4.csv:10: mode 4 was not asked for" \
@@ -164,6 +171,12 @@ sed 's/^2,2,/2,1.7,/' "$tmp/rmap.csv" >"$tmp/ro.csv"
 # shellcheck disable=SC2086
 expect_refused "regime map: a row whose rate is not its index's refused" "ro.csv:[0-9]+: .*no point of this map" \
   "$tmp/ro.csv" $rmap
+for v in "nan " "infx" "${zeros}1e999"; do
+  awk -F, -v v="$v" 'BEGIN { OFS = "," } /^1,/ { $9 = v } { print }' "$tmp/rmap.csv" >"$tmp/rv.csv"
+  # shellcheck disable=SC2086
+  expect_refused "regime map: a row with '$(echo "$v" | cut -c1-12)' in column 9 refused" "rv.csv:[0-9]+: column 9 holds" \
+    "$tmp/rv.csv" $rmap
+done
 sed 's/^\(1,.*\)$/# note\n\1/' "$tmp/rmap.csv" >"$tmp/rc.csv"
 # shellcheck disable=SC2086
 expect_refused "regime map: a comment among the rows refused" "rc.csv:[0-9]+: a comment among the rows" \
