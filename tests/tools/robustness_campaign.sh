@@ -44,7 +44,9 @@ judge() {
   if [ -e "$dir/../victim.txt" ]; then security=1; fi
   [ $crash$hang$nonfinite$left$wrong$lost$security = 0000000 ] && clean=1
   echo "$cat $clean $crash $hang $nonfinite $left $wrong $lost $security" >>"$results"
-  [ $clean -eq 1 ] || echo "campaign: $cat: rc $rc, $(head -c 200 "$dir/../err")" >&2
+  [ $clean -eq 1 ] || echo "campaign: $cat (case $(grep -c "^$cat " "$results")): rc $rc," \
+    "crash $crash hang $hang non-finite $nonfinite left $left wrong $wrong lost $lost" \
+    "security $security, $(head -c 200 "$dir/../err")" >&2
 }
 
 # guard_file PATH: the file whose rows the next judged run must keep.
@@ -255,8 +257,15 @@ resume_try() {
   rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
   cp "$f" "$tmp/run/d/map.csv"
   guard_file "$tmp/run/d/map.csv"
+  inode=$(stat -c %i "$tmp/run/d/map.csv")
   (cd "$tmp/run/d" && timeout 60 "$W" "$@" -o map.csv --resume >/dev/null 2>"$tmp/run/err" </dev/null)
-  judge resume error $? "$tmp/run/d"
+  rc=$?
+  # the file as given (with its nan) is no output of the run unless the run wrote it
+  if [ "$(stat -c %i "$tmp/run/d/map.csv" 2>/dev/null)" = "$inode" ] && cmp -s "$f" "$tmp/run/d/map.csv"; then
+    mv "$tmp/run/d/map.csv" "$tmp/run/map.csv"
+    guard="$tmp/run/map.csv"
+  fi
+  judge resume error $rc "$tmp/run/d"
   guard=''
 }
 atl="stability --atlas --modes 2,3 --omega-max 6"
