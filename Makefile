@@ -43,7 +43,8 @@ test_source = $(filter %/$(1).c,$(TEST_SRC) $(BENCH_SRC))
 # fuzz harnesses (tests/fuzz/fuzz_NAME.c): replay_NAME runs files through one in `make check`
 FUZZ_SRC := $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES := $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
-FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o outputs.o points_csv.o cmd_simulate.o figure.o) \
+FUZZ_CLI_OBJ = $(addprefix $(BUILD)/src/cli/,cli.o outputs.o points_csv.o cmd_simulate.o figure.o \
+  resume.o stability_atlas.o) \
   $(BUILD)/gen/plots_gp.o
 REPLAY_BIN := $(FUZZ_NAMES:%=$(BUILD)/tests/fuzz/replay_%)
 # The page of `whirl view`: src/cli/view.html as a NULL-terminated table of lines (C string

@@ -34,6 +34,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/resume.h"
 #include "core/error.h"
 #include "whirl/stability.h"
 
@@ -577,86 +578,71 @@ typedef struct point_run {
 
 #define STABILITY_LINE_MAX 1024
 
-/* The complete row line (len characters): kept for the point of the map whose rate and mode it
- * has (r->kept[i], the line as read) and that point marked done. 0, or 1 after an error. */
-static int keep_row(const cli_command *cmd, const options *o, point_run *r, const char *line,
-                    size_t len)
+/* The complete row line (len characters, whole and finite): kept for the point of the map
+ * whose rate and mode it has (r->kept[i], the line as read) and that point marked done; a row
+ * of no point of the map (or of one read already) is refused. 0, or 1 after an error. */
+static int keep_row(const cli_command *cmd, const options *o, point_run *r, cli_resume *in,
+                    const char *line, size_t len)
 {
     char rate[64];
     int mode;
-    if (sscanf(line, "%63[^,],%d,", rate, &mode) != 2) return 0;
-    for (size_t i = 0; i < r->count; i++) {
-        point *p = &r->pts[i];
-        if (p->done || p->mode != mode ||
-            strcmp(CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
-            continue;
-        if ((r->kept[i] = malloc(len + 1)) == NULL) return cli_error(cmd, "out of memory");
-        memcpy(r->kept[i], line, len + 1);
-        p->done = 1;
-        r->already++;
-        return 0;
-    }
-    return 0;
+    if (sscanf(line, "%63[^,],%d,", rate, &mode) == 2)
+        for (size_t i = 0; i < r->count; i++) {
+            point *p = &r->pts[i];
+            if (p->done || p->mode != mode ||
+                strcmp(CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
+                continue;
+            if ((r->kept[i] = malloc(len + 1)) == NULL) return cli_error(cmd, "out of memory");
+            memcpy(r->kept[i], line, len + 1);
+            p->done = 1;
+            r->already++;
+            return 0;
+        }
+    return cli_resume_refuse(in, "a row of no point of this map (rate and mode), or of one "
+                             "read already") ? 1 : 0;
 }
 
-/* The lines before the rows (write_header's) in *text (to free), their length in *len, and
- * the count of the header's columns in *fields. 0, or 1 after an error. */
-static int expected_header(const cli_command *cmd, const options *o, char **text, size_t *len,
-                           size_t *fields)
+/* The lines before the rows (write_header's) in *text (to free). 0, or 1 after an error. */
+static int expected_header(const cli_command *cmd, const options *o, char **text)
 {
+    size_t len = 0;
     *text = NULL;
-    *len = 0;
-    FILE *mem = open_memstream(text, len);
+    FILE *mem = open_memstream(text, &len);
     if (mem == NULL) return cli_error(cmd, "out of memory");
     write_header(mem, o);
-    fclose(mem);
-    /* the columns: the header block's last line */
-    *fields = 1;
-    for (const char *c = *text + *len - (*len > 0); c > *text && c[-1] != '\n'; c--)
-        *fields += *c == ',';
-    return 0;
+    if (fclose(mem) == 0) return 0;
+    free(*text);
+    *text = NULL;
+    return cli_error(cmd, "out of memory");
 }
 
 /* --resume: reads the map in o->output, which must start with the lines write_header writes
- * for these options; each complete row whose rate and mode are those of a point of the map is
- * kept (keep_row); an unfinished last line is dropped. r->already: the points kept. Returns 0,
- * or 1 after printing an error. */
+ * for these options; each complete row must be that of a point of the map (keep_row), every
+ * line checked (resume.h); an unfinished last line is dropped. r->already: the points kept.
+ * Returns 0, or 1 after printing an error. */
 static int resume(const cli_command *cmd, const options *o, point_run *r)
 {
     char *expect = NULL;
-    size_t expect_len = 0, fields = 1;
-    if (expected_header(cmd, o, &expect, &expect_len, &fields)) return 1;
-    FILE *in = fopen(o->output, "r");
-    if (in == NULL) {
+    if (expected_header(cmd, o, &expect)) return 1;
+    FILE *fp = fopen(o->output, "r");
+    if (fp == NULL) {
         free(expect);
         return cli_error(cmd, "--resume: cannot read '%s': %s", o->output, strerror(errno));
     }
-    char line[STABILITY_LINE_MAX], why[160];
-    size_t pos = 0;
-    int rc = 0;
-    long lineno = 0;
+    const cli_resume_params rp = {.header = expect, .kind = "map", .of = "options",
+                                  .line_max = STABILITY_LINE_MAX};
+    cli_resume *in = cli_resume_alloc(cmd, fp, o->output, &rp);
+    int rc = in ? 0 : 1;
     r->already = 0;
-    while (rc == 0 && fgets(line, sizeof line, in)) {
-        const size_t len = strlen(line);
-        lineno++;
-        if (pos < expect_len) { /* the header block, line by line */
-            if (strncmp(expect + pos, line, len) != 0)
-                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
-                               "options (line '%.*s')", o->output, (int)strcspn(line, "\n"), line);
-            pos += len;
-            continue;
-        }
-        if (len == 0 || line[len - 1] != '\n') break; /* unfinished last line */
-        /* a complete row must be whole and finite: a file that holds others cannot be trusted */
-        if (cli_row_check(line, fields, why, sizeof why) != 0)
-            rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
-                           "row, or start the map afresh)", o->output, lineno, why);
-        else
-            rc = keep_row(cmd, o, r, line, len);
+    const char *line;
+    for (cli_resume_kind kind; !rc && (kind = cli_resume_next(in, &line)) != CLI_RESUME_END;) {
+        if (kind == CLI_RESUME_ERROR) rc = 1;
+        else if (kind == CLI_RESUME_NOTE)
+            rc = cli_resume_refuse(in, "a comment among the rows") ? 1 : 0;
+        else rc = keep_row(cmd, o, r, in, line, strlen(line));
     }
-    if (rc == 0 && pos < expect_len)
-        rc = cli_error(cmd, "--resume: '%s' holds no map of these options", o->output);
-    fclose(in);
+    cli_resume_free(in);
+    fclose(fp);
     free(expect);
     return rc;
 }

@@ -5,9 +5,9 @@
  * rank: rank r takes the points r, r + K, r + 2K, ... of the round (neighbours on the grid, of
  * similar cost, spread over the ranks) and runs them on its OpenMP threads; rank 0 gathers the
  * results and appends them in index order, so the rows are those of a single process. Ctrl-C
- * stops after the current round with the finished points kept (exit 130); --resume reads FILE,
- * checks its parameter line, drops an unfinished last line and computes only the missing
- * points. --folds FILE: the folds of the steady driven branches for every eps of the map. */
+ * stops after the current round with the finished points kept (exit 130); --resume reads FILE
+ * (resume.h: its header that of these parameters, every row one of this map's points), drops an
+ * unfinished last line and computes only the missing points. --folds FILE: the folds of the steady driven branches for every eps of the map. */
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -25,6 +25,7 @@
 #endif
 
 #include "cli/regime_cli.h"
+#include "cli/resume.h"
 #include "whirl/driven.h"
 
 #define RESULT_FIELDS 16 /* doubles per packed result */
@@ -76,69 +77,86 @@ static long unpack(const double *buf, whirl_regime_result *r)
 
 /* ---- the map file: fresh or resumed ---- */
 
-/* Reads a map file written with the same parameter line: marks its complete rows in done[],
- * counts them in *n_done and rewrites the file with them only (an unfinished last line and the
- * closing comments dropped). Returns 0 or 1 after an error. */
-static int resume_map(const cli_command *cmd, const regime_options *o, cli_lock *lock,
-                      char *done, long n_points, long *n_done)
+/* The lines before the rows of a fresh map. */
+static void write_head(FILE *fp, const regime_options *o, const whirl_chain *chain)
 {
-    FILE *in = lock->fp;
-    char expect[REGIME_LINE_MAX];
-    FILE *mem = fmemopen(expect, sizeof expect, "w");
-    if (mem == NULL) return cli_error(cmd, "out of memory");
-    regime_cli_write_parameters(mem, o);
-    fclose(mem);
-    expect[strcspn(expect, "\n") + 1] = '\0'; /* the parameter line only */
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output) != 0) return 1;
-    char line[REGIME_LINE_MAX], why[160];
-    int same = 0, header = 0, rc = 0;
-    long lineno = 0;
-    *n_done = 0;
-    while (rc == 0 && fgets(line, sizeof line, in)) {
-        lineno++;
-        const size_t len = strlen(line);
-        if (line[0] == '#') {
-            if (strncmp(line, "# regime:", 9) == 0) same = strcmp(line, expect) == 0;
-            if (strncmp(line, "# regime:", 9) == 0 || strncmp(line, "# critical", 10) == 0 ||
-                strncmp(line, "# whirl regime", 14) == 0 || strncmp(line, "# units:", 8) == 0)
-                fputs(line, out.fp);
-            continue;
-        }
-        if (!header) {
-            header = 1;
-            if (!same)
-                rc = cli_error(cmd, "--resume: '%s' was not written by a map with these "
-                               "parameters", o->output);
-            else if (strncmp(line, regime_cli_map_columns, strlen(regime_cli_map_columns)) != 0)
-                rc = cli_error(cmd, "--resume: '%s' has another header", o->output);
-            else
-                fputs(line, out.fp);
-            continue;
-        }
-        if (len == 0 || line[len - 1] != '\n') { /* unfinished: the last line, or too long */
-            if (fgets(line, sizeof line, in) == NULL) break;
-            rc = cli_error(cmd, "--resume: %s:%ld: a line longer than %d characters: the file "
-                           "cannot be trusted", o->output, lineno, REGIME_LINE_MAX - 2);
-            break;
-        }
-        /* a complete row must be whole and finite: a file that holds others cannot be trusted */
-        if (cli_row_check(line, REGIME_MAP_FIELDS, why, sizeof why) != 0) {
-            rc = cli_error(cmd, "--resume: %s:%ld: %s: the file cannot be trusted (remove the "
-                           "row, or start the map afresh)", o->output, lineno, why);
-            break;
-        }
-        char *end;
-        const long index = strtol(line, &end, 10);
-        if (*end != ',' || index < 0 || index >= n_points) continue;
-        if (!done[index]) {
-            done[index] = 1;
-            ++*n_done;
-            fputs(line, out.fp);
-        }
+    fprintf(fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
+            o->omega_steps, o->eps_steps);
+    regime_cli_write_parameters(fp, o);
+    regime_cli_write_critical(fp, o, chain);
+    fprintf(fp, "%s\n", regime_cli_map_columns);
+}
+
+/* A complete row of the map file (whole and finite): the point it names marked done[] and
+ * counted in *n_done, the row copied to out; a row of no point of the map (an index beyond it,
+ * or a rate and eps that are not its index's) or of one already read is refused. */
+static int keep_row(cli_resume *in, const regime_options *o, const char *line, char *done,
+                    long n_points, long *n_done, FILE *out)
+{
+    char *end;
+    errno = 0;
+    const long index = strtol(line, &end, 10);
+    char *expect = NULL;
+    size_t len = 0;
+    if (end != line && *end == ',' && errno == 0 && index >= 0 && index < n_points) {
+        FILE *mem = open_memstream(&expect, &len);
+        if (mem == NULL) return cli_resume_refuse(in, "out of memory");
+        double omega, eps;
+        grid_point(o, index, &omega, &eps);
+        fprintf(mem, "%ld,%s,%s,", index, CLI_NUM(regime_cli_user(o, CLI_UNIT_RATE, omega)),
+                CLI_NUM(regime_cli_user(o, CLI_UNIT_LENGTH, eps)));
+        if (fclose(mem) != 0) len = 0;
     }
-    if (rc == 0 && ferror(in)) rc = cli_error(cmd, "--resume: cannot read '%s'", o->output);
-    if (rc == 0 && !header) rc = cli_error(cmd, "--resume: '%s' holds no map", o->output);
+    const int ours = expect && len > 0 && strncmp(line, expect, len) == 0;
+    free(expect);
+    if (!ours)
+        return cli_resume_refuse(in, "'%.*s' is no point of this map (index, omega, eps)",
+                                 (int)strcspn(line, "\n"), line);
+    if (done[index]) return cli_resume_refuse(in, "point %ld read twice", index);
+    done[index] = 1;
+    ++*n_done;
+    fputs(line, out);
+    return 0;
+}
+
+/* Reads a map file (through the lock) that must begin with the lines a fresh map of these
+ * parameters writes (resume.h): marks its complete rows in done[], counts them in *n_done and
+ * rewrites the file with them only (an unfinished last line and the closing comments
+ * dropped). Returns 0 or 1 after an error. */
+static int resume_map(const cli_command *cmd, const regime_options *o, const whirl_chain *chain,
+                      cli_lock *lock, char *done, long n_points, long *n_done)
+{
+    char *header = NULL;
+    size_t header_len = 0;
+    FILE *mem = open_memstream(&header, &header_len);
+    if (mem == NULL) return cli_error(cmd, "out of memory");
+    write_head(mem, o, chain);
+    if (fclose(mem) != 0) {
+        free(header);
+        return cli_error(cmd, "out of memory");
+    }
+    const cli_resume_params rp = {.header = header, .kind = "map", .of = "parameters",
+                                  .line_max = REGIME_LINE_MAX - 2};
+    cli_resume *in = cli_resume_alloc(cmd, lock->fp, o->output, &rp);
+    cli_out out;
+    int rc = in ? cli_out_open(cmd, &out, o->output) : 1;
+    if (rc) {
+        cli_resume_free(in);
+        free(header);
+        return rc;
+    }
+    fputs(header, out.fp);
+    *n_done = 0;
+    const char *line;
+    for (cli_resume_kind kind; !rc && (kind = cli_resume_next(in, &line)) != CLI_RESUME_END;) {
+        if (kind == CLI_RESUME_ERROR) rc = 1;
+        else if (kind == CLI_RESUME_NOTE && strncmp(line, "# computed ", 11) != 0)
+            rc = cli_resume_refuse(in, "a comment among the rows") ? 1 : 0;
+        else if (kind == CLI_RESUME_ROW)
+            rc = keep_row(in, o, line, done, n_points, n_done, out.fp) ? 1 : 0;
+    }
+    cli_resume_free(in);
+    free(header);
     if (rc != 0) {
         cli_out_abort(&out);
         return rc;
@@ -151,11 +169,7 @@ static int fresh_map(const cli_command *cmd, const regime_options *o, const whir
 {
     cli_out out;
     if (cli_out_open(cmd, &out, o->output) != 0) return 1;
-    fprintf(out.fp, "# whirl regime map: %d x %d points (omega x eps), node count from rest\n",
-            o->omega_steps, o->eps_steps);
-    regime_cli_write_parameters(out.fp, o);
-    regime_cli_write_critical(out.fp, o, chain);
-    fprintf(out.fp, "%s\n", regime_cli_map_columns);
+    write_head(out.fp, o, chain);
     return cli_lock_commit(cmd, lock, &out);
 }
 
@@ -262,7 +276,7 @@ static int open_map(const cli_command *cmd, const regime_options *o, const whirl
     if (rc == 0 && o->resume && lock->fp == NULL)
         rc = cli_error(cmd, "--resume: '%s' is not a regular file", o->output);
     if (rc == 0)
-        rc = o->resume ? resume_map(cmd, o, lock, done, n_points, n_done)
+        rc = o->resume ? resume_map(cmd, o, chain, lock, done, n_points, n_done)
                        : fresh_map(cmd, o, chain, lock);
     if (rc == 0 && (*fp = fopen(o->output, "a")) == NULL)
         rc = cli_error(cmd, "cannot append to '%s': %s", o->output, strerror(errno));

@@ -5,7 +5,7 @@
 . "$(dirname "$0")/lib.sh"
 fuzz="$(dirname "$0")/../fuzz"
 bin="$(dirname "$WHIRL")/tests/fuzz"
-for h in scene fit_csv options; do
+for h in scene fit_csv options resume; do
   if out=$("$bin/replay_$h" "$fuzz/corpus/$h" "$fuzz/regress/$h" 2>"$tmp/replay.err"); then
     pass "fuzz replay $h: $out"
   else

@@ -16,14 +16,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     static const cli_command cmd = {"fit", "", "", NULL};
     FILE *fp = fmemopen((void *)data, size, "r");
     if (fp == NULL) return 0;
-    FILE *saved = stderr;
-    stderr = fopen("/dev/null", "w"); /* the reader's one-line errors are expected */
-    if (stderr == NULL) stderr = saved;
+    fuzz_quiet q; /* the reader's one-line errors are expected */
+    fuzz_quiet_begin(&q);
     points_csv p = {0, 0, NULL, NULL};
     int rc = points_csv_read(&cmd, fp, "fuzz.csv", &p);
     fclose(fp);
-    if (stderr != saved) fclose(stderr);
-    stderr = saved;
+    fuzz_quiet_end(&q);
     if (rc == 0 && p.n >= 3 && p.n <= FIT_POINTS_MAX) {
         whirl_fit_model m = whirl_fit_model_defaults();
         m.samples = 201;

@@ -41,16 +41,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         {"--output", "-o", CLI_STRING, &out, NULL, "FILE", "a string"},
         CLI_UNITS_OPTIONS(units),
     };
-    FILE *saved_out = stdout, *saved_err = stderr;
-    FILE *null = fopen("/dev/null", "w");
-    if (null != NULL) stdout = stderr = null;
+    fuzz_quiet q; /* the help and the one-line errors are expected */
+    fuzz_quiet_begin(&q);
     int rc = cli_parse(&cmd, argc, argv, opts, sizeof opts / sizeof opts[0], positional, 2);
     if (rc == 0) {
         cli_units_check(&cmd, &units);
         if (modes.n < 0 || modes.n > CLI_LIST_MAX) abort();
     }
-    stdout = saved_out, stderr = saved_err;
-    if (null != NULL) fclose(null);
+    fuzz_quiet_end(&q);
     free(text);
     if (rc < 0 || rc > 2) abort();
     return 0;

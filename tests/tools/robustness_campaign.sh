@@ -1,7 +1,8 @@
 #!/bin/sh
 # The adversarial campaign of docs/validation/robustness.md, rerun: each input a hostile or
 # careless user might give, by category, and what came of it. Prints the table (Markdown):
-# category, tried, clean error, crash, hang, non-finite written, file left, wrong answer silently.
+# category, tried, clean error, crash, hang, non-finite written, file left, wrong answer silently,
+# data lost, security.
 # Usage: sh tests/tools/robustness_campaign.sh [BUILD]   (about two minutes; nice it)
 build=${1:-build}
 W=$(cd "$(dirname "$build/whirl")" && pwd)/whirl
@@ -11,6 +12,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 results="$tmp/results"
 said=""
+guard=""
 : >"$results"
 : >"$tmp/times"
 
@@ -18,10 +20,13 @@ said=""
 # status (a signal's 128 + n). A hang is exit 124 of timeout; a crash any other status >= 128
 # that was not wanted; non-finite: nan or inf in a file left in DIR; file left: a temporary file,
 # or after an error an output that was not there before (out*); wrong silently: exit 0 where
-# an error was wanted, or an error that does not say what $said (grep -E; empty: anything) says.
+# an error was wanted, or an error that does not say what $said (grep -E; empty: anything) says;
+# data lost: a line of $tmp/guard_rows (the rows of the file $guard when guard_file recorded
+# them, or the chunk a first run had finished) is not in the file $guard (empty: none) any more;
+# security: a file victim.txt beside the run's folder (written by a scene that reached outside).
 judge() {
   cat=$1; want=$2; rc=$3; dir=$4
-  crash=0; hang=0; nonfinite=0; left=0; wrong=0; clean=0
+  crash=0; hang=0; nonfinite=0; left=0; wrong=0; clean=0; lost=0; security=0
   if [ "$rc" -eq 124 ]; then hang=1
   elif [ "$want" = error ] && [ "$rc" -eq 0 ]; then wrong=1
   elif [ "$want" = error ] && [ "$rc" -ge 128 ]; then crash=1
@@ -34,10 +39,18 @@ judge() {
     nonfinite=1; fi
   if [ "$want" = error ] && [ "$(wc -l <"$dir/../err")" -ne 1 ]; then wrong=1; fi
   if [ -n "$said" ] && ! grep -Eq "$said" "$dir/../err"; then wrong=1; fi
-  [ $crash$hang$nonfinite$left$wrong = 00000 ] && clean=1
-  echo "$cat $clean $crash $hang $nonfinite $left $wrong" >>"$results"
-  [ $clean -eq 1 ] || echo "campaign: $cat: rc $rc, $(head -c 200 "$dir/../err")" >&2
+  if [ -n "$guard" ] && grep -vxF -f "$guard" "$tmp/guard_rows" 2>/dev/null | grep -q .; then
+    lost=1; fi
+  if [ -e "$dir/../victim.txt" ]; then security=1; fi
+  [ $crash$hang$nonfinite$left$wrong$lost$security = 0000000 ] && clean=1
+  echo "$cat $clean $crash $hang $nonfinite $left $wrong $lost $security" >>"$results"
+  [ $clean -eq 1 ] || echo "campaign: $cat (case $(grep -c "^$cat " "$results")): rc $rc," \
+    "crash $crash hang $hang non-finite $nonfinite left $left wrong $wrong lost $lost" \
+    "security $security, $(head -c 200 "$dir/../err")" >&2
 }
+
+# guard_file PATH: the file whose rows the next judged run must keep.
+guard_file() { guard=$1; grep '^[0-9]' "$1" >"$tmp/guard_rows"; }
 
 # try CATEGORY WANT ARGS...: runs whirl ARGS in a fresh folder (the working directory), 60 s at
 # most, and judges it.
@@ -236,16 +249,95 @@ try work error simulate "$regress/omega_4.6e6_rk8pd.ini" --set run.t_end=2000 -o
 signal work INT 130 simulate "$regress/omega_4.6e6_rk8pd.ini" -o out.csv
 signal work INT 130 simulate "$regress/omega_2.5e6_rk8.ini" -o out.csv
 
+# files given to --resume (the atlas, the maps): each refused in one line and left as it was.
+# resume_try FILE ARGS...: whirl ARGS -o map.csv --resume in a fresh folder holding a copy of
+# FILE as map.csv, which must come out unchanged (else data lost; nan or inf in it: non-finite).
+resume_try() {
+  f=$1; shift
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  cp "$f" "$tmp/run/d/map.csv"
+  guard_file "$tmp/run/d/map.csv"
+  inode=$(stat -c %i "$tmp/run/d/map.csv")
+  (cd "$tmp/run/d" && timeout 60 "$W" "$@" -o map.csv --resume >/dev/null 2>"$tmp/run/err" </dev/null)
+  rc=$?
+  # the file as given (with its nan) is no output of the run unless the run wrote it
+  if [ "$(stat -c %i "$tmp/run/d/map.csv" 2>/dev/null)" = "$inode" ] && cmp -s "$f" "$tmp/run/d/map.csv"; then
+    mv "$tmp/run/d/map.csv" "$tmp/run/map.csv"
+    guard="$tmp/run/map.csv"
+  fi
+  judge resume error $rc "$tmp/run/d"
+  guard=''
+}
+atl="stability --atlas --modes 2,3 --omega-max 6"
+# shellcheck disable=SC2086
+"$W" $atl -o "$tmp/a6.csv" 2>/dev/null
+sed '4a # done mode 3 omega 7.6 9' "$tmp/a6.csv" >"$tmp/r.csv"
+# shellcheck disable=SC2086
+resume_try "$tmp/r.csv" $atl
+sed 's/^# done mode 2 omega 5 6$/# done mode 2 omega 3 6/' "$tmp/a6.csv" >"$tmp/r.csv"
+# shellcheck disable=SC2086
+resume_try "$tmp/r.csv" $atl
+resume_try "$tmp/a6.csv" stability --atlas --modes 2 --omega-max 6
+resume_try "$tmp/a6.csv" stability --atlas --modes 2,3 --omega-max 10
+sed '1s/degree 16/degree 20/; 2s/degree=16/degree=20/' "$tmp/a6.csv" >"$tmp/r.csv"
+# shellcheck disable=SC2086
+resume_try "$tmp/r.csv" $atl
+zeros=0000000000000000000000000000000000000000000000000000000000000000000000
+for v in nan inf 1e999 "${zeros}1e999"; do
+  sed "s/^2,[0-9.]*,/2,$v,/" "$tmp/a6.csv" >"$tmp/r.csv"
+  # shellcheck disable=SC2086
+  resume_try "$tmp/r.csv" $atl
+done
+sed 's/^3,/4,/' "$tmp/a6.csv" >"$tmp/r.csv"
+# shellcheck disable=SC2086
+resume_try "$tmp/r.csv" $atl
+for v in "nan " "${zeros}1e999"; do
+  awk -F, -v v="$v" 'BEGIN { OFS = "," } !done && /^[0-9]/ { $9 = v; done = 1 } { print }' \
+    "$tmp/map.csv" >"$tmp/r.csv"
+  # shellcheck disable=SC2086
+  resume_try "$tmp/r.csv" regime $big
+done
+smap3="stability --omega-min 2 --omega-max 4 --omega-count 3 --modes 1,2 --links 6 --linear"
+# shellcheck disable=SC2086
+"$W" $smap3 -o "$tmp/s3.csv" 2>/dev/null
+sed 's/^3,2,/3.5,2,/' "$tmp/s3.csv" >"$tmp/r.csv"
+# shellcheck disable=SC2086
+resume_try "$tmp/r.csv" $smap3
+# an atlas another run writes: a second run, with --resume or afresh, is refused (it replaced
+# the first's atlas with its own)
+long="stability --atlas --modes 2 --omega-max 60"
+for how in --resume ""; do
+  rm -f "$tmp/along.csv"
+  # shellcheck disable=SC2086
+  (exec env --default-signal=INT "$W" $long -o "$tmp/along.csv" >/dev/null 2>&1) &
+  pid=$!
+  i=0
+  while ! grep -q '^# done mode 2 omega 0 5' "$tmp/along.csv" 2>/dev/null && [ $i -lt 1500 ]; do
+    sleep 0.02; i=$((i + 1))
+  done
+  rm -rf "$tmp/run"; mkdir -p "$tmp/run/d"
+  said="is being written by another run"
+  # shellcheck disable=SC2086
+  (cd "$tmp/run/d" && timeout 60 "$W" $long -o "$tmp/along.csv" $how >/dev/null 2>"$tmp/run/err" </dev/null)
+  rc=$?
+  kill -INT $pid 2>/dev/null; wait $pid
+  # the first run's chunk must be in the file (a second run that replaced it lost it)
+  guard="$tmp/along.csv"
+  echo '# done mode 2 omega 0 5' >"$tmp/guard_rows"
+  judge resume error $rc "$tmp/run/d"
+  said=''; guard=''
+done
+
 # silently wrong
 try wrong error stability --omega 4 --mode 2 --links 60 --dt 0.05 -o out.csv
 printf '# trace: t\n0 0 0 0\n0 0 -1e200 0\n' >"$tmp/huge.dat"
 try wrong error view "$tmp/huge.dat" -o out.csv
 
-echo "| category | tried | clean error | crash | hang | non-finite written | file left | wrong answer silently |"
-echo "|---|---|---|---|---|---|---|---|"
-awk '{ t[$1]++; for (k = 2; k <= 7; k++) s[$1, k] += $k; if (!($1 in o)) { o[$1] = ++n; name[n] = $1 } }
+echo "| category | tried | clean error | crash | hang | non-finite written | file left | wrong answer silently | data lost | security |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+awk '{ t[$1]++; for (k = 2; k <= 9; k++) s[$1, k] += $k; if (!($1 in o)) { o[$1] = ++n; name[n] = $1 } }
      END { for (i = 1; i <= n; i++) { c = name[i];
-       printf "| %s | %d | %d | %d | %d | %d | %d | %d |\n", c, t[c], s[c,2], s[c,3], s[c,4], s[c,5], s[c,6], s[c,7] } }' "$results"
+       printf "| %s | %d | %d | %d | %d | %d | %d | %d | %d | %d |\n", c, t[c], s[c,2], s[c,3], s[c,4], s[c,5], s[c,6], s[c,7], s[c,8], s[c,9] } }' "$results"
 echo
 echo "Time from the signal to the exit, slowest first (s):"
 sort -rn "$tmp/times" | head -n 5 | awk '{ printf "- %.3f %s\n", $1, substr($0, index($0, $2)) }'

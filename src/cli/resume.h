@@ -1,0 +1,65 @@
+/* The discipline of --resume, shared by every long command that writes its rows into a file as
+ * it goes (the stability map, the regime map, the atlas): the file is locked for the whole run
+ * (cli_lock, cli.h); it must begin with exactly the lines this run would write before its rows
+ * (the header, which records every option that changes a row, the columns last), else the
+ * resume is refused in one line naming the first difference; after the header every complete
+ * line is checked (cli_row_check: the columns' count, finite numbers) and handed to the command,
+ * which checks what only it knows (a mode asked for, a point of the map, a chunk); anything else
+ * is refused with its line number. An unfinished last line (a run killed while writing it) is
+ * dropped. */
+#ifndef WHIRL_CLI_RESUME_H
+#define WHIRL_CLI_RESUME_H
+
+#include <stdio.h>
+
+#include "cli/cli.h"
+
+typedef struct cli_resume_params {
+    const char *header; /* the lines this run writes before its rows, the columns' line last */
+    const char *kind;   /* what the file holds, in messages: "map", "atlas" */
+    const char *of;     /* what must be the same, in messages: "options", "parameters" */
+    const char *note;   /* comment lines starting so are allowed among the header's lines and
+                         * handed to the command (the atlas's "# done "); NULL: none */
+    size_t line_max;    /* the longest line accepted, in characters */
+} cli_resume_params;
+
+/* The kinds of line cli_resume_next hands over. */
+typedef enum {
+    CLI_RESUME_ERROR = -1, /* refused: the message is printed */
+    CLI_RESUME_END = 0,    /* the end of the file (an unfinished last line dropped) */
+    CLI_RESUME_ROW = 1,    /* a complete row, whole and finite */
+    CLI_RESUME_NOTE = 2    /* a comment line: one starting with params.note among the header's
+                            * lines, or any after the header */
+} cli_resume_kind;
+
+typedef struct cli_resume cli_resume;
+
+/* A reader of the file path (in: its stream, e.g. the lock's; not closed here). NULL after
+ * printing "out of memory". */
+cli_resume *cli_resume_alloc(const cli_command *cmd, FILE *in, const char *path,
+                             const cli_resume_params *params);
+void cli_resume_free(cli_resume *r);
+
+/* The next line after the header, *line pointing to it (with its newline; valid until the next
+ * call). The header's lines are matched on the way; a difference is refused with "--resume:
+ * 'PATH' was not written by a KIND with these OF: line N has 'X' where these OF write 'Y'". */
+cli_resume_kind cli_resume_next(cli_resume *r, const char **line);
+
+/* The line number of the line last handed over. */
+long cli_resume_lineno(const cli_resume *r);
+
+/* Refuses the line last handed over: prints "--resume: PATH:N: WHY: the file cannot be trusted
+ * (remove the row, or start the KIND afresh)" and returns CLI_RESUME_ERROR. */
+int cli_resume_refuse(cli_resume *r, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* The first difference between the line want (this run's) and have (the file's), words apart
+ * (spaces), as "'X' where these OF write 'Y'" into buf: the differing word of each with the word
+ * before it. */
+void cli_resume_difference(const char *want, const char *have, const char *of, char *buf,
+                           size_t size);
+
+#endif
