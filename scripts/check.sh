@@ -1,0 +1,149 @@
+#!/bin/sh
+# make check and make check-quick: every stage runs, whatever an earlier one gave, and one summary
+# closes the run, its last line "check: N passed, N failed" (the tests of every stage summed, plus
+# one failure for each stage that failed without counting tests: a build, the clang compile). The
+# exit status is non-zero when any stage failed.
+#
+# Usage: check.sh BUILD [full|quick]
+#   full: two lanes at once, which keeps both cores busy (a test waiting on a browser, a timer or
+#     a pipe leaves its core to the other lane):
+#       plain:     build (BUILD, every program and test program) -> tests (every test, and
+#                  tests/cli/install.sh)
+#       sanitizer: clang -Werror compile (build-clang) -> ASan/UBSan build (build-sanitize) ->
+#                  the tests that exercise memory under the sanitizers (tests/sanitize.list)
+#     The plain lane prints as it goes; the sanitizer lane's output goes to
+#     build-sanitize/check.log, its failures are repeated at the end.
+#   quick: the plain build and the tests but the slow ones (tests/slow.list; the Python suite
+#     without its tests marked slow), for after every change (docs/guide/build.md).
+# MAKEFLAGS_CHECK: extra make arguments for the builds (e.g. CC=clang); JOBS: parallel compiles
+# (default: the number of processors).
+build=${1:-build}
+mode=${2:-full}
+here=$(cd "$(dirname "$0")" && pwd)
+cd "$here/.." || exit 1
+jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
+lane_pid=
+if [ "$mode" = lane ]; then
+  state=$CHECK_STATE
+else
+  state=$(mktemp -d)
+  cleanup() {
+    [ -n "$lane_pid" ] && kill -TERM -- "-$lane_pid" 2>/dev/null
+    rm -rf "$state"
+  }
+  trap cleanup EXIT
+  trap 'exit 130' INT
+  trap 'exit 143' TERM
+fi
+
+# stage NAME LOG CMD...: runs CMD with its output appended to LOG (and shown as well when SHOW is
+# 1), records in $state/NAME the exit status, the wall seconds and the closing line
+# "tests: P passed, F failed" if CMD printed one.
+stage() {
+  name=$1 log=$2
+  shift 2
+  t0=$(date +%s)
+  if [ "${SHOW:-0}" = 1 ]; then
+    { "$@" 2>&1; echo $? >"$state/$name.rc"; } | tee -a "$log"
+    rc=$(cat "$state/$name.rc")
+  else
+    "$@" >>"$log" 2>&1
+    rc=$?
+  fi
+  result=$(grep -E '^tests: [0-9]+ passed, [0-9]+ failed$' "$log" | tail -n 1)
+  echo "$rc $(($(date +%s) - t0)) $result" >"$state/$name"
+  return "$rc"
+}
+
+# build_stage NAME DIR MAKEARGS...: make -s -jJOBS MAKEARGS, its output in DIR/build.log; the
+# compiler's warnings and errors (and on failure the last lines) are printed
+build_stage() {
+  name=$1 dir=$2
+  shift 2
+  mkdir -p "$dir"
+  log=$dir/build.log
+  : >"$log"
+  stage "$name" "$log" make -s --no-print-directory -j"$jobs" "$@" $MAKEFLAGS_CHECK
+  rc=$?
+  grep -E 'warning:|error:' "$log" | head -n 40
+  [ $rc -ne 0 ] && tail -n 20 "$log"
+  echo "== $name: $([ $rc -eq 0 ] && echo ok || echo FAILED) ($(cut -d' ' -f2 "$state/$name") s; $log)"
+  return $rc
+}
+
+# the sanitizer lane: the clang compile, the ASan/UBSan build (the Makefile's sanitize-programs),
+# the memory-exercising tests of tests/sanitize.list under the sanitizers
+sanitizer_lane() {
+  log=build-sanitize/check.log
+  mkdir -p build-sanitize
+  : >"$log"
+  build_stage clang build-clang check-clang >>"$log" 2>&1
+  build_stage sanitize-build build-sanitize sanitize-programs >>"$log" 2>&1
+  set -- $(sed 's/#.*//' tests/sanitize.list | sed "s|^build/|build-sanitize/|")
+  stage sanitize-tests "$log" env WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize "$@"
+}
+if [ "$mode" = lane ]; then
+  sanitizer_lane
+  exit 0
+fi
+
+start=$(date +%s)
+echo "check: $mode, $jobs parallel compiles, load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
+: >"$state/deps.log"
+if ! stage deps "$state/deps.log" sh scripts/deps.sh $([ "$mode" = quick ] && echo run build tests || echo all); then
+  cat "$state/deps.log"
+fi
+
+if [ "$mode" = full ]; then
+  # the sanitizer lane as this script in lane mode; setsid makes it lead a process group of its
+  # own, which an interrupted check ends (cleanup)
+  CHECK_STATE=$state setsid sh "$here/check.sh" "$build" lane </dev/null >/dev/null 2>&1 &
+  lane_pid=$!
+fi
+
+build_stage build "$build" BUILD="$build" check-programs
+if [ "$mode" = quick ]; then
+  set -- $(sed 's/#.*//' tests/slow.list)
+  : >"$build/check.log"
+  SHOW=1 stage tests "$build/check.log" \
+    env WHIRL_QUICK=1 sh tests/run.sh "$build" --except "$@"
+else
+  : >"$build/check.log"
+  SHOW=1 stage tests "$build/check.log" \
+    sh tests/run.sh "$build" --also tests/cli/install.sh
+fi
+
+if [ -n "$lane_pid" ]; then
+  echo "== waiting for the sanitizer lane (build-sanitize/check.log)"
+  wait "$lane_pid"
+  lane_pid=
+  grep -E '^== (FAILED|clang|sanitize-build)|warning:|error:' build-sanitize/check.log
+  grep -A 100 '^== failed:' build-sanitize/check.log
+fi
+
+# the summary: each stage's result, then the sums
+passed=0
+failed=0
+bad=0
+echo "== check summary ($mode, $(($(date +%s) - start)) s wall, load now $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null))"
+for name in deps build tests clang sanitize-build sanitize-tests; do
+  [ "$mode" = quick ] && case $name in clang|sanitize-*) continue ;; esac
+  if [ ! -f "$state/$name" ]; then
+    printf '   %-15s NOT RUN\n' "$name"
+    failed=$((failed + 1)) bad=1
+    continue
+  fi
+  read -r rc secs counts <"$state/$name"
+  p=0 f=0
+  if [ -n "$counts" ]; then
+    p=$(echo "$counts" | cut -d' ' -f2)
+    f=$(echo "$counts" | cut -d' ' -f4 | tr -d ,)
+  fi
+  if [ "$rc" -eq 0 ]; then verdict=ok; else verdict=FAILED bad=1; fi
+  # a failed stage that counted no failure (a build, a crashed harness) counts one
+  [ "$rc" -ne 0 ] && [ "$f" -eq 0 ] && f=1
+  passed=$((passed + p)) failed=$((failed + f))
+  printf '   %-15s %-7s %5s s%s\n' "$name" "$verdict" "$secs" "${counts:+   $counts}"
+done
+echo "check: $passed passed, $failed failed"
+[ $bad -eq 0 ] && [ $failed -eq 0 ]
