@@ -7,16 +7,16 @@
 # Usage: check.sh BUILD [full|quick]
 #   full: two lanes at once, which keeps both cores busy (a test waiting on a browser, a timer or
 #     a pipe leaves its core to the other lane):
-#       plain:     build (BUILD, every program and test program) -> tests (every test, and
-#                  tests/cli/install.sh)
+#       plain:     build (BUILD: the program, the libraries, every test program) -> every test,
+#                  and tests/cli/install.sh
 #       sanitizer: clang -Werror compile (build-clang) -> ASan/UBSan build (build-sanitize) ->
-#                  the tests that exercise memory under the sanitizers (tests/sanitize.list)
+#                  every test but those of tests/sanitize-except.list, under the sanitizers
 #     The plain lane prints as it goes; the sanitizer lane's output goes to
-#     build-sanitize/check.log, its failures are repeated at the end.
-#   quick: the plain build and the tests but the slow ones (tests/slow.list; the Python suite
-#     without its tests marked slow), for after every change (docs/guide/build.md).
-# MAKEFLAGS_CHECK: extra make arguments for the builds (e.g. CC=clang); JOBS: parallel compiles
-# (default: the number of processors).
+#     build-sanitize/check.log, its builds' lines and its failures are repeated at the end.
+#   quick: the plain build and every test but the slow ones (tests/slow.list; the Python suite
+#     without its tests marked slow), in two runs at once, for after every change
+#     (docs/guide/build.md).
+# JOBS: parallel compiles (default: the number of processors).
 build=${1:-build}
 mode=${2:-full}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -28,7 +28,8 @@ if [ "$mode" = lane ]; then
 else
   state=$(mktemp -d)
   cleanup() {
-    [ -n "$lane_pid" ] && kill -TERM -- "-$lane_pid" 2>/dev/null
+    # an interrupted check ends the sanitizer lane's whole process group
+    [ -n "$lane_pid" ] && kill -TERM "-$lane_pid" 2>/dev/null
     rm -rf "$state"
   }
   trap cleanup EXIT
@@ -56,31 +57,30 @@ stage() {
 }
 
 # build_stage NAME DIR MAKEARGS...: make -s -jJOBS MAKEARGS, its output in DIR/build.log; the
-# compiler's warnings and errors (and on failure the last lines) are printed
+# compiler's warnings and errors are printed (on failure the log's last lines)
 build_stage() {
-  name=$1 dir=$2
+  bname=$1 bdir=$2
   shift 2
-  mkdir -p "$dir"
-  log=$dir/build.log
-  : >"$log"
-  stage "$name" "$log" make -s --no-print-directory -j"$jobs" "$@" $MAKEFLAGS_CHECK
-  rc=$?
-  grep -E 'warning:|error:' "$log" | head -n 40
-  [ $rc -ne 0 ] && tail -n 20 "$log"
-  echo "== $name: $([ $rc -eq 0 ] && echo ok || echo FAILED) ($(cut -d' ' -f2 "$state/$name") s; $log)"
-  return $rc
+  mkdir -p "$bdir"
+  blog=$bdir/build.log
+  : >"$blog"
+  stage "$bname" "$blog" make -s --no-print-directory -j"$jobs" "$@"
+  brc=$?
+  if [ $brc -eq 0 ]; then grep -E 'warning:|error:' "$blog" | head -n 40; else tail -n 30 "$blog"; fi
+  echo "== $bname: $([ $brc -eq 0 ] && echo ok || echo FAILED) ($(cut -d' ' -f2 "$state/$bname") s; $blog)"
+  return $brc
 }
 
 # the sanitizer lane: the clang compile, the ASan/UBSan build (the Makefile's sanitize-programs),
-# the memory-exercising tests of tests/sanitize.list under the sanitizers
+# every test but those of tests/sanitize-except.list under the sanitizers
 sanitizer_lane() {
-  log=build-sanitize/check.log
+  lane_log=build-sanitize/check.log
   mkdir -p build-sanitize
-  : >"$log"
-  build_stage clang build-clang check-clang >>"$log" 2>&1
-  build_stage sanitize-build build-sanitize sanitize-programs >>"$log" 2>&1
-  set -- $(sed 's/#.*//' tests/sanitize.list | sed "s|^build/|build-sanitize/|")
-  stage sanitize-tests "$log" env WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize "$@"
+  : >"$lane_log"
+  build_stage clang build-clang check-clang >>"$lane_log" 2>&1
+  build_stage sanitize-build build-sanitize sanitize-programs >>"$lane_log" 2>&1
+  set -- $(sed 's/#.*//; s|^build/|build-sanitize/|' tests/sanitize-except.list)
+  stage sanitize-tests "$lane_log" env WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize --except "$@"
 }
 if [ "$mode" = lane ]; then
   sanitizer_lane
@@ -90,35 +90,45 @@ fi
 start=$(date +%s)
 echo "check: $mode, $jobs parallel compiles, load $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 : >"$state/deps.log"
-if ! stage deps "$state/deps.log" sh scripts/deps.sh $([ "$mode" = quick ] && echo run build tests || echo all); then
-  cat "$state/deps.log"
-fi
+stage deps "$state/deps.log" sh scripts/deps.sh all || cat "$state/deps.log"
 
 if [ "$mode" = full ]; then
-  # the sanitizer lane as this script in lane mode; setsid makes it lead a process group of its
-  # own, which an interrupted check ends (cleanup)
+  # the sanitizer lane: this script in lane mode, leading a process group of its own (setsid)
   CHECK_STATE=$state setsid sh "$here/check.sh" "$build" lane </dev/null >/dev/null 2>&1 &
   lane_pid=$!
 fi
 
 build_stage build "$build" BUILD="$build" check-programs
+: >"$build/check.log"
 if [ "$mode" = quick ]; then
-  set -- $(sed 's/#.*//' tests/slow.list)
-  : >"$build/check.log"
-  SHOW=1 stage tests "$build/check.log" \
-    env WHIRL_QUICK=1 sh tests/run.sh "$build" --except "$@"
+  # every test but the slow ones, dealt alternately to two runs at once (the second logged)
+  slow=" $(sed 's/#.*//' tests/slow.list | tr '\n' ' ') "
+  one= two= k=0
+  for t in "$build"/tests/test_* tests/cli/test_*.sh; do
+    case $t in *.d) continue ;; esac
+    case $slow in *" build/${t#"$build"/} "*|*" $t "*) continue ;; esac
+    k=$((k + 1))
+    if [ $((k % 2)) -eq 1 ]; then one="$one $t"; else two="$two $t"; fi
+  done
+  : >"$build/check-2.log"
+  stage tests-2 "$build/check-2.log" env WHIRL_QUICK=1 sh tests/run.sh "$build" $two &
+  two_pid=$!
+  SHOW=1 stage tests "$build/check.log" env WHIRL_QUICK=1 sh tests/run.sh "$build" $one
+  wait $two_pid
+  echo "== the other half ($build/check-2.log):"
+  grep -E '^== .*: [0-9]+ s, ' "$build/check-2.log"
+  grep -E '^== FAILED' "$build/check-2.log"
 else
-  : >"$build/check.log"
-  SHOW=1 stage tests "$build/check.log" \
-    sh tests/run.sh "$build" --also tests/cli/install.sh
+  SHOW=1 stage tests "$build/check.log" sh tests/run.sh "$build" --also tests/cli/install.sh
 fi
 
 if [ -n "$lane_pid" ]; then
   echo "== waiting for the sanitizer lane (build-sanitize/check.log)"
   wait "$lane_pid"
   lane_pid=
-  grep -E '^== (FAILED|clang|sanitize-build)|warning:|error:' build-sanitize/check.log
-  grep -A 100 '^== failed:' build-sanitize/check.log
+  # its builds' lines, its tests' times and its failures
+  sed -n '/^== build-sanitize\/tests\//q; /^== tests\//q; p' build-sanitize/check.log
+  grep -E '^== .*: [0-9]+ s, |^== FAILED' build-sanitize/check.log | sed 's/^== /== sanitize: /'
 fi
 
 # the summary: each stage's result, then the sums
@@ -126,8 +136,8 @@ passed=0
 failed=0
 bad=0
 echo "== check summary ($mode, $(($(date +%s) - start)) s wall, load now $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null))"
-for name in deps build tests clang sanitize-build sanitize-tests; do
-  [ "$mode" = quick ] && case $name in clang|sanitize-*) continue ;; esac
+for name in deps build tests tests-2 clang sanitize-build sanitize-tests; do
+  case $mode-$name in quick-clang|quick-sanitize-*|full-tests-2) continue ;; esac
   if [ ! -f "$state/$name" ]; then
     printf '   %-15s NOT RUN\n' "$name"
     failed=$((failed + 1)) bad=1
@@ -137,7 +147,7 @@ for name in deps build tests clang sanitize-build sanitize-tests; do
   p=0 f=0
   if [ -n "$counts" ]; then
     p=$(echo "$counts" | cut -d' ' -f2)
-    f=$(echo "$counts" | cut -d' ' -f4 | tr -d ,)
+    f=$(echo "$counts" | cut -d' ' -f4)
   fi
   if [ "$rc" -eq 0 ]; then verdict=ok; else verdict=FAILED bad=1; fi
   # a failed stage that counted no failure (a build, a crashed harness) counts one

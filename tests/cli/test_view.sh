@@ -20,7 +20,7 @@ if [ -z "$WHIRL_SANITIZE" ]; then
     for p in $(ps -s "$chromium_pid" -o pid= 2>/dev/null); do cat "/proc/$p/stat" 2>/dev/null; done |
       awk -v hz="$(getconf CLK_TCK)" '{ sub(/^.*\) /, ""); s += $12 + $13 + $14 + $15 }
         END { printf "# chromium: %.1f s of processor time\n", s / hz }'
-    kill -- "-$chromium_pid" 2>/dev/null
+    kill -TERM "-$chromium_pid" 2>/dev/null
     i=0
     while kill -0 "$chromium_pid" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
     rm -rf "$tmp"
