@@ -233,9 +233,11 @@ docs: $(BUILD)/whirl $(BUILD)/libwhirl.so
 deps:
 	@sh scripts/deps.sh all
 
+# the build in parallel on every processor and quiet (the compiler's warnings still show)
 demo:
 	@sh scripts/deps.sh run build
-	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory -s -j$$(nproc 2>/dev/null || echo 2) all
+	@echo "demo: built $(BUILD)/whirl"
 	@sh scripts/demo.sh $(BUILD)
 
 # make check (scripts/check.sh): the set-up, then two lanes at once, each stage run and reported
