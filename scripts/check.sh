@@ -10,9 +10,10 @@
 #       plain:     build (BUILD: the program, the libraries, every test program) -> every test,
 #                  and tests/cli/install.sh
 #       sanitizer: clang -Werror compile (build-clang) -> ASan/UBSan build (build-sanitize) ->
-#                  every test but those of tests/sanitize-except.list, under the sanitizers
-#     The plain lane prints as it goes; the sanitizer lane's output goes to
-#     build-sanitize/check.log, its builds' lines and its failures are repeated at the end.
+#                  every test but those of tests/sanitize-except.list, under the sanitizers,
+#                  taken from a queue that the plain lane joins when its own tests are done
+#     The plain lane prints as it goes; the sanitizer tests' output goes to
+#     build-sanitize/check.log, the builds' lines and the failures are repeated at the end.
 #   quick: the plain build and every test but the slow ones (tests/slow.list; the Python suite
 #     without its tests marked slow), in two runs at once, for after every change
 #     (docs/guide/build.md).
@@ -71,16 +72,53 @@ build_stage() {
   return $brc
 }
 
+# The sanitizer tests: every test but those of tests/sanitize-except.list, as a queue that both
+# lanes drain (the plain lane joins when its own tests are done), the heavy ones first
+# (tests/cli/test_python.sh and those of tests/slow.list), so that the lanes end close together.
+# queue_sanitizer_tests: one file per test in $state/queue, named in the order to run them.
+queue_sanitizer_tests() {
+  mkdir -p "$state/queue.new" "$state/results"
+  except=" $(sed 's/#.*//; s|^build/|build-sanitize/|' tests/sanitize-except.list | tr '\n' ' ') "
+  heavy=" tests/cli/test_python.sh $(sed 's/#.*//; s|^build/|build-sanitize/|' tests/slow.list | tr '\n' ' ') "
+  k=1000 queued=" "
+  for t in $heavy build-sanitize/tests/test_* tests/cli/test_*.sh; do
+    case $t in *.d) continue ;; esac
+    [ -f "$t" ] || continue
+    case $except$queued in *" $t "*) continue ;; esac
+    queued="$queued$t "
+    k=$((k + 1))
+    echo "$t" >"$state/queue.new/$k"
+  done
+  mv "$state/queue.new" "$state/queue"
+}
+
+# drain WORKER: takes tests from the queue (a rename claims one: only one worker can win it) and
+# runs each under the sanitizers, its output appended whole to build-sanitize/check.log and its
+# exit status and closing line to $state/results/WORKER
+drain() {
+  for q in "$state"/queue/*; do
+    [ -f "$q" ] || continue
+    mine=$state/results/claimed.$1.${q##*/}
+    mv "$q" "$mine" 2>/dev/null || continue
+    env WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize "$(cat "$mine")" >"$mine.out" 2>&1
+    echo "$? $(grep -E '^tests: [0-9]+ passed, [0-9]+ failed$' "$mine.out" | tail -n 1)" \
+      >>"$state/results/$1"
+    cat "$mine.out" >>build-sanitize/check.log
+    grep -E '^== .*: [0-9]+ s, |^== FAILED' "$mine.out" | sed 's/^== /== sanitize: /'
+  done
+}
+
 # the sanitizer lane: the clang compile, the ASan/UBSan build (the Makefile's sanitize-programs),
-# every test but those of tests/sanitize-except.list under the sanitizers
+# then the queue of the sanitizer tests
 sanitizer_lane() {
   lane_log=build-sanitize/check.log
   mkdir -p build-sanitize
   : >"$lane_log"
   build_stage clang build-clang check-clang >>"$lane_log" 2>&1
   build_stage sanitize-build build-sanitize sanitize-programs >>"$lane_log" 2>&1
-  set -- $(sed 's/#.*//; s|^build/|build-sanitize/|' tests/sanitize-except.list)
-  stage sanitize-tests "$lane_log" env WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize --except "$@"
+  date +%s >"$state/sanitize-tests.start"
+  queue_sanitizer_tests
+  drain sanitizer
 }
 if [ "$mode" = lane ]; then
   sanitizer_lane
@@ -123,9 +161,17 @@ else
 fi
 
 if [ -n "$lane_pid" ]; then
-  echo "== waiting for the sanitizer lane (build-sanitize/check.log)"
+  echo "== the plain lane joins the sanitizer tests (build-sanitize/check.log)"
+  while [ ! -d "$state/queue" ] && kill -0 "$lane_pid" 2>/dev/null; do sleep 1; done
+  [ -d "$state/queue" ] && drain plain
   wait "$lane_pid"
   lane_pid=
+  # the sanitizer tests as one stage: the exit statuses and the closing lines summed
+  if [ -f "$state/sanitize-tests.start" ]; then
+    cat "$state"/results/plain "$state"/results/sanitizer 2>/dev/null | awk -v t0="$(cat "$state/sanitize-tests.start")" -v now="$(date +%s)" '
+      { if ($1 != 0) rc = 1; n++; p += $3; f += $5; if (NF < 6) { rc = 1; f++ } }
+      END { if (n == 0) rc = 1; printf "%d %d tests: %d passed, %d failed\n", rc, now - t0, p, f }' >"$state/sanitize-tests"
+  fi
   # its builds' lines, its tests' times and its failures
   sed -n '/^== build-sanitize\/tests\//q; /^== tests\//q; p' build-sanitize/check.log
   grep -E '^== .*: [0-9]+ s, |^== FAILED' build-sanitize/check.log | sed 's/^== /== sanitize: /'
