@@ -244,9 +244,10 @@ demo:
 # whatever an earlier one gave, one summary at the end whose last line is "check: N passed,
 # N failed". The plain lane builds (parallel, quiet: BUILD/build.log) and runs every test and the
 # installed library's (tests/cli/install.sh: a temporary prefix, the examples built with
-# pkg-config); the other compiles the library and the program with clang -Werror, then runs the
-# tests that exercise memory (all but tests/sanitize-except.list) under AddressSanitizer and
-# UndefinedBehaviorSanitizer. make check-quick: the plain build and every test but the slow ones
+# pkg-config); the other compiles the library and the program with clang -Werror, builds them
+# with AddressSanitizer and UndefinedBehaviorSanitizer and runs there the tests that exercise
+# memory (all but tests/sanitize-except.list), a queue the plain lane joins when its own tests
+# are done. make check-quick: the plain build and every test but the slow ones
 # (tests/slow.list), for after every change.
 check:
 	@sh scripts/check.sh $(BUILD) full
