@@ -1,5 +1,5 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
-# Targets: all (default), demo, check, check-clang, check-sanitize, bench, bench-quick, study,
+# Targets: all (default), demo, check, check-quick, check-clang, check-sanitize, bench, bench-quick, study,
 # python, explore, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
@@ -57,7 +57,7 @@ CLI_OBJ   += $(BUILD)/gen/plots_gp.o
 
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
-.PHONY: all objects demo check check-clang check-sanitize bench bench-quick study python wheel deps clean \
+.PHONY: all objects demo check check-quick check-programs sanitize-programs check-clang check-sanitize bench bench-quick study python wheel deps clean \
   fuzz install uninstall docs explore
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
@@ -184,6 +184,13 @@ deb:
 # --- MPI (Open MPI): with mpicc present, `whirl regime` shares a map out over the ranks of
 # `mpirun -n K`; `make MPI=0` builds the single-process program without MPI.
 MPI ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
+# The choice is recorded in $(BUILD)/mpi, rewritten when it changes, so that the objects that use
+# MPI and the program are rebuilt when Open MPI is installed after a build without it (make demo
+# does not install it, make check does).
+ifneq ($(MAKECMDGOALS),clean)
+$(shell mkdir -p $(BUILD) && echo '$(MPI)' | cmp -s - $(BUILD)/mpi || echo '$(MPI)' >$(BUILD)/mpi)
+endif
+$(BUILD)/src/cli/cmd_regime.o $(BUILD)/src/cli/regime_map.o $(BUILD)/whirl: $(BUILD)/mpi
 ifeq ($(MPI),1)
 $(BUILD)/src/cli/cmd_regime.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
 $(BUILD)/src/cli/regime_map.o: PKG_CFLAGS += -DWHIRL_MPI $(shell mpicc --showme:compile)
@@ -224,7 +231,8 @@ $(BUILD)/tests/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c $(FUZZ_CLI
 FUZZ_TIME ?= 60
 FUZZ_FLAGS := -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer \
   -fno-sanitize-recover=all
-fuzz: deps
+fuzz:
+	@sh scripts/deps.sh build tests
 	@$(MAKE) --no-print-directory BUILD=build-fuzz CC=clang OPT=-O1 MPI=0 \
 	  XCFLAGS="$(FUZZ_FLAGS) -fsanitize=fuzzer-no-link" XLDFLAGS="$(FUZZ_FLAGS)" \
 	  build-fuzz/libwhirl.a $(FUZZ_CLI_OBJ:$(BUILD)/%=build-fuzz/%)
@@ -255,52 +263,75 @@ docs: $(BUILD)/whirl $(BUILD)/libwhirl.so
 	  -d $(BUILD)/docs-doctrees docs $(BUILD)/docs
 	@echo "manual: $(BUILD)/docs/index.html"
 
-# Debian packages the build, the tests and the figures need; installed when run as root.
+# The Debian packages of every purpose (scripts/deps.sh: run, build, python, tests, docs, peers,
+# browser), installed without their recommendations when run as root; each target below checks
+# (and installs) only the groups it needs.
 deps:
-	@sh scripts/deps.sh
+	@sh scripts/deps.sh all
 
-demo: deps
-	@$(MAKE) --no-print-directory all
+# the build in parallel on every processor and quiet (the compiler's warnings still show)
+demo:
+	@sh scripts/deps.sh run build
+	@$(MAKE) --no-print-directory -s -j$$(nproc 2>/dev/null || echo 2) all
+	@echo "demo: built $(BUILD)/whirl"
 	@sh scripts/demo.sh $(BUILD)
 
-# The tests and the installed library's (tests/cli/install.sh: a temporary prefix, the examples built
-# with pkg-config), a clang -Werror compile of the library and the program, then the same tests
-# under AddressSanitizer and UndefinedBehaviorSanitizer (but the manual's, which documents the
-# plain build).
-check: deps
-	@$(MAKE) --no-print-directory all $(TEST_BIN) $(REPLAY_BIN)
-	@sh tests/run.sh $(BUILD) --also tests/cli/install.sh
-	@$(MAKE) --no-print-directory check-clang
-	@$(MAKE) --no-print-directory check-sanitize
+# make check (scripts/check.sh): the set-up, then two lanes at once, each stage run and reported
+# whatever an earlier one gave, one summary at the end whose last line is "check: N passed,
+# N failed". The plain lane builds (parallel, quiet: BUILD/build.log) and runs every test and the
+# installed library's (tests/cli/install.sh: a temporary prefix, the examples built with
+# pkg-config); the other compiles the library and the program with clang -Werror, builds them
+# with AddressSanitizer and UndefinedBehaviorSanitizer and runs there the tests that exercise
+# memory (all but tests/sanitize-except.list), a queue the plain lane joins when its own tests
+# are done. make check-quick: the plain build and every test but the slow ones
+# (tests/slow.list), for after every change.
+check:
+	@sh scripts/check.sh $(BUILD) full
+
+check-quick:
+	@sh scripts/check.sh $(BUILD) quick
+
+# what the tests run: the program, the libraries, the manual page, the test programs, the replays
+check-programs: all $(TEST_BIN) $(REPLAY_BIN)
+	@:
 
 # The library and the program compiled (not linked) by clang with warnings as errors.
-check-clang: deps
+check-clang:
+	@sh scripts/deps.sh build tests
 	@$(MAKE) --no-print-directory BUILD=build-clang CC=clang XCFLAGS=-Werror objects
 	@echo "clang -Werror: library and program compile cleanly"
 
 objects: $(LIB_OBJ) $(CLI_OBJ)
 	@:
 
-# float-cast-overflow: a double cast to an integer type it does not fit (a count from 1e300)
+# float-cast-overflow: a double cast to an integer type it does not fit (a count from 1e300).
+# make check-sanitize: only the sanitizer half (the build, then its tests, as make check runs them).
 SANITIZE_FLAGS := -fsanitize=address,undefined,float-cast-overflow
-check-sanitize: deps
+check-sanitize:
+	@sh scripts/deps.sh run build python tests peers browser
+	@$(MAKE) --no-print-directory sanitize-programs
+	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize --except \
+	  $$(sed 's/#.*//; s|^build/|build-sanitize/|' tests/sanitize-except.list)
+
+sanitize-programs:
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
 	  XCFLAGS="$(SANITIZE_FLAGS) -fno-omit-frame-pointer -fno-sanitize-recover=all" \
-	  XLDFLAGS="$(SANITIZE_FLAGS)" all \
-	  $(TEST_BIN:$(BUILD)/%=build-sanitize/%) $(REPLAY_BIN:$(BUILD)/%=build-sanitize/%)
-	@WHIRL_SANITIZE=1 sh tests/run.sh build-sanitize --except tests/cli/test_docs.sh
+	  XLDFLAGS="$(SANITIZE_FLAGS)" check-programs
 
-bench: deps
+bench:
+	@sh scripts/deps.sh run build python tests peers
 	@$(MAKE) --no-print-directory all $(BENCH_BIN) $(BUILD)/libwhirl.so
 	@sh scripts/bench.sh $(BUILD)
 
 # The README's headline ratios (peers, seed formulation, ns per link, shapes) in under 10 minutes.
-bench-quick: deps
+bench-quick:
+	@sh scripts/deps.sh run build python tests peers
 	@$(MAKE) --no-print-directory all $(BUILD)/tests/bench_peers
 	@sh scripts/bench.sh $(BUILD) quick
 
 # The studies behind the figures: stability maps and the regime map (several minutes).
-study: deps
+study:
+	@sh scripts/deps.sh run build
 	@$(MAKE) --no-print-directory all
 	@sh scripts/study.sh all out/study $(BUILD)
 
@@ -313,13 +344,15 @@ study: deps
 # make wheel: build/wheel/whirl-VERSION-*.whl, the package with libwhirl inside, for
 # `pip install build/wheel/whirl-*.whl` anywhere GSL, NLopt, LAPACKE and inih are installed.
 PIP_FLAGS ?= $(shell $(PYTHON) -c 'import sys; print("" if sys.prefix != sys.base_prefix else "--break-system-packages")' 2>/dev/null)
-python: deps
+python:
+	@sh scripts/deps.sh build python
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
 	@echo "make python: installing the whirl package into $$($(PYTHON) -c 'import sys; print(sys.prefix)') ($(PYTHON)$(if $(PIP_FLAGS), $(PIP_FLAGS): the system interpreter,; a venv))"
 	WHIRL_BUILD=$(abspath $(BUILD)) $(PYTHON) -m pip install --no-build-isolation --no-deps --no-index $(PIP_FLAGS) ./python
 	@cd / && $(PYTHON) -c 'import whirl; print("make python: whirl", whirl.__version__, "in", whirl.__file__.rsplit("/", 1)[0], "with", whirl.LIBRARY_PATH)'
 
-wheel: deps
+wheel:
+	@sh scripts/deps.sh build python
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
 	@rm -rf $(BUILD)/wheel python/build
 	WHIRL_BUILD=$(abspath $(BUILD)) $(PYTHON) -m pip wheel --no-build-isolation --no-deps --no-index -w $(BUILD)/wheel ./python
@@ -327,7 +360,8 @@ wheel: deps
 	@echo "make wheel: $$(ls $(BUILD)/wheel/whirl-*.whl)"
 
 # The live page (python/whirl/explore.py) over the library just built.
-explore: deps
+explore:
+	@sh scripts/deps.sh build python
 	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
 	PYTHONPATH=python WHIRL_LIBRARY=$(BUILD)/libwhirl.so $(PYTHON) -m whirl.explore
 

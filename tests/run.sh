@@ -17,11 +17,23 @@ export CMOCKA_MESSAGE_OUTPUT=TAP
 passed=0
 failed=0
 
+# cpu_children: the processor time (user + system, seconds) of the shell's finished children so
+# far, from the second line of the shell's `times` ("0m1.25s 0m0.31s"; run in this shell, not in a
+# command substitution, whose subshell has children of its own); cpu_since T: what it grew by
+# since T, to a tenth of a second.
+cpu_children() {
+  times >"$tmp/times"
+  cpu=$(awk 'NR == 2 { for (i = 1; i <= 2; i++) { split($i, p, "m"); s += p[1] * 60 + p[2] } }
+    END { printf "%.2f", s }' "$tmp/times")
+}
+
 # run_one TEST: runs it, copying its output, then judges the output and the exit status.
 run_one() {
   t=$1
   echo "== $t"
   start=$(date +%s)
+  cpu_children
+  cpu0=$cpu
   case $t in
     *.sh) { WHIRL="$build/whirl" sh "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
     *) { "$t" 2>&1; echo $? >"$tmp/rc"; } | tee "$tmp/out" ;;
@@ -50,7 +62,8 @@ run_one() {
   failed=$((failed + notok))
   [ -n "$why" ] && failed=$((failed + 1))
   [ "$notok" -gt 0 ] && why="$why; $notok not ok"
-  echo "== $t: $(($(date +%s) - start)) s"
+  cpu_children
+  echo "== $t: $(($(date +%s) - start)) s, $(awk -v a="$cpu0" -v b="$cpu" 'BEGIN { printf "%.1f", b - a }') s cpu"
   if [ -n "$why" ] || [ "$rc" -ne 0 ]; then
     why="${why#; }"
     echo "== FAILED $t: ${why:-exit status $rc}"

@@ -34,3 +34,27 @@ def pytest_runtest_logreport(report):
         ok = report.passed or report.skipped
         print("\n%s - python: %s%s" % ("ok" if ok else "not ok", report.nodeid,
                                         " # SKIP" if report.skipped else ""), flush=True)
+
+
+# The slow tests (processor time measured in docs/performance.md, "How long make check takes"):
+# marked `slow`, they run once, in the plain half of make check; the sanitizer half and
+# make check-quick leave them out (tests/cli/test_python.sh passes -m "not slow"). Each entry: the
+# start of "FILE::TEST[PARAMS]", and why the test is slow rather than a test of memory.
+SLOW = {
+    "test_install.py::": "venvs and pip builds of the package: packaging, not memory",
+    "test_notebooks.py::test_notebook_runs": "a Jupyter kernel per notebook; the calls "
+    "they make are the ones the other tests make",
+    "test_explore.py::test_page_in_chromium": "a browser and a server; the library's "
+    "calls behind the page are test_steady's and test_stability's",
+}
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "slow: run once, in the plain half of make check")
+
+
+def pytest_collection_modifyitems(config, items):
+    for item in items:
+        name = "%s::%s" % (os.path.basename(str(item.fspath)), item.name)
+        if any(name.startswith(prefix) for prefix in SLOW):
+            item.add_marker(pytest.mark.slow)

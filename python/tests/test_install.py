@@ -2,7 +2,10 @@
 (numpy, cffi): pip install --no-build-isolation of the source, and the wheel; the installed
 package loads its own copy of libwhirl (whirl.LIBRARY_PATH inside the venv), its version is the
 library's, and its answers are the checkout's. A copy of python/ (WHIRL_SOURCE names the
-repository) keeps the source tree free of build files."""
+repository) keeps the source tree free of build files. A whirl installed elsewhere (the system's
+Python after `make python`, the user's site) changes nothing: pip installs into the venv even when
+it sees the same version outside (--ignore-installed), the venv's own site comes first on the
+path, and the user's site is left out (PYTHONNOUSERSITE)."""
 import os
 import shutil
 import subprocess
@@ -31,13 +34,16 @@ def source(tmp_path, repo):
                WHIRL_PREBUILT=os.path.join(build, "libwhirl.so"))
     env.pop("WHIRL_LIBRARY", None)
     env.pop("PYTHONPATH", None)
+    env["PYTHONNOUSERSITE"] = "1"
     return dst, env
 
 
 def _venv(tmp_path, name):
     path = tmp_path / name
-    subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", str(path)],
-                   check=True)
+    # without pip of its own (3 s of processor time each): the system's pip, seen through the
+    # system's site, installs into the venv it runs in
+    subprocess.run(["/usr/bin/python3", "-m", "venv", "--system-site-packages", "--without-pip",
+                    str(path)], check=True)
     return path / "bin" / "python"
 
 
@@ -55,7 +61,7 @@ def _probe(python, env, venv):
 def test_pip_install_source(tmp_path, source):
     src, env = source
     python = _venv(tmp_path, "venv")
-    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-build-isolation",
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--ignore-installed", "--no-build-isolation",
                     "--no-deps", "--no-index", str(src)], check=True, env=env)
     _probe(python, env, tmp_path / "venv")
 
@@ -71,7 +77,7 @@ def test_wheel_holds_the_library(tmp_path, source):
     names = zipfile.ZipFile(wheel).namelist()
     assert "whirl/libwhirl.so" in names and "whirl/py.typed" in names
     python = _venv(tmp_path, "venv")
-    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-deps", "--no-index",
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--ignore-installed", "--no-deps", "--no-index",
                     str(wheel)], check=True, env=env)
     _probe(python, env, tmp_path / "venv")
 
@@ -84,7 +90,7 @@ def test_pip_runs_make(tmp_path, source, repo):
     if os.environ.get("WHIRL_SANITIZE"):
         env["WHIRL_BUILD"] = os.path.join(repo, "build")
     python = _venv(tmp_path, "venv")
-    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-build-isolation",
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--ignore-installed", "--no-build-isolation",
                     "--no-deps", "--no-index", str(src)], check=True, env=env)
     out = subprocess.run([str(python), "-c", "import whirl; print(whirl.LIBRARY_PATH)"],
                          cwd="/", env=env, check=True, capture_output=True, text=True).stdout

@@ -4,7 +4,8 @@
 # build, and the interpreter gets the sanitizer runtimes preloaded (ASan must come first in the
 # process); leak detection is off there (the interpreter itself keeps memory to its exit: the
 # pytest suite measures growth over 10^4 calls instead) and so is ASan's quarantine of freed
-# memory, which would otherwise count as growth.
+# memory, which would otherwise count as growth. With WHIRL_SANITIZE or WHIRL_QUICK set the tests
+# marked slow are left out (they run in the plain half of make check).
 build=$(cd "$(dirname "${WHIRL:-build/whirl}")" && pwd)
 preload=
 if [ -n "$WHIRL_SANITIZE" ]; then
@@ -26,14 +27,18 @@ if [ ! -f "$build/libwhirl.so" ]; then
   echo "not ok - python: $build/libwhirl.so is not built" >"$results"
   rc=1
 else
+  # the tests marked slow (python/tests/conftest.py) run once, in the plain half
+  if [ -n "$WHIRL_SANITIZE$WHIRL_QUICK" ]; then set -- -m "not slow"; else set --; fi
   LD_PRELOAD="${preload# }" WHIRL_BUILD=$build WHIRL_LIBRARY=$build/libwhirl.so WHIRL_TAP=1 \
-    /usr/bin/python3 -m pytest -q -p no:cacheprovider python/tests >"$log" 2>&1
+    /usr/bin/python3 -m pytest -q -p no:cacheprovider --durations=8 "$@" python/tests >"$log" 2>&1
   rc=$?
   grep -E '^(ok|not ok) ' "$log" >"$results"
   if [ $rc -ne 0 ]; then
     tail -n 40 "$log"
     echo "not ok - python: pytest exited with status $rc" >>"$results"
   else
+    # the slowest tests, then pytest's closing line
+    sed -n '/slowest 8 durations/,/^$/p' "$log" | grep -E '^[0-9.]+s ' | sed 's/^/# /'
     tail -n 1 "$log" | sed 's/^/# /'
   fi
 fi

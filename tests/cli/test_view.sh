@@ -7,20 +7,33 @@
 . "$(dirname "$0")/lib.sh"
 here=$(cd "$(dirname "$0")" && pwd)
 
-# browser URL SHOT: screenshot of an 800 x 600 window; the console lines into $tmp/console
+# One headless Chromium for all the pages of this test (tests/tools/page.py), each page in a tab
+# of its own, 800 x 600: browser URL SHOT takes a screenshot, dom URL prints the page's body tag
+# after its script ran (its data- attributes); both put the page's console messages, one a line,
+# into $tmp/console (the page logs nothing, so any line is an error).
+if [ -z "$WHIRL_SANITIZE" ]; then
+  started=$(/usr/bin/python3 "$here/../tools/page.py" start "$tmp/chromium")
+  port=${started% *} chromium_pid=${started#* }
+  [ -n "$started" ] || { echo "not ok 1 - headless chromium does not start"; echo "1..1"; exit 1; }
+  # the browser's processor time (all its processes, its reaped children included), for the record
+  stop_chromium() {
+    for p in $(ps -s "$chromium_pid" -o pid= 2>/dev/null); do cat "/proc/$p/stat" 2>/dev/null; done |
+      awk -v hz="$(getconf CLK_TCK)" '{ sub(/^.*\) /, ""); s += $12 + $13 + $14 + $15 }
+        END { printf "# chromium: %.1f s of processor time\n", s / hz }'
+    kill -TERM "-$chromium_pid" 2>/dev/null
+    i=0
+    while kill -0 "$chromium_pid" 2>/dev/null && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
+    rm -rf "$tmp"
+  }
+  trap stop_chromium EXIT
+fi
 browser() {
-  timeout 120 chromium --headless --no-sandbox --disable-gpu --hide-scrollbars \
-    --enable-logging=stderr --v=0 --window-size=800,600 --screenshot="$2" "file://$1" \
-    2>"$tmp/chromium.log" >/dev/null
-  grep 'CONSOLE' "$tmp/chromium.log" >"$tmp/console"
+  timeout 120 /usr/bin/python3 "$here/../tools/page.py" shot "$port" "file://$1" "$2" "$tmp/console" ||
+    echo "page.py shot failed" >"$tmp/console"
 }
-
-# dom URL: the page's body tag after its script ran (its data- attributes), in an 800 x 600 window
 dom() {
-  timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-background-networking \
-    --hide-scrollbars --enable-logging=stderr --v=0 --window-size=800,600 --dump-dom "file://$1" \
-    2>"$tmp/chromium.log" | grep -o '<body[^>]*>'
-  grep 'CONSOLE' "$tmp/chromium.log" >"$tmp/console"
+  timeout 120 /usr/bin/python3 "$here/../tools/page.py" dom "$port" "file://$1" "$tmp/console" ||
+    echo "page.py dom failed" >"$tmp/console"
 }
 attr() { echo "$1" | sed -n "s/.* data-$2=\"\([^\"]*\)\".*/\1/p"; }
 
