@@ -1,0 +1,174 @@
+/* whirl: the chain under a periodic pivot motion: pivot paths, periodic motions found by
+ * shooting on the period map, and their Floquet multipliers.
+ *
+ * A pivot path is a few Fourier terms in x, y, z at the rate omega (period T = 2 pi / omega):
+ *   p_k(t) = sum_{j=1..J} c_kj cos(j omega t) + s_kj sin(j omega t),   k = x, y, z,
+ * in the inertial frame (z up; 2D models move in the x-z plane and need no y terms). The circle
+ * (r cos, r sin, 0) is the drive of whirl_model.drive_radius; the ellipse, the line in any
+ * direction (vertical shaking among them) and the figure of eight are presets.
+ *
+ * A periodic motion is a state y* at t = 0 with P(y*) = y*, P the period map (the flow from 0 to
+ * T of the Cartesian formulation, whirl/dynamics.h, by the Gauss method of order 4 with a fixed
+ * step T / steps and the projection after every step). Its neighbourhood is described in the
+ * tangent space of the constraint manifold: per link, the components of the link's displacement
+ * and rate along (dim - 1) unit vectors across the link (the along-link parts follow from the
+ * constraints), 2 (dim - 1) N coordinates in all. The monodromy matrix is the derivative of the
+ * discrete period map in these coordinates, by central differences of P (the same steps as the
+ * motion); Newton's method on P(y) - y with it. The Floquet multipliers are its eigenvalues;
+ * their error is estimated by a second solve with the step halved (the Gauss method is of order
+ * 4: the error of the finer value is |mu(h/2) - mu(h)| / 15, Richardson). */
+#ifndef WHIRL_PERIODIC_H
+#define WHIRL_PERIODIC_H
+
+#include <stddef.h>
+
+#include "whirl/chain.h"
+#include "whirl/common.h"
+#include "whirl/dynamics.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The most harmonics of a pivot path: a hand's path is smooth, a few terms describe it. */
+#define WHIRL_PIVOT_HARMONICS_MAX 8
+
+typedef struct whirl_pivot_path {
+    double omega; /* rate of the path [sqrt(g/L)], > 0: the period is 2 pi / omega */
+    int harmonics; /* J, 1..WHIRL_PIVOT_HARMONICS_MAX: the terms j = 1..J are used */
+    double c[3][WHIRL_PIVOT_HARMONICS_MAX]; /* c[k][j - 1]: amplitude of cos(j omega t) in axis k [L] */
+    double s[3][WHIRL_PIVOT_HARMONICS_MAX]; /* s[k][j - 1]: amplitude of sin(j omega t) in axis k [L] */
+} whirl_pivot_path;
+
+/* Presets at the rate omega (GSL_EINVAL on omega <= 0 or a length that is not finite):
+ * circle   (r cos wt, r sin wt, 0): whirl_model's drive of radius r;
+ * ellipse  (a cos wt, b sin wt, 0): semi-axes a along x, b along y;
+ * line     amplitude a cos(wt) along the direction (dx, dy, dz) (normalised; (0, 0, 1): vertical
+ *          shaking); GSL_EINVAL on a zero direction;
+ * eight    (a sin wt, b sin 2wt, 0): a figure of eight, half-width a along x, b along y. */
+WHIRL_API int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
+WHIRL_API int whirl_pivot_ellipse(whirl_pivot_path *path, double omega, double a, double b);
+WHIRL_API int whirl_pivot_line(whirl_pivot_path *path, double omega, double a, const double dir[3]);
+WHIRL_API int whirl_pivot_eight(whirl_pivot_path *path, double omega, double a, double b);
+
+/* Parses text into path at the rate omega. The grammar (lengths with an optional unit suffix,
+ * m, cm or mm, whirl_parse_quantity):
+ *   circle:R | ellipse:A,B | line:A[,DX,DY,DZ] (default direction x) | vertical:A |
+ *   eight:A,B | fourier:TERM[,TERM...] with TERM = AXIS J KIND=LENGTH, AXIS x, y or z, J the
+ *   harmonic 1..WHIRL_PIVOT_HARMONICS_MAX, KIND c (cosine) or s (sine): "fourier:x1c=1cm,y1s=6mm".
+ * length [m]: the chain's length in SI units, the lengths are then in m and divided by it; 0:
+ * dimensionless, a unit suffix is then refused. dim 2 refuses y terms. GSL_EINVAL with a
+ * one-line message naming the bad term (path unchanged). */
+WHIRL_API int whirl_pivot_parse(const char *text, double omega, double length, int dim,
+                                whirl_pivot_path *path);
+
+/* GSL_SUCCESS if path is valid for a model of dimension dim (omega > 0 and finite, at most
+ * WHIRL_OMEGA_MAX; harmonics in range; every amplitude finite; no y term in 2D), else GSL_EINVAL
+ * naming the term. */
+WHIRL_API int whirl_pivot_check(const whirl_pivot_path *path, int dim);
+
+/* The period 2 pi / omega. */
+WHIRL_API double whirl_pivot_period(const whirl_pivot_path *path);
+
+/* Position, velocity and acceleration of the pivot at t (3 each); a whirl_pivot_fn with params
+ * the path (whirl_dyn_set_pivot). */
+WHIRL_API void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3], void *path);
+
+/* ---- periodic motions ---- */
+
+typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one path */
+
+/* A workspace for the conservative chain c (not owned) in dimension dim (2 or 3) with its pivot
+ * on path (copied). NULL with a message on invalid arguments or no memory. */
+WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
+                                               const whirl_pivot_path *path);
+WHIRL_API void whirl_periodic_free(whirl_periodic *w); /* NULL is a no-op */
+
+/* The dynamics of w (inertial frame, Cartesian formulation, the pivot on the path, omega the
+ * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs. */
+WHIRL_API whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
+/* Length of a state (whirl_dyn_size) and of the tangent coordinates, 2 (dim - 1) N. */
+WHIRL_API size_t whirl_periodic_state_size(const whirl_periodic *w);
+WHIRL_API size_t whirl_periodic_tangent_size(const whirl_periodic *w);
+
+/* y <- the chain hanging straight down (inverted 0) or standing straight up (inverted 1) at
+ * t = 0, moving with the pivot. */
+WHIRL_API int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y);
+
+typedef struct whirl_periodic_params {
+    int steps;    /* Gauss steps per period (>= 8); 0: 400. Raised to whirl_default_step's bound
+                     of the start */
+    double tol;   /* Newton's test: the largest component of P(y) - y (positions over L, rates
+                     over omega_ref L, omega_ref = max(omega, sqrt(g/L))) at most tol; 0: 1e-11 */
+    int max_iter; /* Newton iterations; 0: 30 */
+    int refine;   /* 1: a second solve with 2 steps per step for the error estimate; 0: none
+                     (errors reported as 0) */
+} whirl_periodic_params;
+
+typedef enum {
+    WHIRL_FLOQUET_STABLE = 0,   /* every multiplier inside the unit circle beyond its error */
+    WHIRL_FLOQUET_NEUTRAL = 1,  /* the largest on the unit circle within its error */
+    WHIRL_FLOQUET_UNSTABLE = 2  /* the largest outside beyond its error */
+} whirl_floquet_verdict;
+
+typedef enum {
+    WHIRL_FLOQUET_EDGE_PLUS_ONE = 0,  /* a real multiplier through +1 (fold of cycles) */
+    WHIRL_FLOQUET_EDGE_MINUS_ONE = 1, /* a real multiplier through -1 (period doubling) */
+    WHIRL_FLOQUET_EDGE_COMPLEX = 2    /* a complex pair through the unit circle (torus; for the
+                                         conservative chain: two pairs that meet on it) */
+} whirl_floquet_edge;
+
+typedef struct whirl_periodic_result {
+    size_t count;          /* multipliers: 2 (dim - 1) N */
+    double *re, *im;       /* the multipliers (finer step), by decreasing modulus (owned by w,
+                              valid until the next solve) */
+    double *err;           /* error estimate of each, |mu(h/2) - mu(h)| / 15 (0 without refine) */
+    double residual;       /* the scaled max |P(y) - y| reached (finer step) */
+    int iterations;        /* Newton iterations (finer step) */
+    int steps;             /* steps per period of the finer solve */
+    double period;         /* T [sqrt(L/g)] */
+    double max_modulus;    /* the largest |mu| */
+    double max_modulus_err;
+    double reciprocal_err; /* max over mu_i of min_j |mu_i mu_j - 1|: 0 for the exact
+                              conservative chain (symplectic monodromy) */
+    double orbit_change;   /* max |y*(h/2) - y*(h)| (scaled as the residual; 0 without refine) */
+    whirl_floquet_verdict verdict;
+    double growth;         /* unstable: the largest |mu| per period; else 1 */
+    double efold_periods;  /* unstable: 1 / ln |mu|max periods; else 0 */
+    double efold_time;     /* unstable: T / ln |mu|max [sqrt(L/g)]; else 0 */
+    whirl_floquet_edge edge; /* unstable: how the largest left the circle; else the nearest */
+    double edge_distance;  /* neutral or stable: the angle [rad] to that edge (for a collision
+                              of two multipliers on the circle, half the angle between them) */
+} whirl_periodic_result;
+
+/* Finds the periodic motion near the start y (length whirl_periodic_state_size; overwritten by
+ * the motion's state at t = 0) by Newton's method on the period map, then its multipliers.
+ * params may be NULL (the defaults). GSL_EMAXITER with the residual in the message if Newton's
+ * method does not converge (result->count 0: no multiplier of a motion not found; y holds the
+ * last iterate); GSL_EINVAL on bad arguments; an integration's status (and its message) if a
+ * period cannot be integrated; WHIRL_EINTERRUPTED on a stop request. */
+WHIRL_API int whirl_periodic_find(whirl_periodic *w, double *y,
+                                  const whirl_periodic_params *params,
+                                  whirl_periodic_result *result);
+
+/* The monodromy of the last successful solve (finer step): tangent_size x tangent_size, row
+ * major, valid until the next solve; NULL before. */
+WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
+
+/* Advances the state y of w from t0 by periods whole periods (the same steps per period as
+ * steps; WHIRL_EINTERRUPTED on a stop). For perturbed runs. */
+WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int periods);
+
+/* Reads the tangent coordinates of the difference y1 - y0 of two states near y0 (length
+ * tangent_size): the perturbation's size as the multipliers act on it. */
+WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const double *y1,
+                                     double *coords);
+
+WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
+WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
