@@ -124,7 +124,7 @@ typedef struct whirl_periodic_result {
                               valid until the next solve) */
     double *err;           /* error estimate of each, |mu(h/2) - mu(h)| / 15 (0 without refine) */
     double residual;       /* the scaled max |P(y) - y| reached (finer step) */
-    int iterations;        /* Newton iterations (finer step) */
+    int iterations;        /* Newton iterations (both solves) */
     int steps;             /* steps per period of the finer solve */
     double period;         /* T [sqrt(L/g)] */
     double max_modulus;    /* the largest |mu| */

@@ -161,7 +161,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
     double *re_c = w->out + 3 * m, *im_c = w->out + 4 * m, *used = w->out + 5 * m;
     double *y_coarse = NULL;
     double residual;
-    int iterations;
+    int iterations, coarse_iterations = 0;
     if (p.refine) {
         y_coarse = malloc(w->size * sizeof *y_coarse);
         if (y_coarse == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
@@ -172,6 +172,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
             return status;
         }
         memcpy(y_coarse, y, w->size * sizeof *y);
+        coarse_iterations = iterations;
         steps *= 2;
     }
     status = periodic_solve(w, y, steps, tol, max_iter, &residual, &iterations);
@@ -184,7 +185,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
     result->count = m;
     result->re = re, result->im = im, result->err = err;
     result->residual = residual;
-    result->iterations = iterations;
+    result->iterations = coarse_iterations + iterations;
     result->steps = steps;
     result->period = whirl_pivot_period(&w->path);
     /* errors: each finer multiplier against the nearest coarse one not yet taken */
