@@ -9,9 +9,10 @@
  *    extrapolated from two steps, minus +-2) and compared with the values of
  *      /usr/bin/python3 -c "from scipy.special import mathieu_a, mathieu_b;
  *        print(repr(mathieu_a(1, 0.2)), repr(mathieu_b(1, 0.2)), repr(mathieu_a(2, 0.2)),
- *              repr(mathieu_b(2, 0.2)))"
+ *              repr(mathieu_b(2, 0.2)), repr(mathieu_a(0, 0.2)))"
  *    which a Hill matrix (the recurrence of the Fourier coefficients, 60 terms, numpy eigvalsh)
- *    reproduces to 1e-15;
+ *    reproduces to 1e-15; the inverted pendulum's lower edge of stability (Kapitza's) is
+ *    a_0(q) with a = -4 g / (l omega^2);
  *  - the circle drive: the steady shape of whirl_stability_driven_mode is a periodic motion,
  *    and its multipliers are exp(lambda T) of that linearisation (a different formulation: link
  *    angles, mass, gyroscopic and stiffness matrices, one eigen-solve);
@@ -41,6 +42,7 @@ typedef struct mathieu_case {
     double amplitude; /* A [L], q = 2 A */
     int steps;        /* the coarser of the two solves */
     double target;    /* the trace at the boundary: 2 (-1)^n */
+    int inverted;     /* 1: about the inverted state */
 } mathieu_case;
 
 /* The trace of the monodromy of the hanging pendulum shaken at omega, from steps and 2 steps
@@ -56,7 +58,7 @@ static double trace_at(const mathieu_case *mc, double omega)
     double tr[2];
     for (int k = 0; k < 2; k++) {
         double y[4];
-        assert_int_equal(whirl_periodic_start_vertical(w, 0, y), GSL_SUCCESS);
+        assert_int_equal(whirl_periodic_start_vertical(w, mc->inverted, y), GSL_SUCCESS);
         const whirl_periodic_params p = {.steps = mc->steps << k, .refine = 0};
         whirl_periodic_result r;
         assert_int_equal(whirl_periodic_find(w, y, &p, &r), GSL_SUCCESS);
@@ -93,8 +95,13 @@ static void test_mathieu_tongues(void **state)
     /* q = 0.2: the references of the header's command */
     const double a1 = 1.1948740592044615, b1 = 0.79512386808386326;
     const double a2 = 4.0165791529694674, b2 = 3.9966672451382044;
-    mathieu_case odd = {.amplitude = 0.1, .steps = 800, .target = -2};
-    mathieu_case even = {.amplitude = 0.1, .steps = 800, .target = 2};
+    /* the inverted pendulum: phi = theta - pi obeys Mathieu's equation with a = -4 g / (l w^2)
+       and q -> -q, whose boundary a_0(-q) = a_0(q) bounds Kapitza's stable region from below:
+       mathieu_a(0, 0.2) */
+    const double a0 = -0.019913296358437527;
+    mathieu_case up = {.amplitude = 0.1, .steps = 800, .target = 2, .inverted = 1};
+    mathieu_case odd = {.amplitude = 0.1, .steps = 800, .target = -2, .inverted = 0};
+    mathieu_case even = {.amplitude = 0.1, .steps = 800, .target = 2, .inverted = 0};
     /* brackets from the unshaken pendulum alone: the tongue n grows out of a = n^2, i.e.
        omega = 2 / n, inside it at omega = 2 / n exactly (b_n(q) < n^2 < a_n(q) for q > 0), and
        the rates 1.6, 2.6 (n = 1) and 0.95, 1.05 (n = 2) lie between tongues at q = 0.2 */
@@ -105,10 +112,13 @@ static void test_mathieu_tongues(void **state)
     } rows[] = {{&odd, 1.6, 2.0, a1, "a_1"},
                 {&odd, 2.0, 2.6, b1, "b_1"},
                 {&even, 0.95, 1.0, a2, "a_2"},
-                {&even, 1.0, 1.05, b2, "b_2"}};
+                {&even, 1.0, 1.05, b2, "b_2"},
+                /* inverted: unstable at omega = 10 (a = -0.04), stable at 20 (a = -0.01): the
+                   unshaken a_0(0) = 0 and a_0(q) ~ -q^2 / 2 (A&S 20.2.25) */
+                {&up, 10.0, 20.0, a0, "a_0 (inverted)"}};
     for (size_t i = 0; i < sizeof rows / sizeof rows[0]; i++) {
         const double omega = boundary(rows[i].mc, rows[i].lo, rows[i].hi);
-        const double a = 4 / (omega * omega);
+        const double a = (rows[i].mc->inverted ? -4 : 4) / (omega * omega);
         print_message("# Mathieu q = 0.2: %s = %.15f from the multipliers, %.15f reference, "
                       "difference %.2g\n", rows[i].name, a, rows[i].ref, a - rows[i].ref);
         assert_true(fabs(a - rows[i].ref) < 1e-8);
