@@ -95,6 +95,14 @@ WHIRL_API size_t whirl_periodic_tangent_size(const whirl_periodic *w);
  * t = 0, moving with the pivot. */
 WHIRL_API int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y);
 
+/* How the monodromy is formed; both give the derivative of the same discrete period map. */
+typedef enum {
+    WHIRL_MONODROMY_VARIATIONAL = 0, /* the variational equations with the motion, by the same
+                                        Gauss steps (the default; src/periodic/variational.c) */
+    WHIRL_MONODROMY_DIFFERENCES = 1  /* central differences of the period map, extrapolated in
+                                        their step (4 m periods; floor ~1e-11) */
+} whirl_monodromy_method;
+
 typedef struct whirl_periodic_params {
     int steps;    /* Gauss steps per period (>= 8); 0: 400. Raised to whirl_default_step's bound
                      of the start */
@@ -103,6 +111,7 @@ typedef struct whirl_periodic_params {
     int max_iter; /* Newton iterations; 0: 30 */
     int refine;   /* 1: a second solve with 2 steps per step for the error estimate; 0: none
                      (errors reported as 0) */
+    whirl_monodromy_method monodromy; /* default WHIRL_MONODROMY_VARIATIONAL */
 } whirl_periodic_params;
 
 typedef enum {

@@ -148,6 +148,9 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
     if (p.steps > 1 << 24)
         return whirl_fail(GSL_EINVAL, "steps per period must be at most %d, got %d", 1 << 24,
                           p.steps);
+    if (p.monodromy != WHIRL_MONODROMY_VARIATIONAL && p.monodromy != WHIRL_MONODROMY_DIFFERENCES)
+        return whirl_fail(GSL_EINVAL, "unknown monodromy method %d", (int)p.monodromy);
+    w->method = p.monodromy;
     const double tol = p.tol > 0 ? p.tol : TOL_DEFAULT;
     const int max_iter = p.max_iter > 0 ? p.max_iter : ITER_DEFAULT;
     for (size_t q = 0; q < w->size; q++)

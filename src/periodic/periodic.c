@@ -130,7 +130,7 @@ static void link_of(const whirl_periodic *w, const double *y, size_t i, double d
 }
 
 /* w->basis <- the unit vectors across each link of y (3 components each, dim - 1 per link). */
-static void make_basis(whirl_periodic *w, const double *y)
+void periodic_basis(whirl_periodic *w, const double *y)
 {
     const int per = w->dim - 1;
     for (size_t i = 0; i < w->n; i++) {
@@ -160,7 +160,8 @@ static void make_basis(whirl_periodic *w, const double *y)
 }
 
 /* out <- y + the tangent vector of coordinates x (length m) at y (basis of y), not projected. */
-static void tangent_add(const whirl_periodic *w, const double *y, const double *x, double *out)
+void periodic_tangent_add(const whirl_periodic *w, const double *y, const double *x,
+                          double *out)
 {
     const int per = w->dim - 1;
     const size_t half = w->m / 2;
@@ -186,7 +187,8 @@ static void tangent_add(const whirl_periodic *w, const double *y, const double *
 }
 
 /* x <- the coordinates of y1 - y0 (basis of y0). */
-static void tangent_read(const whirl_periodic *w, const double *y0, const double *y1, double *x)
+void periodic_tangent_read(const whirl_periodic *w, const double *y0, const double *y1,
+                           double *x)
 {
     const int per = w->dim - 1;
     const size_t half = w->m / 2, sh = w->size / 2;
@@ -210,8 +212,8 @@ int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const double *y1
 {
     if (w == NULL || y0 == NULL || y1 == NULL || coords == NULL)
         return whirl_fail(GSL_EINVAL, "whirl_periodic_tangent: NULL argument");
-    make_basis(w, y0);
-    tangent_read(w, y0, y1, coords);
+    periodic_basis(w, y0);
+    periodic_tangent_read(w, y0, y1, coords);
     return GSL_SUCCESS;
 }
 
@@ -272,15 +274,15 @@ static int central_difference(whirl_periodic *w, const double *y, size_t j, doub
     double *plus = w->scratch + w->size, *minus = w->scratch + 2 * w->size, *x = w->vec;
     memset(x, 0, m * sizeof *x);
     x[j] = h;
-    tangent_add(w, y, x, plus);
+    periodic_tangent_add(w, y, x, plus);
     x[j] = -h;
-    tangent_add(w, y, x, minus);
+    periodic_tangent_add(w, y, x, minus);
     int status = whirl_dyn_project(w->dyn, 0, plus);
     if (status == GSL_SUCCESS) status = whirl_dyn_project(w->dyn, 0, minus);
     if (status == GSL_SUCCESS) status = run_periods(w, plus, steps, 1);
     if (status == GSL_SUCCESS) status = run_periods(w, minus, steps, 1);
     if (status) return status;
-    tangent_read(w, minus, plus, col);
+    periodic_tangent_read(w, minus, plus, col);
     for (size_t i = 0; i < m; i++) col[i] /= 2 * h;
     return GSL_SUCCESS;
 }
@@ -288,12 +290,12 @@ static int central_difference(whirl_periodic *w, const double *y, size_t j, doub
 /* w->mono <- the monodromy at y (basis of y made here), steps per period: per column the
  * central differences D(h) and D(h/2), extrapolated (4 D(h/2) - D(h)) / 3 (their error is
  * c h^2 + O(h^4): the map is smooth). */
-static int monodromy(whirl_periodic *w, const double *y, int steps)
+static int monodromy_differences(whirl_periodic *w, const double *y, int steps)
 {
     const size_t m = w->m, half = m / 2;
     const int per = w->dim - 1;
     double *col = w->vec + m, *col2 = w->vec + 2 * m;
-    make_basis(w, y);
+    periodic_basis(w, y);
     w->have_mono = 0;
     for (size_t j = 0; j < m; j++) {
         const size_t link = (j % half) / (size_t)per;
@@ -305,6 +307,13 @@ static int monodromy(whirl_periodic *w, const double *y, int steps)
     }
     w->have_mono = 1;
     return GSL_SUCCESS;
+}
+
+/* w->mono <- the monodromy at y by w->method. */
+static int monodromy(whirl_periodic *w, const double *y, int steps)
+{
+    if (w->method == WHIRL_MONODROMY_DIFFERENCES) return monodromy_differences(w, y, steps);
+    return periodic_monodromy_variational(w, y, steps);
 }
 
 /* delta <- the minimal-norm solution of (M - I) delta = -r (SVD, singular values below SV_CUT
@@ -369,14 +378,14 @@ int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_
         iter++;
         status = monodromy(w, y, steps);
         if (status) break;
-        tangent_read(w, y, py, r);
+        periodic_tangent_read(w, y, py, r);
         status = newton_step(w, r, delta);
         if (status) break;
         /* backtracking: halve the step while it raises the residual */
         double best_res = INFINITY, scale = 1;
         for (int k = 0; k <= BACKTRACK_MAX && status == GSL_SUCCESS; k++, scale /= 2) {
             for (size_t i = 0; i < m; i++) w->vec[i] = scale * delta[i];
-            tangent_add(w, y, w->vec, trial);
+            periodic_tangent_add(w, y, w->vec, trial);
             status = whirl_dyn_project(w->dyn, 0, trial);
             memcpy(trial_p, trial, size * sizeof *trial_p);
             if (status == GSL_SUCCESS) status = run_periods(w, trial_p, steps, 1);

@@ -25,6 +25,7 @@ struct whirl_periodic {
     double *vec;        /* 5 m */
     double *mono;       /* m x m, row major: the monodromy */
     int have_mono;
+    whirl_monodromy_method method; /* of the solve under way */
     gsl_matrix *work, *v; /* m x m */
     double *out;        /* 8 m: re, im, err of the result; re, im of the coarse solve; scratch */
     gsl_eigen_nonsymm_workspace *eig;
@@ -35,6 +36,17 @@ struct whirl_periodic {
  * residual tol in at most max_iter iterations; then the monodromy at the motion in w->mono. */
 int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_iter,
                    double *residual, int *iterations);
+
+/* w->basis <- the unit vectors across the links of y. */
+void periodic_basis(whirl_periodic *w, const double *y);
+/* out <- y + the tangent vector of coordinates x (w->basis), not projected. */
+void periodic_tangent_add(const whirl_periodic *w, const double *y, const double *x,
+                          double *out);
+/* x <- the coordinates of y1 - y0 (w->basis). */
+void periodic_tangent_read(const whirl_periodic *w, const double *y0, const double *y1,
+                           double *x);
+/* w->mono <- the monodromy at y from the variational equations (variational.c). */
+int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps);
 
 /* The eigenvalues of w->mono into re, im, by decreasing modulus. */
 int periodic_multipliers(whirl_periodic *w, double *re, double *im);

@@ -1,0 +1,240 @@
+/* The monodromy from the variational equations (whirl/periodic.h): the state and m tangent
+ * vectors integrated together by the Gauss method on the augmented system (y, Y_1..Y_m),
+ * Y_j' = J(t, y) Y_j, with the derivative of the projection after every step. A Runge-Kutta
+ * method applied to the augmented system is the derivative of the same method applied to the
+ * system (Hairer, Norsett, Wanner, "Solving ODEs I", II.14), so this is the derivative of the
+ * discrete period map, as the central differences of periodic.c are, without their error.
+ *
+ * J Y of the Cartesian formulation in the inertial frame without applied forces
+ * (src/dynamics/dyn_cartesian.c): with k_i = 1/m_i + 1/m_{i-1} (1/m_{-1} = 0), the multipliers
+ * solve the symmetric tridiagonal A lambda = b,
+ *   A_ii = |d_i|^2 k_i,  A_{i,i+1} = A_{i+1,i} = -(d_i . d_{i+1}) / m_i,
+ *   b_i = |d_i'|^2 + [i = 0] d_0 . (g - p''),
+ * and d_i'' = -lambda_i k_i d_i + lambda_{i+1} d_{i+1} / m_i + lambda_{i-1} d_{i-1} / m_{i-1}
+ * + [i = 0] (g - p''). Their variations: A delta lambda = delta b - (delta A) lambda with
+ *   delta b_i = 2 d_i' . delta d_i' + [i = 0] delta d_0 . (g - p''),
+ *   ((delta A) lambda)_i = 2 (d_i . delta d_i) k_i lambda_i
+ *     - (delta d_i . d_{i+1} + d_i . delta d_{i+1}) lambda_{i+1} / m_i
+ *     - (delta d_i . d_{i-1} + d_i . delta d_{i-1}) lambda_{i-1} / m_{i-1},
+ * and delta d_i'' the product rule on d_i''. A is factored once per evaluation (Thomas: it is
+ * positive definite, no pivoting) and solved for every tangent vector.
+ * The projection d <- l d / |d|, d' <- d' - (D . d' / l^2) D (D the projected d) has the
+ * derivative delta D = (l / |d|) (delta d - (d . delta d / |d|^2) d),
+ * delta R = delta d' - ((delta D . d' + D . delta d') / l^2) D - (D . d' / l^2) delta D,
+ * taken at the state before its projection. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/error.h"
+#include "periodic/periodic_internal.h"
+
+typedef struct var_system {
+    whirl_periodic *w;
+    size_t cols;            /* tangent vectors */
+    size_t sh;              /* half of a state: dim N */
+    size_t half;            /* half of the augmented state: sh (1 + cols) */
+    double *base, *dbase;   /* a state and its derivative (size) */
+    double *lam, *diag, *off, *den, *up; /* tridiagonal system and its factors (N each) */
+    double *rhs;            /* N */
+} var_system;
+
+typedef struct vec3 {
+    double x, y, z;
+} vec3;
+
+static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+/* Link i of the half-state q (dim components per link) as a 3-vector. */
+static vec3 load(const var_system *s, const double *q, size_t i)
+{
+    if (s->w->dim == 3) return (vec3){q[3 * i], q[3 * i + 1], q[3 * i + 2]};
+    return (vec3){q[2 * i], 0, q[2 * i + 1]};
+}
+
+static void store(const var_system *s, double *q, size_t i, vec3 v)
+{
+    if (s->w->dim == 3) {
+        q[3 * i] = v.x, q[3 * i + 1] = v.y, q[3 * i + 2] = v.z;
+    } else {
+        q[2 * i] = v.x, q[2 * i + 1] = v.z;
+    }
+}
+
+/* Solves A x = r in place (r -> x) with the factors of factor(). */
+static void solve(const var_system *s, double *r)
+{
+    const size_t n = s->w->n;
+    r[0] /= s->den[0];
+    for (size_t i = 1; i < n; i++) r[i] = (r[i] - s->off[i - 1] * r[i - 1]) / s->den[i];
+    for (size_t i = n - 1; i-- > 0;) r[i] -= s->up[i] * r[i + 1];
+}
+
+static void factor(var_system *s)
+{
+    const size_t n = s->w->n;
+    s->den[0] = s->diag[0];
+    for (size_t i = 1; i < n; i++) {
+        s->up[i - 1] = s->off[i - 1] / s->den[i - 1];
+        s->den[i] = s->diag[i] - s->off[i - 1] * s->up[i - 1];
+    }
+}
+
+static int var_rhs(double t, const double y[], double dydt[], void *params)
+{
+    var_system *s = params;
+    whirl_periodic *w = s->w;
+    const size_t n = w->n, sh = s->sh, half = s->half;
+    const double *mass = w->chain->mass;
+    /* the state: its own right-hand side */
+    memcpy(s->base, y, sh * sizeof *y);
+    memcpy(s->base + sh, y + half, sh * sizeof *y);
+    int status = whirl_dyn_rhs(t, s->base, s->dbase, w->dyn);
+    if (status) return status;
+    memcpy(dydt, y + half, half * sizeof *y); /* dq/dt = v, for the state and every vector */
+    memcpy(dydt + half, s->dbase + sh, sh * sizeof *y);
+    /* the multipliers */
+    double p[3], pv[3], pa[3];
+    whirl_pivot_eval(t, p, pv, pa, &w->path);
+    const vec3 field = {-pa[0], w->dim == 3 ? -pa[1] : 0, -w->chain->gravity - pa[2]};
+    const double *q = s->base, *v = s->base + sh;
+    for (size_t i = 0; i < n; i++) {
+        const vec3 d = load(s, q, i), r = load(s, v, i);
+        const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
+        s->diag[i] = dot(d, d) * k;
+        if (i + 1 < n) s->off[i] = -dot(d, load(s, q, i + 1)) / mass[i];
+        s->lam[i] = dot(r, r) + (i == 0 ? dot(d, field) : 0);
+    }
+    factor(s);
+    solve(s, s->lam);
+    /* every tangent vector */
+    for (size_t c = 1; c <= s->cols; c++) {
+        const double *dq = y + c * sh, *dv = y + half + c * sh;
+        double *acc = dydt + half + c * sh;
+        for (size_t i = 0; i < n; i++) {
+            const vec3 d = load(s, q, i), r = load(s, v, i);
+            const vec3 dd = load(s, dq, i), dr = load(s, dv, i);
+            const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
+            double x = 2 * dot(r, dr) + (i == 0 ? dot(dd, field) : 0);
+            x -= 2 * dot(d, dd) * k * s->lam[i];
+            if (i + 1 < n) {
+                const vec3 dn = load(s, q, i + 1), ddn = load(s, dq, i + 1);
+                x += (dot(dd, dn) + dot(d, ddn)) * s->lam[i + 1] / mass[i];
+            }
+            if (i > 0) {
+                const vec3 dp = load(s, q, i - 1), ddp = load(s, dq, i - 1);
+                x += (dot(dd, dp) + dot(d, ddp)) * s->lam[i - 1] / mass[i - 1];
+            }
+            s->rhs[i] = x;
+        }
+        solve(s, s->rhs);
+        for (size_t i = 0; i < n; i++) {
+            const vec3 d = load(s, q, i), dd = load(s, dq, i);
+            const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
+            vec3 a = {-(s->rhs[i] * d.x + s->lam[i] * dd.x) * k,
+                      -(s->rhs[i] * d.y + s->lam[i] * dd.y) * k,
+                      -(s->rhs[i] * d.z + s->lam[i] * dd.z) * k};
+            if (i + 1 < n) {
+                const vec3 dn = load(s, q, i + 1), ddn = load(s, dq, i + 1);
+                const double g = s->rhs[i + 1] / mass[i], l = s->lam[i + 1] / mass[i];
+                a.x += g * dn.x + l * ddn.x, a.y += g * dn.y + l * ddn.y, a.z += g * dn.z + l * ddn.z;
+            }
+            if (i > 0) {
+                const vec3 dp = load(s, q, i - 1), ddp = load(s, dq, i - 1);
+                const double g = s->rhs[i - 1] / mass[i - 1], l = s->lam[i - 1] / mass[i - 1];
+                a.x += g * dp.x + l * ddp.x, a.y += g * dp.y + l * ddp.y, a.z += g * dp.z + l * ddp.z;
+            }
+            store(s, acc, i, a);
+        }
+    }
+    for (size_t k = 0; k < half; k++)
+        if (!isfinite(dydt[half + k]))
+            return whirl_fail(GSL_EBADFUNC, "the variational equations are not finite at "
+                              "t = %.17g", t);
+    return GSL_SUCCESS;
+}
+
+static int var_project(double t, double y[], void *params)
+{
+    var_system *s = params;
+    whirl_periodic *w = s->w;
+    const size_t n = w->n, sh = s->sh, half = s->half;
+    const double *len = w->chain->length;
+    for (size_t i = 0; i < n; i++) {
+        const vec3 d = load(s, y, i), r = load(s, y + half, i);
+        const double l = len[i], nd2 = dot(d, d), sc = l / sqrt(nd2);
+        const vec3 D = {sc * d.x, sc * d.y, sc * d.z};
+        const double along = dot(D, r) / (l * l);
+        for (size_t c = 1; c <= s->cols; c++) {
+            const vec3 dd = load(s, y + c * sh, i), dr = load(s, y + half + c * sh, i);
+            const double f = dot(d, dd) / nd2;
+            const vec3 dD = {sc * (dd.x - f * d.x), sc * (dd.y - f * d.y), sc * (dd.z - f * d.z)};
+            const double dal = (dot(dD, r) + dot(D, dr)) / (l * l);
+            const vec3 dR = {dr.x - dal * D.x - along * dD.x, dr.y - dal * D.y - along * dD.y,
+                             dr.z - dal * D.z - along * dD.z};
+            store(s, y + c * sh, i, dD);
+            store(s, y + half + c * sh, i, dR);
+        }
+    }
+    /* the state: the dynamics' own projection, as in the motion */
+    memcpy(s->base, y, sh * sizeof *y);
+    memcpy(s->base + sh, y + half, sh * sizeof *y);
+    const int status = whirl_dyn_project(w->dyn, t, s->base);
+    memcpy(y, s->base, sh * sizeof *y);
+    memcpy(y + half, s->base + sh, sh * sizeof *y);
+    return status;
+}
+
+int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps)
+{
+    const size_t m = w->m, sh = w->size / 2, n = w->n;
+    var_system s = {.w = w, .cols = m, .sh = sh, .half = sh * (1 + m)};
+    const size_t total = 2 * s.half;
+    double *aug = malloc(total * sizeof *aug);
+    double *work = malloc((2 * w->size + 6 * n) * sizeof *work);
+    if (aug == NULL || work == NULL) {
+        free(aug), free(work);
+        return whirl_fail(GSL_ENOMEM, "out of memory for the variational equations (%zu "
+                          "doubles)", total);
+    }
+    s.base = work, s.dbase = work + w->size;
+    s.lam = work + 2 * w->size, s.diag = s.lam + n, s.off = s.diag + n, s.den = s.off + n;
+    s.up = s.den + n, s.rhs = s.up + n;
+    w->have_mono = 0;
+    periodic_basis(w, y);
+    memcpy(aug, y, sh * sizeof *y);
+    memcpy(aug + s.half, y + sh, sh * sizeof *y);
+    double *x = w->vec, *vec = w->scratch + w->size, *zero = w->scratch + 2 * w->size;
+    memset(zero, 0, w->size * sizeof *zero);
+    for (size_t j = 0; j < m; j++) {
+        memset(x, 0, m * sizeof *x);
+        x[j] = 1;
+        periodic_tangent_add(w, y, x, vec); /* y + t_j: the vector t_j at y */
+        for (size_t k = 0; k < w->size; k++) vec[k] -= y[k];
+        memcpy(aug + (j + 1) * sh, vec, sh * sizeof *vec);
+        memcpy(aug + s.half + (j + 1) * sh, vec + sh, sh * sizeof *vec);
+    }
+    const whirl_system sys = {.rhs = var_rhs, .project = var_project, .size = total,
+                              .params = &s, .second_order = 1,
+                              .acceleration_scale = w->chain->gravity};
+    whirl_integrator *it = whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys);
+    int status = it ? GSL_SUCCESS : whirl_last_status();
+    if (status == GSL_SUCCESS) {
+        const double period = whirl_pivot_period(&w->path);
+        double t = 0;
+        status = whirl_integrator_advance(it, &t, aug, period, period / steps, 0);
+    }
+    whirl_integrator_free(it);
+    if (status == GSL_SUCCESS) {
+        double *col = w->vec + m;
+        for (size_t j = 0; j < m; j++) {
+            memcpy(vec, aug + (j + 1) * sh, sh * sizeof *vec);
+            memcpy(vec + sh, aug + s.half + (j + 1) * sh, sh * sizeof *vec);
+            periodic_tangent_read(w, zero, vec, col);
+            for (size_t i = 0; i < m; i++) w->mono[i * m + j] = col[i];
+        }
+        w->have_mono = 1;
+    }
+    free(aug), free(work);
+    return status;
+}
