@@ -19,7 +19,7 @@
 typedef struct periodic_options {
     const char *pivot, *start, *output;
     double omega, tol;
-    int links, dim, steps, max_iter, mode;
+    int links, dim, steps, max_iter, mode, differences;
     cli_units units;
 } periodic_options;
 
@@ -60,6 +60,8 @@ static void write_result(FILE *fp, const periodic_options *o, const whirl_period
     char rate[96];
     fprintf(fp, "# periodic motion: pivot %s at omega %s, links=%d dim=%d start=%s\n", o->pivot,
             cli_rate_words(&o->units, o->omega, rate, sizeof rate), o->links, o->dim, o->start);
+    fprintf(fp, "# monodromy by %s\n", o->differences ? "central differences" :
+                                                        "the variational equations");
     fprintf(fp, "# period=%s %s; Newton %d iterations, residual %.3g; %d steps per period "
             "(errors from %d)\n", CLI_NUM(r->period * time), cli_units_name(&o->units, CLI_UNIT_TIME),
             r->iterations, r->residual, r->steps, r->steps / 2);
@@ -112,6 +114,9 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .help = "Newton: largest scaled |P(y) - y| (default 1e-10)", .range = "(0, 1]"},
         {.name = "--max-iter", .type = CLI_INT, .value = &o.max_iter, .meta = "I",
          .help = "Newton iterations (default 30)", .range = "[1, 1000]"},
+        {.name = "--differences", .type = CLI_FLAG, .value = &o.differences,
+         .help = "the monodromy by central differences of the period map (a cross-check; "
+                 "default: the variational equations)"},
         CLI_UNITS_OPTIONS(o.units),
         {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &o.output,
          .meta = "FILE", .help = "write the CSV to FILE (default: standard output)"},
@@ -144,8 +149,9 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     }
     cli_catch_interrupts();
     whirl_periodic_result r;
-    const whirl_periodic_params params = {.steps = o.steps, .tol = o.tol, .max_iter = o.max_iter,
-                                          .refine = 1};
+    const whirl_periodic_params params = {
+        .steps = o.steps, .tol = o.tol, .max_iter = o.max_iter, .refine = 1,
+        .monodromy = o.differences ? WHIRL_MONODROMY_DIFFERENCES : WHIRL_MONODROMY_VARIATIONAL};
     const int status = whirl_periodic_find(w, y, &params, &r);
     if (status == WHIRL_EINTERRUPTED || cli_interrupted) {
         rc = (cli_error(cmd, "interrupted: no periodic motion yet"), CLI_EXIT_INTERRUPTED);

@@ -24,6 +24,12 @@ expect_ok "periodic steady" periodic --pivot circle:0.05 --omega 4 --links 4 --s
 if grep -q '^# verdict=unstable' "$tmp/c.csv" && [ "$(grep -vc '^#' "$tmp/c.csv")" -eq 17 ]; then
   pass "periodic steady: unstable mode 2, 16 multipliers"; else fail "periodic steady: unstable mode 2, 16 multipliers"; fi
 
+# the cross-check: the same multipliers by central differences (to 1e-9)
+expect_ok "periodic --differences" periodic --pivot vertical:0.1 --omega 2 --links 1 --dim 2 --differences -o "$tmp/d.csv"
+if grep -q '^# monodromy by central differences' "$tmp/d.csv" && grep -q '^# monodromy by the variational equations' "$tmp/m.csv" \
+   && paste -d, "$tmp/m.csv" "$tmp/d.csv" | grep -v '^#' | awk -F, 'NR > 1 && ($2 - $7) ^ 2 + ($3 - $8) ^ 2 > 1e-18 {bad = 1} END {exit bad}'; then
+  pass "periodic --differences: the same multipliers"; else fail "periodic --differences: the same multipliers"; fi
+
 # SI units: the path in cm, the rate in Hz, the period in s
 expect_ok "periodic SI" periodic --pivot ellipse:1cm,0.6cm --omega 1.5Hz --length 0.5 --mass 50g --links 2 -o "$tmp/si.csv"
 if grep -q '^# period=0.666666666666666[0-9]* s;' "$tmp/si.csv" && grep -q '^# units: length=m' "$tmp/si.csv"; then
