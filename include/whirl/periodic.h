@@ -13,8 +13,9 @@
  * tangent space of the constraint manifold: per link, the components of the link's displacement
  * and rate along (dim - 1) unit vectors across the link (the along-link parts follow from the
  * constraints), 2 (dim - 1) N coordinates in all. The monodromy matrix is the derivative of the
- * discrete period map in these coordinates, by central differences of P (the same steps as the
- * motion); Newton's method on P(y) - y with it. The Floquet multipliers are its eigenvalues;
+ * discrete period map in these coordinates, from the variational equations integrated with the
+ * motion by the same Gauss steps (or, as a cross-check, by central differences of P); Newton's
+ * method on P(y) - y with it. The Floquet multipliers are its eigenvalues;
  * their error is estimated by a second solve with the step halved (the Gauss method is of order
  * 4: the error of the finer value is |mu(h/2) - mu(h)| / 15, Richardson). */
 #ifndef WHIRL_PERIODIC_H

@@ -9,7 +9,8 @@
  * projects after every step, so its derivative maps onto the tangent space and these
  * coordinates carry all of it: the 2N (2D and 3D) directions across the constraint manifold
  * would only add zero multipliers.
- * The monodromy: column j of M is (P(y + h_j t_j) - P(y - h_j t_j)) / (2 h_j) read in the
+ * The monodromy: from the variational equations (variational.c), or by central differences:
+ * column j of M is (P(y + h_j t_j) - P(y - h_j t_j)) / (2 h_j) read in the
  * coordinates at y (t_j the tangent vector of coordinate j, the perturbed states projected onto
  * the manifold), from h_j and h_j / 2 extrapolated: the derivative of the discrete period map
  * with the same steps as the motion, 4 m periods per matrix. */
