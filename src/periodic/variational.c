@@ -29,6 +29,10 @@
 #include "core/error.h"
 #include "periodic/periodic_internal.h"
 
+typedef struct vec3 {
+    double x, y, z;
+} vec3;
+
 typedef struct var_system {
     whirl_periodic *w;
     size_t cols;            /* tangent vectors */
@@ -36,23 +40,21 @@ typedef struct var_system {
     size_t half;            /* half of the augmented state: sh (1 + cols) */
     double *base, *dbase;   /* a state and its derivative (size) */
     double *lam, *diag, *off, *den, *up; /* tridiagonal system and its factors (N each) */
-    double *rhs;            /* N */
+    double *rhs;            /* N x cols: the variations of the multipliers */
+    double *k, *inv_m;      /* k_i = 1/m_i + 1/m_{i-1}, 1/m_i (N each) */
+    vec3 *d, *r, *dd; /* links, rates, a tangent vector's link part (N each) */
 } var_system;
 
-typedef struct vec3 {
-    double x, y, z;
-} vec3;
-
-static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
 /* Link i of the half-state q (dim components per link) as a 3-vector. */
-static vec3 load(const var_system *s, const double *q, size_t i)
+static inline vec3 load(const var_system *s, const double *q, size_t i)
 {
     if (s->w->dim == 3) return (vec3){q[3 * i], q[3 * i + 1], q[3 * i + 2]};
     return (vec3){q[2 * i], 0, q[2 * i + 1]};
 }
 
-static void store(const var_system *s, double *q, size_t i, vec3 v)
+static inline void store(const var_system *s, double *q, size_t i, vec3 v)
 {
     if (s->w->dim == 3) {
         q[3 * i] = v.x, q[3 * i + 1] = v.y, q[3 * i + 2] = v.z;
@@ -61,22 +63,35 @@ static void store(const var_system *s, double *q, size_t i, vec3 v)
     }
 }
 
-/* Solves A x = r in place (r -> x) with the factors of factor(). */
-static void solve(const var_system *s, double *r)
+/* Solves A x = r in place (r -> x) with the factors of factor(): cols right-hand sides side by
+ * side, r[i cols + c] (the columns are independent: the inner loop vectorises). */
+static void solve(const var_system *s, double *r, size_t cols)
 {
     const size_t n = s->w->n;
-    r[0] /= s->den[0];
-    for (size_t i = 1; i < n; i++) r[i] = (r[i] - s->off[i - 1] * r[i - 1]) / s->den[i];
-    for (size_t i = n - 1; i-- > 0;) r[i] -= s->up[i] * r[i + 1];
+    const double *inv_den = s->den, *off = s->off, *up = s->up;
+    for (size_t c = 0; c < cols; c++) r[c] *= inv_den[0];
+    for (size_t i = 1; i < n; i++) {
+        double *ri = r + i * cols;
+        const double *rp = ri - cols;
+        for (size_t c = 0; c < cols; c++) ri[c] = (ri[c] - off[i - 1] * rp[c]) * inv_den[i];
+    }
+    for (size_t i = n - 1; i-- > 0;) {
+        double *ri = r + i * cols;
+        const double *rn = ri + cols;
+        for (size_t c = 0; c < cols; c++) ri[c] -= up[i] * rn[c];
+    }
 }
 
+/* Thomas's factors of A: den holds the inverse pivots, up the upper factor. */
 static void factor(var_system *s)
 {
     const size_t n = s->w->n;
-    s->den[0] = s->diag[0];
+    double den = s->diag[0];
+    s->den[0] = 1 / den;
     for (size_t i = 1; i < n; i++) {
-        s->up[i - 1] = s->off[i - 1] / s->den[i - 1];
-        s->den[i] = s->diag[i] - s->off[i - 1] * s->up[i - 1];
+        s->up[i - 1] = s->off[i - 1] / den;
+        den = s->diag[i] - s->off[i - 1] * s->up[i - 1];
+        s->den[i] = 1 / den;
     }
 }
 
@@ -93,62 +108,67 @@ static int var_rhs(double t, const double y[], double dydt[], void *params)
     if (status) return status;
     memcpy(dydt, y + half, half * sizeof *y); /* dq/dt = v, for the state and every vector */
     memcpy(dydt + half, s->dbase + sh, sh * sizeof *y);
-    /* the multipliers */
+    /* the links, their rates, k_i, 1/m_i and the multipliers, once per evaluation */
     double p[3], pv[3], pa[3];
     whirl_pivot_eval(t, p, pv, pa, &w->path);
     const vec3 field = {-pa[0], w->dim == 3 ? -pa[1] : 0, -w->chain->gravity - pa[2]};
-    const double *q = s->base, *v = s->base + sh;
+    vec3 *d = s->d, *r = s->r;
     for (size_t i = 0; i < n; i++) {
-        const vec3 d = load(s, q, i), r = load(s, v, i);
-        const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
-        s->diag[i] = dot(d, d) * k;
-        if (i + 1 < n) s->off[i] = -dot(d, load(s, q, i + 1)) / mass[i];
-        s->lam[i] = dot(r, r) + (i == 0 ? dot(d, field) : 0);
+        d[i] = load(s, s->base, i), r[i] = load(s, s->base + sh, i);
+        s->inv_m[i] = 1 / mass[i];
+        s->k[i] = s->inv_m[i] + (i > 0 ? s->inv_m[i - 1] : 0);
+    }
+    for (size_t i = 0; i < n; i++) {
+        s->diag[i] = dot(d[i], d[i]) * s->k[i];
+        if (i + 1 < n) s->off[i] = -dot(d[i], d[i + 1]) * s->inv_m[i];
+        s->lam[i] = dot(r[i], r[i]) + (i == 0 ? dot(d[i], field) : 0);
     }
     factor(s);
-    solve(s, s->lam);
-    /* every tangent vector */
-    for (size_t c = 1; c <= s->cols; c++) {
+    solve(s, s->lam, 1);
+    const double *lam = s->lam, *k = s->k, *inv_m = s->inv_m;
+    const size_t cols = s->cols;
+    double *xs = s->rhs; /* N x cols: x[i cols + c] */
+    vec3 *dd = s->dd;
+    /* every tangent vector: the right-hand sides of delta lambda, one solve for all, then the
+       accelerations */
+    for (size_t c = 1; c <= cols; c++) {
         const double *dq = y + c * sh, *dv = y + half + c * sh;
-        double *acc = dydt + half + c * sh;
+        for (size_t i = 0; i < n; i++) dd[i] = load(s, dq, i);
         for (size_t i = 0; i < n; i++) {
-            const vec3 d = load(s, q, i), r = load(s, v, i);
-            const vec3 dd = load(s, dq, i), dr = load(s, dv, i);
-            const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
-            double x = 2 * dot(r, dr) + (i == 0 ? dot(dd, field) : 0);
-            x -= 2 * dot(d, dd) * k * s->lam[i];
-            if (i + 1 < n) {
-                const vec3 dn = load(s, q, i + 1), ddn = load(s, dq, i + 1);
-                x += (dot(dd, dn) + dot(d, ddn)) * s->lam[i + 1] / mass[i];
-            }
-            if (i > 0) {
-                const vec3 dp = load(s, q, i - 1), ddp = load(s, dq, i - 1);
-                x += (dot(dd, dp) + dot(d, ddp)) * s->lam[i - 1] / mass[i - 1];
-            }
-            s->rhs[i] = x;
+            double v = 2 * dot(r[i], load(s, dv, i)) - 2 * dot(d[i], dd[i]) * k[i] * lam[i];
+            if (i + 1 < n) v += (dot(dd[i], d[i + 1]) + dot(d[i], dd[i + 1])) * lam[i + 1] * inv_m[i];
+            if (i > 0) v += (dot(dd[i], d[i - 1]) + dot(d[i], dd[i - 1])) * lam[i - 1] * inv_m[i - 1];
+            xs[i * cols + (c - 1)] = v;
         }
-        solve(s, s->rhs);
+        xs[c - 1] += dot(dd[0], field);
+    }
+    solve(s, xs, cols);
+    for (size_t c = 1; c <= cols; c++) {
+        const double *dq = y + c * sh;
+        double *acc = dydt + half + c * sh;
+        for (size_t i = 0; i < n; i++) dd[i] = load(s, dq, i);
+        const double *x = xs + (c - 1);
         for (size_t i = 0; i < n; i++) {
-            const vec3 d = load(s, q, i), dd = load(s, dq, i);
-            const double k = 1 / mass[i] + (i > 0 ? 1 / mass[i - 1] : 0);
-            vec3 a = {-(s->rhs[i] * d.x + s->lam[i] * dd.x) * k,
-                      -(s->rhs[i] * d.y + s->lam[i] * dd.y) * k,
-                      -(s->rhs[i] * d.z + s->lam[i] * dd.z) * k};
+            const double gs = -x[i * cols] * k[i], ls = -lam[i] * k[i];
+            vec3 a = {gs * d[i].x + ls * dd[i].x, gs * d[i].y + ls * dd[i].y,
+                      gs * d[i].z + ls * dd[i].z};
             if (i + 1 < n) {
-                const vec3 dn = load(s, q, i + 1), ddn = load(s, dq, i + 1);
-                const double g = s->rhs[i + 1] / mass[i], l = s->lam[i + 1] / mass[i];
-                a.x += g * dn.x + l * ddn.x, a.y += g * dn.y + l * ddn.y, a.z += g * dn.z + l * ddn.z;
+                const double g = x[(i + 1) * cols] * inv_m[i], l = lam[i + 1] * inv_m[i];
+                a.x += g * d[i + 1].x + l * dd[i + 1].x;
+                a.y += g * d[i + 1].y + l * dd[i + 1].y;
+                a.z += g * d[i + 1].z + l * dd[i + 1].z;
             }
             if (i > 0) {
-                const vec3 dp = load(s, q, i - 1), ddp = load(s, dq, i - 1);
-                const double g = s->rhs[i - 1] / mass[i - 1], l = s->lam[i - 1] / mass[i - 1];
-                a.x += g * dp.x + l * ddp.x, a.y += g * dp.y + l * ddp.y, a.z += g * dp.z + l * ddp.z;
+                const double g = x[(i - 1) * cols] * inv_m[i - 1], l = lam[i - 1] * inv_m[i - 1];
+                a.x += g * d[i - 1].x + l * dd[i - 1].x;
+                a.y += g * d[i - 1].y + l * dd[i - 1].y;
+                a.z += g * d[i - 1].z + l * dd[i - 1].z;
             }
             store(s, acc, i, a);
         }
     }
-    for (size_t k = 0; k < half; k++)
-        if (!isfinite(dydt[half + k]))
+    for (size_t j = 0; j < half; j++)
+        if (!isfinite(dydt[half + j]))
             return whirl_fail(GSL_EBADFUNC, "the variational equations are not finite at "
                               "t = %.17g", t);
     return GSL_SUCCESS;
@@ -191,15 +211,17 @@ int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps
     var_system s = {.w = w, .cols = m, .sh = sh, .half = sh * (1 + m)};
     const size_t total = 2 * s.half;
     double *aug = malloc(total * sizeof *aug);
-    double *work = malloc((2 * w->size + 6 * n) * sizeof *work);
-    if (aug == NULL || work == NULL) {
-        free(aug), free(work);
+    double *work = malloc((2 * w->size + 7 * n + n * m) * sizeof *work);
+    vec3 *links = malloc(3 * n * sizeof *links);
+    if (aug == NULL || work == NULL || links == NULL) {
+        free(aug), free(work), free(links);
         return whirl_fail(GSL_ENOMEM, "out of memory for the variational equations (%zu "
                           "doubles)", total);
     }
     s.base = work, s.dbase = work + w->size;
     s.lam = work + 2 * w->size, s.diag = s.lam + n, s.off = s.diag + n, s.den = s.off + n;
-    s.up = s.den + n, s.rhs = s.up + n;
+    s.up = s.den + n, s.k = s.up + n, s.inv_m = s.k + n, s.rhs = s.inv_m + n;
+    s.d = links, s.r = links + n, s.dd = links + 2 * n;
     w->have_mono = 0;
     periodic_basis(w, y);
     memcpy(aug, y, sh * sizeof *y);
@@ -235,6 +257,6 @@ int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps
         }
         w->have_mono = 1;
     }
-    free(aug), free(work);
+    free(aug), free(work), free(links);
     return status;
 }
