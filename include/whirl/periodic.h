@@ -165,8 +165,8 @@ WHIRL_API int whirl_periodic_find(whirl_periodic *w, double *y,
  * major, valid until the next solve; NULL before. */
 WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
 
-/* Advances the state y of w from t0 by periods whole periods (the same steps per period as
- * steps; WHIRL_EINTERRUPTED on a stop). For perturbed runs. */
+/* Advances the state y of w at t = 0 (or any whole number of periods) by periods whole periods
+ * with steps Gauss steps per period (a perturbed run; WHIRL_EINTERRUPTED on a stop). */
 WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int periods);
 
 /* Reads the tangent coordinates of the difference y1 - y0 of two states near y0 (length

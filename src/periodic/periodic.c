@@ -76,11 +76,10 @@ whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_
     if (!w->basis || !w->scratch || !w->vec || !w->mono || !w->work || !w->v || !w->out ||
         !w->eig || !w->eval)
         goto nomem;
-    double total = 0, mass = 0;
-    for (size_t i = 0; i < w->n; i++) total += c->length[i], mass += c->mass[i];
+    double total = 0;
+    for (size_t i = 0; i < w->n; i++) total += c->length[i];
     w->length = total;
     w->omega_ref = fmax(path->omega, sqrt(c->gravity / total));
-    (void)mass;
     return w;
 nomem:
     whirl_periodic_free(w);
