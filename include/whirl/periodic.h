@@ -161,6 +161,21 @@ WHIRL_API int whirl_periodic_find(whirl_periodic *w, double *y,
                                   const whirl_periodic_params *params,
                                   whirl_periodic_result *result);
 
+/* Where a solve stands, for a progress display. */
+typedef struct whirl_periodic_progress {
+    int solve;        /* 1: the coarser solve, 2: the finer (or the only one without refine) */
+    int iteration;    /* Newton's iteration, from 0 */
+    double residual;  /* the scaled |P(y) - y| of that iterate (inf before the first) */
+    double monodromy; /* the part of the monodromy under way that is done, 0..1 (0: none) */
+} whirl_periodic_progress;
+
+/* tick(data, progress) is called during whirl_periodic_find: after every residual and about 16
+ * times per monodromy. It must not call w. NULL (the default): none. */
+WHIRL_API void whirl_periodic_set_tick(whirl_periodic *w,
+                                       void (*tick)(void *data,
+                                                    const whirl_periodic_progress *progress),
+                                       void *data);
+
 /* The monodromy of the last successful solve (finer step): tangent_size x tangent_size, row
  * major, valid until the next solve; NULL before. */
 WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);

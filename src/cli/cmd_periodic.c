@@ -23,6 +23,26 @@ typedef struct periodic_options {
     cli_units units;
 } periodic_options;
 
+/* The progress line: which solve, Newton's iteration and residual, the monodromy's part done;
+ * on a terminal once the run has taken cli_progress_after() seconds. */
+typedef struct periodic_progress {
+    cli_progress_state line;
+    double after;
+} periodic_progress;
+
+static void show_progress(void *data, const whirl_periodic_progress *p)
+{
+    periodic_progress *pp = data;
+    if (!pp->line.drawn && cli_wall_seconds() - pp->line.start < pp->after) return;
+    if (p->monodromy > 0)
+        cli_progress_text(&pp->line, "solve %d of 2, Newton iteration %d (residual %.2g), "
+                          "monodromy %.0f%%", p->solve, p->iteration, p->residual,
+                          100 * p->monodromy);
+    else
+        cli_progress_text(&pp->line, "solve %d of 2, Newton iteration %d (residual %.2g)",
+                          p->solve, p->iteration, p->residual);
+}
+
 /* The steady shape of the circle drive (mode, tip on the pivot's side) as the start state. */
 static int start_steady(const cli_command *cmd, const periodic_options *o, const whirl_chain *c,
                         const whirl_pivot_path *path, whirl_periodic *w, double *y)
@@ -148,11 +168,15 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     cli_catch_interrupts();
+    periodic_progress progress = {.after = cli_progress_after()};
+    cli_progress_begin(&progress.line, cmd, "", 0, 0);
+    whirl_periodic_set_tick(w, show_progress, &progress);
     whirl_periodic_result r;
     const whirl_periodic_params params = {
         .steps = o.steps, .tol = o.tol, .max_iter = o.max_iter, .refine = 1,
         .monodromy = o.differences ? WHIRL_MONODROMY_DIFFERENCES : WHIRL_MONODROMY_VARIATIONAL};
     const int status = whirl_periodic_find(w, y, &params, &r);
+    cli_progress_clear(&progress.line);
     if (status == WHIRL_EINTERRUPTED || cli_interrupted) {
         rc = (cli_error(cmd, "interrupted: no periodic motion yet"), CLI_EXIT_INTERRUPTED);
         goto done;

@@ -165,6 +165,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
     double *y_coarse = NULL;
     double residual;
     int iterations, coarse_iterations = 0;
+    w->progress = (whirl_periodic_progress){.solve = p.refine ? 1 : 2, .residual = INFINITY};
     if (p.refine) {
         y_coarse = malloc(w->size * sizeof *y_coarse);
         if (y_coarse == NULL) return whirl_fail(GSL_ENOMEM, "out of memory");
@@ -177,6 +178,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
         memcpy(y_coarse, y, w->size * sizeof *y);
         coarse_iterations = iterations;
         steps *= 2;
+        w->progress.solve = 2;
     }
     status = periodic_solve(w, y, steps, tol, max_iter, &residual, &iterations);
     if (status == GSL_SUCCESS) status = periodic_multipliers(w, re, im);

@@ -106,6 +106,21 @@ void whirl_periodic_free(whirl_periodic *w)
 }
 
 whirl_dyn *whirl_periodic_dyn(whirl_periodic *w) { return w->dyn; }
+
+void whirl_periodic_set_tick(whirl_periodic *w,
+                             void (*tick)(void *data, const whirl_periodic_progress *progress),
+                             void *data)
+{
+    w->tick = tick;
+    w->tick_data = tick ? data : NULL;
+}
+
+void periodic_tick(whirl_periodic *w, double done)
+{
+    if (w->tick == NULL) return;
+    w->progress.monodromy = done;
+    w->tick(w->tick_data, &w->progress);
+}
 size_t whirl_periodic_state_size(const whirl_periodic *w) { return w->size; }
 size_t whirl_periodic_tangent_size(const whirl_periodic *w) { return w->m; }
 const double *whirl_periodic_monodromy(const whirl_periodic *w)
@@ -304,6 +319,7 @@ static int monodromy_differences(whirl_periodic *w, const double *y, int steps)
         if (status == GSL_SUCCESS) status = central_difference(w, y, j, h / 2, steps, col2);
         if (status) return status;
         for (size_t i = 0; i < m; i++) w->mono[i * m + j] = (4 * col2[i] - col[i]) / 3;
+        if ((j + 1) % (m / 16 + 1) == 0) periodic_tick(w, (double)(j + 1) / (double)m);
     }
     w->have_mono = 1;
     return GSL_SUCCESS;
@@ -368,6 +384,8 @@ int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_
     if (status == GSL_SUCCESS) status = run_periods(w, py, steps, 1);
     double res = status ? INFINITY : residual_of(w, y, py);
     int iter = 0;
+    w->progress.iteration = 0, w->progress.residual = res;
+    periodic_tick(w, 0);
     while (status == GSL_SUCCESS && !(res <= tol)) {
         if (iter == max_iter) {
             status = whirl_fail(GSL_EMAXITER, "Newton's method on the period map did not "
@@ -409,6 +427,8 @@ int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_
         memcpy(y, best, size * sizeof *y);
         memcpy(py, w->scratch, size * sizeof *py);
         res = best_res;
+        w->progress.iteration = iter, w->progress.residual = res;
+        periodic_tick(w, 0);
     }
     free(trial_p), free(best);
     *residual = res;

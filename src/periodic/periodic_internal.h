@@ -26,6 +26,9 @@ struct whirl_periodic {
     double *mono;       /* m x m, row major: the monodromy */
     int have_mono;
     whirl_monodromy_method method; /* of the solve under way */
+    void (*tick)(void *data, const whirl_periodic_progress *progress); /* NULL: none */
+    void *tick_data;
+    whirl_periodic_progress progress; /* where the solve under way stands */
     gsl_matrix *work, *v; /* m x m */
     double *out;        /* 8 m: re, im, err of the result; re, im of the coarse solve; scratch */
     gsl_eigen_nonsymm_workspace *eig;
@@ -47,6 +50,9 @@ void periodic_tangent_read(const whirl_periodic *w, const double *y0, const doub
                            double *x);
 /* w->mono <- the monodromy at y from the variational equations (variational.c). */
 int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps);
+
+/* Calls the tick (if any) with w->progress, its monodromy part set to done. */
+void periodic_tick(whirl_periodic *w, double done);
 
 /* The eigenvalues of w->mono into re, im, by decreasing modulus. */
 int periodic_multipliers(whirl_periodic *w, double *re, double *im);

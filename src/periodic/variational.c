@@ -241,10 +241,15 @@ int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps
                               .acceleration_scale = w->chain->gravity};
     whirl_integrator *it = whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys);
     int status = it ? GSL_SUCCESS : whirl_last_status();
-    if (status == GSL_SUCCESS) {
-        const double period = whirl_pivot_period(&w->path);
-        double t = 0;
-        status = whirl_integrator_advance(it, &t, aug, period, period / steps, 0);
+    /* the period in 16 pieces of whole steps, for the progress display (a piece ends at
+       k h exactly as the steps of one advance would: the same fixed steps) */
+    const double period = whirl_pivot_period(&w->path), h = period / steps;
+    const int pieces = steps < 16 ? steps : 16;
+    double t = 0;
+    for (int k = 1; k <= pieces && status == GSL_SUCCESS; k++) {
+        const long end = (long)steps * k / pieces;
+        status = whirl_integrator_advance(it, &t, aug, k == pieces ? period : (double)end * h, h, 0);
+        periodic_tick(w, (double)k / pieces);
     }
     whirl_integrator_free(it);
     if (status == GSL_SUCCESS) {
