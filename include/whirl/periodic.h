@@ -108,7 +108,7 @@ typedef struct whirl_periodic_params {
     int steps;    /* Gauss steps per period (>= 8); 0: 400. Raised to whirl_default_step's bound
                      of the start */
     double tol;   /* Newton's test: the largest component of P(y) - y (positions over L, rates
-                     over omega_ref L, omega_ref = max(omega, sqrt(g/L))) at most tol; 0: 1e-11 */
+                     over omega_ref L, omega_ref = max(omega, sqrt(g/L))) at most tol; 0: 1e-10 */
     int max_iter; /* Newton iterations; 0: 30 */
     int refine;   /* 1: a second solve with 2 steps per step for the error estimate; 0: none
                      (errors reported as 0) */
@@ -153,7 +153,7 @@ typedef struct whirl_periodic_result {
 
 /* Finds the periodic motion near the start y (length whirl_periodic_state_size; overwritten by
  * the motion's state at t = 0) by Newton's method on the period map, then its multipliers.
- * params may be NULL (the defaults). GSL_EMAXITER with the residual in the message if Newton's
+ * params NULL: every default with refine 1. GSL_EMAXITER with the residual in the message if Newton's
  * method does not converge (result->count 0: no multiplier of a motion not found; y holds the
  * last iterate); GSL_EINVAL on bad arguments; an integration's status (and its message) if a
  * period cannot be integrated; WHIRL_EINTERRUPTED on a stop request. */
