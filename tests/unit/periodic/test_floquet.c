@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_eigen.h>
 #include <gsl/gsl_math.h>
 #include <gsl/gsl_roots.h>
 
@@ -123,6 +124,107 @@ static void test_mathieu_tongues(void **state)
                       "difference %.2g\n", rows[i].name, a, rows[i].ref, a - rows[i].ref);
         assert_true(fabs(a - rows[i].ref) < 1e-8);
     }
+}
+
+/* ---- the shaken inverted chain in the limit of fast shaking ---- */
+
+/* Averaging (Kapitza; Acheson, Proc. R. Soc. A 443, 1993): with the pivot at A cos(omega t)
+ * vertically, A -> 0 at A omega fixed, the chain moves in the potential
+ * V + (A omega)^2 / 4 grad(Z)^T M^-1 grad(Z), Z = sum m_i z_i, V = g Z. At the inverted state
+ * grad Z = 0 and the Hessian of Z is -K, K the stiffness of the hanging chain over g in the
+ * link angles, so the Hessian is -g K + (A omega)^2 / 2 K M^-1 K: positive definite iff
+ * (A omega)^2 > 2 g / nu_min with K v = nu M v, i.e. nu_min = omega_1^2 / g, omega_1 the lowest
+ * frequency of the hanging chain. In the angles: M_ij = l_i l_j sum_{k >= max(i, j)} m_k,
+ * K_ii = l_i sum_{k >= i} m_k (gsl_eigen_gensymm here, not the code under test). */
+static double averaged_limit(size_t n)
+{
+    gsl_matrix *m = gsl_matrix_calloc(n, n), *k = gsl_matrix_calloc(n, n);
+    const double l = 1.0 / n, mass = 1.0 / n;
+    for (size_t i = 0; i < n; i++) {
+        for (size_t j = 0; j < n; j++)
+            gsl_matrix_set(m, i, j, l * l * mass * (double)(n - (i > j ? i : j)));
+        gsl_matrix_set(k, i, i, l * mass * (double)(n - i));
+    }
+    gsl_vector *eval = gsl_vector_alloc(n);
+    gsl_eigen_gensymm_workspace *ws = gsl_eigen_gensymm_alloc(n);
+    assert_int_equal(gsl_eigen_gensymm(k, m, eval, ws), GSL_SUCCESS);
+    const double nu_min = gsl_vector_min(eval);
+    gsl_eigen_gensymm_free(ws);
+    gsl_vector_free(eval);
+    gsl_matrix_free(m);
+    gsl_matrix_free(k);
+    return sqrt(2 / nu_min);
+}
+
+typedef struct inverted_case {
+    size_t n;
+    double amplitude;
+} inverted_case;
+
+/* rho_max - 2 for the inverted double pendulum (N = 2, planar: two pairs mu, 1/mu) shaken at
+ * omega, rho = mu + 1/mu: rho_1 + rho_2 = tr M and rho_1^2 + rho_2^2 = tr M^2 + 4 (sums of mu and
+ * mu^2, smooth where single multipliers near a collision are not). A pair through +1 is rho
+ * through 2. */
+static double rho_margin(double omega, void *params)
+{
+    const inverted_case *ic = params;
+    whirl_chain *c = whirl_chain_alloc_uniform(ic->n, 0);
+    const double up[3] = {0, 0, 1};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_line(&path, omega, ic->amplitude, up), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc(c, 2, &path);
+    double y[8];
+    assert_int_equal(whirl_periodic_start_vertical(w, 1, y), GSL_SUCCESS);
+    const whirl_periodic_params p = {.steps = 400, .refine = 0};
+    whirl_periodic_result r;
+    assert_int_equal(whirl_periodic_find(w, y, &p, &r), GSL_SUCCESS);
+    assert_int_equal(r.count, 4);
+    double tr = 0, tr2 = 0;
+    for (size_t i = 0; i < r.count; i++) {
+        tr += r.re[i];
+        tr2 += r.re[i] * r.re[i] - r.im[i] * r.im[i];
+    }
+    /* rho_1 + rho_2 = tr M, rho_1^2 + rho_2^2 = tr M^2 + 4 (mu^2 + mu^-2 = rho^2 - 2) */
+    const double prod = (tr * tr - tr2 - 4) / 2;
+    const double rho = tr / 2 + sqrt(fmax(tr * tr / 4 - prod, 0));
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+    return rho - 2;
+}
+
+static void test_inverted_fast_shaking(void **state)
+{
+    (void)state;
+    /* N = 2: the slowest pair of the inverted double pendulum passes +1 where the shaking
+       A omega reaches the averaged limit; the difference falls as A^2 (the next order of the
+       averaging), so its Richardson extrapolation in A^2 is the limit */
+    const double limit = averaged_limit(2);
+    double diff[2];
+    for (int k = 0; k < 2; k++) {
+        inverted_case ic = {2, 0.01 / (1 << k)};
+        gsl_function f = {rho_margin, &ic};
+        gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+        /* brackets: half and twice the limit's rate, unstable (rho > 2) and stable */
+        double lo = 0.5 * limit / ic.amplitude, hi = 2 * limit / ic.amplitude;
+        assert_true(rho_margin(lo, &ic) > 0 && rho_margin(hi, &ic) < 0);
+        assert_int_equal(gsl_root_fsolver_set(s, &f, lo, hi), GSL_SUCCESS);
+        for (int i = 0; i < 100; i++) {
+            assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
+            lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+            if (gsl_root_test_interval(lo, hi, 0, 1e-12) == GSL_SUCCESS) break;
+        }
+        const double omega = gsl_root_fsolver_root(s);
+        gsl_root_fsolver_free(s);
+        diff[k] = ic.amplitude * omega / limit - 1;
+        print_message("# inverted N = 2, A = %g: A omega* = %.12f, averaged limit %.12f, "
+                      "relative difference %.3g\n", ic.amplitude, ic.amplitude * omega, limit,
+                      diff[k]);
+    }
+    const double extrapolated = (4 * diff[1] - diff[0]) / 3;
+    print_message("# extrapolated in A^2: %.2g\n", extrapolated);
+    assert_true(fabs(diff[0]) < 1e-4);
+    assert_true(fabs(diff[1] / diff[0] - 0.25) < 0.01); /* the A^2 law */
+    assert_true(fabs(extrapolated) < 1e-7);
 }
 
 /* ---- the circle drive against the steady linearisation ---- */
@@ -396,6 +498,7 @@ int main(void)
     gsl_set_error_handler_off();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mathieu_tongues),
+        cmocka_unit_test(test_inverted_fast_shaking),
         cmocka_unit_test(test_circle_is_steady),
         cmocka_unit_test(test_perturbed_growth),
         cmocka_unit_test(test_variational_against_differences),
