@@ -189,6 +189,65 @@ WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int pe
 WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const double *y1,
                                      double *coords);
 
+/* ---- stability charts of the vertically shaken chain ----
+ *
+ * The chain hanging straight down (or standing straight up) moves with a pivot shaken
+ * vertically, A cos(omega t): the vertical state is a periodic motion for every omega and A, so
+ * no Newton's method is needed, only the monodromy of its linearisation. Its multipliers come in
+ * pairs mu, 1/mu; with rho = mu + 1/mu per pair,
+ *   det(M - I) = prod_k (2 - rho_k),   det(M + I) = prod_k (2 + rho_k),
+ * smooth in (omega, A) where single multipliers near a collision are not, and each changes sign
+ * where a pair passes +1 (resp. -1): the edges of the chart. An edge is a curve A(omega),
+ * located per rate by Brent's method on A to the tolerance and followed from rate to rate with
+ * the previous point as the centre of the next bracket; a column is scanned on `rows` amplitudes
+ * for new curves at the first rate, where the count of edges disagrees with the signs at the
+ * range's ends, and (hanging) where a tongue's tip 2 omega_k / n (omega_k the unshaken chain's
+ * frequencies) lies between two rates. */
+
+typedef struct whirl_chart_params {
+    int inverted;     /* 0: the hanging chain (its tongues of instability); 1: the inverted chain
+                         (its region of stability, Acheson's); default 0 */
+    double omega_min, omega_max; /* the rates [sqrt(g/L)], 0 < omega_min < omega_max (no
+                                    default) */
+    int columns;      /* rates, equally spaced, both ends included (>= 2); 0: 200 */
+    double amp_min;   /* the lowest amplitude [L], >= 0; 0: amp_max / rows (at A = 0 the
+                         tongues touch their edges without crossing them) */
+    double amp_max;   /* the highest amplitude [L], > amp_min (no default) */
+    int rows;         /* amplitudes of a column's scan for new curves (>= 2); 0: 200 */
+    int steps;        /* Gauss steps per period of the coarser monodromy, the finer has twice
+                         (>= 8); 0: 200; raised as whirl_periodic_find raises it */
+    double tol;       /* an edge's bracket in amplitude at most this wide [L]; 0: 1e-10 */
+} whirl_chart_params;
+
+typedef struct whirl_chart_point {
+    whirl_floquet_edge kind; /* WHIRL_FLOQUET_EDGE_PLUS_ONE or _MINUS_ONE */
+    int curve;        /* the curve's number, from 0 in the order found */
+    int column;       /* the rate's index, from 0 */
+    double omega;     /* [sqrt(g/L)] */
+    double amplitude; /* [L] */
+    double err;       /* its error estimate [L]: the bracket's width plus the shift of the root
+                         by the extrapolation in the step (det from steps and 2 steps, order 4) */
+} whirl_chart_point;
+
+typedef struct whirl_chart_progress {
+    int column, columns; /* the rate under way (from 0) and the count */
+    int curves;          /* curves found so far */
+    long monodromies;    /* monodromies computed so far */
+} whirl_chart_progress;
+
+/* Called once per point as soon as it is located (in order of rate); a non-zero return stops
+ * the chart with that status (with no message of the chart's). */
+typedef int (*whirl_chart_row_fn)(void *data, const whirl_chart_point *point);
+/* Called after every column and every scan. */
+typedef void (*whirl_chart_tick_fn)(void *data, const whirl_chart_progress *progress);
+
+/* The chart of the chain c (dim 2: the x-z plane) with its pivot shaken vertically.
+ * GSL_EINVAL with a message on bad parameters; WHIRL_EINTERRUPTED on a stop request (the points
+ * handed to row so far stand); an integration's status. tick may be NULL. */
+WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                   whirl_chart_row_fn row, void *row_data,
+                                   whirl_chart_tick_fn tick, void *tick_data);
+
 WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
 WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);
 

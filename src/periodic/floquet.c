@@ -60,7 +60,7 @@ const char *whirl_floquet_edge_name(whirl_floquet_edge e)
 /* The steps per period: the requested (or the default) raised to the bound of
  * whirl_default_step at the start y, with the tensions raised by the pivot's largest
  * acceleration times the mass below each link (the tension of a shaken chain swings by it). */
-static int steps_for(whirl_periodic *w, const double *y, int requested, int *steps)
+int periodic_steps_for(whirl_periodic *w, const double *y, int requested, int *steps)
 {
     const size_t n = w->n;
     double *tension = malloc(n * sizeof *tension);
@@ -165,7 +165,7 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
         if (!isfinite(y[q])) return whirl_fail(GSL_EINVAL, "the start state is not finite");
     int steps = 0;
     int status = whirl_dyn_project(w->dyn, 0, y);
-    if (status == GSL_SUCCESS) status = steps_for(w, y, p.steps, &steps);
+    if (status == GSL_SUCCESS) status = periodic_steps_for(w, y, p.steps, &steps);
     if (status) return status;
     const size_t m = w->m;
     double *re = w->out, *im = w->out + m, *err = w->out + 2 * m;

@@ -121,6 +121,12 @@ void periodic_tick(whirl_periodic *w, double done)
     w->progress.monodromy = done;
     w->tick(w->tick_data, &w->progress);
 }
+void periodic_set_path(whirl_periodic *w, const whirl_pivot_path *path)
+{
+    w->path = *path;
+    w->omega_ref = fmax(path->omega, sqrt(w->chain->gravity / w->length));
+}
+
 size_t whirl_periodic_state_size(const whirl_periodic *w) { return w->size; }
 size_t whirl_periodic_tangent_size(const whirl_periodic *w) { return w->m; }
 const double *whirl_periodic_monodromy(const whirl_periodic *w)

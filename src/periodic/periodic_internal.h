@@ -51,6 +51,13 @@ void periodic_tangent_read(const whirl_periodic *w, const double *y0, const doub
 /* w->mono <- the monodromy at y from the variational equations (variational.c). */
 int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps);
 
+/* w's path <- path (a valid one for w's dimension): a chart's rates and amplitudes on one
+ * workspace. */
+void periodic_set_path(whirl_periodic *w, const whirl_pivot_path *path);
+/* *steps <- requested (0: the default) raised to whirl_default_step's bound at y on w's path,
+ * with the tensions raised by the pivot's largest acceleration (floquet.c). */
+int periodic_steps_for(whirl_periodic *w, const double *y, int requested, int *steps);
+
 /* Calls the tick (if any) with w->progress, its monodromy part set to done. */
 void periodic_tick(whirl_periodic *w, double done);
 
