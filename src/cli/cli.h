@@ -360,5 +360,6 @@ int cmd_driven(const cli_command *cmd, int argc, char **argv);
 int cmd_plot(const cli_command *cmd, int argc, char **argv);
 int cmd_regime(const cli_command *cmd, int argc, char **argv);
 int cmd_view(const cli_command *cmd, int argc, char **argv);
+int cmd_periodic(const cli_command *cmd, int argc, char **argv);
 
 #endif

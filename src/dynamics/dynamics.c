@@ -237,6 +237,9 @@ int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
     int status = radius ? ramp_check(radius, "drive_radius_ramp", 1) : GSL_SUCCESS;
     if (status == GSL_SUCCESS && omega) status = ramp_check(omega, "omega_ramp", 0);
     if (status) return status;
+    if (d->pivot_fn != NULL && radius != NULL && ramp_active(radius))
+        return whirl_fail(GSL_EINVAL, "whirl_dyn_set_ramps: the pivot follows a path "
+                                      "(whirl_dyn_set_pivot), not the drive's radius");
     dyn_drive before, after;
     whirl_dyn_drive(d, t, &before);
     if (radius) d->model.drive_radius_ramp = *radius;
@@ -247,8 +250,25 @@ int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
     return GSL_SUCCESS;
 }
 
+int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn *pivot, void *params)
+{
+    if (d == NULL) return whirl_fail(GSL_EINVAL, "whirl_dyn_set_pivot: no dynamics");
+    if (pivot != NULL && (d->model.frame != WHIRL_FRAME_INERTIAL || d->model.drive_radius != 0 ||
+                          d->ramped))
+        return whirl_fail(GSL_EINVAL, "a pivot path needs the inertial frame, drive radius 0 and "
+                                      "no ramp");
+    d->pivot_fn = pivot;
+    d->pivot_params = pivot != NULL ? params : NULL;
+    return GSL_SUCCESS;
+}
+
 void whirl_dyn_pivot(const whirl_dyn *d, double t, double *p, double *pv, double *pa)
 {
+    if (d->pivot_fn != NULL) {
+        d->pivot_fn(t, p, pv, pa, d->pivot_params);
+        if (d->dim == 2) p[1] = pv[1] = pa[1] = 0;
+        return;
+    }
     for (int k = 0; k < 3; k++) p[k] = pv[k] = pa[k] = 0;
     if (!d->ramped) { /* the constant drive */
         const double eps = d->model.drive_radius, w = d->model.omega;

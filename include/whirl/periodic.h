@@ -1,0 +1,258 @@
+/* whirl: the chain under a periodic pivot motion: pivot paths, periodic motions found by
+ * shooting on the period map, and their Floquet multipliers.
+ *
+ * A pivot path is a few Fourier terms in x, y, z at the rate omega (period T = 2 pi / omega):
+ *   p_k(t) = sum_{j=1..J} c_kj cos(j omega t) + s_kj sin(j omega t),   k = x, y, z,
+ * in the inertial frame (z up; 2D models move in the x-z plane and need no y terms). The circle
+ * (r cos, r sin, 0) is the drive of whirl_model.drive_radius; the ellipse, the line in any
+ * direction (vertical shaking among them) and the figure of eight are presets.
+ *
+ * A periodic motion is a state y* at t = 0 with P(y*) = y*, P the period map (the flow from 0 to
+ * T of the Cartesian formulation, whirl/dynamics.h, by the Gauss method of order 4 with a fixed
+ * step T / steps and the projection after every step). Its neighbourhood is described in the
+ * tangent space of the constraint manifold: per link, the components of the link's displacement
+ * and rate along (dim - 1) unit vectors across the link (the along-link parts follow from the
+ * constraints), 2 (dim - 1) N coordinates in all. The monodromy matrix is the derivative of the
+ * discrete period map in these coordinates, from the variational equations integrated with the
+ * motion by the same Gauss steps (or, as a cross-check, by central differences of P); Newton's
+ * method on P(y) - y with it. The Floquet multipliers are its eigenvalues;
+ * their error is estimated by a second solve with the step halved (the Gauss method is of order
+ * 4: the error of the finer value is |mu(h/2) - mu(h)| / 15, Richardson). */
+#ifndef WHIRL_PERIODIC_H
+#define WHIRL_PERIODIC_H
+
+#include <stddef.h>
+
+#include "whirl/chain.h"
+#include "whirl/common.h"
+#include "whirl/dynamics.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The most harmonics of a pivot path: a hand's path is smooth, a few terms describe it. */
+#define WHIRL_PIVOT_HARMONICS_MAX 8
+
+typedef struct whirl_pivot_path {
+    double omega; /* rate of the path [sqrt(g/L)], > 0: the period is 2 pi / omega */
+    int harmonics; /* J, 1..WHIRL_PIVOT_HARMONICS_MAX: the terms j = 1..J are used */
+    double c[3][WHIRL_PIVOT_HARMONICS_MAX]; /* c[k][j - 1]: amplitude of cos(j omega t) in axis k [L] */
+    double s[3][WHIRL_PIVOT_HARMONICS_MAX]; /* s[k][j - 1]: amplitude of sin(j omega t) in axis k [L] */
+} whirl_pivot_path;
+
+/* Presets at the rate omega (GSL_EINVAL on omega <= 0 or a length that is not finite):
+ * circle   (r cos wt, r sin wt, 0): whirl_model's drive of radius r;
+ * ellipse  (a cos wt, b sin wt, 0): semi-axes a along x, b along y;
+ * line     amplitude a cos(wt) along the direction (dx, dy, dz) (normalised; (0, 0, 1): vertical
+ *          shaking); GSL_EINVAL on a zero direction;
+ * eight    (a sin wt, b sin 2wt, 0): a figure of eight, half-width a along x, b along y. */
+WHIRL_API int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
+WHIRL_API int whirl_pivot_ellipse(whirl_pivot_path *path, double omega, double a, double b);
+WHIRL_API int whirl_pivot_line(whirl_pivot_path *path, double omega, double a, const double dir[3]);
+WHIRL_API int whirl_pivot_eight(whirl_pivot_path *path, double omega, double a, double b);
+
+/* Parses text into path at the rate omega. The grammar (lengths with an optional unit suffix,
+ * m, cm or mm, whirl_parse_quantity):
+ *   circle:R | ellipse:A,B | line:A[,DX,DY,DZ] (default direction x) | vertical:A |
+ *   eight:A,B | fourier:TERM[,TERM...] with TERM = AXIS J KIND=LENGTH, AXIS x, y or z, J the
+ *   harmonic 1..WHIRL_PIVOT_HARMONICS_MAX, KIND c (cosine) or s (sine): "fourier:x1c=1cm,y1s=6mm".
+ * length [m]: the chain's length in SI units, the lengths are then in m and divided by it; 0:
+ * dimensionless, a unit suffix is then refused. dim 2 refuses y terms. GSL_EINVAL with a
+ * one-line message naming the bad term (path unchanged). */
+WHIRL_API int whirl_pivot_parse(const char *text, double omega, double length, int dim,
+                                whirl_pivot_path *path);
+
+/* GSL_SUCCESS if path is valid for a model of dimension dim (omega > 0 and finite, at most
+ * WHIRL_OMEGA_MAX; harmonics in range; every amplitude finite; no y term in 2D), else GSL_EINVAL
+ * naming the term. */
+WHIRL_API int whirl_pivot_check(const whirl_pivot_path *path, int dim);
+
+/* The period 2 pi / omega. */
+WHIRL_API double whirl_pivot_period(const whirl_pivot_path *path);
+
+/* Position, velocity and acceleration of the pivot at t (3 each); a whirl_pivot_fn with params
+ * the path (whirl_dyn_set_pivot). */
+WHIRL_API void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3], void *path);
+
+/* ---- periodic motions ---- */
+
+typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one path */
+
+/* A workspace for the conservative chain c (not owned) in dimension dim (2 or 3) with its pivot
+ * on path (copied). NULL with a message on invalid arguments or no memory. */
+WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
+                                               const whirl_pivot_path *path);
+WHIRL_API void whirl_periodic_free(whirl_periodic *w); /* NULL is a no-op */
+
+/* The dynamics of w (inertial frame, Cartesian formulation, the pivot on the path, omega the
+ * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs. */
+WHIRL_API whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
+/* Length of a state (whirl_dyn_size) and of the tangent coordinates, 2 (dim - 1) N. */
+WHIRL_API size_t whirl_periodic_state_size(const whirl_periodic *w);
+WHIRL_API size_t whirl_periodic_tangent_size(const whirl_periodic *w);
+
+/* y <- the chain hanging straight down (inverted 0) or standing straight up (inverted 1) at
+ * t = 0, moving with the pivot. */
+WHIRL_API int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y);
+
+/* How the monodromy is formed; both give the derivative of the same discrete period map. */
+typedef enum {
+    WHIRL_MONODROMY_VARIATIONAL = 0, /* the variational equations with the motion, by the same
+                                        Gauss steps (the default; src/periodic/variational.c) */
+    WHIRL_MONODROMY_DIFFERENCES = 1  /* central differences of the period map, extrapolated in
+                                        their step (4 m periods; floor ~1e-11) */
+} whirl_monodromy_method;
+
+typedef struct whirl_periodic_params {
+    int steps;    /* Gauss steps per period (>= 8); 0: 400. Raised to whirl_default_step's bound
+                     of the start */
+    double tol;   /* Newton's test: the largest component of P(y) - y (positions over L, rates
+                     over omega_ref L, omega_ref = max(omega, sqrt(g/L))) at most tol; 0: 1e-10 */
+    int max_iter; /* Newton iterations; 0: 30 */
+    int refine;   /* 1: a second solve with 2 steps per step for the error estimate; 0: none
+                     (errors reported as 0) */
+    whirl_monodromy_method monodromy; /* default WHIRL_MONODROMY_VARIATIONAL */
+} whirl_periodic_params;
+
+typedef enum {
+    WHIRL_FLOQUET_STABLE = 0,   /* every multiplier inside the unit circle beyond its error */
+    WHIRL_FLOQUET_NEUTRAL = 1,  /* the largest on the unit circle within its error */
+    WHIRL_FLOQUET_UNSTABLE = 2  /* the largest outside beyond its error */
+} whirl_floquet_verdict;
+
+typedef enum {
+    WHIRL_FLOQUET_EDGE_PLUS_ONE = 0,  /* a real multiplier through +1 (fold of cycles) */
+    WHIRL_FLOQUET_EDGE_MINUS_ONE = 1, /* a real multiplier through -1 (period doubling) */
+    WHIRL_FLOQUET_EDGE_COMPLEX = 2    /* a complex pair through the unit circle (torus; for the
+                                         conservative chain: two pairs that meet on it) */
+} whirl_floquet_edge;
+
+typedef struct whirl_periodic_result {
+    size_t count;          /* multipliers: 2 (dim - 1) N */
+    double *re, *im;       /* the multipliers (finer step), by decreasing modulus (owned by w,
+                              valid until the next solve) */
+    double *err;           /* error estimate of each, |mu(h/2) - mu(h)| / 15 (0 without refine) */
+    double residual;       /* the scaled max |P(y) - y| reached (finer step) */
+    int iterations;        /* Newton iterations (both solves) */
+    int steps;             /* steps per period of the finer solve */
+    double period;         /* T [sqrt(L/g)] */
+    double max_modulus;    /* the largest |mu| */
+    double max_modulus_err;
+    double reciprocal_err; /* max over mu_i of min_j |mu_i mu_j - 1|: 0 for the exact
+                              conservative chain (symplectic monodromy) */
+    double orbit_change;   /* max |y*(h/2) - y*(h)| (scaled as the residual; 0 without refine) */
+    whirl_floquet_verdict verdict;
+    double growth;         /* unstable: the largest |mu| per period; else 1 */
+    double efold_periods;  /* unstable: 1 / ln |mu|max periods; else 0 */
+    double efold_time;     /* unstable: T / ln |mu|max [sqrt(L/g)]; else 0 */
+    whirl_floquet_edge edge; /* unstable: how the largest left the circle; else the nearest */
+    double edge_distance;  /* neutral or stable: the angle [rad] to that edge (for a collision
+                              of two multipliers on the circle, half the angle between them) */
+} whirl_periodic_result;
+
+/* Finds the periodic motion near the start y (length whirl_periodic_state_size; overwritten by
+ * the motion's state at t = 0) by Newton's method on the period map, then its multipliers.
+ * params NULL: every default with refine 1. GSL_EMAXITER with the residual in the message if Newton's
+ * method does not converge (result->count 0: no multiplier of a motion not found; y holds the
+ * last iterate); GSL_EINVAL on bad arguments; an integration's status (and its message) if a
+ * period cannot be integrated; WHIRL_EINTERRUPTED on a stop request. */
+WHIRL_API int whirl_periodic_find(whirl_periodic *w, double *y,
+                                  const whirl_periodic_params *params,
+                                  whirl_periodic_result *result);
+
+/* Where a solve stands, for a progress display. */
+typedef struct whirl_periodic_progress {
+    int solve;        /* 1: the coarser solve, 2: the finer (or the only one without refine) */
+    int iteration;    /* Newton's iteration, from 0 */
+    double residual;  /* the scaled |P(y) - y| of that iterate (inf before the first) */
+    double monodromy; /* the part of the monodromy under way that is done, 0..1 (0: none) */
+} whirl_periodic_progress;
+
+/* tick(data, progress) is called during whirl_periodic_find: after every residual and about 16
+ * times per monodromy. It must not call w. NULL (the default): none. */
+WHIRL_API void whirl_periodic_set_tick(whirl_periodic *w,
+                                       void (*tick)(void *data,
+                                                    const whirl_periodic_progress *progress),
+                                       void *data);
+
+/* The monodromy of the last successful solve (finer step): tangent_size x tangent_size, row
+ * major, valid until the next solve; NULL before. */
+WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
+
+/* Advances the state y of w at t = 0 (or any whole number of periods) by periods whole periods
+ * with steps Gauss steps per period (a perturbed run; WHIRL_EINTERRUPTED on a stop). */
+WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int periods);
+
+/* Reads the tangent coordinates of the difference y1 - y0 of two states near y0 (length
+ * tangent_size): the perturbation's size as the multipliers act on it. */
+WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const double *y1,
+                                     double *coords);
+
+/* ---- stability charts of the vertically shaken chain ----
+ *
+ * The chain hanging straight down (or standing straight up) moves with a pivot shaken
+ * vertically, A cos(omega t): the vertical state is a periodic motion for every omega and A, so
+ * no Newton's method is needed, only the monodromy of its linearisation. Its multipliers come in
+ * pairs mu, 1/mu; with rho = mu + 1/mu per pair,
+ *   det(M - I) = prod_k (2 - rho_k),   det(M + I) = prod_k (2 + rho_k),
+ * smooth in (omega, A) where single multipliers near a collision are not, and each changes sign
+ * where a pair passes +1 (resp. -1): the edges of the chart. An edge is a curve A(omega),
+ * located per rate by Brent's method on A to the tolerance and followed from rate to rate with
+ * the previous point as the centre of the next bracket; a column is scanned on `rows` amplitudes
+ * for new curves at the first rate, where the count of edges disagrees with the signs at the
+ * range's ends, and (hanging) where a tongue's tip 2 omega_k / n (omega_k the unshaken chain's
+ * frequencies) lies between two rates. */
+
+typedef struct whirl_chart_params {
+    int inverted;     /* 0: the hanging chain (its tongues of instability); 1: the inverted chain
+                         (its region of stability, Acheson's); default 0 */
+    double omega_min, omega_max; /* the rates [sqrt(g/L)], 0 < omega_min < omega_max (no
+                                    default) */
+    int columns;      /* rates, equally spaced, both ends included (>= 2); 0: 200 */
+    double amp_min;   /* the lowest amplitude [L], >= 0; 0: amp_max / rows (at A = 0 the
+                         tongues touch their edges without crossing them) */
+    double amp_max;   /* the highest amplitude [L], > amp_min (no default) */
+    int rows;         /* amplitudes of a column's scan for new curves (>= 2); 0: 200 */
+    int steps;        /* Gauss steps per period of the coarser monodromy, the finer has twice
+                         (>= 8); 0: 200; raised as whirl_periodic_find raises it */
+    double tol;       /* an edge's bracket in amplitude at most this wide [L]; 0: 1e-10 */
+} whirl_chart_params;
+
+typedef struct whirl_chart_point {
+    whirl_floquet_edge kind; /* WHIRL_FLOQUET_EDGE_PLUS_ONE or _MINUS_ONE */
+    int curve;        /* the curve's number, from 0 in the order found */
+    int column;       /* the rate's index, from 0 */
+    double omega;     /* [sqrt(g/L)] */
+    double amplitude; /* [L] */
+    double err;       /* its error estimate [L]: the bracket's width plus the shift of the root
+                         by the extrapolation in the step (det from steps and 2 steps, order 4) */
+} whirl_chart_point;
+
+typedef struct whirl_chart_progress {
+    int column, columns; /* the rate under way (from 0) and the count */
+    int curves;          /* curves found so far */
+    long monodromies;    /* monodromies computed so far */
+} whirl_chart_progress;
+
+/* Called once per point as soon as it is located (in order of rate); a non-zero return stops
+ * the chart with that status (with no message of the chart's). */
+typedef int (*whirl_chart_row_fn)(void *data, const whirl_chart_point *point);
+/* Called after every column and every scan. */
+typedef void (*whirl_chart_tick_fn)(void *data, const whirl_chart_progress *progress);
+
+/* The chart of the chain c (dim 2: the x-z plane) with its pivot shaken vertically.
+ * GSL_EINVAL with a message on bad parameters; WHIRL_EINTERRUPTED on a stop request (the points
+ * handed to row so far stand); an integration's status. tick may be NULL. */
+WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                   whirl_chart_row_fn row, void *row_data,
+                                   whirl_chart_tick_fn tick, void *tick_data);
+
+WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
+WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,200 @@
+/* whirl periodic: the periodic motion of the N-link chain with its pivot on a periodic path
+ * (include/whirl/periodic.h), found by Newton's method on the period map, and its Floquet
+ * multipliers with their error estimates and the verdict.
+ *
+ * Output: comment lines (the path and the model; the period, Newton's iterations and residual,
+ * the steps; the verdict with the growth per period and the e-folding time, the edge; the
+ * reciprocal-pair error), the "# units:" line, then the CSV index,re,im,modulus,err of the
+ * multipliers by decreasing modulus. Newton's method that does not converge: an error naming
+ * the residual, no multipliers, exit status 1. Ctrl-C stops the solve (exit status 130). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "whirl/periodic.h"
+#include "whirl/stability.h"
+
+typedef struct periodic_options {
+    const char *pivot, *start, *output;
+    double omega, tol;
+    int links, dim, steps, max_iter, mode, differences;
+    cli_units units;
+} periodic_options;
+
+/* The progress line: which solve, Newton's iteration and residual, the monodromy's part done;
+ * on a terminal once the run has taken cli_progress_after() seconds. */
+typedef struct periodic_progress {
+    cli_progress_state line;
+    double after;
+} periodic_progress;
+
+static void show_progress(void *data, const whirl_periodic_progress *p)
+{
+    periodic_progress *pp = data;
+    if (!pp->line.drawn && cli_wall_seconds() - pp->line.start < pp->after) return;
+    if (p->monodromy > 0)
+        cli_progress_text(&pp->line, "solve %d of 2, Newton iteration %d (residual %.2g), "
+                          "monodromy %.0f%%", p->solve, p->iteration, p->residual,
+                          100 * p->monodromy);
+    else
+        cli_progress_text(&pp->line, "solve %d of 2, Newton iteration %d (residual %.2g)",
+                          p->solve, p->iteration, p->residual);
+}
+
+/* The steady shape of the circle drive (mode, tip on the pivot's side) as the start state. */
+static int start_steady(const cli_command *cmd, const periodic_options *o, const whirl_chain *c,
+                        const whirl_pivot_path *path, whirl_periodic *w, double *y)
+{
+    const double r = path->c[0][0];
+    whirl_pivot_path circle;
+    if (o->dim != 3 || whirl_pivot_circle(&circle, path->omega, r) != GSL_SUCCESS ||
+        memcmp(&circle, path, sizeof circle) != 0 || !(r > 0))
+        return cli_error(cmd, "--start steady needs --pivot circle:R with R > 0 and --dim 3 "
+                         "(the steady shapes of the circle drive)");
+    whirl_stability *st = whirl_stability_alloc(c->n);
+    if (st == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    const whirl_model model = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
+                               .omega = path->omega, .drive_radius = r};
+    double growth;
+    int status = whirl_stability_driven_mode(st, &model, o->mode, 1, NULL, &growth);
+    double *links = malloc(3 * c->n * sizeof *links);
+    if (status == GSL_SUCCESS && links == NULL) status = GSL_ENOMEM;
+    if (status == GSL_SUCCESS) {
+        const double *x, *yy, *z;
+        whirl_stability_nodes(st, &x, &yy, &z);
+        status = whirl_shape_links(c->n, x, yy, z, links);
+    }
+    if (status == GSL_SUCCESS)
+        status = whirl_dyn_state_from_shape(whirl_periodic_dyn(w), 0, links, path->omega, y);
+    free(links);
+    whirl_stability_free(st);
+    if (status) return cli_error(cmd, "the steady start: %s", CLI_LIBRARY_ERROR(&o->units));
+    return 0;
+}
+
+static void write_result(FILE *fp, const periodic_options *o, const whirl_periodic_result *r)
+{
+    const double time = cli_units_scale(&o->units, CLI_UNIT_TIME);
+    char rate[96];
+    fprintf(fp, "# periodic motion: pivot %s at omega %s, links=%d dim=%d start=%s\n", o->pivot,
+            cli_rate_words(&o->units, o->omega, rate, sizeof rate), o->links, o->dim, o->start);
+    fprintf(fp, "# monodromy by %s\n", o->differences ? "central differences" :
+                                                        "the variational equations");
+    fprintf(fp, "# period=%s %s; Newton %d iterations, residual %.3g; %d steps per period "
+            "(errors from %d)\n", CLI_NUM(r->period * time), cli_units_name(&o->units, CLI_UNIT_TIME),
+            r->iterations, r->residual, r->steps, r->steps / 2);
+    if (r->verdict == WHIRL_FLOQUET_UNSTABLE)
+        fprintf(fp, "# verdict=unstable growth=%.10g per period, e-folding %.6g periods (%s %s); "
+                "edge=%s\n", r->growth, r->efold_periods, CLI_NUM(r->efold_time * time),
+                cli_units_name(&o->units, CLI_UNIT_TIME), whirl_floquet_edge_name(r->edge));
+    else
+        fprintf(fp, "# verdict=%s; nearest edge=%s at %.6g rad\n",
+                whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
+                r->edge_distance);
+    fprintf(fp, "# |mu|max=%.15g +- %.2g; reciprocal-pair error %.2g (0 for the exact "
+            "conservative chain); orbit change with the step %.2g\n", r->max_modulus,
+            r->max_modulus_err, r->reciprocal_err, r->orbit_change);
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "index,re,im,modulus,err\n");
+    for (size_t i = 0; i < r->count; i++) {
+        const double mod = hypot(r->re[i], r->im[i]);
+        fprintf(fp, "%zu,%s,%s,%s,%s\n", i + 1, CLI_NUM(r->re[i]), CLI_NUM(r->im[i]),
+                CLI_NUM(mod), CLI_NUM(r->err[i]));
+    }
+}
+
+int cmd_periodic(const cli_command *cmd, int argc, char **argv)
+{
+    periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1,
+                          .units = CLI_UNITS_INIT};
+    const cli_option opts[] = {
+        {.name = "--pivot", .type = CLI_STRING, .value = &o.pivot, .meta = "PATH",
+         .help = "the pivot's path: circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A, "
+                 "eight:A,B or fourier:x1c=A,z2s=B,...",
+         .required = ""},
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .meta = "W",
+         .help = "rate of the path (period 2 pi / W)", .range = "(0, inf)", .required = "",
+         .unit = CLI_UNIT_RATE},
+        {.name = "--links", .type = CLI_INT, .value = &o.links, .meta = "N",
+         .help = "links of the chain (default 1)", .range = "[1, 100000]"},
+        {.name = "--dim", .type = CLI_INT, .value = &o.dim, .meta = "D",
+         .help = "2 (the x-z plane) or 3 (default)", .range = "[2, 3]"},
+        {.name = "--start", .type = CLI_STRING, .value = &o.start, .meta = "S",
+         .help = "Newton's start: hanging (default), inverted, or steady (the circle drive's "
+                 "steady shape of --mode)"},
+        {.name = "--mode", .type = CLI_INT, .value = &o.mode, .meta = "K",
+         .help = "--start steady: the mode (default 1)", .range = "[1, 64]", .needs = "--start"},
+        {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
+         .help = "Gauss steps per period of the coarser solve (default 400, raised to the "
+                 "chain's bound); the finer takes twice as many",
+         .range = "[8, 16777216]"},
+        {.name = "--tol", .type = CLI_DOUBLE, .value = &o.tol, .meta = "TOL",
+         .help = "Newton: largest scaled |P(y) - y| (default 1e-10)", .range = "(0, 1]"},
+        {.name = "--max-iter", .type = CLI_INT, .value = &o.max_iter, .meta = "I",
+         .help = "Newton iterations (default 30)", .range = "[1, 1000]"},
+        {.name = "--differences", .type = CLI_FLAG, .value = &o.differences,
+         .help = "the monodromy by central differences of the period map (a cross-check; "
+                 "default: the variational equations)"},
+        CLI_UNITS_OPTIONS(o.units),
+        {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &o.output,
+         .meta = "FILE", .help = "write the CSV to FILE (default: standard output)"},
+    };
+    int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
+    if (rc) return rc;
+    const int start = strcmp(o.start, "hanging") == 0    ? 0
+                      : strcmp(o.start, "inverted") == 0 ? 1
+                      : strcmp(o.start, "steady") == 0   ? 2
+                                                         : -1;
+    if (start < 0)
+        return cli_error(cmd, "--start must be hanging, inverted or steady, got '%s'", o.start);
+    whirl_pivot_path path;
+    if (whirl_pivot_parse(o.pivot, o.omega, o.units.physical ? o.units.length : 0, o.dim,
+                          &path) != GSL_SUCCESS)
+        return cli_error(cmd, "--pivot: %s", CLI_LIBRARY_ERROR(&o.units));
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
+    if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
+    whirl_periodic *w = whirl_periodic_alloc(c, o.dim, &path);
+    double *y = w ? malloc(whirl_periodic_state_size(w) * sizeof *y) : NULL;
+    if (y == NULL) {
+        rc = cli_error(cmd, "%s", w ? "out of memory" : CLI_LIBRARY_ERROR(&o.units));
+        goto done;
+    }
+    if (start == 2) {
+        if ((rc = start_steady(cmd, &o, c, &path, w, y))) goto done;
+    } else if (whirl_periodic_start_vertical(w, start, y) != GSL_SUCCESS) {
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
+        goto done;
+    }
+    cli_catch_interrupts();
+    periodic_progress progress = {.after = cli_progress_after()};
+    cli_progress_begin(&progress.line, cmd, "", 0, 0);
+    whirl_periodic_set_tick(w, show_progress, &progress);
+    whirl_periodic_result r;
+    const whirl_periodic_params params = {
+        .steps = o.steps, .tol = o.tol, .max_iter = o.max_iter, .refine = 1,
+        .monodromy = o.differences ? WHIRL_MONODROMY_DIFFERENCES : WHIRL_MONODROMY_VARIATIONAL};
+    const int status = whirl_periodic_find(w, y, &params, &r);
+    cli_progress_clear(&progress.line);
+    if (status == WHIRL_EINTERRUPTED || cli_interrupted) {
+        rc = (cli_error(cmd, "interrupted: no periodic motion yet"), CLI_EXIT_INTERRUPTED);
+        goto done;
+    }
+    if (status != GSL_SUCCESS) {
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
+        goto done;
+    }
+    cli_out out;
+    if (cli_out_open(cmd, &out, o.output)) {
+        rc = 1;
+        goto done;
+    }
+    write_result(out.fp, &o, &r);
+    rc = cli_out_commit(cmd, &out);
+done:
+    free(y);
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+    return rc;
+}

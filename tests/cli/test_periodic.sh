@@ -1,0 +1,74 @@
+#!/bin/sh
+# Command-line tests of whirl periodic: the shaken pendulum inside Mathieu's first tongue, the
+# circle drive's steady shape as a periodic motion, SI units, bad input.
+. "$(dirname "$0")/lib.sh"
+
+# N = 1 shaken vertically at omega = 2 (a = 1, q = 0.2): inside the first tongue, a multiplier
+# below -1 (the period doubling of the parametric resonance); comment lines, the units line,
+# the header, the 2 multipliers of the planar pendulum
+expect_ok "periodic Mathieu" periodic --pivot vertical:0.1 --omega 2 --links 1 --dim 2 -o "$tmp/m.csv"
+if grep -q '^# verdict=unstable growth=1.3671' "$tmp/m.csv" && grep -q 'edge=-1$' "$tmp/m.csv" \
+   && grep -q '^# units: dimensionless' "$tmp/m.csv" \
+   && [ "$(grep -v '^#' "$tmp/m.csv" | head -1)" = "index,re,im,modulus,err" ] \
+   && [ "$(grep -vc '^#' "$tmp/m.csv")" -eq 3 ] \
+   && grep -v '^#' "$tmp/m.csv" | sed -n 2p | awk -F, '{exit !($2 < -1.367 && $2 > -1.368 && $3 == 0)}'; then
+  pass "periodic Mathieu: unstable through -1, two multipliers"; else fail "periodic Mathieu: unstable through -1, two multipliers"; fi
+# outside the tongue (omega = 1.5): neutral, the multipliers on the unit circle
+expect_ok "periodic Mathieu outside" periodic --pivot vertical:0.1 --omega 1.5 --dim 2
+if grep -q '^# verdict=neutral' "$tmp/stdout" \
+   && grep -v '^#' "$tmp/stdout" | awk -F, 'NR > 1 && ($4 - 1) ^ 2 > 1e-18 {bad = 1} END {exit bad}'; then
+  pass "periodic Mathieu outside: neutral on the circle"; else fail "periodic Mathieu outside: neutral on the circle"; fi
+
+# the circle drive's mode-2 shape: Newton from the steady shape, 4 N multipliers in 3D
+expect_ok "periodic steady" periodic --pivot circle:0.05 --omega 4 --links 4 --start steady --mode 2 -o "$tmp/c.csv"
+if grep -q '^# verdict=unstable' "$tmp/c.csv" && [ "$(grep -vc '^#' "$tmp/c.csv")" -eq 17 ]; then
+  pass "periodic steady: unstable mode 2, 16 multipliers"; else fail "periodic steady: unstable mode 2, 16 multipliers"; fi
+
+# the cross-check: the same multipliers by central differences (to 1e-9)
+expect_ok "periodic --differences" periodic --pivot vertical:0.1 --omega 2 --links 1 --dim 2 --differences -o "$tmp/d.csv"
+if grep -q '^# monodromy by central differences' "$tmp/d.csv" && grep -q '^# monodromy by the variational equations' "$tmp/m.csv" \
+   && paste -d, "$tmp/m.csv" "$tmp/d.csv" | grep -v '^#' | awk -F, 'NR > 1 && ($2 - $7) ^ 2 + ($3 - $8) ^ 2 > 1e-18 {bad = 1} END {exit bad}'; then
+  pass "periodic --differences: the same multipliers"; else fail "periodic --differences: the same multipliers"; fi
+
+# SI units: the path in cm, the rate in Hz, the period in s
+expect_ok "periodic SI" periodic --pivot ellipse:1cm,0.6cm --omega 1.5Hz --length 0.5 --mass 50g --links 2 -o "$tmp/si.csv"
+if grep -q '^# period=0.666666666666666[0-9]* s;' "$tmp/si.csv" && grep -q '^# units: length=m' "$tmp/si.csv"; then
+  pass "periodic SI: period in s"; else fail "periodic SI: period in s"; fi
+expect_ok "periodic --help" periodic --help
+
+# bad input: one line naming the term, nothing written
+expect_error "no pivot" "whirl periodic: --pivot .*is required" periodic --omega 2 -o "$tmp/out.csv"
+expect_error "no rate" "whirl periodic: --omega .*is required" periodic --pivot circle:0.1 -o "$tmp/out.csv"
+expect_error "zero rate" "whirl periodic: --omega must be" periodic --pivot circle:0.1 --omega 0 -o "$tmp/out.csv"
+expect_error "unknown path" "whirl periodic: --pivot: pivot path 'square': unknown kind" periodic --pivot square:1 --omega 2 -o "$tmp/out.csv"
+expect_error "bad term" "whirl periodic: --pivot: .*term 'x9c'" periodic --pivot fourier:x9c=0.1 --omega 2 -o "$tmp/out.csv"
+expect_error "bad length" "whirl periodic: --pivot: .*ellipse B: 'abc' is not a length" periodic --pivot ellipse:0.1,abc --omega 2 -o "$tmp/out.csv"
+expect_error "unit without SI" "whirl periodic: --pivot: .*has a unit" periodic --pivot circle:1cm --omega 2 -o "$tmp/out.csv"
+expect_error "y term in 2D" "whirl periodic: --pivot: .*y1s moves the pivot out of the x-z plane" periodic --pivot ellipse:0.1,0.1 --omega 2 --dim 2 -o "$tmp/out.csv"
+expect_error "infinite amplitude" "whirl periodic: --pivot: .*circle R" periodic --pivot circle:1e999 --omega 2 -o "$tmp/out.csv"
+expect_error "bad start" "whirl periodic: --start must be hanging, inverted or steady" periodic --pivot circle:0.1 --omega 2 --start up -o "$tmp/out.csv"
+expect_error "steady without circle" "whirl periodic: --start steady needs --pivot circle" periodic --pivot ellipse:0.1,0.05 --omega 2 --start steady -o "$tmp/out.csv"
+expect_error "bad dim" "whirl periodic: --dim must be" periodic --pivot vertical:0.1 --omega 2 --dim 4 -o "$tmp/out.csv"
+expect_error "few steps" "whirl periodic: --steps must be" periodic --pivot vertical:0.1 --omega 2 --steps 2 -o "$tmp/out.csv"
+# Newton that cannot converge: the residual named, no multipliers
+expect_error "Newton fails" "whirl periodic: Newton's method on the period map did not converge in 1 iterations: residual [0-9.e-]+" periodic --pivot ellipse:0.1,0.05 --omega 3 --links 3 --max-iter 1 --tol 1e-14 -o "$tmp/out.csv"
+# the progress line on a terminal (util-linux's script; asked for at once): which solve, Newton's
+# iteration and residual, the monodromy's part; erased at the end, the same multipliers written
+printf '\r\033[K' >"$tmp/erase"
+WHIRL_PROGRESS_AFTER=0 script -qfec "\"$WHIRL\" periodic --pivot ellipse:0.02,0.01 --omega 3 --links 4 -o $tmp/tty.csv" /dev/null </dev/null >"$tmp/p.tty"
+rc=$?
+"$WHIRL" periodic --pivot ellipse:0.02,0.01 --omega 3 --links 4 -o "$tmp/plain.csv"
+if [ $rc -eq 0 ] && tr '\r' '\n' <"$tmp/p.tty" | sed 's/\x1b\[K$//' \
+     | grep -Eq '^whirl periodic: solve [12] of 2, Newton iteration [0-9]+ \(residual [0-9.e+-]+\), monodromy [0-9]+%, [0-9]+s elapsed$' \
+   && [ "$(tail -c 4 "$tmp/p.tty" | od -An -c | tr -d ' ')" = "$(od -An -c <"$tmp/erase" | tr -d ' ')" ] \
+   && cmp -s "$tmp/tty.csv" "$tmp/plain.csv"; then
+  pass "periodic progress line: shown, erased, the same CSV"; else fail "periodic progress line: shown, erased, the same CSV (rc=$rc)"; fi
+
+# Ctrl-C during a long solve (60 links): exit status 130, one line, no file
+env --default-signal=INT "$WHIRL" periodic --pivot ellipse:0.02,0.01 --omega 3 --links 60 -o "$tmp/out.csv" 2>"$tmp/stderr" &
+pid=$!
+sleep 1
+interrupt $pid
+if [ $rc -eq 130 ] && [ ! -e "$tmp/out.csv" ] && grep -q '^whirl periodic: interrupted' "$tmp/stderr"; then
+  pass "periodic interrupted: 130, no file"; else fail "periodic interrupted: 130, no file (rc=$rc)"; fi
+finish
