@@ -1,0 +1,39 @@
+/* What the two passes of the scene parser share (src/studies/scene.c: the first pass and the
+ * driver; scene_convert.c: the second pass, typed values): the names of the sections and keys,
+ * the second pass's state, the prototypes grouped by the file that defines them. */
+#ifndef WHIRL_SCENE_INTERNAL_H
+#define WHIRL_SCENE_INTERNAL_H
+
+#include "whirl/common.h"
+#include "whirl/scene.h"
+
+extern const char *const sc_section_names[];
+
+/* Every key: its section, its name and the kind of quantity its numbers are (the unit suffixes
+ * they may carry). */
+typedef struct sc_key_name {
+    int section; /* index into sc_section_names */
+    const char *name;
+    whirl_quantity kind;
+} sc_key_name;
+
+extern const sc_key_name sc_key_names[WHIRL_SCENE_NKEYS];
+
+/* State of the second pass: the scene it fills and the raw text of every key. */
+typedef struct convert {
+    whirl_scene *scene;
+    char *const *raw;
+} convert;
+
+/* scene.c */
+char *sc_copy_string(const char *s);
+char *sc_trim(char *s);
+
+/* scene_convert.c: the sections' values converted and checked, in this order */
+int sc_convert_units(const convert *v);
+int sc_convert_chain(const convert *v);
+int sc_convert_start(const convert *v);
+int sc_convert_run(const convert *v);
+int sc_convert_output(const convert *v);
+
+#endif
