@@ -13,6 +13,9 @@
 #define SCAN_LEVELS_MAX 5
 #define MATCH_ANGLE 1e-8     /* two polished equilibria with every link angle this close [rad]
                               * are the same (their tip radii then within MATCH_ANGLE L) */
+
+/* ---- the scan of a function of one variable (equilibria_scan.c) ---- */
+
 /* G and dG/dx at x; with s, sd not NULL, the tangents of the link angles H_i / V_i and their
  * derivatives with respect to x */
 typedef int (*scan_fn)(void *ctx, double x, double *g, double *dg, double *s, double *sd);
@@ -35,6 +38,8 @@ typedef struct scan_out {
     size_t unresolved;
 } scan_out;
 
+/* ---- the N-link chain's scans, Newton's method, quadruple precision (equilibria_nlink.c) ---- */
+
 typedef struct nlink_scan {
     const whirl_chain *c;
     double omega, length; /* the rate; L = sum of the link lengths */
@@ -51,6 +56,8 @@ typedef struct angle_ws {
 } angle_ws;
 
 typedef nlink_quad (*quad_fn)(const nlink_scan *s, nlink_quad p, double *theta);
+
+/* ---- the list of equilibria (equilibria_list.c) ---- */
 
 typedef struct eq_list {
     whirl_equilibrium *eq;

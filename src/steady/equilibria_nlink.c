@@ -12,6 +12,7 @@
 #include "steady/tip_up.h"
 
 #define BISECT_QUAD_MAX 512 /* bisections in quadruple precision (from 1 to 1e-34: 113) */
+
 /* ---- N-link chain: the two scans ---- */
 
 /* x = ln(a / (L - a)) */

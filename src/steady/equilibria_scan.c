@@ -15,6 +15,7 @@
 #define SCAN_TAU 0.01        /* Hermite test of the first level */
 #define SCAN_DEPTH_MAX 64
 #define BRENT_MAX 200
+
 /* ---- the adaptive sign-change scan of a function of one variable ---- */
 
 typedef struct scan_point {
