@@ -15,5 +15,6 @@
 #include "whirl/optimize.h"
 #include "whirl/driven.h"
 #include "whirl/regime.h"
+#include "whirl/periodic.h"
 
 #endif

@@ -96,14 +96,14 @@ WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 
 /* A pivot moved along any path: p(t), p'(t), p''(t) in the inertial frame (3 components each;
  * in 2D the y components are ignored). */
-typedef void whirl_pivot_fn(double t, double p[3], double pv[3], double pa[3], void *params);
+typedef void (*whirl_pivot_fn)(double t, double p[3], double pv[3], double pa[3], void *params);
 
 /* Replaces the pivot's motion of d by pivot(t, ..., params) (NULL restores the model's drive).
  * The model must be in the inertial frame with drive_radius 0 and no ramp (the circle drive is
  * then one such path, whirl/periodic.h): GSL_EINVAL otherwise, d unchanged. The model's omega
  * keeps its other roles (the phase of whirl_dyn_state_from_shape, the reference frame of the
  * internal damping, whirl_default_step's period). params is not owned. */
-WHIRL_API int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn *pivot, void *params);
+WHIRL_API int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn pivot, void *params);
 
 /* Length of the state vector y. */
 WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);

@@ -30,7 +30,7 @@ struct whirl_dyn {
     whirl_model model;
     int ramped; /* 1 if a ramp of the model is active (else the constant drive, exactly) */
     double phase_offset; /* added to the phase: keeps it continuous across whirl_dyn_set_ramps */
-    whirl_pivot_fn *pivot_fn; /* the pivot's path (whirl_dyn_set_pivot), NULL: the drive */
+    whirl_pivot_fn pivot_fn;   /* the pivot's path (whirl_dyn_set_pivot), NULL: the drive */
     void *pivot_params;
     whirl_formulation formulation;
     const dyn_ops *ops;

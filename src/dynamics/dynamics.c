@@ -250,7 +250,7 @@ int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
     return GSL_SUCCESS;
 }
 
-int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn *pivot, void *params)
+int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn pivot, void *params)
 {
     if (d == NULL) return whirl_fail(GSL_EINVAL, "whirl_dyn_set_pivot: no dynamics");
     if (pivot != NULL && (d->model.frame != WHIRL_FRAME_INERTIAL || d->model.drive_radius != 0 ||

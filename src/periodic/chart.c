@@ -112,8 +112,8 @@ static int fine_edge(double amp, void *ctx, double *fx)
     ch->shift = (ff[ch->kind] - fc[ch->kind]) / 15;
     *fx = ff[ch->kind] + ch->shift;
     if (!isfinite(*fx))
-        return whirl_fail(GSL_EBADFUNC, "the monodromy at omega=%.17g, A=%.17g is not finite",
-                          ch->omega, amp);
+        return whirl_fail(GSL_EBADFUNC, "the monodromy at omega=" WHIRL_Q_RATE "%.17g, A="
+                          WHIRL_Q_LENGTH "%.17g is not finite", ch->omega, amp);
     return GSL_SUCCESS;
 }
 
@@ -128,8 +128,9 @@ static int locate(chart *ch, double lo, double hi, double flo, double fhi, doubl
     if (status) {
         if (status == WHIRL_EINTERRUPTED) return status;
         if (status == GSL_EMAXITER || !r.bracketed)
-            return whirl_fail(GSL_EMAXITER, "the edge at omega=%.17g in A=[%.17g, %.17g] was "
-                              "not located", ch->omega, lo, hi);
+            return whirl_fail(GSL_EMAXITER, "the edge at omega=" WHIRL_Q_RATE "%.17g in A=["
+                              WHIRL_Q_LENGTH "%.17g, " WHIRL_Q_LENGTH "%.17g] was not located",
+                              ch->omega, lo, hi);
         return status;
     }
     double f;
