@@ -182,6 +182,13 @@ WHIRL_API void whirl_stability_modes_free(whirl_stability_modes *m); /* NULL is 
  * solve fails, WHIRL_EINTERRUPTED on a stop request. */
 WHIRL_API int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out);
 
+/* Each of the n link vectors l_j u0_j (3 per link, in place) turned in its chart (above) to
+ * a = eps along_j / A, b = eps along_{n+j} / A, A = max |along| (2n angles, as a mode's
+ * angle_re): u = cos a cos b u0 + sin a cos b e1 + sin b e2, lengths kept (the largest turn is
+ * eps [rad]). GSL_EINVAL on NULL, n = 0, eps < 0, a non-finite or all-zero direction or a zero
+ * link. (src/stability/stability_run.c) */
+WHIRL_API int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along);
+
 /* ---- the linear stability map (src/stability/stability_map.c) ---- */
 
 /* One point of a map: a free steady shape of the chain at a rate, given by its nodes (from
@@ -257,9 +264,9 @@ typedef struct whirl_stability_run_params {
     int (*observe)(double t, double ratio, void *data);
     void *observe_data;  /* passed to observe */
     /* NULL: the random perturbation above. Else 2N link angles (a_1..a_N, b_1..b_N) in the
-     * chart of the shape's links (as whirl_stability_modes' angle_re): link j turned to
-     * a = EPS along_j / max |along|, b = EPS along_{N+j} / max |along| (seed ignored); a mode of
-     * whirl_stability_eigenvectors seeds the run along it. */
+     * chart of the shape's links (as whirl_stability_modes' angle_re): the links turned by
+     * whirl_perturb_links_along with EPS (seed ignored); a mode of whirl_stability_eigenvectors
+     * seeds the run along it. */
     const double *along;
 } whirl_stability_run_params;
 

@@ -149,3 +149,22 @@ def test_modes_in_si_units_are_scaled_to_one_metre():
     assert np.allclose(s.displacements, d.displacements, rtol=0, atol=1e-9)
     assert np.allclose(s.angles * 0.6, d.angles, rtol=0, atol=1e-9)
     assert np.array_equal(s.krein, d.krein)
+
+
+def test_simulation_started_along_the_unstable_mode_grows_at_its_eigenvalue():
+    r = whirl.stability(6.3, 2, 12, linear=True, modes=True)
+    top = int(np.argmax(r.eigenvalues.real))
+    sim = whirl.Simulation(12, omega=6.3, frame="rotating", method="gauss2")
+    sim.set_steady(2, along=r.angles[top], amplitude=1e-8)
+    tr = sim.run(80, 0.005, every=0.05, positions=False)
+    # the slope of log(deviation) over [30, 80], past the start's decaying partner -lambda
+    # (deviation 1e-4 L at the end: still linear)
+    m = tr.t >= 30
+    slope = np.polyfit(tr.t[m], np.log(tr.deviation[m]), 1)[0]
+    assert slope == pytest.approx(r.eigenvalues[top].real, rel=1e-4)
+    with pytest.raises(ValueError, match="2N = 24"):
+        sim.set_steady(2, along=r.angles[top][:5])
+    with pytest.raises(ValueError, match="not both"):
+        sim.set_steady(2, along=r.angles[top], perturb=1e-3)
+    with pytest.raises(whirl.Error, match="zero"):
+        sim.set_steady(2, along=np.zeros(24))

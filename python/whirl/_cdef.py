@@ -181,6 +181,7 @@ typedef struct whirl_stability_modes {
 whirl_stability_modes *whirl_stability_modes_alloc(size_t n);
 void whirl_stability_modes_free(whirl_stability_modes *m);
 int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out);
+int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;

@@ -94,11 +94,13 @@ static int check_params(const whirl_model *model, const whirl_stability_run_para
     return GSL_SUCCESS;
 }
 
-/* Each link vector l_j u0_j (3 per link, in place) turned in its chart (stability.h) to
- * a = eps along_j / A, b = eps along_{N+j} / A, A = max |along|: u = cos a cos b u0 +
- * sin a cos b e1 + sin b e2 (lengths kept). */
-static int turn_along(size_t n, double *links, double eps, const double *along)
+/* u = cos a cos b u0 + sin a cos b e1 + sin b e2 in the chart of each link (stability.h) */
+int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along)
 {
+    if (links == NULL || along == NULL || n == 0)
+        return whirl_fail(GSL_EINVAL, "no links or no direction to perturb along");
+    if (!(isfinite(eps) && eps >= 0))
+        return whirl_fail(GSL_EINVAL, "the perturbation must be >= 0 and finite, got %g", eps);
     double big = 0;
     for (size_t i = 0; i < 2 * n; i++) {
         if (!isfinite(along[i]))
@@ -203,7 +205,8 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
     double *v_now = x_now + 3 * n;
     if ((status = whirl_shape_links(n, nx, ny, nz, links))) goto done;
     memcpy(turned, links, 3 * n * sizeof *links);
-    status = params->along ? turn_along(n, turned, params->perturbation, params->along)
+    status = params->along ? whirl_perturb_links_along(n, turned, params->perturbation,
+                                                       params->along)
                            : whirl_perturb_links(n, turned, params->perturbation, params->seed);
     if (status) goto done;
 

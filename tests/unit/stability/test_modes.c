@@ -330,12 +330,43 @@ static void test_unstable_growth(void **state)
     whirl_chain_free(c);
 }
 
+/* whirl_perturb_links_along on a planar shape: a_j turns link j in the x-z plane by a_j (towards
+ * e1 = u0 x y), b_j out of it (towards y), the largest by eps; lengths kept; bad input refused. */
+static void test_perturb_along(void **state)
+{
+    (void)state;
+    const double t[3] = {0.3, 0.7, -0.2}, len[3] = {0.5, 0.3, 0.2}; /* angles from the downward
+                                                                      vertical towards +x */
+    double links[9], ref[9];
+    for (int j = 0; j < 3; j++) {
+        links[3 * j] = len[j] * sin(t[j]);
+        links[3 * j + 1] = 0;
+        links[3 * j + 2] = -len[j] * cos(t[j]);
+    }
+    memcpy(ref, links, sizeof links);
+    const double along[6] = {0.5, -1.0, 0, 0, 0, 0.25}, eps = 1e-3;
+    assert_int_equal(whirl_perturb_links_along(3, links, eps, along), 0);
+    for (int j = 0; j < 3; j++) {
+        const double a = eps * along[j], b = eps * along[3 + j];
+        /* e1 = u0 x y = (cos t, 0, sin t): the angle from the vertical grows by a */
+        assert_true(fabs(links[3 * j] - len[j] * cos(b) * sin(t[j] + a)) < 1e-15);
+        assert_true(fabs(links[3 * j + 2] + len[j] * cos(b) * cos(t[j] + a)) < 1e-15);
+        assert_true(fabs(links[3 * j + 1] - len[j] * sin(b)) < 1e-15);
+    }
+    const double zero[6] = {0}, bad[6] = {0, 0, NAN, 0, 0, 0};
+    assert_int_equal(whirl_perturb_links_along(3, ref, eps, zero), GSL_EINVAL);
+    assert_int_equal(whirl_perturb_links_along(3, ref, eps, bad), GSL_EINVAL);
+    assert_int_equal(whirl_perturb_links_along(3, ref, -1, along), GSL_EINVAL);
+    assert_int_equal(whirl_perturb_links_along(0, ref, eps, along), GSL_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_residuals_and_krein),
         cmocka_unit_test(test_neutral_frequency),
         cmocka_unit_test(test_unstable_growth),
+        cmocka_unit_test(test_perturb_along),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
