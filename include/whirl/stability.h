@@ -148,6 +148,49 @@ WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model,
 WHIRL_API int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode,
                                           int side, whirl_driven_info *info, double *growth);
 
+/* ---- modes of the linearisation (src/stability/stability_modes.c) ---- */
+
+/* The eigenvectors of the last linearisation, one per eigenvalue of whirl_stability_eigenvalues
+ * (same order, same values). Mode k is complex: q(t) = Re(v e^{lambda t}) with v the link-angle
+ * part of the first-order form's right eigenvector (its velocity part is lambda v). */
+typedef struct whirl_stability_modes {
+    size_t links;          /* N */
+    size_t count;          /* modes (as whirl_stability_eigenvalues) */
+    double *re, *im;       /* lambda_k [1/T] */
+    double *angle_re, *angle_im; /* count x 2N row-major: v_k in q = (a_1..a_N, b_1..b_N) [rad]
+                                    (the chart of stability.h) */
+    double *node_re, *node_im;   /* count x 3 (N + 1) row-major: the displacement (dx, dy, dz)
+                                    of node i = 0..N (0: the pivot, fixed) from v_k,
+                                    sum_{j<=i} l_j (a_j e1_j + b_j e2_j) [L] */
+    int *krein;            /* per mode: the Krein signature of a neutral mode (|Re lambda| <=
+                              1e-10 max |lambda|, Im lambda != 0) of the conservative chain (no
+                              damping, no air drag: C = 0, K symmetric): the sign +1 / -1 of the energy
+                              form (see stability_modes.c) on it; 0 otherwise */
+} whirl_stability_modes;
+
+/* Storage for the modes of n >= 1 links (4N of each). NULL (whirl_last_error) on n = 0 or no
+ * memory. */
+WHIRL_API whirl_stability_modes *whirl_stability_modes_alloc(size_t n);
+WHIRL_API void whirl_stability_modes_free(whirl_stability_modes *m); /* NULL is a no-op */
+
+/* The eigenvalues (whirl_stability_eigenvalues, whose stop rules apply) and eigenvectors of the
+ * last linearisation in w into out (allocated for w's links, GSL_EINVAL otherwise). Each mode is
+ * scaled so that its largest node displacement |(dx, dy, dz)| is 1 [L] with the largest component
+ * of that node real and positive (the link angles scaled alike). The eigenvectors are those of
+ * the full first-order form (4N, dgeev with right vectors), matched to the deflated eigenvalues
+ * by nearest distance (the symmetry's zero eigenvalues are left out as there). GSL_EFAILED if the
+ * solve fails, WHIRL_EINTERRUPTED on a stop request before or during the eigenvalues' solve; the
+ * solve with vectors (O(N^3), 2 (4N)^2 doubles: 256 MB at 1000 links) then runs on the calling
+ * thread and does not poll the stop request. */
+WHIRL_API int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out);
+
+/* Each of the n link vectors l_j u0_j (3 per link, in place) turned in its chart (above) to
+ * a = eps along_j / A, b = eps along_{n+j} / A, A = max |along| (2n angles, as a mode's
+ * angle_re): u = cos a cos b u0 + sin a cos b e1 + sin b e2, lengths kept (the largest turn is
+ * eps [rad]). GSL_EINVAL on NULL, n = 0, eps < 0, a non-finite or all-zero direction or a zero
+ * link. (src/stability/stability_run.c) */
+WHIRL_API int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along);
+
 /* ---- the linear stability map (src/stability/stability_map.c) ---- */
 
 /* One point of a map: a free steady shape of the chain at a rate, given by its nodes (from
@@ -222,6 +265,11 @@ typedef struct whirl_stability_run_params {
      * (NULL: none); a non-zero return stops the run, which then returns that status. */
     int (*observe)(double t, double ratio, void *data);
     void *observe_data;  /* passed to observe */
+    /* NULL: the random perturbation above. Else 2N link angles (a_1..a_N, b_1..b_N) in the
+     * chart of the shape's links (as whirl_stability_modes' angle_re): the links turned by
+     * whirl_perturb_links_along with EPS (seed ignored); a mode of whirl_stability_eigenvectors
+     * seeds the run along it. */
+    const double *along;
 } whirl_stability_run_params;
 
 /* The defaults above. */

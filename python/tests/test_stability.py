@@ -119,3 +119,52 @@ def test_three_driven_shapes_at_one_rate():
     assert (low.verdict, low.index) == ("stable (minimum)", 0)
     with pytest.raises(ValueError):
         whirl.stability(1.5, 0, 20, linear=True)  # mode 0 is the hand-swung chain's
+
+
+def test_modes_and_a_run_seeded_along_the_unstable_one():
+    r = whirl.stability(6.3, 2, 12, linear=True, modes=True)
+    count = len(r.eigenvalues)
+    assert r.displacements.shape == (count, 13, 3) and r.angles.shape == (count, 24)
+    assert r.krein.shape == (count,)
+    # the pivot does not move; each mode's largest node displacement is 1
+    assert np.all(r.displacements[:, 0, :] == 0)
+    big = np.sqrt(np.max(np.sum(np.abs(r.displacements) ** 2, axis=2), axis=1))
+    assert np.allclose(big, 1, rtol=0, atol=1e-12)
+    # neutral modes carry a signature, the growing and decaying ones none
+    neutral = np.abs(r.eigenvalues.real) <= 1e-10 * np.max(np.abs(r.eigenvalues))
+    assert np.all(r.krein[neutral] != 0) and np.all(r.krein[~neutral] == 0)
+    # the run seeded along the fastest-growing mode grows at its Re lambda
+    top = int(np.argmax(r.eigenvalues.real))
+    s = whirl.stability(6.3, 2, 12, along=top, perturb=1e-9, method="gauss2")
+    assert s.verdict == "unstable"
+    assert s.sim_growth == pytest.approx(r.eigenvalues[top].real, rel=1e-3)
+    with pytest.raises(ValueError, match="along"):
+        whirl.stability(6.3, 2, 12, along=count)
+
+
+def test_modes_in_si_units_are_scaled_to_one_metre():
+    d = whirl.stability(4.5, 2, 6, linear=True, modes=True)
+    s = whirl.stability(4.5 * np.sqrt(9.80665 / 0.6), 2, 6, linear=True, modes=True,
+                        length=0.6, mass=0.05)
+    assert np.allclose(s.displacements, d.displacements, rtol=0, atol=1e-9)
+    assert np.allclose(s.angles * 0.6, d.angles, rtol=0, atol=1e-9)
+    assert np.array_equal(s.krein, d.krein)
+
+
+def test_simulation_started_along_the_unstable_mode_grows_at_its_eigenvalue():
+    r = whirl.stability(6.3, 2, 12, linear=True, modes=True)
+    top = int(np.argmax(r.eigenvalues.real))
+    sim = whirl.Simulation(12, omega=6.3, frame="rotating", method="gauss2")
+    sim.set_steady(2, along=r.angles[top], amplitude=1e-8)
+    tr = sim.run(80, 0.005, every=0.05, positions=False)
+    # the slope of log(deviation) over [30, 80], past the start's decaying partner -lambda
+    # (deviation 1e-4 L at the end: still linear)
+    m = tr.t >= 30
+    slope = np.polyfit(tr.t[m], np.log(tr.deviation[m]), 1)[0]
+    assert slope == pytest.approx(r.eigenvalues[top].real, rel=1e-4)
+    with pytest.raises(ValueError, match="2N = 24"):
+        sim.set_steady(2, along=r.angles[top][:5])
+    with pytest.raises(ValueError, match="not both"):
+        sim.set_steady(2, along=r.angles[top], perturb=1e-3)
+    with pytest.raises(whirl.Error, match="zero"):
+        sim.set_steady(2, along=np.zeros(24))

@@ -170,6 +170,18 @@ whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
 whirl_verdict whirl_verdict_linear(double growth, int index);
 int whirl_stability_index(const whirl_stability *w, int *index);
 void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *data), void *data);
+typedef struct whirl_stability_modes {
+    size_t links;
+    size_t count;
+    double *re, *im;
+    double *angle_re, *angle_im;
+    double *node_re, *node_im;
+    int *krein;
+} whirl_stability_modes;
+whirl_stability_modes *whirl_stability_modes_alloc(size_t n);
+void whirl_stability_modes_free(whirl_stability_modes *m);
+int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out);
+int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along);
 typedef struct whirl_stability_run_params {
     double periods;
     double perturbation;
@@ -178,6 +190,7 @@ typedef struct whirl_stability_run_params {
     double dt;
     int (*observe)(double t, double ratio, void *data);
     void *observe_data;
+    const double *along;
 } whirl_stability_run_params;
 whirl_stability_run_params whirl_stability_run_defaults(void);
 typedef struct whirl_stability_run_result {
@@ -295,7 +308,8 @@ const char *whirl_regime_state_name(whirl_regime_state s);
 STRUCTS = ["whirl_chain", "whirl_shape_info", "whirl_ramp", "whirl_model", "whirl_dyn_diagnostics",
            "whirl_integrator_stats", "whirl_stability_run_params", "whirl_stability_run_result",
            "whirl_driven_params", "whirl_driven_info", "whirl_fit_model", "whirl_fit_result",
-           "whirl_regime_params", "whirl_regime_result", "whirl_stability_point"]
+           "whirl_regime_params", "whirl_regime_result", "whirl_stability_point",
+           "whirl_stability_modes"]
 
 CDEF += r"""
 int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,

@@ -197,7 +197,7 @@ class Simulation:
 
     @_lib.exclusive
     def set_steady(self, mode: int, omega: Optional[float] = None, perturb: float = 0.0,
-                   seed: int = 1) -> None:
+                   seed: int = 1, along: Any = None, amplitude: float = 1e-6) -> None:
         """Starts from the exact steady shape of ``mode`` at ``omega`` [1/T] (default: the
         model's omega) in the x-z plane, turning rigidly at omega about z (3D), placed as the
         library places it (whirl_dyn_state_from_shape: the pivot at (drive_radius, 0, 0), in the
@@ -206,13 +206,26 @@ class Simulation:
         perturb: each link direction turned by this angle [rad] towards a random direction
         perpendicular to it (the library's one perturbation rule, whirl_perturb_links: GSL's
         MT19937 seeded with ``seed``; lengths kept), as a scene's [start] perturb and seed.
-        The deviation is measured from the unperturbed shape."""
+        along: instead, a direction of 2N link angles (a_1..a_N, b_1..b_N), e.g. a mode of
+        ``whirl.stability(..., modes=True).angles[k]`` at the same mode and omega (a complex one:
+        its real part), the links turned along it in the linearisation's chart (whirl/stability.h,
+        whirl_perturb_links_along), the largest by ``amplitude`` [rad]; at rest in the co-rotating
+        frame. The deviation is measured from the unperturbed shape."""
         w = (self._model.omega if omega is None
              else as_float(omega, "omega", positive=True,
                            kind="rate", units=self.units) / self.units.rate)
         mode = _mode(mode, self._chain)
         perturb = as_float(perturb, "perturb", nonnegative=True)
         seed = as_int(seed, "seed", minimum=0, maximum=2**31 - 1)
+        direction = None
+        if along is not None:
+            if perturb > 0:
+                raise ValueError("give perturb or along, not both")
+            direction = np.real(np.asarray(along)).astype(np.float64).ravel()
+            if direction.shape != (2 * self.n,):
+                raise ValueError("along must hold 2N = %d link angles, got %d"
+                                 % (2 * self.n, direction.size))
+            amplitude = as_float(amplitude, "amplitude", positive=True)
         if self._model.dim != 3:
             raise ValueError("a steady start needs dim = 3")
         info = ffi.new("whirl_shape_info *")
@@ -228,8 +241,12 @@ class Simulation:
                                              _lib.dptr(self._y)))
         self._t[0] = 0.0
         self._ref = self._inertial()
-        if perturb > 0:
-            check(lib.whirl_perturb_links(self.n, _lib.dptr(links), perturb, seed))
+        if perturb > 0 or direction is not None:
+            if direction is not None:
+                check(lib.whirl_perturb_links_along(self.n, _lib.dptr(links), amplitude,
+                                                    _lib.dptr(direction)), "set_steady")
+            else:
+                check(lib.whirl_perturb_links(self.n, _lib.dptr(links), perturb, seed))
             check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links), w,
                                                  _lib.dptr(self._y)))
 

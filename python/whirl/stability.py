@@ -24,7 +24,14 @@ class StabilityResult(_lib.Result):
     minimum, stable also with dissipation), "neutral (gyroscopic)" (bounded, index > 0: a saddle
     held by the Coriolis coupling, destabilised by any dissipation), "unstable" or "converging"
     (linear: from the sign of eig_growth and the index). ``tip_r``, ``node_count``: the shape's tip radius [L] and node count (the pivot
-    plus the axis crossings); ``units``."""
+    plus the axis crossings); ``units``.
+    With modes=True, per eigenvalue (same order as ``eigenvalues``) its mode q(t) =
+    Re(v e^{lambda t}): ``displacements`` (complex, shape (count, N + 1, 3): the (dx, dy, dz) of
+    each node, the pivot first, in the co-rotating frame [L]), ``angles`` (complex, (count, 2N):
+    the link angles (a_1..a_N, b_1..b_N) of whirl/stability.h's chart, in-plane then out-of-plane
+    for a planar shape [rad]), each mode scaled to a largest node displacement of 1 [L] (the
+    angles alike), and ``krein`` (int, (count,)): +1 / -1 the sign of the energy of a neutral
+    mode of the conservative chain, 0 otherwise."""
 
     omega: float
     mode: int
@@ -39,6 +46,9 @@ class StabilityResult(_lib.Result):
     duration: Optional[float] = None
     stats: Optional[Dict[str, int]] = None
     units: Units = field(default_factory=Units)
+    displacements: Optional[np.ndarray] = None
+    angles: Optional[np.ndarray] = None
+    krein: Optional[np.ndarray] = None
 
     def __repr__(self) -> str:
         return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s, index=%d)" % (
@@ -73,6 +83,22 @@ def _eigenvalues(w: Any) -> np.ndarray:
     return r + 1j * i
 
 
+def _modes(w: Any, n: int) -> Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The eigenvalues, displacements (count, N + 1, 3), angles (count, 2N) and Krein signatures
+    of the last linearisation in w (whirl_stability_eigenvectors)."""
+    md = _lib.check_ptr(lib.whirl_stability_modes_alloc(n), lib.whirl_stability_modes_free)
+    check(lib.whirl_stability_eigenvectors(w, md))
+    k = int(md.count)
+
+    def arr(ptr: Any, size: int) -> np.ndarray:
+        return np.frombuffer(ffi.buffer(ptr, 8 * size), dtype=np.float64).copy()
+    lam = arr(md.re, k) + 1j * arr(md.im, k)
+    d = (arr(md.node_re, k * 3 * (n + 1)) + 1j * arr(md.node_im, k * 3 * (n + 1)))
+    a = arr(md.angle_re, k * 2 * n) + 1j * arr(md.angle_im, k * 2 * n)
+    krein = np.frombuffer(ffi.buffer(md.krein, ffi.sizeof("int") * k), dtype=np.intc).astype(int)
+    return lam, d.reshape(k, n + 1, 3), a.reshape(k, 2 * n), krein
+
+
 @ffi.callback("int(double, double, void *)")
 def _observe_stop(t: float, ratio: float, data: Any) -> int:
     """The perturbed run's observer: stops it (WHIRL_EINTERRUPTED) once a stop is requested."""
@@ -85,7 +111,8 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
               method: str = "rk4", seed: int = 1, dt: float = 0.0, drive_radius: float = 0.0,
               air_drag: float = 0.0, air_drag_quadratic: float = 0.0, side: int = 1,
               length: Optional[float] = None, mass: Optional[float] = None,
-              gravity: Optional[float] = None, units: Optional[Units] = None) -> StabilityResult:
+              gravity: Optional[float] = None, units: Optional[Units] = None,
+              modes: bool = False, along: Optional[int] = None) -> StabilityResult:
     """The stability of the steady shape of ``mode`` at ``omega`` [sqrt(g/L), or rad/s] of the
     N-link chain ``links`` (N or a Chain), as ``whirl stability --omega W --mode K --links N``
     (damping, dt, drive_radius, the drags in the units of --damping, --dt, --eps, --drag,
@@ -96,7 +123,10 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     (``seed`` of the random directions) with ``method`` (default rk4) and step ``dt`` (0: the
     library's default). With drive_radius > 0 (and air_drag, air_drag_quadratic) the shape is
     the hand-swung chain's trailing shape on ``side`` +1 or -1, or with mode=0 its near-axis
-    shape. Returns a StabilityResult;
+    shape. modes=True: the modes too (StabilityResult's displacements, angles, krein; as
+    ``whirl stability --eigenvectors``). along=k (an index into ``eigenvalues``): the run starts
+    along mode k (the real part of its angles, the largest turned by ``perturb``) instead of
+    random directions; implies modes. Returns a StabilityResult;
     whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
@@ -131,6 +161,19 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
                           verdict=ffi.string(lib.whirl_verdict_name(linear_verdict)).decode(),
                           index=int(index[0]), units=u)
     _lib.finite("the stability", res.omega, res.tip_r, res.eig_growth, res.eigenvalues)
+    along_buf = None
+    if modes or along is not None:
+        lam, d, a, krein = _modes(ws, chain.n)
+        # the library scales a mode to 1 L; in the caller's units to 1 length unit
+        res.displacements = d
+        res.angles = a / u.length
+        res.krein = krein
+        if along is not None:
+            k = as_int(along, "along", minimum=0)
+            if k >= len(lam):
+                raise ValueError("along must be an index into the %d eigenvalues, got %d"
+                                 % (len(lam), k))
+            along_buf = ffi.new("double[]", [float(v) for v in a[k].real])
     if linear:
         return res
     p = ffi.new("whirl_stability_run_params *", lib.whirl_stability_run_defaults())
@@ -141,6 +184,8 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     p.method = name
     p.dt = as_float(dt, "dt", nonnegative=True, kind="time", units=u) / u.time
     p.observe = _observe_stop
+    if along_buf is not None:
+        p.along = along_buf
     x, y, z = (ffi.new("const double **") for _ in range(3))
     lib.whirl_stability_nodes(ws, x, y, z)
     out = ffi.new("whirl_stability_run_result *")

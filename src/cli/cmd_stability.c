@@ -35,12 +35,13 @@
 
 #include "cli/cli.h"
 #include "cli/resume.h"
+#include "cli/stability_modes_csv.h"
 #include "core/error.h"
 #include "whirl/stability.h"
 
 typedef struct options {
     double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    int mode, links, steps, seed, linear, side, resume, links_given, eigenvalues;
+    int mode, links, steps, seed, linear, side, resume, links_given, eigenvalues, eigenvectors;
     int alias; /* --windows, --atlas: never parsed here (windows_alias), listed for the help */
     int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
     int eps_given, drag_given, drag2_given, side_given;
@@ -357,7 +358,8 @@ static void sort_eigenvalues(size_t *order, const double *re, const double *im, 
 /* The n eigenvalues of the point p in the given order, after a comment line with its growth,
  * index and verdict. */
 static void write_eigenvalues(FILE *fp, const options *o, const point *p, size_t n,
-                              const double *re, const double *im, const size_t *order)
+                              const double *re, const double *im, const size_t *order,
+                              const whirl_stability_modes *md, const whirl_chain *c)
 {
     const double rate = unit(o, CLI_UNIT_RATE);
     char hand[200] = "";
@@ -366,13 +368,22 @@ static void write_eigenvalues(FILE *fp, const options *o, const point *p, size_t
                  CLI_NUM(o->eps * unit(o, CLI_UNIT_LENGTH)),
                  CLI_NUM(o->drag * unit(o, CLI_UNIT_DRAG)),
                  CLI_NUM(o->drag2 * unit(o, CLI_UNIT_DRAG2)), o->side);
-    fprintf(fp, "# whirl stability --eigenvalues: omega %s, mode %d, %d links, damping %s%s; "
+    fprintf(fp, "# whirl stability --%s: omega %s, mode %d, %d links, damping %s%s; "
                 "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
                 "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
-                "%s\n", CLI_NUM(p->omega * rate), p->mode, o->links,
+                "%s\n", md ? "eigenvectors" : "eigenvalues", CLI_NUM(p->omega * rate), p->mode,
+            o->links,
             CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), hand, n,
             CLI_NUM(p->eig_growth * rate), p->index, whirl_verdict_name(p->verdict));
+    if (md)
+        fprintf(fp, "# modes: q(t) = Re(v e^{lambda t}); node displacements (dx, dy, dz) in the "
+                    "co-rotating frame, largest 1; krein: energy sign of a neutral mode of the "
+                    "conservative chain, else 0\n");
     cli_units_comment(fp, &o->units);
+    if (md) {
+        stability_modes_write(fp, md, order, c, rate, unit(o, CLI_UNIT_LENGTH));
+        return;
+    }
     fprintf(fp, "re,im\n");
     for (size_t i = 0; i < n; i++)
         fprintf(fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
@@ -430,7 +441,11 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     solve_line progress = {.links = o->links, .after = cli_progress_after()};
     cli_progress_begin(&progress.line, cmd, "eigen-solve", 0, 0);
     whirl_stability_set_tick(w, solve_tick, &progress);
-    const int solved = rc ? GSL_SUCCESS : whirl_stability_eigenvalues(w, &n, &re, &im);
+    whirl_stability_modes *md = NULL;
+    if (!rc && o->eigenvectors && (md = whirl_stability_modes_alloc((size_t)o->links)) == NULL)
+        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    int solved = rc ? GSL_SUCCESS : whirl_stability_eigenvalues(w, &n, &re, &im);
+    if (!rc && !solved && md) solved = whirl_stability_eigenvectors(w, md);
     cli_progress_clear(&progress.line);
     if (solved != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
     size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
@@ -439,12 +454,15 @@ static int run_eigenvalues(const cli_command *cmd, options *o)
     if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
     if (!rc) {
         sort_eigenvalues(order, re, im, n);
-        write_eigenvalues(out.fp, o, &pts[0], n, re, im, order);
+        /* the modes' eigenvalues are those of re, im, in the same order */
+        write_eigenvalues(out.fp, o, &pts[0], n, md ? md->re : re, md ? md->im : im, order, md,
+                          c);
         if (cli_out_commit(cmd, &out)) rc = 1;
     }
     free(order);
     free(pts);
     free(nodes);
+    whirl_stability_modes_free(md);
     whirl_stability_free(w);
     whirl_chain_free(c);
     return rc;
@@ -726,6 +744,11 @@ static size_t declare_options(options *o, cli_option *opts)
          .help = "single rate: every eigenvalue lambda of the linearisation (re,im), not the "
                  "run",
          .needs = "--omega", .excludes = "--trace --periods --perturb --seed --method --dt"},
+        {.name = "--eigenvectors", .type = CLI_FLAG, .value = &o->eigenvectors,
+         .help = "single rate: every mode of the linearisation, one row per mode and node "
+                 "(eigenvalue, Krein signature, node displacement, link angles), not the run",
+         .needs = "--omega --links",
+         .excludes = "--eigenvalues --trace --periods --perturb --seed --method --dt"},
         {.name = "--linear", .type = CLI_FLAG, .value = &o->linear,
          .help = "eigenvalues only: no run (sim columns left empty)", .excludes = "--trace"},
         {.name = "--trace", .type = CLI_STRING, .value = &o->trace, .meta = "FILE",
@@ -922,6 +945,6 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
     options o;
     const int rc = parse_options(cmd, argc, argv, &o);
     if (rc) return rc;
-    if (o.eigenvalues) return run_eigenvalues(cmd, &o);
+    if (o.eigenvalues || o.eigenvectors) return run_eigenvalues(cmd, &o);
     return run_points(cmd, &o);
 }

@@ -56,6 +56,7 @@
 #include "core/error.h"
 #include "core/input.h"
 #include "core/worker.h"
+#include "stability/stability_internal.h"
 
 /* The eigen-solve of one linearisation: its matrices (written by the linearisation), their
  * first-order form and the LAPACK workspace. It runs on a worker thread (src/core/worker.h) when it is
@@ -242,7 +243,7 @@ static double dot3(const double *a, const double *b)
 
 /* The chart of a link with direction u (stability.h): e2 along the part of y (x if |u_y| > 0.9)
  * perpendicular to u, e1 = u x e2. */
-static void link_chart(const double *u, double *e1, double *e2)
+void stability_link_chart(const double *u, double *e1, double *e2)
 {
     const double ref[3] = {fabs(u[1]) > 0.9, fabs(u[1]) <= 0.9, 0};
     const double along = dot3(ref, u);
@@ -272,7 +273,7 @@ static int shape_from_nodes(whirl_stability *w, const whirl_model *m, const doub
                                           "is %.17g", j + 1, len, c->length[j]);
         double *u = w->u0 + 3 * j;
         for (int k = 0; k < 3; k++) u[k] = d[k] / len;
-        link_chart(u, w->e1 + 3 * j, w->e2 + 3 * j);
+        stability_link_chart(u, w->e1 + 3 * j, w->e2 + 3 * j);
         for (int k = 0; k < 3; k++) w->pos[3 * j + k] = p[k] += c->length[j] * u[k];
     }
     const double total = whirl_chain_total_length(c);
@@ -654,3 +655,5 @@ int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, in
     if (!status) status = whirl_stability_growth(w, growth);
     return status;
 }
+
+size_t stability_links(const whirl_stability *w) { return w->n; }

@@ -30,6 +30,7 @@
 
 #include "whirl/stability.h"
 #include "core/error.h"
+#include "stability/stability_internal.h"
 
 #define SAMPLES_PER_PERIOD 50
 #define RATIO_GROWN 100.0      /* verdict unstable */
@@ -66,7 +67,7 @@ whirl_verdict whirl_verdict_linear(double growth, int index)
 
 whirl_stability_run_params whirl_stability_run_defaults(void)
 {
-    whirl_stability_run_params p = {100.0, 1e-10, 1, "gauss2", 0.0, NULL, NULL};
+    whirl_stability_run_params p = {100.0, 1e-10, 1, "gauss2", 0.0, NULL, NULL, NULL};
     return p;
 }
 
@@ -90,6 +91,33 @@ static int check_params(const whirl_model *model, const whirl_stability_run_para
     if (!(isfinite(p->dt) && p->dt >= 0))
         return whirl_fail(GSL_EINVAL, "step must be >= 0 (0: default), got %g", p->dt);
     if (p->method == NULL) return whirl_fail(GSL_EINVAL, "no integrator method");
+    return GSL_SUCCESS;
+}
+
+/* u = cos a cos b u0 + sin a cos b e1 + sin b e2 in the chart of each link (stability.h) */
+int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along)
+{
+    if (links == NULL || along == NULL || n == 0)
+        return whirl_fail(GSL_EINVAL, "no links or no direction to perturb along");
+    if (!(isfinite(eps) && eps >= 0))
+        return whirl_fail(GSL_EINVAL, "the perturbation must be >= 0 and finite, got %g", eps);
+    double big = 0;
+    for (size_t i = 0; i < 2 * n; i++) {
+        if (!isfinite(along[i]))
+            return whirl_fail(GSL_EINVAL, "the direction's angle %zu is not finite", i);
+        big = fmax(big, fabs(along[i]));
+    }
+    if (!(big > 0)) return whirl_fail(GSL_EINVAL, "the direction to perturb along is zero");
+    for (size_t j = 0; j < n; j++) {
+        double *l = links + 3 * j, u[3], e1[3], e2[3];
+        const double len = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+        if (!(len > 0)) return whirl_fail(GSL_EINVAL, "link %zu has no length", j + 1);
+        for (int k = 0; k < 3; k++) u[k] = l[k] / len;
+        stability_link_chart(u, e1, e2);
+        const double a = eps * along[j] / big, b = eps * along[n + j] / big;
+        for (int k = 0; k < 3; k++)
+            l[k] = len * (cos(a) * cos(b) * u[k] + sin(a) * cos(b) * e1[k] + sin(b) * e2[k]);
+    }
     return GSL_SUCCESS;
 }
 
@@ -177,7 +205,10 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
     double *v_now = x_now + 3 * n;
     if ((status = whirl_shape_links(n, nx, ny, nz, links))) goto done;
     memcpy(turned, links, 3 * n * sizeof *links);
-    if ((status = whirl_perturb_links(n, turned, params->perturbation, params->seed))) goto done;
+    status = params->along ? whirl_perturb_links_along(n, turned, params->perturbation,
+                                                       params->along)
+                           : whirl_perturb_links(n, turned, params->perturbation, params->seed);
+    if (status) goto done;
 
     if ((dyn = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN)) == NULL) {
         status = GSL_EINVAL; /* message set by whirl_dyn_alloc */

@@ -387,6 +387,50 @@ if "$WHIRL" stability --omega 3 --mode 1 --links 12 --eps 0.05 --drag 0.1 --side
 else fail "--eigenvalues of the hand-swung chain's header: $(cat "$tmp/err"; head -1 "$tmp/evd.csv")"; fi
 expect_error "eigenvalues without --omega" "--eigenvalues needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --eigenvalues
 
+# ---- --eigenvectors: one row per (mode, node); its eigenvalues are --eigenvalues' (same rows in
+# the same order); the pivot does not move; the largest node displacement is 1 (in metres with
+# SI units, the angles scaled alike); a link's angles give its nodes' displacement difference ----
+if "$WHIRL" stability --omega 4.5 --mode 2 --links 6 --eigenvectors -o "$tmp/evec.csv" 2>"$tmp/err" \
+   && [ "$(grep -v '^#' "$tmp/evec.csv" | head -1)" = "eig,re,im,krein,node,s,dx,dy,dz,dx_im,dy_im,dz_im,a,b,a_im,b_im" ] \
+   && [ "$(grep -vc '^#' "$tmp/evec.csv")" -eq $((22 * 7 + 1)) ] \
+   && grep -q '^# units:' "$tmp/evec.csv" \
+   && grep -v '^[#e]' "$tmp/evec.csv" | awk -F, '$5 == 0' | cut -d, -f2,3 >"$tmp/evec_ev" \
+   && grep -v '^[#r]' "$tmp/ev.csv" >"$tmp/ev_ev" \
+   && paste -d, "$tmp/evec_ev" "$tmp/ev_ev" | awk -F, 'NF != 4 { bad = 1 }
+        { d = $1 - $3; if (d < 0) d = -d; e = $2 - $4; if (e < 0) e = -e
+          if (d > 1e-12 || e > 1e-12) bad = 1; n++ }
+        END { exit bad || n != 22 }' \
+   && grep -v '^[#e]' "$tmp/evec.csv" | awk -F, '
+        $5 == 0 && ($7 != 0 || $8 != 0 || $9 != 0 || $10 != 0 || $11 != 0 || $12 != 0) { bad = 1 }
+        { m = $7^2 + $8^2 + $9^2 + $10^2 + $11^2 + $12^2; if (m > big[$1]) big[$1] = m }
+        END { for (k in big) if (big[k] - 1 > 1e-12 || 1 - big[k] > 1e-12) bad = 1; exit bad }'; then
+  pass "--eigenvectors: 22 modes x 7 nodes, eigenvalues equal to --eigenvalues', pivot fixed, largest displacement 1"
+else fail "--eigenvectors: $(cat "$tmp/err"; head -5 "$tmp/evec.csv" 2>/dev/null)"; fi
+# SI units (the same rate, 4.5 sqrt(g/L)): s in metres; the displacements still at most 1 (m)
+# and the angles scaled by 1 / 0.6 (to round-off: the rate goes through rad/s and back)
+w_si=$(awk 'BEGIN { printf "%.17g", 4.5 * sqrt(9.80665 / 0.6) }')
+if "$WHIRL" stability --omega "$w_si" --mode 2 --links 6 --eigenvectors --length 0.6 --mass 0.05 \
+     -o "$tmp/evec_si.csv" 2>"$tmp/err" \
+   && grep -q '^# units: length=m .* L=0.6 ' "$tmp/evec_si.csv" \
+   && paste -d, "$tmp/evec.csv" "$tmp/evec_si.csv" | grep -v '^[#e]' | awk -F, '
+        { if ($6 != 0 && ($22 / $6 - 0.6 > 1e-12 || 0.6 - $22 / $6 > 1e-12)) bad = 1
+          d = $7 - $23; if (d > 1e-9 || d < -1e-9) bad = 1
+          if ($13 != "" && $13 != 0 && ($29 * 0.6 / $13 - 1 > 1e-12 || 1 - $29 * 0.6 / $13 > 1e-12)) bad = 1
+          if ($4 != $20) bad = 1 }
+        END { exit bad }'; then
+  pass "--eigenvectors with SI units: s in metres, displacements kept, angles / 0.6"
+else fail "--eigenvectors with SI units: $(cat "$tmp/err"; grep '^#' "$tmp/evec_si.csv" 2>/dev/null)"; fi
+# a minimum of the amended potential (mode 1): every mode neutral with positive energy
+if "$WHIRL" stability --omega 2 --mode 1 --links 6 --eigenvectors -o "$tmp/evec1.csv" 2>"$tmp/err" \
+   && grep -v '^[#e]' "$tmp/evec1.csv" | awk -F, '$4 != 1 { bad = 1 } END { exit bad }'; then
+  pass "--eigenvectors: every mode of mode 1 (a minimum) neutral with Krein signature +1"
+else fail "--eigenvectors Krein signatures of mode 1: $(cat "$tmp/err")"; fi
+expect_error "eigenvectors without --links" "--eigenvectors needs --links" stability --omega 4.5 --mode 2 --eigenvectors
+expect_error "eigenvectors without --omega" "--eigenvectors needs --omega" stability --omega-min 1 --omega-max 2 --omega-count 2 --links 6 --eigenvectors
+expect_error "eigenvectors and eigenvalues" "cannot be given with|excludes" stability --omega 4.5 --mode 2 --links 6 --eigenvectors --eigenvalues
+expect_error "eigenvectors of an absent mode" "mode 7|exist|links" stability --omega 4.5 --mode 7 --links 6 --eigenvectors -o "$tmp/evbad.csv"
+[ ! -e "$tmp/evbad.csv" ] && pass "--eigenvectors: no file on failure" || fail "--eigenvectors left a file on failure"
+
 # ---- --atlas: the windows of --windows, a Krein signature at each edge, resumable ----
 if "$WHIRL" stability --atlas --modes 2 --omega-max 6 -o "$tmp/atlas.csv" 2>"$tmp/err" \
    && "$WHIRL" stability --windows --modes 2 --omega-min 1 --omega-max 6 -o "$tmp/aw.csv" \
