@@ -193,6 +193,80 @@ static void test_scipy_inverted(void **state)
                 "inverted (a_0, b_1)");
 }
 
+/* ---- N links: one Mathieu equation per normal mode ----
+ * Linearised about the vertical state, the chain in its link angles obeys
+ *   M theta'' + (1 -+ A omega^2 cos(omega t) / g) K theta = 0   (- hanging, + inverted: K -> -K),
+ * the pivot's acceleration adding to gravity and gravity alone making K (M the mass matrix,
+ * M_ij = l_i l_j sum_{q >= max(i,j)} m_q, K = diag(g l_i sum_{q >= i} m_q)). In the modes of
+ * K v = nu_k M v, with tau = omega t / 2, each is Mathieu's equation with
+ *   a_k = +-4 nu_k / omega^2,   q_k = 2 nu_k A / g
+ * (N = 1: nu = g / l, the a = 4 / omega^2, q = 2 A above). Every edge of the N-link chart is an
+ * edge of one mode's: at a_k = a_n(q_k) or b_n(q_k), through -1 for odd n, +1 for even n. The
+ * references (omega, edge, A) from scipy 1.10.1, the nu_k by scipy.linalg.eigh on the same
+ * matrices for the uniform chain (l = m = 1/N, g = 1; N = 2 gives nu = 2 (2 -+ sqrt 2), the
+ * double pendulum's), every root of a_n, b_n (n <= 4) in q_k on 2000 steps up to 2 nu_k A_max:
+ *   /usr/bin/python3 -c 'from scipy.special import mathieu_a, mathieu_b
+ *   from scipy.optimize import brentq
+ *   from scipy.linalg import eigh
+ *   import numpy as np
+ *   def nu(N):
+ *       l = m = 1 / N
+ *       M = np.array([[l * l * m * (N - max(i, j)) for j in range(N)] for i in range(N)])
+ *       K = np.diag([l * m * (N - i) for i in range(N)])
+ *       return eigh(K, M, eigvals_only=True)
+ *   def refs(N, ws, amax):
+ *       for w in ws:
+ *           for v in nu(N):
+ *               a = 4 * v / w**2
+ *               for n in range(5):
+ *                   for f in (mathieu_a, mathieu_b) if n else (mathieu_a,):
+ *                       g = lambda q: f(n, q) - a
+ *                       qs = [2 * v * amax * i / 2000 for i in range(1, 2001)]
+ *                       for q0, q1 in zip(qs, qs[1:]):
+ *                           if (g(q0) < 0) != (g(q1) < 0):
+ *                               print("{%r, %d, %r}," % (w, 1 if n % 2 == 0 else -1,
+ *                                     brentq(g, q0, q1, xtol=1e-15) / (2 * v)))
+ *   refs(2, [1.9 + 0.1 * j for j in range(10)], 0.1)
+ *   refs(3, [1.9 + 0.1 * j for j in range(10)], 0.1)'
+ * N = 2 over omega 1.9 .. 2.8, A <= 0.1: mode 1's first tongue (tip 2 sqrt(nu_1) = 2.165) and
+ * mode 2's second (tip sqrt(nu_2) = 2.613); N = 3 adds mode 3's third (tip 2 sqrt(nu_3) / 3 =
+ * 2.896). */
+static const edge_ref LINKS2[] = {
+    {2.0, -1, 0.07490285598314482},  {2.1, -1, 0.0269524963483199},  {2.2, -1, 0.013500382787013999},
+    {2.3, -1, 0.04803841826466339},  {2.4, -1, 0.07782078834593963}, {2.5, 1, 0.0731017049794148},
+    {2.6, 1, 0.02297275220768241},
+};
+static const edge_ref LINKS3[] = {
+    {2.1, -1, 0.05356624951558637}, {2.2, -1, 0.012413112212222896}, {2.3, -1, 0.0226278892261424},
+    {2.4, -1, 0.052781529557674296}, {2.5, -1, 0.0789614700086312}, {2.5, 1, 0.0762600861630186},
+    {2.6, 1, 0.030692275770245213}, {2.7, -1, 0.0955570718260902}, {2.8, -1, 0.06698043332961856},
+};
+
+static void check_links(int n, const edge_ref *ref, int nref, const char *what)
+{
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)n, 0);
+    const whirl_chart_params p = {.omega_min = 1.9, .omega_max = 2.8, .columns = 10,
+                                  .amp_max = 0.1, .rows = 100};
+    kept k = {0};
+    assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
+    const double worst = match_refs(&k, ref, nref);
+    print_message("# %s: %d points, worst |A - A_scipy| x 2 %.2g\n", what, nref, worst);
+    assert_true(worst < 1e-8);
+    whirl_chain_free(c);
+}
+
+static void test_scipy_two_links(void **state)
+{
+    (void)state;
+    check_links(2, LINKS2, sizeof LINKS2 / sizeof *LINKS2, "N = 2 hanging, per-mode Mathieu");
+}
+
+static void test_scipy_three_links(void **state)
+{
+    (void)state;
+    check_links(3, LINKS3, sizeof LINKS3 / sizeof *LINKS3, "N = 3 hanging, per-mode Mathieu");
+}
+
 static void test_bad_params(void **state)
 {
     (void)state;
@@ -215,6 +289,8 @@ int main(void)
         cmocka_unit_test(test_scipy_hanging_tongue1),
         cmocka_unit_test(test_scipy_hanging_tongue2),
         cmocka_unit_test(test_scipy_inverted),
+        cmocka_unit_test(test_scipy_two_links),
+        cmocka_unit_test(test_scipy_three_links),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
