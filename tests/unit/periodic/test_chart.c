@@ -250,7 +250,7 @@ static void check_links(int n, const edge_ref *ref, int nref, const char *what)
     kept k = {0};
     assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
     const double worst = match_refs(&k, ref, nref);
-    print_message("# %s: %d points, worst |A - A_scipy| x 2 %.2g\n", what, nref, worst);
+    print_message("# %s: %d points, worst 2 |A - A_scipy| %.2g\n", what, nref, worst);
     assert_true(worst < 1e-8);
     whirl_chain_free(c);
 }
