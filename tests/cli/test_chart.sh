@@ -73,6 +73,33 @@ if [ $rc -eq 130 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
    && [ "$(echo "$late < 1.5" | bc)" -eq 1 ]; then
   pass "chart interrupted: 130, the points kept (${late}s)"; else fail "chart interrupted: 130, the points kept (rc=$rc, late=$late, $(cat "$tmp/stderr"))"; fi
 
+# whirl plot of a chart: recognised by its header, a PNG and an SVG; plots/plot.gp by hand with
+# nothing on gnuplot's stderr; the title, the axes in the file's units, the edges' legend; a
+# chart without edges drawn and saying so
+gp=$(dirname "$0")/../../plots/plot.gp
+"$WHIRL" periodic --chart hanging --omega-min 1.2 --omega-max 1.4 --omega-count 3 --amp-max 0.01 --amp-rows 4 -o "$tmp/e.csv"
+[ "$(grep -v '^#' "$tmp/e.csv" | wc -l)" -eq 1 ] && pass "chart 1.2..1.4, A <= 0.01: no edge" ||
+  fail "chart 1.2..1.4, A <= 0.01: edges: $(cat "$tmp/e.csv")"
+for f in c si i e; do
+  expect_ok "plot: chart $f.csv to PNG" plot "$tmp/$f.csv" -o "$tmp/$f.png"
+  [ "$(head -c 8 "$tmp/$f.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] &&
+    pass "plot: chart $f.png is a PNG" || fail "plot: chart $f.png is not a PNG"
+  expect_ok "plot: chart $f.csv to SVG" plot "$tmp/$f.csv" -o "$tmp/$f.svg"
+  gnuplot -e "file='$tmp/$f.csv'; out='$tmp/g.svg'" "$gp" >"$tmp/gp.out" 2>&1
+  [ ! -s "$tmp/gp.out" ] && [ -s "$tmp/g.svg" ] && pass "plots/plot.gp: chart $f.csv without a warning" ||
+    fail "plots/plot.gp: chart $f.csv: $(head -3 "$tmp/gp.out")"
+done
+has() { grep -qF ">$2<" "$tmp/$1.svg" && pass "plot: $1.svg shows '$2'" || fail "plot: $1.svg lacks '$2'"; }
+has c 'the hanging chain of 1 link shaken vertically, A cos(omega t)'
+has c 'shaking rate omega [sqrt(g/L)]'
+has c 'amplitude A [L]'
+has c 'edge -1: a multiplier pair through -1 (period doubling)'
+has si 'shaking rate omega [rad/s]'
+has si 'amplitude A [m]'
+has i 'the inverted chain of 1 link shaken vertically, A cos(omega t)'
+has i 'edge +1: a pair through +1'
+has e 'no edge in the range'
+
 # bad input: one line naming the option, nothing written
 expect_error "chart kind" "whirl periodic: --chart must be hanging or inverted, got 'up'" periodic --chart up --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart rates reversed" "whirl periodic: --omega-max must exceed --omega-min" periodic --chart hanging --omega-min 2 --omega-max 1 --amp-max 0.1 -o "$tmp/out.csv"
