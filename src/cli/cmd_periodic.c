@@ -166,7 +166,7 @@ static void write_chart(FILE *fp, const periodic_options *o, const whirl_chart_p
     const char *ru = cli_units_name(&o->units, CLI_UNIT_RATE);
     const char *lu = cli_units_name(&o->units, CLI_UNIT_LENGTH);
     int curves = 0;
-    qsort(r->p, r->n, sizeof *r->p, chart_order);
+    if (r->n > 0) qsort(r->p, r->n, sizeof *r->p, chart_order); /* r->p is NULL without points */
     for (size_t i = 0; i < r->n; i++) curves += i == 0 || r->p[i].curve != r->p[i - 1].curve;
     fprintf(fp, "# chart: the %s chain shaken vertically, A cos(omega t); links=%d; "
             "edge +1: a multiplier pair through +1, -1: through -1 (period doubling)\n",
