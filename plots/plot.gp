@@ -9,6 +9,7 @@
 #   omega,tip_x,tip_y,...       a hand-swung branch (whirl driven --omega-min)  -> driven.gp
 #   index,omega,eps,state,...   a regime map (whirl regime)                     -> regime.gp
 #   leg,omega,state,...         a hysteresis sweep (whirl regime --sweep)       -> regime.gp
+#   curve,edge,omega,amplitude  a stability chart (whirl periodic --chart)      -> chart.gp
 #   t,...                       a run (whirl simulate)                          -> simulate.gp
 #   x y z t blocks              a trace (whirl simulate, regime --trace)        -> animate.gp
 # usage: gnuplot -e "file='my.csv'; out='my.png'" plots/plot.gp   (out: default FILE.png, .gif
@@ -31,6 +32,7 @@ kind = strstrt(header, ",") == 0 ? "trace" : \
        strstrt(header, "mode,links,from,to,") == 1 ? "windows" : \
        strstrt(header, "index,omega,eps,state") == 1 ? "regime_map" : \
        strstrt(header, "leg,omega,state") == 1 ? "regime_sweep" : \
+       strstrt(header, "curve,edge,omega,amplitude") == 1 ? "chart" : \
        strstrt(header, "t,") == 1 ? "run" : "unknown"
 if (kind eq "unknown") { print "plot.gp: ".file.": unknown header '".header."'"; exit status 1 }
 if (!exists("out")) { out = file . (kind eq "trace" ? ".gif" : ".png") }
@@ -43,6 +45,7 @@ if (kind eq "windows") { csv = file; load here."/atlas.gp" }
 if (kind eq "regime_map") { map = file; load here."/regime.gp" }
 if (kind eq "regime_sweep") { sweep = file; load here."/regime.gp" }
 if (kind eq "run") { csv = file; load here."/simulate.gp" }
+if (kind eq "chart") { csv = file; load here."/chart.gp" }
 if (kind eq "shape") {
     # every file of files (or file alone) on one pair of equal axes, true to scale: the canvas
     # takes the shapes' aspect ratio (plot box at most 720 x 720 px, at least 260 px across),

@@ -6,7 +6,15 @@
  * the steps; the verdict with the growth per period and the e-folding time, the edge; the
  * reciprocal-pair error), the "# units:" line, then the CSV index,re,im,modulus,err of the
  * multipliers by decreasing modulus. Newton's method that does not converge: an error naming
- * the residual, no multipliers, exit status 1. Ctrl-C stops the solve (exit status 130). */
+ * the residual, no multipliers, exit status 1. Ctrl-C stops the solve (exit status 130).
+ *
+ * --chart hanging|inverted: the stability chart of the chain shaken vertically
+ * (whirl_chart_vertical) over --omega-min..--omega-max (--omega-count rates) and
+ * --amp-min..--amp-max (--amp-rows amplitudes scanned for new curves): comment lines, the
+ * "# units:" line, then the CSV curve,edge,omega,amplitude,err, one row per edge point (edge +1
+ * or -1: the multiplier pair passing there), the points of one curve by rate, a blank line
+ * between curves (gnuplot draws each as a line). Ctrl-C stops it within a monodromy: the points
+ * found until then are written (a comment line says where it stopped), exit status 130. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,9 +25,11 @@
 #include "whirl/stability.h"
 
 typedef struct periodic_options {
-    const char *pivot, *start, *output;
+    const char *pivot, *start, *output, *chart;
     double omega, tol;
     int links, dim, steps, max_iter, mode, differences;
+    double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
+    int omega_count, amp_rows;
     cli_units units;
 } periodic_options;
 
@@ -105,6 +115,132 @@ static void write_result(FILE *fp, const periodic_options *o, const whirl_period
     }
 }
 
+
+/* ---- --chart: the points collected (the chart hands them out by rate), written by curve ---- */
+
+typedef struct chart_rows {
+    whirl_chart_point *p;
+    size_t n, cap;
+    cli_progress_state line;
+    double after;
+    int column, columns; /* the last rate finished (from 0; -1: none) and the count */
+} chart_rows;
+
+static int chart_keep(void *data, const whirl_chart_point *point)
+{
+    chart_rows *r = data;
+    if (r->n == r->cap) {
+        const size_t cap = r->cap ? 2 * r->cap : 256;
+        whirl_chart_point *p = realloc(r->p, cap * sizeof *p);
+        if (p == NULL) return GSL_ENOMEM;
+        r->p = p;
+        r->cap = cap;
+    }
+    r->p[r->n++] = *point;
+    return 0;
+}
+
+static void chart_tick(void *data, const whirl_chart_progress *p)
+{
+    chart_rows *r = data;
+    r->column = p->column;
+    r->columns = p->columns;
+    if (!r->line.drawn && cli_wall_seconds() - r->line.start < r->after) return;
+    cli_progress_text(&r->line, "rate %d of %d, %d curves, %ld monodromies", p->column + 1,
+                      p->columns, p->curves, p->monodromies);
+}
+
+/* By curve, then by rate (a curve has one point per rate). */
+static int chart_order(const void *a, const void *b)
+{
+    const whirl_chart_point *p = a, *q = b;
+    if (p->curve != q->curve) return p->curve < q->curve ? -1 : 1;
+    return (p->column > q->column) - (p->column < q->column);
+}
+
+static void write_chart(FILE *fp, const periodic_options *o, const whirl_chart_params *p,
+                        chart_rows *r, int interrupted)
+{
+    const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
+    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
+    const char *ru = cli_units_name(&o->units, CLI_UNIT_RATE);
+    const char *lu = cli_units_name(&o->units, CLI_UNIT_LENGTH);
+    int curves = 0;
+    if (r->n > 0) qsort(r->p, r->n, sizeof *r->p, chart_order); /* r->p is NULL without points */
+    for (size_t i = 0; i < r->n; i++) curves += i == 0 || r->p[i].curve != r->p[i - 1].curve;
+    fprintf(fp, "# chart: the %s chain shaken vertically, A cos(omega t); links=%d; "
+            "edge +1: a multiplier pair through +1, -1: through -1 (period doubling)\n",
+            p->inverted ? "inverted" : "hanging", o->links);
+    fprintf(fp, "# omega from %s to %s %s (%d rates); A from %s to %s %s (%d rows scanned); "
+            "points=%zu curves=%d\n", CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate),
+            ru, p->columns, CLI_NUM(p->amp_min * len), CLI_NUM(p->amp_max * len), lu, p->rows,
+            r->n, curves);
+    if (interrupted)
+        fprintf(fp, "# interrupted after %d of %d rates: the points found until then\n",
+                r->column + 1, p->columns);
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "curve,edge,omega,amplitude,err\n");
+    for (size_t i = 0; i < r->n; i++) {
+        const whirl_chart_point *q = &r->p[i];
+        if (i > 0 && q->curve != r->p[i - 1].curve) fputc('\n', fp);
+        fprintf(fp, "%d,%d,%s,%s,%s\n", q->curve + 1,
+                q->kind == WHIRL_FLOQUET_EDGE_PLUS_ONE ? 1 : -1, CLI_NUM(q->omega * rate),
+                CLI_NUM(q->amplitude * len), CLI_NUM(q->err * len));
+    }
+}
+
+static int run_chart(const cli_command *cmd, const periodic_options *o)
+{
+    const int inverted = strcmp(o->chart, "hanging") == 0    ? 0
+                         : strcmp(o->chart, "inverted") == 0 ? 1
+                                                             : -1;
+    if (inverted < 0)
+        return cli_error(cmd, "--chart must be hanging or inverted, got '%s'", o->chart);
+    if (!(o->omega_max > o->omega_min))
+        return cli_error(cmd, "--omega-max must exceed --omega-min");
+    if (!(o->amp_max > o->amp_min))
+        return cli_error(cmd, "--amp-max must exceed --amp-min");
+    const whirl_chart_params p = {.inverted = inverted, .omega_min = o->omega_min,
+                                  .omega_max = o->omega_max, .columns = o->omega_count,
+                                  .amp_min = o->amp_min, .amp_max = o->amp_max,
+                                  .rows = o->amp_rows, .steps = o->steps, .tol = o->edge_tol};
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
+    if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->output)) {
+        whirl_chain_free(c);
+        return 1;
+    }
+    cli_catch_interrupts();
+    chart_rows r = {.after = cli_progress_after(), .column = -1};
+    cli_progress_begin(&r.line, cmd, "", 0, 0);
+    const int status = whirl_chart_vertical(c, 2, &p, chart_keep, &r, chart_tick, &r);
+    cli_progress_clear(&r.line);
+    /* the defaults as the chart took them, for the comment lines */
+    whirl_chart_params shown = p;
+    if (shown.columns == 0) shown.columns = r.columns;
+    if (shown.rows == 0) shown.rows = 200; /* whirl_chart_params: rows 0 means 200 */
+    if (shown.amp_min == 0) shown.amp_min = shown.amp_max / shown.rows;
+    int rc;
+    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
+        const int stopped = status == WHIRL_EINTERRUPTED;
+        write_chart(out.fp, o, &shown, &r, stopped);
+        rc = cli_out_commit(cmd, &out);
+        if (rc == 0 && stopped)
+            rc = (cli_error(cmd, "interrupted after %d of %d rates: the %zu points found until "
+                            "then are written", r.column + 1, shown.columns, r.n),
+                  CLI_EXIT_INTERRUPTED);
+    } else {
+        cli_out_abort(&out);
+        rc = cli_error(cmd, "%s", status == GSL_ENOMEM && whirl_last_status() != GSL_ENOMEM
+                                      ? "out of memory for the chart's points"
+                                      : CLI_LIBRARY_ERROR(&o->units));
+    }
+    free(r.p);
+    whirl_chain_free(c);
+    return rc;
+}
+
 int cmd_periodic(const cli_command *cmd, int argc, char **argv)
 {
     periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1,
@@ -113,10 +249,36 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--pivot", .type = CLI_STRING, .value = &o.pivot, .meta = "PATH",
          .help = "the pivot's path: circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A, "
                  "eight:A,B or fourier:x1c=A,z2s=B,...",
-         .required = ""},
+         .required = "--chart"},
         {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .meta = "W",
-         .help = "rate of the path (period 2 pi / W)", .range = "(0, inf)", .required = "",
+         .help = "rate of the path (period 2 pi / W)", .range = "(0, inf)",
+         .required = "--chart", .unit = CLI_UNIT_RATE},
+        {.name = "--chart", .type = CLI_STRING, .value = &o.chart, .meta = "KIND",
+         .help = "the stability chart of the chain shaken vertically: hanging (its tongues) or "
+                 "inverted (its region of stability)",
+         .needs = "--omega-min --omega-max --amp-max",
+         .excludes = "--pivot --omega --dim --start --mode --tol --max-iter --differences"},
+        {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min, .meta = "W",
+         .help = "--chart: the lowest rate", .range = "(0, inf)", .needs = "--chart",
          .unit = CLI_UNIT_RATE},
+        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &o.omega_max, .meta = "W",
+         .help = "--chart: the highest rate", .range = "(0, inf)", .needs = "--chart",
+         .unit = CLI_UNIT_RATE},
+        {.name = "--omega-count", .type = CLI_INT, .value = &o.omega_count, .meta = "N",
+         .help = "--chart: rates, both ends included (default 200)", .range = "[2, 1000000]",
+         .needs = "--chart"},
+        {.name = "--amp-min", .type = CLI_DOUBLE, .value = &o.amp_min, .meta = "A",
+         .help = "--chart: the lowest amplitude (default --amp-max / --amp-rows)",
+         .range = "[0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
+        {.name = "--amp-max", .type = CLI_DOUBLE, .value = &o.amp_max, .meta = "A",
+         .help = "--chart: the highest amplitude", .range = "(0, inf)", .needs = "--chart",
+         .unit = CLI_UNIT_LENGTH},
+        {.name = "--amp-rows", .type = CLI_INT, .value = &o.amp_rows, .meta = "N",
+         .help = "--chart: amplitudes scanned for new curves (default 200)",
+         .range = "[2, 1000000]", .needs = "--chart"},
+        {.name = "--edge-tol", .type = CLI_DOUBLE, .value = &o.edge_tol, .meta = "A",
+         .help = "--chart: an edge's bracket in amplitude at most this wide (default 1e-10)",
+         .range = "(0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
         {.name = "--links", .type = CLI_INT, .value = &o.links, .meta = "N",
          .help = "links of the chain (default 1)", .range = "[1, 100000]"},
         {.name = "--dim", .type = CLI_INT, .value = &o.dim, .meta = "D",
@@ -127,8 +289,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--mode", .type = CLI_INT, .value = &o.mode, .meta = "K",
          .help = "--start steady: the mode (default 1)", .range = "[1, 64]", .needs = "--start"},
         {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
-         .help = "Gauss steps per period of the coarser solve (default 400, raised to the "
-                 "chain's bound); the finer takes twice as many",
+         .help = "Gauss steps per period of the coarser solve or monodromy (default 400, "
+                 "--chart 200; raised to the chain's bound); the finer takes twice as many",
          .range = "[8, 16777216]"},
         {.name = "--tol", .type = CLI_DOUBLE, .value = &o.tol, .meta = "TOL",
          .help = "Newton: largest scaled |P(y) - y| (default 1e-10)", .range = "(0, 1]"},
@@ -143,6 +305,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
+    if (o.chart) return run_chart(cmd, &o);
     const int start = strcmp(o.start, "hanging") == 0    ? 0
                       : strcmp(o.start, "inverted") == 0 ? 1
                       : strcmp(o.start, "steady") == 0   ? 2

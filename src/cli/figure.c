@@ -32,6 +32,7 @@ static const struct {
               CLI_FIGURE_WINDOWS, "windows of instability"},
              {"=mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict",
               CLI_FIGURE_INTERVALS, "intervals with dissipation"},
+             {"curve,edge,omega,amplitude,", CLI_FIGURE_CHART, "a stability chart"},
              {"t,", CLI_FIGURE_RUN, "a run"}};
 
 static const char *kind_name(cli_figure_kind k)

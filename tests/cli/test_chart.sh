@@ -1,0 +1,114 @@
+#!/bin/sh
+# Command-line tests of whirl periodic --chart: the stability chart of the vertically shaken
+# chain as CSV curves (shape, blank lines between curves), N = 1 against Mathieu's characteristic
+# values, SI units, the progress line, Ctrl-C, bad input.
+. "$(dirname "$0")/lib.sh"
+
+# N = 1 hanging about the first tongue (tip at omega = 2): comment lines, the units line, the
+# header, 4 rows on 2 curves (the tongue's left edge a_1 and right edge b_1), one blank line
+expect_ok "chart N=1" periodic --chart hanging --omega-min 1.8 --omega-max 2.2 --omega-count 5 --amp-max 0.3 --amp-rows 30 -o "$tmp/c.csv"
+if grep -q '^# chart: the hanging chain shaken vertically' "$tmp/c.csv" \
+   && grep -q '^# units: dimensionless' "$tmp/c.csv" \
+   && grep -q 'points=4 curves=2$' "$tmp/c.csv" \
+   && [ "$(grep -v '^#' "$tmp/c.csv" | head -1)" = "curve,edge,omega,amplitude,err" ] \
+   && [ "$(grep -v '^#' "$tmp/c.csv" | sed 1d | awk -F, 'NF == 5' | wc -l)" -eq 4 ] \
+   && [ "$(grep -c '^$' "$tmp/c.csv")" -eq 1 ] \
+   && [ "$(grep -v '^#' "$tmp/c.csv" | sed -n 2p | cut -d, -f1,2,3)" = "1,-1,1.8" ] \
+   && [ "$(grep -v '^#' "$tmp/c.csv" | sed -n 5p | cut -d, -f1,2,3)" = "2,-1,2.1" ]; then
+  pass "chart N=1: header, 4 rows on 2 curves, a blank line between"; else fail "chart N=1: header, 4 rows on 2 curves, a blank line between"; fi
+# the edges against Mathieu: a = 4 / omega^2 = a_1(q) (left edge) or b_1(q) (right edge) with
+# q = 2 A, the A here from scipy (1.11) by Brent's method on the characteristic value:
+#   /usr/bin/python3 -c 'from scipy.special import mathieu_a, mathieu_b; from scipy.optimize
+#   import brentq; [print(w, repr(brentq(lambda q: f(1, q) - 4 / w**2, 1e-9, 1, xtol=1e-15) / 2))
+#   for w, f in ((1.8, mathieu_a), (1.9, mathieu_a), (2.1, mathieu_b), (2.2, mathieu_b))]'
+# to 1e-8 in A (the issue's tolerance); each row's err below 1e-8 as well
+cat >"$tmp/ref" <<'REF'
+1.8 0.12105968496067503
+1.9 0.05477706929929081
+2.1 0.045963152613975676
+2.2 0.08500835628918853
+REF
+if grep -v '^#' "$tmp/c.csv" | sed 1d | grep -v '^$' | tr , ' ' | paste -d' ' - "$tmp/ref" \
+   | awk '{d = $4 - $7; if (d < 0) d = -d; if (d > 1e-8 || $5 > 1e-8 || ($3 - $6) ^ 2 > 1e-24) bad = 1; n++}
+          END {exit bad || n != 4}'; then
+  pass "chart N=1: the edges on a_1 and b_1 to 1e-8"; else fail "chart N=1: the edges on a_1 and b_1 to 1e-8"; fi
+
+# SI units: the same chart with L = 0.5 m (omega_0 = sqrt(9.81 / 0.5) rad/s), the amplitudes
+# in cm: the rows are the dimensionless ones scaled, omega in rad/s, A in m (to 1e-9: the
+# edges' brackets are 1e-10 L wide)
+w0=$(echo 'sqrt(9.81 / 0.5)' | bc -l)
+expect_ok "chart SI" periodic --chart hanging --omega-min "$(echo "1.8 * $w0" | bc -l)" --omega-max "$(echo "2.2 * $w0" | bc -l)" --omega-count 5 --amp-max 15cm --amp-rows 30 --length 0.5 --mass 50g --gravity 9.81 -o "$tmp/si.csv"
+if grep -q '^# units: length=m' "$tmp/si.csv" && grep -q 'rad/s (5 rates); A from 0.005 to 0.15 m' "$tmp/si.csv" \
+   && paste -d, "$tmp/c.csv" "$tmp/si.csv" | grep -v '^#' | sed 1d | grep -v '^,$' \
+      | awk -F, -v w0="$w0" '{if (($3 * w0 - $8) ^ 2 > 1e-18 * $8 ^ 2 || ($4 * 0.5 - $9) ^ 2 > 1e-18 * $9 ^ 2) bad = 1; n++} END {exit bad || n != 4}'; then
+  pass "chart SI: omega in rad/s, A in m"; else fail "chart SI: omega in rad/s, A in m"; fi
+
+# the inverted pendulum: its stability region's lower edge (+1) near Kapitza's A omega = sqrt 2
+expect_ok "chart inverted" periodic --chart inverted --omega-min 20 --omega-max 30 --omega-count 3 --amp-max 0.2 --amp-rows 40 -o "$tmp/i.csv"
+if grep -q '^# chart: the inverted chain' "$tmp/i.csv" \
+   && grep -v '^#' "$tmp/i.csv" | awk -F, '$2 == 1 {r = $3 * $4 / sqrt(2); if (r < 0.95 || r > 1.05) bad = 1; n++} END {exit bad || n != 3}'; then
+  pass "chart inverted: the +1 edge at A omega ~ sqrt 2"; else fail "chart inverted: the +1 edge at A omega ~ sqrt 2"; fi
+
+# the progress line on a terminal (util-linux's script; asked for at once): the rate, the
+# curves, the monodromies; erased at the end, the same CSV written
+printf '\r\033[K' >"$tmp/erase"
+WHIRL_PROGRESS_AFTER=0 script -qfec "\"$WHIRL\" periodic --chart hanging --omega-min 1.8 --omega-max 2.2 --omega-count 5 --amp-max 0.3 --amp-rows 30 -o $tmp/tty.csv" /dev/null </dev/null >"$tmp/p.tty"
+rc=$?
+if [ $rc -eq 0 ] && tr '\r' '\n' <"$tmp/p.tty" | sed 's/\x1b\[K$//' \
+     | grep -Eq '^whirl periodic: rate [1-5] of 5, [0-9]+ curves, [0-9]+ monodromies, [0-9]+s elapsed$' \
+   && [ "$(tail -c 4 "$tmp/p.tty" | od -An -c | tr -d ' ')" = "$(od -An -c <"$tmp/erase" | tr -d ' ')" ] \
+   && cmp -s "$tmp/tty.csv" "$tmp/c.csv"; then
+  pass "chart progress line: shown, erased, the same CSV"; else fail "chart progress line: shown, erased, the same CSV (rc=$rc)"; fi
+
+# Ctrl-C during a long chart (3 links, 400 rates): exit status 130, one line, the file written
+# with the points found until then and a comment saying where it stopped
+env --default-signal=INT "$WHIRL" periodic --chart hanging --links 3 --omega-min 1 --omega-max 8 --omega-count 400 --amp-max 0.5 --amp-rows 100 -o "$tmp/stop.csv" 2>"$tmp/stderr" &
+pid=$!
+sleep 2
+interrupt $pid
+if [ $rc -eq 130 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
+   && grep -Eq '^whirl periodic: interrupted after [0-9]+ of 400 rates: the [0-9]+ points found until then are written$' "$tmp/stderr" \
+   && grep -Eq '^# interrupted after [0-9]+ of 400 rates' "$tmp/stop.csv" \
+   && [ "$(grep -v '^#' "$tmp/stop.csv" | head -1)" = "curve,edge,omega,amplitude,err" ] \
+   && [ "$(echo "$late < 1.5" | bc)" -eq 1 ]; then
+  pass "chart interrupted: 130, the points kept (${late}s)"; else fail "chart interrupted: 130, the points kept (rc=$rc, late=$late, $(cat "$tmp/stderr"))"; fi
+
+# whirl plot of a chart: recognised by its header, a PNG and an SVG; plots/plot.gp by hand with
+# nothing on gnuplot's stderr; the title, the axes in the file's units, the edges' legend; a
+# chart without edges drawn and saying so
+gp=$(dirname "$0")/../../plots/plot.gp
+"$WHIRL" periodic --chart hanging --omega-min 1.2 --omega-max 1.4 --omega-count 3 --amp-max 0.01 --amp-rows 4 -o "$tmp/e.csv"
+[ "$(grep -v '^#' "$tmp/e.csv" | wc -l)" -eq 1 ] && pass "chart 1.2..1.4, A <= 0.01: no edge" ||
+  fail "chart 1.2..1.4, A <= 0.01: edges: $(cat "$tmp/e.csv")"
+for f in c si i e; do
+  expect_ok "plot: chart $f.csv to PNG" plot "$tmp/$f.csv" -o "$tmp/$f.png"
+  [ "$(head -c 8 "$tmp/$f.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] &&
+    pass "plot: chart $f.png is a PNG" || fail "plot: chart $f.png is not a PNG"
+  expect_ok "plot: chart $f.csv to SVG" plot "$tmp/$f.csv" -o "$tmp/$f.svg"
+  gnuplot -e "file='$tmp/$f.csv'; out='$tmp/g.svg'" "$gp" >"$tmp/gp.out" 2>&1
+  [ ! -s "$tmp/gp.out" ] && [ -s "$tmp/g.svg" ] && pass "plots/plot.gp: chart $f.csv without a warning" ||
+    fail "plots/plot.gp: chart $f.csv: $(head -3 "$tmp/gp.out")"
+done
+has() { grep -qF ">$2<" "$tmp/$1.svg" && pass "plot: $1.svg shows '$2'" || fail "plot: $1.svg lacks '$2'"; }
+has c 'the hanging chain of 1 link shaken vertically, A cos(omega t)'
+has c 'shaking rate omega [sqrt(g/L)]'
+has c 'amplitude A [L]'
+has c 'edge -1: a multiplier pair through -1 (period doubling)'
+has si 'shaking rate omega [rad/s]'
+has si 'amplitude A [m]'
+has i 'the inverted chain of 1 link shaken vertically, A cos(omega t)'
+has i 'edge +1: a pair through +1'
+has e 'no edge in the range'
+
+# bad input: one line naming the option, nothing written
+expect_error "chart kind" "whirl periodic: --chart must be hanging or inverted, got 'up'" periodic --chart up --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart rates reversed" "whirl periodic: --omega-max must exceed --omega-min" periodic --chart hanging --omega-min 2 --omega-max 1 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart amplitudes reversed" "whirl periodic: --amp-max must exceed --amp-min" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-min 0.2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart no amplitude" "whirl periodic: --chart needs --amp-max" periodic --chart hanging --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "chart zero rate" "whirl periodic: --omega-min must be" periodic --chart hanging --omega-min 0 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart one rate" "whirl periodic: --omega-count must be" periodic --chart hanging --omega-min 1 --omega-max 2 --omega-count 1 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart NaN amplitude" "whirl periodic: option --amp-max needs a finite number" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max nan -o "$tmp/out.csv"
+expect_error "chart with a pivot" "whirl periodic: --chart cannot be given with --pivot" periodic --chart hanging --pivot vertical:0.1 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart options alone" "whirl periodic: --pivot or --chart is required" periodic --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart rate too high" "whirl periodic: the pivot moves too fast for the integrator" periodic --chart hanging --omega-min 1 --omega-max 1e9 --amp-max 0.1 -o "$tmp/out.csv"
+finish
