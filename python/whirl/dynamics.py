@@ -335,12 +335,11 @@ class Simulation:
                         if tol == 0 and self._t[0] + chunk * (1 + 1e-9) < t1:
                             t1 = self._t[0] + chunk
                         status = lib.whirl_integrator_advance(self._it, self._t, y, t1, dt, tol)
+                        if status == _lib.GSL_SUCCESS and _lib.stop_requested():
+                            # a stop between two calls: the same message as one inside a call
+                            status = lib.WHIRL_EINTERRUPTED
                         if status != _lib.GSL_SUCCESS:
                             check(status, "Simulation.run at t = %.17g" % (self._t[0] * u.time))
-                        if _lib.stop_requested():
-                            break
-                    if _lib.stop_requested():
-                        break
                     x = self._inertial()
                     if xs is not None:
                         xs[k] = x
