@@ -47,40 +47,7 @@
 #include "core/error.h"
 #include "core/roots.h"
 
-#define STATE 6                        /* r, F */
-#define NPAR 3                         /* X, Y, omega */
-#define ODE_DIM (STATE * (1 + NPAR))   /* state and its three sensitivities */
-#define SERIES_START 1e-6              /* sigma where the continuum's integration starts */
-#define ODE_TOL 1e-13                  /* relative and absolute tolerance of the state */
-#define ODE_SENS_SCALE 1e4             /* looser absolute tolerance of the sensitivities */
-#define NEWTON_MAX 40
-#define NEWTON_STEP_TOL 1e-11          /* converged: step below this (relative to 1 + |u|) */
-#define NEWTON_RESIDUAL_OK 1e-9        /* ... and residual below this [L] */
-#define NEWTON_BACKTRACK 8
-#define HOMOTOPY_MIN_STEP 1e-5
-#define HOMOTOPY_MAX_JUMP 0.05         /* largest corrector move of one step [L]: no branch jumps */
-#define BRANCH_MAX_CORRECTOR 8         /* corrector iterations before a step is refused */
-#define BRANCH_MIN_STEP_RATIO 1e-7     /* smallest step as a fraction of the largest */
-#define FOLD_TOL 1e-12                 /* arclength tolerance of the fold location */
-#define ODE_STEP_MAX 200000            /* ODE steps of one continuum shape (also polls the stop
-                                          request every ODE_POLL steps) */
-#define ODE_POLL 256
-#define DRAG_MAX 1e6                   /* largest drag coefficient accepted (either kind) */
-
-/* The problem being solved: the model, the parameters (omega comes from u[2]) and scratch. */
-typedef struct problem {
-    const whirl_chain *chain; /* NULL: the continuum */
-    whirl_driven_params p;
-    double gravity;
-    double omega;             /* rate of the current integration */
-    gsl_odeiv2_step *step;
-    gsl_odeiv2_control *control;
-    gsl_odeiv2_evolve *evolve;
-    double scale_abs[ODE_DIM];
-    double *pos;     /* 3 per sample: positions for the node count */
-    double *tension; /* per sample */
-    size_t npos;
-} problem;
+#include "steady/driven_internal.h"
 
 /* ---- loads ---- */
 
@@ -296,7 +263,7 @@ static int planar(const problem *pb)
 }
 
 /* The pivot miss R (2) and dR/du (J rows 0, 1) at u. */
-static int pivot_miss(problem *pb, const double *u, double *R, double J[3][3])
+int driven_pivot_miss(problem *pb, const double *u, double *R, double J[3][3])
 {
     double r[3], F[3], dr[3][3];
     int status = shoot(pb, u, r, F, dr);
@@ -314,17 +281,11 @@ static int pivot_miss(problem *pb, const double *u, double *R, double J[3][3])
     return GSL_SUCCESS;
 }
 
-/* The pseudo-arclength condition tau.(u - u_pred) = 0, or none (omega fixed). */
-typedef struct arclength {
-    double tau[3];
-    double u_pred[3];
-} arclength;
-
 /* The system of Newton's method: R (nd = 2 or 3 components) and its Jacobian in u[0..nd-1]. */
 static int system_eval(problem *pb, const double *u, const arclength *arc, double *R,
                        double J[3][3])
 {
-    int status = pivot_miss(pb, u, R, J);
+    int status = driven_pivot_miss(pb, u, R, J);
     if (status || arc == NULL) return status;
     R[2] = 0;
     for (int k = 0; k < 3; k++) R[2] += arc->tau[k] * (u[k] - arc->u_pred[k]), J[2][k] = arc->tau[k];
@@ -339,7 +300,7 @@ static double norm_inf(const double *v, int n)
 }
 
 /* Newton's method with backtracking on |R|. u[2] (omega) is an unknown only with arc. */
-static int newton(problem *pb, double *u, const arclength *arc, int *iterations, double *rnorm)
+int driven_newton(problem *pb, double *u, const arclength *arc, int *iterations, double *rnorm)
 {
     const int nd = arc ? 3 : 2;
     double R[3], J[3][3], Rtry[3], Jtry[3][3], utry[3];
@@ -422,7 +383,7 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
     return GSL_SUCCESS;
 }
 
-static void problem_free(problem *pb)
+void driven_problem_free(problem *pb)
 {
     if (pb->evolve) gsl_odeiv2_evolve_free(pb->evolve);
     if (pb->control) gsl_odeiv2_control_free(pb->control);
@@ -431,7 +392,7 @@ static void problem_free(problem *pb)
     free(pb->tension);
 }
 
-static int problem_init(problem *pb, const whirl_chain *chain, const whirl_driven_params *p)
+int driven_problem_init(problem *pb, const whirl_chain *chain, const whirl_driven_params *p)
 {
     memset(pb, 0, sizeof *pb);
     int status = check_params(chain, p);
@@ -454,7 +415,7 @@ static int problem_init(problem *pb, const whirl_chain *chain, const whirl_drive
     }
     return GSL_SUCCESS;
 fail:
-    problem_free(pb);
+    driven_problem_free(pb);
     return whirl_fail(GSL_ENOMEM, "out of memory for the driven chain");
 }
 
@@ -516,10 +477,10 @@ int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double 
 }
 
 /* The summary of the solution u. */
-static int describe(problem *pb, const double *u, int iterations, whirl_driven_info *info)
+int driven_describe(problem *pb, const double *u, int iterations, whirl_driven_info *info)
 {
     double R[3], J[3][3], r[3], F[3], dr[3][3];
-    int status = pivot_miss(pb, u, R, J);
+    int status = driven_pivot_miss(pb, u, R, J);
     if (status == GSL_SUCCESS) status = shoot(pb, u, r, F, dr);
     if (status == GSL_SUCCESS) status = sample_shape(pb, u, pb->npos, NULL, pb->pos, pb->tension);
     if (status) return status;
@@ -543,7 +504,7 @@ int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *para
                        const double guess[2], whirl_driven_info *info)
 {
     problem pb;
-    int status = problem_init(&pb, chain, params);
+    int status = driven_problem_init(&pb, chain, params);
     if (status) return status;
     double u[3] = {guess[0], guess[1], params->omega}, rnorm;
     int iterations = 0;
@@ -551,9 +512,9 @@ int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *para
         u[0] = params->drive_radius == 0 ? copysign(hypot(guess[0], guess[1]), guess[0]) : guess[0];
         u[1] = 0;
     }
-    status = newton(&pb, u, NULL, &iterations, &rnorm);
-    if (status == GSL_SUCCESS) status = describe(&pb, u, iterations, info);
-    problem_free(&pb);
+    status = driven_newton(&pb, u, NULL, &iterations, &rnorm);
+    if (status == GSL_SUCCESS) status = driven_describe(&pb, u, iterations, info);
+    driven_problem_free(&pb);
     return status;
 }
 
@@ -575,7 +536,7 @@ static int homotopy(problem *pb, double *u, double eps, double c, double c2)
         pb->p.air_drag_quadratic = from[2] + next * (to[2] - from[2]);
         double upred[3];
         memcpy(upred, utry, sizeof upred);
-        if (newton(pb, utry, NULL, &iterations, &rnorm) == GSL_SUCCESS &&
+        if (driven_newton(pb, utry, NULL, &iterations, &rnorm) == GSL_SUCCESS &&
             iterations <= BRANCH_MAX_CORRECTOR &&
             fmax(fabs(utry[0] - upred[0]), fabs(utry[1] - upred[1])) <= HOMOTOPY_MAX_JUMP) {
             memcpy(u_prev, u, sizeof u_prev);
@@ -600,7 +561,7 @@ int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *param
     if (side != 1 && side != -1)
         return whirl_fail(GSL_EINVAL, "side must be +1 or -1, got %d", side);
     problem pb;
-    int status = problem_init(&pb, chain, params);
+    int status = driven_problem_init(&pb, chain, params);
     if (status) return status;
     /* mode 0: the hanging chain (tip on the axis), a free shape at every rate; its pivot-miss
        Jacobian is singular only at the births omega_k, where the message below names the rate */
@@ -614,14 +575,14 @@ int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *param
     if (status == GSL_SUCCESS) {
         /* the free shape in this module's own formulation, then drive it, then add the drag */
         pb.p.drive_radius = pb.p.air_drag = pb.p.air_drag_quadratic = 0;
-        status = newton(&pb, u, NULL, &iterations, &rnorm);
+        status = driven_newton(&pb, u, NULL, &iterations, &rnorm);
         if (status == GSL_SUCCESS && params->drive_radius > 0) status = homotopy(&pb, u, params->drive_radius, 0, 0);
         if (status == GSL_SUCCESS)
             status = homotopy(&pb, u, params->drive_radius, params->air_drag, params->air_drag_quadratic);
-        if (status == GSL_SUCCESS) status = newton(&pb, u, NULL, &iterations, &rnorm);
-        if (status == GSL_SUCCESS) status = describe(&pb, u, iterations, info);
+        if (status == GSL_SUCCESS) status = driven_newton(&pb, u, NULL, &iterations, &rnorm);
+        if (status == GSL_SUCCESS) status = driven_describe(&pb, u, iterations, info);
     }
-    problem_free(&pb);
+    driven_problem_free(&pb);
     return status;
 }
 
@@ -634,7 +595,7 @@ int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *par
                           "points, got %zu" : "need at least 2 sample points", chain ? chain->n : npts,
                           chain ? chain->n : npts, npts);
     problem pb;
-    int status = problem_init(&pb, chain, params);
+    int status = driven_problem_init(&pb, chain, params);
     if (status) return status;
     double *pos = malloc(3 * npts * sizeof *pos);
     if (pos == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for %zu samples", npts);
@@ -643,178 +604,6 @@ int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *par
     for (size_t i = 0; i < npts && status == GSL_SUCCESS; i++)
         x[i] = pos[3 * i], y[i] = pos[3 * i + 1], z[i] = pos[3 * i + 2];
     free(pos);
-    problem_free(&pb);
-    return status;
-}
-
-/* ---- branches ---- */
-
-whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity)
-{
-    if (capacity < 2) {
-        whirl_fail(GSL_EINVAL, "a curve needs room for at least 2 points, got %zu", capacity);
-        return NULL;
-    }
-    whirl_driven_curve *curve = calloc(1, sizeof *curve);
-    if (curve == NULL) goto fail;
-    curve->capacity = capacity;
-    curve->point = malloc(capacity * sizeof *curve->point);
-    curve->fold = malloc(capacity * sizeof *curve->fold);
-    if (curve->point == NULL || curve->fold == NULL) goto fail;
-    return curve;
-fail:
-    whirl_driven_curve_free(curve);
-    whirl_fail(GSL_ENOMEM, "out of memory for a curve of %zu points", capacity);
-    return NULL;
-}
-
-void whirl_driven_curve_free(whirl_driven_curve *curve)
-{
-    if (curve == NULL) return;
-    free(curve->point);
-    free(curve->fold);
-    free(curve);
-}
-
-/* The unit tangent of the branch at u (null vector of dR/du = cross product of its rows),
- * oriented along ref (or with sign(tau_omega) = direction when ref is NULL), and the fold
- * function D = det dR/d(X, Y). */
-static int branch_tangent(problem *pb, const double *u, const double *ref, int direction,
-                          double *tau, double *D)
-{
-    double R[3], J[3][3];
-    int status = pivot_miss(pb, u, R, J);
-    if (status) return status;
-    tau[0] = J[0][1] * J[1][2] - J[0][2] * J[1][1];
-    tau[1] = J[0][2] * J[1][0] - J[0][0] * J[1][2];
-    tau[2] = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    *D = tau[2];
-    const double norm = sqrt(tau[0] * tau[0] + tau[1] * tau[1] + tau[2] * tau[2]);
-    if (!(norm > 0))
-        return whirl_fail(GSL_EFAILED, "the branch has no unique tangent at omega " WHIRL_Q_RATE
-                          "%g (a bifurcation point)", u[2]);
-    const double orient = ref ? ref[0] * tau[0] + ref[1] * tau[1] + ref[2] * tau[2]
-                              : direction * tau[2];
-    for (int k = 0; k < 3; k++) tau[k] *= (orient < 0 ? -1 : 1) / norm;
-    return GSL_SUCCESS;
-}
-
-/* The corrected point at arclength h from u along tau. */
-static int branch_step(problem *pb, const double *u, const double *tau, double h, double *unew,
-                       int *iterations)
-{
-    arclength arc;
-    double rnorm;
-    memcpy(arc.tau, tau, sizeof arc.tau);
-    for (int k = 0; k < 3; k++) arc.u_pred[k] = unew[k] = u[k] + h * tau[k];
-    return newton(pb, unew, &arc, iterations, &rnorm);
-}
-
-typedef struct fold_search {
-    problem *pb;
-    const double *u, *tau;
-    double u_at[3]; /* the last corrected point */
-} fold_search;
-
-/* D at the corrected point at arclength h into *d (the root finder's function); GSL_EFAILED
- * where the point is not found. */
-static int fold_function_at(double h, void *params, double *d)
-{
-    fold_search *fs = params;
-    double R[3], J[3][3];
-    int iterations;
-    if (branch_step(fs->pb, fs->u, fs->tau, h, fs->u_at, &iterations) != GSL_SUCCESS ||
-        pivot_miss(fs->pb, fs->u_at, R, J) != GSL_SUCCESS) {
-        *d = GSL_NAN;
-        return GSL_EFAILED;
-    }
-    *d = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-    return GSL_SUCCESS;
-}
-
-/* Locates the fold between u (arclength 0) and the corrected point at arclength h, where D
- * changes sign: ufold is the corrected point where D = 0. Brent's estimate after 100 iterations
- * is taken as it is. */
-static int locate_fold(problem *pb, const double *u, const double *tau, double h, double *ufold)
-{
-    fold_search fs = {pb, u, tau, {0}};
-    const whirl_root_opts o = {FOLD_TOL, 0, 100, 0, 0, 0};
-    whirl_root r;
-    double d;
-    int status = whirl_root_brent(fold_function_at, &fs, 0, h, &o, &r);
-    if (status == GSL_ENOMEM) return status;
-    if ((status && status != GSL_EMAXITER) || fold_function_at(r.root, &fs, &d))
-        return whirl_fail(GSL_EFAILED, "the fold near omega " WHIRL_Q_RATE "%g could not be "
-                          "located", u[2]);
-    memcpy(ufold, fs.u_at, sizeof fs.u_at);
-    return GSL_SUCCESS;
-}
-
-/* Appends the shape u to the curve (fold flag). */
-static int curve_append(problem *pb, whirl_driven_curve *curve, const double *u, int iterations,
-                        int fold)
-{
-    int status = describe(pb, u, iterations, &curve->point[curve->n]);
-    if (status) return status;
-    curve->fold[curve->n++] = fold;
-    return GSL_SUCCESS;
-}
-
-int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
-                        const whirl_driven_info *start, int direction, double omega_min,
-                        double omega_max, double step, whirl_driven_curve *curve)
-{
-    if (direction != 1 && direction != -1)
-        return whirl_fail(GSL_EINVAL, "direction must be +1 or -1, got %d", direction);
-    if (!(isfinite(omega_min) && isfinite(omega_max) && omega_min > 0 && omega_min < omega_max))
-        return whirl_fail(GSL_EINVAL, "need 0 < omega_min < omega_max, got %g, %g", omega_min,
-                          omega_max);
-    if (!(isfinite(step) && step > 0))
-        return whirl_fail(GSL_EINVAL, "step must be positive and finite, got %g", step);
-    if (!(start->omega >= omega_min && start->omega <= omega_max))
-        return whirl_fail(GSL_EINVAL, "the start's omega " WHIRL_Q_RATE "%g is outside [%g, %g]",
-                          start->omega, omega_min, omega_max);
-    problem pb;
-    int status = problem_init(&pb, chain, params);
-    if (status) return status;
-    double u[3] = {start->tip[0], start->tip[1], start->omega}, tau[3], D, unew[3], taunew[3], Dnew;
-    double h = step;
-    int iterations;
-    curve->n = curve->n_folds = 0;
-    curve->complete = 0;
-    status = branch_tangent(&pb, u, NULL, direction, tau, &D);
-    if (status == GSL_SUCCESS) status = curve_append(&pb, curve, u, start->iterations, 0);
-    while (status == GSL_SUCCESS && curve->n < curve->capacity) {
-        if (whirl_stop_requested()) {
-            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega = " WHIRL_Q_RATE
-                                "%g", u[2]);
-            break;
-        }
-        if (branch_step(&pb, u, tau, h, unew, &iterations) != GSL_SUCCESS ||
-            iterations > BRANCH_MAX_CORRECTOR ||
-            branch_tangent(&pb, unew, tau, direction, taunew, &Dnew) != GSL_SUCCESS) {
-            if ((h *= 0.5) < BRANCH_MIN_STEP_RATIO * step) break; /* incomplete */
-            continue;
-        }
-        if (unew[2] < omega_min || unew[2] > omega_max) {
-            curve->complete = 1;
-            break;
-        }
-        if (D != 0 && Dnew != 0 && (D > 0) != (Dnew > 0)) {
-            double ufold[3];
-            status = locate_fold(&pb, u, tau, h, ufold);
-            if (status) break;
-            if (curve->n_folds < WHIRL_DRIVEN_FOLD_MAX)
-                curve->fold_omega[curve->n_folds++] = ufold[2];
-            status = curve_append(&pb, curve, ufold, 0, 1);
-            if (status || curve->n == curve->capacity) break;
-        }
-        status = curve_append(&pb, curve, unew, iterations, 0);
-        memcpy(u, unew, sizeof u);
-        memcpy(tau, taunew, sizeof tau);
-        D = Dnew;
-        if (iterations <= 3) h = fmin(step, 1.5 * h);
-    }
-    problem_free(&pb);
+    driven_problem_free(&pb);
     return status;
 }
