@@ -248,6 +248,100 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
                                    whirl_chart_row_fn row, void *row_data,
                                    whirl_chart_tick_fn tick, void *tick_data);
 
+/* ---- continuation of periodic motions ----
+ *
+ * A periodic motion followed in the path's rate or its amplitude by pseudo-arclength
+ * continuation (src/periodic/cycle_path.c): the unknowns are the state y at t = 0 and the
+ * parameter p, the equations P_p(y) = y and the arclength condition; the tangent is the null
+ * vector of the bordered Jacobian [M - I, dP/dp] of the period map. At every point the
+ * multipliers, the verdict and the test functions
+ *   fold test  f_+ = det(M - I)   (a multiplier, or a pair, through +1),
+ *   flip test  f_- = det(M + I)   (through -1: period doubling),
+ * each reported as sign(det) |det|^(1/m) (the geometric mean of the factors: no overflow at
+ * large N). A sign change of a test along a step is an event, located by Brent's method on the
+ * step's arclength, every evaluation a corrected point at s and 2 s steps per period with the
+ * test extrapolated (Richardson, order 4): to event_tol in the arclength. A +1 event where the
+ * parameter's component of the tangent changes sign is a fold of cycles; one where it does not
+ * is a branch point (a symmetric branch that goes on: the vertical chain's +1 tongue edges). */
+
+typedef enum {
+    WHIRL_CYCLE_OMEGA = 0,    /* the path's rate omega [sqrt(g/L)] */
+    WHIRL_CYCLE_AMPLITUDE = 1 /* the path's amplitude [L]: the path scaled so that its largest
+                                 Fourier amplitude (over c and s of every axis and harmonic) is
+                                 the parameter */
+} whirl_cycle_parameter;
+
+typedef enum {
+    WHIRL_CYCLE_POINT = 0,           /* a point of the branch */
+    WHIRL_CYCLE_FOLD = 1,            /* +1, the branch turns back in the parameter */
+    WHIRL_CYCLE_BRANCH = 2,          /* +1, the branch goes on (another branch crosses it) */
+    WHIRL_CYCLE_PERIOD_DOUBLING = 3  /* -1 */
+} whirl_cycle_event;
+
+typedef struct whirl_cycle_params {
+    whirl_cycle_parameter parameter;
+    double min, max;  /* the parameter's range: the branch ends where it leaves it (no default;
+                         the start must lie in it) */
+    int direction;    /* +1: leave the start towards larger values of the parameter, -1: smaller */
+    double step;      /* the largest arclength step, in the state (positions over L, rates over
+                         omega_ref L) and the parameter; 0: 0.05 */
+    int max_points;   /* points at most (the start included); 0: 10000 */
+    int steps;        /* Gauss steps per period (>= 8; raised as whirl_periodic_find raises them
+                         at the start); 0: 400 */
+    double tol;       /* Newton's test as whirl_periodic_params.tol; 0: 1e-10 */
+    int max_iter;     /* Newton's iterations at the start; 0: 30 */
+    double event_tol; /* an event's bracket in the arclength; 0: 1e-10 */
+} whirl_cycle_params;
+
+typedef struct whirl_cycle_point {
+    whirl_cycle_event event;
+    long index;        /* points so far (events not counted): the point's, or the next one's */
+    double parameter;  /* the continued parameter */
+    double omega;      /* the path's rate [sqrt(g/L)] */
+    double amplitude;  /* the path's largest Fourier amplitude [L] */
+    double err;        /* an event: the estimate of the parameter's error (the bracket's width
+                          and the change by the extrapolation); a point: 0 */
+    double arclength;  /* from the start */
+    double tangent;    /* d parameter / d arclength (a fold: 0 within the error) */
+    double fold_test, flip_test; /* f_+, f_- (above) */
+    size_t count;      /* multipliers */
+    const double *re, *im; /* the multipliers by decreasing modulus (valid during the call) */
+    double max_modulus, reciprocal_err;
+    whirl_floquet_verdict verdict; /* as whirl_periodic_result's, without the step's refinement:
+                                      margin max(2 reciprocal_err, 1e-9) */
+    whirl_floquet_edge edge;
+    double residual;   /* the scaled |P(y) - y| */
+    int iterations;    /* corrector iterations */
+    const double *y;   /* the state at t = 0 (whirl_periodic_state_size; valid during the call) */
+} whirl_cycle_point;
+
+typedef struct whirl_cycle_progress {
+    long points, events;
+    double parameter;  /* of the last point */
+    double step;       /* the arclength step under way */
+    int iteration;     /* the corrector's iteration */
+    double residual;   /* its residual */
+} whirl_cycle_progress;
+
+/* Called for every point and event in the order of the branch (an event before the point that
+ * ends its step); a non-zero return stops the continuation with that status. */
+typedef int (*whirl_cycle_row_fn)(void *data, const whirl_cycle_point *point);
+/* Called after every corrector iteration and every point. */
+typedef void (*whirl_cycle_tick_fn)(void *data, const whirl_cycle_progress *progress);
+
+/* Follows the periodic motion of w near y from w's path (its rate or amplitude the start, in
+ * [min, max]): Newton's method at the start (as whirl_periodic_find), then the branch until
+ * the parameter leaves [min, max] (GSL_SUCCESS), max_points (GSL_SUCCESS), a stop request
+ * (WHIRL_EINTERRUPTED: the rows handed out stand), or a corrector that does not converge even
+ * at a step of 1e-6 of the largest (GSL_EMAXITER with the residual reached and the parameter).
+ * y holds the last point's state and w's path the last point's. GSL_EINVAL on bad parameters
+ * (an amplitude continuation of a path with no amplitude among them). tick may be NULL. */
+WHIRL_API int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *params,
+                                  whirl_cycle_row_fn row, void *row_data,
+                                  whirl_cycle_tick_fn tick, void *tick_data);
+
+WHIRL_API const char *whirl_cycle_event_name(whirl_cycle_event e);
+
 WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
 WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);
 

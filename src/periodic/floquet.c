@@ -141,6 +141,24 @@ static void judge(whirl_periodic_result *r)
     r->edge_distance = best;
 }
 
+void periodic_judge(whirl_periodic_result *r)
+{
+    const size_t m = r->count;
+    const double *re = r->re, *im = r->im;
+    r->max_modulus = hypot(re[0], im[0]);
+    r->max_modulus_err = r->err[0];
+    double pair = 0;
+    for (size_t i = 0; i < m; i++) {
+        double best = INFINITY;
+        for (size_t j = 0; j < m; j++) /* |mu_i mu_j - 1| */
+            best = fmin(best, hypot(re[i] * re[j] - im[i] * im[j] - 1,
+                                    re[i] * im[j] + im[i] * re[j]));
+        pair = fmax(pair, best);
+    }
+    r->reciprocal_err = pair;
+    judge(r);
+}
+
 int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_params *params,
                         whirl_periodic_result *result)
 {
@@ -222,17 +240,6 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
         result->orbit_change = change;
     }
     free(y_coarse);
-    result->max_modulus = hypot(re[0], im[0]);
-    result->max_modulus_err = err[0];
-    double pair = 0;
-    for (size_t i = 0; i < m; i++) {
-        double best = INFINITY;
-        for (size_t j = 0; j < m; j++) /* |mu_i mu_j - 1| */
-            best = fmin(best, hypot(re[i] * re[j] - im[i] * im[j] - 1,
-                                    re[i] * im[j] + im[i] * re[j]));
-        pair = fmax(pair, best);
-    }
-    result->reciprocal_err = pair;
-    judge(result);
+    periodic_judge(result);
     return GSL_SUCCESS;
 }

@@ -276,7 +276,7 @@ int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y)
 }
 
 /* The largest scaled component of P(y) - y: positions over L, rates over omega_ref L. */
-static double residual_of(const whirl_periodic *w, const double *y, const double *py)
+double periodic_residual(const whirl_periodic *w, const double *y, const double *py)
 {
     double worst = 0;
     const size_t half = w->size / 2;
@@ -388,7 +388,7 @@ int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_
     int status = whirl_dyn_project(w->dyn, 0, y);
     memcpy(py, y, size * sizeof *py);
     if (status == GSL_SUCCESS) status = run_periods(w, py, steps, 1);
-    double res = status ? INFINITY : residual_of(w, y, py);
+    double res = status ? INFINITY : periodic_residual(w, y, py);
     int iter = 0;
     w->progress.iteration = 0, w->progress.residual = res;
     periodic_tick(w, 0);
@@ -415,7 +415,7 @@ int periodic_solve(whirl_periodic *w, double *y, int steps, double tol, int max_
             if (status == GSL_SUCCESS) status = run_periods(w, trial_p, steps, 1);
             if (status == GSL_EMAXITER || status == GSL_EBADFUNC) status = GSL_SUCCESS; /* too far */
             else if (status == GSL_SUCCESS) {
-                const double tr = residual_of(w, trial, trial_p);
+                const double tr = periodic_residual(w, trial, trial_p);
                 if (tr < best_res) {
                     best_res = tr;
                     memcpy(best, trial, size * sizeof *best);

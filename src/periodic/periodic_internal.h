@@ -64,4 +64,12 @@ void periodic_tick(whirl_periodic *w, double done);
 /* The eigenvalues of w->mono into re, im, by decreasing modulus. */
 int periodic_multipliers(whirl_periodic *w, double *re, double *im);
 
+/* r's max_modulus (and its error err[0]), reciprocal-pair error, verdict, growth and edge from
+ * its count multipliers re, im, err (sorted by decreasing modulus; floquet.c). */
+void periodic_judge(whirl_periodic_result *r);
+
+/* The largest scaled component of py - y: positions over L, rates over omega_ref L (Newton's
+ * test; periodic.c). */
+double periodic_residual(const whirl_periodic *w, const double *y, const double *py);
+
 #endif

@@ -1,0 +1,670 @@
+/* Continuation of periodic motions in the path's rate or amplitude (whirl/periodic.h,
+ * whirl_periodic_path): pseudo-arclength on the period map, with folds of cycles, branch points
+ * and period doublings located on the way.
+ *
+ * Unknowns u = (y, p): the state at t = 0 and the parameter. Equations
+ *   G(y, p) = E^T (P_p(y) - y) = 0   (m tangent coordinates, E the basis of the step's start),
+ *   N(y, p) = <t0, y - y0>_W + tp0 (p - p0) - sigma = 0,
+ * with <a, b>_W the scaled product of two Cartesian states (positions over L, rates over
+ * omega_ref L, the scales of Newton's residual) and (t0, tp0) the unit tangent at the step's
+ * start (y0, p0). E^T (P(y) - y) = 0 and P(y), y both on the constraint manifold (of dimension
+ * m) give P(y) = y near y0: the equations are exact; their Jacobian in the tangent coordinates
+ * at y0 is the bordered matrix
+ *   J = [ M - I   P_p ]      M the monodromy at y0, P_p = E^T dP/dp by central differences
+ *       [ c^T     tp0 ]      of the period map (relative step 1e-5), c_j = <t0, B e_j>_W,
+ * B e_j the tangent vector of coordinate j. J is factored once per step (at its start) and
+ * serves as the chord of Newton's method for every corrected point of the step: the corrector
+ * converges linearly, with a ratio of the order of the step times the branch's curvature.
+ * The tangent at a new point: J' z = (0, 1) with J' = [M - I, P_p; c_prev^T, tp_prev] (the row of
+ * the previous tangent: the new one continues it without turning back), then normalised.
+ *
+ * Test functions at each point: f_+ = det(M - I), f_- = det(M + I) as sign |det|^(1/m). For
+ * the conservative chain a pair mu, 1/mu (rho = mu + 1/mu) gives the factor 2 - rho of f_+ and
+ * 2 + rho of f_-: they change sign where a pair passes +1 (a fold: the branch turns back, where
+ * the tangent's tp changes sign; or a branch point: another branch of motions crosses) and -1
+ * (period doubling). A sign change along a step is located by Brent's method in sigma in
+ * [0, ds]; each evaluation corrects the point at sigma with s and with 2 s steps per period and
+ * extrapolates f and p (Gauss, order 4: x = x(2s) + (x(2s) - x(s)) / 15): the location is of the
+ * exact period map, not of its discretisation. Its error estimate: the bracket's width in p
+ * (|tp| times the width in sigma), the change of the root by the extrapolation (the shift of f
+ * over its slope, times |tp|), and the change of p by it. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <gsl/gsl_linalg.h>
+
+#include "core/error.h"
+#include "core/roots.h"
+#include "periodic/periodic_internal.h"
+
+#define STEP_DEFAULT 0.05
+#define POINTS_DEFAULT 10000
+#define TOL_DEFAULT 1e-10
+#define ITER_DEFAULT 30
+/* An event's bracket in sigma: two orders below the 1e-8 asked of the location in p
+ * (|dp/dsigma| <= 1). */
+#define EVENT_TOL_DEFAULT 1e-10
+/* Chord iterations before a step is refused: from a predictor a step away, with the ratio of
+ * the chord's linear convergence ~0.1, 1e-10 is reached in about 8. */
+#define CORRECTOR_MAX 12
+#define CORRECTOR_EASY 5   /* a step that took at most this many: the next one longer */
+#define STEP_GROW 1.5
+#define STEP_MIN_RATIO 1e-6 /* the smallest step, over the largest */
+/* A step whose tangent turns by more than 0.2 rad is refused: the chord and the sign tests of
+ * the events assume the branch nearly straight across a step. */
+#define TURN_MAX 0.2
+/* Relative step of the parameter's central differences: truncation (1e-5)^2 against round-off
+ * 1e-16 / 1e-5 of the map; the derivative serves the chord and the tangent only. */
+#define DP_REL 1e-5
+#define BRENT_ITER 100
+#define RICHARDSON 15.0
+
+/* What is reported of a point or an event (buffers owned by the cycle). */
+typedef struct report {
+    whirl_cycle_point pt;
+    double *y, *re, *im;
+    double sigma; /* events: where on the step */
+} report;
+
+typedef struct cycle {
+    whirl_periodic *w;
+    whirl_cycle_params p;
+    whirl_pivot_path base; /* the start's path */
+    double base_amp;       /* its largest amplitude */
+    size_t m, size, nb;
+    int steps;
+    double wpos, wrate;    /* the metric: 1 / L^2, 1 / (omega_ref L)^2 */
+    /* the step's start (0) and end (1) */
+    double *y0, *t0, *basis0, *mono0, *cols0, *pp0;
+    double p0, tp0;
+    double *y1, *t1, *basis1, *mono1, *cols1, *pp1;
+    double p1, tp1;
+    gsl_matrix *jac, *bord, *lu; /* (m+1)^2 chord, (m+1)^2 tangent, m^2 tests */
+    gsl_permutation *perm, *perm_b, *perm_m;
+    gsl_vector *rhs, *sol; /* m + 1 */
+    double *py, *tmp, *a, *b, *ys, *yf; /* size each */
+    double f0[2];          /* the tests at the step's start */
+    double *zero;          /* m zeros: the errors of unrefined multipliers */
+    report now, ev[2];
+    double arclength;
+    whirl_cycle_row_fn row;
+    void *row_data;
+    whirl_cycle_tick_fn tick;
+    void *tick_data;
+    whirl_cycle_progress progress;
+} cycle;
+
+const char *whirl_cycle_event_name(whirl_cycle_event e)
+{
+    switch (e) {
+    case WHIRL_CYCLE_POINT: return "point";
+    case WHIRL_CYCLE_FOLD: return "fold";
+    case WHIRL_CYCLE_BRANCH: return "branch";
+    case WHIRL_CYCLE_PERIOD_DOUBLING: return "period-doubling";
+    }
+    return "unknown";
+}
+
+static double path_amplitude(const whirl_pivot_path *path)
+{
+    double a = 0;
+    for (int k = 0; k < 3; k++)
+        for (int j = 0; j < path->harmonics; j++)
+            a = fmax(a, fmax(fabs(path->c[k][j]), fabs(path->s[k][j])));
+    return a;
+}
+
+/* w's path <- the start's at the parameter p. */
+static void set_param(cycle *c, double p)
+{
+    whirl_pivot_path path = c->base;
+    if (c->p.parameter == WHIRL_CYCLE_OMEGA) {
+        path.omega = p;
+    } else {
+        const double f = p / c->base_amp;
+        for (int k = 0; k < 3; k++)
+            for (int j = 0; j < path.harmonics; j++) path.c[k][j] *= f, path.s[k][j] *= f;
+    }
+    periodic_set_path(c->w, &path);
+}
+
+static void tick(cycle *c)
+{
+    if (c->tick) c->tick(c->tick_data, &c->progress);
+}
+
+/* <a, b>_W of two Cartesian states (or differences). */
+static double wdot(const cycle *c, const double *a, const double *b)
+{
+    const size_t half = c->size / 2;
+    double sp = 0, sr = 0;
+    for (size_t q = 0; q < half; q++) sp += a[q] * b[q], sr += a[half + q] * b[half + q];
+    return c->wpos * sp + c->wrate * sr;
+}
+
+static void set_metric(cycle *c)
+{
+    const double l = c->w->length, r = c->w->omega_ref * l;
+    c->wpos = 1 / (l * l), c->wrate = 1 / (r * r);
+}
+
+/* out <- P_p(y) with steps per period. */
+static int period_map(cycle *c, double p, const double *y, int steps, double *out)
+{
+    set_param(c, p);
+    memcpy(out, y, c->size * sizeof *out);
+    return whirl_periodic_run(c->w, out, steps, 1);
+}
+
+/* The frame at y: basis (w->basis made here and copied) and cols (column j, size long: the
+ * tangent vector of coordinate j). */
+static void frame_at(cycle *c, const double *y, double *basis, double *cols)
+{
+    periodic_basis(c->w, y);
+    memcpy(basis, c->w->basis, c->nb * sizeof *basis);
+    double *x = c->a;
+    memset(x, 0, c->m * sizeof *x);
+    for (size_t j = 0; j < c->m; j++) {
+        x[j] = 1;
+        double *col = cols + j * c->size;
+        periodic_tangent_add(c->w, y, x, col);
+        for (size_t q = 0; q < c->size; q++) col[q] -= y[q];
+        x[j] = 0;
+    }
+}
+
+/* pp <- E^T dP/dp at (y, p) by central differences (w->basis: y's). */
+static int param_derivative(cycle *c, const double *y, double p, double *basis, double *pp)
+{
+    const double h = DP_REL * (c->p.parameter == WHIRL_CYCLE_OMEGA ? p : fmax(p, c->base_amp));
+    int status = period_map(c, p + h, y, c->steps, c->a);
+    if (status == GSL_SUCCESS) status = period_map(c, p - h, y, c->steps, c->b);
+    set_param(c, p);
+    if (status) return status;
+    memcpy(c->w->basis, basis, c->nb * sizeof *basis);
+    periodic_tangent_read(c->w, c->b, c->a, pp);
+    for (size_t i = 0; i < c->m; i++) pp[i] /= 2 * h;
+    return GSL_SUCCESS;
+}
+
+/* (m+1) x (m+1) matrix [mono - I, pp; row(t) , tp] into a, row_j = <t, cols_j>_W. */
+static void bordered(const cycle *c, gsl_matrix *a, const double *mono, const double *pp,
+                     const double *cols, const double *t, double tp)
+{
+    const size_t m = c->m;
+    for (size_t i = 0; i < m; i++) {
+        for (size_t j = 0; j < m; j++) gsl_matrix_set(a, i, j, mono[i * m + j] - (i == j));
+        gsl_matrix_set(a, i, m, pp[i]);
+    }
+    for (size_t j = 0; j < m; j++) gsl_matrix_set(a, m, j, t ? wdot(c, t, cols + j * c->size) : 0);
+    gsl_matrix_set(a, m, m, tp);
+}
+
+/* The unit tangent (t, tp) at the point of mono, pp, cols continuing (t_prev, tp_prev). */
+static int tangent(cycle *c, const double *mono, const double *pp, const double *cols,
+                   const double *t_prev, double tp_prev, double *t, double *tp)
+{
+    const size_t m = c->m;
+    int sign;
+    bordered(c, c->bord, mono, pp, cols, t_prev, tp_prev);
+    gsl_vector_set_zero(c->rhs);
+    gsl_vector_set(c->rhs, m, 1);
+    int status = gsl_linalg_LU_decomp(c->bord, c->perm_b, &sign);
+    if (status == GSL_SUCCESS) status = gsl_linalg_LU_solve(c->bord, c->perm_b, c->rhs, c->sol);
+    if (status)
+        return whirl_fail(GSL_ESING, "the branch has no unique tangent at p=%.17g (the bordered "
+                          "Jacobian is singular)", c->p1);
+    memset(t, 0, c->size * sizeof *t);
+    for (size_t j = 0; j < m; j++) {
+        const double z = gsl_vector_get(c->sol, j);
+        const double *col = cols + j * c->size;
+        for (size_t q = 0; q < c->size; q++) t[q] += z * col[q];
+    }
+    *tp = gsl_vector_get(c->sol, m);
+    const double norm = sqrt(wdot(c, t, t) + *tp * *tp);
+    if (!(norm > 0 && isfinite(norm)))
+        return whirl_fail(GSL_ESING, "the branch has no unique tangent (the bordered Jacobian "
+                          "is singular)");
+    for (size_t q = 0; q < c->size; q++) t[q] /= norm;
+    *tp /= norm;
+    return GSL_SUCCESS;
+}
+
+/* The chord of the step: J at its start, factored. */
+static int chord(cycle *c)
+{
+    int sign;
+    bordered(c, c->jac, c->mono0, c->pp0, c->cols0, c->t0, c->tp0);
+    const int status = gsl_linalg_LU_decomp(c->jac, c->perm, &sign);
+    return status ? whirl_fail(status, "the chord of the continuation cannot be factored") : 0;
+}
+
+/* Corrects (y, p) (a start near the point at sigma) onto the branch with steps per period by
+ * the chord; *res its residual. GSL_EMAXITER (no message) if it does not converge. */
+static int correct(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
+                   double *res)
+{
+    const size_t m = c->m, size = c->size;
+    double first = INFINITY;
+    for (int k = 0;; k++) {
+        int status = period_map(c, *p, y, steps, c->py);
+        if (status == GSL_EMAXITER || status == GSL_EBADFUNC) return GSL_EMAXITER;
+        if (status) return status;
+        *res = periodic_residual(c->w, y, c->py);
+        for (size_t q = 0; q < size; q++) c->tmp[q] = y[q] - c->y0[q];
+        const double arc = wdot(c, c->t0, c->tmp) + c->tp0 * (*p - c->p0) - sigma;
+        c->progress.iteration = k, c->progress.residual = *res;
+        tick(c);
+        *iters = k;
+        if (*res <= c->p.tol && fabs(arc) <= c->p.tol) return GSL_SUCCESS;
+        if (k == CORRECTOR_MAX || !isfinite(*res) || *res > 1e3 * fmin(first, 1e-2))
+            return GSL_EMAXITER;
+        if (k == 0) first = *res;
+        memcpy(c->w->basis, c->basis0, c->nb * sizeof *c->basis0);
+        periodic_tangent_read(c->w, y, c->py, c->a);
+        for (size_t i = 0; i < m; i++) gsl_vector_set(c->rhs, i, -c->a[i]);
+        gsl_vector_set(c->rhs, m, -arc);
+        gsl_linalg_LU_solve(c->jac, c->perm, c->rhs, c->sol);
+        for (size_t i = 0; i < m; i++) c->a[i] = gsl_vector_get(c->sol, i);
+        periodic_tangent_add(c->w, y, c->a, c->tmp);
+        status = whirl_dyn_project(c->w->dyn, 0, c->tmp);
+        if (status) return GSL_EMAXITER;
+        memcpy(y, c->tmp, size * sizeof *y);
+        *p += gsl_vector_get(c->sol, m);
+    }
+}
+
+/* The predictor at sigma from the step's start, corrected with steps per period. */
+static int point_at(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
+                    double *res)
+{
+    for (size_t q = 0; q < c->size; q++) y[q] = c->y0[q] + sigma * c->t0[q];
+    *p = c->p0 + sigma * c->tp0;
+    if (whirl_dyn_project(c->w->dyn, 0, y)) return GSL_EMAXITER;
+    return correct(c, sigma, steps, y, p, iters, res);
+}
+
+/* The signs and ln |det| of M - I (k = 0) and M + I (k = 1), M = w->mono. */
+static void tests_of(cycle *c, int sg[2], double ln[2])
+{
+    const size_t m = c->m;
+    for (int k = 0; k < 2; k++) {
+        gsl_matrix_const_view mv = gsl_matrix_const_view_array(c->w->mono, m, m);
+        gsl_matrix_memcpy(c->lu, &mv.matrix);
+        for (size_t i = 0; i < m; i++)
+            gsl_matrix_set(c->lu, i, i, gsl_matrix_get(c->lu, i, i) + (k == 0 ? -1 : 1));
+        int sign;
+        gsl_linalg_LU_decomp(c->lu, c->perm_m, &sign);
+        sg[k] = gsl_linalg_LU_sgndet(c->lu, sign);
+        ln[k] = sg[k] == 0 ? -INFINITY : gsl_linalg_LU_lndet(c->lu);
+    }
+}
+
+/* r <- the point (y, p) of w->mono: multipliers, verdict, tests. */
+static int describe(cycle *c, report *r, const double *y, double p, double tp, int iters,
+                    double res)
+{
+    int status = periodic_multipliers(c->w, r->re, r->im);
+    if (status) return status;
+    memcpy(r->y, y, c->size * sizeof *y);
+    whirl_periodic_result fr = {.count = c->m, .re = r->re, .im = r->im, .err = c->zero,
+                                .period = whirl_pivot_period(&c->w->path)};
+    periodic_judge(&fr);
+    int sg[2];
+    double ln[2];
+    tests_of(c, sg, ln);
+    const double f[2] = {sg[0] * exp(ln[0] / (double)c->m), sg[1] * exp(ln[1] / (double)c->m)};
+    set_param(c, p);
+    r->pt = (whirl_cycle_point){
+        .event = WHIRL_CYCLE_POINT, .index = c->progress.points, .parameter = p,
+        .omega = c->w->path.omega, .amplitude = path_amplitude(&c->w->path),
+        .arclength = c->arclength, .tangent = tp, .fold_test = f[0], .flip_test = f[1],
+        .count = c->m, .re = r->re, .im = r->im, .max_modulus = fr.max_modulus,
+        .reciprocal_err = fr.reciprocal_err, .verdict = fr.verdict, .edge = fr.edge,
+        .residual = res, .iterations = iters, .y = r->y};
+    return GSL_SUCCESS;
+}
+
+static int emit(cycle *c, const report *r)
+{
+    return c->row ? c->row(c->row_data, &r->pt) : GSL_SUCCESS;
+}
+
+/* ---- events: Brent's method in sigma on the extrapolated test ---- */
+
+typedef struct event_frame {
+    cycle *c;
+    int kind;         /* 0: f_+, 1: f_- */
+    double *ys, *yf;  /* the corrected points at s and 2 s steps */
+    double p;         /* the extrapolated parameter at the last sigma */
+    double p_shift;   /* its change by the extrapolation */
+    double ref;       /* the test is det / exp(ref): ln |det| of the first evaluation (a smooth
+                         function with the det's simple zero, of order 1) */
+    int have_ref;
+    double f_shift;   /* the test's */
+    int iters;
+    double res;
+} event_frame;
+
+/* The test sg exp(ln - ref) (ref set by the first call). */
+static double scaled(event_frame *e, int sg, double ln)
+{
+    if (!e->have_ref && isfinite(ln)) e->ref = ln, e->have_ref = 1;
+    return sg == 0 ? 0 : sg * exp(ln - e->ref);
+}
+
+static int event_fn(double sigma, void *ctx, double *fx)
+{
+    event_frame *e = ctx;
+    cycle *c = e->c;
+    double ps, pf, lns[2], lnf[2];
+    int sgs[2], sgf[2];
+    int status = point_at(c, sigma, c->steps, e->ys, &ps, &e->iters, &e->res);
+    if (status == GSL_SUCCESS) status = periodic_monodromy_variational(c->w, e->ys, c->steps);
+    if (status == GSL_SUCCESS) {
+        tests_of(c, sgs, lns);
+        memcpy(e->yf, e->ys, c->size * sizeof *e->ys);
+        pf = ps;
+        status = correct(c, sigma, 2 * c->steps, e->yf, &pf, &e->iters, &e->res);
+    }
+    if (status == GSL_SUCCESS)
+        status = periodic_monodromy_variational(c->w, e->yf, 2 * c->steps);
+    if (status == GSL_EMAXITER)
+        return whirl_fail(GSL_EMAXITER, "an event near p=%.17g: the corrector did not converge "
+                          "(residual %.3g)", ps, e->res);
+    if (status) return status;
+    tests_of(c, sgf, lnf);
+    const int k = e->kind;
+    const double fs = scaled(e, sgs[k], lns[k]), ff = scaled(e, sgf[k], lnf[k]);
+    e->f_shift = (ff - fs) / RICHARDSON;
+    e->p_shift = (pf - ps) / RICHARDSON;
+    e->p = pf + e->p_shift;
+    *fx = ff + e->f_shift;
+    return GSL_SUCCESS;
+}
+
+/* The event of test kind (0: +1, 1: -1) on the step of length ds into r. */
+static int locate_event(cycle *c, int kind, double ds, report *r)
+{
+    event_frame e = {.c = c, .kind = kind, .ys = c->ys, .yf = c->yf};
+    double lo = 0, hi = ds, flo, fhi;
+    int status = event_fn(lo, &e, &flo);
+    if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
+    /* a root within the discretisation's shift of an end: the extrapolated test may change
+       sign just beyond it */
+    if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0)) {
+        lo = -ds / 2, hi = 1.5 * ds;
+        status = event_fn(lo, &e, &flo);
+        if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
+        if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0))
+            return whirl_fail(GSL_EFAILED, "a multiplier through %s near p=%.17g could not be "
+                              "located (the extrapolated test does not change sign)",
+                              kind ? "-1" : "+1", c->p0);
+    }
+    if (status) return status;
+    const whirl_root_opts o = {.epsabs = c->p.event_tol, .max_iter = BRENT_ITER, .known = 1,
+                               .f_lo = flo, .f_hi = fhi};
+    whirl_root rt;
+    status = whirl_root_brent(event_fn, &e, lo, hi, &o, &rt);
+    if (status && status != GSL_EMAXITER) {
+        if (!rt.bracketed)
+            return whirl_fail(GSL_EFAILED, "a multiplier through %s near p=%.17g could not be "
+                              "located", kind ? "-1" : "+1", c->p0);
+        return status;
+    }
+    double f;
+    status = event_fn(rt.root, &e, &f); /* the point, its monodromy (2 s steps) and shifts */
+    if (status) return status;
+    const double slope = (fhi - flo) / (hi - lo);
+    /* the tangent at the root, interpolated between the step's ends */
+    const double lambda = rt.root / ds, tp = (1 - lambda) * c->tp0 + lambda * c->tp1;
+    const double saved = c->arclength;
+    c->arclength += rt.root;
+    status = describe(c, r, e.yf, e.p, tp, e.iters, e.res);
+    c->arclength = saved;
+    if (status) return status;
+    r->sigma = rt.root;
+    r->pt.event = kind ? WHIRL_CYCLE_PERIOD_DOUBLING
+                       : (c->tp0 > 0) != (c->tp1 > 0) ? WHIRL_CYCLE_FOLD : WHIRL_CYCLE_BRANCH;
+    r->pt.err = (rt.upper - rt.lower) * fabs(tp) + fabs(e.f_shift / slope) * fabs(tp) +
+                fabs(e.p_shift);
+    return GSL_SUCCESS;
+}
+
+/* ---- the branch ---- */
+
+static int check_params(cycle *c, const whirl_cycle_params *params)
+{
+    whirl_cycle_params *p = &c->p;
+    if (params == NULL) return whirl_fail(GSL_EINVAL, "whirl_periodic_path: needs parameters");
+    *p = *params;
+    if (p->step == 0) p->step = STEP_DEFAULT;
+    if (p->max_points == 0) p->max_points = POINTS_DEFAULT;
+    if (p->tol == 0) p->tol = TOL_DEFAULT;
+    if (p->max_iter == 0) p->max_iter = ITER_DEFAULT;
+    if (p->event_tol == 0) p->event_tol = EVENT_TOL_DEFAULT;
+    if (p->parameter != WHIRL_CYCLE_OMEGA && p->parameter != WHIRL_CYCLE_AMPLITUDE)
+        return whirl_fail(GSL_EINVAL, "unknown continuation parameter %d", (int)p->parameter);
+    if (!(isfinite(p->min) && isfinite(p->max) && p->min < p->max) ||
+        (p->parameter == WHIRL_CYCLE_OMEGA && !(p->min > 0)) ||
+        (p->parameter == WHIRL_CYCLE_AMPLITUDE && !(p->min >= 0)))
+        return whirl_fail(GSL_EINVAL, "the continuation needs %s min < max, finite, got %g, %g",
+                          p->parameter == WHIRL_CYCLE_OMEGA ? "0 <" : "0 <=", p->min, p->max);
+    if (p->direction != 1 && p->direction != -1)
+        return whirl_fail(GSL_EINVAL, "direction must be +1 or -1, got %d", p->direction);
+    if (!(isfinite(p->step) && p->step > 0) || p->max_points < 1 || !(p->tol > 0) ||
+        !isfinite(p->tol) || p->max_iter < 1 || !(p->event_tol > 0) || p->steps < 0 ||
+        (p->steps > 0 && p->steps < 8) || p->steps > 1 << 24)
+        return whirl_fail(GSL_EINVAL, "the continuation needs step > 0, max_points >= 1, tol > 0, "
+                          "max_iter >= 1, event_tol > 0 and steps 0 or 8..%d", 1 << 24);
+    const double start = p->parameter == WHIRL_CYCLE_OMEGA ? c->base.omega : c->base_amp;
+    if (p->parameter == WHIRL_CYCLE_AMPLITUDE && !(c->base_amp > 0))
+        return whirl_fail(GSL_EINVAL, "an amplitude continuation needs a path that moves");
+    if (!(start >= p->min && start <= p->max))
+        return whirl_fail(GSL_EINVAL, "the start's %s %.17g is outside [%.17g, %.17g]",
+                          p->parameter == WHIRL_CYCLE_OMEGA ? "rate" : "amplitude", start,
+                          p->min, p->max);
+    return GSL_SUCCESS;
+}
+
+static void cycle_free(cycle *c)
+{
+    double *bufs[] = {c->y0, c->t0, c->basis0, c->mono0, c->cols0, c->pp0, c->y1, c->t1,
+                      c->basis1, c->mono1, c->cols1, c->pp1, c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero,
+                      c->now.y, c->now.re, c->now.im, c->ev[0].y, c->ev[0].re, c->ev[0].im,
+                      c->ev[1].y, c->ev[1].re, c->ev[1].im};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) free(bufs[i]);
+    if (c->jac) gsl_matrix_free(c->jac);
+    if (c->bord) gsl_matrix_free(c->bord);
+    if (c->lu) gsl_matrix_free(c->lu);
+    if (c->perm) gsl_permutation_free(c->perm);
+    if (c->perm_b) gsl_permutation_free(c->perm_b);
+    if (c->perm_m) gsl_permutation_free(c->perm_m);
+    if (c->rhs) gsl_vector_free(c->rhs);
+    if (c->sol) gsl_vector_free(c->sol);
+}
+
+static int cycle_alloc(cycle *c)
+{
+    const size_t m = c->m, size = c->size, nb = c->nb;
+    double **sized[] = {&c->y0, &c->t0, &c->y1, &c->t1, &c->py, &c->tmp, &c->a, &c->b, &c->ys, &c->yf,
+                        &c->now.y, &c->ev[0].y, &c->ev[1].y};
+    double **msized[] = {&c->pp0, &c->pp1, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
+                         &c->ev[0].im, &c->ev[1].re, &c->ev[1].im};
+    int ok = 1;
+    for (size_t i = 0; i < sizeof sized / sizeof sized[0]; i++)
+        ok &= (*sized[i] = calloc(size, sizeof **sized[i])) != NULL;
+    for (size_t i = 0; i < sizeof msized / sizeof msized[0]; i++)
+        ok &= (*msized[i] = calloc(m, sizeof **msized[i])) != NULL;
+    ok &= (c->basis0 = malloc(nb * sizeof *c->basis0)) != NULL;
+    ok &= (c->basis1 = malloc(nb * sizeof *c->basis1)) != NULL;
+    ok &= (c->mono0 = malloc(m * m * sizeof *c->mono0)) != NULL;
+    ok &= (c->mono1 = malloc(m * m * sizeof *c->mono1)) != NULL;
+    ok &= (c->cols0 = malloc(m * size * sizeof *c->cols0)) != NULL;
+    ok &= (c->cols1 = malloc(m * size * sizeof *c->cols1)) != NULL;
+    ok &= (c->jac = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
+    ok &= (c->bord = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
+    ok &= (c->lu = gsl_matrix_alloc(m, m)) != NULL;
+    ok &= (c->perm = gsl_permutation_alloc(m + 1)) != NULL;
+    ok &= (c->perm_b = gsl_permutation_alloc(m + 1)) != NULL;
+    ok &= (c->perm_m = gsl_permutation_alloc(m)) != NULL;
+    ok &= (c->rhs = gsl_vector_alloc(m + 1)) != NULL;
+    ok &= (c->sol = gsl_vector_alloc(m + 1)) != NULL;
+    return ok ? GSL_SUCCESS
+              : whirl_fail(GSL_ENOMEM, "out of memory for the continuation (%zu x %zu)", m, size);
+}
+
+/* The end point's monodromy (in w->mono, at y1) into mono1, basis1, its frame, the parameter's
+ * derivative and the tangent continuing (t_prev, tp_prev). */
+static int end_frame(cycle *c, const double *t_prev, double tp_prev)
+{
+    memcpy(c->mono1, c->w->mono, c->m * c->m * sizeof *c->mono1);
+    frame_at(c, c->y1, c->basis1, c->cols1);
+    int status = param_derivative(c, c->y1, c->p1, c->basis1, c->pp1);
+    if (status == GSL_SUCCESS)
+        status = tangent(c, c->mono1, c->pp1, c->cols1, t_prev, tp_prev, c->t1, &c->tp1);
+    return status;
+}
+
+/* The end becomes the start. */
+static void advance(cycle *c)
+{
+#define SWAP(a, b) do { double *s_ = a; a = b; b = s_; } while (0)
+    SWAP(c->y0, c->y1);
+    SWAP(c->t0, c->t1);
+    SWAP(c->basis0, c->basis1);
+    SWAP(c->mono0, c->mono1);
+    SWAP(c->cols0, c->cols1);
+    SWAP(c->pp0, c->pp1);
+#undef SWAP
+    c->p0 = c->p1, c->tp0 = c->tp1;
+}
+
+static int in_range(const cycle *c, double p) { return p >= c->p.min && p <= c->p.max; }
+
+/* One accepted step from (y0, p0) (its chord factored): its events and end point handed out.
+ * *ds the step to try (halved on a refusal, grown after an easy one); *ended 1 where the branch
+ * left the range. */
+static int step(cycle *c, double *ds, int *ended)
+{
+    for (;;) {
+        if (whirl_stop_requested())
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped at p=%.17g after %ld points", c->p0,
+                              c->progress.points);
+        c->progress.step = *ds;
+        int iters;
+        double res;
+        int status = point_at(c, *ds, c->steps, c->y1, &c->p1, &iters, &res);
+        if (status == GSL_SUCCESS)
+            status = periodic_monodromy_variational(c->w, c->y1, c->steps);
+        if (status == GSL_SUCCESS) status = end_frame(c, c->t0, c->tp0);
+        int refused = status == GSL_EMAXITER || status == GSL_ESING;
+        if (status == GSL_SUCCESS)
+            refused = acos(fmin(1, wdot(c, c->t0, c->t1) + c->tp0 * c->tp1)) > TURN_MAX;
+        else if (!refused)
+            return status;
+        if (refused) {
+            *ds /= 2;
+            if (*ds < STEP_MIN_RATIO * c->p.step)
+                return whirl_fail(GSL_EMAXITER, "the continuation fails at p=%.17g: the "
+                                  "corrector did not converge (residual %.3g, tolerance %.3g) "
+                                  "at the smallest step %.3g", c->p0, res, c->p.tol, *ds);
+            continue;
+        }
+        /* the end point's report before the events' evaluations overwrite w->mono */
+        memcpy(c->w->mono, c->mono1, c->m * c->m * sizeof *c->mono1);
+        c->arclength += *ds;
+        status = describe(c, &c->now, c->y1, c->p1, c->tp1, iters, res);
+        c->arclength -= *ds;
+        if (status) return status;
+        /* the events of the step, by sigma */
+        int n = 0;
+        for (int k = 0; k < 2; k++) {
+            const double end = k ? c->now.pt.flip_test : c->now.pt.fold_test;
+            if ((c->f0[k] < 0) == (end < 0)) continue;
+            status = locate_event(c, k, *ds, &c->ev[n]);
+            if (status) return status;
+            n++;
+        }
+        set_param(c, c->p1);
+        if (n == 2 && c->ev[1].sigma < c->ev[0].sigma) {
+            const report r = c->ev[0];
+            c->ev[0] = c->ev[1], c->ev[1] = r;
+        }
+        for (int k = 0; k < n; k++) {
+            if (!in_range(c, c->ev[k].pt.parameter)) continue;
+            c->progress.events++;
+            if ((status = emit(c, &c->ev[k]))) return status;
+        }
+        c->arclength += *ds;
+        c->f0[0] = c->now.pt.fold_test, c->f0[1] = c->now.pt.flip_test;
+        if (!in_range(c, c->p1)) {
+            *ended = 1;
+            return GSL_SUCCESS;
+        }
+        c->progress.points++;
+        c->progress.parameter = c->p1;
+        if ((status = emit(c, &c->now))) return status;
+        tick(c);
+        if (iters <= CORRECTOR_EASY) *ds = fmin(STEP_GROW * *ds, c->p.step);
+        return GSL_SUCCESS;
+    }
+}
+
+int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *params,
+                        whirl_cycle_row_fn row, void *row_data, whirl_cycle_tick_fn tick_fn,
+                        void *tick_data)
+{
+    if (w == NULL || y == NULL)
+        return whirl_fail(GSL_EINVAL, "whirl_periodic_path: NULL argument");
+    cycle c = {.w = w, .base = w->path, .base_amp = path_amplitude(&w->path), .m = w->m,
+               .size = w->size, .nb = 3 * (size_t)(w->dim - 1) * w->n, .row = row,
+               .row_data = row_data, .tick = tick_fn, .tick_data = tick_data};
+    int status = check_params(&c, params);
+    if (status) return status;
+    for (size_t q = 0; q < w->size; q++)
+        if (!isfinite(y[q])) return whirl_fail(GSL_EINVAL, "the start state is not finite");
+    if ((status = cycle_alloc(&c))) goto done;
+    w->method = WHIRL_MONODROMY_VARIATIONAL;
+    c.p1 = c.p.parameter == WHIRL_CYCLE_OMEGA ? c.base.omega : c.base_amp;
+    set_param(&c, c.p1);
+    status = whirl_dyn_project(w->dyn, 0, y);
+    if (status == GSL_SUCCESS) status = periodic_steps_for(w, y, c.p.steps, &c.steps);
+    /* the start: Newton's method at the fixed parameter, the monodromy at the motion */
+    double res;
+    int iters;
+    if (status == GSL_SUCCESS)
+        status = periodic_solve(w, y, c.steps, c.p.tol, c.p.max_iter, &res, &iters);
+    if (status) goto done;
+    set_metric(&c);
+    memcpy(c.y1, y, w->size * sizeof *y);
+    status = end_frame(&c, NULL, c.p.direction);
+    if (status == GSL_SUCCESS) {
+        memcpy(w->mono, c.mono1, c.m * c.m * sizeof *c.mono1);
+        status = describe(&c, &c.now, c.y1, c.p1, c.tp1, iters, res);
+    }
+    if (status) goto done;
+    c.f0[0] = c.now.pt.fold_test, c.f0[1] = c.now.pt.flip_test;
+    c.progress.points = 1;
+    c.progress.parameter = c.p1;
+    if ((status = emit(&c, &c.now))) goto done;
+    tick(&c);
+    advance(&c);
+    double ds = c.p.step;
+    int ended = 0;
+    while (!ended && c.progress.points < c.p.max_points) {
+        set_metric(&c);
+        const double norm = sqrt(wdot(&c, c.t0, c.t0) + c.tp0 * c.tp0);
+        for (size_t q = 0; q < c.size; q++) c.t0[q] /= norm;
+        c.tp0 /= norm;
+        if ((status = chord(&c))) break;
+        if ((status = step(&c, &ds, &ended))) break;
+        if (!ended) advance(&c);
+    }
+    memcpy(y, c.y0, w->size * sizeof *y);
+    set_param(&c, c.p0);
+done:
+    cycle_free(&c);
+    return status;
+}
