@@ -48,6 +48,10 @@
 /* Chord iterations before a step is refused: from a predictor a step away, with the ratio of
  * the chord's linear convergence ~0.1, 1e-10 is reached in about 8. */
 #define CORRECTOR_MAX 12
+/* The chord refreshed (Newton's Jacobian at the iterate) where an iteration does not halve the
+ * residual, at most REFRESH_MAX times per corrected point. */
+#define CHORD_RATIO 0.5
+#define REFRESH_MAX 3
 #define CORRECTOR_EASY 5   /* a step that took at most this many: the next one longer */
 #define STEP_GROW 1.5
 #define STEP_MIN_RATIO 1e-6 /* the smallest step, over the largest */
@@ -79,6 +83,7 @@ typedef struct cycle {
     double *y0, *t0, *basis0, *mono0, *cols0, *pp0;
     double p0, tp0;
     double *y1, *t1, *basis1, *mono1, *cols1, *pp1;
+    double *basis_j, *cols_j, *pp_j; /* the frame of the chord where it was refreshed */
     double p1, tp1;
     gsl_matrix *jac, *bord, *lu; /* (m+1)^2 chord, (m+1)^2 tangent, m^2 tests */
     gsl_permutation *perm, *perm_b, *perm_m;
@@ -174,12 +179,13 @@ static void frame_at(cycle *c, const double *y, double *basis, double *cols)
     }
 }
 
-/* pp <- E^T dP/dp at (y, p) by central differences (w->basis: y's). */
-static int param_derivative(cycle *c, const double *y, double p, double *basis, double *pp)
+/* pp <- E^T dP/dp at (y, p) by central differences with steps per period (E: basis). */
+static int param_derivative(cycle *c, const double *y, double p, int steps, double *basis,
+                            double *pp)
 {
     const double h = DP_REL * (c->p.parameter == WHIRL_CYCLE_OMEGA ? p : fmax(p, c->base_amp));
-    int status = period_map(c, p + h, y, c->steps, c->a);
-    if (status == GSL_SUCCESS) status = period_map(c, p - h, y, c->steps, c->b);
+    int status = period_map(c, p + h, y, steps, c->a);
+    if (status == GSL_SUCCESS) status = period_map(c, p - h, y, steps, c->b);
     set_param(c, p);
     if (status) return status;
     memcpy(c->w->basis, basis, c->nb * sizeof *basis);
@@ -236,17 +242,37 @@ static int chord(cycle *c)
 {
     int sign;
     bordered(c, c->jac, c->mono0, c->pp0, c->cols0, c->t0, c->tp0);
+    memcpy(c->basis_j, c->basis0, c->nb * sizeof *c->basis0);
     const int status = gsl_linalg_LU_decomp(c->jac, c->perm, &sign);
     return status ? whirl_fail(status, "the chord of the continuation cannot be factored") : 0;
 }
 
+/* The chord refreshed at (y, p) with steps per period: Newton's Jacobian there. Near a pair of
+ * multipliers close to +1 (the circle drive's slow mode at small radii: M - I nearly
+ * singular), J changes along a step by more than the chord's linear convergence allows. */
+static int refresh(cycle *c, const double *y, double p, int steps)
+{
+    set_param(c, p);
+    int status = periodic_monodromy_variational(c->w, y, steps);
+    if (status) return status;
+    frame_at(c, y, c->basis_j, c->cols_j);
+    status = param_derivative(c, y, p, steps, c->basis_j, c->pp_j);
+    if (status) return status;
+    int sign;
+    bordered(c, c->jac, c->w->mono, c->pp_j, c->cols_j, c->t0, c->tp0);
+    status = gsl_linalg_LU_decomp(c->jac, c->perm, &sign);
+    return status ? whirl_fail(status, "the Jacobian of the continuation cannot be factored") : 0;
+}
+
 /* Corrects (y, p) (a start near the point at sigma) onto the branch with steps per period by
- * the chord; *res its residual. GSL_EMAXITER (no message) if it does not converge. */
+ * the chord, refreshed where it converges slowly; *res its residual. GSL_EMAXITER (no message)
+ * if it does not converge. */
 static int correct(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
                    double *res)
 {
     const size_t m = c->m, size = c->size;
-    double first = INFINITY;
+    double first = INFINITY, last = INFINITY;
+    int refreshes = 0;
     for (int k = 0;; k++) {
         int status = period_map(c, *p, y, steps, c->py);
         if (status == GSL_EMAXITER || status == GSL_EBADFUNC) return GSL_EMAXITER;
@@ -261,7 +287,12 @@ static int correct(cycle *c, double sigma, int steps, double *y, double *p, int 
         if (k == CORRECTOR_MAX || !isfinite(*res) || *res > 1e3 * fmin(first, 1e-2))
             return GSL_EMAXITER;
         if (k == 0) first = *res;
-        memcpy(c->w->basis, c->basis0, c->nb * sizeof *c->basis0);
+        if (k > 0 && *res > CHORD_RATIO * last && refreshes < REFRESH_MAX) {
+            refreshes++;
+            if ((status = refresh(c, y, *p, steps))) return status;
+        }
+        last = *res;
+        memcpy(c->w->basis, c->basis_j, c->nb * sizeof *c->basis_j);
         periodic_tangent_read(c->w, y, c->py, c->a);
         for (size_t i = 0; i < m; i++) gsl_vector_set(c->rhs, i, -c->a[i]);
         gsl_vector_set(c->rhs, m, -arc);
@@ -471,7 +502,7 @@ static int check_params(cycle *c, const whirl_cycle_params *params)
 static void cycle_free(cycle *c)
 {
     double *bufs[] = {c->y0, c->t0, c->basis0, c->mono0, c->cols0, c->pp0, c->y1, c->t1,
-                      c->basis1, c->mono1, c->cols1, c->pp1, c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero,
+                      c->basis1, c->mono1, c->cols1, c->pp1, c->basis_j, c->cols_j, c->pp_j, c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero,
                       c->now.y, c->now.re, c->now.im, c->ev[0].y, c->ev[0].re, c->ev[0].im,
                       c->ev[1].y, c->ev[1].re, c->ev[1].im};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) free(bufs[i]);
@@ -490,7 +521,7 @@ static int cycle_alloc(cycle *c)
     const size_t m = c->m, size = c->size, nb = c->nb;
     double **sized[] = {&c->y0, &c->t0, &c->y1, &c->t1, &c->py, &c->tmp, &c->a, &c->b, &c->ys, &c->yf,
                         &c->now.y, &c->ev[0].y, &c->ev[1].y};
-    double **msized[] = {&c->pp0, &c->pp1, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
+    double **msized[] = {&c->pp0, &c->pp1, &c->pp_j, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
                          &c->ev[0].im, &c->ev[1].re, &c->ev[1].im};
     int ok = 1;
     for (size_t i = 0; i < sizeof sized / sizeof sized[0]; i++)
@@ -503,6 +534,8 @@ static int cycle_alloc(cycle *c)
     ok &= (c->mono1 = malloc(m * m * sizeof *c->mono1)) != NULL;
     ok &= (c->cols0 = malloc(m * size * sizeof *c->cols0)) != NULL;
     ok &= (c->cols1 = malloc(m * size * sizeof *c->cols1)) != NULL;
+    ok &= (c->cols_j = malloc(m * size * sizeof *c->cols_j)) != NULL;
+    ok &= (c->basis_j = malloc(nb * sizeof *c->basis_j)) != NULL;
     ok &= (c->jac = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
     ok &= (c->bord = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
     ok &= (c->lu = gsl_matrix_alloc(m, m)) != NULL;
@@ -521,7 +554,7 @@ static int end_frame(cycle *c, const double *t_prev, double tp_prev)
 {
     memcpy(c->mono1, c->w->mono, c->m * c->m * sizeof *c->mono1);
     frame_at(c, c->y1, c->basis1, c->cols1);
-    int status = param_derivative(c, c->y1, c->p1, c->basis1, c->pp1);
+    int status = param_derivative(c, c->y1, c->p1, c->steps, c->basis1, c->pp1);
     if (status == GSL_SUCCESS)
         status = tangent(c, c->mono1, c->pp1, c->cols1, t_prev, tp_prev, c->t1, &c->tp1);
     return status;
