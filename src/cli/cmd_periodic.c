@@ -26,8 +26,9 @@
 
 typedef struct periodic_options {
     const char *pivot, *start, *output, *chart;
-    double omega, tol;
-    int links, dim, steps, max_iter, mode, differences;
+    double omega, tol, arc_step;
+    int links, dim, steps, max_iter, mode, side, differences, up, max_points;
+    int omega_given, omin_given, omax_given, amin_given, amax_given;
     double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
     int omega_count, amp_rows;
     cli_units units;
@@ -68,7 +69,7 @@ static int start_steady(const cli_command *cmd, const periodic_options *o, const
     const whirl_model model = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
                                .omega = path->omega, .drive_radius = r};
     double growth;
-    int status = whirl_stability_driven_mode(st, &model, o->mode, 1, NULL, &growth);
+    int status = whirl_stability_driven_mode(st, &model, o->mode, o->side, NULL, &growth);
     double *links = malloc(3 * c->n * sizeof *links);
     if (status == GSL_SUCCESS && links == NULL) status = GSL_ENOMEM;
     if (status == GSL_SUCCESS) {
@@ -241,38 +242,190 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
     return rc;
 }
 
+/* ---- a branch (--omega-min/--omega-max or --amp-min/--amp-max without --chart) ---- */
+
+typedef struct branch_row {
+    whirl_cycle_event event;
+    double omega, amplitude, err, max_modulus, fold, flip;
+    whirl_floquet_verdict verdict;
+    whirl_floquet_edge edge;
+} branch_row;
+
+typedef struct branch_rows {
+    branch_row *r;
+    size_t n, cap, events;
+    cli_progress_state line;
+    double after;
+    int amplitude; /* the parameter: 0 the rate, 1 the amplitude */
+} branch_rows;
+
+static int branch_keep(void *data, const whirl_cycle_point *p)
+{
+    branch_rows *b = data;
+    if (b->n == b->cap) {
+        const size_t cap = b->cap ? 2 * b->cap : 256;
+        branch_row *r = realloc(b->r, cap * sizeof *r);
+        if (r == NULL) return GSL_ENOMEM;
+        b->r = r, b->cap = cap;
+    }
+    b->r[b->n++] = (branch_row){.event = p->event, .omega = p->omega, .amplitude = p->amplitude,
+                                .err = p->err, .max_modulus = p->max_modulus,
+                                .fold = p->fold_test, .flip = p->flip_test,
+                                .verdict = p->verdict, .edge = p->edge};
+    b->events += p->event != WHIRL_CYCLE_POINT;
+    return 0;
+}
+
+static void branch_tick(void *data, const whirl_cycle_progress *p)
+{
+    branch_rows *b = data;
+    if (!b->line.drawn && cli_wall_seconds() - b->line.start < b->after) return;
+    cli_progress_text(&b->line, "%ld points, %ld events, %s %.6g, step %.3g, corrector "
+                      "iteration %d (residual %.2g)", p->points, p->events,
+                      b->amplitude ? "A" : "omega", p->parameter, p->step, p->iteration,
+                      p->residual);
+}
+
+static int check_branch(const cli_command *cmd, const periodic_options *o, int branch)
+{
+    if (o->omin_given && o->amax_given)
+        return cli_error(cmd, "a branch follows one parameter: --omega-min/--omega-max (the "
+                         "rate) or --amp-min/--amp-max (the amplitude), not both");
+    if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
+    if (!branch && (o->up || o->arc_step > 0 || o->max_points > 0))
+        return cli_error(cmd, "--up, --arc-step and --max-points need a branch (--omega-min and "
+                         "--omega-max, or --amp-max)");
+    if (o->omin_given && !(o->omega_max > o->omega_min))
+        return cli_error(cmd, "--omega-max must exceed --omega-min");
+    if (o->amax_given && !(o->amp_max > o->amp_min))
+        return cli_error(cmd, "--amp-max must exceed --amp-min");
+    if (o->omin_given && o->omega_given && !(o->omega >= o->omega_min && o->omega <= o->omega_max))
+        return cli_error(cmd, "--omega (the branch's start) is outside [--omega-min, --omega-max]");
+    return 0;
+}
+
+static void write_branch(FILE *fp, const periodic_options *o, const branch_rows *b,
+                         const char *stopped)
+{
+    const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
+    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
+    const double perr = b->amplitude ? len : rate;
+    char words[96];
+    fprintf(fp, "# periodic branch: pivot %s, links=%d dim=%d start=%s; followed in the %s "
+            "from %s towards %s values, %zu rows (%zu events)\n", o->pivot, o->links, o->dim,
+            o->start, b->amplitude ? "amplitude" : "rate",
+            b->amplitude ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
+                         : cli_rate_words(&o->units, o->omega, words, sizeof words),
+            o->up ? "larger" : "smaller", b->n, b->events);
+    fprintf(fp, "# events: fold (+1, the branch turns back), branch (+1, it goes on), "
+            "period-doubling (-1); fold_test = det(M - I), flip_test = det(M + I) as "
+            "sign |det|^(1/m); err: the event's error estimate in the parameter\n");
+    for (size_t i = 0; i < b->n; i++)
+        if (b->r[i].event != WHIRL_CYCLE_POINT)
+            fprintf(fp, "# %s omega=%s amplitude=%s err=%.2g\n",
+                    whirl_cycle_event_name(b->r[i].event), CLI_NUM(b->r[i].omega * rate),
+                    CLI_NUM(b->r[i].amplitude * len), b->r[i].err * perr);
+    if (stopped[0]) fprintf(fp, "# stopped (%s): the points found until then\n", stopped);
+    cli_units_comment(fp, &o->units);
+    fprintf(fp, "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,err\n");
+    for (size_t i = 0; i < b->n; i++) {
+        const branch_row *r = &b->r[i];
+        fprintf(fp, "%s,%s,%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
+                CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len), CLI_NUM(r->max_modulus),
+                whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
+                CLI_NUM(r->fold), CLI_NUM(r->flip), CLI_NUM(r->err * perr));
+    }
+}
+
+/* The branch through the start y of w: rows kept as they come, written at the end (also after
+ * a stop request or a failure on the way: the rows so far, a comment line saying why). */
+static int run_branch(const cli_command *cmd, const periodic_options *o, whirl_periodic *w,
+                      double *y)
+{
+    branch_rows b = {.after = cli_progress_after(), .amplitude = o->amax_given};
+    const whirl_cycle_params p = {
+        .parameter = b.amplitude ? WHIRL_CYCLE_AMPLITUDE : WHIRL_CYCLE_OMEGA,
+        .min = b.amplitude ? o->amp_min : o->omega_min,
+        .max = b.amplitude ? o->amp_max : o->omega_max, .direction = o->up ? 1 : -1,
+        .step = o->arc_step, .max_points = o->max_points, .steps = o->steps, .tol = o->tol,
+        .max_iter = o->max_iter};
+    cli_catch_interrupts();
+    cli_progress_begin(&b.line, cmd, "", 0, 0);
+    const int status = whirl_periodic_path(w, y, &p, branch_keep, &b, branch_tick, &b);
+    cli_progress_clear(&b.line);
+    char stopped[CLI_MESSAGE_MAX] = "";
+    int rc = 0;
+    if (status != GSL_SUCCESS) {
+        if (b.n == 0 || status == GSL_ENOMEM) {
+            free(b.r);
+            return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
+        }
+        cli_library_error(&o->units, stopped, sizeof stopped);
+    }
+    cli_out out;
+    if (cli_out_open(cmd, &out, o->output)) {
+        free(b.r);
+        return 1;
+    }
+    write_branch(out.fp, o, &b, stopped);
+    rc = cli_out_commit(cmd, &out);
+    if (rc == 0 && status == WHIRL_EINTERRUPTED)
+        rc = (cli_error(cmd, "interrupted: the %zu rows found until then are written", b.n),
+              CLI_EXIT_INTERRUPTED);
+    else if (rc == 0 && status != GSL_SUCCESS)
+        rc = cli_error(cmd, "the branch stopped early (the %zu rows found until then are "
+                       "written): %s", b.n, stopped);
+    free(b.r);
+    return rc;
+}
+
 int cmd_periodic(const cli_command *cmd, int argc, char **argv)
 {
-    periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1,
+    periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1, .side = 1,
                           .units = CLI_UNITS_INIT};
     const cli_option opts[] = {
         {.name = "--pivot", .type = CLI_STRING, .value = &o.pivot, .meta = "PATH",
          .help = "the pivot's path: circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A, "
                  "eight:A,B or fourier:x1c=A,z2s=B,...",
          .required = "--chart"},
-        {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .meta = "W",
-         .help = "rate of the path (period 2 pi / W)", .range = "(0, inf)",
-         .required = "--chart", .unit = CLI_UNIT_RATE},
+        {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .given = &o.omega_given,
+         .meta = "W", .help = "rate of the path (period 2 pi / W; a branch in the rate: its "
+                              "start, default --omega-max)",
+         .range = "(0, inf)", .required = "--chart --omega-min", .unit = CLI_UNIT_RATE},
         {.name = "--chart", .type = CLI_STRING, .value = &o.chart, .meta = "KIND",
          .help = "the stability chart of the chain shaken vertically: hanging (its tongues) or "
                  "inverted (its region of stability)",
          .needs = "--omega-min --omega-max --amp-max",
-         .excludes = "--pivot --omega --dim --start --mode --tol --max-iter --differences"},
-        {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min, .meta = "W",
-         .help = "--chart: the lowest rate", .range = "(0, inf)", .needs = "--chart",
-         .unit = CLI_UNIT_RATE},
-        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &o.omega_max, .meta = "W",
-         .help = "--chart: the highest rate", .range = "(0, inf)", .needs = "--chart",
-         .unit = CLI_UNIT_RATE},
+         .excludes = "--pivot --omega --dim --start --mode --side --tol --max-iter --differences "
+                     "--up --arc-step --max-points"},
+        {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min,
+         .given = &o.omin_given, .meta = "W",
+         .help = "the lowest rate of the chart, or of a branch followed in the rate",
+         .range = "(0, inf)", .needs = "--omega-max", .unit = CLI_UNIT_RATE},
+        {.name = "--omega-max", .type = CLI_DOUBLE, .value = &o.omega_max,
+         .given = &o.omax_given, .meta = "W",
+         .help = "the highest rate of the chart, or of a branch followed in the rate",
+         .range = "(0, inf)", .needs = "--omega-min", .unit = CLI_UNIT_RATE},
         {.name = "--omega-count", .type = CLI_INT, .value = &o.omega_count, .meta = "N",
          .help = "--chart: rates, both ends included (default 200)", .range = "[2, 1000000]",
          .needs = "--chart"},
-        {.name = "--amp-min", .type = CLI_DOUBLE, .value = &o.amp_min, .meta = "A",
-         .help = "--chart: the lowest amplitude (default --amp-max / --amp-rows)",
-         .range = "[0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
-        {.name = "--amp-max", .type = CLI_DOUBLE, .value = &o.amp_max, .meta = "A",
-         .help = "--chart: the highest amplitude", .range = "(0, inf)", .needs = "--chart",
-         .unit = CLI_UNIT_LENGTH},
+        {.name = "--amp-min", .type = CLI_DOUBLE, .value = &o.amp_min, .given = &o.amin_given,
+         .meta = "A",
+         .help = "the lowest amplitude of the chart (default --amp-max / --amp-rows), or of a "
+                 "branch followed in the amplitude (default 0)",
+         .range = "[0, inf)", .needs = "--amp-max", .unit = CLI_UNIT_LENGTH},
+        {.name = "--amp-max", .type = CLI_DOUBLE, .value = &o.amp_max, .given = &o.amax_given,
+         .meta = "A",
+         .help = "the highest amplitude of the chart, or of a branch followed in the amplitude "
+                 "(the path scaled: its largest Fourier amplitude)",
+         .range = "(0, inf)", .unit = CLI_UNIT_LENGTH},
+        {.name = "--up", .type = CLI_FLAG, .value = &o.up,
+         .help = "branch: leave the start towards larger values (default smaller)"},
+        {.name = "--arc-step", .type = CLI_DOUBLE, .value = &o.arc_step, .meta = "H",
+         .help = "branch: largest step of the continuation's arclength (default 0.05)",
+         .range = "(0, 1]"},
+        {.name = "--max-points", .type = CLI_INT, .value = &o.max_points, .meta = "M",
+         .help = "branch: most points (default 10000)", .range = "[2, 10000000]"},
         {.name = "--amp-rows", .type = CLI_INT, .value = &o.amp_rows, .meta = "N",
          .help = "--chart: amplitudes scanned for new curves (default 200)",
          .range = "[2, 1000000]", .needs = "--chart"},
@@ -288,6 +441,10 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
                  "steady shape of --mode)"},
         {.name = "--mode", .type = CLI_INT, .value = &o.mode, .meta = "K",
          .help = "--start steady: the mode (default 1)", .range = "[1, 64]", .needs = "--start"},
+        {.name = "--side", .type = CLI_INT, .value = &o.side, .meta = "S",
+         .help = "--start steady: the seed's tip on the pivot's side (1, default) or opposite "
+                 "(-1), as whirl driven --side",
+         .range = "[-1, 1]", .needs = "--start"},
         {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
          .help = "Gauss steps per period of the coarser solve or monodromy (default 400, "
                  "--chart 200; raised to the chain's bound); the finer takes twice as many",
@@ -306,6 +463,9 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
     if (o.chart) return run_chart(cmd, &o);
+    const int branch = o.omin_given || o.amax_given;
+    if ((rc = check_branch(cmd, &o, branch))) return rc;
+    if (branch && !o.omega_given) o.omega = o.omega_max;
     const int start = strcmp(o.start, "hanging") == 0    ? 0
                       : strcmp(o.start, "inverted") == 0 ? 1
                       : strcmp(o.start, "steady") == 0   ? 2
@@ -328,6 +488,10 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         if ((rc = start_steady(cmd, &o, c, &path, w, y))) goto done;
     } else if (whirl_periodic_start_vertical(w, start, y) != GSL_SUCCESS) {
         rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
+        goto done;
+    }
+    if (branch) {
+        rc = run_branch(cmd, &o, w, y);
         goto done;
     }
     cli_catch_interrupts();

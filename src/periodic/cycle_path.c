@@ -29,6 +29,7 @@
  * (|tp| times the width in sigma), the change of the root by the extrapolation (the shift of f
  * over its slope, times |tp|), and the change of p by it. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -134,6 +135,15 @@ static void set_param(cycle *c, double p)
     periodic_set_path(c->w, &path);
 }
 
+/* "omega=VALUE" or "A=VALUE" (with the unit marker of core/error.h) into buf. */
+static const char *where(const cycle *c, double p, char *buf, size_t size)
+{
+    if (c->p.parameter == WHIRL_CYCLE_OMEGA) snprintf(buf, size, "omega=" WHIRL_Q_RATE "%.17g", p);
+    else snprintf(buf, size, "A=" WHIRL_Q_LENGTH "%.17g", p);
+    return buf;
+}
+#define WHERE(c, p) where((c), (p), (char[64]){0}, 64)
+
 static void tick(cycle *c)
 {
     if (c->tick) c->tick(c->tick_data, &c->progress);
@@ -219,8 +229,8 @@ static int tangent(cycle *c, const double *mono, const double *pp, const double 
     int status = gsl_linalg_LU_decomp(c->bord, c->perm_b, &sign);
     if (status == GSL_SUCCESS) status = gsl_linalg_LU_solve(c->bord, c->perm_b, c->rhs, c->sol);
     if (status)
-        return whirl_fail(GSL_ESING, "the branch has no unique tangent at p=%.17g (the bordered "
-                          "Jacobian is singular)", c->p1);
+        return whirl_fail(GSL_ESING, "the branch has no unique tangent at %s (the bordered "
+                          "Jacobian is singular)", WHERE(c, c->p1));
     memset(t, 0, c->size * sizeof *t);
     for (size_t j = 0; j < m; j++) {
         const double z = gsl_vector_get(c->sol, j);
@@ -402,8 +412,8 @@ static int event_fn(double sigma, void *ctx, double *fx)
     if (status == GSL_SUCCESS)
         status = periodic_monodromy_variational(c->w, e->yf, 2 * c->steps);
     if (status == GSL_EMAXITER)
-        return whirl_fail(GSL_EMAXITER, "an event near p=%.17g: the corrector did not converge "
-                          "(residual %.3g)", ps, e->res);
+        return whirl_fail(GSL_EMAXITER, "an event near %s: the corrector did not converge "
+                          "(residual %.3g)", WHERE(c, ps), e->res);
     if (status) return status;
     tests_of(c, sgf, lnf);
     const int k = e->kind;
@@ -429,9 +439,9 @@ static int locate_event(cycle *c, int kind, double ds, report *r)
         status = event_fn(lo, &e, &flo);
         if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
         if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0))
-            return whirl_fail(GSL_EFAILED, "a multiplier through %s near p=%.17g could not be "
+            return whirl_fail(GSL_EFAILED, "a multiplier through %s near %s could not be "
                               "located (the extrapolated test does not change sign)",
-                              kind ? "-1" : "+1", c->p0);
+                              kind ? "-1" : "+1", WHERE(c, c->p0));
     }
     if (status) return status;
     const whirl_root_opts o = {.epsabs = c->p.event_tol, .max_iter = BRENT_ITER, .known = 1,
@@ -440,8 +450,8 @@ static int locate_event(cycle *c, int kind, double ds, report *r)
     status = whirl_root_brent(event_fn, &e, lo, hi, &o, &rt);
     if (status && status != GSL_EMAXITER) {
         if (!rt.bracketed)
-            return whirl_fail(GSL_EFAILED, "a multiplier through %s near p=%.17g could not be "
-                              "located", kind ? "-1" : "+1", c->p0);
+            return whirl_fail(GSL_EFAILED, "a multiplier through %s near %s could not be "
+                              "located", kind ? "-1" : "+1", WHERE(c, c->p0));
         return status;
     }
     double f;
@@ -583,7 +593,7 @@ static int step(cycle *c, double *ds, int *ended)
 {
     for (;;) {
         if (whirl_stop_requested())
-            return whirl_fail(WHIRL_EINTERRUPTED, "stopped at p=%.17g after %ld points", c->p0,
+            return whirl_fail(WHIRL_EINTERRUPTED, "stopped at %s after %ld points", WHERE(c, c->p0),
                               c->progress.points);
         c->progress.step = *ds;
         int iters;
@@ -600,9 +610,9 @@ static int step(cycle *c, double *ds, int *ended)
         if (refused) {
             *ds /= 2;
             if (*ds < STEP_MIN_RATIO * c->p.step)
-                return whirl_fail(GSL_EMAXITER, "the continuation fails at p=%.17g: the "
+                return whirl_fail(GSL_EMAXITER, "the continuation fails at %s: the "
                                   "corrector did not converge (residual %.3g, tolerance %.3g) "
-                                  "at the smallest step %.3g", c->p0, res, c->p.tol, *ds);
+                                  "at the smallest step %.3g", WHERE(c, c->p0), res, c->p.tol, *ds);
             continue;
         }
         /* the end point's report before the events' evaluations overwrite w->mono */
