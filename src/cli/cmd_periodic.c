@@ -358,6 +358,9 @@ static int run_branch(const cli_command *cmd, const periodic_options *o, whirl_p
     if (status != GSL_SUCCESS) {
         if (b.n == 0 || status == GSL_ENOMEM) {
             free(b.r);
+            if (status == WHIRL_EINTERRUPTED)
+                return (cli_error(cmd, "interrupted: no periodic motion yet"),
+                        CLI_EXIT_INTERRUPTED);
             return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
         }
         cli_library_error(&o->units, stopped, sizeof stopped);

@@ -707,6 +707,9 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     }
     memcpy(y, c.y0, w->size * sizeof *y);
     set_param(&c, c.p0);
+    if (status == WHIRL_EINTERRUPTED) /* within a period: said of the branch */
+        status = whirl_fail(WHIRL_EINTERRUPTED, "stopped at %s after %ld points",
+                            WHERE(&c, c.p0), c.progress.points);
 done:
     cycle_free(&c);
     return status;

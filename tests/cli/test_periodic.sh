@@ -72,4 +72,47 @@ sleep 1
 interrupt $pid
 if [ $rc -eq 130 ] && [ ! -e "$tmp/out.csv" ] && grep -q '^whirl periodic: interrupted' "$tmp/stderr"; then
   pass "periodic interrupted: 130, no file"; else fail "periodic interrupted: 130, no file (rc=$rc)"; fi
+# a branch in the amplitude (N = 1 hanging at omega = 1.8, A from 0.01 up): the period doubling
+# at Mathieu's a_1(q) = 4 / omega^2, q = 2 A; scipy 1.10.1's root (the command in
+# tests/unit/periodic/test_cycle_path.c): A = 0.12105968496067503, to 1e-8
+expect_ok "periodic branch amplitude" periodic --pivot vertical:0.01 --omega 1.8 --links 1 --dim 2 --amp-max 0.3 --up -o "$tmp/b.csv"
+if grep -q '^# periodic branch: pivot vertical:0.01, links=1 dim=2 start=hanging; followed in the amplitude from 0.01 towards larger' "$tmp/b.csv" \
+   && grep -q '^# units: dimensionless' "$tmp/b.csv" \
+   && [ "$(grep -v '^#' "$tmp/b.csv" | head -1)" = "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,err" ] \
+   && [ "$(grep -c '^# period-doubling' "$tmp/b.csv")" -eq 1 ] && [ "$(grep -c '^# fold\|^# branch ' "$tmp/b.csv")" -eq 0 ] \
+   && grep '^# period-doubling' "$tmp/b.csv" | sed 's/.*amplitude=\([^ ]*\) err=\(.*\)/\1 \2/' \
+      | awk '{d = $1 - 0.12105968496067503; if (d < 0) d = -d; exit !(d < 1e-8 && $2 < 1e-8)}' \
+   && grep '^period-doubling,1.8,' "$tmp/b.csv" >/dev/null \
+   && grep -v '^#' "$tmp/b.csv" | awk -F, 'NR > 1 && $1 == "point" {if ($3 < 0.121 && $5 != "neutral" || $3 > 0.122 && $5 != "unstable") bad = 1; n++} END {exit bad || n < 5}'; then
+  pass "periodic branch amplitude: period doubling on a_1 to 1e-8"; else fail "periodic branch amplitude: period doubling on a_1 to 1e-8"; fi
+
+# a branch in the rate: the circle drive's shape of mode 1 opposite the pivot (N = 2, eps 0.05)
+# folds where whirl driven's steady branch folds, to 1e-8
+expect_ok "driven fold" driven --links 2 --eps 0.05 --omega-min 1.1 --omega-max 1.5 --omega 1.3 --mode 1 --side -1 -o "$tmp/d.csv"
+expect_ok "periodic branch rate" periodic --pivot circle:0.05 --omega 1.3 --links 2 --start steady --side -1 --omega-min 1.1 --omega-max 1.5 -o "$tmp/f.csv"
+steady=$(sed -n 's/^# fold omega=//p' "$tmp/d.csv")
+if [ "$(grep -c '^# fold omega=' "$tmp/f.csv")" -eq 1 ] && [ -n "$steady" ] \
+   && grep '^# fold' "$tmp/f.csv" | sed 's/.*omega=\([^ ]*\) .*/\1/' \
+      | awk -v s="$steady" '{d = $1 - s; if (d < 0) d = -d; exit !(d < 1e-8)}'; then
+  pass "periodic branch rate: the fold of cycles at whirl driven's fold to 1e-8"; else fail "periodic branch rate: the fold of cycles at whirl driven's fold to 1e-8 (steady $steady)"; fi
+
+# bad input of a branch: one line, nothing written
+expect_error "branch in both" "whirl periodic: a branch follows one parameter" periodic --pivot vertical:0.01 --omega 1.8 --dim 2 --omega-min 1 --omega-max 2 --amp-max 0.3 -o "$tmp/out.csv"
+expect_error "branch --up alone" "whirl periodic: --up, --arc-step and --max-points need a branch" periodic --pivot vertical:0.01 --omega 1.8 --dim 2 --up -o "$tmp/out.csv"
+expect_error "branch empty range" "whirl periodic: --amp-max must exceed --amp-min" periodic --pivot vertical:0.01 --omega 1.8 --dim 2 --amp-min 0.3 --amp-max 0.2 -o "$tmp/out.csv"
+expect_error "branch start outside" "whirl periodic: --omega .*outside" periodic --pivot vertical:0.01 --omega 3 --dim 2 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+expect_error "branch start amplitude outside" "whirl periodic: the start's amplitude" periodic --pivot vertical:0.5 --omega 1.8 --dim 2 --amp-max 0.3 -o "$tmp/out.csv"
+expect_error "branch bad side" "whirl periodic: --side must be 1 or -1" periodic --pivot circle:0.05 --omega 1.3 --start steady --side 0 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
+[ ! -e "$tmp/out.csv" ] && pass "branch bad input: no file" || fail "branch bad input: no file"
+
+# Ctrl-C during a long branch (tiny steps): exit status 130, the rows so far written with a
+# comment line saying where it stopped
+env --default-signal=INT "$WHIRL" periodic --pivot vertical:0.01 --omega 1.8 --links 1 --dim 2 --amp-max 0.3 --up --arc-step 1e-6 --max-points 10000000 -o "$tmp/int.csv" 2>"$tmp/stderr" &
+pid=$!
+sleep 1
+interrupt $pid
+if [ $rc -eq 130 ] && grep -q '^# stopped (.*stopped at A=' "$tmp/int.csv" \
+   && [ "$(grep -v '^#' "$tmp/int.csv" | sed 1d | wc -l)" -ge 2 ] \
+   && grep -q '^whirl periodic: interrupted: the [0-9]* rows found until then are written' "$tmp/stderr"; then
+  pass "periodic branch interrupted: 130, the rows kept"; else fail "periodic branch interrupted: 130, the rows kept (rc=$rc)"; fi
 finish
