@@ -258,7 +258,10 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
  *   fold test  f_+ = det(M - I)   (a multiplier, or a pair, through +1),
  *   flip test  f_- = det(M + I)   (through -1: period doubling),
  * each reported as sign(det) |det|^(1/m) (the geometric mean of the factors: no overflow at
- * large N). A sign change of a test along a step is an event, located by Brent's method on the
+ * large N), and the torus test D = prod_{k < l} (rho_k - rho_l)^2 over the pairs mu, 1/mu of
+ * multipliers (rho = mu + 1/mu), which changes sign where two pairs on the unit circle meet and
+ * leave it (the conservative chain's torus bifurcation, a Krein collision; a meeting of two
+ * real pairs off the circle changes its sign too and is not an event). A sign change of a test along a step is an event, located by Brent's method on the
  * step's arclength, every evaluation a corrected point at s and 2 s steps per period with the
  * test extrapolated (Richardson, order 4): to event_tol in the arclength. A +1 event where the
  * parameter's component of the tangent changes sign is a fold of cycles; one where it does not
@@ -275,7 +278,8 @@ typedef enum {
     WHIRL_CYCLE_POINT = 0,           /* a point of the branch */
     WHIRL_CYCLE_FOLD = 1,            /* +1, the branch turns back in the parameter */
     WHIRL_CYCLE_BRANCH = 2,          /* +1, the branch goes on (another branch crosses it) */
-    WHIRL_CYCLE_PERIOD_DOUBLING = 3  /* -1 */
+    WHIRL_CYCLE_PERIOD_DOUBLING = 3, /* -1 */
+    WHIRL_CYCLE_TORUS = 4            /* two pairs meet on the unit circle and leave it */
 } whirl_cycle_event;
 
 typedef struct whirl_cycle_params {
@@ -304,6 +308,7 @@ typedef struct whirl_cycle_point {
     double arclength;  /* from the start */
     double tangent;    /* d parameter / d arclength (a fold: 0 within the error) */
     double fold_test, flip_test; /* f_+, f_- (above) */
+    double torus_test; /* D (above) as sign |D|^(1 / its factors); 1 with one pair */
     size_t count;      /* multipliers */
     const double *re, *im; /* the multipliers by decreasing modulus (valid during the call) */
     double max_modulus, reciprocal_err;

@@ -63,6 +63,10 @@
  * 1e-16 / 1e-5 of the map; the derivative serves the chord and the tangent only. */
 #define DP_REL 1e-5
 #define BRENT_ITER 100
+/* The torus test's least |rho_k - rho_l| below which two pairs are taken as equal by a symmetry
+ * (round-off splits them by ~1e-15; two pairs meeting are this close only within ~1e-18 of the
+ * meeting in the parameter, D being linear in it there). */
+#define GAP_MIN 1e-9
 /* The corrector's target at an event's evaluations: 1e-2 of Newton's test (with 1e-10 a fold's
  * rate moves by ~1e-11 with the residual left; measured on the circle drive, N = 2), not below
  * the round-off of a period; where round-off stops the iteration above it, Newton's test. */
@@ -75,6 +79,7 @@ typedef struct report {
     whirl_cycle_point pt;
     double *y, *re, *im;
     double sigma; /* events: where on the step */
+    double gap;   /* the torus test's least |rho_k - rho_l| */
 } report;
 
 typedef struct cycle {
@@ -95,10 +100,13 @@ typedef struct cycle {
     gsl_permutation *perm, *perm_b, *perm_m;
     gsl_vector *rhs, *sol; /* m + 1 */
     double *py, *tmp, *a, *b, *ys, *yf; /* size each */
-    double f0[2];          /* the tests at the step's start */
+    double f0[3];          /* the tests at the step's start */
+    double gap0;           /* its torus test's least gap */
     double target;         /* the corrector's tolerance: p.tol, tighter for the events */
     double *zero;          /* m zeros: the errors of unrefined multipliers */
-    report now, ev[2];
+    double *sr, *si, *rr, *ri, *re_t, *im_t; /* m each: the torus test's scratch */
+    char *used;
+    report now, ev[3];
     double arclength;
     whirl_cycle_row_fn row;
     void *row_data;
@@ -114,6 +122,7 @@ const char *whirl_cycle_event_name(whirl_cycle_event e)
     case WHIRL_CYCLE_FOLD: return "fold";
     case WHIRL_CYCLE_BRANCH: return "branch";
     case WHIRL_CYCLE_PERIOD_DOUBLING: return "period-doubling";
+    case WHIRL_CYCLE_TORUS: return "torus";
     }
     return "unknown";
 }
@@ -353,6 +362,56 @@ static void tests_of(cycle *c, int sg[2], double ln[2])
     }
 }
 
+/* The torus test of the multipliers re, im (m of them): the pairs mu, 1/mu matched (the two
+ * closest values of s = mu + 1/mu, again and again: s is the same for both of a pair), rho_k the
+ * mean of a pair's s, and D = prod_{k < l} (rho_k - rho_l)^2 into its sign and ln |D|; *gap the
+ * least |rho_k - rho_l| and *rho_re the real part of that pair's mean. D changes sign where two
+ * real rho meet and leave the real axis as a conjugate pair: inside (-2, 2) two pairs of
+ * multipliers on the unit circle meet and leave it (a Krein collision: the conservative chain's
+ * torus bifurcation). Near the meeting the pairs cannot be told apart, but there every candidate
+ * D is as small as its round-off. */
+static void torus_test(cycle *c, const double *re, const double *im, int *sg, double *ln,
+                       double *gap, double *rho_re)
+{
+    const size_t m = c->m, n = m / 2;
+    double *sr = c->sr, *si = c->si, *rr = c->rr, *ri = c->ri;
+    for (size_t i = 0; i < m; i++) {
+        const double d = re[i] * re[i] + im[i] * im[i];
+        sr[i] = re[i] + re[i] / d, si[i] = im[i] - im[i] / d;
+        c->used[i] = 0;
+    }
+    for (size_t k = 0; k < n; k++) {
+        size_t bi = 0, bj = 0;
+        double best = INFINITY;
+        for (size_t i = 0; i < m; i++)
+            for (size_t j = i + 1; j < m && !c->used[i]; j++) {
+                const double d = hypot(sr[i] - sr[j], si[i] - si[j]);
+                if (!c->used[j] && d < best) best = d, bi = i, bj = j;
+            }
+        c->used[bi] = c->used[bj] = 1;
+        rr[k] = (sr[bi] + sr[bj]) / 2, ri[k] = (si[bi] + si[bj]) / 2;
+    }
+    double phase_re = 1, phase_im = 0, sum = 0;
+    *gap = INFINITY, *rho_re = NAN;
+    for (size_t k = 0; k < n; k++)
+        for (size_t l = k + 1; l < n; l++) {
+            const double dr = rr[k] - rr[l], di = ri[k] - ri[l];
+            const double a = hypot(dr, di);
+            if (a < *gap) *gap = a, *rho_re = (rr[k] + rr[l]) / 2;
+            if (a == 0) {
+                *sg = 0, *ln = -INFINITY;
+                return;
+            }
+            /* (dr + i di)^2 / a^2 */
+            const double zr = (dr * dr - di * di) / (a * a), zi = 2 * dr * di / (a * a);
+            const double pr = phase_re * zr - phase_im * zi;
+            phase_im = phase_re * zi + phase_im * zr, phase_re = pr;
+            sum += 2 * log(a);
+        }
+    *sg = phase_re < 0 ? -1 : 1;
+    *ln = sum;
+}
+
 /* r <- the point (y, p) of w->mono: multipliers, verdict, tests. */
 static int describe(cycle *c, report *r, const double *y, double p, double tp, int iters,
                     double res)
@@ -367,11 +426,16 @@ static int describe(cycle *c, report *r, const double *y, double p, double tp, i
     double ln[2];
     tests_of(c, sg, ln);
     const double f[2] = {sg[0] * exp(ln[0] / (double)c->m), sg[1] * exp(ln[1] / (double)c->m)};
+    int tsg;
+    double tln, rho_re;
+    const double pairs = (double)(c->m / 2) * (double)(c->m / 2 - 1) / 2;
+    torus_test(c, r->re, r->im, &tsg, &tln, &r->gap, &rho_re);
     set_param(c, p);
     r->pt = (whirl_cycle_point){
         .event = WHIRL_CYCLE_POINT, .index = c->progress.points, .parameter = p,
         .omega = c->w->path.omega, .amplitude = path_amplitude(&c->w->path),
         .arclength = c->arclength, .tangent = tp, .fold_test = f[0], .flip_test = f[1],
+        .torus_test = pairs > 0 ? tsg * exp(tln / pairs) : 1,
         .count = c->m, .re = r->re, .im = r->im, .max_modulus = fr.max_modulus,
         .reciprocal_err = fr.reciprocal_err, .verdict = fr.verdict, .edge = fr.edge,
         .residual = res, .iterations = iters, .y = r->y};
@@ -387,7 +451,8 @@ static int emit(cycle *c, const report *r)
 
 typedef struct event_frame {
     cycle *c;
-    int kind;         /* 0: f_+, 1: f_- */
+    int kind;         /* 0: f_+, 1: f_-, 2: the torus test */
+    double rho_re;    /* the torus test: the real part of the closest pair of rho */
     double *ys, *yf;  /* the corrected points at s and 2 s steps */
     double p;         /* the extrapolated parameter at the last sigma */
     double p_shift;   /* its change by the extrapolation */
@@ -406,16 +471,32 @@ static double scaled(event_frame *e, int sg, double ln)
     return sg == 0 ? 0 : sg * exp(ln - e->ref);
 }
 
+/* The test of e->kind of w->mono into sg, ln (the torus test from its multipliers). */
+static int test_of(event_frame *e, int *sg, double *ln)
+{
+    cycle *c = e->c;
+    int sgs[2];
+    double lns[2], gap;
+    if (e->kind < 2) {
+        tests_of(c, sgs, lns);
+        *sg = sgs[e->kind], *ln = lns[e->kind];
+        return GSL_SUCCESS;
+    }
+    const int status = periodic_multipliers(c->w, c->re_t, c->im_t);
+    if (status == GSL_SUCCESS) torus_test(c, c->re_t, c->im_t, sg, ln, &gap, &e->rho_re);
+    return status;
+}
+
 static int event_fn(double sigma, void *ctx, double *fx)
 {
     event_frame *e = ctx;
     cycle *c = e->c;
-    double ps, pf, lns[2], lnf[2];
-    int sgs[2], sgf[2];
+    double ps, pf, lns, lnf;
+    int sgs, sgf;
     int status = point_at(c, sigma, c->steps, e->ys, &ps, &e->iters, &e->res);
     if (status == GSL_SUCCESS) status = periodic_monodromy_variational(c->w, e->ys, c->steps);
+    if (status == GSL_SUCCESS) status = test_of(e, &sgs, &lns);
     if (status == GSL_SUCCESS) {
-        tests_of(c, sgs, lns);
         memcpy(e->yf, e->ys, c->size * sizeof *e->ys);
         pf = ps;
         status = correct(c, sigma, 2 * c->steps, e->yf, &pf, &e->iters, &e->res);
@@ -425,10 +506,9 @@ static int event_fn(double sigma, void *ctx, double *fx)
     if (status == GSL_EMAXITER)
         return whirl_fail(GSL_EMAXITER, "an event near %s: the corrector did not converge "
                           "(residual %.3g)", WHERE(c, ps), e->res);
+    if (status == GSL_SUCCESS) status = test_of(e, &sgf, &lnf);
     if (status) return status;
-    tests_of(c, sgf, lnf);
-    const int k = e->kind;
-    const double fs = scaled(e, sgs[k], lns[k]), ff = scaled(e, sgf[k], lnf[k]);
+    const double fs = scaled(e, sgs, lns), ff = scaled(e, sgf, lnf);
     e->f_shift = (ff - fs) / RICHARDSON;
     e->p_shift = (pf - ps) / RICHARDSON;
     e->p = pf + e->p_shift;
@@ -436,9 +516,13 @@ static int event_fn(double sigma, void *ctx, double *fx)
     return GSL_SUCCESS;
 }
 
-/* The event of test kind (0: +1, 1: -1) on the step of length ds into r. */
+/* The event of test kind (0: +1, 1: -1, 2: torus) on the step of length ds into r; a torus
+ * test's sign change off the unit circle (two real pairs of multipliers meet off it) leaves
+ * r->pt.event WHIRL_CYCLE_POINT: no event. */
 static int locate_event_at(cycle *c, int kind, double ds, report *r)
 {
+    static const char *const kind_name[] = {"through +1", "through -1",
+                                            "pairs meeting on the unit circle"};
     event_frame e = {.c = c, .kind = kind, .ys = c->ys, .yf = c->yf};
     double lo = 0, hi = ds, flo, fhi;
     int status = event_fn(lo, &e, &flo);
@@ -450,9 +534,9 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
         status = event_fn(lo, &e, &flo);
         if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
         if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0))
-            return whirl_fail(GSL_EFAILED, "a multiplier through %s near %s could not be "
+            return whirl_fail(GSL_EFAILED, "multipliers %s near %s could not be "
                               "located (the extrapolated test does not change sign)",
-                              kind ? "-1" : "+1", WHERE(c, c->p0));
+                              kind_name[kind], WHERE(c, c->p0));
     }
     if (status) return status;
     const whirl_root_opts o = {.epsabs = c->p.event_tol, .max_iter = BRENT_ITER, .known = 1,
@@ -461,8 +545,8 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
     status = whirl_root_brent(event_fn, &e, lo, hi, &o, &rt);
     if (status && status != GSL_EMAXITER) {
         if (!rt.bracketed)
-            return whirl_fail(GSL_EFAILED, "a multiplier through %s near %s could not be "
-                              "located", kind ? "-1" : "+1", WHERE(c, c->p0));
+            return whirl_fail(GSL_EFAILED, "multipliers %s near %s could not be "
+                              "located", kind_name[kind], WHERE(c, c->p0));
         return status;
     }
     double f;
@@ -477,8 +561,12 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
     c->arclength = saved;
     if (status) return status;
     r->sigma = rt.root;
-    r->pt.event = kind ? WHIRL_CYCLE_PERIOD_DOUBLING
-                       : (c->tp0 > 0) != (c->tp1 > 0) ? WHIRL_CYCLE_FOLD : WHIRL_CYCLE_BRANCH;
+    if (kind == 2)
+        r->pt.event = fabs(e.rho_re) < 2 ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
+    else if (kind == 1)
+        r->pt.event = WHIRL_CYCLE_PERIOD_DOUBLING;
+    else
+        r->pt.event = (c->tp0 > 0) != (c->tp1 > 0) ? WHIRL_CYCLE_FOLD : WHIRL_CYCLE_BRANCH;
     r->pt.err = (rt.upper - rt.lower) * fabs(tp) + fabs(e.f_shift / slope) * fabs(tp) +
                 fabs(e.p_shift);
     return GSL_SUCCESS;
@@ -534,8 +622,10 @@ static void cycle_free(cycle *c)
     double *bufs[] = {c->y0, c->t0, c->basis0, c->mono0, c->cols0, c->pp0, c->y1, c->t1,
                       c->basis1, c->mono1, c->cols1, c->pp1, c->basis_j, c->cols_j, c->pp_j, c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero,
                       c->now.y, c->now.re, c->now.im, c->ev[0].y, c->ev[0].re, c->ev[0].im,
-                      c->ev[1].y, c->ev[1].re, c->ev[1].im};
+                      c->ev[1].y, c->ev[1].re, c->ev[1].im, c->ev[2].y, c->ev[2].re, c->ev[2].im};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) free(bufs[i]);
+    free(c->sr), free(c->si), free(c->rr), free(c->ri), free(c->re_t), free(c->im_t);
+    free(c->used);
     if (c->jac) gsl_matrix_free(c->jac);
     if (c->bord) gsl_matrix_free(c->bord);
     if (c->lu) gsl_matrix_free(c->lu);
@@ -550,14 +640,16 @@ static int cycle_alloc(cycle *c)
 {
     const size_t m = c->m, size = c->size, nb = c->nb;
     double **sized[] = {&c->y0, &c->t0, &c->y1, &c->t1, &c->py, &c->tmp, &c->a, &c->b, &c->ys, &c->yf,
-                        &c->now.y, &c->ev[0].y, &c->ev[1].y};
-    double **msized[] = {&c->pp0, &c->pp1, &c->pp_j, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
-                         &c->ev[0].im, &c->ev[1].re, &c->ev[1].im};
+                        &c->now.y, &c->ev[0].y, &c->ev[1].y, &c->ev[2].y};
+    double **msized[] = {&c->pp0, &c->pp1, &c->pp_j, &c->sr, &c->si, &c->rr, &c->ri,
+                         &c->re_t, &c->im_t, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
+                         &c->ev[0].im, &c->ev[1].re, &c->ev[1].im, &c->ev[2].re, &c->ev[2].im};
     int ok = 1;
     for (size_t i = 0; i < sizeof sized / sizeof sized[0]; i++)
         ok &= (*sized[i] = calloc(size, sizeof **sized[i])) != NULL;
     for (size_t i = 0; i < sizeof msized / sizeof msized[0]; i++)
         ok &= (*msized[i] = calloc(m, sizeof **msized[i])) != NULL;
+    ok &= (c->used = malloc(m)) != NULL;
     ok &= (c->basis0 = malloc(nb * sizeof *c->basis0)) != NULL;
     ok &= (c->basis1 = malloc(nb * sizeof *c->basis1)) != NULL;
     ok &= (c->mono0 = malloc(m * m * sizeof *c->mono0)) != NULL;
@@ -643,25 +735,31 @@ static int step(cycle *c, double *ds, int *ended)
         if (status) return status;
         /* the events of the step, by sigma */
         int n = 0;
-        for (int k = 0; k < 2; k++) {
-            const double end = k ? c->now.pt.flip_test : c->now.pt.fold_test;
-            if ((c->f0[k] < 0) == (end < 0)) continue;
+        const double f1[3] = {c->now.pt.fold_test, c->now.pt.flip_test, c->now.pt.torus_test};
+        for (int k = 0; k < 3; k++) {
+            if ((c->f0[k] < 0) == (f1[k] < 0)) continue;
+            /* a torus test that is 0 at both ends: pairs equal by a symmetry (the 3D chain
+               hanging: each plane's), not a meeting */
+            if (k == 2 && c->gap0 < GAP_MIN && c->now.gap < GAP_MIN) continue;
             status = locate_event(c, k, *ds, &c->ev[n]);
             if (status) return status;
             n++;
         }
         set_param(c, c->p1);
-        if (n == 2 && c->ev[1].sigma < c->ev[0].sigma) {
-            const report r = c->ev[0];
-            c->ev[0] = c->ev[1], c->ev[1] = r;
-        }
+        for (int i = 1; i < n; i++) /* by sigma */
+            for (int j = i; j > 0 && c->ev[j].sigma < c->ev[j - 1].sigma; j--) {
+                const report r = c->ev[j];
+                c->ev[j] = c->ev[j - 1], c->ev[j - 1] = r;
+            }
         for (int k = 0; k < n; k++) {
-            if (!in_range(c, c->ev[k].pt.parameter)) continue;
+            if (c->ev[k].pt.event == WHIRL_CYCLE_POINT || !in_range(c, c->ev[k].pt.parameter))
+                continue;
             c->progress.events++;
             if ((status = emit(c, &c->ev[k]))) return status;
         }
         c->arclength += *ds;
         c->f0[0] = c->now.pt.fold_test, c->f0[1] = c->now.pt.flip_test;
+        c->f0[2] = c->now.pt.torus_test, c->gap0 = c->now.gap;
         if (!in_range(c, c->p1)) {
             *ended = 1;
             return GSL_SUCCESS;
@@ -710,6 +808,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     }
     if (status) goto done;
     c.f0[0] = c.now.pt.fold_test, c.f0[1] = c.now.pt.flip_test;
+    c.f0[2] = c.now.pt.torus_test, c.gap0 = c.now.gap;
     c.progress.points = 1;
     c.progress.parameter = c.p1;
     if ((status = emit(&c, &c.now))) goto done;

@@ -24,6 +24,7 @@
 
 #include "whirl/driven.h"
 #include "whirl/periodic.h"
+#include "whirl/stability.h"
 
 #define LOCATION_TOL 1e-8 /* the tolerance of an event's location */
 
@@ -58,8 +59,9 @@ static int chart_edge(void *data, const whirl_chart_point *p)
     return 0;
 }
 
-/* The period doubling of the hanging pendulum at the rate omega, A rising from 0.01. */
-static void mathieu_at(double omega, double scipy_root)
+/* The event of kind (a period doubling at a first tongue's edge, a branch point at a second
+ * tongue's) of the hanging pendulum at the rate omega, A rising from 0.01 to amp_max. */
+static void mathieu_at(double omega, double scipy_root, whirl_cycle_event kind, double amp_max)
 {
     whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
     whirl_pivot_path path;
@@ -69,20 +71,20 @@ static void mathieu_at(double omega, double scipy_root)
     assert_non_null(w);
     double y[4];
     assert_int_equal(whirl_periodic_start_vertical(w, 0, y), GSL_SUCCESS);
-    const whirl_cycle_params p = {.parameter = WHIRL_CYCLE_AMPLITUDE, .min = 0, .max = 0.3,
+    const whirl_cycle_params p = {.parameter = WHIRL_CYCLE_AMPLITUDE, .min = 0, .max = amp_max,
                                   .direction = 1};
-    seen s = {.kind = WHIRL_CYCLE_PERIOD_DOUBLING, .after = -1};
+    seen s = {.kind = kind, .after = -1};
     assert_int_equal(whirl_periodic_path(w, y, &p, keep, &s, NULL, NULL), GSL_SUCCESS);
     /* the chart's edge at this rate (first column) */
     double edge = NAN;
     const whirl_chart_params cp = {.omega_min = omega, .omega_max = omega + 0.01, .columns = 2,
-                                   .amp_max = 0.3, .rows = 30};
+                                   .amp_max = amp_max, .rows = 30};
     assert_int_equal(whirl_chart_vertical(c, 2, &cp, chart_edge, &edge, NULL, NULL), GSL_SUCCESS);
-    print_message("# omega %g: period doubling at A = %.17g (err %.2g); chart %.17g (%.2g), "
-                  "scipy %.17g (%.2g)\n", omega, s.at, s.err, edge, fabs(s.at - edge),
-                  scipy_root, fabs(s.at - scipy_root));
+    print_message("# omega %g: %s at A = %.17g (err %.2g); chart %.17g (%.2g), scipy %.17g "
+                  "(%.2g)\n", omega, whirl_cycle_event_name(kind), s.at, s.err, edge,
+                  fabs(s.at - edge), scipy_root, fabs(s.at - scipy_root));
     assert_int_equal(s.kind_events, 1);
-    assert_int_equal(s.events, 1); /* no +1 edge below A = 0.3 at these rates */
+    assert_int_equal(s.events, 1); /* the one edge below amp_max at these rates */
     assert_int_equal(s.before, WHIRL_FLOQUET_NEUTRAL);
     assert_int_equal(s.after, WHIRL_FLOQUET_UNSTABLE);
     assert_true(s.err < LOCATION_TOL);
@@ -95,13 +97,21 @@ static void mathieu_at(double omega, double scipy_root)
 static void test_mathieu_left_edge(void **state)
 {
     (void)state;
-    mathieu_at(1.8, 0.12105968496067503); /* a_1 */
+    mathieu_at(1.8, 0.12105968496067503, WHIRL_CYCLE_PERIOD_DOUBLING, 0.3); /* a_1 */
 }
 
 static void test_mathieu_right_edge(void **state)
 {
     (void)state;
-    mathieu_at(2.2, 0.08500835628918853); /* b_1 */
+    mathieu_at(2.2, 0.08500835628918853, WHIRL_CYCLE_PERIOD_DOUBLING, 0.3); /* b_1 */
+}
+
+/* The second tongue's left edge a_2 (+1): the hanging branch goes on (a branch point, not a
+ * fold); scipy's root as above with mathieu_a(2, q), omega = 0.98. */
+static void test_mathieu_branch_point(void **state)
+{
+    (void)state;
+    mathieu_at(0.98, 0.3228397014390305, WHIRL_CYCLE_BRANCH, 0.5);
 }
 
 /* The circle drive's steady shape of mode 1 (tip opposite the pivot) at omega as a state of w. */
@@ -155,6 +165,86 @@ static void test_circle_fold(void **state)
     assert_true(s.err < LOCATION_TOL);
     assert_true(fabs(s.at - steady_fold) < LOCATION_TOL);
     whirl_driven_curve_free(curve);
+    free(y);
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+}
+
+/* The growth rate of the steady linearisation of the circle drive's shape near guess at omega
+ * (guess <- its tip). */
+static double steady_growth(const whirl_chain *c, double omega, double eps, double guess[2])
+{
+    const size_t n = c->n + 1;
+    const whirl_driven_params dp = {.omega = omega, .drive_radius = eps};
+    whirl_driven_info info;
+    assert_int_equal(whirl_driven_solve(c, &dp, guess, &info), GSL_SUCCESS);
+    guess[0] = info.tip[0], guess[1] = info.tip[1];
+    double *buf = malloc(5 * n * sizeof *buf);
+    assert_int_equal(whirl_driven_sample(c, &dp, info.tip, n, buf, buf + n, buf + 2 * n,
+                                         buf + 3 * n, buf + 4 * n),
+                     GSL_SUCCESS);
+    whirl_stability *st = whirl_stability_alloc(c->n);
+    const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega,
+                           .drive_radius = eps};
+    double g;
+    assert_int_equal(whirl_stability_linearise_3d(st, &m, buf + n, buf + 2 * n, buf + 3 * n),
+                     GSL_SUCCESS);
+    assert_int_equal(whirl_stability_growth(st, &g), GSL_SUCCESS);
+    whirl_stability_free(st);
+    free(buf);
+    return g;
+}
+
+/* The torus: the circle drive's 2-node shape of N = 2 (eps 0.05, the branch through the fold
+ * above, tip about 0.21 L from the axis) turns unstable near omega = 4.03 where two pairs of
+ * eigenvalues of the steady linearisation meet on the imaginary axis and leave it (a Krein
+ * collision; no fold). The periodic branch must meet it as two pairs of multipliers meeting on
+ * the unit circle. The reference: bisection on the steady growth rate (whirl_stability_growth)
+ * against 1e-7: it grows as c sqrt(omega - omega*) with c ~ 0.5 beyond the meeting, so the
+ * bisection ends (1e-7 / c)^2 ~ 4e-14 above it. */
+static void test_circle_torus(void **state)
+{
+    (void)state;
+    const double eps = 0.05, omega = 3.95;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    double guess[2] = {-0.2076, 0}, lo = 3.95, hi = 4.1;
+    assert_true(steady_growth(c, lo, eps, guess) == 0);
+    double at_lo[2] = {guess[0], guess[1]};
+    assert_true(steady_growth(c, hi, eps, guess) > 1e-3);
+    for (int i = 0; i < 60; i++) {
+        const double mid = (lo + hi) / 2;
+        double g[2] = {at_lo[0], at_lo[1]};
+        if (steady_growth(c, mid, eps, g) > 1e-7) hi = mid;
+        else lo = mid;
+    }
+    /* the periodic branch from the steady shape at 3.95 */
+    const whirl_driven_params dp = {.omega = omega, .drive_radius = eps};
+    whirl_driven_info info;
+    double tip[2] = {-0.2076, 0};
+    assert_int_equal(whirl_driven_solve(c, &dp, tip, &info), GSL_SUCCESS);
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_circle(&path, omega, eps), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc(c, 3, &path);
+    double *y = malloc(whirl_periodic_state_size(w) * sizeof *y);
+    double buf[15], links[6];
+    assert_int_equal(whirl_driven_sample(c, &dp, info.tip, 3, buf, buf + 3, buf + 6, buf + 9,
+                                         buf + 12),
+                     GSL_SUCCESS);
+    assert_int_equal(whirl_shape_links(2, buf + 3, buf + 6, buf + 9, links), GSL_SUCCESS);
+    assert_int_equal(whirl_dyn_state_from_shape(whirl_periodic_dyn(w), 0, links, omega, y),
+                     GSL_SUCCESS);
+    const whirl_cycle_params p = {.parameter = WHIRL_CYCLE_OMEGA, .min = 3.9, .max = 4.1,
+                                  .direction = 1};
+    seen s = {.kind = WHIRL_CYCLE_TORUS, .after = -1};
+    assert_int_equal(whirl_periodic_path(w, y, &p, keep, &s, NULL, NULL), GSL_SUCCESS);
+    print_message("# circle drive N = 2, eps = 0.05: torus at omega = %.17g (err %.2g), steady "
+                  "growth's onset %.17g, difference %.2g\n", s.at, s.err, hi, fabs(s.at - hi));
+    assert_int_equal(s.kind_events, 1);
+    assert_int_equal(s.events, 1);
+    assert_int_equal(s.before, WHIRL_FLOQUET_NEUTRAL);
+    assert_int_equal(s.after, WHIRL_FLOQUET_UNSTABLE);
+    assert_true(s.err < LOCATION_TOL);
+    assert_true(fabs(s.at - hi) < LOCATION_TOL);
     free(y);
     whirl_periodic_free(w);
     whirl_chain_free(c);
@@ -237,7 +327,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mathieu_left_edge),
         cmocka_unit_test(test_mathieu_right_edge),
+        cmocka_unit_test(test_mathieu_branch_point),
         cmocka_unit_test(test_circle_fold),
+        cmocka_unit_test(test_circle_torus),
         cmocka_unit_test(test_bad_input),
         cmocka_unit_test(test_failure_and_stop),
     };
