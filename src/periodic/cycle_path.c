@@ -33,11 +33,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_linalg.h>
-
 #include "core/error.h"
-#include "core/roots.h"
-#include "periodic/periodic_internal.h"
+#include "periodic/cycle_internal.h"
 
 #define STEP_DEFAULT 0.05
 #define POINTS_DEFAULT 10000
@@ -62,58 +59,6 @@
 /* Relative step of the parameter's central differences: truncation (1e-5)^2 against round-off
  * 1e-16 / 1e-5 of the map; the derivative serves the chord and the tangent only. */
 #define DP_REL 1e-5
-#define BRENT_ITER 100
-/* The torus test's least |rho_k - rho_l| below which two pairs are taken as equal by a symmetry
- * (round-off splits them by ~1e-15; two pairs meeting are this close only within ~1e-18 of the
- * meeting in the parameter, D being linear in it there). */
-#define GAP_MIN 1e-9
-/* The corrector's target at an event's evaluations: 1e-2 of Newton's test (with 1e-10 a fold's
- * rate moves by ~1e-11 with the residual left; measured on the circle drive, N = 2), not below
- * the round-off of a period; where round-off stops the iteration above it, Newton's test. */
-#define EVENT_NEWTON_RATIO 1e-2
-#define EVENT_NEWTON_FLOOR 1e-13
-#define RICHARDSON 15.0
-
-/* What is reported of a point or an event (buffers owned by the cycle). */
-typedef struct report {
-    whirl_cycle_point pt;
-    double *y, *re, *im;
-    double sigma; /* events: where on the step */
-    double gap;   /* the torus test's least |rho_k - rho_l| */
-} report;
-
-typedef struct cycle {
-    whirl_periodic *w;
-    whirl_cycle_params p;
-    whirl_pivot_path base; /* the start's path */
-    double base_amp;       /* its largest amplitude */
-    size_t m, size, nb;
-    int steps;
-    double wpos, wrate;    /* the metric: 1 / L^2, 1 / (omega_ref L)^2 */
-    /* the step's start (0) and end (1) */
-    double *y0, *t0, *basis0, *mono0, *cols0, *pp0;
-    double p0, tp0;
-    double *y1, *t1, *basis1, *mono1, *cols1, *pp1;
-    double *basis_j, *cols_j, *pp_j; /* the frame of the chord where it was refreshed */
-    double p1, tp1;
-    gsl_matrix *jac, *bord, *lu; /* (m+1)^2 chord, (m+1)^2 tangent, m^2 tests */
-    gsl_permutation *perm, *perm_b, *perm_m;
-    gsl_vector *rhs, *sol; /* m + 1 */
-    double *py, *tmp, *a, *b, *ys, *yf; /* size each */
-    double f0[3];          /* the tests at the step's start */
-    double gap0;           /* its torus test's least gap */
-    double target;         /* the corrector's tolerance: p.tol, tighter for the events */
-    double *zero;          /* m zeros: the errors of unrefined multipliers */
-    double *sr, *si, *rr, *ri, *re_t, *im_t; /* m each: the torus test's scratch */
-    char *used;
-    report now, ev[3];
-    double arclength;
-    whirl_cycle_row_fn row;
-    void *row_data;
-    whirl_cycle_tick_fn tick;
-    void *tick_data;
-    whirl_cycle_progress progress;
-} cycle;
 
 const char *whirl_cycle_event_name(whirl_cycle_event e)
 {
@@ -127,17 +72,7 @@ const char *whirl_cycle_event_name(whirl_cycle_event e)
     return "unknown";
 }
 
-static double path_amplitude(const whirl_pivot_path *path)
-{
-    double a = 0;
-    for (int k = 0; k < 3; k++)
-        for (int j = 0; j < path->harmonics; j++)
-            a = fmax(a, fmax(fabs(path->c[k][j]), fabs(path->s[k][j])));
-    return a;
-}
-
-/* w's path <- the start's at the parameter p. */
-static void set_param(cycle *c, double p)
+void cycle_set_param(cycle *c, double p)
 {
     whirl_pivot_path path = c->base;
     if (c->p.parameter == WHIRL_CYCLE_OMEGA) {
@@ -150,14 +85,12 @@ static void set_param(cycle *c, double p)
     periodic_set_path(c->w, &path);
 }
 
-/* "omega=VALUE" or "A=VALUE" (with the unit marker of core/error.h) into buf. */
-static const char *where(const cycle *c, double p, char *buf, size_t size)
+const char *cycle_where(const cycle *c, double p, char *buf, size_t size)
 {
     if (c->p.parameter == WHIRL_CYCLE_OMEGA) snprintf(buf, size, "omega=" WHIRL_Q_RATE "%.17g", p);
     else snprintf(buf, size, "A=" WHIRL_Q_LENGTH "%.17g", p);
     return buf;
 }
-#define WHERE(c, p) where((c), (p), (char[64]){0}, 64)
 
 static void tick(cycle *c)
 {
@@ -182,7 +115,7 @@ static void set_metric(cycle *c)
 /* out <- P_p(y) with steps per period. */
 static int period_map(cycle *c, double p, const double *y, int steps, double *out)
 {
-    set_param(c, p);
+    cycle_set_param(c, p);
     memcpy(out, y, c->size * sizeof *out);
     return whirl_periodic_run(c->w, out, steps, 1);
 }
@@ -211,7 +144,7 @@ static int param_derivative(cycle *c, const double *y, double p, int steps, doub
     const double h = DP_REL * (c->p.parameter == WHIRL_CYCLE_OMEGA ? p : fmax(p, c->base_amp));
     int status = period_map(c, p + h, y, steps, c->a);
     if (status == GSL_SUCCESS) status = period_map(c, p - h, y, steps, c->b);
-    set_param(c, p);
+    cycle_set_param(c, p);
     if (status) return status;
     memcpy(c->w->basis, basis, c->nb * sizeof *basis);
     periodic_tangent_read(c->w, c->b, c->a, pp);
@@ -277,7 +210,7 @@ static int chord(cycle *c)
  * singular), J changes along a step by more than the chord's linear convergence allows. */
 static int refresh(cycle *c, const double *y, double p, int steps)
 {
-    set_param(c, p);
+    cycle_set_param(c, p);
     int status = periodic_monodromy_variational(c->w, y, steps);
     if (status) return status;
     frame_at(c, y, c->basis_j, c->cols_j);
@@ -292,7 +225,7 @@ static int refresh(cycle *c, const double *y, double p, int steps)
 /* Corrects (y, p) (a start near the point at sigma) onto the branch with steps per period by
  * the chord, refreshed where it converges slowly; *res its residual. GSL_EMAXITER (no message)
  * if it does not converge. */
-static int correct(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
+int cycle_correct(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
                    double *res)
 {
     const size_t m = c->m, size = c->size;
@@ -337,248 +270,18 @@ static int correct(cycle *c, double sigma, int steps, double *y, double *p, int 
 }
 
 /* The predictor at sigma from the step's start, corrected with steps per period. */
-static int point_at(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
+int cycle_point_at(cycle *c, double sigma, int steps, double *y, double *p, int *iters,
                     double *res)
 {
     for (size_t q = 0; q < c->size; q++) y[q] = c->y0[q] + sigma * c->t0[q];
     *p = c->p0 + sigma * c->tp0;
     if (whirl_dyn_project(c->w->dyn, 0, y)) return GSL_EMAXITER;
-    return correct(c, sigma, steps, y, p, iters, res);
-}
-
-/* The signs and ln |det| of M - I (k = 0) and M + I (k = 1), M = w->mono. */
-static void tests_of(cycle *c, int sg[2], double ln[2])
-{
-    const size_t m = c->m;
-    for (int k = 0; k < 2; k++) {
-        gsl_matrix_const_view mv = gsl_matrix_const_view_array(c->w->mono, m, m);
-        gsl_matrix_memcpy(c->lu, &mv.matrix);
-        for (size_t i = 0; i < m; i++)
-            gsl_matrix_set(c->lu, i, i, gsl_matrix_get(c->lu, i, i) + (k == 0 ? -1 : 1));
-        int sign;
-        gsl_linalg_LU_decomp(c->lu, c->perm_m, &sign);
-        sg[k] = gsl_linalg_LU_sgndet(c->lu, sign);
-        ln[k] = sg[k] == 0 ? -INFINITY : gsl_linalg_LU_lndet(c->lu);
-    }
-}
-
-/* The torus test of the multipliers re, im (m of them): the pairs mu, 1/mu matched (the two
- * closest values of s = mu + 1/mu, again and again: s is the same for both of a pair), rho_k the
- * mean of a pair's s, and D = prod_{k < l} (rho_k - rho_l)^2 into its sign and ln |D|; *gap the
- * least |rho_k - rho_l| and *rho_re the real part of that pair's mean. D changes sign where two
- * real rho meet and leave the real axis as a conjugate pair: inside (-2, 2) two pairs of
- * multipliers on the unit circle meet and leave it (a Krein collision: the conservative chain's
- * torus bifurcation). Near the meeting the pairs cannot be told apart, but there every candidate
- * D is as small as its round-off. */
-static void torus_test(cycle *c, const double *re, const double *im, int *sg, double *ln,
-                       double *gap, double *rho_re)
-{
-    const size_t m = c->m, n = m / 2;
-    double *sr = c->sr, *si = c->si, *rr = c->rr, *ri = c->ri;
-    for (size_t i = 0; i < m; i++) {
-        const double d = re[i] * re[i] + im[i] * im[i];
-        sr[i] = re[i] + re[i] / d, si[i] = im[i] - im[i] / d;
-        c->used[i] = 0;
-    }
-    for (size_t k = 0; k < n; k++) {
-        size_t bi = 0, bj = 0;
-        double best = INFINITY;
-        for (size_t i = 0; i < m; i++)
-            for (size_t j = i + 1; j < m && !c->used[i]; j++) {
-                const double d = hypot(sr[i] - sr[j], si[i] - si[j]);
-                if (!c->used[j] && d < best) best = d, bi = i, bj = j;
-            }
-        c->used[bi] = c->used[bj] = 1;
-        rr[k] = (sr[bi] + sr[bj]) / 2, ri[k] = (si[bi] + si[bj]) / 2;
-    }
-    double phase_re = 1, phase_im = 0, sum = 0;
-    *gap = INFINITY, *rho_re = NAN;
-    for (size_t k = 0; k < n; k++)
-        for (size_t l = k + 1; l < n; l++) {
-            const double dr = rr[k] - rr[l], di = ri[k] - ri[l];
-            const double a = hypot(dr, di);
-            if (a < *gap) *gap = a, *rho_re = (rr[k] + rr[l]) / 2;
-            if (a == 0) {
-                *sg = 0, *ln = -INFINITY;
-                return;
-            }
-            /* (dr + i di)^2 / a^2 */
-            const double zr = (dr * dr - di * di) / (a * a), zi = 2 * dr * di / (a * a);
-            const double pr = phase_re * zr - phase_im * zi;
-            phase_im = phase_re * zi + phase_im * zr, phase_re = pr;
-            sum += 2 * log(a);
-        }
-    *sg = phase_re < 0 ? -1 : 1;
-    *ln = sum;
-}
-
-/* r <- the point (y, p) of w->mono: multipliers, verdict, tests. */
-static int describe(cycle *c, report *r, const double *y, double p, double tp, int iters,
-                    double res)
-{
-    int status = periodic_multipliers(c->w, r->re, r->im);
-    if (status) return status;
-    memcpy(r->y, y, c->size * sizeof *y);
-    whirl_periodic_result fr = {.count = c->m, .re = r->re, .im = r->im, .err = c->zero,
-                                .period = whirl_pivot_period(&c->w->path)};
-    periodic_judge(&fr);
-    int sg[2];
-    double ln[2];
-    tests_of(c, sg, ln);
-    const double f[2] = {sg[0] * exp(ln[0] / (double)c->m), sg[1] * exp(ln[1] / (double)c->m)};
-    int tsg;
-    double tln, rho_re;
-    const double pairs = (double)(c->m / 2) * (double)(c->m / 2 - 1) / 2;
-    torus_test(c, r->re, r->im, &tsg, &tln, &r->gap, &rho_re);
-    set_param(c, p);
-    r->pt = (whirl_cycle_point){
-        .event = WHIRL_CYCLE_POINT, .index = c->progress.points, .parameter = p,
-        .omega = c->w->path.omega, .amplitude = path_amplitude(&c->w->path),
-        .arclength = c->arclength, .tangent = tp, .fold_test = f[0], .flip_test = f[1],
-        .torus_test = pairs > 0 ? tsg * exp(tln / pairs) : 1,
-        .count = c->m, .re = r->re, .im = r->im, .max_modulus = fr.max_modulus,
-        .reciprocal_err = fr.reciprocal_err, .verdict = fr.verdict, .edge = fr.edge,
-        .residual = res, .iterations = iters, .y = r->y};
-    return GSL_SUCCESS;
+    return cycle_correct(c, sigma, steps, y, p, iters, res);
 }
 
 static int emit(cycle *c, const report *r)
 {
     return c->row ? c->row(c->row_data, &r->pt) : GSL_SUCCESS;
-}
-
-/* ---- events: Brent's method in sigma on the extrapolated test ---- */
-
-typedef struct event_frame {
-    cycle *c;
-    int kind;         /* 0: f_+, 1: f_-, 2: the torus test */
-    double rho_re;    /* the torus test: the real part of the closest pair of rho */
-    double *ys, *yf;  /* the corrected points at s and 2 s steps */
-    double p;         /* the extrapolated parameter at the last sigma */
-    double p_shift;   /* its change by the extrapolation */
-    double ref;       /* the test is det / exp(ref): ln |det| of the first evaluation (a smooth
-                         function with the det's simple zero, of order 1) */
-    int have_ref;
-    double f_shift;   /* the test's */
-    int iters;
-    double res;
-} event_frame;
-
-/* The test sg exp(ln - ref) (ref set by the first call). */
-static double scaled(event_frame *e, int sg, double ln)
-{
-    if (!e->have_ref && isfinite(ln)) e->ref = ln, e->have_ref = 1;
-    return sg == 0 ? 0 : sg * exp(ln - e->ref);
-}
-
-/* The test of e->kind of w->mono into sg, ln (the torus test from its multipliers). */
-static int test_of(event_frame *e, int *sg, double *ln)
-{
-    cycle *c = e->c;
-    int sgs[2];
-    double lns[2], gap;
-    if (e->kind < 2) {
-        tests_of(c, sgs, lns);
-        *sg = sgs[e->kind], *ln = lns[e->kind];
-        return GSL_SUCCESS;
-    }
-    const int status = periodic_multipliers(c->w, c->re_t, c->im_t);
-    if (status == GSL_SUCCESS) torus_test(c, c->re_t, c->im_t, sg, ln, &gap, &e->rho_re);
-    return status;
-}
-
-static int event_fn(double sigma, void *ctx, double *fx)
-{
-    event_frame *e = ctx;
-    cycle *c = e->c;
-    double ps, pf, lns, lnf;
-    int sgs, sgf;
-    int status = point_at(c, sigma, c->steps, e->ys, &ps, &e->iters, &e->res);
-    if (status == GSL_SUCCESS) status = periodic_monodromy_variational(c->w, e->ys, c->steps);
-    if (status == GSL_SUCCESS) status = test_of(e, &sgs, &lns);
-    if (status == GSL_SUCCESS) {
-        memcpy(e->yf, e->ys, c->size * sizeof *e->ys);
-        pf = ps;
-        status = correct(c, sigma, 2 * c->steps, e->yf, &pf, &e->iters, &e->res);
-    }
-    if (status == GSL_SUCCESS)
-        status = periodic_monodromy_variational(c->w, e->yf, 2 * c->steps);
-    if (status == GSL_EMAXITER)
-        return whirl_fail(GSL_EMAXITER, "an event near %s: the corrector did not converge "
-                          "(residual %.3g)", WHERE(c, ps), e->res);
-    if (status == GSL_SUCCESS) status = test_of(e, &sgf, &lnf);
-    if (status) return status;
-    const double fs = scaled(e, sgs, lns), ff = scaled(e, sgf, lnf);
-    e->f_shift = (ff - fs) / RICHARDSON;
-    e->p_shift = (pf - ps) / RICHARDSON;
-    e->p = pf + e->p_shift;
-    *fx = ff + e->f_shift;
-    return GSL_SUCCESS;
-}
-
-/* The event of test kind (0: +1, 1: -1, 2: torus) on the step of length ds into r; a torus
- * test's sign change off the unit circle (two real pairs of multipliers meet off it) leaves
- * r->pt.event WHIRL_CYCLE_POINT: no event. */
-static int locate_event_at(cycle *c, int kind, double ds, report *r)
-{
-    static const char *const kind_name[] = {"through +1", "through -1",
-                                            "pairs meeting on the unit circle"};
-    event_frame e = {.c = c, .kind = kind, .ys = c->ys, .yf = c->yf};
-    double lo = 0, hi = ds, flo, fhi;
-    int status = event_fn(lo, &e, &flo);
-    if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
-    /* a root within the discretisation's shift of an end: the extrapolated test may change
-       sign just beyond it */
-    if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0)) {
-        lo = -ds / 2, hi = 1.5 * ds;
-        status = event_fn(lo, &e, &flo);
-        if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
-        if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0))
-            return whirl_fail(GSL_EFAILED, "multipliers %s near %s could not be "
-                              "located (the extrapolated test does not change sign)",
-                              kind_name[kind], WHERE(c, c->p0));
-    }
-    if (status) return status;
-    const whirl_root_opts o = {.epsabs = c->p.event_tol, .max_iter = BRENT_ITER, .known = 1,
-                               .f_lo = flo, .f_hi = fhi};
-    whirl_root rt;
-    status = whirl_root_brent(event_fn, &e, lo, hi, &o, &rt);
-    if (status && status != GSL_EMAXITER) {
-        if (!rt.bracketed)
-            return whirl_fail(GSL_EFAILED, "multipliers %s near %s could not be "
-                              "located", kind_name[kind], WHERE(c, c->p0));
-        return status;
-    }
-    double f;
-    status = event_fn(rt.root, &e, &f); /* the point, its monodromy (2 s steps) and shifts */
-    if (status) return status;
-    const double slope = (fhi - flo) / (hi - lo);
-    /* the tangent at the root, interpolated between the step's ends */
-    const double lambda = rt.root / ds, tp = (1 - lambda) * c->tp0 + lambda * c->tp1;
-    const double saved = c->arclength;
-    c->arclength += rt.root;
-    status = describe(c, r, e.yf, e.p, tp, e.iters, e.res);
-    c->arclength = saved;
-    if (status) return status;
-    r->sigma = rt.root;
-    if (kind == 2)
-        r->pt.event = fabs(e.rho_re) < 2 ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
-    else if (kind == 1)
-        r->pt.event = WHIRL_CYCLE_PERIOD_DOUBLING;
-    else
-        r->pt.event = (c->tp0 > 0) != (c->tp1 > 0) ? WHIRL_CYCLE_FOLD : WHIRL_CYCLE_BRANCH;
-    r->pt.err = (rt.upper - rt.lower) * fabs(tp) + fabs(e.f_shift / slope) * fabs(tp) +
-                fabs(e.p_shift);
-    return GSL_SUCCESS;
-}
-
-/* The event with the corrector's tighter target. */
-static int locate_event(cycle *c, int kind, double ds, report *r)
-{
-    c->target = fmax(EVENT_NEWTON_RATIO * c->p.tol, EVENT_NEWTON_FLOOR);
-    const int status = locate_event_at(c, kind, ds, r);
-    c->target = c->p.tol;
-    return status;
 }
 
 /* ---- the branch ---- */
@@ -710,7 +413,7 @@ static int step(cycle *c, double *ds, int *ended)
         c->progress.step = *ds;
         int iters;
         double res;
-        int status = point_at(c, *ds, c->steps, c->y1, &c->p1, &iters, &res);
+        int status = cycle_point_at(c, *ds, c->steps, c->y1, &c->p1, &iters, &res);
         if (status == GSL_SUCCESS)
             status = periodic_monodromy_variational(c->w, c->y1, c->steps);
         if (status == GSL_SUCCESS) status = end_frame(c, c->t0, c->tp0);
@@ -730,7 +433,7 @@ static int step(cycle *c, double *ds, int *ended)
         /* the end point's report before the events' evaluations overwrite w->mono */
         memcpy(c->w->mono, c->mono1, c->m * c->m * sizeof *c->mono1);
         c->arclength += *ds;
-        status = describe(c, &c->now, c->y1, c->p1, c->tp1, iters, res);
+        status = cycle_describe(c, &c->now, c->y1, c->p1, c->tp1, iters, res);
         c->arclength -= *ds;
         if (status) return status;
         /* the events of the step, by sigma */
@@ -741,11 +444,11 @@ static int step(cycle *c, double *ds, int *ended)
             /* a torus test that is 0 at both ends: pairs equal by a symmetry (the 3D chain
                hanging: each plane's), not a meeting */
             if (k == 2 && c->gap0 < GAP_MIN && c->now.gap < GAP_MIN) continue;
-            status = locate_event(c, k, *ds, &c->ev[n]);
+            status = cycle_locate_event(c, k, *ds, &c->ev[n]);
             if (status) return status;
             n++;
         }
-        set_param(c, c->p1);
+        cycle_set_param(c, c->p1);
         for (int i = 1; i < n; i++) /* by sigma */
             for (int j = i; j > 0 && c->ev[j].sigma < c->ev[j - 1].sigma; j--) {
                 const report r = c->ev[j];
@@ -779,7 +482,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
 {
     if (w == NULL || y == NULL)
         return whirl_fail(GSL_EINVAL, "whirl_periodic_path: NULL argument");
-    cycle c = {.w = w, .base = w->path, .base_amp = path_amplitude(&w->path), .m = w->m,
+    cycle c = {.w = w, .base = w->path, .base_amp = cycle_amplitude(&w->path), .m = w->m,
                .size = w->size, .nb = 3 * (size_t)(w->dim - 1) * w->n, .row = row,
                .row_data = row_data, .tick = tick_fn, .tick_data = tick_data};
     int status = check_params(&c, params);
@@ -790,7 +493,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     if ((status = cycle_alloc(&c))) goto done;
     w->method = WHIRL_MONODROMY_VARIATIONAL;
     c.p1 = c.p.parameter == WHIRL_CYCLE_OMEGA ? c.base.omega : c.base_amp;
-    set_param(&c, c.p1);
+    cycle_set_param(&c, c.p1);
     status = whirl_dyn_project(w->dyn, 0, y);
     if (status == GSL_SUCCESS) status = periodic_steps_for(w, y, c.p.steps, &c.steps);
     /* the start: Newton's method at the fixed parameter, the monodromy at the motion */
@@ -804,7 +507,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     status = end_frame(&c, NULL, c.p.direction);
     if (status == GSL_SUCCESS) {
         memcpy(w->mono, c.mono1, c.m * c.m * sizeof *c.mono1);
-        status = describe(&c, &c.now, c.y1, c.p1, c.tp1, iters, res);
+        status = cycle_describe(&c, &c.now, c.y1, c.p1, c.tp1, iters, res);
     }
     if (status) goto done;
     c.f0[0] = c.now.pt.fold_test, c.f0[1] = c.now.pt.flip_test;
@@ -826,7 +529,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
         if (!ended) advance(&c);
     }
     memcpy(y, c.y0, w->size * sizeof *y);
-    set_param(&c, c.p0);
+    cycle_set_param(&c, c.p0);
     if (status == WHIRL_EINTERRUPTED) /* within a period: said of the branch */
         status = whirl_fail(WHIRL_EINTERRUPTED, "stopped at %s after %ld points",
                             WHERE(&c, c.p0), c.progress.points);
