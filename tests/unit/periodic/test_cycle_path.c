@@ -114,13 +114,16 @@ static void test_mathieu_branch_point(void **state)
     mathieu_at(0.98, 0.3228397014390305, WHIRL_CYCLE_BRANCH, 0.5);
 }
 
-/* The circle drive's steady shape of mode 1 (tip opposite the pivot) at omega as a state of w. */
-static void steady_start(const whirl_chain *c, double omega, double eps, whirl_periodic *w,
-                         double *y, whirl_driven_info *info)
+/* The circle drive's steady shape at omega as a state of w: with guess NULL, the shape of mode
+ * 1 with its tip opposite the pivot; else the one whose tip is near guess. */
+static void steady_start(const whirl_chain *c, double omega, double eps, const double *guess,
+                         whirl_periodic *w, double *y, whirl_driven_info *info)
 {
     const size_t n = c->n;
     const whirl_driven_params dp = {.omega = omega, .drive_radius = eps};
-    assert_int_equal(whirl_driven_mode(c, &dp, 1, -1, info), GSL_SUCCESS);
+    assert_int_equal(guess ? whirl_driven_solve(c, &dp, guess, info)
+                           : whirl_driven_mode(c, &dp, 1, -1, info),
+                     GSL_SUCCESS);
     double *buf = malloc(5 * (n + 1) * sizeof *buf), *links = malloc(3 * n * sizeof *links);
     assert_int_equal(whirl_driven_sample(c, &dp, info->tip, n + 1, buf, buf + n + 1,
                                          buf + 2 * (n + 1), buf + 3 * (n + 1), buf + 4 * (n + 1)),
@@ -144,7 +147,7 @@ static void test_circle_fold(void **state)
     assert_non_null(w);
     double *y = malloc(whirl_periodic_state_size(w) * sizeof *y);
     whirl_driven_info info;
-    steady_start(c, omega, eps, w, y, &info);
+    steady_start(c, omega, eps, NULL, w, y, &info);
     /* the steady branch's fold */
     whirl_driven_curve *curve = whirl_driven_curve_alloc(1000);
     const whirl_driven_params dp = {.omega = omega, .drive_radius = eps};
@@ -218,21 +221,13 @@ static void test_circle_torus(void **state)
         else lo = mid;
     }
     /* the periodic branch from the steady shape at 3.95 */
-    const whirl_driven_params dp = {.omega = omega, .drive_radius = eps};
-    whirl_driven_info info;
-    double tip[2] = {-0.2076, 0};
-    assert_int_equal(whirl_driven_solve(c, &dp, tip, &info), GSL_SUCCESS);
     whirl_pivot_path path;
     assert_int_equal(whirl_pivot_circle(&path, omega, eps), GSL_SUCCESS);
     whirl_periodic *w = whirl_periodic_alloc(c, 3, &path);
     double *y = malloc(whirl_periodic_state_size(w) * sizeof *y);
-    double buf[15], links[6];
-    assert_int_equal(whirl_driven_sample(c, &dp, info.tip, 3, buf, buf + 3, buf + 6, buf + 9,
-                                         buf + 12),
-                     GSL_SUCCESS);
-    assert_int_equal(whirl_shape_links(2, buf + 3, buf + 6, buf + 9, links), GSL_SUCCESS);
-    assert_int_equal(whirl_dyn_state_from_shape(whirl_periodic_dyn(w), 0, links, omega, y),
-                     GSL_SUCCESS);
+    const double tip[2] = {-0.2076, 0};
+    whirl_driven_info info;
+    steady_start(c, omega, eps, tip, w, y, &info);
     const whirl_cycle_params p = {.parameter = WHIRL_CYCLE_OMEGA, .min = 3.9, .max = 4.1,
                                   .direction = 1};
     seen s = {.kind = WHIRL_CYCLE_TORUS, .after = -1};
