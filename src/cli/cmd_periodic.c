@@ -246,7 +246,7 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
 
 typedef struct branch_row {
     whirl_cycle_event event;
-    double omega, amplitude, err, max_modulus, fold, flip;
+    double omega, amplitude, err, max_modulus, fold, flip, torus;
     whirl_floquet_verdict verdict;
     whirl_floquet_edge edge;
 } branch_row;
@@ -271,6 +271,7 @@ static int branch_keep(void *data, const whirl_cycle_point *p)
     b->r[b->n++] = (branch_row){.event = p->event, .omega = p->omega, .amplitude = p->amplitude,
                                 .err = p->err, .max_modulus = p->max_modulus,
                                 .fold = p->fold_test, .flip = p->flip_test,
+                                .torus = p->torus_test,
                                 .verdict = p->verdict, .edge = p->edge};
     b->events += p->event != WHIRL_CYCLE_POINT;
     return 0;
@@ -318,8 +319,10 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
                          : cli_rate_words(&o->units, o->omega, words, sizeof words),
             o->up ? "larger" : "smaller", b->n, b->events);
     fprintf(fp, "# events: fold (+1, the branch turns back), branch (+1, it goes on), "
-            "period-doubling (-1); fold_test = det(M - I), flip_test = det(M + I) as "
-            "sign |det|^(1/m); err: the event's error estimate in the parameter\n");
+            "period-doubling (-1), torus (two pairs meet on the unit circle and leave it); "
+            "fold_test = det(M - I), flip_test = det(M + I) as sign |det|^(1/m), torus_test = "
+            "prod (rho_k - rho_l)^2 over the pairs (rho = mu + 1/mu) as sign |D|^(1/factors); "
+            "err: the event's error estimate in the parameter\n");
     for (size_t i = 0; i < b->n; i++)
         if (b->r[i].event != WHIRL_CYCLE_POINT)
             fprintf(fp, "# %s omega=%s amplitude=%s err=%.2g\n",
@@ -327,13 +330,14 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
                     CLI_NUM(b->r[i].amplitude * len), b->r[i].err * perr);
     if (stopped[0]) fprintf(fp, "# stopped (%s): the points found until then\n", stopped);
     cli_units_comment(fp, &o->units);
-    fprintf(fp, "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,err\n");
+    fprintf(fp, "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,torus_test,"
+            "err\n");
     for (size_t i = 0; i < b->n; i++) {
         const branch_row *r = &b->r[i];
-        fprintf(fp, "%s,%s,%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
+        fprintf(fp, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
                 CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len), CLI_NUM(r->max_modulus),
                 whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
-                CLI_NUM(r->fold), CLI_NUM(r->flip), CLI_NUM(r->err * perr));
+                CLI_NUM(r->fold), CLI_NUM(r->flip), CLI_NUM(r->torus), CLI_NUM(r->err * perr));
     }
 }
 

@@ -78,7 +78,7 @@ if [ $rc -eq 130 ] && [ ! -e "$tmp/out.csv" ] && grep -q '^whirl periodic: inter
 expect_ok "periodic branch amplitude" periodic --pivot vertical:0.01 --omega 1.8 --links 1 --dim 2 --amp-max 0.3 --up -o "$tmp/b.csv"
 if grep -q '^# periodic branch: pivot vertical:0.01, links=1 dim=2 start=hanging; followed in the amplitude from 0.01 towards larger' "$tmp/b.csv" \
    && grep -q '^# units: dimensionless' "$tmp/b.csv" \
-   && [ "$(grep -v '^#' "$tmp/b.csv" | head -1)" = "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,err" ] \
+   && [ "$(grep -v '^#' "$tmp/b.csv" | head -1)" = "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,torus_test,err" ] \
    && [ "$(grep -c '^# period-doubling' "$tmp/b.csv")" -eq 1 ] && [ "$(grep -c '^# fold\|^# branch ' "$tmp/b.csv")" -eq 0 ] \
    && grep '^# period-doubling' "$tmp/b.csv" | sed 's/.*amplitude=\([^ ]*\) err=\(.*\)/\1 \2/' \
       | awk '{d = $1 - 0.12105968496067503; if (d < 0) d = -d; exit !(d < 1e-8 && $2 < 1e-8)}' \
