@@ -293,6 +293,9 @@ static int check_branch(const cli_command *cmd, const periodic_options *o, int b
         return cli_error(cmd, "a branch follows one parameter: --omega-min/--omega-max (the "
                          "rate) or --amp-min/--amp-max (the amplitude), not both");
     if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
+    if (branch && o->differences)
+        return cli_error(cmd, "--differences is for one motion: a branch forms its monodromies "
+                         "from the variational equations");
     if (!branch && (o->up || o->arc_step > 0 || o->max_points > 0))
         return cli_error(cmd, "--up, --arc-step and --max-points need a branch (--omega-min and "
                          "--omega-max, or --amp-max)");

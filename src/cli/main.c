@@ -43,8 +43,11 @@ static const cli_command commands[] = {
     {"regime", "--omega W --eps E | --omega-min A --omega-max B --omega-count N (--eps E | --eps-min C --eps-max D --eps-count M) [OPTIONS]",
      "Which node count a chain swung by hand settles into from rest: one run, a map, hysteresis.",
      cmd_regime, "whirl regime --omega 4Hz --eps 3cm --length 0.5 --mass 50g --drag-quadratic 0.0029"},
-    {"periodic", NULL,
-     "The periodic motion with the pivot on a periodic path and its Floquet multipliers.",
+    {"periodic",
+     "--pivot PATH --omega W | --pivot PATH (--omega-min A --omega-max B | --amp-max B) | "
+     "--chart KIND --omega-min A --omega-max B --amp-max B [OPTIONS]",
+     "The periodic motion with the pivot on a periodic path and its Floquet multipliers; "
+     "branches with their folds, period doublings and tori; charts.",
      cmd_periodic, "whirl periodic --pivot vertical:0.1 --omega 2 --links 1 --dim 2"},
     {"plot", "FILE... -o PICTURE",
      "A figure (PNG, SVG, PDF) of whirl's CSV files, or a trace's animation (MP4, WebM, GIF).",

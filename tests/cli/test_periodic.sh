@@ -102,6 +102,7 @@ expect_error "branch --up alone" "whirl periodic: --up, --arc-step and --max-poi
 expect_error "branch empty range" "whirl periodic: --amp-max must exceed --amp-min" periodic --pivot vertical:0.01 --omega 1.8 --dim 2 --amp-min 0.3 --amp-max 0.2 -o "$tmp/out.csv"
 expect_error "branch start outside" "whirl periodic: --omega .*outside" periodic --pivot vertical:0.01 --omega 3 --dim 2 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 expect_error "branch start amplitude outside" "whirl periodic: the start's amplitude" periodic --pivot vertical:0.5 --omega 1.8 --dim 2 --amp-max 0.3 -o "$tmp/out.csv"
+expect_error "branch --differences" "whirl periodic: --differences is for one motion" periodic --pivot vertical:0.01 --omega 1.8 --dim 2 --amp-max 0.3 --differences -o "$tmp/out.csv"
 expect_error "branch bad side" "whirl periodic: --side must be 1 or -1" periodic --pivot circle:0.05 --omega 1.3 --start steady --side 0 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 [ ! -e "$tmp/out.csv" ] && pass "branch bad input: no file" || fail "branch bad input: no file"
 
