@@ -106,6 +106,16 @@ expect_error "branch --differences" "whirl periodic: --differences is for one mo
 expect_error "branch bad side" "whirl periodic: --side must be 1 or -1" periodic --pivot circle:0.05 --omega 1.3 --start steady --side 0 --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
 [ ! -e "$tmp/out.csv" ] && pass "branch bad input: no file" || fail "branch bad input: no file"
 
+# the branch's progress line on a terminal (asked for at once): the points, the events, the
+# parameter, the step, the corrector's iteration and residual; erased at the end, the same CSV
+WHIRL_PROGRESS_AFTER=0 script -qfec "\"$WHIRL\" periodic --pivot vertical:0.01 --omega 1.8 --links 1 --dim 2 --amp-max 0.3 --up -o $tmp/btty.csv" /dev/null </dev/null >"$tmp/b.tty"
+rc=$?
+if [ $rc -eq 0 ] && tr '\r' '\n' <"$tmp/b.tty" | sed 's/\x1b\[K$//' \
+     | grep -Eq '^whirl periodic: [0-9]+ points, [0-9]+ events, A [0-9.e-]+, step [0-9.e-]+, corrector iteration [0-9]+ \(residual [0-9.e+-]+\), [0-9]+s elapsed$' \
+   && [ "$(tail -c 4 "$tmp/b.tty" | od -An -c | tr -d ' ')" = "$(od -An -c <"$tmp/erase" | tr -d ' ')" ] \
+   && cmp -s "$tmp/btty.csv" "$tmp/b.csv"; then
+  pass "periodic branch progress line: shown, erased, the same CSV"; else fail "periodic branch progress line: shown, erased, the same CSV (rc=$rc)"; fi
+
 # Ctrl-C during a long branch (tiny steps): exit status 130, the rows so far written with a
 # comment line saying where it stopped
 env --default-signal=INT "$WHIRL" periodic --pivot vertical:0.01 --omega 1.8 --links 1 --dim 2 --amp-max 0.3 --up --arc-step 1e-6 --max-points 10000000 -o "$tmp/int.csv" 2>"$tmp/stderr" &
