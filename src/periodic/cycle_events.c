@@ -6,6 +6,8 @@
 #include <math.h>
 #include <string.h>
 
+#include <gsl/gsl_eigen.h>
+
 #include "core/error.h"
 #include "core/roots.h"
 #include "periodic/cycle_internal.h"
@@ -116,12 +118,42 @@ int cycle_describe(cycle *c, report *r, const double *y, double p, double tp, in
 }
 
 
+/* The test of a change of the verdict through mode (0: +1, 1: -1, 2: a complex pair) from the
+ * pairs' rho, the eigenvalues of S = M + M^{-1} (each twice): 0: the largest Re rho - 2, 1: -2 -
+ * the least Re rho, 2: the largest |Im rho| - STABILITY_THRESHOLD (positive where a pair has left
+ * the circle that way). Where pairs are equal by a symmetry a multiplier at +-1 is fourfold and
+ * computed only to ~1e-4 (round-off to the power 1/4), but rho crosses -+2 smoothly and the
+ * block of S is a multiple of I there (semisimple): rho is computed to round-off. */
+static int rho_test(cycle *c, int mode, double *f)
+{
+    const size_t m = c->m;
+    gsl_matrix_const_view mv = gsl_matrix_const_view_array(c->w->mono, m, m);
+    gsl_matrix_memcpy(c->lu, &mv.matrix);
+    int sign;
+    int status = gsl_linalg_LU_decomp(c->lu, c->perm_m, &sign);
+    if (status == GSL_SUCCESS) status = gsl_linalg_LU_invert(c->lu, c->perm_m, c->inv);
+    if (status) return whirl_fail(status, "the monodromy cannot be inverted");
+    for (size_t i = 0; i < m; i++)
+        for (size_t j = 0; j < m; j++)
+            gsl_matrix_set(c->w->work, i, j, c->w->mono[i * m + j] + gsl_matrix_get(c->inv, i, j));
+    status = gsl_eigen_nonsymm(c->w->work, c->w->eval, c->w->eig);
+    if (status) return whirl_fail(status, "the eigenvalues of M + M^-1 did not converge");
+    double hi = -INFINITY, lo = INFINITY, im = 0;
+    for (size_t i = 0; i < m; i++) {
+        const gsl_complex z = gsl_vector_complex_get(c->w->eval, i);
+        hi = fmax(hi, GSL_REAL(z)), lo = fmin(lo, GSL_REAL(z)), im = fmax(im, fabs(GSL_IMAG(z)));
+    }
+    *f = mode == 0 ? hi - 2 : mode == 1 ? -2 - lo : im - STABILITY_THRESHOLD;
+    return GSL_SUCCESS;
+}
+
 /* ---- events: Brent's method in sigma on the extrapolated test ---- */
 
 typedef struct event_frame {
     cycle *c;
-    int kind;         /* 0: f_+, 1: f_-, 2: the torus test */
+    int kind;         /* 0: f_+, 1: f_-, 2: the torus test, 3: the stability's change */
     double rho_re;    /* the torus test: the real part of the closest pair of rho */
+    int mode;         /* kind 3: how the largest multiplier leaves the circle (rho_test) */
     double *ys, *yf;  /* the corrected points at s and 2 s steps */
     double p;         /* the extrapolated parameter at the last sigma */
     double p_shift;   /* its change by the extrapolation */
@@ -140,31 +172,34 @@ static double scaled(event_frame *e, int sg, double ln)
     return sg == 0 ? 0 : sg * exp(ln - e->ref);
 }
 
-/* The test of e->kind of w->mono into sg, ln (the torus test from its multipliers). */
-static int test_of(event_frame *e, int *sg, double *ln)
+/* The test of e->kind of w->mono into *f: the torus test from its multipliers, kind 3 (a change
+ * of the verdict) rho_test's of e->mode. */
+static int test_of(event_frame *e, double *f)
 {
     cycle *c = e->c;
-    int sgs[2];
-    double lns[2], gap;
+    int sgs[2], sg;
+    double lns[2], gap, ln;
     if (e->kind < 2) {
         tests_of(c, sgs, lns);
-        *sg = sgs[e->kind], *ln = lns[e->kind];
+        *f = scaled(e, sgs[e->kind], lns[e->kind]);
         return GSL_SUCCESS;
     }
+    if (e->kind == 3) return rho_test(c, e->mode, f);
     const int status = periodic_multipliers(c->w, c->re_t, c->im_t);
-    if (status == GSL_SUCCESS) torus_test(c, c->re_t, c->im_t, sg, ln, &gap, &e->rho_re);
-    return status;
+    if (status) return status;
+    torus_test(c, c->re_t, c->im_t, &sg, &ln, &gap, &e->rho_re);
+    *f = scaled(e, sg, ln);
+    return GSL_SUCCESS;
 }
 
 static int event_fn(double sigma, void *ctx, double *fx)
 {
     event_frame *e = ctx;
     cycle *c = e->c;
-    double ps, pf, lns, lnf;
-    int sgs, sgf;
+    double ps, pf, fs, ff;
     int status = cycle_point_at(c, sigma, c->steps, e->ys, &ps, &e->iters, &e->res);
     if (status == GSL_SUCCESS) status = periodic_monodromy_variational(c->w, e->ys, c->steps);
-    if (status == GSL_SUCCESS) status = test_of(e, &sgs, &lns);
+    if (status == GSL_SUCCESS) status = test_of(e, &fs);
     if (status == GSL_SUCCESS) {
         memcpy(e->yf, e->ys, c->size * sizeof *e->ys);
         pf = ps;
@@ -175,9 +210,8 @@ static int event_fn(double sigma, void *ctx, double *fx)
     if (status == GSL_EMAXITER)
         return whirl_fail(GSL_EMAXITER, "an event near %s: the corrector did not converge "
                           "(residual %.3g)", WHERE(c, ps), e->res);
-    if (status == GSL_SUCCESS) status = test_of(e, &sgf, &lnf);
+    if (status == GSL_SUCCESS) status = test_of(e, &ff);
     if (status) return status;
-    const double fs = scaled(e, sgs, lns), ff = scaled(e, sgf, lnf);
     e->f_shift = (ff - fs) / RICHARDSON;
     e->p_shift = (pf - ps) / RICHARDSON;
     e->p = pf + e->p_shift;
@@ -185,14 +219,20 @@ static int event_fn(double sigma, void *ctx, double *fx)
     return GSL_SUCCESS;
 }
 
-/* The event of test kind (0: +1, 1: -1, 2: torus) on the step of length ds into r; a torus
- * test's sign change off the unit circle (two real pairs of multipliers meet off it) leaves
- * r->pt.event WHIRL_CYCLE_POINT: no event. */
+/* The event of test kind (0: +1, 1: -1, 2: torus, 3: a change of the stability that no test's
+ * sign saw) on the step of length ds into r; a torus test's sign change off the unit circle (two
+ * real pairs of multipliers meet off it) leaves r->pt.event WHIRL_CYCLE_POINT: no event. */
 static int locate_event_at(cycle *c, int kind, double ds, report *r)
 {
     static const char *const kind_name[] = {"through +1", "through -1",
-                                            "pairs meeting on the unit circle"};
+                                            "pairs meeting on the unit circle",
+                                            "leaving the unit circle"};
     event_frame e = {.c = c, .kind = kind, .ys = c->ys, .yf = c->yf};
+    if (kind == 3) { /* how the largest multiplier at the unstable end left the circle */
+        const double re = c->unstable0 ? c->mu0[0] : c->now.re[0];
+        const double im = c->unstable0 ? c->mu0[1] : c->now.im[0];
+        e.mode = fabs(im) > EDGE_ANGLE * hypot(re, im) ? 2 : re > 0 ? 0 : 1;
+    }
     double lo = 0, hi = ds, flo, fhi;
     int status = event_fn(lo, &e, &flo);
     if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
@@ -230,8 +270,9 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
     c->arclength = saved;
     if (status) return status;
     r->sigma = rt.root;
+    if (kind == 3) kind = e.mode;
     if (kind == 2)
-        r->pt.event = fabs(e.rho_re) < 2 ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
+        r->pt.event = e.kind == 3 || fabs(e.rho_re) < 2 ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
     else if (kind == 1)
         r->pt.event = WHIRL_CYCLE_PERIOD_DOUBLING;
     else

@@ -19,6 +19,15 @@
 #define EVENT_NEWTON_RATIO 1e-2
 #define EVENT_NEWTON_FLOOR 1e-13
 #define RICHARDSON 15.0
+/* A change of the verdict along a step that no test's sign change explains (pairs equal by a
+ * symmetry, as the 3D hanging chain's two planes: det(M + I) then has a double zero) is located
+ * on the pairs' rho (cycle_events.c, rho_test): where a rho passes -+2, or (a complex pair) where
+ * the largest |Im rho| passes STABILITY_THRESHOLD, which grows as c sqrt(p - p*) beyond the
+ * meeting: the point lies (1e-8 / c)^2 ~ 1e-16 beyond it. How the largest multiplier left the
+ * circle, at the step's unstable end: through +-1 if its imaginary part is below EDGE_ANGLE of
+ * its modulus, else as a complex pair. */
+#define STABILITY_THRESHOLD 1e-8
+#define EDGE_ANGLE 1e-6
 
 /* What is reported of a point or an event (buffers owned by the cycle). */
 typedef struct report {
@@ -43,12 +52,14 @@ typedef struct cycle {
     double *y1, *t1, *basis1, *mono1, *cols1, *pp1;
     double *basis_j, *cols_j, *pp_j; /* the frame of the chord where it was refreshed */
     double p1, tp1;
-    gsl_matrix *jac, *bord, *lu; /* (m+1)^2 chord, (m+1)^2 tangent, m^2 tests */
+    gsl_matrix *jac, *bord, *lu, *inv; /* (m+1)^2 chord, (m+1)^2 tangent, m^2 tests (2) */
     gsl_permutation *perm, *perm_b, *perm_m;
     gsl_vector *rhs, *sol; /* m + 1 */
     double *py, *tmp, *a, *b, *ys, *yf; /* size each */
     double f0[3];          /* the tests at the step's start */
     double gap0;           /* its torus test's least gap */
+    int unstable0;         /* its verdict is unstable */
+    double mu0[2];         /* its largest multiplier */
     double target;         /* the corrector's tolerance: p.tol, tighter for the events */
     double *zero;          /* m zeros: the errors of unrefined multipliers */
     double *sr, *si, *rr, *ri, *re_t, *im_t; /* m each: the torus test's scratch */
@@ -78,7 +89,8 @@ int cycle_point_at(cycle *c, double sigma, int steps, double *y, double *p, int 
 /* r <- the point (y, p) of w->mono: multipliers, verdict, tests (cycle_events.c). */
 int cycle_describe(cycle *c, report *r, const double *y, double p, double tp, int iters,
                    double res);
-/* The event of test kind (0: +1, 1: -1, 2: torus) on the step of length ds into r. */
+/* The event of test kind (0: +1, 1: -1, 2: torus, 3: a change of the verdict) on the step of
+ * length ds into r (r->pt.event WHIRL_CYCLE_POINT: none). */
 int cycle_locate_event(cycle *c, int kind, double ds, report *r);
 
 #endif

@@ -332,6 +332,7 @@ static void cycle_free(cycle *c)
     if (c->jac) gsl_matrix_free(c->jac);
     if (c->bord) gsl_matrix_free(c->bord);
     if (c->lu) gsl_matrix_free(c->lu);
+    if (c->inv) gsl_matrix_free(c->inv);
     if (c->perm) gsl_permutation_free(c->perm);
     if (c->perm_b) gsl_permutation_free(c->perm_b);
     if (c->perm_m) gsl_permutation_free(c->perm_m);
@@ -364,6 +365,7 @@ static int cycle_alloc(cycle *c)
     ok &= (c->jac = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
     ok &= (c->bord = gsl_matrix_alloc(m + 1, m + 1)) != NULL;
     ok &= (c->lu = gsl_matrix_alloc(m, m)) != NULL;
+    ok &= (c->inv = gsl_matrix_alloc(m, m)) != NULL;
     ok &= (c->perm = gsl_permutation_alloc(m + 1)) != NULL;
     ok &= (c->perm_b = gsl_permutation_alloc(m + 1)) != NULL;
     ok &= (c->perm_m = gsl_permutation_alloc(m)) != NULL;
@@ -448,6 +450,13 @@ static int step(cycle *c, double *ds, int *ended)
             if (status) return status;
             n++;
         }
+        /* a change of the verdict that no test saw (pairs equal by a symmetry) */
+        const int unstable1 = c->now.pt.verdict == WHIRL_FLOQUET_UNSTABLE;
+        if (n == 0 && unstable1 != c->unstable0) {
+            status = cycle_locate_event(c, 3, *ds, &c->ev[n]);
+            if (status) return status;
+            n++;
+        }
         cycle_set_param(c, c->p1);
         for (int i = 1; i < n; i++) /* by sigma */
             for (int j = i; j > 0 && c->ev[j].sigma < c->ev[j - 1].sigma; j--) {
@@ -463,6 +472,8 @@ static int step(cycle *c, double *ds, int *ended)
         c->arclength += *ds;
         c->f0[0] = c->now.pt.fold_test, c->f0[1] = c->now.pt.flip_test;
         c->f0[2] = c->now.pt.torus_test, c->gap0 = c->now.gap;
+        c->unstable0 = unstable1;
+        c->mu0[0] = c->now.re[0], c->mu0[1] = c->now.im[0];
         if (!in_range(c, c->p1)) {
             *ended = 1;
             return GSL_SUCCESS;
@@ -512,6 +523,8 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     if (status) goto done;
     c.f0[0] = c.now.pt.fold_test, c.f0[1] = c.now.pt.flip_test;
     c.f0[2] = c.now.pt.torus_test, c.gap0 = c.now.gap;
+    c.unstable0 = c.now.pt.verdict == WHIRL_FLOQUET_UNSTABLE;
+    c.mu0[0] = c.now.re[0], c.mu0[1] = c.now.im[0];
     c.progress.points = 1;
     c.progress.parameter = c.p1;
     if ((status = emit(&c, &c.now))) goto done;
