@@ -238,6 +238,12 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
     if (status == GSL_SUCCESS) status = event_fn(hi, &e, &fhi);
     /* a root within the discretisation's shift of an end: the extrapolated test may change
        sign just beyond it */
+    if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0) && kind == 3) {
+        /* the verdict changed with no pair through -+1 or leaving the circle: a modulus within
+           the verdict's margin (round-off), not an event */
+        r->pt.event = WHIRL_CYCLE_POINT;
+        return GSL_SUCCESS;
+    }
     if (status == GSL_SUCCESS && (flo < 0) == (fhi < 0)) {
         lo = -ds / 2, hi = 1.5 * ds;
         status = event_fn(lo, &e, &flo);
