@@ -290,8 +290,9 @@ typedef struct whirl_cycle_params {
     double step;      /* the largest arclength step, in the state (positions over L, rates over
                          omega_ref L) and the parameter; 0: 0.05 */
     int max_points;   /* points at most (the start included); 0: 10000 */
-    int steps;        /* Gauss steps per period (>= 8; raised as whirl_periodic_find raises them
-                         at the start); 0: 400 */
+    int steps;        /* Gauss steps per period (>= 8; raised as whirl_periodic_find raises them,
+                         at the start and at both ends of the range); 0: 400. The events are
+                         located with these and twice as many */
     double tol;       /* Newton's test as whirl_periodic_params.tol; 0: 1e-10 */
     int max_iter;     /* Newton's iterations at the start; 0: 30 */
     double event_tol; /* an event's bracket in the arclength; 0: 1e-10 */

@@ -506,7 +506,15 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
     c.p1 = c.p.parameter == WHIRL_CYCLE_OMEGA ? c.base.omega : c.base_amp;
     cycle_set_param(&c, c.p1);
     status = whirl_dyn_project(w->dyn, 0, y);
-    if (status == GSL_SUCCESS) status = periodic_steps_for(w, y, c.p.steps, &c.steps);
+    /* the steps: raised, as whirl_periodic_find raises them, at the range's ends as well (the
+       longest period and the strongest shaking; as the chart does) */
+    const double at[3] = {c.p.min, c.p.max, c.p1};
+    for (int k = 0; k < 3 && status == GSL_SUCCESS; k++) {
+        int need;
+        cycle_set_param(&c, at[k]);
+        status = periodic_steps_for(w, y, c.p.steps, &need);
+        if (status == GSL_SUCCESS && need > c.steps) c.steps = need;
+    }
     /* the start: Newton's method at the fixed parameter, the monodromy at the motion */
     double res;
     int iters;
