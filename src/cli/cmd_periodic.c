@@ -257,6 +257,7 @@ typedef struct branch_rows {
     cli_progress_state line;
     double after;
     int amplitude; /* the parameter: 0 the rate, 1 the amplitude */
+    int max_points; /* the branch's most points */
 } branch_rows;
 
 static int branch_keep(void *data, const whirl_cycle_point *p)
@@ -316,11 +317,14 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
     const double perr = b->amplitude ? len : rate;
     char words[96];
     fprintf(fp, "# periodic branch: pivot %s, links=%d dim=%d start=%s; followed in the %s "
-            "from %s towards %s values, %zu rows (%zu events)\n", o->pivot, o->links, o->dim,
-            o->start, b->amplitude ? "amplitude" : "rate",
+            "from %s towards %s values, %zu rows (%zu events), %s\n", o->pivot, o->links,
+            o->dim, o->start, b->amplitude ? "amplitude" : "rate",
             b->amplitude ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
                          : cli_rate_words(&o->units, o->omega, words, sizeof words),
-            o->up ? "larger" : "smaller", b->n, b->events);
+            o->up ? "larger" : "smaller", b->n, b->events,
+            stopped[0]                                     ? "stopped early"
+            : b->n - b->events >= (size_t)b->max_points ? "ended at --max-points"
+                                                         : "left the range");
     fprintf(fp, "# events: fold (+1, the branch turns back), branch (+1, it goes on), "
             "period-doubling (-1), torus (two pairs meet on the unit circle and leave it); "
             "fold_test = det(M - I), flip_test = det(M + I) as sign |det|^(1/m), torus_test = "
@@ -349,7 +353,8 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
 static int run_branch(const cli_command *cmd, const periodic_options *o, whirl_periodic *w,
                       double *y)
 {
-    branch_rows b = {.after = cli_progress_after(), .amplitude = o->amax_given};
+    branch_rows b = {.after = cli_progress_after(), .amplitude = o->amax_given,
+                     .max_points = o->max_points ? o->max_points : 10000}; /* the default */
     const whirl_cycle_params p = {
         .parameter = b.amplitude ? WHIRL_CYCLE_AMPLITUDE : WHIRL_CYCLE_OMEGA,
         .min = b.amplitude ? o->amp_min : o->omega_min,
