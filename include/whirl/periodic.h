@@ -261,11 +261,14 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
  * large N), and the torus test D = prod_{k < l} (rho_k - rho_l)^2 over the pairs mu, 1/mu of
  * multipliers (rho = mu + 1/mu), which changes sign where two pairs on the unit circle meet and
  * leave it (the conservative chain's torus bifurcation, a Krein collision; a meeting of two
- * real pairs off the circle changes its sign too and is not an event). A sign change of a test along a step is an event, located by Brent's method on the
- * step's arclength, every evaluation a corrected point at s and 2 s steps per period with the
- * test extrapolated (Richardson, order 4): to event_tol in the arclength. A +1 event where the
- * parameter's component of the tangent changes sign is a fold of cycles; one where it does not
- * is a branch point (a symmetric branch that goes on: the vertical chain's +1 tongue edges). */
+ * real pairs off the circle changes its sign too and is not an event). A sign change of a test
+ * along a step is an event, located by Brent's method on the step's arclength, every evaluation
+ * a corrected point at s and 2 s steps per period with the test extrapolated (Richardson, order
+ * 4): to event_tol in the arclength. A +1 event where the parameter's component of the tangent
+ * changes sign is a fold of cycles; one where it does not is a branch point (a symmetric branch
+ * that goes on: the vertical chain's +1 tongue edges). A change of the verdict along a step that
+ * no sign change explains (pairs equal by a symmetry make the tests touch zero: the 3D hanging
+ * chain's two planes) is located on the pairs' rho, the eigenvalues of M + M^-1. */
 
 typedef enum {
     WHIRL_CYCLE_OMEGA = 0,    /* the path's rate omega [sqrt(g/L)] */
@@ -340,8 +343,9 @@ typedef void (*whirl_cycle_tick_fn)(void *data, const whirl_cycle_progress *prog
  * the parameter leaves [min, max] (GSL_SUCCESS), max_points (GSL_SUCCESS), a stop request
  * (WHIRL_EINTERRUPTED: the rows handed out stand), or a corrector that does not converge even
  * at a step of 1e-6 of the largest (GSL_EMAXITER with the residual reached and the parameter).
- * y holds the last point's state and w's path the last point's. GSL_EINVAL on bad parameters
- * (an amplitude continuation of a path with no amplitude among them). tick may be NULL. */
+ * y holds the last point's state and w's path the last point's (a failure at the start: as
+ * whirl_periodic_find's, no row). GSL_EINVAL on bad parameters (an amplitude continuation of a
+ * path that does not move among them). tick may be NULL. */
 WHIRL_API int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *params,
                                   whirl_cycle_row_fn row, void *row_data,
                                   whirl_cycle_tick_fn tick, void *tick_data);
