@@ -323,11 +323,12 @@ static int check_params(cycle *c, const whirl_cycle_params *params)
 static void cycle_free(cycle *c)
 {
     double *bufs[] = {c->y0, c->t0, c->basis0, c->mono0, c->cols0, c->pp0, c->y1, c->t1,
-                      c->basis1, c->mono1, c->cols1, c->pp1, c->basis_j, c->cols_j, c->pp_j, c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero,
-                      c->now.y, c->now.re, c->now.im, c->ev[0].y, c->ev[0].re, c->ev[0].im,
-                      c->ev[1].y, c->ev[1].re, c->ev[1].im, c->ev[2].y, c->ev[2].re, c->ev[2].im};
+                      c->basis1, c->mono1, c->cols1, c->pp1, c->basis_j, c->cols_j, c->pp_j,
+                      c->py, c->tmp, c->a, c->b, c->ys, c->yf, c->zero, c->sr, c->si, c->rr,
+                      c->ri, c->re_t, c->im_t, c->now.y, c->now.re, c->now.im, c->ev[0].y,
+                      c->ev[0].re, c->ev[0].im, c->ev[1].y, c->ev[1].re, c->ev[1].im, c->ev[2].y,
+                      c->ev[2].re, c->ev[2].im};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++) free(bufs[i]);
-    free(c->sr), free(c->si), free(c->rr), free(c->ri), free(c->re_t), free(c->im_t);
     free(c->used);
     if (c->jac) gsl_matrix_free(c->jac);
     if (c->bord) gsl_matrix_free(c->bord);
@@ -343,8 +344,8 @@ static void cycle_free(cycle *c)
 static int cycle_alloc(cycle *c)
 {
     const size_t m = c->m, size = c->size, nb = c->nb;
-    double **sized[] = {&c->y0, &c->t0, &c->y1, &c->t1, &c->py, &c->tmp, &c->a, &c->b, &c->ys, &c->yf,
-                        &c->now.y, &c->ev[0].y, &c->ev[1].y, &c->ev[2].y};
+    double **sized[] = {&c->y0, &c->t0, &c->y1, &c->t1, &c->py, &c->tmp, &c->a, &c->b, &c->ys,
+                        &c->yf, &c->now.y, &c->ev[0].y, &c->ev[1].y, &c->ev[2].y};
     double **msized[] = {&c->pp0, &c->pp1, &c->pp_j, &c->sr, &c->si, &c->rr, &c->ri,
                          &c->re_t, &c->im_t, &c->zero, &c->now.re, &c->now.im, &c->ev[0].re,
                          &c->ev[0].im, &c->ev[1].re, &c->ev[1].im, &c->ev[2].re, &c->ev[2].im};
