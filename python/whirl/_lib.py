@@ -127,6 +127,21 @@ def last_error_in(units: Any) -> str:
     return ffi.string(text).decode("utf-8", "replace")
 
 
+# the unit of each kind of quantity in SI (a Units property of the same name scales it)
+_SI_UNITS = {"rate": "rad/s", "length": "m", "mass": "kg", "time": "s", "force": "N",
+             "drag": "kg/(m s)", "drag2": "kg/m^2", "damping": "kg m^2/s"}
+
+
+def in_units(value: float, kind: str, units: Any) -> str:
+    """A dimensionless quantity of the kind ("rate", "length", "time", ...) as text in the
+    caller's units: "0.002 s" (SI, the shortest form that reads back, to 15 digits) or the
+    number alone (dimensionless)."""
+    if units is None or not units.physical:
+        return repr(float(value))
+    v = float("%.15g" % (value * getattr(units, kind)))
+    return "%r %s" % (v, _SI_UNITS[kind])
+
+
 def check(status: int, context: Optional[str] = None, units: Any = None) -> None:
     """Raises KeyboardInterrupt for WHIRL_EINTERRUPTED, InvalidInput for bad values and
     whirl.Error for any other failure, the library's message in the user's units."""

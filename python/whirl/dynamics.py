@@ -339,7 +339,8 @@ class Simulation:
                             # a stop between two calls: the same message as one inside a call
                             status = lib.WHIRL_EINTERRUPTED
                         if status != _lib.GSL_SUCCESS:
-                            check(status, "Simulation.run at t = %.17g" % (self._t[0] * u.time))
+                            check(status, "Simulation.run at t = %s"
+                                  % _lib.in_units(self._t[0], "time", u), u)
                     x = self._inertial()
                     if xs is not None:
                         xs[k] = x

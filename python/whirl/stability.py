@@ -191,7 +191,9 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     out = ffi.new("whirl_stability_run_result *")
     with _lib.interruptible("stability"):
         status = lib.whirl_stability_run_shape(m, x[0], y[0], z[0], p, out)
-    check(status, "stability", u)
+    # the step asked for, in the caller's units (the run's own steps end at its samples)
+    check(status, "stability" if p.dt == 0 else "stability (%s with dt = %s)"
+          % (ffi.string(name).decode(), _lib.in_units(p.dt, "time", u)), u)
     res.sim_growth = out.sim_growth * u.rate
     res.max_deviation = out.max_deviation
     res.duration = out.duration * u.time
