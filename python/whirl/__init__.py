@@ -17,7 +17,7 @@ from ._lib import (Error, InUse, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, ma
                    methods, set_max_threads, stop_requested)
 from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, critical,
                      equilibria, shape, sweep)
-from .dynamics import Simulation, Trajectory
+from .dynamics import Simulation, StiffWarning, Trajectory
 from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
                         stability_windows)
 from .driven import DrivenShape, SpinUp, driven, spin_up
@@ -31,7 +31,7 @@ __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_re
            "max_threads", "set_max_threads",
            "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "critical",
            "equilibria", "shape",
-           "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
+           "sweep", "Simulation", "StiffWarning", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",
            "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]
