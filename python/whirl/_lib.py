@@ -19,7 +19,8 @@ import numbers
 import os
 import signal
 import threading
-from typing import Any, Callable, ContextManager, Iterator, List, Optional, Sequence, Tuple, TypeVar
+from typing import (Any, Callable, ContextManager, Dict, Iterator, List, Optional, Sequence, Tuple,
+                    TypeVar)
 
 import numpy as np
 from cffi import FFI
@@ -469,7 +470,32 @@ class Result:
     """The equality of whirl's results (dataclasses holding arrays): two results are equal when
     they are of one type and every field holds the same values (same()), so that ``a == b``,
     ``x in results`` and ``assert a == b`` work (the dataclasses' own == would compare arrays
-    into an array, whose truth is ambiguous). Results are mutable: not hashable."""
+    into an array, whose truth is ambiguous). Results are mutable: not hashable.
+    As data: ``as_dict()`` its table, {"omega [rad/s]": array, ...} in the command line's column
+    names with their units (whirl.columns), ``to_pandas()`` the same as a DataFrame whose attrs
+    hold the summary (the numbers of a whole table, as a file's key=value comment) and units."""
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        """(columns, summary) by the command line's names; by default from the fields."""
+        from .columns import split
+        fields = ({f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+                  if dataclasses.is_dataclass(self) else dict(vars(self)))
+        return split(fields)
+
+    def as_dict(self) -> Dict[str, np.ndarray]:
+        """The result's table as {column [unit]: 1-D array}, in the command line's column
+        names (a result of one row, as StabilityResult: arrays of one)."""
+        from .columns import labelled
+        return labelled(self._columns()[0], getattr(self, "units", None))
+
+    def to_pandas(self) -> Any:
+        """as_dict() as a pandas DataFrame; its attrs hold the summary ({name [unit]: value})
+        and "units" (repr of the units). ImportError without pandas."""
+        from .columns import data_frame, label
+        units = getattr(self, "units", None)
+        summary = {label(k, units): v for k, v in self._columns()[1].items()}
+        summary["units"] = repr(units)
+        return data_frame(self.as_dict(), summary)
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):

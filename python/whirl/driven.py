@@ -4,7 +4,7 @@ spin-ups from rest. Positions in the frame co-rotating at omega, the pivot at
 (drive_radius, 0, 0). Units as everywhere (see whirl.Units): dimensionless by default (rates in
 sqrt(g/L), times in sqrt(L/g), lengths in L), SI with length/mass/gravity or units given."""
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -37,6 +37,14 @@ class DrivenShape(_lib.Result):
     top_tension: float
     residual: float
     units: Units = field(default_factory=Units)
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl driven's columns and summary line
+        tip_x, tip_y, tip_z = (float(v) for v in self.tip)
+        return ({"s": self.s, "x": self.x, "y": self.y, "z": self.z, "tension": self.tension},
+                {"omega": self.omega, "mode": self.mode, "node_count": self.node_count,
+                 "tip_x": tip_x, "tip_y": tip_y, "tip_z": tip_z, "tip_r": self.tip_r,
+                 "top_tension": self.top_tension, "residual": self.residual})
 
     def __repr__(self) -> str:
         return "DrivenShape(omega=%g, node_count=%d, tip=(%.6g, %.6g, %.6g))" % (
@@ -138,6 +146,17 @@ class SpinUp(_lib.Result):
     angle: np.ndarray
     x: np.ndarray
     units: Units = field(default_factory=Units)
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # one row of whirl regime's columns (the recorded frames aside); a remaining change
+        # not estimated (inf) is NaN, as the file's empty field
+        tip_x, tip_y, tip_z = (float(v) for v in self.tip)
+        remaining = self.remaining if np.isfinite(self.remaining) else np.nan
+        return ({"state": self.state, "nodes": self.node_count, "period": self.period,
+                 "t_end": self.t_end, "change": self.change, "remaining": remaining,
+                 "shape_error": self.shape_error, "bvp_nodes": self.bvp_node_count,
+                 "lyapunov": self.lyapunov, "tip_x": tip_x, "tip_y": tip_y, "tip_z": tip_z,
+                 "tip_r": self.tip_r, "steps": self.steps}, {})
 
     def __repr__(self) -> str:
         return "SpinUp(state=%s, node_count=%d, t_end=%g)" % (self.state, self.node_count,

@@ -91,6 +91,15 @@ class Trajectory(_lib.Result):
             raise ValueError("the run kept no positions (positions=False)")
         return self.x[:, -1, :]
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl simulate's columns (a scene's [output] columns, all of them)
+        columns: Dict[str, Any] = {"t": self.t}
+        if self.x is not None:
+            columns.update(tip_x=self.x[:, -1, 0], tip_y=self.x[:, -1, 1], tip_z=self.x[:, -1, 2])
+        columns.update(energy=self.energy, jacobi=self.jacobi, lz=self.lz,
+                       constraint=self.constraint, deviation=self.deviation)
+        return columns, {"method": self.method, "interrupted": self.interrupted}
+
     def __repr__(self) -> str:
         span = ", t = %g..%g" % (self.t[0], self.t[-1]) if self.t.size else ""
         return "Trajectory(%d rows%s, %d steps%s)" % (

@@ -31,7 +31,7 @@ class StabilityResult(_lib.Result):
     the link angles (a_1..a_N, b_1..b_N) of whirl/stability.h's chart, in-plane then out-of-plane
     for a planar shape [rad]), each mode scaled to a largest node displacement of 1 [L] (the
     angles alike), and ``krein`` (int, (count,)): +1 / -1 the sign of the energy of a neutral
-    mode of the conservative chain, 0 otherwise."""
+    mode of the conservative chain, 0 otherwise. ``links``: the chain's link count."""
 
     omega: float
     mode: int
@@ -49,6 +49,15 @@ class StabilityResult(_lib.Result):
     displacements: Optional[np.ndarray] = None
     angles: Optional[np.ndarray] = None
     krein: Optional[np.ndarray] = None
+    links: Optional[int] = None
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # one row of whirl stability's columns, then the shape's tip radius and node count
+        return ({"omega": self.omega, "mode": self.mode, "links": self.links,
+                 "eig_growth": self.eig_growth, "sim_growth": self.sim_growth,
+                 "max_deviation": self.max_deviation, "verdict": self.verdict,
+                 "index": self.index, "tip_r": self.tip_r, "nodes": self.node_count},
+                {"duration": self.duration})
 
     def __repr__(self) -> str:
         return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s, index=%d)" % (
@@ -159,7 +168,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
                           node_count=nodes, eig_growth=g * u.rate,
                           eigenvalues=_eigenvalues(ws) * u.rate,
                           verdict=ffi.string(lib.whirl_verdict_name(linear_verdict)).decode(),
-                          index=int(index[0]), units=u)
+                          index=int(index[0]), units=u, links=chain.n)
     _lib.finite("the stability", res.omega, res.tip_r, res.eig_growth, res.eigenvalues)
     along_buf = None
     if modes or along is not None:

@@ -299,6 +299,13 @@ class Shape(_lib.Result):
                               tip_mass=0.0 if self.chain else self.tip_mass,
                               units=self.units)[-1])
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl shape's columns and summary line
+        return ({"s": self.s, "r": self.r, "z": self.z, "tension": self.tension},
+                {"omega": self.omega, "mode": self.mode, "node_count": self.node_count,
+                 "tip_r": self.tip_r, "max_r": self.max_r, "top_tension": self.top_tension,
+                 "depth": self.depth, "tip_mass": self.tip_mass})
+
     def __repr__(self) -> str:
         return ("Shape(omega=%.10g, mode=%d, node_count=%d, tip_r=%.10g, top_tension=%.10g, "
                 "depth=%.10g, %d points)" % (self.omega, self.mode, self.node_count, self.tip_r,
