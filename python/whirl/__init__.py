@@ -15,7 +15,7 @@ one in a child of fork().
 ``whirl.__version__`` is the library's version; ``whirl.LIBRARY_PATH`` the library in use."""
 from ._lib import (Error, InUse, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, max_threads,
                    methods, set_max_threads, stop_requested)
-from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, critical,
+from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, Shapes, critical,
                      equilibria, shape, sweep)
 from .dynamics import Simulation, StiffWarning, Trajectory
 from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
@@ -29,7 +29,7 @@ __version__ = LIBRARY_VERSION
 
 __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
            "max_threads", "set_max_threads",
-           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "critical",
+           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "Shapes", "critical",
            "equilibria", "shape",
            "sweep", "Simulation", "StiffWarning", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",

@@ -300,13 +300,49 @@ def quantity(text: str, name: str, kind: str, units: Any = None) -> float:
     return float(v[0])
 
 
+# pint quantities (where pint is installed): the SI unit each kind is converted to
+_PINT_SI = {"rate": "rad/s", "length": "m", "mass": "kg", "time": "s", "drag": "kg/(m*s)",
+            "drag2": "kg/m**2", "damping": "kg*m**2/s"}
+
+
+def is_pint(value: Any) -> bool:
+    """value is a pint Quantity (without importing pint)."""
+    return type(value).__module__.split(".", 1)[0] == "pint" and hasattr(value, "magnitude")
+
+
+def pint_value(value: Any, name: str, kind: Optional[str], units: Any) -> Any:
+    """A pint Quantity's magnitude in the SI unit of the kind (a float or an array): rates in
+    rad/s, a frequency in hertz read as turns per second, as the command line reads "4Hz" (pint
+    itself would make 4 Hz 4 rad/s: it counts the radian as 1), a rate in rpm, turn/s or rad/s
+    converted by pint; a dimensionless quantity is its number. Like a text with a unit, a unit
+    needs SI units (``units`` physical)."""
+    if value.dimensionless:
+        return value.to("").magnitude
+    if kind not in _PINT_SI:
+        raise TypeError("%s takes a number without a unit, got %s" % (name, value))
+    if units is not None and not units.physical:
+        raise ValueError("%s=%s needs the chain's length: give length= (SI units), or %s as a "
+                         "number in the chain's units" % (name, value, name))
+    try:
+        if kind == "rate" and any(u.endswith("hertz") for u in value._units):
+            return 2 * math.pi * value.to("Hz").magnitude
+        return value.to(_PINT_SI[kind]).magnitude
+    except Exception as e:  # pint's DimensionalityError, without importing pint
+        raise ValueError("%s must be a %s (%s), got %s: %s" % (name, kind, _PINT_SI[kind], value,
+                                                             e)) from None
+
+
 def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = False,
              kind: Optional[str] = None, units: Any = None) -> float:
-    """value as a finite float: a real number, a 0-d array, or (where ``kind`` names the
-    quantity: "rate", "length", "mass", "time") a text with a unit, as the command line takes
-    it (quantity())."""
+    """value as a finite float: a real number, a 0-d array, a pint Quantity (in SI, see
+    pint_value), or (where ``kind`` names the quantity: "rate", "length", "mass", "time") a text
+    with a unit, as the command line takes it (quantity())."""
     if type(value) is not float:  # the common case skips the abstract-class checks
-        if isinstance(value, str) and kind is not None:
+        if is_pint(value):
+            value = pint_value(value, name, kind, units)
+            if isinstance(value, np.ndarray) and value.ndim == 0:
+                value = float(value)
+        if isinstance(value, str) and kind in _QUANTITY:
             value = quantity(value, name, kind, units)
         elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
             value = float(value)
@@ -324,8 +360,21 @@ def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = 
 
 
 def as_array(values: Any, name: str, shape: Optional[Sequence[int]] = None,
-             positive: bool = False, allow_empty: bool = False) -> np.ndarray:
-    """A C-contiguous float64 copy of values (a 1-D sequence, or of the given shape), finite."""
+             positive: bool = False, allow_empty: bool = False, kind: Optional[str] = None,
+             units: Any = None) -> np.ndarray:
+    """A C-contiguous float64 copy of values (a 1-D sequence, or of the given shape), finite.
+    Where ``kind`` names the quantity (as as_float): a pint array, or a sequence whose items
+    are texts with a unit ("4Hz") or pint quantities, in SI."""
+    if is_pint(values):
+        values = pint_value(values, name, kind, units)
+    elif kind is not None and isinstance(values, (list, tuple)):
+        # item by item (numpy would strip a pint item's unit); a nested list goes to numpy
+        if any(isinstance(v, str) or is_pint(v) for v in values):
+            values = [as_float(v, "%s[%d]" % (name, i), kind=kind, units=units)
+                      for i, v in enumerate(values)]
+    elif kind is not None and isinstance(values, np.ndarray) and values.dtype.kind in "OU":
+        values = np.array([as_float(v, "%s[%d]" % (name, i), kind=kind, units=units)
+                           for i, v in enumerate(values.flat)]).reshape(values.shape)
     try:
         a = np.array(values, dtype=np.float64, order="C")
     except (TypeError, ValueError) as e:

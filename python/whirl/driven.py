@@ -57,9 +57,10 @@ def _params(omega: float, drive_radius: float, air_drag: float, air_drag_quadrat
     p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     p.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                               kind="length", units=u) / u.length
-    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     p.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     return p
 
@@ -98,7 +99,8 @@ def driven(omega: float, mode: Optional[int], drive_radius: float, air_drag: flo
         if tip_guess is None:
             status = lib.whirl_driven_mode(c, p, mode, side, info)
         else:
-            guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,)) / u.length
+            guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,), kind="length",
+                                  units=u) / u.length
             status = lib.whirl_driven_solve(c, p, _lib.dptr(guess), info)
     check(status, "driven", u)
     if chain is None:
@@ -191,9 +193,10 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     p.drive_radius = as_float(drive_radius, "drive_radius", positive=True,
                               kind="length", units=u) / u.length
-    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     p.frame = _choice(frame, "frame", _FRAMES)
     keep = []
     if method is not None:

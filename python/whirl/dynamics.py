@@ -161,11 +161,12 @@ class Simulation:
         m.omega = as_float(omega, "omega", kind="rate", units=u) / u.rate
         m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                                   kind="length", units=u) / u.length
-        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                              units=u) / u.drag
         m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                        nonnegative=True) / u.drag2
+                                        nonnegative=True, kind="drag2", units=u) / u.drag2
         m.internal_damping = as_float(internal_damping, "internal_damping",
-                                      nonnegative=True) / u.damping
+                                      nonnegative=True, kind="damping", units=u) / u.damping
         f = _choice(formulation, "formulation", _FORMULATIONS)
         if f == 1:
             links_count(self._chain.n, "links", dense=True)  # O(N^2) memory, O(N^3) work
@@ -221,7 +222,7 @@ class Simulation:
         constraints to 1e-9 relative (whirl.InvalidInput otherwise). The deviation is measured
         from x."""
         u = self.units
-        x = as_array(x, "x", shape=(self.n, 3)).ravel() / u.length
+        x = as_array(x, "x", shape=(self.n, 3), kind="length", units=u).ravel() / u.length
         v = as_array(v, "v", shape=(self.n, 3)).ravel() / (u.length / u.time)
         t = as_float(t, "t", kind="time", units=u) / u.time
         check(lib.whirl_dyn_set_state(self._dyn, t, _lib.dptr(x), _lib.dptr(v),

@@ -77,8 +77,8 @@ def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
     0.02, the command line's --max-residual): no mode explains the points. Ctrl-C raises
     KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
-    r = as_array(r, "r")
-    z = as_array(z, "z", shape=r.shape)
+    r = as_array(r, "r", kind="length", units=u)
+    z = as_array(z, "z", shape=r.shape, kind="length", units=u)
     if r.size < 3:
         raise ValueError("a fit needs at least 3 points, got %d" % r.size)
     m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_defaults())

@@ -72,12 +72,14 @@ def _model(chain: Chain, omega: float, damping: float, drive_radius: float, air_
     m.dim = 3
     m.frame = 1
     m.omega = omega
-    m.internal_damping = as_float(damping, "damping", nonnegative=True) / u.damping
+    m.internal_damping = as_float(damping, "damping", nonnegative=True, kind="damping",
+                                  units=u) / u.damping
     m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                               kind="length", units=u) / u.length
-    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     return m
 
 
@@ -229,9 +231,9 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
     mode = _mode(mode, chain)
-    w = as_array(omega, "omega", positive=True) / u.rate
+    w = as_array(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     _lib.bounded(w.size, "len(omega)", 24 * (chain.n + 1) + 64)
-    damping = as_float(damping, "damping", nonnegative=True) / u.damping
+    damping = as_float(damping, "damping", nonnegative=True, kind="damping", units=u) / u.damping
     n = w.size
     info = ffi.new("whirl_shape_info[]", n)
     exists = np.zeros(n, dtype=np.intc)
