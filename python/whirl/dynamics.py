@@ -70,7 +70,13 @@ class Trajectory(_lib.Result):
     iterations) over the run; ``interrupted`` True when Ctrl-C ended it early (the rows so far;
     only with Simulation.run(..., keep_interrupted=True)); ``method`` the integrator that ran
     it (gsl-msbdf for a stiff run of a Simulation whose method was not named). Units: the
-    Simulation's."""
+    Simulation's.
+    ``x_rotating``: the same positions in the frame co-rotating at the Simulation's omega about
+    the vertical axis z through the pivot's circle (3D; None for a planar model or
+    positions=False): x turned by -phi(t) about z, phi = omega t the phase of the rotation and
+    of the pivot's drive (0 at t = 0, where the two frames coincide; the pivot then sits at
+    (drive_radius, 0, 0)). A steady shape turning at omega, or the hand-swung chain's trailing
+    shape, is fixed there (DrivenShape's frame)."""
 
     t: np.ndarray
     x: Optional[np.ndarray]
@@ -83,6 +89,7 @@ class Trajectory(_lib.Result):
     units: Units = field(default_factory=Units)
     interrupted: bool = False
     method: Optional[str] = None
+    x_rotating: Optional[np.ndarray] = None
 
     @property
     def tip(self) -> np.ndarray:
@@ -91,6 +98,14 @@ class Trajectory(_lib.Result):
             raise ValueError("the run kept no positions (positions=False)")
         return self.x[:, -1, :]
 
+    @property
+    def tip_rotating(self) -> np.ndarray:
+        """The free end's position in the co-rotating frame, shape (len(t), 3) [L]."""
+        if self.x_rotating is None:
+            raise ValueError("the run kept no co-rotating positions (positions=False, or a "
+                             "planar model)")
+        return self.x_rotating[:, -1, :]
+
     def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
         # whirl simulate's columns (a scene's [output] columns, all of them)
         columns: Dict[str, Any] = {"t": self.t}
@@ -98,6 +113,9 @@ class Trajectory(_lib.Result):
             columns.update(tip_x=self.x[:, -1, 0], tip_y=self.x[:, -1, 1], tip_z=self.x[:, -1, 2])
         columns.update(energy=self.energy, jacobi=self.jacobi, lz=self.lz,
                        constraint=self.constraint, deviation=self.deviation)
+        if self.x_rotating is not None:  # the co-rotating frame's tip, after simulate's columns
+            tip = self.x_rotating[:, -1, :]
+            columns.update(tip_x_rot=tip[:, 0], tip_y_rot=tip[:, 1], tip_z_rot=tip[:, 2])
         return columns, {"method": self.method, "interrupted": self.interrupted}
 
     def __repr__(self) -> str:
@@ -402,11 +420,17 @@ class Simulation:
         if rows_f * self.n > WORK_MAX:
             raise ValueError("the run asks for %.3g rows of %d links: links x rows must be <= %g "
                              "(a larger every)" % (rows_f, self.n, WORK_MAX))
+        # the co-rotating positions beside the inertial ones (3D: a planar model has no
+        # co-rotating frame)
+        rotating = positions and self._model.dim == 3
         rows = _lib.bounded(int(rows_f), "rows (t_end / every)",
-                            8 * (5 + (3 * self.n if positions else 0)))
+                            8 * (5 + (3 * self.n if positions else 0)
+                                 + (3 * self.n if rotating else 0)))
         times = t0 + every * np.arange(rows, dtype=np.float64)
         times[-1] = t_end
         xs = np.empty((rows, self.n, 3)) if positions else None
+        xr = np.empty((rows, self.n, 3)) if rotating else None
+        vr = np.empty(3 * self.n)
         diag = np.empty((rows, 4))
         dev = np.empty(rows)
         before = _stats(lib.whirl_integrator_get_stats(it))
@@ -431,6 +455,10 @@ class Simulation:
                     x = self._inertial()
                     if xs is not None:
                         xs[k] = x
+                    if xr is not None:
+                        check(lib.whirl_dyn_get_state(self._dyn, self._t[0], y, 1,
+                                                      _lib.dptr(xr[k].reshape(-1)),
+                                                      _lib.dptr(vr)))
                     check(lib.whirl_dyn_diagnose(self._dyn, self._t[0], y, self._diag))
                     d = self._diag
                     diag[k] = (d.energy, d.jacobi, d.lz, d.constraint)
@@ -448,6 +476,7 @@ class Simulation:
         lz = u.mass * u.length * u.length / u.time
         return Trajectory(t=times[:done] * u.time,
                           x=None if xs is None else xs[:done] * u.length,
+                          x_rotating=None if xr is None else xr[:done] * u.length,
                           energy=diag[:done, 0] * energy, jacobi=diag[:done, 1] * energy,
                           lz=diag[:done, 2] * lz, constraint=diag[:done, 3] * u.length,
                           deviation=dev[:done] * u.length, stats=stats, units=u,
