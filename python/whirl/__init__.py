@@ -8,7 +8,11 @@ Units follow the command line's rule (whirl.Units): dimensionless (chain length,
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
 message (bad values: whirl.InvalidInput, also a ValueError); Ctrl-C during a long call raises
-KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy.
+KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy; as_dict() and
+to_pandas() give their tables in the command line's column names with units (whirl.columns).
+Numbers with a unit may be texts ("4Hz") or pint quantities; shape() over an array of rates
+returns Shapes. A run whose fixed step damping or drag makes stiff takes gsl-msbdf with a
+StiffWarning unless its method was named.
 Threads: a Simulation serves one thread at a time (a second thread gets whirl.InUse); the
 library's own parallel loops take whirl.max_threads() OpenMP threads (whirl.set_max_threads),
 one in a child of fork().
