@@ -28,6 +28,14 @@ def test_pint_scalars_are_the_command_lines_units():
                                                                           **SI)[1]
 
 
+def test_pint_units_of_the_chain():
+    assert whirl.Units(length=60 * Q.cm, mass=50 * Q.g) == U
+    assert whirl.Units(length=0.6, gravity=1 * Q.g0).gravity == 9.80665  # pint's standard g
+    assert whirl.Units(length=0.6, gravity=981 * Q("cm/s^2")).gravity == pytest.approx(9.81)
+    with pytest.raises(ValueError, match=r"gravity must be a gravity \(m/s\*\*2\)"):
+        whirl.Units(length=0.6, gravity=3 * Q.m)
+
+
 def test_pint_drags_damping_and_times():
     kw = dict(links=8, linear=True, units=U)
     assert (whirl.stability(4 * Q.Hz, 2, damping=1e-6 * Q("kg m^2/s"), **kw)

@@ -302,7 +302,7 @@ def quantity(text: str, name: str, kind: str, units: Any = None) -> float:
 
 # pint quantities (where pint is installed): the SI unit each kind is converted to
 _PINT_SI = {"rate": "rad/s", "length": "m", "mass": "kg", "time": "s", "drag": "kg/(m*s)",
-            "drag2": "kg/m**2", "damping": "kg*m**2/s"}
+            "drag2": "kg/m**2", "damping": "kg*m**2/s", "gravity": "m/s**2"}
 
 
 def is_pint(value: Any) -> bool:
@@ -348,7 +348,8 @@ def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = 
             value = float(value)
         elif isinstance(value, bool) or not isinstance(value, numbers.Real):
             raise TypeError("%s must be a real number%s, got %r"
-                            % (name, " (or a text with a unit)" if kind else "", value))
+                            % (name, " (or a text with a unit)" if kind in _QUANTITY
+                               else " (or a pint quantity)" if kind in _PINT_SI else "", value))
         value = float(value)
     if not math.isfinite(value):
         raise ValueError("%s must be finite, got %r" % (name, value))

@@ -50,9 +50,9 @@ class Units:
         for name, value, default in (("length", length, 1.0), ("mass", mass, 1.0),
                                      ("gravity", gravity,
                                       STANDARD_GRAVITY if physical else 1.0)):
-            # a unit in the text ("60cm", "50g") as the command line's --length, --mass
-            v = default if value is None else as_float(
-                value, name, positive=True, kind=None if name == "gravity" else name)
+            # a unit in the text ("60cm", "50g") as the command line's --length, --mass; a
+            # pint quantity (gravity too)
+            v = default if value is None else as_float(value, name, positive=True, kind=name)
             if not UNIT_MIN <= v <= UNIT_MAX:
                 raise ValueError("%s must be in [%g, %g], got %r" % (name, UNIT_MIN, UNIT_MAX,
                                                                      v))
