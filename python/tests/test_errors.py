@@ -181,3 +181,9 @@ def test_driven_error_quotes_eps_and_drag_in_si():
     # dimensionless: the numbers as given
     msg = _message(lambda: whirl.driven(3.0, 1, 0.01, air_drag=3000.0))
     assert "eps = 0.01, drag = 3000, 0" in msg, msg
+
+
+def test_set_steady_error_quotes_rates_in_rad_per_s():
+    sim = whirl.Simulation(10, omega="1Hz", units=SI)
+    msg = _message(lambda: sim.set_steady(3))
+    assert "mode 3 does not exist at omega=6.28318530717959 rad/s" in msg, msg

@@ -211,7 +211,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
             scale = _PARAMS[key]
             v = as_float(value, key, nonnegative=True)
             setattr(p, key, v / getattr(u, scale) if scale else v)
-    check(lib.whirl_regime_check(p), "spin_up")
+    check(lib.whirl_regime_check(p), "spin_up", u)
     from .dynamics import WORK_MAX
     if p.t_max / p.dt * chain.n > WORK_MAX:
         raise ValueError("the spin-up needs %.3g steps of %d links: links x t_max / dt must be "

@@ -286,7 +286,7 @@ class Simulation:
         with _lib.interruptible("set_steady"):
             status = lib.whirl_nlink_solve_nodes(self._chain._c, w, mode, info, _lib.dptr(r),
                                                  _lib.dptr(z), _lib.dptr(tension))
-        check(status, "set_steady")
+        check(status, "set_steady", self.units)
         links = np.empty(3 * self.n)
         check(lib.whirl_shape_links(self.n, _lib.dptr(r), ffi.NULL, _lib.dptr(z),
                                     _lib.dptr(links)))
