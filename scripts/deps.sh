@@ -59,6 +59,8 @@ tests   python3-mpmath     have_py mpmath
 tests   python3-nbclient   have_py nbclient
 tests   python3-ipykernel  have_py ipykernel
 tests   python3-mypy       have_py mypy
+tests   python3-pandas     have_py pandas
+tests   python3-pint       have_py pint
 tests   bsdutils           have_cmd script
 tests   bc                 have_cmd bc
 tests   libclang-rt-dev    test -n "$(ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a 2>/dev/null)"

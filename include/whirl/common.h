@@ -51,11 +51,13 @@ WHIRL_API const char *whirl_last_error(void);
  * status (an _alloc) leaves it here. */
 WHIRL_API int whirl_last_status(void);
 /* The message of the last failure with its physical quantities (rates, lengths, masses, times,
- * forces) in units, into buf (size bytes); returns buf. physical 0: dimensionless, as
- * whirl_last_error() but with a number of 16 or 17 digits written in the fewest that read back
- * to it (whirl_format_double). physical 1: SI for a chain of the length [m], mass [kg] and
- * gravity [m/s^2] given, each quantity followed by its unit (rad/s, or Hz if rate_hz; m, kg, s,
- * N), with the significant digits the message gave it but at least 6 and at most 15. */
+ * forces, drags, damping) in units, into buf (size bytes); returns buf. physical 0:
+ * dimensionless, as whirl_last_error() but with a number of 16 or 17 digits written in the
+ * fewest that read back to it (whirl_format_double). physical 1: SI for a chain of the length
+ * [m], mass [kg] and gravity [m/s^2] given, each quantity followed by its unit (rad/s, or Hz if
+ * rate_hz; m, kg, s, N; kg/(m s) a linear drag per length, kg/m^2 a quadratic one, kg m^2/s an
+ * internal damping), with the significant digits the message gave it but at least 6 and at most
+ * 15. */
 WHIRL_API char *whirl_last_error_in_units(char *buf, size_t size, int physical, double length,
                                           double mass, double gravity, int rate_hz);
 

@@ -113,7 +113,8 @@ WHIRL_API void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned lon
  * GSL_EMAXITER once the adaptive steps reach the cap (whirl_integrator_set_max_steps), with a
  * message naming the cap, the time reached and what to change;
  * WHIRL_EINTERRUPTED once a stop is requested (polled in every right-hand side; t, y at the last
- * completed step). Allocates nothing. */
+ * completed step). Allocates nothing. Its messages type t and the steps as times
+ * (whirl_last_error_in_units scales them by sqrt(L/g), the chain's time). */
 WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
                                        double h, double tol);
 

@@ -24,7 +24,8 @@ import whirl
     (lambda: whirl.shape(3.0, 1, links=-4), ValueError, "links"),
     (lambda: whirl.shape(3.0, 1, length=0), ValueError, "length"),
     (lambda: whirl.sweep([1], [[1.0, 2.0]]), ValueError, "one-dimensional"),
-    (lambda: whirl.sweep([1], ["a"]), TypeError, "omega"),
+    (lambda: whirl.sweep([1], ["a"]), ValueError, r"omega\[0\] must be a number"),
+    (lambda: whirl.sweep([1], [[1.0], "a"]), TypeError, "omega"),
     (lambda: whirl.sweep([1], [1.0, np.nan]), ValueError, "finite"),
     (lambda: whirl.sweep(["x"], [1.0]), TypeError, "mode"),
     (lambda: whirl.Chain(lengths=[0.5, 0.5], masses=[0.5]), ValueError, "shape"),
@@ -132,3 +133,57 @@ def test_ctrl_c_interrupts_a_scene(tmp_path):
         whirl.run_scene(scene)  # hours if not interrupted
     assert time.monotonic() - start < 5
     assert not whirl.stop_requested()
+
+
+# ---- errors in the caller's units ----
+# A 60 cm, 50 g chain: the library works in L, M, g = 1 and types the quantities of its messages,
+# which reach the caller in SI units (rates in rad/s, lengths in m, times in s, drags in
+# kg/(m s)); no dimensionless number of the quantities given may appear.
+SI = whirl.Units(length=0.6, mass=0.05)
+
+
+def _message(call):
+    with pytest.raises(whirl.Error) as e:
+        call()
+    return str(e.value)
+
+
+def test_run_error_quotes_the_step_in_seconds():
+    sim = whirl.Simulation(200, method="gauss2", omega="4Hz", units=SI)
+    sim.set_steady(1)
+    msg = _message(lambda: sim.run(1.0, "100ms"))
+    assert "(step 0.1 s too large" in msg, msg
+    assert "at t = 0 s" in msg, msg
+    # the dimensionless step, 0.1 s / sqrt(L/g), is not quoted
+    assert ("%.6g" % (0.1 / SI.time)) not in msg
+
+
+def test_stability_error_quotes_dt_in_seconds():
+    msg = _message(lambda: whirl.stability("4Hz", 2, 30, damping=1e-3, method="gauss2",
+                                           dt="50ms", periods=5, units=SI))
+    # the step asked for, and the one that failed (the run's steps end at its samples: 40
+    # per period of 0.25 s)
+    assert "gauss2 with dt = 0.05 s" in msg, msg
+    assert "(step 0.005 s too large" in msg, msg
+    msg = _message(lambda: whirl.stability("4Hz", 2, 30, dt="1e-13 s", periods=5, units=SI))
+    assert "steps of 1e-13 s" in msg, msg
+    assert ("%.6g" % (1e-13 / SI.time)) not in msg
+
+
+def test_driven_error_quotes_eps_and_drag_in_si():
+    msg = _message(lambda: whirl.driven("3Hz", 1, "1cm", air_drag=100.0, units=SI))
+    assert "eps = 0.01 m, drag = 100 kg/(m s), 0 kg/m^2" in msg, msg
+    assert ("%.6g" % (0.01 / SI.length)) not in msg
+    msg = _message(lambda: whirl.driven("3Hz", 1, 10.0, units=SI))
+    assert "smaller than the chain length 0.6 m, got 10 m" in msg, msg
+    msg = _message(lambda: whirl.driven("3Hz", 1, 0.01, air_drag=1e7, units=SI))
+    assert "got 10000000 kg/(m s), 0 kg/m^2" in msg, msg
+    # dimensionless: the numbers as given
+    msg = _message(lambda: whirl.driven(3.0, 1, 0.01, air_drag=3000.0))
+    assert "eps = 0.01, drag = 3000, 0" in msg, msg
+
+
+def test_set_steady_error_quotes_rates_in_rad_per_s():
+    sim = whirl.Simulation(10, omega="1Hz", units=SI)
+    msg = _message(lambda: sim.set_steady(3))
+    assert "mode 3 does not exist at omega=6.28318530717959 rad/s" in msg, msg

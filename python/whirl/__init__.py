@@ -8,16 +8,20 @@ Units follow the command line's rule (whirl.Units): dimensionless (chain length,
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
 message (bad values: whirl.InvalidInput, also a ValueError); Ctrl-C during a long call raises
-KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy.
+KeyboardInterrupt naming the call. Results are dataclasses that pickle and copy; as_dict() and
+to_pandas() give their tables in the command line's column names with units (whirl.columns).
+Numbers with a unit may be texts ("4Hz") or pint quantities; shape() over an array of rates
+returns Shapes. A run whose fixed step damping or drag makes stiff takes gsl-msbdf with a
+StiffWarning unless its method was named.
 Threads: a Simulation serves one thread at a time (a second thread gets whirl.InUse); the
 library's own parallel loops take whirl.max_threads() OpenMP threads (whirl.set_max_threads),
 one in a child of fork().
 ``whirl.__version__`` is the library's version; ``whirl.LIBRARY_PATH`` the library in use."""
 from ._lib import (Error, InUse, InvalidInput, LIBRARY_PATH, LIBRARY_VERSION, max_threads,
                    methods, set_max_threads, stop_requested)
-from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, critical,
+from .steady import (STANDARD_GRAVITY, EmptyBranchWarning, Units, Chain, Shape, Shapes, critical,
                      equilibria, shape, sweep)
-from .dynamics import Simulation, Trajectory
+from .dynamics import Simulation, StiffWarning, Trajectory
 from .stability import (StabilityResult, dissipative_windows, stability, stability_map,
                         stability_windows)
 from .driven import DrivenShape, SpinUp, driven, spin_up
@@ -29,9 +33,9 @@ __version__ = LIBRARY_VERSION
 
 __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_requested",
            "max_threads", "set_max_threads",
-           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "critical",
+           "STANDARD_GRAVITY", "EmptyBranchWarning", "Units", "Chain", "Shape", "Shapes", "critical",
            "equilibria", "shape",
-           "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
+           "sweep", "Simulation", "StiffWarning", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",
            "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]

@@ -19,7 +19,8 @@ import numbers
 import os
 import signal
 import threading
-from typing import Any, Callable, ContextManager, Iterator, List, Optional, Sequence, Tuple, TypeVar
+from typing import (Any, Callable, ContextManager, Dict, Iterator, List, Optional, Sequence, Tuple,
+                    TypeVar)
 
 import numpy as np
 from cffi import FFI
@@ -125,6 +126,21 @@ def last_error_in(units: Any) -> str:
     text = lib.whirl_last_error_in_units(buf, len(buf), 1, units.length, units.mass,
                                          units.gravity, 0)
     return ffi.string(text).decode("utf-8", "replace")
+
+
+# the unit of each kind of quantity in SI (a Units property of the same name scales it)
+_SI_UNITS = {"rate": "rad/s", "length": "m", "mass": "kg", "time": "s", "force": "N",
+             "drag": "kg/(m s)", "drag2": "kg/m^2", "damping": "kg m^2/s"}
+
+
+def in_units(value: float, kind: str, units: Any) -> str:
+    """A dimensionless quantity of the kind ("rate", "length", "time", ...) as text in the
+    caller's units: "0.002 s" (SI, the shortest form that reads back, to 15 digits) or the
+    number alone (dimensionless)."""
+    if units is None or not units.physical:
+        return repr(float(value))
+    v = float("%.15g" % (value * getattr(units, kind)))
+    return "%r %s" % (v, _SI_UNITS[kind])
 
 
 def check(status: int, context: Optional[str] = None, units: Any = None) -> None:
@@ -284,19 +300,56 @@ def quantity(text: str, name: str, kind: str, units: Any = None) -> float:
     return float(v[0])
 
 
+# pint quantities (where pint is installed): the SI unit each kind is converted to
+_PINT_SI = {"rate": "rad/s", "length": "m", "mass": "kg", "time": "s", "drag": "kg/(m*s)",
+            "drag2": "kg/m**2", "damping": "kg*m**2/s", "gravity": "m/s**2"}
+
+
+def is_pint(value: Any) -> bool:
+    """value is a pint Quantity (without importing pint)."""
+    return type(value).__module__.split(".", 1)[0] == "pint" and hasattr(value, "magnitude")
+
+
+def pint_value(value: Any, name: str, kind: Optional[str], units: Any) -> Any:
+    """A pint Quantity's magnitude in the SI unit of the kind (a float or an array): rates in
+    rad/s, a frequency in hertz read as turns per second, as the command line reads "4Hz" (pint
+    itself would make 4 Hz 4 rad/s: it counts the radian as 1), a rate in rpm, turn/s or rad/s
+    converted by pint; a dimensionless quantity is its number. Like a text with a unit, a unit
+    needs SI units (``units`` physical)."""
+    if value.dimensionless:
+        return value.to("").magnitude
+    if kind not in _PINT_SI:
+        raise TypeError("%s takes a number without a unit, got %s" % (name, value))
+    if units is not None and not units.physical:
+        raise ValueError("%s=%s needs the chain's length: give length= (SI units), or %s as a "
+                         "number in the chain's units" % (name, value, name))
+    try:
+        if kind == "rate" and any(u.endswith("hertz") for u in value._units):
+            return 2 * math.pi * value.to("Hz").magnitude
+        return value.to(_PINT_SI[kind]).magnitude
+    except Exception as e:  # pint's DimensionalityError, without importing pint
+        raise ValueError("%s must be a %s (%s), got %s: %s" % (name, kind, _PINT_SI[kind], value,
+                                                             e)) from None
+
+
 def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = False,
              kind: Optional[str] = None, units: Any = None) -> float:
-    """value as a finite float: a real number, a 0-d array, or (where ``kind`` names the
-    quantity: "rate", "length", "mass", "time") a text with a unit, as the command line takes
-    it (quantity())."""
+    """value as a finite float: a real number, a 0-d array, a pint Quantity (in SI, see
+    pint_value), or (where ``kind`` names the quantity: "rate", "length", "mass", "time") a text
+    with a unit, as the command line takes it (quantity())."""
     if type(value) is not float:  # the common case skips the abstract-class checks
-        if isinstance(value, str) and kind is not None:
+        if is_pint(value):
+            value = pint_value(value, name, kind, units)
+            if isinstance(value, np.ndarray) and value.ndim == 0:
+                value = float(value)
+        if isinstance(value, str) and kind in _QUANTITY:
             value = quantity(value, name, kind, units)
         elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
             value = float(value)
         elif isinstance(value, bool) or not isinstance(value, numbers.Real):
             raise TypeError("%s must be a real number%s, got %r"
-                            % (name, " (or a text with a unit)" if kind else "", value))
+                            % (name, " (or a text with a unit)" if kind in _QUANTITY
+                               else " (or a pint quantity)" if kind in _PINT_SI else "", value))
         value = float(value)
     if not math.isfinite(value):
         raise ValueError("%s must be finite, got %r" % (name, value))
@@ -308,8 +361,21 @@ def as_float(value: Any, name: str, positive: bool = False, nonnegative: bool = 
 
 
 def as_array(values: Any, name: str, shape: Optional[Sequence[int]] = None,
-             positive: bool = False, allow_empty: bool = False) -> np.ndarray:
-    """A C-contiguous float64 copy of values (a 1-D sequence, or of the given shape), finite."""
+             positive: bool = False, allow_empty: bool = False, kind: Optional[str] = None,
+             units: Any = None) -> np.ndarray:
+    """A C-contiguous float64 copy of values (a 1-D sequence, or of the given shape), finite.
+    Where ``kind`` names the quantity (as as_float): a pint array, or a sequence whose items
+    are texts with a unit ("4Hz") or pint quantities, in SI."""
+    if is_pint(values):
+        values = pint_value(values, name, kind, units)
+    elif kind is not None and isinstance(values, (list, tuple)):
+        # item by item (numpy would strip a pint item's unit); a nested list goes to numpy
+        if any(isinstance(v, str) or is_pint(v) for v in values):
+            values = [as_float(v, "%s[%d]" % (name, i), kind=kind, units=units)
+                      for i, v in enumerate(values)]
+    elif kind is not None and isinstance(values, np.ndarray) and values.dtype.kind in "OU":
+        values = np.array([as_float(v, "%s[%d]" % (name, i), kind=kind, units=units)
+                           for i, v in enumerate(values.flat)]).reshape(values.shape)
     try:
         a = np.array(values, dtype=np.float64, order="C")
     except (TypeError, ValueError) as e:
@@ -454,7 +520,32 @@ class Result:
     """The equality of whirl's results (dataclasses holding arrays): two results are equal when
     they are of one type and every field holds the same values (same()), so that ``a == b``,
     ``x in results`` and ``assert a == b`` work (the dataclasses' own == would compare arrays
-    into an array, whose truth is ambiguous). Results are mutable: not hashable."""
+    into an array, whose truth is ambiguous). Results are mutable: not hashable.
+    As data: ``as_dict()`` its table, {"omega [rad/s]": array, ...} in the command line's column
+    names with their units (whirl.columns), ``to_pandas()`` the same as a DataFrame whose attrs
+    hold the summary (the numbers of a whole table, as a file's key=value comment) and units."""
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        """(columns, summary) by the command line's names; by default from the fields."""
+        from .columns import split
+        fields = ({f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+                  if dataclasses.is_dataclass(self) else dict(vars(self)))
+        return split(fields)
+
+    def as_dict(self) -> Dict[str, np.ndarray]:
+        """The result's table as {column [unit]: 1-D array}, in the command line's column
+        names (a result of one row, as StabilityResult: arrays of one)."""
+        from .columns import labelled
+        return labelled(self._columns()[0], getattr(self, "units", None))
+
+    def to_pandas(self) -> Any:
+        """as_dict() as a pandas DataFrame; its attrs hold the summary ({name [unit]: value})
+        and "units" (repr of the units). ImportError without pandas."""
+        from .columns import data_frame, label
+        units = getattr(self, "units", None)
+        summary = {label(k, units): v for k, v in self._columns()[1].items()}
+        summary["units"] = repr(units)
+        return data_frame(self.as_dict(), summary)
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):

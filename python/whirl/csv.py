@@ -36,6 +36,10 @@ class Table(_lib.Result):
     def __getitem__(self, name: str) -> np.ndarray:
         return self.data[name]
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # the file's columns; the summary's values as the file has them (text)
+        return {name: self.data[name] for name in self.columns}, dict(self.summary)
+
     def __len__(self) -> int:
         return len(next(iter(self.data.values()))) if self.data else 0
 

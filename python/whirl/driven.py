@@ -4,7 +4,7 @@ spin-ups from rest. Positions in the frame co-rotating at omega, the pivot at
 (drive_radius, 0, 0). Units as everywhere (see whirl.Units): dimensionless by default (rates in
 sqrt(g/L), times in sqrt(L/g), lengths in L), SI with length/mass/gravity or units given."""
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -38,6 +38,14 @@ class DrivenShape(_lib.Result):
     residual: float
     units: Units = field(default_factory=Units)
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl driven's columns and summary line
+        tip_x, tip_y, tip_z = (float(v) for v in self.tip)
+        return ({"s": self.s, "x": self.x, "y": self.y, "z": self.z, "tension": self.tension},
+                {"omega": self.omega, "mode": self.mode, "node_count": self.node_count,
+                 "tip_x": tip_x, "tip_y": tip_y, "tip_z": tip_z, "tip_r": self.tip_r,
+                 "top_tension": self.top_tension, "residual": self.residual})
+
     def __repr__(self) -> str:
         return "DrivenShape(omega=%g, node_count=%d, tip=(%.6g, %.6g, %.6g))" % (
             self.omega, self.node_count, *self.tip)
@@ -49,9 +57,10 @@ def _params(omega: float, drive_radius: float, air_drag: float, air_drag_quadrat
     p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     p.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                               kind="length", units=u) / u.length
-    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     p.tip_mass = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     return p
 
@@ -90,7 +99,8 @@ def driven(omega: float, mode: Optional[int], drive_radius: float, air_drag: flo
         if tip_guess is None:
             status = lib.whirl_driven_mode(c, p, mode, side, info)
         else:
-            guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,)) / u.length
+            guess = _lib.as_array(tip_guess, "tip_guess", shape=(2,), kind="length",
+                                  units=u) / u.length
             status = lib.whirl_driven_solve(c, p, _lib.dptr(guess), info)
     check(status, "driven", u)
     if chain is None:
@@ -139,6 +149,17 @@ class SpinUp(_lib.Result):
     x: np.ndarray
     units: Units = field(default_factory=Units)
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # one row of whirl regime's columns (the recorded frames aside); a remaining change
+        # not estimated (inf) is NaN, as the file's empty field
+        tip_x, tip_y, tip_z = (float(v) for v in self.tip)
+        remaining = self.remaining if np.isfinite(self.remaining) else np.nan
+        return ({"state": self.state, "nodes": self.node_count, "period": self.period,
+                 "t_end": self.t_end, "change": self.change, "remaining": remaining,
+                 "shape_error": self.shape_error, "bvp_nodes": self.bvp_node_count,
+                 "lyapunov": self.lyapunov, "tip_x": tip_x, "tip_y": tip_y, "tip_z": tip_z,
+                 "tip_r": self.tip_r, "steps": self.steps}, {})
+
     def __repr__(self) -> str:
         return "SpinUp(state=%s, node_count=%d, t_end=%g)" % (self.state, self.node_count,
                                                               self.t_end)
@@ -172,9 +193,10 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     p.omega = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     p.drive_radius = as_float(drive_radius, "drive_radius", positive=True,
                               kind="length", units=u) / u.length
-    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    p.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     p.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     p.frame = _choice(frame, "frame", _FRAMES)
     keep = []
     if method is not None:
@@ -189,7 +211,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
             scale = _PARAMS[key]
             v = as_float(value, key, nonnegative=True)
             setattr(p, key, v / getattr(u, scale) if scale else v)
-    check(lib.whirl_regime_check(p), "spin_up")
+    check(lib.whirl_regime_check(p), "spin_up", u)
     from .dynamics import WORK_MAX
     if p.t_max / p.dt * chain.n > WORK_MAX:
         raise ValueError("the spin-up needs %.3g steps of %d links: links x t_max / dt must be "

@@ -3,6 +3,7 @@ integrator of the library, and returns its run as numpy arrays.
 
 Units: dimensionless (L = M = g = 1 for the uniform chain; a Chain of your own is in its own
 units): time in sqrt(L/g), positions in L, energy in M g L."""
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional, Tuple, Union
 
@@ -17,6 +18,23 @@ _FORMULATIONS = {"default": 0, "seed": 1}
 # The largest fixed-step run, links x steps: the scenes' bound (WHIRL_SCENE_WORK_MAX, about an
 # hour of work with the implicit methods); and the most output rows x links a run may write.
 WORK_MAX = 1e10
+# Stiff runs. A fixed step h of the explicit methods and of the Gauss methods' fixed-point stage
+# iteration is stable for h x rate below about 2 (rk4: 2.785 on the negative real axis; the Gauss
+# fixed point: 2 sqrt(3) = 3.46), rate the fastest decay the dissipation adds: the limit of
+# whirl_scene_stiff (whirl/scene.h), 2 leaving room for the estimate. Past it, a Simulation whose
+# method was not named runs with GSL's BDF (implicit, a Newton iteration, adaptive) at STIFF_TOL:
+# on 30 links with D = 1e-3 and 1e-2 (h x rate 4.3 and 43 at dt = 0.01) its positions at t = 2
+# are within 3e-8 and 2e-7 L of gauss2 at a 50 times smaller stable step (tol 1e-6: 1.4e-3 L,
+# 1e-8: 2e-6 L), with D = 1e-2 in 1/5 to 1/7 of its processor time (docs/guide/python.md).
+STIFF_H_RATE = 2.0
+STIFF_METHOD = "gsl-msbdf"
+STIFF_TOL = 1e-10
+DEFAULT_METHOD = "gauss2"
+
+
+class StiffWarning(RuntimeWarning):
+    """A run whose fixed step the damping or the drag makes unstable, taken by the implicit
+    method (gsl-msbdf, adaptive) instead of the default one; the message says why."""
 
 
 def _choice(value: Any, name: str, table: Dict[str, int]) -> int:
@@ -50,7 +68,15 @@ class Trajectory(_lib.Result):
     [L]), ``deviation`` (RMS distance of the masses from the start shape, minimised over a
     rotation about z [L]); ``stats`` the integrator's counters (steps, rejected, rhs_evals,
     iterations) over the run; ``interrupted`` True when Ctrl-C ended it early (the rows so far;
-    only with Simulation.run(..., keep_interrupted=True)). Units: the Simulation's."""
+    only with Simulation.run(..., keep_interrupted=True)); ``method`` the integrator that ran
+    it (gsl-msbdf for a stiff run of a Simulation whose method was not named). Units: the
+    Simulation's.
+    ``x_rotating``: the same positions in the frame co-rotating at the Simulation's omega about
+    the vertical axis z through the pivot's circle (3D; None for a planar model or
+    positions=False): x turned by -phi(t) about z, phi = omega t the phase of the rotation and
+    of the pivot's drive (0 at t = 0, where the two frames coincide; the pivot then sits at
+    (drive_radius, 0, 0)). A steady shape turning at omega, or the hand-swung chain's trailing
+    shape, is fixed there (DrivenShape's frame)."""
 
     t: np.ndarray
     x: Optional[np.ndarray]
@@ -62,6 +88,8 @@ class Trajectory(_lib.Result):
     stats: Dict[str, int]
     units: Units = field(default_factory=Units)
     interrupted: bool = False
+    method: Optional[str] = None
+    x_rotating: Optional[np.ndarray] = None
 
     @property
     def tip(self) -> np.ndarray:
@@ -69,6 +97,26 @@ class Trajectory(_lib.Result):
         if self.x is None:
             raise ValueError("the run kept no positions (positions=False)")
         return self.x[:, -1, :]
+
+    @property
+    def tip_rotating(self) -> np.ndarray:
+        """The free end's position in the co-rotating frame, shape (len(t), 3) [L]."""
+        if self.x_rotating is None:
+            raise ValueError("the run kept no co-rotating positions (positions=False, or a "
+                             "planar model)")
+        return self.x_rotating[:, -1, :]
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl simulate's columns (a scene's [output] columns, all of them)
+        columns: Dict[str, Any] = {"t": self.t}
+        if self.x is not None:
+            columns.update(tip_x=self.x[:, -1, 0], tip_y=self.x[:, -1, 1], tip_z=self.x[:, -1, 2])
+        columns.update(energy=self.energy, jacobi=self.jacobi, lz=self.lz,
+                       constraint=self.constraint, deviation=self.deviation)
+        if self.x_rotating is not None:  # the co-rotating frame's tip, after simulate's columns
+            tip = self.x_rotating[:, -1, :]
+            columns.update(tip_x_rot=tip[:, 0], tip_y_rot=tip[:, 1], tip_z_rot=tip[:, 2])
+        return columns, {"method": self.method, "interrupted": self.interrupted}
 
     def __repr__(self) -> str:
         span = ", t = %g..%g" % (self.t[0], self.t[-1]) if self.t.size else ""
@@ -89,7 +137,10 @@ class Simulation:
       air_drag, air_drag_quadratic: linear and quadratic drag per unit length;
       internal_damping: joint damping in the co-rotating frame;
       formulation: "default" (link vectors and tensions, O(N)) or "seed" (angles, O(N^3));
-      method: any of whirl.methods() (gauss2, gauss3, rk4, rk8, gsl-...);
+      method: any of whirl.methods() (gauss2, gauss3, rk4, rk8, gsl-...); not given: gauss2,
+        and gsl-msbdf with tol = 1e-10 (a StiffWarning says why) for a run whose fixed step the
+        damping or drag makes stiff (dt x stiff_rate > 2); a method named keeps it, and a run of
+        it that fails there says so;
       threads: cores for one right-hand side of a long chain (N >= 4096; whirl_dyn_set_threads:
         the same numbers, faster only on idle cores);
       length/mass/gravity or units: the units of every argument and result (see whirl.Units;
@@ -107,7 +158,7 @@ class Simulation:
     def __init__(self, chain: Union[int, Chain], dim: int = 3, frame: str = "inertial",
                  omega: float = 0.0, drive_radius: float = 0.0, air_drag: float = 0.0,
                  air_drag_quadratic: float = 0.0, internal_damping: float = 0.0,
-                 formulation: str = "default", method: str = "gauss2", threads: int = 1,
+                 formulation: str = "default", method: Optional[str] = None, threads: int = 1,
                  length: Optional[float] = None, mass: Optional[float] = None,
                  gravity: Optional[float] = None, units: Optional[Units] = None) -> None:
         self._guard = _lib.Exclusive()
@@ -128,19 +179,21 @@ class Simulation:
         m.omega = as_float(omega, "omega", kind="rate", units=u) / u.rate
         m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                                   kind="length", units=u) / u.length
-        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+        m.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                              units=u) / u.drag
         m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                        nonnegative=True) / u.drag2
+                                        nonnegative=True, kind="drag2", units=u) / u.drag2
         m.internal_damping = as_float(internal_damping, "internal_damping",
-                                      nonnegative=True) / u.damping
+                                      nonnegative=True, kind="damping", units=u) / u.damping
         f = _choice(formulation, "formulation", _FORMULATIONS)
         if f == 1:
             links_count(self._chain.n, "links", dense=True)  # O(N^2) memory, O(N^3) work
         self._dyn = _lib.check_ptr(lib.whirl_dyn_alloc(m, f), lib.whirl_dyn_free)
         check(lib.whirl_dyn_set_threads(self._dyn, as_int(threads, "threads", minimum=1)))
-        self.method = _method(method)
-        self._it = _lib.check_ptr(lib.whirl_integrator_alloc(method.encode(), self._dyn),
+        self.method = _method(DEFAULT_METHOD if method is None else method)
+        self._it = _lib.check_ptr(lib.whirl_integrator_alloc(self.method.encode(), self._dyn),
                                   lib.whirl_integrator_free)
+        self._stiff_it: Any = None  # the implicit method of stiff runs, made when first needed
         self.n = self._chain.n
         self._y = np.zeros(lib.whirl_dyn_size(self._dyn))
         self._t = ffi.new("double *", 0.0)
@@ -187,7 +240,7 @@ class Simulation:
         constraints to 1e-9 relative (whirl.InvalidInput otherwise). The deviation is measured
         from x."""
         u = self.units
-        x = as_array(x, "x", shape=(self.n, 3)).ravel() / u.length
+        x = as_array(x, "x", shape=(self.n, 3), kind="length", units=u).ravel() / u.length
         v = as_array(v, "v", shape=(self.n, 3)).ravel() / (u.length / u.time)
         t = as_float(t, "t", kind="time", units=u) / u.time
         check(lib.whirl_dyn_set_state(self._dyn, t, _lib.dptr(x), _lib.dptr(v),
@@ -233,7 +286,7 @@ class Simulation:
         with _lib.interruptible("set_steady"):
             status = lib.whirl_nlink_solve_nodes(self._chain._c, w, mode, info, _lib.dptr(r),
                                                  _lib.dptr(z), _lib.dptr(tension))
-        check(status, "set_steady")
+        check(status, "set_steady", self.units)
         links = np.empty(3 * self.n)
         check(lib.whirl_shape_links(self.n, _lib.dptr(r), ffi.NULL, _lib.dptr(z),
                                     _lib.dptr(links)))
@@ -282,6 +335,56 @@ class Simulation:
         iterations."""
         return _stats(lib.whirl_integrator_get_stats(self._it))
 
+    @property
+    def stiff_rate(self) -> float:
+        """The fastest decay rate the dissipation adds to the motion [1/T], as the library's
+        default step bounds it (whirl_stability_run_params.dt, whirl/stability.h): kappa =
+        16 D / (min m min l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) for the internal
+        damping D, the drags c, c2 and the drive radius eps; 0 without dissipation. A fixed
+        step dt with dt x stiff_rate > 2 is past the explicit and fixed-point methods."""
+        return self._stiff_rate() * self.units.rate
+
+    def _stiff_rate(self) -> float:
+        m, c = self._model, self._chain
+        lengths, masses = c.lengths, c.masses
+        damping = 16 * m.internal_damping / (masses.min() * lengths.min() ** 2)
+        speed = abs(m.omega) * (m.drive_radius + lengths.sum())
+        drag = float(np.max(lengths / masses)) * (m.air_drag + 2 * m.air_drag_quadratic * speed)
+        return float(damping + drag)
+
+    def _stiff_words(self, dt: float) -> str:
+        """Why the fixed step dt (dimensionless) is past the method: what makes the chain stiff,
+        how fast, and what steps over it."""
+        m, u = self._model, self.units
+        rate = self._stiff_rate()
+        what = ("the internal damping" if 16 * m.internal_damping
+                / (self._chain.masses.min() * self._chain.lengths.min() ** 2) >= rate / 2
+                else "the air drag")
+        return ("%s makes the chain stiff (decay rates up to about %.2g %s, dt x rate = %.2g): "
+                "fixed steps of %s need dt below about %.2g%s, or method='%s' with tol (%g)"
+                % (what, rate * u.rate, "1/s" if u.physical else "sqrt(g/L)", rate * dt,
+                   self.method, STIFF_H_RATE / rate * u.time, " s" if u.physical else "",
+                   STIFF_METHOD, STIFF_TOL))
+
+    def _integrator(self, dt: float, tol: float) -> Tuple[Any, float, str]:
+        """The integrator of a run with the step dt and tolerance tol (dimensionless), the
+        tolerance it takes, and why the step is stiff ("" if it is not, or when the implicit
+        method takes the run)."""
+        if tol > 0 or self.method == STIFF_METHOD or not (
+                self._stiff_rate() * dt > STIFF_H_RATE):
+            return self._it, tol, ""
+        why = self._stiff_words(dt)
+        if self._args["method"] is not None:  # named: kept, and its failure says why
+            return self._it, tol, why
+        if self._stiff_it is None:
+            self._stiff_it = _lib.check_ptr(
+                lib.whirl_integrator_alloc(STIFF_METHOD.encode(), self._dyn),
+                lib.whirl_integrator_free)
+        warnings.warn("Simulation.run: %s; this run takes %s with tol=%g (name a method to "
+                      "keep fixed steps)" % (why, STIFF_METHOD, STIFF_TOL), StiffWarning,
+                      stacklevel=4)
+        return self._stiff_it, STIFF_TOL, ""
+
     @_lib.exclusive
     def run(self, t_end: float, dt: float, every: Optional[float] = None, tol: float = 0.0,
             positions: bool = True, keep_interrupted: bool = False) -> Trajectory:
@@ -306,6 +409,8 @@ class Simulation:
         every = dt if every is None else as_float(every, "every", positive=True,
                                                   kind="time", units=u) / u.time
         tol = as_float(tol, "tol", nonnegative=True)
+        it, tol, stiff = self._integrator(dt, tol)
+        method = self.method if it is self._it else STIFF_METHOD
         span = t_end - t0
         steps = span / dt
         if tol == 0 and steps * self.n > WORK_MAX:
@@ -315,14 +420,20 @@ class Simulation:
         if rows_f * self.n > WORK_MAX:
             raise ValueError("the run asks for %.3g rows of %d links: links x rows must be <= %g "
                              "(a larger every)" % (rows_f, self.n, WORK_MAX))
+        # the co-rotating positions beside the inertial ones (3D: a planar model has no
+        # co-rotating frame)
+        rotating = positions and self._model.dim == 3
         rows = _lib.bounded(int(rows_f), "rows (t_end / every)",
-                            8 * (5 + (3 * self.n if positions else 0)))
+                            8 * (5 + (3 * self.n if positions else 0)
+                                 + (3 * self.n if rotating else 0)))
         times = t0 + every * np.arange(rows, dtype=np.float64)
         times[-1] = t_end
         xs = np.empty((rows, self.n, 3)) if positions else None
+        xr = np.empty((rows, self.n, 3)) if rotating else None
+        vr = np.empty(3 * self.n)
         diag = np.empty((rows, 4))
         dev = np.empty(rows)
-        before = self.stats()
+        before = _stats(lib.whirl_integrator_get_stats(it))
         y = _lib.dptr(self._y)
         ref = _lib.dptr(np.ascontiguousarray(self._ref).ravel())
         chunk = 256 * dt  # fixed steps: at most 256 per call, so that Ctrl-C is seen promptly
@@ -334,36 +445,52 @@ class Simulation:
                         t1 = times[k]
                         if tol == 0 and self._t[0] + chunk * (1 + 1e-9) < t1:
                             t1 = self._t[0] + chunk
-                        status = lib.whirl_integrator_advance(self._it, self._t, y, t1, dt, tol)
+                        status = lib.whirl_integrator_advance(it, self._t, y, t1, dt, tol)
                         if status == _lib.GSL_SUCCESS and _lib.stop_requested():
                             # a stop between two calls: the same message as one inside a call
                             status = lib.WHIRL_EINTERRUPTED
                         if status != _lib.GSL_SUCCESS:
-                            check(status, "Simulation.run at t = %.17g" % (self._t[0] * u.time))
+                            _stiff_check(status, "Simulation.run at t = %s"
+                                         % _lib.in_units(self._t[0], "time", u), u, stiff)
                     x = self._inertial()
                     if xs is not None:
                         xs[k] = x
+                    if xr is not None:
+                        check(lib.whirl_dyn_get_state(self._dyn, self._t[0], y, 1,
+                                                      _lib.dptr(xr[k].reshape(-1)),
+                                                      _lib.dptr(vr)))
                     check(lib.whirl_dyn_diagnose(self._dyn, self._t[0], y, self._diag))
                     d = self._diag
                     diag[k] = (d.energy, d.jacobi, d.lz, d.constraint)
                     dev[k] = lib.whirl_deviation(self.n, _lib.dptr(self._x), ref)
                     if not (np.all(np.isfinite(diag[k])) and np.isfinite(dev[k])):
-                        raise _lib.Error(9, "the state is not finite at t = %.17g"
-                                         % (self._t[0] * u.time))
+                        raise _lib.Error(9, "the state is not finite at t = %s%s" % (
+                            _lib.in_units(self._t[0], "time", u), "; " + stiff if stiff else ""))
                     done = k + 1
         except KeyboardInterrupt:
             if not keep_interrupted:
                 raise
-        after = self.stats()
+        after = _stats(lib.whirl_integrator_get_stats(it))
         stats = {k: after[k] - before[k] for k in after}
         energy = u.mass * u.gravity * u.length
         lz = u.mass * u.length * u.length / u.time
         return Trajectory(t=times[:done] * u.time,
                           x=None if xs is None else xs[:done] * u.length,
+                          x_rotating=None if xr is None else xr[:done] * u.length,
                           energy=diag[:done, 0] * energy, jacobi=diag[:done, 1] * energy,
                           lz=diag[:done, 2] * lz, constraint=diag[:done, 3] * u.length,
                           deviation=dev[:done] * u.length, stats=stats, units=u,
-                          interrupted=done < rows)
+                          interrupted=done < rows, method=method)
+
+
+def _stiff_check(status: int, context: str, units: Units, stiff: str) -> None:
+    """check(status, context, units), a failure of a stiff step (stiff: why) saying why."""
+    try:
+        check(status, context, units)
+    except _lib.Error as e:
+        if not stiff:
+            raise
+        raise _lib.error(e.status, "%s; %s" % (e.message, stiff)) from None
 
 
 def _simulation_from(chain: Chain, args: Dict[str, Any], units: Units,

@@ -1,6 +1,6 @@
 """Fitting the rotation rate and mode to a measured shape (whirl/optimize.h, ``whirl fit``)."""
 from dataclasses import dataclass, field
-from typing import Any, Optional, Tuple, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
@@ -28,6 +28,12 @@ class FitResult(_lib.Result):
     evaluations: int
     failures: int
     units: Units = field(default_factory=Units)
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl fit's row, then the fit's own counts
+        return ({"omega": self.omega, "omega_err": self.omega_err, "mode": self.mode,
+                 "rms_residual": self.rms_residual, "mirrored": self.mirrored,
+                 "evaluations": self.evaluations, "failures": self.failures}, {})
 
     def __repr__(self) -> str:
         return "FitResult(omega=%.8g +- %.2g, mode=%d, rms_residual=%.3g)" % (
@@ -71,8 +77,8 @@ def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
     0.02, the command line's --max-residual): no mode explains the points. Ctrl-C raises
     KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
-    r = as_array(r, "r")
-    z = as_array(z, "z", shape=r.shape)
+    r = as_array(r, "r", kind="length", units=u)
+    z = as_array(z, "z", shape=r.shape, kind="length", units=u)
     if r.size < 3:
         raise ValueError("a fit needs at least 3 points, got %d" % r.size)
     m = ffi.new("whirl_fit_model *", lib.whirl_fit_model_defaults())

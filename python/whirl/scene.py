@@ -3,7 +3,7 @@
 
 Units: the scene's own ([units] system = dimensionless or SI; SceneRun.units says which)."""
 import os
-from typing import Any, Dict, List, Optional, Sequence, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -35,6 +35,11 @@ class SceneRun(_lib.Result):
         self.stats = {k: getattr(res.stats, k)
                       for k in ("steps", "rejected", "rhs_evals", "iterations")}
         self.units = units
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # the scene's columns, as whirl simulate writes them
+        return ({name: self.data[name] for name in self.columns},
+                {"t": self.t, "stopped": self.stopped, "deviation": self.deviation})
 
     def __getitem__(self, name: str) -> np.ndarray:
         return self.data[name]

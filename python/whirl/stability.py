@@ -31,7 +31,7 @@ class StabilityResult(_lib.Result):
     the link angles (a_1..a_N, b_1..b_N) of whirl/stability.h's chart, in-plane then out-of-plane
     for a planar shape [rad]), each mode scaled to a largest node displacement of 1 [L] (the
     angles alike), and ``krein`` (int, (count,)): +1 / -1 the sign of the energy of a neutral
-    mode of the conservative chain, 0 otherwise."""
+    mode of the conservative chain, 0 otherwise. ``links``: the chain's link count."""
 
     omega: float
     mode: int
@@ -49,6 +49,15 @@ class StabilityResult(_lib.Result):
     displacements: Optional[np.ndarray] = None
     angles: Optional[np.ndarray] = None
     krein: Optional[np.ndarray] = None
+    links: Optional[int] = None
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # one row of whirl stability's columns, then the shape's tip radius and node count
+        return ({"omega": self.omega, "mode": self.mode, "links": self.links,
+                 "eig_growth": self.eig_growth, "sim_growth": self.sim_growth,
+                 "max_deviation": self.max_deviation, "verdict": self.verdict,
+                 "index": self.index, "tip_r": self.tip_r, "nodes": self.node_count},
+                {"duration": self.duration})
 
     def __repr__(self) -> str:
         return "StabilityResult(omega=%g, mode=%d, eig_growth=%.6g, verdict=%s, index=%d)" % (
@@ -63,12 +72,14 @@ def _model(chain: Chain, omega: float, damping: float, drive_radius: float, air_
     m.dim = 3
     m.frame = 1
     m.omega = omega
-    m.internal_damping = as_float(damping, "damping", nonnegative=True) / u.damping
+    m.internal_damping = as_float(damping, "damping", nonnegative=True, kind="damping",
+                                  units=u) / u.damping
     m.drive_radius = as_float(drive_radius, "drive_radius", nonnegative=True,
                               kind="length", units=u) / u.length
-    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True) / u.drag
+    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag",
+                          units=u) / u.drag
     m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic",
-                                    nonnegative=True) / u.drag2
+                                    nonnegative=True, kind="drag2", units=u) / u.drag2
     return m
 
 
@@ -159,7 +170,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
                           node_count=nodes, eig_growth=g * u.rate,
                           eigenvalues=_eigenvalues(ws) * u.rate,
                           verdict=ffi.string(lib.whirl_verdict_name(linear_verdict)).decode(),
-                          index=int(index[0]), units=u)
+                          index=int(index[0]), units=u, links=chain.n)
     _lib.finite("the stability", res.omega, res.tip_r, res.eig_growth, res.eigenvalues)
     along_buf = None
     if modes or along is not None:
@@ -191,7 +202,9 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     out = ffi.new("whirl_stability_run_result *")
     with _lib.interruptible("stability"):
         status = lib.whirl_stability_run_shape(m, x[0], y[0], z[0], p, out)
-    check(status, "stability", u)
+    # the step asked for, in the caller's units (the run's own steps end at its samples)
+    check(status, "stability" if p.dt == 0 else "stability (%s with dt = %s)"
+          % (ffi.string(name).decode(), _lib.in_units(p.dt, "time", u)), u)
     res.sim_growth = out.sim_growth * u.rate
     res.max_deviation = out.max_deviation
     res.duration = out.duration * u.time
@@ -218,9 +231,9 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
     mode = _mode(mode, chain)
-    w = as_array(omega, "omega", positive=True) / u.rate
+    w = as_array(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     _lib.bounded(w.size, "len(omega)", 24 * (chain.n + 1) + 64)
-    damping = as_float(damping, "damping", nonnegative=True) / u.damping
+    damping = as_float(damping, "damping", nonnegative=True, kind="damping", units=u) / u.damping
     n = w.size
     info = ffi.new("whirl_shape_info[]", n)
     exists = np.zeros(n, dtype=np.intc)

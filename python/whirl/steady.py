@@ -50,9 +50,9 @@ class Units:
         for name, value, default in (("length", length, 1.0), ("mass", mass, 1.0),
                                      ("gravity", gravity,
                                       STANDARD_GRAVITY if physical else 1.0)):
-            # a unit in the text ("60cm", "50g") as the command line's --length, --mass
-            v = default if value is None else as_float(
-                value, name, positive=True, kind=None if name == "gravity" else name)
+            # a unit in the text ("60cm", "50g") as the command line's --length, --mass; a
+            # pint quantity (gravity too)
+            v = default if value is None else as_float(value, name, positive=True, kind=name)
             if not UNIT_MIN <= v <= UNIT_MAX:
                 raise ValueError("%s must be in [%g, %g], got %r" % (name, UNIT_MIN, UNIT_MAX,
                                                                      v))
@@ -299,6 +299,13 @@ class Shape(_lib.Result):
                               tip_mass=0.0 if self.chain else self.tip_mass,
                               units=self.units)[-1])
 
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl shape's columns and summary line
+        return ({"s": self.s, "r": self.r, "z": self.z, "tension": self.tension},
+                {"omega": self.omega, "mode": self.mode, "node_count": self.node_count,
+                 "tip_r": self.tip_r, "max_r": self.max_r, "top_tension": self.top_tension,
+                 "depth": self.depth, "tip_mass": self.tip_mass})
+
     def __repr__(self) -> str:
         return ("Shape(omega=%.10g, mode=%d, node_count=%d, tip_r=%.10g, top_tension=%.10g, "
                 "depth=%.10g, %d points)" % (self.omega, self.mode, self.node_count, self.tip_r,
@@ -332,20 +339,57 @@ SHORT_LINKS = 1000
 SHORT_POINTS = 100000
 
 
-def shape(omega: float, mode: int, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
+class Shapes(List[Shape]):
+    """The shapes of shape(omega=array): a list of Shape, one per rate in the order given, with
+    ``as_dict()`` and ``to_pandas()`` of their summaries in the columns of ``whirl sweep``
+    (omega, mode, tip_r, max_r, top_tension, depth, nodes), labelled with their units."""
+
+    def as_dict(self) -> Dict[str, np.ndarray]:
+        from .columns import labelled
+        rows = {"omega": [s.omega for s in self], "mode": [s.mode for s in self],
+                "tip_r": [s.tip_r for s in self], "max_r": [s.max_r for s in self],
+                "top_tension": [s.top_tension for s in self], "depth": [s.depth for s in self],
+                "nodes": [s.node_count for s in self]}
+        return labelled({k: np.array(v) for k, v in rows.items()},
+                        self[0].units if self else Units())
+
+    def to_pandas(self) -> Any:
+        from .columns import data_frame
+        return data_frame(self.as_dict(), {"units": repr(self[0].units if self else Units())})
+
+
+def _many(value: Any) -> bool:
+    """value is a sequence of rates (a list, a 1-D array, a pint array), not one."""
+    if _lib.is_pint(value):
+        value = value.magnitude
+    return isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim > 0)
+
+
+def shape(omega: Any, mode: int, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
           points: int = 201, tip_r_guess: float = 0.0, length: Optional[float] = None,
           mass: Optional[float] = None, gravity: Optional[float] = None,
-          units: Optional[Units] = None) -> Shape:
+          units: Optional[Units] = None) -> Any:
     """The steady shape of mode ``mode`` (node count: the pivot plus mode-1 axis crossings) at
     the rotation rate ``omega`` [sqrt(g/L), or rad/s with length/mass/gravity given].
 
     links=None: the continuous chain sampled at ``points`` equally spaced arclengths (default
     201, at most 10^7); links=N (or a Chain): the exact relative equilibrium of the N-link
     chain, one point per node. tip_mass [M, or kg]: a point mass at the free end. tip_r_guess
-    > 0 seeds the root search (continuation). Returns a Shape. Raises whirl.InvalidInput (a
+    > 0 seeds the root search (continuation). Returns a Shape; for a sequence of rates (a list,
+    a 1-D array, a pint array; items may be texts with a unit, "4Hz") a Shapes, the list of
+    their shapes in the order given (each solved as alone). Raises whirl.InvalidInput (a
     ValueError; status_name "EDOM") if the mode does not exist at omega, naming its critical
     rate. Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
+    if _many(omega):
+        rates = as_array(omega, "omega", positive=True, kind="rate", units=u)
+        # each shape keeps four arrays of its points (or nodes)
+        size = (as_int(points, "points", minimum=2) if links is None
+                else links.n + 1 if isinstance(links, Chain) else links_count(links) + 1)
+        _lib.bounded(rates.size, "len(omega)", 32 * size + 256)
+        with _lib.interruptible("shape"):
+            return Shapes(shape(float(w), mode, links, tip_mass, points, tip_r_guess, units=u)
+                          for w in rates)
     w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True,
@@ -431,7 +475,7 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
         modes = [int(modes)]
     assert not isinstance(modes, (bool, int))
-    w = as_array(omega, "omega", positive=True) / u.rate
+    w = as_array(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     _lib.bounded(w.size, "len(omega)", 256 + (0 if links is None else 64), hard=POINTS_MAX)
     m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     chain = _chain(links, m)

@@ -102,6 +102,9 @@ static double quantity_scale(char kind, double length, double mass, double gravi
     case 'm': *unit = "kg"; return mass;
     case 't': *unit = "s"; return 1 / rate;
     case 'F': *unit = "N"; return mass * gravity;
+    case 'd': *unit = "kg/(m s)"; return mass * rate / length;
+    case 'q': *unit = "kg/m^2"; return mass / (length * length);
+    case 'D': *unit = "kg m^2/s"; return mass * length * length * rate;
     default: *unit = ""; return 1;
     }
 }

@@ -27,6 +27,9 @@ int whirl_fail(int status, const char *fmt, ...)
 #define WHIRL_Q_MASS WHIRL_Q_MARK "m"   /* a mass, in M */
 #define WHIRL_Q_TIME WHIRL_Q_MARK "t"   /* a time, in sqrt(L/g) */
 #define WHIRL_Q_FORCE WHIRL_Q_MARK "F"  /* a force, in M g */
+#define WHIRL_Q_DRAG WHIRL_Q_MARK "d"   /* a linear drag per unit length, in M sqrt(g/L) / L */
+#define WHIRL_Q_DRAG2 WHIRL_Q_MARK "q"  /* a quadratic drag per unit length, in M / L^2 */
+#define WHIRL_Q_DAMPING WHIRL_Q_MARK "D" /* an internal damping, in M L^2 sqrt(g/L) */
 
 /* This thread's last message with its marks: for a message that quotes it,
  * whirl_fail(status, "the start: %s", whirl_error_marked()), so that its quantities stay typed. */

@@ -444,7 +444,9 @@ static int cart_rhs(whirl_dyn *d, double t, const double *y, double *dydt)
     solve_multipliers(d, t, y, &f);
     const int bad = d->dim == 3 ? accelerations(d, &f, y, dydt, 3)
                                 : accelerations(d, &f, y, dydt, 2);
-    if (bad) return whirl_fail(GSL_EBADFUNC, "the right-hand side is not finite at t = %.17g", t);
+    if (bad)
+        return whirl_fail(GSL_EBADFUNC, "the right-hand side is not finite at t = " WHIRL_Q_TIME
+                          "%.17g", t);
     return GSL_SUCCESS;
 }
 

@@ -230,7 +230,8 @@ static int seed_rhs(whirl_dyn *d, double t, const double *y, double *dydt)
     memcpy(dydt, y + kc, kc * sizeof *dydt);
     memcpy(dydt + kc, d->gen_force, kc * sizeof *dydt);
     if (!whirl_dyn_all_finite(dydt, d->size))
-        return whirl_fail(GSL_EBADFUNC, "the right-hand side is not finite at t = %.17g", t);
+        return whirl_fail(GSL_EBADFUNC, "the right-hand side is not finite at t = " WHIRL_Q_TIME
+                          "%.17g", t);
     return GSL_SUCCESS;
 }
 

@@ -26,7 +26,8 @@ int whirl_integrator_rhs(whirl_integrator *it, double t, const double *y, double
 {
     /* the stop request, polled inside every step (one right-hand side is far below 0.1 s) */
     if (whirl_stop_requested())
-        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at t = %.17g", t);
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at t = " WHIRL_Q_TIME "%.17g",
+                          t);
     it->stats.rhs_evals++;
     return it->sys.rhs(t, y, dydt, it->sys.params);
 }
@@ -202,7 +203,8 @@ static int project(whirl_integrator *it, double t, double *y)
     int status = it->sys.project ? it->sys.project(t, y, it->sys.params) : GSL_SUCCESS;
     if (status != GSL_SUCCESS) return status;
     if (!all_finite(y, it->size))
-        return whirl_fail(GSL_EBADFUNC, "the state is not finite at t = %.17g", t);
+        return whirl_fail(GSL_EBADFUNC, "the state is not finite at t = " WHIRL_Q_TIME "%.17g",
+                          t);
     return GSL_SUCCESS;
 }
 
@@ -210,8 +212,10 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
                              double tol)
 {
     if (!(isfinite(*t) && isfinite(t1) && t1 >= *t))
-        return whirl_fail(GSL_EINVAL, "cannot advance from t = %g to t1 = %g", *t, t1);
-    if (!(isfinite(h) && h > 0)) return whirl_fail(GSL_EINVAL, "step h must be > 0, got %g", h);
+        return whirl_fail(GSL_EINVAL, "cannot advance from t = " WHIRL_Q_TIME "%g to t1 = "
+                          WHIRL_Q_TIME "%g", *t, t1);
+    if (!(isfinite(h) && h > 0))
+        return whirl_fail(GSL_EINVAL, "step h must be > 0, got " WHIRL_Q_TIME "%.17g", h);
     if (!(isfinite(tol) && tol >= 0))
         return whirl_fail(GSL_EINVAL, "tolerance must be >= 0, got %g", tol);
     if (tol > 0 && tol < WHIRL_TOL_MIN)
@@ -252,8 +256,9 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
             memcpy(it->backup, y, it->size * sizeof *y);
             if (it->adaptive_steps + it->stats.rejected >= it->max_steps) {
                 status = whirl_fail(GSL_EMAXITER, "%s: %lu adaptive steps (the cap) reached t = "
-                                    "%.17g only, of %.17g: loosen the tolerance %g, shorten the "
-                                    "run or raise the cap (whirl_integrator_set_max_steps)",
+                                    WHIRL_Q_TIME "%.17g only, of " WHIRL_Q_TIME "%.17g: loosen "
+                                    "the tolerance %g, shorten the run or raise the cap "
+                                    "(whirl_integrator_set_max_steps)",
                                     it->method->name, it->max_steps, ta, t1, tol);
                 break;
             }
@@ -261,10 +266,11 @@ int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double 
             if (status == GSL_SUCCESS) status = project(it, *t, y);
             const double h_min = WHIRL_STEP_MIN_ULPS * DBL_EPSILON * fmax(fabs(ta), 1);
             if (status == GSL_SUCCESS && *t < t1 && (*t - ta < h_min || hh < h_min))
-                status = whirl_fail(GSL_EFAILED, "%s: the adaptive step fell to %g at t = %.17g, "
-                                    "below %d units of round-off of t: the tolerance %g cannot "
-                                    "be met here (raise it, or use an implicit method for a stiff "
-                                    "run)", it->method->name, fmin(*t - ta, hh), ta,
+                status = whirl_fail(GSL_EFAILED, "%s: the adaptive step fell to " WHIRL_Q_TIME
+                                    "%g at t = " WHIRL_Q_TIME "%.17g, below %d units of "
+                                    "round-off of t: the tolerance %g cannot be met here (raise "
+                                    "it, or use an implicit method for a stiff run)",
+                                    it->method->name, fmin(*t - ta, hh), ta,
                                     WHIRL_STEP_MIN_ULPS, tol);
             if (status != GSL_SUCCESS) {
                 *t = ta;

@@ -227,17 +227,20 @@ static int gauss_step(whirl_integrator *it, double t, double h, double *y)
             converged = 1;
             break;
         }
+        /* the step in 17 digits: a step given in other units reads back in them (in 6 the
+         * rounding shows: 0.1 s over sqrt(L/g) and back is 0.0999999 s) */
         if (!(delta <= 1e3 * best))
             return whirl_fail(GSL_EMAXITER,
-                              "the Gauss stage iteration diverges at t = %.17g (step %g too "
-                              "large for the fastest mode)",
+                              "the Gauss stage iteration diverges at t = " WHIRL_Q_TIME
+                              "%.17g (step " WHIRL_Q_TIME "%.17g too large for the fastest mode)",
                               t, h);
         best = fmin(best, delta);
         prev = delta;
     }
     if (!converged)
         return whirl_fail(GSL_EMAXITER,
-                          "the Gauss stage iteration did not converge in %d sweeps at t = %.17g",
+                          "the Gauss stage iteration did not converge in %d sweeps at t = "
+                          WHIRL_Q_TIME "%.17g",
                           GAUSS_MAX_ITER, t);
     /* update with compensated summation: y += delta, comp carries the rounding */
     double *q = y, *v = y + m;

@@ -116,7 +116,8 @@ static int gsl_status(gsl_state *g, int status, double t)
     }
     if (status == GSL_SUCCESS) return GSL_SUCCESS;
     if (status == GSL_EBADFUNC) return status; /* message from the right-hand side */
-    return whirl_fail(status, "the GSL stepper failed at t = %.17g (%s)", t, gsl_strerror(status));
+    return whirl_fail(status, "the GSL stepper failed at t = " WHIRL_Q_TIME "%.17g (%s)", t,
+                      gsl_strerror(status));
 }
 
 static int gsl_fixed_step(whirl_integrator *it, double t, double h, double *y)

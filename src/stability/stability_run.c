@@ -89,7 +89,8 @@ static int check_params(const whirl_model *model, const whirl_stability_run_para
     if (!(p->perturbation > 0 && p->perturbation < 1))
         return whirl_fail(GSL_EINVAL, "perturbation must be in (0, 1), got %g", p->perturbation);
     if (!(isfinite(p->dt) && p->dt >= 0))
-        return whirl_fail(GSL_EINVAL, "step must be >= 0 (0: default), got %g", p->dt);
+        return whirl_fail(GSL_EINVAL, "step must be >= 0 (0: default), got " WHIRL_Q_TIME "%.17g",
+                          p->dt);
     if (p->method == NULL) return whirl_fail(GSL_EINVAL, "no integrator method");
     return GSL_SUCCESS;
 }
@@ -240,9 +241,9 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
     if (!(h > 0) && (status = whirl_default_step(&m, tension, params->method, &h))) goto done;
     const double period = 2 * M_PI / m.omega, t_end = params->periods * period;
     if (!(t_end / h <= RUN_STEPS_MAX)) {
-        status = whirl_fail(GSL_EINVAL, "%g periods in steps of %g are %.3g steps, more than %g: "
-                            "fewer periods or a larger step", params->periods, h, t_end / h,
-                            RUN_STEPS_MAX);
+        status = whirl_fail(GSL_EINVAL, "%g periods in steps of " WHIRL_Q_TIME "%.17g are %.3g "
+                            "steps, more than %g: fewer periods or a larger step",
+                            params->periods, h, t_end / h, RUN_STEPS_MAX);
         goto done;
     }
     const double limit = LINEAR_LIMIT * whirl_chain_total_length(c);
@@ -262,7 +263,7 @@ int whirl_stability_run_shape(const whirl_model *model, const double *nx, const 
             goto done;
         const double d = deviation(&m, n, x_now, ref), ratio = d / d0;
         if (!isfinite(ratio)) {
-            status = whirl_fail(GSL_ERANGE, "non-finite deviation at t = %g", t);
+            status = whirl_fail(GSL_ERANGE, "non-finite deviation at t = " WHIRL_Q_TIME "%g", t);
             goto done;
         }
         if (params->observe && (status = params->observe(t, ratio, params->observe_data)))

@@ -360,17 +360,20 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
         return whirl_fail(GSL_EINVAL, "omega must be positive and finite, got %g", p->omega);
     if (whirl_check_omega_max(p->omega) != GSL_SUCCESS) return GSL_EINVAL;
     if (!(isfinite(p->drive_radius) && p->drive_radius >= 0))
-        return whirl_fail(GSL_EINVAL, "eps must be >= 0 and finite, got %g", p->drive_radius);
+        return whirl_fail(GSL_EINVAL, "eps must be >= 0 and finite, got " WHIRL_Q_LENGTH "%g",
+                          p->drive_radius);
     if (!(isfinite(p->air_drag) && p->air_drag >= 0))
-        return whirl_fail(GSL_EINVAL, "drag must be >= 0 and finite, got %g", p->air_drag);
+        return whirl_fail(GSL_EINVAL, "drag must be >= 0 and finite, got " WHIRL_Q_DRAG "%g",
+                          p->air_drag);
     if (!(isfinite(p->air_drag_quadratic) && p->air_drag_quadratic >= 0))
-        return whirl_fail(GSL_EINVAL, "quadratic drag must be >= 0 and finite, got %g",
-                          p->air_drag_quadratic);
+        return whirl_fail(GSL_EINVAL, "quadratic drag must be >= 0 and finite, got " WHIRL_Q_DRAG2
+                          "%g", p->air_drag_quadratic);
     if (p->air_drag > DRAG_MAX || p->air_drag_quadratic > DRAG_MAX)
-        return whirl_fail(GSL_EINVAL, "drag coefficients above %g are refused (got %g, %g): the "
-                          "continuation from the drag-free shape takes ever longer and is lost "
-                          "far below (near 1.5e3 at omega 3, eps 0.01)", DRAG_MAX, p->air_drag,
-                          p->air_drag_quadratic);
+        return whirl_fail(GSL_EINVAL, "drag coefficients above %g are refused (got " WHIRL_Q_DRAG
+                          "%.17g, " WHIRL_Q_DRAG2 "%.17g): the bound is in the chain's units "
+                          "(M sqrt(g/L) / L and M / L^2); the continuation from the drag-free "
+                          "shape takes ever longer and is lost far below (near 1.5e3 at omega "
+                          "3, eps 0.01)", DRAG_MAX, p->air_drag, p->air_drag_quadratic);
     if (whirl_check_tip_mass(p->tip_mass) != GSL_SUCCESS) return GSL_EINVAL;
     if (chain && p->tip_mass != 0)
         return whirl_fail(GSL_EINVAL, "tip mass must be 0 with an N-link chain (add it to the "
@@ -379,7 +382,8 @@ static int check_params(const whirl_chain *chain, const whirl_driven_params *p)
         return whirl_fail(GSL_EDOM, "with eps = 0 the pivot cannot balance the torque of the air "
                           "drag: only the hanging chain is steady");
     if (p->drive_radius >= 1)
-        return whirl_fail(GSL_EINVAL, "eps must be smaller than the chain length, got %g", p->drive_radius);
+        return whirl_fail(GSL_EINVAL, "eps must be smaller than the chain length " WHIRL_Q_LENGTH
+                          "1, got " WHIRL_Q_LENGTH "%.17g", p->drive_radius);
     return GSL_SUCCESS;
 }
 
@@ -546,8 +550,10 @@ static int homotopy(problem *pb, double *u, double eps, double c, double c2)
             dl = fmin(1, 2 * dl);
         } else if ((dl *= 0.5) < HOMOTOPY_MIN_STEP) {
             return whirl_fail(GSL_EDOM, "the shape could not be followed from the free one to "
-                              "eps = %g, drag = %g, %g (lost at eps = %g, drag = %g, %g)", eps, c,
-                              c2, pb->p.drive_radius, pb->p.air_drag, pb->p.air_drag_quadratic);
+                              "eps = " WHIRL_Q_LENGTH "%.17g, drag = " WHIRL_Q_DRAG "%.17g, "
+                              WHIRL_Q_DRAG2 "%.17g (lost at eps = " WHIRL_Q_LENGTH "%g, drag = "
+                              WHIRL_Q_DRAG "%g, " WHIRL_Q_DRAG2 "%g)", eps, c, c2,
+                              pb->p.drive_radius, pb->p.air_drag, pb->p.air_drag_quadratic);
         }
     }
     return GSL_SUCCESS;

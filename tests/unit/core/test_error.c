@@ -76,6 +76,21 @@ static void quantities_in_units(void **state)
     assert_string_equal(whirl_last_error(), "start: omega=2");
 }
 
+/* The hand-swung chain's drags and the internal damping: kg/(m s) = M sqrt(g/L) / L, kg/m^2 =
+ * M / L^2, kg m^2/s = M L^2 sqrt(g/L) (whirl.Units' drag, drag2, damping). */
+static void drags_in_units(void **state)
+{
+    (void)state;
+    char buf[256], want[256];
+    const double L = 0.6, M = 0.05, g = 9.80665, rate = sqrt(g / L);
+    whirl_fail(GSL_EDOM, "eps " WHIRL_Q_LENGTH "%g, drag " WHIRL_Q_DRAG "%g, " WHIRL_Q_DRAG2
+               "%g, damping " WHIRL_Q_DAMPING "%g", 0.05, 0.25, 2.0, 1e-3);
+    assert_string_equal(whirl_last_error(), "eps 0.05, drag 0.25, 2, damping 0.001");
+    snprintf(want, sizeof want, "eps %.6g m, drag %.6g kg/(m s), %.6g kg/m^2, damping %.6g "
+             "kg m^2/s", 0.05 * L, 0.25 * M * rate / L, 2 * M / (L * L), 1e-3 * M * L * L * rate);
+    assert_string_equal(whirl_last_error_in_units(buf, sizeof buf, 1, L, M, g, 0), want);
+}
+
 /* Failures on OpenMP threads reach the caller's thread with status, text and types: the earliest
  * block's by whirl_error_restore_first, the first to fail by whirl_error_keep. */
 static void carried_from_threads(void **state)
@@ -112,6 +127,7 @@ int main(void)
         cmocka_unit_test(status_beside_message),
         cmocka_unit_test(constructor_status),
         cmocka_unit_test(quantities_in_units),
+        cmocka_unit_test(drags_in_units),
         cmocka_unit_test(carried_from_threads),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
