@@ -529,3 +529,36 @@ STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_CONTINUUM_MODE_MAX",
              "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
              "WHIRL_NCOLUMNS", "WHIRL_THREADS_MAX"]
+
+# The atlas (whirl.atlas), the hand-swung chain's branches (whirl.driven_branch).
+CDEF += r"""
+#define WHIRL_FORMAT_MAX 32
+char *whirl_format_double(char *buf, double x);
+typedef struct whirl_spectrum {
+    size_t count;
+    const double *re, *im;
+    const int *signature;
+    double growth;
+    double level;
+} whirl_spectrum;
+int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
+                          double *tip_r);
+int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out);
+int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model,
+                                 const double *x, const double *y, const double *z);
+typedef struct whirl_driven_curve {
+    size_t capacity;
+    size_t n;
+    whirl_driven_info *point;
+    int *fold;
+    size_t n_folds;
+    double fold_omega[32];
+    int complete;
+} whirl_driven_curve;
+whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity);
+void whirl_driven_curve_free(whirl_driven_curve *curve);
+int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
+                        const whirl_driven_info *start, int direction, double omega_min,
+                        double omega_max, double step, whirl_driven_curve *curve);
+"""
+STRUCTS += ["whirl_spectrum", "whirl_driven_curve"]
