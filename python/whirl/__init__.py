@@ -3,13 +3,15 @@ C library libwhirl, through cffi).
 
 Steady shapes: critical, shape, sweep, equilibria. Dynamics: Chain, Simulation. Stability:
 stability, stability_map, stability_windows, dissipative_windows, atlas. The hand-swung chain:
-driven, driven_branch, spin_up. Measured shapes: fit. Scene files: run_scene. whirl's CSV files: read_csv.
+driven, driven_branch, spin_up. Measured shapes: fit. Scene files: run_scene. whirl's CSV
+files: read_csv.
 Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
 message (bad values: whirl.InvalidInput, also a ValueError); Ctrl-C during a long call raises
 KeyboardInterrupt naming the call; the calls that can take seconds take progress= (None; True:
-a tqdm bar, or a line on standard error; or a callable (done, total)). Results are dataclasses that pickle and copy.
+a tqdm bar, or a line on standard error; or a callable (done, total)). Results are dataclasses
+that pickle and copy.
 Threads: a Simulation serves one thread at a time (a second thread gets whirl.InUse); the
 library's own parallel loops take whirl.max_threads() OpenMP threads (whirl.set_max_threads),
 one in a child of fork().

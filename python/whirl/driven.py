@@ -156,7 +156,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
             frame: str = "rotating", every: Optional[float] = None,
             length: Optional[float] = None, mass: Optional[float] = None,
             gravity: Optional[float] = None, units: Optional[Units] = None,
-            **params: Any) -> SpinUp:
+            progress: Any = None, **params: Any) -> SpinUp:
     """Which steady shape a hand-swung chain settles into from rest (``whirl regime`` for one
     point): the N-link chain (``links``: N or a Chain) hangs at rest, the hand brings the top up
     to the circle of radius ``drive_radius`` [L, or m] at rate ``omega`` [sqrt(g/L), or rad/s]
@@ -165,7 +165,10 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     command line's options): internal_damping, dt, t_ramp, t_max, settle_tol, settle_periods,
     periodic_tol, lyapunov_periods, chaos_lambda, perturb, seed; method (default rk4), frame
     ("rotating" or "inertial"). every > 0: record the masses every ``every`` [T]. The work is
-    bounded (links x t_max / dt <= 1e10). Returns a SpinUp. Ctrl-C raises KeyboardInterrupt."""
+    bounded (links x t_max / dt <= 1e10). progress: the time run [T] out of t_max plus the
+    Lyapunov window's lyapunov_periods drive periods, the longest run (it ends sooner once
+    settled; see whirl's progress=). Returns a SpinUp. Ctrl-C raises
+    KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = links if isinstance(links, Chain) else Chain(links_count(links))
     p = ffi.new("whirl_regime_params *", lib.whirl_regime_defaults(chain.n))
@@ -209,8 +212,13 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     if record:
         _lib.bounded(int(p.t_max / interval) + 2, "frames (t_max / every)", 24 * chain.n + 16)
 
+    # the longest run: to t_max, then the Lyapunov window (lyapunov_periods drive periods)
+    longest = p.t_max + p.lyapunov_periods * 2 * np.pi / p.omega
+    rep = _progress.report(progress, "spin_up", longest * u.time, "s" if u.physical else "T")
+
     @ffi.callback("whirl_regime_observer")
     def observe(ctx: Any, t: float, angle: float, pivot: Any, x: Any, n: int) -> int:
+        rep.c_update(t * u.time)
         if record:
             frames_t.append(t)
             frames_a.append(angle)
@@ -221,9 +229,12 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
 
     lib.whirl_regime_observe(w, observe, ffi.NULL, interval)
     res = ffi.new("whirl_regime_result *")
-    with _lib.interruptible("spin_up"):
-        status = lib.whirl_regime_run(w, p, res)
-    check(status, "spin_up", u)
+    with rep:
+        with _lib.interruptible("spin_up"):
+            status = lib.whirl_regime_run(w, p, res)
+            rep.reraise()
+        check(status, "spin_up", u)
+        rep.finish()
     state = ffi.string(lib.whirl_regime_state_name(res.state)).decode()
     if res.state == lib.WHIRL_REGIME_FAILED:
         raise _lib.Error(5, "the spin-up failed: " + _lib.last_error())
