@@ -65,7 +65,7 @@ class _Bar:
 
 def _tqdm() -> Optional[Any]:
     try:
-        from tqdm.auto import tqdm  # type: ignore[import-not-found]
+        from tqdm.auto import tqdm
     except ImportError:
         return None
     return tqdm

@@ -135,7 +135,7 @@ class _File:
 
     def read(self) -> bytes:
         os.lseek(self.fd, 0, os.SEEK_SET)
-        chunks = []
+        chunks: List[bytes] = []
         while True:
             b = os.read(self.fd, 1 << 16)
             if not b:
@@ -440,7 +440,7 @@ def atlas(modes: Union[int, Iterable[int]] = range(2, 9), omega_max: Any = 40.0,
     births = ffi.new("double *")
     f = None if path is None else _File(path, make=not resume)
     try:
-        rows = _read(f.read(), path, o, done) if resume and f is not None else []
+        rows = _read(f.read(), f.path, o, done) if resume and f is not None else []
         total = len(ks) * o.nchunks
         finished = sum(map(sum, done))
         with _progress.report(progress, "atlas", total, "chunks") as rep:
