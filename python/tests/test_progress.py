@@ -79,6 +79,21 @@ def test_sweep_windows_run_and_spin_up_report_their_progress():
     assert calls == [(1, 1)]
 
 
+def test_fit_and_scene_report_their_progress(tmp_path):
+    shape = whirl.shape(6.0, 2, points=60)
+    calls = Calls()
+    res = whirl.fit(shape.r, shape.z, omega_max=8.0, progress=calls)
+    t = calls.check()
+    assert res.mode == 2 and t >= 2 and len(calls) == t + 1  # 0 .. the modes tried
+    scene = tmp_path / "s.ini"
+    scene.write_text("[chain]\ndim = 3\nlinks = 5\n[start]\nomega = 3\nmode = 2\n"
+                     "[run]\ndt = 0.01\nt_end = 1\n[output]\nevery = 0.5\n")
+    calls = Calls()
+    whirl.run_scene(scene, progress=calls)
+    calls.check(1.0)
+    assert len(calls) >= 100  # every fixed step
+
+
 def test_si_units_report_seconds():
     calls = Calls()
     sim = whirl.Simulation(5, omega="3Hz", method="rk4", length=0.6, mass=0.05)

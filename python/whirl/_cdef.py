@@ -560,5 +560,9 @@ void whirl_driven_curve_free(whirl_driven_curve *curve);
 int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
                         const whirl_driven_info *start, int direction, double omega_min,
                         double omega_max, double step, whirl_driven_curve *curve);
+typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
+int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, const double *z,
+                       int mode, whirl_fit_progress_fn progress, void *data,
+                       whirl_fit_result *result);
 """
 STRUCTS += ["whirl_spectrum", "whirl_driven_curve"]

@@ -91,6 +91,13 @@ class Report:
         self.done = done
         self.fn(done, self.total)
 
+    def set_total(self, total: float) -> None:
+        """The total, once the call knows it (before the first update)."""
+        if self.done < 0 and total > 0 and total != self.total:
+            self.total = total
+            if isinstance(self.display, _Bar):
+                self.display.bar.total = total
+
     def c_update(self, done: float) -> None:
         if self.error is not None:
             return
