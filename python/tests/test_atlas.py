@@ -5,7 +5,10 @@ import fcntl
 import os
 import shutil
 import signal
+import re
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -143,7 +146,28 @@ def test_the_file_is_locked_while_a_run_writes_it(cli_atlas, whirl_program, tmp_
     assert new.read_text() == cli_atlas
 
 
-def test_atlas_checks_its_arguments():
+def test_ctrl_c_inside_a_chunk(tmp_path):
+    out = tmp_path / "long.csv"
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt, match=r"whirl: atlas interrupted: (\d+) of 9 "
+                       r"chunks") as e:
+        whirl.atlas(modes=[2, 3, 4], omega_max=15, output=out)  # about 10 s
+    assert time.monotonic() - start < 5
+    assert not whirl.stop_requested()
+    kept = int(re.search(r"(\d+) of 9", str(e.value)).group(1))
+    assert kept < 9
+    # the file holds the chunks computed (as the command line's, a chunk where the mode is not
+    # born yet is listed with the next one computed) and the windows the exception holds
+    text = out.read_text() if out.exists() else ""
+    assert text.count("# done ") <= kept
+    assert len(e.value.partial) == len(_cli_rows(text))
+
+
+def test_atlas_checks_its_arguments(tmp_path):
+    with pytest.raises(FileNotFoundError):
+        whirl.atlas(output=tmp_path / "no" / "such.csv", **KW)
     with pytest.raises(ValueError, match="omega_max must be in"):
         whirl.atlas(omega_max=6000)
     with pytest.raises(ValueError, match="tol must be smaller than scan_step"):

@@ -112,10 +112,16 @@ class _File:
                     raise ValueError("atlas: resume: cannot read %r: no such regular file"
                                      % path)
                 else:
-                    fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_NOCTTY, 0o666)
+                    try:
+                        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_NOCTTY,
+                                     0o666)
+                    except FileExistsError:  # made by another run meanwhile: try again
+                        continue
                     self.made = True
-            except (FileNotFoundError, FileExistsError):
-                continue
+            except FileNotFoundError:
+                if st is None:  # no such folder
+                    raise
+                continue  # removed by another run meanwhile: try again
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except BlockingIOError:
