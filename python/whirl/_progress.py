@@ -33,8 +33,7 @@ class _Text:
         if done < total and now - self.shown < _TEXT_EVERY:
             return
         self.shown = now
-        number = "%d/%d" % (done, total) if float(total).is_integer() else "%.4g/%.4g" % (
-            done, total)
+        number = ("%d/%d" if isinstance(total, int) else "%.4g/%.4g") % (done, total)
         text = "whirl: %s: %s%s (%.0f%%)" % (self.what, number, " " + self.unit if self.unit
                                              else "", 100.0 * done / total if total else 100.0)
         sys.stderr.write("\r" + text.ljust(self.width))
