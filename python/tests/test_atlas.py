@@ -165,6 +165,18 @@ def test_ctrl_c_inside_a_chunk(tmp_path):
     assert len(e.value.partial) == len(_cli_rows(text))
 
 
+def test_si_units(cli_atlas):
+    """Rates in rad/s with length given; the defaults of tol and scan_step stay the command
+    line's dimensionless ones, so the windows are the dimensionless atlas's times the rate
+    unit."""
+    rate = np.sqrt(9.80665 / 0.6)
+    si = whirl.atlas(modes=2, omega_max=5 * rate, length=0.6)
+    rows = _cli_rows(cli_atlas)
+    assert len(si) == 1 and rows[0][0] == "2"
+    for name, text in (("from", rows[0][1]), ("to", rows[0][2]), ("max_growth", rows[0][9])):
+        assert si[name][0] == pytest.approx(float(text) * rate, rel=1e-12), name
+
+
 def test_atlas_checks_its_arguments(tmp_path):
     with pytest.raises(FileNotFoundError):
         whirl.atlas(output=tmp_path / "no" / "such.csv", **KW)

@@ -390,19 +390,20 @@ def _modes(modes: Union[int, Iterable[int]]) -> List[int]:
     return out
 
 
-def atlas(modes: Union[int, Iterable[int]] = range(2, 9), omega_max: Any = 40.0,
+def atlas(modes: Union[int, Iterable[int]] = range(2, 9), omega_max: Any = None,
           output: Optional[Union[str, "os.PathLike[str]"]] = None, resume: bool = False,
-          degree: int = 16, tol: Any = 1e-9, scan_step: Any = 0.25,
+          degree: int = 16, tol: Any = None, scan_step: Any = None,
           memory_mb: Optional[float] = None, progress: Any = None,
           length: Optional[float] = None, mass: Optional[float] = None,
           gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
     """The stability atlas of the continuous chain, as ``whirl windows --atlas --modes LIST
     --omega-max B [--degree P --tol T --scan-step H --memory MB] -o FILE [--resume]``: every
     window of instability of each of ``modes`` (default 2..8) from its birth to ``omega_max``
-    (default 40 sqrt(g/L); at most 5000) (whirl.stability_windows with links=None, chunk by
-    chunk), with the Krein signature of the slower mode of the colliding pair just outside each
-    closed edge. Rates (omega_max, tol, scan_step and the result's) in the caller's units (see
-    whirl.Units); the file is dimensionless, as the command line's.
+    (at most 5000 sqrt(g/L)) (whirl.stability_windows with links=None, chunk by chunk), with
+    the Krein signature of the slower mode of the colliding pair just outside each closed edge.
+    Rates (omega_max, tol, scan_step and the result's) in the caller's units (see whirl.Units);
+    the defaults (None), as the command line's, are dimensionless: omega_max 40, tol 1e-9,
+    scan_step 0.25 sqrt(g/L). The file is dimensionless, as the command line's.
 
     output: the file, rewritten after every chunk of 5 in omega with the windows so far and
     the chunks done (the command line's file, byte for byte; locked while the call runs).
@@ -418,12 +419,16 @@ def atlas(modes: Union[int, Iterable[int]] = range(2, 9), omega_max: Any = 40.0,
     attribute ``partial`` holds the windows of the chunks finished."""
     u = units_of(length, mass, gravity, units)
     ks = _modes(modes)
-    wmax = as_float(omega_max, "omega_max", positive=True, kind="rate", units=u) / u.rate
+    def rate(value: Any, name: str, default: float) -> float:
+        if value is None:
+            return default
+        return as_float(value, name, positive=True, kind="rate", units=u) / u.rate
+    wmax = rate(omega_max, "omega_max", 40.0)
     if not wmax <= OMEGA_MAX:
         raise ValueError("omega_max must be in (0, %g] sqrt(g/L) for the atlas, got %g"
                          % (OMEGA_MAX, wmax))
-    t = as_float(tol, "tol", positive=True, kind="rate", units=u) / u.rate
-    h = as_float(scan_step, "scan_step", positive=True, kind="rate", units=u) / u.rate
+    t = rate(tol, "tol", 1e-9)
+    h = rate(scan_step, "scan_step", 0.25)
     if not t >= 1e-13:
         raise ValueError("tol must be >= 1e-13 sqrt(g/L), got %g" % t)
     if not t < h:
