@@ -3,10 +3,10 @@
  * (cli_lock, cli.h); it must begin with exactly the lines this run would write before its rows
  * (the header, which records every option that changes a row, the columns last), else the
  * resume is refused in one line naming the first difference; after the header every complete
- * line is checked (cli_row_check: the columns' count, finite numbers) and handed to the command,
- * which checks what only it knows (a mode asked for, a point of the map, a chunk); anything else
+ * line is checked (the columns' count, finite numbers) and handed to the command, which
+ * checks what only it knows (a mode asked for, a point of the map, a chunk); anything else
  * is refused with its line number. An unfinished last line (a run killed while writing it) is
- * dropped. */
+ * dropped. The reading is the library's (core/resume.h); here its refusals are printed. */
 #ifndef WHIRL_CLI_RESUME_H
 #define WHIRL_CLI_RESUME_H
 
@@ -55,11 +55,5 @@ int cli_resume_refuse(cli_resume *r, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-
-/* The first difference between the line want (this run's) and have (the file's), words apart
- * (spaces), as "'X' where these OF write 'Y'" into buf: the differing word of each with the word
- * before it. */
-void cli_resume_difference(const char *want, const char *have, const char *of, char *buf,
-                           size_t size);
 
 #endif
