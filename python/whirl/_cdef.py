@@ -566,3 +566,41 @@ int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, cons
                        whirl_fit_result *result);
 """
 STRUCTS += ["whirl_spectrum", "whirl_driven_curve"]
+
+# The stability atlas (whirl/atlas.h; whirl.atlas).
+CDEF += r"""
+#define WHIRL_ATLAS_CHUNK 5
+#define WHIRL_ATLAS_WINDOWS 4096
+#define WHIRL_ATLAS_LINE_MAX 1024
+typedef struct whirl_atlas_params {
+    int modes[64];
+    int n_modes;
+    double omega_max;
+    int degree;
+    double tol;
+    double scan_step;
+    double memory_mb;
+    void (*progress)(void *ctx, int mode, double omega);
+    void *progress_ctx;
+} whirl_atlas_params;
+typedef struct whirl_atlas_row {
+    int mode;
+    whirl_window w;
+    int sig_from, sig_to;
+} whirl_atlas_row;
+typedef struct whirl_atlas whirl_atlas;
+whirl_atlas_params whirl_atlas_defaults(void);
+whirl_atlas *whirl_atlas_alloc(const whirl_atlas_params *p);
+void whirl_atlas_free(whirl_atlas *a);
+size_t whirl_atlas_chunks(const whirl_atlas *a);
+void whirl_atlas_chunk_range(const whirl_atlas *a, size_t j, double *lo, double *hi);
+int whirl_atlas_done(const whirl_atlas *a, size_t k, size_t j);
+size_t whirl_atlas_done_count(const whirl_atlas *a);
+int whirl_atlas_compute(whirl_atlas *a, size_t k, size_t j, int *computed);
+const whirl_atlas_row *whirl_atlas_rows(const whirl_atlas *a, size_t *count);
+size_t whirl_atlas_row_text(const whirl_atlas_row *r, char *buf, size_t size);
+size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
+int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size, const char *path);
+"""
+STRUCTS += ["whirl_atlas_params", "whirl_atlas_row"]
+CONSTANTS += ["WHIRL_ATLAS_CHUNK", "WHIRL_ATLAS_WINDOWS", "WHIRL_ATLAS_LINE_MAX"]
