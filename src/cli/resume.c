@@ -4,7 +4,6 @@
 #include <stdlib.h>
 
 #include "cli/resume.h"
-#include "core/resume.h"
 
 struct cli_resume {
     const cli_command *cmd;
@@ -21,11 +20,8 @@ static int print_refusal(const cli_resume *r)
 cli_resume *cli_resume_alloc(const cli_command *cmd, FILE *in, const char *path,
                              const cli_resume_params *params)
 {
-    const whirl_resume_params p = {.header = params->header, .kind = params->kind,
-                                   .of = params->of, .note = params->note,
-                                   .line_max = params->line_max};
     cli_resume *r = calloc(1, sizeof *r);
-    if (r) r->r = whirl_resume_alloc(in, path, &p);
+    if (r) r->r = whirl_resume_alloc(in, path, params);
     if (r == NULL || r->r == NULL) {
         free(r);
         cli_error(cmd, "out of memory");
@@ -61,7 +57,5 @@ int cli_resume_refuse(cli_resume *r, const char *fmt, ...)
 cli_resume_kind cli_resume_next(cli_resume *r, const char **line)
 {
     const whirl_resume_kind kind = whirl_resume_next(r->r, line);
-    if (kind == WHIRL_RESUME_ERROR) return print_refusal(r);
-    return kind == WHIRL_RESUME_END ? CLI_RESUME_END
-           : kind == WHIRL_RESUME_ROW ? CLI_RESUME_ROW : CLI_RESUME_NOTE;
+    return kind == WHIRL_RESUME_ERROR ? print_refusal(r) : kind;
 }
