@@ -4,6 +4,7 @@
  *    that opens below 10 and runs on past it is joined into one, open at 11; the Krein
  *    signatures at the closed edges are those of a collision of opposite signs (-1 below, +1
  *    above the first window);
+ *  - the progress hook sees the rates of each chunk's search;
  *  - a chunk below the mode's birth is done with nothing computed; a chunk done or out of range
  *    is refused; a stop request leaves the atlas as it was;
  *  - the file's text read back (whirl_atlas_read_text) gives the same atlas, text for text; a
@@ -23,10 +24,29 @@
 #include "whirl/atlas.h"
 #include "whirl/continuum_stability.h"
 
-/* The atlas of mode 2 to omega_max, no chunk done. */
+/* The progress hook's calls: their count, the modes and rates seen. */
+typedef struct seen {
+    int calls, mode;
+    double omega_min, omega_max;
+} seen;
+
+static void on_rate(void *ctx, int mode, double omega)
+{
+    seen *s = ctx;
+    if (s->calls++ == 0) s->omega_min = s->omega_max = omega;
+    s->mode = mode;
+    if (omega < s->omega_min) s->omega_min = omega;
+    if (omega > s->omega_max) s->omega_max = omega;
+}
+
+static seen progress_seen;
+
+/* The atlas of mode 2 to omega_max, no chunk done, its progress into progress_seen. */
 static whirl_atlas *atlas_of_mode2(double omega_max, double scan_step)
 {
     whirl_atlas_params p = whirl_atlas_defaults();
+    p.progress = on_rate;
+    p.progress_ctx = &progress_seen;
     p.n_modes = 1;
     p.modes[0] = 2;
     p.omega_max = omega_max;
@@ -64,6 +84,9 @@ static void test_chunks_joined_as_one_search(void **state)
         assert_int_equal(whirl_atlas_done(a, 0, j), 1);
     }
     assert_int_equal(whirl_atlas_done_count(a), 3);
+    /* the hook saw the rates of mode 2's search, within the chunks */
+    assert_true(progress_seen.calls > 10 && progress_seen.mode == 2);
+    assert_true(progress_seen.omega_min >= 1e-3 && progress_seen.omega_max <= 11);
     /* the same windows by one search from 1e-3 to 11 */
     whirl_cstab_params cp = whirl_cstab_defaults();
     whirl_cstab *w = whirl_cstab_alloc(&cp);
