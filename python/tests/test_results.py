@@ -58,6 +58,7 @@ def _results(tmp_path):
     yield "stability_map", whirl.stability_map([8.0, 12.0], 2, 6, **SI)
     yield "stability_windows", whirl.stability_windows(2, 6, 5, 40, **SI)
     yield "DrivenShape", whirl.driven(12, 2, 0.003, points=9, **SI)
+    yield "DrivenBranch", whirl.driven_branch(10, 12, 0.003, mode=2, links=6, **SI)
     yield "SpinUp", whirl.spin_up(12, 0.02, 5, t_max=20, every=1.0, **SI)
     shape = whirl.shape(15, 2, points=30, **SI)
     yield "FitResult", whirl.fit(shape.r, shape.z, **SI)
@@ -87,7 +88,7 @@ def test_every_result_pickles_and_deep_copies(tmp_path):
         _same(pickle.loads(pickle.dumps(result)), result, name)
         _same(copy.deepcopy(result), result, name)
         names.append(name)
-    assert len(names) == 16, names
+    assert len(names) == 17, names
 
 
 def test_a_restored_simulation_continues_as_the_original():

@@ -529,3 +529,78 @@ STRUCTS += ["whirl_scene", "whirl_scene_output", "whirl_scene_result"]
 CONSTANTS = ["WHIRL_MODE_MAX", "WHIRL_SHAPE_NODES", "WHIRL_CONTINUUM_MODE_MAX",
              "WHIRL_EINTERRUPTED", "WHIRL_DRIVEN_FOLD_MAX", "WHIRL_SCENE_NKEYS",
              "WHIRL_NCOLUMNS", "WHIRL_THREADS_MAX"]
+
+# The atlas (whirl.atlas), the hand-swung chain's branches (whirl.driven_branch).
+CDEF += r"""
+#define WHIRL_FORMAT_MAX 32
+char *whirl_format_double(char *buf, double x);
+typedef struct whirl_spectrum {
+    size_t count;
+    const double *re, *im;
+    const int *signature;
+    double growth;
+    double level;
+} whirl_spectrum;
+int whirl_cstab_linearise(whirl_cstab *w, double omega, int mode, double tip_r_guess,
+                          double *tip_r);
+int whirl_cstab_spectrum(whirl_cstab *w, int signatures, whirl_spectrum *out);
+int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model,
+                                 const double *x, const double *y, const double *z);
+typedef struct whirl_driven_curve {
+    size_t capacity;
+    size_t n;
+    whirl_driven_info *point;
+    int *fold;
+    size_t n_folds;
+    double fold_omega[32];
+    int complete;
+} whirl_driven_curve;
+whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity);
+void whirl_driven_curve_free(whirl_driven_curve *curve);
+int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
+                        const whirl_driven_info *start, int direction, double omega_min,
+                        double omega_max, double step, whirl_driven_curve *curve);
+typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
+int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, const double *z,
+                       int mode, whirl_fit_progress_fn progress, void *data,
+                       whirl_fit_result *result);
+"""
+STRUCTS += ["whirl_spectrum", "whirl_driven_curve"]
+
+# The stability atlas (whirl/atlas.h; whirl.atlas).
+CDEF += r"""
+#define WHIRL_ATLAS_CHUNK 5
+#define WHIRL_ATLAS_WINDOWS 4096
+#define WHIRL_ATLAS_LINE_MAX 1024
+typedef struct whirl_atlas_params {
+    int modes[64];
+    int n_modes;
+    double omega_max;
+    int degree;
+    double tol;
+    double scan_step;
+    double memory_mb;
+    void (*progress)(void *ctx, int mode, double omega);
+    void *progress_ctx;
+} whirl_atlas_params;
+typedef struct whirl_atlas_row {
+    int mode;
+    whirl_window w;
+    int sig_from, sig_to;
+} whirl_atlas_row;
+typedef struct whirl_atlas whirl_atlas;
+whirl_atlas_params whirl_atlas_defaults(void);
+whirl_atlas *whirl_atlas_alloc(const whirl_atlas_params *p);
+void whirl_atlas_free(whirl_atlas *a);
+size_t whirl_atlas_chunks(const whirl_atlas *a);
+void whirl_atlas_chunk_range(const whirl_atlas *a, size_t j, double *lo, double *hi);
+int whirl_atlas_done(const whirl_atlas *a, size_t k, size_t j);
+size_t whirl_atlas_done_count(const whirl_atlas *a);
+int whirl_atlas_compute(whirl_atlas *a, size_t k, size_t j, int *computed);
+const whirl_atlas_row *whirl_atlas_rows(const whirl_atlas *a, size_t *count);
+size_t whirl_atlas_row_text(const whirl_atlas_row *r, char *buf, size_t size);
+size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
+int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size, const char *path);
+"""
+STRUCTS += ["whirl_atlas_params", "whirl_atlas_row"]
+CONSTANTS += ["WHIRL_ATLAS_CHUNK", "WHIRL_ATLAS_WINDOWS", "WHIRL_ATLAS_LINE_MAX"]

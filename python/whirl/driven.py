@@ -8,7 +8,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import POINTS_MAX, Chain, Units, _chain, _mode, links_count, units_of
 from .dynamics import _choice, _FRAMES, _method
@@ -177,7 +177,7 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
             frame: str = "rotating", every: Optional[float] = None,
             length: Optional[float] = None, mass: Optional[float] = None,
             gravity: Optional[float] = None, units: Optional[Units] = None,
-            **params: Any) -> SpinUp:
+            progress: Any = None, **params: Any) -> SpinUp:
     """Which steady shape a hand-swung chain settles into from rest (``whirl regime`` for one
     point): the N-link chain (``links``: N or a Chain) hangs at rest, the hand brings the top up
     to the circle of radius ``drive_radius`` [L, or m] at rate ``omega`` [sqrt(g/L), or rad/s]
@@ -186,7 +186,10 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     command line's options): internal_damping, dt, t_ramp, t_max, settle_tol, settle_periods,
     periodic_tol, lyapunov_periods, chaos_lambda, perturb, seed; method (default rk4), frame
     ("rotating" or "inertial"). every > 0: record the masses every ``every`` [T]. The work is
-    bounded (links x t_max / dt <= 1e10). Returns a SpinUp. Ctrl-C raises KeyboardInterrupt."""
+    bounded (links x t_max / dt <= 1e10). progress: the time run [T] out of t_max plus the
+    Lyapunov window's lyapunov_periods drive periods, the longest run (it ends sooner once
+    settled; see whirl's progress=). Returns a SpinUp. Ctrl-C raises
+    KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = links if isinstance(links, Chain) else Chain(links_count(links))
     p = ffi.new("whirl_regime_params *", lib.whirl_regime_defaults(chain.n))
@@ -231,8 +234,13 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
     if record:
         _lib.bounded(int(p.t_max / interval) + 2, "frames (t_max / every)", 24 * chain.n + 16)
 
+    # the longest run: to t_max, then the Lyapunov window (lyapunov_periods drive periods)
+    longest = p.t_max + p.lyapunov_periods * 2 * np.pi / p.omega
+    rep = _progress.report(progress, "spin_up", longest * u.time, "s" if u.physical else "T")
+
     @ffi.callback("whirl_regime_observer")
     def observe(ctx: Any, t: float, angle: float, pivot: Any, x: Any, n: int) -> int:
+        rep.c_update(t * u.time)
         if record:
             frames_t.append(t)
             frames_a.append(angle)
@@ -243,9 +251,12 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
 
     lib.whirl_regime_observe(w, observe, ffi.NULL, interval)
     res = ffi.new("whirl_regime_result *")
-    with _lib.interruptible("spin_up"):
-        status = lib.whirl_regime_run(w, p, res)
-    check(status, "spin_up", u)
+    with rep:
+        with _lib.interruptible("spin_up"):
+            status = lib.whirl_regime_run(w, p, res)
+            rep.reraise()
+        check(status, "spin_up", u)
+        rep.finish()
     state = ffi.string(lib.whirl_regime_state_name(res.state)).decode()
     if res.state == lib.WHIRL_REGIME_FAILED:
         raise _lib.Error(5, "the spin-up failed: " + _lib.last_error())
@@ -258,3 +269,185 @@ def spin_up(omega: float, drive_radius: float, links: Union[int, Chain], air_dra
                   t=np.array(frames_t) * u.time, angle=np.array(frames_a),
                   x=(np.array(frames_x) if frames_x else np.empty((0, chain.n, 3))) * L,
                   units=u)
+
+
+@dataclass(eq=False)  # _lib.Result's == (array-aware)
+class DrivenBranch(_lib.Result):
+    """A branch of the hand-swung chain's steady shapes against the rate, in the order of the
+    continuation (through its folds): arrays ``omega``, ``tip_x``, ``tip_y``, ``tip_r``,
+    ``top_tension``, ``node_count``, ``fold`` (True: the point is a fold, where the branch turns
+    back, located where the fold function vanishes), as the columns of ``whirl driven
+    --omega-min A --omega-max B``; with stability (the N-link chain) per point ``eig_growth``
+    [1/T], ``index`` and ``verdict`` of its linearisation (else None); ``folds`` the folds'
+    rates, in the order found; ``complete``: True if the branch left [omega_min, omega_max]
+    (False: it stopped at max_points or on a step that would not converge); ``interrupted``:
+    True if Ctrl-C ended it (only with keep_interrupted=True); ``units``."""
+
+    omega: np.ndarray
+    tip_x: np.ndarray
+    tip_y: np.ndarray
+    tip_r: np.ndarray
+    top_tension: np.ndarray
+    node_count: np.ndarray
+    fold: np.ndarray
+    folds: np.ndarray
+    complete: bool
+    eig_growth: Optional[np.ndarray] = None
+    index: Optional[np.ndarray] = None
+    verdict: Optional[np.ndarray] = None
+    interrupted: bool = False
+    units: Units = field(default_factory=Units)
+
+    def __len__(self) -> int:
+        return int(self.omega.size)
+
+    def __repr__(self) -> str:
+        span = (", omega %g..%g" % (self.omega.min(), self.omega.max())) if self.omega.size else ""
+        return "DrivenBranch(%d points%s, %d folds%s%s)" % (
+            self.omega.size, span, self.folds.size, ", with stability"
+            if self.eig_growth is not None else "", ", interrupted" if self.interrupted else "")
+
+
+def _point_stability(w: Any, chain: Chain, p: Any, q: Any, buf: List[np.ndarray]) -> Any:
+    """(status, growth, index) of the linearisation about the branch's shape q of the N-link
+    chain (as cmd_driven.c's point_stability)."""
+    at = ffi.new("whirl_driven_params *", p[0])
+    at.omega = q.omega
+    n = chain.n + 1
+    status = lib.whirl_driven_sample(chain._c, at, q.tip, n, *(_lib.dptr(a) for a in buf))
+    m = ffi.new("whirl_model *")
+    m.chain = chain._c
+    m.dim = 3
+    m.frame = 1  # WHIRL_FRAME_ROTATING
+    m.omega = q.omega
+    m.drive_radius = p.drive_radius
+    m.air_drag = p.air_drag
+    m.air_drag_quadratic = p.air_drag_quadratic
+    growth = ffi.new("double *")
+    index = ffi.new("int *")
+    if not status:
+        status = lib.whirl_stability_linearise_3d(w, m, *(_lib.dptr(a) for a in buf[1:4]))
+    if not status:
+        status = lib.whirl_stability_growth(w, growth)
+    if not status:
+        status = lib.whirl_stability_index(w, index)
+    return status, float(growth[0]), int(index[0])
+
+
+def driven_branch(omega_min: Any, omega_max: Any, drive_radius: Any, mode: int = 1,
+                  air_drag: float = 0.0, air_drag_quadratic: float = 0.0, side: int = 1,
+                  links: Union[None, int, Chain] = None, tip_mass: Any = 0.0,
+                  omega: Any = None, up: bool = False, arc_step: float = 0.02,
+                  max_points: int = 100000, stability: Optional[bool] = None,
+                  keep_interrupted: bool = False, progress: Any = None,
+                  length: Optional[float] = None, mass: Optional[float] = None,
+                  gravity: Optional[float] = None,
+                  units: Optional[Units] = None) -> DrivenBranch:
+    """The branch of the hand-swung chain's steady shapes through the shape of ``mode`` (side
+    +1 or -1; mode 0: the near-axis shape) at ``omega`` (default omega_max), followed by
+    pseudo-arclength continuation through its folds towards smaller rates (up=True: larger)
+    until it leaves [omega_min, omega_max], as ``whirl driven --omega-min A --omega-max B
+    [--omega W] [--up] --eps E ... [--links N --stability]`` (whirl_driven_branch). Arguments
+    as whirl.driven's; ``arc_step``: the largest step of the continuation's arclength (in (0,
+    1]), ``max_points``: most points. stability (default: with an N-link chain): the growth,
+    index and verdict of the linearisation about every point (the N-link chain only).
+    progress: the points whose stability is computed (see whirl's progress=; the
+    continuation itself reports only its end). Returns a DrivenBranch; whirl.InvalidInput if
+    the start shape does not exist. Ctrl-C raises KeyboardInterrupt naming the call (its
+    ``partial``: the points so far), or with keep_interrupted=True returns them marked
+    interrupted."""
+    u = units_of(length, mass, gravity, units)
+    mode = 0 if as_int(mode, "mode") == 0 else _mode(mode, None, lib.WHIRL_MODE_MAX)
+    side = as_int(side, "side")
+    if side not in (1, -1):
+        raise ValueError("side must be 1 or -1, got %d" % side)
+    lo = as_float(omega_min, "omega_min", positive=True, kind="rate", units=u) / u.rate
+    hi = as_float(omega_max, "omega_max", positive=True, kind="rate", units=u) / u.rate
+    if not lo < hi:
+        raise ValueError("omega_min must be < omega_max, got %g and %g"
+                         % (lo * u.rate, hi * u.rate))
+    start_w = hi * u.rate if omega is None else omega
+    p = _params(start_w, drive_radius, air_drag, air_drag_quadratic, tip_mass, u)
+    if not lo <= p.omega <= hi:
+        raise ValueError("omega (the branch's start) must be in [omega_min, omega_max], got %g"
+                         % (p.omega * u.rate))
+    step = as_float(arc_step, "arc_step", positive=True)
+    if step > 1:
+        raise ValueError("arc_step must be in (0, 1], got %g" % step)
+    cap = _lib.bounded(as_int(max_points, "max_points", minimum=2, maximum=10000000),
+                       "max_points", ffi.sizeof("whirl_driven_info") + 8)
+    chain = _chain(links, 0.0, dense=stability is not False)
+    if chain is not None and p.tip_mass:
+        raise ValueError("tip_mass applies to the continuum; an N-link chain carries its masses")
+    if stability is None:
+        stability = chain is not None
+    if stability and chain is None:
+        raise ValueError("stability needs links (the N-link chain's linearisation)")
+    c = ffi.NULL if chain is None else chain._c
+    start = ffi.new("whirl_driven_info *")
+    curve = _lib.check_ptr(lib.whirl_driven_curve_alloc(cap), lib.whirl_driven_curve_free)
+    stopped = None
+    with _lib.interruptible("driven_branch"):
+        status = lib.whirl_driven_mode(c, p, mode, side, start)
+        if status == lib.WHIRL_EINTERRUPTED:
+            check(status, "driven_branch")
+        if status:
+            check(status, "driven_branch: start at omega %.17g" % (p.omega * u.rate), u)
+        status = lib.whirl_driven_branch(c, p, start, 1 if up else -1, lo, hi, step, curve)
+        if status == lib.WHIRL_EINTERRUPTED:
+            lib.whirl_stop_clear()
+            stopped = _lib.last_error_in(u)
+        elif status:
+            check(status, "driven_branch", u)
+        n = int(curve.n)
+        growth = np.empty(n) if stability else None
+        index = np.empty(n, dtype=int) if stability else None
+        with _progress.report(progress, "driven_branch", n if stability else 1,
+                              "points" if stability else "branch") as rep:
+            if stability and stopped is None:
+                assert chain is not None and growth is not None and index is not None
+                w = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
+                buf = [np.empty(chain.n + 1) for _ in range(5)]
+                for j in range(n):
+                    if lib.whirl_stop_requested():
+                        lib.whirl_stop_clear()
+                        stopped = "stopped by request in the stability of the points"
+                        n = j
+                        break
+                    status, growth[j], index[j] = _point_stability(w, chain, p, curve.point[j],
+                                                                   buf)
+                    if status == lib.WHIRL_EINTERRUPTED:
+                        lib.whirl_stop_clear()
+                        stopped = "stopped by request in the stability of the points"
+                        n = j
+                        break
+                    check(status, "driven_branch: stability at omega %.17g"
+                          % (curve.point[j].omega * u.rate), u)
+                    rep.update(j + 1)
+            if stopped is None:
+                rep.finish()
+    pts = [curve.point[j] for j in range(n)]
+    L = u.length
+    out = DrivenBranch(omega=np.array([q.omega for q in pts]) * u.rate,
+                       tip_x=np.array([q.tip[0] for q in pts]) * L,
+                       tip_y=np.array([q.tip[1] for q in pts]) * L,
+                       tip_r=np.array([q.tip_r for q in pts]) * L,
+                       top_tension=np.array([q.top_tension for q in pts]) * u.force,
+                       node_count=np.array([q.nodes for q in pts], dtype=int),
+                       fold=np.array([bool(curve.fold[j]) for j in range(n)], dtype=bool),
+                       folds=np.array(list(curve.fold_omega)[:curve.n_folds]) * u.rate,
+                       complete=bool(curve.complete) and stopped is None,
+                       interrupted=stopped is not None, units=u)
+    if stability:
+        assert growth is not None and index is not None
+        out.eig_growth = growth[:n] * u.rate
+        out.index = index[:n]
+        out.verdict = np.array([ffi.string(lib.whirl_verdict_name(
+            lib.whirl_verdict_linear(g, i))).decode() for g, i in zip(growth[:n], index[:n])],
+            dtype=str)
+    _lib.finite("the driven branch", out.omega, out.tip_r, out.top_tension)
+    if stopped is not None and not keep_interrupted:
+        e = KeyboardInterrupt("whirl: driven_branch interrupted (%s): %d points" % (stopped, n))
+        e.partial = out  # type: ignore[attr-defined]
+        raise e
+    return out

@@ -9,7 +9,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .steady import Chain, Units, _mode, links_count, units_of
 
@@ -387,7 +387,8 @@ class Simulation:
 
     @_lib.exclusive
     def run(self, t_end: float, dt: float, every: Optional[float] = None, tol: float = 0.0,
-            positions: bool = True, keep_interrupted: bool = False) -> Trajectory:
+            positions: bool = True, keep_interrupted: bool = False,
+            progress: Any = None) -> Trajectory:
         """Integrates from the current time to t_end [T] with steps dt (tol = 0: fixed steps;
         tol > 0: adaptive with that tolerance, dt the first step), writing a row at the start,
         every ``every`` (default dt) and at t_end. positions=False skips the (rows, N, 3) array.
@@ -396,7 +397,9 @@ class Simulation:
         within half the machine's memory. Returns a Trajectory. Ctrl-C raises
         KeyboardInterrupt (the state stays at the last step taken), or with
         keep_interrupted=True returns the rows so far marked interrupted; a failing step raises
-        whirl.Error with the time."""
+        whirl.Error with the time. progress: the time integrated [T] out of t_end minus the
+        start (see whirl's progress=), after every call of the integrator (at most 256 fixed
+        steps, or one output interval)."""
         if self._ref is None:
             raise RuntimeError("no start state: call set_steady, set_hanging or set_state first")
         u = self.units
@@ -438,8 +441,10 @@ class Simulation:
         ref = _lib.dptr(np.ascontiguousarray(self._ref).ravel())
         chunk = 256 * dt  # fixed steps: at most 256 per call, so that Ctrl-C is seen promptly
         done = 0
+        rep = _progress.report(progress, "Simulation.run", span * u.time,
+                               "s" if u.physical else "T")
         try:
-            with _lib.interruptible("Simulation.run"):
+            with rep, _lib.interruptible("Simulation.run"):
                 for k in range(rows):
                     while self._t[0] < times[k]:
                         t1 = times[k]
@@ -452,6 +457,7 @@ class Simulation:
                         if status != _lib.GSL_SUCCESS:
                             _stiff_check(status, "Simulation.run at t = %s"
                                          % _lib.in_units(self._t[0], "time", u), u, stiff)
+                        rep.update((self._t[0] - t0) * u.time)
                     x = self._inertial()
                     if xs is not None:
                         xs[k] = x
@@ -467,6 +473,7 @@ class Simulation:
                         raise _lib.Error(9, "the state is not finite at t = %s%s" % (
                             _lib.in_units(self._t[0], "time", u), "; " + stiff if stiff else ""))
                     done = k + 1
+                rep.finish()
         except KeyboardInterrupt:
             if not keep_interrupted:
                 raise

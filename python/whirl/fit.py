@@ -4,7 +4,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .steady import Chain, Units, units_of
 
@@ -63,7 +63,7 @@ def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
         omega_max: Optional[float] = None, samples: Optional[int] = None,
         max_residual: float = 0.02, length: Optional[float] = None,
         mass: Optional[float] = None, gravity: Optional[float] = None,
-        units: Optional[Units] = None) -> FitResult:
+        units: Optional[Units] = None, progress: Any = None) -> FitResult:
     """The rotation rate and mode that best explain measured points (r[i], z[i]) (signed
     distance from the axis and height, the pivot at the origin, any order; [L, or m with
     length given]), by least squares on the distance of each point to the model curve, as
@@ -74,8 +74,8 @@ def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
     (see Units): with length [m] the rates are in rad/s. Returns a FitResult; raises
     whirl.InvalidInput (a ValueError) when no mode has a shape in the range, or when the best
     fit leaves an rms residual above ``max_residual`` (a fraction of the chain's length, default
-    0.02, the command line's --max-residual): no mode explains the points. Ctrl-C raises
-    KeyboardInterrupt."""
+    0.02, the command line's --max-residual): no mode explains the points. progress: the modes
+    tried (see whirl's progress=). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     r = as_array(r, "r", kind="length", units=u)
     z = as_array(z, "z", shape=r.shape, kind="length", units=u)
@@ -96,9 +96,20 @@ def fit(r: Any, z: Any, mode: int = 0, links: Union[None, int, Chain] = None,
     scale = 1.0 / u.length
     rr, zz = r * scale, z * scale
     res = ffi.new("whirl_fit_result *")
-    with _lib.interruptible("fit"):
-        status = lib.whirl_fit(m, r.size, _lib.dptr(rr), _lib.dptr(zz), mode, res)
-    check(status, "fit", u)
+    rep = _progress.report(progress, "fit", 1, "modes")
+    tick = ffi.NULL
+    if _progress.active(progress):
+        @ffi.callback("whirl_fit_progress_fn")
+        def tick(data: Any, k: int, first: int, last: int, evaluations: int) -> None:
+            rep.set_total(last - first + 1)
+            rep.c_update(k - first)  # the modes finished
+    with rep:
+        with _lib.interruptible("fit"):
+            status = lib.whirl_fit_observed(m, r.size, _lib.dptr(rr), _lib.dptr(zz), mode, tick,
+                                            ffi.NULL, res)
+            rep.reraise()
+        check(status, "fit", u)
+        rep.finish()
     if not res.rms_residual <= limit:
         which = "mode %d" % mode if mode else "no mode"
         raise _lib.error(1, "fit: %s explains the shape: the best fit (mode %d, omega=%.6g%s) "

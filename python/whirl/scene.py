@@ -7,7 +7,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check
 
 
@@ -67,7 +67,7 @@ def _overrides(set: Union[None, str, Dict[str, Any], Sequence[str]]) -> List[str
 
 def run_scene(path: Union[str, "os.PathLike[str]"],
               set: Union[None, str, Dict[str, Any], Sequence[str]] = None,
-              trace: Union[bool, float] = False) -> SceneRun:
+              trace: Union[bool, float] = False, progress: Any = None) -> SceneRun:
     """Runs the scene file ``path`` (see include/whirl/scene.h and the README for its keys) and
     returns a SceneRun.
 
@@ -77,7 +77,8 @@ def run_scene(path: Union[str, "os.PathLike[str]"],
       every output row), or a number: the interval between frames in the scene's time unit;
       no file is written (the scene's [output] trace names none here).
     A bad scene raises whirl.Error with the library's message ("FILE:LINE: [section] key:
-    problem"); a failed run raises whirl.Error too; Ctrl-C raises KeyboardInterrupt."""
+    problem"); a failed run raises whirl.Error too; Ctrl-C raises KeyboardInterrupt.
+    progress: the scene's time reached out of its t_end (see whirl's progress=)."""
     if not isinstance(path, (str, os.PathLike)):
         raise TypeError("path must be a file name, got %r" % (path,))
     path = os.fspath(path)
@@ -118,10 +119,21 @@ def run_scene(path: Union[str, "os.PathLike[str]"],
         out = ffi.new("whirl_scene_output *")
         out.row = on_row
         out.frame = on_frame if trace is not False else ffi.NULL
+        rep = _progress.report(progress, "run_scene", scene.t_end,
+                               "s" if scene.physical else "T")
+        if _progress.active(progress):
+            @ffi.callback("int(void *, double)")
+            def on_progress(ctx: Any, t: float) -> int:
+                rep.c_update(t)
+                return lib.WHIRL_EINTERRUPTED if rep.error is not None else 0
+            out.progress = on_progress
         res = ffi.new("whirl_scene_result *")
-        with _lib.interruptible("run_scene"):
-            status = lib.whirl_scene_work_run(work, out, res)
-        check(status, "run_scene")
+        with rep:
+            with _lib.interruptible("run_scene"):
+                status = lib.whirl_scene_work_run(work, out, res)
+                rep.reraise()
+            check(status, "run_scene")
+            rep.finish()
         units = {"physical": bool(scene.physical), "length": scene.chain_length,
                  "mass": scene.chain_mass, "gravity": scene.gravity}
         trace_t = np.array(frames_t) if trace is not False else None

@@ -7,7 +7,7 @@ from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .steady import Chain, Units, _absent, _chain, _grid_text, _mode, units_of
 from .dynamics import _method, _stats
@@ -123,7 +123,8 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
               air_drag: float = 0.0, air_drag_quadratic: float = 0.0, side: int = 1,
               length: Optional[float] = None, mass: Optional[float] = None,
               gravity: Optional[float] = None, units: Optional[Units] = None,
-              modes: bool = False, along: Optional[int] = None) -> StabilityResult:
+              modes: bool = False, along: Optional[int] = None,
+              progress: Any = None) -> StabilityResult:
     """The stability of the steady shape of ``mode`` at ``omega`` [sqrt(g/L), or rad/s] of the
     N-link chain ``links`` (N or a Chain), as ``whirl stability --omega W --mode K --links N``
     (damping, dt, drive_radius, the drags in the units of --damping, --dt, --eps, --drag,
@@ -137,7 +138,8 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     shape. modes=True: the modes too (StabilityResult's displacements, angles, krein; as
     ``whirl stability --eigenvectors``). along=k (an index into ``eigenvalues``): the run starts
     along mode k (the real part of its angles, the largest turned by ``perturb``) instead of
-    random directions; implies modes. Returns a StabilityResult;
+    random directions; implies modes. progress: the perturbed run's time [T] out of its
+    ``periods`` (see whirl's progress=). Returns a StabilityResult;
     whirl.Error if the shape does not exist; Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
@@ -200,11 +202,21 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     x, y, z = (ffi.new("const double **") for _ in range(3))
     lib.whirl_stability_nodes(ws, x, y, z)
     out = ffi.new("whirl_stability_run_result *")
-    with _lib.interruptible("stability"):
+    span = p.periods * 2 * np.pi / w * u.time
+    rep = _progress.report(progress, "stability", span, "s" if u.physical else "T")
+    if _progress.active(progress):
+        @ffi.callback("int(double, double, void *)")
+        def observe(t: float, ratio: float, data: Any) -> int:
+            rep.c_update(t * u.time)
+            return lib.WHIRL_EINTERRUPTED if lib.whirl_stop_requested() else 0
+        p.observe = observe
+    with rep, _lib.interruptible("stability"):
         status = lib.whirl_stability_run_shape(m, x[0], y[0], z[0], p, out)
-    # the step asked for, in the caller's units (the run's own steps end at its samples)
-    check(status, "stability" if p.dt == 0 else "stability (%s with dt = %s)"
-          % (ffi.string(name).decode(), _lib.in_units(p.dt, "time", u)), u)
+        rep.reraise()
+        # the step asked for, in the caller's units (the run's own steps end at its samples)
+        check(status, "stability" if p.dt == 0 else "stability (%s with dt = %s)"
+              % (ffi.string(name).decode(), _lib.in_units(p.dt, "time", u)), u)
+        rep.finish()
     res.sim_growth = out.sim_growth * u.rate
     res.max_deviation = out.max_deviation
     res.duration = out.duration * u.time
@@ -220,13 +232,14 @@ MAP_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("growth", "f8")])
 @_lib.interruptible("stability_map")  # one block: Ctrl-C between its library calls too
 def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: float = 0.0,
                   length: Optional[float] = None, mass: Optional[float] = None,
-                  gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
+                  gravity: Optional[float] = None, units: Optional[Units] = None,
+                  progress: Any = None) -> np.ndarray:
     """The linear growth rate of ``mode`` of the N-link chain over the rates ``omega`` (array,
     [sqrt(g/L), or rad/s]), the branch followed by continuation, as ``whirl stability
     --omega-min ... --linear``. Returns a structured array (omega, tip_r, growth [1/T]) with one
     row per rate where the mode exists; growth > 0: unstable. whirl.InvalidInput when the mode
-    exists at none of the rates (the message says where it is born). Ctrl-C raises
-    KeyboardInterrupt."""
+    exists at none of the rates (the message says where it is born). progress: the shapes
+    analysed (see whirl's progress=). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -255,11 +268,20 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
         pts[i].omega = w[j]
         pts[i].r = _lib.dptr(r[j])
         pts[i].z = _lib.dptr(z[j])
-    with _lib.interruptible("stability_map"):
-        status = lib.whirl_stability_map(chain._c, damping, rows.size, pts, ffi.NULL, ffi.NULL)
-    failed = [i for i in range(rows.size) if pts[i].status not in (_lib.GSL_SUCCESS, -1)]
-    check(status, "stability_map at omega %.17g" % (w[rows[failed[0]]] * u.rate) if failed
-          else "stability_map", u)
+    rep = _progress.report(progress, "stability_map", rows.size, "points")
+    tick = ffi.NULL
+    if _progress.active(progress):
+        @ffi.callback("whirl_stability_map_progress")
+        def tick(ctx: Any, done: int) -> None:  # on the thread that analysed the point
+            rep.c_update(done)
+    with rep:
+        with _lib.interruptible("stability_map"):
+            status = lib.whirl_stability_map(chain._c, damping, rows.size, pts, tick, ffi.NULL)
+            rep.reraise()
+        failed = [i for i in range(rows.size) if pts[i].status not in (_lib.GSL_SUCCESS, -1)]
+        check(status, "stability_map at omega %.17g" % (w[rows[failed[0]]] * u.rate) if failed
+              else "stability_map", u)
+        rep.finish()
     out = np.empty(rows.size, dtype=MAP_DTYPE)
     for i, j in enumerate(rows):
         out[i] = (w[j], info[j].tip_r, pts[i].growth)
@@ -313,7 +335,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                       tip_mass: float = 0.0, memory_mb: Optional[float] = None,
                       length: Optional[float] = None,
                       mass: Optional[float] = None, gravity: Optional[float] = None,
-                      units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
+                      units: Optional[Units] = None,
+                      progress: Any = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """The windows of instability of ``mode`` of the conservative N-link chain (``links``: N or
     a Chain) or, with links=None, of the continuous chain (its string equations linearised by
     Chebyshev collocation on elements of ``degree``, default the library's 16, with a point mass
@@ -330,7 +353,9 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     continuum's estimate of each edge's discretisation error; 0 for the N-link chain), in
     increasing omega; stats
     a dict of the search's counters. whirl.Error (EDOM) if the mode does not exist in the range;
-    Ctrl-C raises KeyboardInterrupt."""
+    Ctrl-C raises KeyboardInterrupt. progress: the continuous chain's rates examined, from
+    omega_min, out of omega_max - omega_min [1/T] (the N-link chain's search reports only its
+    end; see whirl's progress=)."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     mode = _mode(mode, chain, lib.WHIRL_MODE_MAX)
@@ -339,6 +364,8 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                          "(links=None)")
     p = _windows_params(omega_min, omega_max, scan_step, tol, u)
     p.krylov = 1 if krylov else 0
+    rep = _progress.report(progress, "stability_windows",
+                           (p.omega_max - p.omega_min) * u.rate, "")
     cap = _lib.bounded(as_int(max_windows, "max_windows", minimum=1), "max_windows", 64)
     found = ffi.new("whirl_window[]", cap)
     count = ffi.new("size_t *")
@@ -351,15 +378,26 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
                                kind="mass", units=u) / u.mass
         if memory_mb is not None:
             cp.memory_mb = _memory_mb(memory_mb)
+        if _progress.active(progress):
+            @ffi.callback("void(void *, int, double)")
+            def tick(ctx: Any, k: int, omega: float) -> None:
+                rep.c_update((omega - p.omega_min) * u.rate)
+            cp.progress = tick
         ws = _lib.check_ptr(lib.whirl_cstab_alloc(cp), lib.whirl_cstab_free)
-        with _lib.interruptible("stability_windows"):
-            status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)
+        with rep:
+            with _lib.interruptible("stability_windows"):
+                status = lib.whirl_cstab_windows(ws, mode, p, found, cap, count, st)
+                rep.reraise()
+            check(status, "stability_windows of mode %d" % mode, u)
+            rep.finish()
     else:
         assert chain is not None
         ws = _lib.check_ptr(lib.whirl_windows_alloc(chain.n), lib.whirl_windows_free)
-        with _lib.interruptible("stability_windows"):
-            status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
-    check(status, "stability_windows of mode %d" % mode, u)
+        with rep:
+            with _lib.interruptible("stability_windows"):
+                status = lib.whirl_windows_find(ws, chain._c, mode, p, found, cap, count, st)
+            check(status, "stability_windows of mode %d" % mode, u)
+            rep.finish()
     out = np.empty(count[0], dtype=WINDOW_DTYPE)
     for i in range(count[0]):
         f = found[i]
@@ -387,7 +425,8 @@ def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.
                         scan_step: Optional[float] = None, tol: Optional[float] = None,
                         max_intervals: int = 1024, length: Optional[float] = None,
                         mass: Optional[float] = None, gravity: Optional[float] = None,
-                        units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
+                        units: Optional[Units] = None,
+                        progress: Any = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """The intervals of rates where ``mode`` of the N-link chain ``links`` (N or a Chain) is
     unstable or converging with dissipation, as ``whirl windows --links N`` with
     --damping or the hand-swung chain's drag (damping, drive_radius, air_drag,
@@ -400,7 +439,8 @@ def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.
     crossing at each edge [1/T]), growth (the largest growth of an unstable interval, the most
     negative of a converging one [1/T]), at (where) and verdict ("unstable" or "converging"),
     in increasing omega; stats a dict of the search's counters. whirl.Error without
-    dissipation or if the mode does not exist in the range; Ctrl-C raises KeyboardInterrupt."""
+    dissipation or if the mode does not exist in the range; Ctrl-C raises KeyboardInterrupt.
+    progress: the search reports only its end (see whirl's progress=)."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -414,9 +454,11 @@ def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.
     found = ffi.new("whirl_dissipative_interval[]", cap)
     count = ffi.new("size_t *")
     st = ffi.new("whirl_windows_stats *")
-    with _lib.interruptible("dissipative_windows"):
-        status = lib.whirl_windows_dissipative(m, mode, side, p, found, cap, count, st)
-    check(status, "dissipative_windows of mode %d" % mode, u)
+    with _progress.report(progress, "dissipative_windows", 1, "search") as rep:
+        with _lib.interruptible("dissipative_windows"):
+            status = lib.whirl_windows_dissipative(m, mode, side, p, found, cap, count, st)
+        check(status, "dissipative_windows of mode %d" % mode, u)
+        rep.finish()
     out = np.empty(count[0], dtype=DISSIPATIVE_DTYPE)
     for i in range(count[0]):
         f = found[i]

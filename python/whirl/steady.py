@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _lib
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 
 STANDARD_GRAVITY = 9.80665  # WHIRL_STANDARD_GRAVITY [m/s^2]: g once SI units are on
@@ -461,8 +461,8 @@ BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
 @_lib.interruptible("sweep")  # one block: Ctrl-C between its library calls too
 def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, Chain] = None,
           tip_mass: float = 0.0, length: Optional[float] = None, mass: Optional[float] = None,
-          gravity: Optional[float] = None,
-          units: Optional[Units] = None) -> Dict[int, np.ndarray]:
+          gravity: Optional[float] = None, units: Optional[Units] = None,
+          progress: Any = None) -> Dict[int, np.ndarray]:
     """The branches of the given modes over the rates ``omega`` (an array, any order;
     [sqrt(g/L), or rad/s]), each followed by continuation on all OpenMP threads (``whirl
     sweep``). Returns a dict {mode: structured array with fields omega, tip_r, max_r,
@@ -470,7 +470,8 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
     ``nodes`` column)}, one row per rate where the mode exists, in the order of ``omega``. A
     mode with no shape at any of the rates gets an empty array and an EmptyBranchWarning
     saying where it is born; when no mode asked for has one, whirl.InvalidInput (as the
-    command line's "no mode exists on the grid"). Ctrl-C raises KeyboardInterrupt."""
+    command line's "no mode exists on the grid"). progress: the modes done (see whirl's
+    progress=). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     if isinstance(modes, (int, np.integer)) and not isinstance(modes, bool):
         modes = [int(modes)]
@@ -489,7 +490,8 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
     info = ffi.new("whirl_shape_info[]", n)
     exists = np.zeros(n, dtype=np.intc)
     ex = ffi.cast("int *", ffi.from_buffer(exists))
-    for k in mode_list:
+    rep = _progress.report(progress, "sweep", len(mode_list), "modes")
+    for done, k in enumerate(mode_list, 1):
         with _lib.interruptible("sweep of mode %d" % k):
             if chain is None:
                 status = lib.whirl_continuum_branch(k, m, n, _lib.dptr(w), info, ex)
@@ -504,6 +506,8 @@ def sweep(modes: Union[int, Sequence[int]], omega: Any, links: Union[None, int, 
                     f.top_tension * u.force, f.depth * u.length, f.n_nodes + 1)
         _lib.finite("the branch of mode %d" % k, *(a[c] for c in ("omega", "tip_r", "max_r", "top_tension", "depth")))
         out[k] = a
+        rep.update(done)
+    rep.close()
     empty = [k for k in mode_list if out[k].size == 0]
     if empty and len(empty) == len(set(mode_list)):  # nothing at all: the command line's error
         raise _lib.error(1, "sweep: no mode exists on the grid %s: %s"

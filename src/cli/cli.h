@@ -183,10 +183,6 @@ int cli_lock_take(const cli_command *cmd, cli_lock *l, const char *path, int mak
 int cli_lock_commit(const cli_command *cmd, cli_lock *l, cli_out *out);
 /* Releases the lock; the empty file the run made is removed if the path still names it. */
 void cli_lock_release(cli_lock *l);
-/* A row of a CSV being resumed: 0 if it has the header's count of fields and no field that
- * begins with a non-finite number (nan, inf, 1e999; "nan " or a 1e999 after 70 zeros too),
- * else -1 with the reason in why. */
-int cli_row_check(const char *line, size_t fields, char *why, size_t size);
 
 /* ---- units: dimensionless by default (L = M = g = 1) ----
  * With any of --length, --mass, --gravity the command works in SI units: lengths in m, masses

@@ -408,34 +408,3 @@ void cli_lock_release(cli_lock *l)
     free(l->path);
     memset(l, 0, sizeof *l);
 }
-
-/* ---- rows of a file being resumed ---- */
-
-int cli_row_check(const char *line, size_t fields, char *why, size_t size)
-{
-    size_t n = 0;
-    const char *p = line;
-    for (;;) {
-        size_t len = strcspn(p, ",\n");
-        /* the whole field, however long (a copy cut to a buffer's length read "0...01e999"
-         * as 0); strtod stops at the field's end at the latest: ',' and '\n' end any number.
-         * A field that begins with a number that is not finite is refused whatever follows
-         * ("nan ", "1e999x": text to this check, a number to a reader that stops there). */
-        char *end = (char *)p;
-        const double x = len > 0 ? strtod(p, &end) : 0;
-        if (end != p && !isfinite(x)) { /* nan, inf, 1e999 */
-            snprintf(why, size, "column %zu holds '%.*s%s', not a finite number", n + 1,
-                     (int)(len < 40 ? len : 40), p, len < 40 ? "" : "...");
-            return -1;
-        }
-        n++;
-        if (p[len] != ',') break;
-        p += len + 1;
-    }
-    if (n != fields) {
-        snprintf(why, size, "%zu columns, the header has %zu (a row cut short or run together)",
-                 n, fields);
-        return -1;
-    }
-    return 0;
-}

@@ -3,34 +3,28 @@
  * (cli_lock, cli.h); it must begin with exactly the lines this run would write before its rows
  * (the header, which records every option that changes a row, the columns last), else the
  * resume is refused in one line naming the first difference; after the header every complete
- * line is checked (cli_row_check: the columns' count, finite numbers) and handed to the command,
- * which checks what only it knows (a mode asked for, a point of the map, a chunk); anything else
+ * line is checked (the columns' count, finite numbers) and handed to the command, which
+ * checks what only it knows (a mode asked for, a point of the map, a chunk); anything else
  * is refused with its line number. An unfinished last line (a run killed while writing it) is
- * dropped. */
+ * dropped. The reading is the library's (core/resume.h); here its refusals are printed. */
 #ifndef WHIRL_CLI_RESUME_H
 #define WHIRL_CLI_RESUME_H
 
 #include <stdio.h>
 
 #include "cli/cli.h"
+#include "core/resume.h"
 
-typedef struct cli_resume_params {
-    const char *header; /* the lines this run writes before its rows, the columns' line last */
-    const char *kind;   /* what the file holds, in messages: "map", "atlas" */
-    const char *of;     /* what must be the same, in messages: "options", "parameters" */
-    const char *note;   /* comment lines starting so are allowed among the header's lines and
-                         * handed to the command (the atlas's "# done "); NULL: none */
-    size_t line_max;    /* the longest line accepted, in characters */
-} cli_resume_params;
-
-/* The kinds of line cli_resume_next hands over. */
-typedef enum {
-    CLI_RESUME_ERROR = -1, /* refused: the message is printed */
-    CLI_RESUME_END = 0,    /* the end of the file (an unfinished last line dropped) */
-    CLI_RESUME_ROW = 1,    /* a complete row, whole and finite */
-    CLI_RESUME_NOTE = 2    /* a comment line: one starting with params.note among the header's
-                            * lines, or any after the header */
-} cli_resume_kind;
+/* The header, the kind and the limits (core/resume.h), and the kinds of line handed over:
+ * CLI_RESUME_ERROR (refused: the message is printed), CLI_RESUME_END, CLI_RESUME_ROW,
+ * CLI_RESUME_NOTE (a comment line: one starting with params.note among the header's lines, or
+ * any after the header). */
+typedef whirl_resume_params cli_resume_params;
+typedef whirl_resume_kind cli_resume_kind;
+#define CLI_RESUME_ERROR WHIRL_RESUME_ERROR
+#define CLI_RESUME_END WHIRL_RESUME_END
+#define CLI_RESUME_ROW WHIRL_RESUME_ROW
+#define CLI_RESUME_NOTE WHIRL_RESUME_NOTE
 
 typedef struct cli_resume cli_resume;
 
@@ -55,11 +49,5 @@ int cli_resume_refuse(cli_resume *r, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
-
-/* The first difference between the line want (this run's) and have (the file's), words apart
- * (spaces), as "'X' where these OF write 'Y'" into buf: the differing word of each with the word
- * before it. */
-void cli_resume_difference(const char *want, const char *have, const char *of, char *buf,
-                           size_t size);
 
 #endif

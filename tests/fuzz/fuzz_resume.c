@@ -1,7 +1,7 @@
-/* Fuzz harness: the readers of --resume (src/cli/resume.c) on arbitrary bytes as the file being
- * resumed: the atlas's (stability_atlas_check: its header, "# done" lines and rows, for the
- * modes 2,3 to omega 6, two chunks per mode), then the shared reader under a map's header, whose
- * rows must then be whole and finite. Every input must end in a file accepted or a one-line
+/* Fuzz harness: the readers of --resume (src/core/resume.c, through src/cli/resume.c) on arbitrary
+ * bytes as the file being resumed: the atlas's (stability_atlas_check, whirl_atlas_read: its
+ * header, "# done" lines and rows, for the modes 2,3 to omega 6, two chunks per mode), then the
+ * shared reader under a map's header, whose rows must then be whole and finite. Every input must end in a file accepted or a one-line
  * error; the sanitizers catch the rest (an index past the chunks' array once). */
 #include <math.h>
 #include <stdio.h>
