@@ -4,16 +4,18 @@ every argument passes before it reaches the library.
 The shared library is looked for, in this order:
   1. the file named by the environment variable WHIRL_LIBRARY;
   2. libwhirl.so inside the package (a wheel from ``make wheel``, or ``pip install ./python``,
-     carries its own);
+     carries its own, with the libraries it links in whirl/.libs); when the package has one,
+     it is the one: if it does not load, the import fails rather than take another version;
   3. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
      so that ``PYTHONPATH=python`` uses the library just built;
   4. the system's libwhirl (an installed prefix known to the dynamic linker).
 ``whirl.LIBRARY_PATH`` names the copy in use.
 """
 import contextlib
-import ctypes.util
+import ctypes
 import dataclasses
 import functools
+import importlib
 import math
 import numbers
 import os
@@ -22,25 +24,66 @@ import threading
 from typing import Any, Callable, ContextManager, Iterator, List, Optional, Sequence, Tuple, TypeVar
 
 import numpy as np
-from cffi import FFI
 
 from ._cdef import CDEF
 
-ffi = FFI()
-ffi.cdef(CDEF)
+
+def _declarations() -> Any:
+    """cffi's FFI for the declarations of _cdef.py: the module generated from them when the
+    package was built (whirl/_ffi.py, whirl/_build.py: nothing to parse), or, without it (a
+    source tree) or when it was made from other declarations, parsed here (pycparser, a tenth
+    of a second)."""
+    try:
+        built = importlib.import_module(__name__.rsplit(".", 1)[0] + "._ffi")
+        if getattr(built, "CDEF", None) == CDEF:
+            return built.ffi
+    except ImportError:  # absent, or made by a cffi this one cannot read
+        pass
+    from cffi import FFI
+    parsed = FFI()
+    parsed.cdef(CDEF)
+    return parsed
+
+
+ffi = _declarations()
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
+_PACKAGED = os.path.join(_HERE, "libwhirl.so")
+_TREE = os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir))
 
 
-def _candidates() -> List[str]:
+def _candidates() -> Iterator[str]:
     env = os.environ.get("WHIRL_LIBRARY")
     if env:
-        return [env]
-    found = [os.path.join(_HERE, "libwhirl.so"),
-             os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so"))]
+        yield env
+        return
+    yield _PACKAGED
+    yield os.path.join(_TREE, "build", "libwhirl.so")
+    import ctypes.util  # the system's copy: a few hundredths of a second, asked only here
     system = ctypes.util.find_library("whirl")
-    found += [system] if system else []
-    return found + ["libwhirl.so"]
+    if system:
+        yield system
+    yield "libwhirl.so"
+
+
+def _advice() -> str:
+    """What to do when no copy loads, for where this package sits."""
+    if os.environ.get("WHIRL_LIBRARY"):
+        return "WHIRL_LIBRARY must name a libwhirl.so that loads (or unset it)."
+    if os.path.exists(_PACKAGED):
+        libs = os.path.join(_HERE, ".libs")
+        if os.path.isdir(libs):
+            return ("The package's copy does not load although it carries the libraries it "
+                    "links (%s): reinstall the package (pip install --force-reinstall --no-deps "
+                    "whirl-*.whl), or set WHIRL_LIBRARY to a libwhirl.so that loads." % libs)
+        return ("The package's copy uses the system's GSL, NLopt, LAPACKE, inih and OpenMP (a "
+                "package built with WHIRL_VENDOR=0): install them, or install the wheel, which "
+                "carries them.")
+    if os.path.exists(os.path.join(_TREE, "Makefile")) and os.path.isdir(
+            os.path.join(_TREE, "src")):
+        return ("Build it with `make build/libwhirl.so` in %s, or set WHIRL_LIBRARY." % _TREE)
+    return ("This package has no libwhirl of its own: install the wheel (whirl-*.whl), which "
+            "carries it, or set WHIRL_LIBRARY to a libwhirl.so.")
 
 
 def _load() -> Tuple[Any, str]:
@@ -53,10 +96,10 @@ def _load() -> Tuple[Any, str]:
             return ffi.dlopen(path), path
         except OSError as e:
             tried.append("%s (%s)" % (path, e))
-            if os.environ.get("WHIRL_LIBRARY"):
+            if path == _PACKAGED:  # the package's own, when it has one: no other version
                 break
-    raise ImportError("whirl: cannot load libwhirl: tried " + "; ".join(tried)
-                      + ". Build it with `make` (build/libwhirl.so) or set WHIRL_LIBRARY.")
+    raise ImportError("whirl: cannot load libwhirl: tried " + "; ".join(tried) + ". "
+                      + _advice())
 
 
 lib, LIBRARY_PATH = _load()
