@@ -176,6 +176,11 @@ def _declarations(package):
             "whirl_setup_" + name, os.path.join(HERE, "whirl", name + ".py"))
         mods[name] = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(mods[name])
+    try:
+        import cffi  # noqa: F401 (the build parses the declarations with it)
+    except ImportError:
+        _fail("the build needs cffi (Debian: python3-cffi; or pip install cffi, or leave out "
+              "--no-build-isolation)")
     mods["_build"].write_module(mods["_cdef"].CDEF, os.path.join(package, "_ffi.py"))
 
 

@@ -30,7 +30,8 @@ PROBE = ("import whirl, json; print(json.dumps([whirl.__version__, whirl.LIBRARY
 def _copy_source(dst, repo):
     shutil.copytree(os.path.join(repo, "python"), dst,
                     ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__", "tests",
-                                                  "examples", "bench", "libwhirl.so", "_ffi.py"))
+                                                  "examples", "bench", "libwhirl.so", "_ffi.py",
+                                                  ".libs"))
     build = os.environ.get("WHIRL_BUILD", os.path.join(repo, "build"))
     # the library under test as it is (make would rebuild the sanitizer build with plain flags)
     env = dict(os.environ, WHIRL_SOURCE=repo,
@@ -238,20 +239,33 @@ def test_wheel_import_error_advice(wheel, tmp_path):
     assert "`make" not in last and "Build it" not in last, last
 
 
+# the layout the package's ffi gives every struct and constant that test_layout.py checks
+# against the C headers
+LAYOUT = ("from whirl import _cdef; from whirl._lib import ffi, lib; print(repr("
+          "[(n, getattr(lib, n)) for n in _cdef.CONSTANTS] + [(n, ffi.sizeof(n), [(f, t.offset) "
+          "for f, t in ffi.typeof(n).fields]) for n in _cdef.STRUCTS]))")
+
+
 def test_generated_declarations_used_only_when_current(tmp_path, repo):
-    # the package uses whirl/_ffi.py only when it was generated from its own _cdef.py
+    # the package uses whirl/_ffi.py only when it was generated from its own _cdef.py, and
+    # then lays out every struct as the parsed declarations do (test_layout.py: as C does)
     pkg = tmp_path / "whirl"
     shutil.copytree(os.path.join(repo, "python", "whirl"), pkg,
                     ignore=shutil.ignore_patterns("__pycache__", "libwhirl.so", ".libs"))
     env = dict(os.environ, PYTHONPATH=str(tmp_path))
     code = ("import sys, whirl, whirl._ffi; print(whirl._lib.ffi is whirl._ffi.ffi, "
             "'pycparser' in sys.modules, whirl.critical(1)[0])")
+    parsed = subprocess.run([sys.executable, "-c", LAYOUT], cwd="/", env=env, check=True,
+                            capture_output=True, text=True).stdout
     for cdef, current in ((_cdef.CDEF, True), (_cdef.CDEF + "\nint whirl_gone(void);\n", False)):
         _build.write_module(cdef, str(pkg / "_ffi.py"))
         out = subprocess.run([sys.executable, "-c", code], cwd="/", env=env, check=True,
                              capture_output=True, text=True).stdout.split()
         assert out[:2] == [str(current), str(not current)], out
         assert float(out[2]) == whirl.critical(1)[0]
+        layout = subprocess.run([sys.executable, "-c", LAYOUT], cwd="/", env=env, check=True,
+                                capture_output=True, text=True).stdout
+        assert layout == parsed
 
 
 def test_pip_runs_make(tmp_path, source, repo):
