@@ -160,19 +160,13 @@ def _pip(python, env, *args):
                     "--no-index"] + list(args), check=True, env=env)
 
 
-def _loaded(python, env, code, tmp_path):
-    """Runs ``code`` with LD_DEBUG=libs: the files of the libraries the process loaded."""
-    debug = tmp_path / "ld.debug"
-    run_env = dict(env, LD_DEBUG="libs", LD_DEBUG_OUTPUT=str(debug))
-    subprocess.run([str(python), "-c", code], cwd="/", env=run_env, check=True,
-                   capture_output=True, text=True)
-    files = set()
-    for log in tmp_path.glob("ld.debug.*"):
-        for line in log.read_text().splitlines():
-            if "calling init:" in line:
-                files.add(line.split("calling init:")[1].strip())
-        log.unlink()
-    return files
+def _loaded(python, env, code):
+    """Runs ``code``: the files of the shared libraries then mapped in the process (its
+    /proc/self/maps, what the loader took, wherever it found it)."""
+    out = subprocess.run([str(python), "-c", code + "; print(open('/proc/self/maps').read())"],
+                         cwd="/", env=env, check=True, capture_output=True, text=True).stdout
+    return {line.split()[-1] for line in out.splitlines()
+            if len(line.split()) == 6 and ".so" in line.split()[-1]}
 
 
 def test_wheel_stands_alone(wheel, tmp_path):
@@ -195,14 +189,17 @@ def test_wheel_stands_alone(wheel, tmp_path):
     library = str(site / "whirl" / "libwhirl.so")
     linked = _linked(library, env)
     assert linked and all(os.path.dirname(f) == str(libs) for f in linked.values()), linked
-    # and the process takes them there: all but those numpy loaded before (the loader shares a
-    # library by its name, and these are ABI-compatible by it)
-    numpy_libs = {os.path.basename(f) for f in _loaded(python, env, "import numpy", tmp_path)}
-    files = _loaded(python, env, "import whirl; whirl.shape(3.0, 1)", tmp_path)
-    ours = {os.path.basename(f): f for f in files if os.path.basename(f) in linked}
+    # and the process maps them from there: all but those numpy mapped before (the loader
+    # shares a library by its name, and these are ABI-compatible by it), and no system copy
+    system = {soname: os.path.realpath(f) for soname, f in _linked(whirl.LIBRARY_PATH).items()}
+    assert set(system) == set(linked), (system, linked)
+    before = _loaded(python, env, "import numpy")
+    numpy_libs = {soname for soname, f in system.items() if f in before}
+    files = _loaded(python, env, "import whirl; whirl.shape(3.0, 1)")
     for soname in set(linked) - numpy_libs:
-        assert os.path.dirname(ours.get(soname, "")) == str(libs), (soname, files)
-    assert not [f for f in files if "/libgsl" in f and not f.startswith(str(libs))], files
+        assert str(libs / soname) in files and system[soname] not in files, (soname, files)
+    assert any("libgsl" in f for f in files) and not [
+        f for f in files if "/libgsl" in f and not f.startswith(str(libs))], files
 
     # the proof: the system's copies made unreadable (/dev/null mounted over them, in a mount
     # namespace of the test's own), first those numpy does not need, then all of them
@@ -210,10 +207,9 @@ def test_wheel_stands_alone(wheel, tmp_path):
     if subprocess.run(["unshare", "-rm", "true"], capture_output=True).returncode != 0:
         pytest.skip("no user and mount namespaces here (unshare -rm) to hide the system's "
                     "libraries")
-    system = _linked(whirl.LIBRARY_PATH)  # the copies the system's loader finds
     for hide, first in ((set(linked) - numpy_libs, ""),
                         (set(linked), "import ctypes; ctypes.CDLL(%r); " % library)):
-        files = sorted({os.path.realpath(system[s]) for s in hide})
+        files = sorted({system[soname] for soname in hide})
         script = ('for f in "$@"; do mount --bind /dev/null "$f" || exit 1; done; exec %s -c '
                   '"%simport whirl; print(list(whirl.critical(3, length=0.6)))"'
                   % (python, first))
