@@ -264,6 +264,35 @@ def test_generated_declarations_used_only_when_current(tmp_path, repo):
         assert layout == parsed
 
 
+def test_source_tree_keeps_its_declarations_parsed(tmp_path, repo):
+    # from a source tree the first import parses the declarations and keeps the module made
+    # from them in build/python/, which the next imports use, until _cdef.py changes
+    tree = tmp_path / "tree"
+    for d in ("src", "build", "python"):
+        (tree / d).mkdir(parents=True)
+    (tree / "Makefile").write_text("")
+    shutil.copytree(os.path.join(repo, "python", "whirl"), tree / "python" / "whirl",
+                    ignore=shutil.ignore_patterns("__pycache__", "libwhirl.so", ".libs",
+                                                  "_ffi.py"))
+    cache = tree / "build" / "python" / "whirl_ffi.py"
+    env = dict(os.environ, PYTHONPATH=str(tree / "python"))
+
+    def run():
+        out = subprocess.run([sys.executable, "-c", "import sys, whirl; print('pycparser' in "
+                              "sys.modules, whirl.critical(1)[0])"], cwd="/", env=env,
+                             check=True, capture_output=True, text=True).stdout.split()
+        assert float(out[1]) == whirl.critical(1)[0]
+        return out[0] == "True"
+
+    assert run() and cache.exists()  # parsed, and kept
+    assert _build.module_text(_cdef.CDEF) == cache.read_text()
+    assert not run()  # the kept module
+    with open(tree / "python" / "whirl" / "_cdef.py", "a") as f:
+        f.write('CDEF += "\\nint whirl_gone(void);\\n"\n')
+    assert run() and "whirl_gone" in cache.read_text()  # parsed again, and kept again
+    assert not run()
+
+
 def test_pip_runs_make(tmp_path, source, repo):
     # without WHIRL_PREBUILT setup.py runs make for build/libwhirl.so (up to date here: the
     # plain build; the sanitizer half's library is another build's)

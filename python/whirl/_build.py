@@ -4,7 +4,8 @@ parsed into cffi's tables, so that importing it costs a few milliseconds where p
 pycparser at every import costs a tenth of a second or more. The module needs no compiler and
 holds no CPython extension (the wheel stays py3-none); it keeps the text it was made from
 (``CDEF``), and whirl._lib uses it only when that text is _cdef.py's, parsing the declarations
-itself otherwise (a source tree, which has no generated module, or a stale one)."""
+itself otherwise (a stale module; a source tree, which keeps the module it makes at its first
+import in build/python/)."""
 import contextlib
 import io
 import os

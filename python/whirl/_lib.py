@@ -15,7 +15,7 @@ import contextlib
 import ctypes
 import dataclasses
 import functools
-import importlib
+import importlib.util
 import math
 import numbers
 import os
@@ -27,29 +27,62 @@ import numpy as np
 
 from ._cdef import CDEF
 
+_HERE = os.path.dirname(os.path.abspath(__file__))
+_PACKAGED = os.path.join(_HERE, "libwhirl.so")
+_TREE = os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir))
+_IN_TREE = (os.path.isfile(os.path.join(_TREE, "Makefile"))
+            and os.path.isdir(os.path.join(_TREE, "src")))
+
+
+def _generated(path: Optional[str] = None) -> Any:
+    """The FFI of a module generated from the declarations (whirl/_build.py): the package's
+    whirl._ffi, or the file ``path``; None when there is none, it cannot be read (another cffi
+    made it), or it was made from other declarations than _cdef.py's."""
+    name = __name__.rsplit(".", 1)[0] + "._ffi"
+    try:
+        if path is None:
+            module = importlib.import_module(name)
+        else:
+            spec = importlib.util.spec_from_file_location(name, path)
+            if spec is None or spec.loader is None:
+                return None
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+    except (ImportError, OSError, SyntaxError):
+        return None
+    return module.ffi if getattr(module, "CDEF", None) == CDEF else None
+
 
 def _declarations() -> Any:
     """cffi's FFI for the declarations of _cdef.py: the module generated from them when the
-    package was built (whirl/_ffi.py, whirl/_build.py: nothing to parse), or, without it (a
-    source tree) or when it was made from other declarations, parsed here (pycparser, a tenth
-    of a second)."""
-    try:
-        built = importlib.import_module(__name__.rsplit(".", 1)[0] + "._ffi")
-        if getattr(built, "CDEF", None) == CDEF:
-            return built.ffi
-    except ImportError:  # absent, or made by a cffi this one cannot read
-        pass
+    package was built (whirl/_ffi.py: nothing to parse); in a source tree, which has none, the
+    one kept in its build/python/ (written at the first import, again whenever _cdef.py
+    changes); else parsed here (pycparser, a tenth of a second)."""
+    found = _generated()
+    if found is not None:
+        return found
+    cache = (os.path.join(_TREE, "build", "python", "whirl_ffi.py")
+             if _IN_TREE and os.path.isdir(os.path.join(_TREE, "build")) else None)
+    if cache is not None and os.path.exists(cache):
+        found = _generated(cache)
+        if found is not None:
+            return found
     from cffi import FFI
     parsed = FFI()
     parsed.cdef(CDEF)
+    if cache is not None:
+        try:  # written whole, then renamed: another process reads the old file or the new
+            from ._build import write_module
+            os.makedirs(os.path.dirname(cache), exist_ok=True)
+            part = "%s.%d.part" % (cache, os.getpid())
+            write_module(CDEF, part)
+            os.replace(part, cache)
+        except (OSError, ImportError):
+            pass  # a tree one cannot write to: parsed at every import
     return parsed
 
 
 ffi = _declarations()
-
-_HERE = os.path.dirname(os.path.abspath(__file__))
-_PACKAGED = os.path.join(_HERE, "libwhirl.so")
-_TREE = os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir))
 
 
 def _candidates() -> Iterator[str]:
@@ -79,8 +112,7 @@ def _advice() -> str:
         return ("The package's copy uses the system's GSL, NLopt, LAPACKE, inih and OpenMP (a "
                 "package built with WHIRL_VENDOR=0): install them, or install the wheel, which "
                 "carries them.")
-    if os.path.exists(os.path.join(_TREE, "Makefile")) and os.path.isdir(
-            os.path.join(_TREE, "src")):
+    if _IN_TREE:
         return ("Build it with `make build/libwhirl.so` in %s, or set WHIRL_LIBRARY." % _TREE)
     return ("This package has no libwhirl of its own: install the wheel (whirl-*.whl), which "
             "carries it, or set WHIRL_LIBRARY to a libwhirl.so.")
