@@ -104,8 +104,8 @@ def test_wheel_holds_the_library(wheel, repo):
     libs = sorted(n[len("whirl/.libs/"):] for n in names
                   if n.startswith("whirl/.libs/lib"))
     assert libs == sorted(linked), (libs, linked)
-    assert {"libgsl.so.27", "libnlopt.so.0", "libinih.so.1", "liblapacke.so.3",
-            "libgomp.so.1"} <= set(libs)
+    assert {"libgsl", "libnlopt", "libinih", "liblapacke", "libgomp"} <= {
+        n.split(".so.")[0] for n in libs}, libs
     for soname in libs:
         (row,) = [line.split() for line in readme.splitlines() if line.startswith(soname + " ")]
         assert "whirl/.libs/licenses/%s.copyright" % row[2] in names, row
