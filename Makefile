@@ -344,7 +344,7 @@ study:
 # into /usr/local/lib/python3.*/dist-packages, apart from apt's packages; inside a venv it needs
 # nothing:   make python PYTHON=venv/bin/python
 # make wheel: build/wheel/whirl-VERSION-py3-none-linux_x86_64.whl, that package, which stands
-# alone: any Python 3 with numpy and cffi on a Linux x86_64 with this glibc or newer installs it
+# alone: any Python 3.9+ with numpy and cffi on a Linux x86_64 with this glibc or newer installs it
 # (pip install build/wheel/whirl-*.whl); nothing else of the system's is needed.
 PIP_FLAGS ?= $(shell $(PYTHON) -c 'import sys; print("" if sys.prefix != sys.base_prefix else "--break-system-packages")' 2>/dev/null)
 python:
