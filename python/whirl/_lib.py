@@ -48,7 +48,7 @@ def _generated(path: Optional[str] = None) -> Any:
                 return None
             module = importlib.util.module_from_spec(spec)
             spec.loader.exec_module(module)
-    except (ImportError, OSError, SyntaxError):
+    except Exception:  # whatever is wrong with a generated module, the declarations parse
         return None
     return module.ffi if getattr(module, "CDEF", None) == CDEF else None
 
