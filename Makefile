@@ -335,14 +335,17 @@ study:
 	@$(MAKE) --no-print-directory all
 	@sh scripts/study.sh all out/study $(BUILD)
 
-# The Python package (python/) with its own copy of the shared library inside
-# (python/setup.py builds $(BUILD)/libwhirl.so and copies it into the package), installed by pip
-# without network access into the interpreter PYTHON, which it names. Debian marks its own Python
-# as managed by apt: there pip needs --break-system-packages and installs into
-# /usr/local/lib/python3.*/dist-packages, apart from apt's packages; inside a venv it needs
+# The Python package (python/) with its own copy of the shared library inside, and of the
+# libraries it links (python/setup.py builds $(BUILD)/libwhirl.so, copies it into the package and
+# the system's GSL, NLopt, inih, LAPACKE/LAPACK/BLAS, OpenMP and gfortran runtime into whirl/.libs
+# with their Debian copyright files, and points their run-time search paths there with patchelf),
+# installed by pip without network access into the interpreter PYTHON, which it names. Debian
+# marks its own Python as managed by apt: there pip needs --break-system-packages and installs
+# into /usr/local/lib/python3.*/dist-packages, apart from apt's packages; inside a venv it needs
 # nothing:   make python PYTHON=venv/bin/python
-# make wheel: build/wheel/whirl-VERSION-*.whl, the package with libwhirl inside, for
-# `pip install build/wheel/whirl-*.whl` anywhere GSL, NLopt, LAPACKE and inih are installed.
+# make wheel: build/wheel/whirl-VERSION-py3-none-linux_x86_64.whl, that package, which stands
+# alone: any Python 3.9+ with numpy and cffi on a Linux x86_64 with this glibc or newer installs it
+# (pip install build/wheel/whirl-*.whl); nothing else of the system's is needed.
 PIP_FLAGS ?= $(shell $(PYTHON) -c 'import sys; print("" if sys.prefix != sys.base_prefix else "--break-system-packages")' 2>/dev/null)
 python:
 	@sh scripts/deps.sh build python
@@ -357,7 +360,7 @@ wheel:
 	@rm -rf $(BUILD)/wheel python/build
 	WHIRL_BUILD=$(abspath $(BUILD)) $(PYTHON) -m pip wheel --no-build-isolation --no-deps --no-index -w $(BUILD)/wheel ./python
 	@rm -rf python/build python/whirl.egg-info
-	@echo "make wheel: $$(ls $(BUILD)/wheel/whirl-*.whl)"
+	@echo "make wheel: $$(ls $(BUILD)/wheel/whirl-*.whl) (python3 -m pip install it; where a whirl of this version is installed already, add --force-reinstall --no-deps, or pip keeps that one)"
 
 # The live page (python/whirl/explore.py) over the library just built.
 explore:

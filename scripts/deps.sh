@@ -8,7 +8,8 @@
 # Usage: deps.sh GROUP...  (no GROUP, or "all": every group). The groups, by purpose:
 #   run      what the program needs to draw: gnuplot, and ffmpeg for MP4 movies
 #   build    the compiler and the libraries whirl links (make, make demo: run and build)
-#   python   the Python package (make python, make wheel, make explore)
+#   python   the Python package (make python, make wheel, make explore; patchelf points the
+#            wheel's libraries at each other)
 #   tests    make check's tools: cmocka, clang for the second compile (and its runtimes for make
 #            fuzz), Open MPI, the Python suite's modules, a pseudo-terminal, bc, a German locale
 #   docs     the manual (make docs, and its test in make check)
@@ -46,6 +47,7 @@ python  python3-pip        have_py pip
 python  python3-setuptools have_py setuptools
 python  python3-wheel      have_py wheel
 python  python3-venv       test -n "$(ls /usr/lib/python3*/ensurepip/__init__.py 2>/dev/null)"
+python  patchelf           have_cmd patchelf
 tests   libcmocka-dev      have_pc cmocka
 tests   libopenmpi-dev     have_cmd mpicc
 tests   openmpi-bin        have_cmd mpirun

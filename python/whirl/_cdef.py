@@ -1,4 +1,6 @@
-"""The C declarations of libwhirl that the package calls (cffi ABI mode).
+"""The C declarations of libwhirl that the package calls (cffi ABI mode). The build parses them
+into the module whirl/_ffi.py (whirl/_build.py), which the installed package imports; a source
+tree parses them at its first import and keeps that module in its build/python/ (whirl._lib).
 
 They mirror include/whirl/*.h; tests/test_layout.py compiles a C program against those headers
 and checks that every struct declared here has the same size and field offsets."""

@@ -4,16 +4,18 @@ every argument passes before it reaches the library.
 The shared library is looked for, in this order:
   1. the file named by the environment variable WHIRL_LIBRARY;
   2. libwhirl.so inside the package (a wheel from ``make wheel``, or ``pip install ./python``,
-     carries its own);
+     carries its own, with the libraries it links in whirl/.libs); when the package has one,
+     it is the one: if it does not load, the import fails rather than take another version;
   3. build/libwhirl.so of the source tree the package sits in (python/whirl -> ../../build),
      so that ``PYTHONPATH=python`` uses the library just built;
   4. the system's libwhirl (an installed prefix known to the dynamic linker).
 ``whirl.LIBRARY_PATH`` names the copy in use.
 """
 import contextlib
-import ctypes.util
+import ctypes
 import dataclasses
 import functools
+import importlib.util
 import math
 import numbers
 import os
@@ -23,25 +25,98 @@ from typing import (Any, Callable, ContextManager, Dict, Iterator, List, Optiona
                     TypeVar)
 
 import numpy as np
-from cffi import FFI
 
 from ._cdef import CDEF
 
-ffi = FFI()
-ffi.cdef(CDEF)
-
 _HERE = os.path.dirname(os.path.abspath(__file__))
+_PACKAGED = os.path.join(_HERE, "libwhirl.so")
+_TREE = os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir))
+_IN_TREE = (os.path.isfile(os.path.join(_TREE, "Makefile"))
+            and os.path.isdir(os.path.join(_TREE, "src")))
 
 
-def _candidates() -> List[str]:
+def _generated(path: Optional[str] = None) -> Any:
+    """The FFI of a module generated from the declarations (whirl/_build.py): the package's
+    whirl._ffi, or the file ``path``; None when there is none, it cannot be read (another cffi
+    made it), or it was made from other declarations than _cdef.py's."""
+    name = __name__.rsplit(".", 1)[0] + "._ffi"
+    try:
+        if path is None:
+            module = importlib.import_module(name)
+        else:
+            spec = importlib.util.spec_from_file_location(name, path)
+            if spec is None or spec.loader is None:
+                return None
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+    except Exception:  # whatever is wrong with a generated module, the declarations parse
+        return None
+    return module.ffi if getattr(module, "CDEF", None) == CDEF else None
+
+
+def _declarations() -> Any:
+    """cffi's FFI for the declarations of _cdef.py: the module generated from them when the
+    package was built (whirl/_ffi.py: nothing to parse); in a source tree, which has none, the
+    one kept in its build/python/ (written at the first import, again whenever _cdef.py
+    changes); else parsed here (pycparser, a tenth of a second)."""
+    found = _generated()
+    if found is not None:
+        return found
+    cache = (os.path.join(_TREE, "build", "python", "whirl_ffi.py")
+             if _IN_TREE and os.path.isdir(os.path.join(_TREE, "build")) else None)
+    if cache is not None and os.path.exists(cache):
+        found = _generated(cache)
+        if found is not None:
+            return found
+    from cffi import FFI
+    parsed = FFI()
+    parsed.cdef(CDEF)
+    if cache is not None:
+        try:  # written whole, then renamed: another process reads the old file or the new
+            from ._build import write_module
+            os.makedirs(os.path.dirname(cache), exist_ok=True)
+            part = "%s.%d.part" % (cache, os.getpid())
+            write_module(CDEF, part)
+            os.replace(part, cache)
+        except (OSError, ImportError):
+            pass  # a tree one cannot write to: parsed at every import
+    return parsed
+
+
+ffi = _declarations()
+
+
+def _candidates() -> Iterator[str]:
     env = os.environ.get("WHIRL_LIBRARY")
     if env:
-        return [env]
-    found = [os.path.join(_HERE, "libwhirl.so"),
-             os.path.normpath(os.path.join(_HERE, os.pardir, os.pardir, "build", "libwhirl.so"))]
+        yield env
+        return
+    yield _PACKAGED
+    yield os.path.join(_TREE, "build", "libwhirl.so")
+    import ctypes.util  # the system's copy: a few hundredths of a second, asked only here
     system = ctypes.util.find_library("whirl")
-    found += [system] if system else []
-    return found + ["libwhirl.so"]
+    if system:
+        yield system
+    yield "libwhirl.so"
+
+
+def _advice() -> str:
+    """What to do when no copy loads, for where this package sits."""
+    if os.environ.get("WHIRL_LIBRARY"):
+        return "WHIRL_LIBRARY must name a libwhirl.so that loads (or unset it)."
+    if os.path.exists(_PACKAGED):
+        libs = os.path.join(_HERE, ".libs")
+        if os.path.isdir(libs):
+            return ("The package's copy does not load although it carries the libraries it "
+                    "links (%s): reinstall the package (pip install --force-reinstall --no-deps "
+                    "whirl-*.whl), or set WHIRL_LIBRARY to a libwhirl.so that loads." % libs)
+        return ("The package's copy uses the system's GSL, NLopt, LAPACKE, inih and OpenMP (a "
+                "package built with WHIRL_VENDOR=0): install them, or install the wheel, which "
+                "carries them.")
+    if _IN_TREE:
+        return ("Build it with `make build/libwhirl.so` in %s, or set WHIRL_LIBRARY." % _TREE)
+    return ("This package has no libwhirl of its own: install the wheel (whirl-*.whl), which "
+            "carries it, or set WHIRL_LIBRARY to a libwhirl.so.")
 
 
 def _load() -> Tuple[Any, str]:
@@ -54,10 +129,10 @@ def _load() -> Tuple[Any, str]:
             return ffi.dlopen(path), path
         except OSError as e:
             tried.append("%s (%s)" % (path, e))
-            if os.environ.get("WHIRL_LIBRARY"):
+            if path == _PACKAGED:  # the package's own, when it has one: no other version
                 break
-    raise ImportError("whirl: cannot load libwhirl: tried " + "; ".join(tried)
-                      + ". Build it with `make` (build/libwhirl.so) or set WHIRL_LIBRARY.")
+    raise ImportError("whirl: cannot load libwhirl: tried " + "; ".join(tried) + ". "
+                      + _advice())
 
 
 lib, LIBRARY_PATH = _load()
