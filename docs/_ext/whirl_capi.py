@@ -4,7 +4,10 @@
 everything it declares: each macro (#define), function (WHIRL_API ...;), struct with its members,
 opaque type, enum with its enumerators and function-pointer type, with the comment that precedes
 it (or follows it on the same line) as its description. The header's opening comment becomes the
-section's introduction. Nothing is written by hand, so a new public function is in the reference
+section's introduction. In a function's comment the lines "@param NAME text", "@return text" and
+"@retval STATUS text" (each continued on the lines below it up to a blank line or the next "@")
+become its lists of parameters, return value and statuses; a NAME that is not one of the
+function's parameters stops the build. Nothing is written by hand, so a new public function is in the reference
 as soon as it is in a header; tests/cli/test_docs.sh checks that every symbol the shared library
 exports has its entry.
 """
@@ -13,6 +16,7 @@ import re
 
 from docutils import nodes
 from docutils.statemachine import StringList
+from sphinx.errors import ExtensionError
 
 from whirl_text import SourceDirective
 
@@ -121,6 +125,64 @@ def _rst_text(lines, indent):
         para.append(ln)
     flush()
     return out
+
+
+_FIELD = re.compile(r"^@(param|return|returns|retval)\b\s*(.*)$")
+
+
+def _split_fields(lines):
+    """A comment's lines as (description lines, fields): each field [kind, name, text lines] from
+    a line "@param NAME text", "@return text" or "@retval STATUS text" and the lines after it up
+    to a blank line or the next field; lines after a field's blank line are description again."""
+    body, fields, open_field = [], [], False
+    for ln in lines:
+        m = _FIELD.match(ln.strip())
+        if m:
+            kind, rest = m.group(1), m.group(2)
+            name = ""
+            if kind in ("param", "retval"):
+                name, _, rest = rest.partition(" ")
+            fields.append([kind, name, [rest.strip()]])
+            open_field = True
+        elif open_field and ln.strip():
+            fields[-1][2].append(ln.strip())
+        else:
+            open_field = False
+            body.append(ln)
+    return body, fields
+
+
+def _param_names(decl):
+    """The parameter names of a function declaration (its last identifier in each comma-separated
+    part between the outer parentheses; none for (void))."""
+    inside = decl[decl.index("(") + 1:decl.rindex(")")]
+    names, depth, part = [], 0, ""
+    for c in inside + ",":
+        if c == "," and depth == 0:
+            m = re.search(r"(\w+)\s*(\[[^\]]*\])*\s*$", part) if "(" not in part else \
+                re.search(r"\(\s*\*\s*(\w+)\s*\)", part)
+            if m and part.strip() != "void":
+                names.append(m.group(1))
+            part = ""
+            continue
+        depth += c in "(["
+        depth -= c in ")]"
+        part += c
+    return names
+
+
+def _rst_fields(fields, indent):
+    pad = " " * indent
+    out = []
+    for kind, name, text in fields:
+        words = " ".join(_escape(t) for t in text if t)
+        if kind == "param":
+            out.append("%s:param %s: %s" % (pad, name, words))
+        elif kind == "retval":
+            out.append("%s:retval %s: %s" % (pad, name, words))
+        else:
+            out.append("%s:returns: %s" % (pad, words))
+    return out + [""] if out else []
 
 
 def _squash(s):
@@ -273,9 +335,18 @@ class WhirlCHeader(SourceDirective):
                 continue
             if "(" in s:
                 rst += [".. c:function:: %s" % s, ""]
+                body, fields = _split_fields(pending)
+                known = _param_names(s)
+                for kind, pname, _ in fields:
+                    if kind == "param" and pname not in known:
+                        raise ExtensionError("%s: @param %s: %s has no such parameter (%s)"
+                                             % (name, pname, s.split("(")[0].split()[-1],
+                                                ", ".join(known)))
+                rst += _rst_text(body, 3)
+                rst += _rst_fields(fields, 3)
             else:
                 rst += [".. c:var:: %s" % s, ""]
-            rst += _rst_text(pending, 3)
+                rst += _rst_text(pending, 3)
             pending = []
         return rst
 

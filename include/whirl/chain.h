@@ -20,11 +20,21 @@ typedef struct whirl_chain {
 
 /* A chain of n equal links and equal masses, total length 1 and total mass 1, g = 1, with
  * tip_mass (>= 0) added to the last mass: the discrete model of the uniform chain.
- * Returns NULL on n = 0, a negative or non-finite tip mass, or no memory (whirl_last_error). */
+ * Returns NULL on n = 0, a negative or non-finite tip mass, or no memory (whirl_last_error).
+ * @param n the links N, >= 1
+ * @param tip_mass the mass added at the free end [M], >= 0
+ * @return the chain, to free with whirl_chain_free; NULL with a message on bad input or no memory
+ */
 WHIRL_API whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass);
 
 /* A chain of n links with the given lengths and masses (copied), gravity g. NULL on bad input
- * (non-positive or non-finite values: whirl_last_error names the first) or no memory. */
+ * (non-positive or non-finite values: whirl_last_error names the first) or no memory.
+ * @param n the links N, >= 1
+ * @param length the links' lengths, n (copied)
+ * @param mass the point masses at their lower ends, n (copied)
+ * @param g the gravity, > 0
+ * @return the chain, to free with whirl_chain_free; NULL with a message on bad input or no memory
+ */
 WHIRL_API whirl_chain *whirl_chain_alloc(size_t n, const double *length, const double *mass,
                                          double g);
 

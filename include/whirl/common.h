@@ -45,7 +45,9 @@ extern "C" {
 #define WHIRL_OMEGA_MAX 1e100
 
 /* The message of the last failure in the calling thread ("" if none), its numbers
- * dimensionless. */
+ * dimensionless.
+ * @return the message (the thread's own storage, rewritten by its next failure)
+ */
 WHIRL_API const char *whirl_last_error(void);
 /* The status of that failure (GSL_SUCCESS if none): a function that returns NULL instead of a
  * status (an _alloc) leaves it here. */

@@ -92,7 +92,14 @@ WHIRL_API int whirl_driven_nodes(double eps, size_t npts, const double *pos, con
 
 /* The steady shape whose tip is near guess = (X, Y) (Newton from there). GSL_EINVAL on bad
  * parameters, GSL_EDOM for eps = 0 with drag, GSL_EMAXITER if Newton does not converge (the
- * message says how far it got). On success info describes the shape. */
+ * message says how far it got). On success info describes the shape.
+ * @param chain the N-link chain, or NULL for the continuous chain
+ * @param params the rate, the pivot's circle and the drag
+ * @param guess the tip's position (X, Y) to start Newton's method from [L]
+ * @param info out: the shape's summary
+ * @return GSL_SUCCESS, GSL_EINVAL on bad parameters, GSL_EDOM for eps = 0 with drag, GSL_EMAXITER
+ *     if Newton's method does not converge
+ */
 WHIRL_API int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_params *params,
                                  const double guess[2], whirl_driven_info *info);
 
@@ -110,7 +117,15 @@ WHIRL_API int whirl_driven_solve(const whirl_chain *chain, const whirl_driven_pa
  * GSL_EDOM if mode k has no free shape at params->omega, or if the continuation breaks down:
  * the shape disappears at a fold on the way, in eps (small shapes near omega_k) or in the drag
  * (the support's torque eps F_y(top) must equal the drag's omega int (c + c2 omega rho) rho^2 ds,
- * rho the distance from the axis, so a small eps cannot carry a wide shape against much drag). */
+ * rho the distance from the axis, so a small eps cannot carry a wide shape against much drag).
+ * @param chain the N-link chain, or NULL for the continuous chain
+ * @param params the rate, the pivot's circle and the drag
+ * @param mode the mode k, 1..WHIRL_MODE_MAX
+ * @param side +1: the seed's tip on the pivot's side of the axis, -1: opposite
+ * @param info out: the shape's summary
+ * @return GSL_SUCCESS, or GSL_EDOM if mode k has no shape at params->omega or the continuation
+ *     breaks down
+ */
 WHIRL_API int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_params *params,
                                 int mode, int side, whirl_driven_info *info);
 
@@ -118,7 +133,18 @@ WHIRL_API int whirl_driven_mode(const whirl_chain *chain, const whirl_driven_par
  * arclength s from the pivot, position (x, y, z) (z from the pivot) and tension there. Continuum:
  * npts >= 2 points equally spaced in s; N-link chain: npts must be chain->n + 1 (the pivot and
  * the masses; tension[i] of link i, tension[0] = tension[1]). The pivot point is where the
- * integration ends: it lands on (eps, 0, 0) only for a solution. */
+ * integration ends: it lands on (eps, 0, 0) only for a solution.
+ * @param chain the N-link chain, or NULL for the continuous chain
+ * @param params the rate, the pivot's circle and the drag
+ * @param tip_xy the tip's position (X, Y) of a solution [L]
+ * @param npts the points: >= 2 for the continuum, chain->n + 1 for the N-link chain
+ * @param s out: the arclengths from the pivot [L], npts
+ * @param x out: the positions' x [L], npts
+ * @param y out: their y [L], npts
+ * @param z out: their z, 0 at the pivot [L], npts
+ * @param tension out: the tensions [M g], npts
+ * @return GSL_SUCCESS, or a status with a message on bad arguments
+ */
 WHIRL_API int whirl_driven_sample(const whirl_chain *chain, const whirl_driven_params *params,
                                   const double tip_xy[2], size_t npts, double *s, double *x,
                                   double *y, double *z, double *tension);
@@ -146,7 +172,18 @@ WHIRL_API void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a 
  * (> 0; steps adapt below it). A fold (a rate where the branch turns back: d omega/d arclength
  * changes sign, where fold_function changes sign) is refined to the point where fold_function
  * vanishes and inserted as a point with fold = 1. GSL_EINVAL on bad arguments; a step that fails
- * to converge even at the smallest step ends the branch with complete = 0 and GSL_SUCCESS. */
+ * to converge even at the smallest step ends the branch with complete = 0 and GSL_SUCCESS.
+ * @param chain the N-link chain, or NULL for the continuous chain
+ * @param params the pivot's circle and the drag; params->omega the start's rate
+ * @param start a solution at params->omega (whirl_driven_mode)
+ * @param direction -1: towards decreasing omega, +1: increasing
+ * @param omega_min the lowest rate followed [sqrt(g/L)]
+ * @param omega_max the highest rate followed [sqrt(g/L)]
+ * @param step the largest arclength step in (X, Y, omega), > 0
+ * @param curve out: the points and the folds (whirl_driven_curve_alloc)
+ * @return GSL_SUCCESS (also when a step would not converge: curve->complete 0), or GSL_EINVAL on
+ *     bad arguments
+ */
 WHIRL_API int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
                                   const whirl_driven_info *start, int direction, double omega_min,
                                   double omega_max, double step, whirl_driven_curve *curve);

@@ -72,7 +72,12 @@ typedef struct whirl_model {
 typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
 
 /* Allocates the workspace of model in formulation f (copies the model struct, not the chain).
- * NULL on invalid parameters (whirl_last_error names the first) or no memory. */
+ * NULL on invalid parameters (whirl_last_error names the first) or no memory.
+ * @param model the model (copied; its chain is not, and must outlive the workspace)
+ * @param f the formulation: WHIRL_FORMULATION_CARTESIAN (the default) or the seed's
+ * @return the workspace, to free with whirl_dyn_free; NULL with a message on invalid parameters or
+ *     no memory
+ */
 WHIRL_API whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
 WHIRL_API void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
 
@@ -105,7 +110,10 @@ typedef void (*whirl_pivot_fn)(double t, double p[3], double pv[3], double pa[3]
  * internal damping, whirl_default_step's period). params is not owned. */
 WHIRL_API int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn pivot, void *params);
 
-/* Length of the state vector y. */
+/* Length of the state vector y.
+ * @param d the dynamics
+ * @return the length of the state vector y
+ */
 WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);
 
 /* One chain on several cores: the Cartesian formulation's per-link passes of every right-hand
@@ -129,11 +137,26 @@ WHIRL_API int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn
  * is mass 1) given in the model's frame at time t (in 2D the y components must be 0). The
  * positions must satisfy the link constraints to 1e-9 relative and the velocities be consistent
  * with them; y is then projected exactly onto the constraints. GSL_EINVAL otherwise, and for the
- * seed formulation at its 3D singularity. */
+ * seed formulation at its 3D singularity.
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param x the masses' positions in the model's frame, 3 per mass (mass 1 first)
+ * @param v their velocities, 3 per mass
+ * @param y out: the state, whirl_dyn_size(d)
+ * @return GSL_SUCCESS, or GSL_EINVAL on positions or velocities that break the constraints
+ */
 WHIRL_API int whirl_dyn_set_state(whirl_dyn *d, double t, const double *x, const double *v,
                                   double *y);
 
-/* Positions and velocities of the masses (3 per mass, as above) at time t in the given frame. */
+/* Positions and velocities of the masses (3 per mass, as above) at time t in the given frame.
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param y the state, whirl_dyn_size(d)
+ * @param frame the frame of x and v (WHIRL_FRAME_INERTIAL or WHIRL_FRAME_ROTATING)
+ * @param x out: the masses' positions, 3 per mass
+ * @param v out: their velocities, 3 per mass
+ * @return GSL_SUCCESS, or a status with a message
+ */
 WHIRL_API int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y, whirl_frame frame,
                                   double *x, double *v);
 
@@ -151,6 +174,13 @@ typedef struct whirl_dyn_diagnostics {
     double constraint; /* max over links of | |x_i - x_{i-1}| - l_i | */
 } whirl_dyn_diagnostics;
 
+/* The diagnostics of the state y at t.
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param y the state, whirl_dyn_size(d)
+ * @param out out: energy, angular momentum, the Jacobi integral and the constraint's error
+ * @return GSL_SUCCESS, or a status with a message
+ */
 WHIRL_API int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y,
                                  whirl_dyn_diagnostics *out);
 
@@ -159,14 +189,27 @@ WHIRL_API int whirl_dyn_diagnose(const whirl_dyn *d, double t, const double *y,
 /* links[3 i..3 i + 2] <- the link vector of link i + 1 of the shape whose n + 1 nodes (the pivot
  * first) are (nx, ny, nz) (ny NULL: a planar shape, y = 0), e.g. the r, z of
  * whirl_nlink_positions or the x, y, z of whirl_driven_sample. GSL_EINVAL on NULL arrays,
- * n = 0 or a node that is not finite. */
+ * n = 0 or a node that is not finite.
+ * @param n the links N
+ * @param nx the nodes' x (or r), n + 1, the pivot first
+ * @param ny the nodes' y, n + 1, or NULL for a planar shape
+ * @param nz the nodes' z, n + 1
+ * @param links out: the link vectors, 3 per link
+ * @return GSL_SUCCESS, or GSL_EINVAL on NULL arrays, n = 0 or a node that is not finite
+ */
 WHIRL_API int whirl_shape_links(size_t n, const double *nx, const double *ny, const double *nz,
                       double *links);
 
 /* The one perturbation rule of the library: each of the n link vectors (3 per link, in place)
  * turned by angle [rad] (>= 0) towards a random direction perpendicular to it, uniform on the
  * circle of such directions (GSL's MT19937 seeded with seed); lengths kept. GSL_EINVAL on NULL,
- * n = 0, a bad angle or a zero link; GSL_ENOMEM. */
+ * n = 0, a bad angle or a zero link; GSL_ENOMEM.
+ * @param n the links N
+ * @param links the link vectors, 3 per link, turned in place
+ * @param angle the angle each is turned by [rad], >= 0
+ * @param seed the seed of the random directions
+ * @return GSL_SUCCESS, GSL_EINVAL or GSL_ENOMEM
+ */
 WHIRL_API int whirl_perturb_links(size_t n, double *links, double angle, unsigned long seed);
 
 /* y <- the state of d at time t (length whirl_dyn_size) of the shape whose link vectors are
@@ -177,7 +220,16 @@ WHIRL_API int whirl_perturb_links(size_t n, double *links, double angle, unsigne
  * omega (from whirl_nlink_positions or whirl_driven_sample) is an equilibrium in either frame.
  * A planar model (dim 2) needs spin = 0. The links must have the chain's lengths (to 1e-9
  * relative, whirl_dyn_set_state). GSL_EINVAL with a message on NULL or inconsistent
- * arguments; GSL_ENOMEM (allocates 6 N doubles of scratch and frees them). */
+ * arguments; GSL_ENOMEM (allocates 6 N doubles of scratch and frees them).
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param links the shape's link vectors, 3 per link (whirl_shape_links, perhaps
+ *     whirl_perturb_links)
+ * @param spin the rate the shape turns at about the vertical [1/T]: the model's omega for a steady
+ *     shape
+ * @param y out: the state, whirl_dyn_size(d)
+ * @return GSL_SUCCESS, GSL_EINVAL with a message on NULL or inconsistent arguments, GSL_ENOMEM
+ */
 WHIRL_API int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *links, double spin,
                                double *y);
 
@@ -185,12 +237,23 @@ WHIRL_API int whirl_dyn_state_from_shape(whirl_dyn *d, double t, const double *l
  * near a shape with the link tensions tension[0..N-1] [M g]: the smallest of a 200th of the
  * period 2 pi / omega, the stability limit of the fastest transverse wave under the tensions
  * and those of the damping and the air drag (src/state.c gives the bounds). GSL_EINVAL on NULL
- * arguments, omega <= 0 or a negative tension. */
+ * arguments, omega <= 0 or a negative tension.
+ * @param m the model
+ * @param tension the link tensions of the shape the run starts near [M g], N
+ * @param method the integrator's name (whirl_integrator_methods)
+ * @param h out: the step [T]
+ * @return GSL_SUCCESS, or GSL_EINVAL on NULL arguments, omega <= 0 or a negative tension
+ */
 WHIRL_API int whirl_default_step(const whirl_model *m, const double *tension, const char *method,
                        double *h);
 
 /* Deviation of the positions x (3 per mass, N masses) from the reference ref: the RMS over the
- * masses of their distance, minimised over a rotation of x about z. */
+ * masses of their distance, minimised over a rotation of x about z.
+ * @param n the masses N
+ * @param x the positions, 3 per mass
+ * @param ref the reference positions, 3 per mass
+ * @return the RMS distance [L], minimised over a rotation of x about z
+ */
 WHIRL_API double whirl_deviation(size_t n, const double *x, const double *ref);
 
 /* ---- integrators (whirl/integrator.h) on the dynamics ----
@@ -205,7 +268,13 @@ WHIRL_API int whirl_dyn_system(whirl_dyn *d, whirl_system *sys);
 
 /* An integrator of the method called method (whirl_integrator_methods) for the dynamics d (not
  * owned): whirl_integrator_alloc_system on whirl_dyn_system(d). NULL on an unknown method (the
- * message lists the known ones), d NULL or no memory. */
+ * message lists the known ones), d NULL or no memory.
+ * @param method the method's name: gauss2, gauss3, rk4, rk8, gsl-msbdf, ...
+ *     (whirl_integrator_methods)
+ * @param d the dynamics (not owned)
+ * @return the integrator, to free with whirl_integrator_free; NULL with a message on an unknown
+ *     method (naming the known ones), d NULL or no memory
+ */
 WHIRL_API whirl_integrator *whirl_integrator_alloc(const char *method, whirl_dyn *d);
 
 #ifdef __cplusplus

@@ -114,7 +114,16 @@ WHIRL_API void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned lon
  * message naming the cap, the time reached and what to change;
  * WHIRL_EINTERRUPTED once a stop is requested (polled in every right-hand side; t, y at the last
  * completed step). Allocates nothing. Its messages type t and the steps as times
- * (whirl_last_error_in_units scales them by sqrt(L/g), the chain's time). */
+ * (whirl_last_error_in_units scales them by sqrt(L/g), the chain's time).
+ * @param it the integrator
+ * @param t in: the time [T]; out: t1, or the time of the last good state after a failure
+ * @param y the state, advanced in place
+ * @param t1 the time to reach [T]
+ * @param h the fixed step (tol = 0), or the first step (tol > 0) [T]
+ * @param tol 0 for fixed steps, or the adaptive tolerance (>= WHIRL_TOL_MIN)
+ * @return GSL_SUCCESS, the status of a failing right-hand side, projection or stage solve,
+ *     GSL_EINVAL, GSL_EFAILED, GSL_EMAXITER or WHIRL_EINTERRUPTED as above
+ */
 WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
                                        double h, double tol);
 

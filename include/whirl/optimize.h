@@ -78,7 +78,15 @@ WHIRL_API int whirl_minimize_algorithm(const char *name, int *algorithm);
  * minimum to theta_out (n values). GSL_EDOM if omega is at or below the chain's first critical
  * rate (the hanging chain theta = 0 is then the minimum: there is no mode-1 shape), GSL_EINVAL
  * for bad arguments or an unknown algorithm, GSL_EFAILED if NLopt fails or the result is not a
- * minimum. stats may be NULL. */
+ * minimum. stats may be NULL.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], above the chain's first critical rate
+ * @param opt the minimiser's options (whirl_minimize_options_defaults), or NULL for them
+ * @param theta the starting link angles [rad], c->n, or NULL for a small uniform tilt
+ * @param theta_out out: the minimum's link angles [rad], c->n
+ * @param stats out: the minimiser's work, or NULL
+ * @return GSL_SUCCESS, GSL_EDOM at or below the first critical rate, GSL_EINVAL, or GSL_EFAILED
+ */
 WHIRL_API int whirl_minimize_shape(const whirl_chain *c, double omega,
                                    const whirl_minimize_options *opt, const double *theta,
                                    double *theta_out, whirl_minimize_stats *stats);
@@ -131,7 +139,16 @@ WHIRL_API int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mo
  * them distinct and off the axis (|r| > 1e-9) (GSL_EINVAL otherwise); GSL_EFAILED when the
  * residuals do not change with omega (an ill-conditioned fit). GSL_EDOM if no mode has a shape
  * in the range. WHIRL_EINTERRUPTED once a stop is requested (polled every 1024 distances).
- * result->rms_residual says how well it fits; judging it is up to the caller. */
+ * result->rms_residual says how well it fits; judging it is up to the caller.
+ * @param m the model (whirl_fit_model_defaults: the continuum)
+ * @param n how many points, 3..20000
+ * @param r the points' distances from the axis [L], n
+ * @param z their heights [L], n
+ * @param mode the mode k to fit, or 0 to try modes 1 to c + 3 and keep the best
+ * @param result out: the rate, its uncertainty, the mode and the RMS residual
+ * @return GSL_SUCCESS, GSL_EINVAL on bad points, GSL_EFAILED on an ill-conditioned fit, GSL_EDOM
+ *     if no mode has a shape in the range, WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, const double *z,
                         int mode, whirl_fit_result *result);
 

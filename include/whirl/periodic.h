@@ -80,7 +80,13 @@ WHIRL_API void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3
 typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one path */
 
 /* A workspace for the conservative chain c (not owned) in dimension dim (2 or 3) with its pivot
- * on path (copied). NULL with a message on invalid arguments or no memory. */
+ * on path (copied). NULL with a message on invalid arguments or no memory.
+ * @param c the chain (not owned)
+ * @param dim 2 or 3
+ * @param path the pivot's path (copied)
+ * @return the workspace, to free with whirl_periodic_free; NULL with a message on invalid
+ *     arguments or no memory
+ */
 WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
                                                const whirl_pivot_path *path);
 WHIRL_API void whirl_periodic_free(whirl_periodic *w); /* NULL is a no-op */
@@ -93,7 +99,12 @@ WHIRL_API size_t whirl_periodic_state_size(const whirl_periodic *w);
 WHIRL_API size_t whirl_periodic_tangent_size(const whirl_periodic *w);
 
 /* y <- the chain hanging straight down (inverted 0) or standing straight up (inverted 1) at
- * t = 0, moving with the pivot. */
+ * t = 0, moving with the pivot.
+ * @param w the workspace
+ * @param inverted 0: hanging straight down, 1: standing straight up
+ * @param y out: the state at t = 0, whirl_periodic_state_size(w)
+ * @return GSL_SUCCESS, or a status with a message
+ */
 WHIRL_API int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y);
 
 /* How the monodromy is formed; both give the derivative of the same discrete period map. */
@@ -156,7 +167,14 @@ typedef struct whirl_periodic_result {
  * params NULL: every default with refine 1. GSL_EMAXITER with the residual in the message if Newton's
  * method does not converge (result->count 0: no multiplier of a motion not found; y holds the
  * last iterate); GSL_EINVAL on bad arguments; an integration's status (and its message) if a
- * period cannot be integrated; WHIRL_EINTERRUPTED on a stop request. */
+ * period cannot be integrated; WHIRL_EINTERRUPTED on a stop request.
+ * @param w the workspace
+ * @param y in: the start; out: the periodic motion's state at t = 0, whirl_periodic_state_size(w)
+ * @param params the parameters, or NULL for the defaults with refine 1
+ * @param result out: the multipliers (valid until the next solve), their errors and the verdict
+ * @return GSL_SUCCESS, GSL_EMAXITER if Newton's method does not converge, GSL_EINVAL, an
+ *     integration's status, or WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_periodic_find(whirl_periodic *w, double *y,
                                   const whirl_periodic_params *params,
                                   whirl_periodic_result *result);
@@ -181,7 +199,13 @@ WHIRL_API void whirl_periodic_set_tick(whirl_periodic *w,
 WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
 
 /* Advances the state y of w at t = 0 (or any whole number of periods) by periods whole periods
- * with steps Gauss steps per period (a perturbed run; WHIRL_EINTERRUPTED on a stop). */
+ * with steps Gauss steps per period (a perturbed run; WHIRL_EINTERRUPTED on a stop).
+ * @param w the workspace
+ * @param y the state at t = 0, advanced in place
+ * @param steps the Gauss steps per period
+ * @param periods how many whole periods
+ * @return GSL_SUCCESS, an integration's status, or WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int periods);
 
 /* Reads the tangent coordinates of the difference y1 - y0 of two states near y0 (length

@@ -270,13 +270,23 @@ WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
 WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res);
 
-/* The fastest decay rate the internal damping adds to the motion [1/T], about
- * 16 D / min_i(m_i l_i^2) (16 D N^3 / (M L^2) for N equal links); 0 without damping. */
+/* The fastest decay rate the dissipation adds to the motion [1/T]: the internal damping's,
+ * about 16 D / min_i(m_i l_i^2) (16 D N^3 / (M L^2) for N equal links), plus the air drag's, at
+ * most max_i l_i (c + 2 c2 v) / m_i (c L / M for a uniform chain, whatever N) with v the speed
+ * of the steady rotation's fastest point, |omega| (L + drive_radius); 0 without either.
+ * @param scene the parsed scene
+ * @return the rate [1/T, or 1/s with SI units]; 0 without damping and drag
+ */
 WHIRL_API double whirl_scene_damping_rate(const whirl_scene *scene);
-/* 1 if the damping makes the scene's fixed step unstable for the explicit and fixed-point
- * methods (dt x whirl_scene_damping_rate > 2, tol = 0, a method other than gsl-msbdf): a run
- * that fails or blows up then needs a smaller dt or method = gsl-msbdf with tol (its failure
- * message says so). The rate in *rate (may be NULL). */
+/* 1 if the damping or the drag makes the scene's fixed step unstable for the explicit and
+ * fixed-point methods (dt x whirl_scene_damping_rate > 2, tol = 0, a method other than
+ * gsl-msbdf): a run that fails or blows up then needs a smaller dt or method = gsl-msbdf with
+ * tol (its failure message says so, naming the internal damping, the air drag or both). The
+ * rate in *rate (may be NULL).
+ * @param scene the parsed scene
+ * @param rate out: whirl_scene_damping_rate(scene), or NULL
+ * @return 1 if the fixed step is past the dissipation's limit, else 0
+ */
 WHIRL_API int whirl_scene_stiff(const whirl_scene *scene, double *rate);
 
 /* CSV: the header (comment lines, the last the units line of whirl_write_units_line, then the

@@ -43,7 +43,11 @@ extern "C" {
 
 typedef struct whirl_stability whirl_stability; /* workspace of the linear analysis of N links */
 
-/* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
+/* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory.
+ * @param n the links N, >= 1
+ * @return the workspace, to free with whirl_stability_free; NULL with a message on n = 0 or no
+ *     memory
+ */
 WHIRL_API whirl_stability *whirl_stability_alloc(size_t n);
 WHIRL_API void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
 
@@ -60,7 +64,14 @@ WHIRL_API int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model
                                            const double *x, const double *y, const double *z);
 
 /* whirl_stability_linearise_3d for the shape in the x-z plane with nodes (r[i], 0, z[i]),
- * i = 0..N (as from whirl_nlink_positions). */
+ * i = 0..N (as from whirl_nlink_positions).
+ * @param w the workspace (of c->n links)
+ * @param model the model: the chain, omega, and any damping (dim 3)
+ * @param r the nodes' signed distances from the axis [L], N + 1, the pivot first
+ * @param z the nodes' heights [L], N + 1
+ * @return GSL_SUCCESS, GSL_EINVAL (unsupported model, wrong lengths, not an equilibrium) or
+ *     WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_stability_linearise(whirl_stability *w, const whirl_model *model,
                                         const double *r, const double *z);
 
@@ -97,13 +108,23 @@ WHIRL_API void whirl_stability_nodes(const whirl_stability *w, const double **x,
  * Stop request: the dense solve (O(N^3), seconds from a few hundred links) cannot poll it, so for
  * more than 32 links it runs on a thread of its own while the caller polls every 20 ms; on a
  * stop the call returns WHIRL_EINTERRUPTED at once and the linearisation is gone (linearise
- * again), while the abandoned solve finishes in the background and frees its own memory. */
+ * again), while the abandoned solve finishes in the background and frees its own memory.
+ * @param w the workspace, after a linearisation
+ * @param count out: how many eigenvalues
+ * @param re out: their real parts [1/T] (into the workspace)
+ * @param im out: their imaginary parts [1/T] (into the workspace)
+ * @return GSL_SUCCESS, a status with a message, or WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_stability_eigenvalues(whirl_stability *w, size_t *count, const double **re,
                                           const double **im);
 
 /* The largest real part among those eigenvalues (growth rate, 1/time). A value within round-off
  * of zero (|growth| <= 1e-10 max |lambda|: neutral stability of the conservative chain, whose
- * eigenvalues lie on the imaginary axis) is returned as exactly 0. */
+ * eigenvalues lie on the imaginary axis) is returned as exactly 0.
+ * @param w the workspace, after a linearisation
+ * @param growth out: the largest real part [1/T]; 0 for neutral stability
+ * @return GSL_SUCCESS, a status with a message, or WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
 
 /* The index of the last linearisation: the number of negative eigenvalues of the symmetric part
@@ -114,7 +135,11 @@ WHIRL_API int whirl_stability_growth(whirl_stability *w, double *growth);
  * (linearly neutral at best) and with any complete dissipation is unstable (Kelvin-Tait-Chetaev;
  * Merkin, Gyroscopic Systems, 1956). GSL_EINVAL without a linearisation. The dense solve
  * (O(N^3)) runs as whirl_stability_eigenvalues's: on a stop request WHIRL_EINTERRUPTED at once
- * (the linearisation kept). */
+ * (the linearisation kept).
+ * @param w the workspace, after a linearisation
+ * @param index out: the negative directions of the amended potential (0: a minimum)
+ * @return GSL_SUCCESS, GSL_EINVAL without a linearisation, or WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
 
 /* tick(data) is called on the calling thread about every 20 ms while a dense solve of w runs on
@@ -129,14 +154,28 @@ WHIRL_API void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *d
  * rates the tip radius alone no longer fixes a shape (whirl_nlink_solve_nodes): the nodes
  * rebuilt from it are off the equilibrium, or refused as none (GSL_EINVAL). There use
  * whirl_stability_mode, or whirl_stability_linearise on the nodes of whirl_nlink_solve_nodes or
- * whirl_nlink_branch_nodes. */
+ * whirl_nlink_branch_nodes.
+ * @param w the workspace
+ * @param model the model, without drive and air drag
+ * @param tip_r the shape's tip radius [L] (whirl_nlink_solve at model->omega)
+ * @param growth out: the largest real part of the eigenvalues [1/T]
+ * @return GSL_SUCCESS, GSL_EINVAL, or a status with a message
+ */
 WHIRL_API int whirl_stability_shape(whirl_stability *w, const whirl_model *model, double tip_r,
                                     double *growth);
 
 /* The steady shape of mode k at model->omega (whirl_nlink_solve_nodes: the nodes from the
  * branch's link angles, an equilibrium to round-off at any rate), its linearisation and growth
  * rate (the branch is continued from its birth). info may be NULL. GSL_EDOM if the mode does not exist; GSL_EINVAL with a drive or
- * air drag (see whirl_stability_driven_mode). */
+ * air drag (see whirl_stability_driven_mode).
+ * @param w the workspace
+ * @param model the model (its chain, omega, internal damping), without drive and air drag
+ * @param mode the mode k, 1..N
+ * @param info out: the shape's summary, or NULL
+ * @param growth out: the largest real part of the eigenvalues [1/T]
+ * @return GSL_SUCCESS, GSL_EDOM if the mode does not exist at omega, GSL_EINVAL with a drive or
+ *     air drag, or a status with a message
+ */
 WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model, int mode,
                                    whirl_shape_info *info, double *growth);
 
@@ -303,7 +342,16 @@ typedef struct whirl_stability_run_result {
  * of the run it is at most 1/10 of it; stable otherwise. The run stops early once the verdict is settled: unstable
  * after the fitted stretch ends (see sim_growth), converging at once. GSL_EINVAL on bad
  * parameters or links of the wrong length (1e-9 relative). Allocates its own dynamics and
- * integrator. The shape is not checked to be an equilibrium. */
+ * integrator. The shape is not checked to be an equilibrium.
+ * @param model the model (3D; its drive, air drag and internal damping are used)
+ * @param x the shape's nodes' x [L], N + 1, the pivot first
+ * @param y the nodes' y [L], N + 1
+ * @param z the nodes' z [L], N + 1
+ * @param params the run's parameters (whirl_stability_run_defaults)
+ * @param result out: the verdict, the fitted growth, the deviations and the integrator's
+ *     statistics
+ * @return GSL_SUCCESS, GSL_EINVAL on bad parameters, or the status of a failed integration
+ */
 WHIRL_API int whirl_stability_run_shape(const whirl_model *model, const double *x, const double *y,
                                         const double *z, const whirl_stability_run_params *params,
                                         whirl_stability_run_result *result);
@@ -311,7 +359,14 @@ WHIRL_API int whirl_stability_run_shape(const whirl_model *model, const double *
 /* whirl_stability_run_shape from the free steady shape with tip radius tip_r (as for
  * whirl_stability_shape; whirl_nlink_positions at model->omega, so at high rates not the
  * equilibrium: there run from the nodes of whirl_nlink_solve_nodes or whirl_stability_nodes).
- * The model must have no drive and no air drag (GSL_EINVAL). */
+ * The model must have no drive and no air drag (GSL_EINVAL).
+ * @param model the model, without drive and air drag
+ * @param tip_r the shape's tip radius [L] (whirl_nlink_solve at model->omega)
+ * @param params the run's parameters (whirl_stability_run_defaults)
+ * @param result out: the verdict, the fitted growth, the deviations and the integrator's
+ *     statistics
+ * @return GSL_SUCCESS, GSL_EINVAL, or the status of a failed integration
+ */
 WHIRL_API int whirl_stability_run(const whirl_model *model, double tip_r,
                                   const whirl_stability_run_params *params,
                                   whirl_stability_run_result *result);
@@ -413,7 +468,18 @@ typedef struct whirl_windows_stats {
  * scan points are found when the pair that collides swaps its order in frequency (the ranks of
  * the stability.c header comment); a window nested between two others of the same pair less than
  * scan_step / 16 apart is not separated from them. GSL_EDOM if the mode does not exist in the
- * range, WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
+ * range, WHIRL_EINTERRUPTED on a stop request (between eigen-solves).
+ * @param w the workspace (of c->n links)
+ * @param c the chain
+ * @param mode the mode k, 1..c->n
+ * @param p the range and the search's parameters (whirl_windows_defaults)
+ * @param windows out: the windows in increasing omega, max of them
+ * @param max the room in windows
+ * @param count out: how many windows
+ * @param stats out: the work done, or NULL
+ * @return GSL_SUCCESS, GSL_EINVAL (also with more than max windows), GSL_EDOM if the mode does not
+ *     exist in the range, WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_windows_find(whirl_windows *w, const whirl_chain *c, int mode,
                                  const whirl_windows_params *p, whirl_window *windows, size_t max,
                                  size_t *count, whirl_windows_stats *stats);

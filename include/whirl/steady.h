@@ -58,13 +58,23 @@ typedef struct whirl_shape_info {
 
 /* The linear critical rate of mode k (>= 1) where it bifurcates from the hanging chain: with no
  * tip mass j_{0,k}/2; with a tip mass the k-th root of the linearised problem (Bessel J0/Y0
- * determinant). GSL_EINVAL on a bad mode or tip mass. */
+ * determinant). GSL_EINVAL on a bad mode or tip mass.
+ * @param mode the mode k, 1..WHIRL_CONTINUUM_MODE_MAX
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param omega out: the critical rate omega_k [sqrt(g/L)]
+ * @return GSL_SUCCESS, or GSL_EINVAL on a bad mode or tip mass
+ */
 WHIRL_API int whirl_continuum_critical(int mode, double tip_mass, double *omega);
 
 /* The linear critical rates of modes 1..n (1 <= n <= WHIRL_CONTINUUM_MODE_MAX) into omega[0..n-1]
  * (caller's array): the same roots as whirl_continuum_critical, found in one sweep over the
  * rates (cost linear in n; n = 3183 with a tip mass takes about 1e5 determinant evaluations).
- * GSL_EINVAL on a bad n or tip mass, WHIRL_EINTERRUPTED on a stop request. */
+ * GSL_EINVAL on a bad n or tip mass, WHIRL_EINTERRUPTED on a stop request.
+ * @param n how many modes, 1..WHIRL_CONTINUUM_MODE_MAX
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param omega out: omega_1..omega_n [sqrt(g/L)], the caller's array of n
+ * @return GSL_SUCCESS, GSL_EINVAL on a bad n or tip mass, WHIRL_EINTERRUPTED on a stop request
+ */
 WHIRL_API int whirl_continuum_critical_rates(size_t n, double tip_mass, double *omega);
 
 /* The steady shape of mode k at omega. tip_r_guess > 0 seeds the root search (continuation);
@@ -77,7 +87,14 @@ WHIRL_API int whirl_continuum_critical_rates(size_t n, double tip_mass, double *
  * residual is evaluated in closed form, so the error is that of one rounding of omega, about
  * 1e-16 / eps (2e-11 at eps = 1e-6 without a tip mass); with a tip mass the Bessel combination
  * of the linear part loses digits (up to 1.3e-10 for m = 0.48, 3.4e-10 for m = 3.7 at eps = 1e-6,
- * modes 1-6). */
+ * modes 1-6).
+ * @param omega the rotation rate [sqrt(g/L)], in (0, WHIRL_CONTINUUM_OMEGA_MAX]
+ * @param mode the mode k (node count), 1..WHIRL_CONTINUUM_MODE_MAX
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param tip_r_guess a tip radius to start the root search from [L], or 0 to bracket it
+ * @param info out: the shape's summary
+ * @return GSL_SUCCESS; GSL_EDOM below omega_k (the message names it); GSL_EINVAL on bad arguments
+ */
 WHIRL_API int whirl_continuum_solve(double omega, int mode, double tip_mass, double tip_r_guess,
                                     whirl_shape_info *info);
 
@@ -102,7 +119,17 @@ WHIRL_API int whirl_continuum_solve_tol(double omega, int mode, double tip_mass,
 /* Samples the shape with tip radius tip_r in (0, 1] (from whirl_continuum_solve) at npts >= 2
  * arclengths equally spaced from the pivot (s = 0) to the free end (s = 1): r, z (0 at the pivot)
  * and the tension there; arrays of npts. For any tip_r it is the shot of the shooting method: r
- * at the pivot (r[0]) vanishes only for a solution. */
+ * at the pivot (r[0]) vanishes only for a solution.
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param tip_r the tip radius [L], in (0, 1]: info.tip_r of whirl_continuum_solve for a shape
+ * @param npts how many arclengths, >= 2
+ * @param s out: the arclengths from the pivot [L], npts
+ * @param r out: the signed distances from the axis [L], npts
+ * @param z out: the heights, 0 at the pivot and negative below it [L], npts
+ * @param tension out: the tensions [M g], npts
+ * @return GSL_SUCCESS, or a status with a message on bad arguments or a failed integration
+ */
 WHIRL_API int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t npts,
                                      double *s, double *r, double *z, double *tension);
 
@@ -110,7 +137,16 @@ WHIRL_API int whirl_continuum_sample(double omega, double tip_mass, double tip_r
  * exists[j] = 1 and info[j] filled where the mode exists, exists[j] = 0 where it does not. The
  * rates are cut into contiguous blocks followed in parallel on the OpenMP threads (serially when
  * called from inside a parallel region). After a failure or a stop request (WHIRL_EINTERRUPTED)
- * the entries of the rates reached are valid and those of the others left as they were. */
+ * the entries of the rates reached are valid and those of the others left as they were.
+ * @param mode the mode k, 1..WHIRL_CONTINUUM_MODE_MAX
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param n how many rates
+ * @param omega the rates [sqrt(g/L)], n, in any order
+ * @param info out: the shape at each rate where it exists, n
+ * @param exists out: 1 where mode k exists at omega[j], 0 where not, n
+ * @return GSL_SUCCESS, WHIRL_EINTERRUPTED on a stop request, or the status of a failed solve (the
+ *     entries reached are valid)
+ */
 WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                                      whirl_shape_info *info, int *exists);
 
@@ -130,7 +166,12 @@ WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega,
                                              size_t max, double *node_s, size_t *resolved);
 
 /* The first nmodes (<= c->n) linear critical rates of the chain, ascending: the normal-mode
- * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem). */
+ * frequencies of the hanging chain (a symmetric tridiagonal eigenproblem).
+ * @param c the chain
+ * @param nmodes how many rates, <= c->n
+ * @param omega out: omega_1..omega_nmodes, ascending [sqrt(g/L)]
+ * @return GSL_SUCCESS, or GSL_EINVAL on bad arguments
+ */
 WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
 
 /* The exact relative equilibrium of mode k at omega: the point of the branch born at omega_k
@@ -142,14 +183,31 @@ WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *
  * the rates the branch reaches if it does not reach omega (omega below its lowest rate, which
  * is omega_k unless the branch first turns to lower rates; or k > c->n); GSL_EFAILED if the
  * continuation fails (the message names the rate reached); GSL_EMAXITER at the bound on its
- * steps (whirl_nlink_follow_options); WHIRL_EINTERRUPTED on a stop request. */
+ * steps (whirl_nlink_follow_options); WHIRL_EINTERRUPTED on a stop request.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param mode the mode k (the branch born at the k-th critical rate), 1..c->n
+ * @param info out: the shape's summary
+ * @return GSL_SUCCESS; GSL_EDOM if the branch does not reach omega; GSL_EFAILED if the
+ *     continuation fails; GSL_EMAXITER at the bound on its steps; WHIRL_EINTERRUPTED on a stop
+ *     request
+ */
 WHIRL_API int whirl_nlink_solve(const whirl_chain *c, double omega, int mode,
                                 whirl_shape_info *info);
 
 /* whirl_nlink_solve with the shape's nodes: r[i], z[i] of mass i (i = 0: the pivot, z relative
  * to it) and tension[i] of link i (tension[0] = tension[1]), arrays of c->n + 1. At high rates
  * the tip radius alone no longer fixes the shape to round-off (whirl_nlink_positions from it
- * lands the pivot off the axis): these nodes come from the branch's own link angles. */
+ * lands the pivot off the axis): these nodes come from the branch's own link angles.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param mode the mode k, 1..c->n
+ * @param info out: the shape's summary
+ * @param r out: the masses' signed distances from the axis [L], c->n + 1 (the pivot first)
+ * @param z out: their heights relative to the pivot [L], c->n + 1
+ * @param tension out: the links' tensions [M g], c->n + 1
+ * @return as whirl_nlink_solve
+ */
 WHIRL_API int whirl_nlink_solve_nodes(const whirl_chain *c, double omega, int mode,
                                       whirl_shape_info *info, double *r, double *z,
                                       double *tension);
@@ -192,13 +250,29 @@ WHIRL_API int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, in
 
 /* The nodes of the shape with tip radius tip_r: r[i], z[i] of mass i (i = 0: the pivot, which
  * lands on the axis only for a solution) and tension[i] of link i (tension[0] = tension[1]),
- * arrays of c->n + 1. */
+ * arrays of c->n + 1.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param tip_r the tip radius [L]
+ * @param r out: the signed distances from the axis [L], c->n + 1 (the pivot first)
+ * @param z out: the heights relative to the pivot [L], c->n + 1
+ * @param tension out: the links' tensions [M g], c->n + 1
+ * @return GSL_SUCCESS, or a status with a message on bad arguments
+ */
 WHIRL_API int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r,
                                     double *z, double *tension);
 
 /* Follows mode k over omega[0..n-1] (any order): one pseudo-arclength continuation from the
  * birth, info[j] the point where the branch first reaches omega[j] (as whirl_nlink_solve),
- * exists[j] = 0 where it does not. Errors as whirl_nlink_solve. */
+ * exists[j] = 0 where it does not. Errors as whirl_nlink_solve.
+ * @param c the chain
+ * @param mode the mode k, 1..c->n
+ * @param n how many rates
+ * @param omega the rates [sqrt(g/L)], n, in any order
+ * @param info out: the shape where the branch first reaches omega[j], n
+ * @param exists out: 1 where it reaches omega[j], 0 where not, n
+ * @return as whirl_nlink_solve
+ */
 WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const double *omega,
                        whirl_shape_info *info, int *exists);
 
@@ -275,7 +349,11 @@ WHIRL_API whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c);
 WHIRL_API void whirl_nlink_path_free(whirl_nlink_path *p); /* NULL is a no-op */
 
 /* Starts at the birth of mode k (1 <= k <= N): the k-th critical rate polished by Newton's
- * method on G(omega, 0), tip radius 0, heading into a > 0. GSL_EINVAL if k is out of range. */
+ * method on G(omega, 0), tip radius 0, heading into a > 0. GSL_EINVAL if k is out of range.
+ * @param p the path (whirl_nlink_path_alloc)
+ * @param mode the mode k, 1..N
+ * @return GSL_SUCCESS, or GSL_EINVAL if k is out of range
+ */
 WHIRL_API int whirl_nlink_path_birth(whirl_nlink_path *p, int mode);
 
 /* Starts at an equilibrium near (omega, tip_r) (polished by Newton's method at fixed omega),
@@ -313,7 +391,12 @@ WHIRL_API const double *whirl_nlink_path_cross_theta(const whirl_nlink_path *p);
  * below its minimum (1e-7), with a one-line message naming the rate reached (the current point,
  * where the path stays) and why the last trial was rejected; GSL_EDOM once the path has ended;
  * WHIRL_EINTERRUPTED on a stop request. The message of a failure of a path begun at a birth
- * (here, in whirl_nlink_path_crossings and in the drivers below) starts with "mode k: ". */
+ * (here, in whirl_nlink_path_crossings and in the drivers below) starts with "mode k: ".
+ * @param p the path, started by whirl_nlink_path_birth, whirl_nlink_path_start or
+ *     whirl_nlink_path_start_angles
+ * @return GSL_SUCCESS (p->event lists the step's events), GSL_EFAILED, GSL_EDOM once the path has
+ *     ended, WHIRL_EINTERRUPTED
+ */
 WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
 
 /* Where the last step crossed the rate omega (between the previous and the current point; the
@@ -336,7 +419,17 @@ typedef int (*whirl_nlink_visit_fn)(void *ctx, size_t j, const whirl_shape_info 
  * omega[0..n-1] (a rate crossed several times, through folds, is reported each time) and at every
  * event, in the order met (a step's events before its crossings). Errors as
  * whirl_nlink_path_step, GSL_EMAXITER at the bound on the steps (whirl_nlink_follow_options;
- * the message names the mode, the steps and the rates reached), or visit's status. */
+ * the message names the mode, the steps and the rates reached), or visit's status.
+ * @param c the chain
+ * @param mode the mode k, 1..c->n
+ * @param omega_max follow until the rate first exceeds it [sqrt(g/L)]
+ * @param n how many rates
+ * @param omega the rates whose crossings are reported [sqrt(g/L)], n
+ * @param visit called at every crossing and event, in the order met
+ * @param ctx passed to visit
+ * @return GSL_SUCCESS (also when visit returned WHIRL_VISIT_STOP), the status of a failed step,
+ *     GSL_EMAXITER, or visit's status
+ */
 WHIRL_API int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
                        const double *omega, whirl_nlink_visit_fn visit, void *ctx);
 /* whirl_nlink_follow with the options opt (may be NULL). */
@@ -451,7 +544,15 @@ typedef struct whirl_equilibria {
  * scan needs more than shot_budget evaluations; GSL_ETOL when its count of roots does not settle
  * (the same at two successive refinements) within its levels; GSL_ERANGE when the shot
  * overflows (the radii of a shape span more than ~1e150); WHIRL_EINTERRUPTED on a stop
- * request. */
+ * request.
+ * @param c the N-link chain, or NULL for the continuous chain
+ * @param tip_mass the continuum's point mass at the free end [M], >= 0 (with c NULL)
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param params the parameters, or NULL for whirl_equilibria_defaults
+ * @param out out: the result, to free with whirl_equilibria_free
+ * @return GSL_SUCCESS, or GSL_EINVAL, GSL_EDOM, GSL_EMAXITER, GSL_ETOL, GSL_ERANGE,
+ *     WHIRL_EINTERRUPTED as above
+ */
 WHIRL_API int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                                     const whirl_equilibria_params *params,
                                     whirl_equilibria **out);

@@ -14,6 +14,7 @@
 #include <gsl/gsl_math.h>
 
 #include "cli/figure.h"
+#include "studies/scene_internal.h"
 #include "whirl/scene.h"
 
 /* Everything one run needs. */
@@ -100,9 +101,9 @@ static int simulate(run *r)
                 res.t, res.deviation, s->stop_deviation);
     double rate;
     if (res.stopped && whirl_scene_stiff(s, &rate)) /* the steps' blow-up, not the chain's */
-        fprintf(stderr, "whirl %s: note: the internal damping makes the chain stiff (decay "
-                "rates up to about %.2g %s, dt x rate = %.2g): the deviation may be the steps' "
-                "instability; method = gsl-msbdf with tol (1e-6) steps over it\n", r->cmd->name,
+        fprintf(stderr, "whirl %s: note: %s the chain stiff (decay rates up to about %.2g %s, "
+                "dt x rate = %.2g): the deviation may be the steps' instability; method = "
+                "gsl-msbdf with tol (1e-6) steps over it\n", r->cmd->name, sc_stiff_cause(s),
                 rate, s->physical ? "/s" : "sqrt(g/L)", rate * s->dt);
     return 0;
 }

@@ -36,4 +36,10 @@ int sc_convert_start(const convert *v);
 int sc_convert_run(const convert *v);
 int sc_convert_output(const convert *v);
 
+/* scene_run.c */
+/* What makes a stiff scene stiff (whirl_scene_stiff), as the subject of a sentence: "the
+ * internal damping makes", "the air drag makes", or both "make" when each gives a tenth of
+ * whirl_scene_damping_rate or more. */
+const char *sc_stiff_cause(const whirl_scene *s);
+
 #endif

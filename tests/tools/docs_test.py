@@ -3,7 +3,8 @@
 
 1. The manual builds with Sphinx, warnings as errors (as `make docs` does), into BUILD/docs.
 2. Every symbol the shared library exports (nm -D --defined-only BUILD/libwhirl.so) has its entry
-   in the C API reference (an anchor id="c.NAME" in api/c.html).
+   in the C API reference (an anchor id="c.NAME" in api/c.html), and the "@param" and "@return"
+   lines of the headers' comments are rendered as its functions' fields.
 3. Every block marked runnable in README.md and docs/**/*.md runs as written. The marker is the
    line `<!-- runnable -->` right before the block's opening fence:
      ```console  lines "$ COMMAND" (continued by a trailing backslash) run under sh; the lines
@@ -208,6 +209,14 @@ def main():
             tap(nm.returncode == 0 and len(syms) > 0 and not missing,
                 "the C API reference has all %d exported symbols%s" % (
                     len(syms), ": missing " + ", ".join(missing) if missing else ""))
+            # each "@return" of a header's comment is a function's "Returns" field, and no
+            # "@param" or "@return" is left as text
+            want = sum(len(re.findall(r"^\s*\*\s*@returns?\b", open(h).read(), re.M))
+                       for h in glob.glob(os.path.join(ROOT, "include", "whirl", "*.h")))
+            got = text.count(">Returns<")
+            tap(want > 0 and got == want and "@param" not in text and "@return" not in text,
+                "the C API reference renders the headers' %d @return lines as fields (%d)"
+                % (want, got))
         prefix = os.path.join(tmp, "prefix")
         ok, log = install(build, prefix)
         tap(ok, "installed into a temporary prefix" + ("" if ok else ": " + log))
