@@ -15,7 +15,8 @@
 #     The plain lane prints as it goes; the sanitizer tests' output goes to
 #     build-sanitize/check.log, the builds' lines and the failures are repeated at the end.
 #   quick: the plain build and every test but the slow ones (tests/slow.list; the Python suite
-#     without its tests marked slow), in two runs at once, for after every change
+#     without its tests marked slow), taken from one queue by two runs at once (the Python suite
+#     first), for after every change
 #     (docs/guide/build.md).
 # JOBS: parallel compiles (default: the number of processors).
 build=${1:-build}
@@ -108,6 +109,26 @@ drain() {
   done
 }
 
+# drain_quick RUN: takes tests from the queue of make check-quick ($state/quick; a rename claims
+# one) and runs each (tests/run.sh, WHIRL_QUICK set), then prints the closing line of them all,
+# "tests: P passed, F failed"; non-zero if any failed
+drain_quick() {
+  qp=0 qf=0 qrc=0
+  for q in "$state"/quick/*; do
+    [ -f "$q" ] || continue
+    mine=$state/quick/claimed.$1.${q##*/}
+    mv "$q" "$mine" 2>/dev/null || continue
+    env WHIRL_QUICK=1 sh tests/run.sh "$build" "$(cat "$mine")" >"$mine.out" 2>&1 || qrc=1
+    sed '/^tests: [0-9]* passed, [0-9]* failed$/d' "$mine.out"
+    last=$(grep -E '^tests: [0-9]+ passed, [0-9]+ failed$' "$mine.out" | tail -n 1)
+    if [ -n "$last" ]; then
+      qp=$((qp + $(echo "$last" | cut -d' ' -f2))) qf=$((qf + $(echo "$last" | cut -d' ' -f4)))
+    else qf=$((qf + 1)) qrc=1; fi
+  done
+  echo "tests: $qp passed, $qf failed"
+  return $qrc
+}
+
 # the sanitizer lane: the clang compile, the ASan/UBSan build (the Makefile's sanitize-programs),
 # then the queue of the sanitizer tests
 sanitizer_lane() {
@@ -139,21 +160,27 @@ fi
 build_stage build "$build" BUILD="$build" check-programs
 : >"$build/check.log"
 if [ "$mode" = quick ]; then
-  # every test but the slow ones, dealt alternately to two runs at once (the second logged)
+  # every test but the slow ones, taken from one queue by two runs at once (the second logged),
+  # the Python suite (the longest by far) first, so that the two runs end close together
   slow=" $(sed 's/#.*//' tests/slow.list | tr '\n' ' ') "
-  one= two= k=0
-  for t in "$build"/tests/test_* tests/cli/test_*.sh; do
+  mkdir -p "$state/quick.new"
+  k=1000 queued=" "
+  for t in tests/cli/test_python.sh "$build"/tests/test_* tests/cli/test_*.sh; do
     case $t in *.d) continue ;; esac
+    [ -f "$t" ] || continue
     case $slow in *" build/${t#"$build"/} "*|*" $t "*) continue ;; esac
+    case $queued in *" $t "*) continue ;; esac
+    queued="$queued$t "
     k=$((k + 1))
-    if [ $((k % 2)) -eq 1 ]; then one="$one $t"; else two="$two $t"; fi
+    echo "$t" >"$state/quick.new/$k"
   done
+  mv "$state/quick.new" "$state/quick"
   : >"$build/check-2.log"
-  stage tests-2 "$build/check-2.log" env WHIRL_QUICK=1 sh tests/run.sh "$build" $two &
+  stage tests-2 "$build/check-2.log" drain_quick 2 &
   two_pid=$!
-  SHOW=1 stage tests "$build/check.log" env WHIRL_QUICK=1 sh tests/run.sh "$build" $one
+  SHOW=1 stage tests "$build/check.log" drain_quick 1
   wait $two_pid
-  echo "== the other half ($build/check-2.log):"
+  echo "== the other run ($build/check-2.log):"
   grep -E '^== .*: [0-9]+ s, ' "$build/check-2.log"
   grep -E '^== FAILED' "$build/check-2.log"
 else

@@ -23,7 +23,9 @@
  * within a run (the library polls the stop request): the rows of the points finished are
  * written, in map order, and the exit status is 130; --resume reads them back from -o FILE
  * (which must begin with the comment lines and header this map writes) and computes only the
- * missing points. */
+ * missing points.
+ * This file: the options, the map's rows and --resume; the points and their analysis in
+ * stability_points.c, --eigenvalues and --eigenvectors in stability_eigen.c (stability_cli.h). */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -35,45 +37,22 @@
 
 #include "cli/cli.h"
 #include "cli/resume.h"
-#include "cli/stability_modes_csv.h"
+#include "cli/stability_cli.h"
 #include "core/error.h"
 #include "whirl/stability.h"
 
-typedef struct options {
-    double omega, omega_min, omega_max, periods, perturb, damping, dt, eps, drag, drag2;
-    int mode, links, steps, seed, linear, side, resume, links_given, eigenvalues, eigenvectors;
-    int alias; /* --windows, --atlas: never parsed here (windows_alias), listed for the help */
-    int omega_given, mode_given, min_given, max_given, steps_given, modes_given;
-    int eps_given, drag_given, drag2_given, side_given;
-    cli_int_list modes;
-    const char *method, *output, *trace;
-    cli_units units;
-    cli_air air;
-} options;
-
-typedef struct point {
-    double omega, tip_r;
-    const double *r, *z; /* free shapes: the nodes, from the branch's link angles (N + 1) */
-    int mode;
-    double eig_growth, sim_growth, max_deviation;
-    double tip[2]; /* driven: the tip's horizontal position */
-    int nodes;     /* driven: node count */
-    whirl_verdict verdict;
-    int linearised; /* free shapes: eig_growth known (whirl_stability_map) */
-    int index;     /* negative directions of the amended potential (whirl_stability_index) */
-    int done;
-    int absent;    /* driven map: the mode has no shape at this rate */
-} point;
-
 /* The hand-swung chain: any of its options given. */
-static int driven(const options *o)
+static int driven(const stability_options *o) { return hand_cli_given(&o->hand); }
+
+/* The size of one dimensionless unit of the kind in the user's units. */
+static double unit(const stability_options *o, cli_unit kind)
 {
-    return o->eps_given || o->drag_given || o->drag2_given || o->side_given;
+    return cli_units_scale(&o->units, kind);
 }
 
 /* The mode (or modes) within the chain's: the N-link chain has modes 1..N; the hand-swung chain
  * (seeded by the continuum's shapes) 1..WHIRL_MODE_MAX. */
-static int check_modes(const cli_command *cmd, const options *o)
+static int check_modes(const cli_command *cmd, const stability_options *o)
 {
     const int continuum = driven(o);
     const int top = continuum ? WHIRL_MODE_MAX : o->links;
@@ -82,7 +61,7 @@ static int check_modes(const cli_command *cmd, const options *o)
         if (mode == 0 && !driven(o))
             return cli_error(cmd, "mode 0 (the near-axis shape) is the hand-swung chain's: it "
                              "needs --eps");
-        if (mode == 0 && o->side_given)
+        if (mode == 0 && o->hand.side_given)
             return cli_error(cmd, "--side picks the seed of modes 1..64; mode 0 (the near-axis "
                              "shape) has none");
         if (mode > top && continuum)
@@ -96,7 +75,7 @@ static int check_modes(const cli_command *cmd, const options *o)
 }
 
 /* What the option table cannot say: 0, or 1 after an error. */
-static int check_options(const cli_command *cmd, const options *o)
+static int check_options(const cli_command *cmd, const stability_options *o)
 {
     if (o->max_given && !o->min_given)
         return cli_error(cmd, "--omega-max needs --omega-min");
@@ -107,11 +86,7 @@ static int check_options(const cli_command *cmd, const options *o)
     if (check_modes(cmd, o)) return 1;
     if (o->min_given && !(o->omega_max > o->omega_min || (o->steps == 1 && o->omega_max == o->omega_min)))
         return cli_error(cmd, "need --omega-min < --omega-max (equal with --omega-count 1)");
-    if (o->side != 1 && o->side != -1)
-        return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
-    if (o->eps == 0 && (o->drag > 0 || o->drag2 > 0))
-        return cli_error(cmd, "air drag needs --eps > 0 (with the pivot on the axis only the "
-                         "hanging chain is steady)");
+    if (hand_cli_check(cmd, &o->hand)) return 1;
     if (o->resume && strcmp(o->output, "-") == 0)
         return cli_error(cmd, "--resume needs -o FILE, not standard output");
     if (whirl_integrator_type_find(o->method) == NULL)
@@ -122,355 +97,10 @@ static int check_options(const cli_command *cmd, const options *o)
     return 0;
 }
 
-/* The work arrays of make_points: the map's rates, the shapes' summaries and existence, the
- * tensions of the solves. */
-typedef struct point_work {
-    double *omega;
-    whirl_shape_info *info;
-    int *exists;
-    double *tension;
-} point_work;
-
-static void point_work_free(point_work *w)
-{
-    free(w->omega);
-    free(w->info);
-    free(w->exists);
-    free(w->tension);
-}
-
-/* The single point at --omega, with its free shape's nodes (r then z, N + 1 each) unless the
- * chain is the hand-swung one. 0, or 1 after an error. */
-static int single_point(const cli_command *cmd, const options *o, const whirl_chain *c,
-                        point *p, double *nodes, double *tension)
-{
-    p->omega = o->omega;
-    p->mode = o->mode;
-    if (driven(o)) return 0;
-    /* the nodes from the branch's link angles: at high rates the tip radius alone does not fix
-     * the shape to round-off */
-    const size_t links = c->n + 1;
-    whirl_shape_info one;
-    if (whirl_nlink_solve_nodes(c, o->omega, o->mode, &one, nodes, nodes + links, tension) !=
-        GSL_SUCCESS)
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    p->tip_r = one.tip_r;
-    p->r = nodes;
-    p->z = nodes + links;
-    return 0;
-}
-
-/* The map's points, mode by mode, in *n: for the free shapes the rates where the mode exists,
- * with their nodes (mode k's r and z from nodes + 2 k steps (N + 1)); for the hand-swung chain
- * every rate (its shapes are found in analyse()). 0, or 1 after an error. */
-static int map_points(const cli_command *cmd, const options *o, const whirl_chain *c,
-                      point *p, size_t *n, double *nodes, point_work *w)
-{
-    const size_t links = c->n + 1, steps = (size_t)o->steps;
-    for (size_t j = 0; j < steps; j++)
-        w->omega[j] = cli_grid(o->omega_min, o->omega_max, o->steps, (int)j);
-    *n = 0;
-    for (int k = 0; k < o->modes.n; k++) {
-        const int mode = o->modes.v[k];
-        double *r = nodes ? nodes + 2 * (size_t)k * steps * links : NULL;
-        double *z = r ? r + steps * links : NULL;
-        if (!driven(o) && whirl_nlink_branch_nodes(c, mode, steps, w->omega, w->info, w->exists,
-                                                   r, z, w->tension) != GSL_SUCCESS)
-            return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units)); /* it names the mode */
-        for (size_t j = 0; j < steps; j++) {
-            if (driven(o)) {
-                p[*n] = (point){.omega = w->omega[j], .mode = mode};
-                ++*n;
-            } else if (w->exists[j]) {
-                p[*n] = (point){.omega = w->omega[j], .mode = mode, .tip_r = w->info[j].tip_r,
-                                .r = r + j * links, .z = z + j * links};
-                ++*n;
-            }
-        }
-    }
-    return 0;
-}
-
-/* The points of the single form or of the map (rates where the mode exists); *count of them,
- * their free shapes' nodes in *nodes (NULL for the hand-swung chain; the caller frees both).
- * Returns NULL after printing an error. */
-static point *make_points(const cli_command *cmd, const options *o, const whirl_chain *c,
-                          size_t *count, double **nodes)
-{
-    const size_t links = c->n + 1;
-    const size_t steps = o->omega_given ? 1 : (size_t)o->steps;
-    const size_t nmodes = o->omega_given ? 1 : (size_t)o->modes.n;
-    point_work w = {malloc(steps * sizeof *w.omega), malloc(steps * sizeof *w.info),
-                    malloc(steps * sizeof *w.exists),
-                    driven(o) ? NULL : malloc(steps * links * sizeof *w.tension)};
-    *nodes = driven(o) ? NULL : malloc(2 * nmodes * steps * links * sizeof **nodes);
-    point *p = calloc(steps * nmodes, sizeof *p);
-    int rc = 0;
-    if (!w.omega || !w.info || !w.exists || !p || (!driven(o) && (!w.tension || !*nodes)))
-        rc = cli_error(cmd, "out of memory");
-    else if (o->omega_given)
-        rc = single_point(cmd, o, c, p, *nodes, w.tension);
-    else
-        rc = map_points(cmd, o, c, p, count, *nodes, &w);
-    if (rc == 0 && o->omega_given) *count = 1;
-    point_work_free(&w);
-    if (rc == 0) return p;
-    free(*nodes);
-    *nodes = NULL;
-    free(p);
-    return NULL;
-}
-
-/* The size of one dimensionless unit of the kind in the user's units. */
-static double unit(const options *o, cli_unit kind) { return cli_units_scale(&o->units, kind); }
-
-typedef struct trace_sink {
-    FILE *fp;
-    double time; /* the user's time unit in dimensionless ones */
-} trace_sink;
-
-/* Each sample of a run: a row of the trace (if any); stops the run on Ctrl-C. */
-static int observe(double t, double ratio, void *data)
-{
-    const trace_sink *trace = data;
-    if (trace->fp != NULL) fprintf(trace->fp, "%s,%s\n", CLI_NUM(t * trace->time), CLI_NUM(ratio));
-    return cli_interrupted ? GSL_EFAILED : GSL_SUCCESS;
-}
-
-/* The perturbed run of the point p of model m from the shape linearised in w (its nodes);
- * trace: where the samples go (NULL: nowhere). */
-static int perturbed_run(const options *o, const whirl_model *m, whirl_stability *w, point *p,
-                         FILE *trace)
-{
-    whirl_stability_run_params rp = whirl_stability_run_defaults();
-    rp.periods = o->periods;
-    rp.perturbation = o->perturb;
-    rp.seed = (unsigned long)o->seed;
-    rp.method = o->method;
-    rp.dt = o->dt;
-    rp.observe = observe;
-    trace_sink sink = {trace, unit(o, CLI_UNIT_TIME)};
-    rp.observe_data = &sink;
-    whirl_stability_run_result res;
-    if (trace != NULL)
-        fprintf(trace, "# omega %s, mode %d, links %d, damping %s, eps %s, drag "
-                       "%s, drag_quadratic %s, eig_growth %s\nt,deviation\n",
-                CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), p->mode, o->links,
-                CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)),
-                CLI_NUM(m->drive_radius * unit(o, CLI_UNIT_LENGTH)),
-                CLI_NUM(m->air_drag * unit(o, CLI_UNIT_DRAG)),
-                CLI_NUM(m->air_drag_quadratic * unit(o, CLI_UNIT_DRAG2)),
-                CLI_NUM(p->eig_growth * unit(o, CLI_UNIT_RATE)));
-    const double *x, *y, *z;
-    whirl_stability_nodes(w, &x, &y, &z);
-    const int status = whirl_stability_run_shape(m, x, y, z, &rp, &res);
-    /* a given step that the integration could not take (an implicit stage iteration that
-     * diverges or does not converge): the failure names it (the run's steps are at most --dt
-     * and the spacing of its 50 samples per period, stability.h: the integrator names the step
-     * it took) */
-    if (status == GSL_EMAXITER && o->dt > 0)
-        return whirl_fail(status, "the run with --dt %g failed (steps of at most --dt and of "
-                          "the spacing of the 50 samples per period): %s; give a smaller --dt, "
-                          "or none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
-                          whirl_error_marked());
-    if (status) return status;
-    if (trace != NULL)
-        fprintf(trace, "# sim_growth %s fitted from t = %s to %s, verdict %s\n",
-                CLI_NUM(res.sim_growth * unit(o, CLI_UNIT_RATE)),
-                CLI_NUM(res.fit_from * unit(o, CLI_UNIT_TIME)),
-                CLI_NUM(res.fit_to * unit(o, CLI_UNIT_TIME)), whirl_verdict_name(res.verdict));
-    p->sim_growth = res.sim_growth;
-    p->max_deviation = res.max_deviation;
-    p->verdict = whirl_verdict_refine(res.verdict, p->index);
-    /* A run whose deviation grows far faster than the fastest growth of the linearisation in its
-     * linear stretch was not integrated: a step beyond the method's stability interval makes
-     * every step multiply the error by |R(h lambda)| > 1, a growth ~ 1/h, whatever the chain
-     * does. The default step stays inside the interval (whirl_default_step); a given one may
-     * not. */
-    if (o->dt > 0 && res.verdict == WHIRL_VERDICT_UNSTABLE &&
-        res.sim_growth > 2 * fmax(p->eig_growth, 0) + 0.1 * p->omega)
-        return whirl_fail(GSL_EFAILED, "the run with --dt %g grew at %g while the linearisation "
-                          "gives %g at omega %g: the step is beyond the stability interval of "
-                          "%s (an integration failure, not the chain); give a smaller --dt, or "
-                          "none (the default step)", o->dt * unit(o, CLI_UNIT_TIME),
-                          res.sim_growth * unit(o, CLI_UNIT_RATE),
-                          p->eig_growth * unit(o, CLI_UNIT_RATE),
-                          p->omega * unit(o, CLI_UNIT_RATE), o->method);
-    return GSL_SUCCESS;
-}
-
-/* The perturbed run of one point (unless --linear), and for the hand-swung chain its linear
- * analysis (that of the free shapes is whirl_stability_map's, before); trace: where the samples
- * of the run go (NULL: nowhere). A driven map point whose shape does not exist is marked absent. */
-static int analyse(const options *o, const whirl_chain *c, whirl_stability *w, point *p,
-                   FILE *trace)
-{
-    whirl_model m = {0};
-    m.chain = c;
-    m.dim = 3;
-    m.frame = WHIRL_FRAME_ROTATING;
-    m.omega = p->omega;
-    m.internal_damping = o->damping;
-    int status;
-    if (driven(o)) {
-        m.drive_radius = o->eps;
-        m.air_drag = o->drag;
-        m.air_drag_quadratic = o->drag2;
-        whirl_driven_info info;
-        status = whirl_stability_driven_mode(w, &m, p->mode, o->side, &info, &p->eig_growth);
-        if (status == GSL_EDOM && !o->omega_given) {
-            p->absent = 1;
-            return GSL_SUCCESS;
-        }
-        p->tip[0] = info.tip[0];
-        p->tip[1] = info.tip[1];
-        p->tip_r = info.tip_r;
-        p->nodes = info.nodes;
-    } else {
-        /* eig_growth from the map; the run needs the linearisation's nodes (same shape) */
-        status = whirl_stability_linearise(w, &m, p->r, p->z);
-    }
-    if (!status) status = whirl_stability_index(w, &p->index);
-    if (status) return status;
-    if (o->linear) {
-        p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
-        return GSL_SUCCESS;
-    }
-    return perturbed_run(o, &m, w, p, trace);
-}
-
-
-/* order: 0..n-1 sorted by the real part of the eigenvalues (re, im), then the imaginary part. */
-static void sort_eigenvalues(size_t *order, const double *re, const double *im, size_t n)
-{
-    for (size_t i = 0; i < n; i++) order[i] = i;
-    for (size_t i = 1; i < n; i++) /* by real part, then imaginary part */
-        for (size_t j = i; j > 0 && (re[order[j - 1]] > re[order[j]] ||
-                                     (re[order[j - 1]] == re[order[j]] &&
-                                      im[order[j - 1]] > im[order[j]]));
-             j--) {
-            const size_t t = order[j];
-            order[j] = order[j - 1];
-            order[j - 1] = t;
-        }
-}
-
-/* The n eigenvalues of the point p in the given order, after a comment line with its growth,
- * index and verdict. */
-static void write_eigenvalues(FILE *fp, const options *o, const point *p, size_t n,
-                              const double *re, const double *im, const size_t *order,
-                              const whirl_stability_modes *md, const whirl_chain *c)
-{
-    const double rate = unit(o, CLI_UNIT_RATE);
-    char hand[200] = "";
-    if (driven(o))
-        snprintf(hand, sizeof hand, ", hand-swung: eps %s, drag %s, drag_quadratic %s, side %d",
-                 CLI_NUM(o->eps * unit(o, CLI_UNIT_LENGTH)),
-                 CLI_NUM(o->drag * unit(o, CLI_UNIT_DRAG)),
-                 CLI_NUM(o->drag2 * unit(o, CLI_UNIT_DRAG2)), o->side);
-    fprintf(fp, "# whirl stability --%s: omega %s, mode %d, %d links, damping %s%s; "
-                "%zu eigenvalues lambda of the linearisation in the co-rotating frame "
-                "(the rotation symmetry's zeros removed); growth %s, index %d, verdict "
-                "%s\n", md ? "eigenvectors" : "eigenvalues", CLI_NUM(p->omega * rate), p->mode,
-            o->links,
-            CLI_NUM(o->damping * unit(o, CLI_UNIT_DAMPING)), hand, n,
-            CLI_NUM(p->eig_growth * rate), p->index, whirl_verdict_name(p->verdict));
-    if (md)
-        fprintf(fp, "# modes: q(t) = Re(v e^{lambda t}); node displacements (dx, dy, dz) in the "
-                    "co-rotating frame, largest 1; krein: energy sign of a neutral mode of the "
-                    "conservative chain, else 0\n");
-    cli_units_comment(fp, &o->units);
-    if (md) {
-        stability_modes_write(fp, md, order, c, rate, unit(o, CLI_UNIT_LENGTH));
-        return;
-    }
-    fprintf(fp, "re,im\n");
-    for (size_t i = 0; i < n; i++)
-        fprintf(fp, "%s,%s\n", CLI_NUM(re[order[i]] * rate), CLI_NUM(im[order[i]] * rate));
-}
-
-/* The linearisation at the single point p in w, with its growth and verdict: 0, or 1 after an
- * error. */
-static int linearise_point(const cli_command *cmd, options *o, const whirl_chain *c,
-                           whirl_stability *w, point *p)
-{
-    o->linear = 1;
-    if (analyse(o, c, w, p, NULL) != GSL_SUCCESS)
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    /* a free shape's growth is the map's (whirl_stability_map), not run here: from the
-     * linearisation analyse made */
-    if (!driven(o)) {
-        if (whirl_stability_growth(w, &p->eig_growth) != GSL_SUCCESS)
-            return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-        p->verdict = whirl_verdict_linear(p->eig_growth, p->index);
-    }
-    return 0;
-}
-
-/* The progress line while the dense solves of --eigenvalues run (whirl_stability_set_tick). */
-typedef struct solve_line {
-    cli_progress_state line;
-    long links;
-    double after; /* cli_progress_after() */
-} solve_line;
-
-static void solve_tick(void *data)
-{
-    solve_line *s = data;
-    if (cli_wall_seconds() - s->line.start < s->after) return;
-    cli_progress_text(&s->line, "eigen-solve of %ld links", s->links);
-}
-
-/* --eigenvalues: every eigenvalue of the linearisation at the one rate (the symmetry's zeros
- * removed), in increasing real part, with the index and the verdict in comment lines. */
-static int run_eigenvalues(const cli_command *cmd, options *o)
-{
-    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
-    whirl_stability *w = whirl_stability_alloc((size_t)o->links);
-    if (c == NULL || w == NULL) {
-        whirl_chain_free(c);
-        whirl_stability_free(w);
-        return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    }
-    size_t count = 0;
-    double *nodes = NULL;
-    point *pts = make_points(cmd, o, c, &count, &nodes);
-    int rc = pts ? linearise_point(cmd, o, c, w, &pts[0]) : 1;
-    size_t n = 0;
-    const double *re = NULL, *im = NULL;
-    solve_line progress = {.links = o->links, .after = cli_progress_after()};
-    cli_progress_begin(&progress.line, cmd, "eigen-solve", 0, 0);
-    whirl_stability_set_tick(w, solve_tick, &progress);
-    whirl_stability_modes *md = NULL;
-    if (!rc && o->eigenvectors && (md = whirl_stability_modes_alloc((size_t)o->links)) == NULL)
-        rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    int solved = rc ? GSL_SUCCESS : whirl_stability_eigenvalues(w, &n, &re, &im);
-    if (!rc && !solved && md) solved = whirl_stability_eigenvectors(w, md);
-    cli_progress_clear(&progress.line);
-    if (solved != GSL_SUCCESS) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    size_t *order = rc ? NULL : malloc((n + 1) * sizeof *order);
-    if (!rc && order == NULL) rc = cli_error(cmd, "out of memory");
-    cli_out out;
-    if (!rc && cli_out_open(cmd, &out, o->output)) rc = 1;
-    if (!rc) {
-        sort_eigenvalues(order, re, im, n);
-        /* the modes' eigenvalues are those of re, im, in the same order */
-        write_eigenvalues(out.fp, o, &pts[0], n, md ? md->re : re, md ? md->im : im, order, md,
-                          c);
-        if (cli_out_commit(cmd, &out)) rc = 1;
-    }
-    free(order);
-    free(pts);
-    free(nodes);
-    whirl_stability_modes_free(md);
-    whirl_stability_free(w);
-    whirl_chain_free(c);
-    return rc;
-}
 
 /* The comment lines and the header of the output: a map resumes only a file that starts with
  * exactly these lines. */
-static void write_header(FILE *fp, const options *o)
+static void write_header(FILE *fp, const stability_options *o)
 {
     const double len = unit(o, CLI_UNIT_LENGTH);
     fprintf(fp, "# whirl stability: %d links, damping %s, %s\n", o->links,
@@ -485,8 +115,8 @@ static void write_header(FILE *fp, const options *o)
     if (o->min_given) fputc('\n', fp);
     if (driven(o))
         fprintf(fp, "# hand-swung: eps %s, drag %s, drag_quadratic %s, side %d\n",
-                CLI_NUM(o->eps * len), CLI_NUM(o->drag * unit(o, CLI_UNIT_DRAG)),
-                CLI_NUM(o->drag2 * unit(o, CLI_UNIT_DRAG2)), o->side);
+                CLI_NUM(o->hand.eps * len), CLI_NUM(o->hand.drag * unit(o, CLI_UNIT_DRAG)),
+                CLI_NUM(o->hand.drag2 * unit(o, CLI_UNIT_DRAG2)), o->hand.side);
     if (!o->linear)
         fprintf(fp, "# runs: %s periods, perturbation %s, seed %d, method %s, dt %s "
                     "(0: default)\n", CLI_NUM(o->periods), CLI_NUM(o->perturb), o->seed, o->method,
@@ -507,7 +137,7 @@ static void write_header(FILE *fp, const options *o)
             driven(o) ? ",tip_x,tip_y,nodes" : "");
 }
 
-static void write_row(FILE *fp, const options *o, const point *p)
+static void write_row(FILE *fp, const stability_options *o, const stability_point *p)
 {
     const double rate = unit(o, CLI_UNIT_RATE), len = unit(o, CLI_UNIT_LENGTH);
     if (o->linear)
@@ -536,8 +166,9 @@ static void linear_progress(void *ctx, size_t done)
 /* The growth of the free shapes of the points not done (whirl_stability_map): eig_growth and
  * linearised; with --linear their verdict too, and done (*finished counts them). Returns 0, or 1
  * with the message of the earliest failed point in message (a stop is no failure). */
-static int linear_map(const options *o, const whirl_chain *c, point *pts, size_t count,
-                      cli_progress_state *progress, long *finished, char *message, size_t size)
+static int linear_map(const stability_options *o, const whirl_chain *c, stability_point *pts,
+                      size_t count, cli_progress_state *progress, long *finished, char *message,
+                      size_t size)
 {
     whirl_stability_point *mp = calloc(count > 0 ? count : 1, sizeof *mp);
     if (mp == NULL) {
@@ -585,7 +216,7 @@ static void free_kept(char **kept, size_t count)
 /* The points of a single rate or of a map, with what holds them from the setup to the end. */
 typedef struct point_run {
     whirl_chain *c;
-    point *pts;
+    stability_point *pts;
     size_t count;
     double *nodes;
     char **kept; /* rows read back by --resume */
@@ -599,14 +230,14 @@ typedef struct point_run {
 /* The complete row line (len characters, whole and finite): kept for the point of the map
  * whose rate and mode it has (r->kept[i], the line as read) and that point marked done; a row
  * of no point of the map (or of one read already) is refused. 0, or 1 after an error. */
-static int keep_row(const cli_command *cmd, const options *o, point_run *r, cli_resume *in,
-                    const char *line, size_t len)
+static int keep_row(const cli_command *cmd, const stability_options *o, point_run *r,
+                    cli_resume *in, const char *line, size_t len)
 {
     char rate[64];
     int mode;
     if (sscanf(line, "%63[^,],%d,", rate, &mode) == 2)
         for (size_t i = 0; i < r->count; i++) {
-            point *p = &r->pts[i];
+            stability_point *p = &r->pts[i];
             if (p->done || p->mode != mode ||
                 strcmp(CLI_NUM(p->omega * unit(o, CLI_UNIT_RATE)), rate) != 0)
                 continue;
@@ -621,7 +252,7 @@ static int keep_row(const cli_command *cmd, const options *o, point_run *r, cli_
 }
 
 /* The lines before the rows (write_header's) in *text (to free). 0, or 1 after an error. */
-static int expected_header(const cli_command *cmd, const options *o, char **text)
+static int expected_header(const cli_command *cmd, const stability_options *o, char **text)
 {
     size_t len = 0;
     *text = NULL;
@@ -638,7 +269,7 @@ static int expected_header(const cli_command *cmd, const options *o, char **text
  * for these options; each complete row must be that of a point of the map (keep_row), every
  * line checked (resume.h); an unfinished last line is dropped. r->already: the points kept.
  * Returns 0, or 1 after printing an error. */
-static int resume(const cli_command *cmd, const options *o, point_run *r)
+static int resume(const cli_command *cmd, const stability_options *o, point_run *r)
 {
     char *expect = NULL;
     if (expected_header(cmd, o, &expect)) return 1;
@@ -667,9 +298,9 @@ static int resume(const cli_command *cmd, const options *o, point_run *r)
 
 /* The defaults of the options; the perturbed runs' are the library's (the method apart: rk4
  * here). */
-static void set_defaults(options *o)
+static void set_defaults(stability_options *o)
 {
-    *o = (options){0};
+    *o = (stability_options){0};
     o->links = 25;
     const whirl_stability_run_params run = whirl_stability_run_defaults();
     o->periods = run.periods;
@@ -678,15 +309,14 @@ static void set_defaults(options *o)
     o->method = "rk4";
     o->modes.n = 3;
     o->modes.v[0] = 1, o->modes.v[1] = 2, o->modes.v[2] = 3;
-    o->side = 1;
     o->units = (cli_units)CLI_UNITS_INIT;
-    o->air = (cli_air)CLI_AIR_INIT(o->units);
+    hand_cli_defaults(&o->hand, &o->units);
 }
 
 #define STABILITY_OPTIONS_MAX 40
 
 /* The option table of o; returns its length. */
-static size_t declare_options(options *o, cli_option *opts)
+static size_t declare_options(stability_options *o, cli_option *opts)
 {
     const cli_option table[] = {
         {.name = "--omega", .type = CLI_DOUBLE, .value = &o->omega, .given = &o->omega_given,
@@ -730,11 +360,7 @@ static size_t declare_options(options *o, cli_option *opts)
         {.name = "--dt", .type = CLI_DOUBLE, .value = &o->dt, .meta = "H",
          .help = "time step (default: from the highest frequency, see stability.h)",
          .range = "[0, inf)", .unit = CLI_UNIT_TIME},
-        CLI_DRAG_OPTIONS(o->eps, &o->eps_given, o->drag, &o->drag_given, o->drag2, &o->drag2_given,
-                         o->air),
-        {.name = "--side", .type = CLI_INT, .value = &o->side, .given = &o->side_given,
-         .meta = "S",
-         .help = "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
+        HAND_CLI_OPTIONS(o->hand),
         {.name = "--windows", .type = CLI_FLAG, .value = &o->alias,
          .help = "alias of whirl windows, kept for one release: the command line without "
                  "--windows runs whirl windows"},
@@ -767,14 +393,13 @@ static size_t declare_options(options *o, cli_option *opts)
 }
 
 /* Parses and checks the options: 0, or the exit status after an error. */
-static int parse_options(const cli_command *cmd, int argc, char **argv, options *o)
+static int parse_options(const cli_command *cmd, int argc, char **argv, stability_options *o)
 {
     set_defaults(o);
     cli_option opts[STABILITY_OPTIONS_MAX];
     const size_t nopts = declare_options(o, opts);
-    int rc = cli_parse(cmd, argc, argv, opts, nopts, NULL, 0);
+    const int rc = hand_cli_parse(cmd, argc, argv, opts, nopts, &o->hand);
     if (rc) return rc;
-    if ((rc = cli_drag_apply(cmd, &o->air, &o->drag2))) return rc;
     return check_options(cmd, o);
 }
 
@@ -790,12 +415,12 @@ static void point_run_free(point_run *r)
 
 /* The chain and its points, the map file locked and read back (--resume), the outputs open.
  * 0, or the exit status after an error (r freed). */
-static int point_run_setup(const cli_command *cmd, const options *o, point_run *r)
+static int point_run_setup(const cli_command *cmd, const stability_options *o, point_run *r)
 {
     *r = (point_run){0};
     r->c = whirl_chain_alloc_uniform((size_t)o->links, 0);
     if (r->c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    r->pts = make_points(cmd, o, r->c, &r->count, &r->nodes);
+    r->pts = stability_cli_points(cmd, o, r->c, &r->count, &r->nodes);
     if (r->pts == NULL) {
         whirl_chain_free(r->c);
         return 1;
@@ -817,7 +442,7 @@ static int point_run_setup(const cli_command *cmd, const options *o, point_run *
 
 /* The perturbed runs (and the hand-swung chain's linear analysis) of the points not done, on
  * all threads. Returns 0, or 1 with the message of the first failure (a stop is no failure). */
-static int analyse_points(const options *o, point_run *r, cli_progress_state *progress,
+static int analyse_points(const stability_options *o, point_run *r, cli_progress_state *progress,
                           long *finished, char *message, size_t size)
 {
     int failed = 0;
@@ -834,13 +459,14 @@ static int analyse_points(const options *o, point_run *r, cli_progress_state *pr
         }
 #pragma omp for schedule(dynamic, 1)
         for (size_t i = 0; i < r->count; i++) {
-            point *p = &r->pts[i];
+            stability_point *p = &r->pts[i];
             int stop;
 #pragma omp atomic read
             stop = failed;
             if (stop || w == NULL || cli_interrupted || p->done || (!driven(o) && !p->linearised))
                 continue;
-            if (analyse(o, r->c, w, p, o->trace ? r->trace.fp : NULL) != GSL_SUCCESS) {
+            if (stability_cli_analyse(o, r->c, w, p, o->trace ? r->trace.fp : NULL) !=
+                GSL_SUCCESS) {
                 if (cli_interrupted) continue;
 #pragma omp critical(stability_error)
                 if (!failed) {
@@ -863,7 +489,7 @@ static int analyse_points(const options *o, point_run *r, cli_progress_state *pr
 
 /* Writes the rows kept and computed, in map order, and commits the outputs; 0, 1 after an
  * error, or CLI_EXIT_INTERRUPTED when points are missing (r freed). */
-static int write_points(const cli_command *cmd, const options *o, point_run *r)
+static int write_points(const cli_command *cmd, const stability_options *o, point_run *r)
 {
     write_header(r->out.fp, o);
     size_t written = 0;
@@ -893,7 +519,7 @@ static int write_points(const cli_command *cmd, const options *o, point_run *r)
 
 /* The single rate or the map: the linear analysis of the free shapes, the perturbed runs, the
  * rows. */
-static int run_points(const cli_command *cmd, const options *o)
+static int run_points(const cli_command *cmd, const stability_options *o)
 {
     point_run r;
     int rc = point_run_setup(cmd, o, &r);
@@ -942,9 +568,9 @@ int cmd_stability(const cli_command *cmd, int argc, char **argv)
 {
     const int alias = windows_alias(cmd, argc, argv);
     if (alias >= 0) return alias;
-    options o;
+    stability_options o;
     const int rc = parse_options(cmd, argc, argv, &o);
     if (rc) return rc;
-    if (o.eigenvalues || o.eigenvectors) return run_eigenvalues(cmd, &o);
+    if (o.eigenvalues || o.eigenvectors) return stability_cli_eigen(cmd, &o);
     return run_points(cmd, &o);
 }

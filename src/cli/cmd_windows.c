@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/hand_cli.h"
 #include "core/error.h"
 #include "cli/stability_atlas.h"
 #include "cli/stability_dissipative.h"
@@ -27,23 +28,17 @@
 #include "whirl/stability.h"
 
 typedef struct options {
-    double omega_min, omega_max, scan_step, tol, tip_mass, memory, damping, eps, drag, drag2;
-    int links, links_given, full, degree, degree_given, side, side_given, atlas, resume;
-    int min_given, max_given, modes_given, memory_given, eps_given, drag_given, drag2_given;
+    double omega_min, omega_max, scan_step, tol, tip_mass, memory, damping;
+    int links, links_given, full, degree, degree_given, atlas, resume;
+    int min_given, max_given, modes_given, memory_given;
     cli_int_list modes;
     const char *output;
     cli_units units;
-    cli_air air;
+    hand_cli hand; /* the hand-swung chain */
 } options;
 
-/* The hand-swung chain: any of its options given. */
-static int driven(const options *o)
-{
-    return o->eps_given || o->drag_given || o->drag2_given || o->side_given;
-}
-
 /* Internal damping or the hand-swung chain: whirl_windows_dissipative's intervals. */
-static int dissipative(const options *o) { return o->damping > 0 || driven(o); }
+static int dissipative(const options *o) { return o->damping > 0 || hand_cli_given(&o->hand); }
 
 /* The size of one dimensionless unit of the kind in the user's units. */
 static double unit(const options *o, cli_unit kind) { return cli_units_scale(&o->units, kind); }
@@ -92,7 +87,8 @@ static int check_options(const cli_command *cmd, const options *o)
     if (dissipative(o) && !o->links_given)
         return cli_error(cmd, "windows with --damping or air drag need --links N (the "
                          "continuous chain's linearisation has no dissipation)");
-    if (driven(o) && o->damping == 0 && o->drag == 0 && o->drag2 == 0)
+    if (hand_cli_given(&o->hand) && o->damping == 0 && o->hand.drag == 0 &&
+        o->hand.drag2 == 0)
         return cli_error(cmd, "windows of the hand-swung chain need dissipation (--damping, "
                          "--drag, --drag-quadratic or --drag-cd): the conservative windows "
                          "are those of the free shapes");
@@ -100,15 +96,9 @@ static int check_options(const cli_command *cmd, const options *o)
         return cli_error(cmd, "--full applies to the conservative windows only");
     if (!(o->omega_max > o->omega_min))
         return cli_error(cmd, "need --omega-min < --omega-max");
-    if (o->side != 1 && o->side != -1)
-        return cli_error(cmd, "--side must be 1 or -1, got %d", o->side);
-    if (o->eps == 0 && (o->drag > 0 || o->drag2 > 0))
-        return cli_error(cmd, "air drag needs --eps > 0 (with the pivot on the axis only the "
-                         "hanging chain is steady)");
-    return 0;
+    return hand_cli_check(cmd, &o->hand);
 }
 
-#define WINDOWS_MAX 256
 #define WINDOWS_MAX 256
 
 /* The progress line of --windows on a terminal: the modes done and, for the continuum, the rate
@@ -337,6 +327,17 @@ static int finish_windows(const cli_command *cmd, const options *o, const whirl_
     return CLI_EXIT_INTERRUPTED;
 }
 
+/* The search's parameters from the options: the range, the scan's step, the edges' tolerance. */
+static whirl_windows_params windows_params(const options *o)
+{
+    whirl_windows_params p = whirl_windows_defaults();
+    p.omega_min = o->omega_min;
+    p.omega_max = o->omega_max;
+    p.scan_step = o->scan_step;
+    p.tol = o->tol;
+    return p;
+}
+
 /* --windows: every mode of the list, one per thread; a stop or a failure keeps the modes
  * finished (each whole), the others marked. */
 static int run_windows(const cli_command *cmd, const options *o)
@@ -347,11 +348,7 @@ static int run_windows(const cli_command *cmd, const options *o)
     const size_t nmodes = (size_t)o->modes.n;
     windows_found f;
     int rc = windows_found_alloc(&f, nmodes) ? cli_error(cmd, "out of memory") : 0;
-    whirl_windows_params p = whirl_windows_defaults();
-    p.omega_min = o->omega_min;
-    p.omega_max = o->omega_max;
-    p.scan_step = o->scan_step;
-    p.tol = o->tol;
+    whirl_windows_params p = windows_params(o);
     p.krylov = !o->full;
     cli_catch_interrupts();
     find_all_windows(cmd, o, c, rc ? 0 : nmodes, &p, &f);
@@ -368,13 +365,12 @@ static void set_defaults(options *o)
     o->links = 25;
     o->modes.n = 3;
     o->modes.v[0] = 1, o->modes.v[1] = 2, o->modes.v[2] = 3;
-    o->side = 1;
     o->scan_step = 0.25;
     o->tol = 1e-9;
     o->degree = whirl_cstab_defaults().degree;
     o->memory = whirl_cstab_defaults().memory_mb;
     o->units = (cli_units)CLI_UNITS_INIT;
-    o->air = (cli_air)CLI_AIR_INIT(o->units);
+    hand_cli_defaults(&o->hand, &o->units);
 }
 
 #define WINDOWS_OPTIONS_MAX 32
@@ -421,11 +417,7 @@ static size_t declare_options(options *o, cli_option *opts)
          .help = "internal damping of the joints (default 0; with --links: the intervals "
                  "unstable or converging)",
          .range = "[0, inf)", .excludes = "--atlas", .unit = CLI_UNIT_DAMPING},
-        CLI_DRAG_OPTIONS(o->eps, &o->eps_given, o->drag, &o->drag_given, o->drag2,
-                         &o->drag2_given, o->air),
-        {.name = "--side", .type = CLI_INT, .value = &o->side, .given = &o->side_given,
-         .meta = "S",
-         .help = "hand-swung: seed's tip on the pivot's side (1, default) or opposite (-1)"},
+        HAND_CLI_OPTIONS(o->hand),
         {.name = "--atlas", .type = CLI_FLAG, .value = &o->atlas,
          .help = "every window of the continuum's --modes from each birth to --omega-max, with "
                  "the Krein signatures at the edges (-o FILE, resumable)",
@@ -449,9 +441,8 @@ static int parse_options(const cli_command *cmd, int argc, char **argv, options 
     set_defaults(o);
     cli_option opts[WINDOWS_OPTIONS_MAX];
     const size_t nopts = declare_options(o, opts);
-    int rc = cli_parse(cmd, argc, argv, opts, nopts, NULL, 0);
+    const int rc = hand_cli_parse(cmd, argc, argv, opts, nopts, &o->hand);
     if (rc) return rc;
-    if ((rc = cli_drag_apply(cmd, &o->air, &o->drag2))) return rc;
     if (o->atlas) {
         if (!o->modes_given) {
             o->modes.n = 7;
@@ -469,15 +460,11 @@ static int run_windows_dissipative(const cli_command *cmd, const options *o)
     whirl_model m = {0};
     m.dim = 3;
     m.internal_damping = o->damping;
-    m.drive_radius = o->eps;
-    m.air_drag = o->drag;
-    m.air_drag_quadratic = o->drag2;
-    whirl_windows_params p = whirl_windows_defaults();
-    p.omega_min = o->omega_min;
-    p.omega_max = o->omega_max;
-    p.scan_step = o->scan_step;
-    p.tol = o->tol;
-    return stability_dissipative(cmd, &o->modes, o->links, o->tip_mass, &m, o->side, &p,
+    m.drive_radius = o->hand.eps;
+    m.air_drag = o->hand.drag;
+    m.air_drag_quadratic = o->hand.drag2;
+    const whirl_windows_params p = windows_params(o);
+    return stability_dissipative(cmd, &o->modes, o->links, o->tip_mass, &m, o->hand.side, &p,
                                  &o->units, o->output);
 }
 

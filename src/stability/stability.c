@@ -430,32 +430,37 @@ void whirl_stability_nodes(const whirl_stability *w, const double **x, const dou
     *z = w->z;
 }
 
-/* A = [[0, I], [-M^-1 K, -M^-1 (G + C)]] into w->a. */
-static int first_order_form(stability_solve *w)
+int stability_first_order(size_t n, const double *const mat[4], double *a, size_t row,
+                          size_t col, double *f, double *r)
 {
-    const size_t q = 2 * w->n, y = 4 * w->n;
-    const double *mm = w->mat[WHIRL_STABILITY_MASS], *gg = w->mat[WHIRL_STABILITY_GYROSCOPIC];
-    const double *cc = w->mat[WHIRL_STABILITY_DAMPING], *kk = w->mat[WHIRL_STABILITY_STIFFNESS];
-    memcpy(w->factor, mm, q * q * sizeof(double)); /* symmetric: row- = column-major */
+    const size_t q = 2 * n, y = 4 * n;
+    const double *mm = mat[WHIRL_STABILITY_MASS], *gg = mat[WHIRL_STABILITY_GYROSCOPIC];
+    const double *cc = mat[WHIRL_STABILITY_DAMPING], *kk = mat[WHIRL_STABILITY_STIFFNESS];
+    memcpy(f, mm, q * q * sizeof(double)); /* symmetric: row- = column-major */
     for (size_t i = 0; i < q; i++)
         for (size_t j = 0; j < q; j++) {
-            w->rhs[i + j * q] = kk[i * q + j];
-            w->rhs[i + (q + j) * q] = gg[i * q + j] + cc[i * q + j];
+            r[i + j * q] = kk[i * q + j];
+            r[i + (q + j) * q] = gg[i * q + j] + cc[i * q + j];
         }
     lapack_int info = whirl_la_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)q, (lapack_int)y,
-                                         w->factor, (lapack_int)q, w->rhs, (lapack_int)q);
+                                         f, (lapack_int)q, r, (lapack_int)q);
     if (info != 0)
         return whirl_fail(GSL_EFAILED, "the mass matrix is not positive definite (dposv info "
                                        "%d)", (int)info);
-    double *a = w->a->data;
-    const size_t tda = w->a->tda;
     for (size_t i = 0; i < q; i++) {
         for (size_t j = 0; j < y; j++) {
-            a[i * tda + j] = (j == q + i) ? 1.0 : 0.0;
-            a[(q + i) * tda + j] = -w->rhs[i + j * q];
+            a[i * row + j * col] = (j == q + i) ? 1.0 : 0.0;
+            a[(q + i) * row + j * col] = -r[i + j * q];
         }
     }
     return GSL_SUCCESS;
+}
+
+/* A = [[0, I], [-M^-1 K, -M^-1 (G + C)]] into w->a (row-major). */
+static int first_order_form(stability_solve *w)
+{
+    const double *const mat[4] = {w->mat[0], w->mat[1], w->mat[2], w->mat[3]};
+    return stability_first_order(w->n, mat, w->a->data, w->a->tda, 1, w->factor, w->rhs);
 }
 
 /* Replaces A by Q^T A Q, Q orthonormal with its first w->deflated columns spanning the removed

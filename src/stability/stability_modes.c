@@ -58,31 +58,6 @@ void whirl_stability_modes_free(whirl_stability_modes *m)
     free(m);
 }
 
-/* A (4N x 4N, column-major) from M, G, C, K (row-major 2N x 2N) into a; scratch f (q x q) and
- * r (q x 2q). */
-static int first_order(size_t n, const double *const mat[4], double *a, double *f, double *r)
-{
-    const size_t q = 2 * n, y = 4 * n;
-    memcpy(f, mat[WHIRL_STABILITY_MASS], q * q * sizeof(double));
-    for (size_t i = 0; i < q; i++)
-        for (size_t j = 0; j < q; j++) {
-            r[i + j * q] = mat[WHIRL_STABILITY_STIFFNESS][i * q + j];
-            r[i + (q + j) * q] = mat[WHIRL_STABILITY_GYROSCOPIC][i * q + j] +
-                                 mat[WHIRL_STABILITY_DAMPING][i * q + j];
-        }
-    lapack_int info = whirl_la_dposv_work(LAPACK_COL_MAJOR, 'L', (lapack_int)q, (lapack_int)y, f,
-                                         (lapack_int)q, r, (lapack_int)q);
-    if (info != 0)
-        return whirl_fail(GSL_EFAILED, "the mass matrix is not positive definite (dposv info "
-                                       "%d)", (int)info);
-    for (size_t i = 0; i < q; i++)
-        for (size_t j = 0; j < y; j++) {
-            a[i + j * y] = (j == q + i) ? 1.0 : 0.0;
-            a[q + i + j * y] = -r[i + j * q];
-        }
-    return GSL_SUCCESS;
-}
-
 /* v^* S v for symmetric S (row-major q x q) and v = vr + i vi */
 static double hermitian_form(size_t q, const double *s, const double *vr, const double *vi)
 {
@@ -133,7 +108,7 @@ int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out)
     }
     double *a = buf, *f = a + y * y, *r = f + q * q, *wr = r + 2 * q * q, *wi = wr + y;
     double *vr = wi + y, *chart = vr + y * y, *len = chart + 9 * n;
-    status = first_order(n, mat, a, f, r);
+    status = stability_first_order(n, mat, a, 1, y, f, r); /* column-major */
     lapack_int info = 0;
     if (!status) {
         /* workspace query, then the solve */
