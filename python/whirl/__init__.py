@@ -4,6 +4,8 @@ C library libwhirl, through cffi).
 Steady shapes: critical, shape, sweep, equilibria. Dynamics: Chain, Simulation. Stability:
 stability, stability_map, stability_windows, dissipative_windows. The hand-swung chain: driven, spin_up. Measured
 shapes: fit. Scene files: run_scene. whirl's CSV files: read_csv.
+A pivot on a periodic path: periodic (a periodic motion and its Floquet multipliers),
+periodic_path (a branch of them), chart_vertical (the shaken chain's stability chart).
 Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
@@ -24,6 +26,8 @@ from .driven import DrivenShape, SpinUp, driven, spin_up
 from .fit import FitResult, fit
 from .scene import SceneRun, run_scene
 from .csv import Table, read_csv
+from .periodic import (Chart, PeriodicBranch, PeriodicResult, chart_vertical, periodic,
+                       periodic_path)
 
 __version__ = LIBRARY_VERSION
 
@@ -34,4 +38,6 @@ __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_re
            "sweep", "Simulation", "Trajectory", "StabilityResult", "stability",
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",
-           "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]
+           "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv",
+           "PeriodicResult", "PeriodicBranch", "Chart", "periodic", "periodic_path",
+           "chart_vertical", "__version__"]
