@@ -381,6 +381,8 @@ static int convert_pivot(const convert *v, whirl_scene *s)
                          "got %g", s->omega);
     whirl_pivot_path path;
     if (whirl_pivot_parse(v->raw[key], s->omega, s->physical ? 1.0 : 0.0, s->dim, &path)) {
+        if (!s->physical && !whirl_pivot_parse(v->raw[key], s->omega, 1.0, s->dim, &path))
+            return unit_in_dimensionless(v, key, v->raw[key]);
         char copy[280];
         snprintf(copy, sizeof copy, "%s", whirl_last_error());
         return key_error(v, key, "%s", copy);
