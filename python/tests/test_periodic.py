@@ -204,3 +204,24 @@ def test_a_scene_with_a_circle_path_runs_as_the_circle_drive(tmp_path):
     assert np.all(np.isfinite(ellipse["tip_y"])) and ellipse != circle
     with pytest.raises(whirl.InvalidInput, match=r"run.pivot: .*ellipse:A,B"):
         whirl.run_scene(scene, set={"run.pivot": "ellipse:0.05"})
+
+
+KEEP = r"""
+import signal, threading, os, whirl
+threading.Timer(2.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
+b = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=1e-5,
+                        keep_interrupted=True)
+full = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=1e-5,
+                           max_points=b.rows.size)
+print(b.ended, b.rows.size > 0, (b.rows == full.rows).all())
+"""
+
+
+def test_ctrl_c_keeps_the_rows_of_a_branch_when_asked(tmp_path):
+    script = tmp_path / "child.py"
+    script.write_text(KEEP)
+    env = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), os.pardir))
+    p = subprocess.run(["/usr/bin/python3", str(script)], env=env, capture_output=True,
+                       text=True, timeout=300)
+    # the rows so far are the first rows of the branch run to that length
+    assert p.stdout.strip() == "interrupted True True", p.stdout + p.stderr

@@ -86,8 +86,9 @@ class PeriodicBranch(_lib.Result):
     amplitude [L], max_modulus, verdict, edge, fold_test, flip_test, torus_test, err (an
     event's error estimate in the parameter [1/T or L]; 0 for a point), arclength, tangent,
     reciprocal_err, residual, iterations; ``events`` the rows that are events; ``parameter``
-    ("omega" or "amplitude"); ``ended`` ("left the range" or "max_points"); ``state`` the last
-    point's state vector; ``units``."""
+    ("omega" or "amplitude"); ``ended`` ("left the range", "max_points", or "interrupted": Ctrl-C
+    with keep_interrupted=True, the rows so far); ``state`` the last point's state vector;
+    ``units``."""
 
     pivot: str
     parameter: str
@@ -114,20 +115,23 @@ class Chart(_lib.Result):
     """The stability chart of the chain shaken vertically, A cos(omega t), as ``whirl periodic
     --chart``: ``points`` a structured array (curve from 1, edge +1 (a multiplier pair through
     +1) or -1 (through -1), omega [1/T], amplitude [L], err [L]) ordered by curve, then rate, as
-    the command line's CSV; ``inverted``; ``curves`` the count; ``units``."""
+    the command line's CSV; ``inverted``; ``curves`` the count; ``interrupted`` (Ctrl-C with
+    keep_interrupted=True: the points located until then); ``units``."""
 
     inverted: bool
     links: int
     points: np.ndarray
     units: Units = field(default_factory=Units)
+    interrupted: bool = False
 
     @property
     def curves(self) -> int:
         return int(np.unique(self.points["curve"]).size)
 
     def __repr__(self) -> str:
-        return "Chart(%s, links=%d, points=%d, curves=%d)" % (
-            "inverted" if self.inverted else "hanging", self.links, self.points.size, self.curves)
+        return "Chart(%s, links=%d, points=%d, curves=%d%s)" % (
+            "inverted" if self.inverted else "hanging", self.links, self.points.size, self.curves,
+            ", interrupted" if self.interrupted else "")
 
 
 def _path(pivot: str, omega: Any, dim: int, u: Units) -> Any:
@@ -269,8 +273,8 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
                   max_points: Optional[int] = None, steps: Optional[int] = None,
                   tol: Optional[float] = None, max_iter: Optional[int] = None,
                   length: Optional[float] = None, mass: Optional[float] = None,
-                  gravity: Optional[float] = None,
-                  units: Optional[Units] = None) -> PeriodicBranch:
+                  gravity: Optional[float] = None, units: Optional[Units] = None,
+                  keep_interrupted: bool = False) -> PeriodicBranch:
     """The branch of periodic motions through the one found from ``start`` (as periodic()),
     followed by pseudo-arclength continuation in the path's rate (omega_min, omega_max; the
     start ``omega`` defaults to omega_max) or its amplitude (amp_max, amp_min default 0: the
@@ -278,8 +282,8 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
     with up=True (default smaller), as ``whirl periodic --omega-min A --omega-max B`` (or
     --amp-max; ``arc_step`` its --arc-step, default 0.05; ``max_points`` default 10000). The
     folds of cycles, branch points, period doublings and torus bifurcations are located on the
-    way. Returns a PeriodicBranch. Ctrl-C raises KeyboardInterrupt (the rows are lost: bound
-    the branch with max_points)."""
+    way. Returns a PeriodicBranch. Ctrl-C raises KeyboardInterrupt, or with
+    keep_interrupted=True returns the rows so far (``ended`` "interrupted")."""
     u = units_of(length, mass, gravity, units)
     in_rate = omega_min is not None or omega_max is not None
     in_amp = amp_min is not None or amp_max is not None
@@ -319,19 +323,26 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
                                                     maximum=1000)
     rows: List[Any] = []
     handle = ffi.new_handle(rows)
-    with _lib.interruptible("periodic_path"):
-        chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u)
-        if in_rate and not cp.min <= path.omega <= cp.max:
-            raise ValueError("omega (the branch's start) is outside [omega_min, omega_max]")
-        status = lib.whirl_periodic_path(ws, _lib.dptr(y), cp, _branch_row, handle, ffi.NULL,
-                                         ffi.NULL)
-    check(status, "periodic_path", u)
+    ended: Optional[str] = None
+    try:
+        with _lib.interruptible("periodic_path"):
+            chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u)
+            if in_rate and not cp.min <= path.omega <= cp.max:
+                raise ValueError("omega (the branch's start) is outside [omega_min, omega_max]")
+            status = lib.whirl_periodic_path(ws, _lib.dptr(y), cp, _branch_row, handle,
+                                             ffi.NULL, ffi.NULL)
+        check(status, "periodic_path", u)
+    except KeyboardInterrupt:
+        if not (keep_interrupted and rows):
+            raise
+        ended = "interrupted"
     out = np.array(rows, dtype=BRANCH_DTYPE)
     out["omega"] *= u.rate
     out["amplitude"] *= u.length
     out["err"] *= u.rate if in_rate else u.length
     points = int(np.count_nonzero(out["event"] == "point"))
-    ended = "max_points" if points >= (cp.max_points or 10000) else "left the range"
+    if ended is None:
+        ended = "max_points" if points >= (cp.max_points or 10000) else "left the range"
     return PeriodicBranch(pivot=pivot, parameter="omega" if in_rate else "amplitude", rows=out,
                           ended=ended, state=y, units=u)
 
@@ -348,14 +359,15 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
                    rows: Optional[int] = None, steps: Optional[int] = None,
                    tol: Any = None, length: Optional[float] = None,
                    mass: Optional[float] = None, gravity: Optional[float] = None,
-                   units: Optional[Units] = None) -> Chart:
+                   units: Optional[Units] = None, keep_interrupted: bool = False) -> Chart:
     """The stability chart of the chain ``links`` (N or a Chain; in the x-z plane) hanging (or,
     inverted=True, standing up) with its pivot shaken vertically, A cos(omega t), over the rates
     [omega_min, omega_max] (``columns`` of them, default 200) and amplitudes up to ``amp_max``
     (``amp_min`` default amp_max / rows; ``rows`` scanned for new curves, default 200), as
     ``whirl periodic --chart hanging|inverted`` (``steps`` its --steps, default 200; ``tol`` its
     --edge-tol [L], default 1e-10 L). The edges are curves A(omega) located per rate to ``tol``.
-    Returns a Chart. Ctrl-C raises KeyboardInterrupt."""
+    Returns a Chart. Ctrl-C raises KeyboardInterrupt, or with keep_interrupted=True returns the
+    points located until then (``interrupted`` True)."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -378,12 +390,20 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
         p.tol = as_float(tol, "tol", positive=True, kind="length", units=u) / u.length
     found: List[Any] = []
     handle = ffi.new_handle(found)
-    with _lib.interruptible("chart_vertical"):
-        status = lib.whirl_chart_vertical(chain._c, 2, p, _chart_row, handle, ffi.NULL, ffi.NULL)
-    check(status, "chart_vertical", u)
+    interrupted = False
+    try:
+        with _lib.interruptible("chart_vertical"):
+            status = lib.whirl_chart_vertical(chain._c, 2, p, _chart_row, handle, ffi.NULL,
+                                              ffi.NULL)
+        check(status, "chart_vertical", u)
+    except KeyboardInterrupt:
+        if not keep_interrupted:
+            raise
+        interrupted = True
     found.sort(key=lambda row: (row[0], row[5]))  # by curve, then rate: the command line's order
     out = np.array([row[:5] for row in found], dtype=CHART_DTYPE)
     out["omega"] *= u.rate
     out["amplitude"] *= u.length
     out["err"] *= u.length
-    return Chart(inverted=bool(inverted), links=chain.n, points=out, units=u)
+    return Chart(inverted=bool(inverted), links=chain.n, points=out, units=u,
+                 interrupted=interrupted)
