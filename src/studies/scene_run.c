@@ -443,6 +443,7 @@ int whirl_scene_write_header(FILE *fp, const whirl_scene *s)
     case WHIRL_START_ANGLES: fprintf(fp, "# start: theta, phi and their rates\n"); break;
     case WHIRL_START_HANGING: fprintf(fp, "# start: hanging\n"); break;
     }
+    if (s->pivot != NULL) fprintf(fp, "# pivot: %s at the rate %s\n", s->pivot, NUM(s->omega));
     whirl_write_units_line(fp, s->physical, s->chain_length, s->chain_mass, s->gravity);
     for (size_t c = 0; c < s->n_columns; c++)
         fprintf(fp, "%s%s", c ? "," : "", whirl_column_name(s->columns[c]));
