@@ -28,18 +28,18 @@ def _name(kind: str, value: int) -> str:
 @dataclass(eq=False)  # _lib.Result's == (array-aware)
 class PeriodicResult(_lib.Result):
     """A periodic motion and its Floquet multipliers, as ``whirl periodic``: ``pivot`` (the path's
-    text), ``omega`` [1/T] and ``period`` [T]; ``x``, ``v`` (shape (N, 3)): the masses' positions
-    [L] and velocities [L/T] at t = 0 (inertial frame, z up; the pivot at its place at t = 0);
-    ``state``: the library's state vector (whirl_periodic_state_size, dimensionless, for a
-    restart: periodic(..., start=result.state)); ``multipliers`` (complex, by decreasing modulus)
-    and ``errors`` (each one's error estimate, |mu(h/2) - mu(h)| / 15); ``max_modulus`` and its
-    ``max_modulus_err``; ``verdict`` ("stable", "neutral", "unstable"), ``growth`` (the largest
-    |mu| per period when unstable, else 1), ``efold_periods`` and ``efold_time`` [T] (0 unless
-    unstable), ``edge`` (how the largest left the unit circle, or the nearest edge: "+1", "-1",
-    "complex"; the names of whirl_floquet_edge_name) and ``edge_distance`` [rad];
-    ``reciprocal_err`` (0 for the exact conservative chain), ``residual``, ``orbit_change``,
-    ``iterations``, ``steps`` (of the finer solve); ``monodromy`` (the tangent-space matrix);
-    ``units``."""
+    text), ``omega`` [1/T] and ``period`` [T]; ``x``, ``v`` (shape (N, 3)): the masses'
+    positions [L] and velocities [L/T] at t = 0 (inertial frame, z up; the pivot at its place at
+    t = 0); ``state``: the library's state vector (whirl_periodic_state_size, dimensionless, for
+    a restart: periodic(..., start=result.state)); ``multipliers`` (complex, by decreasing
+    modulus) and ``errors`` (each one's error estimate, ``|mu(h/2) - mu(h)| / 15``);
+    ``max_modulus`` and its ``max_modulus_err``; ``verdict`` ("stable", "neutral", "unstable"),
+    ``growth`` (the largest ``|mu|`` per period when unstable, else 1), ``efold_periods`` and
+    ``efold_time`` [T] (0 unless unstable), ``edge`` (how the largest left the unit circle, or
+    the nearest edge: "+1", "-1", "complex"; the names of whirl_floquet_edge_name) and
+    ``edge_distance`` [rad]; ``reciprocal_err`` (0 for the exact conservative chain),
+    ``residual``, ``orbit_change``, ``iterations``, ``steps`` (of the finer solve);
+    ``monodromy`` (the tangent-space matrix); ``units``."""
 
     pivot: str
     omega: float
