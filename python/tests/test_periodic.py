@@ -176,14 +176,18 @@ except KeyboardInterrupt as e:
 """
 
 
-def test_ctrl_c_names_the_call(tmp_path):
+def _child(tmp_path, text):
+    """The standard output of the script text run in a Python of its own (a SIGINT of its own)."""
     script = tmp_path / "child.py"
-    script.write_text(CHILD)
+    script.write_text(text)
     env = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), os.pardir))
     p = subprocess.run(["/usr/bin/python3", str(script)], env=env, capture_output=True,
-                       text=True, timeout=120)
-    assert p.stdout.strip() == "KeyboardInterrupt('whirl: periodic interrupted')", \
-        p.stdout + p.stderr
+                       text=True, timeout=300)
+    return p.stdout.strip() + p.stderr
+
+
+def test_ctrl_c_names_the_call(tmp_path):
+    assert _child(tmp_path, CHILD) == "KeyboardInterrupt('whirl: periodic interrupted')"
 
 
 SCENE = ("[chain]\ndim = 3\nlinks = 4\n[start]\nhanging = true\nperturb = 0.01\n[run]\n"
@@ -218,10 +222,5 @@ print(b.ended, b.rows.size > 0, (b.rows == full.rows).all())
 
 
 def test_ctrl_c_keeps_the_rows_of_a_branch_when_asked(tmp_path):
-    script = tmp_path / "child.py"
-    script.write_text(KEEP)
-    env = dict(os.environ, PYTHONPATH=os.path.join(os.path.dirname(__file__), os.pardir))
-    p = subprocess.run(["/usr/bin/python3", str(script)], env=env, capture_output=True,
-                       text=True, timeout=300)
     # the rows so far are the first rows of the branch run to that length
-    assert p.stdout.strip() == "interrupted True True", p.stdout + p.stderr
+    assert _child(tmp_path, KEEP) == "interrupted True True"
