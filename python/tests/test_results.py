@@ -69,6 +69,10 @@ def _results(tmp_path):
     scene.write_text("[chain]\ndim = 3\nlinks = 5\n[start]\nomega = 3\nmode = 2\n"
                      "[run]\ndt = 0.01\nt_end = 0.1\n[output]\nevery = 0.05\n")
     yield "SceneRun", whirl.run_scene(scene, trace=True)
+    yield "PeriodicResult", whirl.periodic("vertical:1cm", 9, links=2, dim=2, **SI)
+    yield "PeriodicBranch", whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.1,
+                                                up=True, max_points=3)
+    yield "Chart", whirl.chart_vertical(1.6, 2.2, 0.3, columns=3, rows=10, **SI)
     out = tmp_path / "shape.csv"
     import subprocess
     import os
@@ -88,7 +92,7 @@ def test_every_result_pickles_and_deep_copies(tmp_path):
         _same(pickle.loads(pickle.dumps(result)), result, name)
         _same(copy.deepcopy(result), result, name)
         names.append(name)
-    assert len(names) == 17, names
+    assert len(names) == 20, names
 
 
 def test_a_restored_simulation_continues_as_the_original():

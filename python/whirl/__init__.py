@@ -5,6 +5,8 @@ Steady shapes: critical, shape, sweep, equilibria. Dynamics: Chain, Simulation. 
 stability, stability_map, stability_windows, dissipative_windows, atlas. The hand-swung chain:
 driven, driven_branch, spin_up. Measured shapes: fit. Scene files: run_scene. whirl's CSV
 files: read_csv.
+A pivot on a periodic path: periodic (a periodic motion and its Floquet multipliers),
+periodic_path (a branch of them), chart_vertical (the shaken chain's stability chart).
 Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
@@ -32,6 +34,8 @@ from .atlas import atlas
 from .fit import FitResult, fit
 from .scene import SceneRun, run_scene
 from .csv import Table, read_csv
+from .periodic import (Chart, PeriodicBranch, PeriodicResult, chart_vertical, periodic,
+                       periodic_path)
 
 __version__ = LIBRARY_VERSION
 
@@ -43,4 +47,6 @@ __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_re
            "stability_map", "stability_windows", "dissipative_windows", "DrivenShape", "SpinUp",
            "driven", "spin_up",
            "DrivenBranch", "driven_branch", "atlas",
-           "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv", "__version__"]
+           "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv",
+           "PeriodicResult", "PeriodicBranch", "Chart", "periodic", "periodic_path",
+           "chart_vertical", "__version__"]

@@ -457,7 +457,7 @@ int whirl_dyn_set_threads(whirl_dyn *d, int threads);
 """
 
 CDEF += r"""
-#define WHIRL_SCENE_NKEYS 37
+#define WHIRL_SCENE_NKEYS 38
 #define WHIRL_NCOLUMNS 9
 typedef struct whirl_scene {
     char *path;
@@ -493,6 +493,7 @@ typedef struct whirl_scene {
     double tol;
     double stop_deviation;
     int threads;
+    char *pivot;
     double every;
     size_t n_columns;
     int columns[9];
@@ -500,7 +501,7 @@ typedef struct whirl_scene {
     char *trace;
     double trace_every;
     int reference_mode;
-    int line[37];
+    int line[38];
 } whirl_scene;
 int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                       whirl_scene *scene);
@@ -606,3 +607,129 @@ int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size, const c
 """
 STRUCTS += ["whirl_atlas_params", "whirl_atlas_row"]
 CONSTANTS += ["WHIRL_ATLAS_CHUNK", "WHIRL_ATLAS_WINDOWS", "WHIRL_ATLAS_LINE_MAX"]
+
+# ---- periodic pivot paths, periodic motions, their Floquet multipliers (whirl/periodic.h) ----
+CDEF += r"""
+#define WHIRL_PIVOT_HARMONICS_MAX 8
+typedef struct whirl_pivot_path {
+    double omega;
+    int harmonics;
+    double c[3][8];
+    double s[3][8];
+} whirl_pivot_path;
+int whirl_pivot_parse(const char *text, double omega, double length, int dim,
+                      whirl_pivot_path *path);
+int whirl_pivot_check(const whirl_pivot_path *path, int dim);
+double whirl_pivot_period(const whirl_pivot_path *path);
+int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
+typedef struct whirl_periodic whirl_periodic;
+whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path);
+void whirl_periodic_free(whirl_periodic *w);
+whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
+size_t whirl_periodic_state_size(const whirl_periodic *w);
+size_t whirl_periodic_tangent_size(const whirl_periodic *w);
+int whirl_periodic_start_vertical(whirl_periodic *w, int inverted, double *y);
+typedef struct whirl_periodic_params {
+    int steps;
+    double tol;
+    int max_iter;
+    int refine;
+    int monodromy;
+} whirl_periodic_params;
+typedef struct whirl_periodic_result {
+    size_t count;
+    double *re, *im;
+    double *err;
+    double residual;
+    int iterations;
+    int steps;
+    double period;
+    double max_modulus;
+    double max_modulus_err;
+    double reciprocal_err;
+    double orbit_change;
+    int verdict;
+    double growth;
+    double efold_periods;
+    double efold_time;
+    int edge;
+    double edge_distance;
+} whirl_periodic_result;
+int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_params *params,
+                        whirl_periodic_result *result);
+const double *whirl_periodic_monodromy(const whirl_periodic *w);
+typedef struct whirl_chart_params {
+    int inverted;
+    double omega_min, omega_max;
+    int columns;
+    double amp_min;
+    double amp_max;
+    int rows;
+    int steps;
+    double tol;
+} whirl_chart_params;
+typedef struct whirl_chart_point {
+    int kind;
+    int curve;
+    int column;
+    double omega;
+    double amplitude;
+    double err;
+} whirl_chart_point;
+typedef struct whirl_chart_progress {
+    int column, columns;
+    int curves;
+    long monodromies;
+} whirl_chart_progress;
+int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                         int (*row)(void *, const whirl_chart_point *), void *row_data,
+                         void (*tick)(void *, const whirl_chart_progress *), void *tick_data);
+typedef struct whirl_cycle_params {
+    int parameter;
+    double min, max;
+    int direction;
+    double step;
+    int max_points;
+    int steps;
+    double tol;
+    int max_iter;
+    double event_tol;
+} whirl_cycle_params;
+typedef struct whirl_cycle_point {
+    int event;
+    long index;
+    double parameter;
+    double omega;
+    double amplitude;
+    double err;
+    double arclength;
+    double tangent;
+    double fold_test, flip_test;
+    double torus_test;
+    size_t count;
+    const double *re, *im;
+    double max_modulus, reciprocal_err;
+    int verdict;
+    int edge;
+    double residual;
+    int iterations;
+    const double *y;
+} whirl_cycle_point;
+typedef struct whirl_cycle_progress {
+    long points, events;
+    double parameter;
+    double step;
+    int iteration;
+    double residual;
+} whirl_cycle_progress;
+int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *params,
+                        int (*row)(void *, const whirl_cycle_point *), void *row_data,
+                        void (*tick)(void *, const whirl_cycle_progress *), void *tick_data);
+const char *whirl_cycle_event_name(int e);
+const char *whirl_floquet_verdict_name(int v);
+const char *whirl_floquet_edge_name(int e);
+"""
+STRUCTS += ["whirl_pivot_path", "whirl_periodic_params", "whirl_periodic_result",
+            "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
+            "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress"]
+CONSTANTS += ["WHIRL_PIVOT_HARMONICS_MAX"]

@@ -58,7 +58,9 @@ void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3], void *p
             if (a == 0 && b == 0) continue;
             const double pos = a * c + b * s;
             p[k] += pos;
-            pv[k] += w * (b * c - a * s);
+            /* w b c - w a s rounds as the model's circle drive does (-eps w s, eps w c): a
+             * circle path and drive_radius move the pivot bit for bit alike */
+            pv[k] += w * b * c - w * a * s;
             pa[k] -= w * w * pos;
         }
     }
