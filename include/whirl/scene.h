@@ -33,11 +33,7 @@
  *            stop_deviation (> 0: stop once the deviation from the start's steady shape exceeds
  *            it, checked after every step, with tol > 0 at the output times; default none),
  *            threads (the cores one right-hand side of a long chain may use, default 1; see
- *            whirl_dyn_set_threads), pivot (the pivot on a periodic path at the rate omega,
- *            whirl/periodic.h's grammar: circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A,
- *            eight:A,B, fourier:x1c=A,...; lengths in the scene's units or with a suffix m, cm,
- *            mm in SI scenes; needs omega > 0, frame inertial and no drive_radius; default
- *            none: the circle drive of drive_radius)
+ *            whirl_dyn_set_threads)
  *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
@@ -117,7 +113,6 @@ typedef enum {
     WHIRL_KEY_OUTPUT_TRACE_EVERY,
     WHIRL_KEY_OUTPUT_REFERENCE_MODE,
     WHIRL_KEY_UNITS_SYSTEM,
-    WHIRL_KEY_RUN_PIVOT,
     WHIRL_SCENE_NKEYS
 } whirl_scene_key;
 
@@ -185,9 +180,6 @@ typedef struct whirl_scene {
     double stop_deviation;         /* > 0: stop threshold; 0: none */
     int threads;                   /* threads of one right-hand side (whirl_dyn_set_threads),
                                       1..WHIRL_DYN_THREADS_MAX; default 1 */
-    char *pivot;                   /* the pivot's periodic path (whirl_pivot_parse's grammar,
-                                      lengths in the scene's units) at the rate omega, or NULL:
-                                      the circle drive of drive_radius */
 
     /* [output] */
     double every;                  /* output interval [T] > 0; default dt */

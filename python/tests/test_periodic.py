@@ -190,26 +190,6 @@ def test_ctrl_c_names_the_call(tmp_path):
     assert _child(tmp_path, CHILD) == "KeyboardInterrupt('whirl: periodic interrupted')"
 
 
-SCENE = ("[chain]\ndim = 3\nlinks = 4\n[start]\nhanging = true\nperturb = 0.01\n[run]\n"
-         "dt = 0.01\nt_end = 1\nomega = 3\n[output]\nevery = 0.25\n")
-
-
-def test_a_scene_with_a_circle_path_runs_as_the_circle_drive(tmp_path):
-    scene = tmp_path / "s.ini"
-    scene.write_text(SCENE)
-    drive = whirl.run_scene(scene, set={"run.drive_radius": 0.05}, trace=True)
-    circle = whirl.run_scene(scene, set={"run.pivot": "circle:0.05"}, trace=True)
-    assert drive == circle and drive.trace_x[-1, 0, 1] != 0  # the pivot moves in y too
-    ellipse = whirl.run_scene(scene, set={"run.pivot": "ellipse:0.05,0.02"}, trace=True)
-    # the ellipse's pivot: (0.05 cos 3t, 0.02 sin 3t, 0)
-    t = ellipse.trace_t
-    assert np.allclose(ellipse.trace_x[:, 0, 0], 0.05 * np.cos(3 * t), rtol=0, atol=1e-15)
-    assert np.allclose(ellipse.trace_x[:, 0, 1], 0.02 * np.sin(3 * t), rtol=0, atol=1e-15)
-    assert np.all(np.isfinite(ellipse["tip_y"])) and ellipse != circle
-    with pytest.raises(whirl.InvalidInput, match=r"run.pivot: .*ellipse:A,B"):
-        whirl.run_scene(scene, set={"run.pivot": "ellipse:0.05"})
-
-
 KEEP = r"""
 import signal, threading, os, whirl
 threading.Timer(2.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()

@@ -457,7 +457,7 @@ int whirl_dyn_set_threads(whirl_dyn *d, int threads);
 """
 
 CDEF += r"""
-#define WHIRL_SCENE_NKEYS 38
+#define WHIRL_SCENE_NKEYS 37
 #define WHIRL_NCOLUMNS 9
 typedef struct whirl_scene {
     char *path;
@@ -493,7 +493,6 @@ typedef struct whirl_scene {
     double tol;
     double stop_deviation;
     int threads;
-    char *pivot;
     double every;
     size_t n_columns;
     int columns[9];
@@ -501,7 +500,7 @@ typedef struct whirl_scene {
     char *trace;
     double trace_every;
     int reference_mode;
-    int line[38];
+    int line[37];
 } whirl_scene;
 int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                       whirl_scene *scene);

@@ -54,7 +54,6 @@ const sc_key_name sc_key_names[WHIRL_SCENE_NKEYS] = {
     [WHIRL_KEY_RUN_TOL] = {2, "tol"},
     [WHIRL_KEY_RUN_STOP_DEVIATION] = {2, "stop_deviation", WHIRL_QUANTITY_LENGTH},
     [WHIRL_KEY_RUN_THREADS] = {2, "threads"},
-    [WHIRL_KEY_RUN_PIVOT] = {2, "pivot", WHIRL_QUANTITY_LENGTH},
     [WHIRL_KEY_OUTPUT_EVERY] = {3, "every", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_OUTPUT_COLUMNS] = {3, "columns"},
     [WHIRL_KEY_OUTPUT_TRACE] = {3, "trace"},
@@ -372,6 +371,5 @@ void whirl_scene_free(whirl_scene *scene)
     free(scene->path);
     free(scene->method);
     free(scene->trace);
-    free(scene->pivot);
     memset(scene, 0, sizeof *scene);
 }

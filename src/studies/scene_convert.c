@@ -10,7 +10,6 @@
 
 #include "whirl/scene.h"
 #include "whirl/common.h"
-#include "whirl/periodic.h"
 #include "core/error.h"
 #include "core/input.h"
 #include "studies/scene_internal.h"
@@ -367,31 +366,6 @@ int sc_convert_start(const convert *v)
     return get_list_or_zero(v, WHIRL_KEY_START_PHI_DOT, s->links, &s->phi_dot);
 }
 
-/* [run] pivot: checked as the run reads it (whirl_pivot_parse at the [run] omega, the lengths
- * in the scene's units: m in an SI scene, where a suffix cm or mm is converted). */
-static int convert_pivot(const convert *v, whirl_scene *s)
-{
-    const whirl_scene_key key = WHIRL_KEY_RUN_PIVOT;
-    if (s->frame != WHIRL_FRAME_INERTIAL) return key_error(v, key, "needs frame = inertial");
-    if (given(v, WHIRL_KEY_RUN_DRIVE_RADIUS))
-        return key_error(v, key, "replaces the circle drive: give pivot = circle:R, not "
-                         "drive_radius too");
-    if (!(s->omega > 0))
-        return key_error(v, key, "needs the path's rate: [run] omega (or [start] omega) > 0, "
-                         "got %g", s->omega);
-    whirl_pivot_path path;
-    if (whirl_pivot_parse(v->raw[key], s->omega, s->physical ? 1.0 : 0.0, s->dim, &path)) {
-        if (!s->physical && !whirl_pivot_parse(v->raw[key], s->omega, 1.0, s->dim, &path))
-            return unit_in_dimensionless(v, key, v->raw[key]);
-        char copy[280];
-        snprintf(copy, sizeof copy, "%s", whirl_last_error());
-        return key_error(v, key, "%s", copy);
-    }
-    if ((s->pivot = sc_copy_string(v->raw[key])) == NULL)
-        return whirl_fail(GSL_ENOMEM, "out of memory");
-    return GSL_SUCCESS;
-}
-
 int sc_convert_run(const convert *v)
 {
     static const char *const frames[] = {"inertial", "rotating"};
@@ -443,7 +417,6 @@ int sc_convert_run(const convert *v)
     long threads;
     TRY(get_integer(v, WHIRL_KEY_RUN_THREADS, 1, 1, WHIRL_DYN_THREADS_MAX, &threads));
     s->threads = (int)threads;
-    if (given(v, WHIRL_KEY_RUN_PIVOT)) TRY(convert_pivot(v, s));
     return GSL_SUCCESS;
 }
 

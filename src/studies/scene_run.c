@@ -19,7 +19,6 @@
 
 #include <gsl/gsl_math.h>
 
-#include "whirl/periodic.h"
 #include "whirl/scene.h"
 #include "whirl/steady.h"
 #include "dynamics/dyn_internal.h"
@@ -38,7 +37,6 @@ struct whirl_scene_work {
     double *ref;   /* 3 per mass: the reference shape of the deviation */
     double *links; /* 3 per link */
     double t;
-    whirl_pivot_path path; /* [run] pivot (scene->pivot not NULL): the pivot's path */
 };
 
 /* "WHERE: message" for a key of the scene: the status with that message. */
@@ -197,12 +195,6 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
         whirl_fail(GSL_EINVAL, "%s: [run]: %s", s->path, whirl_error_marked());
         goto fail;
     }
-    if (s->pivot != NULL &&
-        (whirl_pivot_parse(s->pivot, s->omega, s->physical ? 1.0 : 0.0, s->dim, &w->path) ||
-         whirl_dyn_set_pivot(w->dyn, whirl_pivot_eval, &w->path))) {
-        key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_PIVOT, whirl_error_marked());
-        goto fail;
-    }
     if (whirl_dyn_set_threads(w->dyn, s->threads > 0 ? s->threads : 1) != GSL_SUCCESS) {
         key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_THREADS, whirl_error_marked());
         goto fail;
@@ -280,15 +272,10 @@ static int frame_out(whirl_scene_work *w, double t, const whirl_scene_output *ou
 {
     int status = whirl_dyn_get_state(w->dyn, t, w->y, WHIRL_FRAME_INERTIAL, w->x, w->v);
     if (status) return status;
-    double eps, phase, p[3], pv[3], pa[3];
-    if (w->scene->pivot != NULL) { /* the path's pivot (2D: in the x-z plane) */
-        whirl_dyn_pivot(w->dyn, t, p, pv, pa);
-        if (w->model.dim == 2) p[1] = 0;
-        return out->frame(out->ctx, t, p, w->x, w->n);
-    }
+    double eps, phase;
     whirl_dyn_drive_at(w->dyn, t, &eps, NULL, &phase);
-    const double q[3] = {eps * cos(phase), w->model.dim == 3 ? eps * sin(phase) : 0.0, 0.0};
-    return out->frame(out->ctx, t, q, w->x, w->n);
+    const double p[3] = {eps * cos(phase), w->model.dim == 3 ? eps * sin(phase) : 0.0, 0.0};
+    return out->frame(out->ctx, t, p, w->x, w->n);
 }
 
 /* The k-th output time of the interval every: k every, and t_end as the last (k = last). */
@@ -482,7 +469,6 @@ int whirl_scene_write_header(FILE *fp, const whirl_scene *s)
     case WHIRL_START_ANGLES: fprintf(fp, "# start: theta, phi and their rates\n"); break;
     case WHIRL_START_HANGING: fprintf(fp, "# start: hanging\n"); break;
     }
-    if (s->pivot != NULL) fprintf(fp, "# pivot: %s at the rate %s\n", s->pivot, NUM(s->omega));
     whirl_write_units_line(fp, s->physical, s->chain_length, s->chain_mass, s->gravity);
     for (size_t c = 0; c < s->n_columns; c++)
         fprintf(fp, "%s%s", c ? "," : "", whirl_column_name(s->columns[c]));

@@ -147,14 +147,6 @@ expect_error "list of the wrong length" "$bad: --set chain.lengths: expected 2 v
   simulate "$bad" --set run.dt=0.1 --set chain.lengths=1,1,1 -o "$tmp/out.csv"
 expect_error "non-positive mass" "$bad: --set chain.masses: value 2 must be > 0, got 0\$" \
   simulate "$bad" --set run.dt=0.1 --set chain.masses=1,0 -o "$tmp/out.csv"
-expect_error "pivot: a y term in 2D" "^whirl simulate: $bad: --set run.pivot: pivot path: .*y" \
-  simulate "$bad" --set run.dt=0.1 --set run.omega=2 --set run.pivot=ellipse:0.1,0.05 -o "$tmp/out.csv"
-expect_error "pivot without a rate" "^whirl simulate: $bad: --set run.pivot: needs the path's rate" \
-  simulate "$bad" --set run.dt=0.1 --set run.pivot=vertical:0.1 -o "$tmp/out.csv"
-if "$WHIRL" simulate "$bad" --set run.dt=0.01 --set run.omega=2 --set run.pivot=vertical:0.1 \
-     -o "$tmp/out.csv" 2>"$tmp/stderr" && grep -q "^# pivot: vertical:0.1 at the rate 2$" "$tmp/out.csv"
-then pass "pivot: a shaken double pendulum runs, its path in the header"
-else fail "pivot: a shaken double pendulum runs ($(cat "$tmp/stderr"))"; fi
 expect_error "unknown key" "$bad: --set run.damping: unknown key" \
   simulate "$bad" --set run.damping=1 -o "$tmp/out.csv"
 expect_error "deviation of a start that is not steady" \

@@ -7,12 +7,7 @@
  *  - whirl_scene_run writes the header and rows to a stream;
  *  - stops: stop_deviation (res.stopped, the row at the stop), a callback's status, a stop
  *    request (WHIRL_EINTERRUPTED, the rows so far counted);
- *  - errors: NULL arguments, an unknown method and a mode without a shape named by their keys;
- *  - [run] pivot: a circle path runs bit for bit as the circle drive of the same radius (the
- *    same pivot motion through whirl_dyn_set_pivot), an ellipse runs and moves the tip out of
- *    the plane of the circle's phase, in SI units with a suffix too; a pivot with drive_radius,
- *    in the rotating frame, without a rate or with a unit in a dimensionless scene is refused
- *    naming the key. */
+ *  - errors: NULL arguments, an unknown method and a mode without a shape named by their keys. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -189,88 +184,6 @@ static void test_errors(void **state)
     whirl_scene_free(&s);
 }
 
-typedef struct all_rows {
-    int n;
-    double v[16][WHIRL_NCOLUMNS];
-} all_rows;
-
-static int collect_all(void *ctx, const double *value)
-{
-    all_rows *r = ctx;
-    if (r->n < 16) memcpy(r->v[r->n], value, sizeof r->v[0]);
-    r->n++;
-    return GSL_SUCCESS;
-}
-
-static int run_rows(const char *text, const char *const *sets, size_t n, all_rows *r)
-{
-    whirl_scene s;
-    parse(text, sets, n, &s);
-    whirl_scene_work *w = whirl_scene_work_alloc(&s);
-    assert_non_null(w);
-    const whirl_scene_output out = {.row = collect_all, .ctx = r};
-    whirl_scene_result res;
-    const int status = whirl_scene_work_run(w, &out, &res);
-    whirl_scene_work_free(w);
-    whirl_scene_free(&s);
-    return status;
-}
-
-static const char swung[] = "[chain]\ndim = 3\nlinks = 4\n[start]\nhanging = true\n"
-                            "perturb = 0.01\n[run]\nmethod = gauss2\ndt = 0.01\nt_end = 2\n"
-                            "omega = 3\n[output]\nevery = 0.25\n";
-
-static void test_pivot_path(void **state)
-{
-    (void)state;
-    all_rows drive = {0}, circle = {0}, ellipse = {0}, si = {0};
-    const char *const by_drive[] = {"run.drive_radius=0.05"};
-    const char *const by_path[] = {"run.pivot=circle:0.05"};
-    const char *const by_ellipse[] = {"run.pivot=ellipse:0.05,0.02"};
-    assert_int_equal(run_rows(swung, by_drive, 1, &drive), GSL_SUCCESS);
-    assert_int_equal(run_rows(swung, by_path, 1, &circle), GSL_SUCCESS);
-    assert_int_equal(drive.n, 9);
-    assert_int_equal(circle.n, 9);
-    assert_memory_equal(drive.v, circle.v, sizeof drive.v);
-    assert_true(drive.v[8][WHIRL_COLUMN_TIP_Y] != 0);
-    assert_int_equal(run_rows(swung, by_ellipse, 1, &ellipse), GSL_SUCCESS);
-    assert_int_equal(ellipse.n, 9);
-    double differ = 0;
-    for (int k = 1; k < 9; k++)
-        for (int c = WHIRL_COLUMN_TIP_X; c <= WHIRL_COLUMN_TIP_Z; c++) {
-            assert_true(isfinite(ellipse.v[k][c]));
-            differ = fmax(differ, fabs(ellipse.v[k][c] - circle.v[k][c]));
-        }
-    print_message("# pivot path: circle = drive bit for bit; ellipse's tip differs by %.3g\n",
-                  differ);
-    assert_true(differ > 1e-4);
-    /* SI: a 60 cm chain on an ellipse of 3 cm by 1.2 cm at 1 Hz */
-    const char *const in_si[] = {"units.system=SI", "chain.length=0.6", "run.omega=6.2832",
-                                 "run.pivot=ellipse:3cm,12mm", "run.dt=0.002",
-                                 "run.t_end=0.5", "output.every=0.1"};
-    assert_int_equal(run_rows(swung, in_si, 7, &si), GSL_SUCCESS);
-    assert_int_equal(si.n, 6);
-    assert_true(isfinite(si.v[5][WHIRL_COLUMN_TIP_Y]) && si.v[5][WHIRL_COLUMN_TIP_Y] != 0);
-    /* refused, naming the key */
-    const char *const bad[][2] = {{"run.pivot=circle:0.05", "run.drive_radius=0.05"},
-                                  {"run.pivot=circle:0.05", "run.frame=rotating"},
-                                  {"run.pivot=circle:0.05", "run.omega=0"},
-                                  {"run.pivot=circle:5cm", "run.tol=0"} /* dimensionless */,
-                                  {"run.pivot=ellipse:0.05", "run.tol=0"}};
-    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        FILE *fp = fopen(path, "w");
-        assert_non_null(fp);
-        fputs(swung, fp);
-        fclose(fp);
-        whirl_scene s;
-        assert_int_equal(whirl_scene_parse(path, bad[i], 2, &s), GSL_EINVAL);
-        print_message("# %s\n", whirl_last_error());
-        assert_true(strstr(whirl_last_error(), "run.pivot: ") != NULL);
-        if (i == 3) assert_non_null(strstr(whirl_last_error(), "the scene is dimensionless"));
-        whirl_scene_free(&s);
-    }
-}
-
 static int setup(void **state)
 {
     (void)state;
@@ -293,7 +206,6 @@ int main(void)
         cmocka_unit_test(test_pendulum),
         cmocka_unit_test(test_steady_and_stops),
         cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_pivot_path),
     };
     return cmocka_run_group_tests_name("scene_run", tests, setup, teardown);
 }
