@@ -21,13 +21,15 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/periodic_cli.h"
 #include "whirl/periodic.h"
 #include "whirl/stability.h"
 
 typedef struct periodic_options {
     const char *pivot, *start, *output, *chart;
-    double omega, tol, arc_step;
+    double omega, tol, arc_step, eps, e_max;
     int links, dim, steps, max_iter, mode, side, differences, up, max_points;
+    int mode_given, side_given;
     int omega_given, omin_given, omax_given, amin_given, amax_given;
     double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
     int omega_count, amp_rows;
@@ -55,7 +57,7 @@ static void show_progress(void *data, const whirl_periodic_progress *p)
 }
 
 /* The steady shape of the circle drive (mode, tip on the pivot's side) as the start state. */
-static int start_steady(const cli_command *cmd, const periodic_options *o, const whirl_chain *c,
+static int start_steady(const cli_command *cmd, const periodic_options *o,
                         const whirl_pivot_path *path, whirl_periodic *w, double *y)
 {
     const double r = path->c[0][0];
@@ -64,24 +66,8 @@ static int start_steady(const cli_command *cmd, const periodic_options *o, const
         memcmp(&circle, path, sizeof circle) != 0 || !(r > 0))
         return cli_error(cmd, "--start steady needs --pivot circle:R with R > 0 and --dim 3 "
                          "(the steady shapes of the circle drive)");
-    whirl_stability *st = whirl_stability_alloc(c->n);
-    if (st == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    const whirl_model model = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
-                               .omega = path->omega, .drive_radius = r};
-    double growth;
-    int status = whirl_stability_driven_mode(st, &model, o->mode, o->side, NULL, &growth);
-    double *links = malloc(3 * c->n * sizeof *links);
-    if (status == GSL_SUCCESS && links == NULL) status = GSL_ENOMEM;
-    if (status == GSL_SUCCESS) {
-        const double *x, *yy, *z;
-        whirl_stability_nodes(st, &x, &yy, &z);
-        status = whirl_shape_links(c->n, x, yy, z, links);
-    }
-    if (status == GSL_SUCCESS)
-        status = whirl_dyn_state_from_shape(whirl_periodic_dyn(w), 0, links, path->omega, y);
-    free(links);
-    whirl_stability_free(st);
-    if (status) return cli_error(cmd, "the steady start: %s", CLI_LIBRARY_ERROR(&o->units));
+    if (whirl_periodic_start_steady(w, o->mode, o->side, y) != GSL_SUCCESS)
+        return cli_error(cmd, "the steady start: %s", CLI_LIBRARY_ERROR(&o->units));
     return 0;
 }
 
@@ -194,9 +180,27 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
 {
     const int inverted = strcmp(o->chart, "hanging") == 0    ? 0
                          : strcmp(o->chart, "inverted") == 0 ? 1
+                         : strcmp(o->chart, "ellipse") == 0  ? 2
                                                              : -1;
     if (inverted < 0)
-        return cli_error(cmd, "--chart must be hanging or inverted, got '%s'", o->chart);
+        return cli_error(cmd, "--chart must be hanging, inverted or ellipse, got '%s'",
+                         o->chart);
+    if (inverted == 2) {
+        if (!(o->eps > 0)) return cli_error(cmd, "--chart ellipse needs --eps");
+        if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
+        if (o->amax_given || o->amin_given || o->amp_rows || o->edge_tol > 0)
+            return cli_error(cmd, "--amp-min, --amp-max, --amp-rows and --edge-tol are for "
+                             "--chart hanging or inverted");
+        const periodic_ellipse_args a = {
+            .links = o->links, .mode = o->mode_given ? o->mode : 2, .side = o->side,
+            .columns = o->omega_count, .steps = o->steps, .eps = o->eps,
+            .omega_min = o->omega_min, .omega_max = o->omega_max, .e_max = o->e_max,
+            .output = o->output, .units = &o->units};
+        return periodic_chart_ellipse(cmd, &a);
+    }
+    if (!o->amax_given) return cli_error(cmd, "--chart needs --amp-max");
+    if (o->eps > 0 || o->e_max > 0 || o->mode_given || o->side_given)
+        return cli_error(cmd, "--eps, --e-max, --mode and --side are for --chart ellipse");
     if (!(o->omega_max > o->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (!(o->amp_max > o->amp_min))
@@ -410,9 +414,16 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--chart", .type = CLI_STRING, .value = &o.chart, .meta = "KIND",
          .help = "the stability chart of the chain shaken vertically: hanging (its tongues) or "
                  "inverted (its region of stability)",
-         .needs = "--omega-min --omega-max --amp-max",
-         .excludes = "--pivot --omega --dim --start --mode --side --tol --max-iter --differences "
+         .needs = "--omega-min --omega-max",
+         .excludes = "--pivot --omega --dim --start --tol --max-iter --differences "
                      "--up --arc-step --max-points"},
+        {.name = "--eps", .type = CLI_DOUBLE, .value = &o.eps, .meta = "A",
+         .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
+                 "(the other: A (1 - e))",
+         .range = "(0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
+        {.name = "--e-max", .type = CLI_DOUBLE, .value = &o.e_max, .meta = "E",
+         .help = "--chart ellipse: the largest ellipticity followed (default 1, the line)",
+         .range = "(0, 1]", .needs = "--chart"},
         {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min,
          .given = &o.omin_given, .meta = "W",
          .help = "the lowest rate of the chart, or of a branch followed in the rate",
@@ -422,7 +433,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .help = "the highest rate of the chart, or of a branch followed in the rate",
          .range = "(0, inf)", .needs = "--omega-min", .unit = CLI_UNIT_RATE},
         {.name = "--omega-count", .type = CLI_INT, .value = &o.omega_count, .meta = "N",
-         .help = "--chart: rates, both ends included (default 200)", .range = "[2, 1000000]",
+         .help = "--chart: rates, both ends included (default 200; ellipse 50)",
+         .range = "[2, 1000000]",
          .needs = "--chart"},
         {.name = "--amp-min", .type = CLI_DOUBLE, .value = &o.amp_min, .given = &o.amin_given,
          .meta = "A",
@@ -454,12 +466,16 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--start", .type = CLI_STRING, .value = &o.start, .meta = "S",
          .help = "Newton's start: hanging (default), inverted, or steady (the circle drive's "
                  "steady shape of --mode)"},
-        {.name = "--mode", .type = CLI_INT, .value = &o.mode, .meta = "K",
-         .help = "--start steady: the mode (default 1)", .range = "[1, 64]", .needs = "--start"},
-        {.name = "--side", .type = CLI_INT, .value = &o.side, .meta = "S",
-         .help = "--start steady: the seed's tip on the pivot's side (1, default) or opposite "
-                 "(-1), as whirl driven --side",
-         .range = "[-1, 1]", .needs = "--start"},
+        {.name = "--mode", .type = CLI_INT, .value = &o.mode, .given = &o.mode_given,
+         .meta = "K",
+         .help = "--start steady: the mode (default 1); --chart ellipse: the mode followed "
+                 "(default 2)",
+         .range = "[1, 64]"},
+        {.name = "--side", .type = CLI_INT, .value = &o.side, .given = &o.side_given,
+         .meta = "S",
+         .help = "--start steady or --chart ellipse: the seed's tip on the pivot's side (1, "
+                 "default) or opposite (-1), as whirl driven --side",
+         .range = "[-1, 1]"},
         {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
          .help = "Gauss steps per period of the coarser solve or monodromy (default 400, "
                  "--chart 200; raised to the chain's bound); the finer takes twice as many",
@@ -478,6 +494,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
     if (o.chart) return run_chart(cmd, &o);
+    if ((o.mode_given || o.side_given) && (o.start == NULL || strcmp(o.start, "steady") != 0))
+        return cli_error(cmd, "--mode and --side need --start steady (or --chart ellipse)");
     const int branch = o.omin_given || o.amax_given;
     if ((rc = check_branch(cmd, &o, branch))) return rc;
     if (branch && !o.omega_given) o.omega = o.omega_max;
@@ -500,7 +518,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     if (start == 2) {
-        if ((rc = start_steady(cmd, &o, c, &path, w, y))) goto done;
+        if ((rc = start_steady(cmd, &o, &path, w, y))) goto done;
     } else if (whirl_periodic_start_vertical(w, start, y) != GSL_SUCCESS) {
         rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
         goto done;
