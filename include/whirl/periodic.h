@@ -380,7 +380,8 @@ typedef struct whirl_ellipse_chart_params {
     int columns;      /* rates, equally spaced, both ends included (>= 2); 0: 50 */
     double e_max;     /* the largest ellipticity followed, in (0, 1]; 0: 1 */
     int steps;        /* Gauss steps per period, as whirl_cycle_params.steps; 0: 400 */
-    double step;      /* the continuation's largest arclength step; 0: 0.05 */
+    double step;      /* the continuation's largest arclength step; 0: 0.01 (a tongue entered
+                         and left within one step is passed over) */
     double tol;       /* Newton's test, as whirl_cycle_params.tol; 0: 1e-10 */
 } whirl_ellipse_chart_params;
 

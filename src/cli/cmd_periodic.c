@@ -195,12 +195,14 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
             .links = o->links, .mode = o->mode_given ? o->mode : 2, .side = o->side,
             .columns = o->omega_count, .steps = o->steps, .eps = o->eps,
             .omega_min = o->omega_min, .omega_max = o->omega_max, .e_max = o->e_max,
+            .arc_step = o->arc_step,
             .output = o->output, .units = &o->units};
         return periodic_chart_ellipse(cmd, &a);
     }
     if (!o->amax_given) return cli_error(cmd, "--chart needs --amp-max");
-    if (o->eps > 0 || o->e_max > 0 || o->mode_given || o->side_given)
-        return cli_error(cmd, "--eps, --e-max, --mode and --side are for --chart ellipse");
+    if (o->eps > 0 || o->e_max > 0 || o->mode_given || o->side_given || o->arc_step > 0)
+        return cli_error(cmd, "--eps, --e-max, --mode, --side and --arc-step are for --chart "
+                         "ellipse");
     if (!(o->omega_max > o->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (!(o->amp_max > o->amp_min))
@@ -416,7 +418,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
                  "inverted (its region of stability)",
          .needs = "--omega-min --omega-max",
          .excludes = "--pivot --omega --dim --start --tol --max-iter --differences "
-                     "--up --arc-step --max-points"},
+                     "--up --max-points"},
         {.name = "--eps", .type = CLI_DOUBLE, .value = &o.eps, .meta = "A",
          .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
                  "(the other: A (1 - e))",
@@ -449,7 +451,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--up", .type = CLI_FLAG, .value = &o.up,
          .help = "branch: leave the start towards larger values (default smaller)"},
         {.name = "--arc-step", .type = CLI_DOUBLE, .value = &o.arc_step, .meta = "H",
-         .help = "branch: largest step of the continuation's arclength (default 0.05)",
+         .help = "branch or --chart ellipse: largest step of the continuation's arclength "
+                 "(default 0.05; --chart ellipse 0.01)",
          .range = "(0, 1]"},
         {.name = "--max-points", .type = CLI_INT, .value = &o.max_points, .meta = "M",
          .help = "branch: most points (default 10000)", .range = "[2, 10000000]"},

@@ -6,7 +6,7 @@
 
 typedef struct periodic_ellipse_args {
     int links, mode, side, columns, steps;
-    double eps, omega_min, omega_max, e_max; /* dimensionless */
+    double eps, omega_min, omega_max, e_max, arc_step; /* dimensionless */
     const char *output;
     const cli_units *units;
 } periodic_ellipse_args;

@@ -89,7 +89,7 @@ int periodic_chart_ellipse(const cli_command *cmd, const periodic_ellipse_args *
     whirl_ellipse_chart_params p = {.radius = a->eps, .mode = a->mode, .side = a->side,
                                     .omega_min = a->omega_min, .omega_max = a->omega_max,
                                     .columns = a->columns, .e_max = a->e_max,
-                                    .steps = a->steps};
+                                    .steps = a->steps, .step = a->arc_step};
     if (!(a->omega_max > a->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)a->links, 0);

@@ -28,6 +28,10 @@
 
 #define COLUMNS_DEFAULT 50
 #define E_MAX_DEFAULT 1.0
+/* The continuation's largest step: an event is a sign change of a test between two points, and
+ * a tongue entered and left within one step is passed over. N = 2, a = 0.05, mode 2 at
+ * omega = 3.92: no event with 0.05, the torus at e = 0.0071857861 with 0.01 and 0.002 alike. */
+#define STEP_DEFAULT 0.01
 #define STOP 1001 /* a row callback's status: the first event is found (not a whirl status) */
 
 int whirl_periodic_start_steady(whirl_periodic *w, int mode, int side, double *y)
@@ -132,6 +136,7 @@ static int check_params(const whirl_chain *c, whirl_ellipse_chart_params *p)
     if (p->side == 0) p->side = 1;
     if (p->columns == 0) p->columns = COLUMNS_DEFAULT;
     if (p->e_max == 0) p->e_max = E_MAX_DEFAULT;
+    if (p->step == 0) p->step = STEP_DEFAULT;
     if (!(p->radius > 0) || !isfinite(p->radius))
         return whirl_fail(GSL_EINVAL, "the ellipse chart needs a radius > 0, finite, got %g",
                           p->radius);

@@ -73,7 +73,7 @@ expect_error "ellipse no eps" "whirl periodic: --chart ellipse needs --eps" peri
 expect_error "ellipse e-max" "whirl periodic: --e-max must be" periodic --chart ellipse --eps 0.05 --omega-min 3 --omega-max 4 --e-max 2 -o "$tmp/out.csv"
 expect_error "ellipse with amplitudes" "whirl periodic: --amp-min, --amp-max, --amp-rows and --edge-tol are for --chart hanging or inverted" periodic --chart ellipse --eps 0.05 --omega-min 3 --omega-max 4 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "ellipse side" "whirl periodic: --side must be 1 or -1" periodic --chart ellipse --eps 0.05 --omega-min 3 --omega-max 4 --side 0 -o "$tmp/out.csv"
-expect_error "hanging with eps" "whirl periodic: --eps, --e-max, --mode and --side are for --chart ellipse" periodic --chart hanging --eps 0.05 --omega-min 3 --omega-max 4 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "hanging with eps" "whirl periodic: --eps, --e-max, --mode, --side and --arc-step are for --chart ellipse" periodic --chart hanging --eps 0.05 --omega-min 3 --omega-max 4 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "mode without steady" "whirl periodic: --mode and --side need --start steady" periodic --pivot circle:0.05 --omega 3 --mode 2 -o "$tmp/out.csv"
 expect_error "eps without chart" "whirl periodic: --eps needs --chart" periodic --pivot circle:0.05 --omega 3 --eps 0.05 -o "$tmp/out.csv"
 finish

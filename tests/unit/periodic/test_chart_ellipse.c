@@ -182,6 +182,32 @@ static void test_perturbed_runs(void **state)
     whirl_chain_free(c);
 }
 
+/* A thin tongue: near omega = 3.922 a torus tongue touches e = 0; at 3.92 the branch enters it
+ * at e ~ 0.007 and a step of 0.05 passes over it. The chart's default step finds it, and a
+ * step five times smaller finds the same point. */
+static void test_thin_tongue(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    whirl_ellipse_chart_params p = {.radius = EPS, .mode = 2, .side = -1, .omega_min = 3.92,
+                                    .omega_max = 3.921, .columns = 2};
+    rows a = {.n = 0}, b = {.n = 0};
+    assert_int_equal(whirl_chart_ellipse(c, &p, keep, &a, NULL, NULL), GSL_SUCCESS);
+    p.step = 0.002;
+    assert_int_equal(whirl_chart_ellipse(c, &p, keep, &b, NULL, NULL), GSL_SUCCESS);
+    assert_int_equal(a.n, 2);
+    assert_int_equal(b.n, 2);
+    for (int i = 0; i < 2; i++) {
+        print_message("# omega = %.4g: e_crit %.15g (%s), with the step 0.002 %.15g\n",
+                      a.p[i].omega, a.p[i].ellipticity, whirl_cycle_event_name(a.p[i].event),
+                      b.p[i].ellipticity);
+        assert_int_equal(a.p[i].event, WHIRL_CYCLE_TORUS);
+        assert_true(a.p[i].ellipticity > 0 && a.p[i].ellipticity < 0.01);
+        assert_true(fabs(a.p[i].ellipticity - b.p[i].ellipticity) < LOCATION_TOL);
+    }
+    whirl_chain_free(c);
+}
+
 /* Bad input: GSL_EINVAL, no row. */
 static void test_bad_input(void **state)
 {
@@ -221,6 +247,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_curve_end),
         cmocka_unit_test(test_perturbed_runs),
+        cmocka_unit_test(test_thin_tongue),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
