@@ -14,7 +14,9 @@
  * "# units:" line, then the CSV curve,edge,omega,amplitude,err, one row per edge point (edge +1
  * or -1: the multiplier pair passing there), the points of one curve by rate, a blank line
  * between curves (gnuplot draws each as a line). Ctrl-C stops it within a monodromy: the points
- * found until then are written (a comment line says where it stopped), exit status 130. */
+ * found until then are written (a comment line says where it stopped), exit status 130.
+ *
+ * --chart ellipse: the ellipticity chart of the hand-swung chain (periodic_ellipse.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

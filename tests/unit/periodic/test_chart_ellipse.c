@@ -173,8 +173,9 @@ static void test_perturbed_runs(void **state)
     w = motion_at(c, omega, ec + 0.02, y, &res);
     const double g_out = run_growth(w, y, omega, res.steps, 100, 300);
     print_message("# omega = 4, e = e_crit + 0.02 = %.6f: %s, |mu|max %.12f (edge %s); growth "
-                  "per period from a run %.6f\n", ec + 0.02, whirl_floquet_verdict_name(res.verdict),
-                  res.max_modulus, whirl_floquet_edge_name(res.edge), g_out);
+                  "per period from a run %.6f\n", ec + 0.02,
+                  whirl_floquet_verdict_name(res.verdict), res.max_modulus,
+                  whirl_floquet_edge_name(res.edge), g_out);
     assert_int_equal(res.verdict, WHIRL_FLOQUET_UNSTABLE);
     assert_true(res.max_modulus > 1.001);
     assert_true(fabs(g_out - res.max_modulus) < 1e-3 * (res.max_modulus - 1));
