@@ -31,7 +31,7 @@ typedef struct periodic_options {
     const char *pivot, *start, *output, *chart;
     double omega, tol, arc_step, eps, e_max;
     int links, dim, steps, max_iter, mode, side, differences, up, max_points;
-    int mode_given, side_given;
+    int mode_given, side_given, emax_given;
     int omega_given, omin_given, omax_given, amin_given, amax_given;
     double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
     int omega_count, amp_rows;
@@ -254,7 +254,7 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
 
 typedef struct branch_row {
     whirl_cycle_event event;
-    double omega, amplitude, err, max_modulus, fold, flip, torus;
+    double omega, amplitude, parameter, err, max_modulus, fold, flip, torus;
     whirl_floquet_verdict verdict;
     whirl_floquet_edge edge;
 } branch_row;
@@ -264,7 +264,7 @@ typedef struct branch_rows {
     size_t n, cap, events;
     cli_progress_state line;
     double after;
-    int amplitude; /* the parameter: 0 the rate, 1 the amplitude */
+    whirl_cycle_parameter param; /* the rate, the amplitude or the ellipticity */
     int max_points; /* the branch's most points */
 } branch_rows;
 
@@ -278,7 +278,7 @@ static int branch_keep(void *data, const whirl_cycle_point *p)
         b->r = r, b->cap = cap;
     }
     b->r[b->n++] = (branch_row){.event = p->event, .omega = p->omega, .amplitude = p->amplitude,
-                                .err = p->err, .max_modulus = p->max_modulus,
+                                .parameter = p->parameter, .err = p->err, .max_modulus = p->max_modulus,
                                 .fold = p->fold_test, .flip = p->flip_test,
                                 .torus = p->torus_test,
                                 .verdict = p->verdict, .edge = p->edge};
@@ -292,22 +292,26 @@ static void branch_tick(void *data, const whirl_cycle_progress *p)
     if (!b->line.drawn && cli_wall_seconds() - b->line.start < b->after) return;
     cli_progress_text(&b->line, "%ld points, %ld events, %s %.6g, step %.3g, corrector "
                       "iteration %d (residual %.2g)", p->points, p->events,
-                      b->amplitude ? "A" : "omega", p->parameter, p->step, p->iteration,
+                      b->param == WHIRL_CYCLE_OMEGA       ? "omega"
+                      : b->param == WHIRL_CYCLE_AMPLITUDE ? "A"
+                                                          : "e",
+                      p->parameter, p->step, p->iteration,
                       p->residual);
 }
 
 static int check_branch(const cli_command *cmd, const periodic_options *o, int branch)
 {
-    if (o->omin_given && o->amax_given)
+    if (o->omin_given + o->amax_given + o->emax_given > 1)
         return cli_error(cmd, "a branch follows one parameter: --omega-min/--omega-max (the "
-                         "rate) or --amp-min/--amp-max (the amplitude), not both");
+                         "rate), --amp-min/--amp-max (the amplitude) or --e-max (the "
+                         "ellipticity), not two");
     if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
     if (branch && o->differences)
         return cli_error(cmd, "--differences is for one motion: a branch forms its monodromies "
                          "from the variational equations");
     if (!branch && (o->up || o->arc_step > 0 || o->max_points > 0))
         return cli_error(cmd, "--up, --arc-step and --max-points need a branch (--omega-min and "
-                         "--omega-max, or --amp-max)");
+                         "--omega-max, --amp-max, or --e-max)");
     if (o->omin_given && !(o->omega_max > o->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (o->amax_given && !(o->amp_max > o->amp_min))
@@ -322,14 +326,17 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
 {
     const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
     const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
-    const double perr = b->amplitude ? len : rate;
+    const int amp = b->param == WHIRL_CYCLE_AMPLITUDE, e = b->param == WHIRL_CYCLE_ELLIPTICITY;
+    const double perr = amp ? len : e ? 1 : rate;
     char words[96];
     fprintf(fp, "# periodic branch: pivot %s, links=%d dim=%d start=%s; followed in the %s "
             "from %s towards %s values, %zu rows (%zu events), %s\n", o->pivot, o->links,
-            o->dim, o->start, b->amplitude ? "amplitude" : "rate",
-            b->amplitude ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
-                         : cli_rate_words(&o->units, o->omega, words, sizeof words),
-            o->up ? "larger" : "smaller", b->n, b->events,
+            o->dim, o->start,
+            amp ? "amplitude" : e ? "ellipticity (the path's y terms scaled by 1 - e)" : "rate",
+            amp ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
+            : e ? "0"
+                : cli_rate_words(&o->units, o->omega, words, sizeof words),
+            o->up || e ? "larger" : "smaller", b->n, b->events,
             stopped[0]                                     ? "stopped early"
             : b->n - b->events >= (size_t)b->max_points ? "ended at --max-points"
                                                          : "left the range");
@@ -340,17 +347,19 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
             "err: the event's error estimate in the parameter\n");
     for (size_t i = 0; i < b->n; i++)
         if (b->r[i].event != WHIRL_CYCLE_POINT)
-            fprintf(fp, "# %s omega=%s amplitude=%s err=%.2g\n",
+            fprintf(fp, "# %s omega=%s amplitude=%s%s%s err=%.2g\n",
                     whirl_cycle_event_name(b->r[i].event), CLI_NUM(b->r[i].omega * rate),
-                    CLI_NUM(b->r[i].amplitude * len), b->r[i].err * perr);
+                    CLI_NUM(b->r[i].amplitude * len), e ? " ellipticity=" : "",
+                    e ? CLI_NUM(b->r[i].parameter) : "", b->r[i].err * perr);
     if (stopped[0]) fprintf(fp, "# stopped (%s): the points found until then\n", stopped);
     cli_units_comment(fp, &o->units);
-    fprintf(fp, "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,torus_test,"
-            "err\n");
+    fprintf(fp, "event,omega,amplitude,%smax_modulus,verdict,edge,fold_test,flip_test,"
+            "torus_test,err\n", e ? "ellipticity," : "");
     for (size_t i = 0; i < b->n; i++) {
         const branch_row *r = &b->r[i];
-        fprintf(fp, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
-                CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len), CLI_NUM(r->max_modulus),
+        fprintf(fp, "%s,%s,%s,%s%s%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
+                CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len),
+                e ? CLI_NUM(r->parameter) : "", e ? "," : "", CLI_NUM(r->max_modulus),
                 whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
                 CLI_NUM(r->fold), CLI_NUM(r->flip), CLI_NUM(r->torus), CLI_NUM(r->err * perr));
     }
@@ -361,12 +370,17 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
 static int run_branch(const cli_command *cmd, const periodic_options *o, whirl_periodic *w,
                       double *y)
 {
-    branch_rows b = {.after = cli_progress_after(), .amplitude = o->amax_given,
+    branch_rows b = {.after = cli_progress_after(),
+                     .param = o->amax_given   ? WHIRL_CYCLE_AMPLITUDE
+                              : o->emax_given ? WHIRL_CYCLE_ELLIPTICITY
+                                              : WHIRL_CYCLE_OMEGA,
                      .max_points = o->max_points ? o->max_points : 10000}; /* the default */
+    const int e = b.param == WHIRL_CYCLE_ELLIPTICITY;
     const whirl_cycle_params p = {
-        .parameter = b.amplitude ? WHIRL_CYCLE_AMPLITUDE : WHIRL_CYCLE_OMEGA,
-        .min = b.amplitude ? o->amp_min : o->omega_min,
-        .max = b.amplitude ? o->amp_max : o->omega_max, .direction = o->up ? 1 : -1,
+        .parameter = b.param,
+        .min = e ? 0 : o->amax_given ? o->amp_min : o->omega_min,
+        .max = e ? o->e_max : o->amax_given ? o->amp_max : o->omega_max,
+        .direction = o->up || e ? 1 : -1,
         .step = o->arc_step, .max_points = o->max_points, .steps = o->steps, .tol = o->tol,
         .max_iter = o->max_iter};
     cli_catch_interrupts();
@@ -425,9 +439,12 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
                  "(the other: A (1 - e))",
          .range = "(0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
-        {.name = "--e-max", .type = CLI_DOUBLE, .value = &o.e_max, .meta = "E",
-         .help = "--chart ellipse: the largest ellipticity followed (default 1, the line)",
-         .range = "(0, 1]", .needs = "--chart"},
+        {.name = "--e-max", .type = CLI_DOUBLE, .value = &o.e_max, .given = &o.emax_given,
+         .meta = "E",
+         .help = "--chart ellipse: the largest ellipticity followed (default 1, the line); "
+                 "without --chart a branch in the ellipticity e (the path's y terms scaled by "
+                 "1 - e) from the path (e = 0) up to E",
+         .range = "(0, 1]"},
         {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min,
          .given = &o.omin_given, .meta = "W",
          .help = "the lowest rate of the chart, or of a branch followed in the rate",
@@ -501,7 +518,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     if (o.chart) return run_chart(cmd, &o);
     if ((o.mode_given || o.side_given) && (o.start == NULL || strcmp(o.start, "steady") != 0))
         return cli_error(cmd, "--mode and --side need --start steady (or --chart ellipse)");
-    const int branch = o.omin_given || o.amax_given;
+    const int branch = o.omin_given || o.amax_given || o.emax_given;
     if ((rc = check_branch(cmd, &o, branch))) return rc;
     if (branch && !o.omega_given) o.omega = o.omega_max;
     const int start = strcmp(o.start, "hanging") == 0    ? 0

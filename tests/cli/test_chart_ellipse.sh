@@ -22,6 +22,18 @@ if grep -q '^# chart: the ellipticity of the hand-swung chain' "$tmp/e.csv" \
    && grep -v '^#' "$tmp/e.csv" | sed 1d | awk -F, '{if (!($4 >= 0 && $4 < 1 && $5 < 1e-8)) bad = 1} END {exit bad}'; then
   pass "ellipse chart: two rows and the end on e = 0 at the circle's torus ($torus)"; else fail "ellipse chart: $(cat "$tmp/e.csv")"; fi
 
+# a branch in the ellipticity from the circle's steady shape at 4 (--e-max): its torus is the
+# chart's row at 4, the rows carry the ellipticity as a column
+expect_ok "ellipticity branch" periodic --pivot circle:0.05 --omega 4 --links 2 --start steady --mode 2 --side -1 --e-max 0.3 -o "$tmp/eb.csv"
+ec=$(grep -v '^#' "$tmp/e.csv" | sed -n 3p | cut -d, -f4)
+if grep -q 'followed in the ellipticity (the path.s y terms scaled by 1 - e) from 0 towards larger values' "$tmp/eb.csv" \
+   && [ "$(grep -v '^#' "$tmp/eb.csv" | head -1)" = "event,omega,amplitude,ellipticity,max_modulus,verdict,edge,fold_test,flip_test,torus_test,err" ] \
+   && grep -v '^#' "$tmp/eb.csv" | awk -F, -v ec="$ec" '$1 == "torus" {n++; if (($4 - ec) ^ 2 > 1e-20) bad = 1} END {exit bad || n != 1}' \
+   && grep -v '^#' "$tmp/eb.csv" | awk -F, 'NR > 1 && $1 == "point" {if (($4 < 0.2689) != ($6 == "neutral")) bad = 1} END {exit bad}'; then
+  pass "ellipticity branch: the torus at the chart's e_crit ($ec), neutral before, unstable after"; else fail "ellipticity branch: $(cat "$tmp/eb.csv")"; fi
+expect_error "ellipticity branch without y" "whirl periodic: an ellipticity continuation needs a path that moves along y" periodic --pivot line:0.05 --omega 4 --links 2 --e-max 0.3 -o "$tmp/out.csv"
+expect_error "two branches" "whirl periodic: a branch follows one parameter" periodic --pivot circle:0.05 --omega 4 --omega-min 3 --omega-max 4 --e-max 0.3 -o "$tmp/out.csv"
+
 # SI units: L = 0.5 m, a = 2.5 cm (0.05 L), the rates in rad/s: the same rows scaled
 w0=$(echo 'sqrt(9.81 / 0.5)' | bc -l)
 expect_ok "ellipse chart SI" periodic --chart ellipse --links 2 --eps 2.5cm --mode 2 --side -1 --omega-min "$(echo "3.95 * $w0" | bc -l)" --omega-max "$(echo "4.1 * $w0" | bc -l)" --omega-count 4 --length 0.5 --mass 50g --gravity 9.81 -o "$tmp/si.csv"
