@@ -1,8 +1,8 @@
 /* Tests of the ellipticity chart of the hand-swung chain (whirl_chart_ellipse) and of the
  * continuation in the ellipticity (WHIRL_CYCLE_ELLIPTICITY).
  *
- * The end of a curve on e = 0: where the circle drive's steady shape itself changes stability.
- * The reference is the steady linearisation (whirl_stability_driven_mode's growth rate, the
+ * The end of a curve on e = 0 (N = 2 and N = 3): where the circle drive's steady shape itself
+ * changes stability. The reference is the steady linearisation (whirl_stability_driven_mode's growth rate, the
  * eigenvalues of the shape in the rotating frame: no periodic motion, no monodromy), its onset
  * located by bisection against 1e-7: it grows as c sqrt(omega - omega*) (c ~ 0.5) beyond a
  * Krein collision, so the bisection ends (1e-7 / c)^2 ~ 4e-14 above it.
@@ -38,7 +38,7 @@ static int keep(void *data, const whirl_ellipse_point *p)
     return 0;
 }
 
-/* The steady shape's growth rate of mode 2 (side -1) of N = 2 at omega. */
+/* The steady shape's growth rate of mode 2 (side -1) at omega. */
 static double steady_growth(whirl_stability *st, const whirl_chain *c, double omega)
 {
     const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = omega,
@@ -48,45 +48,54 @@ static double steady_growth(whirl_stability *st, const whirl_chain *c, double om
     return g;
 }
 
-/* N = 2, a = 0.05, mode 2 (side -1): stable at e = 0 up to the Krein collision near 4.03; the
- * chart's curve must end on e = 0 there, and the rates below it have e_crit > 0. */
+/* a = 0.05, mode 2 (side -1): N = 2 is stable on the circle up to the Krein collision near
+ * 4.03, N = 3 up to one near 2.85; the chart's curve must end on e = 0 there, and the rates
+ * below have 0 < e_crit < 1. */
 static void test_curve_end(void **state)
 {
     (void)state;
-    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
-    whirl_stability *st = whirl_stability_alloc(2);
-    double lo = 3.95, hi = 4.1;
-    assert_true(steady_growth(st, c, lo) == 0);
-    assert_true(steady_growth(st, c, hi) > 1e-3);
-    for (int i = 0; i < 60; i++) {
-        const double mid = (lo + hi) / 2;
-        if (steady_growth(st, c, mid) > 1e-7) hi = mid;
-        else lo = mid;
+    static const struct {
+        int links, columns, rows;
+        double lo, hi;
+    } cases[] = {{2, 4, 3, 3.95, 4.1}, {3, 3, 2, 2.8, 2.9}};
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        whirl_chain *c = whirl_chain_alloc_uniform((size_t)cases[k].links, 0);
+        whirl_stability *st = whirl_stability_alloc((size_t)cases[k].links);
+        double lo = cases[k].lo, hi = cases[k].hi;
+        assert_true(steady_growth(st, c, lo) == 0);
+        assert_true(steady_growth(st, c, hi) > 1e-3);
+        for (int i = 0; i < 60; i++) {
+            const double mid = (lo + hi) / 2;
+            if (steady_growth(st, c, mid) > 1e-7) hi = mid;
+            else lo = mid;
+        }
+        const whirl_ellipse_chart_params p = {
+            .radius = EPS, .mode = 2, .side = -1, .omega_min = cases[k].lo,
+            .omega_max = cases[k].hi, .columns = cases[k].columns};
+        rows r = {.n = 0};
+        assert_int_equal(whirl_chart_ellipse(c, &p, keep, &r, NULL, NULL), GSL_SUCCESS);
+        /* a row per rate stable on the circle, then the end; none at the unstable rates */
+        const int n = cases[k].rows;
+        assert_int_equal(r.n, n);
+        const whirl_ellipse_point *end = &r.p[n - 1];
+        print_message("# N = %d, a = 0.05, mode 2: the curve ends at omega = %.17g (%s, err "
+                      "%.2g); the steady growth's onset %.17g, difference %.2g; e_crit(%g) = "
+                      "%.12g\n", cases[k].links, end->omega, whirl_cycle_event_name(end->event),
+                      end->err, hi, fabs(end->omega - hi), r.p[0].omega, r.p[0].ellipticity);
+        assert_int_equal(end->column, -1);
+        assert_true(end->ellipticity == 0);
+        assert_int_equal(end->event, WHIRL_CYCLE_TORUS);
+        assert_true(end->err < LOCATION_TOL);
+        assert_true(fabs(end->omega - hi) < LOCATION_TOL);
+        for (int i = 0; i < n - 1; i++) {
+            assert_int_equal(r.p[i].column, i);
+            assert_int_equal(r.p[i].curve, 0);
+            assert_true(r.p[i].ellipticity > 0 && r.p[i].ellipticity < 1);
+            assert_true(r.p[i].err < LOCATION_TOL);
+        }
+        whirl_stability_free(st);
+        whirl_chain_free(c);
     }
-    const whirl_ellipse_chart_params p = {.radius = EPS, .mode = 2, .side = -1,
-                                          .omega_min = 3.95, .omega_max = 4.1, .columns = 4};
-    rows r = {.n = 0};
-    assert_int_equal(whirl_chart_ellipse(c, &p, keep, &r, NULL, NULL), GSL_SUCCESS);
-    /* 3.95 and 4.0 stable at e = 0 (a row each), the end, 4.05 and 4.1 unstable (none) */
-    assert_int_equal(r.n, 3);
-    const whirl_ellipse_point *end = &r.p[2];
-    print_message("# N = 2, a = 0.05, mode 2: the curve ends at omega = %.17g (%s, err %.2g); "
-                  "the steady growth's onset %.17g, difference %.2g; e_crit(3.95) = %.12g, "
-                  "e_crit(4) = %.12g\n", end->omega, whirl_cycle_event_name(end->event),
-                  end->err, hi, fabs(end->omega - hi), r.p[0].ellipticity, r.p[1].ellipticity);
-    assert_int_equal(end->column, -1);
-    assert_true(end->ellipticity == 0);
-    assert_int_equal(end->event, WHIRL_CYCLE_TORUS);
-    assert_true(end->err < LOCATION_TOL);
-    assert_true(fabs(end->omega - hi) < LOCATION_TOL);
-    for (int i = 0; i < 2; i++) {
-        assert_int_equal(r.p[i].column, i);
-        assert_int_equal(r.p[i].curve, 0);
-        assert_true(r.p[i].ellipticity > 0 && r.p[i].ellipticity < 1);
-        assert_true(r.p[i].err < LOCATION_TOL);
-    }
-    whirl_stability_free(st);
-    whirl_chain_free(c);
 }
 
 /* The scaled norm of the tangent coordinates of y - y0 (rates over omega). */
