@@ -401,7 +401,9 @@ typedef struct whirl_ellipse_chart_progress {
     int column, columns; /* the rate under way (from 0) and the count */
     int curves;          /* curves begun */
     long points;         /* rows handed out */
-    int failed;          /* rates whose branch stopped before an event (no row) */
+    int failed;          /* continuations that failed before their first event (Newton's
+                            method or the corrector did not converge, no unique tangent, an
+                            event not located): no row for them */
     double parameter;    /* the continuation's parameter under way (e, or omega at an end) */
 } whirl_ellipse_chart_progress;
 

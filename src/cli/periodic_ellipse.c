@@ -62,8 +62,8 @@ static void write_rows(FILE *fp, const periodic_ellipse_args *a,
             "circle to where it is lost; links=%d\n", CLI_NUM(p->radius * len),
             cli_units_name(a->units, CLI_UNIT_LENGTH), p->mode, p->side, a->links);
     fprintf(fp, "# omega from %s to %s %s (%d rates); e up to %s; points=%zu curves=%d; "
-            "none: %d rates stable up to e=%s; failed: %d rates (the branch stopped before an "
-            "event)\n", CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate),
+            "none: %d rates stable up to e=%s; failed: %d continuations (stopped before an "
+            "event: no row)\n", CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate),
             cli_units_name(a->units, CLI_UNIT_RATE), p->columns, CLI_NUM(p->e_max), r->n, curves,
             none, CLI_NUM(p->e_max), r->last.failed);
     fprintf(fp, "# event: how the shape is lost (fold, branch: +1; period-doubling: -1; torus: "

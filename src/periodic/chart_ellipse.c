@@ -129,6 +129,13 @@ static int follow(ellipse_chart *ch, double omega, whirl_cycle_parameter paramet
     return status == STOP ? GSL_SUCCESS : status;
 }
 
+/* A continuation's failure that ends one rate's work, not the chart's: no convergence, no
+ * unique tangent, an event that could not be located. */
+static int branch_failed(int status)
+{
+    return status == GSL_EMAXITER || status == GSL_ESING || status == GSL_EFAILED;
+}
+
 static int check_params(const whirl_chain *c, whirl_ellipse_chart_params *p)
 {
     if (c == NULL) return whirl_fail(GSL_EINVAL, "whirl_chart_ellipse: needs a chain");
@@ -165,6 +172,10 @@ static int curve_end(ellipse_chart *ch, double w_stable, double w_other, int cur
 {
     first_event f;
     int status = follow(ch, w_stable, WHIRL_CYCLE_OMEGA, w_other, &f);
+    if (branch_failed(status)) {
+        ch->progress.failed++;
+        return GSL_SUCCESS;
+    }
     if (status) return status;
     if (!f.found) return GSL_SUCCESS; /* the change lies in the shape's existence alone */
     const whirl_ellipse_point pt = {.event = f.event.event, .curve = curve, .column = -1,
@@ -190,9 +201,9 @@ static int columns(ellipse_chart *ch, whirl_ellipse_chart_row_fn row, void *row_
         int stable = 0;
         if (status == GSL_EDOM) status = GSL_SUCCESS; /* no shape of the mode at this rate */
         else if (status == GSL_SUCCESS) stable = f.stable;
-        else if (status == GSL_EMAXITER) {
-            /* Newton's method at the start, or the branch before an event, did not converge:
-               no row at this rate (counted) */
+        else if (branch_failed(status)) {
+            /* Newton's method at the start, or the branch before an event, did not converge
+               (or an event could not be located): no row at this rate (counted) */
             ch->progress.failed++;
             stable = f.rows > 0 && f.stable, status = GSL_SUCCESS;
             f.rows = 0;

@@ -218,6 +218,29 @@ static void test_thin_tongue(void **state)
     whirl_chain_free(c);
 }
 
+static void last_progress(void *data, const whirl_ellipse_chart_progress *p)
+{
+    *(whirl_ellipse_chart_progress *)data = *p;
+}
+
+/* A rate whose Newton's method does not converge (a tolerance below round-off) has no row and
+ * is counted; the chart goes on. */
+static void test_failed_rates(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    const whirl_ellipse_chart_params p = {.radius = EPS, .mode = 2, .side = -1,
+                                          .omega_min = 3.9, .omega_max = 4.0, .columns = 2,
+                                          .tol = 1e-300};
+    rows r = {.n = 0};
+    whirl_ellipse_chart_progress pr = {0};
+    assert_int_equal(whirl_chart_ellipse(c, &p, keep, &r, last_progress, &pr), GSL_SUCCESS);
+    assert_int_equal(r.n, 0);
+    assert_int_equal(pr.failed, 2);
+    assert_int_equal(pr.column, 1);
+    whirl_chain_free(c);
+}
+
 /* Bad input: GSL_EINVAL, no row. */
 static void test_bad_input(void **state)
 {
@@ -258,6 +281,7 @@ int main(void)
         cmocka_unit_test(test_curve_end),
         cmocka_unit_test(test_perturbed_runs),
         cmocka_unit_test(test_thin_tongue),
+        cmocka_unit_test(test_failed_rates),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
