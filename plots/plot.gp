@@ -10,6 +10,7 @@
 #   index,omega,eps,state,...   a regime map (whirl regime)                     -> regime.gp
 #   leg,omega,state,...         a hysteresis sweep (whirl regime --sweep)       -> regime.gp
 #   curve,edge,omega,amplitude  a stability chart (whirl periodic --chart)      -> chart.gp
+#   curve,event,omega,ellipticity  the ellipticity chart (--chart ellipse)      -> chart_ellipse.gp
 #   t,...                       a run (whirl simulate)                          -> simulate.gp
 #   x y z t blocks              a trace (whirl simulate, regime --trace)        -> animate.gp
 # usage: gnuplot -e "file='my.csv'; out='my.png'" plots/plot.gp   (out: default FILE.png, .gif
@@ -33,6 +34,7 @@ kind = strstrt(header, ",") == 0 ? "trace" : \
        strstrt(header, "index,omega,eps,state") == 1 ? "regime_map" : \
        strstrt(header, "leg,omega,state") == 1 ? "regime_sweep" : \
        strstrt(header, "curve,edge,omega,amplitude") == 1 ? "chart" : \
+       strstrt(header, "curve,event,omega,ellipticity") == 1 ? "chart_ellipse" : \
        strstrt(header, "t,") == 1 ? "run" : "unknown"
 if (kind eq "unknown") { print "plot.gp: ".file.": unknown header '".header."'"; exit status 1 }
 if (!exists("out")) { out = file . (kind eq "trace" ? ".gif" : ".png") }
@@ -46,6 +48,7 @@ if (kind eq "regime_map") { map = file; load here."/regime.gp" }
 if (kind eq "regime_sweep") { sweep = file; load here."/regime.gp" }
 if (kind eq "run") { csv = file; load here."/simulate.gp" }
 if (kind eq "chart") { csv = file; load here."/chart.gp" }
+if (kind eq "chart_ellipse") { csv = file; load here."/chart_ellipse.gp" }
 if (kind eq "shape") {
     # every file of files (or file alone) on one pair of equal axes, true to scale: the canvas
     # takes the shapes' aspect ratio (plot box at most 720 x 720 px, at least 260 px across),

@@ -274,9 +274,9 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
 
 /* ---- continuation of periodic motions ----
  *
- * A periodic motion followed in the path's rate or its amplitude by pseudo-arclength
- * continuation (src/periodic/cycle_path.c): the unknowns are the state y at t = 0 and the
- * parameter p, the equations P_p(y) = y and the arclength condition; the tangent is the null
+ * A periodic motion followed in the path's rate, its amplitude or its ellipticity by
+ * pseudo-arclength continuation (src/periodic/cycle_path.c): the unknowns are the state y at
+ * t = 0 and the parameter p, the equations P_p(y) = y and the arclength condition; the tangent is the null
  * vector of the bordered Jacobian [M - I, dP/dp] of the period map. At every point the
  * multipliers, the verdict and the test functions
  *   fold test  f_+ = det(M - I)   (a multiplier, or a pair, through +1),
@@ -296,9 +296,13 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
 
 typedef enum {
     WHIRL_CYCLE_OMEGA = 0,    /* the path's rate omega [sqrt(g/L)] */
-    WHIRL_CYCLE_AMPLITUDE = 1 /* the path's amplitude [L]: the path scaled so that its largest
-                                 Fourier amplitude (over c and s of every axis and harmonic) is
-                                 the parameter */
+    WHIRL_CYCLE_AMPLITUDE = 1, /* the path's amplitude [L]: the path scaled so that its largest
+                                  Fourier amplitude (over c and s of every axis and harmonic) is
+                                  the parameter */
+    WHIRL_CYCLE_ELLIPTICITY = 2 /* the ellipticity e (dimensionless): the path's y terms scaled
+                                   by 1 - e, the start's path being e = 0 (the circle of radius
+                                   a becomes the ellipse of semi-axes a along x, a (1 - e) along
+                                   y); the path must move along y */
 } whirl_cycle_parameter;
 
 typedef enum {
@@ -362,9 +366,9 @@ typedef int (*whirl_cycle_row_fn)(void *data, const whirl_cycle_point *point);
 /* Called after every corrector iteration and every point. */
 typedef void (*whirl_cycle_tick_fn)(void *data, const whirl_cycle_progress *progress);
 
-/* Follows the periodic motion of w near y from w's path (its rate or amplitude the start, in
- * [min, max]): Newton's method at the start (as whirl_periodic_find), then the branch until
- * the parameter leaves [min, max] (GSL_SUCCESS), max_points (GSL_SUCCESS), a stop request
+/* Follows the periodic motion of w near y from w's path (its rate, its amplitude or e = 0 the
+ * start, in [min, max]): Newton's method at the start (as whirl_periodic_find), then the branch
+ * until the parameter leaves [min, max] (GSL_SUCCESS), max_points (GSL_SUCCESS), a stop request
  * (WHIRL_EINTERRUPTED: the rows handed out stand), or a corrector that does not converge even
  * at a step of 1e-6 of the largest (GSL_EMAXITER with the residual reached and the parameter).
  * y holds the last point's state and w's path the last point's (a failure at the start: as
@@ -375,6 +379,69 @@ WHIRL_API int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycl
                                   whirl_cycle_tick_fn tick, void *tick_data);
 
 WHIRL_API const char *whirl_cycle_event_name(whirl_cycle_event e);
+
+/* y <- the steady shape of mode (its node count) of the circle drive on w's path (a circle of
+ * radius > 0, dim 3), the seed's tip on the pivot's side (side 1) or opposite (-1), as
+ * whirl_stability_driven_mode finds it, at t = 0 turning with the pivot: the circle's periodic
+ * motion. GSL_EINVAL on another path; GSL_EDOM if the mode does not exist at the rate. */
+WHIRL_API int whirl_periodic_start_steady(whirl_periodic *w, int mode, int side, double *y);
+
+/* ---- the ellipticity chart of the hand-swung chain ----
+ *
+ * The pivot on the ellipse (a cos wt, a (1 - e) sin wt, 0), e the ellipticity (0: the circle
+ * drive of radius a, 1: the line along x). At each rate the steady shape of the circle drive's
+ * mode K (whirl_periodic_start_steady), if stable at e = 0, is followed in e
+ * (WHIRL_CYCLE_ELLIPTICITY) to its first event, where it is lost: e_crit(omega), located as the
+ * continuation's events are (to 1e-8). The curve ends on e = 0 where the steady shape changes
+ * its stability between two rates: there the circle's motion is followed in the rate from the
+ * stable one and its first event located (src/periodic/chart_ellipse.c). */
+
+typedef struct whirl_ellipse_chart_params {
+    double radius;    /* a, the circle's radius and the ellipse's semi-axis along x [L], > 0 */
+    int mode;         /* the steady shape's mode (node count), >= 1; 0: 2 */
+    int side;         /* its seed's tip on the pivot's side (1) or opposite (-1); 0: 1 */
+    double omega_min, omega_max; /* the rates [sqrt(g/L)], 0 < omega_min < omega_max */
+    int columns;      /* rates, equally spaced, both ends included (>= 2); 0: 50 */
+    double e_max;     /* the largest ellipticity followed, in (0, 1]; 0: 1 */
+    int steps;        /* Gauss steps per period, as whirl_cycle_params.steps; 0: 400 */
+    double step;      /* the continuation's largest arclength step; 0: 0.01 (a tongue entered
+                         and left within one step is passed over) */
+    double tol;       /* Newton's test, as whirl_cycle_params.tol; 0: 1e-10 */
+} whirl_ellipse_chart_params;
+
+typedef struct whirl_ellipse_point {
+    whirl_cycle_event event; /* how the shape is lost there (fold, branch, period doubling,
+                                torus); WHIRL_CYCLE_POINT: not lost up to e_max (the row at
+                                e_max) */
+    int curve;          /* the curve's number from 0: a run of rates stable at e = 0 */
+    int column;         /* the rate's index from 0; -1: an end of the curve on e = 0 */
+    double omega;       /* [sqrt(g/L)] */
+    double ellipticity; /* e_crit (0 at an end) */
+    double err;         /* the location's error estimate: in e at a rate, in omega at an end */
+    double max_modulus; /* the largest multiplier's modulus at the event */
+} whirl_ellipse_point;
+
+typedef struct whirl_ellipse_chart_progress {
+    int column, columns; /* the rate under way (from 0) and the count */
+    int curves;          /* curves begun */
+    long points;         /* rows handed out */
+    int failed;          /* continuations that failed before their first event (Newton's
+                            method or the corrector did not converge, no unique tangent, an
+                            event not located): no row for them */
+    double parameter;    /* the continuation's parameter under way (e, or omega at an end) */
+} whirl_ellipse_chart_progress;
+
+typedef int (*whirl_ellipse_chart_row_fn)(void *data, const whirl_ellipse_point *point);
+typedef void (*whirl_ellipse_chart_tick_fn)(void *data,
+                                            const whirl_ellipse_chart_progress *progress);
+
+/* The chart of the chain c (3D) by rate: row for every point as it is located (in the order of
+ * the rates; a non-zero return stops the chart with that status), tick after every point of a
+ * continuation and every rate (may be NULL). GSL_EINVAL with a message on bad parameters;
+ * WHIRL_EINTERRUPTED on a stop request (the points handed out stand); an integration's status. */
+WHIRL_API int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                                  whirl_ellipse_chart_row_fn row, void *row_data,
+                                  whirl_ellipse_chart_tick_fn tick, void *tick_data);
 
 WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
 WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);

@@ -14,20 +14,24 @@
  * "# units:" line, then the CSV curve,edge,omega,amplitude,err, one row per edge point (edge +1
  * or -1: the multiplier pair passing there), the points of one curve by rate, a blank line
  * between curves (gnuplot draws each as a line). Ctrl-C stops it within a monodromy: the points
- * found until then are written (a comment line says where it stopped), exit status 130. */
+ * found until then are written (a comment line says where it stopped), exit status 130.
+ *
+ * --chart ellipse: the ellipticity chart of the hand-swung chain (periodic_ellipse.c). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/periodic_cli.h"
 #include "whirl/periodic.h"
 #include "whirl/stability.h"
 
 typedef struct periodic_options {
     const char *pivot, *start, *output, *chart;
-    double omega, tol, arc_step;
+    double omega, tol, arc_step, eps, e_max;
     int links, dim, steps, max_iter, mode, side, differences, up, max_points;
+    int mode_given, side_given, emax_given;
     int omega_given, omin_given, omax_given, amin_given, amax_given;
     double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
     int omega_count, amp_rows;
@@ -55,7 +59,7 @@ static void show_progress(void *data, const whirl_periodic_progress *p)
 }
 
 /* The steady shape of the circle drive (mode, tip on the pivot's side) as the start state. */
-static int start_steady(const cli_command *cmd, const periodic_options *o, const whirl_chain *c,
+static int start_steady(const cli_command *cmd, const periodic_options *o,
                         const whirl_pivot_path *path, whirl_periodic *w, double *y)
 {
     const double r = path->c[0][0];
@@ -64,24 +68,8 @@ static int start_steady(const cli_command *cmd, const periodic_options *o, const
         memcmp(&circle, path, sizeof circle) != 0 || !(r > 0))
         return cli_error(cmd, "--start steady needs --pivot circle:R with R > 0 and --dim 3 "
                          "(the steady shapes of the circle drive)");
-    whirl_stability *st = whirl_stability_alloc(c->n);
-    if (st == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    const whirl_model model = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
-                               .omega = path->omega, .drive_radius = r};
-    double growth;
-    int status = whirl_stability_driven_mode(st, &model, o->mode, o->side, NULL, &growth);
-    double *links = malloc(3 * c->n * sizeof *links);
-    if (status == GSL_SUCCESS && links == NULL) status = GSL_ENOMEM;
-    if (status == GSL_SUCCESS) {
-        const double *x, *yy, *z;
-        whirl_stability_nodes(st, &x, &yy, &z);
-        status = whirl_shape_links(c->n, x, yy, z, links);
-    }
-    if (status == GSL_SUCCESS)
-        status = whirl_dyn_state_from_shape(whirl_periodic_dyn(w), 0, links, path->omega, y);
-    free(links);
-    whirl_stability_free(st);
-    if (status) return cli_error(cmd, "the steady start: %s", CLI_LIBRARY_ERROR(&o->units));
+    if (whirl_periodic_start_steady(w, o->mode, o->side, y) != GSL_SUCCESS)
+        return cli_error(cmd, "the steady start: %s", CLI_LIBRARY_ERROR(&o->units));
     return 0;
 }
 
@@ -194,9 +182,29 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
 {
     const int inverted = strcmp(o->chart, "hanging") == 0    ? 0
                          : strcmp(o->chart, "inverted") == 0 ? 1
+                         : strcmp(o->chart, "ellipse") == 0  ? 2
                                                              : -1;
     if (inverted < 0)
-        return cli_error(cmd, "--chart must be hanging or inverted, got '%s'", o->chart);
+        return cli_error(cmd, "--chart must be hanging, inverted or ellipse, got '%s'",
+                         o->chart);
+    if (inverted == 2) {
+        if (!(o->eps > 0)) return cli_error(cmd, "--chart ellipse needs --eps");
+        if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
+        if (o->amax_given || o->amin_given || o->amp_rows || o->edge_tol > 0)
+            return cli_error(cmd, "--amp-min, --amp-max, --amp-rows and --edge-tol are for "
+                             "--chart hanging or inverted");
+        const periodic_ellipse_args a = {
+            .links = o->links, .mode = o->mode_given ? o->mode : 2, .side = o->side,
+            .columns = o->omega_count, .steps = o->steps, .eps = o->eps,
+            .omega_min = o->omega_min, .omega_max = o->omega_max, .e_max = o->e_max,
+            .arc_step = o->arc_step,
+            .output = o->output, .units = &o->units};
+        return periodic_chart_ellipse(cmd, &a);
+    }
+    if (!o->amax_given) return cli_error(cmd, "--chart needs --amp-max");
+    if (o->eps > 0 || o->e_max > 0 || o->mode_given || o->side_given || o->arc_step > 0)
+        return cli_error(cmd, "--eps, --e-max, --mode, --side and --arc-step are for --chart "
+                         "ellipse");
     if (!(o->omega_max > o->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (!(o->amp_max > o->amp_min))
@@ -246,7 +254,7 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
 
 typedef struct branch_row {
     whirl_cycle_event event;
-    double omega, amplitude, err, max_modulus, fold, flip, torus;
+    double omega, amplitude, parameter, err, max_modulus, fold, flip, torus;
     whirl_floquet_verdict verdict;
     whirl_floquet_edge edge;
 } branch_row;
@@ -256,7 +264,7 @@ typedef struct branch_rows {
     size_t n, cap, events;
     cli_progress_state line;
     double after;
-    int amplitude; /* the parameter: 0 the rate, 1 the amplitude */
+    whirl_cycle_parameter param; /* the rate, the amplitude or the ellipticity */
     int max_points; /* the branch's most points */
 } branch_rows;
 
@@ -270,7 +278,7 @@ static int branch_keep(void *data, const whirl_cycle_point *p)
         b->r = r, b->cap = cap;
     }
     b->r[b->n++] = (branch_row){.event = p->event, .omega = p->omega, .amplitude = p->amplitude,
-                                .err = p->err, .max_modulus = p->max_modulus,
+                                .parameter = p->parameter, .err = p->err, .max_modulus = p->max_modulus,
                                 .fold = p->fold_test, .flip = p->flip_test,
                                 .torus = p->torus_test,
                                 .verdict = p->verdict, .edge = p->edge};
@@ -284,22 +292,26 @@ static void branch_tick(void *data, const whirl_cycle_progress *p)
     if (!b->line.drawn && cli_wall_seconds() - b->line.start < b->after) return;
     cli_progress_text(&b->line, "%ld points, %ld events, %s %.6g, step %.3g, corrector "
                       "iteration %d (residual %.2g)", p->points, p->events,
-                      b->amplitude ? "A" : "omega", p->parameter, p->step, p->iteration,
+                      b->param == WHIRL_CYCLE_OMEGA       ? "omega"
+                      : b->param == WHIRL_CYCLE_AMPLITUDE ? "A"
+                                                          : "e",
+                      p->parameter, p->step, p->iteration,
                       p->residual);
 }
 
 static int check_branch(const cli_command *cmd, const periodic_options *o, int branch)
 {
-    if (o->omin_given && o->amax_given)
+    if (o->omin_given + o->amax_given + o->emax_given > 1)
         return cli_error(cmd, "a branch follows one parameter: --omega-min/--omega-max (the "
-                         "rate) or --amp-min/--amp-max (the amplitude), not both");
+                         "rate), --amp-min/--amp-max (the amplitude) or --e-max (the "
+                         "ellipticity), not two");
     if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
     if (branch && o->differences)
         return cli_error(cmd, "--differences is for one motion: a branch forms its monodromies "
                          "from the variational equations");
     if (!branch && (o->up || o->arc_step > 0 || o->max_points > 0))
         return cli_error(cmd, "--up, --arc-step and --max-points need a branch (--omega-min and "
-                         "--omega-max, or --amp-max)");
+                         "--omega-max, --amp-max, or --e-max)");
     if (o->omin_given && !(o->omega_max > o->omega_min))
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (o->amax_given && !(o->amp_max > o->amp_min))
@@ -314,14 +326,17 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
 {
     const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
     const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
-    const double perr = b->amplitude ? len : rate;
+    const int amp = b->param == WHIRL_CYCLE_AMPLITUDE, e = b->param == WHIRL_CYCLE_ELLIPTICITY;
+    const double perr = amp ? len : e ? 1 : rate;
     char words[96];
     fprintf(fp, "# periodic branch: pivot %s, links=%d dim=%d start=%s; followed in the %s "
             "from %s towards %s values, %zu rows (%zu events), %s\n", o->pivot, o->links,
-            o->dim, o->start, b->amplitude ? "amplitude" : "rate",
-            b->amplitude ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
-                         : cli_rate_words(&o->units, o->omega, words, sizeof words),
-            o->up ? "larger" : "smaller", b->n, b->events,
+            o->dim, o->start,
+            amp ? "amplitude" : e ? "ellipticity (the path's y terms scaled by 1 - e)" : "rate",
+            amp ? CLI_NUM(b->n ? b->r[0].amplitude * len : 0)
+            : e ? "0"
+                : cli_rate_words(&o->units, o->omega, words, sizeof words),
+            o->up || e ? "larger" : "smaller", b->n, b->events,
             stopped[0]                                     ? "stopped early"
             : b->n - b->events >= (size_t)b->max_points ? "ended at --max-points"
                                                          : "left the range");
@@ -332,17 +347,19 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
             "err: the event's error estimate in the parameter\n");
     for (size_t i = 0; i < b->n; i++)
         if (b->r[i].event != WHIRL_CYCLE_POINT)
-            fprintf(fp, "# %s omega=%s amplitude=%s err=%.2g\n",
+            fprintf(fp, "# %s omega=%s amplitude=%s%s%s err=%.2g\n",
                     whirl_cycle_event_name(b->r[i].event), CLI_NUM(b->r[i].omega * rate),
-                    CLI_NUM(b->r[i].amplitude * len), b->r[i].err * perr);
+                    CLI_NUM(b->r[i].amplitude * len), e ? " ellipticity=" : "",
+                    e ? CLI_NUM(b->r[i].parameter) : "", b->r[i].err * perr);
     if (stopped[0]) fprintf(fp, "# stopped (%s): the points found until then\n", stopped);
     cli_units_comment(fp, &o->units);
-    fprintf(fp, "event,omega,amplitude,max_modulus,verdict,edge,fold_test,flip_test,torus_test,"
-            "err\n");
+    fprintf(fp, "event,omega,amplitude,%smax_modulus,verdict,edge,fold_test,flip_test,"
+            "torus_test,err\n", e ? "ellipticity," : "");
     for (size_t i = 0; i < b->n; i++) {
         const branch_row *r = &b->r[i];
-        fprintf(fp, "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
-                CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len), CLI_NUM(r->max_modulus),
+        fprintf(fp, "%s,%s,%s,%s%s%s,%s,%s,%s,%s,%s,%s\n", whirl_cycle_event_name(r->event),
+                CLI_NUM(r->omega * rate), CLI_NUM(r->amplitude * len),
+                e ? CLI_NUM(r->parameter) : "", e ? "," : "", CLI_NUM(r->max_modulus),
                 whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
                 CLI_NUM(r->fold), CLI_NUM(r->flip), CLI_NUM(r->torus), CLI_NUM(r->err * perr));
     }
@@ -353,12 +370,17 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
 static int run_branch(const cli_command *cmd, const periodic_options *o, whirl_periodic *w,
                       double *y)
 {
-    branch_rows b = {.after = cli_progress_after(), .amplitude = o->amax_given,
+    branch_rows b = {.after = cli_progress_after(),
+                     .param = o->amax_given   ? WHIRL_CYCLE_AMPLITUDE
+                              : o->emax_given ? WHIRL_CYCLE_ELLIPTICITY
+                                              : WHIRL_CYCLE_OMEGA,
                      .max_points = o->max_points ? o->max_points : 10000}; /* the default */
+    const int e = b.param == WHIRL_CYCLE_ELLIPTICITY;
     const whirl_cycle_params p = {
-        .parameter = b.amplitude ? WHIRL_CYCLE_AMPLITUDE : WHIRL_CYCLE_OMEGA,
-        .min = b.amplitude ? o->amp_min : o->omega_min,
-        .max = b.amplitude ? o->amp_max : o->omega_max, .direction = o->up ? 1 : -1,
+        .parameter = b.param,
+        .min = e ? 0 : o->amax_given ? o->amp_min : o->omega_min,
+        .max = e ? o->e_max : o->amax_given ? o->amp_max : o->omega_max,
+        .direction = o->up || e ? 1 : -1,
         .step = o->arc_step, .max_points = o->max_points, .steps = o->steps, .tol = o->tol,
         .max_iter = o->max_iter};
     cli_catch_interrupts();
@@ -410,9 +432,19 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--chart", .type = CLI_STRING, .value = &o.chart, .meta = "KIND",
          .help = "the stability chart of the chain shaken vertically: hanging (its tongues) or "
                  "inverted (its region of stability)",
-         .needs = "--omega-min --omega-max --amp-max",
-         .excludes = "--pivot --omega --dim --start --mode --side --tol --max-iter --differences "
-                     "--up --arc-step --max-points"},
+         .needs = "--omega-min --omega-max",
+         .excludes = "--pivot --omega --dim --start --tol --max-iter --differences "
+                     "--up --max-points"},
+        {.name = "--eps", .type = CLI_DOUBLE, .value = &o.eps, .meta = "A",
+         .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
+                 "(the other: A (1 - e))",
+         .range = "(0, inf)", .needs = "--chart", .unit = CLI_UNIT_LENGTH},
+        {.name = "--e-max", .type = CLI_DOUBLE, .value = &o.e_max, .given = &o.emax_given,
+         .meta = "E",
+         .help = "--chart ellipse: the largest ellipticity followed (default 1, the line); "
+                 "without --chart a branch in the ellipticity e (the path's y terms scaled by "
+                 "1 - e) from the path (e = 0) up to E",
+         .range = "(0, 1]"},
         {.name = "--omega-min", .type = CLI_DOUBLE, .value = &o.omega_min,
          .given = &o.omin_given, .meta = "W",
          .help = "the lowest rate of the chart, or of a branch followed in the rate",
@@ -422,7 +454,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .help = "the highest rate of the chart, or of a branch followed in the rate",
          .range = "(0, inf)", .needs = "--omega-min", .unit = CLI_UNIT_RATE},
         {.name = "--omega-count", .type = CLI_INT, .value = &o.omega_count, .meta = "N",
-         .help = "--chart: rates, both ends included (default 200)", .range = "[2, 1000000]",
+         .help = "--chart: rates, both ends included (default 200; ellipse 50)",
+         .range = "[2, 1000000]",
          .needs = "--chart"},
         {.name = "--amp-min", .type = CLI_DOUBLE, .value = &o.amp_min, .given = &o.amin_given,
          .meta = "A",
@@ -437,7 +470,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--up", .type = CLI_FLAG, .value = &o.up,
          .help = "branch: leave the start towards larger values (default smaller)"},
         {.name = "--arc-step", .type = CLI_DOUBLE, .value = &o.arc_step, .meta = "H",
-         .help = "branch: largest step of the continuation's arclength (default 0.05)",
+         .help = "branch or --chart ellipse: largest step of the continuation's arclength "
+                 "(default 0.05; --chart ellipse 0.01)",
          .range = "(0, 1]"},
         {.name = "--max-points", .type = CLI_INT, .value = &o.max_points, .meta = "M",
          .help = "branch: most points (default 10000)", .range = "[2, 10000000]"},
@@ -454,12 +488,16 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--start", .type = CLI_STRING, .value = &o.start, .meta = "S",
          .help = "Newton's start: hanging (default), inverted, or steady (the circle drive's "
                  "steady shape of --mode)"},
-        {.name = "--mode", .type = CLI_INT, .value = &o.mode, .meta = "K",
-         .help = "--start steady: the mode (default 1)", .range = "[1, 64]", .needs = "--start"},
-        {.name = "--side", .type = CLI_INT, .value = &o.side, .meta = "S",
-         .help = "--start steady: the seed's tip on the pivot's side (1, default) or opposite "
-                 "(-1), as whirl driven --side",
-         .range = "[-1, 1]", .needs = "--start"},
+        {.name = "--mode", .type = CLI_INT, .value = &o.mode, .given = &o.mode_given,
+         .meta = "K",
+         .help = "--start steady: the mode (default 1); --chart ellipse: the mode followed "
+                 "(default 2)",
+         .range = "[1, 64]"},
+        {.name = "--side", .type = CLI_INT, .value = &o.side, .given = &o.side_given,
+         .meta = "S",
+         .help = "--start steady or --chart ellipse: the seed's tip on the pivot's side (1, "
+                 "default) or opposite (-1), as whirl driven --side",
+         .range = "[-1, 1]"},
         {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
          .help = "Gauss steps per period of the coarser solve or monodromy (default 400, "
                  "--chart 200; raised to the chain's bound); the finer takes twice as many",
@@ -478,7 +516,9 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
     if (o.chart) return run_chart(cmd, &o);
-    const int branch = o.omin_given || o.amax_given;
+    if ((o.mode_given || o.side_given) && (o.start == NULL || strcmp(o.start, "steady") != 0))
+        return cli_error(cmd, "--mode and --side need --start steady (or --chart ellipse)");
+    const int branch = o.omin_given || o.amax_given || o.emax_given;
     if ((rc = check_branch(cmd, &o, branch))) return rc;
     if (branch && !o.omega_given) o.omega = o.omega_max;
     const int start = strcmp(o.start, "hanging") == 0    ? 0
@@ -500,7 +540,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         goto done;
     }
     if (start == 2) {
-        if ((rc = start_steady(cmd, &o, c, &path, w, y))) goto done;
+        if ((rc = start_steady(cmd, &o, &path, w, y))) goto done;
     } else if (whirl_periodic_start_vertical(w, start, y) != GSL_SUCCESS) {
         rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
         goto done;

@@ -33,6 +33,8 @@ static const struct {
              {"=mode,links,from,to,open_from,open_to,freq_from,freq_to,growth,at,verdict",
               CLI_FIGURE_INTERVALS, "intervals with dissipation"},
              {"curve,edge,omega,amplitude,", CLI_FIGURE_CHART, "a stability chart"},
+             {"curve,event,omega,ellipticity,", CLI_FIGURE_CHART_ELLIPSE,
+              "an ellipticity chart"},
              {"t,", CLI_FIGURE_RUN, "a run"}};
 
 static const char *kind_name(cli_figure_kind k)

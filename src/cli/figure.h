@@ -28,6 +28,7 @@ typedef enum {
     CLI_FIGURE_WINDOWS,       /* mode,links,from,to,...,max_growth: stability --windows */
     CLI_FIGURE_INTERVALS,     /* mode,links,from,to,...,growth,at,verdict: --windows, dissipation */
     CLI_FIGURE_CHART,         /* curve,edge,omega,amplitude,...: whirl periodic --chart */
+    CLI_FIGURE_CHART_ELLIPSE, /* curve,event,omega,ellipticity,...: --chart ellipse */
     CLI_FIGURE_RUN,           /* t,...: whirl simulate */
     CLI_FIGURE_TRACE          /* "# trace:" blocks x y z t: simulate's or regime's trace */
 } cli_figure_kind;

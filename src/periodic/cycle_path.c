@@ -77,6 +77,8 @@ void cycle_set_param(cycle *c, double p)
     whirl_pivot_path path = c->base;
     if (c->p.parameter == WHIRL_CYCLE_OMEGA) {
         path.omega = p;
+    } else if (c->p.parameter == WHIRL_CYCLE_ELLIPTICITY) {
+        for (int j = 0; j < path.harmonics; j++) path.c[1][j] *= 1 - p, path.s[1][j] *= 1 - p;
     } else {
         const double f = p / c->base_amp;
         for (int k = 0; k < 3; k++)
@@ -88,8 +90,29 @@ void cycle_set_param(cycle *c, double p)
 const char *cycle_where(const cycle *c, double p, char *buf, size_t size)
 {
     if (c->p.parameter == WHIRL_CYCLE_OMEGA) snprintf(buf, size, "omega=" WHIRL_Q_RATE "%.17g", p);
+    else if (c->p.parameter == WHIRL_CYCLE_ELLIPTICITY) snprintf(buf, size, "e=%.17g", p);
     else snprintf(buf, size, "A=" WHIRL_Q_LENGTH "%.17g", p);
     return buf;
+}
+
+/* The parameter's value at the start: the path's rate, its amplitude, or e = 0. */
+static double cycle_start(const cycle *c)
+{
+    switch (c->p.parameter) {
+    case WHIRL_CYCLE_OMEGA: return c->base.omega;
+    case WHIRL_CYCLE_AMPLITUDE: return c->base_amp;
+    case WHIRL_CYCLE_ELLIPTICITY: return 0;
+    }
+    return NAN;
+}
+
+/* The largest Fourier amplitude of the path's y terms. */
+static double cycle_y_amplitude(const whirl_pivot_path *path)
+{
+    double a = 0;
+    for (int j = 0; j < path->harmonics; j++)
+        a = fmax(a, fmax(fabs(path->c[1][j]), fabs(path->s[1][j])));
+    return a;
 }
 
 static void tick(cycle *c)
@@ -141,7 +164,9 @@ static void frame_at(cycle *c, const double *y, double *basis, double *cols)
 static int param_derivative(cycle *c, const double *y, double p, int steps, double *basis,
                             double *pp)
 {
-    const double h = DP_REL * (c->p.parameter == WHIRL_CYCLE_OMEGA ? p : fmax(p, c->base_amp));
+    const double h = DP_REL * (c->p.parameter == WHIRL_CYCLE_OMEGA       ? p
+                               : c->p.parameter == WHIRL_CYCLE_ELLIPTICITY ? 1
+                                                                           : fmax(p, c->base_amp));
     int status = period_map(c, p + h, y, steps, c->a);
     if (status == GSL_SUCCESS) status = period_map(c, p - h, y, steps, c->b);
     cycle_set_param(c, p);
@@ -296,7 +321,8 @@ static int check_params(cycle *c, const whirl_cycle_params *params)
     if (p->tol == 0) p->tol = TOL_DEFAULT;
     if (p->max_iter == 0) p->max_iter = ITER_DEFAULT;
     if (p->event_tol == 0) p->event_tol = EVENT_TOL_DEFAULT;
-    if (p->parameter != WHIRL_CYCLE_OMEGA && p->parameter != WHIRL_CYCLE_AMPLITUDE)
+    if (p->parameter != WHIRL_CYCLE_OMEGA && p->parameter != WHIRL_CYCLE_AMPLITUDE &&
+        p->parameter != WHIRL_CYCLE_ELLIPTICITY)
         return whirl_fail(GSL_EINVAL, "unknown continuation parameter %d", (int)p->parameter);
     if (!(isfinite(p->min) && isfinite(p->max) && p->min < p->max) ||
         (p->parameter == WHIRL_CYCLE_OMEGA && !(p->min > 0)) ||
@@ -310,12 +336,17 @@ static int check_params(cycle *c, const whirl_cycle_params *params)
         (p->steps > 0 && p->steps < 8) || p->steps > 1 << 24)
         return whirl_fail(GSL_EINVAL, "the continuation needs step > 0, max_points >= 1, tol > 0, "
                           "max_iter >= 1, event_tol > 0 and steps 0 or 8..%d", 1 << 24);
-    const double start = p->parameter == WHIRL_CYCLE_OMEGA ? c->base.omega : c->base_amp;
+    const double start = cycle_start(c);
     if (p->parameter == WHIRL_CYCLE_AMPLITUDE && !(c->base_amp > 0))
         return whirl_fail(GSL_EINVAL, "an amplitude continuation needs a path that moves");
+    if (p->parameter == WHIRL_CYCLE_ELLIPTICITY && !(cycle_y_amplitude(&c->base) > 0))
+        return whirl_fail(GSL_EINVAL, "an ellipticity continuation needs a path that moves "
+                          "along y");
     if (!(start >= p->min && start <= p->max))
         return whirl_fail(GSL_EINVAL, "the start's %s %.17g is outside [%.17g, %.17g]",
-                          p->parameter == WHIRL_CYCLE_OMEGA ? "rate" : "amplitude", start,
+                          p->parameter == WHIRL_CYCLE_OMEGA         ? "rate"
+                          : p->parameter == WHIRL_CYCLE_ELLIPTICITY ? "ellipticity"
+                                                                    : "amplitude", start,
                           p->min, p->max);
     return GSL_SUCCESS;
 }
@@ -504,7 +535,7 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
         if (!isfinite(y[q])) return whirl_fail(GSL_EINVAL, "the start state is not finite");
     if ((status = cycle_alloc(&c))) goto done;
     w->method = WHIRL_MONODROMY_VARIATIONAL;
-    c.p1 = c.p.parameter == WHIRL_CYCLE_OMEGA ? c.base.omega : c.base_amp;
+    c.p1 = cycle_start(&c);
     cycle_set_param(&c, c.p1);
     status = whirl_dyn_project(w->dyn, 0, y);
     /* the steps: raised, as whirl_periodic_find raises them, at the range's ends as well (the

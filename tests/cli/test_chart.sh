@@ -101,7 +101,7 @@ has i 'edge +1: a pair through +1'
 has e 'no edge in the range'
 
 # bad input: one line naming the option, nothing written
-expect_error "chart kind" "whirl periodic: --chart must be hanging or inverted, got 'up'" periodic --chart up --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart kind" "whirl periodic: --chart must be hanging, inverted or ellipse, got 'up'" periodic --chart up --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart rates reversed" "whirl periodic: --omega-max must exceed --omega-min" periodic --chart hanging --omega-min 2 --omega-max 1 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart amplitudes reversed" "whirl periodic: --amp-max must exceed --amp-min" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-min 0.2 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart no amplitude" "whirl periodic: --chart needs --amp-max" periodic --chart hanging --omega-min 1 --omega-max 2 -o "$tmp/out.csv"
