@@ -69,6 +69,26 @@ typedef struct whirl_model {
     whirl_ramp omega_ramp;
 } whirl_model;
 
+/* The fastest decay rate the dissipation adds to the motion [1/T]: the internal damping's,
+ * about 16 D / min_i(m_i l_i^2) (16 D N^3 / (M L^2) for N equal links), plus the air drag's, at
+ * most max_i l_i (c + 2 c2 v) / m_i (c L / M for a uniform chain, whatever N) with v the speed
+ * of the steady rotation's fastest point, |omega| (L + drive_radius); 0 without either (the
+ * reasons and measurements: src/dynamics/stiff.c). A fixed step h of the explicit methods and of
+ * the Gauss methods' fixed-point stage iteration is unstable past h x rate = 2 or so (rk4:
+ * 2.785, the Gauss fixed point: 3.46).
+ * @param m the model (its ramps are not read)
+ * @return the rate [1/T]; 0 without damping and drag, or for NULL, a model without a chain or a
+ *     chain without links
+ */
+WHIRL_API double whirl_model_stiff_rate(const whirl_model *m);
+/* What makes the model stiff, as the subject and verb of a sentence ("the internal damping
+ * makes", "the air drag makes", "the internal damping and the air drag make"): each source
+ * named that gives a tenth of whirl_model_stiff_rate or more.
+ * @param m the model
+ * @return a static string (never NULL)
+ */
+WHIRL_API const char *whirl_model_stiff_cause(const whirl_model *m);
+
 typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one right-hand side */
 
 /* Allocates the workspace of model in formulation f (copies the model struct, not the chain).

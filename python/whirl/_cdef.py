@@ -732,3 +732,8 @@ STRUCTS += ["whirl_pivot_path", "whirl_periodic_params", "whirl_periodic_result"
             "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
             "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress"]
 CONSTANTS += ["WHIRL_PIVOT_HARMONICS_MAX"]
+
+CDEF += r"""
+double whirl_model_stiff_rate(const whirl_model *m);
+const char *whirl_model_stiff_cause(const whirl_model *m);
+"""

@@ -337,30 +337,23 @@ class Simulation:
 
     @property
     def stiff_rate(self) -> float:
-        """The fastest decay rate the dissipation adds to the motion [1/T], as the library's
-        default step bounds it (whirl_stability_run_params.dt, whirl/stability.h): kappa =
-        16 D / (min m min l^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)) for the internal
-        damping D, the drags c, c2 and the drive radius eps; 0 without dissipation. A fixed
-        step dt with dt x stiff_rate > 2 is past the explicit and fixed-point methods."""
+        """The fastest decay rate the dissipation adds to the motion [1/T], the library's
+        (whirl_model_stiff_rate, whirl/dynamics.h): 16 D / min_i(m_i l_i^2) + max_i (l_i / m_i)
+        (c + 2 c2 |omega| (L + eps)) for the internal damping D, the drags c, c2 and the drive
+        radius eps; 0 without dissipation. A fixed step dt with dt x stiff_rate > 2 is past the
+        explicit and fixed-point methods."""
         return self._stiff_rate() * self.units.rate
 
     def _stiff_rate(self) -> float:
-        m, c = self._model, self._chain
-        lengths, masses = c.lengths, c.masses
-        damping = 16 * m.internal_damping / (masses.min() * lengths.min() ** 2)
-        speed = abs(m.omega) * (m.drive_radius + lengths.sum())
-        drag = float(np.max(lengths / masses)) * (m.air_drag + 2 * m.air_drag_quadratic * speed)
-        return float(damping + drag)
+        return float(lib.whirl_model_stiff_rate(self._model))
 
     def _stiff_words(self, dt: float) -> str:
         """Why the fixed step dt (dimensionless) is past the method: what makes the chain stiff,
         how fast, and what steps over it."""
-        m, u = self._model, self.units
+        u = self.units
         rate = self._stiff_rate()
-        what = ("the internal damping" if 16 * m.internal_damping
-                / (self._chain.masses.min() * self._chain.lengths.min() ** 2) >= rate / 2
-                else "the air drag")
-        return ("%s makes the chain stiff (decay rates up to about %.2g %s, dt x rate = %.2g): "
+        what = ffi.string(lib.whirl_model_stiff_cause(self._model)).decode()
+        return ("%s the chain stiff (decay rates up to about %.2g %s, dt x rate = %.2g): "
                 "fixed steps of %s need dt below about %.2g%s, or method='%s' with tol (%g)"
                 % (what, rate * u.rate, "1/s" if u.physical else "sqrt(g/L)", rate * dt,
                    self.method, STIFF_H_RATE / rate * u.time, " s" if u.physical else "",

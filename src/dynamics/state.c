@@ -18,12 +18,9 @@
  * from GSL's MT19937 seeded with seed. Lengths are kept exactly up to round-off.
  *
  * Default step: nu = 2 sqrt(max_j (T_j / l_j) / min m) is the Gershgorin bound of the highest
- * transverse frequency under the tensions T_j, and kappa = 16 D / (min m min l^2) + max_i (l_i /
- * m_i) (c + 2 c2 omega (eps + L)) that of the fastest decay of the internal damping D and the air
- * drag (the derivative of the drag force l (c + c2 |v|) v is at most l (c + 2 c2 |v|), |v| <=
- * omega (eps + L)); the damping's term is 4 D / (m l^2) for one joint, times 4 for the chain's
- * mass matrix (measured: 15.6 D N^3 for the uniform chain of N = 25, from the eigenvalues of the
- * damped linearisation).
+ * transverse frequency under the tensions T_j, and kappa = whirl_model_stiff_rate, 16 D /
+ * min_i(m_i l_i^2) + max_i (l_i / m_i) (c + 2 c2 omega (eps + L)), that of the fastest decay of
+ * the internal damping D and the air drag (src/dynamics/stiff.c).
  * - classical rk4: min(period / 200, 2 / (nu + omega), 2 / kappa): inside its stability interval
  *   on the imaginary axis (|h lambda| < 2.83) and on the negative real axis (2.79);
  * - the other methods: min(period / 200, 0.7 / (nu + omega + kappa)), so that the stage
@@ -133,20 +130,16 @@ int whirl_default_step(const whirl_model *m, const double *tension, const char *
     if (!(isfinite(m->omega) && m->omega > 0))
         return whirl_fail(GSL_EINVAL, "the default step needs omega > 0, got %g", m->omega);
     const whirl_chain *c = m->chain;
-    const double speed = m->omega * (m->drive_radius + whirl_chain_total_length(c));
-    double stiff = 0, light = INFINITY, shortest = INFINITY, drag = 0;
+    double stiff = 0, light = INFINITY;
     for (size_t j = 0; j < c->n; j++) {
         if (!(isfinite(tension[j]) && tension[j] >= 0))
             return whirl_fail(GSL_EINVAL, "tension %zu must be >= 0 and finite, got %g", j + 1,
                               tension[j]);
         stiff = fmax(stiff, tension[j] / c->length[j]);
         light = fmin(light, c->mass[j]);
-        shortest = fmin(shortest, c->length[j]);
-        drag = fmax(drag, c->length[j] / c->mass[j] *
-                              (m->air_drag + 2 * m->air_drag_quadratic * speed));
     }
     const double nu = 2 * sqrt(stiff / light);
-    const double kappa = 16 * m->internal_damping / (light * shortest * shortest) + drag;
+    const double kappa = whirl_model_stiff_rate(m);
     const double period_step = 2 * M_PI / m->omega / 200;
     if (strcmp(method, "rk4") == 0)
         *h = fmin(period_step, fmin(2 / (nu + m->omega), 2 / kappa));

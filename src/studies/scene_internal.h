@@ -37,9 +37,8 @@ int sc_convert_run(const convert *v);
 int sc_convert_output(const convert *v);
 
 /* scene_run.c */
-/* What makes a stiff scene stiff (whirl_scene_stiff), as the subject of a sentence: "the
- * internal damping makes", "the air drag makes", or both "make" when each gives a tenth of
- * whirl_scene_damping_rate or more. */
+/* What makes a stiff scene stiff (whirl_scene_stiff), as the subject of a sentence:
+ * whirl_model_stiff_cause of the scene's chain and dissipation. */
 const char *sc_stiff_cause(const whirl_scene *s);
 
 #endif

@@ -291,50 +291,22 @@ static double output_time(size_t k, size_t last, double every, double t_end)
     return k >= last ? t_end : (double)k * every;
 }
 
-/* The fastest decay rate of the internal damping R = D/2 sum_i |w_i - w_{i-1}|^2 (w_i: the
- * angular velocity of link i): a damping torque D over a link's moment m l^2, times about 4 for
- * the alternating pattern (the damping's difference operator) and 4 for the link angles' mass
- * matrix: 16 D / min_i(m_i l_i^2), 16 D N^3 / (M L^2) for equal links (data/scenes/spin_up_damped
- * .ini). Measured on 100 equal links at dt = 1e-5: the Gauss stage iteration, a fixed point that
- * converges for h rate < 2 sqrt(3) = 3.46 (the spectral radius of Gauss-2's matrix is
- * 1/(2 sqrt 3)), fails between D = 0.0200 (h rate 3.20) and 0.0216 (3.46); rk4, stable for
- * h rate < 2.785 on the negative real axis, between D = 0.0174 (2.78) and 0.0200 (3.20). */
-static double internal_rate(const whirl_scene *s)
+/* The scene's model as whirl_model_stiff_rate reads it: the chain and the dissipation. */
+static whirl_model stiff_model(const whirl_scene *s, whirl_chain *c)
 {
-    if (!(s->internal_damping > 0)) return 0;
-    double least = HUGE_VAL;
-    for (size_t i = 0; i < s->links; i++)
-        least = GSL_MIN(least, s->mass[i] * s->length[i] * s->length[i]);
-    return 16 * s->internal_damping / least;
-}
-
-/* The fastest decay rate of the air drag f_i = -l_i (c + c2 |v_i|) v_i on mass i (whirl_model):
- * its Jacobian in v_i, -l_i ((c + c2 |v|) I + c2 v v^T / |v|), has the rates l_i (c + c2 |v|)
- * across v and l_i (c + 2 c2 |v|) along it over the mass m_i; the drag and the mass matrix are
- * both diagonal by masses in Cartesian coordinates, so the rates of the constrained motion lie
- * below their largest ratio (a Rayleigh quotient), max_i l_i (c + 2 c2 v) / m_i: c L / M for a
- * uniform chain, whatever N. The speed v is that of the steady rotation's fastest point,
- * |omega| (L + drive radius); a chain slower than that has slower rates (a chain that drag has
- * stopped, none from c2). Measured on data/scenes/mode1.ini (100 links, omega = 2, dt = 2e-3):
- * rk4 fails between c = 1100 (h rate 2.2) and 1500 (3.0), the Gauss fixed point between c = 1500
- * (3.0) and 1800 (3.6), as the rate c predicts; with quadratic drag the Gauss step between
- * c2 = 500 and 800 (estimated h rate 4.0 and 6.4: the estimate is an upper one). */
-static double drag_rate(const whirl_scene *s)
-{
-    if (!(s->air_drag > 0) && !(s->air_drag_quadratic > 0)) return 0;
-    double length = 0, most = 0;
-    for (size_t i = 0; i < s->links; i++) {
-        length += s->length[i];
-        most = GSL_MAX(most, s->length[i] / s->mass[i]);
-    }
-    const double v = fabs(s->omega) * (length + s->drive_radius);
-    return most * (s->air_drag + 2 * s->air_drag_quadratic * v);
+    *c = (whirl_chain){.n = s->links, .length = s->length, .mass = s->mass, .gravity = s->gravity};
+    return (whirl_model){.chain = c, .dim = s->dim, .frame = s->frame, .omega = s->omega,
+                         .drive_radius = s->drive_radius, .air_drag = s->air_drag,
+                         .air_drag_quadratic = s->air_drag_quadratic,
+                         .internal_damping = s->internal_damping};
 }
 
 double whirl_scene_damping_rate(const whirl_scene *s)
 {
-    if (s == NULL || s->links == 0 || s->length == NULL || s->mass == NULL) return 0;
-    return internal_rate(s) + drag_rate(s);
+    if (s == NULL) return 0;
+    whirl_chain c;
+    const whirl_model m = stiff_model(s, &c);
+    return whirl_model_stiff_rate(&m);
 }
 
 /* h rate above 2: past what a fixed step of the explicit and fixed-point methods takes (2.785
@@ -351,11 +323,9 @@ int whirl_scene_stiff(const whirl_scene *s, double *rate)
 
 const char *sc_stiff_cause(const whirl_scene *s)
 {
-    const double damping = internal_rate(s), drag = drag_rate(s), all = damping + drag;
-    /* a source named when it gives a tenth of the rate or more */
-    if (damping >= 0.1 * all && drag >= 0.1 * all)
-        return "the internal damping and the air drag make";
-    return damping >= drag ? "the internal damping makes" : "the air drag makes";
+    whirl_chain c;
+    const whirl_model m = stiff_model(s, &c);
+    return whirl_model_stiff_cause(&m);
 }
 
 /* "the internal damping makes the chain stiff ...": what whirl_scene_stiff found, and the method
