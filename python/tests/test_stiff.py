@@ -27,6 +27,35 @@ def test_stiff_rate_is_the_damping_bound():
     assert sim.stiff_rate == pytest.approx(16 * D * 30 ** 3 * u.rate, rel=1e-12)
 
 
+# m l^2 = 0.006, 0.025, 0.048 (the least is not min m min l^2 = 0.001); l / m = 1/6, 5, 4/3
+_LENGTHS, _MASSES = [0.1, 0.5, 0.4], [0.6, 0.1, 0.3]
+
+
+@pytest.mark.parametrize("model", [
+    dict(internal_damping=0.03), dict(air_drag=7.0),
+    dict(air_drag_quadratic=4.0, drive_radius=0.2),
+    dict(internal_damping=0.01, air_drag=1.5, air_drag_quadratic=4.0, drive_radius=0.2)])
+def test_stiff_rate_of_a_non_uniform_chain_is_the_formula(model):
+    # whirl_model_stiff_rate's formula (whirl/dynamics.h): 16 D / min(m l^2) + max(l / m)
+    # (c + 2 c2 |omega| (L + eps))
+    chain = whirl.Chain(lengths=_LENGTHS, masses=_MASSES)
+    sim = whirl.Simulation(chain, omega=-2.5, **model)
+    lengths, masses = np.array(_LENGTHS), np.array(_MASSES)
+    speed = 2.5 * (lengths.sum() + model.get("drive_radius", 0.0))
+    want = (16 * model.get("internal_damping", 0.0) / (masses * lengths ** 2).min()
+            + (lengths / masses).max() * (model.get("air_drag", 0.0)
+                                          + 2 * model.get("air_drag_quadratic", 0.0) * speed))
+    assert sim.stiff_rate == pytest.approx(want, rel=1e-14)
+
+
+def test_both_sources_are_named():
+    sim = _sim(internal_damping=D, air_drag=500.0)  # 432 and 500
+    assert sim.stiff_rate == pytest.approx(932.0, rel=1e-12)
+    with pytest.warns(whirl.StiffWarning, match="the internal damping and the air drag make "
+                      "the chain stiff"):
+        assert sim.run(0.05, 0.01).method == "gsl-msbdf"
+
+
 def test_default_method_falls_back_to_the_implicit_one_and_says_why():
     with pytest.warns(whirl.StiffWarning, match=r"the internal damping makes the chain stiff "
                       r"\(decay rates up to about 4.3e\+02 sqrt\(g/L\), dt x rate = 4.3\).*"
