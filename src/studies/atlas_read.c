@@ -24,7 +24,9 @@ static int read_done(whirl_resume *in, const char *line, whirl_atlas *a)
 {
     char lo_text[64], hi_text[64], end[2];
     int mode, k = -1;
-    if (sscanf(line, "# done mode %d omega %63s %63s%1s", &mode, lo_text, hi_text, end) != 3 ||
+    /* dimensionless: the file's text */
+    const char *format = "# done mode %d omega %63s %63s%1s";
+    if (sscanf(line, format, &mode, lo_text, hi_text, end) != 3 ||
         (k = mode_index(&a->p, mode)) < 0)
         return whirl_resume_refuse(in, "'%.*s' names no chunk of a mode asked for",
                                    (int)strcspn(line, "\n"), line);
@@ -39,6 +41,7 @@ static int read_done(whirl_resume *in, const char *line, whirl_atlas *a)
         return 0;
     }
     char wmax[WHIRL_FORMAT_MAX];
+    /* dimensionless: the file's text */
     return whirl_resume_refuse(in, "omega %s %s is no chunk of this atlas (they end at the "
                                "multiples of %d and at its omega_max, %s)", lo_text, hi_text,
                                WHIRL_ATLAS_CHUNK, whirl_format_double(wmax, a->p.omega_max));
@@ -110,6 +113,7 @@ static int read_lines(whirl_resume *in, whirl_atlas *a)
             return whirl_resume_refuse(in, "%s", why);
         } else if (!in_done_chunk(a, mode_index(&a->p, row.mode), row.w.from)) {
             char from[WHIRL_FORMAT_MAX];
+            /* dimensionless: the file's text */
             return whirl_resume_refuse(in, "a window of mode %d at omega %s, in no chunk done",
                                        row.mode, whirl_format_double(from, row.w.from));
         } else if (a->count == WHIRL_ATLAS_WINDOWS) {

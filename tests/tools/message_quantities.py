@@ -4,7 +4,9 @@
 A rate ("omega", "omega_k", "omega_min" ... then "=", " = " or " " and a printf conversion) or a
 tip radius ("tip radius" and a conversion) in a string literal of a library source file
 (src/*/*.c outside src/cli/) must carry its mark (WHIRL_Q_RATE, WHIRL_Q_LENGTH, src/core/error.h)
-so that the program prints it in the user's units. Prints each unmarked one as FILE:LINE: TEXT
+so that the program prints it in the user's units, unless the line holding the literal, or the
+line above it, says /* dimensionless: the file's text */ (a message that quotes a dimensionless file's numbers as
+written, or a format that reads them). Prints each unmarked one as FILE:LINE: TEXT
 and exits 1 if there is any. --apply inserts the marks (then reflow the lines by hand).
 Usage: message_quantities.py [--apply] [ROOT]"""
 import glob
@@ -19,7 +21,9 @@ LITERAL = re.compile(r'"(?:[^"\\\n]|\\.)*"')
 # adjacent literals, which C joins: a quantity may straddle two of them
 SEQUENCE = re.compile(r'"(?:[^"\\\n]|\\.)*"(?:\s*"(?:[^"\\\n]|\\.)*")+')
 # files whose literals with rates are not messages (headers of output files)
-NOT_MESSAGES = {'src/studies/scene_run.c'}
+# the mark of a literal that quotes or reads a dimensionless file's numbers as written
+FILE_TEXT = "/* dimensionless: the file's text */"
+NOT_MESSAGES = {'src/studies/scene_run.c', 'src/studies/atlas_text.c'}
 
 
 def mark(m):
@@ -38,8 +42,11 @@ def main(argv):
             continue
         src = open(path).read()
         out, pos = [], 0
+        lines = src.split('\n')
         for lit in LITERAL.finditer(src):
             line = src.count('\n', 0, lit.start()) + 1
+            if FILE_TEXT in lines[line - 1] or (line > 1 and FILE_TEXT in lines[line - 2]):
+                continue
             for q in QUANTITY.finditer(lit.group(0)):
                 print('%s:%d: %s' % (rel, line, q.group(0)))
                 found += 1
