@@ -4,7 +4,8 @@ The library comes from the source tree this directory sits in (python/ of the wh
 repository): ``make -C .. build/libwhirl.so`` is run first (WHIRL_BUILD=DIR: another build
 directory; WHIRL_PREBUILT=FILE: that library, without make), and its file is copied into the
 package, which loads it before any other copy
-(whirl.LIBRARY_PATH). Without the repository, or when make fails, the build stops with one line
+(whirl.LIBRARY_PATH). The live page build/web/whirl-explore.html of `make web` goes in too when
+it is built (whirl.explore opens it). Without the repository, or when make fails, the build stops with one line
 saying what to run. The wheel is tagged for this platform (it carries a shared library); the
 library's own dependencies (GSL, NLopt, LAPACKE, inih, OpenMP) stay the system's (scripts/deps.sh
 installs them)."""
@@ -80,6 +81,11 @@ class BuildWithLibrary(build_py):
         os.makedirs(os.path.dirname(dest), exist_ok=True)
         shutil.copyfile(lib, dest)
         os.chmod(dest, 0o755)
+        # the live page of `make web` (whirl.explore opens it), when it is built: the WebAssembly
+        # build needs emscripten, which the package does not
+        page = os.path.join(os.path.dirname(lib), "web", "whirl-explore.html")
+        if os.path.isfile(page):
+            shutil.copyfile(page, os.path.join(self.build_lib, "whirl", "whirl-explore.html"))
 
 
 class BinaryDistribution(Distribution):
