@@ -2,7 +2,8 @@
 # The page of make web, measured (a benchmark, not a test): the file's size and its gzip size;
 # in headless Chromium (tests/tools/web_page.py bench) the load time from file:// to the first
 # shape drawn, the latency of a rate change (median and 95th percentile of 40 changes, each the
-# continuum's shape and the 30-link verdict), the branch diagram's time and the page's memory;
+# continuum's shape and the 30-link verdict), the branch diagram's time, the perturbed run's
+# speed against real time (40 turns of 30 links) and the page's memory;
 # and the speed of the WebAssembly against the native build on the same work
 # (tests/bench/bench_web.c: built natively and for Node), with the load of the machine.
 #   sh scripts/bench-web.sh [BUILD]
