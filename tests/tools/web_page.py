@@ -2,10 +2,13 @@
 over the DevTools protocol, opened from file://.
 
     web_page.py parity PAGE WHIRL     the page's numbers against the native command line:
-                                      lines "PASS name" / "FAIL name (why)" for tests/cli/test_web.sh
-    web_page.py bench PAGE [N]        load time, rate-change latency (median, p95 of N changes),
-                                      the branch diagram's time, the perturbed run's speed
-                                      against real time, the page's memory: one JSON line
+                                      lines "PASS name" / "FAIL name (why)" for
+                                      tests/cli/test_web.sh, "INFO what" for its log
+    web_page.py bench PAGE [N]        load time (the driver's, and the page's own clock to the
+                                      engine ready and the first shape), rate-change latency
+                                      (median, p95 of N changes), the branch diagram's time,
+                                      the perturbed run's speed against real time, the page's
+                                      memory: one JSON line
     web_page.py shot PAGE QUERY PNG   a screenshot of the page at the state QUERY
 
 The page's own state is read from window.whirlState (what it drew); nothing is computed here but
@@ -125,6 +128,10 @@ def close(a, b, rel, floor=0.0):
 
 
 REL = 1e-12  # the parity asked of the page: 1e-12 relative, verdicts identical
+# the address of the download link %s as a user reaches it: the page makes the file when the link
+# is focused, pressed or clicked
+LINK = ("((l) => (l.dispatchEvent(new Event('focus')), l.href))"
+        "(document.getElementById('%s'))")
 
 
 def parity(page_file, whirl):
@@ -171,7 +178,7 @@ def svg_check(p, a, check):
     """shape.svg and branches.svg: SVG documents of the figures drawn; the shape's curve is the
     shape shown, point for point (each to the 0.01 px the SVG writes: the points' order and count
     are checked, their place only to that)."""
-    fetch = "fetch(document.getElementById('%s').href).then(r => r.text())"
+    fetch = "fetch(" + LINK + ").then(r => r.text())"
     svg = p.eval(fetch % "svg-shape")
     paths = re.findall(r'<path d="([^"]*)"', svg)
     curve = max(paths, key=len) if paths else ""
@@ -309,13 +316,13 @@ def parity_cases(p, page_file, whirl, check):
             if k == 0:
                 check("the page loads from file:// within 10 s (%.2f s)" % load, load < 10)
                 windows(p, whirl, check)
-                csv = p.eval("fetch(document.getElementById('csv-shape').href).then(r => r.text())")
+                csv = p.eval(("fetch(" + LINK + ").then(r => r.text())") % "csv-shape")
                 rows = [l.split(",") for l in csv.splitlines() if not l.startswith("#")]
                 check("shape.csv holds what is shown (%d rows)" % (len(rows) - 1),
                       rows[0] == ["x", "z", "tension"] and len(rows) - 1 == len(a["x"]) and
                       all(float(r[0]) == x and float(r[1]) == z
                           for r, x, z in zip(rows[1:], a["x"], a["z"])), csv[:200])
-                png = p.eval("document.getElementById('png-shape').href.slice(0, 22)")
+                png = p.eval((LINK + ".slice(0, 22)") % "png-shape")
                 check("shape.png is the figure", png == "data:image/png;base64,", png)
                 svg_check(p, a, check)
         # a rate change: the slider's path (whirlSetRate), then the numbers of the new rate
@@ -392,9 +399,13 @@ def parity_cases(p, page_file, whirl, check):
 def bench(page_file, n=40):
     p = Page()
     try:
-        loads = []
+        loads, firsts, readys = [], [], []
         for _ in range(3):
             loads.append(p.open(page_file, "?length=60cm&mass=50g&rate=2Hz&mode=2"))
+            # the page's own clock, from the navigation: the engine ready, the first shape drawn
+            p.wait("window.whirlState.firstMs !== undefined")
+            readys.append(p.eval("window.whirlState.readyMs"))
+            firsts.append(p.eval("window.whirlState.firstMs"))
         p.wait("window.whirlState.branch && window.whirlState.windows", 60)
         # the branch diagram of a new chain: from the change to its curves and windows
         t_branch = p.eval("""(async () => { const s = window.whirlState; s.branch = null; s.windows = null;
@@ -420,7 +431,7 @@ def bench(page_file, n=40):
         run["times_real_time"] = run["t_end"] / run["s"] if run["s"] > 0 else None
         mem = p.eval("performance.memory ? performance.memory.usedJSHeapSize : null")
         wasm = p.eval("window.whirlState.wasmBytes")
-        print(json.dumps({"load_s": loads, "latency_ms_median": statistics.median(lat),
+        print(json.dumps({"load_s": loads, "engine_ready_ms": readys, "first_shape_ms": firsts, "latency_ms_median": statistics.median(lat),
                           "latency_ms_p95": lat[int(0.95 * (len(lat) - 1))],
                           "latency_ms_max": lat[-1], "changes": n, "branch_ms": t_branch,
                           "run": run,
