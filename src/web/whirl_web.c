@@ -578,7 +578,12 @@ whirl_web_run *whirl_web_run_alloc(const char *query)
     }
     const whirl_model m = {.chain = r->c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = s->w};
     r->d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
-    r->it = r->d ? whirl_integrator_alloc("gauss2", r->d) : NULL;
+    /* gauss2 by its type, not by its name: the table of every method would bring GSL's ODE
+     * solvers into the page (50 kB of WebAssembly it does not use) */
+    whirl_system sys;
+    r->it = r->d && whirl_dyn_system(r->d, &sys) == GSL_SUCCESS
+                ? whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys)
+                : NULL;
     const size_t n = r->c->n;
     if (r->it == NULL) {
         r->failed = library_fail(s, "links");
