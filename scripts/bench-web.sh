@@ -18,8 +18,8 @@ echo "chromium: $(/usr/bin/python3 tests/tools/web_page.py bench "$page" 40)"
 # the native build on one thread, as the WebAssembly (no OpenMP)
 native=$(OMP_NUM_THREADS=1 "$build/tests/bench_web")
 wasm=$(node "$build/web/bench_web.js")
-echo "native, one thread (ms, median of 21):"; echo "$native"
-echo "wasm under node $(node --version) (ms, median of 21):"; echo "$wasm"
+echo "native, one thread (ms, median of 21; of 5 for page_run_10s):"; echo "$native"
+echo "wasm under node $(node --version) (ms, median of 21; of 5 for page_run_10s):"; echo "$wasm"
 echo "$native
 $wasm" | awk '{ t[$2] = t[$2] " " $3 } END { for (k in t) { split(t[k], v, " "); printf "ratio wasm/native %s: %.2f\n", k, v[2] / v[1] } }'
 echo "load (uptime): $(uptime)"
