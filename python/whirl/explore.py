@@ -11,7 +11,8 @@ HEAD of the page alone and obeys nothing else: no other path, no other method, a
 whose Host names another host (DNS rebinding). Ctrl-C stops it.
 
 The page is looked for, in this order:
-  1. PAGE, or the file named by the environment variable WHIRL_EXPLORE_PAGE;
+  1. PAGE, or the file named by the environment variable WHIRL_EXPLORE_PAGE (either: that file
+     or none);
   2. whirl-explore.html inside the package (a wheel or `make python` after `make web` carries
      it);
   3. build/web/whirl-explore.html of the source tree the package sits in (python/whirl ->
@@ -38,7 +39,9 @@ PAGE_BYTES_MAX = 64 << 20  # a file larger than this is not the page
 def candidates() -> List[str]:
     """The places the page is looked for (the rule above), first to last."""
     env = os.environ.get("WHIRL_EXPLORE_PAGE")
-    return ([env] if env else []) + [
+    if env:  # that file or nothing, as WHIRL_LIBRARY for the library
+        return [env]
+    return [
         os.path.join(HERE, PAGE_NAME),
         os.path.normpath(os.path.join(HERE, os.pardir, os.pardir, "build", "web", PAGE_NAME))]
 
@@ -49,8 +52,6 @@ def find_page(page: Optional[str] = None) -> str:
     for path in tried:
         if os.path.isfile(path):
             return os.path.abspath(path)
-        if page:  # named: that file or nothing
-            break
     raise SystemExit("whirl explore: no page (%s missing): run `make web` in the source tree, "
                      "which writes build/web/%s, or name the file" % (", ".join(tried), PAGE_NAME))
 
