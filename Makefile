@@ -362,11 +362,11 @@ wheel:
 	@rm -rf python/build python/whirl.egg-info
 	@echo "make wheel: $$(ls $(BUILD)/wheel/whirl-*.whl) (python3 -m pip install it; where a whirl of this version is installed already, add --force-reinstall --no-deps, or pip keeps that one)"
 
-# The live page (python/whirl/explore.py) over the library just built.
-explore:
-	@sh scripts/deps.sh build python
-	@$(MAKE) --no-print-directory $(BUILD)/libwhirl.so
-	PYTHONPATH=python WHIRL_LIBRARY=$(BUILD)/libwhirl.so $(PYTHON) -m whirl.explore
+# The live page: the one-file page of make web (below) opened in the browser as a file
+# (python/whirl/explore.py run as a script: the standard library only; EXPLORE=--serve serves it
+# on 127.0.0.1 instead, for a browser that cannot open local files).
+explore: web
+	$(PYTHON) python/whirl/explore.py $(EXPLORE) $(WEB)/whirl-explore.html
 
 clean:
 	rm -rf build build-* out
@@ -383,7 +383,8 @@ WEB_SRC   := $(filter-out src/optimize/% src/studies/%,$(LIB_SRC))
 WEB_OBJ   := $(WEB_SRC:%.c=$(WEB)/obj/%.o)
 WEB_ENV   := NODE_OPTIONS=--no-experimental-fetch NODE_PATH=/usr/share/nodejs
 WEB_CFLAGS := $(WFLAGS) -O2 -DWHIRL_NO_LAPACK
-WEB_EXPORTS := _whirl_web_shape,_whirl_web_branches,_whirl_web_windows,_whirl_web_free,_malloc,_free
+WEB_EXPORTS := _whirl_web_shape,_whirl_web_branches,_whirl_web_windows,_whirl_web_free
+WEB_EXPORTS := $(WEB_EXPORTS),_whirl_web_run_alloc,_whirl_web_run_next,_whirl_web_run_free,_malloc,_free
 # MODULARIZE: a factory whirlCore() in the Worker; SINGLE_FILE: the module inside as base64;
 # ALLOW_MEMORY_GROWTH: the windows of 400 links want more than the initial 16 MiB
 WEB_LDFLAGS := -O2 -sMODULARIZE=1 -sEXPORT_NAME=whirlCore -sSINGLE_FILE=1 -sENVIRONMENT=worker \

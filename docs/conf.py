@@ -48,3 +48,12 @@ if os.path.exists(_MATHJAX):
                                    "inlineMath": [["\\(", "\\)"]],
                                    "displayMath": [["\\[", "\\]"]]}}
 html_css_files = ["whirl.css"]
+# The live page of `make web` (whirl-explore.html in the web/ folder beside the library the
+# manual documents, or WHIRL_EXPLORE_PAGE), embedded in guide/explore.md when it is built: copied
+# into the manual's _static, and the tag whirl_web set; without it the guide says how to get it.
+_LIBRARY = os.environ.get("WHIRL_LIBRARY", os.path.join(ROOT, "build", "libwhirl.so"))
+_PAGE = os.environ.get("WHIRL_EXPLORE_PAGE") or os.path.join(os.path.dirname(_LIBRARY), "web",
+                                                             "whirl-explore.html")
+if os.path.isfile(_PAGE):
+    html_static_path.append(os.path.abspath(_PAGE))
+    tags.add("whirl_web")  # noqa: F821 (Sphinx puts tags in this file's namespace)

@@ -4,7 +4,9 @@ libraries that copy links (whirl/.libs), so that the package stands alone.
 The library comes from the source tree this directory sits in (python/ of the whirl
 repository): ``make -C .. build/libwhirl.so`` is run first (WHIRL_BUILD=DIR: another build
 directory; WHIRL_PREBUILT=FILE: that library, without make), and its file is copied into the
-package, which loads it before any other copy (whirl.LIBRARY_PATH). Without the repository, or
+package, which loads it before any other copy (whirl.LIBRARY_PATH). The live page
+build/web/whirl-explore.html of `make web` goes in too when it is built (whirl.explore opens
+it). Without the repository, or
 when make fails, the build stops with one line saying what to run.
 
 The libraries libwhirl links (GSL, NLopt, inih, LAPACKE with LAPACK and BLAS, OpenMP, gfortran's
@@ -199,6 +201,11 @@ class BuildWithLibrary(build_py):
             _vendor(package, dest)
         else:
             shutil.rmtree(os.path.join(package, ".libs"), ignore_errors=True)
+        # the live page of `make web` (whirl.explore opens it), when it is built: the WebAssembly
+        # build needs emscripten, which the package does not
+        page = os.path.join(os.path.dirname(lib), "web", "whirl-explore.html")
+        if os.path.isfile(page):
+            shutil.copyfile(page, os.path.join(package, "whirl-explore.html"))
 
 
 class BinaryDistribution(Distribution):

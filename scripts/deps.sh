@@ -8,8 +8,8 @@
 # Usage: deps.sh GROUP...  (no GROUP, or "all": every group). The groups, by purpose:
 #   run      what the program needs to draw: gnuplot, and ffmpeg for MP4 movies
 #   build    the compiler and the libraries whirl links (make, make demo: run and build)
-#   python   the Python package (make python, make wheel, make explore; patchelf points the
-#            wheel's libraries at each other)
+#   python   the Python package (make python, make wheel; patchelf points the wheel's libraries
+#            at each other)
 #   tests    make check's tools: cmocka, clang for the second compile (and its runtimes for make
 #            fuzz), Open MPI, the Python suite's modules, a pseudo-terminal, bc, a German locale
 #   docs     the manual (make docs, and its test in make check)

@@ -44,8 +44,6 @@ SLOW = {
     "test_install.py::": "venvs and pip builds of the package: packaging, not memory",
     "test_notebooks.py::test_notebook_runs": "a Jupyter kernel per notebook; the calls "
     "they make are the ones the other tests make",
-    "test_explore.py::test_page_in_chromium": "a browser and a server; the library's "
-    "calls behind the page are test_steady's and test_stability's",
 }
 
 

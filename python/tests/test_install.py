@@ -293,6 +293,26 @@ def test_source_tree_keeps_its_declarations_parsed(tmp_path, repo):
     assert not run()
 
 
+def test_wheel_holds_the_live_page(wheel, tmp_path):
+    path, env = wheel
+    with zipfile.ZipFile(path) as z:
+        names = z.namelist()
+    # the live page of make web goes in when the library's build has it
+    page = os.path.join(os.path.dirname(os.path.realpath(env["WHIRL_PREBUILT"])), "web",
+                        "whirl-explore.html")
+    assert ("whirl/whirl-explore.html" in names) == os.path.isfile(page)
+    python = _venv(tmp_path, "venv")
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--ignore-installed", "--no-deps",
+                    "--no-index", str(path)], check=True, env=env)
+    _probe(python, env, tmp_path / "venv")
+    if os.path.isfile(page):  # whirl.explore opens the package's copy
+        env = {k: v for k, v in env.items() if k != "WHIRL_EXPLORE_PAGE"}
+        out = subprocess.run([str(python), "-m", "whirl.explore", "--no-browser"], cwd="/",
+                             env=env, check=True, capture_output=True, text=True).stdout
+        assert out.startswith("whirl explore: file://" + str(tmp_path / "venv")), out
+        assert out.strip().endswith("/whirl/whirl-explore.html"), out
+
+
 def test_pip_runs_make(tmp_path, source, repo):
     # without WHIRL_PREBUILT setup.py runs make for build/libwhirl.so (up to date here: the
     # plain build; the sanitizer half's library is another build's)

@@ -8,13 +8,14 @@
  * {"error": "one line", "field": "the parameter"} and nothing else. The page does no physics:
  * it draws these numbers.
  *
- * Parameters (those of python/whirl/explore.py):
+ * Parameters:
  *   length 1cm..100m, mass 0.1g..10t, tip (a point mass at the free end) 0..10t, default 0,
  *   links 0 (the continuum, default) or 2..400, rate 0.001..100000 in its unit and at most 200
  *   in the chain's units sqrt(g/L) (the live page's bound), mode 1..12 (and <= links), rmax (the
- *   top of the branch diagram and of the stability windows, in the rate's unit; default 3 rate).
- * The verdict of the continuum is that of the 30-link chain (VERDICT_LINKS), as the page served
- * by whirl explore gives it.
+ *   top of the branch diagram and of the stability windows, in the rate's unit; default 3 rate),
+ *   frame (the perturbed run's positions: rotating, the default, or inertial).
+ * The verdict of the continuum is that of the 30-link chain (VERDICT_LINKS), and so is its
+ * perturbed run.
  *
  * Without OpenMP the branches run on the calling thread; the library's worker threads
  * (src/core/worker.c) are not started where threads cannot be (WebAssembly without
@@ -155,6 +156,7 @@ typedef struct web_state {
     double time;              /* the library's unit of time sqrt(L/g) [s] */
     double w, w_max;          /* omega, rmax in sqrt(g/L) */
     double m_tip;             /* tip / mass */
+    whirl_frame frame;        /* the run's view: co-rotating (default) or inertial */
     char field[16];           /* the parameter of a failure */
     char message[512];
 } web_state;
@@ -234,7 +236,7 @@ static int read_state(web_state *s, const char *query)
     char copy[QUERY_MAX + 1];
     strcpy(copy, query);
     const char *length = NULL, *mass = NULL, *tip = NULL, *links = NULL, *rate = NULL,
-               *mode = NULL, *rmax = NULL;
+               *mode = NULL, *rmax = NULL, *frame = NULL;
     for (char *save = NULL, *p = strtok_r(copy, "&", &save); p; p = strtok_r(NULL, "&", &save)) {
         char *eq = strchr(p, '=');
         if (eq == NULL) return state_fail(s, p, "%.40s: a parameter without a value", p);
@@ -248,17 +250,18 @@ static int read_state(web_state *s, const char *query)
                             : strcmp(p, "rate") == 0 ? &rate
                             : strcmp(p, "mode") == 0 ? &mode
                             : strcmp(p, "rmax") == 0 ? &rmax
+                            : strcmp(p, "frame") == 0 ? &frame
                                                      : NULL;
         if (slot == NULL)
             return state_fail(s, p, "unknown parameter %.40s (length, mass, tip, links, rate, "
-                                    "mode, rmax)", p);
+                                    "mode, rmax, frame)", p);
         *slot = eq + 1;
     }
     if (length == NULL) return state_fail(s, "length", "length: missing (e.g. length=60cm)");
     if (mass == NULL) return state_fail(s, "mass", "mass: missing (e.g. mass=50g)");
     if (rate == NULL) return state_fail(s, "rate", "rate: missing (e.g. rate=4Hz)");
     if (mode == NULL) return state_fail(s, "mode", "mode: missing (e.g. mode=2)");
-    /* the bounds of python/whirl/explore.py's page */
+    /* the page's bounds: a shape and its verdict within ~0.1 s */
     if (read_number(s, "length", length, WHIRL_QUANTITY_LENGTH, 0.01, 100, &s->length) ||
         read_number(s, "mass", mass, WHIRL_QUANTITY_MASS, 1e-4, 1e4, &s->mass) ||
         (tip && read_number(s, "tip", tip, WHIRL_QUANTITY_MASS, 0, 1e4, &s->tip)) ||
@@ -285,6 +288,11 @@ static int read_state(web_state *s, const char *query)
         s->rmax *= s->unit; /* a bare rmax is in the rate's unit */
     s->w_max = fmin(s->rmax * s->time, W_MAX);
     s->m_tip = s->tip / s->mass;
+    s->frame = WHIRL_FRAME_ROTATING;
+    if (frame && strcmp(frame, "inertial") == 0)
+        s->frame = WHIRL_FRAME_INERTIAL;
+    else if (frame && strcmp(frame, "rotating") != 0)
+        return state_fail(s, "frame", "frame: rotating or inertial, got %.40s", frame);
     return 0;
 }
 
@@ -464,7 +472,7 @@ char *whirl_web_windows(const char *query)
         double lo = 0;
         if (c != NULL && (ws == NULL || found == NULL)) state_fail(&s, "", "out of memory");
         failed = c == NULL || ws == NULL || found == NULL || birth(&s, c, s.mode, &lo) != 0;
-        /* from just above the birth: the branch leaves the hanging chain there (explore.py) */
+        /* from just above the birth: the branch leaves the hanging chain there */
         lo *= 1 + 1e-4;
         if (!failed && lo < s.w_max) {
             whirl_windows_params p = whirl_windows_defaults();
@@ -495,6 +503,165 @@ char *whirl_web_windows(const char *query)
         return error_answer(s.field, s.message);
     }
     return finish(&j);
+}
+
+/* ---- the perturbed run: the state's chain seeded with its steady shape, each link turned by
+ * RUN_PERTURB (whirl_perturb_links, seed 1: the command line's [start] perturb), integrated by
+ * gauss2 in the co-rotating frame for RUN_PERIODS rotation periods at the library's default step
+ * (whirl_default_step, shortened to divide a frame's time), RUN_FRAMES frames ---- */
+
+#define RUN_PERIODS 40
+#define RUN_FRAMES 400
+#define RUN_PERTURB 1e-3 /* [rad] */
+
+struct whirl_web_run {
+    web_state s;
+    whirl_chain *c;
+    whirl_dyn *d;
+    whirl_integrator *it;
+    double *y, *x, *v, *ref; /* the state; positions, velocities, the unperturbed positions */
+    double t, every, dt;     /* [sqrt(L/g)] */
+    int frames;              /* written so far (frame 0 is the start) */
+    int failed;              /* the start or a step failed: s.field and s.message say why */
+};
+
+/* The unperturbed steady shape's links, the reference positions, then the perturbed start. */
+static int run_start(whirl_web_run *r)
+{
+    web_state *s = &r->s;
+    const size_t n = r->c->n;
+    double *buf = malloc(3 * (n + 1) * sizeof *buf), *links = malloc(3 * n * sizeof *links);
+    whirl_shape_info info;
+    double h = 0;
+    int status = buf && links ? GSL_SUCCESS : GSL_ENOMEM;
+    if (status == GSL_SUCCESS)
+        status = whirl_nlink_solve_nodes(r->c, s->w, s->mode, &info, buf, buf + n + 1,
+                                         buf + 2 * (n + 1));
+    if (status == GSL_SUCCESS) status = whirl_shape_links(n, buf, NULL, buf + n + 1, links);
+    if (status == GSL_SUCCESS) status = whirl_dyn_state_from_shape(r->d, 0, links, s->w, r->y);
+    if (status == GSL_SUCCESS)
+        status = whirl_dyn_get_state(r->d, 0, r->y, WHIRL_FRAME_INERTIAL, r->ref, r->v);
+    if (status == GSL_SUCCESS) status = whirl_perturb_links(n, links, RUN_PERTURB, 1);
+    if (status == GSL_SUCCESS) status = whirl_dyn_state_from_shape(r->d, 0, links, s->w, r->y);
+    /* the default step from the shape's link tensions (buf + 2 (n + 1) + 1: links 1..n) */
+    if (status == GSL_SUCCESS)
+        status = whirl_default_step(whirl_dyn_model(r->d), buf + 2 * (n + 1) + 1, "gauss2", &h);
+    free(buf);
+    free(links);
+    if (status == GSL_ENOMEM) return state_fail(s, "", "out of memory");
+    if (status != GSL_SUCCESS) return library_fail(s, "rate");
+    r->every = RUN_PERIODS * 2 * M_PI / s->w / RUN_FRAMES;
+    r->dt = r->every / ceil(r->every / h);
+    return 0;
+}
+
+whirl_web_run *whirl_web_run_alloc(const char *query)
+{
+    whirl_web_run *r = calloc(1, sizeof *r);
+    if (r == NULL) return NULL;
+    web_state *s = &r->s;
+    if (read_state(s, query)) {
+        r->failed = 1;
+        return r;
+    }
+    double born = 0;
+    r->c = chain_of(s, s->links ? s->links : VERDICT_LINKS);
+    if (r->c == NULL || birth(s, r->c, s->mode, &born) != 0) {
+        r->failed = 1;
+        return r;
+    }
+    if (!(s->w > born)) {
+        state_fail(s, "rate", "mode %d is born at %.4g %s: below it there is no shape to perturb",
+                   s->mode, born / s->time / s->unit, s->unit_name);
+        r->failed = 1;
+        return r;
+    }
+    const whirl_model m = {.chain = r->c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = s->w};
+    r->d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    /* gauss2 by its type, not by its name: the table of every method would bring GSL's ODE
+     * solvers into the page (50 kB of WebAssembly it does not use) */
+    whirl_system sys;
+    r->it = r->d && whirl_dyn_system(r->d, &sys) == GSL_SUCCESS
+                ? whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys)
+                : NULL;
+    const size_t n = r->c->n;
+    if (r->it == NULL) {
+        r->failed = library_fail(s, "links");
+        return r;
+    }
+    r->y = malloc(whirl_dyn_size(r->d) * sizeof *r->y);
+    r->x = malloc(9 * n * sizeof *r->x);
+    if (r->y == NULL || r->x == NULL) {
+        r->failed = state_fail(s, "", "out of memory");
+        return r;
+    }
+    r->v = r->x + 3 * n;
+    r->ref = r->x + 6 * n;
+    r->failed = run_start(r) != 0;
+    return r;
+}
+
+/* One frame at r->t (the chunk's first: no comma before it): t [s], the deviation from the unperturbed shape [m] (whirl_deviation: the
+ * RMS distance, minimised over a turn about the axis) and the masses' positions x, y, z [m]
+ * (7 digits: they are drawn) in the run's frame. */
+static int run_frame(whirl_web_run *r, json *j, int first)
+{
+    const size_t n = r->c->n;
+    int status = whirl_dyn_get_state(r->d, r->t, r->y, WHIRL_FRAME_INERTIAL, r->x, r->v);
+    const double dev = status == GSL_SUCCESS ? whirl_deviation(n, r->x, r->ref) : NAN;
+    if (status == GSL_SUCCESS && r->s.frame != WHIRL_FRAME_INERTIAL)
+        status = whirl_dyn_get_state(r->d, r->t, r->y, r->s.frame, r->x, r->v);
+    if (status != GSL_SUCCESS || !isfinite(dev)) return library_fail(&r->s, "rate");
+    put(j, "%s[", first ? "" : ",");
+    put_number(j, r->t * r->s.time);
+    put(j, ",");
+    put_number(j, dev * r->s.length);
+    for (size_t i = 0; i < 3 * n; i++) put(j, ",%.7g", r->x[i] * r->s.length);
+    put(j, "]");
+    r->frames++;
+    return 0;
+}
+
+char *whirl_web_run_next(whirl_web_run *r, int count)
+{
+    if (r == NULL) return error_answer("", "no run");
+    web_state *s = &r->s;
+    json j = {0};
+    put(&j, "{\"links\":%zu,\"total\":%d", r->c ? r->c->n : 0, RUN_FRAMES + 1);
+    put_key_number(&j, "t_end", RUN_PERIODS * 2 * M_PI / s->omega);
+    put_key_number(&j, "period", 2 * M_PI / s->omega);
+    put_key_number(&j, "dt", r->dt * s->time);
+    put(&j, ",\"frame\":\"%s\",\"frames\":[",
+        s->frame == WHIRL_FRAME_INERTIAL ? "inertial" : "rotating");
+    const int first = r->frames;
+    while (!r->failed && r->frames - first < count && r->frames <= RUN_FRAMES) {
+        if (r->frames > 0) { /* frame k at k every; the last at the run's end exactly */
+            const double t1 = r->frames == RUN_FRAMES ? RUN_FRAMES * r->every
+                                                      : r->frames * r->every;
+            if (whirl_integrator_advance(r->it, &r->t, r->y, t1, r->dt, 0) != GSL_SUCCESS) {
+                r->failed = library_fail(s, "rate");
+                break;
+            }
+        }
+        r->failed = run_frame(r, &j, r->frames == first) != 0;
+    }
+    put(&j, "],\"done\":%s}", r->frames > RUN_FRAMES ? "true" : "false");
+    if (r->failed) {
+        free(j.text);
+        return error_answer(s->field, s->message);
+    }
+    return finish(&j);
+}
+
+void whirl_web_run_free(whirl_web_run *r)
+{
+    if (r == NULL) return;
+    whirl_integrator_free(r->it);
+    whirl_dyn_free(r->d);
+    whirl_chain_free(r->c);
+    free(r->y);
+    free(r->x);
+    free(r);
 }
 
 void whirl_web_free(char *answer) { free(answer); }

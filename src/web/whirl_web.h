@@ -13,4 +13,14 @@ char *whirl_web_branches(const char *query);
 char *whirl_web_windows(const char *query);
 void whirl_web_free(char *answer);
 
+/* The perturbed run of the state: its chain (30 links for the continuum) seeded with its steady
+ * shape, each link turned by 1 mrad, 40 rotation periods in 401 frames. NULL only for a lack of
+ * memory; a bad state or a failed start is answered by the first whirl_web_run_next. */
+typedef struct whirl_web_run whirl_web_run;
+whirl_web_run *whirl_web_run_alloc(const char *query);
+/* The next count frames: {"links", "total", "t_end", "period", "dt" (the step), "frame", "frames": [[t, deviation,
+ * x1, y1, z1, ..., xN, yN, zN], ...], "done"} in SI, or {"error", "field"}. */
+char *whirl_web_run_next(whirl_web_run *r, int count);
+void whirl_web_run_free(whirl_web_run *r);
+
 #endif

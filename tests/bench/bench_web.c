@@ -1,12 +1,15 @@
 /* The work of one rate change on the page (make web), timed: the continuum's shape of mode 2 at
  * 4 Hz of a 60 cm chain (whirl_continuum_solve and 201 samples), the linear verdict of the
  * 30-link chain there (whirl_stability_mode and the index), and the page's whole call
- * (whirl_web_shape: both, and the JSON); and 1000 gauss2 steps of a 100-link chain. The same source runs natively and as WebAssembly under
- * Node (make web-bench; scripts/bench-web.sh prints the ratio): the median of REPEATS runs of
- * each, in milliseconds, one line "bench_web: NAME MS" per work. */
+ * (whirl_web_shape: both, and the JSON); 1000 gauss2 steps of a 100-link chain; and the page's
+ * perturbed run (whirl_web_run: 40 turns of the 30-link chain, 10 s of motion). The same source
+ * runs natively and as WebAssembly under Node (scripts/bench-web.sh prints the ratio): the
+ * median of REPEATS runs of each (RUN_REPEATS of the run), in milliseconds, one line
+ * "bench_web: NAME MS" per work. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include <gsl/gsl_errno.h>
@@ -20,6 +23,7 @@
 #include "web/whirl_web.h"
 
 #define REPEATS 21 /* odd: the median is one run */
+#define RUN_REPEATS 5 /* of the page's whole run (0.6 s natively) */
 #define POINTS 201 /* the page's samples of the continuum */
 
 static double now(void)
@@ -94,10 +98,26 @@ static int page_call(void)
     return status;
 }
 
-static int run(const char *name, int (*work)(void))
+/* the page's perturbed run, whole: 40 turns at 4 Hz (10 s of motion) of the 30-link chain, its
+ * 401 frames as the Worker asks for them (10 at a time) */
+static int page_run(void)
+{
+    whirl_web_run *r = whirl_web_run_alloc("length=60cm&mass=50g&rate=4Hz&mode=2");
+    int status = r ? GSL_CONTINUE : GSL_ENOMEM;
+    while (status == GSL_CONTINUE) {
+        char *a = whirl_web_run_next(r, 10);
+        status = a == NULL || a[2] == 'e' ? GSL_EFAILED
+                 : strstr(a, "\"done\":true") ? GSL_SUCCESS : GSL_CONTINUE;
+        whirl_web_free(a);
+    }
+    whirl_web_run_free(r);
+    return status;
+}
+
+static int run(const char *name, int (*work)(void), int repeats)
 {
     double t[REPEATS];
-    for (int i = 0; i < REPEATS; i++) {
+    for (int i = 0; i < repeats; i++) {
         const double t0 = now();
         if (work() != GSL_SUCCESS) {
             fprintf(stderr, "bench_web: %s failed: %s\n", name, whirl_last_error());
@@ -105,14 +125,15 @@ static int run(const char *name, int (*work)(void))
         }
         t[i] = now() - t0;
     }
-    qsort(t, REPEATS, sizeof *t, ascending);
-    printf("bench_web: %s %.3f\n", name, 1e3 * t[REPEATS / 2]);
+    qsort(t, (size_t)repeats, sizeof *t, ascending);
+    printf("bench_web: %s %.3f\n", name, 1e3 * t[repeats / 2]);
     return 0;
 }
 
 int main(void)
 {
     gsl_set_error_handler_off();
-    return run("shape", shape) || run("verdict30", verdict) || run("page_call", page_call) ||
-           run("run100_1000steps", run100);
+    return run("shape", shape, REPEATS) || run("verdict30", verdict, REPEATS) ||
+           run("page_call", page_call, REPEATS) || run("run100_1000steps", run100, REPEATS) ||
+           run("page_run_10s", page_run, RUN_REPEATS);
 }

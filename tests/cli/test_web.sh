@@ -2,9 +2,11 @@
 # The page of make web (build/web/whirl-explore.html: libwhirl compiled to WebAssembly, one
 # self-contained file) in headless Chromium, opened from file://: its shape, tip radius, node
 # count and verdict against whirl shape and whirl stability of this build (1e-12 relative,
-# verdicts identical), the hanging chain below a mode's birth, a bad field and an unknown address
-# parameter named, Cancel (the Worker ended and restarted), no request off the machine, no
-# console error (tests/tools/web_page.py drives it). The page is built here if it is missing or
+# verdicts identical), the windows, the CSV, PNG and SVG of what is shown, the perturbed run
+# against whirl simulate (its speed against real time is printed, not asserted), the hanging
+# chain below a mode's birth, a bad field and an unknown address parameter named, Cancel (the
+# Worker ended and restarted), no request off the machine, no console error
+# (tests/tools/web_page.py drives it). The page is built here if it is missing or
 # older than its sources (make web); a build that fails fails the test.
 . "$(dirname "$0")/lib.sh"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,6 +33,7 @@ else fail "the page is self-contained"; fi
 while IFS= read -r line; do
   case $line in
     PASS\ *) pass "${line#PASS }" ;;
+    INFO\ *) echo "# ${line#INFO }" ;;
     *) fail "${line#FAIL }" ;;
   esac
 done <"$tmp/parity"

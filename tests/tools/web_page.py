@@ -2,15 +2,20 @@
 over the DevTools protocol, opened from file://.
 
     web_page.py parity PAGE WHIRL     the page's numbers against the native command line:
-                                      lines "PASS name" / "FAIL name (why)" for tests/cli/test_web.sh
-    web_page.py bench PAGE [N]        load time, rate-change latency (median, p95 of N changes),
-                                      the branch diagram's time, the page's memory: one JSON line
+                                      lines "PASS name" / "FAIL name (why)" for
+                                      tests/cli/test_web.sh, "INFO what" for its log
+    web_page.py bench PAGE [N]        load time (the driver's, and the page's own clock to the
+                                      engine ready and the first shape), rate-change latency
+                                      (median, p95 of N changes), the branch diagram's time,
+                                      the perturbed run's speed against real time, the page's
+                                      memory: one JSON line
     web_page.py shot PAGE QUERY PNG   a screenshot of the page at the state QUERY
 
 The page's own state is read from window.whirlState (what it drew); nothing is computed here but
 the comparisons."""
 import json
 import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -56,7 +61,10 @@ class Page:
     def _event(self, m):
         method, p = m.get("method"), m.get("params", {})
         if method == "Runtime.exceptionThrown":
-            self.console_errors.append(p["exceptionDetails"].get("text"))
+            d = p["exceptionDetails"]  # "Uncaught" and what: the exception's description
+            self.console_errors.append("%s %s (%s:%s)" % (
+                d.get("text"), d.get("exception", {}).get("description", ""), d.get("url", ""),
+                d.get("lineNumber", "")))
         elif method == "Runtime.consoleAPICalled" and p["type"] == "error":
             self.console_errors.append(str(p["args"]))
         elif method == "Log.entryAdded" and p["entry"]["level"] == "error":
@@ -120,6 +128,10 @@ def close(a, b, rel, floor=0.0):
 
 
 REL = 1e-12  # the parity asked of the page: 1e-12 relative, verdicts identical
+# the address of the download link %s as a user reaches it: the page makes the file when the link
+# is focused, pressed or clicked
+LINK = ("((l) => (l.dispatchEvent(new Event('focus')), l.href))"
+        "(document.getElementById('%s'))")
 
 
 def parity(page_file, whirl):
@@ -160,6 +172,90 @@ def windows(p, whirl, check):
     check("the windows of mode 2 up to 12 Hz: %d, as whirl stability --windows, edges to "
           "2e-9 sqrt(g/L) (largest difference %s)" % (len(cli), worst),
           len(page) == len(cli) and len(cli) > 0 and worst <= 2e-9, "%s against %s" % (page, cli))
+
+
+def svg_check(p, a, check):
+    """shape.svg and branches.svg: SVG documents of the figures drawn; the shape's curve is the
+    shape shown, point for point (each to the 0.01 px the SVG writes: the points' order and count
+    are checked, their place only to that)."""
+    fetch = "fetch(" + LINK + ").then(r => r.text())"
+    svg = p.eval(fetch % "svg-shape")
+    paths = re.findall(r'<path d="([^"]*)"', svg)
+    curve = max(paths, key=len) if paths else ""
+    points = re.findall(r"[ML](-?[\d.]+) (-?[\d.]+)", curve)
+    xs = [float(u) for u, _ in points]
+    # the curve's x in pixels against the shape's x in metres: one affine map for all points
+    k = (xs[-1] - xs[0]) / (a["x"][-1] - a["x"][0]) if len(xs) == len(a["x"]) else 0
+    off = max((abs(xs[0] + k * (x - a["x"][0]) - u) for x, u in zip(a["x"], xs)), default=1)
+    check("shape.svg is an SVG of the figure: the shape's %d points (largest misplacement "
+          "%.3g px)" % (len(a["x"]), off),
+          svg.startswith("<?xml") and "<svg xmlns=" in svg and svg.rstrip().endswith("</svg>")
+          and len(xs) == len(a["x"]) and k > 0 and off <= 0.02, svg[:300])
+    svg = p.eval(fetch % "svg-branch")
+    b = p.eval("window.whirlState.branch")
+    curves = [d for d in re.findall(r'<path d="([^"]*)" fill="none"', svg) if d.count("L") > 20]
+    check("branches.svg is an SVG of the figure: a curve for each of the %d modes drawn "
+          "(those of more than 21 points: the ticks are paths too)"
+          % len(b["modes"]), svg.startswith("<?xml") and
+          sorted(d.count("L") + 1 for d in curves) ==
+          sorted(len(m["rate"]) for m in b["modes"] if len(m["rate"]) > 21),
+          "%d curves" % len(curves))
+
+
+def run_check(p, page_file, whirl, check):
+    """Perturb and run: the page's 401 frames (60 cm, 50 g, mode 2 at 4 Hz, the 30-link chain,
+    inertial view) against whirl simulate of the same run (the classroom scene, the page's step;
+    the start state is built by another route, the same to about 1e-13): the deviation to 1e-9
+    relative, the tip's position to 1e-6 m (the page sends 7 digits); and the run computed at
+    least as fast as real time (the speed is reported, not asserted: a test is not a timing)."""
+    p.open(page_file, "?length=60cm&mass=50g&rate=4Hz&mode=2")
+    p.eval("document.getElementById('frame').value = 'inertial'")
+    p.eval("document.getElementById('run').click()")
+    p.wait("window.whirlState.run && window.whirlState.run.done", 300)
+    r = p.eval("(() => { const r = window.whirlState.run; return { frames: r.frames, dt: r.dt, "
+               "error: r.error, asked: r.asked, last: r.last, first: r.first, lag: r.lagMs, "
+               "links: r.links, tEnd: r.tEnd }; })()")
+    if r["error"] or not r["frames"]:
+        check("perturb and run", False, r["error"])
+        return
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir)
+    every = r["tEnd"] / 400
+    out = subprocess.run(
+        [whirl, "simulate", os.path.join(root, "data", "scenes", "classroom.ini"),
+         "--set", "run.t_end=%r" % r["tEnd"], "--set", "run.dt=%r" % r["dt"],
+         "--set", "output.every=%r" % every, "--set", "start.seed=1", "--set",
+         "run.frame=rotating", "--set", "run.method=gauss2", "--set",
+         "output.columns=t,deviation,tip_x,tip_y,tip_z"],
+        capture_output=True, text=True, check=True).stdout
+    rows = [[float(v) for v in l.split(",")] for l in out.splitlines()
+            if l and not l.startswith(("#", "t,"))]
+    frames = r["frames"]
+    dev = max((abs(f[1] - c[1]) / c[1] for f, c in zip(frames, rows)), default=1)
+    tip = max((max(abs(f[-3 + i] - c[2 + i]) for i in range(3)) for f, c in zip(frames, rows)),
+              default=1)
+    times = all(abs(f[0] - c[0]) <= 1e-12 * r["tEnd"] for f, c in zip(frames, rows))
+    check("perturb and run: %d frames of %d links equal whirl simulate's (deviation to %.2g "
+          "relative, tip to %.2g m)" % (len(frames), r["links"], dev, tip),
+          len(frames) == len(rows) == 401 and times and dev <= 1e-9 and tip <= 1e-6,
+          "%d frames against %d rows" % (len(frames), len(rows)))
+    # Cancel in a run of 100 links (several seconds of work): the Worker ended, the run said
+    # cancelled, and a new run computes
+    p.open(page_file, "?length=60cm&mass=50g&rate=4Hz&mode=2&links=100")
+    p.wait("window.whirlState.branch && window.whirlState.windows", 300)
+    p.eval("document.getElementById('run').click()")
+    p.wait("window.whirlState.run.frames.length > 0", 120)
+    p.eval("document.getElementById('cancel').click()")
+    said = p.eval("document.getElementById('run-status').textContent")
+    p.wait("window.whirlState.ready", 60)
+    p.eval("document.getElementById('model').value = '0'")
+    p.eval("document.getElementById('run').click()")
+    p.wait("window.whirlState.run.frames.length > 0", 120)
+    check("Cancel in a run of 100 links ends it (%s); a new run computes" % said,
+          "cancelled" in said and p.eval("window.whirlState.run.links") == 30)
+    speed = r["tEnd"] / ((r["last"] - r["asked"]) / 1000)
+    print("INFO perturb and run: 40 turns (%.3g s of motion) computed in %.3g s: %.3g times real "
+          "time; the playing (from 0.5 s of motion in) waited for frames %.0f ms in all" % (
+              r["tEnd"], (r["last"] - r["asked"]) / 1000, speed, r["lag"]))
 
 
 def parity_cases(p, page_file, whirl, check):
@@ -220,14 +316,15 @@ def parity_cases(p, page_file, whirl, check):
             if k == 0:
                 check("the page loads from file:// within 10 s (%.2f s)" % load, load < 10)
                 windows(p, whirl, check)
-                csv = p.eval("fetch(document.getElementById('csv-shape').href).then(r => r.text())")
+                csv = p.eval(("fetch(" + LINK + ").then(r => r.text())") % "csv-shape")
                 rows = [l.split(",") for l in csv.splitlines() if not l.startswith("#")]
                 check("shape.csv holds what is shown (%d rows)" % (len(rows) - 1),
                       rows[0] == ["x", "z", "tension"] and len(rows) - 1 == len(a["x"]) and
                       all(float(r[0]) == x and float(r[1]) == z
                           for r, x, z in zip(rows[1:], a["x"], a["z"])), csv[:200])
-                png = p.eval("document.getElementById('png-shape').href.slice(0, 22)")
+                png = p.eval((LINK + ".slice(0, 22)") % "png-shape")
                 check("shape.png is the figure", png == "data:image/png;base64,", png)
+                svg_check(p, a, check)
         # a rate change: the slider's path (whirlSetRate), then the numbers of the new rate
         p.open(page_file, "?length=60cm&mass=50g&rate=2Hz&mode=2")
         p.eval("window.whirlSetRate('5Hz')")
@@ -249,11 +346,32 @@ def parity_cases(p, page_file, whirl, check):
         check("present=1 in the address: the presentation mode",
               p.eval("document.body.classList.contains('present') && "
                      "document.getElementById('share').href.endsWith('present=1')"))
-        # bad input: a message next to the field, nothing drawn
-        p.open(page_file, "?length=60cm&mass=5x&rate=4Hz&mode=2")
-        msg = p.eval("document.getElementById('mass-msg').textContent")
-        check("bad mass in the address: a message next to the field (%s)" % msg,
-              "mass" in msg and p.eval("window.whirlState.shape") is None)
+        # bad input in the address: a message next to the field and a line at the top naming
+        # the parameter, nothing drawn
+        for bad, field in (("mass=5x", "mass"), ("rate=400Hz", "rate"), ("links=1", "links"),
+                           ("mode=13", "mode"), ("length=-1", "length"), ("tip=1kg2", "tip")):
+            query = "length=60cm&mass=50g&rate=4Hz&mode=2".split("&")
+            query = [q for q in query if not q.startswith(field + "=")] + [bad]
+            p.open(page_file, "?" + "&".join(query))
+            msg = p.eval("document.getElementById('%s-msg').textContent" % field)
+            top = p.eval("document.getElementById('address-msg').textContent")
+            check("bad %s in the address: a message next to the field (%s) and at the top"
+                  % (bad, msg), field in msg and top.startswith("in the address: " + field) and
+                  p.eval("window.whirlState.shape") is None, "top line %r" % top)
+        # where WebAssembly is unavailable: one line says so, and nothing starts
+        script = p.call("Page.addScriptToEvaluateOnNewDocument",
+                        source="delete globalThis.WebAssembly;")["identifier"]
+        p.open(page_file, "?length=60cm&mass=50g&rate=4Hz&mode=2", wait=False)
+        try:
+            p.wait("document.readyState === 'complete' && "
+                   "!document.getElementById('nowasm').hidden", 20)
+        except RuntimeError:
+            pass  # the check below fails, with what the page shows
+        line = p.eval("document.getElementById('nowasm').hidden ? '' : "
+                      "document.getElementById('nowasm').textContent")
+        check("without WebAssembly: one line says so (%s)" % line,
+              "WebAssembly" in line and not p.eval("window.whirlState.ready"))
+        p.call("Page.removeScriptToEvaluateOnNewDocument", identifier=script)
         p.open(page_file, "?length=60cm&mass=50g&rate=4Hz&mode=2&colour=red")
         msg = p.eval("document.getElementById('address-msg').textContent")
         check("an unknown address parameter named at the top (%s)" % msg, "colour" in msg)
@@ -272,6 +390,7 @@ def parity_cases(p, page_file, whirl, check):
         check("Cancel ends and restarts the engine (%s), which answers again" % status,
               "cancelled" in status and p.eval("window.whirlState.answers") > before and
               p.eval("window.whirlState.cancelled") == 1)
+        run_check(p, page_file, whirl, check)
         external = [u for u in p.requests if not u.startswith(("file:", "blob:", "data:"))]
         check("no request leaves the machine", not external, "%s" % external[:3])
         check("no console errors", not p.console_errors, "%s" % p.console_errors[:3])
@@ -280,9 +399,13 @@ def parity_cases(p, page_file, whirl, check):
 def bench(page_file, n=40):
     p = Page()
     try:
-        loads = []
+        loads, firsts, readys = [], [], []
         for _ in range(3):
             loads.append(p.open(page_file, "?length=60cm&mass=50g&rate=2Hz&mode=2"))
+            # the page's own clock, from the navigation: the engine ready, the first shape drawn
+            p.wait("window.whirlState.firstMs !== undefined")
+            readys.append(p.eval("window.whirlState.readyMs"))
+            firsts.append(p.eval("window.whirlState.firstMs"))
         p.wait("window.whirlState.branch && window.whirlState.windows", 60)
         # the branch diagram of a new chain: from the change to its curves and windows
         t_branch = p.eval("""(async () => { const s = window.whirlState; s.branch = null; s.windows = null;
@@ -295,11 +418,23 @@ def bench(page_file, n=40):
             rate = "%.3gHz" % (2 + 4 * i / n)
             lat.append(p.eval("window.whirlSetRate('%s')" % rate))
         lat.sort()
+        # the perturbed run of the 30-link chain (the continuum's), 40 turns at 4 Hz: from the
+        # click to the last frame, against the 10 s of motion; and how far the playing (real
+        # time from the first frame) waited for frames
+        p.open(page_file, "?length=60cm&mass=50g&rate=4Hz&mode=2")
+        p.wait("window.whirlState.branch && window.whirlState.windows", 60)
+        p.eval("document.getElementById('run').click()")
+        p.wait("window.whirlState.run && window.whirlState.run.done", 300)
+        run = p.eval("(() => { const r = window.whirlState.run; return { s: (r.last - r.asked) / 1000, "
+                     "first_s: (r.first - r.asked) / 1000, t_end: r.tEnd, lag_ms: r.lagMs, "
+                     "links: r.links, error: r.error }; })()")
+        run["times_real_time"] = run["t_end"] / run["s"] if run["s"] > 0 else None
         mem = p.eval("performance.memory ? performance.memory.usedJSHeapSize : null")
         wasm = p.eval("window.whirlState.wasmBytes")
-        print(json.dumps({"load_s": loads, "latency_ms_median": statistics.median(lat),
+        print(json.dumps({"load_s": loads, "engine_ready_ms": readys, "first_shape_ms": firsts, "latency_ms_median": statistics.median(lat),
                           "latency_ms_p95": lat[int(0.95 * (len(lat) - 1))],
                           "latency_ms_max": lat[-1], "changes": n, "branch_ms": t_branch,
+                          "run": run,
                           "js_heap_bytes": mem, "wasm_memory_bytes": wasm, "errors": p.console_errors}))
     finally:
         p.close()
