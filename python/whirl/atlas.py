@@ -164,8 +164,9 @@ def atlas(modes: Union[int, Iterable[int]] = range(2, 9), omega_max: Any = None,
           memory_mb: Optional[float] = None, progress: Any = None,
           length: Optional[float] = None, mass: Optional[float] = None,
           gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
-    """The stability atlas of the continuous chain, as ``whirl windows --atlas --modes LIST
-    --omega-max B [--degree P --tol T --scan-step H --memory MB] -o FILE [--resume]``: every
+    """The stability atlas of the continuous chain, as
+    ``whirl windows --atlas --modes LIST --omega-max B [--degree P --tol T --scan-step H]``
+    ``[--memory MB] -o FILE [--resume]``: every
     window of instability of each of ``modes`` (default 2..8) from its birth to ``omega_max``
     (at most 5000 sqrt(g/L)) (whirl.stability_windows with links=None, chunk by chunk), with
     the Krein signature of the slower mode of the colliding pair just outside each closed edge.

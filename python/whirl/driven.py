@@ -276,10 +276,10 @@ class DrivenBranch(_lib.Result):
     """A branch of the hand-swung chain's steady shapes against the rate, in the order of the
     continuation (through its folds): arrays ``omega``, ``tip_x``, ``tip_y``, ``tip_r``,
     ``top_tension``, ``node_count``, ``fold`` (True: the point is a fold, where the branch turns
-    back, located where the fold function vanishes), as the columns of ``whirl driven
-    --omega-min A --omega-max B``; with stability (the N-link chain) per point ``eig_growth``
-    [1/T], ``index`` and ``verdict`` of its linearisation (else None); ``folds`` the folds'
-    rates, in the order found; ``complete``: True if the branch left [omega_min, omega_max]
+    back, located where the fold function vanishes), as the columns of
+    ``whirl driven --omega-min A --omega-max B``; with stability (the N-link chain) per point
+    ``eig_growth`` [1/T], ``index`` and ``verdict`` of its linearisation (else None);
+    ``folds`` the folds' rates, in the order found; ``complete``: True if the branch left [omega_min, omega_max]
     (False: it stopped at max_points or on a step that would not converge); ``interrupted``:
     True if Ctrl-C ended it (only with keep_interrupted=True); ``units``."""
 
@@ -346,8 +346,9 @@ def driven_branch(omega_min: Any, omega_max: Any, drive_radius: Any, mode: int =
     """The branch of the hand-swung chain's steady shapes through the shape of ``mode`` (side
     +1 or -1; mode 0: the near-axis shape) at ``omega`` (default omega_max), followed by
     pseudo-arclength continuation through its folds towards smaller rates (up=True: larger)
-    until it leaves [omega_min, omega_max], as ``whirl driven --omega-min A --omega-max B
-    [--omega W] [--up] --eps E ... [--links N --stability]`` (whirl_driven_branch). Arguments
+    until it leaves [omega_min, omega_max], as
+    ``whirl driven --omega-min A --omega-max B [--omega W] [--up] --eps E ...``
+    ``[--links N --stability]`` (whirl_driven_branch). Arguments
     as whirl.driven's; ``arc_step``: the largest step of the continuation's arclength (in (0,
     1]), ``max_points``: most points. stability (default: with an N-link chain): the growth,
     index and verdict of the linearisation about every point (the N-link chain only).

@@ -112,10 +112,10 @@ CHART_DTYPE = np.dtype([("curve", "i8"), ("edge", "i8"), ("omega", "f8"), ("ampl
 
 @dataclass(eq=False)
 class Chart(_lib.Result):
-    """The stability chart of the chain shaken vertically, A cos(omega t), as ``whirl periodic
-    --chart``: ``points`` a structured array (curve from 1, edge +1 (a multiplier pair through
-    +1) or -1 (through -1), omega [1/T], amplitude [L], err [L]) ordered by curve, then rate, as
-    the command line's CSV; ``inverted``; ``curves`` the count; ``interrupted`` (Ctrl-C with
+    """The stability chart of the chain shaken vertically, A cos(omega t), as
+    ``whirl periodic --chart``: ``points`` a structured array (curve from 1, edge +1 (a
+    multiplier pair through +1) or -1 (through -1), omega [1/T], amplitude [L], err [L])
+    ordered by curve, then rate, as the command line's CSV; ``inverted``; ``curves`` the count; ``interrupted`` (Ctrl-C with
     keep_interrupted=True: the points located until then); ``units``."""
 
     inverted: bool
