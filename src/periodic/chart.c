@@ -58,6 +58,10 @@ typedef struct chart_curve {
     int alive;
     double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
     int found;     /* located at the current rate */
+    double w1;     /* the rate of a1 */
+    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined */
+    double tip;    /* that tip's rate (NAN: none) */
+    double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
 } chart_curve;
 
 typedef struct chart chart;
@@ -72,6 +76,8 @@ typedef struct chart_ws {
     long monodromies;
     whirl_floquet_edge kind; /* of the root under way */
     double shift;       /* (f(h/2) - f(h)) / 15 at the last fine evaluation of kind */
+    double omega;       /* the rate of the evaluations; NAN: the chart's current rate */
+    double amp;         /* the amplitude of fine_rate */
 } chart_ws;
 
 struct chart {
@@ -115,7 +121,8 @@ static int edge_functions(chart_ws *s, double amp, int steps, double f[2])
 {
     whirl_pivot_path path;
     const double up[3] = {0, 0, 1};
-    int status = whirl_pivot_line(&path, s->ch->omega, amp, up);
+    const double omega = isnan(s->omega) ? s->ch->omega : s->omega;
+    int status = whirl_pivot_line(&path, omega, amp, up);
     if (status) return status;
     periodic_set_path(s->w, &path);
     status = whirl_periodic_start_vertical(s->w, s->ch->p.inverted, s->y);
@@ -148,7 +155,8 @@ static int fine_edge(double amp, void *ctx, double *fx)
     *fx = ff[s->kind] + s->shift;
     if (!isfinite(*fx))
         return whirl_fail(GSL_EBADFUNC, "the monodromy at omega=" WHIRL_Q_RATE "%.17g, A="
-                          WHIRL_Q_LENGTH "%.17g is not finite", s->ch->omega, amp);
+                          WHIRL_Q_LENGTH "%.17g is not finite",
+                          isnan(s->omega) ? s->ch->omega : s->omega, amp);
     return GSL_SUCCESS;
 }
 
@@ -195,10 +203,18 @@ static chart_curve *add_curve(chart *ch, whirl_floquet_edge kind)
         ch->curves = c, ch->cap = cap;
     }
     chart_curve *cv = &ch->curves[ch->count];
-    *cv = (chart_curve){.kind = kind, .id = ch->count, .alive = 1, .a1 = NAN, .a0 = NAN};
+    *cv = (chart_curve){.kind = kind, .id = ch->count, .alive = 1, .a1 = NAN, .a0 = NAN,
+                        .tip = NAN};
     ch->count++;
     return cv;
 }
+
+static double tip_in(const chart *ch, double w0, double w1, whirl_floquet_edge kind);
+
+/* The lowest amplitude of a bracket: the hanging chain's edges are followed down to A = 0, where
+ * f >= 0 (the multipliers on the unit circle, det(M -+ I) = prod (2 -+ 2 cos(omega_k T)); a
+ * tongue's two edges meet there at its tip); the inverted chain's from amp_min. */
+static double amp_floor(const chart *ch) { return ch->p.inverted ? ch->p.amp_min : 0; }
 
 /* A scan's work: the coarser f at the rows (one item per row), then the sign changes that no
  * located curve explains, each located (one item per candidate). */
@@ -235,12 +251,115 @@ static int scan_locate(chart_ws *s, void *data, int j)
     return locate(s, a0, a1, flo, fhi, &sw->amp[j], &sw->err[j]);
 }
 
+/* The extrapolated edge function of s->kind at the rate omega and the amplitude s->amp
+ * (whirl_root_fn). */
+static int fine_rate(double omega, void *ctx, double *fx)
+{
+    chart_ws *s = ctx;
+    s->omega = omega;
+    const int status = fine_edge(s->amp, s, fx);
+    s->omega = NAN;
+    return status;
+}
+
+/* An edge's points near a tongue's tip, at the amplitudes a, a + da, ... (da = +-the scan's row
+ * spacing) while in (a_lo, a_hi): each located in the rate between w (outside the tongue at
+ * that amplitude) and the tip's rate (inside) by Brent's method; it stops at the first
+ * amplitude without a bracket. An edge steep in A(omega) near its tip (A ~ sqrt|omega - tip| for
+ * n >= 2) is smooth in omega(A). err: the rate's bracket and extrapolation shift times the
+ * edge's slope dA/domega from the previous point. Returns the last amplitude located in *last
+ * (unchanged if none). */
+static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
+                     double a, double da, double a_lo, double a_hi, double *last,
+                     whirl_chart_row_fn row, void *row_data)
+{
+    chart_ws *s = &ch->ws[0];
+    const double lo = fmin(w, tip), hi = fmax(w, tip);
+    double pw = da < 0 ? w : tip, pa = a - da;
+    s->kind = cv->kind;
+    for (double amp = a; amp > a_lo && amp < a_hi; amp += da) {
+        double flo, fhi;
+        s->amp = amp;
+        int status = fine_rate(lo, s, &flo);
+        if (status == GSL_SUCCESS) status = fine_rate(hi, s, &fhi);
+        if (status) return status;
+        if ((flo < 0) == (fhi < 0)) break; /* no bracket: left as it is */
+        const whirl_root_opts o = {.epsabs = ch->p.tol, .max_iter = BRENT_ITER, .known = 1,
+                                   .f_lo = flo, .f_hi = fhi};
+        whirl_root r;
+        status = whirl_root_brent(fine_rate, s, lo, hi, &o, &r);
+        double f;
+        if (status == GSL_SUCCESS) status = fine_rate(r.root, s, &f); /* the shift there */
+        if (status) return status;
+        const double err_w = (r.upper - r.lower) + fabs(s->shift / ((fhi - flo) / (hi - lo)));
+        const double slope = pw == r.root ? 0 : fabs((pa - amp) / (pw - r.root));
+        const whirl_chart_point pt = {.kind = cv->kind, .curve = cv->id, .column = column,
+                                      .omega = r.root, .amplitude = amp, .err = err_w * slope};
+        status = row ? row(row_data, &pt) : GSL_SUCCESS;
+        if (status) return status;
+        pw = r.root, pa = amp, *last = amp;
+    }
+    return GSL_SUCCESS;
+}
+
+/* The edge cv ended at this rate with a tongue's tip of its kind between its last rate and this
+ * one (hanging): its points down to the tip, the tip (2 omega_k / n, 0), and the tongue's other
+ * edge from the tip up to the next rate, all on cv's curve. The tip is where the unshaken chain's
+ * multipliers exp(+-i omega_k T) pass +-1 (det(M -+ I) = 0 at A = 0), the A = 0 end of both
+ * edges (f is even in A: A cos(omega t) is -A cos(omega t) half a period later). */
+static int descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
+                          void *row_data)
+{
+    const double tip = tip_in(ch, cv->w1, ch->omega, cv->kind);
+    if (isnan(tip)) return GSL_SUCCESS;
+    const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
+    double top = 0, low = cv->a1;
+    int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
+                           &low, row, row_data);
+    const whirl_chart_point pt = {.kind = cv->kind, .curve = cv->id, .column = column,
+                                  .omega = tip, .amplitude = 0, .err = 0};
+    if (status == GSL_SUCCESS) status = row ? row(row_data, &pt) : GSL_SUCCESS;
+    /* the other edge up to this rate, or the next if the tip is at this one (where the scan
+       finds it and join_at_tip joins it) */
+    const double next = ch->omega > tip ? ch->omega
+                                        : fmin(ch->omega + (ch->p.omega_max - ch->p.omega_min) /
+                                                               (ch->p.columns - 1),
+                                               ch->p.omega_max);
+    if (status == GSL_SUCCESS && next > tip)
+        status = fill_rows(ch, cv, column, next, tip, fmin(da, low), da, 0, ch->p.amp_max,
+                           &top, row, row_data);
+    cv->tipward = 1, cv->tip = tip, cv->fill_top = top;
+    return status;
+}
+
+/* A new edge cv at this rate joined to an edge that ended at a tongue's tip of its kind at most
+ * two and a half rates before (descend_to_tip): one curve, cv's points down to what was located
+ * from the tip. */
+static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
+                       void *row_data)
+{
+    const double spacing = (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
+    const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
+    for (int i = 0; i < ch->count; i++) {
+        chart_curve *old = &ch->curves[i];
+        if (old == cv || !old->tipward || old->kind != cv->kind || !(ch->omega > old->tip) ||
+            ch->omega - old->tip > 2.5 * spacing || !(cv->a1 > old->fill_top))
+            continue;
+        old->tipward = 0;
+        cv->id = old->id;
+        double last = 0;
+        return fill_rows(ch, cv, column, ch->omega, old->tip, cv->a1 - da, -da,
+                         old->fill_top + 0.5 * da, INFINITY, &last, row, row_data);
+    }
+    return GSL_SUCCESS;
+}
+
 /* A scan of the column: every sign change of f_+ and f_- between the rows amplitudes that no
  * curve located at this rate lies in is located and starts a new curve. */
 static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
 {
     const int rows = ch->p.rows;
-    scan_work sw = {.lo = ch->p.amp_min, .step = (ch->p.amp_max - ch->p.amp_min) / (rows - 1)};
+    scan_work sw = {.lo = amp_floor(ch), .step = (ch->p.amp_max - amp_floor(ch)) / (rows - 1)};
     sw.f = malloc((size_t)rows * sizeof *sw.f);
     sw.cand = malloc(2 * (size_t)rows * sizeof *sw.cand);
     sw.amp = malloc(4 * (size_t)rows * sizeof *sw.amp);
@@ -269,7 +388,10 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
         if (cv == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for the chart's curves");
         else {
             cv->a1 = sw.amp[j], cv->found = 1;
-            status = emit(ch, cv, column, sw.amp[j], sw.err[j], row, row_data);
+            cv->w1 = ch->omega;
+            status = join_at_tip(ch, cv, column, row, row_data);
+            if (status == GSL_SUCCESS)
+                status = emit(ch, cv, column, sw.amp[j], sw.err[j], row, row_data);
         }
     }
     free(sw.f), free(sw.cand), free(sw.amp);
@@ -279,6 +401,7 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
 /* The followers' work at one rate: per alive curve, its root or NAN (the curve ended). */
 typedef struct follow_work {
     int *index;         /* the curves followed */
+    int *tipward;       /* 1: the curve ended heading for A = 0 */
     double *amp, *err;
     double spacing;
 } follow_work;
@@ -296,16 +419,21 @@ static int follow(chart_ws *s, void *data, int j)
     fw->amp[j] = NAN;
     /* heading out of the range: ended (a root near the end is another curve's, or the same
        curve's back in, found by the scan) */
-    if (cv->a1 + change < ch->p.amp_min || cv->a1 + change > ch->p.amp_max) return GSL_SUCCESS;
+    if (cv->a1 + change < amp_floor(ch)) {
+        fw->tipward[j] = 1;
+        return GSL_SUCCESS;
+    }
+    if (cv->a1 + change > ch->p.amp_max) return GSL_SUCCESS;
+    fw->tipward[j] = 1; /* unless found below: an end other than at the top may be at a tip */
     for (int d = 0; d <= BRACKET_DOUBLINGS; d++, half *= 2) {
-        const double lo = fmax(ch->p.amp_min, cv->a1 - half);
+        const double lo = fmax(amp_floor(ch), cv->a1 - half);
         const double hi = fmin(ch->p.amp_max, cv->a1 + half);
         double flo, fhi;
         int status = fine_edge(lo, s, &flo);
         if (status == GSL_SUCCESS) status = fine_edge(hi, s, &fhi);
         if (status) return status;
         if ((flo < 0) == (fhi < 0)) {
-            if (lo == ch->p.amp_min && hi == ch->p.amp_max) break;
+            if (lo == amp_floor(ch) && hi == ch->p.amp_max) break;
             continue;
         }
         double amp, err;
@@ -313,7 +441,7 @@ static int follow(chart_ws *s, void *data, int j)
         if (status) return status;
         if (!isnan(cv->a0) && fabs(amp - 2 * cv->a1 + cv->a0) > fmax(fabs(change), spacing))
             break; /* another curve's root: this one ended between the rates */
-        fw->amp[j] = amp, fw->err[j] = err;
+        fw->amp[j] = amp, fw->err[j] = err, fw->tipward[j] = 0;
         return GSL_SUCCESS;
     }
     return GSL_SUCCESS; /* left the range or turned back */
@@ -324,14 +452,15 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
                       void *row_data)
 {
     follow_work fw = {.spacing = spacing};
-    fw.index = malloc((size_t)(ch->count + 1) * sizeof *fw.index);
+    fw.index = malloc(2 * (size_t)(ch->count + 1) * sizeof *fw.index);
+    fw.tipward = fw.index ? fw.index + ch->count + 1 : NULL;
     fw.amp = malloc(2 * (size_t)(ch->count + 1) * sizeof *fw.amp);
     int status = fw.index && fw.amp ? GSL_SUCCESS
                                     : whirl_fail(GSL_ENOMEM, "out of memory for the followers");
     int count = 0;
     for (int i = 0; status == GSL_SUCCESS && i < ch->count; i++) {
         ch->curves[i].found = 0;
-        if (ch->curves[i].alive) fw.index[count++] = i;
+        if (ch->curves[i].alive) fw.tipward[count] = 0, fw.index[count++] = i;
     }
     fw.err = fw.amp ? fw.amp + ch->count + 1 : NULL;
     if (status == GSL_SUCCESS) status = parallel_items(ch, count, follow, &fw);
@@ -339,9 +468,11 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
         chart_curve *cv = &ch->curves[fw.index[j]];
         if (isnan(fw.amp[j])) {
             cv->alive = 0;
+            if (fw.tipward[j] && !ch->p.inverted)
+                status = descend_to_tip(ch, cv, column, row, row_data);
             continue;
         }
-        cv->a0 = cv->a1, cv->a1 = fw.amp[j], cv->found = 1;
+        cv->a0 = cv->a1, cv->a1 = fw.amp[j], cv->w1 = ch->omega, cv->found = 1;
         status = emit(ch, cv, column, fw.amp[j], fw.err[j], row, row_data);
     }
     free(fw.index), free(fw.amp);
@@ -387,6 +518,22 @@ static int tip_between(const chart *ch, double w0, double w1)
     for (size_t i = 0; i < ch->c->n; i++)
         if (floor(2 * ch->freq[i] / w0) != floor(2 * ch->freq[i] / w1)) return 1;
     return 0;
+}
+
+/* The tip 2 omega_k / n in (w0, w1] of a tongue whose edges are of the kind (n odd: -1, even:
+ * +1), the one nearest w1; NAN if none. */
+static double tip_in(const chart *ch, double w0, double w1, whirl_floquet_edge kind)
+{
+    double tip = NAN;
+    for (size_t i = 0; !ch->p.inverted && i < ch->c->n; i++)
+        for (double n = ceil(2 * ch->freq[i] / w1); n <= 2 * ch->freq[i] / w0; n++) {
+            const double t = 2 * ch->freq[i] / n;
+            if (n < 1 || t <= w0 || t > w1) continue;
+            if ((((long)n % 2 == 1) ? WHIRL_FLOQUET_EDGE_MINUS_ONE : WHIRL_FLOQUET_EDGE_PLUS_ONE) ==
+                    kind && (isnan(tip) || t > tip))
+                tip = t;
+        }
+    return tip;
 }
 
 static int check_params(const whirl_chain *c, int dim, whirl_chart_params *p)
@@ -452,7 +599,8 @@ static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_char
         for (int k = 0; status == GSL_SUCCESS && k < 2; k++) {
             int found = 0;
             for (int i = 0; i < ch->count; i++)
-                found += ch->curves[i].found && ch->curves[i].kind == (whirl_floquet_edge)k;
+                found += ch->curves[i].found && ch->curves[i].kind == (whirl_floquet_edge)k &&
+                         ch->curves[i].a1 >= p->amp_min;
             if ((found % 2 == 1) != ((ends[0][k] < 0) != (ends[1][k] < 0))) rescan = 1;
         }
         if (status == GSL_SUCCESS && rescan) status = scan(ch, j, row, row_data);
@@ -480,7 +628,7 @@ static int workspaces(chart *ch, int dim, const whirl_pivot_path *path)
     if (ch->ws == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
     for (int t = 0; t < ch->threads; t++) {
         chart_ws *s = &ch->ws[t];
-        s->ch = ch;
+        s->ch = ch, s->omega = NAN;
         s->w = whirl_periodic_alloc(ch->c, dim, path);
         if (s->w == NULL) return whirl_last_status();
         s->y = malloc(s->w->size * sizeof *s->y);
