@@ -348,16 +348,13 @@ static void block_project(const whirl_periodic *w, const periodic_var *v, const 
         double *q = tan + dim * i * B, *u = tan + len + dim * i * B;
         double f[B] = {0}, dal[B] = {0};
         for (size_t k = 0; k < dim; k++)
-#pragma omp simd
             for (size_t c = 0; c < B; c++) f[c] += d[k] * q[k * B + c] / nd2;
         for (size_t k = 0; k < dim; k++)
-#pragma omp simd
             for (size_t c = 0; c < B; c++) {
                 q[k * B + c] = sc * (q[k * B + c] - f[c] * d[k]); /* delta D */
                 dal[c] += (q[k * B + c] * r[k] + sc * d[k] * u[k * B + c]) / l2;
             }
         for (size_t k = 0; k < dim; k++)
-#pragma omp simd
             for (size_t c = 0; c < B; c++)
                 u[k * B + c] -= dal[c] * sc * d[k] + along * q[k * B + c];
     }
