@@ -89,6 +89,8 @@ struct chart {
     chart_curve *curves;
     int count, cap;
     double *freq;       /* the unshaken chain's frequencies (hanging), n */
+    double *tips;       /* the tips reached so far (one curve descends to each) */
+    int tips_count, tips_cap;
 };
 
 /* The monodromies computed so far, by all the threads. */
@@ -303,7 +305,7 @@ static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, dou
 }
 
 /* The edge cv ended at this rate with a tongue's tip of its kind between its last rate and this
- * one (hanging): its points down to the tip, the tip (2 omega_k / n, 0), and the tongue's other
+ * one (hanging), a tip no other edge reached before: its points down to the tip, the tip (2 omega_k / n, 0), and the tongue's other
  * edge from the tip up to the next rate, all on cv's curve. The tip is where the unshaken chain's
  * multipliers exp(+-i omega_k T) pass +-1 (det(M -+ I) = 0 at A = 0), the A = 0 end of both
  * edges (f is even in A: A cos(omega t) is -A cos(omega t) half a period later). */
@@ -312,6 +314,15 @@ static int descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_ro
 {
     const double tip = tip_in(ch, cv->w1, ch->omega, cv->kind);
     if (isnan(tip)) return GSL_SUCCESS;
+    for (int i = 0; i < ch->tips_count; i++)
+        if (ch->tips[i] == tip) return GSL_SUCCESS; /* another edge reached it first */
+    if (ch->tips_count == ch->tips_cap) {
+        const int cap = ch->tips_cap ? 2 * ch->tips_cap : 16;
+        double *t = realloc(ch->tips, (size_t)cap * sizeof *t);
+        if (t == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart's tips");
+        ch->tips = t, ch->tips_cap = cap;
+    }
+    ch->tips[ch->tips_count++] = tip;
     const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
     double top = 0, low = cv->a1;
     int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
@@ -569,6 +580,7 @@ static void chart_free(chart *ch)
         if (s->perm) gsl_permutation_free(s->perm);
     }
     free(ch->ws);
+    free(ch->tips);
     free(ch->curves);
     free(ch->freq);
 }
