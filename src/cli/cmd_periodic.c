@@ -139,12 +139,13 @@ static void chart_tick(void *data, const whirl_chart_progress *p)
                       p->columns, p->curves, p->monodromies);
 }
 
-/* By curve, then by rate (a curve has one point per rate). */
+/* By curve, then by rate (a curve has one point per rate, and a tongue's tip between two). */
 static int chart_order(const void *a, const void *b)
 {
     const whirl_chart_point *p = a, *q = b;
     if (p->curve != q->curve) return p->curve < q->curve ? -1 : 1;
-    return (p->column > q->column) - (p->column < q->column);
+    if (p->column != q->column) return p->column < q->column ? -1 : 1;
+    return (p->omega > q->omega) - (p->omega < q->omega);
 }
 
 static void write_chart(FILE *fp, const periodic_options *o, const whirl_chart_params *p,

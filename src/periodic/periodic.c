@@ -102,6 +102,7 @@ void whirl_periodic_free(whirl_periodic *w)
     free(w->out);
     if (w->eig) gsl_eigen_nonsymm_free(w->eig);
     if (w->eval) gsl_vector_complex_free(w->eval);
+    periodic_var_free(w->var);
     free(w);
 }
 

@@ -9,6 +9,10 @@
 #include "whirl/integrator.h"
 #include "whirl/periodic.h"
 
+/* The variational equations' workspace (variational.c), made at the first monodromy. */
+typedef struct periodic_var periodic_var;
+void periodic_var_free(periodic_var *v);
+
 struct whirl_periodic {
     whirl_pivot_path path; /* the pivot's path (the dynamics' pivot callback reads it) */
     const whirl_chain *chain;
@@ -33,6 +37,7 @@ struct whirl_periodic {
     double *out;        /* 8 m: re, im, err of the result; re, im of the coarse solve; scratch */
     gsl_eigen_nonsymm_workspace *eig;
     gsl_vector_complex *eval;
+    periodic_var *var; /* NULL until the first monodromy by the variational equations */
 };
 
 /* Newton's method on P(y) - y from y (overwritten) with steps per period, to the scaled

@@ -1,9 +1,24 @@
 /* The monodromy from the variational equations (whirl/periodic.h): the state and m tangent
- * vectors integrated together by the Gauss method on the augmented system (y, Y_1..Y_m),
- * Y_j' = J(t, y) Y_j, with the derivative of the projection after every step. A Runge-Kutta
- * method applied to the augmented system is the derivative of the same method applied to the
- * system (Hairer, Norsett, Wanner, "Solving ODEs I", II.14), so this is the derivative of the
- * discrete period map, as the central differences of periodic.c are, without their error.
+ * vectors integrated together by the Gauss method (gauss2) on the augmented system
+ * (y, Y_1..Y_m), Y_j' = J(t, y) Y_j, with the derivative of the projection after every step. A
+ * Runge-Kutta method applied to the augmented system is the derivative of the same method
+ * applied to the system (Hairer, Norsett, Wanner, "Solving ODEs I", II.14), so this is the
+ * derivative of the discrete period map, as the central differences of periodic.c are, without
+ * their error.
+ *
+ * The step, as src/integrate/integrator_gauss.c takes it (second-order form, stage
+ * accelerations K_i, fixed-point sweeps to round-off, Kahan's compensated update), but with
+ * the augmented system's structure used: the stage equations of the tangent vectors,
+ *   dK_i = J_i (dq + c_i h dv + h^2 sum_j (A^2)_ij dK_j,  dv + h sum_j a_ij dK_j),
+ * are linear with J_i the Jacobian at the state's stage i: the state's stages are converged
+ * first (its own sweeps, O(N) each), then J_i's coefficients are formed once per stage and step
+ * (the tridiagonal factors below included) and shared by every vector. The vectors are swept in
+ * blocks of VAR_BLOCK side by side (the block's component r of vector c at [r VAR_BLOCK + c]:
+ * the inner loops run over the block and vectorise), each block to its own round-off, its
+ * working set in the cache. Equal to the former sweeps of the whole augmented system to
+ * round-off: the largest difference of a monodromy entry over its matrix's largest entry was
+ * below 1e-13 on the vertically shaken chain (N = 3, 5, 30; 2D and 3D) and the circle drive
+ * (N = 5, 10), docs/theory/floquet.md.
  *
  * J Y of the Cartesian formulation in the inertial frame without applied forces
  * (src/dynamics/dyn_cartesian.c): with k_i = 1/m_i + 1/m_{i-1} (1/m_{-1} = 0), the multipliers
@@ -16,12 +31,13 @@
  *   ((delta A) lambda)_i = 2 (d_i . delta d_i) k_i lambda_i
  *     - (delta d_i . d_{i+1} + d_i . delta d_{i+1}) lambda_{i+1} / m_i
  *     - (delta d_i . d_{i-1} + d_i . delta d_{i-1}) lambda_{i-1} / m_{i-1},
- * and delta d_i'' the product rule on d_i''. A is factored once per evaluation (Thomas: it is
+ * and delta d_i'' the product rule on d_i''. A is factored once per stage (Thomas: it is
  * positive definite, no pivoting) and solved for every tangent vector.
  * The projection d <- l d / |d|, d' <- d' - (D . d' / l^2) D (D the projected d) has the
  * derivative delta D = (l / |d|) (delta d - (d . delta d / |d|^2) d),
  * delta R = delta d' - ((delta D . d' + D . delta d') / l^2) D - (D . d' / l^2) delta D,
  * taken at the state before its projection. */
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -29,239 +45,463 @@
 #include "core/error.h"
 #include "periodic/periodic_internal.h"
 
-typedef struct vec3 {
-    double x, y, z;
-} vec3;
+#define S 2          /* stages of gauss2 */
+#define VAR_BLOCK 8  /* tangent vectors swept together: 8 doubles, a cache line */
+#define SWEEPS_MAX 400 /* as integrator_gauss.c */
 
-typedef struct var_system {
-    whirl_periodic *w;
-    size_t cols;            /* tangent vectors */
-    size_t sh;              /* half of a state: dim N */
-    size_t half;            /* half of the augmented state: sh (1 + cols) */
-    double *base, *dbase;   /* a state and its derivative (size) */
-    double *lam, *diag, *off, *den, *up; /* tridiagonal system and its factors (N each) */
-    double *rhs;            /* N x cols: the variations of the multipliers */
-    double *k, *inv_m;      /* k_i = 1/m_i + 1/m_{i-1}, 1/m_i (N each) */
-    vec3 *d, *r, *dd; /* links, rates, a tangent vector's link part (N each) */
-} var_system;
+/* The coefficients of J at one stage, per link component (dim N, the state's layout) or per
+ * link (N): delta lambda's right-hand side
+ *   x_i = sum_k cr_ik dv_ik + cs_ik dq_ik + cu_ik dq_{i+1,k} + cl_ik dq_{i-1,k},
+ * then A x = that, then the acceleration
+ *   dK_ik = gx_ik x_i + sq_i dq_ik + gxu_ik x_{i+1} + squ_i dq_{i+1,k} + gxl_ik x_{i-1}
+ *           + sql_i dq_{i-1,k},
+ * the neighbours' coefficients 0 past the ends. */
+typedef struct var_stage {
+    double *cr, *cs, *cu, *cl, *gx, *gxu, *gxl; /* dim N each */
+    double *sq, *squ, *sql, *den, *up, *off;    /* N each: and Thomas's factors of A */
+} var_stage;
 
-static inline double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+struct periodic_var {
+    size_t n, dim, sh, m, blocks;
+    double c[S], a[S][S], a2[S][S], b[S], bq[S], extrap[S][S];
+    double *k, *k_new, *y, *stage, *f, *comp, *pre; /* the state: S sh, S sh, size x 5 */
+    double *lam, *diag, *kk, *inv_m;            /* N each */
+    var_stage st[S];
+    double *tan, *tcomp;  /* blocks x 2 sh x VAR_BLOCK: the tangent vectors, Kahan's terms */
+    double *dk;           /* blocks x S x sh x VAR_BLOCK: their stages (kept for the guess) */
+    double *dk_new;       /* S x sh x VAR_BLOCK */
+    double *dq, *dv;      /* (sh + 2 dim) x VAR_BLOCK: a stage's argument, a zero link each end */
+    double *x;            /* (N + 2) x VAR_BLOCK: delta lambda, a zero row each end */
+    double *mem;          /* the one allocation */
+};
 
-/* Link i of the half-state q (dim components per link) as a 3-vector. */
-static inline vec3 load(const var_system *s, const double *q, size_t i)
+void periodic_var_free(periodic_var *v)
 {
-    if (s->w->dim == 3) return (vec3){q[3 * i], q[3 * i + 1], q[3 * i + 2]};
-    return (vec3){q[2 * i], 0, q[2 * i + 1]};
+    if (v == NULL) return;
+    free(v->mem);
+    free(v);
 }
 
-static inline void store(const var_system *s, double *q, size_t i, vec3 v)
+/* gauss2's tableau (integrator_gauss.c), in long double then rounded. */
+static void tableau(periodic_var *v)
 {
-    if (s->w->dim == 3) {
-        q[3 * i] = v.x, q[3 * i + 1] = v.y, q[3 * i + 2] = v.z;
-    } else {
-        q[2 * i] = v.x, q[2 * i + 1] = v.z;
+    const long double r = sqrtl(3.0L) / 6, c[S] = {0.5L - r, 0.5L + r};
+    const long double a[S][S] = {{0.25L, 0.25L - r}, {0.25L + r, 0.25L}};
+    for (int i = 0; i < S; i++) {
+        v->c[i] = (double)c[i];
+        v->b[i] = 0.5;
+        v->bq[i] = (double)(0.5L * (1 - c[i]));
+        for (int j = 0; j < S; j++) {
+            v->a[i][j] = (double)a[i][j];
+            v->a2[i][j] = (double)(a[i][0] * a[0][j] + a[i][1] * a[1][j]);
+            /* Lagrange basis polynomial j of the nodes at 1 + c_i */
+            v->extrap[i][j] = (double)((1 + c[i] - c[1 - j]) / (c[j] - c[1 - j]));
+        }
     }
 }
 
-/* Solves A x = r in place (r -> x) with the factors of factor(): cols right-hand sides side by
- * side, r[i cols + c] (the columns are independent: the inner loop vectorises). */
-static void solve(const var_system *s, double *r, size_t cols)
+static periodic_var *var_alloc(const whirl_periodic *w)
 {
-    const size_t n = s->w->n;
-    const double *inv_den = s->den, *off = s->off, *up = s->up;
-    for (size_t c = 0; c < cols; c++) r[c] *= inv_den[0];
-    for (size_t i = 1; i < n; i++) {
-        double *ri = r + i * cols;
-        const double *rp = ri - cols;
-        for (size_t c = 0; c < cols; c++) ri[c] = (ri[c] - off[i - 1] * rp[c]) * inv_den[i];
+    periodic_var *v = calloc(1, sizeof *v);
+    if (v == NULL) return NULL;
+    v->n = w->n, v->dim = (size_t)w->dim, v->sh = w->size / 2, v->m = w->m;
+    v->blocks = (w->m + VAR_BLOCK - 1) / VAR_BLOCK;
+    const size_t n = v->n, sh = v->sh, B = VAR_BLOCK, nb = v->blocks;
+    const size_t total = 2 * S * sh + 5 * w->size + 4 * n + S * (7 * sh + 6 * n) +
+                         2 * nb * 2 * sh * B + nb * S * sh * B + S * sh * B +
+                         2 * (sh + 2 * v->dim) * B + (n + 2) * B;
+    v->mem = calloc(total, sizeof *v->mem);
+    if (v->mem == NULL) {
+        free(v);
+        return NULL;
     }
-    for (size_t i = n - 1; i-- > 0;) {
-        double *ri = r + i * cols;
-        const double *rn = ri + cols;
-        for (size_t c = 0; c < cols; c++) ri[c] -= up[i] * rn[c];
+    double *p = v->mem;
+#define TAKE(ptr, count) (ptr = p, p += (count))
+    TAKE(v->k, S * sh), TAKE(v->k_new, S * sh), TAKE(v->y, w->size), TAKE(v->stage, w->size), TAKE(v->f, w->size);
+    TAKE(v->comp, w->size), TAKE(v->pre, w->size);
+    TAKE(v->lam, n), TAKE(v->diag, n), TAKE(v->kk, n), TAKE(v->inv_m, n);
+    for (int i = 0; i < S; i++) {
+        var_stage *s = &v->st[i];
+        TAKE(s->cr, sh), TAKE(s->cs, sh), TAKE(s->cu, sh), TAKE(s->cl, sh), TAKE(s->gx, sh);
+        TAKE(s->gxu, sh), TAKE(s->gxl, sh);
+        TAKE(s->sq, n), TAKE(s->squ, n), TAKE(s->sql, n), TAKE(s->den, n), TAKE(s->up, n);
+        TAKE(s->off, n);
     }
+    TAKE(v->tan, nb * 2 * sh * B), TAKE(v->tcomp, nb * 2 * sh * B), TAKE(v->dk, nb * S * sh * B);
+    TAKE(v->dk_new, S * sh * B), TAKE(v->dq, (sh + 2 * v->dim) * B);
+    TAKE(v->dv, (sh + 2 * v->dim) * B), TAKE(v->x, (n + 2) * B);
+#undef TAKE
+    tableau(v);
+    return v;
 }
 
-/* Thomas's factors of A: den holds the inverse pivots, up the upper factor. */
-static void factor(var_system *s)
+/* Thomas's factors of A (diag, s->off): s->den the inverse pivots, s->up the upper factor. */
+static void factor(const periodic_var *v, var_stage *s)
 {
-    const size_t n = s->w->n;
-    double den = s->diag[0];
+    double den = v->diag[0];
     s->den[0] = 1 / den;
-    for (size_t i = 1; i < n; i++) {
+    for (size_t i = 1; i < v->n; i++) {
         s->up[i - 1] = s->off[i - 1] / den;
-        den = s->diag[i] - s->off[i - 1] * s->up[i - 1];
+        den = v->diag[i] - s->off[i - 1] * s->up[i - 1];
         s->den[i] = 1 / den;
     }
 }
 
-static int var_rhs(double t, const double y[], double dydt[], void *params)
+/* Solves A x = r in place with s's factors, cols right-hand sides side by side (r[i cols + c]). */
+static void solve(const periodic_var *v, const var_stage *s, double *r, size_t cols)
 {
-    var_system *s = params;
-    whirl_periodic *w = s->w;
-    const size_t n = w->n, sh = s->sh, half = s->half;
-    const double *mass = w->chain->mass;
-    /* the state: its own right-hand side */
-    memcpy(s->base, y, sh * sizeof *y);
-    memcpy(s->base + sh, y + half, sh * sizeof *y);
-    int status = whirl_dyn_rhs(t, s->base, s->dbase, w->dyn);
-    if (status) return status;
-    memcpy(dydt, y + half, half * sizeof *y); /* dq/dt = v, for the state and every vector */
-    memcpy(dydt + half, s->dbase + sh, sh * sizeof *y);
-    /* the links, their rates, k_i, 1/m_i and the multipliers, once per evaluation */
+    const size_t n = v->n;
+    for (size_t c = 0; c < cols; c++) r[c] *= s->den[0];
+    for (size_t i = 1; i < n; i++) {
+        double *ri = r + i * cols;
+        const double *rp = ri - cols, o = s->off[i - 1], d = s->den[i];
+        for (size_t c = 0; c < cols; c++) ri[c] = (ri[c] - o * rp[c]) * d;
+    }
+    for (size_t i = n - 1; i-- > 0;) {
+        double *ri = r + i * cols;
+        const double *rn = ri + cols, u = s->up[i];
+        for (size_t c = 0; c < cols; c++) ri[c] -= u * rn[c];
+    }
+}
+
+/* J's coefficients at the stage state y (size) at time t into s. */
+static void stage_coefficients(whirl_periodic *w, periodic_var *v, var_stage *s, double t,
+                               const double *y)
+{
+    const size_t n = v->n, dim = v->dim;
+    const double *q = y, *r = y + v->sh, *mass = w->chain->mass;
     double p[3], pv[3], pa[3];
     whirl_pivot_eval(t, p, pv, pa, &w->path);
-    const vec3 field = {-pa[0], w->dim == 3 ? -pa[1] : 0, -w->chain->gravity - pa[2]};
-    vec3 *d = s->d, *r = s->r;
+    const double f3[3] = {-pa[0], -pa[1], -w->chain->gravity - pa[2]};
+    const double field[3] = {f3[0], dim == 3 ? f3[1] : f3[2], f3[2]};
     for (size_t i = 0; i < n; i++) {
-        d[i] = load(s, s->base, i), r[i] = load(s, s->base + sh, i);
-        s->inv_m[i] = 1 / mass[i];
-        s->k[i] = s->inv_m[i] + (i > 0 ? s->inv_m[i - 1] : 0);
+        v->inv_m[i] = 1 / mass[i];
+        v->kk[i] = v->inv_m[i] + (i > 0 ? v->inv_m[i - 1] : 0);
     }
     for (size_t i = 0; i < n; i++) {
-        s->diag[i] = dot(d[i], d[i]) * s->k[i];
-        if (i + 1 < n) s->off[i] = -dot(d[i], d[i + 1]) * s->inv_m[i];
-        s->lam[i] = dot(r[i], r[i]) + (i == 0 ? dot(d[i], field) : 0);
-    }
-    factor(s);
-    solve(s, s->lam, 1);
-    const double *lam = s->lam, *k = s->k, *inv_m = s->inv_m;
-    const size_t cols = s->cols;
-    double *xs = s->rhs; /* N x cols: x[i cols + c] */
-    vec3 *dd = s->dd;
-    /* every tangent vector: the right-hand sides of delta lambda, one solve for all, then the
-       accelerations */
-    for (size_t c = 1; c <= cols; c++) {
-        const double *dq = y + c * sh, *dv = y + half + c * sh;
-        for (size_t i = 0; i < n; i++) dd[i] = load(s, dq, i);
-        for (size_t i = 0; i < n; i++) {
-            double v = 2 * dot(r[i], load(s, dv, i)) - 2 * dot(d[i], dd[i]) * k[i] * lam[i];
-            if (i + 1 < n) v += (dot(dd[i], d[i + 1]) + dot(d[i], dd[i + 1])) * lam[i + 1] * inv_m[i];
-            if (i > 0) v += (dot(dd[i], d[i - 1]) + dot(d[i], dd[i - 1])) * lam[i - 1] * inv_m[i - 1];
-            xs[i * cols + (c - 1)] = v;
+        double dd = 0, rr = 0, dn = 0, df = 0;
+        for (size_t k = 0; k < dim; k++) {
+            const double di = q[dim * i + k];
+            dd += di * di, rr += r[dim * i + k] * r[dim * i + k], df += di * field[k];
+            if (i + 1 < n) dn += di * q[dim * (i + 1) + k];
         }
-        xs[c - 1] += dot(dd[0], field);
+        v->diag[i] = dd * v->kk[i];
+        if (i + 1 < n) s->off[i] = -dn * v->inv_m[i];
+        v->lam[i] = rr + (i == 0 ? df : 0);
     }
-    solve(s, xs, cols);
-    for (size_t c = 1; c <= cols; c++) {
-        const double *dq = y + c * sh;
-        double *acc = dydt + half + c * sh;
-        for (size_t i = 0; i < n; i++) dd[i] = load(s, dq, i);
-        const double *x = xs + (c - 1);
-        for (size_t i = 0; i < n; i++) {
-            const double gs = -x[i * cols] * k[i], ls = -lam[i] * k[i];
-            vec3 a = {gs * d[i].x + ls * dd[i].x, gs * d[i].y + ls * dd[i].y,
-                      gs * d[i].z + ls * dd[i].z};
-            if (i + 1 < n) {
-                const double g = x[(i + 1) * cols] * inv_m[i], l = lam[i + 1] * inv_m[i];
-                a.x += g * d[i + 1].x + l * dd[i + 1].x;
-                a.y += g * d[i + 1].y + l * dd[i + 1].y;
-                a.z += g * d[i + 1].z + l * dd[i + 1].z;
-            }
-            if (i > 0) {
-                const double g = x[(i - 1) * cols] * inv_m[i - 1], l = lam[i - 1] * inv_m[i - 1];
-                a.x += g * d[i - 1].x + l * dd[i - 1].x;
-                a.y += g * d[i - 1].y + l * dd[i - 1].y;
-                a.z += g * d[i - 1].z + l * dd[i - 1].z;
-            }
-            store(s, acc, i, a);
+    factor(v, s);
+    solve(v, s, v->lam, 1);
+    const double *lam = v->lam, *kk = v->kk, *im = v->inv_m;
+    for (size_t i = 0; i < n; i++) {
+        const double up = i + 1 < n ? lam[i + 1] * im[i] : 0;
+        const double lo = i > 0 ? lam[i - 1] * im[i - 1] : 0;
+        s->sq[i] = -lam[i] * kk[i], s->squ[i] = up, s->sql[i] = lo;
+        for (size_t k = 0; k < dim; k++) {
+            const size_t e = dim * i + k;
+            const double dn = i + 1 < n ? q[e + dim] : 0, dp = i > 0 ? q[e - dim] : 0;
+            s->cr[e] = 2 * r[e];
+            s->cs[e] = -2 * kk[i] * lam[i] * q[e] + up * dn + lo * dp + (i == 0 ? field[k] : 0);
+            s->cu[e] = up * q[e], s->cl[e] = lo * q[e];
+            s->gx[e] = -kk[i] * q[e];
+            s->gxu[e] = i + 1 < n ? dn * im[i] : 0;
+            s->gxl[e] = i > 0 ? dp * im[i - 1] : 0;
         }
     }
-    for (size_t j = 0; j < half; j++)
-        if (!isfinite(dydt[half + j]))
+}
+
+/* out (sh x VAR_BLOCK) <- J of stage s applied to v->dq, v->dv (VAR_BLOCK vectors). */
+static void apply_j(const periodic_var *v, const var_stage *s, double *out)
+{
+    enum { B = VAR_BLOCK };
+    const size_t n = v->n, dim = v->dim;
+    const double *dq = v->dq + dim * B, *dv = v->dv + dim * B; /* past the zero link */
+    double *x = v->x + B;                                       /* past the zero row */
+    for (size_t i = 0; i < n; i++) {
+        double xi[B] = {0};
+        for (size_t k = 0; k < dim; k++) {
+            const size_t e = dim * i + k;
+            const double *q = dq + e * B, *qv = dv + e * B;
+            const double cr = s->cr[e], cs = s->cs[e], cu = s->cu[e], cl = s->cl[e];
+#pragma omp simd
+            for (size_t c = 0; c < B; c++)
+                xi[c] += cr * qv[c] + cs * q[c] + cu * q[c + dim * B] + cl * q[c - dim * B];
+        }
+        memcpy(x + i * B, xi, sizeof xi);
+    }
+    solve(v, s, x, B);
+    for (size_t i = 0; i < n; i++) {
+        const double sq = s->sq[i], squ = s->squ[i], sql = s->sql[i];
+        const double *xi = x + i * B;
+        for (size_t k = 0; k < dim; k++) {
+            const size_t e = dim * i + k;
+            const double *q = dq + e * B;
+            const double gx = s->gx[e], gxu = s->gxu[e], gxl = s->gxl[e];
+            double *o = out + e * B;
+#pragma omp simd
+            for (size_t c = 0; c < B; c++)
+                o[c] = gx * xi[c] + sq * q[c] + gxu * xi[c + B] + squ * q[c + dim * B] +
+                       gxl * xi[c - B] + sql * q[c - dim * B];
+        }
+    }
+}
+
+/* v->dq, v->dv <- stage i's argument from the block's vectors tan and stages dk. */
+static void stage_argument(const periodic_var *v, int i, double h, const double *tan,
+                           const double *dk)
+{
+    const size_t len = v->sh * VAR_BLOCK;
+    const double *tq = tan, *tv = tan + len, *k0 = dk, *k1 = dk + len;
+    const double cq = v->c[i] * h, q0 = h * h * v->a2[i][0], q1 = h * h * v->a2[i][1];
+    const double v0 = h * v->a[i][0], v1 = h * v->a[i][1];
+    double *dq = v->dq + v->dim * VAR_BLOCK, *dv = v->dv + v->dim * VAR_BLOCK;
+#pragma omp simd
+    for (size_t r = 0; r < len; r++) {
+        dq[r] = tq[r] + cq * tv[r] + q0 * k0[r] + q1 * k1[r];
+        dv[r] = tv[r] + v0 * k0[r] + v1 * k1[r];
+    }
+}
+
+/* The stages of one block of tangent vectors (tan: 2 sh x VAR_BLOCK; dk: S x sh x VAR_BLOCK,
+ * the previous step's stages, or first 1 for none) swept to round-off, then the block
+ * advanced by the step with Kahan's compensation (tcomp). */
+static int block_step(periodic_var *v, double t, double h, double *tan, double *tcomp,
+                      double *dk, int first)
+{
+    const size_t len = v->sh * VAR_BLOCK;
+    if (first) { /* J_i at the step's start values */
+        const double *tq = tan, *tv = tan + len;
+        memcpy(v->dq + v->dim * VAR_BLOCK, tq, len * sizeof *tq);
+        memcpy(v->dv + v->dim * VAR_BLOCK, tv, len * sizeof *tv);
+        for (int i = 0; i < S; i++) apply_j(v, &v->st[i], dk + i * len);
+    } else { /* the previous step's collocation polynomial extrapolated */
+        for (size_t r = 0; r < len; r++) {
+            const double k0 = dk[r], k1 = dk[len + r];
+            dk[r] = v->extrap[0][0] * k0 + v->extrap[0][1] * k1;
+            dk[len + r] = v->extrap[1][0] * k0 + v->extrap[1][1] * k1;
+        }
+    }
+    double prev = INFINITY, best = INFINITY;
+    int converged = 0;
+    for (int sweep = 0; sweep < SWEEPS_MAX && !converged; sweep++) {
+        /* stage by stage, each new stage used at once by the next (Gauss-Seidel): the same
+           fixed point, in fewer sweeps than with the previous sweep's stages (Jacobi) */
+        double delta = 0, big = 0, *nk = v->dk_new;
+        for (int i = 0; i < S; i++) {
+            stage_argument(v, i, h, tan, dk);
+            apply_j(v, &v->st[i], nk);
+            double *ki = dk + i * len;
+            /* the increment's and the stages' sizes (1-norms: a sum vectorises, a maximum does
+               not here) */
+#pragma omp simd reduction(+ : delta, big)
+            for (size_t r = 0; r < len; r++) {
+                delta += fabs(nk[r] - ki[r]);
+                big += fabs(nk[r]);
+                ki[r] = nk[r];
+            }
+        }
+        if (!(big < INFINITY) || !(delta < INFINITY))
             return whirl_fail(GSL_EBADFUNC, "the variational equations are not finite at "
                               "t = %.17g", t);
+        /* the equations are linear: the increments shrink by rho per sweep and the iterate's
+           error is about delta rho / (1 - rho); below a unit of round-off of the block it is
+           converged (or, as integrator_gauss.c, when the increments stop decreasing) */
+        const double rho = prev < INFINITY ? delta / prev : 1; /* none after one sweep */
+        if (delta == 0 || (rho < 1 && delta * rho <= (1 - rho) * DBL_EPSILON * big) ||
+            (delta >= prev && prev <= 1e-8 * big))
+            converged = 1;
+        else if (!(delta <= 1e3 * best))
+            return whirl_fail(GSL_EMAXITER, "the variational equations' stage iteration "
+                              "diverges at t = %.17g (step %g)", t, h);
+        best = fmin(best, delta), prev = delta;
+    }
+    if (!converged)
+        return whirl_fail(GSL_EMAXITER, "the variational equations' stage iteration did not "
+                          "converge in %d sweeps at t = %.17g", SWEEPS_MAX, t);
+    double *tq = tan, *tv = tan + len, *cq = tcomp, *cv = tcomp + len;
+    const double *k0 = dk, *k1 = dk + len;
+    for (size_t r = 0; r < len; r++) {
+        const double iq = h * (tv[r] + h * (v->bq[0] * k0[r] + v->bq[1] * k1[r]));
+        const double iv = h * (v->b[0] * k0[r] + v->b[1] * k1[r]);
+        const double aq = iq + cq[r], sq = tq[r] + aq;
+        cq[r] = (tq[r] - sq) + aq, tq[r] = sq;
+        const double av = iv + cv[r], sv = tv[r] + av;
+        cv[r] = (tv[r] - sv) + av, tv[r] = sv;
+    }
     return GSL_SUCCESS;
 }
 
-static int var_project(double t, double y[], void *params)
+/* The derivative of the projection (file header) on one block, at the state pre (before its
+ * projection). */
+static void block_project(const whirl_periodic *w, const periodic_var *v, const double *pre,
+                          double *tan)
 {
-    var_system *s = params;
-    whirl_periodic *w = s->w;
-    const size_t n = w->n, sh = s->sh, half = s->half;
-    const double *len = w->chain->length;
-    for (size_t i = 0; i < n; i++) {
-        const vec3 d = load(s, y, i), r = load(s, y + half, i);
-        const double l = len[i], nd2 = dot(d, d), sc = l / sqrt(nd2);
-        const vec3 D = {sc * d.x, sc * d.y, sc * d.z};
-        const double along = dot(D, r) / (l * l);
-        for (size_t c = 1; c <= s->cols; c++) {
-            const vec3 dd = load(s, y + c * sh, i), dr = load(s, y + half + c * sh, i);
-            const double f = dot(d, dd) / nd2;
-            const vec3 dD = {sc * (dd.x - f * d.x), sc * (dd.y - f * d.y), sc * (dd.z - f * d.z)};
-            const double dal = (dot(dD, r) + dot(D, dr)) / (l * l);
-            const vec3 dR = {dr.x - dal * D.x - along * dD.x, dr.y - dal * D.y - along * dD.y,
-                             dr.z - dal * D.z - along * dD.z};
-            store(s, y + c * sh, i, dD);
-            store(s, y + half + c * sh, i, dR);
+    enum { B = VAR_BLOCK };
+    const size_t dim = v->dim, len = v->sh * B;
+    for (size_t i = 0; i < v->n; i++) {
+        const double *d = pre + dim * i, *r = pre + v->sh + dim * i, l = w->chain->length[i];
+        double nd2 = 0;
+        for (size_t k = 0; k < dim; k++) nd2 += d[k] * d[k];
+        const double sc = l / sqrt(nd2), l2 = l * l;
+        double dr = 0;
+        for (size_t k = 0; k < dim; k++) dr += sc * d[k] * r[k];
+        const double along = dr / l2;
+        double *q = tan + dim * i * B, *u = tan + len + dim * i * B;
+        double f[B] = {0}, dal[B] = {0};
+        for (size_t k = 0; k < dim; k++)
+            for (size_t c = 0; c < B; c++) f[c] += d[k] * q[k * B + c] / nd2;
+        for (size_t k = 0; k < dim; k++)
+            for (size_t c = 0; c < B; c++) {
+                q[k * B + c] = sc * (q[k * B + c] - f[c] * d[k]); /* delta D */
+                dal[c] += (q[k * B + c] * r[k] + sc * d[k] * u[k * B + c]) / l2;
+            }
+        for (size_t k = 0; k < dim; k++)
+            for (size_t c = 0; c < B; c++)
+                u[k * B + c] -= dal[c] * sc * d[k] + along * q[k * B + c];
+    }
+}
+
+/* v->stage <- the state's stage i from y and the stages v->k. */
+static void stage_state(periodic_var *v, int i, double h, const double *y)
+{
+    const size_t sh = v->sh;
+    const double *q = y, *u = y + sh, *k0 = v->k, *k1 = v->k + sh;
+    for (size_t r = 0; r < sh; r++) {
+        v->stage[r] = q[r] + h * (v->c[i] * u[r] + h * (v->a2[i][0] * k0[r] + v->a2[i][1] * k1[r]));
+        v->stage[sh + r] = u[r] + h * (v->a[i][0] * k0[r] + v->a[i][1] * k1[r]);
+    }
+}
+
+/* The state's step (integrator_gauss.c's, with its own stages v->k), then J's coefficients at
+ * the converged stages. first: no previous step to extrapolate from. */
+static int state_step(whirl_periodic *w, periodic_var *v, double t, double h, double *y,
+                      int first)
+{
+    const size_t sh = v->sh;
+    if (first) {
+        int status = whirl_dyn_rhs(t, y, v->f, w->dyn);
+        if (status) return status;
+        for (int i = 0; i < S; i++) memcpy(v->k + i * sh, v->f + sh, sh * sizeof *v->f);
+    } else {
+        for (size_t r = 0; r < sh; r++) {
+            const double k0 = v->k[r], k1 = v->k[sh + r];
+            v->k[r] = v->extrap[0][0] * k0 + v->extrap[0][1] * k1;
+            v->k[sh + r] = v->extrap[1][0] * k0 + v->extrap[1][1] * k1;
         }
     }
-    /* the state: the dynamics' own projection, as in the motion */
-    memcpy(s->base, y, sh * sizeof *y);
-    memcpy(s->base + sh, y + half, sh * sizeof *y);
-    const int status = whirl_dyn_project(w->dyn, t, s->base);
-    memcpy(y, s->base, sh * sizeof *y);
-    memcpy(y + half, s->base + sh, sh * sizeof *y);
+    double prev = INFINITY, best = INFINITY;
+    int converged = 0;
+    for (int sweep = 0; sweep < SWEEPS_MAX && !converged; sweep++) {
+        double delta = 0, big = 0;
+        for (int i = 0; i < S; i++) {
+            stage_state(v, i, h, y);
+            int status = whirl_dyn_rhs(t + v->c[i] * h, v->stage, v->f, w->dyn);
+            if (status) return status;
+            for (size_t r = 0; r < sh; r++) {
+                const double kn = v->f[sh + r], e = fabs(kn - v->k[i * sh + r]), a = fabs(kn);
+                delta = e > delta ? e : delta;
+                big = a > big ? a : big;
+                v->k_new[i * sh + r] = kn;
+            }
+        }
+        double *swap = v->k;
+        v->k = v->k_new, v->k_new = swap;
+        if (delta == 0 || (delta >= prev && prev <= 1e-8 * (big + w->chain->gravity)))
+            converged = 1;
+        else if (!(delta <= 1e3 * best))
+            return whirl_fail(GSL_EMAXITER, "the Gauss stage iteration diverges at t = %.17g "
+                              "(step %g too large for the fastest mode)", t, h);
+        best = fmin(best, delta), prev = delta;
+    }
+    if (!converged)
+        return whirl_fail(GSL_EMAXITER, "the Gauss stage iteration did not converge in %d "
+                          "sweeps at t = %.17g", SWEEPS_MAX, t);
+    for (int i = 0; i < S; i++) { /* the converged stages: J's coefficients there */
+        stage_state(v, i, h, y);
+        stage_coefficients(w, v, &v->st[i], t + v->c[i] * h, v->stage);
+    }
+    return GSL_SUCCESS;
+}
+
+/* The state's update (Kahan) and projection, the pre-projection state kept in v->pre. */
+static int state_update(whirl_periodic *w, periodic_var *v, double t1, double h, double *y)
+{
+    const size_t sh = v->sh;
+    double *q = y, *u = y + sh;
+    for (size_t r = 0; r < sh; r++) {
+        const double k0 = v->k[r], k1 = v->k[sh + r];
+        const double inc[2] = {h * (u[r] + h * (v->bq[0] * k0 + v->bq[1] * k1)),
+                               h * (v->b[0] * k0 + v->b[1] * k1)};
+        double *dst[2] = {q + r, u + r}, *cmp[2] = {v->comp + r, v->comp + sh + r};
+        for (int k = 0; k < 2; k++) {
+            const double add = inc[k] + *cmp[k], sum = *dst[k] + add;
+            *cmp[k] = (*dst[k] - sum) + add;
+            *dst[k] = sum;
+        }
+    }
+    memcpy(v->pre, y, w->size * sizeof *y);
+    int status = whirl_dyn_project(w->dyn, t1, y);
+    for (size_t r = 0; status == GSL_SUCCESS && r < w->size; r++)
+        if (!isfinite(y[r]))
+            status = whirl_fail(GSL_EBADFUNC, "the state is not finite at t = %.17g", t1);
     return status;
+}
+
+/* The vectors t_j at y (w's basis) into v->tan, the padding columns 0. */
+static void load_vectors(whirl_periodic *w, periodic_var *v, const double *y)
+{
+    const size_t size = w->size, B = VAR_BLOCK;
+    double *x = w->vec, *vec = w->scratch + size;
+    memset(v->tan, 0, v->blocks * size * B * sizeof *v->tan);
+    memset(v->tcomp, 0, v->blocks * size * B * sizeof *v->tcomp);
+    for (size_t j = 0; j < v->m; j++) {
+        memset(x, 0, v->m * sizeof *x);
+        x[j] = 1;
+        periodic_tangent_add(w, y, x, vec); /* y + t_j: the vector t_j at y */
+        double *blk = v->tan + (j / B) * size * B;
+        for (size_t r = 0; r < size; r++) blk[r * B + j % B] = vec[r] - y[r];
+    }
 }
 
 int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps)
 {
-    const size_t m = w->m, sh = w->size / 2, n = w->n;
-    var_system s = {.w = w, .cols = m, .sh = sh, .half = sh * (1 + m)};
-    const size_t total = 2 * s.half;
-    double *aug = malloc(total * sizeof *aug);
-    double *work = malloc((2 * w->size + 7 * n + n * m) * sizeof *work);
-    vec3 *links = malloc(3 * n * sizeof *links);
-    if (aug == NULL || work == NULL || links == NULL) {
-        free(aug), free(work), free(links);
-        return whirl_fail(GSL_ENOMEM, "out of memory for the variational equations (%zu "
-                          "doubles)", total);
-    }
-    s.base = work, s.dbase = work + w->size;
-    s.lam = work + 2 * w->size, s.diag = s.lam + n, s.off = s.diag + n, s.den = s.off + n;
-    s.up = s.den + n, s.k = s.up + n, s.inv_m = s.k + n, s.rhs = s.inv_m + n;
-    s.d = links, s.r = links + n, s.dd = links + 2 * n;
+    if (w->var == NULL && (w->var = var_alloc(w)) == NULL)
+        return whirl_fail(GSL_ENOMEM, "out of memory for the variational equations (%zu x %zu)",
+                          w->size, w->m);
+    periodic_var *v = w->var;
+    const size_t m = w->m, size = w->size, B = VAR_BLOCK, len = v->sh * B;
     w->have_mono = 0;
     periodic_basis(w, y);
-    memcpy(aug, y, sh * sizeof *y);
-    memcpy(aug + s.half, y + sh, sh * sizeof *y);
-    double *x = w->vec, *vec = w->scratch + w->size, *zero = w->scratch + 2 * w->size;
-    memset(zero, 0, w->size * sizeof *zero);
-    for (size_t j = 0; j < m; j++) {
-        memset(x, 0, m * sizeof *x);
-        x[j] = 1;
-        periodic_tangent_add(w, y, x, vec); /* y + t_j: the vector t_j at y */
-        for (size_t k = 0; k < w->size; k++) vec[k] -= y[k];
-        memcpy(aug + (j + 1) * sh, vec, sh * sizeof *vec);
-        memcpy(aug + s.half + (j + 1) * sh, vec + sh, sh * sizeof *vec);
-    }
-    const whirl_system sys = {.rhs = var_rhs, .project = var_project, .size = total,
-                              .params = &s, .second_order = 1,
-                              .acceleration_scale = w->chain->gravity};
-    whirl_integrator *it = whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys);
-    int status = it ? GSL_SUCCESS : whirl_last_status();
-    /* the period in 16 pieces of whole steps, for the progress display (a piece ends at
-       k h exactly as the steps of one advance would: the same fixed steps) */
+    load_vectors(w, v, y);
+    double *state = v->y;
+    memcpy(state, y, size * sizeof *y);
+    memset(v->comp, 0, size * sizeof *v->comp);
     const double period = whirl_pivot_period(&w->path), h = period / steps;
     const int pieces = steps < 16 ? steps : 16;
-    double t = 0;
-    for (int k = 1; k <= pieces && status == GSL_SUCCESS; k++) {
-        const long end = (long)steps * k / pieces;
-        status = whirl_integrator_advance(it, &t, aug, k == pieces ? period : (double)end * h, h, 0);
-        periodic_tick(w, (double)k / pieces);
-    }
-    whirl_integrator_free(it);
-    if (status == GSL_SUCCESS) {
-        double *col = w->vec + m;
-        for (size_t j = 0; j < m; j++) {
-            memcpy(vec, aug + (j + 1) * sh, sh * sizeof *vec);
-            memcpy(vec + sh, aug + s.half + (j + 1) * sh, sh * sizeof *vec);
-            periodic_tangent_read(w, zero, vec, col);
-            for (size_t i = 0; i < m; i++) w->mono[i * m + j] = col[i];
+    int status = GSL_SUCCESS, piece = 1;
+    for (int k = 0; k < steps && status == GSL_SUCCESS; k++) {
+        const double ta = k * h, tb = k + 1 == steps ? period : (k + 1) * h;
+        if (whirl_stop_requested()) {
+            status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at t = %.17g", ta);
+            break;
         }
-        w->have_mono = 1;
+        status = state_step(w, v, ta, tb - ta, state, k == 0);
+        for (size_t b = 0; b < v->blocks && status == GSL_SUCCESS; b++)
+            status = block_step(v, ta, tb - ta, v->tan + b * 2 * len, v->tcomp + b * 2 * len,
+                                v->dk + b * S * len, k == 0);
+        if (status == GSL_SUCCESS) status = state_update(w, v, tb, tb - ta, state);
+        for (size_t b = 0; b < v->blocks && status == GSL_SUCCESS; b++)
+            block_project(w, v, v->pre, v->tan + b * 2 * len);
+        if ((long)(k + 1) * pieces >= (long)steps * piece) periodic_tick(w, (double)piece++ / pieces);
     }
-    free(aug), free(work), free(links);
-    return status;
+    if (status) return status;
+    double *vec = w->scratch + size, *zero = w->scratch + 2 * size, *col = w->vec + m;
+    memset(zero, 0, size * sizeof *zero);
+    for (size_t j = 0; j < m; j++) {
+        const double *blk = v->tan + (j / B) * 2 * len;
+        for (size_t r = 0; r < size; r++) vec[r] = blk[r * B + j % B];
+        periodic_tangent_read(w, zero, vec, col);
+        for (size_t i = 0; i < m; i++) w->mono[i * m + j] = col[i];
+    }
+    w->have_mono = 1;
+    return GSL_SUCCESS;
 }

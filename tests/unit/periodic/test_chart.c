@@ -13,7 +13,10 @@
 #include <stddef.h>
 #include <setjmp.h>
 #include <cmocka.h>
+#include <stdlib.h>
+
 #include <gsl/gsl_eigen.h>
+#include <gsl/gsl_sort_vector.h>
 
 #include "whirl/periodic.h"
 
@@ -116,7 +119,7 @@ static const edge_ref INVERTED[] = {
     {18, -1, 0.4592019490122432}, {20, 1, 0.07078795806129158},  {20, -1, 0.45821858211327277},
 };
 
-#define MAX_POINTS 64
+#define MAX_POINTS 512
 
 typedef struct kept {
     int n;
@@ -131,13 +134,23 @@ static int keep_point(void *data, const whirl_chart_point *p)
     return 0;
 }
 
-/* The chart's points one to one with the references: the same rate (to round-off in the grid),
- * edge, and q = 2 A to 1e-8 (the issue's tolerance); returns the worst |q - q_ref|. */
-static double match_refs(const kept *k, const edge_ref *ref, int nref)
+/* The chart's points on the grid's rates (the points a tongue's tip adds between two rates
+ * aside) one to one with the references: the same rate (to round-off in the grid), edge, and
+ * q = 2 A to 1e-8 (the issue's tolerance); returns the worst |q - q_ref|. */
+static double match_refs(const kept *k, const whirl_chart_params *p, const edge_ref *ref,
+                         int nref)
 {
-    int used[MAX_POINTS] = {0};
+    int used[MAX_POINTS] = {0}, on_grid = 0;
     double worst = 0;
-    assert_int_equal(k->n, nref);
+    for (int i = 0; i < k->n; i++) {
+        const whirl_chart_point *q = &k->p[i];
+        const double rate = p->omega_min + q->column * (p->omega_max - p->omega_min) /
+                                               (p->columns - 1);
+        if (fabs(q->omega - rate) > 1e-12 || q->amplitude == 0)
+            used[i] = 1; /* not a grid point, or a tongue's tip */
+        else on_grid++;
+    }
+    assert_int_equal(on_grid, nref);
     for (int r = 0; r < nref; r++) {
         int best = -1;
         for (int i = 0; i < k->n; i++) {
@@ -166,7 +179,7 @@ static void check_chart(int inverted, double omega_min, double omega_max, int co
                                   .amp_max = amp_max, .rows = rows};
     kept k = {0};
     assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
-    const double worst = match_refs(&k, ref, nref);
+    const double worst = match_refs(&k, &p, ref, nref);
     print_message("# %s: %d points, worst |q - q_scipy| %.2g\n", what, nref, worst);
     assert_true(worst < 1e-8);
     whirl_chain_free(c);
@@ -249,7 +262,7 @@ static void check_links(int n, const edge_ref *ref, int nref, const char *what)
                                   .amp_max = 0.1, .rows = 100};
     kept k = {0};
     assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
-    const double worst = match_refs(&k, ref, nref);
+    const double worst = match_refs(&k, &p, ref, nref);
     print_message("# %s: %d points, worst 2 |A - A_scipy| %.2g\n", what, nref, worst);
     assert_true(worst < 1e-8);
     whirl_chain_free(c);
@@ -265,6 +278,90 @@ static void test_scipy_three_links(void **state)
 {
     (void)state;
     check_links(3, LINKS3, sizeof LINKS3 / sizeof *LINKS3, "N = 3 hanging, per-mode Mathieu");
+}
+
+/* ---- the tongues' tips ----
+ * The characteristic values of the even solutions from their Hill matrices (HILL terms): a_2,
+ * the second lowest of the cosines cos(2 k tau) (diag (2k)^2, off-diagonal q, the first one
+ * sqrt(2) q); b_2, the lowest of the sines sin(2 k tau), k >= 1 (diag (2k)^2, off-diagonal q). */
+static double hill_even(double q, int sines)
+{
+    gsl_matrix *m = gsl_matrix_calloc(HILL, HILL);
+    for (int k = 0; k < HILL; k++) {
+        const double n = 2.0 * (k + sines);
+        gsl_matrix_set(m, k, k, n * n);
+        const double off = k == 0 && !sines ? sqrt(2) * q : q;
+        if (k + 1 < HILL) gsl_matrix_set(m, k, k + 1, off), gsl_matrix_set(m, k + 1, k, off);
+    }
+    gsl_vector *ev = gsl_vector_alloc(HILL);
+    gsl_eigen_symm_workspace *ws = gsl_eigen_symm_alloc(HILL);
+    gsl_eigen_symm(m, ev, ws);
+    gsl_sort_vector(ev);
+    const double v = gsl_vector_get(ev, sines ? 0 : 1);
+    gsl_eigen_symm_free(ws);
+    gsl_vector_free(ev);
+    gsl_matrix_free(m);
+    return v;
+}
+
+static int by_curve_rate(const void *a, const void *b)
+{
+    const whirl_chart_point *p = a, *q = b;
+    if (p->curve != q->curve) return p->curve < q->curve ? -1 : 1;
+    if (p->column != q->column) return p->column < q->column ? -1 : 1;
+    return (p->omega > q->omega) - (p->omega < q->omega);
+}
+
+/* N = 1 hanging over rates 0.94 .. 2.14 (the second tip on a rate of the grid, the first
+ * between two): the first tongue
+ * (tip omega = 2, edges -1, A linear in |omega - 2|) and the second (tip 1, edges +1,
+ * A ~ sqrt|omega - 1|, steep) each one curve whose two edges meet at the tip 2 / n at A = 0,
+ * every point on the tongue's characteristic values (a_1, b_1; a_2, b_2) to 1e-8 in a, and no
+ * gap along the curve wider than a rate's step and a row's step at once. */
+static void test_tips(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    const whirl_chart_params p = {.omega_min = 0.94, .omega_max = 2.14, .columns = 41,
+                                  .amp_max = 0.6, .rows = 60};
+    kept k = {0};
+    assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
+    qsort(k.p, (size_t)k.n, sizeof *k.p, by_curve_rate);
+    const double dw = (p.omega_max - p.omega_min) / (p.columns - 1);
+    const double da = p.amp_max / (p.rows - 1);
+    for (int n = 1; n <= 2; n++) {
+        const double tip = 2.0 / n;
+        int at = -1;
+        for (int i = 0; i < k.n; i++)
+            if (k.p[i].amplitude == 0 && fabs(k.p[i].omega - tip) < 1e-12) at = at < 0 ? i : -2;
+        assert_true(at >= 0); /* exactly one tip point */
+        assert_int_equal(k.p[at].kind, n == 1 ? WHIRL_FLOQUET_EDGE_MINUS_ONE
+                                              : WHIRL_FLOQUET_EDGE_PLUS_ONE);
+        int left = 0, right = 0;
+        double worst = 0, gap = 0;
+        for (int i = 0; i < k.n; i++) {
+            const whirl_chart_point *q = &k.p[i];
+            if (q->curve != k.p[at].curve) continue;
+            left += q->omega < tip, right += q->omega > tip;
+            const double a = 4 / (q->omega * q->omega), qq = 2 * q->amplitude;
+            const double d = n == 1 ? fmin(fabs(a - hill_lowest(qq, qq)),
+                                           fabs(a - hill_lowest(qq, -qq)))
+                                    : fmin(fabs(a - hill_even(qq, 0)), fabs(a - hill_even(qq, 1)));
+            worst = fmax(worst, d);
+            if (i > 0 && k.p[i - 1].curve == q->curve) {
+                const double sw = fabs(q->omega - k.p[i - 1].omega) / dw;
+                const double sa = fabs(q->amplitude - k.p[i - 1].amplitude) / da;
+                gap = fmax(gap, fmin(sw, sa)); /* in steps: within one of either */
+            }
+        }
+        print_message("# tongue %d: tip at omega=%.15g, %d points left, %d right, worst |a - a_%d "
+                      "or b_%d| %.2g, largest gap %.3g steps\n", n, k.p[at].omega, left, right, n,
+                      n, worst, gap);
+        assert_true(left >= 3 && right >= 3);
+        assert_true(worst < 1e-8);
+        assert_true(gap <= 1 + 1e-9);
+    }
+    whirl_chain_free(c);
 }
 
 static void test_bad_params(void **state)
@@ -291,6 +388,7 @@ int main(void)
         cmocka_unit_test(test_scipy_inverted),
         cmocka_unit_test(test_scipy_two_links),
         cmocka_unit_test(test_scipy_three_links),
+        cmocka_unit_test(test_tips),
         cmocka_unit_test(test_bad_params),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
