@@ -42,7 +42,9 @@ typedef struct whirl_atlas_params {
     void *progress_ctx;
 } whirl_atlas_params;
 
-/* The defaults above. */
+/* The defaults above.
+ * @return the defaults
+ */
 WHIRL_API whirl_atlas_params whirl_atlas_defaults(void);
 
 /* A window of the atlas: the mode, the window (whirl_window, with the edges' error estimates)
@@ -58,17 +60,41 @@ typedef struct whirl_atlas_row {
 typedef struct whirl_atlas whirl_atlas; /* the atlas: its options, chunks done and windows */
 
 /* An atlas of the parameters p (copied), no chunk done. NULL (whirl_last_error, GSL_EINVAL on
- * bad parameters, GSL_ENOMEM) on failure. */
+ * bad parameters, GSL_ENOMEM) on failure.
+ * @param p the parameters (copied)
+ * @return the atlas, to free with whirl_atlas_free; NULL with a message on bad parameters or no
+ *     memory
+ */
 WHIRL_API whirl_atlas *whirl_atlas_alloc(const whirl_atlas_params *p);
-WHIRL_API void whirl_atlas_free(whirl_atlas *a); /* NULL is a no-op */
+/* Frees the atlas; NULL is a no-op.
+ * @param a the atlas, or NULL
+ */
+WHIRL_API void whirl_atlas_free(whirl_atlas *a);
 
 /* The chunks of each mode: ceil(omega_max / WHIRL_ATLAS_CHUNK). Chunk j covers the rates
- * [lo, hi] = [j, j + 1] WHIRL_ATLAS_CHUNK, the last ending at omega_max. */
+ * [lo, hi] = [j, j + 1] WHIRL_ATLAS_CHUNK, the last ending at omega_max.
+ * @param a the atlas
+ * @return the chunks of each mode
+ */
 WHIRL_API size_t whirl_atlas_chunks(const whirl_atlas *a);
+/* The rates of chunk j: [j, j + 1] WHIRL_ATLAS_CHUNK, the upper end at most omega_max.
+ * @param a the atlas
+ * @param j the chunk, 0..whirl_atlas_chunks(a) - 1
+ * @param lo out: the chunk's first rate [sqrt(g/L)]
+ * @param hi out: the chunk's last rate [sqrt(g/L)]
+ */
 WHIRL_API void whirl_atlas_chunk_range(const whirl_atlas *a, size_t j, double *lo, double *hi);
-/* 1 once chunk j of the mode of index k (of params.modes) is done, else 0. */
+/* 1 once chunk j of the mode of index k (of params.modes) is done, else 0.
+ * @param a the atlas
+ * @param k the index of the mode in params.modes, 0..n_modes - 1
+ * @param j the chunk, 0..whirl_atlas_chunks(a) - 1
+ * @return 1 if that chunk is done, 0 if not or if k or j is out of range
+ */
 WHIRL_API int whirl_atlas_done(const whirl_atlas *a, size_t k, size_t j);
-/* The chunks done, of all modes. */
+/* The chunks done, of all modes.
+ * @param a the atlas
+ * @return the chunks done, 0..n_modes whirl_atlas_chunks(a)
+ */
 WHIRL_API size_t whirl_atlas_done_count(const whirl_atlas *a);
 
 /* Computes chunk j of the mode of index k: its windows (whirl_cstab_windows from
@@ -79,20 +105,41 @@ WHIRL_API size_t whirl_atlas_done_count(const whirl_atlas *a);
  * 1 if windows were searched for, 0 if not. Returns GSL_SUCCESS; GSL_EINVAL for a chunk out of
  * range or done already; WHIRL_EINTERRUPTED on a stop request (before the chunk, or inside it
  * between eigen-solves); the failure of the search (its message after "mode K, omega A..B: "),
- * or GSL_EFAILED beyond WHIRL_ATLAS_WINDOWS windows: then the atlas is as it was. */
+ * or GSL_EFAILED beyond WHIRL_ATLAS_WINDOWS windows: then the atlas is as it was.
+ * @param a the atlas
+ * @param k the index of the mode in params.modes, 0..n_modes - 1
+ * @param j the chunk, 0..whirl_atlas_chunks(a) - 1, not done yet
+ * @param computed out, or NULL: 1 if windows were searched for, 0 if not
+ * @return GSL_SUCCESS, GSL_EINVAL for a chunk out of range or done, WHIRL_EINTERRUPTED, the
+ *     search's failure or GSL_EFAILED, each with a message and the atlas as it was
+ */
 WHIRL_API int whirl_atlas_compute(whirl_atlas *a, size_t k, size_t j, int *computed);
 
 /* The windows so far, *count of them, in increasing mode and from (valid until the atlas's next
- * use). */
+ * use).
+ * @param a the atlas
+ * @param count out: the windows
+ * @return the windows, owned by the atlas
+ */
 WHIRL_API const whirl_atlas_row *whirl_atlas_rows(const whirl_atlas *a, size_t *count);
 
 /* The row r as a line of the file, newline included, into buf (size bytes, NUL-terminated when
  * size > 0; numbers by whirl_format_double). Returns the line's length (as snprintf: a length
- * >= size says it was cut). */
+ * >= size says it was cut).
+ * @param r the row
+ * @param buf out: the line, or NULL with size 0
+ * @param size the bytes of buf
+ * @return the line's length in chars, without the NUL
+ */
 WHIRL_API size_t whirl_atlas_row_text(const whirl_atlas_row *r, char *buf, size_t size);
 /* The whole file of the atlas as it stands: the title, the options' line, the signatures'
  * note, one "# done mode K omega A B" line per chunk done, the columns, the rows; into buf as
- * whirl_atlas_row_text (call it with size 0 for the length). */
+ * whirl_atlas_row_text (call it with size 0 for the length).
+ * @param a the atlas
+ * @param buf out: the file's text, or NULL with size 0
+ * @param size the bytes of buf
+ * @return the text's length in chars, without the NUL
+ */
 WHIRL_API size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
 
 /* Takes back the file path (its stream in, read to its end, not closed) as resuming would: it
@@ -103,9 +150,21 @@ WHIRL_API size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
  * of a mode asked for, its flags 0 or 1, its signatures -1, 0 or 1, from <= to, in a chunk done
  * ("PATH:N: WHY: the file cannot be trusted (...)"); an unfinished last line is dropped. Returns
  * GSL_SUCCESS with the chunks and rows taken (those a had before replaced), or GSL_EINVAL
- * (GSL_EFAILED on a read error) with a's chunks and rows emptied. */
+ * (GSL_EFAILED on a read error) with a's chunks and rows emptied.
+ * @param a the atlas, with the parameters the file must have been written with
+ * @param in the stream of the file, read to its end and not closed
+ * @param path the file's name, for the messages
+ * @return GSL_SUCCESS, GSL_EINVAL for a file that does not match or cannot be trusted, GSL_EFAILED
+ *     on a read error, GSL_ENOMEM; each with a message and a's chunks and rows emptied
+ */
 WHIRL_API int whirl_atlas_read(whirl_atlas *a, FILE *in, const char *path);
-/* whirl_atlas_read of the file's bytes data[0..size). */
+/* whirl_atlas_read of the file's bytes data[0..size).
+ * @param a the atlas, with the parameters the file must have been written with
+ * @param data the file's bytes, size (not NUL-terminated)
+ * @param size the bytes of data (0: GSL_EINVAL, no atlas)
+ * @param path the file's name, for the messages
+ * @return as whirl_atlas_read
+ */
 WHIRL_API int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size,
                                     const char *path);
 

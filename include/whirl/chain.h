@@ -38,11 +38,20 @@ WHIRL_API whirl_chain *whirl_chain_alloc_uniform(size_t n, double tip_mass);
 WHIRL_API whirl_chain *whirl_chain_alloc(size_t n, const double *length, const double *mass,
                                          double g);
 
-/* Frees the chain; NULL is a no-op. */
+/* Frees the chain; NULL is a no-op.
+ * @param c the chain, or NULL
+ */
 WHIRL_API void whirl_chain_free(whirl_chain *c);
 
-/* Sum of the link lengths and of the masses. */
+/* Sum of the link lengths.
+ * @param c the chain
+ * @return the sum of the link lengths [L]
+ */
 WHIRL_API double whirl_chain_total_length(const whirl_chain *c);
+/* Sum of the masses.
+ * @param c the chain
+ * @return the sum of the masses [M]
+ */
 WHIRL_API double whirl_chain_total_mass(const whirl_chain *c);
 
 #ifdef __cplusplus

@@ -50,7 +50,9 @@ extern "C" {
  */
 WHIRL_API const char *whirl_last_error(void);
 /* The status of that failure (GSL_SUCCESS if none): a function that returns NULL instead of a
- * status (an _alloc) leaves it here. */
+ * status (an _alloc) leaves it here.
+ * @return the status of the calling thread's last failure, GSL_SUCCESS if none
+ */
 WHIRL_API int whirl_last_status(void);
 /* The message of the last failure with its physical quantities (rates, lengths, masses, times,
  * forces, drags, damping) in units, into buf (size bytes); returns buf. physical 0:
@@ -59,7 +61,16 @@ WHIRL_API int whirl_last_status(void);
  * [m], mass [kg] and gravity [m/s^2] given, each quantity followed by its unit (rad/s, or Hz if
  * rate_hz; m, kg, s, N; kg/(m s) a linear drag per length, kg/m^2 a quadratic one, kg m^2/s an
  * internal damping), with the significant digits the message gave it but at least 6 and at most
- * 15. */
+ * 15.
+ * @param buf out: the message, NUL-terminated, cut at size - 1 bytes
+ * @param size the bytes of buf (0: buf is left untouched)
+ * @param physical 0: dimensionless numbers, 1: SI units
+ * @param length the chain's length [m], > 0 (used when physical is 1)
+ * @param mass the chain's mass [kg], > 0 (used when physical is 1)
+ * @param gravity the gravity [m/s^2], > 0 (used when physical is 1)
+ * @param rate_hz non-zero: rates in Hz, else in rad/s
+ * @return buf
+ */
 WHIRL_API char *whirl_last_error_in_units(char *buf, size_t size, int physical, double length,
                                           double mass, double gravity, int rate_hz);
 
@@ -76,16 +87,29 @@ typedef struct whirl_error_record {
     char text[WHIRL_ERROR_MAX]; /* the message (read it by whirl_error_restore) */
 } whirl_error_record;
 
-/* Copies this thread's last failure into r. */
+/* Copies this thread's last failure into r.
+ * @param r out: the record, its status and message those of the thread's last failure
+ */
 WHIRL_API void whirl_error_save(whirl_error_record *r);
-/* Makes r this thread's last failure; returns its status. */
+/* Makes r this thread's last failure; returns its status.
+ * @param r the record to restore, a failure or GSL_SUCCESS
+ * @return r->status
+ */
 WHIRL_API int whirl_error_restore(const whirl_error_record *r);
 /* Restores the first record of r[0..n) that holds a failure and returns its status, or returns
  * GSL_SUCCESS if none does (one record per block of work: the caller reports the failure of the
- * earliest block, whatever the order the threads ended in). */
+ * earliest block, whatever the order the threads ended in).
+ * @param r the records, n
+ * @param n the records' count (0: none)
+ * @return the status of the first record that holds a failure, GSL_SUCCESS if none does
+ */
 WHIRL_API int whirl_error_restore_first(const whirl_error_record *r, size_t n);
 /* Keeps this thread's last failure in *slot if status is a failure and slot holds none yet
- * (thread-safe: for workers sharing one slot, the first to fail wins); returns status. */
+ * (thread-safe: for workers sharing one slot, the first to fail wins); returns status.
+ * @param slot the record that keeps the first failure, its status GSL_SUCCESS until one is kept
+ * @param status the status of the work just done
+ * @return status, unchanged
+ */
 WHIRL_API int whirl_error_keep(whirl_error_record *slot, int status);
 
 /* ---- stopping long work ----
@@ -99,10 +123,14 @@ WHIRL_API int whirl_error_keep(whirl_error_record *slot, int status);
 
 /* Requests a stop. Async-signal-safe: may be called from a signal handler or another thread. */
 WHIRL_API void whirl_stop_request(void);
-/* Non-zero once a stop was requested and not cleared. */
+/* Non-zero once a stop was requested and not cleared.
+ * @return non-zero if a stop was requested and not cleared, else 0
+ */
 WHIRL_API int whirl_stop_requested(void);
 /* The number of the signal that raised the request (SIGINT, ...), 0 when none did (no request,
- * or whirl_stop_request()). */
+ * or whirl_stop_request()).
+ * @return the signal's number, or 0
+ */
 WHIRL_API int whirl_stop_signal(void);
 /* Clears the request, so that new work runs to its end. */
 WHIRL_API void whirl_stop_clear(void);
@@ -110,7 +138,10 @@ WHIRL_API void whirl_stop_clear(void);
  * SIGPIPE and SIGXFSZ unless they are ignored (nohup; Python ignores the last two), keeping the
  * previous handlers for whirl_stop_restore_signals(). A caught SIGPIPE or SIGXFSZ makes the
  * write that raised it fail (EPIPE, EFBIG) instead of killing the process. Returns GSL_SUCCESS
- * or GSL_EFAILED. */
+ * or GSL_EFAILED.
+ * @return GSL_SUCCESS, or GSL_EFAILED if a handler could not be installed (those installed are
+ *     restored)
+ */
 WHIRL_API int whirl_stop_catch_signals(void);
 /* Restores the handlers that whirl_stop_catch_signals() replaced (no-op if it did not run). */
 WHIRL_API void whirl_stop_restore_signals(void);
@@ -127,11 +158,19 @@ WHIRL_API void whirl_stop_restore_signals(void);
 
 /* Caps the threads of every parallel loop of the library at threads (0: OpenMP's own count,
  * OMP_NUM_THREADS or the cores; the default). GSL_EINVAL outside 0..WHIRL_THREADS_MAX, or
- * other than 1 in a child of fork(). Results do not depend on it. */
+ * other than 1 in a child of fork(). Results do not depend on it.
+ * @param threads the cap, 0..WHIRL_THREADS_MAX (0: OpenMP's own count)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message for a cap out of range, or other than 1 in a
+ *     child of fork()
+ */
 WHIRL_API int whirl_set_max_threads(int threads);
-/* The threads a parallel loop of the library takes now (1 in a child of fork()). */
+/* The threads a parallel loop of the library takes now (1 in a child of fork()).
+ * @return the threads a parallel loop takes now, >= 1
+ */
 WHIRL_API int whirl_max_threads(void);
-/* 1 in a child of fork() (the process runs the library on one thread), else 0. */
+/* 1 in a child of fork() (the process runs the library on one thread), else 0.
+ * @return 1 in a child of fork(), else 0
+ */
 WHIRL_API int whirl_forked_child(void);
 
 /* ---- numbers as text ----
@@ -140,6 +179,11 @@ WHIRL_API int whirl_forked_child(void);
  * and nothing is lost. Non-finite values print as "nan", "inf", "-inf". buf holds at least
  * WHIRL_FORMAT_MAX chars; returns buf. Thread-safe. */
 #define WHIRL_FORMAT_MAX 32
+/* Writes x as text in the fewest digits that read back to it (see above).
+ * @param buf out: the text, at least WHIRL_FORMAT_MAX chars
+ * @param x the number, any double
+ * @return buf
+ */
 WHIRL_API char *whirl_format_double(char *buf, double x);
 
 /* ---- quantities with units ----
@@ -160,16 +204,31 @@ typedef enum {
 /* Reads text, all of it: a finite double, optionally followed (spaces allowed: "4Hz", "4 Hz") by
  * one of the kind's suffixes, in any case ("4HZ"), which multiplies it by the suffix's factor. Returns 0 and sets *value (and
  * *suffixed to whether a suffix was given, if suffixed is not NULL), or -1 for anything else:
- * no number, trailing text that is not a suffix of the kind, overflow, inf, nan. */
+ * no number, trailing text that is not a suffix of the kind, overflow, inf, nan.
+ * @param text the text, NUL-terminated (NULL: -1)
+ * @param kind the kind of quantity, which sets the suffixes accepted
+ * @param value out: the number in the kind's SI unit (untouched on -1)
+ * @param suffixed out, or NULL: 1 if a suffix was given, else 0
+ * @return 0, or -1 if the text is not a finite number with an optional suffix of the kind
+ */
 WHIRL_API int whirl_parse_quantity(const char *text, whirl_quantity kind, double *value,
                                    int *suffixed);
-/* The suffixes of the kind, as words for a message: "rad/s, Hz or rpm" ("" for a number). */
+/* The suffixes of the kind, as words for a message: "rad/s, Hz or rpm" ("" for a number).
+ * @param kind the kind of quantity
+ * @return the suffixes as static text ("" for WHIRL_QUANTITY_NUMBER)
+ */
 WHIRL_API const char *whirl_quantity_suffixes(whirl_quantity kind);
 
 /* Writes the line that states the units of a file, the same in every file whirl writes:
  *   # units: length=m mass=kg time=s rate=rad/s force=N L=0.6 M=0.05 g=9.80665
  * when physical (SI; L, M, g the chain's length, mass and gravity), else
- *   # units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), force M g) */
+ *   # units: dimensionless (length L, mass M, time sqrt(L/g), rate sqrt(g/L), force M g)
+ * @param fp the stream to write to
+ * @param physical non-zero: SI units, with length, mass and gravity; 0: dimensionless
+ * @param length the chain's length L [m] (written when physical)
+ * @param mass the chain's mass M [kg] (written when physical)
+ * @param gravity the gravity g [m/s^2] (written when physical)
+ */
 WHIRL_API void whirl_write_units_line(FILE *fp, int physical, double length, double mass,
                                       double gravity);
 

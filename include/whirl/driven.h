@@ -69,7 +69,10 @@ typedef struct whirl_driven_params {
 } whirl_driven_params;
 
 /* p <- the drive and drag of the model m (omega, drive_radius, air_drag, air_drag_quadratic;
- * tip_mass 0). The model's internal damping, frame and dimension play no part in a steady shape. */
+ * tip_mass 0). The model's internal damping, frame and dimension play no part in a steady shape.
+ * @param p out: the driven parameters
+ * @param m the model
+ */
 WHIRL_API void whirl_driven_params_from_model(whirl_driven_params *p, const whirl_model *m);
 
 /* One steady shape. */
@@ -87,7 +90,13 @@ typedef struct whirl_driven_info {
 
 /* Node count (the definition above) of the polyline pos (3 per point, npts >= 2 points, the
  * pivot first, at (eps, 0, *) in the co-rotating frame), the points below the pivot weighted by
- * weight[0..npts-2] (the link lengths; NULL: equal weights, the continuum's equal samples). */
+ * weight[0..npts-2] (the link lengths; NULL: equal weights, the continuum's equal samples).
+ * @param eps the pivot's radius [L]
+ * @param npts the points, >= 2
+ * @param pos the points' positions (x, y, z), 3 npts, the pivot first
+ * @param weight the weights of points 1..npts-1, npts - 1, or NULL for equal weights
+ * @return the node count, >= 1
+ */
 WHIRL_API int whirl_driven_nodes(double eps, size_t npts, const double *pos, const double *weight);
 
 /* The steady shape whose tip is near guess = (X, Y) (Newton from there). GSL_EINVAL on bad
@@ -161,9 +170,16 @@ typedef struct whirl_driven_curve {
                                  at the capacity or on a step that would not converge */
 } whirl_driven_curve;
 
-/* A curve with room for capacity (>= 2) points. NULL on no memory or capacity < 2. */
+/* A curve with room for capacity (>= 2) points. NULL on no memory or capacity < 2.
+ * @param capacity the room in points, >= 2
+ * @return the curve, to free with whirl_driven_curve_free; NULL with a message on capacity < 2 or
+ *     no memory
+ */
 WHIRL_API whirl_driven_curve *whirl_driven_curve_alloc(size_t capacity);
-WHIRL_API void whirl_driven_curve_free(whirl_driven_curve *curve); /* NULL is a no-op */
+/* Frees the curve. NULL is a no-op.
+ * @param curve the curve, or NULL
+ */
+WHIRL_API void whirl_driven_curve_free(whirl_driven_curve *curve);
 
 /* Follows the branch through the shape start (a solution at params->omega, e.g. from
  * whirl_driven_mode) by pseudo-arclength continuation in (X, Y, omega), leaving start in the

@@ -99,13 +99,26 @@ typedef struct whirl_dyn whirl_dyn; /* workspace: all scratch memory of one righ
  *     no memory
  */
 WHIRL_API whirl_dyn *whirl_dyn_alloc(const whirl_model *model, whirl_formulation f);
-WHIRL_API void whirl_dyn_free(whirl_dyn *d); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param d the dynamics, or NULL
+ */
+WHIRL_API void whirl_dyn_free(whirl_dyn *d);
 
+/* The model of d (its copy).
+ * @param d the dynamics
+ * @return the model, owned by d
+ */
 WHIRL_API const whirl_model *whirl_dyn_model(const whirl_dyn *d);
 
 /* The drive at time t: radius eps(t) [L], rate omega(t) [1/T] and phase phi(t) [rad] (the
  * pivot's angle about z in the inertial frame and the co-rotating frame's angle, int_0^t omega;
- * omega t for a constant drive). Any output may be NULL. */
+ * omega t for a constant drive). Any output may be NULL.
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param radius out, or NULL: eps(t) [L]
+ * @param omega out, or NULL: omega(t) [1/T]
+ * @param phase out, or NULL: phi(t) [rad]
+ */
 WHIRL_API void whirl_dyn_drive_at(const whirl_dyn *d, double t, double *radius, double *omega,
                         double *phase);
 
@@ -114,9 +127,19 @@ WHIRL_API void whirl_dyn_drive_at(const whirl_dyn *d, double t, double *radius, 
  * continuous at t (from t on it is phi(t) plus the integral of the new omega(t) from t). The
  * state vector keeps its meaning (in the co-rotating frame: rates relative to the frame); for
  * the motion to stay smooth the new ramps should start from the drive's values at t. GSL_EINVAL
- * on an invalid ramp or t (d is then unchanged). */
+ * on an invalid ramp or t (d is then unchanged).
+ * @param d the dynamics
+ * @param t the time of the change [T]
+ * @param radius the new drive_radius_ramp, or NULL to keep it
+ * @param omega the new omega_ramp, or NULL to keep it
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message (d unchanged)
+ */
 WHIRL_API int whirl_dyn_set_ramps(whirl_dyn *d, double t, const whirl_ramp *radius,
                         const whirl_ramp *omega);
+/* The formulation of d.
+ * @param d the dynamics
+ * @return the formulation
+ */
 WHIRL_API whirl_formulation whirl_dyn_formulation(const whirl_dyn *d);
 
 /* A pivot moved along any path: p(t), p'(t), p''(t) in the inertial frame (3 components each;
@@ -127,7 +150,12 @@ typedef void (*whirl_pivot_fn)(double t, double p[3], double pv[3], double pa[3]
  * The model must be in the inertial frame with drive_radius 0 and no ramp (the circle drive is
  * then one such path, whirl/periodic.h): GSL_EINVAL otherwise, d unchanged. The model's omega
  * keeps its other roles (the phase of whirl_dyn_state_from_shape, the reference frame of the
- * internal damping, whirl_default_step's period). params is not owned. */
+ * internal damping, whirl_default_step's period). params is not owned.
+ * @param d the dynamics
+ * @param pivot the pivot's path, or NULL to restore the model's drive
+ * @param params passed to pivot (not owned)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message (d unchanged)
+ */
 WHIRL_API int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn pivot, void *params);
 
 /* Length of the state vector y.
@@ -146,11 +174,22 @@ WHIRL_API size_t whirl_dyn_size(const whirl_dyn *d);
  * whirl_set_max_threads, and is 1 in a child of fork() (see whirl_max_threads). */
 #define WHIRL_DYN_THREADS_MIN_LINKS 4096
 #define WHIRL_DYN_THREADS_MAX 256
+/* Sets the threads of d's right-hand side (see above).
+ * @param d the dynamics
+ * @param threads the threads, 1..WHIRL_DYN_THREADS_MAX
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_dyn_set_threads(whirl_dyn *d, int threads);
 
 /* dy/dt at (t, y), with GSL's signature (params = the whirl_dyn *): usable as a gsl_odeiv2_system.
  * Returns GSL_SUCCESS, or GSL_EBADFUNC if the result is not finite (or, in the seed formulation,
- * at its 3D singularity), with a message. Allocates nothing. */
+ * at its 3D singularity), with a message. Allocates nothing.
+ * @param t the time [T]
+ * @param y the state, whirl_dyn_size(d)
+ * @param dydt out: dy/dt, whirl_dyn_size(d)
+ * @param dyn the dynamics (a whirl_dyn *)
+ * @return GSL_SUCCESS, or GSL_EBADFUNC with a message
+ */
 WHIRL_API int whirl_dyn_rhs(double t, const double y[], double dydt[], void *dyn);
 
 /* State y from the positions x[3i..3i+2] and velocities v[3i..3i+2] of masses i = 1..N (x[0..2]
@@ -181,10 +220,21 @@ WHIRL_API int whirl_dyn_get_state(const whirl_dyn *d, double t, const double *y,
                                   double *x, double *v);
 
 /* Projects y onto the constraint manifold (|x_i - x_{i-1}| = l_i and its time derivative);
- * a no-op for the seed formulation, whose coordinates satisfy the constraints by construction. */
+ * a no-op for the seed formulation, whose coordinates satisfy the constraints by construction.
+ * @param d the dynamics
+ * @param t the time [T] (the constraints do not depend on it)
+ * @param y the state, whirl_dyn_size(d), projected in place
+ * @return GSL_SUCCESS, or GSL_ERANGE with a message if the state is not finite
+ */
 WHIRL_API int whirl_dyn_project(whirl_dyn *d, double t, double *y);
 
-/* Tensions of the links (array of chain->n, [M g] in the dimensionless units) at (t, y). */
+/* Tensions of the links (array of chain->n, [M g] in the dimensionless units) at (t, y).
+ * @param d the dynamics
+ * @param t the time [T]
+ * @param y the state, whirl_dyn_size(d)
+ * @param tension out: the link tensions [M g], chain->n
+ * @return GSL_SUCCESS, or a status with a message (GSL_EBADFUNC if they are not finite)
+ */
 WHIRL_API int whirl_dyn_tensions(whirl_dyn *d, double t, const double *y, double *tension);
 
 typedef struct whirl_dyn_diagnostics {
@@ -283,7 +333,11 @@ WHIRL_API double whirl_deviation(size_t n, const double *x, const double *ref);
 
 /* sys <- the dynamics d as a general system: rhs whirl_dyn_rhs, project whirl_dyn_project,
  * size whirl_dyn_size(d), params d, second order, acceleration scale the chain's gravity.
- * GSL_EINVAL on NULL arguments. */
+ * GSL_EINVAL on NULL arguments.
+ * @param d the dynamics (not owned)
+ * @param sys out: the system
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message on NULL arguments
+ */
 WHIRL_API int whirl_dyn_system(whirl_dyn *d, whirl_system *sys);
 
 /* An integrator of the method called method (whirl_integrator_methods) for the dynamics d (not

@@ -68,26 +68,52 @@ typedef struct whirl_integrator_stats {
     unsigned long iterations; /* stage-equation iterations (implicit methods) */
 } whirl_integrator_stats;
 
-/* NULL-terminated list of the method names, in the registry's order (static storage). */
+/* NULL-terminated list of the method names, in the registry's order (static storage).
+ * @return the names, NULL-terminated (static storage)
+ */
 WHIRL_API const char *const *whirl_integrator_methods(void);
 
-/* The method called name, or NULL with a message listing the known names. */
+/* The method called name, or NULL with a message listing the known names.
+ * @param name the method's name, e.g. "rk4" (NULL: not found)
+ * @return the method (static storage), or NULL with a message
+ */
 WHIRL_API const whirl_integrator_type *whirl_integrator_type_find(const char *name);
 
 /* The method's name (static storage); 1 if it takes adaptive steps (tol > 0), 1 if it takes
- * fixed steps (tol = 0). */
+ * fixed steps (tol = 0).
+ * @param type the method, or NULL
+ * @return the name (static storage), or NULL for a NULL type
+ */
 WHIRL_API const char *whirl_integrator_type_name(const whirl_integrator_type *type);
+/* 1 if the method takes adaptive steps (tol > 0), else 0.
+ * @param type the method, or NULL
+ * @return 1 or 0 (0 for a NULL type)
+ */
 WHIRL_API int whirl_integrator_type_adaptive(const whirl_integrator_type *type);
+/* 1 if the method takes fixed steps (tol = 0), else 0.
+ * @param type the method, or NULL
+ * @return 1 or 0 (0 for a NULL type)
+ */
 WHIRL_API int whirl_integrator_type_fixed(const whirl_integrator_type *type);
 
 /* An integrator of the method type for the system sys (copied; sys->params not owned). NULL
  * with a message on NULL arguments, a system without rhs or of size 0, a method that needs
- * what the system lacks (gauss2, gauss3: second_order and acceleration_scale), or no memory. */
+ * what the system lacks (gauss2, gauss3: second_order and acceleration_scale), or no memory.
+ * @param type the method
+ * @param sys the system (copied; sys->params not owned: must outlive the integrator)
+ * @return the integrator, to free with whirl_integrator_free; NULL with a message on failure
+ */
 WHIRL_API whirl_integrator *whirl_integrator_alloc_system(const whirl_integrator_type *type,
                                                           const whirl_system *sys);
-WHIRL_API void whirl_integrator_free(whirl_integrator *it); /* NULL is a no-op */
+/* Frees the integrator. NULL is a no-op.
+ * @param it the integrator, or NULL
+ */
+WHIRL_API void whirl_integrator_free(whirl_integrator *it);
 
-/* The integrator's method. */
+/* The integrator's method.
+ * @param it the integrator, or NULL
+ * @return the method (static storage), or NULL for a NULL integrator
+ */
 WHIRL_API const whirl_integrator_type *whirl_integrator_type_of(const whirl_integrator *it);
 
 /* The smallest adaptive tolerance: finer relative accuracy is below the round-off of doubles. */
@@ -101,7 +127,10 @@ WHIRL_API const whirl_integrator_type *whirl_integrator_type_of(const whirl_inte
 #define WHIRL_ADAPTIVE_STEPS_MAX 100000000UL
 
 /* Sets the cap on the adaptive steps (accepted plus rejected, counted over the integrator's life,
- * across calls of whirl_integrator_advance); 0 restores WHIRL_ADAPTIVE_STEPS_MAX. */
+ * across calls of whirl_integrator_advance); 0 restores WHIRL_ADAPTIVE_STEPS_MAX.
+ * @param it the integrator
+ * @param max_steps the cap, or 0 for WHIRL_ADAPTIVE_STEPS_MAX
+ */
 WHIRL_API void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned long max_steps);
 
 /* Advances (t, y) to exactly t1: with tol = 0 by fixed steps of at most h (the last one
@@ -127,6 +156,10 @@ WHIRL_API void whirl_integrator_set_max_steps(whirl_integrator *it, unsigned lon
 WHIRL_API int whirl_integrator_advance(whirl_integrator *it, double *t, double *y, double t1,
                                        double h, double tol);
 
+/* The integrator's counts over its life, across calls of whirl_integrator_advance.
+ * @param it the integrator
+ * @return the counts
+ */
 WHIRL_API whirl_integrator_stats whirl_integrator_get_stats(const whirl_integrator *it);
 
 #ifdef __cplusplus

@@ -28,11 +28,22 @@ extern "C" {
 /* ---- the co-rotating potential of the planar N-link chain ---- */
 
 /* V(theta) of the chain c (theta: c->n link angles [rad]); if grad != NULL also dV/dtheta_j
- * (n values, the analytic gradient, O(n)). */
+ * (n values, the analytic gradient, O(n)).
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param theta the link angles from the downward vertical [rad], c->n
+ * @param grad out, or NULL: dV/dtheta_j [M g L], c->n
+ * @return V [M g L]
+ */
 WHIRL_API double whirl_potential(const whirl_chain *c, double omega, const double *theta,
                                  double *grad);
 
-/* The analytic Hessian d2V/dtheta_j dtheta_k into hess (n x n, row-major). Always succeeds. */
+/* The analytic Hessian d2V/dtheta_j dtheta_k into hess (n x n, row-major). Always succeeds.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param theta the link angles [rad], c->n
+ * @param hess out: the Hessian [M g L], c->n x c->n, row-major
+ */
 WHIRL_API void whirl_potential_hessian(const whirl_chain *c, double omega, const double *theta,
                                        double *hess);
 
@@ -40,7 +51,15 @@ WHIRL_API void whirl_potential_hessian(const whirl_chain *c, double omega, const
  * tension[i] of link i from the force balance of the masses below it, projected on the link
  * (tension[0] = tension[1]), and its summary (mode = 1 + the crossings of
  * whirl_nlink_node_arclengths). If the free end has r < 0 the shape is mirrored so that it has
- * r > 0. r and z are required; tension and info may be NULL (then info->top_tension is NaN). */
+ * r > 0. r and z are required; tension and info may be NULL (then info->top_tension is NaN).
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param theta the link angles [rad], c->n
+ * @param r out: the nodes' distances from the axis [L], c->n + 1
+ * @param z out: the nodes' heights, 0 at the pivot [L], c->n + 1
+ * @param tension out, or NULL: the links' tensions [M g], c->n + 1
+ * @param info out, or NULL: the shape's summary
+ */
 WHIRL_API void whirl_angles_shape(const whirl_chain *c, double omega, const double *theta,
                                   double *r, double *z, double *tension, whirl_shape_info *info);
 
@@ -67,11 +86,17 @@ typedef struct whirl_minimize_stats {
     double min_curvature; /* smallest eigenvalue of the Hessian at the result (> 0: a minimum) */
 } whirl_minimize_stats;
 
-/* Defaults: LD_LBFGS, 100000 evaluations, polish on. */
+/* Defaults: LD_LBFGS, 100000 evaluations, polish on.
+ * @return the defaults
+ */
 WHIRL_API whirl_minimize_options whirl_minimize_options_defaults(void);
 
 /* The NLopt algorithm called name (as nlopt_algorithm_from_string), into *algorithm (an
- * nlopt_algorithm). GSL_EINVAL naming it if unknown. */
+ * nlopt_algorithm). GSL_EINVAL naming it if unknown.
+ * @param name the algorithm's name, e.g. "LD_LBFGS" (NULL: unknown)
+ * @param algorithm out: the nlopt_algorithm (untouched on failure)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message listing the local algorithms
+ */
 WHIRL_API int whirl_minimize_algorithm(const char *name, int *algorithm);
 
 /* Minimises V over the angles from theta (n values; NULL: a small uniform tilt), writing the
@@ -106,7 +131,9 @@ typedef struct whirl_fit_model {
 #define WHIRL_FIT_LINKS_MAX 2000
 #define WHIRL_FIT_SAMPLES_MAX 1000000
 
-/* Defaults: the continuum, no tip mass, omega_max 50, 4001 samples. */
+/* Defaults: the continuum, no tip mass, omega_max 50, 4001 samples.
+ * @return the defaults
+ */
 WHIRL_API whirl_fit_model whirl_fit_model_defaults(void);
 
 /* The result of a fit. */
@@ -122,7 +149,18 @@ typedef struct whirl_fit_result {
 
 /* Signed distances (positive on one side) of the points (r[i], z[i]), i < n, dimensionless
  * (lengths / L), to the curve of mode k at omega (mirrored in r if mirrored != 0), into resid.
- * GSL_EDOM if the mode does not exist at omega. */
+ * GSL_EDOM if the mode does not exist at omega.
+ * @param m the model
+ * @param omega the rate [sqrt(g/L)]
+ * @param mode the mode k >= 1
+ * @param mirrored non-zero: the curve mirrored in r
+ * @param n the points (as whirl_fit checks them)
+ * @param r the points' distances from the axis [L], n
+ * @param z their heights [L], n
+ * @param resid out: the signed distances [L], n
+ * @return GSL_SUCCESS, GSL_EINVAL on a bad model or points, GSL_EDOM if the mode does not exist at
+ *     omega, or the solver's failure; with a message
+ */
 WHIRL_API int whirl_fit_residuals(const whirl_fit_model *m, double omega, int mode, int mirrored,
                                   size_t n, const double *r, const double *z, double *resid);
 
@@ -157,7 +195,17 @@ WHIRL_API int whirl_fit(const whirl_fit_model *m, size_t n, const double *r, con
  * evaluations so far (all modes). For a progress display; it must not call the fit. */
 typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
 
-/* whirl_fit reporting its progress to progress(data, ...) (NULL: none). */
+/* whirl_fit reporting its progress to progress(data, ...) (NULL: none).
+ * @param m the model (whirl_fit_model_defaults: the continuum)
+ * @param n how many points, 3..20000
+ * @param r the points' distances from the axis [L], n
+ * @param z their heights [L], n
+ * @param mode the mode k to fit, or 0 to try modes 1 to c + 3 and keep the best
+ * @param progress called after every evaluation, or NULL: none
+ * @param data passed to progress
+ * @param result out: the rate, its uncertainty, the mode and the RMS residual
+ * @return as whirl_fit
+ */
 WHIRL_API int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r,
                                  const double *z, int mode, whirl_fit_progress_fn progress,
                                  void *data, whirl_fit_result *result);

@@ -46,10 +46,36 @@ typedef struct whirl_pivot_path {
  * ellipse  (a cos wt, b sin wt, 0): semi-axes a along x, b along y;
  * line     amplitude a cos(wt) along the direction (dx, dy, dz) (normalised; (0, 0, 1): vertical
  *          shaking); GSL_EINVAL on a zero direction;
- * eight    (a sin wt, b sin 2wt, 0): a figure of eight, half-width a along x, b along y. */
+ * eight    (a sin wt, b sin 2wt, 0): a figure of eight, half-width a along x, b along y.
+ * @param path out: the path
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param r the radius [L], finite
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
+/* The ellipse preset.
+ * @param path out: the path
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param a the semi-axis along x [L], finite
+ * @param b the semi-axis along y [L], finite
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_ellipse(whirl_pivot_path *path, double omega, double a, double b);
+/* The line preset.
+ * @param path out: the path
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param a the amplitude [L], finite
+ * @param dir the direction (dx, dy, dz), not zero (normalised here)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_line(whirl_pivot_path *path, double omega, double a, const double dir[3]);
+/* The figure-of-eight preset.
+ * @param path out: the path
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param a the half-width along x [L], finite
+ * @param b the half-width along y [L], finite
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_eight(whirl_pivot_path *path, double omega, double a, double b);
 
 /* Parses text into path at the rate omega. The grammar (lengths with an optional unit suffix,
@@ -59,20 +85,40 @@ WHIRL_API int whirl_pivot_eight(whirl_pivot_path *path, double omega, double a, 
  *   harmonic 1..WHIRL_PIVOT_HARMONICS_MAX, KIND c (cosine) or s (sine): "fourier:x1c=1cm,y1s=6mm".
  * length [m]: the chain's length in SI units, the lengths are then in m and divided by it; 0:
  * dimensionless, a unit suffix is then refused. dim 2 refuses y terms. GSL_EINVAL with a
- * one-line message naming the bad term (path unchanged). */
+ * one-line message naming the bad term (path unchanged).
+ * @param text the path as text
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param length the chain's length [m] for lengths in SI units, or 0: dimensionless
+ * @param dim the model's dimension, 2 or 3
+ * @param path out: the path (unchanged on failure)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_parse(const char *text, double omega, double length, int dim,
                                 whirl_pivot_path *path);
 
 /* GSL_SUCCESS if path is valid for a model of dimension dim (omega > 0 and finite, at most
  * WHIRL_OMEGA_MAX; harmonics in range; every amplitude finite; no y term in 2D), else GSL_EINVAL
- * naming the term. */
+ * naming the term.
+ * @param path the path
+ * @param dim the model's dimension, 2 or 3
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_pivot_check(const whirl_pivot_path *path, int dim);
 
-/* The period 2 pi / omega. */
+/* The period 2 pi / omega.
+ * @param path the path
+ * @return the period [sqrt(L/g)]
+ */
 WHIRL_API double whirl_pivot_period(const whirl_pivot_path *path);
 
 /* Position, velocity and acceleration of the pivot at t (3 each); a whirl_pivot_fn with params
- * the path (whirl_dyn_set_pivot). */
+ * the path (whirl_dyn_set_pivot).
+ * @param t the time [sqrt(L/g)]
+ * @param p out: the position [L], 3
+ * @param pv out: the velocity, 3
+ * @param pa out: the acceleration, 3
+ * @param path the path (a whirl_pivot_path *)
+ */
 WHIRL_API void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3], void *path);
 
 /* ---- periodic motions ---- */
@@ -89,13 +135,26 @@ typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one p
  */
 WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
                                                const whirl_pivot_path *path);
-WHIRL_API void whirl_periodic_free(whirl_periodic *w); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param w the workspace, or NULL
+ */
+WHIRL_API void whirl_periodic_free(whirl_periodic *w);
 
 /* The dynamics of w (inertial frame, Cartesian formulation, the pivot on the path, omega the
- * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs. */
+ * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs.
+ * @param w the workspace
+ * @return the dynamics, owned by w
+ */
 WHIRL_API whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
-/* Length of a state (whirl_dyn_size) and of the tangent coordinates, 2 (dim - 1) N. */
+/* Length of a state (whirl_dyn_size) and of the tangent coordinates, 2 (dim - 1) N.
+ * @param w the workspace
+ * @return the length of a state
+ */
 WHIRL_API size_t whirl_periodic_state_size(const whirl_periodic *w);
+/* The length of the tangent coordinates, 2 (dim - 1) N.
+ * @param w the workspace
+ * @return the length of the tangent coordinates
+ */
 WHIRL_API size_t whirl_periodic_tangent_size(const whirl_periodic *w);
 
 /* y <- the chain hanging straight down (inverted 0) or standing straight up (inverted 1) at
@@ -188,14 +247,21 @@ typedef struct whirl_periodic_progress {
 } whirl_periodic_progress;
 
 /* tick(data, progress) is called during whirl_periodic_find: after every residual and about 16
- * times per monodromy. It must not call w. NULL (the default): none. */
+ * times per monodromy. It must not call w. NULL (the default): none.
+ * @param w the workspace
+ * @param tick the callback, or NULL: none
+ * @param data passed to tick
+ */
 WHIRL_API void whirl_periodic_set_tick(whirl_periodic *w,
                                        void (*tick)(void *data,
                                                     const whirl_periodic_progress *progress),
                                        void *data);
 
 /* The monodromy of the last successful solve (finer step): tangent_size x tangent_size, row
- * major, valid until the next solve; NULL before. */
+ * major, valid until the next solve; NULL before.
+ * @param w the workspace
+ * @return the monodromy, owned by w, or NULL before a successful solve
+ */
 WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
 
 /* Advances the state y of w at t = 0 (or any whole number of periods) by periods whole periods
@@ -209,7 +275,13 @@ WHIRL_API const double *whirl_periodic_monodromy(const whirl_periodic *w);
 WHIRL_API int whirl_periodic_run(whirl_periodic *w, double *y, int steps, int periods);
 
 /* Reads the tangent coordinates of the difference y1 - y0 of two states near y0 (length
- * tangent_size): the perturbation's size as the multipliers act on it. */
+ * tangent_size): the perturbation's size as the multipliers act on it.
+ * @param w the workspace
+ * @param y0 the reference state, whirl_periodic_state_size(w)
+ * @param y1 the state near it, whirl_periodic_state_size(w)
+ * @param coords out: the tangent coordinates, whirl_periodic_tangent_size(w)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message on a NULL argument
+ */
 WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const double *y1,
                                      double *coords);
 
@@ -267,7 +339,16 @@ typedef void (*whirl_chart_tick_fn)(void *data, const whirl_chart_progress *prog
 
 /* The chart of the chain c (dim 2: the x-z plane) with its pivot shaken vertically.
  * GSL_EINVAL with a message on bad parameters; WHIRL_EINTERRUPTED on a stop request (the points
- * handed to row so far stand); an integration's status. tick may be NULL. */
+ * handed to row so far stand); an integration's status. tick may be NULL.
+ * @param c the chain
+ * @param dim 2 or 3
+ * @param params the chart's range, resolution and tolerance
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every column and scan, or NULL
+ * @param tick_data passed to tick
+ * @return GSL_SUCCESS, GSL_EINVAL, WHIRL_EINTERRUPTED, row's status, or an integration's status
+ */
 WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
                                    whirl_chart_row_fn row, void *row_data,
                                    whirl_chart_tick_fn tick, void *tick_data);
@@ -373,17 +454,38 @@ typedef void (*whirl_cycle_tick_fn)(void *data, const whirl_cycle_progress *prog
  * at a step of 1e-6 of the largest (GSL_EMAXITER with the residual reached and the parameter).
  * y holds the last point's state and w's path the last point's (a failure at the start: as
  * whirl_periodic_find's, no row). GSL_EINVAL on bad parameters (an amplitude continuation of a
- * path that does not move among them). tick may be NULL. */
+ * path that does not move among them). tick may be NULL.
+ * @param w the workspace, its path at the start
+ * @param y in: a state near the start's motion; out: the last point's state
+ * @param params the continuation's parameter, range, steps and tolerances
+ * @param row called for every point and event, or NULL
+ * @param row_data passed to row
+ * @param tick called after every corrector iteration and point, or NULL
+ * @param tick_data passed to tick
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_EMAXITER, WHIRL_EINTERRUPTED, row's status, or the failure
+ *     of the start as whirl_periodic_find's; with a message
+ */
 WHIRL_API int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *params,
                                   whirl_cycle_row_fn row, void *row_data,
                                   whirl_cycle_tick_fn tick, void *tick_data);
 
+/* The name of the event: "point", "fold", "branch", "period-doubling", "torus".
+ * @param e the event
+ * @return the name (static text), "unknown" for no event
+ */
 WHIRL_API const char *whirl_cycle_event_name(whirl_cycle_event e);
 
 /* y <- the steady shape of mode (its node count) of the circle drive on w's path (a circle of
  * radius > 0, dim 3), the seed's tip on the pivot's side (side 1) or opposite (-1), as
  * whirl_stability_driven_mode finds it, at t = 0 turning with the pivot: the circle's periodic
- * motion. GSL_EINVAL on another path; GSL_EDOM if the mode does not exist at the rate. */
+ * motion. GSL_EINVAL on another path; GSL_EDOM if the mode does not exist at the rate.
+ * @param w the workspace, its path a circle of radius > 0, dim 3
+ * @param mode the mode (node count) >= 1
+ * @param side +1: the seed's tip on the pivot's side, -1: opposite
+ * @param y out: the state at t = 0, whirl_periodic_state_size(w)
+ * @return GSL_SUCCESS, GSL_EINVAL on another path, GSL_EDOM if the mode does not exist at the rate,
+ *     or the solver's failure; with a message
+ */
 WHIRL_API int whirl_periodic_start_steady(whirl_periodic *w, int mode, int side, double *y);
 
 /* ---- the ellipticity chart of the hand-swung chain ----
@@ -438,12 +540,28 @@ typedef void (*whirl_ellipse_chart_tick_fn)(void *data,
 /* The chart of the chain c (3D) by rate: row for every point as it is located (in the order of
  * the rates; a non-zero return stops the chart with that status), tick after every point of a
  * continuation and every rate (may be NULL). GSL_EINVAL with a message on bad parameters;
- * WHIRL_EINTERRUPTED on a stop request (the points handed out stand); an integration's status. */
+ * WHIRL_EINTERRUPTED on a stop request (the points handed out stand); an integration's status.
+ * @param c the chain
+ * @param params the circle's radius, the mode, the rates and the continuation's settings
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every point of a continuation and every rate, or NULL
+ * @param tick_data passed to tick
+ * @return GSL_SUCCESS, GSL_EINVAL, WHIRL_EINTERRUPTED, row's status, or an integration's status
+ */
 WHIRL_API int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
                                   whirl_ellipse_chart_row_fn row, void *row_data,
                                   whirl_ellipse_chart_tick_fn tick, void *tick_data);
 
+/* The name of the verdict: "stable", "neutral", "unstable".
+ * @param v the verdict
+ * @return the name (static text), "unknown" for no verdict
+ */
 WHIRL_API const char *whirl_floquet_verdict_name(whirl_floquet_verdict v);
+/* The name of the edge: "+1", "-1", "complex".
+ * @param e the edge
+ * @return the name (static text), "unknown" for no edge
+ */
 WHIRL_API const char *whirl_floquet_edge_name(whirl_floquet_edge e);
 
 #ifdef __cplusplus

@@ -89,7 +89,10 @@ typedef struct whirl_regime_params {
 
 /* The defaults for a chain of links links, omega and drive_radius 0 (to be set): drag 0, rotating
  * frame, "rk4", dt = 0.1 / links, t_ramp 20, t_max 400, settle_tol 1e-3, settle_periods 3,
- * periodic_tol 1e-3, lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1. */
+ * periodic_tol 1e-3, lyapunov_periods 60, chaos_lambda 0.05, perturb 1e-3, seed 1.
+ * @param links the chain's links N, which sets dt
+ * @return the defaults
+ */
 WHIRL_API whirl_regime_params whirl_regime_defaults(size_t links);
 
 /* The outcome of one run. */
@@ -118,20 +121,41 @@ typedef int (*whirl_regime_observer)(void *ctx, double t, double frame_angle, co
 
 typedef struct whirl_regime whirl_regime; /* workspace of one chain */
 
-/* A workspace for runs of chain (not owned: must outlive it). NULL on no memory. */
+/* A workspace for runs of chain (not owned: must outlive it). NULL on no memory.
+ * @param chain the chain, of at least one link (not owned)
+ * @return the workspace, to free with whirl_regime_free; NULL with a message on a chain of no link
+ *     or no memory
+ */
 WHIRL_API whirl_regime *whirl_regime_alloc(const whirl_chain *chain);
-WHIRL_API void whirl_regime_free(whirl_regime *w); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param w the workspace, or NULL
+ */
+WHIRL_API void whirl_regime_free(whirl_regime *w);
 
-/* Sets (or clears, with NULL) the observer called every `every` > 0 time units. */
+/* Sets (or clears, with NULL) the observer called every `every` > 0 time units.
+ * @param w the workspace
+ * @param f the observer, or NULL: none
+ * @param ctx passed to f
+ * @param every the observer's interval [T], > 0 (else no observer is called)
+ */
 WHIRL_API void whirl_regime_observe(whirl_regime *w, whirl_regime_observer f, void *ctx,
                                     double every);
 
-/* Checks p: GSL_SUCCESS, or GSL_EINVAL naming the first bad field. */
+/* Checks p: GSL_SUCCESS, or GSL_EINVAL naming the first bad field.
+ * @param p the parameters
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message naming the first bad field
+ */
 WHIRL_API int whirl_regime_check(const whirl_regime_params *p);
 
 /* One run from rest (see above). GSL_EINVAL on bad parameters; the status of the observer if it
  * stopped the run; GSL_SUCCESS otherwise, also when the integration failed (state FAILED, the
- * reason in whirl_last_error()). */
+ * reason in whirl_last_error()).
+ * @param w the workspace
+ * @param p the run's parameters
+ * @param res out: the outcome
+ * @return GSL_SUCCESS (also for a FAILED run), GSL_EINVAL on bad parameters, the observer's status,
+ *     or WHIRL_EINTERRUPTED; with a message
+ */
 WHIRL_API int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p,
                                whirl_regime_result *res);
 
@@ -140,12 +164,24 @@ WHIRL_API int whirl_regime_run(whirl_regime *w, const whirl_regime_params *p,
  * settles (or for t_max - t_ramp), res[j] the outcome there. Rotating frame only (GSL_EINVAL
  * otherwise). Returns as whirl_regime_run; a FAILED point ends the sweep (later res[] FAILED).
  * If n_done is not NULL it receives the number of points of res[] completed, also when the
- * sweep stops early (a stop request: WHIRL_EINTERRUPTED, res[0..*n_done-1] kept). */
+ * sweep stops early (a stop request: WHIRL_EINTERRUPTED, res[0..*n_done-1] kept).
+ * @param w the workspace
+ * @param p the runs' parameters (p->omega ignored), rotating frame
+ * @param omega the rates [sqrt(g/L)], n
+ * @param n the rates, >= 1
+ * @param t_change the time of each change of rate [T], > 0
+ * @param res out: the outcome at each rate, n
+ * @param n_done out, or NULL: the points of res completed
+ * @return as whirl_regime_run; GSL_EINVAL also for no rate, a bad t_change or the inertial frame
+ */
 WHIRL_API int whirl_regime_sweep(whirl_regime *w, const whirl_regime_params *p, const double *omega,
                                  size_t n, double t_change, whirl_regime_result *res,
                                  size_t *n_done);
 
-/* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise. */
+/* "settled", "periodic", "quasiperiodic", "chaotic", "failed", "converging"; NULL otherwise.
+ * @param s the state
+ * @return the state's name (static text), or NULL for no state
+ */
 WHIRL_API const char *whirl_regime_state_name(whirl_regime_state s);
 
 #ifdef __cplusplus

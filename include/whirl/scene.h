@@ -199,24 +199,48 @@ typedef struct whirl_scene {
  * after it (n_overrides may be 0, overrides then NULL). On success fills *scene (free it with
  * whirl_scene_free). On failure returns GSL_EINVAL (GSL_ENOMEM, GSL_EFAILED for an unreadable
  * file) with the one-line message "FILE:LINE: [section] key: problem" in whirl_last_error(),
- * and leaves *scene empty (whirl_scene_free is still safe). */
+ * and leaves *scene empty (whirl_scene_free is still safe).
+ * @param path the scene file's name
+ * @param overrides the overrides "section.key=value", n_overrides, applied in order; NULL if none
+ * @param n_overrides the overrides, >= 0
+ * @param scene out: the scene, to free with whirl_scene_free (also after a failure)
+ * @return GSL_SUCCESS, or GSL_EINVAL, GSL_ENOMEM or GSL_EFAILED with a message
+ */
 WHIRL_API int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                                 whirl_scene *scene);
 
 /* whirl_scene_parse reading the open stream fp (not closed here; path names it in messages
- * and in scene->path). */
+ * and in scene->path).
+ * @param fp the open stream of the scene file, read and not closed
+ * @param path the file's name, in the messages and scene->path
+ * @param overrides the overrides "section.key=value", n_overrides, applied in order; NULL if none
+ * @param n_overrides the overrides, >= 0
+ * @param scene out: the scene, to free with whirl_scene_free (also after a failure)
+ * @return as whirl_scene_parse
+ */
 WHIRL_API int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
                                        size_t n_overrides, whirl_scene *scene);
 
-/* Frees the arrays of the scene and zeroes it; NULL is a no-op. */
+/* Frees the arrays of the scene and zeroes it; NULL is a no-op.
+ * @param scene the scene, or NULL
+ */
 WHIRL_API void whirl_scene_free(whirl_scene *scene);
 
 /* Writes the location of key into buf (size bytes): "FILE:LINE: [section] key",
- * "FILE: --set section.key" or "FILE: [section] key" (not given). Returns buf. */
+ * "FILE: --set section.key" or "FILE: [section] key" (not given). Returns buf.
+ * @param scene the parsed scene
+ * @param key the key
+ * @param buf out: the location, NUL-terminated, cut at size - 1 bytes
+ * @param size the bytes of buf
+ * @return buf
+ */
 WHIRL_API const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_key key, char *buf,
                                         size_t size);
 
-/* The name of output column c ("tip_x"), or NULL. */
+/* The name of output column c ("tip_x"), or NULL.
+ * @param c the column
+ * @return the name (static text), or NULL for no column
+ */
 WHIRL_API const char *whirl_column_name(whirl_column c);
 
 /* ---- running a scene (src/scene_run.c) ----
@@ -255,18 +279,37 @@ typedef struct whirl_scene_result {
 /* Builds the chain, the model, the dynamics, the integrator and the start state of scene (which
  * must outlive the result). NULL on failure, with the message "FILE:LINE: [section] key:
  * problem" naming the key to blame (no steady shape of the mode, unknown method, a step the
- * method cannot take, ...). */
+ * method cannot take, ...).
+ * @param scene the parsed scene (not owned: must outlive the workspace)
+ * @return the workspace, to free with whirl_scene_work_free; NULL with a message on failure
+ */
 WHIRL_API whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *scene);
-WHIRL_API void whirl_scene_work_free(whirl_scene_work *w); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param w the workspace, or NULL
+ */
+WHIRL_API void whirl_scene_work_free(whirl_scene_work *w);
 
-/* The run's dynamics and its current state (whirl_dyn_size values). */
+/* The run's dynamics and its current state (whirl_dyn_size values).
+ * @param w the workspace
+ * @return the dynamics, owned by the workspace
+ */
 WHIRL_API const whirl_dyn *whirl_scene_work_dyn(const whirl_scene_work *w);
+/* The run's current state: whirl_dyn_size values.
+ * @param w the workspace
+ * @return the state, owned by the workspace and valid until its next use
+ */
 WHIRL_API const double *whirl_scene_work_state(const whirl_scene_work *w);
 
 /* Runs from t = 0 to t_end (once per workspace), reporting through out. GSL_SUCCESS (also when
  * stop_deviation ended the run: res->stopped), WHIRL_EINTERRUPTED after a stop request, the
  * status of a callback that stopped it, or the integration's failure ("the run failed after t =
- * ..."); res describes how far it got in every case (the rows reported so far are valid). */
+ * ..."); res describes how far it got in every case (the rows reported so far are valid).
+ * @param w the workspace, not run yet
+ * @param out the callbacks (each may be NULL)
+ * @param res out: how far the run got
+ * @return GSL_SUCCESS, GSL_EINVAL if w, out or res is NULL, WHIRL_EINTERRUPTED, a callback's
+ *     status, or the integration's failure; with a message
+ */
 WHIRL_API int whirl_scene_work_run(whirl_scene_work *w, const whirl_scene_output *out,
                          whirl_scene_result *res);
 
@@ -293,15 +336,41 @@ WHIRL_API int whirl_scene_stiff(const whirl_scene *scene, double *rate);
  * column names), one row (the scene's columns of
  * value[WHIRL_NCOLUMNS]), one trace frame ("# t = T", then "x y z t" of the pivot and of every
  * mass; blocks after the first (index > 0) begin with two empty lines). GSL_EFAILED if fp has
- * an error. */
+ * an error.
+ * @param fp the stream
+ * @param scene the parsed scene: its options and columns
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message if fp has an error
+ */
 WHIRL_API int whirl_scene_write_header(FILE *fp, const whirl_scene *scene);
+/* One CSV row of the scene's columns (see above).
+ * @param fp the stream
+ * @param scene the parsed scene: its columns
+ * @param value the values indexed by whirl_column, WHIRL_NCOLUMNS
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message if fp has an error
+ */
 WHIRL_API int whirl_scene_write_row(FILE *fp, const whirl_scene *scene, const double *value);
+/* One trace frame (see above).
+ * @param fp the stream
+ * @param index the frame's index, 0 for the first
+ * @param t the time [T, or s with SI units]
+ * @param pivot the pivot's position (3), inertial frame
+ * @param x the masses' positions, 3 n, inertial frame
+ * @param n the masses
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message if fp has an error
+ */
 WHIRL_API int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, const double *pivot,
                             const double *x, size_t n);
 
 /* The whole run: whirl_scene_work_alloc, the header and every row to csv, the frames to trace
  * (NULL: none), whirl_scene_work_free. Returns as whirl_scene_work_run (or the allocation's
- * failure). */
+ * failure).
+ * @param scene the parsed scene
+ * @param csv the stream of the rows
+ * @param trace the stream of the frames, or NULL: none
+ * @param res out: how far the run got
+ * @return as whirl_scene_work_run (GSL_EINVAL also if scene, csv or res is NULL), or the
+ *     allocation's failure
+ */
 WHIRL_API int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
 
 #ifdef __cplusplus

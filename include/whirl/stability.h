@@ -49,7 +49,10 @@ typedef struct whirl_stability whirl_stability; /* workspace of the linear analy
  *     memory
  */
 WHIRL_API whirl_stability *whirl_stability_alloc(size_t n);
-WHIRL_API void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param w the workspace, or NULL
+ */
+WHIRL_API void whirl_stability_free(whirl_stability *w);
 
 /* Forms M, G, C, K about the shape with nodes (x[i], y[i], z[i]), i = 0..N in the co-rotating
  * frame (i = 0: the pivot; as from whirl_driven_sample), rotating at model->omega. Only the
@@ -59,7 +62,15 @@ WHIRL_API void whirl_stability_free(whirl_stability *w); /* NULL is a no-op */
  * 1e-9 relative, or the shape is not an equilibrium (the load below some link has a component
  * across it larger than 1e-8 of M (g + omega^2 L) + (c + c2 omega L) omega L^2). For more than
  * 32 links (O(N^2) entries, a second at a few thousand links) the stop request is read at every
- * row: WHIRL_EINTERRUPTED (message set) and no linearisation. */
+ * row: WHIRL_EINTERRUPTED (message set) and no linearisation.
+ * @param w the workspace (of model->chain->n links)
+ * @param model the model: the chain, omega, the drive and any damping or drag (dim 3)
+ * @param x the nodes' x [L], N + 1, the pivot first
+ * @param y the nodes' y [L], N + 1
+ * @param z the nodes' z [L], N + 1
+ * @return GSL_SUCCESS, GSL_EINVAL (unsupported model, wrong lengths, not an equilibrium) or
+ *     WHIRL_EINTERRUPTED; with a message
+ */
 WHIRL_API int whirl_stability_linearise_3d(whirl_stability *w, const whirl_model *model,
                                            const double *x, const double *y, const double *z);
 
@@ -85,18 +96,30 @@ typedef enum {
 } whirl_stability_matrix;
 
 /* The 2N x 2N matrix (row-major, rows and columns ordered as q) of the last linearisation (NULL
- * after an interrupted eigen-solve, until the next linearisation). */
+ * after an interrupted eigen-solve, until the next linearisation).
+ * @param w the workspace
+ * @param which the matrix: M, G, C or K
+ * @return the matrix, owned by w, or NULL without a linearisation
+ */
 WHIRL_API const double *whirl_stability_get_matrix(const whirl_stability *w,
                                                    whirl_stability_matrix which);
 
 /* The symmetry direction s of the last linearisation (2N): the infinitesimal rotation about z,
  * (a_j, b_j) = (e1_j, e2_j) . (z x u0_j) (for a shape in the x-z plane a_j = 0, b_j = sin t_j);
  * all zero for a chain hanging straight down and for a model without the symmetry (drive or air
- * drag). NULL after an interrupted eigen-solve, until the next linearisation. */
+ * drag). NULL after an interrupted eigen-solve, until the next linearisation.
+ * @param w the workspace
+ * @return the direction, 2N values owned by w, or NULL without a linearisation
+ */
 WHIRL_API const double *whirl_stability_symmetry(const whirl_stability *w);
 
 /* The nodes of the last linearisation (N + 1 each, pivot first): the pivot at (eps, 0, 0), mass i
- * at the pivot plus sum_{j<=i} l_j u0_j (valid until the next linearisation). */
+ * at the pivot plus sum_{j<=i} l_j u0_j (valid until the next linearisation).
+ * @param w the workspace
+ * @param x out: the nodes' x [L], N + 1, owned by w
+ * @param y out: the nodes' y [L], N + 1, owned by w
+ * @param z out: the nodes' z [L], N + 1, owned by w
+ */
 WHIRL_API void whirl_stability_nodes(const whirl_stability *w, const double **x, const double **y,
                                      const double **z);
 
@@ -145,7 +168,11 @@ WHIRL_API int whirl_stability_index(const whirl_stability *w, int *index);
 /* tick(data) is called on the calling thread about every 20 ms while a dense solve of w runs on
  * its worker thread (whirl_stability_eigenvalues and whirl_stability_index above 32 links, whose
  * solves take minutes at a few thousand links): for a progress display. It must not call w.
- * NULL (the default) for none. */
+ * NULL (the default) for none.
+ * @param w the workspace
+ * @param tick the callback, or NULL: none
+ * @param data passed to tick
+ */
 WHIRL_API void whirl_stability_set_tick(whirl_stability *w, void (*tick)(void *data), void *data);
 
 /* Linearises about the steady shape with tip radius tip_r (a root from whirl_nlink_solve or
@@ -183,7 +210,16 @@ WHIRL_API int whirl_stability_mode(whirl_stability *w, const whirl_model *model,
  * model->drive_radius and the air drag of the model (whirl_driven_mode with side = +1 / -1: the
  * seed's tip on the pivot's side of the axis or opposite), its linearisation and growth rate.
  * info may be NULL. GSL_EDOM if the mode does not exist or its continuation fails (see
- * whirl_driven_mode). The nodes are then available from whirl_stability_nodes. */
+ * whirl_driven_mode). The nodes are then available from whirl_stability_nodes.
+ * @param w the workspace
+ * @param model the model: the chain, omega, the pivot's circle, the air drag and damping
+ * @param mode the mode k, 1..WHIRL_MODE_MAX
+ * @param side +1: the seed's tip on the pivot's side of the axis, -1: opposite
+ * @param info out: the shape's summary, or NULL
+ * @param growth out: the largest real part of the eigenvalues [1/T]
+ * @return GSL_SUCCESS, GSL_EDOM if the mode does not exist or its continuation fails, GSL_EINVAL,
+ *     or a status with a message
+ */
 WHIRL_API int whirl_stability_driven_mode(whirl_stability *w, const whirl_model *model, int mode,
                                           int side, whirl_driven_info *info, double *growth);
 
@@ -208,9 +244,16 @@ typedef struct whirl_stability_modes {
 } whirl_stability_modes;
 
 /* Storage for the modes of n >= 1 links (4N of each). NULL (whirl_last_error) on n = 0 or no
- * memory. */
+ * memory.
+ * @param n the links N, >= 1
+ * @return the storage, to free with whirl_stability_modes_free; NULL with a message on n = 0 or no
+ *     memory
+ */
 WHIRL_API whirl_stability_modes *whirl_stability_modes_alloc(size_t n);
-WHIRL_API void whirl_stability_modes_free(whirl_stability_modes *m); /* NULL is a no-op */
+/* Frees the storage. NULL is a no-op.
+ * @param m the storage, or NULL
+ */
+WHIRL_API void whirl_stability_modes_free(whirl_stability_modes *m);
 
 /* The eigenvalues (whirl_stability_eigenvalues, whose stop rules apply) and eigenvectors of the
  * last linearisation in w into out (allocated for w's links, GSL_EINVAL otherwise). Each mode is
@@ -220,14 +263,24 @@ WHIRL_API void whirl_stability_modes_free(whirl_stability_modes *m); /* NULL is 
  * by nearest distance (the symmetry's zero eigenvalues are left out as there). GSL_EFAILED if the
  * solve fails, WHIRL_EINTERRUPTED on a stop request before or during the eigenvalues' solve; the
  * solve with vectors (O(N^3), 2 (4N)^2 doubles: 256 MB at 1000 links) then runs on the calling
- * thread and does not poll the stop request. */
+ * thread and does not poll the stop request.
+ * @param w the workspace, after a linearisation
+ * @param out out: the modes (whirl_stability_modes_alloc of w's links)
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_EFAILED or WHIRL_EINTERRUPTED, with a message
+ */
 WHIRL_API int whirl_stability_eigenvectors(whirl_stability *w, whirl_stability_modes *out);
 
 /* Each of the n link vectors l_j u0_j (3 per link, in place) turned in its chart (above) to
  * a = eps along_j / A, b = eps along_{n+j} / A, A = max |along| (2n angles, as a mode's
  * angle_re): u = cos a cos b u0 + sin a cos b e1 + sin b e2, lengths kept (the largest turn is
  * eps [rad]). GSL_EINVAL on NULL, n = 0, eps < 0, a non-finite or all-zero direction or a zero
- * link. (src/stability/stability_run.c) */
+ * link. (src/stability/stability_run.c)
+ * @param n the links N, >= 1
+ * @param links the link vectors, 3 per link, turned in place
+ * @param eps the largest turn [rad], >= 0
+ * @param along the direction in link angles (a_1..a_N, b_1..b_N), 2n, finite and not all zero
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_perturb_links_along(size_t n, double *links, double eps, const double *along);
 
 /* ---- the linear stability map (src/stability/stability_map.c) ---- */
@@ -255,7 +308,16 @@ typedef void (*whirl_stability_map_progress)(void *ctx, size_t done);
  * the points shared over the OpenMP threads, a workspace each (the growth of a point does not
  * depend on the sharing). progress may be NULL. Returns GSL_SUCCESS; the failure of the earliest
  * point that failed, with its message (its status in pts[i].status); GSL_ENOMEM; or
- * WHIRL_EINTERRUPTED (message set) on a stop request, the points analysed until then kept. */
+ * WHIRL_EINTERRUPTED (message set) on a stop request, the points analysed until then kept.
+ * @param c the chain
+ * @param damping the internal damping D, >= 0
+ * @param n the points
+ * @param pts in: the points' rates, nodes and skip flags; out: their growth, status and index
+ * @param progress called per point analysed, or NULL
+ * @param ctx passed to progress
+ * @return GSL_SUCCESS, the earliest failing point's status, GSL_EINVAL on a NULL chain or points or
+ *     a bad damping, GSL_ENOMEM, or WHIRL_EINTERRUPTED; with a message
+ */
 WHIRL_API int whirl_stability_map(const whirl_chain *c, double damping, size_t n,
                                   whirl_stability_point *pts,
                                   whirl_stability_map_progress progress, void *ctx);
@@ -274,15 +336,26 @@ typedef enum {
                                     in the energy sense, destabilised by any dissipation */
 } whirl_verdict;
 
-/* "stable (minimum)", "unstable", "converging", "neutral (gyroscopic)". */
+/* "stable (minimum)", "unstable", "converging", "neutral (gyroscopic)".
+ * @param v the verdict
+ * @return the verdict's name (static text); "stable (minimum)" for any value not listed
+ */
 WHIRL_API const char *whirl_verdict_name(whirl_verdict v);
 
 /* The verdict v of a run or of the eigenvalues with the index of the shape
- * (whirl_stability_index): STABLE with index > 0 becomes NEUTRAL; others unchanged. */
+ * (whirl_stability_index): STABLE with index > 0 becomes NEUTRAL; others unchanged.
+ * @param v the verdict
+ * @param index the shape's index (whirl_stability_index)
+ * @return the refined verdict
+ */
 WHIRL_API whirl_verdict whirl_verdict_refine(whirl_verdict v, int index);
 
 /* The linear verdict from the growth rate (whirl_stability_growth) and the index: UNSTABLE if
- * growth > 0, CONVERGING if < 0, else STABLE (index 0) or NEUTRAL (index > 0). */
+ * growth > 0, CONVERGING if < 0, else STABLE (index 0) or NEUTRAL (index > 0).
+ * @param growth the growth rate [1/T] (whirl_stability_growth)
+ * @param index the shape's index (whirl_stability_index)
+ * @return the verdict
+ */
 WHIRL_API whirl_verdict whirl_verdict_linear(double growth, int index);
 
 typedef struct whirl_stability_run_params {
@@ -311,7 +384,9 @@ typedef struct whirl_stability_run_params {
     const double *along;
 } whirl_stability_run_params;
 
-/* The defaults above. */
+/* The defaults above.
+ * @return the defaults
+ */
 WHIRL_API whirl_stability_run_params whirl_stability_run_defaults(void);
 
 typedef struct whirl_stability_run_result {
@@ -381,12 +456,21 @@ WHIRL_API int whirl_stability_run(const whirl_model *model, double tip_r,
 
 typedef struct whirl_windows whirl_windows; /* workspace of the window search for N links */
 
-/* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory. */
+/* A workspace for chains of n >= 1 links. NULL (whirl_last_error) on n = 0 or no memory.
+ * @param n the links N, >= 1
+ * @return the workspace, to free with whirl_windows_free; NULL with a message on n = 0 or no memory
+ */
 WHIRL_API whirl_windows *whirl_windows_alloc(size_t n);
-WHIRL_API void whirl_windows_free(whirl_windows *w); /* NULL is a no-op */
+/* Frees the workspace. NULL is a no-op.
+ * @param w the workspace, or NULL
+ */
+WHIRL_API void whirl_windows_free(whirl_windows *w);
 
 /* The linearisation workspace inside w (owned by w): whirl_windows_find leaves the last
- * linearisation of its search there. */
+ * linearisation of its search there.
+ * @param w the workspace
+ * @return the linearisation workspace, owned by w
+ */
 WHIRL_API whirl_stability *whirl_windows_linearisation(whirl_windows *w);
 
 typedef struct whirl_spectrum {
@@ -403,7 +487,13 @@ typedef struct whirl_spectrum {
 /* The squared eigenvalues of the last linearisation in lin, which must be of a free planar shape
  * of the conservative chain (GSL_EINVAL otherwise: damping or drag, or the in-plane and
  * out-of-plane blocks coupled), with the rotation's zero removed. signatures != 0 computes the
- * eigenvectors too (about 2.5 times the work) and the signatures. */
+ * eigenvectors too (about 2.5 times the work) and the signatures.
+ * @param w the workspace
+ * @param lin the linearisation (whirl_windows_linearisation(w), or a workspace of the same links)
+ * @param signatures non-zero: the Krein signatures too
+ * @param out out: the mu and the growth (pointers into w)
+ * @return GSL_SUCCESS, GSL_EINVAL, or the eigen-solver's failure; with a message
+ */
 WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *lin, int signatures,
                                      whirl_spectrum *out);
 
@@ -411,7 +501,15 @@ WHIRL_API int whirl_windows_spectrum(whirl_windows *w, const whirl_stability *li
  * Arnoldi method on (A' - sigma)^-1 = -(K' + sigma B)^-1 B (one LU factorisation, O(N^2) per
  * step), into mu_re[0..1], mu_im[0..1], nearest first; the rotation's mu = 0 is not removed.
  * Converged when both Ritz residuals are below 1e-13 of |1 / (mu - sigma)|; GSL_CONTINUE if not
- * within 40 steps (or sigma is an eigenvalue), GSL_EINVAL as whirl_windows_spectrum. */
+ * within 40 steps (or sigma is an eigenvalue), GSL_EINVAL as whirl_windows_spectrum.
+ * @param w the workspace
+ * @param lin the linearisation
+ * @param sigma the shift [1/T^2]
+ * @param mu_re out: the real parts of the two mu [1/T^2], 2, nearest first
+ * @param mu_im out: their imaginary parts [1/T^2], 2
+ * @return GSL_SUCCESS, GSL_CONTINUE if the Arnoldi method does not converge, GSL_EINVAL, or a
+ *     status with a message
+ */
 WHIRL_API int whirl_windows_pair(whirl_windows *w, const whirl_stability *lin, double sigma,
                                  double *mu_re, double *mu_im);
 
@@ -428,7 +526,9 @@ typedef struct whirl_windows_params {
                                     full (dense) solve; 1 */
 } whirl_windows_params;
 
-/* The defaults above. */
+/* The defaults above.
+ * @return the defaults
+ */
 WHIRL_API whirl_windows_params whirl_windows_defaults(void);
 
 typedef struct whirl_window {
@@ -519,7 +619,18 @@ typedef struct whirl_dissipative_interval {
  * decide), or on bad parameters; GSL_EDOM if the mode does not exist in the range, or the
  * hand-swung shape disappears between two scan rates of opposite growth; GSL_EFAILED if the
  * growth jumps there instead of passing through 0 (a shape that changes branch);
- * WHIRL_EINTERRUPTED on a stop request (between eigen-solves). */
+ * WHIRL_EINTERRUPTED on a stop request (between eigen-solves).
+ * @param model the model: its chain, internal damping, air drag and drive radius
+ * @param mode the mode k >= 1
+ * @param side +1 / -1: the hand-swung shape's side (with a drive), else not used
+ * @param p the range, scan step and tolerance (krylov not used)
+ * @param out out: the intervals in increasing omega, max of them
+ * @param max the room in out
+ * @param count out: how many intervals
+ * @param stats out: the scan points, shapes and eigen-solves
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_EDOM, GSL_EFAILED or WHIRL_EINTERRUPTED (see above), with a
+ *     message
+ */
 WHIRL_API int whirl_windows_dissipative(const whirl_model *model, int mode, int side,
                                         const whirl_windows_params *p,
                                         whirl_dissipative_interval *out, size_t max,

@@ -112,7 +112,15 @@ WHIRL_API int whirl_continuum_solve(double omega, int mode, double tip_mass, dou
 #define WHIRL_CONTINUUM_TOL 1e-13
 
 /* whirl_continuum_solve with the ODE tolerance tol in (0, 1) instead of WHIRL_CONTINUUM_TOL:
- * for convergence studies. */
+ * for convergence studies.
+ * @param omega the rotation rate [sqrt(g/L)], in (0, WHIRL_CONTINUUM_OMEGA_MAX]
+ * @param mode the mode k (node count), 1..WHIRL_CONTINUUM_MODE_MAX
+ * @param tip_mass the point mass at the free end [M], >= 0
+ * @param tip_r_guess a tip radius to start the root search from [L], or 0 to bracket it
+ * @param tol the ODE tolerance, in (0, 1)
+ * @param info out: the shape's summary
+ * @return as whirl_continuum_solve; GSL_EINVAL also for tol out of range, GSL_ENOMEM
+ */
 WHIRL_API int whirl_continuum_solve_tol(double omega, int mode, double tip_mass, double tip_r_guess,
                                         double tol, whirl_shape_info *info);
 
@@ -161,7 +169,16 @@ WHIRL_API int whirl_continuum_branch(int mode, double tip_mass, size_t n, const 
  * the tip, their radii there zero or subnormal) the signs are those of the force balance
  * linearised about the hanging chain at omega, followed up from the tip (src/nlink.c). That
  * mass's index into *resolved (if not NULL): c->n when every radius is counted as it is (also
- * when none is normal, the hanging chain: no crossing). */
+ * when none is normal, the hanging chain: no crossing).
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param r the masses' signed distances from the axis [L], c->n + 1, the pivot first
+ * @param max the room in node_s
+ * @param node_s out: the crossings' arclengths from the pivot [L], min(count, max); NULL if max is
+ *     0
+ * @param resolved out, or NULL: the index of the last mass whose radius is counted as it is
+ * @return the number of crossings (the node count minus 1)
+ */
 WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega, const double *r,
                                              size_t max, double *node_s, size_t *resolved);
 
@@ -238,12 +255,25 @@ typedef struct whirl_nlink_follow_options {
 } whirl_nlink_follow_options;
 
 /* The default options for the chain c: steps_max the bound above (100000 or 200 per link,
- * whichever is more; 100000 for c NULL), no progress function. */
+ * whichever is more; 100000 for c NULL), no progress function.
+ * @param c the chain, or NULL
+ * @return the defaults
+ */
 WHIRL_API whirl_nlink_follow_options whirl_nlink_follow_defaults(const whirl_chain *c);
 
 /* whirl_nlink_solve_nodes with the options opt (may be NULL). The middle modes of long chains
  * fold thousands of times on their way up (1000 links, mode 334: about 5000 folds from its
- * birth at omega 530 to 700, 120000 steps). */
+ * birth at omega 530 to 700, 120000 steps).
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param mode the mode k, 1..c->n
+ * @param info out: the shape's summary
+ * @param r out: the masses' signed distances from the axis [L], c->n + 1 (the pivot first)
+ * @param z out: their heights relative to the pivot [L], c->n + 1
+ * @param tension out: the links' tensions [M g], c->n + 1
+ * @param opt the continuation's options, or NULL for the defaults
+ * @return as whirl_nlink_solve; GSL_EINVAL also on bad options
+ */
 WHIRL_API int whirl_nlink_solve_nodes_opt(const whirl_chain *c, double omega, int mode,
                                           whirl_shape_info *info, double *r, double *z,
                                           double *tension, const whirl_nlink_follow_options *opt);
@@ -278,7 +308,18 @@ WHIRL_API int whirl_nlink_branch(const whirl_chain *c, int mode, size_t n, const
 
 /* whirl_nlink_branch with the nodes of each shape (as whirl_nlink_solve_nodes): row j of r, z
  * and tension (each n x (c->n + 1), row-major) holds the shape at omega[j] where exists[j],
- * and is left as it was elsewhere. r, z and tension are all NULL (none wanted) or none is. */
+ * and is left as it was elsewhere. r, z and tension are all NULL (none wanted) or none is.
+ * @param c the chain
+ * @param mode the mode k, 1..c->n
+ * @param n how many rates
+ * @param omega the rates [sqrt(g/L)], n, in any order
+ * @param info out: the shape where the branch first reaches omega[j], n
+ * @param exists out: 1 where it reaches omega[j], 0 where not, n
+ * @param r out, or NULL: the nodes' signed distances from the axis [L], n x (c->n + 1)
+ * @param z out, or NULL: their heights relative to the pivot [L], n x (c->n + 1)
+ * @param tension out, or NULL: the links' tensions [M g], n x (c->n + 1)
+ * @return as whirl_nlink_solve; GSL_EINVAL if some but not all of r, z, tension are NULL
+ */
 WHIRL_API int whirl_nlink_branch_nodes(const whirl_chain *c, int mode, size_t n,
                                        const double *omega, whirl_shape_info *info, int *exists,
                                        double *r, double *z, double *tension);
@@ -344,9 +385,15 @@ typedef struct whirl_nlink_path {
                                                   * the link angles, 0: by the tip shot */
 } whirl_nlink_path;
 
-/* NULL (with whirl_last_error) on no memory or a chain of no links. */
+/* NULL (with whirl_last_error) on no memory or a chain of no links.
+ * @param c the chain, of at least one link (not owned: must outlive the path)
+ * @return the path, to free with whirl_nlink_path_free; NULL with a message on failure
+ */
 WHIRL_API whirl_nlink_path *whirl_nlink_path_alloc(const whirl_chain *c);
-WHIRL_API void whirl_nlink_path_free(whirl_nlink_path *p); /* NULL is a no-op */
+/* Frees the path. NULL is a no-op.
+ * @param p the path, or NULL
+ */
+WHIRL_API void whirl_nlink_path_free(whirl_nlink_path *p);
 
 /* Starts at the birth of mode k (1 <= k <= N): the k-th critical rate polished by Newton's
  * method on G(omega, 0), tip radius 0, heading into a > 0. GSL_EINVAL if k is out of range.
@@ -358,7 +405,14 @@ WHIRL_API int whirl_nlink_path_birth(whirl_nlink_path *p, int mode);
 
 /* Starts at an equilibrium near (omega, tip_r) (polished by Newton's method at fixed omega),
  * heading where omega increases (direction > 0) or decreases (direction < 0). GSL_EFAILED if
- * Newton's method does not converge there. */
+ * Newton's method does not converge there.
+ * @param p the path (whirl_nlink_path_alloc)
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param tip_r the tip radius near the equilibrium [L]
+ * @param direction > 0: towards increasing omega, < 0: decreasing
+ * @return GSL_SUCCESS, GSL_EINVAL on a bad omega (or tip radius), GSL_EFAILED, or another status;
+ *     with a message
+ */
 WHIRL_API int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double tip_r, int direction);
 
 /* Starts at the equilibrium near the link angles theta[0..N-1] [rad] at omega (polished by
@@ -366,18 +420,33 @@ WHIRL_API int whirl_nlink_path_start(whirl_nlink_path *p, double omega, double t
  * heading where omega increases (direction > 0) or decreases (direction < 0). Unlike a start
  * from the tip radius, the start is the equilibrium whose angles are given even where the shot
  * cannot resolve it (roots whose tip radii agree to 1e-7 on a coarse chain at a high rate).
- * GSL_EFAILED if Newton's method does not converge or the point is a fold. */
+ * GSL_EFAILED if Newton's method does not converge or the point is a fold.
+ * @param p the path (whirl_nlink_path_alloc)
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param theta the link angles near the equilibrium [rad], c->n
+ * @param direction > 0: towards increasing omega, < 0: decreasing
+ * @return GSL_SUCCESS, GSL_EINVAL on a bad omega (or tip radius), GSL_EFAILED, or another status;
+ *     with a message
+ */
 WHIRL_API int whirl_nlink_path_start_angles(whirl_nlink_path *p, double omega,
                                             const double *theta, int direction);
 
-/* Reverses the direction of travel. */
+/* Reverses the direction of travel.
+ * @param p the path, started
+ */
 WHIRL_API void whirl_nlink_path_reverse(whirl_nlink_path *p);
 
-/* The link angles at the current point, c->n [rad] (valid until the next step or start). */
+/* The link angles at the current point, c->n [rad] (valid until the next step or start).
+ * @param p the path, started
+ * @return the angles, owned by the path
+ */
 WHIRL_API const double *whirl_nlink_path_theta(const whirl_nlink_path *p);
 
 /* The link angles of the crossings found by the last whirl_nlink_path_crossings, crossing k at
- * k c->n .. (k + 1) c->n - 1 [rad] (valid until the next call, step or start). */
+ * k c->n .. (k + 1) c->n - 1 [rad] (valid until the next call, step or start).
+ * @param p the path
+ * @return the angles, owned by the path
+ */
 WHIRL_API const double *whirl_nlink_path_cross_theta(const whirl_nlink_path *p);
 
 /* One accepted step: predictor along the tangent, Newton corrector on the arclength hyperplane.
@@ -404,7 +473,13 @@ WHIRL_API int whirl_nlink_path_step(whirl_nlink_path *p);
  * max crossings, in the order of travel, into tip_r[], each found by Newton's method at omega
  * from the step's interpolation (Brent's method on the step's arclength where that lands off the
  * piece), and their link angles in whirl_nlink_path_cross_theta (p->cross_angles[k]: resolved
- * on the link angles). Returns their number (0: no crossing), or minus a status on failure. */
+ * on the link angles). Returns their number (0: no crossing), or minus a status on failure.
+ * @param p the path, after a step
+ * @param omega the rate [sqrt(g/L)], > 0
+ * @param max the room in tip_r
+ * @param tip_r out: the crossings' tip radii [L], the first max
+ * @return the number of crossings, >= 0, or minus a status with a message
+ */
 WHIRL_API int whirl_nlink_path_crossings(whirl_nlink_path *p, double omega, int max, double *tip_r);
 
 /* What whirl_nlink_follow reports: a crossing of the rate omega[j] (event NULL) or an event
@@ -432,24 +507,57 @@ typedef int (*whirl_nlink_visit_fn)(void *ctx, size_t j, const whirl_shape_info 
  */
 WHIRL_API int whirl_nlink_follow(const whirl_chain *c, int mode, double omega_max, size_t n,
                        const double *omega, whirl_nlink_visit_fn visit, void *ctx);
-/* whirl_nlink_follow with the options opt (may be NULL). */
+/* whirl_nlink_follow with the options opt (may be NULL).
+ * @param c the chain
+ * @param mode the mode k, 1..c->n
+ * @param omega_max follow until the rate first exceeds it [sqrt(g/L)]
+ * @param n how many rates
+ * @param omega the rates whose crossings are reported [sqrt(g/L)], n
+ * @param visit called at every crossing and event, in the order met
+ * @param ctx passed to visit
+ * @param opt the continuation's options, or NULL for the defaults
+ * @return as whirl_nlink_follow; GSL_EINVAL also on bad options
+ */
 WHIRL_API int whirl_nlink_follow_opt(const whirl_chain *c, int mode, double omega_max, size_t n,
                                      const double *omega, whirl_nlink_visit_fn visit, void *ctx,
                                      const whirl_nlink_follow_options *opt);
 
-/* The shape summary at rate omega and tip radius tip_r (an equilibrium): mode is copied. */
+/* The shape summary at rate omega and tip radius tip_r (an equilibrium): mode is copied.
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param tip_r the tip radius [L]
+ * @param mode the mode, copied into info
+ * @param info out: the shape's summary
+ * @return GSL_SUCCESS, or a status with a message (bad arguments, no memory, a summary that is not
+ *     finite)
+ */
 WHIRL_API int whirl_nlink_info(const whirl_chain *c, double omega, double tip_r, int mode,
                      whirl_shape_info *info);
 
 /* G(omega, a) = r_0 / |r| and its partial derivatives (forward differentiation of the recursion):
- * for tests and the completeness scan. */
+ * for tests and the completeness scan.
+ * @param c the chain, of at least one link
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param tip_r the tip radius a [L], finite
+ * @param g out: G(omega, a)
+ * @param g_omega out, or NULL: dG/d omega
+ * @param g_tip out, or NULL: dG/da
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
 WHIRL_API int whirl_nlink_residual(const whirl_chain *c, double omega, double tip_r, double *g,
                          double *g_omega, double *g_tip);
 
 /* Pivot-end shooting, a second formulation: the top link's angle theta_1 in (-pi/2, pi/2) fixes
  * the horizontal force H_1 = V_1 tan(theta_1) at the pivot; the recursion down the chain gives
  * the force H_{N+1} left over below the tip, zero for an equilibrium. Returns H_{N+1} / H_1
- * (finite at theta_1 = 0), and the tip radius in *tip_r (may be NULL). */
+ * (finite at theta_1 = 0), and the tip radius in *tip_r (may be NULL).
+ * @param c the chain
+ * @param omega the rotation rate [sqrt(g/L)], > 0
+ * @param theta_1 the top link's angle [rad], in (-pi/2, pi/2)
+ * @param residual out: H_{N+1} / H_1
+ * @param tip_r out, or NULL: the tip radius [L]
+ * @return GSL_SUCCESS, or GSL_EINVAL (or another status) with a message
+ */
 WHIRL_API int whirl_nlink_pivot_residual(const whirl_chain *c, double omega, double theta_1,
                                double *residual, double *tip_r);
 
@@ -483,6 +591,9 @@ typedef struct whirl_equilibria_params {
                            * two scans only (every N-link equilibrium's branch -1); default 1 */
 } whirl_equilibria_params;
 
+/* The defaults of whirl_equilibria_params.
+ * @return the defaults
+ */
 WHIRL_API whirl_equilibria_params whirl_equilibria_defaults(void);
 
 /* The result: the equilibria in increasing tip radius, and the evidence of completeness. */
@@ -556,7 +667,10 @@ typedef struct whirl_equilibria {
 WHIRL_API int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                                     const whirl_equilibria_params *params,
                                     whirl_equilibria **out);
-WHIRL_API void whirl_equilibria_free(whirl_equilibria *e); /* NULL is a no-op */
+/* Frees the result. NULL is a no-op.
+ * @param e the result, or NULL
+ */
+WHIRL_API void whirl_equilibria_free(whirl_equilibria *e);
 
 #define WHIRL_EQUILIBRIA_OMEGA_MAX 1000.0 /* N-link: above it the mode-1 tip radius is within
                                            * ~1e-12 of the chain's length, beyond the scan */

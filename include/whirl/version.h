@@ -21,7 +21,9 @@ extern "C" {
     "." WHIRL_VERSION_XSTR_(WHIRL_VERSION_MINOR) "." WHIRL_VERSION_XSTR_(WHIRL_VERSION_PATCH)
 
 /* The version of the library a program runs with, "MAJOR.MINOR.PATCH" (static storage); compare
- * it with WHIRL_VERSION to detect a library other than the one compiled against. */
+ * it with WHIRL_VERSION to detect a library other than the one compiled against.
+ * @return the version (static storage)
+ */
 WHIRL_API const char *whirl_version(void);
 
 #ifdef __cplusplus

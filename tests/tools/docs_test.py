@@ -183,6 +183,42 @@ def install(build, prefix):
     return p.returncode == 0, p.stdout[-400:]
 
 
+def undocumented_functions(text):
+    """The public functions of a header (WHIRL_API ...(...);) whose comment, the one right before
+    the declaration on lines of its own, lacks an "@param NAME" line for one of the parameters,
+    or an "@return" line when the function returns a value: ["NAME: what is missing", ...]."""
+    out = []
+    for m in re.finditer(r"^WHIRL_API\b[^;(]*?\b(\w+)\s*\(", text, re.M):
+        depth, i, part, parts = 1, m.end(), "", []
+        while depth:  # the parameters: split at the commas outside parentheses
+            c = text[i]
+            depth += {"(": 1, ")": -1}.get(c, 0)
+            if depth and not (c == "," and depth == 1):
+                part += c
+            elif part:
+                parts.append(re.sub(r"/\*.*?\*/", " ", part, flags=re.S))
+                part = ""
+            i += 1
+        params = []
+        for part in parts:
+            fp = re.search(r"\(\s*\*\s*(\w+)\s*\)", part)
+            name = fp.group(1) if fp else re.search(r"(\w+)\s*(\[[^\]]*\])?\s*$", part).group(1)
+            if part.strip() != "void":
+                params.append(name)
+        before = text[:m.start()].rstrip()
+        start = before.rfind("/*")
+        line = before[before.rfind("\n", 0, start) + 1:start] if start >= 0 else "x"
+        comment = before[start:] if before.endswith("*/") and not line.strip() else ""
+        named = re.findall(r"^\s*\*?\s*@param\s+(\w+)", comment, re.M)
+        missing = [p for p in params if p not in named]
+        if not re.match(r"WHIRL_API\s+void\s+\w", m.group(0)) and \
+                not re.search(r"^\s*\*?\s*@returns?\b", comment, re.M):
+            missing.append("@return")
+        if missing:
+            out.append("%s: %s" % (m.group(1), ", ".join(missing)))
+    return out
+
+
 def main():
     args = sys.argv[1:]
     build = os.path.abspath(args[0] if args else os.path.join(ROOT, "build"))
@@ -217,6 +253,13 @@ def main():
             tap(want > 0 and got == want and "@param" not in text and "@return" not in text,
                 "the C API reference renders the headers' %d @return lines as fields (%d)"
                 % (want, got))
+        # every public function has its parameters and its value in its comment
+        missing = [h.split(os.sep)[-1] + ": " + u
+                   for h in sorted(glob.glob(os.path.join(ROOT, "include", "whirl", "*.h")))
+                   for u in undocumented_functions(open(h).read())]
+        tap(not missing, "every public function's comment has an @param line per parameter and an "
+            "@return line unless it returns void%s" % (": missing " + "; ".join(missing[:10])
+                                                       if missing else ""))
         prefix = os.path.join(tmp, "prefix")
         ok, log = install(build, prefix)
         tap(ok, "installed into a temporary prefix" + ("" if ok else ": " + log))
