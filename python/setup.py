@@ -226,4 +226,7 @@ if bdist_wheel is not None:
 
     cmdclass["bdist_wheel"] = PlatformWheel
 
-setup(version=_version(), cmdclass=cmdclass, distclass=BinaryDistribution)
+# pip and setuptools run this file as __main__; an editable install puts python/ on the path, where
+# `import setup` must do nothing
+if __name__ == "__main__":
+    setup(version=_version(), cmdclass=cmdclass, distclass=BinaryDistribution)

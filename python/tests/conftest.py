@@ -44,6 +44,7 @@ SLOW = {
     "test_install.py::": "venvs and pip builds of the package: packaging, not memory",
     "test_notebooks.py::test_notebook_runs": "a Jupyter kernel per notebook; the calls "
     "they make are the ones the other tests make",
+    "test_notebooks.py::test_notebooks_import": "two Jupyter kernels; nothing computed",
 }
 
 

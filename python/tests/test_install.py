@@ -10,6 +10,7 @@ pip installs into the venv even when it sees the same version outside (--ignore-
 the source; the wheel with --force-reinstall, as the guide says), the venv's own site comes first
 on the path, and the user's site is left out (PYTHONNOUSERSITE)."""
 import importlib.util
+import json
 import os
 import shutil
 import subprocess
@@ -73,6 +74,54 @@ def test_pip_install_source(tmp_path, source):
     subprocess.run([str(python), "-m", "pip", "install", "-q", "--ignore-installed", "--no-build-isolation",
                     "--no-deps", "--no-index", str(src)], check=True, env=env)
     _probe(python, env, tmp_path / "venv")
+
+
+def test_editable_install_uses_the_tree(tmp_path, repo):
+    # pip install -e ./python in a venv with the system's packages: whirl is the tree's package
+    # and loads the tree's build/libwhirl.so, although the environment sees an installed whirl
+    # of the same version (here in the user's site, which comes after the venv's own, before the
+    # system's)
+    tree = tmp_path / "tree"
+    (tree / "src").mkdir(parents=True)
+    (tree / "build").mkdir()
+    for name in ("Makefile", "LICENSE"):
+        shutil.copyfile(os.path.join(repo, name), tree / name)
+    shutil.copytree(os.path.join(repo, "include"), tree / "include")
+    build = os.environ.get("WHIRL_BUILD", os.path.join(repo, "build"))
+    shutil.copyfile(os.path.join(build, "libwhirl.so"), tree / "build" / "libwhirl.so")
+    shutil.copytree(os.path.join(repo, "python"), tree / "python",
+                    ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__", "tests",
+                                                  "examples", "libwhirl.so", "_ffi.py",
+                                                  ".libs"))
+    home = tmp_path / "home"
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("WHIRL_LIBRARY", "PYTHONPATH", "PYTHONNOUSERSITE", "WHIRL_SOURCE")}
+    env.update(HOME=str(home), WHIRL_PREBUILT=str(tree / "build" / "libwhirl.so"))
+    user_site = subprocess.run(["/usr/bin/python3", "-c", "import site; "
+                                "print(site.getusersitepackages())"], env=env, check=True,
+                               capture_output=True, text=True).stdout.strip()
+    assert user_site.startswith(str(home)), user_site
+    subprocess.run(["/usr/bin/python3", "-m", "pip", "install", "-q", "--no-build-isolation",
+                    "--no-deps", "--no-index", "--target", user_site, str(tree / "python")],
+                   check=True, env=env, capture_output=True)
+    python = _venv(tmp_path, "venv")
+    subprocess.run([str(python), "-m", "pip", "install", "-q", "--no-build-isolation",
+                    "--no-deps", "--no-index", "-e", str(tree / "python")], check=True,
+                   env=env, capture_output=True)
+    out = subprocess.run([str(python), "-c", PROBE], cwd="/", env=env, check=True,
+                         capture_output=True, text=True).stdout
+    version, library, module, rates = json.loads(out)
+    assert module == str(tree / "python" / "whirl" / "__init__.py"), module
+    assert library == str(tree / "build" / "libwhirl.so"), library
+    assert version == whirl.__version__
+    np.testing.assert_array_equal(rates, whirl.critical(3, length=0.6))
+    # the installed copy is there, and a Python outside the venv takes it
+    out = subprocess.run(["/usr/bin/python3", "-c", PROBE], cwd="/", env=env, check=True,
+                         capture_output=True, text=True).stdout
+    assert json.loads(out)[2].startswith(user_site)
+    # the source folder on the path brings nothing else that runs: `import setup` builds nothing
+    subprocess.run([str(python), "-c", "import setup"], cwd="/", env=env, check=True,
+                   capture_output=True)
 
 
 @pytest.fixture(scope="module")

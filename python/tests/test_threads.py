@@ -95,13 +95,63 @@ def test_max_threads_setting():
         whirl.set_max_threads(0)
         assert whirl.max_threads() == n
         b = whirl.sweep([2], np.linspace(3, 8, 200))[2]["tip_r"]
-        np.testing.assert_allclose(a, b, rtol=1e-10)
+        assert np.array_equal(a, b)  # the same bits on any number of threads
         with pytest.raises(ValueError, match="threads must be >= 0"):
             whirl.set_max_threads(-1)
         with pytest.raises(TypeError):
             whirl.set_max_threads(1.5)
     finally:
         whirl.set_max_threads(0)
+
+
+SWEEP = textwrap.dedent("""
+    import sys
+    import numpy as np
+    import whirl
+
+    out = whirl.sweep([1, 2, 3], np.linspace(1.0, 12.0, 200))
+    out.update({-k: a for k, a in whirl.sweep([1, 2], np.linspace(12.0, 2.0, 150),
+                                              tip_mass=0.3).items()})
+    np.savez(sys.argv[1], **{str(k): a for k, a in out.items()})
+""")
+
+
+def _sweep_on(threads, tmp_path):
+    script = tmp_path / "sweep.py"
+    script.write_text(SWEEP)
+    path = tmp_path / ("sweep%d.npz" % threads)
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads),
+               PYTHONPATH=os.path.join(HERE, os.pardir) + os.pathsep
+               + os.environ.get("PYTHONPATH", ""))
+    p = subprocess.run([sys.executable, str(script), str(path)], env=env, capture_output=True,
+                       text=True, timeout=240)
+    assert p.returncode == 0, p.stdout + p.stderr
+    with np.load(str(path)) as f:
+        return {k: f[k] for k in f.files}
+
+
+def test_a_sweep_is_bitwise_the_same_on_any_number_of_threads(tmp_path):
+    one = _sweep_on(1, tmp_path)
+    assert all(a.size > 50 for a in one.values())
+    for threads in (2, 3):
+        other = _sweep_on(threads, tmp_path)
+        assert sorted(other) == sorted(one)
+        for k in one:
+            assert np.array_equal(one[k], other[k]), (threads, k)
+
+
+def test_the_sweep_command_writes_the_same_bytes_on_any_number_of_threads(whirl_program):
+    def run(threads):
+        env = dict(os.environ, OMP_NUM_THREADS=str(threads))
+        p = subprocess.run([whirl_program, "sweep", "--modes", "1,2,3", "--omega-min", "1",
+                            "--omega-max", "12", "--omega-count", "300"], env=env,
+                           capture_output=True, timeout=240)
+        assert p.returncode == 0, p.stderr
+        return p.stdout
+
+    one = run(1)
+    assert one.count(b"\n") > 300
+    assert run(2) == one and run(3) == one
 
 
 CHILD = textwrap.dedent("""

@@ -3,7 +3,10 @@
  * At each rate the tip radius is seeded by the quadratic extrapolation a(omega) through the
  * three previous solutions of the same block (fewer after its start or a gap where the mode did
  * not exist; nothing at all at first), and whirl_steady_shoot_root brackets around the seed. The
- * rates are cut into one contiguous block per OpenMP thread; each block starts afresh. */
+ * rates are cut into contiguous blocks of about BLOCK_LEN, each started afresh and handed to the
+ * OpenMP threads as they come free. The cut depends on the number of rates only, never on the
+ * number of threads: the seed of every rate, hence the root Brent's method converges to (to its
+ * last bit), is the same on one thread or many. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,7 +18,7 @@
 #include "core/error.h"
 #include "steady/steady_internal.h"
 
-#define BLOCK_MIN 16 /* fewest rates per thread block */
+#define BLOCK_LEN 32 /* rates per block: n / BLOCK_LEN blocks (at least one) */
 
 #define PREV_MAX 3 /* solutions the predictor extrapolates: quadratic */
 
@@ -68,16 +71,16 @@ int whirl_steady_branch(const steady_model *m, int mode, size_t n, const double 
         int status = whirl_steady_check_args(omega[j], mode, WHIRL_CONTINUUM_MODE_MAX);
         if (status != GSL_SUCCESS) return status;
     }
-    size_t nblocks = 1;
-#ifdef _OPENMP
-    if (!omp_in_parallel()) nblocks = (size_t)whirl_max_threads();
-#endif
-    if (nblocks > n / BLOCK_MIN) nblocks = n / BLOCK_MIN;
+    size_t nblocks = n / BLOCK_LEN, nthreads = 1;
     if (nblocks < 1) nblocks = 1;
+#ifdef _OPENMP
+    if (!omp_in_parallel()) nthreads = (size_t)whirl_max_threads();
+#endif
+    if (nthreads > nblocks) nthreads = nblocks;
     whirl_error_record *result = malloc(nblocks * sizeof *result);
     if (result == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for %zu blocks", nblocks);
 
-#pragma omp parallel for schedule(static, 1) num_threads((int)nblocks) if (nblocks > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads((int)nthreads) if (nthreads > 1)
     for (size_t b = 0; b < nblocks; b++) {
         size_t first = n * b / nblocks, last = n * (b + 1) / nblocks;
         void *ws = m->ws_alloc(m->params);
