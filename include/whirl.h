@@ -12,6 +12,7 @@
 #include "whirl/scene.h"
 #include "whirl/stability.h"
 #include "whirl/continuum_stability.h"
+#include "whirl/atlas.h"
 #include "whirl/optimize.h"
 #include "whirl/driven.h"
 #include "whirl/regime.h"
