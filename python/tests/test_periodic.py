@@ -170,7 +170,8 @@ CHILD = r"""
 import signal, threading, os, whirl
 threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 try:
-    whirl.periodic("vertical:0.05", 1.8, links=40, dim=3, steps=20000)
+    # minutes of work uninterrupted, so that the stop lands inside it however fast the machine
+    whirl.periodic("vertical:0.05", 1.8, links=60, dim=3, steps=200000)
 except KeyboardInterrupt as e:
     print(repr(e))
 """
@@ -193,9 +194,10 @@ def test_ctrl_c_names_the_call(tmp_path):
 KEEP = r"""
 import signal, threading, os, whirl
 threading.Timer(2.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
-b = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=1e-5,
-                        keep_interrupted=True)
-full = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=1e-5,
+# a branch of about a million points uninterrupted: the stop lands inside it
+b = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=3e-7,
+                        max_points=10**6, keep_interrupted=True)
+full = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=3e-7,
                            max_points=b.rows.size)
 print(b.ended, b.rows.size > 0, (b.rows == full.rows).all())
 """
