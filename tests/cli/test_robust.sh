@@ -171,26 +171,36 @@ if [ "$(wc -l <"$tmp/int.stderr")" -eq 1 ] && grep -Eq \
 else fail "interrupt: the shape's line names the mode and the rate reached ($(head -c 300 "$tmp/int.stderr"))"; fi
 
 # prompt NAME ARGS...: Ctrl-C during work that cannot poll (one dense solve) still ends the
-# command at once. The command runs once to its end (T seconds), then again with SIGINT at T/3:
-# it must exit 130 within T/3 of the signal (the work left then takes about 2T/3).
+# command at once. The command runs to its end twice (T seconds: the shorter, as another load
+# on the machine only lengthens a run), then again with SIGINT at T/3: it must exit 130 within
+# T/3 of the signal (the work left then takes about 2T/3). A run that ended with 0 had finished
+# before the signal (the machine got faster): that says nothing, and the signal is sent again,
+# at T/6, to another run.
 prompt() {
   name=$1; shift
-  t0=$(date +%s.%N)
-  "$WHIRL" "$@" >/dev/null 2>&1
-  full=$(echo "$(date +%s.%N) - $t0" | bc)
-  third=$(echo "$full / 3" | bc -l)
-  "$WHIRL" "$@" >/dev/null 2>"$tmp/int.stderr" &
-  pid=$!
-  sleep "$third"
-  t0=$(date +%s.%N)
-  kill -INT $pid
-  wait $pid
-  rc=$?
-  late=$(echo "$(date +%s.%N) - $t0" | bc)
+  full=
+  for _ in 1 2; do
+    t0=$(date +%s.%N)
+    "$WHIRL" "$@" >/dev/null 2>&1
+    t=$(echo "$(date +%s.%N) - $t0" | bc)
+    if [ -z "$full" ] || [ "$(echo "$t < $full" | bc)" -eq 1 ]; then full=$t; fi
+  done
+  for part in 3 6; do
+    third=$(echo "$full / $part" | bc -l)
+    "$WHIRL" "$@" >/dev/null 2>"$tmp/int.stderr" &
+    pid=$!
+    sleep "$third"
+    t0=$(date +%s.%N)
+    kill -INT $pid
+    wait $pid
+    rc=$?
+    late=$(echo "$(date +%s.%N) - $t0" | bc)
+    [ $rc -ne 0 ] && break
+  done
   if [ $rc -eq 130 ] && [ "$(echo "$late < $third" | bc)" -eq 1 ]; then
     pass "interrupt at a third of the run: $name ends at once"
   else
-    fail "interrupt at a third of the run: $name (rc=$rc, run $full s, signal to exit $late s)"
+    fail "interrupt at a third of the run: $name (rc=$rc, run $full s, signal at T/$part, to exit $late s)"
   fi
 }
 prompt "stability of 250 links, the eigen-solve on a worker" \
