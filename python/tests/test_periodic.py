@@ -168,6 +168,8 @@ def test_bad_arguments_are_refused_before_the_library():
 
 CHILD = r"""
 import signal, threading, os, whirl
+# Python's own handler, whatever the runner left (a CI that ignores SIGINT passes that on)
+signal.signal(signal.SIGINT, signal.default_int_handler)
 threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 try:
     # minutes of work uninterrupted, so that the stop lands inside it however fast the machine
@@ -193,6 +195,8 @@ def test_ctrl_c_names_the_call(tmp_path):
 
 KEEP = r"""
 import signal, threading, os, whirl
+# Python's own handler, whatever the runner left (a CI that ignores SIGINT passes that on)
+signal.signal(signal.SIGINT, signal.default_int_handler)
 threading.Timer(2.0, lambda: os.kill(os.getpid(), signal.SIGINT)).start()
 # a branch of about a million points uninterrupted: the stop lands inside it
 b = whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.3, up=True, arc_step=3e-7,
