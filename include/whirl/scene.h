@@ -33,7 +33,11 @@
  *            stop_deviation (> 0: stop once the deviation from the start's steady shape exceeds
  *            it, checked after every step, with tol > 0 at the output times; default none),
  *            threads (the cores one right-hand side of a long chain may use, default 1; see
- *            whirl_dyn_set_threads)
+ *            whirl_dyn_set_threads), pivot (the pivot's periodic path at the rate omega, in
+ *            the grammar of whirl periodic --pivot: circle:R, ellipse:A,B, line:A[,DX,DY,DZ],
+ *            vertical:A, eight:A,B or fourier:x1c=A,z2s=B,..., lengths in the scene's units;
+ *            needs omega > 0, frame = inertial and no drive_radius; default none: the pivot
+ *            moves as drive_radius says; read by whirl_scene_parse_with_pivot, below)
  *   [output] every (> 0, the output interval, default dt; the last row is at t_end), columns
  *            (comma list from t, tip_x, tip_y, tip_z, energy, jacobi, lz, constraint,
  *            deviation; t is always the first column; default all but deviation), trace (file
@@ -57,6 +61,7 @@
 
 #include "whirl/common.h"
 #include "whirl/dynamics.h"
+#include "whirl/periodic.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -372,6 +377,104 @@ WHIRL_API int whirl_scene_write_frame(FILE *fp, unsigned long index, double t, c
  *     allocation's failure
  */
 WHIRL_API int whirl_scene_run(const whirl_scene *scene, FILE *csv, FILE *trace, whirl_scene_result *res);
+
+/* ---- the pivot's path, [run] pivot (src/studies/scene_pivot.c) ----
+ * [run] pivot = PATH moves the pivot along PATH (whirl/periodic.h: whirl_pivot_parse's grammar,
+ * the text of whirl periodic --pivot) at the rate [run] omega, in the inertial frame; lengths in
+ * the scene's units: L, or with [units] system = SI in m (a suffix cm or mm allowed). It needs
+ * [run] omega > 0, frame = inertial and no drive_radius (circle:R is the drive of radius R, bit
+ * for bit). The start moves with the pivot: at t = 0 the pivot is at p(0) with the velocity
+ * p'(0), and every start is placed there as it is at (drive_radius, 0, 0) without a path; the
+ * trace's pivot is p(t).
+ *
+ * The design keeps 2.3.0's ABI. whirl_scene is allocated by its caller, and its line[] has one
+ * entry for each key of whirl_scene_key: a new key there, or a new field, would change its size
+ * and break every program built against 2.3.0's header. So the key has no field and no
+ * whirl_scene_key: whirl_scene, WHIRL_SCENE_NKEYS and every function above are as in 2.3.0, and
+ * whirl_scene_parse, which has nowhere to keep the path, refuses a scene that gives the key
+ * ("FILE:LINE: [run] pivot: ...", a one-line error as for any key it cannot take), so that no
+ * program runs such a scene without its pivot unawares. The path is read into a
+ * whirl_scene_pivot beside the scene by whirl_scene_parse_with_pivot (or from a text in the
+ * scene's units by whirl_scene_pivot_from_text: whirl simulate --pivot), and the run takes it
+ * by the _with_pivot variants below; each of them with pivot NULL (or pivot->given 0) is the
+ * function of the same name without it. whirl_scene_pivot is allocated by its caller too, and
+ * stays as it is: a later key gets a struct of its own. */
+typedef struct whirl_scene_pivot {
+    int given;             /* 1: the pivot follows path; 0: [run] pivot not given (the pivot
+                              moves as drive_radius says, path unused) */
+    int line;              /* where it came from, as whirl_scene.line: its line (> 0), -1 an
+                              override, 0 not from the scene (whirl_scene_pivot_from_text) */
+    whirl_pivot_path path; /* at the rate [run] omega; lengths [L, or m with SI units] */
+} whirl_scene_pivot;
+
+/* whirl_scene_parse, also reading [run] pivot into *pivot (zeroed when absent, and on failure).
+ * @param path the scene file's name
+ * @param overrides the overrides "section.key=value" (run.pivot among them), n_overrides,
+ *     applied in order; NULL if none
+ * @param n_overrides the overrides, >= 0
+ * @param scene out: the scene, to free with whirl_scene_free (also after a failure)
+ * @param pivot out: the pivot's path, or NULL: whirl_scene_parse (the key refused)
+ * @return as whirl_scene_parse
+ */
+WHIRL_API int whirl_scene_parse_with_pivot(const char *path, const char *const *overrides,
+                                           size_t n_overrides, whirl_scene *scene,
+                                           whirl_scene_pivot *pivot);
+/* whirl_scene_parse_stream, also reading [run] pivot into *pivot (as above).
+ * @param fp the open stream of the scene file, read and not closed
+ * @param path the file's name, in the messages and scene->path
+ * @param overrides the overrides "section.key=value", n_overrides, applied in order; NULL if none
+ * @param n_overrides the overrides, >= 0
+ * @param scene out: the scene, to free with whirl_scene_free (also after a failure)
+ * @param pivot out: the pivot's path, or NULL: whirl_scene_parse_stream (the key refused)
+ * @return as whirl_scene_parse
+ */
+WHIRL_API int whirl_scene_parse_stream_with_pivot(FILE *fp, const char *path,
+                                                  const char *const *overrides,
+                                                  size_t n_overrides, whirl_scene *scene,
+                                                  whirl_scene_pivot *pivot);
+
+/* *pivot <- the path text (the grammar of [run] pivot) for the parsed scene: at its [run]
+ * omega, in its units, checked as the key is (omega > 0, frame = inertial, no drive_radius,
+ * no y term in 2D); given 1, line 0. GSL_EINVAL with a one-line message without a location
+ * (the caller names where the text came from), *pivot unchanged.
+ * @param scene the parsed scene
+ * @param text the path, e.g. "ellipse:1cm,0.6cm" (SI) or "vertical:0.05"
+ * @param pivot out: the pivot's path (unchanged on failure)
+ * @return GSL_SUCCESS, or GSL_EINVAL with a message
+ */
+WHIRL_API int whirl_scene_pivot_from_text(const whirl_scene *scene, const char *text,
+                                          whirl_scene_pivot *pivot);
+
+/* whirl_scene_work_alloc with the pivot on pivot's path (copied; NULL or given 0: the scene's
+ * drive). NULL with a message on failure, as whirl_scene_work_alloc.
+ * @param scene the parsed scene (not owned: must outlive the workspace)
+ * @param pivot the pivot's path (copied), or NULL
+ * @return the workspace, to free with whirl_scene_work_free; NULL with a message on failure
+ */
+WHIRL_API whirl_scene_work *whirl_scene_work_alloc_with_pivot(const whirl_scene *scene,
+                                                              const whirl_scene_pivot *pivot);
+
+/* whirl_scene_write_header with the line "# pivot = fourier:TERMS" (the path's Fourier terms in
+ * the grammar of [run] pivot, numbers in the shortest form that reads back exactly) after the
+ * start's, when pivot is given.
+ * @param fp the stream
+ * @param scene the parsed scene
+ * @param pivot the pivot's path, or NULL
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message if fp has an error
+ */
+WHIRL_API int whirl_scene_write_header_with_pivot(FILE *fp, const whirl_scene *scene,
+                                                  const whirl_scene_pivot *pivot);
+
+/* whirl_scene_run with the pivot on pivot's path (NULL or given 0: whirl_scene_run).
+ * @param scene the parsed scene
+ * @param pivot the pivot's path, or NULL
+ * @param csv the stream of the rows
+ * @param trace the stream of the frames, or NULL: none
+ * @param res out: how far the run got
+ * @return as whirl_scene_run
+ */
+WHIRL_API int whirl_scene_run_with_pivot(const whirl_scene *scene, const whirl_scene_pivot *pivot,
+                                         FILE *csv, FILE *trace, whirl_scene_result *res);
 
 #ifdef __cplusplus
 }

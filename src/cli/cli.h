@@ -275,6 +275,17 @@ typedef struct cli_air {
     {.name = "--air-density", .type = CLI_DOUBLE, .value = &(air).density, .meta = "RHO",       \
      .help = "air density for --drag-cd [kg/m^3] (default 1.204)", .range = "(0, inf)",         \
      .needs = "--drag-cd"}
+/* ---- the pivot's path: --pivot PATH, one option row for whirl periodic and whirl simulate ----
+ * The text of whirl_pivot_parse (whirl/periodic.h) at the command's rate (periodic: --omega;
+ * simulate: the scene's [run] omega), lengths in the command's units (periodic: L, or m with
+ * --length; simulate: the scene's, [units]); a unit suffix (cm, mm) only in SI units. The row:
+ * CLI_PIVOT_OPTION(variable, words after "the pivot's path" in the help, required). */
+#define CLI_PIVOT_GRAMMAR                                                                      \
+    "circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A, eight:A,B or fourier:x1c=A,z2s=B,..."
+#define CLI_PIVOT_OPTION(var, tail, req)                                                       \
+    {.name = "--pivot", .type = CLI_STRING, .value = &(var), .meta = "PATH",                   \
+     .help = "the pivot's path" tail ": " CLI_PIVOT_GRAMMAR, .required = (req)}
+
 /* With --drag-cd given, sets *drag2 (dimensionless) from the description. Returns 0. */
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
 

@@ -422,10 +422,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
     periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1, .side = 1,
                           .units = CLI_UNITS_INIT};
     const cli_option opts[] = {
-        {.name = "--pivot", .type = CLI_STRING, .value = &o.pivot, .meta = "PATH",
-         .help = "the pivot's path: circle:R, ellipse:A,B, line:A[,DX,DY,DZ], vertical:A, "
-                 "eight:A,B or fourier:x1c=A,z2s=B,...",
-         .required = "--chart"},
+        CLI_PIVOT_OPTION(o.pivot, "", "--chart"),
         {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .given = &o.omega_given,
          .meta = "W", .help = "rate of the path (period 2 pi / W; a branch in the rate: its "
                               "start, default --omega-max)",

@@ -1,5 +1,6 @@
-/* whirl simulate SCENE [-o FILE] [--set section.key=value ...] [--animate MOVIE]: runs the scene
- * (whirl/scene.h: the start state, the rows and the trace are the library's whirl_scene_work_run)
+/* whirl simulate SCENE [-o FILE] [--set section.key=value ...] [--pivot PATH] [--animate MOVIE]:
+ * runs the scene (whirl/scene.h: the start state, the rows and the trace are the library's
+ * whirl_scene_work_run; --pivot PATH the scene's [run] pivot, whirl_scene_pivot_from_text)
  * and writes the asked columns as CSV, optionally the trace of every mass, and with --animate a
  * movie of the trace (figure.h: MP4, WebM or GIF; the trace, unless the scene names one, is
  * taken every 1/25 s of the run's time in SI units, at most 250 frames, and played at 25 frames
@@ -21,6 +22,8 @@
 typedef struct run {
     const cli_command *cmd;
     whirl_scene scene;
+    whirl_scene_pivot pivot; /* [run] pivot, or --pivot */
+    const char *pivot_text;  /* --pivot (NULL: not given) */
     whirl_scene_work *work;
     cli_out csv, trace;
     int csv_open, trace_open;
@@ -84,7 +87,7 @@ static int simulate(run *r)
     whirl_scene_result res;
     cli_catch_interrupts();
     cli_progress_begin(&r->progress, r->cmd, "intervals", intervals(s, s->t_end), 0);
-    int status = whirl_scene_write_header(r->csv.fp, s);
+    int status = whirl_scene_write_header_with_pivot(r->csv.fp, s, &r->pivot);
     if (status == GSL_SUCCESS) status = whirl_scene_work_run(r->work, &out, &res);
     cli_progress_update(&r->progress, intervals(s, res.t), 1);
     if (status == WHIRL_EINTERRUPTED) {
@@ -129,26 +132,42 @@ static int check_trace(run *r, const char *scene_path, const char *output, int o
     return 0;
 }
 
-/* A step that cannot resolve the motion: dt above a quarter of the rotation period, or above
- * half the period of the chain's fastest swing, pi sqrt(L/g) / N (the top mode of N links
- * hanging, frequency about 2 N sqrt(g/L): links of length L/N under the tension of the whole
- * chain); a message on stderr, the run goes on. */
-static void check_step(const cli_command *cmd, const whirl_scene *s)
+/* A step that cannot resolve the motion: dt above a quarter of the rotation period (with a
+ * pivot path, of its fastest harmonic's), or above half the period of the chain's fastest swing,
+ * pi sqrt(L/g) / N (the top mode of N links hanging, frequency about 2 N sqrt(g/L): links of
+ * length L/N under the tension of the whole chain); a message on stderr, the run goes on. */
+static void check_step(const cli_command *cmd, const whirl_scene *s, const whirl_scene_pivot *p)
 {
     const double pi = 3.141592653589793;
     const double g = s->physical ? s->gravity : 1, len = s->physical ? s->chain_length : 1;
     const double t_fast = pi * sqrt(len / g) / (double)s->links;
-    const double t_rot = s->omega > 0 ? 2 * pi / s->omega : HUGE_VAL;
+    const double fastest = p->given ? p->path.harmonics * s->omega : s->omega;
+    const double t_rot = fastest > 0 ? 2 * pi / fastest : HUGE_VAL;
     const char *unit = s->physical ? " s" : " sqrt(L/g)";
     if (s->tol > 0) return;
     if (s->dt > 0.25 * t_rot)
-        fprintf(stderr, "whirl %s: dt = %.3g%s is larger than a quarter of the rotation period "
-                "(%.3g%s): the steps cannot follow the turning chain\n", cmd->name, s->dt, unit,
-                t_rot, unit);
+        fprintf(stderr, "whirl %s: dt = %.3g%s is larger than a quarter of the %s period "
+                "(%.3g%s): the steps cannot follow %s\n", cmd->name, s->dt, unit,
+                p->given ? "pivot path's" : "rotation", t_rot, unit,
+                p->given ? "the pivot" : "the turning chain");
     else if (s->dt > 0.5 * t_fast)
         fprintf(stderr, "whirl %s: dt = %.3g%s is larger than half the period of the chain's "
                 "fastest swing (%.3g%s, pi sqrt(L/g) / N): the steps cannot follow it\n",
                 cmd->name, s->dt, unit, t_fast, unit);
+}
+
+/* The scene with its overrides, and its pivot's path: [run] pivot, or --pivot (which replaces
+ * it). 0, or 1 after an error. */
+static int parse_scene(run *r, const char *scene_path, const char *const *sets, size_t n_sets)
+{
+    whirl_scene_free(&r->scene);
+    if (whirl_scene_parse_with_pivot(scene_path, sets, n_sets, &r->scene, &r->pivot) !=
+        GSL_SUCCESS)
+        return cli_error(r->cmd, "%s", whirl_last_error());
+    if (r->pivot_text &&
+        whirl_scene_pivot_from_text(&r->scene, r->pivot_text, &r->pivot) != GSL_SUCCESS)
+        return cli_error(r->cmd, "--pivot: %s", whirl_last_error());
+    return 0;
 }
 
 /* With --animate and no trace in the scene: the scene parsed again with a trace in the movie's
@@ -185,10 +204,7 @@ static int add_trace(run *r, const char *scene_path, const char **sets, size_t n
     snprintf(every, sizeof every, "output.trace_every=%.17g", dt);
     sets[n_sets] = trace;
     sets[n_sets + 1] = every;
-    whirl_scene_free(&r->scene);
-    if (whirl_scene_parse(scene_path, sets, n_sets + 2, &r->scene) != GSL_SUCCESS)
-        return cli_error(r->cmd, "%s", whirl_last_error());
-    return 0;
+    return parse_scene(r, scene_path, sets, n_sets + 2);
 }
 
 /* Takes every --set out of argv (sets[0..*n_sets)) and leaves the rest, argv[0] first, in
@@ -216,7 +232,7 @@ static int run_scene(run *r, const char *output)
 {
     const cli_command *cmd = r->cmd;
     int rc = 0;
-    if ((r->work = whirl_scene_work_alloc(&r->scene)) == NULL)
+    if ((r->work = whirl_scene_work_alloc_with_pivot(&r->scene, &r->pivot)) == NULL)
         rc = cli_error(cmd, "%s", whirl_last_error());
     if (rc == 0) rc = cli_out_open(cmd, &r->csv, output);
     if (rc == 0) r->csv_open = 1;
@@ -251,11 +267,16 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     const char *movie = NULL;
     cli_figure_style style = {0};
     int frames_per_turn = 0;
+    run r;
+    memset(&r, 0, sizeof r);
+    r.cmd = cmd;
     const cli_option opts[] = {
         {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &output, .meta = "FILE",
          .help = "write the CSV to FILE (default stdout)"},
         {.name = "--set", .type = CLI_STRING, .value = &set_help, .meta = "SEC.KEY=V",
          .help = "override a key of the scene (repeatable)"},
+        CLI_PIVOT_OPTION(r.pivot_text, " at the scene's [run] omega, lengths in its units "
+                         "(replaces [run] pivot)", NULL),
         {.name = "--overwrite", .type = CLI_FLAG, .value = &overwrite,
          .help = "let the scene's [output] trace replace an existing file"},
         {.name = "--animate", .type = CLI_STRING, .value = &movie, .meta = "MOVIE",
@@ -289,12 +310,8 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
     int box_w, box_h;
     if (rc == 0 && cli_figure_size(cmd, &style, &box_w, &box_h)) rc = 1;
 
-    run r;
-    memset(&r, 0, sizeof r);
-    r.cmd = cmd;
     char *dir = NULL, trace_set[4200];
-    if (rc == 0 && whirl_scene_parse(scene_path, sets, n_sets, &r.scene) != GSL_SUCCESS)
-        rc = cli_error(cmd, "%s", whirl_last_error());
+    if (rc == 0) rc = parse_scene(&r, scene_path, sets, n_sets);
     if (rc == 0 && movie && r.scene.trace && frames_per_turn)
         rc = cli_error(cmd, "--frames-per-turn spaces the movie's trace, but the scene writes "
                        "its own ([output] trace): use --slow");
@@ -310,7 +327,7 @@ int cmd_simulate(const cli_command *cmd, int argc, char **argv)
         cli_figure_remove_dir(dir);
         return rc;
     }
-    check_step(cmd, &r.scene);
+    check_step(cmd, &r.scene, &r.pivot);
     if (r.scene.trace && strcmp(r.scene.trace, "-") == 0)
         rc = key_error(&r, WHIRL_KEY_OUTPUT_TRACE, "must be a file, not standard output");
     if (rc == 0) rc = check_trace(&r, scene_path, output, overwrite);

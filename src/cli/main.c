@@ -28,7 +28,7 @@ static const cli_command commands[] = {
      "[--omega-max B] -o FILE [--resume]",
      "Intervals of omega where each mode is unstable, edges located exactly; the atlas.",
      cmd_windows, "whirl windows --omega-min 1 --omega-max 10 --modes 2,3 -o windows.csv"},
-    {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...]",
+    {"simulate", "SCENE [-o FILE] [--set SECTION.KEY=VALUE ...] [--pivot PATH]",
      "Runs a scene file (examples in " WHIRL_DATADIR "/scenes, data/scenes in the source): "
      "the N-link chain in time.", cmd_simulate,
      "whirl simulate " WHIRL_DATADIR "/scenes/mode2.ini --set run.t_end=20 -o run.csv"},

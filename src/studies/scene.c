@@ -22,7 +22,7 @@
 const char *const sc_section_names[] = {"chain", "start", "run", "output", "units"};
 enum { N_SECTIONS = sizeof sc_section_names / sizeof sc_section_names[0] };
 
-const sc_key_name sc_key_names[WHIRL_SCENE_NKEYS] = {
+const sc_key_name sc_key_names[SC_NKEYS] = {
     [WHIRL_KEY_CHAIN_DIM] = {0, "dim"},
     [WHIRL_KEY_CHAIN_LINKS] = {0, "links"},
     [WHIRL_KEY_CHAIN_LENGTHS] = {0, "lengths", WHIRL_QUANTITY_LENGTH},
@@ -54,6 +54,7 @@ const sc_key_name sc_key_names[WHIRL_SCENE_NKEYS] = {
     [WHIRL_KEY_RUN_TOL] = {2, "tol"},
     [WHIRL_KEY_RUN_STOP_DEVIATION] = {2, "stop_deviation", WHIRL_QUANTITY_LENGTH},
     [WHIRL_KEY_RUN_THREADS] = {2, "threads"},
+    [SC_KEY_RUN_PIVOT] = {2, "pivot"},
     [WHIRL_KEY_OUTPUT_EVERY] = {3, "every", WHIRL_QUANTITY_TIME},
     [WHIRL_KEY_OUTPUT_COLUMNS] = {3, "columns"},
     [WHIRL_KEY_OUTPUT_TRACE] = {3, "trace"},
@@ -78,8 +79,8 @@ typedef struct collect {
     int lineno;          /* number of the current line */
     int continuation;    /* the current line is indented: it continues the previous key */
     char *long_value;    /* the value of the current line if it was too long for inih */
-    char *raw[WHIRL_SCENE_NKEYS];
-    int line_of[WHIRL_SCENE_NKEYS];
+    char *raw[SC_NKEYS];
+    int line_of[SC_NKEYS];
     int error_line;      /* line of the first error (0: none) */
     int status;
 } collect;
@@ -111,7 +112,7 @@ static int find_section(const char *name)
 
 static int find_key(int section, const char *name)
 {
-    for (int k = 0; k < WHIRL_SCENE_NKEYS; k++)
+    for (int k = 0; k < SC_NKEYS; k++)
         if (sc_key_names[k].section == section && strcmp(name, sc_key_names[k].name) == 0) return k;
     return -1;
 }
@@ -121,7 +122,7 @@ static void list_keys(int section, char *buf, size_t size)
 {
     size_t used = 0;
     buf[0] = '\0';
-    for (int k = 0; k < WHIRL_SCENE_NKEYS && used < size; k++)
+    for (int k = 0; k < SC_NKEYS && used < size; k++)
         if (sc_key_names[k].section == section)
             used += (size_t)snprintf(buf + used, size - used, "%s%s", used ? ", " : "",
                                      sc_key_names[k].name);
@@ -323,10 +324,12 @@ static int collect_stream(collect *c, FILE *fp, const char *path)
     return c->status;
 }
 
-int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
-                             size_t n_overrides, whirl_scene *scene)
+int whirl_scene_parse_stream_with_pivot(FILE *fp, const char *path,
+                                        const char *const *overrides, size_t n_overrides,
+                                        whirl_scene *scene, whirl_scene_pivot *pivot)
 {
     memset(scene, 0, sizeof *scene);
+    if (pivot) memset(pivot, 0, sizeof *pivot);
     collect c;
     memset(&c, 0, sizeof c);
     int status = collect_stream(&c, fp, path);
@@ -335,30 +338,47 @@ int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *over
     if (status == GSL_SUCCESS && (scene->path = sc_copy_string(path)) == NULL)
         status = whirl_fail(GSL_ENOMEM, "out of memory");
     if (status == GSL_SUCCESS) {
-        memcpy(scene->line, c.line_of, sizeof scene->line);
-        convert v = {scene, c.raw};
+        memcpy(scene->line, c.line_of, sizeof scene->line); /* the keys of whirl_scene_key */
+        convert v = {scene, c.raw, c.line_of, pivot};
         status = sc_convert_units(&v);
         if (status == GSL_SUCCESS) status = sc_convert_chain(&v);
         if (status == GSL_SUCCESS) status = sc_convert_start(&v);
         if (status == GSL_SUCCESS) status = sc_convert_run(&v);
+        if (status == GSL_SUCCESS) status = sc_convert_pivot(&v);
         if (status == GSL_SUCCESS) status = sc_convert_output(&v);
     }
-    for (int k = 0; k < WHIRL_SCENE_NKEYS; k++) free(c.raw[k]);
+    for (int k = 0; k < SC_NKEYS; k++) free(c.raw[k]);
     free(c.long_value);
-    if (status != GSL_SUCCESS) whirl_scene_free(scene);
+    if (status != GSL_SUCCESS) {
+        whirl_scene_free(scene);
+        if (pivot) memset(pivot, 0, sizeof *pivot);
+    }
+    return status;
+}
+
+int whirl_scene_parse_stream(FILE *fp, const char *path, const char *const *overrides,
+                             size_t n_overrides, whirl_scene *scene)
+{
+    return whirl_scene_parse_stream_with_pivot(fp, path, overrides, n_overrides, scene, NULL);
+}
+
+int whirl_scene_parse_with_pivot(const char *path, const char *const *overrides,
+                                 size_t n_overrides, whirl_scene *scene, whirl_scene_pivot *pivot)
+{
+    memset(scene, 0, sizeof *scene);
+    if (pivot) memset(pivot, 0, sizeof *pivot);
+    FILE *fp;
+    int status = whirl_input_open(path, &fp);
+    if (status != GSL_SUCCESS) return status;
+    status = whirl_scene_parse_stream_with_pivot(fp, path, overrides, n_overrides, scene, pivot);
+    fclose(fp);
     return status;
 }
 
 int whirl_scene_parse(const char *path, const char *const *overrides, size_t n_overrides,
                       whirl_scene *scene)
 {
-    memset(scene, 0, sizeof *scene);
-    FILE *fp;
-    int status = whirl_input_open(path, &fp);
-    if (status != GSL_SUCCESS) return status;
-    status = whirl_scene_parse_stream(fp, path, overrides, n_overrides, scene);
-    fclose(fp);
-    return status;
+    return whirl_scene_parse_with_pivot(path, overrides, n_overrides, scene, NULL);
 }
 
 void whirl_scene_free(whirl_scene *scene)

@@ -27,8 +27,16 @@ const char *whirl_column_name(whirl_column c)
 const char *whirl_scene_where(const whirl_scene *scene, whirl_scene_key key, char *buf,
                               size_t size)
 {
+    if ((int)key < 0 || (int)key >= WHIRL_SCENE_NKEYS) {
+        snprintf(buf, size, "%s: no key %d", scene->path, (int)key);
+        return buf;
+    }
+    return sc_where(scene, key, scene->line[key], buf, size);
+}
+
+const char *sc_where(const whirl_scene *scene, int key, int line, char *buf, size_t size)
+{
     const char *sec = sc_section_names[sc_key_names[key].section], *name = sc_key_names[key].name;
-    int line = scene->line[key];
     if (line > 0)
         snprintf(buf, size, "%s:%d: [%s] %s", scene->path, line, sec, name);
     else if (line < 0)
@@ -51,8 +59,8 @@ static int key_error(const convert *v, whirl_scene_key key, const char *fmt, ...
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return whirl_fail(GSL_EINVAL, "%s: %s", whirl_scene_where(v->scene, key, where, sizeof where),
-                      msg);
+    return whirl_fail(GSL_EINVAL, "%s: %s",
+                      sc_where(v->scene, key, v->line[key], where, sizeof where), msg);
 }
 
 static int given(const convert *v, whirl_scene_key key) { return v->raw[key] != NULL; }

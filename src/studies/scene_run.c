@@ -37,6 +37,8 @@ struct whirl_scene_work {
     double *ref;   /* 3 per mass: the reference shape of the deviation */
     double *links; /* 3 per link */
     double t;
+    int has_pivot;          /* the pivot follows pivot (whirl_dyn_set_pivot), not the drive */
+    whirl_pivot_path pivot; /* the scene's [run] pivot, copied */
 };
 
 /* "WHERE: message" for a key of the scene: the status with that message. */
@@ -163,7 +165,8 @@ void whirl_scene_work_free(whirl_scene_work *w)
 
 /* The workspace of scene s into *out: GSL_SUCCESS, or the status of the failure (message set,
  * *out NULL). */
-static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
+static int work_alloc(const whirl_scene *s, const whirl_scene_pivot *pivot,
+                      whirl_scene_work **out)
 {
     *out = NULL;
     if (s == NULL || s->links < 1 || s->length == NULL || s->mass == NULL)
@@ -199,6 +202,18 @@ static int work_alloc(const whirl_scene *s, whirl_scene_work **out)
         key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_THREADS, whirl_error_marked());
         goto fail;
     }
+    if (pivot != NULL && pivot->given) { /* before the start state, which moves with it */
+        w->pivot = pivot->path;
+        w->has_pivot = 1;
+        if (whirl_pivot_check(&w->pivot, s->dim) != GSL_SUCCESS ||
+            whirl_dyn_set_pivot(w->dyn, whirl_pivot_eval, &w->pivot) != GSL_SUCCESS) {
+            char where[512], copy[512];
+            snprintf(copy, sizeof copy, "%s", whirl_error_marked());
+            whirl_fail(GSL_EINVAL, "%s: %s", sc_where(s, SC_KEY_RUN_PIVOT, pivot->line, where,
+                                                      sizeof where), copy);
+            goto fail;
+        }
+    }
     w->integrator = whirl_integrator_alloc(s->method, w->dyn);
     if (w->integrator == NULL) {
         key_fail(s, GSL_EINVAL, WHIRL_KEY_RUN_METHOD, whirl_error_marked());
@@ -227,11 +242,17 @@ fail:
     return status;
 }
 
-whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *s)
+whirl_scene_work *whirl_scene_work_alloc_with_pivot(const whirl_scene *s,
+                                                    const whirl_scene_pivot *pivot)
 {
     whirl_scene_work *w;
-    work_alloc(s, &w);
+    work_alloc(s, pivot, &w);
     return w;
+}
+
+whirl_scene_work *whirl_scene_work_alloc(const whirl_scene *s)
+{
+    return whirl_scene_work_alloc_with_pivot(s, NULL);
 }
 
 const whirl_dyn *whirl_scene_work_dyn(const whirl_scene_work *w) { return w->dyn; }
@@ -272,6 +293,11 @@ static int frame_out(whirl_scene_work *w, double t, const whirl_scene_output *ou
 {
     int status = whirl_dyn_get_state(w->dyn, t, w->y, WHIRL_FRAME_INERTIAL, w->x, w->v);
     if (status) return status;
+    if (w->has_pivot) { /* the path is in the inertial frame */
+        double p[3], pv[3], pa[3];
+        whirl_dyn_pivot(w->dyn, t, p, pv, pa);
+        return out->frame(out->ctx, t, p, w->x, w->n);
+    }
     double eps, phase;
     whirl_dyn_drive_at(w->dyn, t, &eps, NULL, &phase);
     const double p[3] = {eps * cos(phase), w->model.dim == 3 ? eps * sin(phase) : 0.0, 0.0};
@@ -424,6 +450,12 @@ static const char *frame_name(whirl_frame f)
 
 int whirl_scene_write_header(FILE *fp, const whirl_scene *s)
 {
+    return whirl_scene_write_header_with_pivot(fp, s, NULL);
+}
+
+int whirl_scene_write_header_with_pivot(FILE *fp, const whirl_scene *s,
+                                        const whirl_scene_pivot *pivot)
+{
     if (fp == NULL || s == NULL) return whirl_fail(GSL_EINVAL, "no file or no scene");
     fprintf(fp, "# whirl simulate %s\n", s->path);
     fprintf(fp, "# N = %zu, dim = %d, frame = %s, omega = %s, method = %s, formulation = %s, "
@@ -439,6 +471,7 @@ int whirl_scene_write_header(FILE *fp, const whirl_scene *s)
     case WHIRL_START_ANGLES: fprintf(fp, "# start: theta, phi and their rates\n"); break;
     case WHIRL_START_HANGING: fprintf(fp, "# start: hanging\n"); break;
     }
+    if (sc_write_pivot_line(fp, pivot) != GSL_SUCCESS) return GSL_EFAILED;
     whirl_write_units_line(fp, s->physical, s->chain_length, s->chain_mass, s->gravity);
     for (size_t c = 0; c < s->n_columns; c++)
         fprintf(fp, "%s%s", c ? "," : "", whirl_column_name(s->columns[c]));
@@ -486,15 +519,21 @@ static int stream_frame(void *ctx, double t, const double *pivot, const double *
 
 int whirl_scene_run(const whirl_scene *s, FILE *csv, FILE *trace, whirl_scene_result *res)
 {
+    return whirl_scene_run_with_pivot(s, NULL, csv, trace, res);
+}
+
+int whirl_scene_run_with_pivot(const whirl_scene *s, const whirl_scene_pivot *pivot, FILE *csv,
+                               FILE *trace, whirl_scene_result *res)
+{
     if (s == NULL || csv == NULL || res == NULL)
         return whirl_fail(GSL_EINVAL, "whirl_scene_run: needs a scene, a CSV stream and res");
     whirl_scene_work *w;
-    int status = work_alloc(s, &w);
+    int status = work_alloc(s, pivot, &w);
     if (status) return status;
     stream_ctx c = {s, csv, trace, 0};
     const whirl_scene_output out = {.row = stream_row, .frame = trace ? stream_frame : NULL,
                                     .ctx = &c};
-    status = whirl_scene_write_header(csv, s);
+    status = whirl_scene_write_header_with_pivot(csv, s, pivot);
     if (status == GSL_SUCCESS) status = whirl_scene_work_run(w, &out, res);
     whirl_scene_work_free(w);
     return status;
