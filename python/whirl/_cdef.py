@@ -621,6 +621,19 @@ int whirl_pivot_parse(const char *text, double omega, double length, int dim,
 int whirl_pivot_check(const whirl_pivot_path *path, int dim);
 double whirl_pivot_period(const whirl_pivot_path *path);
 int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
+void whirl_pivot_eval(double t, double p[3], double pv[3], double pa[3], void *path);
+typedef void (*whirl_pivot_fn)(double t, double p[3], double pv[3], double pa[3], void *params);
+int whirl_dyn_set_pivot(whirl_dyn *d, whirl_pivot_fn pivot, void *params);
+typedef struct whirl_scene_pivot {
+    int given;
+    int line;
+    whirl_pivot_path path;
+} whirl_scene_pivot;
+int whirl_scene_parse_with_pivot(const char *path, const char *const *overrides,
+                                 size_t n_overrides, whirl_scene *scene,
+                                 whirl_scene_pivot *pivot);
+whirl_scene_work *whirl_scene_work_alloc_with_pivot(const whirl_scene *scene,
+                                                    const whirl_scene_pivot *pivot);
 typedef struct whirl_periodic whirl_periodic;
 whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path);
 void whirl_periodic_free(whirl_periodic *w);
@@ -728,8 +741,8 @@ const char *whirl_cycle_event_name(int e);
 const char *whirl_floquet_verdict_name(int v);
 const char *whirl_floquet_edge_name(int e);
 """
-STRUCTS += ["whirl_pivot_path", "whirl_periodic_params", "whirl_periodic_result",
-            "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
+STRUCTS += ["whirl_pivot_path", "whirl_scene_pivot", "whirl_periodic_params",
+            "whirl_periodic_result", "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
             "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress"]
 CONSTANTS += ["WHIRL_PIVOT_HARMONICS_MAX"]
 

@@ -11,6 +11,7 @@ import numpy as np
 
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
+from .periodic import _path as _pivot_path
 from .steady import Chain, Units, _mode, links_count, units_of
 
 _FRAMES = {"inertial": 0, "rotating": 1}
@@ -129,11 +130,16 @@ class Simulation:
 
     Simulation(chain, dim=3, frame="inertial", omega=0, drive_radius=0, air_drag=0,
     air_drag_quadratic=0, internal_damping=0, formulation="default", method="gauss2",
-    threads=1, length=None, mass=None, gravity=None, units=None)
+    threads=1, length=None, mass=None, gravity=None, units=None, pivot=None)
       chain: a Chain or a link count N (the uniform chain); fixed for the Simulation's life;
       dim: 2 (planar, x-z) or 3; frame: "inertial" or "rotating" (co-rotating at omega, 3D);
-      omega: rate of the rotating frame and of the pivot drive [1/T];
+      omega: rate of the rotating frame and of the pivot drive [1/T] (of the pivot's path);
       drive_radius: the pivot moves on the horizontal circle of this radius [L] at omega;
+      pivot: the pivot moves on this periodic path at the rate omega (> 0) instead, a text as
+        whirl.periodic's pivot= and a scene's [run] pivot take it: circle:R, ellipse:A,B,
+        line:A[,DX,DY,DZ], vertical:A, eight:A,B or fourier:x1c=A,z2s=B,... (lengths in the
+        Simulation's units, or with a suffix m, cm, mm in SI units); needs frame "inertial"
+        and drive_radius 0 (circle:R is that drive, bit for bit);
       air_drag, air_drag_quadratic: linear and quadratic drag per unit length;
       internal_damping: joint damping in the co-rotating frame;
       formulation: "default" (link vectors and tensions, O(N)) or "seed" (angles, O(N^3));
@@ -160,7 +166,8 @@ class Simulation:
                  air_drag_quadratic: float = 0.0, internal_damping: float = 0.0,
                  formulation: str = "default", method: Optional[str] = None, threads: int = 1,
                  length: Optional[float] = None, mass: Optional[float] = None,
-                 gravity: Optional[float] = None, units: Optional[Units] = None) -> None:
+                 gravity: Optional[float] = None, units: Optional[Units] = None,
+                 pivot: Optional[str] = None) -> None:
         self._guard = _lib.Exclusive()
         u = units_of(length, mass, gravity, units)
         self.units = u
@@ -168,7 +175,7 @@ class Simulation:
         self._args = dict(dim=dim, frame=frame, omega=omega, drive_radius=drive_radius,
                           air_drag=air_drag, air_drag_quadratic=air_drag_quadratic,
                           internal_damping=internal_damping, formulation=formulation,
-                          method=method, threads=threads)
+                          method=method, threads=threads, pivot=pivot)
         self._model = ffi.new("whirl_model *")
         m = self._model
         m.chain = self._chain._c  # self._chain owns it for as long as the model lives
@@ -190,6 +197,14 @@ class Simulation:
             links_count(self._chain.n, "links", dense=True)  # O(N^2) memory, O(N^3) work
         self._dyn = _lib.check_ptr(lib.whirl_dyn_alloc(m, f), lib.whirl_dyn_free)
         check(lib.whirl_dyn_set_threads(self._dyn, as_int(threads, "threads", minimum=1)))
+        self._pivot: Any = None  # the path (dimensionless), referred to by the dynamics
+        if pivot is not None:
+            if not m.omega > 0:
+                raise ValueError("pivot needs omega > 0: the path's rate (its period is "
+                                 "2 pi / omega)")
+            self._pivot = _pivot_path(pivot, omega, m.dim, u)
+            check(lib.whirl_dyn_set_pivot(self._dyn, lib.whirl_pivot_eval, self._pivot),
+                  "pivot", u)
         self.method = _method(DEFAULT_METHOD if method is None else method)
         self._it = _lib.check_ptr(lib.whirl_integrator_alloc(self.method.encode(), self._dyn),
                                   lib.whirl_integrator_free)
@@ -210,6 +225,8 @@ class Simulation:
             ("air_drag_quadratic", m.air_drag_quadratic * u.drag2),
             ("internal_damping", m.internal_damping * u.damping)) if value)
         start = "no start state" if self._ref is None else "t=%g" % self.t
+        if self._pivot is not None:
+            extra += ", pivot=%r" % self._args["pivot"]
         return "Simulation(%r, dim=%d, frame=%r, omega=%g%s, method=%r, %s%s)" % (
             self._chain, m.dim, self._args["frame"], self.omega, extra, self.method, start,
             ", %r" % u if u.physical else "")
@@ -232,6 +249,11 @@ class Simulation:
     @property
     def omega(self) -> float:
         return float(self._model.omega) * self.units.rate
+
+    @property
+    def pivot(self) -> Optional[str]:
+        """The pivot's path as given (None: the pivot moves as drive_radius says)."""
+        return self._args["pivot"]
 
     @_lib.exclusive
     def set_state(self, x: Any, v: Any, t: float = 0.0) -> None:
@@ -305,7 +327,17 @@ class Simulation:
 
     @_lib.exclusive
     def set_hanging(self) -> None:
-        """Starts from the chain hanging straight down at rest (pivot on the axis)."""
+        """Starts from the chain hanging straight down at rest (pivot on the axis); with a
+        pivot path, straight down and moving with the pivot, placed at its place at t = 0 (a
+        scene's [start] hanging = true: whirl_dyn_state_from_shape)."""
+        if self._pivot is not None:
+            links = np.zeros((self.n, 3))
+            links[:, 2] = -np.asarray(self._chain.lengths, dtype=np.float64)
+            check(lib.whirl_dyn_state_from_shape(self._dyn, 0.0, _lib.dptr(links.ravel()), 0.0,
+                                                 _lib.dptr(self._y)), "set_hanging", self.units)
+            self._t[0] = 0.0
+            self._ref = self._inertial()
+            return
         if self._model.drive_radius != 0:
             raise ValueError("set_hanging needs the pivot on the axis (drive_radius = 0)")
         x = np.zeros((self.n, 3))

@@ -89,12 +89,14 @@ def run_scene(path: Union[str, "os.PathLike[str]"],
     keep = [ffi.new("char[]", s.encode()) for s in items]
     over = ffi.new("char *[]", keep) if keep else ffi.NULL
     scene = ffi.new("whirl_scene *")
-    check(lib.whirl_scene_parse(path.encode(), over, len(keep), scene), "run_scene")
+    pivot = ffi.new("whirl_scene_pivot *")  # [run] pivot: read beside the scene (whirl/scene.h)
+    check(lib.whirl_scene_parse_with_pivot(path.encode(), over, len(keep), scene, pivot),
+          "run_scene")
     work = ffi.NULL
     try:
         if every is not None:
             scene.trace_every = every
-        work = _lib.check_ptr(lib.whirl_scene_work_alloc(scene))
+        work = _lib.check_ptr(lib.whirl_scene_work_alloc_with_pivot(scene, pivot))
         columns = [ffi.string(lib.whirl_column_name(scene.columns[c])).decode()
                    for c in range(scene.n_columns)]
         index = [scene.columns[c] for c in range(scene.n_columns)]
