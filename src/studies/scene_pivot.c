@@ -27,12 +27,15 @@ static int path_of(const whirl_scene *s, const char *text, whirl_pivot_path *pat
     if (text[0] == '\0') return whirl_fail(GSL_EINVAL, "must not be empty");
     const double length = s->physical ? 1.0 : 0.0; /* SI: lengths in m, over 1 m */
     int status = whirl_pivot_parse(text, s->omega, length, s->dim, path);
-    whirl_pivot_path si;
-    if (status != GSL_SUCCESS && !s->physical &&
-        whirl_pivot_parse(text, s->omega, 1.0, s->dim, &si) == GSL_SUCCESS)
+    if (status == GSL_SUCCESS || s->physical) return status;
+    /* a dimensionless scene: in 3D the text reads in SI units and not without them only when
+     * it has a unit (the scene's message then); else the first message again */
+    whirl_pivot_path si, plain;
+    if (whirl_pivot_parse(text, s->omega, 1.0, 3, &si) == GSL_SUCCESS &&
+        whirl_pivot_parse(text, s->omega, 0.0, 3, &plain) != GSL_SUCCESS)
         return whirl_fail(GSL_EINVAL, "'%s' has a unit, but the scene is dimensionless: give "
                           "[units] system = SI (lengths in m), or lengths in units of L", text);
-    return status;
+    return whirl_pivot_parse(text, s->omega, length, s->dim, path);
 }
 
 int whirl_scene_pivot_from_text(const whirl_scene *scene, const char *text,

@@ -239,7 +239,7 @@ static const bad_case bad_cases[] = {
     {CHAIN3 "[run]\ndtt = 1\n", NULL,
      ":5: [run] dtt: unknown key (known: frame, method, dt, t_end, formulation, omega, "
      "drive_radius, air_drag, air_drag_quadratic, internal_damping, seed_sigma, seed_lambda, "
-     "tol, stop_deviation, threads)"},
+     "tol, stop_deviation, threads, pivot)"},
     {"dim = 3\n[chain]\n", NULL, ":1: dim: key outside any section"},
     {CHAIN3 "[run]\ndt 0.1\n", NULL, ":5: syntax error: expected [section] or key = value"},
     {CHAIN3 "[run]\ndt = 0.1\n\ndt = 0.2\n", NULL, ":7: [run] dt: given twice (first at line 5)"},
