@@ -253,7 +253,8 @@ class Simulation:
     @property
     def pivot(self) -> Optional[str]:
         """The pivot's path as given (None: the pivot moves as drive_radius says)."""
-        return self._args["pivot"]
+        pivot = self._args["pivot"]
+        return None if pivot is None else str(pivot)
 
     @_lib.exclusive
     def set_state(self, x: Any, v: Any, t: float = 0.0) -> None:
