@@ -283,8 +283,8 @@ static void test_bad_input(void **state)
 static void test_header_reads_back(void **state)
 {
     (void)state;
-    static const char *const paths[] = {"fourier:x1c=0.1234567890123456789,y1s=-1e-3,"
-                                        "z3c=2.5e-7,x2s=0.3333333333333333",
+    static const char *const paths[] = {("fourier:x1c=0.1234567890123456789,y1s=-1e-3,"
+                                         "z3c=2.5e-7,x2s=0.3333333333333333"),
                                         "eight:0.2,0.1", "circle:0.05", "line:0"};
     whirl_scene s;
     whirl_scene_pivot p;
