@@ -72,7 +72,9 @@ def run_scene(path: Union[str, "os.PathLike[str]"],
     returns a SceneRun.
 
     set: overrides applied after the file, as ``whirl simulate --set`` takes them: a dict
-      {"run.t_end": 5, "start.omega": "4Hz"}, a list of "section.key=value" strings, or one;
+      {"run.t_end": 5, "start.omega": "4Hz"}, a list of "section.key=value" strings, or one
+      ({"run.pivot": "vertical:0.02"} is ``whirl simulate --pivot vertical:0.02``: the pivot on
+      that path at [run] omega);
     trace: True to collect every mass's position every [output] trace_every (default: at
       every output row), or a number: the interval between frames in the scene's time unit;
       no file is written (the scene's [output] trace names none here).
