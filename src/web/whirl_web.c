@@ -13,7 +13,9 @@
  *   links 0 (the continuum, default) or 2..400, rate 0.001..100000 in its unit and at most 200
  *   in the chain's units sqrt(g/L) (the live page's bound), mode 1..12 (and <= links), rmax (the
  *   top of the branch diagram and of the stability windows, in the rate's unit; default 3 rate),
- *   frame (the perturbed run's positions: rotating, the default, or inertial).
+ *   frame (the perturbed run's positions: rotating, the default, or inertial); for the runs
+ *   drag (kg/(m s)) and drag2 (kg/m^2), for the shaken run pivot, shake, start and tilt
+ *   (read_run_state).
  * The verdict of the continuum is that of the 30-link chain (VERDICT_LINKS), and so is its
  * perturbed run.
  *
