@@ -48,6 +48,8 @@
 #define BRANCH_MODES 6      /* modes drawn on it at most */
 #define WINDOWS_MAX 256     /* windows of one mode listed at most */
 #define SHAKE_W_MAX 1000.0  /* the fastest pivot path the page computes live [sqrt(g/L)] */
+#define SHAKE_WORK_MAX 5e7  /* the most link-steps of a shaken run (~30 s as WebAssembly) */
+#define REACH_SAMPLES 256   /* times of a period where the path's reach is sampled */
 #define QUERY_MAX 2048      /* the longest query read [bytes] */
 #define PIVOT_MAX 256       /* the longest pivot path read [bytes] */
 
@@ -239,14 +241,17 @@ static void rate_unit(web_state *s, const char *text)
 
 static int library_fail(web_state *s, const char *field);
 
-/* How far the pivot's path reaches from the origin, at most [L]: per axis the sum of its
- * amplitudes, then the length of that vector. */
+/* How far the pivot's path reaches from the origin [L]: the largest |p(t)| of REACH_SAMPLES
+ * times in a period (a few terms: smooth, sampled finely enough for a bound on the page). */
 static double pivot_reach(const whirl_pivot_path *path)
 {
-    double r[3] = {0, 0, 0};
-    for (int k = 0; k < 3; k++)
-        for (int j = 0; j < path->harmonics; j++) r[k] += fabs(path->c[k][j]) + fabs(path->s[k][j]);
-    return hypot(hypot(r[0], r[1]), r[2]);
+    double reach = 0, p[3], pv[3], pa[3];
+    for (int i = 0; i < REACH_SAMPLES; i++) {
+        whirl_pivot_eval(i * whirl_pivot_period(path) / REACH_SAMPLES, p, pv, pa,
+                         (void *)path);
+        reach = fmax(reach, hypot(hypot(p[0], p[1]), p[2]));
+    }
+    return reach;
 }
 
 /* The runs' parameters: the air drag (drag: linear, force -C v per unit length in
@@ -718,6 +723,11 @@ static int shake_start(whirl_web_run *r)
     if (status == GSL_ENOMEM) return state_fail(s, "", "out of memory");
     if (status != GSL_SUCCESS) return library_fail(s, r->moving ? "shake" : "links");
     r->every = r->moving ? whirl_pivot_period(&r->path) / SHAKE_PER_PERIOD : 1.0 / SHAKE_FREE;
+    const double steps = ceil(r->every / h) * SHAKE_FRAMES;
+    if (steps * (double)n > SHAKE_WORK_MAX)
+        return state_fail(s, "shake", "shake: %zu links on this path need %.3g steps, beyond "
+                          "what the page computes live (fewer links, a smaller amplitude or "
+                          "frequency)", n, steps);
     r->dt = r->every / ceil(r->every / h);
     return 0;
 }

@@ -370,6 +370,8 @@ static void shake_errors(void **state)
         {"pivot=vertical:1cm&shake=0Hz", "\"field\":\"shake\""},
         {"pivot=vertical:1cm&shake=2000Hz", "\"field\":\"shake\""},
         {"pivot=vertical:2m&shake=30Hz", "\"field\":\"pivot\""},
+        {"pivot=circle:43cm&shake=3Hz", "\"field\":\"pivot\""}, /* 43 cm of the chain's 30 */
+        {"pivot=vertical:10cm&shake=400Hz&links=400", "\"field\":\"shake\""}, /* too much */
         {"pivot=vertical:nan&shake=30Hz", "\"field\":\"pivot\""},
         {"start=sideways", "\"field\":\"start\""},
         {"tilt=100", "\"field\":\"tilt\""},
@@ -378,7 +380,7 @@ static void shake_errors(void **state)
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         char q[256];
-        snprintf(q, sizeof q, "length=60cm&mass=50g&rate=2Hz&mode=2&%s", cases[i][0]);
+        snprintf(q, sizeof q, "length=30cm&mass=50g&rate=2Hz&mode=2&%s", cases[i][0]);
         whirl_web_run *r = whirl_web_shake_alloc(q);
         assert_non_null(r);
         char *a = whirl_web_run_next(r, 10);
