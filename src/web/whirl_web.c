@@ -13,7 +13,9 @@
  *   links 0 (the continuum, default) or 2..400, rate 0.001..100000 in its unit and at most 200
  *   in the chain's units sqrt(g/L) (the live page's bound), mode 1..12 (and <= links), rmax (the
  *   top of the branch diagram and of the stability windows, in the rate's unit; default 3 rate),
- *   frame (the perturbed run's positions: rotating, the default, or inertial).
+ *   frame (the perturbed run's positions: rotating, the default, or inertial); for the runs
+ *   drag (kg/(m s)) and drag2 (kg/m^2), for the shaken run pivot, shake, start and tilt
+ *   (read_run_state).
  * The verdict of the continuum is that of the 30-link chain (VERDICT_LINKS), and so is its
  * perturbed run.
  *
@@ -32,6 +34,7 @@
 #include "whirl/chain.h"
 #include "whirl/common.h"
 #include "whirl/dynamics.h"
+#include "whirl/periodic.h"
 #include "whirl/stability.h"
 #include "whirl/steady.h"
 #include "web/whirl_web.h"
@@ -44,7 +47,11 @@
 #define BRANCH_RATES 120    /* rates of the branch diagram */
 #define BRANCH_MODES 6      /* modes drawn on it at most */
 #define WINDOWS_MAX 256     /* windows of one mode listed at most */
+#define SHAKE_W_MAX 1000.0  /* the fastest pivot path the page computes live [sqrt(g/L)] */
+#define SHAKE_WORK_MAX 5e7  /* the most link-steps of a shaken run (~30 s as WebAssembly) */
+#define REACH_SAMPLES 256   /* times of a period where the path's reach is sampled */
 #define QUERY_MAX 2048      /* the longest query read [bytes] */
+#define PIVOT_MAX 256       /* the longest pivot path read [bytes] */
 
 /* ---- the answer: a growing JSON text ---- */
 
@@ -157,6 +164,11 @@ typedef struct web_state {
     double w, w_max;          /* omega, rmax in sqrt(g/L) */
     double m_tip;             /* tip / mass */
     whirl_frame frame;        /* the run's view: co-rotating (default) or inertial */
+    double drag, drag2;       /* the air drag of the runs, in the library's units */
+    char pivot[PIVOT_MAX];    /* the shaken run's pivot path (whirl_pivot_parse), "" or "none" */
+    double shake_w;           /* its rate [sqrt(g/L)] */
+    int inverted;             /* the shaken run starts standing up (1) or hanging (0) */
+    double tilt;              /* each link of its start turned by tilt [rad] */
     char field[16];           /* the parameter of a failure */
     char message[512];
 } web_state;
@@ -227,6 +239,63 @@ static void rate_unit(web_state *s, const char *text)
         s->unit = 1, s->unit_name = "rad/s";
 }
 
+static int library_fail(web_state *s, const char *field);
+
+/* How far the pivot's path reaches from the origin [L]: the largest |p(t)| of REACH_SAMPLES
+ * times in a period (a few terms: smooth, sampled finely enough for a bound on the page). */
+static double pivot_reach(const whirl_pivot_path *path)
+{
+    double reach = 0, p[3], pv[3], pa[3];
+    for (int i = 0; i < REACH_SAMPLES; i++) {
+        whirl_pivot_eval(i * whirl_pivot_period(path) / REACH_SAMPLES, p, pv, pa,
+                         (void *)path);
+        reach = fmax(reach, hypot(hypot(p[0], p[1]), p[2]));
+    }
+    return reach;
+}
+
+/* The runs' parameters: the air drag (drag: linear, force -C v per unit length in
+ * kg/(m s); drag2: quadratic, -C2 |v| v in kg/m^2; bare numbers in these units), and the
+ * shaken run's pivot path (the command line's grammar, lengths in m or with a unit) at the rate
+ * shake, its start (hanging or inverted) and tilt [degrees]. */
+static int read_run_state(web_state *s, const char *drag, const char *drag2, const char *pivot,
+                          const char *shake, const char *start, const char *tilt)
+{
+    double c = 0, c2 = 0, deg = 5, f = 0;
+    if ((drag && read_number(s, "drag", drag, WHIRL_QUANTITY_NUMBER, 0, 1e3, &c)) ||
+        (drag2 && read_number(s, "drag2", drag2, WHIRL_QUANTITY_NUMBER, 0, 1e3, &c2)) ||
+        (tilt && read_number(s, "tilt", tilt, WHIRL_QUANTITY_NUMBER, -90, 90, &deg)))
+        return -1;
+    /* force per length per velocity [kg/(m s)] over M / (L T); per velocity squared over M / L^2 */
+    s->drag = c * s->length * s->time / s->mass;
+    s->drag2 = c2 * s->length * s->length / s->mass;
+    s->tilt = deg * M_PI / 180;
+    s->inverted = start && strcmp(start, "inverted") == 0;
+    if (start && !s->inverted && strcmp(start, "hanging") != 0)
+        return state_fail(s, "start", "start: hanging or inverted, got %.40s", start);
+    if (pivot && strlen(pivot) >= PIVOT_MAX)
+        return state_fail(s, "pivot", "pivot: longer than %d bytes", PIVOT_MAX - 1);
+    snprintf(s->pivot, sizeof s->pivot, "%s", pivot && strcmp(pivot, "none") ? pivot : "");
+    if (!s->pivot[0]) return 0;
+    if (shake == NULL) return state_fail(s, "shake", "shake: missing (the path's rate, e.g. 30Hz)");
+    char *end;
+    strtod(shake, &end);
+    const int bare = !strpbrk(end, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ");
+    if (read_number(s, "shake", shake, WHIRL_QUANTITY_RATE, 1e-3 * s->unit, 1e5 * s->unit, &f))
+        return -1;
+    if (bare) f *= s->unit; /* a bare shake rate is in the rate's unit */
+    s->shake_w = f * s->time;
+    if (s->shake_w > SHAKE_W_MAX)
+        return state_fail(s, "shake", "shake: above %.4g %s, beyond what the page computes live",
+                          SHAKE_W_MAX / s->time / s->unit, s->unit_name);
+    whirl_pivot_path path;
+    if (whirl_pivot_parse(s->pivot, s->shake_w, s->length, 3, &path) != GSL_SUCCESS)
+        return library_fail(s, "pivot");
+    if (pivot_reach(&path) > 1)
+        return state_fail(s, "pivot", "pivot: the path reaches farther than the chain's length");
+    return 0;
+}
+
 static int read_state(web_state *s, const char *query)
 {
     memset(s, 0, sizeof *s);
@@ -236,7 +305,8 @@ static int read_state(web_state *s, const char *query)
     char copy[QUERY_MAX + 1];
     strcpy(copy, query);
     const char *length = NULL, *mass = NULL, *tip = NULL, *links = NULL, *rate = NULL,
-               *mode = NULL, *rmax = NULL, *frame = NULL;
+               *mode = NULL, *rmax = NULL, *frame = NULL, *drag = NULL, *drag2 = NULL,
+               *pivot = NULL, *shake = NULL, *start = NULL, *tilt = NULL;
     for (char *save = NULL, *p = strtok_r(copy, "&", &save); p; p = strtok_r(NULL, "&", &save)) {
         char *eq = strchr(p, '=');
         if (eq == NULL) return state_fail(s, p, "%.40s: a parameter without a value", p);
@@ -251,10 +321,17 @@ static int read_state(web_state *s, const char *query)
                             : strcmp(p, "mode") == 0 ? &mode
                             : strcmp(p, "rmax") == 0 ? &rmax
                             : strcmp(p, "frame") == 0 ? &frame
+                            : strcmp(p, "drag") == 0 ? &drag
+                            : strcmp(p, "drag2") == 0 ? &drag2
+                            : strcmp(p, "pivot") == 0 ? &pivot
+                            : strcmp(p, "shake") == 0 ? &shake
+                            : strcmp(p, "start") == 0 ? &start
+                            : strcmp(p, "tilt") == 0 ? &tilt
                                                      : NULL;
         if (slot == NULL)
             return state_fail(s, p, "unknown parameter %.40s (length, mass, tip, links, rate, "
-                                    "mode, rmax, frame)", p);
+                                    "mode, rmax, frame, drag, drag2, pivot, shake, start, tilt)",
+                              p);
         *slot = eq + 1;
     }
     if (length == NULL) return state_fail(s, "length", "length: missing (e.g. length=60cm)");
@@ -293,7 +370,7 @@ static int read_state(web_state *s, const char *query)
         s->frame = WHIRL_FRAME_INERTIAL;
     else if (frame && strcmp(frame, "rotating") != 0)
         return state_fail(s, "frame", "frame: rotating or inertial, got %.40s", frame);
-    return 0;
+    return read_run_state(s, drag, drag2, pivot, shake, start, tilt);
 }
 
 /* The library's last failure with its quantities in SI, as the state's failure. */
@@ -513,12 +590,18 @@ char *whirl_web_windows(const char *query)
 #define RUN_PERIODS 40
 #define RUN_FRAMES 400
 #define RUN_PERTURB 1e-3 /* [rad] */
+#define SHAKE_FRAMES 800     /* the shaken run's frames after the start */
+#define SHAKE_PER_PERIOD 8   /* its frames per period of the path */
+#define SHAKE_FREE 10        /* its frames per time unit sqrt(L/g) without a path */
 
 struct whirl_web_run {
     web_state s;
     whirl_chain *c;
     whirl_dyn *d;
     whirl_integrator *it;
+    whirl_pivot_path path;   /* the shaken run's pivot path */
+    int shaken, moving;      /* a shaken run (whirl_web_shake_alloc); its pivot moves */
+    int total;               /* frames in all, the start's included */
     double *y, *x, *v, *ref; /* the state; positions, velocities, the unperturbed positions */
     double t, every, dt;     /* [sqrt(L/g)] */
     int frames;              /* written so far (frame 0 is the start) */
@@ -555,11 +638,35 @@ static int run_start(whirl_web_run *r)
     return 0;
 }
 
+/* The run's dynamics of the model m, its pivot on r->path if it moves, gauss2 and the buffers. */
+static int run_workspace(whirl_web_run *r, const whirl_model *m)
+{
+    web_state *s = &r->s;
+    r->d = whirl_dyn_alloc(m, WHIRL_FORMULATION_CARTESIAN);
+    if (r->d && r->moving && whirl_dyn_set_pivot(r->d, whirl_pivot_eval, &r->path) != GSL_SUCCESS)
+        return library_fail(s, "pivot");
+    /* gauss2 by its type, not by its name: the table of every method would bring GSL's ODE
+     * solvers into the page (50 kB of WebAssembly it does not use) */
+    whirl_system sys;
+    r->it = r->d && whirl_dyn_system(r->d, &sys) == GSL_SUCCESS
+                ? whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys)
+                : NULL;
+    const size_t n = r->c->n;
+    if (r->it == NULL) return library_fail(s, "links");
+    r->y = malloc(whirl_dyn_size(r->d) * sizeof *r->y);
+    r->x = malloc(9 * n * sizeof *r->x);
+    if (r->y == NULL || r->x == NULL) return state_fail(s, "", "out of memory");
+    r->v = r->x + 3 * n;
+    r->ref = r->x + 6 * n;
+    return 0;
+}
+
 whirl_web_run *whirl_web_run_alloc(const char *query)
 {
     whirl_web_run *r = calloc(1, sizeof *r);
     if (r == NULL) return NULL;
     web_state *s = &r->s;
+    r->total = RUN_FRAMES + 1;
     if (read_state(s, query)) {
         r->failed = 1;
         return r;
@@ -576,46 +683,102 @@ whirl_web_run *whirl_web_run_alloc(const char *query)
         r->failed = 1;
         return r;
     }
-    const whirl_model m = {.chain = r->c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = s->w};
-    r->d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
-    /* gauss2 by its type, not by its name: the table of every method would bring GSL's ODE
-     * solvers into the page (50 kB of WebAssembly it does not use) */
-    whirl_system sys;
-    r->it = r->d && whirl_dyn_system(r->d, &sys) == GSL_SUCCESS
-                ? whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys)
-                : NULL;
-    const size_t n = r->c->n;
-    if (r->it == NULL) {
-        r->failed = library_fail(s, "links");
-        return r;
-    }
-    r->y = malloc(whirl_dyn_size(r->d) * sizeof *r->y);
-    r->x = malloc(9 * n * sizeof *r->x);
-    if (r->y == NULL || r->x == NULL) {
-        r->failed = state_fail(s, "", "out of memory");
-        return r;
-    }
-    r->v = r->x + 3 * n;
-    r->ref = r->x + 6 * n;
-    r->failed = run_start(r) != 0;
+    const whirl_model m = {.chain = r->c, .dim = 3, .frame = WHIRL_FRAME_ROTATING, .omega = s->w,
+                           .air_drag = s->drag, .air_drag_quadratic = s->drag2};
+    r->failed = run_workspace(r, &m) != 0 || run_start(r) != 0;
     return r;
 }
 
-/* One frame at r->t (the chunk's first: no comma before it): t [s], the deviation from the unperturbed shape [m] (whirl_deviation: the
- * RMS distance, minimised over a turn about the axis) and the masses' positions x, y, z [m]
- * (7 digits: they are drawn) in the run's frame. */
+/* The shaken run's start: the chain straight down or up, each link turned by the tilt about y,
+ * moving with the pivot; the step: whirl_default_step's under the tensions of the chain
+ * hanging in the gravity raised by the pivot's largest acceleration (a bound in either
+ * start); a frame every SHAKE_PER_PERIOD of the path's period (SHAKE_FREE of a time unit
+ * sqrt(L/g) without a path). */
+static int shake_start(whirl_web_run *r)
+{
+    web_state *s = &r->s;
+    const size_t n = r->c->n;
+    double *links = malloc(3 * n * sizeof *links), *tension = malloc(n * sizeof *tension);
+    double amax = 0, h = 0;
+    for (int j = 0; r->moving && j < r->path.harmonics; j++) {
+        double a2 = 0;
+        for (int k = 0; k < 3; k++) a2 += gsl_pow_2(r->path.c[k][j]) + gsl_pow_2(r->path.s[k][j]);
+        amax += sqrt(a2) * gsl_pow_2((j + 1) * r->path.omega);
+    }
+    int status = links && tension ? GSL_SUCCESS : GSL_ENOMEM;
+    double below = 0;
+    for (size_t i = n; status == GSL_SUCCESS && i-- > 0;) {
+        const double l = r->c->length[i];
+        links[3 * i] = l * sin(s->tilt);
+        links[3 * i + 1] = 0;
+        links[3 * i + 2] = (s->inverted ? 1 : -1) * l * cos(s->tilt);
+        below += r->c->mass[i];
+        tension[i] = (r->c->gravity + amax) * below;
+    }
+    if (status == GSL_SUCCESS) status = whirl_dyn_state_from_shape(r->d, 0, links, 0, r->y);
+    if (status == GSL_SUCCESS)
+        status = whirl_default_step(whirl_dyn_model(r->d), tension, "gauss2", &h);
+    free(links);
+    free(tension);
+    if (status == GSL_ENOMEM) return state_fail(s, "", "out of memory");
+    if (status != GSL_SUCCESS) return library_fail(s, r->moving ? "shake" : "links");
+    r->every = r->moving ? whirl_pivot_period(&r->path) / SHAKE_PER_PERIOD : 1.0 / SHAKE_FREE;
+    const double steps = ceil(r->every / h) * SHAKE_FRAMES;
+    if (steps * (double)n > SHAKE_WORK_MAX)
+        return state_fail(s, "shake", "shake: %zu links on this path need %.3g steps, beyond "
+                          "what the page computes live (fewer links, a smaller amplitude or "
+                          "frequency)", n, steps);
+    r->dt = r->every / ceil(r->every / h);
+    return 0;
+}
+
+whirl_web_run *whirl_web_shake_alloc(const char *query)
+{
+    whirl_web_run *r = calloc(1, sizeof *r);
+    if (r == NULL) return NULL;
+    web_state *s = &r->s;
+    r->shaken = 1;
+    r->total = SHAKE_FRAMES + 1;
+    if (read_state(s, query)) {
+        r->failed = 1;
+        return r;
+    }
+    r->moving = s->pivot[0] != 0;
+    if (r->moving && whirl_pivot_parse(s->pivot, s->shake_w, s->length, 3, &r->path)) {
+        r->failed = library_fail(s, "pivot");
+        return r;
+    }
+    r->c = chain_of(s, s->links ? s->links : VERDICT_LINKS);
+    /* omega: the path's (whirl_default_step's period), 1 without a path */
+    const whirl_model m = {.chain = r->c, .dim = 3, .frame = WHIRL_FRAME_INERTIAL,
+                           .omega = r->moving ? s->shake_w : 1, .air_drag = s->drag,
+                           .air_drag_quadratic = s->drag2};
+    r->failed = r->c == NULL || run_workspace(r, &m) != 0 || shake_start(r) != 0;
+    return r;
+}
+
+/* One frame at r->t (the chunk's first: no comma before it): t [s]; the deviation from the
+ * unperturbed shape [m] (whirl_deviation: the RMS distance, minimised over a turn about the
+ * axis), or for a shaken run the tip's height above the pivot [m] and the pivot's position;
+ * then the masses' positions x, y, z [m] (7 digits: they are drawn) in the run's frame. */
 static int run_frame(whirl_web_run *r, json *j, int first)
 {
     const size_t n = r->c->n;
+    double p[3] = {0, 0, 0}, pv[3], pa[3];
     int status = whirl_dyn_get_state(r->d, r->t, r->y, WHIRL_FRAME_INERTIAL, r->x, r->v);
-    const double dev = status == GSL_SUCCESS ? whirl_deviation(n, r->x, r->ref) : NAN;
-    if (status == GSL_SUCCESS && r->s.frame != WHIRL_FRAME_INERTIAL)
+    if (r->moving) whirl_pivot_eval(r->t, p, pv, pa, &r->path);
+    const double dev = status != GSL_SUCCESS ? NAN
+                       : r->shaken           ? r->x[3 * n - 1] - p[2]
+                                             : whirl_deviation(n, r->x, r->ref);
+    if (status == GSL_SUCCESS && !r->shaken && r->s.frame != WHIRL_FRAME_INERTIAL)
         status = whirl_dyn_get_state(r->d, r->t, r->y, r->s.frame, r->x, r->v);
-    if (status != GSL_SUCCESS || !isfinite(dev)) return library_fail(&r->s, "rate");
+    if (status != GSL_SUCCESS || !isfinite(dev))
+        return library_fail(&r->s, r->shaken ? "shake" : "rate");
     put(j, "%s[", first ? "" : ",");
     put_number(j, r->t * r->s.time);
     put(j, ",");
     put_number(j, dev * r->s.length);
+    for (int k = 0; r->shaken && k < 3; k++) put(j, ",%.7g", p[k] * r->s.length);
     for (size_t i = 0; i < 3 * n; i++) put(j, ",%.7g", r->x[i] * r->s.length);
     put(j, "]");
     r->frames++;
@@ -626,26 +789,32 @@ char *whirl_web_run_next(whirl_web_run *r, int count)
 {
     if (r == NULL) return error_answer("", "no run");
     web_state *s = &r->s;
+    const int last = r->total - 1;
     json j = {0};
-    put(&j, "{\"links\":%zu,\"total\":%d", r->c ? r->c->n : 0, RUN_FRAMES + 1);
-    put_key_number(&j, "t_end", RUN_PERIODS * 2 * M_PI / s->omega);
-    put_key_number(&j, "period", 2 * M_PI / s->omega);
+    put(&j, "{\"links\":%zu,\"total\":%d", r->c ? r->c->n : 0, r->total);
+    put_key_number(&j, "t_end", r->shaken ? last * r->every * s->time
+                                          : RUN_PERIODS * 2 * M_PI / s->omega);
+    const double period = !r->shaken ? 2 * M_PI / s->omega
+                          : r->moving ? whirl_pivot_period(&r->path) * s->time
+                                      : 0; /* a free swing: none */
+    put_key_number(&j, "period", period);
     put_key_number(&j, "dt", r->dt * s->time);
-    put(&j, ",\"frame\":\"%s\",\"frames\":[",
-        s->frame == WHIRL_FRAME_INERTIAL ? "inertial" : "rotating");
+    put(&j, ",\"steps\":%.0f", r->every > 0 ? round(r->every / r->dt) : 0);
+    put(&j, ",\"frame\":\"%s\",\"shaken\":%s,\"frames\":[",
+        r->shaken || s->frame == WHIRL_FRAME_INERTIAL ? "inertial" : "rotating",
+        r->shaken ? "true" : "false");
     const int first = r->frames;
-    while (!r->failed && r->frames - first < count && r->frames <= RUN_FRAMES) {
-        if (r->frames > 0) { /* frame k at k every; the last at the run's end exactly */
-            const double t1 = r->frames == RUN_FRAMES ? RUN_FRAMES * r->every
-                                                      : r->frames * r->every;
-            if (whirl_integrator_advance(r->it, &r->t, r->y, t1, r->dt, 0) != GSL_SUCCESS) {
-                r->failed = library_fail(s, "rate");
+    while (!r->failed && r->frames - first < count && r->frames <= last) {
+        if (r->frames > 0) { /* frame k at k every */
+            if (whirl_integrator_advance(r->it, &r->t, r->y, r->frames * r->every, r->dt, 0) !=
+                GSL_SUCCESS) {
+                r->failed = library_fail(s, r->shaken ? "shake" : "rate");
                 break;
             }
         }
         r->failed = run_frame(r, &j, r->frames == first) != 0;
     }
-    put(&j, "],\"done\":%s}", r->frames > RUN_FRAMES ? "true" : "false");
+    put(&j, "],\"done\":%s}", r->frames > last ? "true" : "false");
     if (r->failed) {
         free(j.text);
         return error_answer(s->field, s->message);

@@ -18,7 +18,15 @@ void whirl_web_free(char *answer);
  * memory; a bad state or a failed start is answered by the first whirl_web_run_next. */
 typedef struct whirl_web_run whirl_web_run;
 whirl_web_run *whirl_web_run_alloc(const char *query);
-/* The next count frames: {"links", "total", "t_end", "period", "dt" (the step), "frame", "frames": [[t, deviation,
+/* A shaken run of the state (the query's pivot path at the rate shake: whirl_pivot_parse's
+ * grammar, "none" or absent for a fixed pivot; its chain, 30 links for the continuum, started
+ * straight down or, start=inverted, straight up, each link turned by tilt degrees (default 5)
+ * about y, moving with the pivot; drag and drag2 as for every run): SHAKE_FRAMES (800) frames
+ * after the start, 8 to a period of the path (10 to a time unit sqrt(L/g) without one). Its
+ * frames are [t, the tip's height above the pivot, px, py, pz (the pivot), x1, ..., zN],
+ * inertial; "shaken": true. Read and freed as a perturbed run. */
+whirl_web_run *whirl_web_shake_alloc(const char *query);
+/* The next count frames: {"links", "total", "t_end", "period", "dt" (the step), "steps" (per frame), "frame", "shaken", "frames": [[t, deviation,
  * x1, y1, z1, ..., xN, yN, zN], ...], "done"} in SI, or {"error", "field"}. */
 char *whirl_web_run_next(whirl_web_run *r, int count);
 void whirl_web_run_free(whirl_web_run *r);

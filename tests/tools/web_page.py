@@ -258,6 +258,61 @@ def run_check(p, page_file, whirl, check):
               r["tEnd"], (r["last"] - r["asked"]) / 1000, speed, r["lag"]))
 
 
+def shaken_run(p, fields):
+    """Sets the page's fields (id: value), presses Shake and run, and returns the run when done."""
+    for k, v in fields.items():
+        p.eval("document.getElementById(%s).value = %s" % (json.dumps(k), json.dumps(v)))
+    p.eval("document.getElementById('shake-run').click()")
+    p.wait("window.whirlState.run && window.whirlState.run.done", 120)
+    return p.eval("(() => { const r = window.whirlState.run; return { frames: r.frames, "
+                  "error: r.error, links: r.links, period: r.period }; })()")
+
+
+def shake_check(p, check):
+    """Shake the pivot: the preset of Kapitza's pendulum (3 links of 20 cm standing up, shaken
+    1 cm at 55 Hz; its multipliers on the unit circle by whirl periodic) keeps the tip above the
+    pivot over the run's 100 periods while the pivot moves (in the frames and as drawn); a free
+    swing of 20 degrees dies away with air drag and not without; a bad amplitude or frequency is
+    said next to its field and nothing is drawn. (The same runs through the C interface against
+    the library: build/tests/test_whirl_web.)"""
+    # (the page as run_check left it, a run under way: the preset replaces it)
+    p.eval("document.getElementById('kapitza').click()")
+    p.wait("window.whirlState.run && window.whirlState.run.done", 120)
+    r = p.eval("(() => { const r = window.whirlState.run; return { frames: r.frames, "
+               "error: r.error, links: r.links, period: r.period }; })()")
+    frames = r["frames"] or [[0, 0, 0, 0, 0]]
+    pz = [f[4] for f in frames]
+    low = min(f[1] for f in frames)
+    periods = frames[-1][0] / r["period"] if r["period"] else 0
+    drawn = set()
+    for _ in range(50):  # the animation's pivot, as drawn
+        d = p.eval("window.whirlState.run.drawn")
+        if d:
+            drawn.add(round(d["pivot"][2], 6))
+        if len(drawn) > 2:
+            break
+        time.sleep(0.02)
+    check("Kapitza's preset: the 3-link chain standing on a pivot shaken 1 cm at 55 Hz stays up "
+          "over %.0f periods (the tip at least %.3g m above the pivot); the pivot moves %.3g m "
+          "and is drawn moving" % (periods, low, max(pz) - min(pz)),
+          not r["error"] and r["links"] == 3 and len(frames) == 801 and periods >= 99 and
+          low > 0.5 and 0.019 < max(pz) - min(pz) <= 0.02 and len(drawn) > 2,
+          "error %r, %d frames, %d drawn positions" % (r["error"], len(frames), len(drawn)))
+    swing = {"pivot": "none", "start": "hanging", "tilt": "20", "drag2": "0"}  # the 3 links
+    tips = []
+    for drag in ("0", "0.05"):
+        r = shaken_run(p, dict(swing, drag=drag))
+        tips.append(max(abs(f[-3]) for f in r["frames"][-100:]) if r["frames"] else 0)
+    check("air drag: a free swing of 20 degrees keeps %.3g m of tip excursion at its end without "
+          "drag and %.3g m with 0.05 kg/(m s)" % tuple(tips), tips[1] < 0.5 * tips[0], tips)
+    for field, value in (("amp", "1xx"), ("shake", "0Hz"), ("drag", "-1")):
+        r = shaken_run(p, dict({"pivot": "vertical", "amp": "1cm", "shake": "55Hz", "drag": "0"},
+                               **{field: value}))
+        msg = p.eval("document.getElementById('%s-msg').textContent" % field)
+        check("bad %s %s: a message next to the field (%s), nothing drawn" % (field, value, msg),
+              r["error"] and msg and not r["frames"], "error %r" % r["error"])
+
+
 def parity_cases(p, page_file, whirl, check):
     if True:
         cases = [  # (query, shape args, stability args or None)
@@ -391,6 +446,10 @@ def parity_cases(p, page_file, whirl, check):
               "cancelled" in status and p.eval("window.whirlState.answers") > before and
               p.eval("window.whirlState.cancelled") == 1)
         run_check(p, page_file, whirl, check)
+        t0 = time.time()
+        shake_check(p, check)
+        print("INFO shake the pivot: the preset's run, two free swings and three bad fields in "
+              "%.1f s" % (time.time() - t0))
         external = [u for u in p.requests if not u.startswith(("file:", "blob:", "data:"))]
         check("no request leaves the machine", not external, "%s" % external[:3])
         check("no console errors", not p.console_errors, "%s" % p.console_errors[:3])

@@ -17,6 +17,9 @@
 #include <cmocka.h>
 #include <gsl/gsl_math.h>
 
+#include "whirl/dynamics.h"
+#include "whirl/integrator.h"
+#include "whirl/periodic.h"
 #include "whirl/steady.h"
 #include "web/whirl_web.h"
 
@@ -108,25 +111,27 @@ static void branches_and_windows(void **state)
     whirl_web_free(a);
 }
 
-/* A run's frames, all of them: frames[k * width + j], width = 2 + 3 links. */
+/* A run's frames, all of them: frames[k * width + j], width = 2 + 3 links (5 + 3 links for a
+ * shaken run: the pivot after the deviation). */
 typedef struct frames {
     double *v;
-    int count, width;
+    int count, width, total, steps;
     double t_end;
 } frames;
 
-static frames run_all(const char *query, int chunk)
+static frames run_of(whirl_web_run *r, const char *query, int chunk, int shaken)
 {
     frames f = {0};
-    whirl_web_run *r = whirl_web_run_alloc(query);
     assert_non_null(r);
     for (int calls = 0;; calls++) {
         char *a = whirl_web_run_next(r, chunk);
         assert_non_null(a);
         if (strstr(a, "\"error\"")) fail_msg("%s: %s", query, a);
-        f.width = 2 + 3 * (int)number(a, "links");
+        f.width = (shaken ? 5 : 2) + 3 * (int)number(a, "links");
         f.t_end = number(a, "t_end");
-        assert_true(number(a, "total") == 401);
+        f.total = (int)number(a, "total");
+        f.steps = (int)number(a, "steps");
+        assert_non_null(strstr(a, shaken ? "\"shaken\":true" : "\"shaken\":false"));
         f.v = realloc(f.v, (size_t)(f.count + chunk) * (size_t)f.width * sizeof *f.v);
         const char *p = strstr(a, "\"frames\":[") + strlen("\"frames\":[");
         int in_chunk = 0;
@@ -149,6 +154,14 @@ static frames run_all(const char *query, int chunk)
         assert_int_equal(in_chunk, chunk);
     }
     whirl_web_run_free(r);
+    assert_int_equal(f.count, f.total);
+    return f;
+}
+
+static frames run_all(const char *query, int chunk)
+{
+    frames f = run_of(whirl_web_run_alloc(query), query, chunk, 0);
+    assert_int_equal(f.total, 401);
     return f;
 }
 
@@ -230,6 +243,154 @@ static void run_errors(void **state)
     whirl_web_run_free(NULL);
 }
 
+/* x written in 7 digits and read back, as the run's positions are */
+static double seven(double x)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.7g", x);
+    return strtod(buf, NULL);
+}
+
+/* The shaken run of the page against the same run through the library directly: the same
+ * chain, path (whirl_pivot_parse of the same text at the same rate), drag, start and step (the
+ * frame's interval, an eighth of the path's period, over the answer's steps per frame). */
+static void shake_equals_library(void **state)
+{
+    (void)state;
+    const char *q = "length=60cm&mass=50g&rate=2Hz&mode=2&links=3&pivot=vertical:1cm&shake=55Hz"
+                    "&start=inverted&tilt=3&drag=0.01&drag2=0.002";
+    frames f = run_of(whirl_web_shake_alloc(q), q, 64, 1);
+    assert_int_equal(f.total, 801);
+    assert_int_equal(f.width, 5 + 9);
+    double L, M, w;
+    assert_int_equal(whirl_parse_quantity("60cm", WHIRL_QUANTITY_LENGTH, &L, NULL), 0);
+    assert_int_equal(whirl_parse_quantity("50g", WHIRL_QUANTITY_MASS, &M, NULL), 0);
+    assert_int_equal(whirl_parse_quantity("55Hz", WHIRL_QUANTITY_RATE, &w, NULL), 0);
+    const double T = sqrt(L / 9.80665);
+    w *= T;
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_parse("vertical:1cm", w, L, 3, &path), GSL_SUCCESS);
+    whirl_chain *c = whirl_chain_alloc_uniform(3, 0);
+    const whirl_model m = {.chain = c, .dim = 3, .frame = WHIRL_FRAME_INERTIAL, .omega = w,
+                           .air_drag = 0.01 * L * T / M, .air_drag_quadratic = 0.002 * L * L / M};
+    whirl_dyn *d = whirl_dyn_alloc(&m, WHIRL_FORMULATION_CARTESIAN);
+    assert_non_null(d);
+    assert_int_equal(whirl_dyn_set_pivot(d, whirl_pivot_eval, &path), GSL_SUCCESS);
+    const double tilt = 3 * M_PI / 180;
+    double links[9], y[18], x[9], v[9], p[3], pv[3], pa[3];
+    for (int i = 0; i < 3; i++) {
+        links[3 * i] = c->length[i] * sin(tilt);
+        links[3 * i + 1] = 0;
+        links[3 * i + 2] = c->length[i] * cos(tilt);
+    }
+    assert_true(whirl_dyn_size(d) <= 18);
+    assert_int_equal(whirl_dyn_state_from_shape(d, 0, links, 0, y), GSL_SUCCESS);
+    whirl_system sys;
+    assert_int_equal(whirl_dyn_system(d, &sys), GSL_SUCCESS);
+    whirl_integrator *it = whirl_integrator_alloc_system(whirl_integrator_gauss2, &sys);
+    assert_non_null(it);
+    const double every = whirl_pivot_period(&path) / 8, dt = every / f.steps;
+    assert_true(f.steps >= 1);
+    double t = 0, worst_h = 0, worst_x = 0, pz_lo = 1, pz_hi = -1;
+    for (int k = 0; k < f.count; k++) {
+        const double *g = f.v + k * f.width;
+        if (k) assert_int_equal(whirl_integrator_advance(it, &t, y, k * every, dt, 0), GSL_SUCCESS);
+        assert_int_equal(whirl_dyn_get_state(d, t, y, WHIRL_FRAME_INERTIAL, x, v), GSL_SUCCESS);
+        whirl_pivot_eval(t, p, pv, pa, &path);
+        assert_true(g[0] == t * T);
+        worst_h = fmax(worst_h, fabs(g[1] - (x[8] - p[2]) * L));
+        for (int j = 0; j < 12; j++) /* the pivot, then the masses */
+            worst_x = fmax(worst_x, fabs(g[2 + j] - seven((j < 3 ? p[j] : x[j - 3]) * L)));
+        pz_lo = fmin(pz_lo, g[4]);
+        pz_hi = fmax(pz_hi, g[4]);
+    }
+    assert_true(worst_h <= 1e-15 * L); /* to round-off: the same operations */
+    assert_true(worst_x == 0);         /* the positions, written in 7 digits */
+    assert_true(pz_hi - pz_lo > 0.019 && pz_hi - pz_lo <= 0.02); /* the pivot: 1 cm either way */
+    whirl_integrator_free(it);
+    whirl_dyn_free(d);
+    whirl_chain_free(c);
+    free(f.v);
+}
+
+/* The largest |x| of the tip in the frames from k0 on, and the smallest height above the pivot. */
+static void tip_extremes(const frames *f, int k0, double *x_max, double *h_min)
+{
+    *x_max = 0;
+    *h_min = INFINITY;
+    const int links = (f->width - 5) / 3;
+    for (int k = k0; k < f->count; k++) {
+        const double *g = f->v + k * f->width;
+        *x_max = fmax(*x_max, fabs(g[5 + 3 * (links - 1)]));
+        *h_min = fmin(*h_min, g[1]);
+    }
+}
+
+/* Kapitza's pendulum as Acheson's chain: the 3-link chain of 60 cm standing straight up, 3
+ * degrees off, stays up over 100 periods of a vertical shaking of 1 cm at 55 Hz (whirl
+ * periodic --pivot vertical:1cm --omega 55Hz --links 3 --start inverted: neutral, every
+ * multiplier on the unit circle); without the shaking it falls. A free swing of 20 degrees
+ * with air drag dies away, without drag it does not. */
+static void shake_runs(void **state)
+{
+    (void)state;
+    const char *base = "length=60cm&mass=50g&rate=2Hz&mode=2&links=3&start=inverted&tilt=3";
+    char q[512];
+    snprintf(q, sizeof q, "%s&pivot=vertical:1cm&shake=55Hz", base);
+    frames f = run_of(whirl_web_shake_alloc(q), q, 100, 1);
+    double x_max, h_min;
+    tip_extremes(&f, 0, &x_max, &h_min);
+    assert_true(fabs(f.t_end - 100 / 55.0) <= 1e-12); /* 100 periods */
+    assert_true(h_min > 0.5);                         /* up: the tip over half a metre above */
+    free(f.v);
+    snprintf(q, sizeof q, "%s&pivot=none", base);
+    f = run_of(whirl_web_shake_alloc(q), q, 100, 1);
+    tip_extremes(&f, 0, &x_max, &h_min);
+    assert_true(h_min < 0); /* falls */
+    free(f.v);
+    const char *swing = "length=60cm&mass=50g&rate=2Hz&mode=2&links=12&start=hanging&tilt=20";
+    double free_x, drag_x;
+    f = run_of(whirl_web_shake_alloc(swing), swing, 100, 1);
+    tip_extremes(&f, f.count - 100, &free_x, &h_min);
+    free(f.v);
+    snprintf(q, sizeof q, "%s&drag=0.05", swing);
+    f = run_of(whirl_web_shake_alloc(q), q, 100, 1);
+    tip_extremes(&f, f.count - 100, &drag_x, &h_min);
+    free(f.v);
+    assert_true(drag_x < 0.5 * free_x);
+}
+
+static void shake_errors(void **state)
+{
+    (void)state;
+    static const char *const cases[][2] = {
+        {"pivot=wobble:1cm&shake=30Hz", "\"field\":\"pivot\""},
+        {"pivot=vertical:1cm", "\"field\":\"shake\""},
+        {"pivot=vertical:1cm&shake=fast", "\"field\":\"shake\""},
+        {"pivot=vertical:1cm&shake=0Hz", "\"field\":\"shake\""},
+        {"pivot=vertical:1cm&shake=2000Hz", "\"field\":\"shake\""},
+        {"pivot=vertical:2m&shake=30Hz", "\"field\":\"pivot\""},
+        {"pivot=circle:43cm&shake=3Hz", "\"field\":\"pivot\""}, /* 43 cm of the chain's 30 */
+        {"pivot=vertical:10cm&shake=400Hz&links=400", "\"field\":\"shake\""}, /* too much */
+        {"pivot=vertical:nan&shake=30Hz", "\"field\":\"pivot\""},
+        {"start=sideways", "\"field\":\"start\""},
+        {"tilt=100", "\"field\":\"tilt\""},
+        {"drag=-1", "\"field\":\"drag\""},
+        {"drag2=x", "\"field\":\"drag2\""},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char q[256];
+        snprintf(q, sizeof q, "length=30cm&mass=50g&rate=2Hz&mode=2&%s", cases[i][0]);
+        whirl_web_run *r = whirl_web_shake_alloc(q);
+        assert_non_null(r);
+        char *a = whirl_web_run_next(r, 10);
+        if (strncmp(a, "{\"error\":", 9) != 0 || strstr(a, cases[i][1]) == NULL)
+            fail_msg("%s: %s", q, a);
+        whirl_web_free(a);
+        whirl_web_run_free(r);
+    }
+}
+
 int main(void)
 {
     gsl_set_error_handler_off();
@@ -241,6 +402,9 @@ int main(void)
         cmocka_unit_test(run_frames),
         cmocka_unit_test(run_views),
         cmocka_unit_test(run_errors),
+        cmocka_unit_test(shake_equals_library),
+        cmocka_unit_test(shake_runs),
+        cmocka_unit_test(shake_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
