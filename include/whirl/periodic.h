@@ -135,10 +135,34 @@ typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one p
  */
 WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
                                                const whirl_pivot_path *path);
+/* A workspace for the chain of model with its damping and drag: model->chain (not owned) in
+ * model->dim, with the air drag c, c2 and the internal damping D of whirl_model (dynamics.h:
+ * the same forces as the time integrator's), the pivot on path (copied). The model's frame and
+ * omega are replaced by the inertial frame and the path's rate (the internal damping is then
+ * measured in the frame co-rotating at the path's rate, as whirl_model defines it; a
+ * continuation in the rate moves that frame with it); the model must have no drive radius, no
+ * ramp and no seed forcing. With no damping and no drag it is whirl_periodic_alloc's workspace.
+ * With any, the period map contracts volume and the multipliers are not in reciprocal pairs:
+ * the verdict's margin leaves the reciprocal-pair error out (it is still reported), and the
+ * continuation's torus test is the dissipative one (whirl_periodic_path).
+ * NULL with a message on invalid arguments (the model's, as whirl_dyn_alloc's) or no memory.
+ * @param model the model: its chain (not owned), dim, air_drag, air_drag_quadratic and
+ *     internal_damping
+ * @param path the pivot's path (copied)
+ * @return the workspace, to free with whirl_periodic_free; NULL with a message on invalid
+ *     arguments or no memory
+ */
+WHIRL_API whirl_periodic *whirl_periodic_alloc_model(const whirl_model *model,
+                                                     const whirl_pivot_path *path);
 /* Frees the workspace. NULL is a no-op.
  * @param w the workspace, or NULL
  */
 WHIRL_API void whirl_periodic_free(whirl_periodic *w);
+/* 1 if the chain of w is damped or dragged (whirl_periodic_alloc_model), else 0.
+ * @param w the workspace
+ * @return 1 with dissipation, else 0
+ */
+WHIRL_API int whirl_periodic_dissipative(const whirl_periodic *w);
 
 /* The dynamics of w (inertial frame, Cartesian formulation, the pivot on the path, omega the
  * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs.
