@@ -501,7 +501,7 @@ WHIRL_API const char *whirl_cycle_event_name(whirl_cycle_event e);
 
 /* y <- the steady shape of mode (its node count) of the circle drive on w's path (a circle of
  * radius > 0, dim 3), the seed's tip on the pivot's side (side 1) or opposite (-1), as
- * whirl_stability_driven_mode finds it, at t = 0 turning with the pivot: the circle's periodic
+ * whirl_stability_driven_mode finds it (with w's air drag: whirl_driven_mode's shape), at t = 0 turning with the pivot: the circle's periodic
  * motion. GSL_EINVAL on another path; GSL_EDOM if the mode does not exist at the rate.
  * @param w the workspace, its path a circle of radius > 0, dim 3
  * @param mode the mode (node count) >= 1

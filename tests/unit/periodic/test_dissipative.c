@@ -298,6 +298,140 @@ static void test_circle_with_drag(void **state)
     }
 }
 
+/* ---- a torus bifurcation of the damped circle drive ---- */
+
+/* N = 3, eps = 0.05, c = 0.05: the steady shape of mode 2 with its seed's tip opposite the
+ * pivot is stable at omega = 2.8 (every eigenvalue of its linearisation at Re = -c / 2, the
+ * uniform drag's) and loses its stability near 2.85 by a complex pair (Im ~ 1.7: the multiplier
+ * exp(lambda T) far from +-1) crossing the imaginary axis, after two pairs met. */
+#define TORUS_N 3
+static const circle_case torus_case = {TORUS_N, 2.8, 0.05, 0.05, 0, 0, 2, -1, 400};
+
+/* The steady linearisation's growth rate at omega (whirl_stability_driven_mode). */
+static double steady_growth(double omega, void *chain)
+{
+    whirl_stability *st = whirl_stability_alloc(TORUS_N);
+    const whirl_model model = {.chain = chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
+                               .omega = omega, .drive_radius = torus_case.eps,
+                               .air_drag = torus_case.c};
+    double growth;
+    assert_int_equal(whirl_stability_driven_mode(st, &model, torus_case.mode, torus_case.side,
+                                                 NULL, &growth), GSL_SUCCESS);
+    whirl_stability_free(st);
+    return growth;
+}
+
+typedef struct torus_seen {
+    int events, torus;
+    double at, err, mu;
+} torus_seen;
+
+static int torus_row(void *data, const whirl_cycle_point *p)
+{
+    torus_seen *s = data;
+    if (p->event == WHIRL_CYCLE_POINT) return 0;
+    s->events++;
+    if (p->event == WHIRL_CYCLE_TORUS && s->torus++ == 0)
+        s->at = p->parameter, s->err = p->err, s->mu = p->max_modulus;
+    return 0;
+}
+
+/* The growth per period of a perturbed run from the periodic motion at omega, against |mu|max:
+ * the area of two consecutive perturbations (in the tangent coordinates) grows by |mu1 mu2|
+ * per period once they lie in the plane of the leading pair (the others fading as |mu3| / |mu1|
+ * per period), |mu|^2 for a complex pair whatever its phase; their Gram determinant, the area
+ * squared, by |mu|^4. */
+static void perturbed_growth(whirl_chain *c, double omega, int first, int last, double size0,
+                             double *growth, double *mu)
+{
+    const whirl_model model = {.chain = c, .dim = 3, .air_drag = torus_case.c};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_circle(&path, omega, torus_case.eps), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
+    const size_t size = whirl_periodic_state_size(w), m = whirl_periodic_tangent_size(w);
+    double *y = malloc(size * sizeof *y), *yp = malloc(size * sizeof *yp);
+    double *a = malloc(m * sizeof *a), *b = malloc(m * sizeof *b);
+    assert_int_equal(whirl_periodic_start_steady(w, torus_case.mode, torus_case.side, y),
+                     GSL_SUCCESS);
+    whirl_periodic_result r;
+    const whirl_periodic_params p = {.steps = torus_case.steps, .refine = 1};
+    assert_int_equal(whirl_periodic_find(w, y, &p, &r), GSL_SUCCESS);
+    *mu = r.max_modulus;
+    memcpy(yp, y, size * sizeof *yp);
+    for (size_t j = 0; j < size / 2; j++) yp[j] += size0 * (((j * 7) % 5) - 2.0);
+    assert_int_equal(whirl_dyn_project(whirl_periodic_dyn(w), 0, yp), GSL_SUCCESS);
+    double g_first = 0, g_last = 0;
+    for (int k = 1; k <= last + 1; k++) {
+        assert_int_equal(whirl_periodic_run(w, yp, r.steps, 1), GSL_SUCCESS);
+        memcpy(a, b, m * sizeof *a);
+        whirl_periodic_tangent(w, y, yp, b);
+        for (size_t j = m / 2; j < m; j++) b[j] /= omega; /* rates over omega */
+        if (k == first + 1 || k == last + 1) {
+            double aa = 0, bb = 0, ab = 0;
+            for (size_t j = 0; j < m; j++) aa += a[j] * a[j], bb += b[j] * b[j], ab += a[j] * b[j];
+            *(k == first + 1 ? &g_first : &g_last) = aa * bb - ab * ab;
+        }
+    }
+    *growth = pow(g_last / g_first, 1.0 / (4.0 * (last - first))); /* area^2 ~ |mu|^4 */
+    free(y), free(yp), free(a), free(b);
+    whirl_periodic_free(w);
+}
+
+static void test_torus_located(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(TORUS_N, 0);
+    /* the reference: the steady growth rate's root, Brent on omega to 1e-12 */
+    gsl_function f = {steady_growth, c};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    double lo = 2.849, hi = 2.9;
+    assert_true(steady_growth(lo, c) < 0 && steady_growth(hi, c) > 0);
+    assert_int_equal(gsl_root_fsolver_set(s, &f, lo, hi), GSL_SUCCESS);
+    for (int i = 0; i < 100; i++) {
+        assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
+        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, 1e-13, 0) == GSL_SUCCESS) break;
+    }
+    const double ref = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    /* the continuation of the periodic motion in the rate from 2.8 */
+    const whirl_model model = {.chain = c, .dim = 3, .air_drag = torus_case.c};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_circle(&path, torus_case.omega, torus_case.eps), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
+    double *y = malloc(whirl_periodic_state_size(w) * sizeof *y);
+    assert_int_equal(whirl_periodic_start_steady(w, torus_case.mode, torus_case.side, y),
+                     GSL_SUCCESS);
+    const whirl_cycle_params cp = {.parameter = WHIRL_CYCLE_OMEGA, .min = 2.8, .max = 2.9,
+                                   .direction = 1, .step = 0.02, .steps = torus_case.steps};
+    torus_seen seen = {0};
+    assert_int_equal(whirl_periodic_path(w, y, &cp, torus_row, &seen, NULL, NULL), GSL_SUCCESS);
+    print_message("# damped circle N = 3, eps 0.05, c 0.05, mode 2 side -1: torus at omega = "
+                  "%.12f (estimate %.2g, |mu|max %.12f) from the continuation; %.12f from the "
+                  "steady growth rate's root; difference %.2g; events %d\n", seen.at, seen.err,
+                  seen.mu, ref, seen.at - ref, seen.events);
+    assert_int_equal(seen.torus, 1);
+    assert_int_equal(seen.events, 1);
+    assert_true(fabs(seen.at - ref) < 1e-8);
+    assert_true(fabs(seen.mu - 1) < 1e-8);
+    /* perturbed runs either side: on the stable side the leading pair is only 1.04 times the
+       next (the pairs met at 2.848), so the run is long (0.955^300 ~ 1e-6 of the others left);
+       on the unstable side 0.86 per period, and the start small (1.1^120 ~ 1e5) */
+    const double side_at[2] = {ref - 0.002, ref + 0.03}, size0[2] = {1e-6, 1e-12};
+    const int first[2] = {300, 60}, last[2] = {600, 120};
+    for (int k = 0; k < 2; k++) {
+        double growth, mu;
+        perturbed_growth(c, side_at[k], first[k], last[k], size0[k], &growth, &mu);
+        print_message("# omega = %.6f: growth per period %.8f from a perturbed run, |mu|max "
+                      "%.8f\n", side_at[k], growth, mu);
+        assert_true(k == 0 ? mu < 1 && growth < 1 : mu > 1 && growth > 1);
+        assert_true(fabs(growth - mu) < 1e-4 * mu);
+    }
+    free(y);
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -305,6 +439,7 @@ int main(void)
         cmocka_unit_test(test_variational_against_differences),
         cmocka_unit_test(test_damped_oscillator),
         cmocka_unit_test(test_circle_with_drag),
+        cmocka_unit_test(test_torus_located),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
