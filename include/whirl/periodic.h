@@ -234,15 +234,19 @@ typedef struct whirl_periodic_result {
     double max_modulus;    /* the largest |mu| */
     double max_modulus_err;
     double reciprocal_err; /* max over mu_i of min_j |mu_i mu_j - 1|: 0 for the exact
-                              conservative chain (symplectic monodromy) */
+                              conservative chain (symplectic monodromy); the damped chain's
+                              multipliers are not in pairs: a distance, not an error (the
+                              verdict does not use it) */
     double orbit_change;   /* max |y*(h/2) - y*(h)| (scaled as the residual; 0 without refine) */
     whirl_floquet_verdict verdict;
     double growth;         /* unstable: the largest |mu| per period; else 1 */
     double efold_periods;  /* unstable: 1 / ln |mu|max periods; else 0 */
     double efold_time;     /* unstable: T / ln |mu|max [sqrt(L/g)]; else 0 */
     whirl_floquet_edge edge; /* unstable: how the largest left the circle; else the nearest */
-    double edge_distance;  /* neutral or stable: the angle [rad] to that edge (for a collision
-                              of two multipliers on the circle, half the angle between them) */
+    double edge_distance;  /* neutral: the angle [rad] to that edge (for a collision of two
+                              multipliers on the circle, half the angle between them; the
+                              damped chain: 0, its largest is on the edge); stable (only the
+                              damped chain): 1 - |mu|max */
 } whirl_periodic_result;
 
 /* Finds the periodic motion near the start y (length whirl_periodic_state_size; overwritten by
@@ -397,7 +401,14 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
  * changes sign is a fold of cycles; one where it does not is a branch point (a symmetric branch
  * that goes on: the vertical chain's +1 tongue edges). A change of the verdict along a step that
  * no sign change explains (pairs equal by a symmetry make the tests touch zero: the 3D hanging
- * chain's two planes) is located on the pairs' rho, the eigenvalues of M + M^-1. */
+ * chain's two planes) is located on the pairs' rho, the eigenvalues of M + M^-1.
+ * The damped or dragged chain (whirl_periodic_alloc_model) has no pairs: its torus test is
+ *   P = prod_{i < j} (mu_i mu_j - 1)   over all m multipliers,
+ * the determinant of the bialternate product M (.) M - I, reported as sign |P|^(1/factors):
+ * a complex pair mu, conj mu contributes |mu|^2 - 1, so P changes sign where a complex pair
+ * crosses the unit circle (the Neimark-Sacker, or torus, bifurcation; a sign change from two
+ * real multipliers with mu_i mu_j = 1 is not an event), located as the other events; a change
+ * of the verdict that no test explains is located on |mu|max - 1. */
 
 typedef enum {
     WHIRL_CYCLE_OMEGA = 0,    /* the path's rate omega [sqrt(g/L)] */
@@ -450,7 +461,7 @@ typedef struct whirl_cycle_point {
     const double *re, *im; /* the multipliers by decreasing modulus (valid during the call) */
     double max_modulus, reciprocal_err;
     whirl_floquet_verdict verdict; /* as whirl_periodic_result's, without the step's refinement:
-                                      margin max(2 reciprocal_err, 1e-9) */
+                                      margin max(2 reciprocal_err, 1e-9) (damped: 1e-9) */
     whirl_floquet_edge edge;
     double residual;   /* the scaled |P(y) - y| */
     int iterations;    /* corrector iterations */
