@@ -624,6 +624,9 @@ int whirl_pivot_circle(whirl_pivot_path *path, double omega, double r);
 typedef struct whirl_periodic whirl_periodic;
 whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path);
 void whirl_periodic_free(whirl_periodic *w);
+whirl_periodic *whirl_periodic_alloc_model(const whirl_model *model,
+                                           const whirl_pivot_path *path);
+int whirl_periodic_dissipative(const whirl_periodic *w);
 whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
 size_t whirl_periodic_state_size(const whirl_periodic *w);
 size_t whirl_periodic_tangent_size(const whirl_periodic *w);
