@@ -80,59 +80,68 @@ void periodic_diss_forces(const whirl_periodic *w, double t, const double *y, do
             f[3 * i + k] = f[3 * i + k] / mass[i] - (i > 0 ? f[3 * (i - 1) + k] / mass[i - 1] : 0);
 }
 
+/* The most tangent vectors periodic_diss_apply takes at once (its scratch is on the stack). */
+#define COLS_MAX 16
+
 void periodic_diss_apply(const whirl_periodic *w, const double *a, const double *u,
                          const double *dq, const double *dv, size_t cols, double *out)
 {
-    const size_t n = w->n;
-    const int dim = w->dim;
+    const size_t n = w->n, dim = (size_t)w->dim, nc = cols;
     const double *len = w->chain->length, *mass = w->chain->mass, om = w->path.omega;
     const double D = w->damping;
     double *f = out; /* 3 n x cols: [(3 i + k) cols + col] */
-    /* the internal damping: J_i, then G_i, then the forces, in place (periodic_diss_forces) */
-    for (size_t col = 0; col < cols; col++) {
-        double wprev[3] = {0, 0, 0};
+    /* the state's component of axis k (2D: x and z only; y is 0) */
+    const int slot[3] = {0, dim == 3 ? 1 : -1, dim == 3 ? 2 : 1};
+    if (D > 0) { /* the internal damping: J_i, then G_i, then the forces, in place */
+        double wprev[3][COLS_MAX] = {{0}};
         for (size_t i = 0; i < n; i++) {
-            double d[3], r[3];
-            for (int k = 0; k < 3; k++) {
-                const int skip = dim == 2 && k == 1;
-                d[k] = skip ? 0 : dq[at(dim, i, k) * cols + col];
-                r[k] = skip ? 0 : dv[at(dim, i, k) * cols + col];
+            const double il = 1 / len[i];
+            const double *qx = dq + (dim * i) * nc, *rx = dv + (dim * i) * nc;
+            const double *qy = dim == 3 ? qx + nc : NULL, *ry = dim == 3 ? rx + nc : NULL;
+            const double *rz = dv + (dim * i + (size_t)slot[2]) * nc;
+            double *fx = f + 3 * i * nc, *fy = fx + nc, *fz = fy + nc;
+            for (size_t c = 0; c < nc; c++) {
+                const double wx = (rx[c] + (qy ? om * qy[c] : 0)) * il;
+                const double wy = ((ry ? ry[c] : 0) - om * qx[c]) * il, wz = rz[c] * il;
+                fx[c] = D * (wx - wprev[0][c]), fy[c] = D * (wy - wprev[1][c]);
+                fz[c] = D * (wz - wprev[2][c]);
+                wprev[0][c] = wx, wprev[1][c] = wy, wprev[2][c] = wz;
             }
-            const double wc[3] = {(r[0] + om * d[1]) / len[i], (r[1] - om * d[0]) / len[i],
-                                  r[2] / len[i]};
+        }
+        for (size_t i = 0; i < n; i++) { /* G_i = (J_i - J_{i+1}) / l_i */
+            const double il = 1 / len[i];
+            double *fi = f + 3 * i * nc;
+            for (size_t r = 0; r < 3 * nc; r++) fi[r] = (fi[r] - (i + 1 < n ? fi[r + 3 * nc] : 0)) * il;
+        }
+        for (size_t i = 0; i < n; i++) { /* f_i = -(G_i - G_{i+1}) */
+            double *fi = f + 3 * i * nc;
+            for (size_t r = 0; r < 3 * nc; r++) fi[r] = (i + 1 < n ? fi[r + 3 * nc] : 0) - fi[r];
+        }
+    } else {
+        memset(f, 0, 3 * n * nc * sizeof *f);
+    }
+    if (w->drag > 0 || w->drag2 > 0) { /* the drag: delta v_i summed from the top */
+        double dvel[3][COLS_MAX] = {{0}}, along[COLS_MAX];
+        for (size_t i = 0; i < n; i++) {
+            const double *ui = u + 3 * i, l = len[i], ai = a[i];
             for (int k = 0; k < 3; k++) {
-                f[(3 * i + k) * cols + col] = D * (wc[k] - wprev[k]);
-                wprev[k] = wc[k];
+                if (slot[k] < 0) continue;
+                const double *r = dv + (dim * i + (size_t)slot[k]) * nc;
+                for (size_t c = 0; c < nc; c++) dvel[k][c] += r[c];
+            }
+            for (size_t c = 0; c < nc; c++)
+                along[c] = ui[0] * dvel[0][c] + ui[1] * dvel[1][c] + ui[2] * dvel[2][c];
+            for (int k = 0; k < 3; k++) {
+                double *fk = f + (3 * i + (size_t)k) * nc;
+                for (size_t c = 0; c < nc; c++) fk[c] -= l * (ai * dvel[k][c] + ui[k] * along[c]);
             }
         }
     }
-    for (int sweep = 0; sweep < 2; sweep++)
-        for (size_t i = 0; i < n; i++)
-            for (int k = 0; k < 3; k++)
-                for (size_t col = 0; col < cols; col++) {
-                    const double next = i + 1 < n ? f[(3 * (i + 1) + k) * cols + col] : 0.0;
-                    const double diff = f[(3 * i + k) * cols + col] - next;
-                    f[(3 * i + k) * cols + col] = sweep == 0 ? diff / len[i] : -diff;
-                }
-    /* the drag: delta v_i summed from the top */
-    for (size_t col = 0; col < cols; col++) {
-        double dvel[3] = {0, 0, 0};
-        for (size_t i = 0; i < n; i++) {
-            for (int k = 0; k < 3; k++) {
-                const int skip = dim == 2 && k == 1;
-                dvel[k] += skip ? 0 : dv[at(dim, i, k) * cols + col];
-            }
-            const double *ui = u + 3 * i;
-            const double along = ui[0] * dvel[0] + ui[1] * dvel[1] + ui[2] * dvel[2];
-            for (int k = 0; k < 3; k++)
-                f[(3 * i + k) * cols + col] -= len[i] * (a[i] * dvel[k] + ui[k] * along);
-            if (dim == 2) f[(3 * i + 1) * cols + col] = 0;
-        }
+    if (dim == 2) /* no y force in the plane */
+        for (size_t i = 0; i < n; i++) memset(f + (3 * i + 1) * nc, 0, nc * sizeof *f);
+    for (size_t i = n; i-- > 0;) { /* fdiff_i = f_i / m_i - f_{i-1} / m_{i-1}, from the tip up */
+        double *fi = f + 3 * i * nc;
+        const double im = 1 / mass[i], ip = i > 0 ? 1 / mass[i - 1] : 0;
+        for (size_t r = 0; r < 3 * nc; r++) fi[r] = fi[r] * im - (i > 0 ? fi[r - 3 * nc] * ip : 0);
     }
-    for (size_t i = n; i-- > 0;)
-        for (int k = 0; k < 3; k++)
-            for (size_t col = 0; col < cols; col++)
-                f[(3 * i + k) * cols + col] =
-                    f[(3 * i + k) * cols + col] / mass[i] -
-                    (i > 0 ? f[(3 * (i - 1) + k) * cols + col] / mass[i - 1] : 0);
 }
