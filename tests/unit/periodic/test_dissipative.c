@@ -12,9 +12,11 @@
  *    whirl_driven_solve with the same drag, and its multipliers are exp(lambda T) of the
  *    steady linearisation with drag and damping (whirl_stability_driven_mode: link angles, the
  *    damping matrix and the drag's position part, one eigen-solve);
- *  - an event of the damped circle drive's continuation in the rate at the rate where the steady
- *    linearisation's growth rate passes 0 (Brent on whirl_stability_driven_mode, a different
- *    formulation), confirmed by perturbed runs either side. */
+ *  - the events of the continuation: a torus of the dragged circle drive in the rate where the
+ *    steady linearisation's growth rate passes 0 (Brent on whirl_stability_driven_mode, a
+ *    different formulation), confirmed by perturbed runs either side; a period doubling of the
+ *    damped shaken pendulum where the undamped one under the gravity 1 - D^2/4 has the trace
+ *    -2 cosh(D T / 2); a fold of the dragged circle drive at whirl_driven_branch's fold. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -322,18 +324,25 @@ static double steady_growth(double omega, void *chain)
 }
 
 typedef struct torus_seen {
-    int events, torus;
+    int events, torus; /* events, and those of the kind looked for */
     double at, err, mu;
 } torus_seen;
 
-static int torus_row(void *data, const whirl_cycle_point *p)
+/* The rows of a branch: the events counted, the first of kind kept (in the fields of
+ * torus_seen). */
+static int event_row(void *data, const whirl_cycle_point *p, whirl_cycle_event kind)
 {
     torus_seen *s = data;
     if (p->event == WHIRL_CYCLE_POINT) return 0;
     s->events++;
-    if (p->event == WHIRL_CYCLE_TORUS && s->torus++ == 0)
+    if (p->event == kind && s->torus++ == 0)
         s->at = p->parameter, s->err = p->err, s->mu = p->max_modulus;
     return 0;
+}
+
+static int torus_row(void *data, const whirl_cycle_point *p)
+{
+    return event_row(data, p, WHIRL_CYCLE_TORUS);
 }
 
 /* The growth per period of a perturbed run from the periodic motion at omega, against |mu|max:
@@ -432,6 +441,131 @@ static void test_torus_located(void **state)
     whirl_chain_free(c);
 }
 
+/* ---- a period doubling of the damped shaken pendulum ---- */
+
+/* The pendulum (l = m = 1) shaken vertically, A cos(omega t), with the internal damping D of its
+ * joint (2D: no coupling to the pivot's velocity, unlike the air drag): about the hanging state
+ * theta'' + D theta' + (1 + p_z''(t)) theta = 0, and theta = exp(-D t / 2) phi gives the
+ * undamped phi'' + (1 - D^2 / 4 + p_z''(t)) phi = 0, the pendulum under the gravity
+ * 1 - D^2 / 4: a multiplier of theta is -1 where that undamped pendulum's trace is
+ * -2 cosh(D T / 2). */
+#define PD_OMEGA 1.8
+#define PD_DAMPING 0.2
+
+static double reduced_trace(double amplitude, void *data)
+{
+    (void)data;
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    c->gravity = 1 - PD_DAMPING * PD_DAMPING / 4;
+    const double up[3] = {0, 0, 1}, T = 2 * M_PI / PD_OMEGA;
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_line(&path, PD_OMEGA, amplitude, up), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc(c, 2, &path);
+    double tr[2];
+    for (int k = 0; k < 2; k++) { /* 800 and 1600 steps, extrapolated (order 4) */
+        double y[4];
+        assert_int_equal(whirl_periodic_start_vertical(w, 0, y), GSL_SUCCESS);
+        const whirl_periodic_params p = {.steps = 800 << k, .refine = 0};
+        whirl_periodic_result r;
+        assert_int_equal(whirl_periodic_find(w, y, &p, &r), GSL_SUCCESS);
+        tr[k] = r.re[0] + r.re[1];
+    }
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+    return tr[1] + (tr[1] - tr[0]) / 15 + 2 * cosh(PD_DAMPING * T / 2);
+}
+
+static int pd_row(void *data, const whirl_cycle_point *p)
+{
+    return event_row(data, p, WHIRL_CYCLE_PERIOD_DOUBLING);
+}
+
+static int fold_row(void *data, const whirl_cycle_point *p)
+{
+    return event_row(data, p, WHIRL_CYCLE_FOLD);
+}
+
+static void test_period_doubling_located(void **state)
+{
+    (void)state;
+    /* the reference: Brent on the undamped pendulum's trace under the reduced gravity */
+    gsl_function f = {reduced_trace, NULL};
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    double lo = 0.05, hi = 0.4;
+    assert_true(reduced_trace(lo, NULL) > 0 && reduced_trace(hi, NULL) < 0);
+    assert_int_equal(gsl_root_fsolver_set(s, &f, lo, hi), GSL_SUCCESS);
+    for (int i = 0; i < 100; i++) {
+        assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
+        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, 1e-14, 0) == GSL_SUCCESS) break;
+    }
+    const double ref = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    /* the damped hanging branch followed in the amplitude */
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    const whirl_model model = {.chain = c, .dim = 2, .internal_damping = PD_DAMPING};
+    const double up[3] = {0, 0, 1};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_line(&path, PD_OMEGA, 0.01, up), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
+    double y[4];
+    assert_int_equal(whirl_periodic_start_vertical(w, 0, y), GSL_SUCCESS);
+    const whirl_cycle_params cp = {.parameter = WHIRL_CYCLE_AMPLITUDE, .min = 0, .max = 0.4,
+                                   .direction = 1, .steps = 800};
+    torus_seen seen = {0};
+    assert_int_equal(whirl_periodic_path(w, y, &cp, pd_row, &seen, NULL, NULL), GSL_SUCCESS);
+    print_message("# damped shaken pendulum, D = %g, omega = %g: period doubling at A = %.12f "
+                  "(estimate %.2g, |mu|max %.12f) from the continuation; %.12f from the "
+                  "undamped pendulum under the gravity 1 - D^2/4; difference %.2g\n",
+                  PD_DAMPING, PD_OMEGA, seen.at, seen.err, seen.mu, ref, seen.at - ref);
+    assert_int_equal(seen.torus, 1);
+    assert_int_equal(seen.events, 1);
+    assert_true(fabs(seen.at - ref) < 1e-8);
+    assert_true(fabs(seen.mu - 1) < 1e-8);
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+}
+
+/* ---- a fold of cycles of the dragged circle drive ---- */
+
+/* N = 2, eps = 0.05, c = 0.02: the shape of mode 1 with its seed's tip opposite the pivot,
+ * followed down in the rate from 1.3, folds near 1.229 (whirl_driven_branch's fold with the same
+ * drag: the fold function of the shape's force balance, another formulation); the periodic
+ * branch must fold there with a multiplier through +1. */
+static void test_fold_located(void **state)
+{
+    (void)state;
+    const double omega = 1.3, eps = 0.05, drag = 0.02;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    const whirl_driven_params dp = {.omega = omega, .drive_radius = eps, .air_drag = drag};
+    whirl_driven_info info;
+    assert_int_equal(whirl_driven_mode(c, &dp, 1, -1, &info), GSL_SUCCESS);
+    whirl_driven_curve *curve = whirl_driven_curve_alloc(1000);
+    assert_int_equal(whirl_driven_branch(c, &dp, &info, -1, 1.1, 1.5, 0.02, curve), GSL_SUCCESS);
+    assert_int_equal(curve->n_folds, 1);
+    const double steady_fold = curve->fold_omega[0];
+    const whirl_model model = {.chain = c, .dim = 3, .air_drag = drag};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_circle(&path, omega, eps), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
+    double *y = malloc(whirl_periodic_state_size(w) * sizeof *y);
+    assert_int_equal(whirl_periodic_start_steady(w, 1, -1, y), GSL_SUCCESS);
+    const whirl_cycle_params cp = {.parameter = WHIRL_CYCLE_OMEGA, .min = 1.1, .max = 1.5,
+                                   .direction = -1};
+    torus_seen seen = {0};
+    assert_int_equal(whirl_periodic_path(w, y, &cp, fold_row, &seen, NULL, NULL), GSL_SUCCESS);
+    print_message("# dragged circle drive N = 2, eps = 0.05, c = 0.02: fold at omega = %.12f "
+                  "(estimate %.2g) from the continuation; %.12f from whirl_driven_branch; "
+                  "difference %.2g\n", seen.at, seen.err, steady_fold, seen.at - steady_fold);
+    assert_int_equal(seen.torus, 1);
+    assert_int_equal(seen.events, 1);
+    assert_true(fabs(seen.at - steady_fold) < 1e-8);
+    whirl_driven_curve_free(curve);
+    free(y);
+    whirl_periodic_free(w);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -440,6 +574,8 @@ int main(void)
         cmocka_unit_test(test_damped_oscillator),
         cmocka_unit_test(test_circle_with_drag),
         cmocka_unit_test(test_torus_located),
+        cmocka_unit_test(test_period_doubling_located),
+        cmocka_unit_test(test_fold_located),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
