@@ -47,6 +47,37 @@ static whirl_chain *uneven_chain(size_t n)
     return c;
 }
 
+/* The root of f in [lo, hi] (a sign change there, asserted) by Brent's method to tol. */
+static double brent(gsl_function *f, double lo, double hi, double tol)
+{
+    assert_true((GSL_FN_EVAL(f, lo) < 0) != (GSL_FN_EVAL(f, hi) < 0));
+    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
+    assert_int_equal(gsl_root_fsolver_set(s, f, lo, hi), GSL_SUCCESS);
+    for (int i = 0; i < 100; i++) {
+        assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
+        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
+        if (gsl_root_test_interval(lo, hi, tol, 0) == GSL_SUCCESS) break;
+    }
+    const double root = gsl_root_fsolver_root(s);
+    gsl_root_fsolver_free(s);
+    return root;
+}
+
+/* The workspace of chain c in dim with the drags c1, c2 and the damping D, the pivot on the
+ * ellipse (a, b) at omega (2D: b = 0, the line along x). */
+static whirl_periodic *damped_on_ellipse(whirl_chain *c, int dim, double c1, double c2,
+                                         double D, double omega, double a, double b)
+{
+    const whirl_model model = {.chain = c, .dim = dim, .air_drag = c1, .air_drag_quadratic = c2,
+                               .internal_damping = D};
+    whirl_pivot_path path;
+    assert_int_equal(whirl_pivot_ellipse(&path, omega, a, dim == 3 ? b : 0), GSL_SUCCESS);
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
+    assert_non_null(w);
+    assert_int_equal(whirl_periodic_dissipative(w), 1);
+    return w;
+}
+
 /* ---- the forces' Jacobian against central differences ---- */
 
 static void test_force_jacobian(void **state)
@@ -55,14 +86,7 @@ static void test_force_jacobian(void **state)
     const size_t n = 4;
     whirl_chain *c = uneven_chain(n);
     for (int dim = 2; dim <= 3; dim++) {
-        const whirl_model model = {.chain = c, .dim = dim, .air_drag = 0.7,
-                                   .air_drag_quadratic = 1.3, .internal_damping = 0.05};
-        whirl_pivot_path path;
-        assert_int_equal(whirl_pivot_ellipse(&path, 2.3, 0.2, dim == 3 ? 0.1 : 0),
-                         GSL_SUCCESS);
-        whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
-        assert_non_null(w);
-        assert_int_equal(whirl_periodic_dissipative(w), 1);
+        whirl_periodic *w = damped_on_ellipse(c, dim, 0.7, 1.3, 0.05, 2.3, 0.2, 0.1);
         const size_t size = whirl_periodic_state_size(w), sh = size / 2;
         double *y = malloc(size * sizeof *y), *yp = malloc(size * sizeof *y);
         double *dq = malloc(sh * sizeof *dq), *dv = malloc(sh * sizeof *dv);
@@ -101,13 +125,7 @@ static void test_variational_against_differences(void **state)
     (void)state;
     for (int dim = 2; dim <= 3; dim++) {
         whirl_chain *c = uneven_chain(3);
-        const whirl_model model = {.chain = c, .dim = dim, .air_drag = 0.3,
-                                   .air_drag_quadratic = 0.5, .internal_damping = 0.01};
-        whirl_pivot_path path;
-        assert_int_equal(whirl_pivot_ellipse(&path, 1.7, 0.1, dim == 3 ? 0.06 : 0),
-                         GSL_SUCCESS);
-        whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
-        assert_non_null(w);
+        whirl_periodic *w = damped_on_ellipse(c, dim, 0.3, 0.5, 0.01, 1.7, 0.1, 0.06);
         const size_t size = whirl_periodic_state_size(w), m = whirl_periodic_tangent_size(w);
         double *y = malloc(size * sizeof *y), *mono = malloc(m * m * sizeof *mono);
         assert_int_equal(whirl_periodic_start_vertical(w, 0, y), GSL_SUCCESS);
@@ -392,17 +410,7 @@ static void test_torus_located(void **state)
     whirl_chain *c = whirl_chain_alloc_uniform(TORUS_N, 0);
     /* the reference: the steady growth rate's root, Brent on omega to 1e-12 */
     gsl_function f = {steady_growth, c};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    double lo = 2.849, hi = 2.9;
-    assert_true(steady_growth(lo, c) < 0 && steady_growth(hi, c) > 0);
-    assert_int_equal(gsl_root_fsolver_set(s, &f, lo, hi), GSL_SUCCESS);
-    for (int i = 0; i < 100; i++) {
-        assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
-        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
-        if (gsl_root_test_interval(lo, hi, 1e-13, 0) == GSL_SUCCESS) break;
-    }
-    const double ref = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
+    const double ref = brent(&f, 2.849, 2.9, 1e-13);
     /* the continuation of the periodic motion in the rate from 2.8 */
     const whirl_model model = {.chain = c, .dim = 3, .air_drag = torus_case.c};
     whirl_pivot_path path;
@@ -490,17 +498,7 @@ static void test_period_doubling_located(void **state)
     (void)state;
     /* the reference: Brent on the undamped pendulum's trace under the reduced gravity */
     gsl_function f = {reduced_trace, NULL};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    double lo = 0.05, hi = 0.4;
-    assert_true(reduced_trace(lo, NULL) > 0 && reduced_trace(hi, NULL) < 0);
-    assert_int_equal(gsl_root_fsolver_set(s, &f, lo, hi), GSL_SUCCESS);
-    for (int i = 0; i < 100; i++) {
-        assert_int_equal(gsl_root_fsolver_iterate(s), GSL_SUCCESS);
-        lo = gsl_root_fsolver_x_lower(s), hi = gsl_root_fsolver_x_upper(s);
-        if (gsl_root_test_interval(lo, hi, 1e-14, 0) == GSL_SUCCESS) break;
-    }
-    const double ref = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
+    const double ref = brent(&f, 0.05, 0.4, 1e-14);
     /* the damped hanging branch followed in the amplitude */
     whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
     const whirl_model model = {.chain = c, .dim = 2, .internal_damping = PD_DAMPING};
