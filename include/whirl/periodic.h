@@ -135,10 +135,34 @@ typedef struct whirl_periodic whirl_periodic; /* workspace of one chain on one p
  */
 WHIRL_API whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim,
                                                const whirl_pivot_path *path);
+/* A workspace for the chain of model with its damping and drag: model->chain (not owned) in
+ * model->dim, with the air drag c, c2 and the internal damping D of whirl_model (dynamics.h:
+ * the same forces as the time integrator's), the pivot on path (copied). The model's frame and
+ * omega are replaced by the inertial frame and the path's rate (the internal damping is then
+ * measured in the frame co-rotating at the path's rate, as whirl_model defines it; a
+ * continuation in the rate moves that frame with it); the model must have no drive radius, no
+ * ramp and no seed forcing. With no damping and no drag it is whirl_periodic_alloc's workspace.
+ * With any, the period map contracts volume and the multipliers are not in reciprocal pairs:
+ * the verdict's margin leaves the reciprocal-pair error out (it is still reported), and the
+ * continuation's torus test is the dissipative one (whirl_periodic_path).
+ * NULL with a message on invalid arguments (the model's, as whirl_dyn_alloc's) or no memory.
+ * @param model the model: its chain (not owned), dim, air_drag, air_drag_quadratic and
+ *     internal_damping
+ * @param path the pivot's path (copied)
+ * @return the workspace, to free with whirl_periodic_free; NULL with a message on invalid
+ *     arguments or no memory
+ */
+WHIRL_API whirl_periodic *whirl_periodic_alloc_model(const whirl_model *model,
+                                                     const whirl_pivot_path *path);
 /* Frees the workspace. NULL is a no-op.
  * @param w the workspace, or NULL
  */
 WHIRL_API void whirl_periodic_free(whirl_periodic *w);
+/* 1 if the chain of w is damped or dragged (whirl_periodic_alloc_model), else 0.
+ * @param w the workspace
+ * @return 1 with dissipation, else 0
+ */
+WHIRL_API int whirl_periodic_dissipative(const whirl_periodic *w);
 
 /* The dynamics of w (inertial frame, Cartesian formulation, the pivot on the path, omega the
  * path's): for whirl_dyn_set_state, whirl_dyn_state_from_shape and runs.
@@ -210,15 +234,19 @@ typedef struct whirl_periodic_result {
     double max_modulus;    /* the largest |mu| */
     double max_modulus_err;
     double reciprocal_err; /* max over mu_i of min_j |mu_i mu_j - 1|: 0 for the exact
-                              conservative chain (symplectic monodromy) */
+                              conservative chain (symplectic monodromy); the damped chain's
+                              multipliers are not in pairs: a distance, not an error (the
+                              verdict does not use it) */
     double orbit_change;   /* max |y*(h/2) - y*(h)| (scaled as the residual; 0 without refine) */
     whirl_floquet_verdict verdict;
     double growth;         /* unstable: the largest |mu| per period; else 1 */
     double efold_periods;  /* unstable: 1 / ln |mu|max periods; else 0 */
     double efold_time;     /* unstable: T / ln |mu|max [sqrt(L/g)]; else 0 */
     whirl_floquet_edge edge; /* unstable: how the largest left the circle; else the nearest */
-    double edge_distance;  /* neutral or stable: the angle [rad] to that edge (for a collision
-                              of two multipliers on the circle, half the angle between them) */
+    double edge_distance;  /* neutral: the angle [rad] to that edge (for a collision of two
+                              multipliers on the circle, half the angle between them; the
+                              damped chain: 0, its largest is on the edge); stable (only the
+                              damped chain): 1 - |mu|max */
 } whirl_periodic_result;
 
 /* Finds the periodic motion near the start y (length whirl_periodic_state_size; overwritten by
@@ -373,7 +401,14 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
  * changes sign is a fold of cycles; one where it does not is a branch point (a symmetric branch
  * that goes on: the vertical chain's +1 tongue edges). A change of the verdict along a step that
  * no sign change explains (pairs equal by a symmetry make the tests touch zero: the 3D hanging
- * chain's two planes) is located on the pairs' rho, the eigenvalues of M + M^-1. */
+ * chain's two planes) is located on the pairs' rho, the eigenvalues of M + M^-1.
+ * The damped or dragged chain (whirl_periodic_alloc_model) has no pairs: its torus test is
+ *   P = prod_{i < j} (mu_i mu_j - 1)   over all m multipliers,
+ * the determinant of the bialternate product M (.) M - I, reported as sign |P|^(1/factors):
+ * a complex pair mu, conj mu contributes |mu|^2 - 1, so P changes sign where a complex pair
+ * crosses the unit circle (the Neimark-Sacker, or torus, bifurcation; a sign change from two
+ * real multipliers with mu_i mu_j = 1 is not an event), located as the other events; a change
+ * of the verdict that no test explains is located on |mu|max - 1. */
 
 typedef enum {
     WHIRL_CYCLE_OMEGA = 0,    /* the path's rate omega [sqrt(g/L)] */
@@ -426,7 +461,7 @@ typedef struct whirl_cycle_point {
     const double *re, *im; /* the multipliers by decreasing modulus (valid during the call) */
     double max_modulus, reciprocal_err;
     whirl_floquet_verdict verdict; /* as whirl_periodic_result's, without the step's refinement:
-                                      margin max(2 reciprocal_err, 1e-9) */
+                                      margin max(2 reciprocal_err, 1e-9) (damped: 1e-9) */
     whirl_floquet_edge edge;
     double residual;   /* the scaled |P(y) - y| */
     int iterations;    /* corrector iterations */
@@ -477,7 +512,7 @@ WHIRL_API const char *whirl_cycle_event_name(whirl_cycle_event e);
 
 /* y <- the steady shape of mode (its node count) of the circle drive on w's path (a circle of
  * radius > 0, dim 3), the seed's tip on the pivot's side (side 1) or opposite (-1), as
- * whirl_stability_driven_mode finds it, at t = 0 turning with the pivot: the circle's periodic
+ * whirl_stability_driven_mode finds it (with w's air drag: whirl_driven_mode's shape), at t = 0 turning with the pivot: the circle's periodic
  * motion. GSL_EINVAL on another path; GSL_EDOM if the mode does not exist at the rate.
  * @param w the workspace, its path a circle of radius > 0, dim 3
  * @param mode the mode (node count) >= 1

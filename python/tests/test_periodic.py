@@ -103,6 +103,45 @@ def test_a_branch_in_the_rate_in_si_units_equals_the_command_line(tmp_path):
         assert np.array_equal(b.rows[name], table[name]), name
 
 
+def test_a_damped_motion_equals_the_command_line(tmp_path):
+    # the dragged and damped chain in SI units: the same numbers as the command line's
+    # --drag, --drag-quadratic, --damping (the units of whirl.stability's air_drag, damping)
+    args = ["--pivot", "circle:3cm", "--omega", "5", "--links", "2", "--start", "steady",
+            "--drag", "0.01", "--drag-quadratic", "0.005", "--damping", "1e-4", *SI_ARGS]
+    table = _cli(tmp_path, *args)
+    r = whirl.periodic("circle:3cm", 5, links=2, start="steady", air_drag=0.01,
+                       air_drag_quadratic=0.005, damping=1e-4, **SI)
+    assert np.array_equal(r.multipliers.real, table["re"])
+    assert np.array_equal(r.multipliers.imag, table["im"])
+    text = "\n".join(table.comments)
+    assert "dissipation: drag=0.01 drag_quadratic=0.005 damping=0.0001" in text
+    assert "reciprocal-pair distance %.2g (the damped chain's multipliers are not in pairs" \
+        % r.reciprocal_err in text
+    # dissipation shrinks the phase space: |det M| < 1, no pairs mu, 1/mu
+    assert abs(np.linalg.det(r.monodromy)) < 1 and r.reciprocal_err > 1e-3
+    undamped = whirl.periodic("circle:3cm", 5, links=2, start="steady", **SI)
+    assert undamped.reciprocal_err < 1e-10 and r.max_modulus < undamped.max_modulus
+
+
+def test_a_damped_branch_locates_its_torus_as_the_command_line(tmp_path):
+    args = ["--pivot", "circle:0.05", "--omega", "2.8", "--links", "3", "--start", "steady",
+            "--side", "-1", "--mode", "2", "--drag", "0.05", "--omega-min", "2.8",
+            "--omega-max", "2.9", "--up", "--arc-step", "0.02"]
+    table = _cli(tmp_path, *args)
+    b = whirl.periodic_path("circle:0.05", 2.8, links=3, start="steady", side=-1, mode=2,
+                            air_drag=0.05, omega_min=2.8, omega_max=2.9, up=True, arc_step=0.02)
+    assert list(b.events["event"]) == ["torus"]
+    for name in ("omega", "max_modulus", "torus_test", "err"):
+        assert np.array_equal(b.rows[name], table[name]), name
+    # where the steady linearisation's growth rate passes 0 (tests/unit/periodic)
+    assert abs(b.events["omega"][0] - 2.850665362775) < 1e-8
+
+
+def test_negative_damping_is_refused():
+    with pytest.raises(ValueError):
+        whirl.periodic("vertical:0.1", 2, dim=2, damping=-1)
+
+
 def test_a_chart_equals_the_command_line(tmp_path):
     args = ["--chart", "hanging", "--omega-min", "1.5", "--omega-max", "2.5", "--omega-count",
             "4", "--amp-max", "0.3", "--amp-rows", "12", "--links", "2"]

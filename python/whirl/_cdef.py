@@ -637,6 +637,9 @@ whirl_scene_work *whirl_scene_work_alloc_with_pivot(const whirl_scene *scene,
 typedef struct whirl_periodic whirl_periodic;
 whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path);
 void whirl_periodic_free(whirl_periodic *w);
+whirl_periodic *whirl_periodic_alloc_model(const whirl_model *model,
+                                           const whirl_pivot_path *path);
+int whirl_periodic_dissipative(const whirl_periodic *w);
 whirl_dyn *whirl_periodic_dyn(whirl_periodic *w);
 size_t whirl_periodic_state_size(const whirl_periodic *w);
 size_t whirl_periodic_tangent_size(const whirl_periodic *w);

@@ -7,7 +7,14 @@ A pivot path is given by the command line's grammar (whirl_pivot_parse): circle:
 line:A[,DX,DY,DZ], vertical:A, eight:A,B or fourier:x1c=A,z2s=B,... (lengths in the call's units,
 or with a suffix m, cm, mm in SI units), at the rate ``omega``. Units as everywhere (whirl.Units):
 rates in sqrt(g/L) or rad/s, lengths in L or m, times in sqrt(L/g) or s; multipliers, growth per
-period and e-folding periods are numbers."""
+period and e-folding periods are numbers.
+
+The chain may be damped and dragged: ``damping`` (the joints' internal damping), ``air_drag`` and
+``air_drag_quadratic`` (the names and units of whirl.stability and whirl.driven; ``whirl periodic
+--damping --drag --drag-quadratic``), the forces of the time integrator
+(whirl_periodic_alloc_model). Its multipliers are then not in reciprocal pairs: the verdict does
+not use ``reciprocal_err`` (then a distance, not an error), and a branch's torus test is
+prod_{i<j} (mu_i mu_j - 1): a complex pair crossing the unit circle."""
 from dataclasses import dataclass, field
 from typing import Any, List, Optional, Union
 
@@ -37,7 +44,9 @@ class PeriodicResult(_lib.Result):
     ``growth`` (the largest ``|mu|`` per period when unstable, else 1), ``efold_periods`` and
     ``efold_time`` [T] (0 unless unstable), ``edge`` (how the largest left the unit circle, or
     the nearest edge: "+1", "-1", "complex"; the names of whirl_floquet_edge_name) and
-    ``edge_distance`` [rad]; ``reciprocal_err`` (0 for the exact conservative chain),
+    ``edge_distance`` [rad] (a damped chain's stable motion: 1 - ``max_modulus``);
+    ``reciprocal_err`` (0 for the exact conservative chain; the damped chain's multipliers are
+    not in pairs, and it is a distance there),
     ``residual``, ``orbit_change``, ``iterations``, ``steps`` (of the finer solve);
     ``monodromy`` (the tangent-space matrix); ``units``."""
 
@@ -150,7 +159,7 @@ def _arr(ptr: Any, n: int) -> np.ndarray:
 
 
 def _start(ws: Any, start: Any, chain: Chain, path: Any, dim: int, mode: int, side: int,
-           u: Units) -> np.ndarray:
+           u: Units, model: Any) -> np.ndarray:
     """The start state: "hanging", "inverted", "steady" (the circle drive's steady shape of
     ``mode``) or a state vector (a PeriodicResult's ``state``)."""
     size = int(lib.whirl_periodic_state_size(ws))
@@ -176,6 +185,8 @@ def _start(ws: Any, start: Any, chain: Chain, path: Any, dim: int, mode: int, si
     st = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
     m = ffi.new("whirl_model *")
     m.chain, m.dim, m.frame, m.omega, m.drive_radius = chain._c, 3, 1, path.omega, r
+    m.air_drag, m.air_drag_quadratic = model.air_drag, model.air_drag_quadratic
+    m.internal_damping = model.internal_damping
     growth = ffi.new("double *")
     check(lib.whirl_stability_driven_mode(st, m, mode, side, ffi.NULL, growth),
           "periodic: the steady start", u)
@@ -189,7 +200,8 @@ def _start(ws: Any, start: Any, chain: Chain, path: Any, dim: int, mode: int, si
 
 
 def _setup(pivot: str, omega: Any, links: Union[int, Chain], dim: int, start: Any, mode: int,
-           side: int, u: Units) -> Any:
+           side: int, u: Units, damping: Any = 0.0, air_drag: Any = 0.0,
+           air_drag_quadratic: Any = 0.0) -> Any:
     dim = as_int(dim, "dim", minimum=2, maximum=3)
     side = as_int(side, "side")
     if side not in (1, -1):
@@ -197,8 +209,15 @@ def _setup(pivot: str, omega: Any, links: Union[int, Chain], dim: int, start: An
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
     path = _path(pivot, omega, dim, u)
-    ws = _lib.check_ptr(lib.whirl_periodic_alloc(chain._c, dim, path), lib.whirl_periodic_free)
-    y = _start(ws, start, chain, path, dim, mode, side, u)
+    m = ffi.new("whirl_model *")
+    m.chain, m.dim = chain._c, dim
+    m.internal_damping = as_float(damping, "damping", nonnegative=True, kind="damping",
+                                  units=u) / u.damping
+    m.air_drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag", units=u) / u.drag
+    m.air_drag_quadratic = as_float(air_drag_quadratic, "air_drag_quadratic", nonnegative=True,
+                                    kind="drag2", units=u) / u.drag2
+    ws = _lib.check_ptr(lib.whirl_periodic_alloc_model(m, path), lib.whirl_periodic_free)
+    y = _start(ws, start, chain, path, dim, mode, side, u, m)
     return chain, path, ws, y
 
 
@@ -209,7 +228,8 @@ def _steps(steps: Optional[int]) -> int:
 def periodic(pivot: str, omega: Any, links: Union[int, Chain] = 1, dim: int = 3,
              start: Any = "hanging", mode: int = 1, side: int = 1, steps: Optional[int] = None,
              tol: Optional[float] = None, max_iter: Optional[int] = None,
-             differences: bool = False, length: Optional[float] = None,
+             differences: bool = False, damping: Any = 0.0, air_drag: Any = 0.0,
+             air_drag_quadratic: Any = 0.0, length: Optional[float] = None,
              mass: Optional[float] = None, gravity: Optional[float] = None,
              units: Optional[Units] = None) -> PeriodicResult:
     """The periodic motion of the N-link chain ``links`` (N or a Chain) in ``dim`` 2 (the x-z
@@ -219,13 +239,15 @@ def periodic(pivot: str, omega: Any, links: Union[int, Chain] = 1, dim: int = 3,
     of ``mode`` on ``side``, or a state vector), with its Floquet multipliers and their error
     estimates from a second solve at twice the steps, as ``whirl periodic --pivot P --omega W``
     (``steps`` per period of the coarser solve, default 400; ``tol`` Newton's test, default
-    1e-10; ``max_iter`` default 30; differences=True: the monodromy by central differences).
-    Returns a PeriodicResult. whirl.Error (EMAXITER, with the residual) if Newton's method does
+    1e-10; ``max_iter`` default 30; differences=True: the monodromy by central differences;
+    ``damping``, ``air_drag``, ``air_drag_quadratic`` the damped and dragged chain, as
+    --damping, --drag, --drag-quadratic, in their units). Returns a PeriodicResult. whirl.Error (EMAXITER, with the residual) if Newton's method does
     not converge; whirl.InvalidInput on a bad path (the message names the term); Ctrl-C raises
     KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     with _lib.interruptible("periodic"):
-        chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u)
+        chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u, damping,
+                                    air_drag, air_drag_quadratic)
         p = ffi.new("whirl_periodic_params *")
         p.steps = _steps(steps)
         p.tol = 0.0 if tol is None else as_float(tol, "tol", positive=True)
@@ -272,6 +294,7 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
                   mode: int = 1, side: int = 1, arc_step: Optional[float] = None,
                   max_points: Optional[int] = None, steps: Optional[int] = None,
                   tol: Optional[float] = None, max_iter: Optional[int] = None,
+                  damping: Any = 0.0, air_drag: Any = 0.0, air_drag_quadratic: Any = 0.0,
                   length: Optional[float] = None, mass: Optional[float] = None,
                   gravity: Optional[float] = None, units: Optional[Units] = None,
                   keep_interrupted: bool = False) -> PeriodicBranch:
@@ -282,7 +305,8 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
     with up=True (default smaller), as ``whirl periodic --omega-min A --omega-max B`` (or
     --amp-max; ``arc_step`` its --arc-step, default 0.05; ``max_points`` default 10000). The
     folds of cycles, branch points, period doublings and torus bifurcations are located on the
-    way. Returns a PeriodicBranch. Ctrl-C raises KeyboardInterrupt, or with
+    way (``damping``, ``air_drag``, ``air_drag_quadratic``: the damped and dragged chain, as
+    periodic()). Returns a PeriodicBranch. Ctrl-C raises KeyboardInterrupt, or with
     keep_interrupted=True returns the rows so far (``ended`` "interrupted")."""
     u = units_of(length, mass, gravity, units)
     in_rate = omega_min is not None or omega_max is not None
@@ -326,7 +350,8 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
     ended: Optional[str] = None
     try:
         with _lib.interruptible("periodic_path"):
-            chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u)
+            chain, path, ws, y = _setup(pivot, omega, links, dim, start, mode, side, u, damping,
+                                        air_drag, air_drag_quadratic)
             if in_rate and not cp.min <= path.omega <= cp.max:
                 raise ValueError("omega (the branch's start) is outside [omega_min, omega_max]")
             status = lib.whirl_periodic_path(ws, _lib.dptr(y), cp, _branch_row, handle,

@@ -260,6 +260,9 @@ typedef struct cli_air {
     {.name = "--eps", .type = CLI_DOUBLE, .value = &(eps), .given = eps_given, .meta = "E",     \
      .help = "radius of the pivot's circle (default 0)", .range = "[0, 1)",                     \
      .unit = CLI_UNIT_LENGTH},                                                                  \
+    CLI_AIR_DRAG_OPTIONS(drag, drag_given, drag2, drag2_given, air)
+/* The air drag's rows alone (a command whose pivot is not the circle's: whirl periodic). */
+#define CLI_AIR_DRAG_OPTIONS(drag, drag_given, drag2, drag2_given, air)                         \
     {.name = "--drag", .type = CLI_DOUBLE, .value = &(drag), .given = drag_given, .meta = "C",  \
      .help = "linear air drag: force -C v per unit length (default 0)", .range = "[0, inf)",    \
      .unit = CLI_UNIT_DRAG},                                                                    \
@@ -286,6 +289,11 @@ typedef struct cli_air {
     {.name = "--pivot", .type = CLI_STRING, .value = &(var), .meta = "PATH",                   \
      .help = "the pivot's path" tail ": " CLI_PIVOT_GRAMMAR, .required = (req)}
 
+/* The internal damping of the joints, D of whirl_model (the same row everywhere). */
+#define CLI_DAMPING_OPTION(damping)                                                             \
+    {.name = "--damping", .type = CLI_DOUBLE, .value = &(damping), .meta = "D",                 \
+     .help = "internal damping of the joints (default 0)", .range = "[0, inf)",                 \
+     .unit = CLI_UNIT_DAMPING}
 /* With --drag-cd given, sets *drag2 (dimensionless) from the description. Returns 0. */
 int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
 

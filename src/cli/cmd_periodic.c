@@ -16,7 +16,12 @@
  * between curves (gnuplot draws each as a line). Ctrl-C stops it within a monodromy: the points
  * found until then are written (a comment line says where it stopped), exit status 130.
  *
- * --chart ellipse: the ellipticity chart of the hand-swung chain (periodic_ellipse.c). */
+ * --chart ellipse: the ellipticity chart of the hand-swung chain (periodic_ellipse.c).
+ *
+ * --drag, --drag-quadratic (or --drag-cd), --damping: the damped and dragged chain
+ * (whirl_periodic_alloc_model), the rows of whirl driven and whirl stability; its multipliers
+ * are not in reciprocal pairs (the comment line says so) and a branch's torus test is the
+ * dissipative one. Not for --chart. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,7 +34,8 @@
 
 typedef struct periodic_options {
     const char *pivot, *start, *output, *chart;
-    double omega, tol, arc_step, eps, e_max;
+    double omega, tol, arc_step, eps, e_max, drag, drag2, damping;
+    cli_air air; /* --drag-cd */
     int links, dim, steps, max_iter, mode, side, differences, up, max_points;
     int mode_given, side_given, emax_given;
     int omega_given, omin_given, omax_given, amin_given, amax_given;
@@ -73,6 +79,12 @@ static int start_steady(const cli_command *cmd, const periodic_options *o,
     return 0;
 }
 
+/* 1 if the chain is damped or dragged. */
+static int dissipative(const periodic_options *o)
+{
+    return o->drag > 0 || o->drag2 > 0 || o->damping > 0;
+}
+
 static void write_result(FILE *fp, const periodic_options *o, const whirl_periodic_result *r)
 {
     const double time = cli_units_scale(&o->units, CLI_UNIT_TIME);
@@ -81,6 +93,11 @@ static void write_result(FILE *fp, const periodic_options *o, const whirl_period
             cli_rate_words(&o->units, o->omega, rate, sizeof rate), o->links, o->dim, o->start);
     fprintf(fp, "# monodromy by %s\n", o->differences ? "central differences" :
                                                         "the variational equations");
+    if (dissipative(o))
+        fprintf(fp, "# dissipation: drag=%s drag_quadratic=%s damping=%s\n",
+                CLI_NUM(o->drag * cli_units_scale(&o->units, CLI_UNIT_DRAG)),
+                CLI_NUM(o->drag2 * cli_units_scale(&o->units, CLI_UNIT_DRAG2)),
+                CLI_NUM(o->damping * cli_units_scale(&o->units, CLI_UNIT_DAMPING)));
     fprintf(fp, "# period=%s %s; Newton %d iterations, residual %.3g; %d steps per period "
             "(errors from %d)\n", CLI_NUM(r->period * time), cli_units_name(&o->units, CLI_UNIT_TIME),
             r->iterations, r->residual, r->steps, r->steps / 2);
@@ -88,13 +105,22 @@ static void write_result(FILE *fp, const periodic_options *o, const whirl_period
         fprintf(fp, "# verdict=unstable growth=%.10g per period, e-folding %.6g periods (%s %s); "
                 "edge=%s\n", r->growth, r->efold_periods, CLI_NUM(r->efold_time * time),
                 cli_units_name(&o->units, CLI_UNIT_TIME), whirl_floquet_edge_name(r->edge));
+    else if (r->verdict == WHIRL_FLOQUET_STABLE)
+        fprintf(fp, "# verdict=stable; nearest edge=%s, |mu|max = 1 - %.6g\n",
+                whirl_floquet_edge_name(r->edge), r->edge_distance);
     else
         fprintf(fp, "# verdict=%s; nearest edge=%s at %.6g rad\n",
                 whirl_floquet_verdict_name(r->verdict), whirl_floquet_edge_name(r->edge),
                 r->edge_distance);
-    fprintf(fp, "# |mu|max=%.15g +- %.2g; reciprocal-pair error %.2g (0 for the exact "
-            "conservative chain); orbit change with the step %.2g\n", r->max_modulus,
-            r->max_modulus_err, r->reciprocal_err, r->orbit_change);
+    if (dissipative(o))
+        fprintf(fp, "# |mu|max=%.15g +- %.2g; reciprocal-pair distance %.2g (the damped "
+                "chain's multipliers are not in pairs: not an error); orbit change with the "
+                "step %.2g\n", r->max_modulus, r->max_modulus_err, r->reciprocal_err,
+                r->orbit_change);
+    else
+        fprintf(fp, "# |mu|max=%.15g +- %.2g; reciprocal-pair error %.2g (0 for the exact "
+                "conservative chain); orbit change with the step %.2g\n", r->max_modulus,
+                r->max_modulus_err, r->reciprocal_err, r->orbit_change);
     cli_units_comment(fp, &o->units);
     fprintf(fp, "index,re,im,modulus,err\n");
     for (size_t i = 0; i < r->count; i++) {
@@ -341,11 +367,18 @@ static void write_branch(FILE *fp, const periodic_options *o, const branch_rows 
             stopped[0]                                     ? "stopped early"
             : b->n - b->events >= (size_t)b->max_points ? "ended at --max-points"
                                                          : "left the range");
-    fprintf(fp, "# events: fold (+1, the branch turns back), branch (+1, it goes on), "
-            "period-doubling (-1), torus (two pairs meet on the unit circle and leave it); "
-            "fold_test = det(M - I), flip_test = det(M + I) as sign |det|^(1/m), torus_test = "
-            "prod (rho_k - rho_l)^2 over the pairs (rho = mu + 1/mu) as sign |D|^(1/factors); "
-            "err: the event's error estimate in the parameter\n");
+    if (dissipative(o))
+        fprintf(fp, "# damped chain: events fold (+1, the branch turns back), branch (+1, it "
+                "goes on), period-doubling (-1), torus (a complex pair crosses the unit "
+                "circle); fold_test = det(M - I), flip_test = det(M + I) as sign |det|^(1/m), "
+                "torus_test = prod_{i<j} (mu_i mu_j - 1) over the multipliers as sign "
+                "|P|^(1/factors); err: the event's error estimate in the parameter\n");
+    else
+        fprintf(fp, "# events: fold (+1, the branch turns back), branch (+1, it goes on), "
+                "period-doubling (-1), torus (two pairs meet on the unit circle and leave it); "
+                "fold_test = det(M - I), flip_test = det(M + I) as sign |det|^(1/m), "
+                "torus_test = prod (rho_k - rho_l)^2 over the pairs (rho = mu + 1/mu) as sign "
+                "|D|^(1/factors); err: the event's error estimate in the parameter\n");
     for (size_t i = 0; i < b->n; i++)
         if (b->r[i].event != WHIRL_CYCLE_POINT)
             fprintf(fp, "# %s omega=%s amplitude=%s%s%s err=%.2g\n",
@@ -421,6 +454,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
 {
     periodic_options o = {.start = "hanging", .links = 1, .dim = 3, .mode = 1, .side = 1,
                           .units = CLI_UNITS_INIT};
+    o.air = (cli_air)CLI_AIR_INIT(o.units);
     const cli_option opts[] = {
         CLI_PIVOT_OPTION(o.pivot, "", "--chart"),
         {.name = "--omega", .type = CLI_DOUBLE, .value = &o.omega, .given = &o.omega_given,
@@ -432,7 +466,7 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
                  "inverted (its region of stability)",
          .needs = "--omega-min --omega-max",
          .excludes = "--pivot --omega --dim --start --tol --max-iter --differences "
-                     "--up --max-points"},
+                     "--up --max-points --drag --drag-quadratic --drag-cd --damping"},
         {.name = "--eps", .type = CLI_DOUBLE, .value = &o.eps, .meta = "A",
          .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
                  "(the other: A (1 - e))",
@@ -507,12 +541,15 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         {.name = "--differences", .type = CLI_FLAG, .value = &o.differences,
          .help = "the monodromy by central differences of the period map (a cross-check; "
                  "default: the variational equations)"},
+        CLI_AIR_DRAG_OPTIONS(o.drag, NULL, o.drag2, NULL, o.air),
+        CLI_DAMPING_OPTION(o.damping),
         CLI_UNITS_OPTIONS(o.units),
         {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &o.output,
          .meta = "FILE", .help = "write the CSV to FILE (default: standard output)"},
     };
     int rc = cli_parse(cmd, argc, argv, opts, sizeof opts / sizeof opts[0], NULL, 0);
     if (rc) return rc;
+    if ((rc = cli_drag_apply(cmd, &o.air, &o.drag2))) return rc;
     if (o.chart) return run_chart(cmd, &o);
     if ((o.mode_given || o.side_given) && (o.start == NULL || strcmp(o.start, "steady") != 0))
         return cli_error(cmd, "--mode and --side need --start steady (or --chart ellipse)");
@@ -531,7 +568,9 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         return cli_error(cmd, "--pivot: %s", CLI_LIBRARY_ERROR(&o.units));
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)o.links, 0);
     if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o.units));
-    whirl_periodic *w = whirl_periodic_alloc(c, o.dim, &path);
+    const whirl_model model = {.chain = c, .dim = o.dim, .air_drag = o.drag,
+                               .air_drag_quadratic = o.drag2, .internal_damping = o.damping};
+    whirl_periodic *w = whirl_periodic_alloc_model(&model, &path);
     double *y = w ? malloc(whirl_periodic_state_size(w) * sizeof *y) : NULL;
     if (y == NULL) {
         rc = cli_error(cmd, "%s", w ? "out of memory" : CLI_LIBRARY_ERROR(&o.units));

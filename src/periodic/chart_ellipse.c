@@ -53,8 +53,10 @@ int whirl_periodic_start_steady(whirl_periodic *w, int mode, int side, double *y
         free(links);
         return whirl_fail(GSL_ENOMEM, "out of memory for the steady start");
     }
+    /* the hand-swung chain's shape with w's drag (whirl_driven_mode; none without) */
     const whirl_model model = {.chain = w->chain, .dim = 3, .frame = WHIRL_FRAME_ROTATING,
-                               .omega = w->path.omega, .drive_radius = r};
+                               .omega = w->path.omega, .drive_radius = r, .air_drag = w->drag,
+                               .air_drag_quadratic = w->drag2, .internal_damping = w->damping};
     double growth;
     int status = whirl_stability_driven_mode(st, &model, mode, side, NULL, &growth);
     if (status == GSL_SUCCESS) {

@@ -87,6 +87,40 @@ static void torus_test(cycle *c, const double *re, const double *im, int *sg, do
     *ln = sum;
 }
 
+/* The dissipative chain's torus test (whirl_periodic_alloc_model: no pairs mu, 1/mu): the
+ * product P = prod_{i < j} (mu_i mu_j - 1) over the m multipliers into its sign and ln |P|, the
+ * determinant of the bialternate product M (.) M - I, a polynomial in M's entries (smooth in the
+ * parameter), real as the multipliers are closed under conjugation. A complex pair mu, conj mu
+ * contributes |mu|^2 - 1: P changes sign where a complex pair crosses the unit circle (the
+ * Neimark-Sacker, or torus, bifurcation); the factors of a complex pair with another
+ * multiplier come as |mu nu - 1|^2 >= 0. Two real multipliers with mu_i mu_j = 1 (a neutral
+ * saddle, no bifurcation) change its sign too: *torus_like says whether the factor nearest 0 is
+ * a complex pair's, and *gap is its modulus. */
+static void torus_test_dissipative(cycle *c, const double *re, const double *im, int *sg,
+                                   double *ln, double *gap, int *torus_like)
+{
+    const size_t m = c->m;
+    double phase_re = 1, phase_im = 0, sum = 0;
+    *gap = INFINITY, *torus_like = 0;
+    for (size_t i = 0; i < m; i++)
+        for (size_t j = i + 1; j < m; j++) {
+            const double zr = re[i] * re[j] - im[i] * im[j] - 1;
+            const double zi = re[i] * im[j] + im[i] * re[j];
+            const double a = hypot(zr, zi);
+            if (a < *gap) /* a conjugate pair: im of opposite signs, not real */
+                *gap = a, *torus_like = im[i] != 0 && (im[i] > 0) != (im[j] > 0);
+            if (a == 0) {
+                *sg = 0, *ln = -INFINITY;
+                return;
+            }
+            const double pr = phase_re * zr / a - phase_im * zi / a;
+            phase_im = phase_re * zi / a + phase_im * zr / a, phase_re = pr;
+            sum += log(a);
+        }
+    *sg = phase_re < 0 ? -1 : 1;
+    *ln = sum;
+}
+
 /* r <- the point (y, p) of w->mono: multipliers, verdict, tests. */
 int cycle_describe(cycle *c, report *r, const double *y, double p, double tp, int iters,
                     double res)
@@ -96,15 +130,20 @@ int cycle_describe(cycle *c, report *r, const double *y, double p, double tp, in
     memcpy(r->y, y, c->size * sizeof *y);
     whirl_periodic_result fr = {.count = c->m, .re = r->re, .im = r->im, .err = c->zero,
                                 .period = whirl_pivot_period(&c->w->path)};
-    periodic_judge(&fr);
+    periodic_judge(&fr, c->w->dissipative);
     int sg[2];
     double ln[2];
     tests_of(c, sg, ln);
     const double f[2] = {sg[0] * exp(ln[0] / (double)c->m), sg[1] * exp(ln[1] / (double)c->m)};
-    int tsg;
+    int tsg, torus_like;
     double tln, rho_re;
-    const double pairs = (double)(c->m / 2) * (double)(c->m / 2 - 1) / 2;
-    torus_test(c, r->re, r->im, &tsg, &tln, &r->gap, &rho_re);
+    double pairs = (double)(c->m / 2) * (double)(c->m / 2 - 1) / 2;
+    if (c->w->dissipative) {
+        pairs = (double)c->m * (double)(c->m - 1) / 2;
+        torus_test_dissipative(c, r->re, r->im, &tsg, &tln, &r->gap, &torus_like);
+    } else {
+        torus_test(c, r->re, r->im, &tsg, &tln, &r->gap, &rho_re);
+    }
     cycle_set_param(c, p);
     r->pt = (whirl_cycle_point){
         .event = WHIRL_CYCLE_POINT, .index = c->progress.points, .parameter = p,
@@ -153,6 +192,7 @@ typedef struct event_frame {
     cycle *c;
     int kind;         /* 0: f_+, 1: f_-, 2: the torus test, 3: the stability's change */
     double rho_re;    /* the torus test: the real part of the closest pair of rho */
+    int torus_like;   /* the dissipative torus test: its nearest zero is a complex pair's */
     int mode;         /* kind 3: how the largest multiplier leaves the circle (rho_test) */
     double *ys, *yf;  /* the corrected points at s and 2 s steps */
     double p;         /* the extrapolated parameter at the last sigma */
@@ -184,10 +224,17 @@ static int test_of(event_frame *e, double *f)
         *f = scaled(e, sgs[e->kind], lns[e->kind]);
         return GSL_SUCCESS;
     }
-    if (e->kind == 3) return rho_test(c, e->mode, f);
+    if (e->kind == 3 && !c->w->dissipative) return rho_test(c, e->mode, f);
     const int status = periodic_multipliers(c->w, c->re_t, c->im_t);
     if (status) return status;
-    torus_test(c, c->re_t, c->im_t, &sg, &ln, &gap, &e->rho_re);
+    if (e->kind == 3) { /* dissipative: the largest modulus through 1 */
+        *f = hypot(c->re_t[0], c->im_t[0]) - 1;
+        return GSL_SUCCESS;
+    }
+    if (c->w->dissipative)
+        torus_test_dissipative(c, c->re_t, c->im_t, &sg, &ln, &gap, &e->torus_like);
+    else
+        torus_test(c, c->re_t, c->im_t, &sg, &ln, &gap, &e->rho_re);
     *f = scaled(e, sg, ln);
     return GSL_SUCCESS;
 }
@@ -277,7 +324,9 @@ static int locate_event_at(cycle *c, int kind, double ds, report *r)
     if (status) return status;
     r->sigma = rt.root;
     if (kind == 3) kind = e.mode;
-    if (kind == 2)
+    if (kind == 2 && c->w->dissipative)
+        r->pt.event = e.kind == 3 || e.torus_like ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
+    else if (kind == 2)
         r->pt.event = e.kind == 3 || fabs(e.rho_re) < 2 ? WHIRL_CYCLE_TORUS : WHIRL_CYCLE_POINT;
     else if (kind == 1)
         r->pt.event = WHIRL_CYCLE_PERIOD_DOUBLING;

@@ -7,7 +7,11 @@
  * the error estimate is itself an estimate (a factor 4 for its own error); the conservative
  * chain's multipliers lie on the circle or in pairs mu, 1/mu, and how far the computed ones
  * are from pairs is how far the discrete period map is from symplectic (a modulus off 1 by
- * less than that is no evidence of growth); the floor is the central differences' noise. */
+ * less than that is no evidence of growth); the floor is the central differences' noise.
+ * With damping or drag (whirl_periodic_alloc_model) the period map contracts volume
+ * (det M = exp(int_0^T div f dt) < 1, Liouville) and the multipliers are not in pairs: the
+ * reciprocal-pair error is then reported as a measure and left out of the margin,
+ *   max(4 err(|mu|max), MARGIN_FLOOR). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -92,9 +96,10 @@ int periodic_steps_for(whirl_periodic *w, const double *y, int requested, int *s
 }
 
 /* The margin of the verdict (file header). */
-static double margin_of(const whirl_periodic_result *r)
+static double margin_of(const whirl_periodic_result *r, int dissipative)
 {
-    return fmax(fmax(4 * r->max_modulus_err, 2 * r->reciprocal_err), MARGIN_FLOOR);
+    const double pairs = dissipative ? 0 : 2 * r->reciprocal_err;
+    return fmax(fmax(4 * r->max_modulus_err, pairs), MARGIN_FLOOR);
 }
 
 static whirl_floquet_edge kind_of(double re, double im, double tol)
@@ -104,10 +109,10 @@ static whirl_floquet_edge kind_of(double re, double im, double tol)
 }
 
 /* Verdict, growth, e-folding and edge of r (multipliers sorted by decreasing modulus). */
-static void judge(whirl_periodic_result *r)
+static void judge(whirl_periodic_result *r, int dissipative)
 {
     const size_t m = r->count;
-    const double margin = margin_of(r), mu = r->max_modulus;
+    const double margin = margin_of(r, dissipative), mu = r->max_modulus;
     r->growth = 1, r->efold_periods = r->efold_time = 0, r->edge_distance = 0;
     if (mu > 1 + margin) {
         r->verdict = WHIRL_FLOQUET_UNSTABLE;
@@ -123,9 +128,13 @@ static void judge(whirl_periodic_result *r)
         r->edge_distance = 1 - mu;
         return;
     }
+    r->verdict = WHIRL_FLOQUET_NEUTRAL;
+    if (dissipative) { /* on the circle within the margin: the largest is on its edge */
+        r->edge = kind_of(r->re[0], r->im[0], margin + 4 * r->err[0]);
+        return;
+    }
     /* neutral: the nearest of +1, -1 (angle of a multiplier from them) and a meeting of two
        multipliers in the upper half plane (half the angle between neighbours) */
-    r->verdict = WHIRL_FLOQUET_NEUTRAL;
     double best = INFINITY;
     for (size_t i = 0; i < m; i++) {
         const double theta = atan2(fabs(r->im[i]), r->re[i]);
@@ -141,7 +150,7 @@ static void judge(whirl_periodic_result *r)
     r->edge_distance = best;
 }
 
-void periodic_judge(whirl_periodic_result *r)
+void periodic_judge(whirl_periodic_result *r, int dissipative)
 {
     const size_t m = r->count;
     const double *re = r->re, *im = r->im;
@@ -156,7 +165,7 @@ void periodic_judge(whirl_periodic_result *r)
         pair = fmax(pair, best);
     }
     r->reciprocal_err = pair;
-    judge(r);
+    judge(r, dissipative);
 }
 
 int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_params *params,
@@ -240,6 +249,6 @@ int whirl_periodic_find(whirl_periodic *w, double *y, const whirl_periodic_param
         result->orbit_change = change;
     }
     free(y_coarse);
-    periodic_judge(result);
+    periodic_judge(result, w->dissipative);
     return GSL_SUCCESS;
 }

@@ -22,6 +22,7 @@
 #include <gsl/gsl_linalg.h>
 
 #include "core/error.h"
+#include "dynamics/dyn_internal.h"
 #include "periodic/periodic_internal.h"
 
 /* Relative step of the central differences, extrapolated from h and h/2: their truncation
@@ -38,12 +39,12 @@
 /* Halvings of a Newton step that raises the residual before it is taken as it is. */
 #define BACKTRACK_MAX 8
 
-whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path)
+/* The workspace of model (inertial frame, omega the path's, its dissipation; checked by the
+ * callers) on path. */
+static whirl_periodic *alloc_model(const whirl_model *model, const whirl_pivot_path *path)
 {
-    if (c == NULL || path == NULL) {
-        whirl_fail(GSL_EINVAL, "whirl_periodic_alloc: needs a chain and a path");
-        return NULL;
-    }
+    const whirl_chain *c = model->chain;
+    const int dim = model->dim;
     if (whirl_pivot_check(path, dim) != GSL_SUCCESS) return NULL;
     whirl_periodic *w = calloc(1, sizeof *w);
     if (w == NULL) goto nomem;
@@ -51,14 +52,18 @@ whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_
     w->chain = c;
     w->dim = dim;
     w->n = c->n;
-    const whirl_model model = {.chain = c, .dim = dim, .frame = WHIRL_FRAME_INERTIAL,
-                               .omega = path->omega};
-    w->dyn = whirl_dyn_alloc(&model, WHIRL_FORMULATION_CARTESIAN);
+    w->drag = model->air_drag, w->drag2 = model->air_drag_quadratic;
+    w->damping = model->internal_damping;
+    w->dissipative = w->drag > 0 || w->drag2 > 0 || w->damping > 0;
+    w->dyn = whirl_dyn_alloc(model, WHIRL_FORMULATION_CARTESIAN);
     if (w->dyn == NULL) {
         free(w);
         return NULL; /* the dynamics' message (an invalid chain, or no memory) */
     }
-    whirl_dyn_set_pivot(w->dyn, whirl_pivot_eval, &w->path);
+    if (whirl_dyn_set_pivot(w->dyn, whirl_pivot_eval, &w->path) != GSL_SUCCESS) {
+        whirl_periodic_free(w); /* a drive radius or a ramp in the model: its message */
+        return NULL;
+    }
     w->it = whirl_integrator_alloc("gauss2", w->dyn);
     if (w->it == NULL) goto nomem;
     w->size = whirl_dyn_size(w->dyn);
@@ -88,6 +93,38 @@ nomem:
     return NULL;
 }
 
+whirl_periodic *whirl_periodic_alloc(const whirl_chain *c, int dim, const whirl_pivot_path *path)
+{
+    if (c == NULL || path == NULL) {
+        whirl_fail(GSL_EINVAL, "whirl_periodic_alloc: needs a chain and a path");
+        return NULL;
+    }
+    const whirl_model model = {.chain = c, .dim = dim, .frame = WHIRL_FRAME_INERTIAL,
+                               .omega = path->omega};
+    return alloc_model(&model, path);
+}
+
+whirl_periodic *whirl_periodic_alloc_model(const whirl_model *model,
+                                           const whirl_pivot_path *path)
+{
+    if (model == NULL || model->chain == NULL || path == NULL) {
+        whirl_fail(GSL_EINVAL, "whirl_periodic_alloc_model: needs a model with a chain and a "
+                   "path");
+        return NULL;
+    }
+    if (model->seed_sigma != NULL || model->seed_lambda != NULL) {
+        whirl_fail(GSL_EINVAL, "whirl_periodic_alloc_model: the seed's forcing is not supported "
+                   "with a pivot path");
+        return NULL;
+    }
+    /* the frame and the rate are the path's: the inertial frame, the internal damping measured
+       in the frame co-rotating at the path's rate */
+    whirl_model m = *model;
+    m.frame = WHIRL_FRAME_INERTIAL;
+    m.omega = path->omega;
+    return alloc_model(&m, path);
+}
+
 void whirl_periodic_free(whirl_periodic *w)
 {
     if (w == NULL) return;
@@ -107,6 +144,7 @@ void whirl_periodic_free(whirl_periodic *w)
 }
 
 whirl_dyn *whirl_periodic_dyn(whirl_periodic *w) { return w->dyn; }
+int whirl_periodic_dissipative(const whirl_periodic *w) { return w->dissipative; }
 
 void whirl_periodic_set_tick(whirl_periodic *w,
                              void (*tick)(void *data, const whirl_periodic_progress *progress),
@@ -125,6 +163,8 @@ void periodic_tick(whirl_periodic *w, double done)
 void periodic_set_path(whirl_periodic *w, const whirl_pivot_path *path)
 {
     w->path = *path;
+    /* the internal damping's frame turns at the path's rate (whirl_periodic_alloc_model) */
+    if (w->damping > 0) w->dyn->model.omega = path->omega;
     w->omega_ref = fmax(path->omega, sqrt(w->chain->gravity / w->length));
 }
 

@@ -38,6 +38,9 @@ struct whirl_periodic {
     gsl_eigen_nonsymm_workspace *eig;
     gsl_vector_complex *eval;
     periodic_var *var; /* NULL until the first monodromy by the variational equations */
+    /* the dissipation of the model (whirl_periodic_alloc_model; all 0 by whirl_periodic_alloc) */
+    double drag, drag2, damping; /* c, c2, D of whirl_model */
+    int dissipative;             /* any of them > 0 */
 };
 
 /* Newton's method on P(y) - y from y (overwritten) with steps per period, to the scaled
@@ -70,8 +73,20 @@ void periodic_tick(whirl_periodic *w, double done);
 int periodic_multipliers(whirl_periodic *w, double *re, double *im);
 
 /* r's max_modulus (and its error err[0]), reciprocal-pair error, verdict, growth and edge from
- * its count multipliers re, im, err (sorted by decreasing modulus; floquet.c). */
-void periodic_judge(whirl_periodic_result *r);
+ * its count multipliers re, im, err (sorted by decreasing modulus; floquet.c); dissipative: the
+ * verdict's margin without the reciprocal-pair error (no pairs to expect). */
+void periodic_judge(whirl_periodic_result *r, int dissipative);
+
+/* The dissipative forces at (t, y) as the Cartesian formulation takes them, fdiff_i = f_i / m_i
+ * - f_{i-1} / m_{i-1} (3 per link; 2D: y 0), and the drag's Jacobian factors a (N) and u (3 N)
+ * (dissipation.c). */
+void periodic_diss_forces(const whirl_periodic *w, double t, const double *y, double *fdiff,
+                          double *a, double *u);
+/* out (3 N x cols, [(3 i + k) cols + col]) <- the derivative of fdiff along cols tangent vectors
+ * (dq, dv: the state's halves, dim per link, [(dim i + k) cols + col]), with a, u of
+ * periodic_diss_forces at the state. */
+void periodic_diss_apply(const whirl_periodic *w, const double *a, const double *u,
+                         const double *dq, const double *dv, size_t cols, double *out);
 
 /* The largest scaled component of py - y: positions over L, rates over omega_ref L (Newton's
  * test; periodic.c). */

@@ -36,7 +36,11 @@
  * The projection d <- l d / |d|, d' <- d' - (D . d' / l^2) D (D the projected d) has the
  * derivative delta D = (l / |d|) (delta d - (d . delta d / |d|^2) d),
  * delta R = delta d' - ((delta D . d' + D . delta d') / l^2) D - (D . d' / l^2) delta D,
- * taken at the state before its projection. */
+ * taken at the state before its projection.
+ * With damping and drag (whirl_periodic_alloc_model) the forces enter as fdiff_i (dissipation.c):
+ * b_i gains d_i . fdiff_i and d_i'' gains fdiff_i, so delta b_i gains delta d_i . fdiff_i +
+ * d_i . delta fdiff_i and delta d_i'' gains delta fdiff_i, with delta fdiff from the forces'
+ * Jacobian (dissipation.c) per tangent vector. Without them nothing of this is computed. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -59,6 +63,8 @@
 typedef struct var_stage {
     double *cr, *cs, *cu, *cl, *gx, *gxu, *gxl; /* dim N each */
     double *sq, *squ, *sql, *den, *up, *off;    /* N each: and Thomas's factors of A */
+    double *q, *fd, *da, *du; /* dissipation: the stage's links (dim N), fdiff (3 N), the drag's
+                                 Jacobian factors a (N) and u (3 N) (dissipation.c) */
 } var_stage;
 
 struct periodic_var {
@@ -72,6 +78,7 @@ struct periodic_var {
     double *dk_new;       /* S x sh x VAR_BLOCK */
     double *dq, *dv;      /* (sh + 2 dim) x VAR_BLOCK: a stage's argument, a zero link each end */
     double *x;            /* (N + 2) x VAR_BLOCK: delta lambda, a zero row each end */
+    double *df;           /* dissipation: 3 N x VAR_BLOCK, delta fdiff */
     double *mem;          /* the one allocation */
 };
 
@@ -109,7 +116,8 @@ static periodic_var *var_alloc(const whirl_periodic *w)
     const size_t n = v->n, sh = v->sh, B = VAR_BLOCK, nb = v->blocks;
     const size_t total = 2 * S * sh + 5 * w->size + 4 * n + S * (7 * sh + 6 * n) +
                          2 * nb * 2 * sh * B + nb * S * sh * B + S * sh * B +
-                         2 * (sh + 2 * v->dim) * B + (n + 2) * B;
+                         2 * (sh + 2 * v->dim) * B + (n + 2) * B +
+                         (w->dissipative ? S * (sh + 7 * n) + 3 * n * B : 0);
     v->mem = calloc(total, sizeof *v->mem);
     if (v->mem == NULL) {
         free(v);
@@ -130,6 +138,13 @@ static periodic_var *var_alloc(const whirl_periodic *w)
     TAKE(v->tan, nb * 2 * sh * B), TAKE(v->tcomp, nb * 2 * sh * B), TAKE(v->dk, nb * S * sh * B);
     TAKE(v->dk_new, S * sh * B), TAKE(v->dq, (sh + 2 * v->dim) * B);
     TAKE(v->dv, (sh + 2 * v->dim) * B), TAKE(v->x, (n + 2) * B);
+    if (w->dissipative) {
+        for (int i = 0; i < S; i++) {
+            var_stage *s = &v->st[i];
+            TAKE(s->q, sh), TAKE(s->fd, 3 * n), TAKE(s->da, n), TAKE(s->du, 3 * n);
+        }
+        TAKE(v->df, 3 * n * B);
+    }
 #undef TAKE
     tableau(v);
     return v;
@@ -178,6 +193,10 @@ static void stage_coefficients(whirl_periodic *w, periodic_var *v, var_stage *s,
         v->inv_m[i] = 1 / mass[i];
         v->kk[i] = v->inv_m[i] + (i > 0 ? v->inv_m[i - 1] : 0);
     }
+    if (w->dissipative) {
+        memcpy(s->q, q, v->sh * sizeof *q);
+        periodic_diss_forces(w, t, y, s->fd, s->da, s->du);
+    }
     for (size_t i = 0; i < n; i++) {
         double dd = 0, rr = 0, dn = 0, df = 0;
         for (size_t k = 0; k < dim; k++) {
@@ -188,6 +207,9 @@ static void stage_coefficients(whirl_periodic *w, periodic_var *v, var_stage *s,
         v->diag[i] = dd * v->kk[i];
         if (i + 1 < n) s->off[i] = -dn * v->inv_m[i];
         v->lam[i] = rr + (i == 0 ? df : 0);
+        if (w->dissipative) /* d_i . fdiff_i (2D: x, z) */
+            for (size_t k = 0; k < dim; k++)
+                v->lam[i] += q[dim * i + k] * s->fd[3 * i + (dim == 3 ? k : 2 * k)];
     }
     factor(v, s);
     solve(v, s, v->lam, 1);
@@ -201,6 +223,7 @@ static void stage_coefficients(whirl_periodic *w, periodic_var *v, var_stage *s,
             const double dn = i + 1 < n ? q[e + dim] : 0, dp = i > 0 ? q[e - dim] : 0;
             s->cr[e] = 2 * r[e];
             s->cs[e] = -2 * kk[i] * lam[i] * q[e] + up * dn + lo * dp + (i == 0 ? field[k] : 0);
+            if (w->dissipative) s->cs[e] += s->fd[3 * i + (dim == 3 ? k : 2 * k)];
             s->cu[e] = up * q[e], s->cl[e] = lo * q[e];
             s->gx[e] = -kk[i] * q[e];
             s->gxu[e] = i + 1 < n ? dn * im[i] : 0;
@@ -209,13 +232,16 @@ static void stage_coefficients(whirl_periodic *w, periodic_var *v, var_stage *s,
     }
 }
 
-/* out (sh x VAR_BLOCK) <- J of stage s applied to v->dq, v->dv (VAR_BLOCK vectors). */
-static void apply_j(const periodic_var *v, const var_stage *s, double *out)
+/* out (sh x VAR_BLOCK) <- J of stage s applied to v->dq, v->dv (VAR_BLOCK vectors); w's
+ * dissipation (NULL: none). */
+static void apply_j(const whirl_periodic *w, const periodic_var *v, const var_stage *s,
+                    double *out)
 {
     enum { B = VAR_BLOCK };
     const size_t n = v->n, dim = v->dim;
     const double *dq = v->dq + dim * B, *dv = v->dv + dim * B; /* past the zero link */
     double *x = v->x + B;                                       /* past the zero row */
+    if (w != NULL) periodic_diss_apply(w, s->da, s->du, dq, dv, B, v->df);
     for (size_t i = 0; i < n; i++) {
         double xi[B] = {0};
         for (size_t k = 0; k < dim; k++) {
@@ -225,6 +251,10 @@ static void apply_j(const periodic_var *v, const var_stage *s, double *out)
 #pragma omp simd
             for (size_t c = 0; c < B; c++)
                 xi[c] += cr * qv[c] + cs * q[c] + cu * q[c + dim * B] + cl * q[c - dim * B];
+            if (w != NULL) { /* d_i . delta fdiff_i */
+                const double qe = s->q[e], *dfk = v->df + (3 * i + (dim == 3 ? k : 2 * k)) * B;
+                for (size_t c = 0; c < B; c++) xi[c] += qe * dfk[c];
+            }
         }
         memcpy(x + i * B, xi, sizeof xi);
     }
@@ -241,6 +271,10 @@ static void apply_j(const periodic_var *v, const var_stage *s, double *out)
             for (size_t c = 0; c < B; c++)
                 o[c] = gx * xi[c] + sq * q[c] + gxu * xi[c + B] + squ * q[c + dim * B] +
                        gxl * xi[c - B] + sql * q[c - dim * B];
+            if (w != NULL) {
+                const double *dfk = v->df + (3 * i + (dim == 3 ? k : 2 * k)) * B;
+                for (size_t c = 0; c < B; c++) o[c] += dfk[c];
+            }
         }
     }
 }
@@ -262,17 +296,18 @@ static void stage_argument(const periodic_var *v, int i, double h, const double 
 }
 
 /* The stages of one block of tangent vectors (tan: 2 sh x VAR_BLOCK; dk: S x sh x VAR_BLOCK,
- * the previous step's stages, or first 1 for none) swept to round-off, then the block
+ * the previous step's stages, or first 1 for none; diss the dissipative workspace or NULL)
+ * swept to round-off, then the block
  * advanced by the step with Kahan's compensation (tcomp). */
-static int block_step(periodic_var *v, double t, double h, double *tan, double *tcomp,
-                      double *dk, int first)
+static int block_step(const whirl_periodic *diss, periodic_var *v, double t, double h,
+                      double *tan, double *tcomp, double *dk, int first)
 {
     const size_t len = v->sh * VAR_BLOCK;
     if (first) { /* J_i at the step's start values */
         const double *tq = tan, *tv = tan + len;
         memcpy(v->dq + v->dim * VAR_BLOCK, tq, len * sizeof *tq);
         memcpy(v->dv + v->dim * VAR_BLOCK, tv, len * sizeof *tv);
-        for (int i = 0; i < S; i++) apply_j(v, &v->st[i], dk + i * len);
+        for (int i = 0; i < S; i++) apply_j(diss, v, &v->st[i], dk + i * len);
     } else { /* the previous step's collocation polynomial extrapolated */
         for (size_t r = 0; r < len; r++) {
             const double k0 = dk[r], k1 = dk[len + r];
@@ -288,7 +323,7 @@ static int block_step(periodic_var *v, double t, double h, double *tan, double *
         double delta = 0, big = 0, *nk = v->dk_new;
         for (int i = 0; i < S; i++) {
             stage_argument(v, i, h, tan, dk);
-            apply_j(v, &v->st[i], nk);
+            apply_j(diss, v, &v->st[i], nk);
             double *ki = dk + i * len;
             /* the increment's and the stages' sizes (1-norms: a sum vectorises, a maximum does
                not here) */
@@ -486,7 +521,8 @@ int periodic_monodromy_variational(whirl_periodic *w, const double *y, int steps
         }
         status = state_step(w, v, ta, tb - ta, state, k == 0);
         for (size_t b = 0; b < v->blocks && status == GSL_SUCCESS; b++)
-            status = block_step(v, ta, tb - ta, v->tan + b * 2 * len, v->tcomp + b * 2 * len,
+            status = block_step(w->dissipative ? w : NULL, v, ta, tb - ta,
+                                v->tan + b * 2 * len, v->tcomp + b * 2 * len,
                                 v->dk + b * S * len, k == 0);
         if (status == GSL_SUCCESS) status = state_update(w, v, tb, tb - ta, state);
         for (size_t b = 0; b < v->blocks && status == GSL_SUCCESS; b++)

@@ -50,6 +50,22 @@ expect_error "bad start" "whirl periodic: --start must be hanging, inverted or s
 expect_error "steady without circle" "whirl periodic: --start steady needs --pivot circle" periodic --pivot ellipse:0.1,0.05 --omega 2 --start steady -o "$tmp/out.csv"
 expect_error "bad dim" "whirl periodic: --dim must be" periodic --pivot vertical:0.1 --omega 2 --dim 4 -o "$tmp/out.csv"
 expect_error "few steps" "whirl periodic: --steps must be" periodic --pivot vertical:0.1 --omega 2 --steps 2 -o "$tmp/out.csv"
+# the damped pendulum (no drive: a path of zero amplitude): the damped oscillator, theta'' +
+# (D / (m l^2)) theta' + theta = 0, |mu| = exp(-D T / 2) with T = 2 pi / 1.3; the multipliers
+# not in pairs, said so
+expect_ok "periodic damped" periodic --pivot vertical:0 --omega 1.3 --links 1 --dim 2 --damping 0.3 -o "$tmp/damped.csv"
+if grep -q '^# verdict=stable' "$tmp/damped.csv" && grep -q '^# dissipation: drag=0 drag_quadratic=0 damping=0.3$' "$tmp/damped.csv" \
+   && grep -q 'not in pairs: not an error' "$tmp/damped.csv" \
+   && grep -v '^#' "$tmp/damped.csv" | awk -F, 'NR > 1 { d = $4 - exp(-0.15 * 2 * 3.141592653589793 / 1.3); if (d * d > 1e-22) bad = 1; n++ } END {exit bad || n != 2}'; then
+  pass "periodic damped: |mu| = exp(-D T / 2)"; else fail "periodic damped: |mu| = exp(-D T / 2)"; fi
+# the dragged circle drive's torus (tests/unit/periodic/test_dissipative.c: at the root of the
+# steady linearisation's growth rate, 2.850665362775)
+expect_ok "periodic drag torus" periodic --pivot circle:0.05 --omega 2.8 --links 3 --start steady --mode 2 --side -1 --drag 0.05 --omega-min 2.8 --omega-max 2.9 --up --arc-step 0.02 -o "$tmp/torus.csv"
+if grep '^# torus omega=' "$tmp/torus.csv" | awk '{sub("omega=", "", $3); d = $3 - 2.850665362775; exit !(d * d < 1e-16)}' \
+   && [ "$(grep -c '^# torus' "$tmp/torus.csv")" -eq 1 ]; then
+  pass "periodic drag torus: located"; else fail "periodic drag torus: located"; fi
+expect_error "drag on a chart" "whirl periodic: --chart .*--drag" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max 0.1 --drag 0.1 -o "$tmp/out.csv"
+expect_error "negative damping" "whirl periodic: --damping must be" periodic --pivot vertical:0.1 --omega 2 --damping -1 -o "$tmp/out.csv"
 # Newton that cannot converge: the residual named, no multipliers
 expect_error "Newton fails" "whirl periodic: Newton's method on the period map did not converge in 1 iterations: residual [0-9.e-]+" periodic --pivot ellipse:0.1,0.05 --omega 3 --links 3 --max-iter 1 --tol 1e-14 -o "$tmp/out.csv"
 # the progress line on a terminal (util-linux's script; asked for at once): which solve, Newton's
