@@ -9,24 +9,25 @@ one line "# done mode K omega A B" per chunk finished, and it is locked (flock) 
 so that a run of the command line and one of Python refuse each other while one writes it.
 resume=True keeps the chunks of a file written by either and computes the rest; the library
 checks the file (whirl_atlas_read: its options, every line) as for the command line."""
+from __future__ import annotations
+
 import fcntl
 import os
 import stat
 import tempfile
 from typing import Any, Iterable, List, Optional, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, as_int, as_float
 from .steady import Units, units_of
 
 OMEGA_MAX = 5000.0      # WHIRL_CONTINUUM_OMEGA_MAX
 
-ATLAS_DTYPE = np.dtype([("mode", "i4"), ("from", "f8"), ("to", "f8"), ("open_from", "?"),
-                        ("open_to", "?"), ("freq_from", "f8"), ("freq_to", "f8"),
-                        ("sig_from", "i4"), ("sig_to", "i4"), ("max_growth", "f8"),
-                        ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
+ATLAS_DTYPE = [("mode", "i4"), ("from", "f8"), ("to", "f8"), ("open_from", "?"),
+               ("open_to", "?"), ("freq_from", "f8"), ("freq_to", "f8"),
+               ("sig_from", "i4"), ("sig_to", "i4"), ("max_growth", "f8"),
+               ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")]
 _RATES = ("from", "to", "freq_from", "freq_to", "max_growth", "at", "err_from", "err_to")
 
 

@@ -3,11 +3,12 @@ circle of radius drive_radius at rate omega, with air drag; its trailing steady 
 spin-ups from rest. Positions in the frame co-rotating at omega, the pivot at
 (drive_radius, 0, 0). Units as everywhere (see whirl.Units): dimensionless by default (rates in
 sqrt(g/L), times in sqrt(L/g), lengths in L), SI with length/mass/gravity or units given."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import POINTS_MAX, Chain, Units, _chain, _mode, links_count, units_of

@@ -8,11 +8,12 @@ line:A[,DX,DY,DZ], vertical:A, eight:A,B or fourier:x1c=A,z2s=B,... (lengths in 
 or with a suffix m, cm, mm in SI units), at the rate ``omega``. Units as everywhere (whirl.Units):
 rates in sqrt(g/L) or rad/s, lengths in L or m, times in sqrt(L/g) or s; multipliers, growth per
 period and e-folding periods are numbers."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 from typing import Any, List, Optional, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import Chain, Units, _chain, units_of
@@ -71,11 +72,11 @@ class PeriodicResult(_lib.Result):
                                           self.max_modulus, self.verdict, self.edge))
 
 
-BRANCH_DTYPE = np.dtype([("event", "U16"), ("omega", "f8"), ("amplitude", "f8"),
-                         ("max_modulus", "f8"), ("verdict", "U8"), ("edge", "U8"),
-                         ("fold_test", "f8"), ("flip_test", "f8"), ("torus_test", "f8"),
-                         ("err", "f8"), ("arclength", "f8"), ("tangent", "f8"),
-                         ("reciprocal_err", "f8"), ("residual", "f8"), ("iterations", "i8")])
+BRANCH_DTYPE = [("event", "U16"), ("omega", "f8"), ("amplitude", "f8"),
+                ("max_modulus", "f8"), ("verdict", "U8"), ("edge", "U8"),
+                ("fold_test", "f8"), ("flip_test", "f8"), ("torus_test", "f8"),
+                ("err", "f8"), ("arclength", "f8"), ("tangent", "f8"),
+                ("reciprocal_err", "f8"), ("residual", "f8"), ("iterations", "i8")]
 
 
 @dataclass(eq=False)
@@ -106,8 +107,8 @@ class PeriodicBranch(_lib.Result):
             self.pivot, self.parameter, self.rows.size, self.events.size, self.ended)
 
 
-CHART_DTYPE = np.dtype([("curve", "i8"), ("edge", "i8"), ("omega", "f8"), ("amplitude", "f8"),
-                        ("err", "f8")])
+CHART_DTYPE = [("curve", "i8"), ("edge", "i8"), ("omega", "f8"), ("amplitude", "f8"),
+               ("err", "f8")]
 
 
 @dataclass(eq=False)

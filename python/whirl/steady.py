@@ -4,13 +4,14 @@ Units: dimensionless by default (chain length L = 1, mass M = 1, gravity g = 1: 
 sqrt(g/L), lengths in L, tensions in M g). Give ``length`` [m], ``mass`` [kg] and ``gravity``
 [m/s^2] (the command line's --length, --mass, --gravity) to work in SI units instead: rates are
 then in rad/s, lengths in m, tensions in N, tip masses in kg."""
+from __future__ import annotations
+
 import math
 import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 
@@ -454,8 +455,8 @@ def _rate_unit(u: Units) -> str:
     return " rad/s" if u.physical else ""
 
 
-BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
-                         ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")])
+BRANCH_DTYPE = [("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
+                ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")]
 
 
 @_lib.interruptible("sweep")  # one block: Ctrl-C between its library calls too
@@ -543,9 +544,9 @@ def _absent(mode: int, chain: Optional[Chain], tip_mass: float, w: np.ndarray, u
     return "mode %d has no shape at these rates" % mode
 
 
-EQUILIBRIA_DTYPE = np.dtype([("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
-                             ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
-                             ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")])
+EQUILIBRIA_DTYPE = [("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
+                    ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
+                    ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")]
 
 EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_levels",
                        "tip_unresolved", "check_roots", "check_shots", "check_levels", "matched",
