@@ -71,6 +71,9 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
 int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                            whirl_shape_info *info, int *exists);
 int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
+typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
+int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
+                                whirl_nlink_critical_progress_fn progress, void *ctx);
 int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, whirl_shape_info *info);
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
@@ -423,8 +426,18 @@ typedef struct whirl_equilibria {
 int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           const whirl_equilibria_params *params, whirl_equilibria **out);
 void whirl_equilibria_free(whirl_equilibria *e);
+typedef struct whirl_equilibria_progress {
+    int stage, stages;
+    size_t done, total;
+} whirl_equilibria_progress;
+typedef void (*whirl_equilibria_progress_fn)(void *ctx, const whirl_equilibria_progress *at);
+int whirl_equilibria_find_progress(const whirl_chain *c, double tip_mass, double omega,
+                                   const whirl_equilibria_params *params,
+                                   whirl_equilibria_progress_fn progress, void *ctx,
+                                   whirl_equilibria **out);
 """
-STRUCTS += ["whirl_equilibria_params", "whirl_equilibrium", "whirl_equilibria"]
+STRUCTS += ["whirl_equilibria_params", "whirl_equilibrium", "whirl_equilibria",
+            "whirl_equilibria_progress"]
 
 CDEF += r"""
 typedef struct whirl_cstab whirl_cstab;
@@ -562,6 +575,11 @@ void whirl_driven_curve_free(whirl_driven_curve *curve);
 int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
                         const whirl_driven_info *start, int direction, double omega_min,
                         double omega_max, double step, whirl_driven_curve *curve);
+typedef void (*whirl_driven_branch_tick_fn)(void *data, const whirl_driven_curve *curve);
+int whirl_driven_branch_tick(const whirl_chain *chain, const whirl_driven_params *params,
+                             const whirl_driven_info *start, int direction, double omega_min,
+                             double omega_max, double step, whirl_driven_curve *curve,
+                             whirl_driven_branch_tick_fn tick, void *data);
 typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
 int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, const double *z,
                        int mode, whirl_fit_progress_fn progress, void *data,
