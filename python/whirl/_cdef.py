@@ -743,12 +743,44 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
                         int (*row)(void *, const whirl_cycle_point *), void *row_data,
                         void (*tick)(void *, const whirl_cycle_progress *), void *tick_data);
 const char *whirl_cycle_event_name(int e);
+typedef struct whirl_ellipse_chart_params {
+    double radius;
+    int mode;
+    int side;
+    double omega_min, omega_max;
+    int columns;
+    double e_max;
+    int steps;
+    double step;
+    double tol;
+} whirl_ellipse_chart_params;
+typedef struct whirl_ellipse_point {
+    int event;
+    int curve;
+    int column;
+    double omega;
+    double ellipticity;
+    double err;
+    double max_modulus;
+} whirl_ellipse_point;
+typedef struct whirl_ellipse_chart_progress {
+    int column, columns;
+    int curves;
+    long points;
+    int failed;
+    double parameter;
+} whirl_ellipse_chart_progress;
+int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                        int (*row)(void *, const whirl_ellipse_point *), void *row_data,
+                        void (*tick)(void *, const whirl_ellipse_chart_progress *),
+                        void *tick_data);
 const char *whirl_floquet_verdict_name(int v);
 const char *whirl_floquet_edge_name(int e);
 """
 STRUCTS += ["whirl_pivot_path", "whirl_periodic_params", "whirl_periodic_result",
             "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
-            "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress"]
+            "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress",
+            "whirl_ellipse_chart_params", "whirl_ellipse_point", "whirl_ellipse_chart_progress"]
 CONSTANTS += ["WHIRL_PIVOT_HARMONICS_MAX"]
 
 CDEF += r"""
