@@ -621,6 +621,13 @@ const whirl_atlas_row *whirl_atlas_rows(const whirl_atlas *a, size_t *count);
 size_t whirl_atlas_row_text(const whirl_atlas_row *r, char *buf, size_t size);
 size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
 int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size, const char *path);
+typedef struct whirl_atlas_file whirl_atlas_file;
+whirl_atlas_file *whirl_atlas_file_alloc(const char *path, int make);
+int whirl_atlas_file_fd(const whirl_atlas_file *f);
+int whirl_atlas_file_made(const whirl_atlas_file *f);
+int whirl_atlas_file_replace(whirl_atlas_file *f, int fd, const char *tmp);
+int whirl_atlas_file_commit(whirl_atlas_file *f, const char *data, size_t n);
+void whirl_atlas_file_free(whirl_atlas_file *f);
 """
 STRUCTS += ["whirl_atlas_params", "whirl_atlas_row"]
 CONSTANTS += ["WHIRL_ATLAS_CHUNK", "WHIRL_ATLAS_WINDOWS", "WHIRL_ATLAS_LINE_MAX"]
