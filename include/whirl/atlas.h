@@ -168,6 +168,63 @@ WHIRL_API int whirl_atlas_read(whirl_atlas *a, FILE *in, const char *path);
 WHIRL_API int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size,
                                     const char *path);
 
+/* ---- the atlas's file, written by one run at a time (src/studies/atlas_file.c) ----
+ * The command line and the Python package write an atlas (and the command line its other maps)
+ * through this: the file locked (flock) for the whole run, from before it is read until the
+ * last row, and rewritten atomically (a file beside it, renamed over it, locked before the
+ * rename so that the lock passes to the new file). */
+typedef struct whirl_atlas_file whirl_atlas_file;
+
+/* Locks the regular file path, or with make (a run that starts afresh) one that does not yet
+ * exist, made empty (O_EXCL: of two runs started together on a new path one makes it).
+ * @param path the file
+ * @param make 1: make it when it does not exist; 0: it must exist
+ * @return the locked file, to free with whirl_atlas_file_free; NULL with a message on failure:
+ *     GSL_EFAILED "'PATH' is being written by another run (locked): wait for it or write
+ *     another file" (or replaced by another run while this one started), GSL_EINVAL when path
+ *     is not a regular file or (without make) does not exist, GSL_EFAILED when it cannot be
+ *     opened or locked, GSL_ENOMEM
+ */
+WHIRL_API whirl_atlas_file *whirl_atlas_file_alloc(const char *path, int make);
+
+/* The descriptor of the locked file, open for reading (read it from its start with pread or
+ * lseek; do not close it). Valid until the next replace or the free.
+ * @param f the file
+ * @return the descriptor
+ */
+WHIRL_API int whirl_atlas_file_fd(const whirl_atlas_file *f);
+
+/* 1 if this run made the file (empty) and has not replaced it yet.
+ * @param f the file
+ * @return 1 or 0
+ */
+WHIRL_API int whirl_atlas_file_made(const whirl_atlas_file *f);
+
+/* Puts the new contents in place: the file tmp, written whole and open as fd (a descriptor the
+ * caller keeps and closes), is locked, then renamed over the path (over a symlink's target),
+ * and the old file's lock released.
+ * @param f the file
+ * @param fd a descriptor of tmp
+ * @param tmp the new contents' file, beside the target
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message (tmp is left for the caller to remove)
+ */
+WHIRL_API int whirl_atlas_file_replace(whirl_atlas_file *f, int fd, const char *tmp);
+
+/* Rewrites the file with the n bytes of data: a temporary file beside it (its mode kept),
+ * written, synced, then put in place with whirl_atlas_file_replace.
+ * @param f the file
+ * @param data the new contents
+ * @param n their length in bytes
+ * @return GSL_SUCCESS, or GSL_EFAILED with a message (the file as it was)
+ */
+WHIRL_API int whirl_atlas_file_commit(whirl_atlas_file *f, const char *data, size_t n);
+
+/* Releases the lock; the empty file the run made is removed if the path still names it. NULL is
+ * a no-op.
+ * @param f the file, or NULL
+ */
+WHIRL_API void whirl_atlas_file_free(whirl_atlas_file *f);
+
 #ifdef __cplusplus
 }
 #endif

@@ -204,6 +204,32 @@ WHIRL_API int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_p
                                   const whirl_driven_info *start, int direction, double omega_min,
                                   double omega_max, double step, whirl_driven_curve *curve);
 
+/* Called by whirl_driven_branch_tick with the curve so far, after every point (or fold and
+ * point) appended, and once more at the end. It must not call the continuation. */
+typedef void (*whirl_driven_branch_tick_fn)(void *data, const whirl_driven_curve *curve);
+
+/* whirl_driven_branch reporting its progress: tick(data, curve) after every point appended
+ * (the stop request is polled right after, so that a stop requested there ends the branch
+ * before the next step: WHIRL_EINTERRUPTED, the points so far kept in curve).
+ * @param chain the N-link chain, or NULL for the continuous chain
+ * @param params the pivot's circle and the drag; params->omega the start's rate
+ * @param start a solution at params->omega (whirl_driven_mode)
+ * @param direction -1: towards decreasing omega, +1: increasing
+ * @param omega_min the lowest rate followed [sqrt(g/L)]
+ * @param omega_max the highest rate followed [sqrt(g/L)]
+ * @param step the largest arclength step in (X, Y, omega), > 0
+ * @param curve out: the points and the folds (whirl_driven_curve_alloc)
+ * @param tick called after every point appended, or NULL: none
+ * @param data passed to tick
+ * @return as whirl_driven_branch; WHIRL_EINTERRUPTED on a stop request
+ */
+WHIRL_API int whirl_driven_branch_tick(const whirl_chain *chain,
+                                       const whirl_driven_params *params,
+                                       const whirl_driven_info *start, int direction,
+                                       double omega_min, double omega_max, double step,
+                                       whirl_driven_curve *curve, whirl_driven_branch_tick_fn tick,
+                                       void *data);
+
 #ifdef __cplusplus
 }
 #endif

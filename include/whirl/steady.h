@@ -191,6 +191,22 @@ WHIRL_API size_t whirl_nlink_node_arclengths(const whirl_chain *c, double omega,
  */
 WHIRL_API int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
 
+/* Called by whirl_nlink_critical_report after each block of rates: done of total found. */
+typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
+
+/* whirl_nlink_critical with a report of the work done: the rates come in blocks (one call of
+ * LAPACK's dstebz each, about 0.02 s), the stop request polled between blocks, and after each
+ * block progress(ctx, done, nmodes) with the rates found so far (done increasing, nmodes last).
+ * @param c the chain
+ * @param nmodes how many rates, <= c->n
+ * @param omega out: omega_1..omega_nmodes, ascending [sqrt(g/L)]
+ * @param progress called after each block, or NULL: none
+ * @param ctx passed to progress
+ * @return GSL_SUCCESS, GSL_EINVAL on bad arguments, WHIRL_EINTERRUPTED on a stop request
+ */
+WHIRL_API int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
+                                          whirl_nlink_critical_progress_fn progress, void *ctx);
+
 /* The exact relative equilibrium of mode k at omega: the point of the branch born at omega_k
  * (the k-th critical rate) that its pseudo-arclength continuation from the birth reaches first
  * (whirl_nlink_path). The force balance of every mass holds to round-off. info->n_nodes is
@@ -671,6 +687,34 @@ WHIRL_API int whirl_equilibria_find(const whirl_chain *c, double tip_mass, doubl
  * @param e the result, or NULL
  */
 WHIRL_API void whirl_equilibria_free(whirl_equilibria *e);
+
+/* Where whirl_equilibria_find_progress stands: its stage and, within it, the items done. The
+ * N-link chain's stages: 1 the scan over the tip radius, 2 the scan over the top link's angle,
+ * 3 and 4 their roots polished, 5 the continuation (at once without params.continuation), 6 the
+ * shapes and their verdicts; the continuum's: 1 the shapes of the modes born below omega, 2 the
+ * scan. A scan and the continuation count as one item each. */
+typedef struct whirl_equilibria_progress {
+    int stage, stages;  /* the stage under way (1..stages) and their count */
+    size_t done, total; /* its items done (0..total) and their count (>= 1) */
+} whirl_equilibria_progress;
+typedef void (*whirl_equilibria_progress_fn)(void *ctx, const whirl_equilibria_progress *at);
+
+/* whirl_equilibria_find reporting its progress: progress(ctx, at) at the start of every stage
+ * and after its items (at most about 256 times a stage), stage and done never decreasing. It
+ * must not call the search.
+ * @param c the N-link chain, or NULL for the continuous chain
+ * @param tip_mass the continuum's point mass at the free end [M], >= 0 (with c NULL)
+ * @param omega the rotation rate [sqrt(g/L)]
+ * @param params the parameters, or NULL for whirl_equilibria_defaults
+ * @param progress called as above, or NULL: none
+ * @param ctx passed to progress
+ * @param out out: the result, to free with whirl_equilibria_free
+ * @return as whirl_equilibria_find
+ */
+WHIRL_API int whirl_equilibria_find_progress(const whirl_chain *c, double tip_mass, double omega,
+                                             const whirl_equilibria_params *params,
+                                             whirl_equilibria_progress_fn progress, void *ctx,
+                                             whirl_equilibria **out);
 
 #define WHIRL_EQUILIBRIA_OMEGA_MAX 1000.0 /* N-link: above it the mode-1 tip radius is within
                                            * ~1e-12 of the chain's length, beyond the scan */

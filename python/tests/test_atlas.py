@@ -142,8 +142,35 @@ def test_the_file_is_locked_while_a_run_writes_it(cli_atlas, whirl_program, tmp_
     new = tmp_path / "new.csv"
     out = new
     whirl.atlas(output=new, progress=try_cli, **KW)
-    assert seen and seen[0][0] != 0 and "locked" in seen[0][1]
+    assert seen and seen[0][0] != 0
+    assert seen[0][1] == ("whirl windows: '%s' is being written by another run (locked): "
+                          "wait for it or write another file\n" % new)
     assert new.read_text() == cli_atlas
+
+
+def test_python_is_refused_while_the_command_line_writes_the_file(whirl_program, tmp_path):
+    # one lock, the library's (whirl_atlas_file), for both writers: a long atlas of the
+    # command line's holds the file from its start; Python is refused in one line, the file
+    # untouched, and the command line's run goes on to its Ctrl-C
+    out = tmp_path / "cli_run.csv"
+    run = subprocess.Popen([whirl_program, "stability", "--atlas", "--modes", "2",
+                            "--omega-max", "400", "-o", str(out)], stderr=subprocess.PIPE,
+                           text=True)
+    try:
+        while run.poll() is None and not (out.exists() and out.stat().st_size > 0):
+            time.sleep(0.05)  # the first chunk written: the run holds the file
+        assert run.poll() is None, run.stderr.read()
+        before = out.read_bytes()
+        with pytest.raises(whirl.Error) as e:
+            whirl.atlas(2, omega_max=400, output=out, resume=True)
+        assert str(e.value) == ("atlas: '%s' is being written by another run (locked): wait "
+                                "for it or write another file" % out)
+        assert "\n" not in str(e.value) and e.value.status_name == "EFAILED"
+        assert out.read_bytes()[:len(before)] == before
+    finally:
+        run.send_signal(signal.SIGINT)
+        run.wait()
+    assert run.returncode == 130
 
 
 def test_ctrl_c_inside_a_chunk(tmp_path):

@@ -53,9 +53,13 @@ def test_branch_with_stability_equals_the_command_line(whirl_program):
     assert len(b) == len(cli["omega"]) > 100 and b.folds.size >= 1 and b.fold.sum() >= 1
     _same(b, comments, cli, COLUMNS + STABILITY)
     assert set(b.verdict) >= {"unstable"}
-    # one call per point analysed, the last the total
-    assert [d for d, t in calls] == list(range(1, len(b) + 1))
-    assert all(t == len(b) for d, t in calls)
+    # the part of the work done: the continuation's reach (the first half), then one call per
+    # point analysed, the last the total
+    n = len(b)
+    assert all(t == 1.0 for d, t in calls)
+    reach = [d for d, t in calls if d <= 0.5]
+    assert len(reach) > 10 and reach[-1] == 0.5
+    assert [d for d, t in calls if d > 0.5] == [0.5 + 0.5 * (j + 1) / n for j in range(n)]
 
 
 def test_continuum_branch_through_its_fold_upwards_and_in_si(whirl_program):
@@ -86,9 +90,13 @@ def test_continuum_branch_through_its_fold_upwards_and_in_si(whirl_program):
 
 
 def test_ctrl_c_keeps_the_points(capfd):
-    def ctrl_c(done, total):
-        if done == 10:
-            signal.raise_signal(signal.SIGINT)
+    analysed = []
+
+    def ctrl_c(done, total):  # after the continuation (half the work), at the 10th point
+        if done > 0.5:
+            analysed.append(done)
+            if len(analysed) == 10:
+                signal.raise_signal(signal.SIGINT)
     kw = dict(mode=2, air_drag_quadratic=0.015, links=20)
     with pytest.raises(KeyboardInterrupt, match=r"whirl: driven_branch interrupted .*: 10 "
                        r"points") as e:
@@ -96,6 +104,7 @@ def test_ctrl_c_keeps_the_points(capfd):
     assert not whirl.stop_requested()
     part = e.value.partial
     assert len(part) == 10 and part.interrupted and not part.complete
+    analysed.clear()
     kept = whirl.driven_branch(1, 6, 0.05, progress=ctrl_c, keep_interrupted=True, **kw)
     assert kept == part
     full = whirl.driven_branch(1, 6, 0.05, **kw)

@@ -4,6 +4,7 @@ doubles, printed in full), those the command line scales by a unit to 1e-14 (the
 differ by an ulp), and those it prints rounded (growth, e-folding) equal Python's rounded the
 same way. Bad input: the command line's one-line messages."""
 import os
+import signal
 import subprocess
 
 import numpy as np
@@ -157,6 +158,68 @@ def test_a_chart_equals_the_command_line(tmp_path):
     assert si.points.size == len(table) > 0 and si.units == table.units
     for name in ("omega", "amplitude", "err"):
         _close(si.points[name], table[name])
+
+
+ELLIPSE_ARGS = ["--chart", "ellipse", "--links", "2", "--eps", "0.05", "--mode", "2", "--side",
+                "-1", "--omega-min", "3.95", "--omega-max", "4.1", "--omega-count", "4"]
+
+
+def _ellipse(**kw):
+    return whirl.chart_ellipse(3.95, 4.1, 0.05, links=2, mode=2, side=-1, columns=4, **kw)
+
+
+def test_an_ellipse_chart_equals_the_command_line(tmp_path):
+    table = _cli(tmp_path, *ELLIPSE_ARGS)
+    calls = []
+    c = _ellipse(progress=lambda done, total: calls.append((done, total)))
+    assert c.points.size == len(table) > 0 and c.units == table.units
+    for name in ("curve", "event", "omega", "ellipticity", "err"):
+        assert np.array_equal(c.points[name], table[name]), name
+    assert list(c.as_dict()) == ["curve", "event", "omega [sqrt(g/L)]", "ellipticity", "err"]
+    assert [name.split(" ")[0] for name in c.as_dict()] == list(table.columns)
+    assert repr(c) == "EllipseChart(eps=0.05, mode=2, side=-1, links=2, points=%d, curves=%d)" % (
+        c.points.size, c.curves)
+    dones = [d for d, t in calls]
+    assert all(t == 4 for d, t in calls) and dones[-1] == 4
+    assert all(b > a for a, b in zip(dones, dones[1:]))
+    # SI units: the rates and the radius as the command line takes them, the same rows scaled
+    w0 = np.sqrt(9.81 / 0.5)
+    si = whirl.chart_ellipse(3.95 * w0, 4.1 * w0, "2.5cm", links=2, mode=2, side=-1, columns=4,
+                             length=0.5, mass=0.05, gravity=9.81)
+    table = _cli(tmp_path, "--chart", "ellipse", "--links", "2", "--eps", "2.5cm", "--mode", "2",
+                 "--side", "-1", "--omega-min", repr(3.95 * w0), "--omega-max", repr(4.1 * w0),
+                 "--omega-count", "4", "--length", "0.5", "--mass", "0.05", "--gravity", "9.81")
+    assert si.points.size == len(table) == c.points.size and si.units == table.units
+    assert si.eps == pytest.approx(0.025, rel=1e-15)
+    for name in ("curve", "event", "ellipticity"):
+        assert np.array_equal(si.points[name], table[name]), name
+    for name in ("omega", "err"):
+        _close(si.points[name], table[name])
+    assert list(si.as_dict())[2] == "omega [rad/s]"
+
+
+def test_an_ellipse_chart_stops_on_ctrl_c_keeping_its_points():
+    full = _ellipse()
+    old = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        def ctrl_c(done, total):  # the library's handler takes it: a stop request
+            if done == 2:
+                os.kill(os.getpid(), signal.SIGINT)
+        with pytest.raises(KeyboardInterrupt, match="chart_ellipse interrupted") as e:
+            _ellipse(progress=ctrl_c)
+        kept = _ellipse(progress=ctrl_c, keep_interrupted=True)
+    finally:
+        signal.signal(signal.SIGINT, old)
+    assert not whirl.stop_requested()
+    assert e.value.partial == kept and kept.interrupted and "interrupted" in repr(kept)
+    assert 0 < kept.points.size < full.points.size
+    assert np.array_equal(kept.points, full.points[:kept.points.size])
+    with pytest.raises(ValueError, match="side must be 1 or -1"):
+        whirl.chart_ellipse(3.95, 4.1, 0.05, side=0)
+    with pytest.raises(ValueError, match="omega_max must exceed omega_min"):
+        whirl.chart_ellipse(4.1, 3.95, 0.05)
+    with pytest.raises(ValueError, match="e_max must be in"):
+        whirl.chart_ellipse(3.95, 4.1, 0.05, e_max=2)
 
 
 def _cli_error(*args):

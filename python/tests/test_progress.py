@@ -178,3 +178,78 @@ def test_ctrl_c_stops_a_call_that_reports_progress():
     with pytest.raises(KeyboardInterrupt, match="stability_map"):
         whirl.stability_map(np.linspace(3, 6, 400), 2, 150, progress=calls)
     assert not whirl.stop_requested()
+
+
+def test_critical_equilibria_and_a_batch_of_shapes_report_their_progress():
+    calls = Calls()
+    rates = whirl.critical(2000, links=2000, progress=calls)
+    assert calls.check(2000) == 2000 and len(calls) == 20  # blocks of 100 rates
+    assert np.array_equal(rates, whirl.critical(2000, links=2000))
+    calls = Calls()
+    whirl.critical(3, progress=calls)
+    assert calls == [(3, 3)]
+    calls = Calls()
+    rows, evidence = whirl.equilibria(9.0, links=5, progress=calls)
+    calls.check(6)  # the N-link search's stages
+    assert len(calls) > 6
+    plain = whirl.equilibria(9.0, links=5)
+    assert np.array_equal(rows["tip_r"], plain[0]["tip_r"]) and evidence == plain[1]
+    calls = Calls()
+    whirl.equilibria(8.0, progress=calls)
+    calls.check(2)
+    calls = Calls()
+    shapes = whirl.shape(np.linspace(3, 6, 10), 2, links=20, progress=calls)
+    assert calls == [(k, 10) for k in range(1, 11)] and len(shapes) == 10
+    calls = Calls()
+    whirl.shape(3.0, 2, links=20, progress=calls)
+    assert calls == [(1, 1)]
+
+
+def test_driven_branch_reports_its_continuation():
+    calls = Calls()
+    out = whirl.driven_branch(0.8, 2.0, 0.02, side=-1, progress=calls)
+    calls.check(1.0)
+    assert len(calls) > 10 and out.complete
+    assert np.array_equal(out.omega, whirl.driven_branch(0.8, 2.0, 0.02, side=-1).omega)
+    # with the stability of its points: the continuation, then the points
+    calls = Calls()
+    out = whirl.driven_branch(2.0, 3.0, 0.02, links=6, progress=calls)
+    calls.check(1.0)
+    dones = [d for d, t in calls]
+    assert 0.5 in dones and len([d for d in dones if d > 0.5]) == len(out)
+
+
+def _sigint_at(k, calls):
+    """A progress callable that records its calls and sends SIGINT to this process at the
+    k-th (the library's handler takes it: a stop request, seen right after)."""
+    def progress(done, total):
+        calls.append((done, total))
+        if len(calls) == k:
+            os.kill(os.getpid(), signal.SIGINT)
+    return progress
+
+
+def test_ctrl_c_keeps_what_the_long_calls_computed():
+    calls = Calls()
+    with pytest.raises(KeyboardInterrupt, match="shape interrupted: 3 of 10 shapes") as e:
+        whirl.shape(np.linspace(3, 6, 10), 2, links=20, progress=_sigint_at(3, calls))
+    assert len(e.value.partial) == 3 and not whirl.stop_requested()
+    assert e.value.partial[2] == whirl.shape(np.linspace(3, 6, 10)[2], 2, links=20)
+    full = whirl.driven_branch(0.8, 2.0, 0.02, side=-1)
+    calls = Calls()
+    out = whirl.driven_branch(0.8, 2.0, 0.02, side=-1, keep_interrupted=True,
+                              progress=_sigint_at(5, calls))
+    assert out.interrupted and not out.complete and 5 <= len(out) < len(full)
+    assert np.array_equal(out.omega, full.omega[:len(out)]) and not whirl.stop_requested()
+    calls = Calls()
+    with pytest.raises(KeyboardInterrupt, match="driven_branch interrupted") as e:
+        whirl.driven_branch(0.8, 2.0, 0.02, side=-1, progress=_sigint_at(5, calls))
+    assert np.array_equal(e.value.partial.omega, out.omega)
+    calls = Calls()
+    with pytest.raises(KeyboardInterrupt, match="critical interrupted"):
+        whirl.critical(2000, links=2000, progress=_sigint_at(2, calls))
+    assert len(calls) == 2 and not whirl.stop_requested()
+    calls = Calls()
+    with pytest.raises(KeyboardInterrupt, match="equilibria interrupted"):
+        whirl.equilibria(9.0, links=5, progress=_sigint_at(3, calls))
+    assert len(calls) == 3 and not whirl.stop_requested()

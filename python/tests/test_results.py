@@ -73,6 +73,8 @@ def _results(tmp_path):
     yield "PeriodicBranch", whirl.periodic_path("vertical:0.01", 1.8, dim=2, amp_max=0.1,
                                                 up=True, max_points=3)
     yield "Chart", whirl.chart_vertical(1.6, 2.2, 0.3, columns=3, rows=10, **SI)
+    yield "EllipseChart", whirl.chart_ellipse(3.95, 4.0, 0.05, links=2, mode=2, side=-1,
+                                              columns=2)
     out = tmp_path / "shape.csv"
     import subprocess
     import os
@@ -92,7 +94,7 @@ def test_every_result_pickles_and_deep_copies(tmp_path):
         _same(pickle.loads(pickle.dumps(result)), result, name)
         _same(copy.deepcopy(result), result, name)
         names.append(name)
-    assert len(names) == 20, names
+    assert len(names) == 21, names
 
 
 def test_a_restored_simulation_continues_as_the_original():

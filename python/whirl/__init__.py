@@ -6,7 +6,8 @@ stability, stability_map, stability_windows, dissipative_windows, atlas. The han
 driven, driven_branch, spin_up. Measured shapes: fit. Scene files: run_scene. whirl's CSV
 files: read_csv.
 A pivot on a periodic path: periodic (a periodic motion and its Floquet multipliers),
-periodic_path (a branch of them), chart_vertical (the shaken chain's stability chart).
+periodic_path (a branch of them), chart_vertical (the shaken chain's stability chart),
+chart_ellipse (the hand-swung chain's ellipticity chart).
 Units follow the command line's rule (whirl.Units): dimensionless (chain length, mass and
 gravity = 1) unless length [m], mass [kg] or gravity [m/s^2] is given, or a Units object; then
 SI, gravity defaulting to 9.80665 m/s^2. Library failures raise whirl.Error with the library's
@@ -34,8 +35,8 @@ from .atlas import atlas
 from .fit import FitResult, fit
 from .scene import SceneRun, run_scene
 from .csv import Table, read_csv
-from .periodic import (Chart, PeriodicBranch, PeriodicResult, chart_vertical, periodic,
-                       periodic_path)
+from .periodic import (Chart, EllipseChart, PeriodicBranch, PeriodicResult, chart_ellipse,
+                       chart_vertical, periodic, periodic_path)
 
 __version__ = LIBRARY_VERSION
 
@@ -49,4 +50,4 @@ __all__ = ["Error", "InUse", "InvalidInput", "LIBRARY_PATH", "methods", "stop_re
            "DrivenBranch", "driven_branch", "atlas",
            "FitResult", "fit", "SceneRun", "run_scene", "Table", "read_csv",
            "PeriodicResult", "PeriodicBranch", "Chart", "periodic", "periodic_path",
-           "chart_vertical", "__version__"]
+           "chart_vertical", "EllipseChart", "chart_ellipse", "__version__"]

@@ -71,6 +71,9 @@ int whirl_continuum_sample(double omega, double tip_mass, double tip_r, size_t n
 int whirl_continuum_branch(int mode, double tip_mass, size_t n, const double *omega,
                            whirl_shape_info *info, int *exists);
 int whirl_nlink_critical(const whirl_chain *c, size_t nmodes, double *omega);
+typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
+int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
+                                whirl_nlink_critical_progress_fn progress, void *ctx);
 int whirl_nlink_solve(const whirl_chain *c, double omega, int mode, whirl_shape_info *info);
 int whirl_nlink_positions(const whirl_chain *c, double omega, double tip_r, double *r, double *z,
                           double *tension);
@@ -423,8 +426,18 @@ typedef struct whirl_equilibria {
 int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           const whirl_equilibria_params *params, whirl_equilibria **out);
 void whirl_equilibria_free(whirl_equilibria *e);
+typedef struct whirl_equilibria_progress {
+    int stage, stages;
+    size_t done, total;
+} whirl_equilibria_progress;
+typedef void (*whirl_equilibria_progress_fn)(void *ctx, const whirl_equilibria_progress *at);
+int whirl_equilibria_find_progress(const whirl_chain *c, double tip_mass, double omega,
+                                   const whirl_equilibria_params *params,
+                                   whirl_equilibria_progress_fn progress, void *ctx,
+                                   whirl_equilibria **out);
 """
-STRUCTS += ["whirl_equilibria_params", "whirl_equilibrium", "whirl_equilibria"]
+STRUCTS += ["whirl_equilibria_params", "whirl_equilibrium", "whirl_equilibria",
+            "whirl_equilibria_progress"]
 
 CDEF += r"""
 typedef struct whirl_cstab whirl_cstab;
@@ -562,6 +575,11 @@ void whirl_driven_curve_free(whirl_driven_curve *curve);
 int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *params,
                         const whirl_driven_info *start, int direction, double omega_min,
                         double omega_max, double step, whirl_driven_curve *curve);
+typedef void (*whirl_driven_branch_tick_fn)(void *data, const whirl_driven_curve *curve);
+int whirl_driven_branch_tick(const whirl_chain *chain, const whirl_driven_params *params,
+                             const whirl_driven_info *start, int direction, double omega_min,
+                             double omega_max, double step, whirl_driven_curve *curve,
+                             whirl_driven_branch_tick_fn tick, void *data);
 typedef void (*whirl_fit_progress_fn)(void *data, int mode, int first, int last, int evaluations);
 int whirl_fit_observed(const whirl_fit_model *m, size_t n, const double *r, const double *z,
                        int mode, whirl_fit_progress_fn progress, void *data,
@@ -603,6 +621,13 @@ const whirl_atlas_row *whirl_atlas_rows(const whirl_atlas *a, size_t *count);
 size_t whirl_atlas_row_text(const whirl_atlas_row *r, char *buf, size_t size);
 size_t whirl_atlas_text(const whirl_atlas *a, char *buf, size_t size);
 int whirl_atlas_read_text(whirl_atlas *a, const char *data, size_t size, const char *path);
+typedef struct whirl_atlas_file whirl_atlas_file;
+whirl_atlas_file *whirl_atlas_file_alloc(const char *path, int make);
+int whirl_atlas_file_fd(const whirl_atlas_file *f);
+int whirl_atlas_file_made(const whirl_atlas_file *f);
+int whirl_atlas_file_replace(whirl_atlas_file *f, int fd, const char *tmp);
+int whirl_atlas_file_commit(whirl_atlas_file *f, const char *data, size_t n);
+void whirl_atlas_file_free(whirl_atlas_file *f);
 """
 STRUCTS += ["whirl_atlas_params", "whirl_atlas_row"]
 CONSTANTS += ["WHIRL_ATLAS_CHUNK", "WHIRL_ATLAS_WINDOWS", "WHIRL_ATLAS_LINE_MAX"]
@@ -741,12 +766,44 @@ int whirl_periodic_path(whirl_periodic *w, double *y, const whirl_cycle_params *
                         int (*row)(void *, const whirl_cycle_point *), void *row_data,
                         void (*tick)(void *, const whirl_cycle_progress *), void *tick_data);
 const char *whirl_cycle_event_name(int e);
+typedef struct whirl_ellipse_chart_params {
+    double radius;
+    int mode;
+    int side;
+    double omega_min, omega_max;
+    int columns;
+    double e_max;
+    int steps;
+    double step;
+    double tol;
+} whirl_ellipse_chart_params;
+typedef struct whirl_ellipse_point {
+    int event;
+    int curve;
+    int column;
+    double omega;
+    double ellipticity;
+    double err;
+    double max_modulus;
+} whirl_ellipse_point;
+typedef struct whirl_ellipse_chart_progress {
+    int column, columns;
+    int curves;
+    long points;
+    int failed;
+    double parameter;
+} whirl_ellipse_chart_progress;
+int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                        int (*row)(void *, const whirl_ellipse_point *), void *row_data,
+                        void (*tick)(void *, const whirl_ellipse_chart_progress *),
+                        void *tick_data);
 const char *whirl_floquet_verdict_name(int v);
 const char *whirl_floquet_edge_name(int e);
 """
 STRUCTS += ["whirl_pivot_path", "whirl_scene_pivot", "whirl_periodic_params",
             "whirl_periodic_result", "whirl_chart_params", "whirl_chart_point", "whirl_chart_progress",
-            "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress"]
+            "whirl_cycle_params", "whirl_cycle_point", "whirl_cycle_progress",
+            "whirl_ellipse_chart_params", "whirl_ellipse_point", "whirl_ellipse_chart_progress"]
 CONSTANTS += ["WHIRL_PIVOT_HARMONICS_MAX"]
 
 CDEF += r"""

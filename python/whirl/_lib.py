@@ -11,6 +11,8 @@ The shared library is looked for, in this order:
   4. the system's libwhirl (an installed prefix known to the dynamic linker).
 ``whirl.LIBRARY_PATH`` names the copy in use.
 """
+from __future__ import annotations
+
 import contextlib
 import ctypes
 import dataclasses
@@ -24,8 +26,7 @@ import threading
 from typing import (Any, Callable, ContextManager, Dict, Iterator, List, Optional, Sequence, Tuple,
                     TypeVar)
 
-import numpy as np
-
+from ._lazy import numpy as np
 from ._cdef import CDEF
 
 _HERE = os.path.dirname(os.path.abspath(__file__))

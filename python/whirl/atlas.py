@@ -9,121 +9,61 @@ one line "# done mode K omega A B" per chunk finished, and it is locked (flock) 
 so that a run of the command line and one of Python refuse each other while one writes it.
 resume=True keeps the chunks of a file written by either and computes the rest; the library
 checks the file (whirl_atlas_read: its options, every line) as for the command line."""
-import fcntl
+from __future__ import annotations
+
 import os
-import stat
-import tempfile
 from typing import Any, Iterable, List, Optional, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, as_int, as_float
 from .steady import Units, units_of
 
 OMEGA_MAX = 5000.0      # WHIRL_CONTINUUM_OMEGA_MAX
 
-ATLAS_DTYPE = np.dtype([("mode", "i4"), ("from", "f8"), ("to", "f8"), ("open_from", "?"),
-                        ("open_to", "?"), ("freq_from", "f8"), ("freq_to", "f8"),
-                        ("sig_from", "i4"), ("sig_to", "i4"), ("max_growth", "f8"),
-                        ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
+ATLAS_DTYPE = [("mode", "i4"), ("from", "f8"), ("to", "f8"), ("open_from", "?"),
+               ("open_to", "?"), ("freq_from", "f8"), ("freq_to", "f8"),
+               ("sig_from", "i4"), ("sig_to", "i4"), ("max_growth", "f8"),
+               ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")]
 _RATES = ("from", "to", "freq_from", "freq_to", "max_growth", "at", "err_from", "err_to")
 
 
 class _File:
-    """The atlas's file, locked for the whole run (as the command line's cli_lock: flock on
-    the file the path names, taken again on each file renamed over it)."""
+    """The atlas's file, locked for the whole run: the library's whirl_atlas_file (the command
+    line's lock too: flock on the file the path names, passed to each file renamed over it)."""
 
     def __init__(self, path: str, make: bool) -> None:
         self.path = path
-        self.fd = -1
-        self.made = False
-        for _ in range(8):  # the path may change between the tries (another run)
-            try:
-                st = os.stat(path)
-            except FileNotFoundError:
-                st = None
-            try:
-                if st is not None:
-                    if not stat.S_ISREG(st.st_mode):
-                        raise ValueError("atlas: output %r is not a regular file (it is "
-                                         "rewritten after every chunk)" % path)
-                    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | os.O_NOCTTY)
-                elif not make:
-                    raise ValueError("atlas: resume: cannot read %r: no such regular file"
-                                     % path)
-                else:
-                    try:
-                        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL | os.O_NOCTTY,
-                                     0o666)
-                    except FileExistsError:  # made by another run meanwhile: try again
-                        continue
-                    self.made = True
-            except FileNotFoundError:
-                if st is None:  # no such folder
-                    raise
-                continue  # removed by another run meanwhile: try again
-            try:
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except BlockingIOError:
-                os.close(fd)
-                raise _lib.Error(_lib.GSL_EFAILED, "atlas: '%s' is being written by another "
-                                 "run (locked): wait for it or write another file" % path)
-            now = os.stat(path)
-            mine = os.fstat(fd)
-            if (mine.st_dev, mine.st_ino) != (now.st_dev, now.st_ino):
-                os.close(fd)
-                raise _lib.Error(_lib.GSL_EFAILED, "atlas: '%s' was replaced by another run "
-                                 "while this one started" % path)
-            self.fd = fd
-            return
-        raise _lib.Error(_lib.GSL_EFAILED, "atlas: cannot lock '%s': other runs keep making "
-                         "and removing it" % path)
+        folder = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(folder):
+            raise FileNotFoundError(2, "no such folder for the atlas's file", folder)
+        f = lib.whirl_atlas_file_alloc(os.fsencode(path), 1 if make else 0)
+        if f == ffi.NULL:
+            raise _lib.error(lib.whirl_last_status() or _lib.GSL_EFAILED,
+                             "atlas: " + _lib.last_error())
+        self.file: Any = f
 
     def read(self) -> bytes:
-        os.lseek(self.fd, 0, os.SEEK_SET)
+        fd = lib.whirl_atlas_file_fd(self.file)
+        os.lseek(fd, 0, os.SEEK_SET)
         chunks: List[bytes] = []
         while True:
-            b = os.read(self.fd, 1 << 16)
+            b = os.read(fd, 1 << 16)
             if not b:
                 return b"".join(chunks)
             chunks.append(b)
 
     def commit(self, data: bytes) -> None:
-        """The file rewritten with data: a temporary file beside it (its mode kept), locked,
-        renamed over it."""
-        target = os.path.realpath(self.path)
-        fd, tmp = tempfile.mkstemp(prefix=os.path.basename(target) + ".tmp.",
-                                   dir=os.path.dirname(target))
-        try:
-            st = os.fstat(self.fd)
-            os.fchmod(fd, stat.S_IMODE(st.st_mode))
-            while data:
-                data = data[os.write(fd, data):]
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            os.replace(tmp, target)
-        except BaseException:
-            os.close(fd)
-            try:
-                os.unlink(tmp)
-            except FileNotFoundError:
-                pass
-            raise
-        os.close(self.fd)  # the old file's lock: it was replaced
-        self.fd, self.made = fd, False
+        """The file rewritten with data (whirl_atlas_file_commit: a file beside it, its mode
+        kept, locked, renamed over it)."""
+        if lib.whirl_atlas_file_commit(self.file, data, len(data)) != _lib.GSL_SUCCESS:
+            raise _lib.error(lib.whirl_last_status() or _lib.GSL_EFAILED,
+                             "atlas: " + _lib.last_error())
 
     def close(self) -> None:
-        if self.fd < 0:
-            return
-        try:  # the empty file made to hold the lock, when the run wrote nothing in its place
-            mine, now = os.fstat(self.fd), os.stat(self.path)
-            if (self.made and mine.st_size == 0
-                    and (mine.st_dev, mine.st_ino) == (now.st_dev, now.st_ino)):
-                os.unlink(self.path)
-        except OSError:
-            pass
-        os.close(self.fd)
-        self.fd = -1
+        if self.file is not None:
+            lib.whirl_atlas_file_free(self.file)
+            self.file = None
 
 
 def _text(a: Any) -> bytes:

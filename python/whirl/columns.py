@@ -4,9 +4,11 @@ unit, "omega [rad/s]", "tip_r [m]", "tension [N]" in SI units, "omega [sqrt(g/L)
 "tension [M g]" in the dimensionless ones; a column without a dimension (mode, nodes, verdict,
 index, ratios and counts) keeps its bare name. as_dict() of every result and of a Table gives
 {label: 1-D array}; to_pandas() the same as a pandas DataFrame."""
+from __future__ import annotations
+
 from typing import Any, Dict, Mapping, Optional, Tuple
 
-import numpy as np
+from ._lazy import numpy as np
 
 # the kind of each column the command line writes, by its name (src/cli, src/studies)
 _KINDS = {

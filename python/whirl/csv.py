@@ -1,13 +1,14 @@
 """Reading whirl's own files back: every CSV the command line writes (a header line of column
 names after "#" comment lines, one of them "# units: ...") and the traces (blocks "x y z t", one
 per time). Numbers are read with Python's float (independent of the process locale)."""
+from __future__ import annotations
+
 import os
 import re
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib
 from .steady import Units
 

@@ -3,11 +3,12 @@ circle of radius drive_radius at rate omega, with air drag; its trailing steady 
 spin-ups from rest. Positions in the frame co-rotating at omega, the pivot at
 (drive_radius, 0, 0). Units as everywhere (see whirl.Units): dimensionless by default (rates in
 sqrt(g/L), times in sqrt(L/g), lengths in L), SI with length/mass/gravity or units given."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import POINTS_MAX, Chain, Units, _chain, _mode, links_count, units_of
@@ -352,8 +353,9 @@ def driven_branch(omega_min: Any, omega_max: Any, drive_radius: Any, mode: int =
     as whirl.driven's; ``arc_step``: the largest step of the continuation's arclength (in (0,
     1]), ``max_points``: most points. stability (default: with an N-link chain): the growth,
     index and verdict of the linearisation about every point (the N-link chain only).
-    progress: the points whose stability is computed (see whirl's progress=; the
-    continuation itself reports only its end). Returns a DrivenBranch; whirl.InvalidInput if
+    progress: the part of the work done, 0..1 (see whirl's progress=): the continuation's
+    reach from the start towards the far end of the range (the first half of the work with
+    stability, all of it without), then the points whose stability is computed. Returns a DrivenBranch; whirl.InvalidInput if
     the start shape does not exist. Ctrl-C raises KeyboardInterrupt naming the call (its
     ``partial``: the points so far), or with keep_interrupted=True returns them marked
     interrupted."""
@@ -388,13 +390,31 @@ def driven_branch(omega_min: Any, omega_max: Any, drive_radius: Any, mode: int =
     start = ffi.new("whirl_driven_info *")
     curve = _lib.check_ptr(lib.whirl_driven_curve_alloc(cap), lib.whirl_driven_curve_free)
     stopped = None
-    with _lib.interruptible("driven_branch"):
+    # the work: the continuation's reach over the rates (towards the far end), then the points'
+    # stability; 1 in all
+    far = hi if up else lo
+    share = 0.5 if stability else 1.0
+    with _lib.interruptible("driven_branch"), \
+            _progress.report(progress, "driven_branch", 1.0, "") as rep:
         status = lib.whirl_driven_mode(c, p, mode, side, start)
         if status == lib.WHIRL_EINTERRUPTED:
             check(status, "driven_branch")
         if status:
             check(status, "driven_branch: start at omega %.17g" % (p.omega * u.rate), u)
-        status = lib.whirl_driven_branch(c, p, start, 1 if up else -1, lo, hi, step, curve)
+        tick = ffi.NULL
+        if _progress.active(progress):
+            reach = [0.0]
+
+            @ffi.callback("whirl_driven_branch_tick_fn")
+            def tick(data: Any, at: Any) -> None:
+                # the farthest rate reached so far, as a part of the way to the far end
+                rate = at.point[at.n - 1].omega
+                if far != p.omega:
+                    reach[0] = max(reach[0], min(1.0, (rate - p.omega) / (far - p.omega)))
+                rep.c_update(share * reach[0])
+        status = lib.whirl_driven_branch_tick(c, p, start, 1 if up else -1, lo, hi, step, curve,
+                                              tick, ffi.NULL)
+        rep.reraise()
         if status == lib.WHIRL_EINTERRUPTED:
             lib.whirl_stop_clear()
             stopped = _lib.last_error_in(u)
@@ -403,30 +423,30 @@ def driven_branch(omega_min: Any, omega_max: Any, drive_radius: Any, mode: int =
         n = int(curve.n)
         growth = np.empty(n) if stability else None
         index = np.empty(n, dtype=int) if stability else None
-        with _progress.report(progress, "driven_branch", n if stability else 1,
-                              "points" if stability else "branch") as rep:
-            if stability and stopped is None:
-                assert chain is not None and growth is not None and index is not None
-                w = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
-                buf = [np.empty(chain.n + 1) for _ in range(5)]
-                for j in range(n):
-                    if lib.whirl_stop_requested():
-                        lib.whirl_stop_clear()
-                        stopped = "stopped by request in the stability of the points"
-                        n = j
-                        break
-                    status, growth[j], index[j] = _point_stability(w, chain, p, curve.point[j],
-                                                                   buf)
-                    if status == lib.WHIRL_EINTERRUPTED:
-                        lib.whirl_stop_clear()
-                        stopped = "stopped by request in the stability of the points"
-                        n = j
-                        break
-                    check(status, "driven_branch: stability at omega %.17g"
-                          % (curve.point[j].omega * u.rate), u)
-                    rep.update(j + 1)
-            if stopped is None:
-                rep.finish()
+        if stopped is None:
+            rep.update(share)
+        if stability and stopped is None:
+            assert chain is not None and growth is not None and index is not None
+            w = _lib.check_ptr(lib.whirl_stability_alloc(chain.n), lib.whirl_stability_free)
+            buf = [np.empty(chain.n + 1) for _ in range(5)]
+            for j in range(n):
+                if lib.whirl_stop_requested():
+                    lib.whirl_stop_clear()
+                    stopped = "stopped by request in the stability of the points"
+                    n = j
+                    break
+                status, growth[j], index[j] = _point_stability(w, chain, p, curve.point[j],
+                                                               buf)
+                if status == lib.WHIRL_EINTERRUPTED:
+                    lib.whirl_stop_clear()
+                    stopped = "stopped by request in the stability of the points"
+                    n = j
+                    break
+                check(status, "driven_branch: stability at omega %.17g"
+                      % (curve.point[j].omega * u.rate), u)
+                rep.update(share + (1 - share) * (j + 1) / n)
+        if stopped is None:
+            rep.finish()
     pts = [curve.point[j] for j in range(n)]
     L = u.length
     out = DrivenBranch(omega=np.array([q.omega for q in pts]) * u.rate,

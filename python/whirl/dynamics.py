@@ -3,12 +3,13 @@ integrator of the library, and returns its run as numpy arrays.
 
 Units: dimensionless (L = M = g = 1 for the uniform chain; a Chain of your own is in its own
 units): time in sqrt(L/g), positions in L, energy in M g L."""
+from __future__ import annotations
+
 import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .periodic import _path as _pivot_path

@@ -1,9 +1,10 @@
 """Fitting the rotation rate and mode to a measured shape (whirl/optimize.h, ``whirl fit``)."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .steady import Chain, Units, units_of

@@ -1,7 +1,7 @@
 """The chain with its pivot on a periodic path (whirl/periodic.h, ``whirl periodic``): the
 periodic motion found by Newton's method on the period map and its Floquet multipliers, a branch
 of periodic motions followed in the path's rate or amplitude with its events, and the stability
-chart of the vertically shaken chain.
+chart of the vertically shaken chain, and the ellipticity chart of the hand-swung chain.
 
 A pivot path is given by the command line's grammar (whirl_pivot_parse): circle:R, ellipse:A,B,
 line:A[,DX,DY,DZ], vertical:A, eight:A,B or fourier:x1c=A,z2s=B,... (lengths in the call's units,
@@ -10,17 +10,18 @@ rates in sqrt(g/L) or rad/s, lengths in L or m, times in sqrt(L/g) or s; multipl
 period and e-folding periods are numbers.
 
 The chain may be damped and dragged: ``damping`` (the joints' internal damping), ``air_drag`` and
-``air_drag_quadratic`` (the names and units of whirl.stability and whirl.driven; ``whirl periodic
---damping --drag --drag-quadratic``), the forces of the time integrator
+``air_drag_quadratic`` (the names and units of whirl.stability and whirl.driven; on the command
+line ``--damping``, ``--drag`` and ``--drag-quadratic``), the forces of the time integrator
 (whirl_periodic_alloc_model). Its multipliers are then not in reciprocal pairs: the verdict does
 not use ``reciprocal_err`` (then a distance, not an error), and a branch's torus test is
 prod_{i<j} (mu_i mu_j - 1): a complex pair crossing the unit circle."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
-from typing import Any, List, Optional, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
-import numpy as np
-
-from . import _lib
+from ._lazy import numpy as np
+from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import Chain, Units, _chain, units_of
 
@@ -80,11 +81,11 @@ class PeriodicResult(_lib.Result):
                                           self.max_modulus, self.verdict, self.edge))
 
 
-BRANCH_DTYPE = np.dtype([("event", "U16"), ("omega", "f8"), ("amplitude", "f8"),
-                         ("max_modulus", "f8"), ("verdict", "U8"), ("edge", "U8"),
-                         ("fold_test", "f8"), ("flip_test", "f8"), ("torus_test", "f8"),
-                         ("err", "f8"), ("arclength", "f8"), ("tangent", "f8"),
-                         ("reciprocal_err", "f8"), ("residual", "f8"), ("iterations", "i8")])
+BRANCH_DTYPE = [("event", "U16"), ("omega", "f8"), ("amplitude", "f8"),
+                ("max_modulus", "f8"), ("verdict", "U8"), ("edge", "U8"),
+                ("fold_test", "f8"), ("flip_test", "f8"), ("torus_test", "f8"),
+                ("err", "f8"), ("arclength", "f8"), ("tangent", "f8"),
+                ("reciprocal_err", "f8"), ("residual", "f8"), ("iterations", "i8")]
 
 
 @dataclass(eq=False)
@@ -115,8 +116,8 @@ class PeriodicBranch(_lib.Result):
             self.pivot, self.parameter, self.rows.size, self.events.size, self.ended)
 
 
-CHART_DTYPE = np.dtype([("curve", "i8"), ("edge", "i8"), ("omega", "f8"), ("amplitude", "f8"),
-                        ("err", "f8")])
+CHART_DTYPE = [("curve", "i8"), ("edge", "i8"), ("omega", "f8"), ("amplitude", "f8"),
+               ("err", "f8")]
 
 
 @dataclass(eq=False)
@@ -432,3 +433,126 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     out["err"] *= u.length
     return Chart(inverted=bool(inverted), links=chain.n, points=out, units=u,
                  interrupted=interrupted)
+
+
+ELLIPSE_DTYPE = [("curve", "i8"), ("event", "U16"), ("omega", "f8"), ("ellipticity", "f8"),
+                 ("err", "f8"), ("max_modulus", "f8")]
+
+
+@dataclass(eq=False)
+class EllipseChart(_lib.Result):
+    """The ellipticity chart of the hand-swung chain, as ``whirl periodic --chart ellipse``:
+    ``points`` a structured array in the command line's order (by rate, curve by curve) with
+    its columns curve (from 1: a run of rates stable on the circle), event (how the steady shape
+    is lost: fold, branch, period-doubling, torus; "none": not lost up to e_max, the row at
+    e_max), omega [1/T], ellipticity (e_crit; 0 at an end of a curve on the circle) and err (in
+    e, or in omega [1/T] at an end), and max_modulus (the largest multiplier's modulus there);
+    ``eps`` the circle's radius [L], ``mode``, ``side``, ``e_max``, ``links``, ``failed`` (the
+    continuations that stopped before an event: no row), ``curves`` the count; ``interrupted``
+    (Ctrl-C with keep_interrupted=True: the points found until then); ``units``."""
+
+    eps: float
+    mode: int
+    side: int
+    e_max: float
+    links: int
+    points: np.ndarray
+    failed: int = 0
+    units: Units = field(default_factory=Units)
+    interrupted: bool = False
+
+    @property
+    def curves(self) -> int:
+        return int(np.unique(self.points["curve"]).size)
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # whirl periodic --chart ellipse's columns and comment lines
+        return ({name: self.points[name] for name in ("curve", "event", "omega", "ellipticity",
+                                                      "err")},
+                {"eps": self.eps, "mode": self.mode, "side": self.side, "e_max": self.e_max,
+                 "links": self.links, "failed": self.failed, "interrupted": self.interrupted})
+
+    def __repr__(self) -> str:
+        return "EllipseChart(eps=%g, mode=%d, side=%d, links=%d, points=%d, curves=%d%s)" % (
+            self.eps, self.mode, self.side, self.links, self.points.size, self.curves,
+            ", interrupted" if self.interrupted else "")
+
+
+@ffi.callback("int(void *, const whirl_ellipse_point *)", onerror=lambda *a: 8)
+def _ellipse_row(data: Any, p: Any) -> int:
+    rows: List[Any] = ffi.from_handle(data)
+    rows.append((p.event, p.curve + 1, p.column, p.omega, p.ellipticity, p.err, p.max_modulus))
+    return 0
+
+
+def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Chain] = 1,
+                  mode: int = 2, side: int = 1, columns: Optional[int] = None,
+                  e_max: Optional[float] = None, steps: Optional[int] = None,
+                  arc_step: Optional[float] = None, progress: Any = None,
+                  keep_interrupted: bool = False, length: Optional[float] = None,
+                  mass: Optional[float] = None, gravity: Optional[float] = None,
+                  units: Optional[Units] = None) -> EllipseChart:
+    """The ellipticity chart of the hand-swung chain ``links`` (N or a Chain; 3D): per rate of
+    [omega_min, omega_max] (``columns`` of them, default 50), how far the circle of radius
+    ``eps`` may be flattened into the ellipse of semi-axes eps and eps (1 - e) before the steady
+    shape of ``mode`` (default 2; ``side`` its seed's tip on the pivot's side, 1, or opposite,
+    -1) is lost, as ``whirl periodic --chart ellipse --eps A --omega-min W --omega-max W``
+    ``[--omega-count N --e-max E --steps S --arc-step H --mode K --side S]``
+    (whirl_chart_ellipse): ``e_max`` the largest ellipticity followed (default 1), ``steps``
+    the Gauss steps per period (default 400), ``arc_step`` the continuation's largest step
+    (default 0.01). Rates and eps in the caller's units, or texts with a unit ("4Hz", "2cm"),
+    as the command line takes them. progress: the rates done (see whirl's progress=). Returns
+    an EllipseChart. Ctrl-C raises KeyboardInterrupt (its ``partial``: the chart of the points
+    found until then), or with keep_interrupted=True returns that chart marked interrupted."""
+    u = units_of(length, mass, gravity, units)
+    chain = _chain(links, 0.0, dense=True)
+    assert chain is not None
+    p = ffi.new("whirl_ellipse_chart_params *")
+    p.radius = as_float(eps, "eps", positive=True, kind="length", units=u) / u.length
+    p.omega_min = as_float(omega_min, "omega_min", positive=True, kind="rate", units=u) / u.rate
+    p.omega_max = as_float(omega_max, "omega_max", positive=True, kind="rate", units=u) / u.rate
+    if not p.omega_max > p.omega_min:
+        raise ValueError("omega_max must exceed omega_min")
+    p.mode = as_int(mode, "mode", minimum=1)
+    p.side = as_int(side, "side")
+    if p.side not in (1, -1):
+        raise ValueError("side must be 1 or -1, got %d" % p.side)
+    p.columns = 0 if columns is None else as_int(columns, "columns", minimum=2, maximum=1000000)
+    if e_max is not None:
+        p.e_max = as_float(e_max, "e_max", positive=True)
+        if not p.e_max <= 1:
+            raise ValueError("e_max must be in (0, 1], got %g" % p.e_max)
+    p.steps = _steps(steps)
+    if arc_step is not None:
+        p.step = as_float(arc_step, "arc_step", positive=True)
+        if not p.step <= 1:
+            raise ValueError("arc_step must be in (0, 1], got %g" % p.step)
+    ncol = p.columns or 50
+    found: List[Any] = []
+    handle = ffi.new_handle(found)
+    last = {"failed": 0}
+    stop: Optional[KeyboardInterrupt] = None
+    with _progress.report(progress, "chart_ellipse", ncol, "rates") as rep:
+        @ffi.callback("void(void *, const whirl_ellipse_chart_progress *)")
+        def tick(data: Any, at: Any) -> None:
+            last["failed"] = at.failed
+            rep.c_update(at.column)  # the rates done before the one under way
+        try:
+            with _lib.interruptible("chart_ellipse"):
+                status = lib.whirl_chart_ellipse(chain._c, p, _ellipse_row, handle, tick,
+                                                 ffi.NULL)
+                rep.reraise()
+            check(status, "chart_ellipse", u)
+            rep.finish()
+        except KeyboardInterrupt as e:
+            stop = e
+    rows = [(curve, "none" if event == 0 else ffi.string(lib.whirl_cycle_event_name(event))
+             .decode(), w * u.rate, ellipticity, err * u.rate if column < 0 else err, modulus)
+            for event, curve, column, w, ellipticity, err, modulus in found]
+    out = EllipseChart(eps=p.radius * u.length, mode=p.mode, side=p.side, e_max=p.e_max or 1.0,
+                       links=chain.n, points=np.array(rows, dtype=ELLIPSE_DTYPE),
+                       failed=last["failed"], units=u, interrupted=stop is not None)
+    if stop is not None and not keep_interrupted:
+        stop.partial = out  # type: ignore[attr-defined]
+        raise stop
+    return out

@@ -2,11 +2,12 @@
 ``whirl simulate`` runs, with the same overrides, returned as numpy arrays instead of CSV.
 
 Units: the scene's own ([units] system = dimensionless or SI; SceneRun.units says which)."""
+from __future__ import annotations
+
 import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check
 

@@ -2,11 +2,12 @@
 the linearisation in the co-rotating frame (M q'' + (G + C) q' + K q = 0) and a perturbed run.
 Units as everywhere (see whirl.Units): dimensionless by default (rates and growth rates in
 sqrt(g/L)), SI with length/mass/gravity or units given (rad/s, 1/s, s, m)."""
+from __future__ import annotations
+
 from dataclasses import dataclass, field
 from typing import Any, Dict, Optional, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 from .steady import Chain, Units, _absent, _chain, _grid_text, _mode, units_of
@@ -226,7 +227,7 @@ def stability(omega: float, mode: int, links: Union[int, Chain], damping: float 
     return res
 
 
-MAP_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("growth", "f8")])
+MAP_DTYPE = [("omega", "f8"), ("tip_r", "f8"), ("growth", "f8")]
 
 
 @_lib.interruptible("stability_map")  # one block: Ctrl-C between its library calls too
@@ -291,9 +292,9 @@ def stability_map(omega: Any, mode: int, links: Union[int, Chain], damping: floa
     return out
 
 
-WINDOW_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
-                         ("freq_from", "f8"), ("freq_to", "f8"), ("max_growth", "f8"),
-                         ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")])
+WINDOW_DTYPE = [("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
+                ("freq_from", "f8"), ("freq_to", "f8"), ("max_growth", "f8"),
+                ("at", "f8"), ("err_from", "f8"), ("err_to", "f8")]
 
 
 def _windows_params(omega_min: Optional[float], omega_max: Optional[float],
@@ -413,9 +414,9 @@ def stability_windows(mode: int, links: Union[None, int, Chain] = None,
     return out, stats
 
 
-DISSIPATIVE_DTYPE = np.dtype([("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
-                              ("freq_from", "f8"), ("freq_to", "f8"), ("growth", "f8"),
-                              ("at", "f8"), ("verdict", "U10")])
+DISSIPATIVE_DTYPE = [("from", "f8"), ("to", "f8"), ("open_from", "?"), ("open_to", "?"),
+                     ("freq_from", "f8"), ("freq_to", "f8"), ("growth", "f8"),
+                     ("at", "f8"), ("verdict", "U10")]
 
 
 def dissipative_windows(mode: int, links: Union[int, Chain], damping: float = 0.0,

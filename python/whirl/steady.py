@@ -4,13 +4,14 @@ Units: dimensionless by default (chain length L = 1, mass M = 1, gravity g = 1: 
 sqrt(g/L), lengths in L, tensions in M g). Give ``length`` [m], ``mass`` [kg] and ``gravity``
 [m/s^2] (the command line's --length, --mass, --gravity) to work in SI units instead: rates are
 then in rad/s, lengths in m, tensions in N, tip masses in kg."""
+from __future__ import annotations
+
 import math
 import warnings
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
-import numpy as np
-
+from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float, as_array
 
@@ -223,7 +224,7 @@ def _mode(mode: Any, chain: Optional[Chain], continuum_max: Optional[int] = None
 
 
 def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
-             length: Optional[float] = None, mass: Optional[float] = None,
+             progress: Any = None, length: Optional[float] = None, mass: Optional[float] = None,
              gravity: Optional[float] = None, units: Optional[Units] = None) -> np.ndarray:
     """The linear critical rates omega_1..omega_modes at which modes 1..modes bifurcate from the
     hanging chain, as an array [sqrt(g/L), or rad/s with physical units].
@@ -231,7 +232,9 @@ def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: fl
     links=None: the continuous chain (j_{0,k}/2 without a tip mass; with a tip mass [M, or kg]
     the roots of a J0/Y0 determinant); links=N or a Chain: the normal-mode frequencies of the
     hanging N-link chain. ``whirl critical`` on the command line (the same units rule: see
-    Units)."""
+    Units). progress: the rates found (see whirl's progress=; the N-link chain's come in blocks
+    of about 0.02 s, tens of thousands of links take seconds; the continuum's report their
+    end). Ctrl-C raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     modes = as_int(modes, "modes", minimum=1)
     m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
@@ -241,16 +244,28 @@ def critical(modes: int = 3, links: Union[None, int, Chain] = None, tip_mass: fl
         if modes > lib.WHIRL_CONTINUUM_MODE_MAX:
             raise ValueError("modes must be <= %d, got %d" % (lib.WHIRL_CONTINUUM_MODE_MAX,
                                                              modes))
-        with _lib.interruptible("critical"):
-            status = lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out))
-        check(status, "critical", u)
+        with _progress.report(progress, "critical", modes, "rates") as rep:
+            with _lib.interruptible("critical"):
+                status = lib.whirl_continuum_critical_rates(modes, m, _lib.dptr(out))
+            check(status, "critical", u)
+            rep.finish()
     else:
         if modes > chain.n:
             raise ValueError("a chain of %d links has modes 1..%d, asked for %d"
                              % (chain.n, chain.n, modes))
-        with _lib.interruptible("critical"):
-            status = lib.whirl_nlink_critical(chain._c, modes, _lib.dptr(out))
-        check(status, "critical", u)
+        with _progress.report(progress, "critical", modes, "rates") as rep:
+            with _lib.interruptible("critical"):
+                if _progress.active(progress):
+                    @ffi.callback("whirl_nlink_critical_progress_fn")
+                    def found(ctx: Any, done: int, total: int) -> None:
+                        rep.c_update(done)
+                    status = lib.whirl_nlink_critical_report(chain._c, modes, _lib.dptr(out),
+                                                             found, ffi.NULL)
+                else:
+                    status = lib.whirl_nlink_critical(chain._c, modes, _lib.dptr(out))
+                rep.reraise()
+            check(status, "critical", u)
+            rep.finish()
     out *= u.rate
     _lib.finite("critical rates", out)
     return out
@@ -366,9 +381,9 @@ def _many(value: Any) -> bool:
 
 
 def shape(omega: Any, mode: int, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
-          points: int = 201, tip_r_guess: float = 0.0, length: Optional[float] = None,
-          mass: Optional[float] = None, gravity: Optional[float] = None,
-          units: Optional[Units] = None) -> Any:
+          points: int = 201, tip_r_guess: float = 0.0, progress: Any = None,
+          length: Optional[float] = None, mass: Optional[float] = None,
+          gravity: Optional[float] = None, units: Optional[Units] = None) -> Any:
     """The steady shape of mode ``mode`` (node count: the pivot plus mode-1 axis crossings) at
     the rotation rate ``omega`` [sqrt(g/L), or rad/s with length/mass/gravity given].
 
@@ -377,9 +392,10 @@ def shape(omega: Any, mode: int, links: Union[None, int, Chain] = None, tip_mass
     chain, one point per node. tip_mass [M, or kg]: a point mass at the free end. tip_r_guess
     > 0 seeds the root search (continuation). Returns a Shape; for a sequence of rates (a list,
     a 1-D array, a pint array; items may be texts with a unit, "4Hz") a Shapes, the list of
-    their shapes in the order given (each solved as alone). Raises whirl.InvalidInput (a
-    ValueError; status_name "EDOM") if the mode does not exist at omega, naming its critical
-    rate. Ctrl-C raises KeyboardInterrupt."""
+    their shapes in the order given (each solved as alone), progress= counting them (see
+    whirl's progress=; one shape reports its end). Raises whirl.InvalidInput (a ValueError; status_name "EDOM") if the
+    mode does not exist at omega, naming its critical rate. Ctrl-C raises KeyboardInterrupt;
+    over a sequence of rates its ``partial`` holds the Shapes solved before it."""
     u = units_of(length, mass, gravity, units)
     if _many(omega):
         rates = as_array(omega, "omega", positive=True, kind="rate", units=u)
@@ -387,9 +403,12 @@ def shape(omega: Any, mode: int, links: Union[None, int, Chain] = None, tip_mass
         size = (as_int(points, "points", minimum=2) if links is None
                 else links.n + 1 if isinstance(links, Chain) else links_count(links) + 1)
         _lib.bounded(rates.size, "len(omega)", 32 * size + 256)
-        with _lib.interruptible("shape"):
-            return Shapes(shape(float(w), mode, links, tip_mass, points, tip_r_guess, units=u)
-                          for w in rates)
+        return _shapes(rates, mode, links, tip_mass, points, tip_r_guess, progress, u)
+    if _progress.active(progress):  # one shape: its end
+        with _progress.report(progress, "shape", 1, "shapes") as rep:
+            one = shape(omega, mode, links, tip_mass, points, tip_r_guess, units=u)
+            rep.finish()
+        return one
     w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
     guess = as_float(tip_r_guess, "tip_r_guess", nonnegative=True,
@@ -450,12 +469,35 @@ def shape(omega: Any, mode: int, links: Union[None, int, Chain] = None, tip_mass
     return out
 
 
+def _shapes(rates: np.ndarray, mode: int, links: Union[None, int, Chain], tip_mass: float,
+            points: int, tip_r_guess: float, progress: Any, u: Units) -> Shapes:
+    """shape() over the rates (in the caller's units), one at a time: Ctrl-C between two of
+    them or inside one raises KeyboardInterrupt with the shapes solved so far (``partial``)."""
+    out = Shapes()
+    with _progress.report(progress, "shape", rates.size, "shapes") as rep:
+        try:
+            with _lib.interruptible("shape"):
+                for w in rates:
+                    if lib.whirl_stop_requested():
+                        lib.whirl_stop_clear()
+                        raise _lib.interrupted("shape")
+                    out.append(shape(float(w), mode, links, tip_mass, points, tip_r_guess,
+                                     units=u))
+                    rep.update(len(out))
+        except KeyboardInterrupt as e:
+            e.args = ("whirl: shape interrupted: %d of %d shapes" % (len(out), rates.size),)
+            e.partial = out  # type: ignore[attr-defined]
+            raise
+        rep.finish()
+    return out
+
+
 def _rate_unit(u: Units) -> str:
     return " rad/s" if u.physical else ""
 
 
-BRANCH_DTYPE = np.dtype([("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
-                         ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")])
+BRANCH_DTYPE = [("omega", "f8"), ("tip_r", "f8"), ("max_r", "f8"),
+                ("top_tension", "f8"), ("depth", "f8"), ("node_count", "i4")]
 
 
 @_lib.interruptible("sweep")  # one block: Ctrl-C between its library calls too
@@ -543,9 +585,9 @@ def _absent(mode: int, chain: Optional[Chain], tip_mass: float, w: np.ndarray, u
     return "mode %d has no shape at these rates" % mode
 
 
-EQUILIBRIA_DTYPE = np.dtype([("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
-                             ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
-                             ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")])
+EQUILIBRIA_DTYPE = [("node_count", "i4"), ("branch", "i4"), ("born_at", "f8"),
+                    ("tip_r", "f8"), ("max_r", "f8"), ("depth", "f8"),
+                    ("top_tension", "f8"), ("eig_growth", "f8"), ("index", "i4")]
 
 EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_levels",
                        "tip_unresolved", "check_roots", "check_shots", "check_levels", "matched",
@@ -556,8 +598,9 @@ EQUILIBRIA_EVIDENCE = ("born", "tip_roots", "tip_floor", "tip_shots", "tip_level
 
 def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: float = 0.0,
                stability: bool = True, branches: bool = True, follow_factor: float = 2.0,
-               shot_budget: int = 20000000, length: Optional[float] = None,
-               mass: Optional[float] = None, gravity: Optional[float] = None,
+               shot_budget: int = 20000000, progress: Any = None,
+               length: Optional[float] = None, mass: Optional[float] = None,
+               gravity: Optional[float] = None,
                units: Optional[Units] = None) -> Tuple[np.ndarray, Dict[str, Any]]:
     """Every planar relative equilibrium at the rate ``omega`` [sqrt(g/L), or rad/s] (mirror
     images r -> -r counted once), as ``whirl equilibria``: of the N-link chain (links=N or a
@@ -570,7 +613,10 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
     directions of the amended potential; -1 where eig_growth is NaN); and a dict of the
     completeness evidence (the counts of the two scans and the continuation, tip_floor in
     lengths, balance the largest force across a link over its tension). branches=False skips
-    the continuation (the scans only). Ctrl-C raises KeyboardInterrupt."""
+    the continuation (the scans only). progress: the search's stages (see whirl's progress=;
+    done counts the stages, with fractions within each: the N-link chain's 6, the scans, the
+    polishing of their roots, the continuation and the shapes; the continuum's 2). Ctrl-C
+    raises KeyboardInterrupt."""
     u = units_of(length, mass, gravity, units)
     w = as_float(omega, "omega", positive=True, kind="rate", units=u) / u.rate
     m = as_float(tip_mass, "tip_mass", nonnegative=True, kind="mass", units=u) / u.mass
@@ -581,9 +627,19 @@ def equilibria(omega: float, links: Union[None, int, Chain] = None, tip_mass: fl
     p.follow_factor = as_float(follow_factor, "follow_factor", positive=True)
     p.shot_budget = as_int(shot_budget, "shot_budget", minimum=1)
     out = ffi.new("whirl_equilibria **")
-    with _lib.interruptible("equilibria"):
-        status = lib.whirl_equilibria_find(ffi.NULL if chain is None else chain._c, m, w, p, out)
-    check(status, "equilibria", u)
+    c = ffi.NULL if chain is None else chain._c
+    with _progress.report(progress, "equilibria", 2 if chain is None else 6, "stages") as rep:
+        with _lib.interruptible("equilibria"):
+            if _progress.active(progress):
+                @ffi.callback("whirl_equilibria_progress_fn")
+                def stage(ctx: Any, at: Any) -> None:
+                    rep.c_update(at.stage - 1 + at.done / at.total)
+                status = lib.whirl_equilibria_find_progress(c, m, w, p, stage, ffi.NULL, out)
+            else:
+                status = lib.whirl_equilibria_find(c, m, w, p, out)
+            rep.reraise()
+        check(status, "equilibria", u)
+        rep.finish()
     e = ffi.gc(out[0], lib.whirl_equilibria_free)
     rows = np.empty(e.count, dtype=EQUILIBRIA_DTYPE)
     for i in range(e.count):

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "whirl/atlas.h"
 #include "whirl/common.h"
 
 /* ---- options ---- */
@@ -168,8 +169,7 @@ int cli_check_options_files(const cli_command *cmd, const cli_option *opts, size
 typedef struct cli_lock {
     FILE *fp;   /* the file locked, open for reading (a resumed map is read through it); NULL:
                  * no lock held */
-    int made;   /* this run made it (empty): removed at the release if still empty */
-    char *path;
+    whirl_atlas_file *file; /* the library's lock (whirl/atlas.h); NULL: none held */
 } cli_lock;
 /* Locks the map file path: a regular file that exists, or with make (a run that starts the map
  * afresh) one that does not yet, made empty first (O_EXCL) so that two runs started together on

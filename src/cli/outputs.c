@@ -8,14 +8,12 @@
  *   - a lock on a map file while a run writes it; the rows a resumed file keeps, checked;
  *   - the exit status after a signal. */
 #define _XOPEN_SOURCE 700 /* realpath */
-#define _DEFAULT_SOURCE    /* flock */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -312,99 +310,66 @@ void cli_out_abort(cli_out *out)
 
 /* ---- maps written by one run at a time ---- */
 
-/* The message of a lock another run holds. */
-static int locked_error(const cli_command *cmd, const char *path)
-{
-    return cli_error(cmd, "'%s' is being written by another run (locked): wait for it or write "
-                     "another file", path);
-}
+/* The lock is the library's (whirl_atlas_file, src/studies/atlas_file.c), shared with the
+ * Python package; here the cases the command line writes in place, and a stream to read the
+ * locked file through. */
 
 int cli_lock_take(const cli_command *cmd, cli_lock *l, const char *path, int make)
 {
     memset(l, 0, sizeof *l);
     if (path == NULL || strcmp(path, "-") == 0) return 0;
-    /* the file that exists, or a new one made by this run (O_EXCL: one run makes it); the path
-     * may change between the two tries (another run made or replaced it): a few tries */
-    for (int tries = 0; tries < 8; tries++) {
-        struct stat st, now;
-        int fd, made = 0;
-        if (stat(path, &st) == 0) {
-            if (!S_ISREG(st.st_mode)) return 0; /* a device: written in place, not locked */
-            /* O_NONBLOCK: never wait in open() (a FIFO put there since) */
-            fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY);
-        } else if (!make) return 0;
-        else if ((fd = open(path, O_RDWR | O_CREAT | O_EXCL | O_NOCTTY, 0666)) >= 0) made = 1;
-        if (fd < 0 && (errno == ENOENT || errno == EEXIST)) continue;
-        if (fd < 0) return cli_error(cmd, "cannot lock '%s': %s", path, strerror(errno));
-        /* flock, not a POSIX record lock: the latter ends when the process closes any
-         * descriptor of the file, as the reading of a resumed map does */
-        if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
-            const int err = errno;
-            close(fd); /* a file made here and locked by another run first is that run's now */
-            return err == EWOULDBLOCK ? locked_error(cmd, path)
-                                      : cli_error(cmd, "cannot lock '%s': %s", path, strerror(err));
-        }
-        /* the file locked must still be the one the path names (another run may have replaced
-         * it between the open and the lock) */
-        if (fstat(fd, &st) != 0 || stat(path, &now) != 0 || st.st_dev != now.st_dev ||
-            st.st_ino != now.st_ino || !S_ISREG(st.st_mode)) {
-            close(fd);
-            return cli_error(cmd, "'%s' was replaced by another run while this one started", path);
-        }
-        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
-        l->path = malloc(strlen(path) + 1);
-        l->fp = l->path ? fdopen(fd, "r") : NULL;
-        if (l->fp == NULL) {
-            if (made) unlink(path);
-            close(fd);
-            free(l->path);
-            l->path = NULL;
-            return cli_error(cmd, "out of memory");
-        }
-        strcpy(l->path, path);
-        l->made = made;
-        return 0;
+    struct stat st;
+    if (stat(path, &st) == 0 ? !S_ISREG(st.st_mode) : !make)
+        return 0; /* a device, written in place; a file to resume that is not there */
+    whirl_atlas_file *f = whirl_atlas_file_alloc(path, make);
+    if (f == NULL) return cli_error(cmd, "%s", whirl_last_error());
+    const int fd = dup(whirl_atlas_file_fd(f));
+    l->fp = fd >= 0 ? fdopen(fd, "r") : NULL;
+    if (l->fp == NULL) {
+        if (fd >= 0) close(fd);
+        whirl_atlas_file_free(f);
+        return cli_error(cmd, "out of memory");
     }
-    return cli_error(cmd, "cannot lock '%s': other runs keep making and removing it", path);
+    l->file = f;
+    return 0;
 }
 
 int cli_lock_commit(const cli_command *cmd, cli_lock *l, cli_out *out)
 {
-    if (l->fp == NULL || out->tmp == NULL) return cli_out_commit(cmd, out);
-    /* the new file is locked before it is renamed over the old one (nobody else can hold it:
-     * it has no name yet but its temporary one) */
+    if (l->file == NULL || out->tmp == NULL) return cli_out_commit(cmd, out);
+    /* the contents written whole (and synced) under the temporary name, then put in place by
+     * the library, which locks the new file before it renames it over the old one */
     const int fd = dup(fileno(out->fp));
-    if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0) {
-        const int err = errno;
+    int err = fd < 0 ? errno : out_close(out);
+    if (err) {
         if (fd >= 0) close(fd);
         cli_out_abort(out);
-        return cli_error(cmd, "cannot lock '%s': %s", l->path, strerror(err));
+        return cli_error(cmd, "cannot write %s: %s", out->shown, strerror(err));
     }
-    if (cli_out_commit(cmd, out)) {
-        close(fd);
-        return 1;
+    const int status = whirl_atlas_file_replace(l->file, fd, out->tmp);
+    close(fd);
+    if (status != GSL_SUCCESS) {
+        cli_out_abort(out);
+        return cli_error(cmd, "%s", whirl_last_error());
     }
-    FILE *fp = fdopen(fd, "r");
-    if (fp == NULL) { /* the new file stays unlocked: say so rather than go on unguarded */
-        close(fd);
-        return cli_error(cmd, "cannot lock '%s': %s", l->path, strerror(errno));
+    free(out->tmp);
+    out->tmp = NULL;
+    cli_out_abort(out);
+    /* the stream reads the new file */
+    const int again = dup(whirl_atlas_file_fd(l->file));
+    FILE *fp = again >= 0 ? fdopen(again, "r") : NULL;
+    if (fp == NULL) {
+        if (again >= 0) close(again);
+        return cli_error(cmd, "out of memory");
     }
-    fclose(l->fp); /* the old file's lock: it was replaced */
+    fclose(l->fp);
     l->fp = fp;
-    l->made = 0;
     return 0;
 }
 
 void cli_lock_release(cli_lock *l)
 {
-    if (l->fp) {
-        struct stat mine, now;
-        /* the empty file made to hold the lock, when the run wrote nothing in its place */
-        if (l->made && fstat(fileno(l->fp), &mine) == 0 && mine.st_size == 0 &&
-            stat(l->path, &now) == 0 && mine.st_dev == now.st_dev && mine.st_ino == now.st_ino)
-            unlink(l->path);
-        fclose(l->fp);
-    }
-    free(l->path);
+    if (l->fp) fclose(l->fp);
+    whirl_atlas_file_free(l->file);
     memset(l, 0, sizeof *l);
 }

@@ -27,13 +27,22 @@ static int judge(void *ctx, const double *r, const double *z, double *growth, in
 int whirl_equilibria_find(const whirl_chain *c, double tip_mass, double omega,
                           const whirl_equilibria_params *params, whirl_equilibria **out)
 {
+    return whirl_equilibria_find_progress(c, tip_mass, omega, params, NULL, NULL, out);
+}
+
+int whirl_equilibria_find_progress(const whirl_chain *c, double tip_mass, double omega,
+                                   const whirl_equilibria_params *params,
+                                   whirl_equilibria_progress_fn progress, void *ctx,
+                                   whirl_equilibria **out)
+{
     verdict_ws v = {0};
     v.model.chain = c;
     v.model.dim = 3;
     v.model.frame = WHIRL_FRAME_ROTATING;
     v.model.omega = omega;
     const whirl_equilibria_verdict verdict = {judge, &v};
-    const int status = whirl_equilibria_search(c, tip_mass, omega, params, &verdict, out);
+    const int status = whirl_equilibria_search(c, tip_mass, omega, params, &verdict, progress,
+                                               ctx, out);
     whirl_stability_free(v.w);
     return status;
 }

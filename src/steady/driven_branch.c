@@ -126,6 +126,15 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
                         const whirl_driven_info *start, int direction, double omega_min,
                         double omega_max, double step, whirl_driven_curve *curve)
 {
+    return whirl_driven_branch_tick(chain, params, start, direction, omega_min, omega_max, step,
+                                    curve, NULL, NULL);
+}
+
+int whirl_driven_branch_tick(const whirl_chain *chain, const whirl_driven_params *params,
+                             const whirl_driven_info *start, int direction, double omega_min,
+                             double omega_max, double step, whirl_driven_curve *curve,
+                             whirl_driven_branch_tick_fn tick, void *data)
+{
     if (direction != 1 && direction != -1)
         return whirl_fail(GSL_EINVAL, "direction must be +1 or -1, got %d", direction);
     if (!(isfinite(omega_min) && isfinite(omega_max) && omega_min > 0 && omega_min < omega_max))
@@ -142,11 +151,16 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
     double u[3] = {start->tip[0], start->tip[1], start->omega}, tau[3], D, unew[3], taunew[3], Dnew;
     double h = step;
     int iterations;
+    size_t ticked = 0; /* the points tick has seen */
     curve->n = curve->n_folds = 0;
     curve->complete = 0;
     status = branch_tangent(&pb, u, NULL, direction, tau, &D);
     if (status == GSL_SUCCESS) status = curve_append(&pb, curve, u, start->iterations, 0);
     while (status == GSL_SUCCESS && curve->n < curve->capacity) {
+        if (tick != NULL && curve->n > ticked) {
+            tick(data, curve);
+            ticked = curve->n;
+        }
         if (whirl_stop_requested()) {
             status = whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega = " WHIRL_Q_RATE
                                 "%g", u[2]);
@@ -177,6 +191,7 @@ int whirl_driven_branch(const whirl_chain *chain, const whirl_driven_params *par
         D = Dnew;
         if (iterations <= 3) h = fmin(step, 1.5 * h);
     }
+    if (tick != NULL && curve->n > ticked) tick(data, curve);
     driven_problem_free(&pb);
     return status;
 }

@@ -130,6 +130,15 @@ void whirl_equilibria_free(whirl_equilibria *e)
     free(e);
 }
 
+void eq_report(const eq_progress *p, int stage, size_t done, size_t total)
+{
+    if (p->fn == NULL) return;
+    const size_t every = total > 256 ? total / 256 : 1;
+    if (done != 0 && done != total && done % every != 0) return;
+    const whirl_equilibria_progress at = {stage, p->stages, done, total};
+    p->fn(p->ctx, &at);
+}
+
 static int cmp_tip(const void *x, const void *y)
 {
     double a = ((const whirl_equilibrium *)x)->info.tip_r;
@@ -138,7 +147,7 @@ static int cmp_tip(const void *x, const void *y)
 }
 
 static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria_params *par,
-                      angle_ws *aw, whirl_equilibria *res, eq_list *l)
+                      angle_ws *aw, whirl_equilibria *res, eq_list *l, const eq_progress *rep)
 {
     size_t n = c->n;
     double *crit = malloc(n * sizeof *crit);
@@ -166,6 +175,7 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     scan_out tip = {0}, top = {0};
     size_t n0 = 256 + 16 * n;
     if (!status) {
+        eq_report(rep, 1, 0, 1);
         res->tip_floor = FLOOR_NONLINEAR / per_tip;
         double x0 = log(res->tip_floor / s.length) - SCAN_BELOW_FLOOR;
         scan_problem pb = {eq_tip_fn, &s, n, par->shot_budget};
@@ -174,15 +184,18 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         res->tip_unresolved = tip.unresolved;
     }
     if (!status) {
+        eq_report(rep, 2, 0, 1);
         double y0 = log(FLOOR_NONLINEAR / per_top / M_PI_2) - SCAN_BELOW_FLOOR;
         scan_problem pb = {eq_pivot_fn, &s, n, par->shot_budget};
         status = eq_scan_settled(&pb, y0, SCAN_X_TOP, n0, &top, &res->check_levels);
         res->check_shots = top.evals;
     }
     /* the roots, polished */
+    if (!status) eq_report(rep, 3, 0, tip.n + 1);
     for (size_t i = 0; i < tip.n && !status; i++) {
         double x, a = 0;
         if ((status = eq_check_stop(i, tip.n))) break;
+        eq_report(rep, 3, i + 1, tip.n + 1);
         if (!(status = eq_polish(eq_tip_fn, &s, tip.br[i].lo, tip.br[i].hi, &x)))
             a = eq_tip_of_x(&s, x), status = eq_angles_of_scan(&s, x, aw->theta);
         if (!status)
@@ -196,9 +209,11 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
         if (!status) status = eq_list_add(l, a, aw->theta, 1);
     }
     res->tip_roots = tip.n;
+    if (!status) eq_report(rep, 4, 0, top.n + 1);
     for (size_t i = 0; i < top.n && !status; i++) {
         double y, g, a;
         if ((status = eq_check_stop(i, top.n))) break;
+        eq_report(rep, 4, i + 1, top.n + 1);
         if (!(status = eq_polish(eq_pivot_fn, &s, top.br[i].lo, top.br[i].hi, &y)))
             status = whirl_nlink_pivot_shot(c, omega, eq_theta_of_y(y), &g, NULL, &a, aw->theta,
                                             NULL, NULL);
@@ -219,6 +234,7 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
     if (!status) status = eq_list_unique(l);
     res->coincident = l->coincident;
     for (size_t i = 0; i < l->n; i++) res->matched += (l->source[i] & 3) == 3;
+    if (!status) eq_report(rep, 5, 0, 1);
     if (!status && par->continuation)
         status = eq_continue_all(c, omega, par->follow_factor, crit, l, aw, res);
     free(crit);
@@ -227,7 +243,8 @@ static int nlink_find(const whirl_chain *c, double omega, const whirl_equilibria
 
 /* ---- continuous chain ---- */
 
-static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, eq_list *l)
+static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, eq_list *l,
+                          const eq_progress *rep)
 {
     double crit[WHIRL_MODE_MAX + 1];
     int status = GSL_SUCCESS;
@@ -250,8 +267,10 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
     }
     res->born = n;
     /* method 2: Kolodner's shapes, one per mode */
+    if (!status) eq_report(rep, 1, 0, (size_t)n + 1);
     for (int k = 1; k <= n && !status; k++) {
         whirl_shape_info info;
+        eq_report(rep, 1, (size_t)k, (size_t)n + 1);
         if ((status = whirl_continuum_solve(omega, k, tip_mass, 0, &info))) break;
         if ((status = eq_list_add(l, info.tip_r, NULL, 2))) break;
         whirl_equilibrium *e = &l->eq[l->n - 1];
@@ -266,7 +285,9 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
     double *a = NULL, *r = NULL;
     int *cr = NULL;
     res->tip_floor = a_floor;
+    if (!status) eq_report(rep, 2, 0, SCAN_LEVELS_MAX);
     for (int level = 0; level < SCAN_LEVELS_MAX && !status; level++, m *= 2) {
+        if (level > 0) eq_report(rep, 2, (size_t)level, SCAN_LEVELS_MAX);
         double *a2 = realloc(a, (m + 1) * sizeof *a), *r2 = NULL;
         if (a2) a = a2;
         if (a2) r2 = realloc(r, (m + 1) * sizeof *r);
@@ -308,7 +329,9 @@ static int continuum_find(double tip_mass, double omega, whirl_equilibria *res, 
 
 int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
                             const whirl_equilibria_params *params,
-                            const whirl_equilibria_verdict *verdict, whirl_equilibria **out)
+                            const whirl_equilibria_verdict *verdict,
+                            whirl_equilibria_progress_fn progress, void *ctx,
+                            whirl_equilibria **out)
 {
     *out = NULL;
     whirl_equilibria_params par = params ? *params : whirl_equilibria_defaults();
@@ -332,13 +355,17 @@ int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
     for (size_t i = 0; i < l.links; i++) l.window += 2 * MATCH_ANGLE * c->length[i];
     angle_ws *aw = c ? eq_angle_ws_alloc(c, omega) : NULL;
     int status = c && aw == NULL ? whirl_last_status() : GSL_SUCCESS;
+    const eq_progress rep = {progress, ctx, c ? 6 : 2};
     if (!status)
-        status = c ? nlink_find(c, omega, &par, aw, res, &l) : continuum_find(tip_mass, omega, res, &l);
+        status = c ? nlink_find(c, omega, &par, aw, res, &l, &rep)
+                   : continuum_find(tip_mass, omega, res, &l, &rep);
+    if (!status && c) eq_report(&rep, 6, 0, l.n + 1);
     /* the shapes (polished once more, from their tip radii) and their linear verdicts */
     const int verdicts = c && par.stability && verdict != NULL;
     for (size_t i = 0; i < l.n && !status && c; i++) {
         whirl_equilibrium *e = &l.eq[i];
         if ((status = eq_check_stop(i, l.n))) break;
+        eq_report(&rep, 6, i + 1, l.n + 1);
         memcpy(aw->theta, l.theta + i * l.links, l.links * sizeof *aw->theta);
         if ((status = eq_angle_polish(aw, &e->info.tip_r))) break;
         whirl_nlink_info_nodes(c, aw->r, aw->z, aw->t, omega, e->branch > 0 ? e->branch : 0,
@@ -358,6 +385,8 @@ int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
         free(res);
         return status;
     }
+    if (c) eq_report(&rep, 6, l.n + 1, l.n + 1);
+    else eq_report(&rep, 2, SCAN_LEVELS_MAX, SCAN_LEVELS_MAX);
     qsort(l.eq, l.n, sizeof *l.eq, cmp_tip);
     res->eq = l.eq;
     res->count = l.n;

@@ -69,6 +69,18 @@ typedef struct eq_list {
     size_t coincident; /* roots of one scan merged into an equilibrium of the same scan */
 } eq_list;
 
+/* ---- the report of the search's progress (equilibria.c) ---- */
+
+typedef struct eq_progress {
+    whirl_equilibria_progress_fn fn; /* NULL: none */
+    void *ctx;
+    int stages;
+} eq_progress;
+
+/* progress->fn at item done of total in stage (done 0: the stage begins; about 256 calls a
+ * stage at most, the last item always) */
+void eq_report(const eq_progress *p, int stage, size_t done, size_t total);
+
 /* equilibria_scan.c: the adaptive sign-change scan */
 int eq_sign_of(double g);
 void eq_scan_out_free(scan_out *o);

@@ -28,13 +28,6 @@ typedef int (*steady_shot_fn)(void *ws, double a, double *residual, int *crossin
 int whirl_steady_shoot_root(steady_shot_fn shot, void *ws, int mode, double a_max, double guess,
                             double *a);
 
-/* whirl_nlink_critical with a report of the work done: the rates come in blocks (one call of
- * dstebz each, about 0.02 s), the stop request polled between blocks, and after each block
- * progress(ctx, done, nmodes) with the rates found so far (progress NULL: none). */
-typedef void (*whirl_nlink_critical_progress_fn)(void *ctx, size_t done, size_t total);
-int whirl_nlink_critical_report(const whirl_chain *c, size_t nmodes, double *omega,
-                                whirl_nlink_critical_progress_fn progress, void *ctx);
-
 /* The linear verdict of an N-link equilibrium, given by the module above (the stability module's
  * whirl_equilibria_find: the steady module does not depend on it): from the nodes r, z (N + 1)
  * of the shape at the search's rate, its growth and index; a GSL status. */
@@ -43,11 +36,13 @@ typedef struct whirl_equilibria_verdict {
     void *ctx;
 } whirl_equilibria_verdict;
 
-/* whirl_equilibria_find (whirl/steady.h) with the verdicts of verdict (NULL: none; eig_growth
- * and index left 0). */
+/* whirl_equilibria_find_progress (whirl/steady.h) with the verdicts of verdict (NULL: none;
+ * eig_growth and index left 0). */
 int whirl_equilibria_search(const whirl_chain *c, double tip_mass, double omega,
                             const whirl_equilibria_params *params,
-                            const whirl_equilibria_verdict *verdict, whirl_equilibria **out);
+                            const whirl_equilibria_verdict *verdict,
+                            whirl_equilibria_progress_fn progress, void *ctx,
+                            whirl_equilibria **out);
 
 /* A model for branch following: a workspace per thread and a solve with a seed. */
 typedef struct steady_model {

@@ -369,6 +369,53 @@ static void test_folds(void **state)
     whirl_chain_free(chain);
 }
 
+/* whirl_driven_branch_tick: the curve of whirl_driven_branch, reported after every point (the
+ * counts increasing, the last the curve's); a stop requested from the report ends the branch
+ * with WHIRL_EINTERRUPTED right there, the points reported kept as they were computed. */
+typedef struct branch_calls {
+    size_t calls, last, stop_after;
+    int increasing;
+} branch_calls;
+
+static void count_points(void *data, const whirl_driven_curve *curve)
+{
+    branch_calls *k = data;
+    k->increasing &= curve->n > k->last;
+    k->last = curve->n;
+    if (++k->calls == k->stop_after) whirl_stop_request();
+}
+
+static void test_branch_tick(void **state)
+{
+    (void)state;
+    whirl_driven_params p = params(2.0, 0.02, 0, 0, 0);
+    whirl_driven_info start;
+    assert_int_equal(whirl_driven_mode(NULL, &p, 1, -1, &start), GSL_SUCCESS);
+    whirl_driven_curve *plain = whirl_driven_curve_alloc(4000);
+    whirl_driven_curve *ticked = whirl_driven_curve_alloc(4000);
+    assert_non_null(plain);
+    assert_non_null(ticked);
+    assert_int_equal(whirl_driven_branch(NULL, &p, &start, -1, 0.8, 2.0, 0.05, plain),
+                     GSL_SUCCESS);
+    branch_calls k = {0, 0, 0, 1};
+    assert_int_equal(whirl_driven_branch_tick(NULL, &p, &start, -1, 0.8, 2.0, 0.05, ticked,
+                                              count_points, &k),
+                     GSL_SUCCESS);
+    assert_true(plain->complete && ticked->complete && plain->n_folds == 1);
+    assert_true(ticked->n == plain->n && k.increasing && k.last == plain->n);
+    assert_true(k.calls >= plain->n - plain->n_folds); /* a fold and its point: one call */
+    assert_memory_equal(ticked->point, plain->point, plain->n * sizeof *plain->point);
+    branch_calls stop = {0, 0, 5, 1};
+    assert_int_equal(whirl_driven_branch_tick(NULL, &p, &start, -1, 0.8, 2.0, 0.05, ticked,
+                                              count_points, &stop),
+                     WHIRL_EINTERRUPTED);
+    whirl_stop_clear();
+    assert_true(stop.calls == 5 && ticked->n == stop.last && !ticked->complete);
+    assert_memory_equal(ticked->point, plain->point, ticked->n * sizeof *plain->point);
+    whirl_driven_curve_free(plain);
+    whirl_driven_curve_free(ticked);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -426,6 +473,7 @@ int main(void)
         cmocka_unit_test(test_nlink_converges),
         cmocka_unit_test(test_higher_modes),
         cmocka_unit_test(test_folds),
+        cmocka_unit_test(test_branch_tick),
         cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

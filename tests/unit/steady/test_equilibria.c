@@ -493,6 +493,64 @@ static void test_tip_slopes(void **state)
     whirl_chain_free(c);
 }
 
+/* whirl_equilibria_find_progress: the result of whirl_equilibria_find, with (stage, done)
+ * never decreasing over the stages and ending at the last stage's total; a stop requested from
+ * the report (in the polishing of the roots) ends the search with WHIRL_EINTERRUPTED. */
+typedef struct eq_calls {
+    int calls, stage, stages, ordered, stop_stage;
+    size_t done, total;
+} eq_calls;
+
+static void count_stages(void *ctx, const whirl_equilibria_progress *at)
+{
+    eq_calls *k = ctx;
+    k->ordered &= at->stage > k->stage || (at->stage == k->stage && at->done >= k->done);
+    k->ordered &= at->stage >= 1 && at->stage <= at->stages && at->done <= at->total;
+    k->calls++;
+    k->stage = at->stage;
+    k->stages = at->stages;
+    k->done = at->done;
+    k->total = at->total;
+    if (at->stage == k->stop_stage) whirl_stop_request();
+}
+
+static void test_progress(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(5, 0);
+    for (int model = 0; model < 2; model++) {
+        const whirl_chain *chain = model ? c : NULL;
+        const double omega = model ? 9.0 : 8.0;
+        whirl_equilibria *plain = NULL, *reported = NULL;
+        assert_int_equal(whirl_equilibria_find(chain, 0, omega, NULL, &plain), GSL_SUCCESS);
+        eq_calls k = {0, 0, 0, 1, 0, 0, 0};
+        assert_int_equal(whirl_equilibria_find_progress(chain, 0, omega, NULL, count_stages, &k,
+                                                        &reported),
+                         GSL_SUCCESS);
+        assert_true(k.ordered && k.stages == (model ? 6 : 2) && k.stage == k.stages &&
+                    k.done == k.total && k.calls > k.stages);
+        assert_true(plain->count == reported->count && plain->count > 2);
+        for (size_t i = 0; i < plain->count; i++) {
+            const whirl_equilibrium *a = &plain->eq[i], *b = &reported->eq[i];
+            assert_true(a->branch == b->branch && a->index == b->index &&
+                        a->info.n_nodes == b->info.n_nodes);
+            assert_memory_equal(&a->info.tip_r, &b->info.tip_r, sizeof a->info.tip_r);
+            assert_memory_equal(&a->born_at, &b->born_at, sizeof a->born_at);
+            assert_memory_equal(&a->eig_growth, &b->eig_growth, sizeof a->eig_growth);
+        }
+        whirl_equilibria_free(plain);
+        whirl_equilibria_free(reported);
+    }
+    eq_calls stop = {0, 0, 0, 1, 3, 0, 0};
+    whirl_equilibria *e = NULL;
+    assert_int_equal(whirl_equilibria_find_progress(c, 0, 9.0, NULL, count_stages, &stop, &e),
+                     WHIRL_EINTERRUPTED);
+    whirl_stop_clear();
+    assert_null(e);
+    assert_true(stop.ordered && stop.stage == 3);
+    whirl_chain_free(c);
+}
+
 static void test_errors(void **state)
 {
     (void)state;
@@ -532,7 +590,7 @@ int main(void)
         cmocka_unit_test(test_ten_links_high_rate), cmocka_unit_test(test_crowded_roots),
         cmocka_unit_test(test_kolodner),
         cmocka_unit_test(test_pivot_derivative), cmocka_unit_test(test_tip_slopes),
-        cmocka_unit_test(test_errors),
+        cmocka_unit_test(test_progress), cmocka_unit_test(test_errors),
     };
     return cmocka_run_group_tests_name("equilibria", tests, NULL, NULL);
 }

@@ -167,6 +167,52 @@ static void test_critical_vs_dense(void **state)
     }
 }
 
+/* whirl_nlink_critical_report: the rates of whirl_nlink_critical, reported block by block (done
+ * increasing to nmodes, total nmodes throughout); a stop requested from the report ends the
+ * call with WHIRL_EINTERRUPTED after the block under way, those rates kept. */
+typedef struct critical_calls {
+    size_t calls, last, total, stop_after;
+    int increasing;
+} critical_calls;
+
+static void count_critical(void *ctx, size_t done, size_t total)
+{
+    critical_calls *k = ctx;
+    k->increasing &= done > k->last && done <= total;
+    k->last = done;
+    k->total = total;
+    if (++k->calls == k->stop_after) whirl_stop_request();
+}
+
+static void test_critical_report(void **state)
+{
+    (void)state;
+    const size_t n = 3000, modes = 1000; /* blocks of 200000 / n = 66 rates: 16 blocks */
+    whirl_chain *c = irregular_chain(n);
+    assert_non_null(c);
+    double *plain = malloc(modes * sizeof *plain), *reported = malloc(modes * sizeof *reported);
+    assert_non_null(plain);
+    assert_non_null(reported);
+    assert_int_equal(whirl_nlink_critical(c, modes, plain), GSL_SUCCESS);
+    critical_calls k = {0, 0, 0, 0, 1};
+    assert_int_equal(whirl_nlink_critical_report(c, modes, reported, count_critical, &k),
+                     GSL_SUCCESS);
+    assert_true(k.increasing && k.last == modes && k.total == modes && k.calls == 16);
+    assert_memory_equal(plain, reported, modes * sizeof *plain);
+    critical_calls stop = {0, 0, 0, 3, 1};
+    memset(reported, 0, modes * sizeof *reported);
+    assert_int_equal(whirl_nlink_critical_report(c, modes, reported, count_critical, &stop),
+                     WHIRL_EINTERRUPTED);
+    whirl_stop_clear();
+    assert_true(stop.calls == 3 && stop.last == 3 * 66);
+    assert_memory_equal(plain, reported, stop.last * sizeof *plain);
+    assert_int_equal(whirl_nlink_critical_report(c, modes, reported, NULL, NULL), GSL_SUCCESS);
+    assert_memory_equal(plain, reported, modes * sizeof *plain);
+    free(plain);
+    free(reported);
+    whirl_chain_free(c);
+}
+
 /* The uniform chain's rates tend to j_{0,k}/2 with an error of order 1/N. */
 static void test_critical_to_continuum(void **state)
 {
@@ -280,6 +326,7 @@ int main(void)
         cmocka_unit_test(test_conical_pendulum),
         cmocka_unit_test(test_critical_vs_dense),
         cmocka_unit_test(test_critical_to_continuum),
+        cmocka_unit_test(test_critical_report),
         cmocka_unit_test(test_modes_everywhere),
         cmocka_unit_test(test_branch_equals_fresh),
         cmocka_unit_test(test_errors),
