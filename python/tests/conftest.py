@@ -45,6 +45,17 @@ SLOW = {
     "test_notebooks.py::test_notebook_runs": "a Jupyter kernel per notebook; the calls "
     "they make are the ones the other tests make",
     "test_notebooks.py::test_notebooks_import": "two Jupyter kernels; nothing computed",
+    # the atlas's chunks computed again and again (mode 3 to omega 6: a minute and a half under
+    # the sanitizers): under them the library's atlas, its stop and its resume run in
+    # test_atlas.c and tests/cli/test_stability_stops.sh, Python's side of a stop in
+    # test_ctrl_c_inside_a_chunk and of a resume in test_resume_refuses_other_options_and_bad_rows
+    "test_atlas.py::test_ctrl_c_keeps_the_chunks_and_the_command_line_resumes":
+    "four atlas chunks computed twice over",
+    "test_atlas.py::test_resume_a_command_line_file": "a chunk of mode 3 computed",
+    # mode 8's continuum window at 731 collocation points; the same bound and the same computation
+    # run under the sanitizers in tests/cli/test_stability.sh, the refusal in
+    # test_continuum_windows_memory_refused
+    "test_equilibria.py::test_continuum_windows_memory_bound": "mode 8's window of the continuum",
 }
 
 

@@ -133,10 +133,14 @@ def test_continuum_windows_bad_input():
         whirl.stability_windows(2, 10, 4.39, 4.41, memory_mb=100)
 
 
-def test_continuum_windows_memory_bound():
+def test_continuum_windows_memory_refused():
     # mode 8 at 20.5 needs 731 collocation points, more than the 720 that 16 MB hold (the
-    # command line's test_stability.sh); 32 MB hold them
+    # command line's test_stability.sh)
     with pytest.raises(whirl.Error, match="731 collocation points.*16 MB hold"):
         whirl.stability_windows(8, None, 20, 21, memory_mb=16)
+
+
+def test_continuum_windows_memory_bound():
+    # 32 MB hold mode 8's 731 collocation points
     windows, stats = whirl.stability_windows(8, None, 20, 21, memory_mb=32)
     assert stats["scan"] > 0
