@@ -35,6 +35,11 @@ BENCH_SRC := $(wildcard tests/bench/bench_*.c)
 LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(TEST_SRC:.c=)))
+# every program builds flat into BUILD/tests/NAME: two sources of one name would make one program
+TEST_DUPS := $(shell printf '%s\n' $(notdir $(TEST_SRC) $(BENCH_SRC)) | sort | uniq -d)
+ifneq ($(TEST_DUPS),)
+$(error tests/unit and tests/bench hold two programs named $(TEST_DUPS): rename one)
+endif
 BENCH_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(BENCH_SRC:.c=)))
 # the peers' programs (built with the peers' flags, below)
 PEER_BIN := $(BUILD)/tests/bench_peers $(BUILD)/tests/test_peers

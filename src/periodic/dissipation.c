@@ -16,7 +16,7 @@
  *          sum_{j <= i} delta d_j',  a_i = c + c2 |v_i|,  u_i = sqrt(c2 / |v_i|) v_i,
  * from d(|v| v) = |v| dv + v (v . dv) / |v| (u_i = 0 at v_i = 0, where |v| v has the derivative 0);
  * the internal damping is linear in (d, d'): its derivative is the same sweeps applied to
- * (delta d, delta d'). tests/unit/periodic/test_dissipative.c checks both against central
+ * (delta d, delta d'). tests/unit/periodic/test_periodic_dissipative.c checks both against central
  * differences of these forces and of whirl_dyn_rhs. */
 #include <math.h>
 #include <string.h>

@@ -58,7 +58,7 @@ if grep -q '^# verdict=stable' "$tmp/damped.csv" && grep -q '^# dissipation: dra
    && grep -q 'not in pairs: not an error' "$tmp/damped.csv" \
    && grep -v '^#' "$tmp/damped.csv" | awk -F, 'NR > 1 { d = $4 - exp(-0.15 * 2 * 3.141592653589793 / 1.3); if (d * d > 1e-22) bad = 1; n++ } END {exit bad || n != 2}'; then
   pass "periodic damped: |mu| = exp(-D T / 2)"; else fail "periodic damped: |mu| = exp(-D T / 2)"; fi
-# the dragged circle drive's torus (tests/unit/periodic/test_dissipative.c: at the root of the
+# the dragged circle drive's torus (tests/unit/periodic/test_periodic_dissipative.c: at the root of the
 # steady linearisation's growth rate, 2.850665362775)
 expect_ok "periodic drag torus" periodic --pivot circle:0.05 --omega 2.8 --links 3 --start steady --mode 2 --side -1 --drag 0.05 --omega-min 2.8 --omega-max 2.9 --up --arc-step 0.02 -o "$tmp/torus.csv"
 if grep '^# torus omega=' "$tmp/torus.csv" | awk '{sub("omega=", "", $3); d = $3 - 2.850665362775; exit !(d * d < 1e-16)}' \
