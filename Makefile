@@ -36,7 +36,7 @@ LIB_OBJ  := $(LIB_SRC:%.c=$(BUILD)/%.o)
 CLI_OBJ  := $(CLI_SRC:%.c=$(BUILD)/%.o)
 TEST_BIN := $(addprefix $(BUILD)/tests/,$(notdir $(TEST_SRC:.c=)))
 # every program builds flat into BUILD/tests/NAME: two sources of one name would make one program
-TEST_DUPS := $(shell printf '%s\n' $(notdir $(TEST_SRC) $(BENCH_SRC)) | sort | uniq -d)
+TEST_DUPS := $(shell printf '%s\n' $(notdir $(basename $(TEST_SRC) $(BENCH_SRC))) | sort | uniq -d)
 ifneq ($(TEST_DUPS),)
 $(error tests/unit and tests/bench hold two programs named $(TEST_DUPS): rename one)
 endif
