@@ -35,9 +35,10 @@
 #include "core/error.h"
 #include "periodic/chart_modes.h"
 
-/* Steps per radian of a mode's phase per period (at least): h sqrt|w| <= 1/16, where the
- * extrapolated trace of Mathieu's equation (a, q up to 10) is good to ~1e-12
- * (tests/unit/periodic/test_chart_modes.c). */
+/* Steps per radian of a mode's phase per period (at least): h sqrt|w| <= 1/16. With 200 and 400
+ * steps the extrapolated trace of Mathieu's equation (lambda 1 to 19, omega 1 to 2.4, A = 0.1:
+ * up to 12 radians per period) is within 3e-13 of 20000 steps; the modes' product equals the
+ * full monodromy's det(M -+ I) to 1.5e-12 of its scale (tests/unit/periodic/test_chart_modes.c). */
 #define CHART_STEPS_PER_RADIAN 16
 
 int chart_modes(const whirl_chain *c, double *lambda)
