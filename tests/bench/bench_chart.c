@@ -2,11 +2,12 @@
  * hanging chain of N equal links over rates 1 to 8 and amplitudes up to A_max (200 x 200), its
  * processor and wall time, the points, curves and modal monodromies, and the cost's growth in N;
  * then the inverted chain (rates 20 to 60, A <= 0.1). Not a test: times only.
- * Usage: bench_chart [OUT [N ...]] (scripts/bench.sh passes its output folder OUT, unused here;
- * N default 1 3 10 30 100). Prints a table and the load. */
+ * Usage: bench_chart [OUT [hanging|inverted|both [N ...]]] (scripts/bench.sh passes its output
+ * folder OUT, unused here; default both, N 1 3 10 30 100). Prints a table and the load. */
 #define BENCH_NAME "bench_chart"
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include <gsl/gsl_errno.h>
@@ -60,9 +61,12 @@ int main(int argc, char **argv)
            "A <= 0.1; load %.2f\n", amp_max, bench_load_average());
     printf("# chain         N   points curves  monodromies    cpu [s]   wall [s]  us/mono\n");
     static const int defaults[] = {1, 3, 10, 30, 100};
+    const char *which = argc > 2 ? argv[2] : "both";
     for (int inverted = 0; inverted < 2; inverted++) {
-        if (argc > 2)
-            for (int i = 2; i < argc; i++) run(atoi(argv[i]), inverted, amp_max);
+        if (strcmp(which, "both") != 0 && strcmp(which, inverted ? "inverted" : "hanging") != 0)
+            continue;
+        if (argc > 3)
+            for (int i = 3; i < argc; i++) run(atoi(argv[i]), inverted, amp_max);
         else
             for (size_t i = 0; i < sizeof defaults / sizeof defaults[0]; i++)
                 run(defaults[i], inverted, amp_max);
