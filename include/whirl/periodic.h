@@ -317,16 +317,20 @@ WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const 
  *
  * The chain hanging straight down (or standing straight up) moves with a pivot shaken
  * vertically, A cos(omega t): the vertical state is a periodic motion for every omega and A, so
- * no Newton's method is needed, only the monodromy of its linearisation. Its multipliers come in
- * pairs mu, 1/mu; with rho = mu + 1/mu per pair,
- *   det(M - I) = prod_k (2 - rho_k),   det(M + I) = prod_k (2 + rho_k),
- * smooth in (omega, A) where single multipliers near a collision are not, and each changes sign
- * where a pair passes +1 (resp. -1): the edges of the chart. An edge is a curve A(omega),
- * located per rate by Brent's method on A to the tolerance and followed from rate to rate with
- * the previous point as the centre of the next bracket; a column is scanned on `rows` amplitudes
- * for new curves at the first rate, where the count of edges disagrees with the signs at the
- * range's ends, and (hanging) where a tongue's tip 2 omega_k / n (omega_k the unshaken chain's
- * frequencies) lies between two rates. */
+ * no Newton's method is needed, only the monodromy of its linearisation, which decouples
+ * exactly into one Hill equation per mode of the pencil G v = lambda M v of the straight chain
+ * (M its mass matrix, g G gravity's stiffness): q_k'' + sigma lambda_k (g + z'') q_k = 0
+ * (sigma = +1 hanging, -1 inverted). With M_k the 2 x 2 monodromy of mode k,
+ *   det(M - I) = prod_k (2 - tr M_k)^planes,   det(M + I) = prod_k (2 + tr M_k)^planes,
+ * and each factor f_+k = 2 - tr M_k (f_-k = 2 + tr M_k) is smooth in (omega, A) and changes sign
+ * where mode k's pair of multipliers passes +1 (resp. -1): the edges of the chart, one family
+ * of curves per mode and kind, so that two modes' edges that cross do not interfere. An edge is
+ * a curve A(omega), located per rate by Brent's method on A to the tolerance and followed from
+ * rate to rate with the previous point as the centre of the next bracket; a mode is scanned on
+ * `rows` amplitudes for new curves at the first rate, where the count of a family's edges
+ * disagrees with the signs at the range's ends, and (hanging) where a tip 2 omega_k / n of its
+ * tongues (omega_k = sqrt(g lambda_k), the unshaken chain's frequencies) lies between two rates
+ * (src/periodic/chart.c, chart_modes.c). */
 
 typedef struct whirl_chart_params {
     int inverted;     /* 0: the hanging chain (its tongues of instability); 1: the inverted chain
@@ -338,14 +342,17 @@ typedef struct whirl_chart_params {
                          tongues touch their edges without crossing them) */
     double amp_max;   /* the highest amplitude [L], > amp_min (no default) */
     int rows;         /* amplitudes of a column's scan for new curves (>= 2); 0: 200 */
-    int steps;        /* Gauss steps per period of the coarser monodromy, the finer has twice
-                         (>= 8); 0: 200; raised as whirl_periodic_find raises it */
+    int steps;        /* steps per period of the coarser monodromy of each mode (Magnus, order
+                         4), the finer has twice (>= 8); 0: 200; raised per mode so that a step
+                         turns the mode's phase by at most 1/16 rad */
     double tol;       /* an edge's bracket in amplitude at most this wide [L]; 0: 1e-10 */
 } whirl_chart_params;
 
 typedef struct whirl_chart_point {
     whirl_floquet_edge kind; /* WHIRL_FLOQUET_EDGE_PLUS_ONE or _MINUS_ONE */
-    int curve;        /* the curve's number, from 0 in the order found */
+    int curve;        /* the curve's number, from 0 in the order found; a curve is one mode's
+                         and one kind's, and a tongue's two edges joined at its tip (hanging)
+                         share one number, that of the edge found first (numbers may skip) */
     int column;       /* the rate's index, from 0 */
     double omega;     /* [sqrt(g/L)] */
     double amplitude; /* [L] */
@@ -356,7 +363,7 @@ typedef struct whirl_chart_point {
 typedef struct whirl_chart_progress {
     int column, columns; /* the rate under way (from 0) and the count */
     int curves;          /* curves found so far */
-    long monodromies;    /* monodromies computed so far */
+    long monodromies;    /* the modes' 2 x 2 monodromies computed so far */
 } whirl_chart_progress;
 
 /* Called once per point as soon as it is located (in order of rate); a non-zero return stops
@@ -369,7 +376,7 @@ typedef void (*whirl_chart_tick_fn)(void *data, const whirl_chart_progress *prog
  * GSL_EINVAL with a message on bad parameters; WHIRL_EINTERRUPTED on a stop request (the points
  * handed to row so far stand); an integration's status. tick may be NULL.
  * @param c the chain
- * @param dim 2 or 3
+ * @param dim 2 or 3 (the same chart: in 3D each mode's factor appears once per plane)
  * @param params the chart's range, resolution and tolerance
  * @param row called for every point, or NULL
  * @param row_data passed to row

@@ -532,7 +532,8 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .range = "[-1, 1]"},
         {.name = "--steps", .type = CLI_INT, .value = &o.steps, .meta = "S",
          .help = "Gauss steps per period of the coarser solve or monodromy (default 400, "
-                 "--chart 200; raised to the chain's bound); the finer takes twice as many",
+                 "raised to the chain's bound; --chart hanging or inverted: each mode's steps, "
+                 "default 200, raised per mode); the finer takes twice as many",
          .range = "[8, 16777216]"},
         {.name = "--tol", .type = CLI_DOUBLE, .value = &o.tol, .meta = "TOL",
          .help = "Newton: largest scaled |P(y) - y| (default 1e-10)", .range = "(0, 1]"},

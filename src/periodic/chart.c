@@ -2,46 +2,55 @@
  * the edges where a pair of multipliers of the vertical state passes +1 or -1, as curves
  * A(omega) in the plane of the rate and the amplitude.
  *
- * The edge functions, for the monodromy M of the vertical state (2N x 2N in 2D, pairs mu, 1/mu,
- * rho_k = mu_k + 1/mu_k):
- *   f_+ = det(M - I) = prod_k (2 - rho_k),   f_- = det(M + I) = prod_k (2 + rho_k).
- * For N = 1, f_+ = 2 - tr M: the trace test of Mathieu's equation. Each is computed from the
- * monodromies with s and 2 s steps per period and extrapolated (Gauss, order 4):
- * f = f(h/2) + (f(h/2) - f(h)) / 15; the difference (f(h/2) - f(h)) / 15 over the slope in A is the
- * shift of the root by the extrapolation, part of the point's error estimate.
+ * The edge functions are the modes' (chart_modes.c): the linearisation about the vertical state
+ * decouples exactly into the Hill equations q_k'' + sigma lambda_k (g + z''(t)) q_k = 0 of the
+ * pencil G v = lambda M v, so det(M -+ I) of the chain's monodromy is prod_k (2 -+ tr M_k)^planes,
+ * and each factor
+ *   f_+k = 2 - tr M_k   (a multiplier pair of mode k through +1),
+ *   f_-k = 2 + tr M_k   (through -1)
+ * is a smooth function whose zeros are that mode's edges alone. A curve belongs to one family
+ * (mode, kind) and is located and followed on that family's factor: two modes' edges that cross
+ * are two simple roots of two functions (on the product they were a double root, and the curves
+ * broke there). For N = 1, f_+ is the trace test of Mathieu's equation. Each factor is computed
+ * from the mode's 2 x 2 monodromy with s and 2 s steps per period (s raised per mode,
+ * chart_mode_steps) and extrapolated (order 4): f = f(h/2) + (f(h/2) - f(h)) / 15; the
+ * difference (f(h/2) - f(h)) / 15 over the slope in A is the shift of the root by the
+ * extrapolation, part of the point's error estimate.
  *
  * Following a curve: at the next rate, a bracket centred on the previous amplitude of
  * half-width max(2 |the last change in A|, a scan's spacing), doubled up to BRACKET_DOUBLINGS
- * times until f changes sign across it, then Brent's method (core/roots.h) to the tolerance. A
- * curve that finds no bracket (it left the range, or turned back in omega) ends, so does one whose
- * linear extrapolation leaves the range, and one
- * whose root bends more than a smooth curve can between two rates (the second difference in A
- * above the last change or a scan's spacing): that root is another curve's (the two edges of a
- * tongue meet at its tip; the follower of one would otherwise walk on to the other). A column is
- * scanned for new curves (f at `rows` amplitudes, the coarser monodromy alone, each sign change
- * not explained by a followed curve located by Brent) at the first rate; when the parity of the
- * edges found disagrees with the signs of f at the range's ends (a curve entered or left); and,
- * for the hanging chain, when a tongue's tip omega = 2 omega_k / n (omega_k the unshaken chain's
- * frequencies, K v = omega_k^2 M v in the link angles) lies between the last rate and this one,
- * where a tongue's two edges are born together and the parity cannot tell. */
+ * times until its factor changes sign across it, then Brent's method (core/roots.h) to the
+ * tolerance. A curve that finds no bracket (it left the range, or turned back in omega) ends, so
+ * does one whose linear extrapolation leaves the range, and one whose root bends more than a
+ * smooth curve can between two rates (the second difference in A above the last change or a
+ * scan's spacing): that root is another curve's of the same family (the two edges of a tongue
+ * meet at its tip; the follower of one would otherwise walk on to the other). A mode's factors
+ * are scanned for new curves (at `rows` amplitudes, the coarser monodromy alone, each sign change
+ * not explained by a followed curve of the family located by Brent) at the first rate; when the
+ * parity of a family's edges disagrees with the signs of its factor at the range's ends (a curve
+ * entered or left); and, for the hanging chain, when a tip omega = 2 omega_k / n of the mode's
+ * tongues (omega_k = sqrt(g lambda_k), the unshaken chain's frequency) lies between the last
+ * rate and this one, where a tongue's two edges are born together and the parity cannot tell.
+ * The inverted chain's edges have no tips: at A = 0 its modes' multipliers are
+ * exp(+-sqrt(g lambda_k) T), real, so f_+k = 2 - 2 cosh(sqrt(g lambda_k) T) < 0 < f_-k and no
+ * edge reaches A = 0 (Mathieu's a_k = -4 g lambda_k / omega^2 < 0, below every tongue's tip
+ * a = n^2); its edges enter and leave the chart through the range's sides. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <gsl/gsl_eigen.h>
-#include <gsl/gsl_linalg.h>
-#include <gsl/gsl_matrix.h>
 #include <omp.h>
 
 #include "core/error.h"
 #include "core/roots.h"
-#include "periodic/periodic_internal.h"
+#include "periodic/chart_modes.h"
 
 #define COLUMNS_DEFAULT 200 /* the 200 x 200 chart */
 #define ROWS_DEFAULT 200
-/* Steps per period of the coarser monodromy: with the extrapolation from 200 and 400 the
- * Mathieu edges (N = 1, omega up to 10) agree with the characteristic values to ~1e-12 in q
- * (tests/unit/periodic/test_chart.c), four orders below the issue's 1e-8. */
+/* Steps per period of the coarser monodromy (at least; chart_mode_steps raises them per mode):
+ * with the extrapolation from 200 and 400 the Mathieu edges (N = 1, omega up to 10) agree with
+ * the characteristic values to ~1e-12 in q (tests/unit/periodic/test_chart.c), four orders below
+ * the issue's 1e-8. */
 #define STEPS_DEFAULT 200
 /* An edge's bracket width [L]: two orders below the 1e-8. */
 #define TOL_DEFAULT 1e-10
@@ -51,9 +60,13 @@
 /* Brent iterations: superlinear on the smooth f, 1e-10 of a 0.5 range in ~10; bisection alone
  * would take 33. */
 #define BRENT_ITER 100
+/* A factor beyond this (a mode far from its edges, its monodromy overflowing) counts by its
+ * sign alone. */
+#define FACTOR_HUGE 1e300
 
 typedef struct chart_curve {
     whirl_floquet_edge kind;
+    int mode;      /* the mode whose factor's root it is (from 0, by increasing lambda) */
     int id;
     int alive;
     double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
@@ -64,16 +77,18 @@ typedef struct chart_curve {
     double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
 } chart_curve;
 
+typedef struct chart_tip {
+    double omega;
+    int mode;
+} chart_tip;
+
 typedef struct chart chart;
 
-/* One thread's workspace: the monodromies at the chart's current rate. */
+/* One thread's workspace: the family and the rate of its evaluations. */
 typedef struct chart_ws {
     const chart *ch;
-    whirl_periodic *w;
-    double *y;          /* the vertical state */
-    gsl_matrix *lu;     /* m x m */
-    gsl_permutation *perm;
     long monodromies;
+    int mode;                /* of the root under way */
     whirl_floquet_edge kind; /* of the root under way */
     double shift;       /* (f(h/2) - f(h)) / 15 at the last fine evaluation of kind */
     double omega;       /* the rate of the evaluations; NAN: the chart's current rate */
@@ -88,8 +103,13 @@ struct chart {
     double omega;       /* the current rate */
     chart_curve *curves;
     int count, cap;
-    double *freq;       /* the unshaken chain's frequencies (hanging), n */
-    double *tips;       /* the tips reached so far (one curve descends to each) */
+    int n;              /* the modes */
+    double *coef;       /* sigma lambda_k (chart_modes.c), n */
+    int *steps;         /* the coarser monodromy's steps per period, per mode */
+    double *freq;       /* the unshaken chain's frequencies sqrt(g lambda_k) (hanging), n */
+    int *rescan;        /* per mode: its factors scanned at this rate */
+    double *ends;       /* per mode, the range's two ends: f_+, f_- (4 n) */
+    chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
     int tips_count, tips_cap;
 };
 
@@ -118,48 +138,49 @@ static int parallel_items(chart *ch, int count, int (*work)(chart_ws *, void *, 
     return status;
 }
 
-/* f_+ and f_- of the monodromy with steps per period at (omega, amp). */
-static int edge_functions(chart_ws *s, double amp, int steps, double f[2])
+/* f_+ and f_- of the mode with mult times its coarser steps per period at (omega, amp). */
+static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[2])
 {
     whirl_pivot_path path;
     const double up[3] = {0, 0, 1};
     const double omega = isnan(s->omega) ? s->ch->omega : s->omega;
-    int status = whirl_pivot_line(&path, omega, amp, up);
+    if (whirl_stop_requested())
+        return whirl_fail(WHIRL_EINTERRUPTED, "stopped by request at omega=" WHIRL_Q_RATE "%.17g",
+                          omega);
+    const int status = whirl_pivot_line(&path, omega, amp, up);
     if (status) return status;
-    periodic_set_path(s->w, &path);
-    status = whirl_periodic_start_vertical(s->w, s->ch->p.inverted, s->y);
-    if (status == GSL_SUCCESS) status = periodic_monodromy_variational(s->w, s->y, steps);
-    if (status) return status;
+    double m[4];
+    chart_mode_monodromy(&path, s->ch->c->gravity, s->ch->coef[mode],
+                         mult * s->ch->steps[mode], m);
     s->monodromies++;
-    const size_t m = s->w->m;
-    for (int k = 0; k < 2; k++) {
-        gsl_matrix_const_view mv = gsl_matrix_const_view_array(s->w->mono, m, m);
-        gsl_matrix_memcpy(s->lu, &mv.matrix);
-        for (size_t i = 0; i < m; i++)
-            gsl_matrix_set(s->lu, i, i, gsl_matrix_get(s->lu, i, i) + (k == 0 ? -1 : 1));
-        int sign;
-        gsl_linalg_LU_decomp(s->lu, s->perm, &sign);
-        f[k] = gsl_linalg_LU_det(s->lu, sign);
-    }
+    f[0] = 2 - (m[0] + m[3]);
+    f[1] = 2 + (m[0] + m[3]);
     return GSL_SUCCESS;
 }
 
-/* The extrapolated edge function of ch->kind at amp (whirl_root_fn); ch->shift its change by
- * the extrapolation. */
+/* The extrapolated factor of s->mode and s->kind at amp (whirl_root_fn); s->shift its change
+ * by the extrapolation. */
 static int fine_edge(double amp, void *ctx, double *fx)
 {
     chart_ws *s = ctx;
     double fc[2], ff[2];
-    int status = edge_functions(s, amp, s->ch->p.steps, fc);
-    if (status == GSL_SUCCESS) status = edge_functions(s, amp, 2 * s->ch->p.steps, ff);
+    int status = edge_functions(s, amp, s->mode, 1, fc);
+    if (status == GSL_SUCCESS) status = edge_functions(s, amp, s->mode, 2, ff);
     if (status) return status;
-    s->shift = (ff[s->kind] - fc[s->kind]) / 15;
-    *fx = ff[s->kind] + s->shift;
-    if (!isfinite(*fx))
-        return whirl_fail(GSL_EBADFUNC, "the monodromy at omega=" WHIRL_Q_RATE "%.17g, A="
-                          WHIRL_Q_LENGTH "%.17g is not finite",
-                          isnan(s->omega) ? s->ch->omega : s->omega, amp);
-    return GSL_SUCCESS;
+    const double c = fc[s->kind], f = ff[s->kind];
+    if (fabs(c) < FACTOR_HUGE && fabs(f) < FACTOR_HUGE) {
+        s->shift = (f - c) / 15;
+        *fx = f + s->shift;
+        return GSL_SUCCESS;
+    }
+    if (!isnan(c) && !isnan(f) && (c < 0) == (f < 0)) {
+        s->shift = 0;
+        *fx = copysign(FACTOR_HUGE, f); /* far from the family's edges: its sign */
+        return GSL_SUCCESS;
+    }
+    return whirl_fail(GSL_EBADFUNC, "the monodromy of mode %d at omega=" WHIRL_Q_RATE "%.17g, A="
+                      WHIRL_Q_LENGTH "%.17g is not finite", s->mode + 1,
+                      isnan(s->omega) ? s->ch->omega : s->omega, amp);
 }
 
 /* Brent's method on [lo, hi] with the known ends; the point with its error estimate. */
@@ -174,9 +195,9 @@ static int locate(chart_ws *s, double lo, double hi, double flo, double fhi, dou
     if (status) {
         if (status == WHIRL_EINTERRUPTED) return status;
         if (status == GSL_EMAXITER || !r.bracketed)
-            return whirl_fail(GSL_EMAXITER, "the edge at omega=" WHIRL_Q_RATE "%.17g in A=["
-                              WHIRL_Q_LENGTH "%.17g, " WHIRL_Q_LENGTH "%.17g] was not located",
-                              ch->omega, lo, hi);
+            return whirl_fail(GSL_EMAXITER, "the edge of mode %d at omega=" WHIRL_Q_RATE
+                              "%.17g in A=[" WHIRL_Q_LENGTH "%.17g, " WHIRL_Q_LENGTH
+                              "%.17g] was not located", s->mode + 1, ch->omega, lo, hi);
         return status;
     }
     double f;
@@ -196,7 +217,7 @@ static int emit(chart *ch, const chart_curve *cv, int column, double amp, double
     return row ? row(row_data, &pt) : GSL_SUCCESS;
 }
 
-static chart_curve *add_curve(chart *ch, whirl_floquet_edge kind)
+static chart_curve *add_curve(chart *ch, int mode, whirl_floquet_edge kind)
 {
     if (ch->count == ch->cap) {
         const int cap = ch->cap ? 2 * ch->cap : 16;
@@ -205,26 +226,28 @@ static chart_curve *add_curve(chart *ch, whirl_floquet_edge kind)
         ch->curves = c, ch->cap = cap;
     }
     chart_curve *cv = &ch->curves[ch->count];
-    *cv = (chart_curve){.kind = kind, .id = ch->count, .alive = 1, .a1 = NAN, .a0 = NAN,
-                        .tip = NAN};
+    *cv = (chart_curve){.kind = kind, .mode = mode, .id = ch->count, .alive = 1, .a1 = NAN,
+                        .a0 = NAN, .tip = NAN};
     ch->count++;
     return cv;
 }
 
-static double tip_in(const chart *ch, double w0, double w1, whirl_floquet_edge kind);
+static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind);
 
 /* The lowest amplitude of a bracket: the hanging chain's edges are followed down to A = 0, where
- * f >= 0 (the multipliers on the unit circle, det(M -+ I) = prod (2 -+ 2 cos(omega_k T)); a
+ * f >= 0 (the mode's multipliers on the unit circle, 2 -+ tr M_k = 2 -+ 2 cos(omega_k T); a
  * tongue's two edges meet there at its tip); the inverted chain's from amp_min. */
 static double amp_floor(const chart *ch) { return ch->p.inverted ? ch->p.amp_min : 0; }
 
-/* A scan's work: the coarser f at the rows (one item per row), then the sign changes that no
- * located curve explains, each located (one item per candidate). */
+/* A scan's work: the coarser factors of the modes scanned at the rows (one item per row), then
+ * the sign changes that no located curve explains, each located (one item per candidate). */
 typedef struct scan_work {
     double lo, step;
-    double (*f)[2];     /* rows: f_+, f_- of the coarser monodromy */
-    int *cand;          /* 2 rows: row i and kind k of a candidate, as 2 i + k */
-    double *amp, *err;  /* 2 rows: its edge, or NAN for a sign change of the coarser step alone */
+    int fams;           /* the families, 2 n: mode k's f_+ at 2 k, f_- at 2 k + 1 */
+    double *f;          /* rows x fams: the coarser factors (the modes scanned only) */
+    int *cand;          /* a candidate: row i and family j as i fams + j */
+    double *amp, *err;  /* per candidate: its edge, or NAN for a sign change of the coarser step
+                           alone */
 } scan_work;
 
 static double scan_amp(const chart *ch, const scan_work *sw, int i)
@@ -235,16 +258,22 @@ static double scan_amp(const chart *ch, const scan_work *sw, int i)
 static int scan_row(chart_ws *s, void *data, int i)
 {
     scan_work *sw = data;
-    return edge_functions(s, scan_amp(s->ch, sw, i), s->ch->p.steps, sw->f[i]);
+    int status = GSL_SUCCESS;
+    for (int k = 0; status == GSL_SUCCESS && k < s->ch->n; k++)
+        if (s->ch->rescan[k])
+            status = edge_functions(s, scan_amp(s->ch, sw, i), k, 1,
+                                    &sw->f[(size_t)i * sw->fams + 2 * k]);
+    return status;
 }
 
 static int scan_locate(chart_ws *s, void *data, int j)
 {
     scan_work *sw = data;
-    const int i = sw->cand[j] / 2;
+    const int i = sw->cand[j] / sw->fams, fam = sw->cand[j] % sw->fams;
     const double a0 = scan_amp(s->ch, sw, i - 1), a1 = scan_amp(s->ch, sw, i);
     double flo, fhi;
-    s->kind = (whirl_floquet_edge)(sw->cand[j] % 2);
+    s->mode = fam / 2;
+    s->kind = (whirl_floquet_edge)(fam % 2);
     sw->amp[j] = NAN;
     /* the scan's signs are of the coarser monodromy: the ends again, extrapolated */
     int status = fine_edge(a0, s, &flo);
@@ -253,7 +282,7 @@ static int scan_locate(chart_ws *s, void *data, int j)
     return locate(s, a0, a1, flo, fhi, &sw->amp[j], &sw->err[j]);
 }
 
-/* The extrapolated edge function of s->kind at the rate omega and the amplitude s->amp
+/* The extrapolated factor of s->mode and s->kind at the rate omega and the amplitude s->amp
  * (whirl_root_fn). */
 static int fine_rate(double omega, void *ctx, double *fx)
 {
@@ -261,6 +290,17 @@ static int fine_rate(double omega, void *ctx, double *fx)
     s->omega = omega;
     const int status = fine_edge(s->amp, s, fx);
     s->omega = NAN;
+    return status;
+}
+
+/* 1 in *in if (omega, amp) lies inside a tongue of s's family: its extrapolated factor < 0 (the
+ * factor is >= 0 at A = 0 and changes sign at each edge). */
+static int inside(chart_ws *s, double omega, double amp, int *in)
+{
+    double f;
+    s->amp = amp;
+    const int status = fine_rate(omega, s, &f);
+    *in = status == GSL_SUCCESS && f < 0;
     return status;
 }
 
@@ -278,7 +318,7 @@ static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, dou
     chart_ws *s = &ch->ws[0];
     const double lo = fmin(w, tip), hi = fmax(w, tip);
     double pw = da < 0 ? w : tip, pa = a - da;
-    s->kind = cv->kind;
+    s->mode = cv->mode, s->kind = cv->kind;
     for (double amp = a; amp > a_lo && amp < a_hi; amp += da) {
         double flo, fhi;
         s->amp = amp;
@@ -304,25 +344,36 @@ static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, dou
     return GSL_SUCCESS;
 }
 
-/* The edge cv ended at this rate with a tongue's tip of its kind between its last rate and this
- * one (hanging), a tip no other edge reached before: its points down to the tip, the tip (2 omega_k / n, 0), and the tongue's other
- * edge from the tip up to the next rate, all on cv's curve. The tip is where the unshaken chain's
- * multipliers exp(+-i omega_k T) pass +-1 (det(M -+ I) = 0 at A = 0), the A = 0 end of both
- * edges (f is even in A: A cos(omega t) is -A cos(omega t) half a period later). */
+/* The edge cv ended at this rate with a tip of its mode's tongues of its kind between its last
+ * rate and two rates on (hanging; an edge that heads for A = 0 ends once its linear
+ * extrapolation does, which may be short of a tip ahead), the tip's rate at the edge's last
+ * amplitude inside the tongue, and a tip no other edge reached before: its points down to the tip,
+ * the tip (2 omega_k / n, 0), and the tongue's other edge from the tip up to the next rate, all
+ * on cv's curve. The tip is where the unshaken mode's multipliers exp(+-i omega_k T) pass +-1
+ * (2 -+ tr M_k = 0 at A = 0), the A = 0 end of both edges (f is even in A: A cos(omega t) is
+ * -A cos(omega t) half a period later). */
 static int descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
                           void *row_data)
 {
-    const double tip = tip_in(ch, cv->w1, ch->omega, cv->kind);
+    const double spacing = (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
+    const double tip = tip_in(ch, cv->w1, fmin(ch->omega + 2 * spacing, ch->p.omega_max),
+                              cv->mode, cv->kind);
     if (isnan(tip)) return GSL_SUCCESS;
     for (int i = 0; i < ch->tips_count; i++)
-        if (ch->tips[i] == tip) return GSL_SUCCESS; /* another edge reached it first */
+        if (ch->tips[i].omega == tip && ch->tips[i].mode == cv->mode)
+            return GSL_SUCCESS; /* another edge reached it first */
+    /* the edge's tongue is the tip's: the tip's rate at the edge's last amplitude inside it */
+    ch->ws[0].mode = cv->mode, ch->ws[0].kind = cv->kind;
+    int in;
+    const int st = inside(&ch->ws[0], tip, cv->a1, &in);
+    if (st || !in) return st;
     if (ch->tips_count == ch->tips_cap) {
         const int cap = ch->tips_cap ? 2 * ch->tips_cap : 16;
-        double *t = realloc(ch->tips, (size_t)cap * sizeof *t);
+        chart_tip *t = realloc(ch->tips, (size_t)cap * sizeof *t);
         if (t == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart's tips");
         ch->tips = t, ch->tips_cap = cap;
     }
-    ch->tips[ch->tips_count++] = tip;
+    ch->tips[ch->tips_count++] = (chart_tip){.omega = tip, .mode = cv->mode};
     const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
     double top = 0, low = cv->a1;
     int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
@@ -343,9 +394,9 @@ static int descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_ro
     return status;
 }
 
-/* A new edge cv at this rate joined to an edge that ended at a tongue's tip of its kind at most
- * two and a half rates before (descend_to_tip): one curve, cv's points down to what was located
- * from the tip. */
+/* A new edge cv at this rate joined to an edge of its family that ended at a tongue's tip at
+ * most two and a half rates before (descend_to_tip): one curve, cv's points down to what was
+ * located from the tip. */
 static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
                        void *row_data)
 {
@@ -353,8 +404,9 @@ static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_f
     const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
     for (int i = 0; i < ch->count; i++) {
         chart_curve *old = &ch->curves[i];
-        if (old == cv || !old->tipward || old->kind != cv->kind || !(ch->omega > old->tip) ||
-            ch->omega - old->tip > 2.5 * spacing || !(cv->a1 > old->fill_top))
+        if (old == cv || !old->tipward || old->kind != cv->kind || old->mode != cv->mode ||
+            !(ch->omega > old->tip) || ch->omega - old->tip > 2.5 * spacing ||
+            !(cv->a1 > old->fill_top))
             continue;
         old->tipward = 0;
         cv->id = old->id;
@@ -365,37 +417,49 @@ static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_f
     return GSL_SUCCESS;
 }
 
-/* A scan of the column: every sign change of f_+ and f_- between the rows amplitudes that no
- * curve located at this rate lies in is located and starts a new curve. */
+/* The scan of the modes marked in ch->rescan: every sign change of their f_+ and f_- between
+ * the rows' amplitudes that no curve of the family located at this rate lies in is located and
+ * starts a new curve. */
 static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
 {
     const int rows = ch->p.rows;
-    scan_work sw = {.lo = amp_floor(ch), .step = (ch->p.amp_max - amp_floor(ch)) / (rows - 1)};
-    sw.f = malloc((size_t)rows * sizeof *sw.f);
-    sw.cand = malloc(2 * (size_t)rows * sizeof *sw.cand);
-    sw.amp = malloc(4 * (size_t)rows * sizeof *sw.amp);
-    int status = sw.f && sw.cand && sw.amp ? GSL_SUCCESS
-                                           : whirl_fail(GSL_ENOMEM, "out of memory for a scan");
-    sw.err = sw.amp ? sw.amp + 2 * rows : NULL;
+    scan_work sw = {.lo = amp_floor(ch), .step = (ch->p.amp_max - amp_floor(ch)) / (rows - 1),
+                    .fams = 2 * ch->n};
+    sw.f = malloc((size_t)rows * (size_t)sw.fams * sizeof *sw.f);
+    int status = sw.f ? GSL_SUCCESS : whirl_fail(GSL_ENOMEM, "out of memory for a scan");
     if (status == GSL_SUCCESS) status = parallel_items(ch, rows, scan_row, &sw);
     int count = 0;
-    for (int i = 1; status == GSL_SUCCESS && i < rows; i++)
-        for (int k = 0; k < 2; k++) {
-            const double a0 = scan_amp(ch, &sw, i - 1), a1 = scan_amp(ch, &sw, i);
-            if ((sw.f[i - 1][k] < 0) == (sw.f[i][k] < 0)) continue;
-            int known = 0;
-            for (int j = 0; j < ch->count; j++) {
-                const chart_curve *cv = &ch->curves[j];
-                if (cv->alive && cv->found && cv->kind == (whirl_floquet_edge)k &&
-                    cv->a1 >= a0 && cv->a1 <= a1)
-                    known = 1;
+    for (int pass = 0; pass < 2 && status == GSL_SUCCESS; pass++) { /* count, then list */
+        count = 0;
+        for (int i = 1; i < rows; i++)
+            for (int j = 0; j < sw.fams; j++) {
+                const double a0 = scan_amp(ch, &sw, i - 1), a1 = scan_amp(ch, &sw, i);
+                const double f0 = sw.f[(size_t)(i - 1) * sw.fams + j];
+                const double f1 = sw.f[(size_t)i * sw.fams + j];
+                if (!ch->rescan[j / 2] || (f0 < 0) == (f1 < 0)) continue;
+                int known = 0;
+                for (int q = 0; q < ch->count && !known; q++) {
+                    const chart_curve *cv = &ch->curves[q];
+                    known = cv->alive && cv->found && cv->mode == j / 2 &&
+                            cv->kind == (whirl_floquet_edge)(j % 2) && cv->a1 >= a0 &&
+                            cv->a1 <= a1;
+                }
+                if (known) continue;
+                if (pass) sw.cand[count] = i * sw.fams + j;
+                count++;
             }
-            if (!known) sw.cand[count++] = 2 * i + k;
+        if (pass == 0) {
+            sw.cand = malloc(((size_t)count + 1) * sizeof *sw.cand);
+            sw.amp = malloc(2 * ((size_t)count + 1) * sizeof *sw.amp);
+            sw.err = sw.amp ? sw.amp + count + 1 : NULL;
+            if (!sw.cand || !sw.amp) status = whirl_fail(GSL_ENOMEM, "out of memory for a scan");
         }
+    }
     if (status == GSL_SUCCESS) status = parallel_items(ch, count, scan_locate, &sw);
     for (int j = 0; status == GSL_SUCCESS && j < count; j++) {
         if (isnan(sw.amp[j])) continue;
-        chart_curve *cv = add_curve(ch, (whirl_floquet_edge)(sw.cand[j] % 2));
+        const int fam = sw.cand[j] % sw.fams;
+        chart_curve *cv = add_curve(ch, fam / 2, (whirl_floquet_edge)(fam % 2));
         if (cv == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for the chart's curves");
         else {
             cv->a1 = sw.amp[j], cv->found = 1;
@@ -426,7 +490,7 @@ static int follow(chart_ws *s, void *data, int j)
     const chart_curve *cv = &ch->curves[fw->index[j]];
     const double change = isnan(cv->a0) ? 0 : cv->a1 - cv->a0, spacing = fw->spacing;
     double half = fmax(2 * fabs(change), spacing);
-    s->kind = cv->kind;
+    s->mode = cv->mode, s->kind = cv->kind;
     fw->amp[j] = NAN;
     /* heading out of the range: ended (a root near the end is another curve's, or the same
        curve's back in, found by the scan) */
@@ -436,6 +500,15 @@ static int follow(chart_ws *s, void *data, int j)
     }
     if (cv->a1 + change > ch->p.amp_max) return GSL_SUCCESS;
     fw->tipward[j] = 1; /* unless found below: an end other than at the top may be at a tip */
+    /* a tip of the family passed since the last rate, the edge's last amplitude inside its
+       tongue at the tip's rate: the edge went down to the tip, and a root here is the tongue's
+       other edge (the two meet at the tip, too close for the bend test) */
+    const double tip = tip_in(ch, cv->w1, ch->omega, cv->mode, cv->kind);
+    int in = 0;
+    if (!isnan(tip)) {
+        const int status = inside(s, tip, cv->a1, &in);
+        if (status || in) return status;
+    }
     for (int d = 0; d <= BRACKET_DOUBLINGS; d++, half *= 2) {
         const double lo = fmax(amp_floor(ch), cv->a1 - half);
         const double hi = fmin(ch->p.amp_max, cv->a1 + half);
@@ -490,67 +563,33 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
     return status;
 }
 
-/* The unshaken hanging chain's frequencies: K v = omega^2 M v in the link angles,
- * M_ij = l_i l_j sum_{k >= max(i, j)} m_k, K_ii = g l_i sum_{k >= i} m_k. */
-static int hanging_frequencies(const whirl_chain *c, double *freq)
+/* 1 if a tip 2 omega_k / n of the mode's tongues lies in (w0, w1]: floor(2 omega_k / w)
+ * changes. */
+static int tip_between(const chart *ch, double w0, double w1, int mode)
 {
-    const size_t n = c->n;
-    gsl_matrix *m = gsl_matrix_calloc(n, n), *k = gsl_matrix_calloc(n, n);
-    gsl_vector *eval = gsl_vector_alloc(n);
-    gsl_eigen_gensymm_workspace *ws = gsl_eigen_gensymm_alloc(n);
-    int status = m && k && eval && ws ? GSL_SUCCESS : GSL_ENOMEM;
-    if (status == GSL_SUCCESS) {
-        for (size_t i = 0; i < n; i++) {
-            double below = 0;
-            for (size_t j = i; j < n; j++) below += c->mass[j];
-            for (size_t j = 0; j < n; j++) {
-                double tail = 0;
-                for (size_t q = i > j ? i : j; q < n; q++) tail += c->mass[q];
-                gsl_matrix_set(m, i, j, c->length[i] * c->length[j] * tail);
-            }
-            gsl_matrix_set(k, i, i, c->gravity * c->length[i] * below);
-        }
-        status = gsl_eigen_gensymm(k, m, eval, ws);
-    }
-    for (size_t i = 0; status == GSL_SUCCESS && i < n; i++)
-        freq[i] = sqrt(fmax(gsl_vector_get(eval, i), 0));
-    if (ws) gsl_eigen_gensymm_free(ws);
-    if (eval) gsl_vector_free(eval);
-    if (m) gsl_matrix_free(m);
-    if (k) gsl_matrix_free(k);
-    return status ? whirl_fail(status, "the hanging chain's frequencies: %s", gsl_strerror(status))
-                  : GSL_SUCCESS;
+    return !ch->p.inverted && floor(2 * ch->freq[mode] / w0) != floor(2 * ch->freq[mode] / w1);
 }
 
-/* 1 if a tongue's tip 2 omega_k / n lies in (w0, w1]: floor(2 omega_k / w) changes. */
-static int tip_between(const chart *ch, double w0, double w1)
-{
-    if (ch->p.inverted) return 0;
-    for (size_t i = 0; i < ch->c->n; i++)
-        if (floor(2 * ch->freq[i] / w0) != floor(2 * ch->freq[i] / w1)) return 1;
-    return 0;
-}
-
-/* The tip 2 omega_k / n in (w0, w1] of a tongue whose edges are of the kind (n odd: -1, even:
- * +1), the one nearest w1; NAN if none. */
-static double tip_in(const chart *ch, double w0, double w1, whirl_floquet_edge kind)
+/* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
+ * -1, even: +1), the one nearest w1; NAN if none. */
+static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind)
 {
     double tip = NAN;
-    for (size_t i = 0; !ch->p.inverted && i < ch->c->n; i++)
-        for (double n = ceil(2 * ch->freq[i] / w1); n <= 2 * ch->freq[i] / w0; n++) {
-            const double t = 2 * ch->freq[i] / n;
-            if (n < 1 || t <= w0 || t > w1) continue;
-            if ((((long)n % 2 == 1) ? WHIRL_FLOQUET_EDGE_MINUS_ONE : WHIRL_FLOQUET_EDGE_PLUS_ONE) ==
-                    kind && (isnan(tip) || t > tip))
-                tip = t;
-        }
+    const double f = ch->freq[mode];
+    for (double n = ceil(2 * f / w1); !ch->p.inverted && n <= 2 * f / w0; n++) {
+        const double t = 2 * f / n;
+        if (n < 1 || t <= w0 || t > w1) continue;
+        if ((((long)n % 2 == 1) ? WHIRL_FLOQUET_EDGE_MINUS_ONE : WHIRL_FLOQUET_EDGE_PLUS_ONE) ==
+                kind && (isnan(tip) || t > tip))
+            tip = t;
+    }
     return tip;
 }
 
 static int check_params(const whirl_chain *c, int dim, whirl_chart_params *p)
 {
     if (c == NULL) return whirl_fail(GSL_EINVAL, "whirl_chart_vertical: needs a chain");
-    if (dim != 2) return whirl_fail(GSL_EINVAL, "the chart needs dim 2 (the x-z plane)");
+    if (dim != 2 && dim != 3) return whirl_fail(GSL_EINVAL, "the chart needs dim 2 or 3");
     if (p->columns == 0) p->columns = COLUMNS_DEFAULT;
     if (p->rows == 0) p->rows = ROWS_DEFAULT;
     if (p->steps == 0) p->steps = STEPS_DEFAULT;
@@ -572,27 +611,25 @@ static int check_params(const whirl_chain *c, int dim, whirl_chart_params *p)
 
 static void chart_free(chart *ch)
 {
-    for (int t = 0; ch->ws && t < ch->threads; t++) {
-        chart_ws *s = &ch->ws[t];
-        whirl_periodic_free(s->w);
-        free(s->y);
-        if (s->lu) gsl_matrix_free(s->lu);
-        if (s->perm) gsl_permutation_free(s->perm);
-    }
     free(ch->ws);
     free(ch->tips);
     free(ch->curves);
+    free(ch->coef);
+    free(ch->steps);
     free(ch->freq);
+    free(ch->rescan);
+    free(ch->ends);
 }
 
-/* f at the range's ends (items 0 and 1) into data (2 x 2). */
+/* A mode's factors at the range's ends (item i: mode i / 2, end i % 2) into ch->ends. */
 static int range_ends(chart_ws *s, void *data, int i)
 {
-    double (*f)[2] = data;
-    return edge_functions(s, i ? s->ch->p.amp_max : s->ch->p.amp_min, s->ch->p.steps, f[i]);
+    (void)data;
+    const whirl_chart_params *p = &s->ch->p;
+    return edge_functions(s, i % 2 ? p->amp_max : p->amp_min, i / 2, 1, &s->ch->ends[2 * i]);
 }
 
-/* The columns from first on. */
+/* The columns. */
 static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_chart_tick_fn tick,
                    void *tick_data)
 {
@@ -604,18 +641,23 @@ static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_char
                                         : p->omega_min + j * (p->omega_max - p->omega_min) /
                                                              (p->columns - 1);
         int status = follow_all(ch, j, spacing, row, row_data);
-        /* the parity of the edges of each kind against the signs at the range's ends */
-        int rescan = j == 0 || tip_between(ch, last, ch->omega);
-        double ends[2][2];
-        if (status == GSL_SUCCESS) status = parallel_items(ch, 2, range_ends, ends);
-        for (int k = 0; status == GSL_SUCCESS && k < 2; k++) {
-            int found = 0;
-            for (int i = 0; i < ch->count; i++)
-                found += ch->curves[i].found && ch->curves[i].kind == (whirl_floquet_edge)k &&
-                         ch->curves[i].a1 >= p->amp_min;
-            if ((found % 2 == 1) != ((ends[0][k] < 0) != (ends[1][k] < 0))) rescan = 1;
+        if (status == GSL_SUCCESS) status = parallel_items(ch, 2 * ch->n, range_ends, NULL);
+        /* per family, the parity of its edges against the signs of its factor at the ends */
+        int any = 0;
+        for (int k = 0; status == GSL_SUCCESS && k < ch->n; k++) {
+            ch->rescan[k] = j == 0 || tip_between(ch, last, ch->omega, k);
+            for (int e = 0; e < 2; e++) {
+                int found = 0;
+                for (int i = 0; i < ch->count; i++)
+                    found += ch->curves[i].found && ch->curves[i].mode == k &&
+                             ch->curves[i].kind == (whirl_floquet_edge)e &&
+                             ch->curves[i].a1 >= p->amp_min;
+                const double lo = ch->ends[4 * k + e], hi = ch->ends[4 * k + 2 + e];
+                if ((found % 2 == 1) != ((lo < 0) != (hi < 0))) ch->rescan[k] = 1;
+            }
+            any |= ch->rescan[k];
         }
-        if (status == GSL_SUCCESS && rescan) status = scan(ch, j, row, row_data);
+        if (status == GSL_SUCCESS && any) status = scan(ch, j, row, row_data);
         for (int i = 0; i < ch->count; i++)
             if (!ch->curves[i].found) ch->curves[i].alive = 0;
         if (status) return status;
@@ -630,25 +672,42 @@ static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_char
     return GSL_SUCCESS;
 }
 
-/* The threads' workspaces on the path (threads as many as whirl_max_threads allows, 1 inside
- * another parallel region). */
-static int workspaces(chart *ch, int dim, const whirl_pivot_path *path)
+/* The modes (chart_modes.c) and their steps: each mode's coarser steps raised at the strongest
+ * shaking of both ends of the rates (the longest period, and the largest acceleration). */
+static int modes(chart *ch)
+{
+    const size_t n = ch->c->n;
+    ch->n = (int)n;
+    ch->coef = malloc(n * sizeof *ch->coef);
+    ch->freq = malloc(n * sizeof *ch->freq);
+    ch->steps = malloc(n * sizeof *ch->steps);
+    ch->rescan = malloc(n * sizeof *ch->rescan);
+    ch->ends = malloc(4 * n * sizeof *ch->ends);
+    if (!ch->coef || !ch->freq || !ch->steps || !ch->rescan || !ch->ends)
+        return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
+    int status = chart_modes(ch->c, ch->coef);
+    whirl_pivot_path slow, fast;
+    const double up[3] = {0, 0, 1};
+    if (status == GSL_SUCCESS) status = whirl_pivot_line(&slow, ch->p.omega_min, ch->p.amp_max, up);
+    if (status == GSL_SUCCESS) status = whirl_pivot_line(&fast, ch->p.omega_max, ch->p.amp_max, up);
+    const double g = ch->c->gravity;
+    for (size_t k = 0; status == GSL_SUCCESS && k < n; k++) {
+        ch->freq[k] = sqrt(g * ch->coef[k]);
+        if (ch->p.inverted) ch->coef[k] = -ch->coef[k];
+        status = chart_mode_steps(&slow, &fast, g, ch->coef[k], ch->p.steps, &ch->steps[k]);
+    }
+    return status;
+}
+
+/* The threads' workspaces (threads as many as whirl_max_threads allows, 1 inside another
+ * parallel region). */
+static int workspaces(chart *ch)
 {
     ch->threads = omp_in_parallel() ? 1 : whirl_max_threads();
     if (ch->threads < 1) ch->threads = 1;
     ch->ws = calloc((size_t)ch->threads, sizeof *ch->ws);
     if (ch->ws == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
-    for (int t = 0; t < ch->threads; t++) {
-        chart_ws *s = &ch->ws[t];
-        s->ch = ch, s->omega = NAN;
-        s->w = whirl_periodic_alloc(ch->c, dim, path);
-        if (s->w == NULL) return whirl_last_status();
-        s->y = malloc(s->w->size * sizeof *s->y);
-        s->lu = gsl_matrix_alloc(s->w->m, s->w->m);
-        s->perm = gsl_permutation_alloc(s->w->m);
-        if (!s->y || !s->lu || !s->perm)
-            return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
-    }
+    for (int t = 0; t < ch->threads; t++) ch->ws[t].ch = ch, ch->ws[t].omega = NAN;
     return GSL_SUCCESS;
 }
 
@@ -660,25 +719,8 @@ int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params
     if (params) ch.p = *params;
     int status = check_params(c, dim, &ch.p);
     if (status) return status;
-    whirl_pivot_path path;
-    const double up[3] = {0, 0, 1};
-    status = whirl_pivot_line(&path, ch.p.omega_max, ch.p.amp_max, up);
-    if (status == GSL_SUCCESS) status = workspaces(&ch, dim, &path);
-    ch.freq = malloc(c->n * sizeof *ch.freq);
-    if (status == GSL_SUCCESS && ch.freq == NULL)
-        status = whirl_fail(GSL_ENOMEM, "out of memory for the chart");
-    /* the steps: raised, as whirl_periodic_find raises them, at the strongest shaking of both
-       ends of the rates (the longest period, and the largest acceleration) */
-    chart_ws *s = ch.ws;
-    for (int e = 0; e < 2 && status == GSL_SUCCESS; e++) {
-        status = whirl_pivot_line(&path, e ? ch.p.omega_min : ch.p.omega_max, ch.p.amp_max, up);
-        if (status == GSL_SUCCESS) periodic_set_path(s->w, &path);
-        if (status == GSL_SUCCESS)
-            status = whirl_periodic_start_vertical(s->w, ch.p.inverted, s->y);
-        if (status == GSL_SUCCESS)
-            status = periodic_steps_for(s->w, s->y, ch.p.steps, &ch.p.steps);
-    }
-    if (status == GSL_SUCCESS && !ch.p.inverted) status = hanging_frequencies(c, ch.freq);
+    status = modes(&ch);
+    if (status == GSL_SUCCESS) status = workspaces(&ch);
     if (status == GSL_SUCCESS) status = columns(&ch, row, row_data, tick, tick_data);
     chart_free(&ch);
     return status;

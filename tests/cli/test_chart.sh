@@ -65,15 +65,15 @@ if [ $rc -eq 0 ] && tr '\r' '\n' <"$tmp/p.tty" | sed 's/\x1b\[K$//' \
    && cmp -s "$tmp/tty.csv" "$tmp/c.csv"; then
   pass "chart progress line: shown, erased, the same CSV"; else fail "chart progress line: shown, erased, the same CSV (rc=$rc)"; fi
 
-# Ctrl-C during a long chart (3 links, 400 rates): exit status 130, one line, the file written
+# Ctrl-C during a long chart (10 links, 1000 rates: minutes of processor time): exit status 130, one line, the file written
 # with the points found until then and a comment saying where it stopped
-env --default-signal=INT "$WHIRL" periodic --chart hanging --links 3 --omega-min 1 --omega-max 8 --omega-count 400 --amp-max 0.5 --amp-rows 100 -o "$tmp/stop.csv" 2>"$tmp/stderr" &
+env --default-signal=INT "$WHIRL" periodic --chart hanging --links 10 --omega-min 1 --omega-max 8 --omega-count 1000 --amp-max 0.5 --amp-rows 200 -o "$tmp/stop.csv" 2>"$tmp/stderr" &
 pid=$!
 sleep 2
 interrupt $pid
 if [ $rc -eq 130 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
-   && grep -Eq '^whirl periodic: interrupted after [0-9]+ of 400 rates: the [0-9]+ points found until then are written$' "$tmp/stderr" \
-   && grep -Eq '^# interrupted after [0-9]+ of 400 rates' "$tmp/stop.csv" \
+   && grep -Eq '^whirl periodic: interrupted after [0-9]+ of 1000 rates: the [0-9]+ points found until then are written$' "$tmp/stderr" \
+   && grep -Eq '^# interrupted after [0-9]+ of 1000 rates' "$tmp/stop.csv" \
    && [ "$(grep -v '^#' "$tmp/stop.csv" | head -1)" = "curve,edge,omega,amplitude,err" ] \
    && [ "$(echo "$late < 1.5" | bc)" -eq 1 ]; then
   pass "chart interrupted: 130, the points kept (${late}s)"; else fail "chart interrupted: 130, the points kept (rc=$rc, late=$late, $(cat "$tmp/stderr"))"; fi
@@ -115,5 +115,6 @@ expect_error "chart one rate" "whirl periodic: --omega-count must be" periodic -
 expect_error "chart NaN amplitude" "whirl periodic: option --amp-max needs a finite number" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max nan -o "$tmp/out.csv"
 expect_error "chart with a pivot" "whirl periodic: --chart cannot be given with --pivot" periodic --chart hanging --pivot vertical:0.1 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart options alone" "whirl periodic: --pivot or --chart is required" periodic --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
-expect_error "chart rate too high" "whirl periodic: the pivot moves too fast for the integrator" periodic --chart hanging --omega-min 1 --omega-max 1e9 --amp-max 0.1 -o "$tmp/out.csv"
+# a period too long for the modes' integrator (1e-9: 1e11 steps per period)
+expect_error "chart rate too low" "whirl periodic: the chart's slowest rate or largest amplitude is beyond the integrator: 1[.]01e[+]11 steps per period needed" periodic --chart hanging --omega-min 1e-9 --omega-max 1 --amp-max 0.1 -o "$tmp/out.csv"
 finish

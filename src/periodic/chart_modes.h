@@ -1,0 +1,29 @@
+/* Internal: the modes of the vertically shaken chain (chart_modes.c), the stability chart's edge
+ * functions (chart.c). */
+#ifndef WHIRL_CHART_MODES_H
+#define WHIRL_CHART_MODES_H
+
+#include "whirl/periodic.h"
+
+/* lambda <- the eigenvalues of the pencil G v = lambda M v of the straight chain's link angles,
+ * ascending (n of them, all > 0): M_ij = l_i l_j sum_{q >= max(i, j)} m_q (the mass matrix),
+ * G = diag(l_i sum_{q >= i} m_q) (gravity's stiffness over g). GSL_ENOMEM or the eigensolver's
+ * status with a message. */
+int chart_modes(const whirl_chain *c, double *lambda);
+
+/* The coefficient's largest |z''| of path's vertical terms: sum_j (j omega)^2 (|c_j| + |s_j|). */
+double chart_mode_accel(const whirl_pivot_path *path);
+
+/* m (2 x 2, row major) <- the monodromy of q'' + coef (g + z''(t)) q = 0 over one period of
+ * path (z: its vertical terms) from steps Magnus steps of order 4; its determinant is 1 to
+ * round-off (each step the exponential of a traceless matrix). */
+void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, int steps,
+                          double m[4]);
+
+/* *steps <- requested raised so that a step of the mode coef's monodromy turns its phase by at
+ * most 1 / CHART_STEPS_PER_RADIAN at the strongest shaking of both paths (the same vertical
+ * terms at two rates); GSL_EINVAL with a message if over 1e8. */
+int chart_mode_steps(const whirl_pivot_path *slow, const whirl_pivot_path *fast, double g,
+                     double coef, int requested, int *steps);
+
+#endif
