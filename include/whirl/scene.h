@@ -22,7 +22,9 @@
  *              frame when the pivot is fixed);
  *            and, for the steady and the hanging start, perturb (default 0), seed (default 1):
  *            each link direction turned by exactly perturb radians about a random axis
- *            perpendicular to it (GSL's MT19937 seeded with seed), lengths kept.
+ *            perpendicular to it (GSL's MT19937 seeded with seed), lengths kept; in a planar
+ *            scene (dim = 2) towards the perpendicular direction in the x-z plane, on the side
+ *            of the random one.
  *   [run]    frame = inertial | rotating (default inertial; rotating needs dim = 3),
  *            method (default gauss2; see whirl_integrator_methods), dt > 0, t_end > 0 (both
  *            required), formulation = default | seed (default: default), omega (rate of the

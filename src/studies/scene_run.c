@@ -110,6 +110,26 @@ static int angle_start(whirl_scene_work *w, const double *p0)
     return whirl_dyn_set_state(w->dyn, 0, w->x, w->v, w->y);
 }
 
+/* A planar scene's perturbation: whirl_perturb_links turns link i of the unperturbed shape
+ * (from the nodes ref, the pivot p0) by the angle towards a random direction perpendicular to it
+ * in space; in the x-z plane the perpendicular direction is p = (u_z, 0, -u_x) up to its sign, so
+ * the link is turned by the same angle towards p or -p, the side of the random direction's
+ * component along p (the same seed, the same sides). */
+static void planar_turn(const whirl_scene *s, size_t n, double *links, const double *ref,
+                        const double *p0)
+{
+    for (size_t i = 0; i < n; i++) {
+        const double *top = i == 0 ? p0 : ref + 3 * (i - 1), *bottom = ref + 3 * i;
+        const double len = s->length[i];
+        const double u[3] = {(bottom[0] - top[0]) / len, 0, (bottom[2] - top[2]) / len};
+        const double p[3] = {u[2], 0, -u[0]};
+        double *d = links + 3 * i;
+        const double side = d[0] * p[0] + d[2] * p[2] >= 0 ? 1 : -1;
+        for (int k = 0; k < 3; k++)
+            d[k] = len * (cos(s->perturb) * u[k] + side * sin(s->perturb) * p[k]);
+    }
+}
+
 /* w->y with the start state; w->ref with the reference shape. */
 static int start_state(whirl_scene_work *w)
 {
@@ -136,6 +156,7 @@ static int start_state(whirl_scene_work *w)
         accumulate(n, p0, w->links, w->ref);
         if (s->perturb > 0 && (status = whirl_perturb_links(n, w->links, s->perturb, s->seed)))
             return key_fail(s, status, WHIRL_KEY_START_PERTURB, whirl_error_marked());
+        if (s->perturb > 0 && s->dim == 2) planar_turn(s, n, w->links, w->ref, p0);
         status = whirl_dyn_state_from_shape(w->dyn, 0, w->links, spin, w->y);
     }
     if (status) {
@@ -469,7 +490,12 @@ int whirl_scene_write_header_with_pivot(FILE *fp, const whirl_scene *s,
                 NUM(s->start_omega), NUM(s->perturb), s->seed);
         break;
     case WHIRL_START_ANGLES: fprintf(fp, "# start: theta, phi and their rates\n"); break;
-    case WHIRL_START_HANGING: fprintf(fp, "# start: hanging\n"); break;
+    case WHIRL_START_HANGING:
+        if (s->perturb > 0)
+            fprintf(fp, "# start: hanging, perturb %s (seed %lu)\n", NUM(s->perturb), s->seed);
+        else
+            fprintf(fp, "# start: hanging\n");
+        break;
     }
     if (sc_write_pivot_line(fp, pivot) != GSL_SUCCESS) return GSL_EFAILED;
     whirl_write_units_line(fp, s->physical, s->chain_length, s->chain_mass, s->gravity);

@@ -264,4 +264,24 @@ if [ ! -s "$tmp/stderr" ] && [ ! -s "$tmp/stderr2" ] && paste -d, "$tmp/bdf.csv"
   pass "gsl-msbdf on the stiff drag: the tip within 1e-5 of rk4 at dt = 2e-4"
 else fail "gsl-msbdf on the stiff drag: $(tail -n 1 "$tmp/bdf.csv") vs $(tail -n 1 "$tmp/ref.csv") $(cat "$tmp/stderr" "$tmp/stderr2")"; fi
 
+
+# a planar hanging chain perturbed: each link turned by the angle in the x-z plane (was refused:
+# the perturbation of space left the plane); one link at 0.01 starts with its tip at
+# (+-sin 0.01, 0, -cos 0.01), and the header records the perturbation and its seed
+printf '[chain]\ndim = 2\nlinks = 1\n[start]\nhanging = true\nperturb = 0.01\n[run]\nomega = 3\ndt = 0.01\nt_end = 0.01\n' \
+  >"$tmp/planar.ini"
+if "$WHIRL" simulate "$tmp/planar.ini" -o "$tmp/planar.csv" 2>"$tmp/stderr" &&
+   grep -q '^# start: hanging, perturb 0.01 (seed 1)$' "$tmp/planar.csv" &&
+   grep -v '^#' "$tmp/planar.csv" | awk -F, 'NR == 2 { x = $2 < 0 ? -$2 : $2
+     exit !(x - sin(0.01) < 1e-15 && sin(0.01) - x < 1e-15 && $3 == 0 && $4 + cos(0.01) < 1e-15 &&
+            -cos(0.01) - $4 < 1e-15) }'; then
+  pass "a perturbed planar hanging chain: turned by 0.01 in the plane, the perturbation in the header"
+else fail "a perturbed planar hanging chain: $(cat "$tmp/stderr"; grep -v '^#' "$tmp/planar.csv" | sed -n 2p)"; fi
+# five links: every link turned by the angle, y = 0 throughout the run
+sed 's/links = 1/links = 5/; s/t_end = 0.01/t_end = 1/' "$tmp/planar.ini" >"$tmp/planar5.ini"
+if "$WHIRL" simulate "$tmp/planar5.ini" -o "$tmp/planar5.csv" 2>"$tmp/stderr" &&
+   grep -v '^#' "$tmp/planar5.csv" | awk -F, 'NR > 1 && $3 != 0 { bad = 1 } END { exit bad || NR < 50 }'; then
+  pass "a perturbed planar chain of 5 links runs in its plane"
+else fail "a perturbed planar chain of 5 links: $(cat "$tmp/stderr")"; fi
+
 finish
