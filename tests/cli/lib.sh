@@ -44,4 +44,12 @@ interrupt() {
   late=$(echo "$(date +%s.%N) - $t0" | bc)
 }
 
+# signal_run SIGNAL CPU_SECONDS COMMAND...: runs COMMAND (its streams the caller's), sends SIGNAL
+# once it has used CPU_SECONDS of processor time, waits for it (tests/tools/signal_run.py); the
+# status is the command's. Then report FIELD gives the run's status, wall (s from the signal to
+# the exit), cpu_after (processor s from the signal to the exit: the work done after a stop,
+# which load does not stretch), cpu_before, early (1: it ended before the signal).
+signal_run() { /usr/bin/python3 "$(dirname "$0")/../tools/signal_run.py" "$tmp/signal.report" "$@"; }
+report() { sed -n "s/.*$1=\([^ ]*\).*/\1/p" "$tmp/signal.report"; }
+
 finish() { echo "1..$n"; [ $fails -eq 0 ]; exit $?; }

@@ -275,12 +275,10 @@ expect_error "stability --dt beyond gauss2's reach: the failure names the step g
   stability --omega 4 --mode 2 --links 60 --method gauss2 --dt 0.05 -o "$out"
 
 # ---- long phases poll the stop request ----
-# Promptness is measured in processor time, which load does not stretch (tests/tools/signal_run.py):
+# Promptness is measured in processor time, which load does not stretch (signal_run, lib.sh):
 # the signal comes once the command has used a given processor time, and the work it does after
 # the signal (its processor time from then to its exit) must be under a second; the wall time is
 # printed, and bounded only against a hang (120 s, then SIGKILL).
-signal_run() { /usr/bin/python3 "$(dirname "$0")/../tools/signal_run.py" "$tmp/signal.report" "$@"; }
-report() { sed -n "s/.*$1=\([^ ]*\).*/\1/p" "$tmp/signal.report"; }
 # prompt NAME ARGS...: SIGINT 2 s of processor time into a long phase ends it with under a second
 # of processor time more (about 0.1-0.3 s), exit 130, no file
 prompt() {
