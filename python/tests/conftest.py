@@ -59,8 +59,18 @@ SLOW = {
 }
 
 
+# The tests that the sanitizer half leaves out besides the slow ones, marked `plain_only`: those
+# of sanitize-except.txt, written by tests/tools/python_sanitize_list.py so that the tests the
+# sanitizers run still call every library function with every outcome (and run every command of
+# the program) that the whole suite does (docs/performance.md).
+with open(os.path.join(HERE, "sanitize-except.txt")) as _f:
+    PLAIN_ONLY = {line.strip() for line in _f if line.strip() and not line.startswith("#")}
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "slow: run once, in the plain half of make check")
+    config.addinivalue_line("markers", "plain_only: left out of the sanitizer half "
+                            "(sanitize-except.txt)")
 
 
 def pytest_collection_modifyitems(config, items):
@@ -68,3 +78,5 @@ def pytest_collection_modifyitems(config, items):
         name = "%s::%s" % (os.path.basename(str(item.fspath)), item.name)
         if any(name.startswith(prefix) for prefix in SLOW):
             item.add_marker(pytest.mark.slow)
+        if name in PLAIN_ONLY:
+            item.add_marker(pytest.mark.plain_only)

@@ -5,7 +5,8 @@
 # process); leak detection is off there (the interpreter itself keeps memory to its exit: the
 # pytest suite measures growth over 10^4 calls instead) and so is ASan's quarantine of freed
 # memory, which would otherwise count as growth. With WHIRL_SANITIZE or WHIRL_QUICK set the tests
-# marked slow are left out (they run in the plain half of make check).
+# marked slow are left out (they run in the plain half of make check), with WHIRL_SANITIZE those
+# of python/tests/sanitize-except.txt as well.
 build=$(cd "$(dirname "${WHIRL:-build/whirl}")" && pwd)
 preload=
 if [ -n "$WHIRL_SANITIZE" ]; then
@@ -27,8 +28,11 @@ if [ ! -f "$build/libwhirl.so" ]; then
   echo "not ok - python: $build/libwhirl.so is not built" >"$results"
   rc=1
 else
-  # the tests marked slow (python/tests/conftest.py) run once, in the plain half
-  if [ -n "$WHIRL_SANITIZE$WHIRL_QUICK" ]; then set -- -m "not slow"; else set --; fi
+  # the tests marked slow (python/tests/conftest.py) run once, in the plain half, and so do those
+  # marked plain_only (python/tests/sanitize-except.txt)
+  if [ -n "$WHIRL_SANITIZE" ]; then set -- -m "not slow and not plain_only"
+  elif [ -n "$WHIRL_QUICK" ]; then set -- -m "not slow"
+  else set --; fi
   LD_PRELOAD="${preload# }" WHIRL_BUILD=$build WHIRL_LIBRARY=$build/libwhirl.so WHIRL_TAP=1 \
     /usr/bin/python3 -m pytest -q -p no:cacheprovider --durations=8 "$@" python/tests >"$log" 2>&1
   rc=$?
