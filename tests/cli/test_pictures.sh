@@ -25,7 +25,7 @@ grep -q '>pivot (dot) on the rotation axis (dashed)<' "$tmp/shapes.svg" &&
 # true aspect ratio: the 2 Hz curve's extent in the picture over its extent in the CSV, the same
 # scale across and down (to 2%, the picture's coordinates having 2 decimals)
 "$WHIRL" shape $si --omega 2Hz --mode 2 -o "$tmp/s2.csv"
-box=$(python3 "$tools/svg_extent.py" "$tmp/shapes.svg" 31,78,156)
+box=$(/usr/bin/python3 "$tools/svg_extent.py" "$tmp/shapes.svg" 31,78,156)
 data=$(grep -v '^#' "$tmp/s2.csv" | tail -n +2 | awk -F, 'NR == 1 { r0 = r1 = $2; z0 = z1 = $3 }
   { if ($2 < r0) r0 = $2; if ($2 > r1) r1 = $2; if ($3 < z0) z0 = $3; if ($3 > z1) z1 = $3 }
   END { print r1 - r0, z1 - z0 }')
@@ -154,7 +154,7 @@ expect_error "plot: a trace to PNG" 'an animation is written as' plot "$tmp/t.da
 # bottom of the picture)
 "$WHIRL" shape --omega 3 --mode 1 -o "$tmp/f3.csv"
 expect_ok "shape --plot: flat shapes" shape --omega 3,5 --mode 1 --plot "$tmp/flat.svg"
-box=$(python3 "$tools/svg_extent.py" "$tmp/flat.svg" 31,78,156)
+box=$(/usr/bin/python3 "$tools/svg_extent.py" "$tmp/flat.svg" 31,78,156)
 height=$(grep -o ' height="[0-9.]*"' "$tmp/flat.svg" | head -1 | tr -dc '0-9.')
 data=$(grep -v '^#' "$tmp/f3.csv" | tail -n +2 | awk -F, 'NR == 1 { r0 = r1 = $2; z0 = z1 = $3 }
   { if ($2 < r0) r0 = $2; if ($2 > r1) r1 = $2; if ($3 < z0) z0 = $3; if ($3 > z1) z1 = $3 }
@@ -171,7 +171,7 @@ grep -qF '>mode 1<' "$tmp/b.svg" && grep -qF '>mode 2<' "$tmp/b.svg" && ! grep -
   pass "branches: a key entry per mode in the file" || fail "branches: the key's entries"
 
 # --size, --present: the picture fits the box, whole (its proportions kept)
-png_size() { python3 -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24); print(*struct.unpack(">II", d[16:24]))' "$1"; }
+png_size() { /usr/bin/python3 -c 'import struct, sys; d = open(sys.argv[1], "rb").read(24); print(*struct.unpack(">II", d[16:24]))' "$1"; }
 expect_ok "plot --size 800" plot "$tmp/b.csv" -o "$tmp/b800.png" --size 800
 [ "$(png_size "$tmp/b800.png")" = "800 360" ] && pass "--size 800: 800 x 360 (1200 x 540 scaled)" ||
   fail "--size 800: $(png_size "$tmp/b800.png")"
