@@ -267,12 +267,12 @@ int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2)
 }
 
 void cli_trace_header(FILE *fp, const cli_units *u, const char *what, double omega, double eps,
-                      double drag, double drag2, int links)
+                      const char *pivot, double drag, double drag2, int links)
 {
     fprintf(fp, "# trace: %s; inertial frame, columns x y z t, one block per time (the pivot, "
-                "then masses 1..N); omega=%s eps=%s drag=%s drag_quadratic=%s links=%d\n",
-            what, CLI_NUM(omega * cli_units_scale(u, CLI_UNIT_RATE)),
-            CLI_NUM(eps * cli_units_scale(u, CLI_UNIT_LENGTH)),
+                "then masses 1..N); omega=%s %s%s drag=%s drag_quadratic=%s links=%d\n",
+            what, CLI_NUM(omega * cli_units_scale(u, CLI_UNIT_RATE)), pivot ? "pivot=" : "eps=",
+            pivot ? pivot : CLI_NUM(eps * cli_units_scale(u, CLI_UNIT_LENGTH)),
             CLI_NUM(drag * cli_units_scale(u, CLI_UNIT_DRAG)),
             CLI_NUM(drag2 * cli_units_scale(u, CLI_UNIT_DRAG2)), links);
     cli_units_comment(fp, u);

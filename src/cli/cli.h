@@ -302,9 +302,11 @@ int cli_drag_apply(const cli_command *cmd, const cli_air *air, double *drag2);
  * separated by two blank lines, each after a "# t = T" line. The file opens with
  *   # trace: WHAT; inertial frame ...; omega=W eps=E drag=C drag_quadratic=C2 links=N
  * and the "# units:" line; cli_trace_header writes both (values dimensionless in, printed in
- * the user's units). */
+ * the user's units). A pivot on a path (pivot: its text, no spaces, as the CSV's "# pivot ="
+ * line) is named instead of the circle drive: "pivot=fourier:x1c=0.1,y1s=0.06" in place of
+ * "eps=E" (readers of eps take the pivot for one that draws no circle). */
 void cli_trace_header(FILE *fp, const cli_units *u, const char *what, double omega, double eps,
-                      double drag, double drag2, int links);
+                      const char *pivot, double drag, double drag2, int links);
 
 /* ---- numbers in text and CSV: the shortest round-trip form (whirl_format_double) ----
  * CLI_NUM(x) is a string valid to the end of the enclosing full expression's block, for use as

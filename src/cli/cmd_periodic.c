@@ -9,12 +9,7 @@
  * the residual, no multipliers, exit status 1. Ctrl-C stops the solve (exit status 130).
  *
  * --chart hanging|inverted: the stability chart of the chain shaken vertically
- * (whirl_chart_vertical) over --omega-min..--omega-max (--omega-count rates) and
- * --amp-min..--amp-max (--amp-rows amplitudes scanned for new curves): comment lines, the
- * "# units:" line, then the CSV curve,edge,omega,amplitude,err, one row per edge point (edge +1
- * or -1: the multiplier pair passing there), the points of one curve by rate, a blank line
- * between curves (gnuplot draws each as a line). Ctrl-C stops it within a monodromy: the points
- * found until then are written (a comment line says where it stopped), exit status 130.
+ * (periodic_chart.c); --resume goes on with a chart stopped by Ctrl-C (chart_file.h).
  *
  * --chart ellipse: the ellipticity chart of the hand-swung chain (periodic_ellipse.c).
  *
@@ -37,7 +32,7 @@ typedef struct periodic_options {
     double omega, tol, arc_step, eps, e_max, drag, drag2, damping;
     cli_air air; /* --drag-cd */
     int links, dim, steps, max_iter, mode, side, differences, up, max_points;
-    int mode_given, side_given, emax_given;
+    int mode_given, side_given, emax_given, resume;
     int omega_given, omin_given, omax_given, amin_given, amax_given;
     double omega_min, omega_max, amp_min, amp_max, edge_tol; /* --chart */
     int omega_count, amp_rows;
@@ -131,80 +126,6 @@ static void write_result(FILE *fp, const periodic_options *o, const whirl_period
 }
 
 
-/* ---- --chart: the points collected (the chart hands them out by rate), written by curve ---- */
-
-typedef struct chart_rows {
-    whirl_chart_point *p;
-    size_t n, cap;
-    cli_progress_state line;
-    double after;
-    int column, columns; /* the last rate finished (from 0; -1: none) and the count */
-} chart_rows;
-
-static int chart_keep(void *data, const whirl_chart_point *point)
-{
-    chart_rows *r = data;
-    if (r->n == r->cap) {
-        const size_t cap = r->cap ? 2 * r->cap : 256;
-        whirl_chart_point *p = realloc(r->p, cap * sizeof *p);
-        if (p == NULL) return GSL_ENOMEM;
-        r->p = p;
-        r->cap = cap;
-    }
-    r->p[r->n++] = *point;
-    return 0;
-}
-
-static void chart_tick(void *data, const whirl_chart_progress *p)
-{
-    chart_rows *r = data;
-    r->column = p->column;
-    r->columns = p->columns;
-    if (!r->line.drawn && cli_wall_seconds() - r->line.start < r->after) return;
-    cli_progress_text(&r->line, "rate %d of %d, %d curves, %ld monodromies", p->column + 1,
-                      p->columns, p->curves, p->monodromies);
-}
-
-/* By curve, then by rate (a curve has one point per rate, and a tongue's tip between two). */
-static int chart_order(const void *a, const void *b)
-{
-    const whirl_chart_point *p = a, *q = b;
-    if (p->curve != q->curve) return p->curve < q->curve ? -1 : 1;
-    if (p->column != q->column) return p->column < q->column ? -1 : 1;
-    return (p->omega > q->omega) - (p->omega < q->omega);
-}
-
-static void write_chart(FILE *fp, const periodic_options *o, const whirl_chart_params *p,
-                        chart_rows *r, int interrupted)
-{
-    const double rate = cli_units_scale(&o->units, CLI_UNIT_RATE);
-    const double len = cli_units_scale(&o->units, CLI_UNIT_LENGTH);
-    const char *ru = cli_units_name(&o->units, CLI_UNIT_RATE);
-    const char *lu = cli_units_name(&o->units, CLI_UNIT_LENGTH);
-    int curves = 0;
-    if (r->n > 0) qsort(r->p, r->n, sizeof *r->p, chart_order); /* r->p is NULL without points */
-    for (size_t i = 0; i < r->n; i++) curves += i == 0 || r->p[i].curve != r->p[i - 1].curve;
-    fprintf(fp, "# chart: the %s chain shaken vertically, A cos(omega t); links=%d; "
-            "edge +1: a multiplier pair through +1, -1: through -1 (period doubling)\n",
-            p->inverted ? "inverted" : "hanging", o->links);
-    fprintf(fp, "# omega from %s to %s %s (%d rates); A from %s to %s %s (%d rows scanned); "
-            "points=%zu curves=%d\n", CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate),
-            ru, p->columns, CLI_NUM(p->amp_min * len), CLI_NUM(p->amp_max * len), lu, p->rows,
-            r->n, curves);
-    if (interrupted)
-        fprintf(fp, "# interrupted after %d of %d rates: the points found until then\n",
-                r->column + 1, p->columns);
-    cli_units_comment(fp, &o->units);
-    fprintf(fp, "curve,edge,omega,amplitude,err\n");
-    for (size_t i = 0; i < r->n; i++) {
-        const whirl_chart_point *q = &r->p[i];
-        if (i > 0 && q->curve != r->p[i - 1].curve) fputc('\n', fp);
-        fprintf(fp, "%d,%d,%s,%s,%s\n", q->curve + 1,
-                q->kind == WHIRL_FLOQUET_EDGE_PLUS_ONE ? 1 : -1, CLI_NUM(q->omega * rate),
-                CLI_NUM(q->amplitude * len), CLI_NUM(q->err * len));
-    }
-}
-
 static int run_chart(const cli_command *cmd, const periodic_options *o)
 {
     const int inverted = strcmp(o->chart, "hanging") == 0    ? 0
@@ -225,7 +146,7 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
             .columns = o->omega_count, .steps = o->steps, .eps = o->eps,
             .omega_min = o->omega_min, .omega_max = o->omega_max, .e_max = o->e_max,
             .arc_step = o->arc_step,
-            .output = o->output, .units = &o->units};
+            .output = o->output, .units = &o->units, .resume = o->resume};
         return periodic_chart_ellipse(cmd, &a);
     }
     if (!o->amax_given) return cli_error(cmd, "--chart needs --amp-max");
@@ -236,45 +157,12 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
         return cli_error(cmd, "--omega-max must exceed --omega-min");
     if (!(o->amp_max > o->amp_min))
         return cli_error(cmd, "--amp-max must exceed --amp-min");
-    const whirl_chart_params p = {.inverted = inverted, .omega_min = o->omega_min,
-                                  .omega_max = o->omega_max, .columns = o->omega_count,
-                                  .amp_min = o->amp_min, .amp_max = o->amp_max,
-                                  .rows = o->amp_rows, .steps = o->steps, .tol = o->edge_tol};
-    whirl_chain *c = whirl_chain_alloc_uniform((size_t)o->links, 0);
-    if (c == NULL) return cli_error(cmd, "%s", CLI_LIBRARY_ERROR(&o->units));
-    cli_out out;
-    if (cli_out_open(cmd, &out, o->output)) {
-        whirl_chain_free(c);
-        return 1;
-    }
-    cli_catch_interrupts();
-    chart_rows r = {.after = cli_progress_after(), .column = -1};
-    cli_progress_begin(&r.line, cmd, "", 0, 0);
-    const int status = whirl_chart_vertical(c, 2, &p, chart_keep, &r, chart_tick, &r);
-    cli_progress_clear(&r.line);
-    /* the defaults as the chart took them, for the comment lines */
-    whirl_chart_params shown = p;
-    if (shown.columns == 0) shown.columns = r.columns;
-    if (shown.rows == 0) shown.rows = 200; /* whirl_chart_params: rows 0 means 200 */
-    if (shown.amp_min == 0) shown.amp_min = shown.amp_max / shown.rows;
-    int rc;
-    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
-        const int stopped = status == WHIRL_EINTERRUPTED;
-        write_chart(out.fp, o, &shown, &r, stopped);
-        rc = cli_out_commit(cmd, &out);
-        if (rc == 0 && stopped)
-            rc = (cli_error(cmd, "interrupted after %d of %d rates: the %zu points found until "
-                            "then are written", r.column + 1, shown.columns, r.n),
-                  CLI_EXIT_INTERRUPTED);
-    } else {
-        cli_out_abort(&out);
-        rc = cli_error(cmd, "%s", status == GSL_ENOMEM && whirl_last_status() != GSL_ENOMEM
-                                      ? "out of memory for the chart's points"
-                                      : CLI_LIBRARY_ERROR(&o->units));
-    }
-    free(r.p);
-    whirl_chain_free(c);
-    return rc;
+    const periodic_chart_args a = {
+        .inverted = inverted, .links = o->links, .columns = o->omega_count, .rows = o->amp_rows,
+        .steps = o->steps, .omega_min = o->omega_min, .omega_max = o->omega_max,
+        .amp_min = o->amp_min, .amp_max = o->amp_max, .tol = o->edge_tol, .output = o->output,
+        .units = &o->units, .resume = o->resume};
+    return periodic_chart_vertical(cmd, &a);
 }
 
 /* ---- a branch (--omega-min/--omega-max or --amp-min/--amp-max without --chart) ---- */
@@ -545,6 +433,10 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
         CLI_AIR_DRAG_OPTIONS(o.drag, NULL, o.drag2, NULL, o.air),
         CLI_DAMPING_OPTION(o.damping),
         CLI_UNITS_OPTIONS(o.units),
+        {.name = "--resume", .type = CLI_FLAG, .value = &o.resume,
+         .help = "--chart: keep the rates finished in -o FILE (a chart stopped by Ctrl-C), "
+                 "compute the rest",
+         .needs = "--chart --output"},
         {.name = "--output", .alias = "-o", .type = CLI_STRING, .value = &o.output,
          .meta = "FILE", .help = "write the CSV to FILE (default: standard output)"},
     };

@@ -225,7 +225,7 @@ static int run_one(const cli_command *cmd, const regime_options *o, const whirl_
                     regime_cli_user(o, CLI_UNIT_TIME, 1)};
     if (trace_open)
         cli_trace_header(trace.fp, &o->units, "whirl regime, one run from rest", o->p.omega,
-                         o->p.drive_radius, o->p.air_drag, o->p.air_drag_quadratic, o->links);
+                         o->p.drive_radius, NULL, o->p.air_drag, o->p.air_drag_quadratic, o->links);
     observe_ctx oc;
     observe_begin(cmd, o, w, &oc, trace_open ? &tc : NULL, "time", o->p.t_max);
     whirl_regime_result r;

@@ -15,6 +15,7 @@
 #include <gsl/gsl_math.h>
 
 #include "cli/figure.h"
+#include "core/error.h"
 #include "studies/scene_internal.h"
 #include "whirl/scene.h"
 
@@ -53,10 +54,23 @@ static int on_frame(void *ctx, double t, const double *pivot, const double *x, s
         const whirl_scene *s = &r->scene;
         const cli_units si = {s->chain_length, s->chain_mass, s->gravity, 1};
         const cli_units dimensionless = CLI_UNITS_INIT, u = s->physical ? si : dimensionless;
+        /* a pivot on a path: named by its terms, as the CSV's "# pivot =" line (no drive
+           radius with it: eps would say 0, a pivot at rest) */
+        char *text = NULL;
+        size_t len = 0;
+        FILE *mem = r->pivot.given ? open_memstream(&text, &len) : NULL;
+        if (mem) sc_write_pivot_text(mem, &r->pivot.path);
+        if (mem && fclose(mem) != 0) {
+            free(text);
+            text = NULL;
+        }
+        if (r->pivot.given && text == NULL)
+            return whirl_fail(GSL_ENOMEM, "out of memory for the trace's header");
         cli_trace_header(r->trace.fp, &u, "whirl simulate", s->omega / cli_units_scale(&u, CLI_UNIT_RATE),
-                         s->drive_radius / cli_units_scale(&u, CLI_UNIT_LENGTH),
+                         s->drive_radius / cli_units_scale(&u, CLI_UNIT_LENGTH), text,
                          s->air_drag / cli_units_scale(&u, CLI_UNIT_DRAG),
                          s->air_drag_quadratic / cli_units_scale(&u, CLI_UNIT_DRAG2), (int)s->links);
+        free(text);
     }
     return whirl_scene_write_frame(r->trace.fp, r->frames++, t, pivot, x, n);
 }

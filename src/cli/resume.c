@@ -59,3 +59,14 @@ cli_resume_kind cli_resume_next(cli_resume *r, const char **line)
     const whirl_resume_kind kind = whirl_resume_next(r->r, line);
     return kind == WHIRL_RESUME_ERROR ? print_refusal(r) : kind;
 }
+
+int cli_resume_refuse_at(cli_resume *r, long lineno, const char *fmt, ...)
+{
+    char why[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    whirl_resume_refuse_at(r->r, lineno, "%s", why);
+    return print_refusal(r);
+}

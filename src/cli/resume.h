@@ -50,4 +50,11 @@ int cli_resume_refuse(cli_resume *r, const char *fmt, ...)
 #endif
     ;
 
+/* cli_resume_refuse for the line lineno, read earlier. */
+int cli_resume_refuse_at(cli_resume *r, long lineno, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 #endif

@@ -71,6 +71,17 @@ int whirl_resume_refuse(whirl_resume *r, const char *fmt, ...)
     return WHIRL_RESUME_ERROR;
 }
 
+int whirl_resume_refuse_at(whirl_resume *r, long lineno, const char *fmt, ...)
+{
+    char why[320];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    r->lineno = lineno;
+    return whirl_resume_refuse(r, "%s", why);
+}
+
 /* Word i of s (words apart by spaces and newlines) into w; 0 if s has fewer. */
 static int word(const char *s, size_t i, char *w, size_t size)
 {
@@ -200,7 +211,7 @@ whirl_resume_kind whirl_resume_next(whirl_resume *r, const char **line)
             r->want = r->want[len] ? r->want + len : NULL;
             continue;
         }
-        if (r->line[0] == '#') return WHIRL_RESUME_NOTE;
+        if (r->line[0] == '#' || (r->p.blank && r->line[0] == '\n')) return WHIRL_RESUME_NOTE;
         /* a complete row must be whole and finite: a file that holds others cannot be trusted */
         char why[160];
         if (whirl_resume_row_check(r->line, r->fields, why, sizeof why) != 0)

@@ -20,6 +20,8 @@ typedef struct whirl_resume_params {
     const char *note;   /* comment lines starting so are allowed among the header's lines and
                          * handed to the caller (the atlas's "# done "); NULL: none */
     size_t line_max;    /* the longest line accepted, in characters */
+    int blank;          /* 1: an empty line among the rows is handed over as a comment (the
+                         * charts' breaks between curves, for gnuplot); 0: refused as a row */
 } whirl_resume_params;
 
 /* The kinds of line whirl_resume_next hands over. */
@@ -28,7 +30,8 @@ typedef enum {
     WHIRL_RESUME_END = 0,    /* the end of the file (an unfinished last line dropped) */
     WHIRL_RESUME_ROW = 1,    /* a complete row, whole and finite */
     WHIRL_RESUME_NOTE = 2    /* a comment line: one starting with params.note among the
-                              * header's lines, or any after the header */
+                              * header's lines, or any after the header, or
+                              * with params.blank an empty one after it */
 } whirl_resume_kind;
 
 typedef struct whirl_resume whirl_resume;
@@ -51,6 +54,14 @@ long whirl_resume_lineno(const whirl_resume *r);
 int whirl_resume_refuse(whirl_resume *r, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* whirl_resume_refuse for the line lineno, read earlier (a row that only the lines after it show
+ * wrong: the charts' state comes after their rows). */
+int whirl_resume_refuse_at(whirl_resume *r, long lineno, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
 #endif
     ;
 

@@ -44,6 +44,7 @@
 #include "core/error.h"
 #include "core/roots.h"
 #include "periodic/chart_modes.h"
+#include "periodic/chart_resume.h"
 
 #define COLUMNS_DEFAULT 200 /* the 200 x 200 chart */
 #define ROWS_DEFAULT 200
@@ -64,54 +65,6 @@
  * sign alone. */
 #define FACTOR_HUGE 1e300
 
-typedef struct chart_curve {
-    whirl_floquet_edge kind;
-    int mode;      /* the mode whose factor's root it is (from 0, by increasing lambda) */
-    int id;
-    int alive;
-    double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
-    int found;     /* located at the current rate */
-    double w1;     /* the rate of a1 */
-    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined */
-    double tip;    /* that tip's rate (NAN: none) */
-    double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
-} chart_curve;
-
-typedef struct chart_tip {
-    double omega;
-    int mode;
-} chart_tip;
-
-typedef struct chart chart;
-
-/* One thread's workspace: the family and the rate of its evaluations. */
-typedef struct chart_ws {
-    const chart *ch;
-    long monodromies;
-    int mode;                /* of the root under way */
-    whirl_floquet_edge kind; /* of the root under way */
-    double shift;       /* (f(h/2) - f(h)) / 15 at the last fine evaluation of kind */
-    double omega;       /* the rate of the evaluations; NAN: the chart's current rate */
-    double amp;         /* the amplitude of fine_rate */
-} chart_ws;
-
-struct chart {
-    const whirl_chain *c;
-    whirl_chart_params p;
-    chart_ws *ws;       /* one per thread */
-    int threads;
-    double omega;       /* the current rate */
-    chart_curve *curves;
-    int count, cap;
-    int n;              /* the modes */
-    double *coef;       /* sigma lambda_k (chart_modes.c), n */
-    int *steps;         /* the coarser monodromy's steps per period, per mode */
-    double *freq;       /* the unshaken chain's frequencies sqrt(g lambda_k) (hanging), n */
-    int *rescan;        /* per mode: its factors scanned at this rate */
-    double *ends;       /* per mode, the range's two ends: f_+, f_- (4 n) */
-    chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
-    int tips_count, tips_cap;
-};
 
 /* The monodromies computed so far, by all the threads. */
 static long monodromies(const chart *ch)
@@ -629,18 +582,35 @@ static int range_ends(chart_ws *s, void *data, int i)
     return edge_functions(s, i % 2 ? p->amp_max : p->amp_min, i / 2, 1, &s->ch->ends[2 * i]);
 }
 
-/* The columns. */
-static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_chart_tick_fn tick,
-                   void *tick_data)
+double chart_grid(double lo, double hi, int columns, int j)
+{
+    return j == columns - 1 ? hi : lo + j * (hi - lo) / (columns - 1);
+}
+
+/* The state after `done` columns handed to save (chart_resume.h). */
+static int save_state(const chart *ch, int done, chart_save_fn save, void *save_data)
+{
+    if (save == NULL) return GSL_SUCCESS;
+    char *text = NULL;
+    int status = chart_state_write(ch, done, &text);
+    if (status == GSL_SUCCESS) status = save(save_data, done, text);
+    free(text);
+    return status;
+}
+
+/* The columns from start on (the curves and tips those before it left). */
+static int columns(chart *ch, int start, whirl_chart_row_fn row, void *row_data,
+                   whirl_chart_tick_fn tick, void *tick_data, chart_save_fn save,
+                   void *save_data)
 {
     const whirl_chart_params *p = &ch->p;
     const double spacing = (p->amp_max - p->amp_min) / (p->rows - 1);
-    double last = 0;
-    for (int j = 0; j < p->columns; j++) {
-        ch->omega = j == p->columns - 1 ? p->omega_max
-                                        : p->omega_min + j * (p->omega_max - p->omega_min) /
-                                                             (p->columns - 1);
-        int status = follow_all(ch, j, spacing, row, row_data);
+    double last = start > 0 ? chart_grid(p->omega_min, p->omega_max, p->columns, start - 1) : 0;
+    int status = save_state(ch, start, save, save_data);
+    if (status) return status;
+    for (int j = start; j < p->columns; j++) {
+        ch->omega = chart_grid(p->omega_min, p->omega_max, p->columns, j);
+        status = follow_all(ch, j, spacing, row, row_data);
         if (status == GSL_SUCCESS) status = parallel_items(ch, 2 * ch->n, range_ends, NULL);
         /* per family, the parity of its edges against the signs of its factor at the ends */
         int any = 0;
@@ -667,6 +637,7 @@ static int columns(chart *ch, whirl_chart_row_fn row, void *row_data, whirl_char
                                              .monodromies = monodromies(ch)};
             tick(tick_data, &pr);
         }
+        if ((status = save_state(ch, j + 1, save, save_data))) return status;
         last = ch->omega;
     }
     return GSL_SUCCESS;
@@ -711,17 +682,28 @@ static int workspaces(chart *ch)
     return GSL_SUCCESS;
 }
 
-int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
-                         whirl_chart_row_fn row, void *row_data, whirl_chart_tick_fn tick,
-                         void *tick_data)
+int chart_vertical_run(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                       const char *state, whirl_chart_row_fn row, void *row_data,
+                       whirl_chart_tick_fn tick, void *tick_data, chart_save_fn save,
+                       void *save_data)
 {
     chart ch = {.c = c};
     if (params) ch.p = *params;
     int status = check_params(c, dim, &ch.p);
     if (status) return status;
+    int start = 0;
     status = modes(&ch);
     if (status == GSL_SUCCESS) status = workspaces(&ch);
-    if (status == GSL_SUCCESS) status = columns(&ch, row, row_data, tick, tick_data);
+    if (status == GSL_SUCCESS && state) status = chart_state_read(&ch, state, &start);
+    if (status == GSL_SUCCESS)
+        status = columns(&ch, start, row, row_data, tick, tick_data, save, save_data);
     chart_free(&ch);
     return status;
+}
+
+int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                         whirl_chart_row_fn row, void *row_data, whirl_chart_tick_fn tick,
+                         void *tick_data)
+{
+    return chart_vertical_run(c, dim, params, NULL, row, row_data, tick, tick_data, NULL, NULL);
 }

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "core/error.h"
+#include "periodic/chart_resume.h"
 #include "periodic/periodic_internal.h"
 #include "whirl/stability.h"
 
@@ -186,20 +187,53 @@ static int curve_end(ellipse_chart *ch, double w_stable, double w_other, int cur
     return emit(ch, row, row_data, &pt);
 }
 
-static int columns(ellipse_chart *ch, whirl_ellipse_chart_row_fn row, void *row_data)
+/* The state after `done` rates handed to save (chart_resume.h). */
+static int save_state(const ellipse_chart *ch, int done, int prev, int curve,
+                      chart_save_fn save, void *save_data)
+{
+    if (save == NULL) return GSL_SUCCESS;
+    char text[160];
+    snprintf(text, sizeof text, "ellipse columns=%d prev=%d curve=%d failed=%d\n", done, prev,
+             curve, ch->progress.failed);
+    return save(save_data, done, text);
+}
+
+/* The state text into *done, *prev, *curve and ch->progress.failed. */
+static int read_state(ellipse_chart *ch, const char *text, int *done, int *prev, int *curve)
+{
+    int len = -1;
+    if (sscanf(text, "ellipse columns=%d prev=%d curve=%d failed=%d\n%n", done, prev, curve,
+               &ch->progress.failed, &len) != 4 || len < 0 || text[len] != '\0')
+        return whirl_fail(GSL_EINVAL, "state line 1: not 'ellipse columns=J prev=P curve=C "
+                          "failed=F'");
+    /* a rate before the first stable one has prev 0 and curve -1; each rate begins a curve at
+       most, and fails at most twice (its continuation and a curve's end) */
+    if (*done < 0 || *done > ch->p.columns || *prev < -1 || *prev > 1 ||
+        (*prev == -1) != (*done == 0) || *curve < -1 || *curve >= *done ||
+        (*prev == 1 && *curve < 0) || ch->progress.failed < 0 ||
+        ch->progress.failed > 2 * *done)
+        return whirl_fail(GSL_EINVAL, "state line 1: a count out of range");
+    return GSL_SUCCESS;
+}
+
+static int columns(ellipse_chart *ch, const char *state, whirl_ellipse_chart_row_fn row,
+                   void *row_data, chart_save_fn save, void *save_data)
 {
     const whirl_ellipse_chart_params *p = &ch->p;
     int prev = -1; /* the previous rate: -1 none, 0 unstable at e = 0 or no shape, 1 stable */
-    int curve = -1;
-    double last = 0;
-    for (int j = 0; j < p->columns; j++) {
-        const double omega = j == p->columns - 1
-                                 ? p->omega_max
-                                 : p->omega_min + j * (p->omega_max - p->omega_min) /
-                                                      (p->columns - 1);
+    int curve = -1, start = 0;
+    if (state) {
+        const int status = read_state(ch, state, &start, &prev, &curve);
+        if (status) return status;
+    }
+    double last = start > 0 ? chart_grid(p->omega_min, p->omega_max, p->columns, start - 1) : 0;
+    int status = save_state(ch, start, prev, curve, save, save_data);
+    if (status) return status;
+    for (int j = start; j < p->columns; j++) {
+        const double omega = chart_grid(p->omega_min, p->omega_max, p->columns, j);
         ch->progress.column = j;
         first_event f;
-        int status = follow(ch, omega, WHIRL_CYCLE_ELLIPTICITY, 0, &f);
+        status = follow(ch, omega, WHIRL_CYCLE_ELLIPTICITY, 0, &f);
         int stable = 0;
         if (status == GSL_EDOM) status = GSL_SUCCESS; /* no shape of the mode at this rate */
         else if (status == GSL_SUCCESS) stable = f.stable;
@@ -227,13 +261,15 @@ static int columns(ellipse_chart *ch, whirl_ellipse_chart_row_fn row, void *row_
         ch->progress.curves = curve + 1;
         if (ch->tick) ch->tick(ch->tick_data, &ch->progress);
         prev = stable, last = omega;
+        if ((status = save_state(ch, j + 1, prev, curve, save, save_data))) return status;
     }
     return GSL_SUCCESS;
 }
 
-int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
-                        whirl_ellipse_chart_row_fn row, void *row_data,
-                        whirl_ellipse_chart_tick_fn tick, void *tick_data)
+int chart_ellipse_run(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                      const char *state, whirl_ellipse_chart_row_fn row, void *row_data,
+                      whirl_ellipse_chart_tick_fn tick, void *tick_data, chart_save_fn save,
+                      void *save_data)
 {
     ellipse_chart ch = {.tick = tick, .tick_data = tick_data};
     if (params) ch.p = *params;
@@ -247,8 +283,15 @@ int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *
     if (ch.w == NULL) return whirl_last_status();
     ch.y = malloc(ch.w->size * sizeof *ch.y);
     if (ch.y == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for the ellipse chart");
-    else status = columns(&ch, row, row_data);
+    else status = columns(&ch, state, row, row_data, save, save_data);
     free(ch.y);
     whirl_periodic_free(ch.w);
     return status;
+}
+
+int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                        whirl_ellipse_chart_row_fn row, void *row_data,
+                        whirl_ellipse_chart_tick_fn tick, void *tick_data)
+{
+    return chart_ellipse_run(c, params, NULL, row, row_data, tick, tick_data, NULL, NULL);
 }

@@ -48,6 +48,9 @@ int sc_convert_run(const convert *v);
 int sc_convert_output(const convert *v);
 /* scene_pivot.c: [run] pivot, after the run's keys */
 int sc_convert_pivot(const convert *v);
+/* the path as "fourier:x1c=A,y1s=B" (only the terms that are not 0; "line:0" for a pivot that
+ * does not move), which whirl_pivot_parse reads back to the same path; no spaces */
+void sc_write_pivot_text(FILE *fp, const whirl_pivot_path *path);
 /* the header's line "# pivot = fourier:..." when pivot is given (pivot may be NULL) */
 int sc_write_pivot_line(FILE *fp, const whirl_scene_pivot *pivot);
 

@@ -73,13 +73,10 @@ int sc_convert_pivot(const convert *v)
 
 #define NUM(x) whirl_format_double((char[WHIRL_FORMAT_MAX]){0}, (x))
 
-/* "# pivot = fourier:x1c=A,y1s=B" (only the terms that are not 0; "line:0" for a pivot that
- * does not move), which whirl_pivot_parse reads back to the same path. */
-static void write_pivot_line(FILE *fp, const whirl_pivot_path *p)
+void sc_write_pivot_text(FILE *fp, const whirl_pivot_path *p)
 {
     static const char axis[3] = {'x', 'y', 'z'};
     int terms = 0;
-    fputs("# pivot = ", fp);
     for (int k = 0; k < 3; k++)
         for (int j = 0; j < p->harmonics && j < WHIRL_PIVOT_HARMONICS_MAX; j++)
             for (int q = 0; q < 2; q++) {
@@ -88,7 +85,15 @@ static void write_pivot_line(FILE *fp, const whirl_pivot_path *p)
                 fprintf(fp, "%s%c%d%c=%s", terms++ ? "," : "fourier:", axis[k], j + 1,
                         q ? 's' : 'c', NUM(a));
             }
-    fputs(terms ? "\n" : "line:0\n", fp);
+    if (terms == 0) fputs("line:0", fp);
+}
+
+/* "# pivot = fourier:x1c=A,y1s=B" (sc_write_pivot_text). */
+static void write_pivot_line(FILE *fp, const whirl_pivot_path *p)
+{
+    fputs("# pivot = ", fp);
+    sc_write_pivot_text(fp, p);
+    fputc('\n', fp);
 }
 
 int sc_write_pivot_line(FILE *fp, const whirl_scene_pivot *pivot)

@@ -33,6 +33,20 @@ expect_ok() {
   else fail "$name (stderr: $(head -c 300 "$tmp/stderr"))"; fi
 }
 
+# expect_refused NAME PATTERN FILE ARGS...: whirl ARGS -o FILE --resume must exit 1 with one line
+# matching PATTERN, no crash (the sanitizers' reports go to stderr: more than one line), and FILE
+# left as it was.
+expect_refused() {
+  name=$1; pattern=$2; file=$3; shift 3
+  cp "$file" "$tmp/before"
+  "$WHIRL" "$@" -o "$file" --resume >"$tmp/stdout" 2>"$tmp/stderr"
+  rc=$?
+  if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -Eq -- "$pattern" "$tmp/stderr" &&
+     cmp -s "$file" "$tmp/before" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
+    pass "$name"
+  else fail "$name (rc=$rc, stderr: $(head -c 300 "$tmp/stderr"))"; fi
+}
+
 # interrupt PID: sends SIGINT to the background command PID (started with
 # `env --default-signal=INT`: the suite may run with SIGINT ignored) and waits for it; sets rc to
 # its exit status and late to the seconds from the signal to its exit.

@@ -52,13 +52,13 @@ if [ $rc -eq 0 ] && tr '\r' '\n' <"$tmp/p.tty" | sed 's/\x1b\[K$//' \
 
 # Ctrl-C during a long chart (2000 rates: a quarter of a minute of processor time), sent once it
 # has used a second of processor time: exit status 130 with under a second of processor time
-# after the signal, one line, the rows found until then written
+# after the signal, one line, the rows of the rates finished written
 signal_run INT 1 "$WHIRL" periodic --chart ellipse --links 3 --eps 0.05 --omega-min 3 --omega-max 9 --omega-count 2000 -o "$tmp/stop.csv" 2>"$tmp/stderr"
 rc=$?
 late="$(report cpu_after) s of processor time, $(report wall) s wall"
 if [ $rc -eq 130 ] && [ "$(report early)" = 0 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
-   && grep -Eq '^whirl periodic: interrupted at rate [0-9]+ of 2000: the [0-9]+ points found until then are written$' "$tmp/stderr" \
-   && grep -Eq '^# interrupted at rate [0-9]+ of 2000' "$tmp/stop.csv" \
+   && grep -Eq '^whirl periodic: interrupted after [0-9]+ of 2000 rates: the [0-9]+ points found until then are written \(continue with --resume\)$' "$tmp/stderr" \
+   && grep -Eq '^# found: interrupted after [0-9]+ of 2000 rates' "$tmp/stop.csv" \
    && [ "$(grep -v '^#' "$tmp/stop.csv" | head -1)" = "curve,event,omega,ellipticity,err" ] \
    && [ "$(echo "$(report cpu_after) < 1" | bc)" -eq 1 ]; then
   pass "ellipse chart interrupted: 130, the rows kept ($late)"; else fail "ellipse chart interrupted (rc=$rc, $late, $(cat "$tmp/stderr"))"; fi

@@ -5,20 +5,6 @@
 # that is no chunk, a point of no map) with its line number, and lock the file for the whole run.
 . "$(dirname "$0")/lib.sh"
 
-# expect_refused NAME PATTERN FILE ARGS...: whirl ARGS -o FILE --resume must exit 1 with one line
-# matching PATTERN, no crash (the sanitizers' reports go to stderr: more than one line), and FILE
-# left as it was.
-expect_refused() {
-  name=$1; pattern=$2; file=$3; shift 3
-  cp "$file" "$tmp/before"
-  "$WHIRL" "$@" -o "$file" --resume >"$tmp/stdout" 2>"$tmp/stderr"
-  rc=$?
-  if [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] && grep -Eq -- "$pattern" "$tmp/stderr" &&
-     cmp -s "$file" "$tmp/before" && [ -z "$(ls "$tmp" | grep '\.tmp\.')" ]; then
-    pass "$name"
-  else fail "$name (rc=$rc, stderr: $(head -c 300 "$tmp/stderr"))"; fi
-}
-
 # ---- the atlas ----
 atl="stability --atlas --modes 2,3 --omega-max 6"
 # shellcheck disable=SC2086

@@ -65,6 +65,21 @@ if [ "$d" != shape ] && awk -v d="$d" -v m="$moved" -v p="$pivot_d" \
   pass "circle path = drive_radius to round-off ($d)"
 else fail "circle path = drive_radius to round-off ($d, moved $moved, trace $pivot_d)"; fi
 
+# the traces' first lines: the drive names its radius (eps=0.08), the path its terms in place of
+# eps (which would say 0, a pivot at rest), as the CSV's "# pivot =" line; that text run again is
+# the same motion; whirl view draws the drive's circle, and for the path none (its eps 0)
+path=$(sed -n '1s/^# trace: .* omega=3 pivot=\([^ ]*\) drag=0 drag_quadratic=0 links=5$/\1/p' "$tmp/tp.dat")
+expect_ok "the trace's path run again" simulate "$tmp/hang.ini" --pivot "$path" -o "$tmp/again.csv"
+expect_ok "view of the path's trace" view "$tmp/tp.dat" -o "$tmp/tp.html"
+expect_ok "view of the drive's trace" view "$tmp/td.dat" -o "$tmp/td.html"
+if [ "$path" = "fourier:x1c=0.08,y1s=0.08" ] && ! head -1 "$tmp/tp.dat" | grep -q 'eps=' \
+   && grep -qx "# pivot = $path" "$tmp/circle.csv" \
+   && head -1 "$tmp/td.dat" | grep -q ' omega=3 eps=0.08 drag=0 ' && ! head -1 "$tmp/td.dat" | grep -q 'pivot=' \
+   && cmp -s "$tmp/again.csv" "$tmp/circle.csv" \
+   && grep -q '"eps": 0,' "$tmp/tp.html" && grep -q '"eps": 0.08000000000000000[0-9]*,' "$tmp/td.html"; then
+  pass "trace header: the path named by its terms (no eps=0), read back to the same motion"
+else fail "trace header: the path ($path; $(head -1 "$tmp/tp.dat"))"; fi
+
 # ---- Mathieu: the pendulum (N = 1, planar) shaken vertically, A cos(omega t), A = 0.05, at
 # omega = 2 (inside the first tongue), from theta = 1e-8 at rest: its swing at t = k T (T the
 # period, 400 steps of gauss2 each) grows per period by whirl periodic's largest multiplier's

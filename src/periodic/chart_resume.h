@@ -1,0 +1,101 @@
+/* Internal: the charts resumed after their finished rates (whirl periodic --chart --resume).
+ *
+ * Both charts go from rate to rate carrying what they know of their curves: the vertical chart
+ * its followers (each curve's family, last two amplitudes, whether it ended at a tongue's tip)
+ * and the tips reached, the ellipse chart whether the last rate was stable at e = 0, the curve
+ * under way and the continuations that failed. That state after a finished rate, written as
+ * lines of text (the doubles with 17 digits: read back bit for bit) and read back, makes the
+ * rates after it the same as in an uninterrupted chart: a rate's points depend on the state and
+ * the rate alone. The lines:
+ *   vertical columns=J count=C curves=K tips=T    (J rates finished, C curves begun)
+ *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them: the alive curves
+ *                                                  and those ended at a tip; none: "none")
+ *   tip OMEGA MODE                                  (T of them)
+ * and for the ellipse chart the single line
+ *   ellipse columns=J prev=P curve=C failed=F
+ * A state read back is checked whole (counts, ranges, finite numbers): GSL_EINVAL with "state
+ * line N: what" otherwise. */
+#ifndef WHIRL_CHART_RESUME_H
+#define WHIRL_CHART_RESUME_H
+
+#include "whirl/periodic.h"
+
+/* Called with the state after `done` rates (NUL-terminated lines; valid during the call): once
+ * before the first rate computed, then after each; a non-zero return stops the chart with it. */
+typedef int (*chart_save_fn)(void *data, int done, const char *state);
+
+/* whirl_chart_vertical from the state (NULL: from the first rate), save called as above (may
+ * be NULL). */
+int chart_vertical_run(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                       const char *state, whirl_chart_row_fn row, void *row_data,
+                       whirl_chart_tick_fn tick, void *tick_data, chart_save_fn save,
+                       void *save_data);
+
+/* whirl_chart_ellipse from the state (NULL: from the first rate), save as above. */
+int chart_ellipse_run(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                      const char *state, whirl_ellipse_chart_row_fn row, void *row_data,
+                      whirl_ellipse_chart_tick_fn tick, void *tick_data, chart_save_fn save,
+                      void *save_data);
+
+/* The rate of column j of both charts: columns rates from lo to hi, both ends included. */
+double chart_grid(double lo, double hi, int columns, int j);
+
+/* ---- the vertical chart's internals (chart.c), its state (chart_state.c) ---- */
+
+typedef struct chart_curve {
+    whirl_floquet_edge kind;
+    int mode;      /* the mode whose factor's root it is (from 0, by increasing lambda) */
+    int id;
+    int alive;
+    double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
+    int found;     /* located at the current rate */
+    double w1;     /* the rate of a1 */
+    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined */
+    double tip;    /* that tip's rate (NAN: none) */
+    double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
+} chart_curve;
+
+typedef struct chart_tip {
+    double omega;
+    int mode;
+} chart_tip;
+
+typedef struct chart chart;
+
+/* One thread's workspace: the family and the rate of its evaluations. */
+typedef struct chart_ws {
+    const chart *ch;
+    long monodromies;
+    int mode;                /* of the root under way */
+    whirl_floquet_edge kind; /* of the root under way */
+    double shift;       /* (f(h/2) - f(h)) / 15 at the last fine evaluation of kind */
+    double omega;       /* the rate of the evaluations; NAN: the chart's current rate */
+    double amp;         /* the amplitude of fine_rate */
+} chart_ws;
+
+struct chart {
+    const whirl_chain *c;
+    whirl_chart_params p;
+    chart_ws *ws;       /* one per thread */
+    int threads;
+    double omega;       /* the current rate */
+    chart_curve *curves;
+    int count, cap;
+    int n;              /* the modes */
+    double *coef;       /* sigma lambda_k (chart_modes.c), n */
+    int *steps;         /* the coarser monodromy's steps per period, per mode */
+    double *freq;       /* the unshaken chain's frequencies sqrt(g lambda_k) (hanging), n */
+    int *rescan;        /* per mode: its factors scanned at this rate */
+    double *ends;       /* per mode, the range's two ends: f_+, f_- (4 n) */
+    chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
+    int tips_count, tips_cap;
+};
+
+
+/* The state of ch after `done` rates into *text (malloc'd). GSL_ENOMEM with a message. */
+int chart_state_write(const chart *ch, int done, char **text);
+/* ch's curves and tips from the state text (ch's modes and parameters set); *done: the rates
+ * finished. GSL_EINVAL or GSL_ENOMEM with a message. */
+int chart_state_read(chart *ch, const char *text, int *done);
+
+#endif

@@ -1,0 +1,247 @@
+/* Tests of the charts resumed from their state after a finished rate (periodic/chart_resume.h):
+ * for every rate k of a chart, the chart begun at k from the state the uninterrupted chart saved
+ * there gives, bit for bit, the points the uninterrupted chart gave from k on, and saves the same
+ * states after it; the state read back is written back as it was. The hanging chain of two
+ * links (two tongues, each ended at its tip and joined across it), the inverted chain (its edges
+ * leaving through the range's sides) and the ellipse chart (a curve that ends on e = 0). A state
+ * not the chart's is refused with GSL_EINVAL and its line named. */
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "periodic/chart_resume.h"
+#include "whirl/periodic.h"
+
+#define COLUMNS_MAX 64
+
+/* What a run handed out: its points (either chart's, as bytes) with the rates done when each
+ * came, and the state after each rate. */
+typedef struct run {
+    unsigned char *points;
+    size_t size, n, cap;
+    int *done_at; /* per point: the rates finished when it came */
+    int done;
+    char *state[COLUMNS_MAX + 1];
+} run;
+
+static void keep(run *r, const void *p)
+{
+    if (r->n == r->cap) {
+        r->cap = r->cap ? 2 * r->cap : 64;
+        r->points = realloc(r->points, r->cap * r->size);
+        r->done_at = realloc(r->done_at, r->cap * sizeof *r->done_at);
+        assert_non_null(r->points);
+        assert_non_null(r->done_at);
+    }
+    memcpy(r->points + r->n * r->size, p, r->size);
+    r->done_at[r->n++] = r->done;
+}
+
+static int keep_vertical(void *data, const whirl_chart_point *p)
+{
+    keep(data, p);
+    return 0;
+}
+
+static int keep_ellipse(void *data, const whirl_ellipse_point *p)
+{
+    keep(data, p);
+    return 0;
+}
+
+static int save(void *data, int done, const char *state)
+{
+    run *r = data;
+    assert_true(done >= 0 && done <= COLUMNS_MAX);
+    free(r->state[done]);
+    r->state[done] = strdup(state);
+    r->done = done;
+    return 0;
+}
+
+static void run_free(run *r)
+{
+    free(r->points);
+    free(r->done_at);
+    for (int i = 0; i <= COLUMNS_MAX; i++) free(r->state[i]);
+}
+
+/* The doubles a and b bit for bit. */
+static void same_double(double a, double b)
+{
+    assert_memory_equal(&a, &b, sizeof a);
+}
+
+/* Point i of r and point j of s the same, field by field (the doubles bit for bit). */
+static void same_point(const run *r, size_t i, const run *s, size_t j)
+{
+    if (r->size == sizeof(whirl_chart_point)) {
+        const whirl_chart_point *p = (const void *)(r->points + i * r->size);
+        const whirl_chart_point *q = (const void *)(s->points + j * s->size);
+        assert_int_equal(p->kind, q->kind);
+        assert_int_equal(p->curve, q->curve);
+        assert_int_equal(p->column, q->column);
+        same_double(p->omega, q->omega);
+        same_double(p->amplitude, q->amplitude);
+        same_double(p->err, q->err);
+    } else {
+        const whirl_ellipse_point *p = (const void *)(r->points + i * r->size);
+        const whirl_ellipse_point *q = (const void *)(s->points + j * s->size);
+        assert_int_equal(p->event, q->event);
+        assert_int_equal(p->curve, q->curve);
+        assert_int_equal(p->column, q->column);
+        same_double(p->omega, q->omega);
+        same_double(p->ellipticity, q->ellipticity);
+        same_double(p->err, q->err);
+        same_double(p->max_modulus, q->max_modulus);
+    }
+}
+
+/* The points of full from the rate k on are those of part, in the same order, bit for bit; the
+ * states after k too. */
+static void same_from(const run *full, const run *part, int k, int columns)
+{
+    size_t first = 0;
+    while (first < full->n && full->done_at[first] < k) first++;
+    assert_int_equal(full->n - first, part->n);
+    for (size_t i = 0; i < part->n; i++) same_point(full, first + i, part, i);
+    for (int j = k; j <= columns; j++) assert_string_equal(full->state[j], part->state[j]);
+}
+
+static void vertical_resumed(int inverted, int links, double omega_min, double omega_max,
+                             int columns, double amp_max)
+{
+    whirl_chain *c = whirl_chain_alloc_uniform((size_t)links, 0);
+    assert_non_null(c);
+    const whirl_chart_params p = {.inverted = inverted, .omega_min = omega_min,
+                                  .omega_max = omega_max, .columns = columns,
+                                  .amp_max = amp_max, .rows = 20};
+    run full = {.size = sizeof(whirl_chart_point)};
+    assert_int_equal(chart_vertical_run(c, 2, &p, NULL, keep_vertical, &full, NULL, NULL, save,
+                                        &full),
+                     GSL_SUCCESS);
+    /* the chart as whirl_chart_vertical gives it */
+    run plain = {.size = sizeof(whirl_chart_point)};
+    assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_vertical, &plain, NULL, NULL),
+                     GSL_SUCCESS);
+    assert_int_equal(plain.n, full.n);
+    for (size_t i = 0; i < full.n; i++) same_point(&plain, i, &full, i);
+    int tips = 0;
+    for (int k = 0; k <= columns; k++) {
+        run part = {.size = sizeof(whirl_chart_point)};
+        assert_int_equal(chart_vertical_run(c, 2, &p, full.state[k], keep_vertical, &part, NULL,
+                                            NULL, save, &part),
+                         GSL_SUCCESS);
+        assert_string_equal(part.state[k], full.state[k]); /* read and written back */
+        same_from(&full, &part, k, columns);
+        tips += strstr(full.state[k], "\ntip ") != NULL;
+        run_free(&part);
+    }
+    if (!inverted) assert_true(tips > 0); /* the states carried a tip across the rates */
+    run_free(&full);
+    run_free(&plain);
+    whirl_chain_free(c);
+}
+
+static void test_hanging_two_links(void **state)
+{
+    (void)state;
+    vertical_resumed(0, 2, 1.8, 3, 13, 0.4);
+}
+
+static void test_inverted(void **state)
+{
+    (void)state;
+    vertical_resumed(1, 1, 20, 30, 6, 0.2);
+}
+
+static void test_ellipse(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    assert_non_null(c);
+    const whirl_ellipse_chart_params p = {.radius = 0.05, .mode = 2, .side = -1,
+                                          .omega_min = 3.95, .omega_max = 4.1, .columns = 4};
+    run full = {.size = sizeof(whirl_ellipse_point)};
+    assert_int_equal(chart_ellipse_run(c, &p, NULL, keep_ellipse, &full, NULL, NULL, save, &full),
+                     GSL_SUCCESS);
+    assert_int_equal(full.n, 3); /* two rates and the end on e = 0 (test_chart_ellipse.c) */
+    for (int k = 2; k <= 4; k += 2) { /* the curve under way, the end ahead; all done */
+        run part = {.size = sizeof(whirl_ellipse_point)};
+        assert_int_equal(chart_ellipse_run(c, &p, full.state[k], keep_ellipse, &part, NULL, NULL,
+                                           save, &part),
+                         GSL_SUCCESS);
+        same_from(&full, &part, k, 4);
+        run_free(&part);
+    }
+    /* states not the chart's */
+    const char *bad[] = {"ellipse columns=5 prev=0 curve=0 failed=0\n",
+                         "ellipse columns=2 prev=2 curve=0 failed=0\n",
+                         "ellipse columns=2 prev=1 curve=-1 failed=0\n",
+                         "ellipse columns=2 prev=1 curve=0 failed=0 x\n", "vertical columns=0\n"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(chart_ellipse_run(c, &p, bad[i], NULL, NULL, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_non_null(strstr(whirl_last_error(), "state line 1: "));
+    }
+    run_free(&full);
+    whirl_chain_free(c);
+}
+
+static void test_bad_states(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    assert_non_null(c);
+    const whirl_chart_params p = {.omega_min = 1.8, .omega_max = 3, .columns = 13,
+                                  .amp_max = 0.4, .rows = 20};
+    static const struct {
+        const char *state, *why;
+    } bad[] = {
+        {"", "state line 1: missing"},
+        {"vertical columns=14 count=0 curves=0 tips=0\n", "state line 1: an integer out of range"},
+        {"vertical columns=1 count=1 curves=2 tips=0\n", "state line 1: an integer out of range"},
+        {"vertical count=1 columns=1 curves=0 tips=0\n", "state line 1: a field out of place"},
+        {"vertical columns=1 count=1 curves=1 tips=0\n", "state line 2: missing"},
+        {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 2 0 1 0 0.1 none 1.8 none 0\n",
+         "state line 2: an integer out of range"}, /* mode 2 of a chain of two */
+        {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 0 0 1 0 nan none 1.8 none 0\n",
+         "state line 2: a number not finite or out of range"},
+        {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 0 0 1 0 0.5 none 1.8 none 0\n",
+         "state line 2: a number not finite or out of range"}, /* above amp_max */
+        {"vertical columns=1 count=2 curves=2 tips=0\ncurve 1 1 0 1 1 0 0.1 none 1.8 none 0\n"
+         "curve 0 1 0 0 1 0 0.1 none 1.8 none 0\n",
+         "state line 3: an integer out of range"}, /* not in order */
+        {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 0 0 0 0 0.1 none 1.8 none 0\n",
+         "state line 2: a curve neither alive nor at a tip"},
+        {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 0 0 0 1 0.1 none 1.8 none 0\n",
+         "state line 2: a curve at a tip without it"},
+        {"vertical columns=1 count=0 curves=0 tips=1\ntip 2 0 1\n", "state line 2: too many fields"},
+        {"vertical columns=1 count=0 curves=0 tips=0\ntip 2 0\n", "state line 2: a line too many"},
+        {"vertical columns=1 count=99999999999 curves=0 tips=0\n",
+         "state line 1: an integer out of range"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(chart_vertical_run(c, 2, &p, bad[i].state, NULL, NULL, NULL, NULL, NULL,
+                                            NULL),
+                         GSL_EINVAL);
+        if (strcmp(whirl_last_error(), bad[i].why) != 0)
+            fail_msg("state %zu: '%s', not '%s'", i, whirl_last_error(), bad[i].why);
+    }
+    whirl_chain_free(c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hanging_two_links),
+        cmocka_unit_test(test_inverted),
+        cmocka_unit_test(test_ellipse),
+        cmocka_unit_test(test_bad_states),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
