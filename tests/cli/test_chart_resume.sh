@@ -9,24 +9,29 @@
 # rows: the rows of a chart file (no comment, no blank line)
 rows() { grep -v '^#' "$1" | grep -v '^$' | sed 1d; }
 
-# ---- the hanging chain, N = 2: two tongues, each joined at its tip (~0.7 s of processor time) ----
-ch="periodic --chart hanging --links 2 --omega-min 1 --omega-max 6 --omega-count 120 --amp-max 0.8 --amp-rows 20"
+# ---- the hanging chain, N = 2: two tongues, each joined at its tip (~0.5 s of processor time on one thread) ----
+ch="periodic --chart hanging --links 2 --omega-min 1 --omega-max 6 --omega-count 250 --amp-max 0.8 --amp-rows 20"
 # shellcheck disable=SC2086
 "$WHIRL" $ch -o "$tmp/full.csv" 2>"$tmp/err" || fail "hanging chart ($(cat "$tmp/err"))"
+# the runs below on one thread: the chart is the same on any number (the full one above ran on
+# all), and a signal after a processor time then comes after as much work, which threads waiting
+# for each other on a busy machine would not do (the stops below after a tenth of the chart, then
+# another tenth)
+export OMP_NUM_THREADS=1
 
-# stopped once it has used 0.2 s of processor time: the rates finished, their rows those of the
+# stopped once it has used 0.04 s of processor time: the rates finished, their rows those of the
 # chart never stopped, the message and the comment line saying where it stopped
 # shellcheck disable=SC2086
-signal_run INT 0.2 "$WHIRL" $ch -o "$tmp/stop.csv" 2>"$tmp/stderr"
+signal_run INT 0.04 "$WHIRL" $ch -o "$tmp/stop.csv" 2>"$tmp/stderr"
 rc=$?
-done=$(sed -n 's/^# found: interrupted after \([0-9]*\) of 120 rates: the points found until then (whirl periodic --resume goes on)$/\1/p' "$tmp/stop.csv")
+done=$(sed -n 's/^# found: interrupted after \([0-9]*\) of 250 rates: the points found until then (whirl periodic --resume goes on)$/\1/p' "$tmp/stop.csv")
 rows "$tmp/stop.csv" >"$tmp/stop.rows"
 if [ $rc -eq 130 ] && [ "$(report early)" = 0 ] && [ -n "$done" ] && [ "$done" -gt 0 ] \
-   && [ "$done" -lt 120 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
-   && grep -Eq "^whirl periodic: interrupted after $done of 120 rates: the [0-9]+ points found until then are written \(continue with --resume\)$" "$tmp/stderr" \
+   && [ "$done" -lt 250 ] && [ "$(wc -l <"$tmp/stderr")" -eq 1 ] \
+   && grep -Eq "^whirl periodic: interrupted after $done of 250 rates: the [0-9]+ points found until then are written \(continue with --resume\)$" "$tmp/stderr" \
    && [ -s "$tmp/stop.rows" ] && [ "$(rows "$tmp/full.csv" | grep -Fxcf "$tmp/stop.rows")" -eq "$(wc -l <"$tmp/stop.rows")" ] \
    && grep -q "^# state: vertical columns=$done " "$tmp/stop.csv"; then
-  pass "hanging chart stopped after $done of 120 rates: their rows, the state"
+  pass "hanging chart stopped after $done of 250 rates: their rows, the state"
 else fail "hanging chart stopped (rc=$rc, done=$done, $(cat "$tmp/stderr"))"; fi
 
 # resumed: the chart never stopped, byte for byte (its rows by curve, the counts, the state)
@@ -50,9 +55,9 @@ else fail "hanging chart resumed: rows kept ($(cat "$tmp/err"))"; fi
 # stopped again while resumed, and resumed once more: still the chart never stopped
 cp "$tmp/stop.csv" "$tmp/r2.csv"
 # shellcheck disable=SC2086
-signal_run INT 0.15 "$WHIRL" $ch -o "$tmp/r2.csv" --resume 2>"$tmp/stderr"
+signal_run INT 0.04 "$WHIRL" $ch -o "$tmp/r2.csv" --resume 2>"$tmp/stderr"
 rc=$?
-again=$(sed -n 's/^# found: interrupted after \([0-9]*\) of 120.*/\1/p' "$tmp/r2.csv")
+again=$(sed -n 's/^# found: interrupted after \([0-9]*\) of 250.*/\1/p' "$tmp/r2.csv")
 # shellcheck disable=SC2086
 if [ $rc -eq 130 ] && [ "$(report early)" = 0 ] && [ "$again" -gt "$done" ] \
    && "$WHIRL" $ch -o "$tmp/r2.csv" --resume 2>"$tmp/err" && cmp -s "$tmp/r2.csv" "$tmp/full.csv"; then
@@ -75,10 +80,10 @@ s="$tmp/stop.csv"
 # shellcheck disable=SC2086
 {
 expect_refused "resume: other --steps" "^whirl periodic: --resume: '.*stop.csv' was not written by a chart with these options: line 1 has 'links=2 steps=200' where these options write 'links=2 steps=300'$" "$s" $ch --steps 300
-expect_refused "resume: other --omega-max" "line 2 has 'to 6' where these options write 'to 7'" "$s" periodic --chart hanging --links 2 --omega-min 1 --omega-max 7 --omega-count 120 --amp-max 0.8 --amp-rows 20
-expect_refused "resume: other --amp-rows" "line 2 has 'from 0.04' where these options write 'from 0.0380952380952381'" "$s" periodic --chart hanging --links 2 --omega-min 1 --omega-max 6 --omega-count 120 --amp-max 0.8 --amp-rows 21
+expect_refused "resume: other --omega-max" "line 2 has 'to 6' where these options write 'to 7'" "$s" periodic --chart hanging --links 2 --omega-min 1 --omega-max 7 --omega-count 250 --amp-max 0.8 --amp-rows 20
+expect_refused "resume: other --amp-rows" "line 2 has 'from 0.04' where these options write 'from 0.0380952380952381'" "$s" periodic --chart hanging --links 2 --omega-min 1 --omega-max 6 --omega-count 250 --amp-max 0.8 --amp-rows 21
 expect_refused "resume: other --edge-tol" "line 1 has 'steps=200 tol=1e-10' where these options write 'steps=200 tol=1e-09'" "$s" $ch --edge-tol 1e-9
-expect_refused "resume: the inverted chain" "line 1 has 'the hanging' where these options write 'the inverted'" "$s" periodic --chart inverted --links 2 --omega-min 1 --omega-max 6 --omega-count 120 --amp-max 0.8 --amp-rows 20
+expect_refused "resume: the inverted chain" "line 1 has 'the hanging' where these options write 'the inverted'" "$s" periodic --chart inverted --links 2 --omega-min 1 --omega-max 6 --omega-count 250 --amp-max 0.8 --amp-rows 20
 expect_refused "resume: SI units" "line 1 has 'tol=1e-10 L;' where these options write 'tol=1e-10 m;'" "$s" $ch --length 1
 }
 expect_error "resume: standard output" "^whirl periodic: --resume needs -o FILE, not standard output$" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max 0.5 -o - --resume
@@ -108,7 +113,7 @@ crafted "a row removed" "holds [0-9]+ rows where its '# found: points=' line say
 crafted "a comment among the rows" "x.csv:$line: a comment among the rows" "${line}s/^/# note\n/"
 crafted "a mode the chain has not" "the chart's state line 2: an integer out of range: the file cannot be trusted$" '/^# state: curve/{s/^\(# state: curve [0-9]* [01]\) [0-9]*/\1 9/;}'
 crafted "a NaN in the state" "the chart's state line 2: a number not finite or out of range" '0,/^# state: curve/s/^\(# state: curve\( [^ ]*\)\{6\}\) [^ ]*/\1 nan/'
-crafted "rates beyond the chart in the state" "the chart's state line 1: an integer out of range" 's/^# state: vertical columns=[0-9]*/# state: vertical columns=121/'
+crafted "rates beyond the chart in the state" "the chart's state line 1: an integer out of range" 's/^# state: vertical columns=[0-9]*/# state: vertical columns=251/'
 crafted "a state line too many" "the chart's state line [0-9]+: a line too many" '$p'
 crafted "no state" "holds no chart state" '/^# state: /d'
 head -c -12 "$s" >"$tmp/x.csv"
