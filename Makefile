@@ -1,6 +1,6 @@
 # whirl: steady shapes and dynamics of a chain spun about the vertical axis.
-# Targets: all (default), demo, check, check-quick, check-clang, check-sanitize, bench, bench-quick, study,
-# python, explore, deps, clean.
+# Targets: all (default), demo, check, check-quick, check-clang, check-sanitize, fixtures-check, bench,
+# bench-quick, study, python, explore, deps, clean.
 # BUILD=dir builds out of tree (several builds can coexist).
 
 BUILD    ?= build
@@ -63,7 +63,7 @@ CLI_OBJ   += $(BUILD)/gen/plots_gp.o
 SHLIB    := $(BUILD)/libwhirl.so.$(VERSION)
 
 .PHONY: all objects demo check check-quick check-programs sanitize-programs check-clang check-sanitize bench bench-quick study python wheel deps clean \
-  fuzz install uninstall docs explore
+  fuzz install uninstall docs explore fixtures-check
 all: $(BUILD)/whirl $(BUILD)/libwhirl.a $(SHLIB) $(BUILD)/whirl.1
 
 $(BUILD)/%.o: %.c
@@ -204,11 +204,12 @@ endif
 # --- end MPI
 
 .SECONDEXPANSION:
+# WHIRL_SOURCE_DIR: where the tests find their fixtures (tests/lib/fixture.h).
 $(filter-out $(PEER_BIN),$(TEST_BIN) $(BENCH_BIN)): $(BUILD)/tests/%: $$(call test_source,$$*) \
   $(BUILD)/libwhirl.a
 	@mkdir -p $(dir $@)
-	$(CC) $(CPPFLAGS) -Itests/lib $(ALL_CFLAGS) $< $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) \
-	  -lcmocka -o $@
+	$(CC) $(CPPFLAGS) -Itests/lib -DWHIRL_SOURCE_DIR='"$(CURDIR)"' $(ALL_CFLAGS) $< \
+	  $(BUILD)/libwhirl.a $(ALL_LDFLAGS) $(LDLIBS) -lcmocka -o $@
 
 # The peers of tests/bench/bench_peers.c and tests/unit/dynamics/test_peers.c (tests/lib/peer_glue.h), each built in only
 # when its headers are found (scripts/deps.sh installs them; without them the benchmark reports
@@ -324,6 +325,15 @@ sanitize-programs:
 	@$(MAKE) --no-print-directory BUILD=build-sanitize OPT=-O1 \
 	  XCFLAGS="$(SANITIZE_FLAGS) -fno-omit-frame-pointer -fno-sanitize-recover=all" \
 	  XLDFLAGS="$(SANITIZE_FLAGS)" check-programs
+
+# make fixtures-check: the reference values that unit tests read from tests/fixtures/ (instead of
+# computing them in every make check) computed anew into a temporary folder, each by the command
+# on its file's first line, and compared with the committed files (tests/tools/fixtures_check.sh:
+# every digit, or a stated round-off tolerance); not part of make check (about 40 s of processor
+# time). FIXTURE_PROGRAMS: the test programs that write them.
+FIXTURE_PROGRAMS := $(BUILD)/tests/test_continuum_stability
+fixtures-check: $(FIXTURE_PROGRAMS)
+	@sh tests/tools/fixtures_check.sh $(BUILD)
 
 bench:
 	@sh scripts/deps.sh run build python tests peers

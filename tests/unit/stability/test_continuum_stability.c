@@ -14,7 +14,11 @@
  *  - the Arnoldi iteration on the banded pencil against the dense block's eigenvalues;
  *  - two edges that need more than one refinement against the root of their discriminant on a
  *    finer discretisation with the dense block, within their error estimates;
- *  - bad input, the memory bound and the stop request. */
+ *  - bad input, the memory bound and the stop request.
+ * The dense block's eigenvalues and the discriminant's roots (40 s of processor time) are read
+ * from tests/fixtures/ (tests/lib/fixture.h), written by this program:
+ *   build/tests/test_continuum_stability --write-fixtures tests/fixtures [NAME...]
+ * and computed anew and compared by make fixtures-check. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -29,6 +33,32 @@
 #include <gsl/gsl_sf_bessel.h>
 
 #include "whirl/continuum_stability.h"
+#include "fixture.h"
+
+/* The command that writes this program's fixtures (followed by the file's name). */
+#define WRITE_FIXTURES "build/tests/test_continuum_stability --write-fixtures " FIXTURE_DIR
+
+/* Appends printf-style text to buf (size), which holds a string. */
+static void append(char *buf, size_t size, const char *fmt, ...)
+{
+    const size_t used = strlen(buf);
+    assert_true(used + 1 < size);
+    va_list ap;
+    va_start(ap, fmt);
+    const int n = vsnprintf(buf + used, size - used, fmt, ap);
+    va_end(ap);
+    assert_true(n >= 0 && (size_t)n < size - used);
+}
+
+/* The workspace's parameters as a fixture's problem line begins (every number exact). */
+static void describe_params(char *buf, size_t size, const whirl_cstab_params *p)
+{
+    buf[0] = '\0';
+    append(buf, size, "the uniform continuum (g = L = M = 1), tip mass %.17g; collocation degree "
+           "%d, shape tolerance %.17g, |mu| <= max(%.17g, 3 omega)^2 kept, solver %d, memory "
+           "%.17g MB", p->tip_mass, p->degree, p->shape_tol, p->freq_max, p->solver,
+           p->memory_mb);
+}
 
 /* Sorts mu by decreasing real part (increasing frequency). */
 static void sort_mu(size_t n, double *re, double *im, int *sig)
@@ -280,32 +310,64 @@ static void test_window(void **state)
     whirl_cstab_free(w);
 }
 
+/* test_solvers: modes 2, 3 and 6 at rates with and without a window, the mu of the dense block
+ * (at most SOLVER_K of them) from tests/fixtures/continuum_solvers.txt. */
+static const struct solver_case { int mode; double omega; } solver_cases[] = {
+    {2, 2.8}, {2, 4.48}, {2, 9.9}, {3, 4.4}, {3, 7.34}, {3, 10}, {6, 14}};
+enum { SOLVER_CASES = sizeof solver_cases / sizeof solver_cases[0], SOLVER_K = 80 };
+#define SOLVERS_FIXTURE "continuum_solvers.txt"
+
+/* The dense block's parameters (the defaults, solver 1) and the problem line of its fixture. */
+static whirl_cstab_params solvers_problem(char *buf, size_t size)
+{
+    whirl_cstab_params p = whirl_cstab_defaults();
+    p.solver = 1;
+    describe_params(buf, size, &p);
+    append(buf, size, "; every mu (at most %d, by decreasing real part) with its signature, and "
+           "the growth, of", SOLVER_K);
+    for (size_t c = 0; c < SOLVER_CASES; c++)
+        append(buf, size, "%s mode %d at omega %.17g", c ? "," : "", solver_cases[c].mode,
+               solver_cases[c].omega);
+    return p;
+}
+
 /* The kept mu by the Arnoldi iteration on the banded pencil against every mu of the dense block
- * (solver 1): the same count, the same signatures, the same mu to 1e-8 relative (modes 2, 3 and
- * 6 at rates with and without a window). */
+ * (solver 1, the fixture): the same grid, count and signatures, the same mu to 1e-8 relative. */
 static void test_solvers(void **state)
 {
     (void)state;
-    whirl_cstab_params p = whirl_cstab_defaults();
+    char problem[2048];
+    whirl_cstab_params p = solvers_problem(problem, sizeof problem);
+    p.solver = 0;
     whirl_cstab *fast = whirl_cstab_alloc(&p);
-    p.solver = 1;
-    whirl_cstab *dense = whirl_cstab_alloc(&p);
-    const struct { int mode; double omega; } cases[] = {{2, 2.8}, {2, 4.48}, {2, 9.9}, {3, 4.4},
-                                                        {3, 7.34}, {3, 10}, {6, 14}};
-    enum { K = 80 };
-    double re[2][K], im[2][K], worst = 0;
-    int sig[2][K];
-    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
-        size_t n[2];
+    assert_non_null(fast);
+    fixture f;
+    fixture_open(&f, SOLVERS_FIXTURE, WRITE_FIXTURES " " SOLVERS_FIXTURE, problem);
+    double re[2][SOLVER_K], im[2][SOLVER_K], worst = 0;
+    int sig[2][SOLVER_K];
+    for (size_t c = 0; c < SOLVER_CASES; c++) {
+        size_t n[2], ne, np;
         double growth[2];
-        whirl_cstab *ws[2] = {fast, dense};
-        for (int s = 0; s < 2; s++) {
-            assert_int_equal(whirl_cstab_linearise(ws[s], cases[c].omega, cases[c].mode, 0, NULL),
-                             0);
-            n[s] = lowest(ws[s], 1, K, re[s], im[s], sig[s], &growth[s]);
+        assert_int_equal(whirl_cstab_linearise(fast, solver_cases[c].omega, solver_cases[c].mode,
+                                               0, NULL), 0);
+        n[0] = lowest(fast, 1, SOLVER_K, re[0], im[0], sig[0], &growth[0]);
+        whirl_cstab_grid(fast, &ne, &np);
+        /* the dense block's on the same grid */
+        const long ne_ref = fixture_int(&f, 1, 100000), np_ref = fixture_int(&f, 1, 10000000);
+        if ((size_t)ne_ref != ne || (size_t)np_ref != np)
+            fail_msg("%s: mode %d at omega %g: the fixture's grid has %ld elements and %ld points, "
+                     "this build's %zu and %zu (the discretisation changed): write it anew with\n"
+                     "  %s", f.path, solver_cases[c].mode, solver_cases[c].omega, ne_ref, np_ref,
+                     ne, np, f.command);
+        n[1] = (size_t)fixture_int(&f, 0, SOLVER_K);
+        growth[1] = fixture_value(&f);
+        for (size_t i = 0; i < n[1]; i++) {
+            re[1][i] = fixture_value(&f);
+            im[1][i] = fixture_value(&f);
+            sig[1][i] = (int)fixture_int(&f, -1, 1);
         }
         assert_int_equal(n[0], n[1]);
-        assert_true(n[0] < K);
+        assert_true(n[0] < SOLVER_K);
         for (size_t i = 0; i < n[0]; i++) {
             const double d = hypot(re[0][i] - re[1][i], fabs(im[0][i]) - fabs(im[1][i]));
             worst = fmax(worst, d / fmax(1, hypot(re[1][i], im[1][i])));
@@ -313,11 +375,48 @@ static void test_solvers(void **state)
         }
         assert_true(fabs(growth[0] - growth[1]) <= 1e-8 * fmax(1, growth[1]));
     }
+    fixture_close(&f);
     print_message("# Arnoldi against the dense block: largest relative difference of the mu %.2g\n",
                   worst);
     assert_true(worst <= 1e-8);
     whirl_cstab_free(fast);
+}
+
+/* Writes the fixture of test_solvers into the folder *state. */
+static void write_solvers(void **state)
+{
+    char problem[2048];
+    const whirl_cstab_params p = solvers_problem(problem, sizeof problem);
+    whirl_cstab *dense = whirl_cstab_alloc(&p);
+    assert_non_null(dense);
+    double re[SOLVER_CASES][SOLVER_K], im[SOLVER_CASES][SOLVER_K], growth[SOLVER_CASES];
+    int sig[SOLVER_CASES][SOLVER_K];
+    size_t n[SOLVER_CASES], ne[SOLVER_CASES], np[SOLVER_CASES];
+    for (size_t c = 0; c < SOLVER_CASES; c++) { /* every value before the file is opened */
+        assert_int_equal(whirl_cstab_linearise(dense, solver_cases[c].omega, solver_cases[c].mode,
+                                               0, NULL), 0);
+        n[c] = lowest(dense, 1, SOLVER_K, re[c], im[c], sig[c], &growth[c]);
+        assert_true(n[c] < SOLVER_K); /* every mu kept */
+        whirl_cstab_grid(dense, &ne[c], &np[c]);
+    }
     whirl_cstab_free(dense);
+    fixture_out o;
+    fixture_create(&o, *state, SOLVERS_FIXTURE, WRITE_FIXTURES " " SOLVERS_FIXTURE, problem);
+    for (size_t c = 0; c < SOLVER_CASES; c++) {
+        fixture_comment(&o, "mode %d at omega %g: the elements, the collocation points, the count "
+                        "of mu, the growth, then Re mu, Im mu and the signature of each",
+                        solver_cases[c].mode, solver_cases[c].omega);
+        fixture_put(&o, (double)ne[c]);
+        fixture_put(&o, (double)np[c]);
+        fixture_put(&o, (double)n[c]);
+        fixture_put(&o, growth[c]);
+        for (size_t i = 0; i < n[c]; i++) {
+            fixture_put(&o, re[c][i]);
+            fixture_put(&o, im[c][i]);
+            fixture_put(&o, sig[c][i]);
+        }
+    }
+    fixture_commit(&o);
 }
 
 /* D = Re (mu_1 - mu_2)^2 of the two mu nearest -freq^2 at omega (-4 (Im mu)^2 for a complex
@@ -335,69 +434,127 @@ static double discriminant_at(whirl_cstab *w, int mode, double omega, double fre
         if (d < hypot(sp.re[a] - c, sp.im[a])) b = a, a = i;
         else if (i != a && (b == a || d < hypot(sp.re[b] - c, sp.im[b]))) b = i;
     }
+    /* the pair alone near -freq^2: every other mu ten times as far as the farther of the two */
+    for (size_t i = 0; i < sp.count; i++)
+        if (i != a && i != b)
+            assert_true(hypot(sp.re[i] - c, sp.im[i]) > 10 * hypot(sp.re[b] - c, sp.im[b]));
     if (sp.im[a] != 0) return -4 * sp.im[a] * sp.im[a];
     const double dr = sp.re[a] - sp.re[b], di = sp.im[a] - sp.im[b];
     return dr * dr - di * di;
 }
 
-/* An edge of the windows against the root of the collision discriminant on an independent
- * discretisation and solver (degree 48, shape tolerance 1e-13, every mu from the dense block,
- * regula falsi to 1e-11): within the edge's error estimate plus the root finders' tolerances
- * (1e-10). The mode-2 edge near 9.746 (its pair, mu about -52, separates slowly: the search's
- * discretisation has it 1.4e-5 off) and the mode-3 edge near 7.480 need more than one refinement. */
+/* test_refined_edges: an edge of the windows against the root of the collision discriminant on
+ * an independent discretisation and solver (degree 48, shape tolerance 1e-13, every mu from the
+ * dense block, regula falsi to 1e-11 from a bracket of 1e-7 about the root, the pair the two mu
+ * nearest -freq^2, freq the pair's frequency at the collision): within the edge's error estimate
+ * plus the root finders' tolerances (1e-10). The mode-2 edge near 9.746 (its pair, mu about -52,
+ * separates slowly: the search's discretisation has it 1.4e-5 off) and the mode-3 edge near
+ * 7.480 need more than one refinement. The roots are read from
+ * tests/fixtures/continuum_refined_edges.txt. */
+static const struct edge_case {
+    int mode;
+    double from, to; /* the search's range of rates */
+    int closing;     /* 0: the window's opening edge; 1: its closing one */
+    double lo, hi;   /* the bracket of the root (D of opposite signs at its ends) */
+    double freq;
+} edge_cases[] = {{2, 9.7, 9.8, 0, 9.74606586, 9.74606596, 7.2154},
+                  {3, 7.4, 7.5, 1, 7.480154, 7.4801541, 2.98607}};
+enum { EDGE_CASES = sizeof edge_cases / sizeof edge_cases[0] };
+#define EDGES_FIXTURE "continuum_refined_edges.txt"
+
+/* The reference's parameters and the problem line of its fixture. */
+static whirl_cstab_params edges_problem(char *buf, size_t size)
+{
+    whirl_cstab_params p = whirl_cstab_defaults();
+    p.degree = 48, p.shape_tol = 1e-13, p.solver = 1;
+    describe_params(buf, size, &p);
+    append(buf, size, "; the root of D = Re (mu_1 - mu_2)^2 of the two mu nearest -freq^2 by "
+           "regula falsi (Illinois) to a bracket of 1e-11, of");
+    for (size_t c = 0; c < EDGE_CASES; c++) {
+        const struct edge_case *e = &edge_cases[c];
+        append(buf, size, "%s the %s edge of mode %d in [%.17g, %.17g] from [%.17g, %.17g] with "
+               "freq %.17g", c ? "," : "", e->closing ? "closing" : "opening", e->mode, e->from,
+               e->to, e->lo, e->hi, e->freq);
+    }
+    return p;
+}
+
 static void test_refined_edges(void **state)
 {
     (void)state;
-    const struct { int mode; double from, to; int closing; } cases[] = {{2, 9.7, 9.8, 0},
-                                                                        {3, 7.4, 7.5, 1}};
+    char problem[2048];
+    edges_problem(problem, sizeof problem);
+    fixture f;
+    fixture_open(&f, EDGES_FIXTURE, WRITE_FIXTURES " " EDGES_FIXTURE, problem);
     whirl_cstab_params p = whirl_cstab_defaults();
     whirl_cstab *w = whirl_cstab_alloc(&p);
-    p.degree = 48, p.shape_tol = 1e-13, p.solver = 1;
-    whirl_cstab *ref = whirl_cstab_alloc(&p);
     assert_non_null(w);
-    assert_non_null(ref);
-    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+    for (size_t c = 0; c < EDGE_CASES; c++) {
+        const struct edge_case *e = &edge_cases[c];
         whirl_windows_params wp = whirl_windows_defaults();
-        wp.omega_min = cases[c].from, wp.omega_max = cases[c].to;
+        wp.omega_min = e->from, wp.omega_max = e->to;
         whirl_window win[2];
         size_t count;
         whirl_windows_stats st;
-        assert_int_equal(whirl_cstab_windows(w, cases[c].mode, &wp, win, 2, &count, &st), 0);
+        assert_int_equal(whirl_cstab_windows(w, e->mode, &wp, win, 2, &count, &st), 0);
         assert_int_equal(count, 1);
-        const int closing = cases[c].closing;
-        const double edge = closing ? win[0].to : win[0].from;
-        const double err = closing ? win[0].err_to : win[0].err_from;
-        const double freq = closing ? win[0].freq_to : win[0].freq_from;
-        assert_true(closing ? !win[0].open_to : !win[0].open_from);
-        /* D > 0 on the stable side, < 0 inside */
-        double lo = edge - 2e-8, hi = edge + 2e-8;
-        double flo = discriminant_at(ref, cases[c].mode, lo, freq);
-        double fhi = discriminant_at(ref, cases[c].mode, hi, freq);
-        assert_true(closing ? (flo < 0 && fhi > 0) : (flo > 0 && fhi < 0));
-        int side = 0;
-        while (hi - lo > 1e-11) { /* regula falsi, Illinois */
-            const double x = (lo * fhi - hi * flo) / (fhi - flo);
-            const double fx = discriminant_at(ref, cases[c].mode, x, freq);
-            if (fx == 0) lo = hi = x;
-            else if ((fx > 0) == (flo > 0)) {
-                lo = x, flo = fx;
-                if (side == -1) fhi /= 2;
-                side = -1;
-            } else {
-                hi = x, fhi = fx;
-                if (side == 1) flo /= 2;
-                side = 1;
-            }
-            if (fabs(hi - lo) <= 1e-11) break;
-        }
-        const double root = (lo + hi) / 2;
+        const double edge = e->closing ? win[0].to : win[0].from;
+        const double err = e->closing ? win[0].err_to : win[0].err_from;
+        assert_true(e->closing ? !win[0].open_to : !win[0].open_from);
+        const double root = fixture_value(&f);
         print_message("# mode %d: edge %.12f (estimate %.2g), degree 48 and the dense block %.12f: "
-                      "difference %.2g\n", cases[c].mode, edge, err, root, fabs(edge - root));
+                      "difference %.2g\n", e->mode, edge, err, root, fabs(edge - root));
         assert_true(err <= 1e-8);
         assert_true(fabs(edge - root) <= err + 1e-10);
     }
+    fixture_close(&f);
     whirl_cstab_free(w);
+}
+
+/* The root of D in the bracket of e by regula falsi (Illinois) on the workspace ref. */
+static double discriminant_root(whirl_cstab *ref, const struct edge_case *e)
+{
+    double lo = e->lo, hi = e->hi;
+    double flo = discriminant_at(ref, e->mode, lo, e->freq);
+    double fhi = discriminant_at(ref, e->mode, hi, e->freq);
+    /* D > 0 on the stable side, < 0 inside */
+    assert_true(e->closing ? (flo < 0 && fhi > 0) : (flo > 0 && fhi < 0));
+    int side = 0;
+    while (hi - lo > 1e-11) {
+        const double x = (lo * fhi - hi * flo) / (fhi - flo);
+        const double fx = discriminant_at(ref, e->mode, x, e->freq);
+        if (fx == 0) lo = hi = x;
+        else if ((fx > 0) == (flo > 0)) {
+            lo = x, flo = fx;
+            if (side == -1) fhi /= 2;
+            side = -1;
+        } else {
+            hi = x, fhi = fx;
+            if (side == 1) flo /= 2;
+            side = 1;
+        }
+    }
+    return (lo + hi) / 2;
+}
+
+/* Writes the fixture of test_refined_edges into the folder *state. */
+static void write_refined_edges(void **state)
+{
+    char problem[2048];
+    const whirl_cstab_params p = edges_problem(problem, sizeof problem);
+    whirl_cstab *ref = whirl_cstab_alloc(&p);
+    assert_non_null(ref);
+    double root[EDGE_CASES];
+    for (size_t c = 0; c < EDGE_CASES; c++) root[c] = discriminant_root(ref, &edge_cases[c]);
     whirl_cstab_free(ref);
+    fixture_out o;
+    fixture_create(&o, *state, EDGES_FIXTURE, WRITE_FIXTURES " " EDGES_FIXTURE, problem);
+    for (size_t c = 0; c < EDGE_CASES; c++) {
+        fixture_comment(&o, "the %s edge of mode %d", edge_cases[c].closing ? "closing" : "opening",
+                        edge_cases[c].mode);
+        fixture_put(&o, root[c]);
+    }
+    fixture_commit(&o);
 }
 
 static void test_errors(void **state)
@@ -466,9 +623,47 @@ static void test_errors(void **state)
     whirl_cstab_free(w);
 }
 
-int main(void)
+/* --write-fixtures DIR [NAME...]: writes the fixtures NAME (every one without NAME) into DIR,
+ * each a test of its own. */
+static int write_fixtures(int argc, char **argv)
+{
+    static const struct { const char *name; CMUnitTestFunction write; } writers[] = {
+        {SOLVERS_FIXTURE, write_solvers}, {EDGES_FIXTURE, write_refined_edges}};
+    enum { WRITERS = sizeof writers / sizeof writers[0] };
+    if (argc < 1) {
+        fprintf(stderr, "test_continuum_stability: --write-fixtures needs a folder\n");
+        return 2;
+    }
+    struct CMUnitTest tests[WRITERS];
+    size_t n = 0;
+    for (int a = 1; a < argc; a++) {
+        size_t k = 0;
+        while (k < WRITERS && strcmp(argv[a], writers[k].name) != 0) k++;
+        if (k == WRITERS) {
+            fprintf(stderr, "test_continuum_stability: no fixture '%s' (%s, %s)\n", argv[a],
+                    SOLVERS_FIXTURE, EDGES_FIXTURE);
+            return 2;
+        }
+    }
+    for (size_t k = 0; k < WRITERS; k++) {
+        int wanted = argc == 1;
+        for (int a = 1; a < argc; a++) wanted |= strcmp(argv[a], writers[k].name) == 0;
+        if (wanted)
+            tests[n++] = (struct CMUnitTest){.name = writers[k].name, .test_func = writers[k].write,
+                                             .initial_state = argv[0]};
+    }
+    return _cmocka_run_group_tests("fixtures", tests, n, NULL, NULL);
+}
+
+int main(int argc, char **argv)
 {
     gsl_set_error_handler_off();
+    if (argc > 1 && strcmp(argv[1], "--write-fixtures") == 0)
+        return write_fixtures(argc - 2, argv + 2);
+    if (argc > 1) {
+        fprintf(stderr, "usage: test_continuum_stability [--write-fixtures DIR [NAME...]]\n");
+        return 2;
+    }
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hanging),
         cmocka_unit_test(test_convergence),
