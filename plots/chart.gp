@@ -2,8 +2,9 @@
 # its edges as curves of the amplitude A against the rate omega, one line per curve (the CSV's
 # blocks, a blank line between curves), coloured by the edge: a multiplier pair through -1
 # (period doubling: the odd tongues, Mathieu's a_1, b_1, ...) or through +1 (the even tongues;
-# the inverted chain's lower edge, Kapitza's). Rates in rad/s and amplitudes in m for a file in
-# SI units ("# units: length=m ..."), else sqrt(g/L) and L.
+# the inverted chain's lower edge, Kapitza's). With --drag the title names the linear air drag.
+# Rates in rad/s and amplitudes in m for a file in SI units ("# units: length=m ..."), else
+# sqrt(g/L) and L.
 # usage: gnuplot -e "csv='chart.csv'; out='chart.png'" plots/chart.gp   (out: .png, .svg or .pdf)
 if (!exists("csv")) { print "usage: gnuplot -e \"csv='chart.csv'; out='chart.png'\" plots/chart.gp"; exit status 1 }
 if (!exists("out")) { out = "chart.png" }
@@ -13,9 +14,11 @@ if (strstrt(header, "curve,edge,omega,amplitude") != 1) { print "chart.gp: ".csv
 rows = int(system(sprintf("grep -v '^#' '%s' | grep -c ','", csv))) - 1
 which = system(sprintf("sed -n '/^# chart: the /{s/^# chart: the //;s/ chain.*//;p;q}' '%s'", csv))
 links = meta(csv, "links")
+# the damped chart (--drag C): the drag with its unit, from the first line's " drag=C UNIT;"
+drag = system(sprintf("grep -m 1 -o ' drag=[^;]*' '%s' | cut -d= -f2", csv))
 cw = 900; ch = 620; @canvas
 set output out
-set title sprintf("the %s chain of %s link%s shaken vertically, A cos(omega t)", which, links, links eq "1" ? "" : "s") noenhanced
+set title sprintf("the %s chain of %s link%s shaken vertically, A cos(omega t)%s", which, links, links eq "1" ? "" : "s", strlen(drag) > 0 ? ", linear air drag ".drag : "") noenhanced
 set xlabel "shaking rate omega [".u_rate(csv)."]"
 set ylabel "amplitude A [".u_len(csv)."]"
 set key outside below horizontal noenhanced

@@ -330,7 +330,7 @@ WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const 
  * `rows` amplitudes for new curves at the first rate, where the count of a family's edges
  * disagrees with the signs at the range's ends, and (hanging) where a tip 2 omega_k / n of its
  * tongues (omega_k = sqrt(g lambda_k), the unshaken chain's frequencies) lies between two rates
- * (src/periodic/chart.c, chart_modes.c). */
+ * (src/periodic/chart.c, chart_modes.c). With linear air drag: whirl_chart_vertical_damped. */
 
 typedef struct whirl_chart_params {
     int inverted;     /* 0: the hanging chain (its tongues of instability); 1: the inverted chain
@@ -387,6 +387,35 @@ typedef void (*whirl_chart_tick_fn)(void *data, const whirl_chart_progress *prog
 WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
                                    whirl_chart_row_fn row, void *row_data,
                                    whirl_chart_tick_fn tick, void *tick_data);
+
+/* The chart of whirl_chart_vertical with linear air drag: the force -c l_i v_i on mass i (v_i
+ * its inertial velocity; c = air_drag, whirl_model's air_drag, per unit length [M/(L T)]). On a
+ * chain of one mass per length (m_i / l_i equal) the drag's matrix is gamma M, gamma = c l_i /
+ * m_i (c for a uniform chain in the units of whirl/common.h), the drag of the pivot's velocity
+ * z' adds gamma z' to gravity, and each mode obeys
+ * q_k'' + gamma q_k' + sigma lambda_k (g + z'' + gamma z') q_k = 0: with q = exp(-gamma t / 2) y
+ * an undamped Hill equation shifted by -gamma^2 / 4, its monodromy exp(-gamma T / 2) times y's,
+ * determinant exp(-gamma T) (src/periodic/chart_modes.c). The edges are where the mode's trace is +-(1 + exp(-gamma T)) (a
+ * multiplier through +1 or -1; a complex pair stays inside the unit circle): the hanging
+ * chain's tongues lift off A = 0 (no tips), each tongue's edges one curve through its lowest
+ * point. air_drag 0 is whirl_chart_vertical, bit for bit. GSL_EINVAL with a message also for a
+ * drag negative or not finite, a chain whose m_i / l_i differ (the drag would couple its modes:
+ * only a drag proportional to the mass matrix keeps them apart), or gamma pi / omega_min over
+ * 700 (src/periodic/chart.c).
+ * @param c the chain
+ * @param dim 2 or 3
+ * @param params the chart's range, resolution and tolerance
+ * @param air_drag c >= 0, finite [M/(L T)]
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every column and scan, or NULL
+ * @param tick_data passed to tick
+ * @return GSL_SUCCESS, GSL_EINVAL, WHIRL_EINTERRUPTED, row's status, or an integration's status
+ */
+WHIRL_API int whirl_chart_vertical_damped(const whirl_chain *c, int dim,
+                                          const whirl_chart_params *params, double air_drag,
+                                          whirl_chart_row_fn row, void *row_data,
+                                          whirl_chart_tick_fn tick, void *tick_data);
 
 /* ---- continuation of periodic motions ----
  *

@@ -16,7 +16,8 @@
  * --drag, --drag-quadratic (or --drag-cd), --damping: the damped and dragged chain
  * (whirl_periodic_alloc_model), the rows of whirl driven and whirl stability; its multipliers
  * are not in reciprocal pairs (the comment line says so) and a branch's torus test is the
- * dissipative one. Not for --chart. */
+ * dissipative one. --chart hanging|inverted takes --drag alone (whirl_chart_vertical_damped: a
+ * drag proportional to the mass matrix keeps the modes apart); --chart ellipse none. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -135,6 +136,13 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
     if (inverted < 0)
         return cli_error(cmd, "--chart must be hanging, inverted or ellipse, got '%s'",
                          o->chart);
+    if (inverted == 2 && (o->drag > 0 || o->drag2 > 0 || o->damping > 0))
+        return cli_error(cmd, "--chart ellipse is of the conservative chain: no --drag, "
+                         "--drag-quadratic, --drag-cd or --damping");
+    if (o->drag2 > 0 || o->damping > 0)
+        return cli_error(cmd, "--chart %s takes linear air drag (--drag) alone: it keeps the "
+                         "modes apart; the joints' --damping couples them (from 3 links on), and "
+                         "quadratic drag damps at a rate that changes along the period", o->chart);
     if (inverted == 2) {
         if (!(o->eps > 0)) return cli_error(cmd, "--chart ellipse needs --eps");
         if (o->side != 1 && o->side != -1) return cli_error(cmd, "--side must be 1 or -1");
@@ -160,8 +168,8 @@ static int run_chart(const cli_command *cmd, const periodic_options *o)
     const periodic_chart_args a = {
         .inverted = inverted, .links = o->links, .columns = o->omega_count, .rows = o->amp_rows,
         .steps = o->steps, .omega_min = o->omega_min, .omega_max = o->omega_max,
-        .amp_min = o->amp_min, .amp_max = o->amp_max, .tol = o->edge_tol, .output = o->output,
-        .units = &o->units, .resume = o->resume};
+        .amp_min = o->amp_min, .amp_max = o->amp_max, .tol = o->edge_tol, .drag = o->drag,
+        .output = o->output, .units = &o->units, .resume = o->resume};
     return periodic_chart_vertical(cmd, &a);
 }
 
@@ -351,10 +359,11 @@ int cmd_periodic(const cli_command *cmd, int argc, char **argv)
          .range = "(0, inf)", .required = "--chart --omega-min", .unit = CLI_UNIT_RATE},
         {.name = "--chart", .type = CLI_STRING, .value = &o.chart, .meta = "KIND",
          .help = "the stability chart of the chain shaken vertically: hanging (its tongues) or "
-                 "inverted (its region of stability)",
+                 "inverted (its region of stability); with --drag C, of the chain with linear "
+                 "air drag (the tongues lifted off A = 0)",
          .needs = "--omega-min --omega-max",
          .excludes = "--pivot --omega --dim --start --tol --max-iter --differences "
-                     "--up --max-points --drag --drag-quadratic --drag-cd --damping"},
+                     "--up --max-points"},
         {.name = "--eps", .type = CLI_DOUBLE, .value = &o.eps, .meta = "A",
          .help = "--chart ellipse: the circle drive's radius, the ellipse's semi-axis along x "
                  "(the other: A (1 - e))",

@@ -1,6 +1,8 @@
 /* whirl periodic --chart hanging|inverted: the stability chart of the chain shaken vertically
- * (whirl_chart_vertical) over --omega-min..--omega-max (--omega-count rates) and
- * --amp-min..--amp-max (--amp-rows amplitudes scanned for new curves).
+ * (whirl_chart_vertical; with --drag C, whirl_chart_vertical_damped) over
+ * --omega-min..--omega-max (--omega-count rates) and --amp-min..--amp-max (--amp-rows amplitudes
+ * scanned for new curves). The first comment line records the drag (only if not 0: a
+ * conservative chart's file is as before), so --resume refuses a file of another drag.
  *
  * Output (chart_file.h): comment lines (the chain, the options that change a row, the range),
  * "# found:" lines (the counts; where a stopped chart stopped), the "# units:" line, then the
@@ -95,10 +97,15 @@ static void write_head(FILE *fp, const periodic_chart_args *a, const whirl_chart
     const double len = cli_units_scale(a->units, CLI_UNIT_LENGTH);
     const char *ru = cli_units_name(a->units, CLI_UNIT_RATE);
     const char *lu = cli_units_name(a->units, CLI_UNIT_LENGTH);
+    char drag[96] = "";
+    if (a->drag > 0)
+        snprintf(drag, sizeof drag, " drag=%s %s",
+                 CLI_NUM(a->drag * cli_units_scale(a->units, CLI_UNIT_DRAG)),
+                 cli_units_name(a->units, CLI_UNIT_DRAG));
     fprintf(fp, "# chart: the %s chain shaken vertically, A cos(omega t); links=%d steps=%d "
-            "tol=%s %s; edge +1: a multiplier pair through +1, -1: through -1 (period "
-            "doubling)\n", p->inverted ? "inverted" : "hanging", a->links, p->steps,
-            CLI_NUM(p->tol * len), lu);
+            "tol=%s %s%s; edge +1: a multiplier %s +1, -1: through -1 (period doubling)\n",
+            p->inverted ? "inverted" : "hanging", a->links, p->steps, CLI_NUM(p->tol * len), lu,
+            drag, a->drag > 0 ? "through" : "pair through");
     fprintf(fp, "# omega from %s to %s %s (%d rates); A from %s to %s %s (%d rows scanned)\n",
             CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate), ru, p->columns,
             CLI_NUM(p->amp_min * len), CLI_NUM(p->amp_max * len), lu, p->rows);
@@ -232,8 +239,8 @@ int periodic_chart_vertical(const cli_command *cmd, const periodic_chart_args *a
     cli_progress_begin(&r.line, cmd, "", 0, 0);
     char *state = a->resume && r.file.state ? strdup(r.file.state) : NULL;
     int status = a->resume && state == NULL ? GSL_ENOMEM
-                 : chart_vertical_run(c, 2, &p, state, chart_keep, &r, chart_tick, &r,
-                                      chart_save, &r);
+                 : chart_vertical_run(c, 2, &p, a->drag, state, chart_keep, &r, chart_tick,
+                                      &r, chart_save, &r);
     cli_progress_clear(&r.line);
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
         const int stopped = status == WHIRL_EINTERRUPTED;

@@ -17,6 +17,7 @@ typedef struct periodic_ellipse_args {
 typedef struct periodic_chart_args {
     int inverted, links, columns, rows, steps;
     double omega_min, omega_max, amp_min, amp_max, tol; /* dimensionless; 0: the defaults */
+    double drag; /* --drag: linear air drag, dimensionless (whirl_chart_vertical_damped) */
     const char *output;
     const cli_units *units;
     int resume;

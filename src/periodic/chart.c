@@ -34,11 +34,32 @@
  * The inverted chain's edges have no tips: at A = 0 its modes' multipliers are
  * exp(+-sqrt(g lambda_k) T), real, so f_+k = 2 - 2 cosh(sqrt(g lambda_k) T) < 0 < f_-k and no
  * edge reaches A = 0 (Mathieu's a_k = -4 g lambda_k / omega^2 < 0, below every tongue's tip
- * a = n^2); its edges enter and leave the chart through the range's sides. */
+ * a = n^2); its edges enter and leave the chart through the range's sides.
+ *
+ * With linear air drag (whirl_chart_vertical_damped) every mode decays at gamma = c l_i / m_i
+ * and the drag on the chain's vertical motion adds gamma z' to the gravity of its tensions
+ * (chart_modes.c): q_k'' + gamma q_k' + sigma lambda_k (g + z'' + gamma z') q_k = 0 is, with
+ * q = exp(-gamma t / 2) y, an undamped Hill equation of y with the constant term shifted by
+ * -gamma^2 / 4, and the mode's monodromy is exp(-gamma T / 2) times one similar to y's, M_y
+ * (det 1). Its multipliers exp(-gamma T / 2) mu_y pass +1 (-1) where
+ * tr M_y = 2 cosh(gamma T / 2) (resp. -2 cosh(gamma T / 2)), i.e. where the damped mode's trace
+ * is +-(1 + exp(-gamma T)) (its determinant exp(-gamma T)), so the factors become
+ *   f_+k = 2 cosh(gamma T / 2) - tr M_y,   f_-k = 2 cosh(gamma T / 2) + tr M_y,
+ * the same functions for gamma = 0 (then bit for bit the conservative chart), each a positive
+ * multiple exp(gamma T / 2) of (1 + exp(-gamma T)) -+ tr M_k: their signs and zeros are the damped
+ * mode's edges, and a complex pair never reaches the unit circle (|mu|^2 = exp(-gamma T)).
+ * At A = 0, |tr M_y| < 2 cosh(gamma T / 2) (y's multipliers exp(+-i sqrt(g lambda_k -
+ * gamma^2 / 4) T), or real with a smaller exponent), so f_+-k > 0 there: the hanging chain's
+ * tongues lift off the axis and have no tips; a tongue's two edges are one curve A(omega) through
+ * the tongue's lowest point (the follower's bend test lets a fall turn into a rise there: the
+ * curve's own minimum, as sharp as gamma is small). Without tips to announce them, a hanging
+ * mode's factors are scanned at every rate (a pair of edges can appear between two rates where a
+ * tongue's lower end bends back in omega, with no change of parity at the range's ends). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_math.h>
 #include <omp.h>
 
 #include "core/error.h"
@@ -64,6 +85,9 @@
 /* A factor beyond this (a mode far from its edges, its monodromy overflowing) counts by its
  * sign alone. */
 #define FACTOR_HUGE 1e300
+/* The largest gamma T / 2 of a damped chart, below cosh's overflow at 710: an edge there needs
+ * tr M_y ~ exp(700), a growth no Magnus step resolves anyway. */
+#define DRAG_PERIOD_MAX 700
 
 
 /* The monodromies computed so far, by all the threads. */
@@ -103,11 +127,14 @@ static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[
     const int status = whirl_pivot_line(&path, omega, amp, up);
     if (status) return status;
     double m[4];
-    chart_mode_monodromy(&path, s->ch->c->gravity, s->ch->coef[mode],
-                         mult * s->ch->steps[mode], m);
+    const chart *ch = s->ch;
+    chart_mode_monodromy(&path, ch->c->gravity, ch->coef[mode], ch->gamma,
+                         mult * ch->steps[mode], m);
     s->monodromies++;
-    f[0] = 2 - (m[0] + m[3]);
-    f[1] = 2 + (m[0] + m[3]);
+    /* 2 cosh(gamma T / 2): the edges of y's trace (file header); 2 without drag */
+    const double edge = ch->gamma > 0 ? 2 * cosh(ch->gamma * whirl_pivot_period(&path) / 2) : 2;
+    f[0] = edge - (m[0] + m[3]);
+    f[1] = edge + (m[0] + m[3]);
     return GSL_SUCCESS;
 }
 
@@ -191,6 +218,10 @@ static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floq
  * f >= 0 (the mode's multipliers on the unit circle, 2 -+ tr M_k = 2 -+ 2 cos(omega_k T); a
  * tongue's two edges meet there at its tip); the inverted chain's from amp_min. */
 static double amp_floor(const chart *ch) { return ch->p.inverted ? ch->p.amp_min : 0; }
+
+/* 1 if the chart's edges reach A = 0 at tongues' tips: the conservative hanging chain's (the
+ * inverted chain's edges stay off the axis, and so do the damped chain's: file header). */
+static int has_tips(const chart *ch) { return !ch->p.inverted && !(ch->gamma > 0); }
 
 /* A scan's work: the coarser factors of the modes scanned at the rows (one item per row), then
  * the sign changes that no located curve explains, each located (one item per candidate). */
@@ -476,7 +507,11 @@ static int follow(chart_ws *s, void *data, int j)
         double amp, err;
         status = locate(s, lo, hi, flo, fhi, &amp, &err);
         if (status) return status;
-        if (!isnan(cv->a0) && fabs(amp - 2 * cv->a1 + cv->a0) > fmax(fabs(change), spacing))
+        /* the damped chain's tongue turns up through its lowest point, one curve: a bend from
+           falling to rising is its own (hanging) */
+        const int lowest = !ch->p.inverted && ch->gamma > 0 && change < 0 && amp > cv->a1;
+        if (!isnan(cv->a0) && !lowest &&
+            fabs(amp - 2 * cv->a1 + cv->a0) > fmax(fabs(change), spacing))
             break; /* another curve's root: this one ended between the rates */
         fw->amp[j] = amp, fw->err[j] = err, fw->tipward[j] = 0;
         return GSL_SUCCESS;
@@ -505,7 +540,7 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
         chart_curve *cv = &ch->curves[fw.index[j]];
         if (isnan(fw.amp[j])) {
             cv->alive = 0;
-            if (fw.tipward[j] && !ch->p.inverted)
+            if (fw.tipward[j] && has_tips(ch))
                 status = descend_to_tip(ch, cv, column, row, row_data);
             continue;
         }
@@ -520,7 +555,7 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
  * changes. */
 static int tip_between(const chart *ch, double w0, double w1, int mode)
 {
-    return !ch->p.inverted && floor(2 * ch->freq[mode] / w0) != floor(2 * ch->freq[mode] / w1);
+    return has_tips(ch) && floor(2 * ch->freq[mode] / w0) != floor(2 * ch->freq[mode] / w1);
 }
 
 /* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
@@ -529,7 +564,7 @@ static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floq
 {
     double tip = NAN;
     const double f = ch->freq[mode];
-    for (double n = ceil(2 * f / w1); !ch->p.inverted && n <= 2 * f / w0; n++) {
+    for (double n = ceil(2 * f / w1); has_tips(ch) && n <= 2 * f / w0; n++) {
         const double t = 2 * f / n;
         if (n < 1 || t <= w0 || t > w1) continue;
         if ((((long)n % 2 == 1) ? WHIRL_FLOQUET_EDGE_MINUS_ONE : WHIRL_FLOQUET_EDGE_PLUS_ONE) ==
@@ -559,6 +594,20 @@ static int check_params(const whirl_chain *c, int dim, whirl_chart_params *p)
         return whirl_fail(GSL_EINVAL, "the chart needs columns >= 2, rows >= 2, steps >= 8, "
                           "tol > 0 and inverted 0 or 1");
     if (p->amp_min == 0) p->amp_min = p->amp_max / p->rows;
+    return GSL_SUCCESS;
+}
+
+/* The drag's decay rate (chart_modes.c) and its limit at the slowest rate. */
+static int check_drag(chart *ch, double air_drag)
+{
+    ch->drag = air_drag;
+    int status = chart_mode_drag(ch->c, air_drag, &ch->gamma);
+    if (status) return status;
+    if (ch->gamma * M_PI / ch->p.omega_min > DRAG_PERIOD_MAX)
+        return whirl_fail(GSL_EINVAL, "the chart's air drag " WHIRL_Q_DRAG "%g damps a period of "
+                          "the slowest rate " WHIRL_Q_RATE "%g by more than exp(-%d): raise the "
+                          "lowest rate or lower the drag", air_drag, ch->p.omega_min,
+                          2 * DRAG_PERIOD_MAX);
     return GSL_SUCCESS;
 }
 
@@ -615,7 +664,9 @@ static int columns(chart *ch, int start, whirl_chart_row_fn row, void *row_data,
         /* per family, the parity of its edges against the signs of its factor at the ends */
         int any = 0;
         for (int k = 0; status == GSL_SUCCESS && k < ch->n; k++) {
-            ch->rescan[k] = j == 0 || tip_between(ch, last, ch->omega, k);
+            /* the damped hanging chain: every rate (no tips to announce new edges) */
+            ch->rescan[k] = j == 0 || tip_between(ch, last, ch->omega, k) ||
+                            (!ch->p.inverted && ch->gamma > 0);
             for (int e = 0; e < 2; e++) {
                 int found = 0;
                 for (int i = 0; i < ch->count; i++)
@@ -665,7 +716,8 @@ static int modes(chart *ch)
     for (size_t k = 0; status == GSL_SUCCESS && k < n; k++) {
         ch->freq[k] = sqrt(g * ch->coef[k]);
         if (ch->p.inverted) ch->coef[k] = -ch->coef[k];
-        status = chart_mode_steps(&slow, &fast, g, ch->coef[k], ch->p.steps, &ch->steps[k]);
+        status = chart_mode_steps(&slow, &fast, g, ch->coef[k], ch->gamma, ch->p.steps,
+                                  &ch->steps[k]);
     }
     return status;
 }
@@ -683,13 +735,14 @@ static int workspaces(chart *ch)
 }
 
 int chart_vertical_run(const whirl_chain *c, int dim, const whirl_chart_params *params,
-                       const char *state, whirl_chart_row_fn row, void *row_data,
-                       whirl_chart_tick_fn tick, void *tick_data, chart_save_fn save,
-                       void *save_data)
+                       double air_drag, const char *state, whirl_chart_row_fn row,
+                       void *row_data, whirl_chart_tick_fn tick, void *tick_data,
+                       chart_save_fn save, void *save_data)
 {
     chart ch = {.c = c};
     if (params) ch.p = *params;
     int status = check_params(c, dim, &ch.p);
+    if (status == GSL_SUCCESS) status = check_drag(&ch, air_drag);
     if (status) return status;
     int start = 0;
     status = modes(&ch);
@@ -705,5 +758,14 @@ int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params
                          whirl_chart_row_fn row, void *row_data, whirl_chart_tick_fn tick,
                          void *tick_data)
 {
-    return chart_vertical_run(c, dim, params, NULL, row, row_data, tick, tick_data, NULL, NULL);
+    return chart_vertical_run(c, dim, params, 0, NULL, row, row_data, tick, tick_data, NULL,
+                              NULL);
+}
+
+int whirl_chart_vertical_damped(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                double air_drag, whirl_chart_row_fn row, void *row_data,
+                                whirl_chart_tick_fn tick, void *tick_data)
+{
+    return chart_vertical_run(c, dim, params, air_drag, NULL, row, row_data, tick, tick_data,
+                              NULL, NULL);
 }

@@ -24,7 +24,32 @@
  * C = cosh sqrt(d2), S = sinh sqrt(d2) / sqrt(d2) (cos and sin for d2 < 0): every step has
  * determinant 1, and the method is symmetric (its error even in h: the extrapolation from s and
  * 2 s steps, (f(h/2) - f(h)) / 15, removes the h^4 term). Exact for constant w, it follows the
- * mode's oscillation without the phase error of a polynomial method. */
+ * mode's oscillation without the phase error of a polynomial method.
+ *
+ * Linear air drag (whirl_model's c: the force -c l_i v_i on mass i) does two things. On the
+ * straight chain moving with the pivot (every mass at the velocity z' e_z) it is the force
+ * -gamma m_i z' e_z, gamma = c l_i / m_i, along the chain: the vertical state stays a motion, and
+ * its tensions are those of the gravity g + z'' + gamma z' (the pivot's frame: each mass held
+ * against m_i (g + z'') and the drag). On the perturbation it adds the damping matrix
+ * C_ij = c l_i l_j sum_{q >= max(i, j)} l_q, which is gamma M when every link has the same mass
+ * per length (M with l_q in place of m_q): then the pencil's v_k make C diagonal too, and each
+ * mode is
+ *   q_k'' + gamma q_k' + sigma lambda_k (g + z''(t) + gamma z'(t)) q_k = 0.
+ * With q = exp(-gamma t / 2) y,  q' = exp(-gamma t / 2) (y' - gamma y / 2),
+ *   q'' = exp(-gamma t / 2) (y'' - gamma y' + gamma^2 y / 4),  so
+ *   y'' + (sigma lambda_k (g + z''(t) + gamma z'(t)) - gamma^2 / 4) y = 0,
+ * an undamped Hill equation (the coefficient still periodic, and even in A: A cos(omega t) is
+ * -A cos(omega t) half a period later, z' and z'' both change sign) with its constant term
+ * shifted by -gamma^2 / 4. For z = A cos(omega t), z'' + gamma z' = -A omega
+ * sqrt(omega^2 + gamma^2) cos(omega t - phi): each mode is the damped Mathieu equation at the
+ * amplitude A sqrt(1 + gamma^2 / omega^2) (a shift of time leaves the multipliers). With the
+ * constant S = [[1, 0], [-gamma/2, 1]], (q, q') = exp(-gamma t / 2) S (y, y'), so the mode's
+ * monodromy is exp(-gamma T / 2) S M_y S^-1, its trace exp(-gamma T / 2) tr M_y and its
+ * determinant exp(-gamma T) (det M_y = 1). A multiplier mu of the mode solves
+ * mu^2 - tr mu + exp(-gamma T) = 0; a complex pair has |mu|^2 = exp(-gamma T) < 1, so the mode
+ * leaves the unit disc only through mu = +1 (tr = 1 + exp(-gamma T)) or mu = -1
+ * (tr = -(1 + exp(-gamma T))); in terms of M_y, where tr M_y = +-2 cosh(gamma T / 2)
+ * (chart.c's factors). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -82,6 +107,26 @@ double chart_mode_accel(const whirl_pivot_path *path)
     return a;
 }
 
+/* z'(t) of path's vertical terms. */
+static double vel_z(const whirl_pivot_path *path, double t)
+{
+    double v = 0;
+    for (int j = 1; j <= path->harmonics; j++) {
+        const double wj = j * path->omega;
+        v += wj * (path->s[2][j - 1] * cos(wj * t) - path->c[2][j - 1] * sin(wj * t));
+    }
+    return v;
+}
+
+/* The largest |z'| of path's vertical terms: sum_j j omega (|c_j| + |s_j|). */
+static double vel_max(const whirl_pivot_path *path)
+{
+    double v = 0;
+    for (int j = 1; j <= path->harmonics; j++)
+        v += j * path->omega * (fabs(path->c[2][j - 1]) + fabs(path->s[2][j - 1]));
+    return v;
+}
+
 /* z''(t) of path's vertical terms. */
 static double accel_z(const whirl_pivot_path *path, double t)
 {
@@ -109,8 +154,17 @@ static void exp_coeffs(double d2, double *c, double *s)
     }
 }
 
-void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, int steps,
-                          double m[4])
+/* The coefficient w(t) = coef (g + z'' + gamma z') - gamma^2 / 4 (file header); without drag
+ * the conservative chain's coef (g + z''), as it always was. */
+static double coefficient(const whirl_pivot_path *path, double g, double coef, double gamma,
+                          double t)
+{
+    if (!(gamma > 0)) return coef * (g + accel_z(path, t));
+    return coef * (g + accel_z(path, t) + gamma * vel_z(path, t)) - gamma * gamma / 4;
+}
+
+void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, double gamma,
+                          int steps, double m[4])
 {
     const double h = whirl_pivot_period(path) / steps;
     const double n1 = (0.5 - sqrt(3) / 6) * h, n2 = (0.5 + sqrt(3) / 6) * h;
@@ -118,8 +172,8 @@ void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, i
     double x[4] = {1, 0, 0, 1};
     for (int i = 0; i < steps; i++) {
         const double t = i * h;
-        const double w1 = coef * (g + accel_z(path, t + n1));
-        const double w2 = coef * (g + accel_z(path, t + n2));
+        const double w1 = coefficient(path, g, coef, gamma, t + n1);
+        const double w2 = coefficient(path, g, coef, gamma, t + n2);
         const double o11 = comm * (w2 - w1), o12 = h, o21 = -h * (w1 + w2) / 2;
         double c, s;
         exp_coeffs(o11 * o11 + o12 * o21, &c, &s);
@@ -131,20 +185,46 @@ void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, i
     for (int i = 0; i < 4; i++) m[i] = x[i];
 }
 
-/* The phase of the mode per period at its strongest: T sqrt(|coef| (|g| + max |z''|)). */
-static double phase(const whirl_pivot_path *path, double g, double coef)
+/* The phase of the mode per period at its strongest:
+ * T sqrt(|coef| (|g| + max |z''| + gamma max |z'|) + gamma^2 / 4) (the bound of |w|). */
+static double phase(const whirl_pivot_path *path, double g, double coef, double gamma)
 {
-    return whirl_pivot_period(path) * sqrt(fabs(coef) * (fabs(g) + chart_mode_accel(path)));
+    if (!(gamma > 0))
+        return whirl_pivot_period(path) * sqrt(fabs(coef) * (fabs(g) + chart_mode_accel(path)));
+    return whirl_pivot_period(path) *
+           sqrt(fabs(coef) * (fabs(g) + chart_mode_accel(path) + gamma * vel_max(path)) +
+                gamma * gamma / 4);
 }
 
 int chart_mode_steps(const whirl_pivot_path *slow, const whirl_pivot_path *fast, double g,
-                     double coef, int requested, int *steps)
+                     double coef, double gamma, int requested, int *steps)
 {
-    const double need =
-        ceil(CHART_STEPS_PER_RADIAN * fmax(phase(slow, g, coef), phase(fast, g, coef)));
+    const double need = ceil(CHART_STEPS_PER_RADIAN * fmax(phase(slow, g, coef, gamma),
+                                                           phase(fast, g, coef, gamma)));
     if (!(need <= 1e8))
         return whirl_fail(GSL_EINVAL, "the chart's slowest rate or largest amplitude is beyond "
                           "the integrator: %.3g steps per period needed", need);
     *steps = need > requested ? (int)need : requested;
+    return GSL_SUCCESS;
+}
+
+/* The relative spread of m_i / l_i a drag may see on "one mass per length": far above the
+ * round-off of the quotients, far below a chain of unequal links. */
+#define DRAG_DENSITY_TOL 1e-12
+
+int chart_mode_drag(const whirl_chain *c, double air_drag, double *gamma)
+{
+    if (!(isfinite(air_drag) && air_drag >= 0))
+        return whirl_fail(GSL_EINVAL, "the chart's air drag must be >= 0 and finite, got "
+                          WHIRL_Q_DRAG "%g", air_drag);
+    *gamma = 0;
+    if (air_drag == 0) return GSL_SUCCESS;
+    const double per = c->length[0] / c->mass[0]; /* l_i / m_i of link 1 */
+    for (size_t i = 1; i < c->n; i++)
+        if (fabs(c->length[i] / c->mass[i] - per) > DRAG_DENSITY_TOL * per)
+            return whirl_fail(GSL_EINVAL, "the chart's air drag needs a chain of one mass per "
+                              "length (m_i / l_i equal; link %zu differs from link 1): only a "
+                              "drag proportional to the mass matrix keeps the modes apart", i + 1);
+    *gamma = air_drag * per;
     return GSL_SUCCESS;
 }

@@ -7,7 +7,9 @@
  * lines of text (the doubles with 17 digits: read back bit for bit) and read back, makes the
  * rates after it the same as in an uninterrupted chart: a rate's points depend on the state and
  * the rate alone. The lines:
- *   vertical columns=J count=C curves=K tips=T    (J rates finished, C curves begun)
+ *   vertical columns=J count=C curves=K tips=T [drag=C]   (J rates finished, C curves begun;
+ *                                                  the linear air drag if not 0, 17 digits:
+ *                                                  a state of another drag is refused)
  *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them: the alive curves
  *                                                  and those ended at a tip; none: "none")
  *   tip OMEGA MODE                                  (T of them)
@@ -24,12 +26,12 @@
  * before the first rate computed, then after each; a non-zero return stops the chart with it. */
 typedef int (*chart_save_fn)(void *data, int done, const char *state);
 
-/* whirl_chart_vertical from the state (NULL: from the first rate), save called as above (may
- * be NULL). */
+/* whirl_chart_vertical_damped (air_drag 0: whirl_chart_vertical) from the state (NULL: from the
+ * first rate), save called as above (may be NULL). */
 int chart_vertical_run(const whirl_chain *c, int dim, const whirl_chart_params *params,
-                       const char *state, whirl_chart_row_fn row, void *row_data,
-                       whirl_chart_tick_fn tick, void *tick_data, chart_save_fn save,
-                       void *save_data);
+                       double air_drag, const char *state, whirl_chart_row_fn row,
+                       void *row_data, whirl_chart_tick_fn tick, void *tick_data,
+                       chart_save_fn save, void *save_data);
 
 /* whirl_chart_ellipse from the state (NULL: from the first rate), save as above. */
 int chart_ellipse_run(const whirl_chain *c, const whirl_ellipse_chart_params *params,
@@ -89,6 +91,8 @@ struct chart {
     double *ends;       /* per mode, the range's two ends: f_+, f_- (4 n) */
     chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
     int tips_count, tips_cap;
+    double drag;        /* the linear air drag c (whirl_model's), >= 0 */
+    double gamma;       /* the modes' decay rate c l_i / m_i (chart_modes.c); 0 without drag */
 };
 
 

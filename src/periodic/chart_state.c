@@ -28,8 +28,13 @@ int chart_state_write(const chart *ch, int done, char **text)
     const size_t size = (size_t)(2 + listed + ch->tips_count) * STATE_LINE_MAX;
     char *t = malloc(size);
     if (t == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart's state");
-    size_t len = (size_t)snprintf(t, size, "vertical columns=%d count=%d curves=%d tips=%d\n",
+    size_t len = (size_t)snprintf(t, size, "vertical columns=%d count=%d curves=%d tips=%d",
                                   done, ch->count, listed, ch->tips_count);
+    if (ch->drag > 0) { /* absent without drag: the conservative chart's state as before */
+        char b[32];
+        len += (size_t)snprintf(t + len, size - len, " drag=%s", num(b, ch->drag));
+    }
+    len += (size_t)snprintf(t + len, size - len, "\n");
     for (int i = 0; i < ch->count; i++) {
         const chart_curve *cv = &ch->curves[i];
         if (!cv->alive && !cv->tipward) continue;
@@ -144,7 +149,15 @@ int chart_state_read(chart *ch, const char *text, int *done)
     const int count = get_int(&r, "count", 0, STATE_COUNT_MAX);
     const int listed = get_int(&r, "curves", 0, count);
     const int tips = get_int(&r, "tips", 0, STATE_COUNT_MAX);
+    double drag = 0; /* the field is written only for a drag */
+    r.s += strspn(r.s, " ");
+    if (r.why == NULL && strncmp(r.s, "drag=", 5) == 0) {
+        r.s += 5;
+        drag = get_num(&r, 0, INFINITY, 0);
+        if (r.why == NULL && !(drag > 0)) r.why = "a drag written as 0";
+    }
     line_end(&r);
+    if (r.why == NULL && drag != ch->drag) r.why = "a state of another air drag";
     if (r.why) return whirl_fail(GSL_EINVAL, "state line 1: %s", r.why);
     ch->curves = calloc((size_t)count + 1, sizeof *ch->curves);
     ch->tips = calloc((size_t)tips + 1, sizeof *ch->tips);

@@ -54,6 +54,58 @@ if grep -q '^# chart: the inverted chain' "$tmp/i.csv" \
    && grep -v '^#' "$tmp/i.csv" | awk -F, '$2 == 1 {r = $3 * $4 / sqrt(2); if (r < 0.95 || r > 1.05) bad = 1; n++} END {exit bad || n != 3}'; then
   pass "chart inverted: the +1 edge at A omega ~ sqrt 2"; else fail "chart inverted: the +1 edge at A omega ~ sqrt 2"; fi
 
+# linear air drag (--drag 0.1, gamma = 0.1 for the uniform chain): the first tongue lifted off
+# A = 0 (its lowest amplitude ~gamma / 2 = 0.05), one curve through its lowest point, a point per
+# rate; the drag in the first line. The edges against the pendulum with linear drag on its
+# inertial velocity, theta'' + g theta' + (1 + z'' + g z') theta = 0 (z = A cos(w t), g = 0.1),
+# its monodromy integrated directly (scipy 1.10's DOP853 at rtol 1e-13, Brent's method on
+# |mu|max - 1 in A):
+#   /usr/bin/python3 -c 'import numpy as np; from scipy.integrate import solve_ivp; from
+#   scipy.optimize import brentq
+#   def mod(g, w, A):
+#     c = lambda t: 1 - A*w*w*np.cos(w*t) - g*A*w*np.sin(w*t)
+#     f = lambda t, y: [y[1], -g*y[1] - c(t)*y[0], y[3], -g*y[3] - c(t)*y[2]]
+#     a, c, b, d = solve_ivp(f, (0, 2*np.pi/w), [1, 0, 0, 1], method="DOP853", rtol=1e-13,
+#                            atol=1e-14).y[:, -1]
+#     tr, det = a + d, a*d - b*c; disc = tr*tr/4 - det
+#     return np.sqrt(det) if disc < 0 else abs(tr/2) + np.sqrt(disc)
+#   [print(w, repr(brentq(lambda A: mod(0.1, w, A) - 1, 0.01, 0.3, xtol=1e-15)))
+#    for w in (1.8, 1.9, 2.0, 2.1, 2.2)]'
+expect_ok "chart drag" periodic --chart hanging --drag 0.1 --omega-min 1.8 --omega-max 2.2 --omega-count 5 --amp-max 0.3 --amp-rows 30 -o "$tmp/d.csv"
+cat >"$tmp/dref" <<'REF'
+1.8 0.13384364144377076
+1.9 0.07642148993168389
+2.0 0.04996491837562285
+2.1 0.0657566434787758
+2.2 0.09590719081789069
+REF
+if head -1 "$tmp/d.csv" | grep -q 'links=1 steps=200 tol=1e-10 L drag=0.1 M sqrt(g/L)/L; ' \
+   && grep -q 'points=5 curves=1$' "$tmp/d.csv" \
+   && grep -v '^#' "$tmp/d.csv" | sed 1d | tr , ' ' \
+   | awk -v refs="$tmp/dref" 'BEGIN {while ((getline l < refs) > 0) {split(l, r, " "); w[++k] = r[1]; a[k] = r[2]}}
+          {if ($5 > 1e-8 || $4 < 0.04) bad = 1
+           for (i = 1; i <= k; i++) if (($3 - w[i]) ^ 2 < 1e-24) {d = $4 - a[i]; if (d < 0) d = -d; if (d > 1e-8) bad = 1; n++}}
+          END {exit bad || n != 5}'; then
+  pass "chart drag: the lifted tongue, one curve, on the damped pendulum's edges to 1e-8"; else fail "chart drag: the lifted tongue, one curve, on the damped pendulum's edges to 1e-8"; fi
+# the same drag in SI units (L = 0.5 m, M = 50 g: C = 0.1 M sqrt(g/L) / L kg/(m s)): the rows the
+# dimensionless ones scaled, the drag written back in kg/(m s)
+cs=$(echo "0.1 * 0.05 * sqrt(9.81 / 0.5) / 0.5" | bc -l)
+expect_ok "chart drag SI" periodic --chart hanging --drag "$cs" --omega-min "$(echo "1.8 * $w0" | bc -l)" --omega-max "$(echo "2.2 * $w0" | bc -l)" --omega-count 5 --amp-max 15cm --amp-rows 30 --length 0.5 --mass 50g --gravity 9.81 -o "$tmp/dsi.csv"
+if head -1 "$tmp/dsi.csv" | grep -q ' drag=0.04429[0-9]* kg/(m s); ' \
+   && paste -d, "$tmp/d.csv" "$tmp/dsi.csv" | grep -v '^#' | sed 1d | grep -v '^,$' \
+      | awk -F, -v w0="$w0" '{if (($3 * w0 - $8) ^ 2 > 1e-18 * $8 ^ 2 || ($4 * 0.5 - $9) ^ 2 > 1e-18 * $9 ^ 2) bad = 1; n++} END {exit bad || n != 5}'; then
+  pass "chart drag SI: the drag in kg/(m s), the same rows scaled"; else fail "chart drag SI: the drag in kg/(m s), the same rows scaled"; fi
+# a file of one drag is not resumed with another, nor without; with its own, the same file
+cp "$tmp/d.csv" "$tmp/dr.csv"
+dch="periodic --chart hanging --omega-min 1.8 --omega-max 2.2 --omega-count 5 --amp-max 0.3 --amp-rows 30"
+# shellcheck disable=SC2086
+expect_refused "chart drag: resumed with another drag" "^whirl periodic: --resume: '.*dr.csv' was not written by a chart with these options: line 1 has 'L drag=0.1' where these options write 'L drag=0.2'$" "$tmp/dr.csv" $dch --drag 0.2
+# shellcheck disable=SC2086
+expect_refused "chart drag: resumed without the drag" "^whirl periodic: --resume: '.*dr.csv' was not written by a chart with these options: line 1 has " "$tmp/dr.csv" $dch
+# shellcheck disable=SC2086
+if "$WHIRL" $dch --drag 0.1 -o "$tmp/dr.csv" --resume 2>"$tmp/err" && cmp -s "$tmp/dr.csv" "$tmp/d.csv"; then
+  pass "chart drag: resumed with its drag, the same file"; else fail "chart drag: resumed with its drag ($(cat "$tmp/err"))"; fi
+
 # the progress line on a terminal (util-linux's script; asked for at once): the rate, the
 # curves, the monodromies; erased at the end, the same CSV written
 printf '\r\033[K' >"$tmp/erase"
@@ -116,6 +168,11 @@ expect_error "chart one rate" "whirl periodic: --omega-count must be" periodic -
 expect_error "chart NaN amplitude" "whirl periodic: option --amp-max needs a finite number" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max nan -o "$tmp/out.csv"
 expect_error "chart with a pivot" "whirl periodic: --chart cannot be given with --pivot" periodic --chart hanging --pivot vertical:0.1 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
 expect_error "chart options alone" "whirl periodic: --pivot or --chart is required" periodic --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+# dissipation other than linear air drag: one line saying why
+expect_error "chart damping" "whirl periodic: --chart hanging takes linear air drag \\(--drag\\) alone: it keeps the modes apart; the joints' --damping couples them \\(from 3 links on\\), and quadratic drag damps at a rate that changes along the period$" periodic --chart hanging --damping 0.01 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart quadratic drag" "whirl periodic: --chart inverted takes linear air drag \\(--drag\\) alone" periodic --chart inverted --drag-quadratic 0.01 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
+expect_error "chart ellipse drag" "whirl periodic: --chart ellipse is of the conservative chain: no --drag, --drag-quadratic, --drag-cd or --damping" periodic --chart ellipse --eps 0.05 --drag 0.1 --omega-min 3.9 --omega-max 4 -o "$tmp/out.csv"
+expect_error "chart negative drag" "whirl periodic: --drag must be" periodic --chart hanging --drag -0.1 --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
 # a period too long for the modes' integrator (1e-9: 1e11 steps per period)
 expect_error "chart rate too low" "whirl periodic: the chart's slowest rate or largest amplitude is beyond the integrator: 1[.]01e[+]11 steps per period needed" periodic --chart hanging --omega-min 1e-9 --omega-max 1 --amp-max 0.1 -o "$tmp/out.csv"
 finish

@@ -85,8 +85,8 @@ static void mode_traces(const whirl_chain *c, const whirl_pivot_path *path, int 
     for (size_t k = 0; k < c->n; k++) {
         double m1[4], m2[4];
         const double coef = inverted ? -lambda[k] : lambda[k];
-        chart_mode_monodromy(path, c->gravity, coef, 400, m1);
-        chart_mode_monodromy(path, c->gravity, coef, 800, m2);
+        chart_mode_monodromy(path, c->gravity, coef, 0, 400, m1);
+        chart_mode_monodromy(path, c->gravity, coef, 0, 800, m2);
         const double t1 = m1[0] + m1[3], t2 = m2[0] + m2[3];
         tr[k] = t2 + (t2 - t1) / 15;
         assert_true(fabs(m2[0] * m2[3] - m2[1] * m2[2] - 1) < 1e-12 * fmax(1, fabs(t2) * fabs(t2)));

@@ -113,7 +113,7 @@ static void same_from(const run *full, const run *part, int k, int columns)
 }
 
 static void vertical_resumed(int inverted, int links, double omega_min, double omega_max,
-                             int columns, double amp_max)
+                             int columns, double amp_max, double drag)
 {
     whirl_chain *c = whirl_chain_alloc_uniform((size_t)links, 0);
     assert_non_null(c);
@@ -121,27 +121,37 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
                                   .omega_max = omega_max, .columns = columns,
                                   .amp_max = amp_max, .rows = 20};
     run full = {.size = sizeof(whirl_chart_point)};
-    assert_int_equal(chart_vertical_run(c, 2, &p, NULL, keep_vertical, &full, NULL, NULL, save,
-                                        &full),
+    assert_int_equal(chart_vertical_run(c, 2, &p, drag, NULL, keep_vertical, &full, NULL, NULL,
+                                        save, &full),
                      GSL_SUCCESS);
-    /* the chart as whirl_chart_vertical gives it */
+    /* the chart as whirl_chart_vertical (or _damped) gives it */
     run plain = {.size = sizeof(whirl_chart_point)};
-    assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_vertical, &plain, NULL, NULL),
+    assert_int_equal(drag > 0 ? whirl_chart_vertical_damped(c, 2, &p, drag, keep_vertical, &plain,
+                                                            NULL, NULL)
+                              : whirl_chart_vertical(c, 2, &p, keep_vertical, &plain, NULL, NULL),
                      GSL_SUCCESS);
     assert_int_equal(plain.n, full.n);
     for (size_t i = 0; i < full.n; i++) same_point(&plain, i, &full, i);
     int tips = 0;
     for (int k = 0; k <= columns; k++) {
         run part = {.size = sizeof(whirl_chart_point)};
-        assert_int_equal(chart_vertical_run(c, 2, &p, full.state[k], keep_vertical, &part, NULL,
-                                            NULL, save, &part),
+        assert_int_equal(chart_vertical_run(c, 2, &p, drag, full.state[k], keep_vertical, &part,
+                                            NULL, NULL, save, &part),
                          GSL_SUCCESS);
         assert_string_equal(part.state[k], full.state[k]); /* read and written back */
         same_from(&full, &part, k, columns);
         tips += strstr(full.state[k], "\ntip ") != NULL;
+        /* the drag recorded in every state (none without), and a state of another drag
+           refused */
+        assert_true((strstr(full.state[k], " drag=") != NULL) == (drag > 0));
+        assert_int_equal(chart_vertical_run(c, 2, &p, drag > 0 ? 0 : 0.25, full.state[k], NULL,
+                                            NULL, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_string_equal(whirl_last_error(), "state line 1: a state of another air drag");
         run_free(&part);
     }
-    if (!inverted) assert_true(tips > 0); /* the states carried a tip across the rates */
+    /* the states carried a tip across the rates (the damped chain's tongues have none) */
+    if (!inverted) assert_true((tips > 0) == !(drag > 0));
     run_free(&full);
     run_free(&plain);
     whirl_chain_free(c);
@@ -150,13 +160,20 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
 static void test_hanging_two_links(void **state)
 {
     (void)state;
-    vertical_resumed(0, 2, 1.8, 3, 13, 0.4);
+    vertical_resumed(0, 2, 1.8, 3, 13, 0.4, 0);
+}
+
+/* The damped hanging chain's states: its drag carried, no tips (tongues lifted off A = 0). */
+static void test_hanging_damped(void **state)
+{
+    (void)state;
+    vertical_resumed(0, 2, 1.8, 3, 13, 0.4, 0.05);
 }
 
 static void test_inverted(void **state)
 {
     (void)state;
-    vertical_resumed(1, 1, 20, 30, 6, 0.2);
+    vertical_resumed(1, 1, 20, 30, 6, 0.2, 0);
 }
 
 static void test_ellipse(void **state)
@@ -224,9 +241,17 @@ static void test_bad_states(void **state)
         {"vertical columns=1 count=0 curves=0 tips=0\ntip 2 0\n", "state line 2: a line too many"},
         {"vertical columns=1 count=99999999999 curves=0 tips=0\n",
          "state line 1: an integer out of range"},
+        {"vertical columns=0 count=0 curves=0 tips=0 drag=0.1\n",
+         "state line 1: a state of another air drag"}, /* the chart has none */
+        {"vertical columns=0 count=0 curves=0 tips=0 drag=0\n",
+         "state line 1: a drag written as 0"},
+        {"vertical columns=0 count=0 curves=0 tips=0 drag=nan\n",
+         "state line 1: a number not finite or out of range"},
+        {"vertical columns=0 count=0 curves=0 tips=0 drag=0.1 x\n",
+         "state line 1: too many fields"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        assert_int_equal(chart_vertical_run(c, 2, &p, bad[i].state, NULL, NULL, NULL, NULL, NULL,
+        assert_int_equal(chart_vertical_run(c, 2, &p, 0, bad[i].state, NULL, NULL, NULL, NULL, NULL,
                                             NULL),
                          GSL_EINVAL);
         if (strcmp(whirl_last_error(), bad[i].why) != 0)
@@ -239,6 +264,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_hanging_two_links),
+        cmocka_unit_test(test_hanging_damped),
         cmocka_unit_test(test_inverted),
         cmocka_unit_test(test_ellipse),
         cmocka_unit_test(test_bad_states),
