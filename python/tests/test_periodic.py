@@ -160,6 +160,18 @@ def test_a_chart_equals_the_command_line(tmp_path):
         _close(si.points[name], table[name])
 
 
+def test_a_damped_chart_equals_the_command_line(tmp_path):
+    table = _cli(tmp_path, "--chart", "hanging", "--drag", "0.1", "--omega-min", "1.8",
+                 "--omega-max", "2.2", "--omega-count", "3", "--amp-max", "0.3", "--amp-rows",
+                 "12", "--links", "2")
+    c = whirl.chart_vertical(1.8, 2.2, 0.3, links=2, columns=3, rows=12, air_drag=0.1)
+    assert c.points.size == len(table) > 0
+    for name in ("curve", "edge", "omega", "amplitude", "err"):
+        assert np.array_equal(c.points[name], table[name]), name
+    with pytest.raises(ValueError):
+        whirl.chart_vertical(1.8, 2.2, 0.3, air_drag=-1)
+
+
 ELLIPSE_ARGS = ["--chart", "ellipse", "--links", "2", "--eps", "0.05", "--mode", "2", "--side",
                 "-1", "--omega-min", "3.95", "--omega-max", "4.1", "--omega-count", "4"]
 

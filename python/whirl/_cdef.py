@@ -724,6 +724,11 @@ typedef struct whirl_chart_progress {
 int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_chart_params *params,
                          int (*row)(void *, const whirl_chart_point *), void *row_data,
                          void (*tick)(void *, const whirl_chart_progress *), void *tick_data);
+int whirl_chart_vertical_damped(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                double air_drag, int (*row)(void *, const whirl_chart_point *),
+                                void *row_data,
+                                void (*tick)(void *, const whirl_chart_progress *),
+                                void *tick_data);
 typedef struct whirl_cycle_params {
     int parameter;
     double min, max;

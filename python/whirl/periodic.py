@@ -385,14 +385,16 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
                    rows: Optional[int] = None, steps: Optional[int] = None,
                    tol: Any = None, length: Optional[float] = None,
                    mass: Optional[float] = None, gravity: Optional[float] = None,
-                   units: Optional[Units] = None, keep_interrupted: bool = False) -> Chart:
+                   units: Optional[Units] = None, keep_interrupted: bool = False,
+                   air_drag: Any = 0.0) -> Chart:
     """The stability chart of the chain ``links`` (N or a Chain; in the x-z plane) hanging (or,
     inverted=True, standing up) with its pivot shaken vertically, A cos(omega t), over the rates
     [omega_min, omega_max] (``columns`` of them, default 200) and amplitudes up to ``amp_max``
     (``amp_min`` default amp_max / rows; ``rows`` scanned for new curves, default 200), as
     ``whirl periodic --chart hanging|inverted`` (``steps`` its --steps, default 200; ``tol`` its
     --edge-tol [L], default 1e-10 L). The edges are curves A(omega) located per rate to ``tol``.
-    Returns a Chart. Ctrl-C raises KeyboardInterrupt, or with keep_interrupted=True returns the
+    ``air_drag`` the linear air drag per unit length (--drag; whirl_chart_vertical_damped: the
+    chain needs one mass per length). Returns a Chart. Ctrl-C raises KeyboardInterrupt, or with keep_interrupted=True returns the
     points located until then (``interrupted`` True)."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
@@ -414,13 +416,14 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     p.steps = _steps(steps)
     if tol is not None:
         p.tol = as_float(tol, "tol", positive=True, kind="length", units=u) / u.length
+    drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag", units=u) / u.drag
     found: List[Any] = []
     handle = ffi.new_handle(found)
     interrupted = False
     try:
         with _lib.interruptible("chart_vertical"):
-            status = lib.whirl_chart_vertical(chain._c, 2, p, _chart_row, handle, ffi.NULL,
-                                              ffi.NULL)
+            status = lib.whirl_chart_vertical_damped(chain._c, 2, p, drag, _chart_row, handle,
+                                                     ffi.NULL, ffi.NULL)
         check(status, "chart_vertical", u)
     except KeyboardInterrupt:
         if not keep_interrupted:
