@@ -477,8 +477,9 @@ static int follow(chart_ws *s, void *data, int j)
     s->mode = cv->mode, s->kind = cv->kind;
     fw->amp[j] = NAN;
     /* heading out of the range: ended (a root near the end is another curve's, or the same
-       curve's back in, found by the scan) */
-    if (cv->a1 + change < amp_floor(ch)) {
+       curve's back in, found by the scan); the damped hanging chain's edges never reach A = 0
+       (f > 0 there): one heading for it turns up at its tongue's lowest point, followed on */
+    if (cv->a1 + change < amp_floor(ch) && (has_tips(ch) || ch->p.inverted)) {
         fw->tipward[j] = 1;
         return GSL_SUCCESS;
     }
