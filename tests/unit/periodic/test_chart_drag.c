@@ -38,7 +38,7 @@
 #include "whirl/periodic.h"
 
 typedef struct damped {
-    double gamma, omega, amp;
+    double gamma, omega, amp, sigma; /* sigma +1 hanging, -1 inverted */
 } damped;
 
 /* The fundamental matrix's two columns (theta, theta') of the pendulum with linear air drag on
@@ -48,8 +48,8 @@ typedef struct damped {
 static int damped_rhs(double t, const double y[], double f[], void *params)
 {
     const damped *d = params;
-    const double w = 1 - d->amp * d->omega * d->omega * cos(d->omega * t) -
-                     d->gamma * d->amp * d->omega * sin(d->omega * t);
+    const double w = d->sigma * (1 - d->amp * d->omega * d->omega * cos(d->omega * t) -
+                                 d->gamma * d->amp * d->omega * sin(d->omega * t));
     for (int k = 0; k < 2; k++) {
         f[2 * k] = y[2 * k + 1];
         f[2 * k + 1] = -d->gamma * y[2 * k + 1] - w * y[2 * k];
@@ -57,10 +57,11 @@ static int damped_rhs(double t, const double y[], double f[], void *params)
     return GSL_SUCCESS;
 }
 
-/* The largest modulus of the damped pendulum's multipliers at (omega, amp), directly. */
-static double direct_modulus(double gamma, double omega, double amp)
+/* The largest modulus of the damped pendulum's multipliers at (omega, amp), directly (sigma
+ * -1: the inverted pendulum, theta measured from the upright). */
+static double direct_modulus_of(double gamma, double omega, double amp, double sigma)
 {
-    damped d = {gamma, omega, amp};
+    damped d = {gamma, omega, amp, sigma};
     gsl_odeiv2_system sys = {damped_rhs, NULL, 4, &d};
     gsl_odeiv2_driver *drv =
         gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-3, 1e-13, 1e-13);
@@ -73,6 +74,12 @@ static double direct_modulus(double gamma, double omega, double amp)
     return fabs(tr / 2) + sqrt(disc);
 }
 
+static double direct_modulus(double gamma, double omega, double amp)
+{
+    return direct_modulus_of(gamma, omega, amp, 1);
+}
+
+
 typedef struct pts {
     whirl_chart_point p[512];
     int n;
@@ -84,6 +91,31 @@ static int keep(void *data, const whirl_chart_point *p)
     assert_true(s->n < 512);
     s->p[s->n++] = *p;
     return 0;
+}
+
+/* The inverted pendulum with drag: its region of stability's edges (Kapitza's lower one, +1,
+ * and the upper, -1) on the direct integration. */
+static void test_inverted_damped(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    const whirl_chart_params p = {.inverted = 1, .omega_min = 20, .omega_max = 30, .columns = 6,
+                                  .amp_max = 0.2, .rows = 40};
+    pts s = {.n = 0};
+    assert_int_equal(whirl_chart_vertical_damped(c, 2, &p, 0.5, keep, &s, NULL, NULL),
+                     GSL_SUCCESS);
+    double worst = 0;
+    int kinds[2] = {0, 0};
+    for (int i = 0; i < s.n; i++) {
+        kinds[s.p[i].kind]++;
+        const double d = fabs(direct_modulus_of(0.5, s.p[i].omega, s.p[i].amplitude, -1) - 1);
+        if (d > worst) worst = d;
+    }
+    print_message("# inverted, gamma 0.5: %d points (+1: %d, -1: %d), worst ||mu|max - 1| %.2g\n",
+                  s.n, kinds[0], kinds[1], worst);
+    assert_int_equal(kinds[0], p.columns); /* the lower edge at every rate */
+    assert_true(worst < 1e-9);
+    whirl_chain_free(c);
 }
 
 #define GAMMA1 0.1
@@ -323,6 +355,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mathieu_damped),
         cmocka_unit_test(test_threshold),
+        cmocka_unit_test(test_inverted_damped),
         cmocka_unit_test(test_zero_and_bad),
         cmocka_unit_test(test_three_links),
     };
