@@ -138,7 +138,7 @@ gp=$(dirname "$0")/../../plots/plot.gp
 "$WHIRL" periodic --chart hanging --omega-min 1.2 --omega-max 1.4 --omega-count 3 --amp-max 0.01 --amp-rows 4 -o "$tmp/e.csv"
 [ "$(grep -v '^#' "$tmp/e.csv" | wc -l)" -eq 1 ] && pass "chart 1.2..1.4, A <= 0.01: no edge" ||
   fail "chart 1.2..1.4, A <= 0.01: edges: $(cat "$tmp/e.csv")"
-for f in c si i e; do
+for f in c si i e d; do
   expect_ok "plot: chart $f.csv to PNG" plot "$tmp/$f.csv" -o "$tmp/$f.png"
   [ "$(head -c 8 "$tmp/$f.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n' ] &&
     pass "plot: chart $f.png is a PNG" || fail "plot: chart $f.png is not a PNG"
@@ -157,6 +157,7 @@ has si 'amplitude A [m]'
 has i 'the inverted chain of 1 link shaken vertically, A cos(omega t)'
 has i 'edge +1: a pair through +1'
 has e 'no edge in the range'
+has d 'the hanging chain of 1 link shaken vertically, A cos(omega t), linear air drag 0.1 M sqrt(g/L)/L'
 
 # bad input: one line naming the option, nothing written
 expect_error "chart kind" "whirl periodic: --chart must be hanging, inverted or ellipse, got 'up'" periodic --chart up --omega-min 1 --omega-max 2 --amp-max 0.1 -o "$tmp/out.csv"
