@@ -163,6 +163,23 @@ int chart_file_commit(chart_file *f, cli_out *out)
     return cli_lock_commit(f->cmd, &f->lock, out);
 }
 
+int chart_file_finish(chart_file *f, int status, int written, int columns, int resumed,
+                      const cli_units *units)
+{
+    if (status == WHIRL_EINTERRUPTED && written == 0)
+        return cli_error(f->cmd, "interrupted after %d of %d rates: the %zu points found until "
+                         "then are written%s", f->done, columns, f->n_kept + f->rows_done,
+                         f->path ? " (continue with --resume)" : ""),
+               CLI_EXIT_INTERRUPTED;
+    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) return written;
+    if (resumed && status == GSL_EINVAL && strncmp(whirl_last_error(), "state line", 10) == 0)
+        return cli_error(f->cmd, "--resume: '%s': the chart's %s: the file cannot be trusted",
+                         f->path, whirl_last_error());
+    return cli_error(f->cmd, "%s", status == GSL_ENOMEM && whirl_last_status() != GSL_ENOMEM
+                                       ? "out of memory for the chart's points"
+                                       : CLI_LIBRARY_ERROR(units));
+}
+
 void chart_file_free(chart_file *f)
 {
     for (size_t i = 0; i < f->n_kept; i++) free(f->kept[i].line);

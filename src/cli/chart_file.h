@@ -70,6 +70,14 @@ void chart_file_write_state(const chart_file *f, FILE *fp);
 /* The output written to f->path (out opened on it) put in place under the lock; 0 or 1. */
 int chart_file_commit(chart_file *f, cli_out *out);
 
+/* The end of a chart run that gave status: stopped (WHIRL_EINTERRUPTED) after the file was
+ * written (written: 0, or 1 after an error), the message saying how far it came, of columns
+ * rates, and CLI_EXIT_INTERRUPTED; any other failure (out aborted) its one-line error, a state
+ * the library refused named as the file's (resumed: it came from --resume), and 1; else
+ * written. */
+int chart_file_finish(chart_file *f, int status, int written, int columns, int resumed,
+                      const cli_units *units);
+
 void chart_file_free(chart_file *f);
 
 #endif

@@ -242,27 +242,13 @@ int periodic_chart_vertical(const cli_command *cmd, const periodic_chart_args *a
                  : chart_vertical_run(c, 2, &p, a->drag, state, chart_keep, &r, chart_tick,
                                       &r, chart_save, &r);
     cli_progress_clear(&r.line);
-    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
-        const int stopped = status == WHIRL_EINTERRUPTED;
-        rc = write_chart(out.fp, a, &p, &r, stopped) ? (cli_out_abort(&out),
-                                                        cli_error(cmd, "out of memory"))
-                                                     : chart_file_commit(&r.file, &out);
-        if (rc == 0 && stopped)
-            rc = (cli_error(cmd, "interrupted after %d of %d rates: the %zu points found until "
-                            "then are written%s", r.file.done, p.columns,
-                            r.file.n_kept + r.file.rows_done,
-                            r.file.path ? " (continue with --resume)" : ""),
-                  CLI_EXIT_INTERRUPTED);
-    } else {
+    if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED)
+        rc = write_chart(out.fp, a, &p, &r, status == WHIRL_EINTERRUPTED)
+                 ? (cli_out_abort(&out), cli_error(cmd, "out of memory"))
+                 : chart_file_commit(&r.file, &out);
+    else
         cli_out_abort(&out);
-        if (state && status == GSL_EINVAL && strncmp(whirl_last_error(), "state line", 10) == 0)
-            rc = cli_error(cmd, "--resume: '%s': the chart's %s: the file cannot be trusted",
-                           a->output, whirl_last_error());
-        else
-            rc = cli_error(cmd, "%s", status == GSL_ENOMEM && whirl_last_status() != GSL_ENOMEM
-                                          ? "out of memory for the chart's points"
-                                          : CLI_LIBRARY_ERROR(a->units));
-    }
+    rc = chart_file_finish(&r.file, status, rc, p.columns, state != NULL, a->units);
     free(state);
     free(r.p);
     whirl_chain_free(c);

@@ -230,25 +230,11 @@ int periodic_chart_ellipse(const cli_command *cmd, const periodic_ellipse_args *
                            : chart_ellipse_run(c, &p, state, keep, &r, tick, &r, save, &r);
     cli_progress_clear(&r.line);
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
-        const int stopped = status == WHIRL_EINTERRUPTED;
-        write_rows(out.fp, a, &p, &r, stopped);
+        write_rows(out.fp, a, &p, &r, status == WHIRL_EINTERRUPTED);
         rc = chart_file_commit(&r.file, &out);
-        if (rc == 0 && stopped)
-            rc = (cli_error(cmd, "interrupted after %d of %d rates: the %zu points found until "
-                            "then are written%s", r.file.done, p.columns,
-                            r.file.n_kept + r.file.rows_done,
-                            r.file.path ? " (continue with --resume)" : ""),
-                  CLI_EXIT_INTERRUPTED);
-    } else {
+    } else
         cli_out_abort(&out);
-        if (state && status == GSL_EINVAL && strncmp(whirl_last_error(), "state line", 10) == 0)
-            rc = cli_error(cmd, "--resume: '%s': the chart's %s: the file cannot be trusted",
-                           a->output, whirl_last_error());
-        else
-            rc = cli_error(cmd, "%s", status == GSL_ENOMEM && whirl_last_status() != GSL_ENOMEM
-                                          ? "out of memory for the chart's points"
-                                          : CLI_LIBRARY_ERROR(a->units));
-    }
+    rc = chart_file_finish(&r.file, status, rc, p.columns, state != NULL, a->units);
     free(state);
     free(r.p);
     whirl_chain_free(c);
