@@ -64,7 +64,7 @@ expect_ok "periodic drag torus" periodic --pivot circle:0.05 --omega 2.8 --links
 if grep '^# torus omega=' "$tmp/torus.csv" | awk '{sub("omega=", "", $3); d = $3 - 2.850665362775; exit !(d * d < 1e-16)}' \
    && [ "$(grep -c '^# torus' "$tmp/torus.csv")" -eq 1 ]; then
   pass "periodic drag torus: located"; else fail "periodic drag torus: located"; fi
-expect_error "drag on a chart" "whirl periodic: --chart .*--drag" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max 0.1 --drag 0.1 -o "$tmp/out.csv"
+expect_error "joint damping on a chart" "whirl periodic: --chart .*--damping" periodic --chart hanging --omega-min 1 --omega-max 2 --amp-max 0.1 --damping 0.1 -o "$tmp/out.csv"
 expect_error "negative damping" "whirl periodic: --damping must be" periodic --pivot vertical:0.1 --omega 2 --damping -1 -o "$tmp/out.csv"
 # Newton that cannot converge: the residual named, no multipliers
 expect_error "Newton fails" "whirl periodic: Newton's method on the period map did not converge in 1 iterations: residual [0-9.e-]+" periodic --pivot ellipse:0.1,0.05 --omega 3 --links 3 --max-iter 1 --tol 1e-14 -o "$tmp/out.csv"
