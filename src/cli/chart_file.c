@@ -163,6 +163,21 @@ int chart_file_commit(chart_file *f, cli_out *out)
     return cli_lock_commit(f->cmd, &f->lock, out);
 }
 
+int chart_file_start(chart_file *f, int rc, int links, int resume, const cli_units *units,
+                     whirl_chain **c, cli_out *out, char **state)
+{
+    *c = rc ? NULL : whirl_chain_alloc_uniform((size_t)links, 0);
+    if (rc == 0 && *c == NULL) rc = cli_error(f->cmd, "%s", CLI_LIBRARY_ERROR(units));
+    if (rc == 0) rc = cli_out_open(f->cmd, out, f->path);
+    if (rc) {
+        whirl_chain_free(*c);
+        chart_file_free(f);
+        return rc;
+    }
+    *state = resume && f->state ? strdup(f->state) : NULL;
+    return 0;
+}
+
 int chart_file_finish(chart_file *f, int status, int written, int columns, int resumed,
                       const cli_units *units)
 {

@@ -18,6 +18,7 @@
 #include <stdio.h>
 
 #include "cli/resume.h"
+#include "whirl/chain.h"
 
 #define CHART_FOUND "# found: "
 #define CHART_STATE "# state: "
@@ -69,6 +70,13 @@ void chart_file_write_state(const chart_file *f, FILE *fp);
 
 /* The output written to f->path (out opened on it) put in place under the lock; 0 or 1. */
 int chart_file_commit(chart_file *f, cli_out *out);
+
+/* What a chart run needs once its file is open (rc: the opening's and the rows' checks, 0 if
+ * they passed): the uniform chain of links links (*c) and the output on path (out), and with
+ * resume the state read back copied (*state, the caller frees it). 0, or rc (or 1 after an error
+ * here) with the chain and f freed. */
+int chart_file_start(chart_file *f, int rc, int links, int resume, const cli_units *units,
+                     whirl_chain **c, cli_out *out, char **state);
 
 /* The end of a chart run that gave status: stopped (WHIRL_EINTERRUPTED) after the file was
  * written (written: 0, or 1 after an error), the message saying how far it came, of columns

@@ -213,18 +213,13 @@ int periodic_chart_ellipse(const cli_command *cmd, const periodic_ellipse_args *
     if (rc == 0) rc = chart_file_open(cmd, &r.file, a->output, a->resume, head, check_row, &ctx);
     if (rc == 0 && a->resume) rc = check_kept(&r, &p, rate);
     free(head);
-    whirl_chain *c = rc ? NULL : whirl_chain_alloc_uniform((size_t)a->links, 0);
-    if (rc == 0 && c == NULL) rc = cli_error(cmd, "%s", CLI_LIBRARY_ERROR(a->units));
+    whirl_chain *c;
     cli_out out;
-    if (rc == 0) rc = cli_out_open(cmd, &out, a->output);
-    if (rc) {
-        whirl_chain_free(c);
-        chart_file_free(&r.file);
-        return rc;
-    }
+    char *state;
+    rc = chart_file_start(&r.file, rc, a->links, a->resume, a->units, &c, &out, &state);
+    if (rc) return rc;
     cli_catch_interrupts();
     cli_progress_begin(&r.line, cmd, "", 0, 0);
-    char *state = a->resume && r.file.state ? strdup(r.file.state) : NULL;
     const int status = a->resume && state == NULL
                            ? GSL_ENOMEM
                            : chart_ellipse_run(c, &p, state, keep, &r, tick, &r, save, &r);
