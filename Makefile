@@ -400,7 +400,7 @@ WEB_SRC   := $(filter-out src/optimize/% src/studies/%,$(LIB_SRC))
 WEB_OBJ   := $(WEB_SRC:%.c=$(WEB)/obj/%.o)
 WEB_ENV   := NODE_OPTIONS=--no-experimental-fetch NODE_PATH=/usr/share/nodejs
 WEB_CFLAGS := $(WFLAGS) -O2 -DWHIRL_NO_LAPACK
-WEB_EXPORTS := _whirl_web_shape,_whirl_web_branches,_whirl_web_windows,_whirl_web_free
+WEB_EXPORTS := _whirl_web_shape,_whirl_web_branches,_whirl_web_windows,_whirl_web_floquet,_whirl_web_free
 WEB_EXPORTS := $(WEB_EXPORTS),_whirl_web_run_alloc,_whirl_web_shake_alloc,_whirl_web_run_next,_whirl_web_run_free,_malloc,_free
 # MODULARIZE: a factory whirlCore() in the Worker; SINGLE_FILE: the module inside as base64;
 # ALLOW_MEMORY_GROWTH: the windows of 400 links want more than the initial 16 MiB

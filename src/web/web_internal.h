@@ -1,5 +1,6 @@
-/* What the page's two files share (whirl_web.c: the answers' JSON, the query read as the page's
- * state, the shape, branches and windows; web_run.c: the perturbed and the shaken run). Internal:
+/* What the page's files share (whirl_web.c: the answers' JSON, the query read as the page's
+ * state, the shape, branches and windows; web_run.c: the perturbed and the shaken run;
+ * web_floquet.c: the shaken settings' periodic motion and Floquet multipliers). Internal:
  * not installed, not exported (the shared library exports whirl_ symbols alone). */
 #ifndef WHIRL_WEB_INTERNAL_H
 #define WHIRL_WEB_INTERNAL_H
@@ -24,6 +25,8 @@ typedef struct json {
 void web_put(json *j, const char *fmt, ...);
 /* x, in the fewest digits that read back to it ("null" if not finite). */
 void web_put_number(json *j, double x);
+/* A JSON string: quotes, backslashes and control characters escaped. */
+void web_put_string(json *j, const char *s);
 /* ',"key":x': a member after the first. */
 void web_put_key_number(json *j, const char *key, double x);
 /* The text closed and handed over (NULL when out of memory). */
@@ -44,8 +47,10 @@ typedef struct web_state {
     double m_tip;             /* tip / mass */
     whirl_frame frame;        /* the run's view: co-rotating (default) or inertial */
     double drag, drag2;       /* the air drag of the runs, in the library's units */
+    double drag_si, drag2_si; /* the same as given [kg/(m s), kg/m^2] */
     char pivot[PIVOT_MAX];    /* the shaken run's pivot path (whirl_pivot_parse), "" or "none" */
     double shake_w;           /* its rate [sqrt(g/L)] */
+    double shake_omega;       /* the same as given [rad/s] */
     int inverted;             /* the shaken run starts standing up (1) or hanging (0) */
     double tilt;              /* each link of its start turned by tilt [rad] */
     char field[16];           /* the parameter of a failure */

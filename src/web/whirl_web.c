@@ -22,7 +22,8 @@
  * Without OpenMP the branches run on the calling thread; the library's worker threads
  * (src/core/worker.c) are not started where threads cannot be (WebAssembly without
  * SharedArrayBuffer), and the work runs on the caller. The runs in time (whirl_web_run_*,
- * whirl_web_shake_alloc) are in web_run.c, what both files share in web_internal.h. */
+ * whirl_web_shake_alloc) are in web_run.c, the Floquet multipliers of the shaken settings
+ * (whirl_web_floquet) in web_floquet.c, what the files share in web_internal.h. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -83,7 +84,7 @@ void web_put(json *j, const char *fmt, ...)
 }
 
 /* A JSON string: quotes, backslashes and control characters escaped. */
-static void put_string(json *j, const char *s)
+void web_put_string(json *j, const char *s)
 {
     web_put(j, "\"");
     for (; *s; s++) {
@@ -138,9 +139,9 @@ char *web_error_answer(const char *field, const char *message)
 {
     json j = {0};
     web_put(&j, "{\"error\":");
-    put_string(&j, message);
+    web_put_string(&j, message);
     web_put(&j, ",\"field\":");
-    put_string(&j, field);
+    web_put_string(&j, field);
     web_put(&j, "}");
     return web_finish(&j);
 }
@@ -241,6 +242,8 @@ static int read_run_state(web_state *s, const char *drag, const char *drag2, con
     /* force per length per velocity [kg/(m s)] over M / (L T); per velocity squared over M / L^2 */
     s->drag = c * s->length * s->time / s->mass;
     s->drag2 = c2 * s->length * s->length / s->mass;
+    s->drag_si = c;
+    s->drag2_si = c2;
     s->tilt = deg * M_PI / 180;
     s->inverted = start && strcmp(start, "inverted") == 0;
     if (start && !s->inverted && strcmp(start, "hanging") != 0)
@@ -256,6 +259,7 @@ static int read_run_state(web_state *s, const char *drag, const char *drag2, con
     if (read_number(s, "shake", shake, WHIRL_QUANTITY_RATE, 1e-3 * s->unit, 1e5 * s->unit, &f))
         return -1;
     if (bare) f *= s->unit; /* a bare shake rate is in the rate's unit */
+    s->shake_omega = f;
     s->shake_w = f * s->time;
     if (s->shake_w > SHAKE_W_MAX)
         return web_state_fail(s, "shake", "shake: above %.4g %s, beyond what the page computes live",
@@ -386,7 +390,7 @@ static int verdict(web_state *s, const whirl_chain *c, json *j)
     whirl_stability_free(ws);
     if (status != GSL_SUCCESS) return web_library_fail(s, "rate");
     web_put(j, ",\"verdict\":");
-    put_string(j, whirl_verdict_name(whirl_verdict_linear(growth, index)));
+    web_put_string(j, whirl_verdict_name(whirl_verdict_linear(growth, index)));
     web_put(j, ",\"verdict_links\":%zu,\"index\":%d", c->n, index);
     web_put_key_number(j, "growth", growth / s->time);
     return 0;
@@ -429,7 +433,7 @@ char *whirl_web_shape(const char *query)
     }
     if (!failed) {
         web_put(&j, ",\"unit\":");
-        put_string(&j, s.unit_name);
+        web_put_string(&j, s.unit_name);
         web_put_key_number(&j, "rate", s.omega / s.unit);
         web_put_key_number(&j, "omega", s.omega);
         web_put_key_number(&j, "period", 2 * M_PI / s.omega);
@@ -440,7 +444,7 @@ char *whirl_web_shape(const char *query)
             /* the verdict's chain (30 links for the continuum) may be born later: said, not
              * failed */
             web_put(&j, ",\"verdict_error\":");
-            put_string(&j, s.message);
+            web_put_string(&j, s.message);
         }
         web_put(&j, "}");
     }
@@ -471,7 +475,7 @@ char *whirl_web_branches(const char *query)
     if (info == NULL) web_state_fail(&s, "", "out of memory");
     for (int i = 0; i < BRANCH_RATES; i++) w[i] = s.w_max * (i + 1) / BRANCH_RATES;
     web_put(&j, "{\"unit\":");
-    put_string(&j, s.unit_name);
+    web_put_string(&j, s.unit_name);
     web_put_key_number(&j, "rate_max", s.w_max / s.time / s.unit);
     web_put(&j, ",\"modes\":[");
     for (int k = 1, drawn = 0; !failed && k <= top && drawn < BRANCH_MODES; k++) {
@@ -511,7 +515,7 @@ char *whirl_web_windows(const char *query)
     const int links = s.links ? s.links : VERDICT_LINKS;
     json j = {0};
     web_put(&j, "{\"mode\":%d,\"links\":%d,\"unit\":", s.mode, links);
-    put_string(&j, s.unit_name);
+    web_put_string(&j, s.unit_name);
     web_put(&j, ",\"windows\":[");
     int failed = 0;
     if (s.mode >= 2 && s.mode <= links) { /* mode 1: a minimum of the amended potential */

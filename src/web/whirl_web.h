@@ -13,6 +13,16 @@ char *whirl_web_branches(const char *query);
 char *whirl_web_windows(const char *query);
 void whirl_web_free(char *answer);
 
+/* The periodic motion of the shaken run's settings (its chain, 30 links for the continuum; its
+ * pivot path at the rate shake; drag and drag2; start hanging or inverted, untilted) found as
+ * whirl periodic finds it (web_floquet.c), and its Floquet multipliers: {"links", "start",
+ * "dissipative", "unit", "shake", "period" [s], "steps", "iterations", "residual", "verdict"
+ * (stable, neutral, unstable), "edge", "edge_distance", "growth" (per period), "efold_periods",
+ * "efold_time" [s], "max_modulus", "max_modulus_err", "reciprocal_err", "orbit_change",
+ * "multipliers": [[re, im, |mu|, err], ...] by decreasing modulus}; a bad setting, a fixed
+ * pivot, too much work or Newton's method that does not converge: {"error", "field"}. */
+char *whirl_web_floquet(const char *query);
+
 /* The perturbed run of the state: its chain (30 links for the continuum) seeded with its steady
  * shape, each link turned by 1 mrad, 40 rotation periods in 401 frames. NULL only for a lack of
  * memory; a bad state or a failed start is answered by the first whirl_web_run_next. */

@@ -6,9 +6,12 @@
 // as {type: "frames", id, answer} as soon as it is computed, and the next chunk left for after
 // the messages waiting (so that a shape asked for meanwhile is answered between two chunks);
 // a new run ends the one in progress (its id gets no more messages). A shaken run (kind "shake",
-// whirl_web_shake_alloc) is read the same way.
+// whirl_web_shake_alloc) is read the same way. The Floquet multipliers (kind "floquet",
+// whirl_web_floquet: one call of up to tens of seconds) are asked of a second Worker of this
+// script, which the page ends to stop them without stopping the first.
 "use strict";
-const CALLS = { shape: "whirl_web_shape", branches: "whirl_web_branches", windows: "whirl_web_windows" };
+const CALLS = { shape: "whirl_web_shape", branches: "whirl_web_branches", windows: "whirl_web_windows",
+                floquet: "whirl_web_floquet" };
 const RUNS = { run: "whirl_web_run_alloc", shake: "whirl_web_shake_alloc" };
 const RUN_CHUNK = 10, RUN_CHUNK_VALUES = 300;
 let core = null, run = null; // run: {id, ptr, kind} of the run in progress

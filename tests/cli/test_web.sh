@@ -5,9 +5,11 @@
 # verdicts identical), the windows, the CSV, PNG and SVG of what is shown, the perturbed run
 # against whirl simulate (its speed against real time is printed, not asserted), the hanging
 # chain below a mode's birth, the shaken pivot (Kapitza's preset: the 3-link chain held upside
-# down over 100 periods, the pivot drawn moving), air drag slowing a free swing, a bad field and
-# an unknown address parameter named, Cancel (the
-# Worker ended and restarted), no request off the machine, no console error
+# down over 100 periods, the pivot drawn moving), air drag slowing a free swing, a bad field
+# named, the Floquet multipliers of the shaken settings (the largest |mu| shown against whirl
+# periodic, Newton's method that does not converge shown in one line, Stop), an unknown address
+# parameter named, Cancel (the Worker ended and restarted), no request off the machine, no
+# console error
 # (tests/tools/web_page.py drives it). The page is built here if it is missing or
 # older than its sources (make web); a build that fails fails the test.
 . "$(dirname "$0")/lib.sh"

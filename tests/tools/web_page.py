@@ -14,6 +14,7 @@ over the DevTools protocol, opened from file://.
 The page's own state is read from window.whirlState (what it drew); nothing is computed here but
 the comparisons."""
 import json
+import math
 import os
 import re
 import shutil
@@ -313,6 +314,66 @@ def shake_check(p, check):
               r["error"] and msg and not r["frames"], "error %r" % r["error"])
 
 
+def floquet_check(p, whirl, check):
+    """The Floquet multipliers of the shaken settings: the 5-link chain of 60 cm hanging from a
+    pivot on a circle of 1 cm at 4 Hz, asked by the button: the largest |mu| shown equals whirl
+    periodic's |mu|max to the digits shown (to its error estimate's first digit; the whole value
+    to REL: the WebAssembly engine has no LAPACK and another libm) and so does the verdict; then a change of the amplitude and
+    rate (10 cm at 1 Hz, 3 links: Newton's method does not converge) solves again by itself and
+    shows the library's one line and no multiplier; Stop ends a long solve (30 links on 1 cm at
+    3 Hz, 15 s natively) and the page says so. (The multipliers against whirl periodic bit for
+    bit through the C interface: build/tests/test_whirl_web.)"""
+    fields = {"model": "n", "links": "5", "length": "60cm", "mass": "50g", "tip": "0g",
+              "pivot": "circle", "amp": "1cm", "shake": "4Hz", "start": "hanging", "drag": "0",
+              "drag2": "0"}
+    for k, v in fields.items():
+        p.eval("document.getElementById(%s).value = %s" % (json.dumps(k), json.dumps(v)))
+    p.eval("window.whirlState.floquet = null; document.getElementById('floquet-go').click()")
+    p.wait("window.whirlState.floquet", 120)
+    shown = p.eval("(() => { const e = document.getElementById('floquet-mu'); "
+                   "return e ? e.textContent : ''; })()")
+    verdict = p.eval("(() => { const e = document.getElementById('floquet-verdict'); "
+                     "return e ? e.textContent : ''; })()")
+    out = subprocess.run([whirl, "periodic", "--pivot", "circle:1cm", "--omega", "4Hz", "--links",
+                          "5", "--length", "60cm", "--mass", "50g"], capture_output=True,
+                         text=True, check=True).stdout
+    mu, err = re.search(r"\|mu\|max=(\S+) \+- (\S+?);", out).groups()
+    cli_verdict = re.search(r"verdict=(\w+)", out).group(1)
+    # the page shows |mu| to the decimal of its error's first digit (at most 15 digits): the
+    # command line's value so rounded; the whole value to the page's parity, REL
+    mu, err = float(mu), float(err)
+    decimals = max(0, min(14 - math.floor(math.log10(abs(mu) or 1)),
+                          -math.floor(math.log10(err)) if err > 0 else 99))
+    full = p.eval("window.whirlState.floquet.max_modulus")
+    check("Floquet multipliers: the largest |mu| shown (%s, %s) equals whirl periodic's %s "
+          "(%.15g +- %.2g, %s) to its digits; the whole values differ by %.2g relative"
+          % (shown, verdict, "%.*f" % (decimals, mu), mu, err, cli_verdict,
+             abs(full - mu) / mu if full else float("nan")),
+          shown == "%.*f" % (decimals, mu) and verdict == cli_verdict and close(full, mu, REL),
+          p.eval("document.getElementById('floquet').textContent")[:200])
+    p.eval("window.whirlState.floquet = null")
+    for k, v in (("links", "3"), ("shake", "1Hz"), ("amp", "10cm")):
+        p.eval("document.getElementById(%s).value = %s" % (json.dumps(k), json.dumps(v)))
+    p.eval("document.getElementById('amp').dispatchEvent(new Event('change'))")
+    p.wait("window.whirlState.floquet", 120)
+    text = p.eval("document.getElementById('floquet').textContent")
+    check("Floquet multipliers: a change solves again; Newton's method that does not converge "
+          "shows one line and no multiplier (%s)" % text,
+          text.startswith("no periodic motion: ") and "did not converge" in text and
+          "\n" not in text and not p.eval("document.getElementById('floquet-mu')"), text)
+    for k, v in (("links", "30"), ("shake", "3Hz"), ("amp", "1cm")):
+        p.eval("document.getElementById(%s).value = %s" % (json.dumps(k), json.dumps(v)))
+    p.eval("document.getElementById('amp').dispatchEvent(new Event('change'))")
+    time.sleep(1)  # under way, not refused (a refusal answers in milliseconds)
+    busy = p.eval("!document.getElementById('floquet-stop').disabled && !window.whirlState.floquet")
+    p.eval("document.getElementById('floquet-stop').click()")
+    time.sleep(0.5)
+    text = p.eval("document.getElementById('floquet').textContent")
+    check("Floquet multipliers: Stop ends a solve under way (%s)" % text,
+          busy and text.startswith("stopped") and not p.eval("window.whirlState.floquet") and
+          p.eval("document.getElementById('floquet-stop').disabled"), text)
+
+
 def parity_cases(p, page_file, whirl, check):
     if True:
         cases = [  # (query, shape args, stability args or None)
@@ -450,6 +511,9 @@ def parity_cases(p, page_file, whirl, check):
         shake_check(p, check)
         print("INFO shake the pivot: the preset's run, two free swings and three bad fields in "
               "%.1f s" % (time.time() - t0))
+        t0 = time.time()
+        floquet_check(p, whirl, check)
+        print("INFO Floquet multipliers: two solves and a stop in %.1f s" % (time.time() - t0))
         external = [u for u in p.requests if not u.startswith(("file:", "blob:", "data:"))]
         check("no request leaves the machine", not external, "%s" % external[:3])
         check("no console errors", not p.console_errors, "%s" % p.console_errors[:3])

@@ -4,8 +4,12 @@
  * bad or unknown parameter answered with its name and nothing computed, the hanging chain below
  * a mode's birth; the perturbed run: its frames in time, the links' lengths kept, the deviation
  * staying small where the verdict is neutral and growing where it is unstable, the co-rotating and
- * inertial views one motion turned by omega t. The page itself runs the same C as WebAssembly
- * (tests/cli/test_web.sh, which compares the run with whirl simulate). */
+ * inertial views one motion turned by omega t; the Floquet multipliers of the shaken settings
+ * those of whirl periodic of this build (BUILD/whirl, beside BUILD/tests) bit for bit, with its
+ * verdict, |mu|max, period, steps, growth and e-folding time as it prints them, its one line
+ * where Newton's method does not converge, and a one-line error, no multiplier, for a bad
+ * setting. The page itself runs the same C as WebAssembly (tests/cli/test_web.sh, which compares
+ * the run with whirl simulate and the largest multiplier with whirl periodic). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -391,9 +395,171 @@ static void shake_errors(void **state)
     }
 }
 
-int main(void)
+/* ---- the Floquet multipliers (whirl_web_floquet) against whirl periodic of this build ---- */
+
+static const char *cli_path; /* the build's command line: the test program's folder's ../whirl */
+
+/* The output of whirl ARGS (standard output and error, malloc'd); fails the test if it cannot be
+ * run. The same build's program: nothing installed is used. */
+static char *cli_output(const char *args)
 {
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", cli_path, args);
+    FILE *fp = popen(cmd, "r");
+    if (fp == NULL) fail_msg("cannot run %s", cmd);
+    size_t len = 0, cap = 4096;
+    char *out = malloc(cap);
+    for (size_t got; (got = fread(out + len, 1, cap - len - 1, fp)) > 0;) {
+        len += got;
+        if (cap - len < 2) out = realloc(out, cap *= 2);
+    }
+    out[len] = 0;
+    pclose(fp);
+    if (len == 0) fail_msg("%s: no output", cmd);
+    return out;
+}
+
+/* The text after key in a, up to the first of the characters stop (static buffer). */
+static const char *word_after(const char *a, const char *key, const char *stop)
+{
+    static char buf[128];
+    const char *p = strstr(a, key);
+    if (p == NULL) fail_msg("no %s in %.400s", key, a);
+    p += strlen(key);
+    const size_t n = strcspn(p, stop);
+    snprintf(buf, sizeof buf, "%.*s", (int)(n < sizeof buf ? n : sizeof buf - 1), p);
+    return buf;
+}
+
+/* x as printf's format writes it (static buffer). */
+static const char *printed(const char *fmt, double x)
+{
+    static char buf[64];
+    snprintf(buf, sizeof buf, fmt, x);
+    return buf;
+}
+
+/* The page's answer for query against whirl periodic with args (the same settings): every
+ * multiplier, its modulus and error equal as doubles (both written in the fewest digits that
+ * read back), the verdict, the largest |mu| and its error, the period, the steps and, unstable,
+ * the growth and e-folding time as whirl periodic prints them. */
+static void floquet_case(const char *query, const char *args, const char *verdict)
+{
+    char *a = whirl_web_floquet(query);
+    assert_non_null(a);
+    if (strstr(a, "\"error\"")) fail_msg("%s: %s", query, a);
+    char *o = cli_output(args);
+    if (strstr(o, "index,re,im,modulus,err\n") == NULL) fail_msg("whirl %s: %.400s", args, o);
+    assert_string_equal(word_after(a, "\"verdict\":\"", "\""), verdict);
+    assert_string_equal(word_after(o, "verdict=", "; "), verdict);
+    assert_string_equal(printed("%.15g", number(a, "max_modulus")), word_after(o, "|mu|max=", " "));
+    assert_string_equal(printed("%.2g", number(a, "max_modulus_err")), word_after(o, " +- ", ";"));
+    assert_true(number(a, "period") == strtod(word_after(o, "period=", " "), NULL));
+    char line[128]; /* "2.2e-39; 800 steps per period (errors from 400)" */
+    snprintf(line, sizeof line, "%s", word_after(o, ", residual ", "\n"));
+    assert_true(number(a, "steps") == strtod(word_after(line, "; ", " "), NULL));
+    if (strcmp(verdict, "unstable") == 0) {
+        assert_string_equal(printed("%.10g", number(a, "growth")), word_after(o, "growth=", " "));
+        assert_true(number(a, "efold_time") == strtod(word_after(o, "periods (", " "), NULL));
+    }
+    const char *p = strstr(a, "\"multipliers\":[") + strlen("\"multipliers\":[");
+    const char *row = strstr(o, "index,re,im,modulus,err\n") + strlen("index,re,im,modulus,err\n");
+    size_t count = 0;
+    while (*p == '[' || *p == ',') {
+        p += *p == ',' ? 2 : 1; /* ",[" or "[" */
+        char *end;
+        if (strtol(row, &end, 10) != (long)++count) fail_msg("row %zu of whirl %s", count, args);
+        row = end;
+        for (int k = 0; k < 4; k++) { /* re, im, |mu|, err */
+            const double page = strtod(p, &end);
+            p = end + 1;
+            const double cli = strtod(row + 1, &end); /* past the comma */
+            row = end;
+            if (page != cli)
+                fail_msg("%s: multiplier %zu, column %d: %.17g, whirl periodic %.17g", query,
+                         count, k, page, cli);
+        }
+        row += *row == '\n';
+    }
+    assert_true(count > 0 && count == (size_t)(4 * number(a, "links")));
+    assert_true(*row == 0); /* no row left over */
+    whirl_web_free(a);
+    free(o);
+}
+
+static void floquet_equals_cli(void **state)
+{
+    (void)state;
+    /* Kapitza's preset standing up: neutral (every multiplier on the unit circle) */
+    floquet_case("length=60cm&mass=50g&rate=2Hz&mode=1&links=3&pivot=vertical:1cm&shake=55Hz"
+                 "&start=inverted&tilt=3",
+                 "periodic --pivot vertical:1cm --omega 55Hz --links 3 --start inverted "
+                 "--length 60cm --mass 50g", "neutral");
+    /* the hanging chain on a circle of 1 cm at 4 Hz: unstable */
+    floquet_case("length=60cm&mass=50g&rate=2Hz&mode=1&links=5&pivot=circle:1cm&shake=4Hz",
+                 "periodic --pivot circle:1cm --omega 4Hz --links 5 --length 60cm --mass 50g",
+                 "unstable");
+    /* with air drag on an ellipse (the rate in rpm as the page's rate: a bare shake): stable */
+    floquet_case("length=1.2&mass=0.3&rate=60rpm&mode=1&links=3&pivot=ellipse:3cm,2cm&shake=90"
+                 "&drag=0.05&drag2=0.01",
+                 "periodic --pivot ellipse:3cm,2cm --omega 90rpm --links 3 --length 1.2 "
+                 "--mass 0.3 --drag 0.05 --drag-quadratic 0.01", "stable");
+}
+
+/* Newton's method that does not converge (the hanging 3-link chain of 60 cm on a circle of 10
+ * cm at 1 Hz): the library's one line, whirl periodic's, and no multiplier. */
+static void floquet_no_convergence(void **state)
+{
+    (void)state;
+    char *a = whirl_web_floquet("length=60cm&mass=50g&rate=2Hz&mode=1&links=3"
+                                "&pivot=circle:10cm&shake=1Hz");
+    char *o = cli_output("periodic --pivot circle:10cm --omega 1Hz --links 3 --length 60cm "
+                         "--mass 50g");
+    const char *message = word_after(a, "{\"error\":\"", "\"");
+    if (strstr(message, "did not converge") == NULL) fail_msg("%s", a);
+    assert_string_equal(message, word_after(o, "whirl periodic: ", "\n"));
+    assert_null(strstr(a, "\"multipliers\""));
+    assert_null(strstr(a, "max_modulus"));
+    whirl_web_free(a);
+    free(o);
+}
+
+static void floquet_errors(void **state)
+{
+    (void)state;
+    static const char *const cases[][2] = {
+        {"links=3&pivot=none", "\"field\":\"pivot\""},
+        {"links=3", "\"field\":\"pivot\""}, /* no path: a fixed pivot */
+        {"links=3&pivot=wobble:1cm&shake=30Hz", "\"field\":\"pivot\""},
+        {"links=3&pivot=vertical:1cm", "\"field\":\"shake\""},
+        {"links=3&pivot=vertical:1cm&shake=0Hz", "\"field\":\"shake\""},
+        {"links=3&pivot=vertical:2m&shake=30Hz", "\"field\":\"pivot\""},
+        {"links=1&pivot=vertical:1cm&shake=30Hz", "\"field\":\"links\""},
+        {"links=3&pivot=vertical:1cm&shake=30Hz&drag=-1", "\"field\":\"drag\""},
+        {"links=3&pivot=vertical:1cm&shake=30Hz&start=sideways", "\"field\":\"start\""},
+        {"links=60&pivot=vertical:1cm&shake=55Hz", "\"field\":\"shake\""}, /* too much work */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        char q[256];
+        snprintf(q, sizeof q, "length=60cm&mass=50g&rate=2Hz&mode=1&%s", cases[i][0]);
+        char *a = whirl_web_floquet(q);
+        assert_non_null(a);
+        if (strncmp(a, "{\"error\":", 9) != 0 || strstr(a, cases[i][1]) == NULL ||
+            strchr(a, '\n') || strstr(a, "\\n") || strstr(a, "\"multipliers\""))
+            fail_msg("%s: %s", q, a);
+        whirl_web_free(a);
+    }
+}
+
+int main(int argc, char **argv)
+{
+    (void)argc;
     gsl_set_error_handler_off();
+    /* the build's whirl: BUILD/tests/test_whirl_web -> BUILD/whirl */
+    static char cli[4096];
+    const char *slash = strrchr(argv[0], '/');
+    snprintf(cli, sizeof cli, "%.*s../whirl", slash ? (int)(slash - argv[0] + 1) : 0, argv[0]);
+    cli_path = cli;
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shape_numbers),
         cmocka_unit_test(bad_parameters),
@@ -405,6 +571,9 @@ int main(void)
         cmocka_unit_test(shake_equals_library),
         cmocka_unit_test(shake_runs),
         cmocka_unit_test(shake_errors),
+        cmocka_unit_test(floquet_equals_cli),
+        cmocka_unit_test(floquet_no_convergence),
+        cmocka_unit_test(floquet_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
