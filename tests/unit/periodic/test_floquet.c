@@ -161,10 +161,14 @@ typedef struct inverted_case {
     double amplitude;
 } inverted_case;
 
-/* rho_max - 2 for the inverted double pendulum (N = 2, planar: two pairs mu, 1/mu) shaken at
- * omega, rho = mu + 1/mu: rho_1 + rho_2 = tr M and rho_1^2 + rho_2^2 = tr M^2 + 4 (sums of mu and
- * mu^2, smooth where single multipliers near a collision are not). A pair through +1 is rho
- * through 2. */
+/* rho_max - 2 for the inverted chain of ic->n links (planar: n pairs mu, 1/mu) shaken at omega,
+ * rho = mu + 1/mu. For N = 2, rho_1 + rho_2 = tr M and rho_1^2 + rho_2^2 = tr M^2 + 4 (sums of mu
+ * and mu^2, smooth where single multipliers near a collision are not). For N > 2 each pair's
+ * rho = Re mu + Re mu / |mu|^2 from the multipliers themselves: near the collision at +1 the two
+ * multipliers 1 +- d split by the square root of a perturbation e of the monodromy, but
+ * rho - 2 = d^2 is linear in e, so rho stays as well conditioned as the traces. The slowest
+ * mode's pair has the largest rho (the faster modes are held up more firmly: their angle per
+ * period is larger). A pair through +1 is rho through 2. */
 static double rho_margin(double omega, void *params)
 {
     const inverted_case *ic = params;
@@ -173,35 +177,45 @@ static double rho_margin(double omega, void *params)
     whirl_pivot_path path;
     assert_int_equal(whirl_pivot_line(&path, omega, ic->amplitude, up), GSL_SUCCESS);
     whirl_periodic *w = whirl_periodic_alloc(c, 2, &path);
-    double y[8];
+    double *y = malloc(4 * ic->n * sizeof *y);
+    assert_non_null(y);
     assert_int_equal(whirl_periodic_start_vertical(w, 1, y), GSL_SUCCESS);
     const whirl_periodic_params p = {.steps = 400, .refine = 0};
     whirl_periodic_result r;
     assert_int_equal(whirl_periodic_find(w, y, &p, &r), GSL_SUCCESS);
-    assert_int_equal(r.count, 4);
-    double tr = 0, tr2 = 0;
-    for (size_t i = 0; i < r.count; i++) {
-        tr += r.re[i];
-        tr2 += r.re[i] * r.re[i] - r.im[i] * r.im[i];
+    assert_int_equal(r.count, 2 * ic->n);
+    double rho;
+    if (ic->n == 2) {
+        double tr = 0, tr2 = 0;
+        for (size_t i = 0; i < r.count; i++) {
+            tr += r.re[i];
+            tr2 += r.re[i] * r.re[i] - r.im[i] * r.im[i];
+        }
+        /* rho_1 + rho_2 = tr M, rho_1^2 + rho_2^2 = tr M^2 + 4 (mu^2 + mu^-2 = rho^2 - 2) */
+        const double prod = (tr * tr - tr2 - 4) / 2;
+        rho = tr / 2 + sqrt(fmax(tr * tr / 4 - prod, 0));
+    } else {
+        rho = -INFINITY;
+        for (size_t i = 0; i < r.count; i++) {
+            const double m2 = r.re[i] * r.re[i] + r.im[i] * r.im[i];
+            rho = fmax(rho, r.re[i] + r.re[i] / m2);
+        }
     }
-    /* rho_1 + rho_2 = tr M, rho_1^2 + rho_2^2 = tr M^2 + 4 (mu^2 + mu^-2 = rho^2 - 2) */
-    const double prod = (tr * tr - tr2 - 4) / 2;
-    const double rho = tr / 2 + sqrt(fmax(tr * tr / 4 - prod, 0));
+    free(y);
     whirl_periodic_free(w);
     whirl_chain_free(c);
     return rho - 2;
 }
 
-static void test_inverted_fast_shaking(void **state)
+/* The inverted chain of n links: where its slowest pair of multipliers passes +1 at the shaking
+ * amplitudes 0.01 and 0.005, against the averaged limit; the difference falls as A^2 (the next
+ * order of the averaging), so its Richardson extrapolation in A^2 is the limit. */
+static void fast_shaking(size_t n, double tol_extrapolated)
 {
-    (void)state;
-    /* N = 2: the slowest pair of the inverted double pendulum passes +1 where the shaking
-       A omega reaches the averaged limit; the difference falls as A^2 (the next order of the
-       averaging), so its Richardson extrapolation in A^2 is the limit */
-    const double limit = averaged_limit(2);
+    const double limit = averaged_limit(n);
     double diff[2];
     for (int k = 0; k < 2; k++) {
-        inverted_case ic = {2, 0.01 / (1 << k)};
+        inverted_case ic = {n, 0.01 / (1 << k)};
         gsl_function f = {rho_margin, &ic};
         gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
         /* brackets: half and twice the limit's rate, unstable (rho > 2) and stable */
@@ -216,15 +230,29 @@ static void test_inverted_fast_shaking(void **state)
         const double omega = gsl_root_fsolver_root(s);
         gsl_root_fsolver_free(s);
         diff[k] = ic.amplitude * omega / limit - 1;
-        print_message("# inverted N = 2, A = %g: A omega* = %.12f, averaged limit %.12f, "
-                      "relative difference %.3g\n", ic.amplitude, ic.amplitude * omega, limit,
+        print_message("# inverted N = %zu, A = %g: A omega* = %.12f, averaged limit %.12f, "
+                      "relative difference %.3g\n", n, ic.amplitude, ic.amplitude * omega, limit,
                       diff[k]);
     }
     const double extrapolated = (4 * diff[1] - diff[0]) / 3;
-    print_message("# extrapolated in A^2: %.2g\n", extrapolated);
+    print_message("# N = %zu, extrapolated in A^2: %.2g\n", n, extrapolated);
     assert_true(fabs(diff[0]) < 1e-4);
     assert_true(fabs(diff[1] / diff[0] - 0.25) < 0.01); /* the A^2 law */
-    assert_true(fabs(extrapolated) < 1e-7);
+    assert_true(fabs(extrapolated) < tol_extrapolated);
+}
+
+static void test_inverted_fast_shaking(void **state)
+{
+    (void)state;
+    fast_shaking(2, 1e-7);
+}
+
+static void test_inverted_fast_shaking_chains(void **state)
+{
+    (void)state;
+    fast_shaking(3, 1e-7);
+    fast_shaking(5, 1e-7);
+    fast_shaking(10, 1e-7);
 }
 
 /* ---- the circle drive against the steady linearisation ---- */
@@ -499,6 +527,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mathieu_tongues),
         cmocka_unit_test(test_inverted_fast_shaking),
+        cmocka_unit_test(test_inverted_fast_shaking_chains),
         cmocka_unit_test(test_circle_is_steady),
         cmocka_unit_test(test_perturbed_growth),
         cmocka_unit_test(test_variational_against_differences),
