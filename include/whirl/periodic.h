@@ -417,6 +417,44 @@ WHIRL_API int whirl_chart_vertical_damped(const whirl_chain *c, int dim,
                                           whirl_chart_row_fn row, void *row_data,
                                           whirl_chart_tick_fn tick, void *tick_data);
 
+/* Called with a chart's state after its first `done` rates (NUL-terminated lines, valid during
+ * the call): once before the first rate computed, then after each finished rate; a non-zero
+ * return stops the chart with that status. The rows handed out before the call are the finished
+ * rates' (a rate's points depend on the state and the rate alone). */
+typedef int (*whirl_chart_save_fn)(void *data, int done, const char *state);
+
+/* whirl_chart_vertical_damped (air_drag 0: whirl_chart_vertical) resumed: from the state that
+ * save was handed after some rates (NULL: from the first rate), computing only the rates after
+ * them, bit for bit as in the chart that never stopped (whirl periodic --chart --resume). The
+ * state is the lines
+ *   vertical columns=J count=C curves=K tips=T [drag=C]
+ *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them, or the line none)
+ *   tip OMEGA MODE                                             (T of them)
+ * the doubles with 17 digits; it is checked whole against params and air_drag (counts, ranges,
+ * finite numbers, the drag it was saved with): GSL_EINVAL with "state line N: what" otherwise.
+ * The caller keeps the rows of the finished rates; those computed here are the others
+ * (src/periodic/chart_state.c).
+ * @param c the chain (the one the state was saved with)
+ * @param dim 2 or 3
+ * @param params the chart's range, resolution and tolerance (the state's)
+ * @param air_drag c >= 0, finite [M/(L T)] (the state's)
+ * @param state the text save was handed, or NULL
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every column and scan, or NULL
+ * @param tick_data passed to tick
+ * @param save called with the state before the first rate computed and after each, or NULL
+ * @param save_data passed to save
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, WHIRL_EINTERRUPTED, row's or save's status, or an
+ *         integration's status
+ */
+WHIRL_API int whirl_chart_vertical_resume(const whirl_chain *c, int dim,
+                                          const whirl_chart_params *params, double air_drag,
+                                          const char *state, whirl_chart_row_fn row,
+                                          void *row_data, whirl_chart_tick_fn tick,
+                                          void *tick_data, whirl_chart_save_fn save,
+                                          void *save_data);
+
 /* ---- continuation of periodic motions ----
  *
  * A periodic motion followed in the path's rate, its amplitude or its ellipticity by
@@ -623,6 +661,32 @@ typedef void (*whirl_ellipse_chart_tick_fn)(void *data,
 WHIRL_API int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
                                   whirl_ellipse_chart_row_fn row, void *row_data,
                                   whirl_ellipse_chart_tick_fn tick, void *tick_data);
+
+/* whirl_chart_ellipse resumed: from the state that save (whirl_chart_save_fn) was handed after
+ * some rates (NULL: from the first rate), computing only the rates after them, bit for bit as in
+ * the chart that never stopped (whirl periodic --chart ellipse --resume). The state is the line
+ *   ellipse columns=J prev=P curve=C failed=F
+ * (J rates finished; P whether the last was stable at e = 0, -1 before the first rate; C the
+ * curve under way, -1: none; F the failed continuations), checked against params: GSL_EINVAL
+ * with "state line 1: what" otherwise. The caller keeps the rows of the finished rates.
+ * @param c the chain (the one the state was saved with)
+ * @param params the chart's parameters (the state's)
+ * @param state the text save was handed, or NULL
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every point of a continuation and every rate, or NULL
+ * @param tick_data passed to tick
+ * @param save called with the state before the first rate computed and after each, or NULL
+ * @param save_data passed to save
+ * @return GSL_SUCCESS, GSL_EINVAL, WHIRL_EINTERRUPTED, row's or save's status, or an
+ *         integration's status
+ */
+WHIRL_API int whirl_chart_ellipse_resume(const whirl_chain *c,
+                                         const whirl_ellipse_chart_params *params,
+                                         const char *state, whirl_ellipse_chart_row_fn row,
+                                         void *row_data, whirl_ellipse_chart_tick_fn tick,
+                                         void *tick_data, whirl_chart_save_fn save,
+                                         void *save_data);
 
 /* The name of the verdict: "stable", "neutral", "unstable".
  * @param v the verdict

@@ -234,8 +234,8 @@ int periodic_chart_vertical(const cli_command *cmd, const periodic_chart_args *a
     cli_catch_interrupts();
     cli_progress_begin(&r.line, cmd, "", 0, 0);
     int status = a->resume && state == NULL ? GSL_ENOMEM
-                 : chart_vertical_run(c, 2, &p, a->drag, state, chart_keep, &r, chart_tick,
-                                      &r, chart_save, &r);
+                 : whirl_chart_vertical_resume(c, 2, &p, a->drag, state, chart_keep, &r,
+                                               chart_tick, &r, chart_save, &r);
     cli_progress_clear(&r.line);
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED)
         rc = write_chart(out.fp, a, &p, &r, status == WHIRL_EINTERRUPTED)

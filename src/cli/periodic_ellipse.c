@@ -222,7 +222,7 @@ int periodic_chart_ellipse(const cli_command *cmd, const periodic_ellipse_args *
     cli_progress_begin(&r.line, cmd, "", 0, 0);
     const int status = a->resume && state == NULL
                            ? GSL_ENOMEM
-                           : chart_ellipse_run(c, &p, state, keep, &r, tick, &r, save, &r);
+                           : whirl_chart_ellipse_resume(c, &p, state, keep, &r, tick, &r, save, &r);
     cli_progress_clear(&r.line);
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) {
         write_rows(out.fp, a, &p, &r, status == WHIRL_EINTERRUPTED);

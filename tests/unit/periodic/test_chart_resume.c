@@ -1,4 +1,5 @@
-/* Tests of the charts resumed from their state after a finished rate (periodic/chart_resume.h):
+/* Tests of the charts resumed from their state after a finished rate (whirl_chart_vertical_resume,
+ * whirl_chart_ellipse_resume; periodic/chart_resume.h):
  * for every rate k of a chart, the chart begun at k from the state the uninterrupted chart saved
  * there gives, bit for bit, the points the uninterrupted chart gave from k on, and saves the same
  * states after it; the state read back is written back as it was. The hanging chain of two
@@ -13,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "periodic/chart_resume.h"
 #include "whirl/periodic.h"
 
 #define COLUMNS_MAX 64
@@ -121,8 +121,8 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
                                   .omega_max = omega_max, .columns = columns,
                                   .amp_max = amp_max, .rows = 20};
     run full = {.size = sizeof(whirl_chart_point)};
-    assert_int_equal(chart_vertical_run(c, 2, &p, drag, NULL, keep_vertical, &full, NULL, NULL,
-                                        save, &full),
+    assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, drag, NULL, keep_vertical, &full,
+                                                 NULL, NULL, save, &full),
                      GSL_SUCCESS);
     /* the chart as whirl_chart_vertical (or _damped) gives it */
     run plain = {.size = sizeof(whirl_chart_point)};
@@ -135,8 +135,9 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
     int tips = 0;
     for (int k = 0; k <= columns; k++) {
         run part = {.size = sizeof(whirl_chart_point)};
-        assert_int_equal(chart_vertical_run(c, 2, &p, drag, full.state[k], keep_vertical, &part,
-                                            NULL, NULL, save, &part),
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, drag, full.state[k],
+                                                     keep_vertical, &part, NULL, NULL, save,
+                                                     &part),
                          GSL_SUCCESS);
         assert_string_equal(part.state[k], full.state[k]); /* read and written back */
         same_from(&full, &part, k, columns);
@@ -144,8 +145,9 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
         /* the drag recorded in every state (none without), and a state of another drag
            refused */
         assert_true((strstr(full.state[k], " drag=") != NULL) == (drag > 0));
-        assert_int_equal(chart_vertical_run(c, 2, &p, drag > 0 ? 0 : 0.25, full.state[k], NULL,
-                                            NULL, NULL, NULL, NULL, NULL),
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, drag > 0 ? 0 : 0.25,
+                                                     full.state[k], NULL, NULL, NULL, NULL, NULL,
+                                                     NULL),
                          GSL_EINVAL);
         assert_string_equal(whirl_last_error(), "state line 1: a state of another air drag");
         run_free(&part);
@@ -154,6 +156,52 @@ static void vertical_resumed(int inverted, int links, double omega_min, double o
     if (!inverted) assert_true((tips > 0) == !(drag > 0));
     run_free(&full);
     run_free(&plain);
+    whirl_chain_free(c);
+}
+
+/* A save that stops the chart after k rates: the chart returns its status, the points handed out
+ * are the uninterrupted chart's before k, and the chart resumed from that state gives the rest. */
+typedef struct stopping {
+    run r;
+    int at;
+} stopping;
+
+static int save_stop(void *data, int done, const char *state)
+{
+    stopping *s = data;
+    save(&s->r, done, state);
+    return done == s->at ? 99 : 0; /* any status not the chart's own */
+}
+
+static void test_stopped_by_save(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    assert_non_null(c);
+    const whirl_chart_params p = {.omega_min = 1.8, .omega_max = 3, .columns = 13,
+                                  .amp_max = 0.4, .rows = 20};
+    run full = {.size = sizeof(whirl_chart_point)};
+    assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, NULL, keep_vertical, &full, NULL,
+                                                 NULL, save, &full),
+                     GSL_SUCCESS);
+    for (int k = 1; k < 13; k += 5) {
+        stopping s = {.r = {.size = sizeof(whirl_chart_point)}, .at = k};
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, NULL, keep_vertical, &s.r, NULL,
+                                                     NULL, save_stop, &s),
+                         99);
+        size_t before = 0;
+        while (before < full.n && full.done_at[before] < k) before++;
+        assert_int_equal(s.r.n, before);
+        for (size_t i = 0; i < before; i++) same_point(&full, i, &s.r, i);
+        run rest = {.size = sizeof(whirl_chart_point)};
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, s.r.state[k], keep_vertical,
+                                                     &rest, NULL, NULL, save, &rest),
+                         GSL_SUCCESS);
+        same_from(&full, &rest, k, 13);
+        run_free(&rest);
+        run_free(&s.r);
+    }
+    run_free(&full);
     whirl_chain_free(c);
 }
 
@@ -184,13 +232,14 @@ static void test_ellipse(void **state)
     const whirl_ellipse_chart_params p = {.radius = 0.05, .mode = 2, .side = -1,
                                           .omega_min = 3.95, .omega_max = 4.1, .columns = 4};
     run full = {.size = sizeof(whirl_ellipse_point)};
-    assert_int_equal(chart_ellipse_run(c, &p, NULL, keep_ellipse, &full, NULL, NULL, save, &full),
+    assert_int_equal(whirl_chart_ellipse_resume(c, &p, NULL, keep_ellipse, &full, NULL, NULL,
+                                                save, &full),
                      GSL_SUCCESS);
     assert_int_equal(full.n, 3); /* two rates and the end on e = 0 (test_chart_ellipse.c) */
     for (int k = 2; k <= 4; k += 2) { /* the curve under way, the end ahead; all done */
         run part = {.size = sizeof(whirl_ellipse_point)};
-        assert_int_equal(chart_ellipse_run(c, &p, full.state[k], keep_ellipse, &part, NULL, NULL,
-                                           save, &part),
+        assert_int_equal(whirl_chart_ellipse_resume(c, &p, full.state[k], keep_ellipse, &part,
+                                                    NULL, NULL, save, &part),
                          GSL_SUCCESS);
         same_from(&full, &part, k, 4);
         run_free(&part);
@@ -201,7 +250,8 @@ static void test_ellipse(void **state)
                          "ellipse columns=2 prev=1 curve=-1 failed=0\n",
                          "ellipse columns=2 prev=1 curve=0 failed=0 x\n", "vertical columns=0\n"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        assert_int_equal(chart_ellipse_run(c, &p, bad[i], NULL, NULL, NULL, NULL, NULL, NULL),
+        assert_int_equal(whirl_chart_ellipse_resume(c, &p, bad[i], NULL, NULL, NULL, NULL, NULL,
+                                                    NULL),
                          GSL_EINVAL);
         assert_non_null(strstr(whirl_last_error(), "state line 1: "));
     }
@@ -251,8 +301,8 @@ static void test_bad_states(void **state)
          "state line 1: too many fields"},
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        assert_int_equal(chart_vertical_run(c, 2, &p, 0, bad[i].state, NULL, NULL, NULL, NULL, NULL,
-                                            NULL),
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, bad[i].state, NULL, NULL, NULL,
+                                                     NULL, NULL, NULL),
                          GSL_EINVAL);
         if (strcmp(whirl_last_error(), bad[i].why) != 0)
             fail_msg("state %zu: '%s', not '%s'", i, whirl_last_error(), bad[i].why);
@@ -268,6 +318,7 @@ int main(void)
         cmocka_unit_test(test_inverted),
         cmocka_unit_test(test_ellipse),
         cmocka_unit_test(test_bad_states),
+        cmocka_unit_test(test_stopped_by_save),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
