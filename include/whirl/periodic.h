@@ -455,6 +455,43 @@ WHIRL_API int whirl_chart_vertical_resume(const whirl_chain *c, int dim,
                                           void *tick_data, whirl_chart_save_fn save,
                                           void *save_data);
 
+/* A chart written by whirl periodic --chart hanging|inverted -o FILE (stopped, or finished) read
+ * back, as its --resume reads it: data (size bytes) must begin with the header the command line
+ * writes for params (its defaults applied), the uniform chain of links links, air_drag and the
+ * units (physical 0: dimensionless; 1: SI for the chain's length [m], mass [kg] and gravity
+ * [m/s^2], mass_given 0 as without --mass: M = 1 kg assumed, a comment line saying so), the
+ * header naming the first line that differs; its rows are checked (their fields, in the chart's
+ * range, none twice, as many as its "# found: points=" line says, a curve its state has begun
+ * and a rate it has finished) and its "# state: " lines (whirl_chart_vertical_resume checks
+ * them in turn). Then row is called for each row in the file's order (curve from 0, column -1:
+ * not recorded; omega, amplitude and err in the file's units, as written), and state once with
+ * the rates finished and the state's text, to resume from. GSL_EINVAL with the one-line
+ * message ("'PATH' was not written by a chart with these options: line N has ...", "PATH:N:
+ * WHY: the file cannot be trusted ...") for a file refused; GSL_ENOMEM.
+ * @param data the file's bytes
+ * @param size their count
+ * @param path the file's name in messages (NULL: "the chart's file")
+ * @param params the chart's parameters, as for whirl_chart_vertical
+ * @param links the uniform chain's links (whirl periodic's --links)
+ * @param air_drag c >= 0 (--drag; 0: none)
+ * @param physical 0: dimensionless units; 1: SI
+ * @param length the chain's length [m] (physical 1)
+ * @param mass the chain's mass [kg] (physical 1)
+ * @param gravity the gravity [m/s^2] (physical 1)
+ * @param mass_given 0: the mass assumed, as without --mass (physical 1)
+ * @param row called for every row, or NULL
+ * @param row_data passed to row
+ * @param state called once with the rates finished and the state, or NULL
+ * @param state_data passed to state
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, or row's or state's status
+ */
+WHIRL_API int whirl_chart_vertical_read(const char *data, size_t size, const char *path,
+                                        const whirl_chart_params *params, int links,
+                                        double air_drag, int physical, double length,
+                                        double mass, double gravity, int mass_given,
+                                        whirl_chart_row_fn row, void *row_data,
+                                        whirl_chart_save_fn state, void *state_data);
+
 /* ---- continuation of periodic motions ----
  *
  * A periodic motion followed in the path's rate, its amplitude or its ellipticity by
@@ -687,6 +724,33 @@ WHIRL_API int whirl_chart_ellipse_resume(const whirl_chain *c,
                                          void *row_data, whirl_ellipse_chart_tick_fn tick,
                                          void *tick_data, whirl_chart_save_fn save,
                                          void *save_data);
+
+/* A chart written by whirl periodic --chart ellipse -o FILE read back, as its --resume reads it
+ * (whirl_chart_vertical_read's rules and arguments): row is called for each row in the file's
+ * order (event WHIRL_CYCLE_POINT for "none"; column the rate's index, -1 at an end; omega and
+ * an end's err in the file's units; max_modulus NAN: the file has none), state once.
+ * @param data the file's bytes
+ * @param size their count
+ * @param path the file's name in messages (NULL: "the chart's file")
+ * @param params the chart's parameters, as for whirl_chart_ellipse
+ * @param links the uniform chain's links (--links)
+ * @param physical 0: dimensionless units; 1: SI
+ * @param length the chain's length [m] (physical 1)
+ * @param mass the chain's mass [kg] (physical 1)
+ * @param gravity the gravity [m/s^2] (physical 1)
+ * @param mass_given 0: the mass assumed, as without --mass (physical 1)
+ * @param row called for every row, or NULL
+ * @param row_data passed to row
+ * @param state called once with the rates finished and the state, or NULL
+ * @param state_data passed to state
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, or row's or state's status
+ */
+WHIRL_API int whirl_chart_ellipse_read(const char *data, size_t size, const char *path,
+                                       const whirl_ellipse_chart_params *params, int links,
+                                       int physical, double length, double mass, double gravity,
+                                       int mass_given, whirl_ellipse_chart_row_fn row,
+                                       void *row_data, whirl_chart_save_fn state,
+                                       void *state_data);
 
 /* The name of the verdict: "stable", "neutral", "unstable".
  * @param v the verdict
