@@ -7,11 +7,17 @@ library refuses, is refused with one exception naming the difference."""
 import dataclasses
 import os
 import signal
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
 import whirl
+
+from conftest import BUILD, REPO
+
+PROGRAM = os.path.join(BUILD, "whirl")
 
 
 def _stopped_at(chart, at, **kw):
@@ -117,12 +123,13 @@ def test_a_resume_of_other_parameters_is_refused():
     _same_chart(_vertical(resume=part, steps=200, tol=1e-10, amp_min=0.02), _vertical())
     with pytest.raises(ValueError, match="resume it in the units it was begun in"):
         _vertical(resume=part, length=1.0)
-    with pytest.raises(TypeError, match="resume must be the Chart that chart_vertical"):
+    with pytest.raises(TypeError, match="resume must be the name of a file of whirl periodic "
+                                        "--chart, or the Chart that chart_vertical returned"):
         _vertical(resume=_stopped_at(_ellipse, 2))
-    with pytest.raises(TypeError, match="resume must be the EllipseChart"):
+    with pytest.raises(TypeError, match="or the EllipseChart that chart_ellipse returned"):
         _ellipse(resume=part)
-    with pytest.raises(TypeError, match="resume must be the Chart"):
-        _vertical(resume=part.state)
+    with pytest.raises(TypeError, match="got int"):
+        _vertical(resume=5)
     with pytest.raises(ValueError, match="computed with side=-1 where this call has 1"):
         whirl.chart_ellipse(3.95, 4.1, 0.05, links=2, mode=2, side=1, columns=4,
                             resume=_stopped_at(_ellipse, 2))
@@ -150,3 +157,141 @@ def test_a_state_the_library_refuses():
     with pytest.raises(whirl.InvalidInput, match="chart_ellipse: resume: state line 1: a count "
                                                   "out of range"):
         _ellipse(resume=bad)
+
+
+# ---- a chart stopped by the command line (whirl periodic --chart ... -o FILE), resumed here ----
+
+SIGNAL_RUN = os.path.join(REPO, "tests", "tools", "signal_run.py")
+HANGING = ["--chart", "hanging", "--links", "2", "--omega-min", "1", "--omega-max", "6",
+           "--omega-count", "250", "--amp-max", "0.8", "--amp-rows", "20"]
+ELLIPSE = ["--chart", "ellipse", "--links", "2", "--eps", "0.05", "--mode", "2", "--side", "-1",
+           "--omega-min", "3.9", "--omega-max", "4.2", "--omega-count", "8"]
+
+
+def _hanging(**kw):
+    return whirl.chart_vertical(1, 6, 0.8, links=2, columns=250, rows=20, **kw)
+
+
+def _ellipse8(**kw):
+    return whirl.chart_ellipse(3.9, 4.2, 0.05, links=2, mode=2, side=-1, columns=8, **kw)
+
+
+def _cli_stopped(tmp_path, args, cpu, name):
+    """The chart file of whirl periodic ARGS stopped by SIGINT once it has used cpu seconds of
+    processor time on one thread (tests/tools/signal_run.py: the stop after as much work on a
+    loaded machine as on an idle one), and the same file resumed by the command line."""
+    out = tmp_path / (name + ".csv")
+    report = tmp_path / (name + ".report")
+    env = dict(os.environ, OMP_NUM_THREADS="1")
+    p = subprocess.run([sys.executable, SIGNAL_RUN, str(report), "INT", str(cpu), PROGRAM,
+                        "periodic", *args, "-o", str(out)], env=env, capture_output=True,
+                       text=True)
+    assert p.returncode == 130 and "early=0" in report.read_text(), (p.stderr,
+                                                                    report.read_text())
+    assert "# found: interrupted after " in out.read_text()
+    resumed = tmp_path / (name + "-cli.csv")
+    resumed.write_bytes(out.read_bytes())
+    subprocess.run([PROGRAM, "periodic", *args, "-o", str(resumed), "--resume"], env=env,
+                   check=True, stderr=subprocess.DEVNULL)
+    return out, whirl.read_csv(resumed)
+
+
+def test_python_resumes_the_command_lines_stopped_vertical_chart(tmp_path):
+    stopped, cli = _cli_stopped(tmp_path, HANGING, 0.04, "hanging")
+    before = stopped.read_bytes()
+    resumed = _hanging(resume=stopped)
+    assert stopped.read_bytes() == before  # read, not written
+    # the command line's own resume, bit for bit, and the chart never stopped, field for field
+    assert resumed.points.size == len(cli) > 0
+    for name in ("curve", "edge", "omega", "amplitude", "err"):
+        assert resumed.points[name].tobytes() == cli[name].astype(
+            resumed.points[name].dtype).tobytes(), name
+    _same_chart(resumed, _hanging())
+    # resumed from the file, then stopped again here and resumed from that
+    part = _stopped_at(_hanging, 200, resume=stopped)
+    assert part.interrupted and part.columns_done >= 200
+    _same_chart(_hanging(resume=part), resumed)
+
+
+def test_python_resumes_the_command_lines_stopped_ellipse_chart(tmp_path):
+    stopped, cli = _cli_stopped(tmp_path, ELLIPSE, 0.4, "ellipse")
+    resumed = _ellipse8(resume=stopped)
+    assert resumed.points.size == len(cli) > 0
+    for name in ("curve", "event", "omega", "ellipticity", "err"):
+        assert np.array_equal(resumed.points[name], cli[name]), name
+    full = _ellipse8()
+    kept = np.isnan(resumed.points["max_modulus"])  # the rows read back: the file has none
+    assert 0 < np.count_nonzero(kept) < kept.size
+    for name in ("curve", "event", "omega", "ellipticity", "err"):
+        assert resumed.points[name].tobytes() == full.points[name].tobytes(), name
+    assert np.array_equal(resumed.points["max_modulus"][~kept], full.points["max_modulus"][~kept])
+    assert (resumed.failed, resumed.state, resumed.columns_done) == (full.failed, full.state, 8)
+
+
+def test_a_file_not_this_charts_is_refused(tmp_path):
+    stopped, _ = _cli_stopped(tmp_path, HANGING, 0.04, "hanging")
+    text = stopped.read_text()
+    path = str(stopped)
+
+    # other parameters: the first line that differs, as the command line names it
+    with pytest.raises(whirl.InvalidInput, match="chart_vertical: resume: '%s' was not written "
+                       "by a chart with these options: line 2 has 'to 6' where these options "
+                       "write 'to 7'" % path):
+        whirl.chart_vertical(1, 7, 0.8, links=2, columns=250, rows=20, resume=stopped)
+    with pytest.raises(whirl.InvalidInput, match="line 1 has 'the hanging' where these options "
+                                                 "write 'the inverted'"):
+        _hanging(inverted=True, resume=stopped)
+    with pytest.raises(whirl.InvalidInput, match="line 1 has 'steps=200 tol=1e-10' where these "
+                                                 "options write 'steps=200 tol=1e-09'"):
+        _hanging(tol=1e-9, resume=stopped)
+    with pytest.raises(whirl.InvalidInput, match="was not written by a chart with these "
+                                                 "options: line 1 has 'steps=200 tol=1e-10' "
+                                                 "where these options write 'steps=200 "
+                                                 "tol=6e-11'"):
+        _hanging(length=0.6, resume=stopped)  # in SI units: the tolerance in m
+    # another chart's file
+    with pytest.raises(whirl.InvalidInput, match="line 1 has "):
+        _ellipse8(resume=stopped)
+    # crafted lines: the command line's refusals, the line named
+    rows = [i for i, line in enumerate(text.split("\n")) if line[:1].isdigit()]
+    lines = text.split("\n")
+    crafted = {
+        "an edge other than 1 or -1": (rows[0], lambda s: s.split(",", 2)[0] + ",2," +
+                                       s.split(",", 2)[2]),
+        "a negative error": (rows[1], lambda s: s.rsplit(",", 1)[0] + ",-1"),
+        "a rate outside the chart": (rows[0], lambda s: ",".join(
+            s.split(",")[:2] + ["7"] + s.split(",")[3:])),
+        "a comment among the rows": (rows[1], lambda s: "# " + s),
+    }
+    for why, (i, change) in crafted.items():
+        bad = list(lines)
+        bad[i] = change(bad[i])
+        f = tmp_path / "bad.csv"
+        f.write_text("\n".join(bad))
+        with pytest.raises(whirl.InvalidInput) as e:
+            _hanging(resume=f)
+        assert str(e.value) == ("chart_vertical: resume: %s:%d: %s: the file cannot be trusted "
+                                "(remove the row, or start the chart afresh)" % (f, i + 1, why))
+    # a row removed: the count of its "# found:" line
+    f = tmp_path / "short.csv"
+    f.write_text("\n".join(lines[:rows[0]] + lines[rows[0] + 1:]))
+    with pytest.raises(whirl.InvalidInput, match="rows were removed or added"):
+        _hanging(resume=f)
+    # the state's lines crafted: the library's refusal of the state
+    f = tmp_path / "state.csv"
+    f.write_text(text.replace("# state: vertical columns=", "# state: vertical columns=9999"))
+    with pytest.raises(whirl.InvalidInput, match="chart_vertical: resume: state line 1: "):
+        _hanging(resume=f)
+    # no state (cut short), no file, an empty file
+    f.write_text("\n".join(line for line in lines if not line.startswith("# state:")))
+    with pytest.raises(whirl.InvalidInput, match="holds no chart state"):
+        _hanging(resume=f)
+    with pytest.raises(FileNotFoundError):
+        _hanging(resume=tmp_path / "none.csv")
+    (tmp_path / "empty.csv").write_text("")
+    with pytest.raises(whirl.InvalidInput, match="is empty"):
+        _hanging(resume=tmp_path / "empty.csv")
+    with pytest.raises(ValueError, match="the command line's charts are of the uniform chain"):
+        whirl.chart_vertical(1, 6, 0.8, links=whirl.Chain(lengths=[0.25, 0.75],
+                                                          masses=[0.5, 0.5]),
+                             columns=250, rows=20, resume=stopped)

@@ -24,6 +24,8 @@ from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import Chain, Units, _chain, units_of
+from ._chart_resume import (_Saved, _chart_row, _chart_save, _ellipse_row, _read_ellipse,
+                            _read_vertical, _resume_from)
 
 _NAMES = {"verdict": lib.whirl_floquet_verdict_name, "edge": lib.whirl_floquet_edge_name,
           "event": lib.whirl_cycle_event_name}
@@ -386,69 +388,6 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
                           ended=ended, state=y, units=u)
 
 
-class _Saved:
-    """The state a chart's save callback (whirl_chart_save_fn) was last handed: the rates
-    finished, the state's text and the rows handed out until then (those of the rates
-    finished: a rate's rows come before its state)."""
-
-    def __init__(self, rows: List[Any], failed: int = 0) -> None:
-        self.rows = rows
-        self.done = 0
-        self.state = ""
-        self.count = 0
-        self.failed = failed       # the ellipse chart's failed continuations at the save
-        self.tick_failed = failed  # and at its last tick (the state's until the first)
-
-
-@ffi.callback("int(void *, int, const char *)", onerror=lambda *a: 8)
-def _chart_save(data: Any, done: int, state: Any) -> int:
-    saved: _Saved = ffi.from_handle(data)
-    saved.done, saved.state = done, ffi.string(state).decode("ascii")
-    saved.count, saved.failed = len(saved.rows), saved.tick_failed
-    return 0
-
-
-def _resume_from(resume: Any, kind: type, what: str, params: Dict[str, Any],
-                 u: Units) -> Any:
-    """The chart to resume (None: none), checked against this call: a chart of kind that what
-    returned, with the same parameters and units; ValueError naming the first difference,
-    TypeError for anything else. The state itself the library checks
-    (whirl_chart_vertical_resume, whirl_chart_ellipse_resume: "state line N: ...")."""
-    if resume is None:
-        return None
-    if not isinstance(resume, kind):
-        raise TypeError("resume must be the %s that %s returned (keep_interrupted=True) or "
-                        "that its KeyboardInterrupt holds (partial), got %s"
-                        % (kind.__name__, what, type(resume).__name__))
-    chart: Any = resume
-    if not chart.state:
-        raise ValueError("resume: the %s holds no chart state (not one that %s returned)"
-                         % (kind.__name__, what))
-    if chart.units != u:  # first: the parameters kept are dimensionless
-        raise ValueError("resume: the chart is in %r where this call has %r: resume it in the "
-                         "units it was begun in" % (chart.units, u))
-    scale = {"omega_min": u.rate, "omega_max": u.rate, "amp_min": u.length,
-             "amp_max": u.length, "tol": u.length, "eps": u.length, "air_drag": u.drag}
-    for name, value in params.items():
-        if name not in chart._params:
-            raise ValueError("resume: the %s records no %s (not one that %s returned)"
-                             % (kind.__name__, name, what))
-        if not _lib.same(chart._params[name], value):
-            s = scale.get(name, 1)  # in the caller's units
-            was, now = chart._params[name], value
-            raise ValueError("resume: the chart was computed with %s=%r where this call has "
-                             "%r: resume it with the parameters it was begun with"
-                             % (name, was * s if s != 1 else was, now * s if s != 1 else now))
-    return chart
-
-
-@ffi.callback("int(void *, const whirl_chart_point *)", onerror=lambda *a: 8)
-def _chart_row(data: Any, p: Any) -> int:
-    rows: List[Any] = ffi.from_handle(data)
-    rows.append((p.curve + 1, 1 if p.kind == 0 else -1, p.omega, p.amplitude, p.err, p.column))
-    return 0
-
-
 def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[int, Chain] = 1,
                    inverted: bool = False, amp_min: Any = None, columns: Optional[int] = None,
                    rows: Optional[int] = None, steps: Optional[int] = None,
@@ -498,11 +437,14 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     # the parameters as the chart takes them (the defaults of whirl_chart_params), which a
     # resumed chart must share (the command line's header records the same)
     ncol, nrow = p.columns or 200, p.rows or 200
-    params = {"chain": chain, "inverted": bool(inverted), "omega_min": p.omega_min,
-              "omega_max": p.omega_max, "columns": ncol, "amp_max": p.amp_max, "rows": nrow,
-              "amp_min": p.amp_min or p.amp_max / nrow, "steps": p.steps or 200,
-              "tol": p.tol or 1e-10, "air_drag": drag}
-    old = _resume_from(resume, Chart, "chart_vertical", params, u)
+    params: Dict[str, Any] = {
+        "chain": chain, "inverted": bool(inverted), "omega_min": p.omega_min,
+        "omega_max": p.omega_max, "columns": ncol, "amp_max": p.amp_max, "rows": nrow,
+        "amp_min": p.amp_min or p.amp_max / nrow, "steps": p.steps or 200,
+        "tol": p.tol or 1e-10, "air_drag": drag}
+    old = _resume_from(resume, Chart, "chart_vertical", params, u,
+                       lambda path: _read_vertical(path, p, params["chain"], drag, u, params,
+                                                   Chart))
     found: List[Any] = []
     handle = ffi.new_handle(found)
     saved = _Saved(found)
@@ -593,13 +535,6 @@ class EllipseChart(_lib.Result):
             ", interrupted" if self.interrupted else "")
 
 
-@ffi.callback("int(void *, const whirl_ellipse_point *)", onerror=lambda *a: 8)
-def _ellipse_row(data: Any, p: Any) -> int:
-    rows: List[Any] = ffi.from_handle(data)
-    rows.append((p.event, p.curve + 1, p.column, p.omega, p.ellipticity, p.err, p.max_modulus))
-    return 0
-
-
 def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Chain] = 1,
                   mode: int = 2, side: int = 1, columns: Optional[int] = None,
                   e_max: Optional[float] = None, steps: Optional[int] = None,
@@ -653,10 +588,13 @@ def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Ch
     ncol = p.columns or 50
     # the parameters as the chart takes them (the defaults of whirl_ellipse_chart_params), which
     # a resumed chart must share (the command line's header records the same)
-    params = {"chain": chain, "eps": p.radius, "mode": p.mode, "side": p.side,
-              "omega_min": p.omega_min, "omega_max": p.omega_max, "columns": ncol,
-              "e_max": p.e_max or 1.0, "steps": p.steps or 400, "arc_step": p.step or 0.01}
-    old = _resume_from(resume, EllipseChart, "chart_ellipse", params, u)
+    params: Dict[str, Any] = {
+        "chain": chain, "eps": p.radius, "mode": p.mode, "side": p.side,
+        "omega_min": p.omega_min, "omega_max": p.omega_max, "columns": ncol,
+        "e_max": p.e_max or 1.0, "steps": p.steps or 400, "arc_step": p.step or 0.01}
+    old = _resume_from(resume, EllipseChart, "chart_ellipse", params, u,
+                       lambda path: _read_ellipse(path, p, params["chain"], u, params,
+                                                  EllipseChart))
     found: List[Any] = []
     handle = ffi.new_handle(found)
     saved = _Saved(found, 0 if old is None else old.failed)

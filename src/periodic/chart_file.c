@@ -220,10 +220,11 @@ void chart_vertical_head(FILE *fp, const whirl_chart_params *p, int links, doubl
             p->inverted ? "inverted" : "hanging", links, p->steps,
             whirl_format_double(b, p->tol * len), lu, dragged,
             drag > 0 ? "through" : "pair through");
-    fprintf(fp, "# omega from %s to %s %s (%d rates); ", whirl_format_double(a, p->omega_min * rate),
-            whirl_format_double(b, p->omega_max * rate), ru, p->columns);
-    fprintf(fp, "A from %s to %s %s (%d rows scanned)\n", whirl_format_double(c, p->amp_min * len),
-            whirl_format_double(d, p->amp_max * len), lu, p->rows);
+    fprintf(fp, "# omega from %s to %s %s (%d rates); A from %s to %s %s (%d rows scanned)\n",
+            whirl_format_double(a, p->omega_min * rate),
+            whirl_format_double(b, p->omega_max * rate), ru, p->columns,
+            whirl_format_double(c, p->amp_min * len), whirl_format_double(d, p->amp_max * len),
+            lu, p->rows);
     if (found) fputs(found, fp);
     units_comment(fp, u);
     fprintf(fp, "curve,edge,omega,amplitude,err\n");
