@@ -5,7 +5,10 @@
  * states after it; the state read back is written back as it was. The hanging chain of two
  * links (two tongues, each ended at its tip and joined across it), the inverted chain (its edges
  * leaving through the range's sides) and the ellipse chart (a curve that ends on e = 0). A state
- * not the chart's is refused with GSL_EINVAL and its line named. */
+ * not the chart's is refused with GSL_EINVAL and its line named. A chart's file as whirl periodic
+ * --chart writes it, stopped after k rates, read back (whirl_chart_vertical_read,
+ * whirl_chart_ellipse_read): its rows bit for bit the points handed out before k, its state the
+ * one saved there; a file of other options, a crafted row, no bytes refused. */
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -14,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "periodic/chart_file.h"
 #include "whirl/periodic.h"
 
 #define COLUMNS_MAX 64
@@ -205,6 +209,118 @@ static void test_stopped_by_save(void **state)
     whirl_chain_free(c);
 }
 
+/* The file of the chart stopped after k rates, as whirl periodic --chart writes it (the header
+ * of periodic/chart_file.h, the rows of the rates finished, the state's lines), into a string
+ * (to free). */
+static char *vertical_file(const run *full, int k, const whirl_chart_params *p, int links,
+                           size_t *kept)
+{
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_non_null(f);
+    *kept = 0;
+    while (*kept < full->n && full->done_at[*kept] < k) (*kept)++;
+    char found[64];
+    snprintf(found, sizeof found, CHART_FOUND "points=%zu curves=0\n", *kept);
+    const chart_units u = {.length = 1, .mass = 1, .gravity = 1};
+    chart_vertical_head(f, p, links, 0, &u, found);
+    for (size_t i = 0; i < *kept; i++) {
+        const whirl_chart_point *q = (const void *)(full->points + i * full->size);
+        char a[WHIRL_FORMAT_MAX], b[WHIRL_FORMAT_MAX], c[WHIRL_FORMAT_MAX];
+        fprintf(f, "%d,%d,%s,%s,%s\n", q->curve + 1,
+                q->kind == WHIRL_FLOQUET_EDGE_PLUS_ONE ? 1 : -1, whirl_format_double(a, q->omega),
+                whirl_format_double(b, q->amplitude), whirl_format_double(c, q->err));
+    }
+    for (const char *s = full->state[k]; *s;) {
+        const size_t n = strcspn(s, "\n");
+        fprintf(f, CHART_STATE "%.*s\n", (int)n, s);
+        s += n + (s[n] == '\n');
+    }
+    assert_int_equal(fclose(f), 0);
+    char *copy = strdup(text); /* (not the stream's buffer: gcc takes it for a local's) */
+    assert_non_null(copy);
+    free(text);
+    return copy;
+}
+
+static void test_vertical_file_read(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    assert_non_null(c);
+    whirl_chart_params p = {.omega_min = 1.8, .omega_max = 3, .columns = 13, .amp_max = 0.4,
+                            .rows = 20};
+    run full = {.size = sizeof(whirl_chart_point)};
+    assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, NULL, keep_vertical, &full, NULL,
+                                                 NULL, save, &full),
+                     GSL_SUCCESS);
+    whirl_chart_params shown = p; /* the header's: the defaults applied */
+    chart_vertical_defaults(&shown);
+    for (int k = 3; k <= 13; k += 5) {
+        size_t kept;
+        char *text = vertical_file(&full, k, &shown, 2, &kept);
+        run back = {.size = sizeof(whirl_chart_point)};
+        assert_int_equal(whirl_chart_vertical_read(text, strlen(text), "c.csv", &p, 2, 0, 0, 0,
+                                                   0, 0, 1, keep_vertical, &back, save, &back),
+                         GSL_SUCCESS);
+        /* the rows as the chart gave them, bit for bit (column not recorded), the state */
+        assert_int_equal(back.n, kept);
+        for (size_t i = 0; i < kept; i++) {
+            whirl_chart_point *q = (void *)(back.points + i * back.size);
+            assert_int_equal(q->column, -1);
+            q->column = ((const whirl_chart_point *)(const void *)(full.points +
+                                                                    i * full.size))->column;
+            same_point(&full, i, &back, i);
+        }
+        assert_int_equal(back.done, k);
+        assert_string_equal(back.state[k], full.state[k]);
+        /* and resumed from it: the rest of the chart */
+        run rest = {.size = sizeof(whirl_chart_point)};
+        assert_int_equal(whirl_chart_vertical_resume(c, 2, &p, 0, back.state[k], keep_vertical,
+                                                     &rest, NULL, NULL, save, &rest),
+                         GSL_SUCCESS);
+        same_from(&full, &rest, k, 13);
+        run_free(&rest);
+        run_free(&back);
+        /* other options: refused, the first difference named */
+        whirl_chart_params other = p;
+        other.omega_max = 3.5;
+        assert_int_equal(whirl_chart_vertical_read(text, strlen(text), "c.csv", &other, 2, 0, 0,
+                                                   0, 0, 0, 1, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_string_equal(whirl_last_error(), "'c.csv' was not written by a chart with these "
+                                                "options: line 2 has 'to 3' where these options "
+                                                "write 'to 3.5'");
+        assert_int_equal(whirl_chart_vertical_read(text, strlen(text), "c.csv", &p, 3, 0, 0, 0,
+                                                   0, 0, 1, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_int_equal(whirl_chart_vertical_read(text, strlen(text), "c.csv", &p, 2, 0.1, 0, 0,
+                                                   0, 0, 1, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        /* a row crafted: the first one's edge 2 */
+        assert_non_null(strstr(text, "\n1,"));
+        const size_t edge = (size_t)(strstr(text, "\n1,") - text) + 3; /* the edge's field */
+        const size_t after = edge + strcspn(text + edge, ",");
+        char *bad = malloc(strlen(text) + 2);
+        assert_non_null(bad);
+        snprintf(bad, strlen(text) + 2, "%.*s2%s", (int)edge, text, text + after);
+        assert_int_equal(whirl_chart_vertical_read(bad, strlen(bad), "c.csv", &p, 2, 0, 0, 0, 0,
+                                                   0, 1, NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_non_null(strstr(whirl_last_error(), ": an edge other than 1 or -1: the file "
+                                                   "cannot be trusted"));
+        free(bad);
+        free(text);
+    }
+    assert_int_equal(whirl_chart_vertical_read("", 0, "e.csv", &p, 2, 0, 0, 0, 0, 0, 1, NULL,
+                                               NULL, NULL, NULL),
+                     GSL_EINVAL);
+    assert_string_equal(whirl_last_error(), "'e.csv' is empty: no chart of these options");
+    run_free(&full);
+    whirl_chain_free(c);
+}
+
 static void test_hanging_two_links(void **state)
 {
     (void)state;
@@ -319,6 +435,7 @@ int main(void)
         cmocka_unit_test(test_ellipse),
         cmocka_unit_test(test_bad_states),
         cmocka_unit_test(test_stopped_by_save),
+        cmocka_unit_test(test_vertical_file_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
