@@ -321,6 +321,67 @@ static void test_vertical_file_read(void **state)
     whirl_chain_free(c);
 }
 
+/* The ellipse chart's file stopped after k rates, read back: its rows the points handed out
+ * before k (the rate's index found on the grid, -1 at an end; no max_modulus), its state. */
+static void test_ellipse_file_read(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(2, 0);
+    assert_non_null(c);
+    const whirl_ellipse_chart_params p = {.radius = 0.05, .mode = 2, .side = -1,
+                                          .omega_min = 3.95, .omega_max = 4.1, .columns = 4};
+    run full = {.size = sizeof(whirl_ellipse_point)};
+    assert_int_equal(whirl_chart_ellipse_resume(c, &p, NULL, keep_ellipse, &full, NULL, NULL,
+                                                save, &full),
+                     GSL_SUCCESS);
+    whirl_ellipse_chart_params shown = p;
+    chart_ellipse_defaults(&shown);
+    const chart_units u = {.length = 1, .mass = 1, .gravity = 1};
+    for (int k = 2; k <= 4; k += 2) {
+        size_t kept = 0, len = 0;
+        while (kept < full.n && full.done_at[kept] < k) kept++;
+        char *text = NULL, found[64];
+        FILE *f = open_memstream(&text, &len);
+        assert_non_null(f);
+        snprintf(found, sizeof found, CHART_FOUND "points=%zu\n", kept);
+        chart_ellipse_head(f, &shown, 2, &u, found);
+        for (size_t i = 0; i < kept; i++) {
+            const whirl_ellipse_point *q = (const void *)(full.points + i * full.size);
+            char a[WHIRL_FORMAT_MAX], b[WHIRL_FORMAT_MAX], e[WHIRL_FORMAT_MAX];
+            fprintf(f, "%d,%s,%s,%s,%s\n", q->curve + 1,
+                    q->event == WHIRL_CYCLE_POINT ? "none" : whirl_cycle_event_name(q->event),
+                    whirl_format_double(a, q->omega), whirl_format_double(b, q->ellipticity),
+                    whirl_format_double(e, q->err));
+        }
+        fprintf(f, CHART_STATE "%s", full.state[k]);
+        assert_int_equal(fclose(f), 0);
+        run back = {.size = sizeof(whirl_ellipse_point)};
+        assert_int_equal(whirl_chart_ellipse_read(text, len, "e.csv", &p, 2, 0, 0, 0, 0, 1,
+                                                  keep_ellipse, &back, save, &back),
+                         GSL_SUCCESS);
+        assert_int_equal(back.n, kept);
+        for (size_t i = 0; i < kept; i++) {
+            whirl_ellipse_point *q = (void *)(back.points + i * back.size);
+            const whirl_ellipse_point *o = (const void *)(full.points + i * full.size);
+            assert_true(isnan(q->max_modulus));
+            q->max_modulus = o->max_modulus;
+            same_point(&full, i, &back, i);
+        }
+        assert_int_equal(back.done, k);
+        assert_string_equal(back.state[k], full.state[k]);
+        run_free(&back);
+        /* the vertical chart's reader refuses it: its first line */
+        const whirl_chart_params v = {.omega_min = 3.95, .omega_max = 4.1, .amp_max = 0.1};
+        assert_int_equal(whirl_chart_vertical_read(text, len, "e.csv", &v, 2, 0, 0, 0, 0, 0, 1,
+                                                   NULL, NULL, NULL, NULL),
+                         GSL_EINVAL);
+        assert_non_null(strstr(whirl_last_error(), "line 1 has "));
+        free(text);
+    }
+    run_free(&full);
+    whirl_chain_free(c);
+}
+
 static void test_hanging_two_links(void **state)
 {
     (void)state;
@@ -436,6 +497,7 @@ int main(void)
         cmocka_unit_test(test_bad_states),
         cmocka_unit_test(test_stopped_by_save),
         cmocka_unit_test(test_vertical_file_read),
+        cmocka_unit_test(test_ellipse_file_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
