@@ -407,16 +407,17 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     their points and the chart's state after them), or with keep_interrupted=True returns that
     chart marked interrupted.
 
-    resume: such an interrupted Chart, or the name of a file that ``whirl periodic --chart
-    hanging|inverted -o FILE`` wrote (stopped, or finished), as its ``--resume``: the points are
-    kept and only the rates after its ``columns_done`` computed, from its ``state``
-    (whirl_chart_vertical_resume), the result equal to the chart that never stopped, bit for bit
-    (it may be interrupted and resumed again). The call's parameters and units must be the
-    chart's (ValueError naming the first that differs). A file is read and checked by the
-    library as the command line reads it (whirl_chart_vertical_read: its header must be these
-    options', every row the chart's; read as it stands, not written): whirl.InvalidInput naming
-    the first line that differs or the row refused; its chain is uniform (``links`` a count). A
-    state the library refuses raises whirl.InvalidInput ("state line N: ...")."""
+    resume: such an interrupted Chart, or the name of a file that
+    ``whirl periodic --chart hanging|inverted -o FILE`` wrote (stopped, or finished), as its
+    ``--resume``: the points are kept and only the rates after its ``columns_done`` computed,
+    from its ``state`` (whirl_chart_vertical_resume), the result equal to the chart that never
+    stopped, bit for bit (it may be interrupted and resumed again). The call's parameters and
+    units must be the chart's (ValueError naming the first that differs). A file is read and
+    checked by the library as the command line reads it (whirl_chart_vertical_read: its header
+    must be the one of these options, every row the chart's; read as it stands, not written):
+    whirl.InvalidInput naming the first line that differs or the row refused; its chain is
+    uniform (``links`` a count). A state the library refuses raises whirl.InvalidInput ("state
+    line N: ...")."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -560,13 +561,14 @@ def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Ch
     finished, their points and the chart's state after them), or with keep_interrupted=True
     returns that chart marked interrupted.
 
-    resume: such an interrupted EllipseChart, or the name of a file that ``whirl periodic
-    --chart ellipse -o FILE`` wrote, as its ``--resume``: the points are kept and only the rates
-    after its ``columns_done`` computed, from its ``state`` (whirl_chart_ellipse_resume), the
-    result equal to the chart that never stopped, bit for bit. The call's parameters and units
-    must be the chart's (ValueError naming the first that differs); a file is read and checked
-    as chart_vertical's (whirl_chart_ellipse_read), its rows' ``max_modulus`` NaN (the file has
-    none); a state the library refuses raises whirl.InvalidInput ("state line 1: ...")."""
+    resume: such an interrupted EllipseChart, or the name of a file that
+    ``whirl periodic --chart ellipse -o FILE`` wrote, as its ``--resume``: the points are kept
+    and only the rates after its ``columns_done`` computed, from its ``state``
+    (whirl_chart_ellipse_resume), the result equal to the chart that never stopped, bit for bit.
+    The call's parameters and units must be the chart's (ValueError naming the first that
+    differs); a file is read and checked as chart_vertical's (whirl_chart_ellipse_read), its
+    rows' ``max_modulus`` NaN (the file has none); a state the library refuses raises
+    whirl.InvalidInput ("state line 1: ...")."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
