@@ -316,3 +316,25 @@ def test_a_file_not_this_charts_is_refused(tmp_path):
         whirl.chart_vertical(1, 6, 0.8, links=whirl.Chain(lengths=[0.25, 0.75],
                                                           masses=[0.5, 0.5]),
                              columns=250, rows=20, resume=stopped)
+
+
+@pytest.mark.parametrize("mass", [None, 0.05])
+def test_a_finished_file_in_si_units_is_the_chart(tmp_path, mass):
+    # SI units, with --mass or without it (M = 1 kg assumed, a line saying so, which a call
+    # without mass expects): a finished file resumed is the chart, nothing computed
+    out = tmp_path / "si.csv"
+    extra = [] if mass is None else ["--mass", str(mass)]
+    subprocess.run([PROGRAM, "periodic", "--chart", "hanging", "--links", "2", "--omega-min",
+                    "1.5Hz", "--omega-max", "2.5Hz", "--omega-count", "6", "--amp-max", "5cm",
+                    "--amp-rows", "8", "--length", "0.6", *extra, "-o", str(out)], check=True)
+    kw = dict(links=2, columns=6, rows=8, length=0.6, mass=mass)
+    full = whirl.chart_vertical("1.5Hz", "2.5Hz", "5cm", **kw)
+    calls = []
+    resumed = whirl.chart_vertical("1.5Hz", "2.5Hz", "5cm", resume=out,
+                                   progress=lambda d, t: calls.append(d), **kw)
+    assert calls == [6] and resumed.points.size > 0  # the rates all done already
+    _same_chart(resumed, full)
+    # the other mass's file: the units line differs
+    with pytest.raises(whirl.InvalidInput, match="line 4 has "):
+        whirl.chart_vertical("1.5Hz", "2.5Hz", "5cm", resume=out,
+                             **dict(kw, mass=0.07 if mass else 0.05))
