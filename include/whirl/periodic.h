@@ -417,6 +417,81 @@ WHIRL_API int whirl_chart_vertical_damped(const whirl_chain *c, int dim,
                                           whirl_chart_row_fn row, void *row_data,
                                           whirl_chart_tick_fn tick, void *tick_data);
 
+/* Called with a chart's state after its first `done` rates (NUL-terminated lines, valid during
+ * the call): once before the first rate computed, then after each finished rate; a non-zero
+ * return stops the chart with that status. The rows handed out before the call are the finished
+ * rates' (a rate's points depend on the state and the rate alone). */
+typedef int (*whirl_chart_save_fn)(void *data, int done, const char *state);
+
+/* whirl_chart_vertical_damped (air_drag 0: whirl_chart_vertical) resumed: from the state that
+ * save was handed after some rates (NULL: from the first rate), computing only the rates after
+ * them, bit for bit as in the chart that never stopped (whirl periodic --chart --resume). The
+ * state is the lines
+ *   vertical columns=J count=C curves=K tips=T [drag=C]
+ *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them, or the line none)
+ *   tip OMEGA MODE                                             (T of them)
+ * the doubles with 17 digits; it is checked whole against params and air_drag (counts, ranges,
+ * finite numbers, the drag it was saved with): GSL_EINVAL with "state line N: what" otherwise.
+ * The caller keeps the rows of the finished rates; those computed here are the others
+ * (src/periodic/chart_state.c).
+ * @param c the chain (the one the state was saved with)
+ * @param dim 2 or 3
+ * @param params the chart's range, resolution and tolerance (the state's)
+ * @param air_drag c >= 0, finite [M/(L T)] (the state's)
+ * @param state the text save was handed, or NULL
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every column and scan, or NULL
+ * @param tick_data passed to tick
+ * @param save called with the state before the first rate computed and after each, or NULL
+ * @param save_data passed to save
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, WHIRL_EINTERRUPTED, row's or save's status, or an
+ *         integration's status
+ */
+WHIRL_API int whirl_chart_vertical_resume(const whirl_chain *c, int dim,
+                                          const whirl_chart_params *params, double air_drag,
+                                          const char *state, whirl_chart_row_fn row,
+                                          void *row_data, whirl_chart_tick_fn tick,
+                                          void *tick_data, whirl_chart_save_fn save,
+                                          void *save_data);
+
+/* A chart written by whirl periodic --chart hanging|inverted -o FILE (stopped, or finished) read
+ * back, as its --resume reads it: data (size bytes) must begin with the header the command line
+ * writes for params (its defaults applied), the uniform chain of links links, air_drag and the
+ * units (physical 0: dimensionless; 1: SI for the chain's length [m], mass [kg] and gravity
+ * [m/s^2], mass_given 0 as without --mass: M = 1 kg assumed, a comment line saying so), the
+ * header naming the first line that differs; its rows are checked (their fields, in the chart's
+ * range, none twice, as many as its "# found: points=" line says, a curve its state has begun
+ * and a rate it has finished) and its "# state: " lines (whirl_chart_vertical_resume checks
+ * them in turn). Then row is called for each row in the file's order (curve from 0, column -1:
+ * not recorded; omega, amplitude and err in the file's units, as written), and state once with
+ * the rates finished and the state's text, to resume from. GSL_EINVAL with the one-line
+ * message ("'PATH' was not written by a chart with these options: line N has ...", "PATH:N:
+ * WHY: the file cannot be trusted ...") for a file refused; GSL_ENOMEM.
+ * @param data the file's bytes
+ * @param size their count
+ * @param path the file's name in messages (NULL: "the chart's file")
+ * @param params the chart's parameters, as for whirl_chart_vertical
+ * @param links the uniform chain's links (whirl periodic's --links)
+ * @param air_drag c >= 0 (--drag; 0: none)
+ * @param physical 0: dimensionless units; 1: SI
+ * @param length the chain's length [m] (physical 1)
+ * @param mass the chain's mass [kg] (physical 1)
+ * @param gravity the gravity [m/s^2] (physical 1)
+ * @param mass_given 0: the mass assumed, as without --mass (physical 1)
+ * @param row called for every row, or NULL
+ * @param row_data passed to row
+ * @param state called once with the rates finished and the state, or NULL
+ * @param state_data passed to state
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, or row's or state's status
+ */
+WHIRL_API int whirl_chart_vertical_read(const char *data, size_t size, const char *path,
+                                        const whirl_chart_params *params, int links,
+                                        double air_drag, int physical, double length,
+                                        double mass, double gravity, int mass_given,
+                                        whirl_chart_row_fn row, void *row_data,
+                                        whirl_chart_save_fn state, void *state_data);
+
 /* ---- continuation of periodic motions ----
  *
  * A periodic motion followed in the path's rate, its amplitude or its ellipticity by
@@ -623,6 +698,59 @@ typedef void (*whirl_ellipse_chart_tick_fn)(void *data,
 WHIRL_API int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *params,
                                   whirl_ellipse_chart_row_fn row, void *row_data,
                                   whirl_ellipse_chart_tick_fn tick, void *tick_data);
+
+/* whirl_chart_ellipse resumed: from the state that save (whirl_chart_save_fn) was handed after
+ * some rates (NULL: from the first rate), computing only the rates after them, bit for bit as in
+ * the chart that never stopped (whirl periodic --chart ellipse --resume). The state is the line
+ *   ellipse columns=J prev=P curve=C failed=F
+ * (J rates finished; P whether the last was stable at e = 0, -1 before the first rate; C the
+ * curve under way, -1: none; F the failed continuations), checked against params: GSL_EINVAL
+ * with "state line 1: what" otherwise. The caller keeps the rows of the finished rates.
+ * @param c the chain (the one the state was saved with)
+ * @param params the chart's parameters (the state's)
+ * @param state the text save was handed, or NULL
+ * @param row called for every point, or NULL
+ * @param row_data passed to row
+ * @param tick called after every point of a continuation and every rate, or NULL
+ * @param tick_data passed to tick
+ * @param save called with the state before the first rate computed and after each, or NULL
+ * @param save_data passed to save
+ * @return GSL_SUCCESS, GSL_EINVAL, WHIRL_EINTERRUPTED, row's or save's status, or an
+ *         integration's status
+ */
+WHIRL_API int whirl_chart_ellipse_resume(const whirl_chain *c,
+                                         const whirl_ellipse_chart_params *params,
+                                         const char *state, whirl_ellipse_chart_row_fn row,
+                                         void *row_data, whirl_ellipse_chart_tick_fn tick,
+                                         void *tick_data, whirl_chart_save_fn save,
+                                         void *save_data);
+
+/* A chart written by whirl periodic --chart ellipse -o FILE read back, as its --resume reads it
+ * (whirl_chart_vertical_read's rules and arguments): row is called for each row in the file's
+ * order (event WHIRL_CYCLE_POINT for "none"; column the rate's index, -1 at an end; omega and
+ * an end's err in the file's units; max_modulus NAN: the file has none), state once.
+ * @param data the file's bytes
+ * @param size their count
+ * @param path the file's name in messages (NULL: "the chart's file")
+ * @param params the chart's parameters, as for whirl_chart_ellipse
+ * @param links the uniform chain's links (--links)
+ * @param physical 0: dimensionless units; 1: SI
+ * @param length the chain's length [m] (physical 1)
+ * @param mass the chain's mass [kg] (physical 1)
+ * @param gravity the gravity [m/s^2] (physical 1)
+ * @param mass_given 0: the mass assumed, as without --mass (physical 1)
+ * @param row called for every row, or NULL
+ * @param row_data passed to row
+ * @param state called once with the rates finished and the state, or NULL
+ * @param state_data passed to state
+ * @return GSL_SUCCESS, GSL_EINVAL, GSL_ENOMEM, or row's or state's status
+ */
+WHIRL_API int whirl_chart_ellipse_read(const char *data, size_t size, const char *path,
+                                       const whirl_ellipse_chart_params *params, int links,
+                                       int physical, double length, double mass, double gravity,
+                                       int mass_given, whirl_ellipse_chart_row_fn row,
+                                       void *row_data, whirl_chart_save_fn state,
+                                       void *state_data);
 
 /* The name of the verdict: "stable", "neutral", "unstable".
  * @param v the verdict

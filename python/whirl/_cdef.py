@@ -729,6 +729,18 @@ int whirl_chart_vertical_damped(const whirl_chain *c, int dim, const whirl_chart
                                 void *row_data,
                                 void (*tick)(void *, const whirl_chart_progress *),
                                 void *tick_data);
+int whirl_chart_vertical_resume(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                double air_drag, const char *state,
+                                int (*row)(void *, const whirl_chart_point *), void *row_data,
+                                void (*tick)(void *, const whirl_chart_progress *),
+                                void *tick_data, int (*save)(void *, int, const char *),
+                                void *save_data);
+int whirl_chart_vertical_read(const char *data, size_t size, const char *path,
+                              const whirl_chart_params *params, int links, double air_drag,
+                              int physical, double length, double mass, double gravity,
+                              int mass_given, int (*row)(void *, const whirl_chart_point *),
+                              void *row_data, int (*state)(void *, int, const char *),
+                              void *state_data);
 typedef struct whirl_cycle_params {
     int parameter;
     double min, max;
@@ -802,6 +814,17 @@ int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *
                         int (*row)(void *, const whirl_ellipse_point *), void *row_data,
                         void (*tick)(void *, const whirl_ellipse_chart_progress *),
                         void *tick_data);
+int whirl_chart_ellipse_resume(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                               const char *state, int (*row)(void *, const whirl_ellipse_point *),
+                               void *row_data,
+                               void (*tick)(void *, const whirl_ellipse_chart_progress *),
+                               void *tick_data, int (*save)(void *, int, const char *),
+                               void *save_data);
+int whirl_chart_ellipse_read(const char *data, size_t size, const char *path,
+                             const whirl_ellipse_chart_params *params, int links, int physical,
+                             double length, double mass, double gravity, int mass_given,
+                             int (*row)(void *, const whirl_ellipse_point *), void *row_data,
+                             int (*state)(void *, int, const char *), void *state_data);
 const char *whirl_floquet_verdict_name(int v);
 const char *whirl_floquet_edge_name(int e);
 """

@@ -24,6 +24,8 @@ from ._lazy import numpy as np
 from . import _lib, _progress
 from ._lib import ffi, lib, check, as_int, as_float
 from .steady import Chain, Units, _chain, units_of
+from ._chart_resume import (_Saved, _chart_row, _chart_save, _ellipse_row, _read_ellipse,
+                            _read_vertical, _resume_from)
 
 _NAMES = {"verdict": lib.whirl_floquet_verdict_name, "edge": lib.whirl_floquet_edge_name,
           "event": lib.whirl_cycle_event_name}
@@ -125,18 +127,31 @@ class Chart(_lib.Result):
     """The stability chart of the chain shaken vertically, A cos(omega t), as
     ``whirl periodic --chart``: ``points`` a structured array (curve from 1, edge +1 (a
     multiplier pair through +1) or -1 (through -1), omega [1/T], amplitude [L], err [L])
-    ordered by curve, then rate, as the command line's CSV; ``inverted``; ``curves`` the count; ``interrupted`` (Ctrl-C with
-    keep_interrupted=True: the points located until then); ``units``."""
+    ordered by curve, then rate, as the command line's CSV; ``inverted``; ``curves`` the count;
+    ``interrupted`` (Ctrl-C with keep_interrupted=True, or the ``partial`` of the
+    KeyboardInterrupt: the points of the rates finished); ``columns_done`` the rates finished;
+    ``state`` the chart's state after them (the text of the command line's "# state:" lines,
+    whirl_chart_vertical_resume: what chart_vertical(..., resume=chart) goes on from);
+    ``units``."""
 
     inverted: bool
     links: int
     points: np.ndarray
     units: Units = field(default_factory=Units)
     interrupted: bool = False
+    columns_done: int = 0
+    state: str = field(default="", repr=False)
+    _params: Dict[str, Any] = field(default_factory=dict, repr=False)
 
     @property
     def curves(self) -> int:
         return int(np.unique(self.points["curve"]).size)
+
+    def _columns(self) -> Tuple[Dict[str, Any], Dict[str, Any]]:
+        # the fields' rule (whirl.columns.split) without the state and the parameters kept
+        from .columns import split
+        return split({f: getattr(self, f) for f in ("inverted", "links", "points", "units",
+                                                    "interrupted", "columns_done")})
 
     def __repr__(self) -> str:
         return "Chart(%s, links=%d, points=%d, curves=%d%s)" % (
@@ -373,20 +388,13 @@ def periodic_path(pivot: str, omega: Any = None, links: Union[int, Chain] = 1, d
                           ended=ended, state=y, units=u)
 
 
-@ffi.callback("int(void *, const whirl_chart_point *)", onerror=lambda *a: 8)
-def _chart_row(data: Any, p: Any) -> int:
-    rows: List[Any] = ffi.from_handle(data)
-    rows.append((p.curve + 1, 1 if p.kind == 0 else -1, p.omega, p.amplitude, p.err, p.column))
-    return 0
-
-
 def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[int, Chain] = 1,
                    inverted: bool = False, amp_min: Any = None, columns: Optional[int] = None,
                    rows: Optional[int] = None, steps: Optional[int] = None,
                    tol: Any = None, length: Optional[float] = None,
                    mass: Optional[float] = None, gravity: Optional[float] = None,
                    units: Optional[Units] = None, keep_interrupted: bool = False,
-                   air_drag: Any = 0.0) -> Chart:
+                   air_drag: Any = 0.0, progress: Any = None, resume: Any = None) -> Chart:
     """The stability chart of the chain ``links`` (N or a Chain; in the x-z plane) hanging (or,
     inverted=True, standing up) with its pivot shaken vertically, A cos(omega t), over the rates
     [omega_min, omega_max] (``columns`` of them, default 200) and amplitudes up to ``amp_max``
@@ -394,8 +402,22 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     ``whirl periodic --chart hanging|inverted`` (``steps`` its --steps, default 200; ``tol`` its
     --edge-tol [L], default 1e-10 L). The edges are curves A(omega) located per rate to ``tol``.
     ``air_drag`` the linear air drag per unit length (--drag; whirl_chart_vertical_damped: the
-    chain needs one mass per length). Returns a Chart. Ctrl-C raises KeyboardInterrupt, or with keep_interrupted=True returns the
-    points located until then (``interrupted`` True)."""
+    chain needs one mass per length). progress: the rates done (see whirl's progress=). Returns a
+    Chart. Ctrl-C raises KeyboardInterrupt (its ``partial``: the chart of the rates finished,
+    their points and the chart's state after them), or with keep_interrupted=True returns that
+    chart marked interrupted.
+
+    resume: such an interrupted Chart, or the name of a file that
+    ``whirl periodic --chart hanging|inverted -o FILE`` wrote (stopped, or finished), as its
+    ``--resume``: the points are kept and only the rates after its ``columns_done`` computed,
+    from its ``state`` (whirl_chart_vertical_resume), the result equal to the chart that never
+    stopped, bit for bit (it may be interrupted and resumed again). The call's parameters and
+    units must be the chart's (ValueError naming the first that differs). A file is read and
+    checked by the library as the command line reads it (whirl_chart_vertical_read: its header
+    must be the one of these options, every row the chart's; read as it stands, not written):
+    whirl.InvalidInput naming the first line that differs or the row refused; its chain is
+    uniform (``links`` a count). A state the library refuses raises whirl.InvalidInput ("state
+    line N: ...")."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -417,25 +439,55 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
     if tol is not None:
         p.tol = as_float(tol, "tol", positive=True, kind="length", units=u) / u.length
     drag = as_float(air_drag, "air_drag", nonnegative=True, kind="drag", units=u) / u.drag
+    # the parameters as the chart takes them (the defaults of whirl_chart_params), which a
+    # resumed chart must share (the command line's header records the same)
+    ncol, nrow = p.columns or 200, p.rows or 200
+    params: Dict[str, Any] = {
+        "chain": chain, "inverted": bool(inverted), "omega_min": p.omega_min,
+        "omega_max": p.omega_max, "columns": ncol, "amp_max": p.amp_max, "rows": nrow,
+        "amp_min": p.amp_min or p.amp_max / nrow, "steps": p.steps or 200,
+        "tol": p.tol or 1e-10, "air_drag": drag}
+    old = _resume_from(resume, Chart, "chart_vertical", params, u,
+                       lambda path: _read_vertical(path, p, params["chain"], drag, u, params,
+                                                   Chart))
     found: List[Any] = []
     handle = ffi.new_handle(found)
-    interrupted = False
-    try:
-        with _lib.interruptible("chart_vertical"):
-            status = lib.whirl_chart_vertical_damped(chain._c, 2, p, drag, _chart_row, handle,
-                                                     ffi.NULL, ffi.NULL)
-        check(status, "chart_vertical", u)
-    except KeyboardInterrupt:
-        if not keep_interrupted:
-            raise
-        interrupted = True
+    saved = _Saved(found)
+    saved_handle = ffi.new_handle(saved)
+    state = ffi.NULL if old is None else old.state.encode("ascii", "replace")
+    stop: Optional[KeyboardInterrupt] = None
+    with _progress.report(progress, "chart_vertical", ncol, "rates") as rep:
+        @ffi.callback("void(void *, const whirl_chart_progress *)")
+        def tick(data: Any, at: Any) -> None:
+            rep.c_update(at.column)  # the rates done before the one under way
+        if old is not None:
+            rep.update(old.columns_done)
+        try:
+            with _lib.interruptible("chart_vertical"):
+                status = lib.whirl_chart_vertical_resume(chain._c, 2, p, drag, state, _chart_row,
+                                                         handle, tick, ffi.NULL, _chart_save,
+                                                         saved_handle)
+                rep.reraise()
+            check(status, "chart_vertical" if old is None else "chart_vertical: resume", u)
+            rep.finish()
+        except KeyboardInterrupt as e:
+            stop = e
+            del found[saved.count:]  # the rows of the rates finished (their state's)
     found.sort(key=lambda row: (row[0], row[5]))  # by curve, then rate: the command line's order
     out = np.array([row[:5] for row in found], dtype=CHART_DTYPE)
     out["omega"] *= u.rate
     out["amplitude"] *= u.length
     out["err"] *= u.length
-    return Chart(inverted=bool(inverted), links=chain.n, points=out, units=u,
-                 interrupted=interrupted)
+    if old is not None:  # its rows first within a curve (its rates are the earlier ones)
+        out = np.concatenate([old.points, out])
+        out = out[np.argsort(out["curve"], kind="stable")]
+    chart = Chart(inverted=bool(inverted), links=chain.n, points=out, units=u,
+                  interrupted=stop is not None, columns_done=saved.done, state=saved.state,
+                  _params=params)
+    if stop is not None and not keep_interrupted:
+        stop.partial = chart  # type: ignore[attr-defined]
+        raise stop
+    return chart
 
 
 ELLIPSE_DTYPE = [("curve", "i8"), ("event", "U16"), ("omega", "f8"), ("ellipticity", "f8"),
@@ -452,7 +504,10 @@ class EllipseChart(_lib.Result):
     e, or in omega [1/T] at an end), and max_modulus (the largest multiplier's modulus there);
     ``eps`` the circle's radius [L], ``mode``, ``side``, ``e_max``, ``links``, ``failed`` (the
     continuations that stopped before an event: no row), ``curves`` the count; ``interrupted``
-    (Ctrl-C with keep_interrupted=True: the points found until then); ``units``."""
+    (Ctrl-C with keep_interrupted=True, or the ``partial`` of the KeyboardInterrupt: the points
+    of the rates finished); ``columns_done`` the rates finished; ``state`` the chart's state
+    after them (the command line's "# state:" line, whirl_chart_ellipse_resume: what
+    chart_ellipse(..., resume=chart) goes on from); ``units``."""
 
     eps: float
     mode: int
@@ -463,6 +518,9 @@ class EllipseChart(_lib.Result):
     failed: int = 0
     units: Units = field(default_factory=Units)
     interrupted: bool = False
+    columns_done: int = 0
+    state: str = field(default="", repr=False)
+    _params: Dict[str, Any] = field(default_factory=dict, repr=False)
 
     @property
     def curves(self) -> int:
@@ -473,19 +531,13 @@ class EllipseChart(_lib.Result):
         return ({name: self.points[name] for name in ("curve", "event", "omega", "ellipticity",
                                                       "err")},
                 {"eps": self.eps, "mode": self.mode, "side": self.side, "e_max": self.e_max,
-                 "links": self.links, "failed": self.failed, "interrupted": self.interrupted})
+                 "links": self.links, "failed": self.failed, "interrupted": self.interrupted,
+                 "columns_done": self.columns_done})
 
     def __repr__(self) -> str:
         return "EllipseChart(eps=%g, mode=%d, side=%d, links=%d, points=%d, curves=%d%s)" % (
             self.eps, self.mode, self.side, self.links, self.points.size, self.curves,
             ", interrupted" if self.interrupted else "")
-
-
-@ffi.callback("int(void *, const whirl_ellipse_point *)", onerror=lambda *a: 8)
-def _ellipse_row(data: Any, p: Any) -> int:
-    rows: List[Any] = ffi.from_handle(data)
-    rows.append((p.event, p.curve + 1, p.column, p.omega, p.ellipticity, p.err, p.max_modulus))
-    return 0
 
 
 def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Chain] = 1,
@@ -494,7 +546,7 @@ def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Ch
                   arc_step: Optional[float] = None, progress: Any = None,
                   keep_interrupted: bool = False, length: Optional[float] = None,
                   mass: Optional[float] = None, gravity: Optional[float] = None,
-                  units: Optional[Units] = None) -> EllipseChart:
+                  units: Optional[Units] = None, resume: Any = None) -> EllipseChart:
     """The ellipticity chart of the hand-swung chain ``links`` (N or a Chain; 3D): per rate of
     [omega_min, omega_max] (``columns`` of them, default 50), how far the circle of radius
     ``eps`` may be flattened into the ellipse of semi-axes eps and eps (1 - e) before the steady
@@ -505,8 +557,18 @@ def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Ch
     the Gauss steps per period (default 400), ``arc_step`` the continuation's largest step
     (default 0.01). Rates and eps in the caller's units, or texts with a unit ("4Hz", "2cm"),
     as the command line takes them. progress: the rates done (see whirl's progress=). Returns
-    an EllipseChart. Ctrl-C raises KeyboardInterrupt (its ``partial``: the chart of the points
-    found until then), or with keep_interrupted=True returns that chart marked interrupted."""
+    an EllipseChart. Ctrl-C raises KeyboardInterrupt (its ``partial``: the chart of the rates
+    finished, their points and the chart's state after them), or with keep_interrupted=True
+    returns that chart marked interrupted.
+
+    resume: such an interrupted EllipseChart, or the name of a file that
+    ``whirl periodic --chart ellipse -o FILE`` wrote, as its ``--resume``: the points are kept
+    and only the rates after its ``columns_done`` computed, from its ``state``
+    (whirl_chart_ellipse_resume), the result equal to the chart that never stopped, bit for bit.
+    The call's parameters and units must be the chart's (ValueError naming the first that
+    differs); a file is read and checked as chart_vertical's (whirl_chart_ellipse_read), its
+    rows' ``max_modulus`` NaN (the file has none); a state the library refuses raises
+    whirl.InvalidInput ("state line 1: ...")."""
     u = units_of(length, mass, gravity, units)
     chain = _chain(links, 0.0, dense=True)
     assert chain is not None
@@ -531,30 +593,49 @@ def chart_ellipse(omega_min: Any, omega_max: Any, eps: Any, links: Union[int, Ch
         if not p.step <= 1:
             raise ValueError("arc_step must be in (0, 1], got %g" % p.step)
     ncol = p.columns or 50
+    # the parameters as the chart takes them (the defaults of whirl_ellipse_chart_params), which
+    # a resumed chart must share (the command line's header records the same)
+    params: Dict[str, Any] = {
+        "chain": chain, "eps": p.radius, "mode": p.mode, "side": p.side,
+        "omega_min": p.omega_min, "omega_max": p.omega_max, "columns": ncol,
+        "e_max": p.e_max or 1.0, "steps": p.steps or 400, "arc_step": p.step or 0.01}
+    old = _resume_from(resume, EllipseChart, "chart_ellipse", params, u,
+                       lambda path: _read_ellipse(path, p, params["chain"], u, params,
+                                                  EllipseChart))
     found: List[Any] = []
     handle = ffi.new_handle(found)
-    last = {"failed": 0}
+    saved = _Saved(found, 0 if old is None else old.failed)
+    saved_handle = ffi.new_handle(saved)
+    state = ffi.NULL if old is None else old.state.encode("ascii", "replace")
     stop: Optional[KeyboardInterrupt] = None
     with _progress.report(progress, "chart_ellipse", ncol, "rates") as rep:
         @ffi.callback("void(void *, const whirl_ellipse_chart_progress *)")
         def tick(data: Any, at: Any) -> None:
-            last["failed"] = at.failed
+            saved.tick_failed = at.failed
             rep.c_update(at.column)  # the rates done before the one under way
+        if old is not None:
+            rep.update(old.columns_done)
         try:
             with _lib.interruptible("chart_ellipse"):
-                status = lib.whirl_chart_ellipse(chain._c, p, _ellipse_row, handle, tick,
-                                                 ffi.NULL)
+                status = lib.whirl_chart_ellipse_resume(chain._c, p, state, _ellipse_row, handle,
+                                                        tick, ffi.NULL, _chart_save,
+                                                        saved_handle)
                 rep.reraise()
-            check(status, "chart_ellipse", u)
+            check(status, "chart_ellipse" if old is None else "chart_ellipse: resume", u)
             rep.finish()
         except KeyboardInterrupt as e:
             stop = e
+            del found[saved.count:]  # the rows of the rates finished (their state's)
     rows = [(curve, "none" if event == 0 else ffi.string(lib.whirl_cycle_event_name(event))
              .decode(), w * u.rate, ellipticity, err * u.rate if column < 0 else err, modulus)
             for event, curve, column, w, ellipticity, err, modulus in found]
+    points = np.array(rows, dtype=ELLIPSE_DTYPE)
+    if old is not None:  # by rate: its rows are the earlier rates'
+        points = np.concatenate([old.points, points])
     out = EllipseChart(eps=p.radius * u.length, mode=p.mode, side=p.side, e_max=p.e_max or 1.0,
-                       links=chain.n, points=np.array(rows, dtype=ELLIPSE_DTYPE),
-                       failed=last["failed"], units=u, interrupted=stop is not None)
+                       links=chain.n, points=points, failed=saved.failed, units=u,
+                       interrupted=stop is not None, columns_done=saved.done,
+                       state=saved.state, _params=params)
     if stop is not None and not keep_interrupted:
         stop.partial = out  # type: ignore[attr-defined]
         raise stop

@@ -5,36 +5,6 @@
 
 #include "cli/chart_file.h"
 
-/* The longest line of a chart file: a row is five numbers (at most ~130 characters), a state's
- * line at most 400 (periodic/chart_state.c) and its prefix. */
-#define CHART_LINE_MAX 1024
-
-static int by_text(const void *a, const void *b)
-{
-    const chart_kept *p = *(const chart_kept *const *)a, *q = *(const chart_kept *const *)b;
-    const int c = strcmp(p->line, q->line);
-    return c ? c : (p->lineno > q->lineno) - (p->lineno < q->lineno);
-}
-
-/* A row read twice: the later one refused. */
-static int duplicates(chart_file *f)
-{
-    if (f->n_kept < 2) return 0;
-    const chart_kept **order = malloc(f->n_kept * sizeof *order);
-    if (order == NULL) return cli_error(f->cmd, "out of memory");
-    for (size_t i = 0; i < f->n_kept; i++) order[i] = &f->kept[i];
-    qsort(order, f->n_kept, sizeof *order, by_text);
-    int rc = 0;
-    for (size_t i = 1; i < f->n_kept && rc == 0; i++)
-        if (strcmp(order[i]->line, order[i - 1]->line) == 0) {
-            char why[64];
-            snprintf(why, sizeof why, "the row of line %ld again", order[i - 1]->lineno);
-            rc = chart_file_refuse(f, order[i], why);
-        }
-    free(order);
-    return rc;
-}
-
 /* text appended to the state (f->state grown as needed). 0, or 1 without memory. */
 static int state_append(chart_file *f, const char *text)
 {
@@ -49,95 +19,33 @@ static int state_append(chart_file *f, const char *text)
     return 0;
 }
 
-/* One line of the file after the header's (or a "# found: " line among them). */
-static int read_line(chart_file *f, cli_resume_kind kind, const char *line, long *points,
-                     chart_row_check check, void *ctx)
+chart_units chart_file_units(const cli_units *u)
 {
-    const size_t len = strlen(line);
-    if (kind == CLI_RESUME_NOTE) {
-        if (line[0] == '\n') return 0; /* a break between curves */
-        if (strncmp(line, CHART_STATE, strlen(CHART_STATE)) == 0) {
-            if (state_append(f, line + strlen(CHART_STATE)))
-                return cli_error(f->cmd, "out of memory");
-            return 0;
-        }
-        if (strncmp(line, CHART_FOUND, strlen(CHART_FOUND)) != 0 || f->n_kept > 0 || f->state)
-            return cli_resume_refuse(f->in, "a comment among the rows") ? 1 : 0;
-        long p;
-        char *end;
-        if (strncmp(line + strlen(CHART_FOUND), "points=", 7) != 0) return 0;
-        p = strtol(line + strlen(CHART_FOUND) + 7, &end, 10);
-        if (*points >= 0 || end == line + strlen(CHART_FOUND) + 7 || p < 0)
-            return cli_resume_refuse(f->in, "a second or unreadable count of the points") ? 1
-                                                                                           : 0;
-        *points = p;
-        return 0;
-    }
-    if (f->state) return cli_resume_refuse(f->in, "a row after the chart's state") ? 1 : 0;
-    chart_kept k = {.lineno = cli_resume_lineno(f->in)};
-    const char *why = check(ctx, line, &k);
-    if (why) return cli_resume_refuse(f->in, "%s", why) ? 1 : 0;
-    if ((f->n_kept & (f->n_kept - 1)) == 0) { /* 0, 1, 2, 4, ...: doubled */
-        chart_kept *grown = realloc(f->kept, (f->n_kept ? 2 * f->n_kept : 1) * sizeof *grown);
-        if (grown == NULL) return cli_error(f->cmd, "out of memory");
-        f->kept = grown;
-    }
-    if ((k.line = malloc(len + 1)) == NULL) return cli_error(f->cmd, "out of memory");
-    memcpy(k.line, line, len + 1);
-    f->kept[f->n_kept++] = k;
-    return 0;
+    return (chart_units){.physical = u->physical, .length = u->length, .mass = u->mass,
+                         .gravity = u->gravity, .mass_given = u->mass_given};
 }
 
-int chart_file_open(const cli_command *cmd, chart_file *f, const char *path, int resume,
-                    const char *header, chart_row_check check, void *ctx)
+int chart_file_open(const cli_command *cmd, chart_file *f, const char *path, int resume)
 {
     *f = (chart_file){.cmd = cmd, .path = path && strcmp(path, "-") != 0 ? path : NULL};
     if (resume && f->path == NULL)
         return cli_error(cmd, "--resume needs -o FILE, not standard output");
     if (cli_lock_take(cmd, &f->lock, f->path, !resume)) return 1;
-    if (!resume) return 0;
-    if (f->lock.fp == NULL) {
-        FILE *fp = fopen(path, "r");
-        const int err = fp ? EINVAL : errno;
-        if (fp) fclose(fp);
-        return cli_error(cmd, "--resume: cannot read '%s': %s", path,
-                         err == EINVAL ? "not a regular file" : strerror(err));
-    }
-    const cli_resume_params rp = {.header = header, .kind = "chart", .of = "options",
-                                  .note = CHART_FOUND, .line_max = CHART_LINE_MAX, .blank = 1};
-    if ((f->in = cli_resume_alloc(cmd, f->lock.fp, path, &rp)) == NULL) return 1;
-    long points = -1;
-    int rc = 0;
-    const char *line;
-    for (cli_resume_kind kind; !rc && (kind = cli_resume_next(f->in, &line)) != CLI_RESUME_END;)
-        rc = kind == CLI_RESUME_ERROR ? 1 : read_line(f, kind, line, &points, check, ctx);
-    if (rc) return rc;
-    if (f->state == NULL)
-        return cli_error(cmd, "--resume: '%s' holds no chart state (its '%s' lines at the end): "
-                         "not a chart of this version, or cut short", path, CHART_STATE);
-    if (points != (long)f->n_kept)
-        return cli_error(cmd, "--resume: '%s' holds %zu rows where its '%spoints=' line says "
-                         "%ld: rows were removed or added; the file cannot be trusted", path,
-                         f->n_kept, CHART_FOUND, points);
-    f->done = (int)chart_file_state_value(f, "columns", -1);
-    return duplicates(f);
+    if (!resume || f->lock.fp != NULL) return 0;
+    FILE *fp = fopen(path, "r");
+    const int err = fp ? EINVAL : errno;
+    if (fp) fclose(fp);
+    return cli_error(cmd, "--resume: cannot read '%s': %s", path,
+                     err == EINVAL ? "not a regular file" : strerror(err));
 }
 
-long chart_file_state_value(const chart_file *f, const char *key, long fallback)
+int chart_file_read(chart_file *f, int status)
 {
-    const size_t len = strlen(key);
-    for (const char *s = f->state; s && (s = strstr(s, key)) != NULL; s += len)
-        if ((s == f->state || s[-1] == ' ') && s[len] == '=') {
-            char *end;
-            const long x = strtol(s + len + 1, &end, 10);
-            return end == s + len + 1 ? fallback : x;
-        }
-    return fallback;
-}
-
-int chart_file_refuse(chart_file *f, const chart_kept *k, const char *why)
-{
-    return cli_resume_refuse_at(f->in, k->lineno, "%s", why) ? 1 : 0;
+    if (status == GSL_ENOMEM) return cli_error(f->cmd, "out of memory");
+    if (status) return cli_error(f->cmd, "--resume: %s", whirl_last_error());
+    if (state_append(f, f->rd.state)) return cli_error(f->cmd, "out of memory");
+    f->done = f->rd.done;
+    return 0;
 }
 
 int chart_file_save(chart_file *f, int done, const char *state, size_t rows)
@@ -183,7 +91,7 @@ int chart_file_finish(chart_file *f, int status, int written, int columns, int r
 {
     if (status == WHIRL_EINTERRUPTED && written == 0)
         return cli_error(f->cmd, "interrupted after %d of %d rates: the %zu points found until "
-                         "then are written%s", f->done, columns, f->n_kept + f->rows_done,
+                         "then are written%s", f->done, columns, f->rd.n_kept + f->rows_done,
                          f->path ? " (continue with --resume)" : ""),
                CLI_EXIT_INTERRUPTED;
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED) return written;
@@ -197,10 +105,8 @@ int chart_file_finish(chart_file *f, int status, int written, int columns, int r
 
 void chart_file_free(chart_file *f)
 {
-    for (size_t i = 0; i < f->n_kept; i++) free(f->kept[i].line);
-    free(f->kept);
+    chart_read_free(&f->rd);
     free(f->state);
-    cli_resume_free(f->in);
     cli_lock_release(&f->lock);
     *f = (chart_file){0};
 }

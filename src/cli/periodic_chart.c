@@ -88,35 +88,18 @@ static int chart_order(const void *a, const void *b)
     return (r->seq > s->seq) - (r->seq < s->seq);
 }
 
-/* The comment lines and the columns' line; the "# found:" lines with rows (NULL: the header
- * --resume matches). */
+/* The header (periodic/chart_file.h) with the "# found:" lines of the chart written. */
 static void write_head(FILE *fp, const periodic_chart_args *a, const whirl_chart_params *p,
                        size_t points, int curves, const chart_rows *rows, int stopped)
 {
-    const double rate = cli_units_scale(a->units, CLI_UNIT_RATE);
-    const double len = cli_units_scale(a->units, CLI_UNIT_LENGTH);
-    const char *ru = cli_units_name(a->units, CLI_UNIT_RATE);
-    const char *lu = cli_units_name(a->units, CLI_UNIT_LENGTH);
-    char drag[96] = "";
-    if (a->drag > 0)
-        snprintf(drag, sizeof drag, " drag=%s %s",
-                 CLI_NUM(a->drag * cli_units_scale(a->units, CLI_UNIT_DRAG)),
-                 cli_units_name(a->units, CLI_UNIT_DRAG));
-    fprintf(fp, "# chart: the %s chain shaken vertically, A cos(omega t); links=%d steps=%d "
-            "tol=%s %s%s; edge +1: a multiplier %s +1, -1: through -1 (period doubling)\n",
-            p->inverted ? "inverted" : "hanging", a->links, p->steps, CLI_NUM(p->tol * len), lu,
-            drag, a->drag > 0 ? "through" : "pair through");
-    fprintf(fp, "# omega from %s to %s %s (%d rates); A from %s to %s %s (%d rows scanned)\n",
-            CLI_NUM(p->omega_min * rate), CLI_NUM(p->omega_max * rate), ru, p->columns,
-            CLI_NUM(p->amp_min * len), CLI_NUM(p->amp_max * len), lu, p->rows);
-    if (rows) {
-        fprintf(fp, CHART_FOUND "points=%zu curves=%d\n", points, curves);
-        if (stopped)
-            fprintf(fp, CHART_FOUND "interrupted after %d of %d rates: the points found until "
-                    "then (whirl periodic --resume goes on)\n", rows->file.done, p->columns);
-    }
-    cli_units_comment(fp, a->units);
-    fprintf(fp, "curve,edge,omega,amplitude,err\n");
+    char found[320];
+    int len = snprintf(found, sizeof found, CHART_FOUND "points=%zu curves=%d\n", points, curves);
+    if (stopped)
+        snprintf(found + len, sizeof found - (size_t)len, CHART_FOUND "interrupted after %d of "
+                 "%d rates: the points found until then (whirl periodic --resume goes on)\n",
+                 rows->file.done, p->columns);
+    const chart_units u = chart_file_units(a->units);
+    chart_vertical_head(fp, p, a->links, a->drag, &u, found);
 }
 
 static int write_chart(FILE *fp, const periodic_chart_args *a, const whirl_chart_params *p,
@@ -124,12 +107,12 @@ static int write_chart(FILE *fp, const periodic_chart_args *a, const whirl_chart
 {
     const double rate = cli_units_scale(a->units, CLI_UNIT_RATE);
     const double len = cli_units_scale(a->units, CLI_UNIT_LENGTH);
-    const size_t computed = stopped ? r->file.rows_done : r->n, n = r->file.n_kept + computed;
+    const size_t computed = stopped ? r->file.rows_done : r->n, n = r->file.rd.n_kept + computed;
     chart_row *rows = malloc((n + 1) * sizeof *rows);
     if (rows == NULL) return 1;
-    for (size_t i = 0; i < r->file.n_kept; i++) rows[i] = (chart_row){.k = &r->file.kept[i]};
+    for (size_t i = 0; i < r->file.rd.n_kept; i++) rows[i] = (chart_row){.k = &r->file.rd.kept[i]};
     for (size_t i = 0; i < computed; i++)
-        rows[r->file.n_kept + i] = (chart_row){.p = r->p[i], .seq = i};
+        rows[r->file.rd.n_kept + i] = (chart_row){.p = r->p[i], .seq = i};
     qsort(rows, n, sizeof *rows, chart_order);
     int curves = 0;
     for (size_t i = 0; i < n; i++) curves += i == 0 || row_curve(&rows[i]) != row_curve(&rows[i - 1]);
@@ -150,82 +133,20 @@ static int write_chart(FILE *fp, const periodic_chart_args *a, const whirl_chart
     return 0;
 }
 
-/* The check of a row read back: its fields (the module has checked their count and that they
- * are finite), a rate and an amplitude in the chart's range. */
-typedef struct row_ctx {
-    double omega_lo, omega_hi, amp_hi; /* the file's units, widened by 1e-12 */
-} row_ctx;
-
-static const char *check_row(void *data, const char *line, chart_kept *k)
-{
-    const row_ctx *c = data;
-    int edge, end = -1;
-    double amp, err;
-    if (sscanf(line, "%d,%d,%lf,%lf,%lf%n", &k->curve, &edge, &k->omega, &amp, &err, &end) != 5 ||
-        line[end] != '\n')
-        return "not a row curve,edge,omega,amplitude,err";
-    if (k->curve < 1) return "a curve number below 1";
-    if (edge != 1 && edge != -1) return "an edge other than 1 or -1";
-    if (!(k->omega >= c->omega_lo && k->omega <= c->omega_hi)) return "a rate outside the chart";
-    if (!(amp >= 0 && amp <= c->amp_hi)) return "an amplitude outside the chart";
-    if (!(err >= 0)) return "a negative error";
-    k->value = amp;
-    return NULL;
-}
-
-/* The rows read back against the state: a curve it has begun, a rate it has reached (a point
- * near a tongue's tip lies up to a rate beyond the last one finished, chart.c). */
-static int check_kept(chart_rows *r, const whirl_chart_params *p, double rate)
-{
-    const long count = chart_file_state_value(&r->file, "count", -1);
-    const int done = r->file.done;
-    if (count < 0 || done < 0 || done > p->columns) return 0; /* the library refuses the state */
-    const double reach = done == 0 ? 0 : chart_grid(p->omega_min, p->omega_max, p->columns,
-                                                       done < p->columns ? done : done - 1) * rate;
-    for (size_t i = 0; i < r->file.n_kept; i++) {
-        const chart_kept *k = &r->file.kept[i];
-        if (k->curve > count)
-            return chart_file_refuse(&r->file, k, "a curve the chart's state has not begun");
-        if (k->omega > reach * (1 + 1e-12))
-            return chart_file_refuse(&r->file, k, "a rate beyond those the state has finished");
-    }
-    return 0;
-}
-
-/* The header --resume matches, into *text (to free); 0 or 1. */
-static int expected_head(const cli_command *cmd, const periodic_chart_args *a,
-                         const whirl_chart_params *p, char **text)
-{
-    size_t len = 0;
-    FILE *mem = open_memstream(text, &len);
-    if (mem == NULL) return cli_error(cmd, "out of memory");
-    write_head(mem, a, p, 0, 0, NULL, 0);
-    return fclose(mem) == 0 ? 0 : cli_error(cmd, "out of memory");
-}
-
 int periodic_chart_vertical(const cli_command *cmd, const periodic_chart_args *a)
 {
     whirl_chart_params p = {.inverted = a->inverted, .omega_min = a->omega_min,
                             .omega_max = a->omega_max, .columns = a->columns,
                             .amp_min = a->amp_min, .amp_max = a->amp_max, .rows = a->rows,
                             .steps = a->steps, .tol = a->tol};
-    /* the defaults as the chart takes them (whirl_chart_params), for the comment lines */
-    if (p.columns == 0) p.columns = 200;
-    if (p.rows == 0) p.rows = 200;
-    if (p.steps == 0) p.steps = 200;
-    if (p.tol == 0) p.tol = 1e-10;
-    if (p.amp_min == 0) p.amp_min = p.amp_max / p.rows;
-    const double rate = cli_units_scale(a->units, CLI_UNIT_RATE);
-    const double len = cli_units_scale(a->units, CLI_UNIT_LENGTH);
-    row_ctx ctx = {.omega_lo = p.omega_min * rate * (1 - 1e-12),
-                   .omega_hi = p.omega_max * rate * (1 + 1e-12),
-                   .amp_hi = p.amp_max * len * (1 + 1e-12)};
+    chart_vertical_defaults(&p); /* as the chart takes them, for the comment lines */
     chart_rows r = {.after = cli_progress_after(), .column = -1};
-    char *head = NULL;
-    int rc = expected_head(cmd, a, &p, &head);
-    if (rc == 0) rc = chart_file_open(cmd, &r.file, a->output, a->resume, head, check_row, &ctx);
-    if (rc == 0 && a->resume) rc = check_kept(&r, &p, rate);
-    free(head);
+    int rc = chart_file_open(cmd, &r.file, a->output, a->resume);
+    if (rc == 0 && a->resume && r.file.lock.fp) {
+        const chart_units u = chart_file_units(a->units);
+        rc = chart_file_read(&r.file, chart_vertical_read(&r.file.rd, r.file.lock.fp, a->output,
+                                                          &p, a->links, a->drag, &u));
+    }
     whirl_chain *c;
     cli_out out;
     char *state;
@@ -234,8 +155,8 @@ int periodic_chart_vertical(const cli_command *cmd, const periodic_chart_args *a
     cli_catch_interrupts();
     cli_progress_begin(&r.line, cmd, "", 0, 0);
     int status = a->resume && state == NULL ? GSL_ENOMEM
-                 : chart_vertical_run(c, 2, &p, a->drag, state, chart_keep, &r, chart_tick,
-                                      &r, chart_save, &r);
+                 : whirl_chart_vertical_resume(c, 2, &p, a->drag, state, chart_keep, &r,
+                                               chart_tick, &r, chart_save, &r);
     cli_progress_clear(&r.line);
     if (status == GSL_SUCCESS || status == WHIRL_EINTERRUPTED)
         rc = write_chart(out.fp, a, &p, &r, status == WHIRL_EINTERRUPTED)

@@ -770,3 +770,12 @@ int whirl_chart_vertical_damped(const whirl_chain *c, int dim, const whirl_chart
     return chart_vertical_run(c, dim, params, air_drag, NULL, row, row_data, tick, tick_data,
                               NULL, NULL);
 }
+
+int whirl_chart_vertical_resume(const whirl_chain *c, int dim, const whirl_chart_params *params,
+                                double air_drag, const char *state, whirl_chart_row_fn row,
+                                void *row_data, whirl_chart_tick_fn tick, void *tick_data,
+                                whirl_chart_save_fn save, void *save_data)
+{
+    return chart_vertical_run(c, dim, params, air_drag, state, row, row_data, tick, tick_data,
+                              save, save_data);
+}

@@ -295,3 +295,11 @@ int whirl_chart_ellipse(const whirl_chain *c, const whirl_ellipse_chart_params *
 {
     return chart_ellipse_run(c, params, NULL, row, row_data, tick, tick_data, NULL, NULL);
 }
+
+int whirl_chart_ellipse_resume(const whirl_chain *c, const whirl_ellipse_chart_params *params,
+                               const char *state, whirl_ellipse_chart_row_fn row, void *row_data,
+                               whirl_ellipse_chart_tick_fn tick, void *tick_data,
+                               whirl_chart_save_fn save, void *save_data)
+{
+    return chart_ellipse_run(c, params, state, row, row_data, tick, tick_data, save, save_data);
+}

@@ -22,9 +22,8 @@
 
 #include "whirl/periodic.h"
 
-/* Called with the state after `done` rates (NUL-terminated lines; valid during the call): once
- * before the first rate computed, then after each; a non-zero return stops the chart with it. */
-typedef int (*chart_save_fn)(void *data, int done, const char *state);
+/* The save callback (whirl_chart_save_fn, whirl/periodic.h). */
+typedef whirl_chart_save_fn chart_save_fn;
 
 /* whirl_chart_vertical_damped (air_drag 0: whirl_chart_vertical) from the state (NULL: from the
  * first rate), save called as above (may be NULL). */
