@@ -318,10 +318,11 @@ def test_a_file_not_this_charts_is_refused(tmp_path):
                              columns=250, rows=20, resume=stopped)
 
 
-@pytest.mark.parametrize("mass", [None, 0.05])
+@pytest.mark.parametrize("mass", [None, 0.05, 1.0])
 def test_a_finished_file_in_si_units_is_the_chart(tmp_path, mass):
     # SI units, with --mass or without it (M = 1 kg assumed, a line saying so, which a call
-    # without mass expects): a finished file resumed is the chart, nothing computed
+    # without mass expects; --mass 1 writes no such line and is the call with mass=1.0): a
+    # finished file resumed is the chart, nothing computed
     out = tmp_path / "si.csv"
     extra = [] if mass is None else ["--mass", str(mass)]
     subprocess.run([PROGRAM, "periodic", "--chart", "hanging", "--links", "2", "--omega-min",

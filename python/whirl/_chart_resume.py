@@ -101,11 +101,14 @@ def _file(path: Any, chain: Chain, what: str) -> bytes:
         return f.read()
 
 
-def _units(u: Units) -> List[Any]:
-    # physical, length, mass, gravity, mass_given: a file written without --mass (M = 1 kg
-    # assumed, a line saying so) is one of a call with mass 1 kg or none
+def _units(u: Units, data: bytes) -> List[Any]:
+    # physical, length, mass, gravity, mass_given: a call in SI units with mass 1 kg is the
+    # command line's run without --mass (M = 1 kg assumed, the file's line "# mass: M=1 kg
+    # assumed") or with --mass 1 (no such line); the file tells which, and the library then
+    # checks the rest of its header against the call
+    assumed = b"\n# mass: M=1 kg assumed " in data.split(b"\ncurve,", 1)[0]
     return [int(u.physical), u.length, u.mass, u.gravity,
-            0 if u.physical and u.mass == 1.0 else 1]
+            0 if u.physical and u.mass == 1.0 and assumed else 1]
 
 
 def _read_vertical(path: str, p: Any, chain: Chain, drag: float, u: Units,
@@ -117,7 +120,7 @@ def _read_vertical(path: str, p: Any, chain: Chain, drag: float, u: Units,
     rows: List[Any] = []
     saved = _Saved(rows)
     status = lib.whirl_chart_vertical_read(data, len(data), os.fsencode(path), p, chain.n, drag,
-                                           *_units(u), _chart_row, ffi.new_handle(rows),
+                                           *_units(u, data), _chart_row, ffi.new_handle(rows),
                                            _chart_save, ffi.new_handle(saved))
     if status:
         raise _lib.error(status, "%s: resume: %s" % (what, _lib.last_error()))
@@ -137,7 +140,7 @@ def _read_ellipse(path: str, p: Any, chain: Chain, u: Units, params: Dict[str, A
     rows: List[Any] = []
     saved = _Saved(rows)
     status = lib.whirl_chart_ellipse_read(data, len(data), os.fsencode(path), p, chain.n,
-                                          *_units(u), _ellipse_row, ffi.new_handle(rows),
+                                          *_units(u, data), _ellipse_row, ffi.new_handle(rows),
                                           _chart_save, ffi.new_handle(saved))
     if status:
         raise _lib.error(status, "%s: resume: %s" % (what, _lib.last_error()))
