@@ -40,7 +40,8 @@ int chart_state_write(const chart *ch, int done, char **text)
         if (!cv->alive && !cv->tipward) continue;
         char b[6][32];
         len += (size_t)snprintf(t + len, size - len, "curve %d %d %d %d %d %d %s %s %s %s %s\n",
-                                i, (int)cv->kind, cv->mode, cv->id, cv->alive, cv->tipward,
+                                i, (int)cv->kind + 2 * cv->sub, cv->mode, cv->id, cv->alive,
+                                cv->tipward,
                                 num(b[0], cv->a1), num(b[1], cv->a0), num(b[2], cv->w1),
                                 num(b[3], cv->tip), num(b[4], cv->fill_top));
     }
@@ -175,7 +176,8 @@ int chart_state_read(chart *ch, const char *text, int *done)
         }
         const int i = get_int(&r, NULL, prev + 1, count - 1);
         if (r.why == NULL) prev = i;
-        chart_curve cv = {.kind = (whirl_floquet_edge)get_int(&r, NULL, 0, 1)};
+        const int kind = get_int(&r, NULL, 0, 2 * ch->subs - 1); /* + 2 for the second sub */
+        chart_curve cv = {.kind = (whirl_floquet_edge)(kind % 2), .sub = kind / 2};
         cv.mode = get_int(&r, NULL, 0, ch->n - 1);
         cv.id = get_int(&r, NULL, 0, i);
         cv.alive = get_int(&r, NULL, 0, 1);
