@@ -354,6 +354,7 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
             cv->w1 = ch->omega;
             int joined = 0;
             status = chart_join_at_tip(ch, cv, column, row, row_data, &joined);
+            if (status == GSL_SUCCESS && !joined) status = chart_join_low(ch, cv, &joined);
             if (status == GSL_SUCCESS && !joined) status = chart_pair(ch, cv);
             if (status == GSL_SUCCESS)
                 status = emit(ch, cv, column, sw.amp[j], sw.err[j], row, row_data);
@@ -428,6 +429,7 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
     int status = fw.index && fw.amp ? GSL_SUCCESS
                                     : whirl_fail(GSL_ENOMEM, "out of memory for the followers");
     int count = 0;
+    chart_low_window(ch);
     for (int i = 0; status == GSL_SUCCESS && i < ch->count; i++) {
         ch->curves[i].found = 0;
         if (ch->curves[i].alive) fw.tipward[count] = 0, fw.index[count++] = i;
@@ -440,6 +442,8 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
             cv->alive = 0;
             if (fw.tipward[j] && chart_has_tips(ch))
                 status = chart_descend_to_tip(ch, cv, column, row, row_data);
+            else if (fw.tipward[j])
+                chart_low_end(ch, cv);
             continue;
         }
         cv->a0 = cv->a1, cv->a1 = fw.amp[j], cv->w1 = ch->omega, cv->found = 1;

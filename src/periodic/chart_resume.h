@@ -54,8 +54,9 @@ typedef struct chart_curve {
     double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
     int found;     /* located at the current rate */
     double w1;     /* the rate of a1 */
-    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined */
-    double tip;    /* that tip's rate (NAN: none) */
+    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined; (damped
+                      hanging) ended low, a new edge of its family may join it */
+    double tip;    /* that tip's rate; damped: the rate it ended at (NAN: none) */
     double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
 } chart_curve;
 
@@ -125,6 +126,14 @@ int chart_join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn
  * this rate when the two bound one tongue there and that number is the edge's alone (hanging,
  * conservative). */
 int chart_pair(chart *ch, chart_curve *cv);
+/* The damped hanging chart (else nothing): cv ended at this rate not through the top, at its
+ * tongue's lowest point perhaps: it waits (tipward, tip its last rate) two and a half rates for
+ * a new edge of its family (chart_low_window ends the wait, at each rate), which chart_join_low
+ * joins (*joined 1) when the rate between them lies inside the tongue at the higher of their
+ * amplitudes. */
+void chart_low_end(chart *ch, chart_curve *cv);
+void chart_low_window(chart *ch);
+int chart_join_low(chart *ch, chart_curve *cv, int *joined);
 /* 1 if a tip 2 omega_k / n of the mode's tongues lies in (w0, w1] (the chart has tips). */
 int chart_tip_between(const chart *ch, double w0, double w1, int mode);
 /* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:

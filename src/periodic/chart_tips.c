@@ -22,7 +22,15 @@
  * function's edge next to it at its rate when the two bound one tongue there (f_+-k < 0
  * between them, the product of the two functions) and that edge's number is its own
  * (chart_pair). The points of such a curve are its two edges' at each rate; by rate they
- * alternate between the edges. */
+ * alternate between the edges.
+ *
+ * With drag (whirl_chart_vertical_damped) the hanging chain's tongues lift off A = 0 and have no
+ * tips; a tongue's two edges are one curve through its lowest point, followed on (chart.c). Where
+ * that point is sharper than the rates' grid (gamma small: the tongue's bottom a V ~ gamma wide)
+ * the follower's bend test can end the curve there, and the scan finds the rising edge as a new
+ * curve a rate or two later: chart_low_end and chart_join_low make them one (the same family,
+ * within two and a half rates, and the rate between them inside the tongue at the higher of the
+ * two amplitudes: f < 0 there, the V's inside). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -185,6 +193,12 @@ int chart_pair(chart *ch, chart_curve *cv)
         if (q->found && q->mode == cv->mode && q->kind == cv->kind && q->a1 > lo && q->a1 < hi)
             return GSL_SUCCESS; /* an edge of the family between: not neighbours */
     }
+    /* within two tolerances: a tongue narrower than the edges' brackets (the order-26 tongue of
+       a 10-link chain's ninth mode at q = 16 is 1e-34 wide in a), its edges one point */
+    if (hi - lo <= 2 * ch->p.tol) {
+        cv->id = best->id;
+        return GSL_SUCCESS;
+    }
     /* one tongue between them: its factor f[kind] f[kind + 2] < 0 (no zero of either between
        two neighbouring edges, so one point tells) */
     chart_ws *s = &ch->ws[0];
@@ -195,6 +209,53 @@ int chart_pair(chart *ch, chart_curve *cv)
         s->sub = k, status = chart_fine_edge((lo + hi) / 2, s, &f[k]);
     if (status == GSL_SUCCESS && (f[0] < 0) != (f[1] < 0)) cv->id = best->id;
     return status;
+}
+
+/* The damped hanging chart (no tips; chart_tips.c's header): 1. */
+static int damped_hanging(const chart *ch) { return !ch->p.inverted && ch->gamma > 0; }
+
+/* The window of a join: two and a half rates (a new edge is found the rate after the end, or the
+ * next). */
+static double join_window(const chart *ch)
+{
+    return 2.5 * (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
+}
+
+void chart_low_end(chart *ch, chart_curve *cv)
+{
+    if (!damped_hanging(ch)) return;
+    cv->tipward = 1, cv->tip = cv->w1, cv->fill_top = 0;
+}
+
+void chart_low_window(chart *ch)
+{
+    if (!damped_hanging(ch)) return;
+    for (int i = 0; i < ch->count; i++)
+        if (ch->curves[i].tipward && ch->omega - ch->curves[i].tip > join_window(ch))
+            ch->curves[i].tipward = 0;
+}
+
+int chart_join_low(chart *ch, chart_curve *cv, int *joined)
+{
+    *joined = 0;
+    if (!damped_hanging(ch)) return GSL_SUCCESS;
+    for (int i = 0; i < ch->count; i++) {
+        chart_curve *old = &ch->curves[i];
+        if (old == cv || !old->tipward || old->kind != cv->kind || old->mode != cv->mode ||
+            !(ch->omega > old->tip) || ch->omega - old->tip > join_window(ch))
+            continue;
+        chart_ws *s = &ch->ws[0];
+        double f;
+        s->mode = cv->mode, s->kind = cv->kind, s->sub = 0, s->amp = fmax(old->a1, cv->a1);
+        const int status = chart_fine_rate((old->tip + ch->omega) / 2, s, &f);
+        if (status) return status;
+        if (!(f < 0)) continue;
+        old->tipward = 0;
+        cv->id = old->id;
+        *joined = 1;
+        return GSL_SUCCESS;
+    }
+    return GSL_SUCCESS;
 }
 
 int chart_tip_between(const chart *ch, double w0, double w1, int mode)
