@@ -12,7 +12,8 @@
  *                                                  a state of another drag is refused)
  *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them: the alive curves
  *                                                  and those ended at a tip; none: "none")
- *   tip OMEGA MODE                                  (T of them)
+ *   tip OMEGA MODE TOP0 TOP1                        (T of them; the highest amplitude an edge
+ *                                                  of each function came down from, 0: none)
  * and for the ellipse chart the single line
  *   ellipse columns=J prev=P curve=C failed=F
  * A state read back is checked whole (counts, ranges, finite numbers): GSL_EINVAL with "state
@@ -63,6 +64,8 @@ typedef struct chart_curve {
 typedef struct chart_tip {
     double omega;
     int mode;
+    double top[2]; /* per function (sub), the highest amplitude an edge came down from (0:
+                      none) */
 } chart_tip;
 
 typedef struct chart chart;

@@ -47,8 +47,10 @@ int chart_state_write(const chart *ch, int done, char **text)
     }
     for (int i = 0; i < ch->tips_count; i++) {
         char b[32];
-        len += (size_t)snprintf(t + len, size - len, "tip %s %d\n", num(b, ch->tips[i].omega),
-                                ch->tips[i].mode);
+        char b1[32], b2[32];
+        len += (size_t)snprintf(t + len, size - len, "tip %s %d %s %s\n",
+                                num(b, ch->tips[i].omega), ch->tips[i].mode,
+                                num(b1, ch->tips[i].top[0]), num(b2, ch->tips[i].top[1]));
     }
     *text = t;
     return GSL_SUCCESS;
@@ -201,6 +203,8 @@ int chart_state_read(chart *ch, const char *text, int *done)
         }
         ch->tips[k].omega = get_num(&r, 0, p->omega_max, 0);
         ch->tips[k].mode = get_int(&r, NULL, 0, ch->n - 1);
+        ch->tips[k].top[0] = get_num(&r, 0, p->amp_max, 0);
+        ch->tips[k].top[1] = get_num(&r, 0, p->amp_max, 0);
         line_end(&r);
     }
     ch->tips_count = tips;

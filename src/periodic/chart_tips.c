@@ -58,11 +58,12 @@
  * n >= 2) is smooth in omega(A). Going down (da < 0) the step is a row's, or more where the edge
  * is steep: FILL_RATE_STEP of a rate's step in omega at the slope since the previous point (an
  * edge steepens toward its tip, A ~ sqrt, so the next step in omega is shorter still), up to
- * FILL_ROWS_MAX rows, and the lowest point one row above A = 0 (below, the edge is within
- * ~(A / row)^2 of the tip's rate, the function's sign there round-off), so that the points keep within a rate's or
- * a row's step of each other and reach the lowest row. err: the rate's bracket and extrapolation
- * shift times the edge's slope dA/domega from the previous point. Returns the last amplitude
- * located in *last (unchanged if none). */
+ * FILL_ROWS_MAX rows, and the lowest point one row above A = 0 (below it the edge comes so
+ * near the tip's rate, omega_t - omega ~ A^2 for n >= 2, that the function's sign at the tip's
+ * rate is round-off), so that the points keep within a rate's or a row's step of each other and
+ * reach the lowest row. err: the rate's bracket and extrapolation shift times the edge's slope
+ * dA/domega from the previous point. Returns the last amplitude located in *last (unchanged if
+ * none). */
 static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
                      double a, double da, double a_lo, double a_hi, double *last,
                      whirl_chart_row_fn row, void *row_data)
@@ -110,9 +111,12 @@ int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row
     const double tip = chart_tip_in(ch, cv->w1, fmin(ch->omega + 2 * spacing, ch->p.omega_max),
                                     cv->mode, cv->kind);
     if (isnan(tip)) return GSL_SUCCESS;
-    int reached = 0;
+    chart_tip *reached = NULL;
     for (int i = 0; i < ch->tips_count; i++)
-        reached |= ch->tips[i].omega == tip && ch->tips[i].mode == cv->mode;
+        if (ch->tips[i].omega == tip && ch->tips[i].mode == cv->mode) reached = &ch->tips[i];
+    /* this edge came down to the tip from higher up already (the scan found it again after its
+       follower ended): its points are there */
+    if (reached && reached->top[cv->sub] >= cv->a1) return GSL_SUCCESS;
     const double da = (ch->p.amp_max - chart_amp_floor(ch)) / (ch->p.rows - 1);
     double low = cv->a1, top = 0;
     int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
@@ -123,9 +127,10 @@ int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row
     if (reached) {
         /* the tongue's other edge came down first (n >= 3): the tongue is closed, neither
            waits for a new edge */
+        reached->top[cv->sub] = fmax(reached->top[cv->sub], cv->a1);
         for (int i = 0; i < ch->count; i++)
             if (ch->curves[i].tipward && ch->curves[i].tip == tip &&
-                ch->curves[i].mode == cv->mode)
+                ch->curves[i].mode == cv->mode && ch->curves[i].sub != cv->sub)
                 ch->curves[i].tipward = 0;
         return GSL_SUCCESS;
     }
@@ -135,7 +140,9 @@ int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row
         if (t == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart's tips");
         ch->tips = t, ch->tips_cap = cap;
     }
-    ch->tips[ch->tips_count++] = (chart_tip){.omega = tip, .mode = cv->mode};
+    chart_tip *t = &ch->tips[ch->tips_count++];
+    *t = (chart_tip){.omega = tip, .mode = cv->mode};
+    t->top[cv->sub] = cv->a1;
     const whirl_chart_point pt = {.kind = cv->kind, .curve = cv->id, .column = column,
                                   .omega = tip, .amplitude = 0, .err = 0};
     status = row ? row(row_data, &pt) : GSL_SUCCESS;
@@ -167,6 +174,10 @@ int chart_join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn
         old->tipward = 0;
         cv->id = old->id;
         *joined = 1;
+        /* the previous amplitude on the chord from the tip, one rate back (at least A = 0): the
+           follower's first bracket and bend test then know the edge's rise, tens of rows per
+           rate on a steep edge, which a new edge's bracket of a row (doubled 5 times) misses */
+        cv->a0 = fmax(0, cv->a1 - cv->a1 / (ch->omega - old->tip) * spacing);
         double last = 0;
         return fill_rows(ch, cv, column, ch->omega, old->tip, cv->a1 - da, -da,
                          old->fill_top + 0.5 * da, INFINITY, &last, row, row_data);
