@@ -17,7 +17,10 @@
  * rate by Brent's method on the edge's own function (the edge is smooth in omega(A) where it is
  * steep in A(omega)); the first edge down emits the tip (omega_t, 0) and the tongue's other
  * edge (the other function) from the tip up to the next rate, where the scan finds it and
- * joins it to the curve (n = 1, 2). A tongue of n >= 3 sends both edges down: each is carried to
+ * joins it to the curve (n = 1, 2), its follower started on the chord from the tip. An edge
+ * found again by the scan before the tip (its follower lost it where it is steep) that comes down
+ * to the tip from no higher than an edge of its function before is not carried down again (the
+ * tip's top). A tongue of n >= 3 sends both edges down: each is carried to
  * the tip, and both are one curve from their start: a new edge takes the number of the other
  * function's edge next to it at its rate when the two bound one tongue there (f_+-k < 0
  * between them, the product of the two functions) and that edge's number is its own
