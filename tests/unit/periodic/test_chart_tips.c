@@ -12,7 +12,10 @@
  *   b_2r+1: sin((2k+1) tau),    the same with the first diagonal 1 - q;
  * the r-th eigenvalue (from 0; b_2r the (r-1)-th) in increasing order (Abramowitz and Stegun
  * 20.2; McLachlan, Theory and application of Mathieu functions, 1947, ch. III). For q < 0 the
- * pairs swap; the test takes the nearer of a_n and b_n. */
+ * pairs swap; the test takes the nearer of a_n and b_n. They agree with scipy.special's
+ * mathieu_a, mathieu_b (Zhang and Jin's algorithm) to 4.3e-14 for n = 3, 4, 5 at q = 1.2:
+ *   /usr/bin/python3 -c "from scipy.special import mathieu_a; print(mathieu_a(4, 1.2))"
+ * (16.04903270642382; the Hill matrix's 16.049032706423827). */
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
