@@ -324,7 +324,11 @@ WHIRL_API int whirl_periodic_tangent(whirl_periodic *w, const double *y0, const 
  *   det(M - I) = prod_k (2 - tr M_k)^planes,   det(M + I) = prod_k (2 + tr M_k)^planes,
  * and each factor f_+k = 2 - tr M_k (f_-k = 2 + tr M_k) is smooth in (omega, A) and changes sign
  * where mode k's pair of multipliers passes +1 (resp. -1): the edges of the chart, one family
- * of curves per mode and kind, so that two modes' edges that cross do not interfere. An edge is
+ * of curves per mode and kind, so that two modes' edges that cross do not interfere. Without
+ * drag A cos(omega t) is even in t and each factor is the product of two functions of half a
+ * period, f_+k = -4 u' v, f_-k = 4 u v' at T/2 (u, v the solutions with (u, u') = (1, 0),
+ * (0, 1) at t = 0): a tongue's two edges (Mathieu's a_n, b_n) are simple zeros of the two
+ * however thin it is, one family per mode, kind and function. An edge is
  * a curve A(omega), located per rate by Brent's method on A to the tolerance and followed from
  * rate to rate with the previous point as the centre of the next bracket; a mode is scanned on
  * `rows` amplitudes for new curves at the first rate, where the count of a family's edges
@@ -352,7 +356,9 @@ typedef struct whirl_chart_point {
     whirl_floquet_edge kind; /* WHIRL_FLOQUET_EDGE_PLUS_ONE or _MINUS_ONE */
     int curve;        /* the curve's number, from 0 in the order found; a curve is one mode's
                          and one kind's, and a tongue's two edges joined at its tip (hanging)
-                         share one number, that of the edge found first (numbers may skip) */
+                         share one number, that of the edge found first (numbers may skip); a
+                         tongue of order n >= 3 brings both edges down on the side of the lower
+                         rates, so its curve has a point on each edge at a rate */
     int column;       /* the rate's index, from 0 */
     double omega;     /* [sqrt(g/L)] */
     double amplitude; /* [L] */
@@ -398,10 +404,11 @@ WHIRL_API int whirl_chart_vertical(const whirl_chain *c, int dim, const whirl_ch
  * determinant exp(-gamma T) (src/periodic/chart_modes.c). The edges are where the mode's trace is +-(1 + exp(-gamma T)) (a
  * multiplier through +1 or -1; a complex pair stays inside the unit circle): the hanging
  * chain's tongues lift off A = 0 (no tips), each tongue's edges one curve through its lowest
- * point. air_drag 0 is whirl_chart_vertical, bit for bit. GSL_EINVAL with a message also for a
- * drag negative or not finite, a chain whose m_i / l_i differ (the drag would couple its modes:
- * only a drag proportional to the mass matrix keeps them apart), or gamma pi / omega_min over
- * 700 (src/periodic/chart.c).
+ * point (joined where that point is sharper than the rates' grid). air_drag 0 is
+ * whirl_chart_vertical, bit for bit. GSL_EINVAL with a message also for a drag negative or not
+ * finite, a chain whose m_i / l_i differ (the drag would couple its modes: only a drag
+ * proportional to the mass matrix keeps them apart), or gamma pi / omega_min over 700
+ * (src/periodic/chart.c).
  * @param c the chain
  * @param dim 2 or 3
  * @param params the chart's range, resolution and tolerance

@@ -11,10 +11,20 @@
  * is a smooth function whose zeros are that mode's edges alone. A curve belongs to one family
  * (mode, kind) and is located and followed on that family's factor: two modes' edges that cross
  * are two simple roots of two functions (on the product they were a double root, and the curves
- * broke there). For N = 1, f_+ is the trace test of Mathieu's equation. Each factor is computed
- * from the mode's 2 x 2 monodromy with s and 2 s steps per period (s raised per mode,
- * chart_mode_steps) and extrapolated (order 4): f = f(h/2) + (f(h/2) - f(h)) / 15; the
- * difference (f(h/2) - f(h)) / 15 over the slope in A is the shift of the root by the
+ * broke there). For N = 1, f_+ is the trace test of Mathieu's equation.
+ *
+ * Without drag the path A cos(omega t) makes each mode's coefficient even in t, and each factor
+ * splits into two functions of half a period (chart_modes.c, chart_mode_half):
+ *   f_+k = (-2 u' tau) (2 v / tau),   f_-k = (2 u) (2 v'),   at tau = T/2,
+ * u and v the solutions with (u, u') = (1, 0), (v, v') = (0, 1) at t = 0. A tongue's two edges
+ * are simple zeros of the two different functions (Mathieu's a_n and b_n), however thin the
+ * tongue: on the factor they were two zeros closer than a bracket, and the tongues of order
+ * n >= 3 (width ~ A^n) came out in pieces near their tips. A family is then (mode, kind, sub),
+ * sub 0 the first function and 1 the second, and a curve is located and followed on its
+ * family's function; with drag the factors do not split (below) and sub is 0. Each function is
+ * computed with s and 2 s steps per period (s raised per mode, chart_mode_steps; half a period
+ * in half of them, rounded up) and extrapolated (order 4): f = f(h/2) + (f(h/2) - f(h)) / 15;
+ * the difference (f(h/2) - f(h)) / 15 over the slope in A is the shift of the root by the
  * extrapolation, part of the point's error estimate.
  *
  * Following a curve: at the next rate, a bracket centred on the previous amplitude of
@@ -23,14 +33,15 @@
  * tolerance. A curve that finds no bracket (it left the range, or turned back in omega) ends, so
  * does one whose linear extrapolation leaves the range, and one whose root bends more than a
  * smooth curve can between two rates (the second difference in A above the last change or a
- * scan's spacing): that root is another curve's of the same family (the two edges of a tongue
- * meet at its tip; the follower of one would otherwise walk on to the other). A mode's factors
+ * scan's spacing): that root is another curve's of the same family (a follower would otherwise
+ * walk on to it; the tips, where a tongue's two edges meet, chart_tips.c). A mode's factors
  * are scanned for new curves (at `rows` amplitudes, the coarser monodromy alone, each sign change
  * not explained by a followed curve of the family located by Brent) at the first rate; when the
  * parity of a family's edges disagrees with the signs of its factor at the range's ends (a curve
  * entered or left); and, for the hanging chain, when a tip omega = 2 omega_k / n of the mode's
  * tongues (omega_k = sqrt(g lambda_k), the unshaken chain's frequency) lies between the last
- * rate and this one, where a tongue's two edges are born together and the parity cannot tell.
+ * rate and this one, where a tongue's two edges are born together (the factor's parity could
+ * not tell; each half-period function's can, and the scan is kept).
  * The inverted chain's edges have no tips: at A = 0 its modes' multipliers are
  * exp(+-sqrt(g lambda_k) T), real, so f_+k = 2 - 2 cosh(sqrt(g lambda_k) T) < 0 < f_-k and no
  * edge reaches A = 0 (Mathieu's a_k = -4 g lambda_k / omega^2 < 0, below every tongue's tip
@@ -115,8 +126,12 @@ static int parallel_items(chart *ch, int count, int (*work)(chart_ws *, void *, 
     return status;
 }
 
-/* f_+ and f_- of the mode with mult times its coarser steps per period at (omega, amp). */
-static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[2])
+/* The mode's functions at (omega, amp) with mult times its coarser steps, at f[kind + 2 sub]
+ * (ch->subs of each kind). Conservative: the half period's (file header), f_+ = f[0] f[2],
+ * f_- = f[1] f[3], each made dimensionless by tau = T/2:
+ *   f[0] = -2 u' tau,  f[2] = 2 v / tau,  f[1] = 2 u,  f[3] = 2 v'   (at T/2);
+ * with drag the full period's f_+ at f[0] and f_- at f[1]. */
+static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[4])
 {
     whirl_pivot_path path;
     const double up[3] = {0, 0, 1};
@@ -128,6 +143,16 @@ static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[
     if (status) return status;
     double m[4];
     const chart *ch = s->ch;
+    if (ch->subs == 2) {
+        /* half a period in half the steps (rounded up): the full period's step, or shorter */
+        chart_mode_half(&path, ch->c->gravity, ch->coef[mode], mult * ((ch->steps[mode] + 1) / 2),
+                        m);
+        s->monodromies++;
+        const double tau = whirl_pivot_period(&path) / 2;
+        f[0] = -2 * m[2] * tau, f[2] = 2 * m[1] / tau;
+        f[1] = 2 * m[0], f[3] = 2 * m[3];
+        return GSL_SUCCESS;
+    }
     chart_mode_monodromy(&path, ch->c->gravity, ch->coef[mode], ch->gamma,
                          mult * ch->steps[mode], m);
     s->monodromies++;
@@ -140,14 +165,14 @@ static int edge_functions(chart_ws *s, double amp, int mode, int mult, double f[
 
 /* The extrapolated factor of s->mode and s->kind at amp (whirl_root_fn); s->shift its change
  * by the extrapolation. */
-static int fine_edge(double amp, void *ctx, double *fx)
+int chart_fine_edge(double amp, void *ctx, double *fx)
 {
     chart_ws *s = ctx;
-    double fc[2], ff[2];
+    double fc[4], ff[4];
     int status = edge_functions(s, amp, s->mode, 1, fc);
     if (status == GSL_SUCCESS) status = edge_functions(s, amp, s->mode, 2, ff);
     if (status) return status;
-    const double c = fc[s->kind], f = ff[s->kind];
+    const double c = fc[s->kind + 2 * s->sub], f = ff[s->kind + 2 * s->sub];
     if (fabs(c) < FACTOR_HUGE && fabs(f) < FACTOR_HUGE) {
         s->shift = (f - c) / 15;
         *fx = f + s->shift;
@@ -171,7 +196,7 @@ static int locate(chart_ws *s, double lo, double hi, double flo, double fhi, dou
     const whirl_root_opts o = {.epsabs = ch->p.tol, .max_iter = BRENT_ITER, .known = 1,
                                .f_lo = flo, .f_hi = fhi};
     whirl_root r;
-    int status = whirl_root_brent(fine_edge, s, lo, hi, &o, &r);
+    int status = whirl_root_brent(chart_fine_edge, s, lo, hi, &o, &r);
     if (status) {
         if (status == WHIRL_EINTERRUPTED) return status;
         if (status == GSL_EMAXITER || !r.bracketed)
@@ -181,7 +206,7 @@ static int locate(chart_ws *s, double lo, double hi, double flo, double fhi, dou
         return status;
     }
     double f;
-    status = fine_edge(r.root, s, &f); /* the shift at the root */
+    status = chart_fine_edge(r.root, s, &f); /* the shift at the root */
     if (status) return status;
     const double slope = (fhi - flo) / (hi - lo);
     *amp = r.root;
@@ -197,7 +222,7 @@ static int emit(chart *ch, const chart_curve *cv, int column, double amp, double
     return row ? row(row_data, &pt) : GSL_SUCCESS;
 }
 
-static chart_curve *add_curve(chart *ch, int mode, whirl_floquet_edge kind)
+static chart_curve *add_curve(chart *ch, int mode, whirl_floquet_edge kind, int sub)
 {
     if (ch->count == ch->cap) {
         const int cap = ch->cap ? 2 * ch->cap : 16;
@@ -206,28 +231,27 @@ static chart_curve *add_curve(chart *ch, int mode, whirl_floquet_edge kind)
         ch->curves = c, ch->cap = cap;
     }
     chart_curve *cv = &ch->curves[ch->count];
-    *cv = (chart_curve){.kind = kind, .mode = mode, .id = ch->count, .alive = 1, .a1 = NAN,
-                        .a0 = NAN, .tip = NAN};
+    *cv = (chart_curve){.kind = kind, .sub = sub, .mode = mode, .id = ch->count, .alive = 1,
+                        .a1 = NAN, .a0 = NAN, .tip = NAN};
     ch->count++;
     return cv;
 }
 
-static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind);
-
 /* The lowest amplitude of a bracket: the hanging chain's edges are followed down to A = 0, where
  * f >= 0 (the mode's multipliers on the unit circle, 2 -+ tr M_k = 2 -+ 2 cos(omega_k T); a
  * tongue's two edges meet there at its tip); the inverted chain's from amp_min. */
-static double amp_floor(const chart *ch) { return ch->p.inverted ? ch->p.amp_min : 0; }
+double chart_amp_floor(const chart *ch) { return ch->p.inverted ? ch->p.amp_min : 0; }
 
 /* 1 if the chart's edges reach A = 0 at tongues' tips: the conservative hanging chain's (the
  * inverted chain's edges stay off the axis, and so do the damped chain's: file header). */
-static int has_tips(const chart *ch) { return !ch->p.inverted && !(ch->gamma > 0); }
+int chart_has_tips(const chart *ch) { return !ch->p.inverted && !(ch->gamma > 0); }
 
 /* A scan's work: the coarser factors of the modes scanned at the rows (one item per row), then
  * the sign changes that no located curve explains, each located (one item per candidate). */
 typedef struct scan_work {
     double lo, step;
-    int fams;           /* the families, 2 n: mode k's f_+ at 2 k, f_- at 2 k + 1 */
+    int fams;           /* the families, 2 subs n: mode k's f[e] (edge_functions) at
+                           2 subs k + e */
     double *f;          /* rows x fams: the coarser factors (the modes scanned only) */
     int *cand;          /* a candidate: row i and family j as i fams + j */
     double *amp, *err;  /* per candidate: its edge, or NAN for a sign change of the coarser step
@@ -246,7 +270,7 @@ static int scan_row(chart_ws *s, void *data, int i)
     for (int k = 0; status == GSL_SUCCESS && k < s->ch->n; k++)
         if (s->ch->rescan[k])
             status = edge_functions(s, scan_amp(s->ch, sw, i), k, 1,
-                                    &sw->f[(size_t)i * sw->fams + 2 * k]);
+                                    &sw->f[(size_t)i * sw->fams + 2 * s->ch->subs * k]);
     return status;
 }
 
@@ -256,149 +280,26 @@ static int scan_locate(chart_ws *s, void *data, int j)
     const int i = sw->cand[j] / sw->fams, fam = sw->cand[j] % sw->fams;
     const double a0 = scan_amp(s->ch, sw, i - 1), a1 = scan_amp(s->ch, sw, i);
     double flo, fhi;
-    s->mode = fam / 2;
+    s->mode = fam / (2 * s->ch->subs);
     s->kind = (whirl_floquet_edge)(fam % 2);
+    s->sub = fam / 2 % s->ch->subs;
     sw->amp[j] = NAN;
     /* the scan's signs are of the coarser monodromy: the ends again, extrapolated */
-    int status = fine_edge(a0, s, &flo);
-    if (status == GSL_SUCCESS) status = fine_edge(a1, s, &fhi);
+    int status = chart_fine_edge(a0, s, &flo);
+    if (status == GSL_SUCCESS) status = chart_fine_edge(a1, s, &fhi);
     if (status || (flo < 0) == (fhi < 0)) return status; /* a change of the coarser step alone */
     return locate(s, a0, a1, flo, fhi, &sw->amp[j], &sw->err[j]);
 }
 
 /* The extrapolated factor of s->mode and s->kind at the rate omega and the amplitude s->amp
  * (whirl_root_fn). */
-static int fine_rate(double omega, void *ctx, double *fx)
+int chart_fine_rate(double omega, void *ctx, double *fx)
 {
     chart_ws *s = ctx;
     s->omega = omega;
-    const int status = fine_edge(s->amp, s, fx);
+    const int status = chart_fine_edge(s->amp, s, fx);
     s->omega = NAN;
     return status;
-}
-
-/* 1 in *in if (omega, amp) lies inside a tongue of s's family: its extrapolated factor < 0 (the
- * factor is >= 0 at A = 0 and changes sign at each edge). */
-static int inside(chart_ws *s, double omega, double amp, int *in)
-{
-    double f;
-    s->amp = amp;
-    const int status = fine_rate(omega, s, &f);
-    *in = status == GSL_SUCCESS && f < 0;
-    return status;
-}
-
-/* An edge's points near a tongue's tip, at the amplitudes a, a + da, ... (da = +-the scan's row
- * spacing) while in (a_lo, a_hi): each located in the rate between w (outside the tongue at
- * that amplitude) and the tip's rate (inside) by Brent's method; it stops at the first
- * amplitude without a bracket. An edge steep in A(omega) near its tip (A ~ sqrt|omega - tip| for
- * n >= 2) is smooth in omega(A). err: the rate's bracket and extrapolation shift times the
- * edge's slope dA/domega from the previous point. Returns the last amplitude located in *last
- * (unchanged if none). */
-static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
-                     double a, double da, double a_lo, double a_hi, double *last,
-                     whirl_chart_row_fn row, void *row_data)
-{
-    chart_ws *s = &ch->ws[0];
-    const double lo = fmin(w, tip), hi = fmax(w, tip);
-    double pw = da < 0 ? w : tip, pa = a - da;
-    s->mode = cv->mode, s->kind = cv->kind;
-    for (double amp = a; amp > a_lo && amp < a_hi; amp += da) {
-        double flo, fhi;
-        s->amp = amp;
-        int status = fine_rate(lo, s, &flo);
-        if (status == GSL_SUCCESS) status = fine_rate(hi, s, &fhi);
-        if (status) return status;
-        if ((flo < 0) == (fhi < 0)) break; /* no bracket: left as it is */
-        const whirl_root_opts o = {.epsabs = ch->p.tol, .max_iter = BRENT_ITER, .known = 1,
-                                   .f_lo = flo, .f_hi = fhi};
-        whirl_root r;
-        status = whirl_root_brent(fine_rate, s, lo, hi, &o, &r);
-        double f;
-        if (status == GSL_SUCCESS) status = fine_rate(r.root, s, &f); /* the shift there */
-        if (status) return status;
-        const double err_w = (r.upper - r.lower) + fabs(s->shift / ((fhi - flo) / (hi - lo)));
-        const double slope = pw == r.root ? 0 : fabs((pa - amp) / (pw - r.root));
-        const whirl_chart_point pt = {.kind = cv->kind, .curve = cv->id, .column = column,
-                                      .omega = r.root, .amplitude = amp, .err = err_w * slope};
-        status = row ? row(row_data, &pt) : GSL_SUCCESS;
-        if (status) return status;
-        pw = r.root, pa = amp, *last = amp;
-    }
-    return GSL_SUCCESS;
-}
-
-/* The edge cv ended at this rate with a tip of its mode's tongues of its kind between its last
- * rate and two rates on (hanging; an edge that heads for A = 0 ends once its linear
- * extrapolation does, which may be short of a tip ahead), the tip's rate at the edge's last
- * amplitude inside the tongue, and a tip no other edge reached before: its points down to the tip,
- * the tip (2 omega_k / n, 0), and the tongue's other edge from the tip up to the next rate, all
- * on cv's curve. The tip is where the unshaken mode's multipliers exp(+-i omega_k T) pass +-1
- * (2 -+ tr M_k = 0 at A = 0), the A = 0 end of both edges (f is even in A: A cos(omega t) is
- * -A cos(omega t) half a period later). */
-static int descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
-                          void *row_data)
-{
-    const double spacing = (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
-    const double tip = tip_in(ch, cv->w1, fmin(ch->omega + 2 * spacing, ch->p.omega_max),
-                              cv->mode, cv->kind);
-    if (isnan(tip)) return GSL_SUCCESS;
-    for (int i = 0; i < ch->tips_count; i++)
-        if (ch->tips[i].omega == tip && ch->tips[i].mode == cv->mode)
-            return GSL_SUCCESS; /* another edge reached it first */
-    /* the edge's tongue is the tip's: the tip's rate at the edge's last amplitude inside it */
-    ch->ws[0].mode = cv->mode, ch->ws[0].kind = cv->kind;
-    int in;
-    const int st = inside(&ch->ws[0], tip, cv->a1, &in);
-    if (st || !in) return st;
-    if (ch->tips_count == ch->tips_cap) {
-        const int cap = ch->tips_cap ? 2 * ch->tips_cap : 16;
-        chart_tip *t = realloc(ch->tips, (size_t)cap * sizeof *t);
-        if (t == NULL) return whirl_fail(GSL_ENOMEM, "out of memory for the chart's tips");
-        ch->tips = t, ch->tips_cap = cap;
-    }
-    ch->tips[ch->tips_count++] = (chart_tip){.omega = tip, .mode = cv->mode};
-    const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
-    double top = 0, low = cv->a1;
-    int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
-                           &low, row, row_data);
-    const whirl_chart_point pt = {.kind = cv->kind, .curve = cv->id, .column = column,
-                                  .omega = tip, .amplitude = 0, .err = 0};
-    if (status == GSL_SUCCESS) status = row ? row(row_data, &pt) : GSL_SUCCESS;
-    /* the other edge up to this rate, or the next if the tip is at this one (where the scan
-       finds it and join_at_tip joins it) */
-    const double next = ch->omega > tip ? ch->omega
-                                        : fmin(ch->omega + (ch->p.omega_max - ch->p.omega_min) /
-                                                               (ch->p.columns - 1),
-                                               ch->p.omega_max);
-    if (status == GSL_SUCCESS && next > tip)
-        status = fill_rows(ch, cv, column, next, tip, fmin(da, low), da, 0, ch->p.amp_max,
-                           &top, row, row_data);
-    cv->tipward = 1, cv->tip = tip, cv->fill_top = top;
-    return status;
-}
-
-/* A new edge cv at this rate joined to an edge of its family that ended at a tongue's tip at
- * most two and a half rates before (descend_to_tip): one curve, cv's points down to what was
- * located from the tip. */
-static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
-                       void *row_data)
-{
-    const double spacing = (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
-    const double da = (ch->p.amp_max - amp_floor(ch)) / (ch->p.rows - 1);
-    for (int i = 0; i < ch->count; i++) {
-        chart_curve *old = &ch->curves[i];
-        if (old == cv || !old->tipward || old->kind != cv->kind || old->mode != cv->mode ||
-            !(ch->omega > old->tip) || ch->omega - old->tip > 2.5 * spacing ||
-            !(cv->a1 > old->fill_top))
-            continue;
-        old->tipward = 0;
-        cv->id = old->id;
-        double last = 0;
-        return fill_rows(ch, cv, column, ch->omega, old->tip, cv->a1 - da, -da,
-                         old->fill_top + 0.5 * da, INFINITY, &last, row, row_data);
-    }
-    return GSL_SUCCESS;
 }
 
 /* The scan of the modes marked in ch->rescan: every sign change of their f_+ and f_- between
@@ -407,8 +308,9 @@ static int join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_f
 static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
 {
     const int rows = ch->p.rows;
-    scan_work sw = {.lo = amp_floor(ch), .step = (ch->p.amp_max - amp_floor(ch)) / (rows - 1),
-                    .fams = 2 * ch->n};
+    const double floor_ = chart_amp_floor(ch);
+    scan_work sw = {.lo = floor_, .step = (ch->p.amp_max - floor_) / (rows - 1),
+                    .fams = 2 * ch->subs * ch->n};
     sw.f = malloc((size_t)rows * (size_t)sw.fams * sizeof *sw.f);
     int status = sw.f ? GSL_SUCCESS : whirl_fail(GSL_ENOMEM, "out of memory for a scan");
     if (status == GSL_SUCCESS) status = parallel_items(ch, rows, scan_row, &sw);
@@ -420,11 +322,12 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
                 const double a0 = scan_amp(ch, &sw, i - 1), a1 = scan_amp(ch, &sw, i);
                 const double f0 = sw.f[(size_t)(i - 1) * sw.fams + j];
                 const double f1 = sw.f[(size_t)i * sw.fams + j];
-                if (!ch->rescan[j / 2] || (f0 < 0) == (f1 < 0)) continue;
+                const int mode = j / (2 * ch->subs), sub = j / 2 % ch->subs;
+                if (!ch->rescan[mode] || (f0 < 0) == (f1 < 0)) continue;
                 int known = 0;
                 for (int q = 0; q < ch->count && !known; q++) {
                     const chart_curve *cv = &ch->curves[q];
-                    known = cv->alive && cv->found && cv->mode == j / 2 &&
+                    known = cv->alive && cv->found && cv->mode == mode && cv->sub == sub &&
                             cv->kind == (whirl_floquet_edge)(j % 2) && cv->a1 >= a0 &&
                             cv->a1 <= a1;
                 }
@@ -443,12 +346,16 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
     for (int j = 0; status == GSL_SUCCESS && j < count; j++) {
         if (isnan(sw.amp[j])) continue;
         const int fam = sw.cand[j] % sw.fams;
-        chart_curve *cv = add_curve(ch, fam / 2, (whirl_floquet_edge)(fam % 2));
+        chart_curve *cv = add_curve(ch, fam / (2 * ch->subs), (whirl_floquet_edge)(fam % 2),
+                                    fam / 2 % ch->subs);
         if (cv == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for the chart's curves");
         else {
             cv->a1 = sw.amp[j], cv->found = 1;
             cv->w1 = ch->omega;
-            status = join_at_tip(ch, cv, column, row, row_data);
+            int joined = 0;
+            status = chart_join_at_tip(ch, cv, column, row, row_data, &joined);
+            if (status == GSL_SUCCESS && !joined) status = chart_join_low(ch, cv, &joined);
+            if (status == GSL_SUCCESS && !joined) status = chart_pair(ch, cv);
             if (status == GSL_SUCCESS)
                 status = emit(ch, cv, column, sw.amp[j], sw.err[j], row, row_data);
         }
@@ -474,35 +381,26 @@ static int follow(chart_ws *s, void *data, int j)
     const chart_curve *cv = &ch->curves[fw->index[j]];
     const double change = isnan(cv->a0) ? 0 : cv->a1 - cv->a0, spacing = fw->spacing;
     double half = fmax(2 * fabs(change), spacing);
-    s->mode = cv->mode, s->kind = cv->kind;
+    s->mode = cv->mode, s->kind = cv->kind, s->sub = cv->sub;
     fw->amp[j] = NAN;
     /* heading out of the range: ended (a root near the end is another curve's, or the same
        curve's back in, found by the scan); the damped hanging chain's edges never reach A = 0
        (f > 0 there): one heading for it turns up at its tongue's lowest point, followed on */
-    if (cv->a1 + change < amp_floor(ch) && (has_tips(ch) || ch->p.inverted)) {
+    if (cv->a1 + change < chart_amp_floor(ch) && (chart_has_tips(ch) || ch->p.inverted)) {
         fw->tipward[j] = 1;
         return GSL_SUCCESS;
     }
     if (cv->a1 + change > ch->p.amp_max) return GSL_SUCCESS;
     fw->tipward[j] = 1; /* unless found below: an end other than at the top may be at a tip */
-    /* a tip of the family passed since the last rate, the edge's last amplitude inside its
-       tongue at the tip's rate: the edge went down to the tip, and a root here is the tongue's
-       other edge (the two meet at the tip, too close for the bend test) */
-    const double tip = tip_in(ch, cv->w1, ch->omega, cv->mode, cv->kind);
-    int in = 0;
-    if (!isnan(tip)) {
-        const int status = inside(s, tip, cv->a1, &in);
-        if (status || in) return status;
-    }
     for (int d = 0; d <= BRACKET_DOUBLINGS; d++, half *= 2) {
-        const double lo = fmax(amp_floor(ch), cv->a1 - half);
+        const double lo = fmax(chart_amp_floor(ch), cv->a1 - half);
         const double hi = fmin(ch->p.amp_max, cv->a1 + half);
         double flo, fhi;
-        int status = fine_edge(lo, s, &flo);
-        if (status == GSL_SUCCESS) status = fine_edge(hi, s, &fhi);
+        int status = chart_fine_edge(lo, s, &flo);
+        if (status == GSL_SUCCESS) status = chart_fine_edge(hi, s, &fhi);
         if (status) return status;
         if ((flo < 0) == (fhi < 0)) {
-            if (lo == amp_floor(ch) && hi == ch->p.amp_max) break;
+            if (lo == chart_amp_floor(ch) && hi == ch->p.amp_max) break;
             continue;
         }
         double amp, err;
@@ -531,6 +429,7 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
     int status = fw.index && fw.amp ? GSL_SUCCESS
                                     : whirl_fail(GSL_ENOMEM, "out of memory for the followers");
     int count = 0;
+    chart_low_window(ch);
     for (int i = 0; status == GSL_SUCCESS && i < ch->count; i++) {
         ch->curves[i].found = 0;
         if (ch->curves[i].alive) fw.tipward[count] = 0, fw.index[count++] = i;
@@ -541,8 +440,10 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
         chart_curve *cv = &ch->curves[fw.index[j]];
         if (isnan(fw.amp[j])) {
             cv->alive = 0;
-            if (fw.tipward[j] && has_tips(ch))
-                status = descend_to_tip(ch, cv, column, row, row_data);
+            if (fw.tipward[j] && chart_has_tips(ch))
+                status = chart_descend_to_tip(ch, cv, column, row, row_data);
+            else if (fw.tipward[j])
+                chart_low_end(ch, cv);
             continue;
         }
         cv->a0 = cv->a1, cv->a1 = fw.amp[j], cv->w1 = ch->omega, cv->found = 1;
@@ -550,29 +451,6 @@ static int follow_all(chart *ch, int column, double spacing, whirl_chart_row_fn 
     }
     free(fw.index), free(fw.amp);
     return status;
-}
-
-/* 1 if a tip 2 omega_k / n of the mode's tongues lies in (w0, w1]: floor(2 omega_k / w)
- * changes. */
-static int tip_between(const chart *ch, double w0, double w1, int mode)
-{
-    return has_tips(ch) && floor(2 * ch->freq[mode] / w0) != floor(2 * ch->freq[mode] / w1);
-}
-
-/* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
- * -1, even: +1), the one nearest w1; NAN if none. */
-static double tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind)
-{
-    double tip = NAN;
-    const double f = ch->freq[mode];
-    for (double n = ceil(2 * f / w1); has_tips(ch) && n <= 2 * f / w0; n++) {
-        const double t = 2 * f / n;
-        if (n < 1 || t <= w0 || t > w1) continue;
-        if ((((long)n % 2 == 1) ? WHIRL_FLOQUET_EDGE_MINUS_ONE : WHIRL_FLOQUET_EDGE_PLUS_ONE) ==
-                kind && (isnan(tip) || t > tip))
-            tip = t;
-    }
-    return tip;
 }
 
 static int check_params(const whirl_chain *c, int dim, whirl_chart_params *p)
@@ -624,12 +502,16 @@ static void chart_free(chart *ch)
     free(ch->ends);
 }
 
-/* A mode's factors at the range's ends (item i: mode i / 2, end i % 2) into ch->ends. */
+/* A mode's functions at the range's ends (item i: mode i / 2, end i % 2) into ch->ends, 2 subs
+ * per end. */
 static int range_ends(chart_ws *s, void *data, int i)
 {
     (void)data;
     const whirl_chart_params *p = &s->ch->p;
-    return edge_functions(s, i % 2 ? p->amp_max : p->amp_min, i / 2, 1, &s->ch->ends[2 * i]);
+    double f[4];
+    const int status = edge_functions(s, i % 2 ? p->amp_max : p->amp_min, i / 2, 1, f);
+    for (int e = 0; e < 2 * s->ch->subs; e++) s->ch->ends[2 * s->ch->subs * i + e] = f[e];
+    return status;
 }
 
 double chart_grid(double lo, double hi, int columns, int j)
@@ -666,15 +548,16 @@ static int columns(chart *ch, int start, whirl_chart_row_fn row, void *row_data,
         int any = 0;
         for (int k = 0; status == GSL_SUCCESS && k < ch->n; k++) {
             /* the damped hanging chain: every rate (no tips to announce new edges) */
-            ch->rescan[k] = j == 0 || tip_between(ch, last, ch->omega, k) ||
+            ch->rescan[k] = j == 0 || chart_tip_between(ch, last, ch->omega, k) ||
                             (!ch->p.inverted && ch->gamma > 0);
-            for (int e = 0; e < 2; e++) {
+            const int fpm = 2 * ch->subs; /* a mode's functions */
+            for (int e = 0; e < fpm; e++) {
                 int found = 0;
                 for (int i = 0; i < ch->count; i++)
                     found += ch->curves[i].found && ch->curves[i].mode == k &&
-                             ch->curves[i].kind == (whirl_floquet_edge)e &&
-                             ch->curves[i].a1 >= p->amp_min;
-                const double lo = ch->ends[4 * k + e], hi = ch->ends[4 * k + 2 + e];
+                             ch->curves[i].kind == (whirl_floquet_edge)(e % 2) &&
+                             ch->curves[i].sub == e / 2 && ch->curves[i].a1 >= p->amp_min;
+                const double lo = ch->ends[2 * fpm * k + e], hi = ch->ends[2 * fpm * k + fpm + e];
                 if ((found % 2 == 1) != ((lo < 0) != (hi < 0))) ch->rescan[k] = 1;
             }
             any |= ch->rescan[k];
@@ -705,7 +588,7 @@ static int modes(chart *ch)
     ch->freq = malloc(n * sizeof *ch->freq);
     ch->steps = malloc(n * sizeof *ch->steps);
     ch->rescan = malloc(n * sizeof *ch->rescan);
-    ch->ends = malloc(4 * n * sizeof *ch->ends);
+    ch->ends = malloc(8 * n * sizeof *ch->ends);
     if (!ch->coef || !ch->freq || !ch->steps || !ch->rescan || !ch->ends)
         return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
     int status = chart_modes(ch->c, ch->coef);
@@ -744,6 +627,8 @@ int chart_vertical_run(const whirl_chain *c, int dim, const whirl_chart_params *
     if (params) ch.p = *params;
     int status = check_params(c, dim, &ch.p);
     if (status == GSL_SUCCESS) status = check_drag(&ch, air_drag);
+    /* the conservative chart's functions of the half period (file header): two per kind */
+    ch.subs = ch.gamma > 0 ? 1 : 2;
     if (status) return status;
     int start = 0;
     status = modes(&ch);

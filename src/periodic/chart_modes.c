@@ -49,7 +49,21 @@
  * mu^2 - tr mu + exp(-gamma T) = 0; a complex pair has |mu|^2 = exp(-gamma T) < 1, so the mode
  * leaves the unit disc only through mu = +1 (tr = 1 + exp(-gamma T)) or mu = -1
  * (tr = -(1 + exp(-gamma T))); in terms of M_y, where tr M_y = +-2 cosh(gamma T / 2)
- * (chart.c's factors). */
+ * (chart.c's factors).
+ *
+ * The half period. A path z(t) even in t (A cos(omega t): every vertical term a cosine) makes the
+ * conservative coefficient w(t) = sigma lambda_k (g + z''(t)) even, and with q(t) a solution so is
+ * q(-t). Let u, v be the solutions from t = 0 with (u, u') = (1, 0) and (v, v') = (0, 1); u is
+ * even, v odd, so the fundamental matrix Phi(t) = [[u, v], [u', v']] has Phi(-t) = R Phi(t) R,
+ * R = diag(1, -1). Periodicity, Phi(t + T) = Phi(t) M, at t = -T/2 gives
+ *   M = Phi(-T/2)^-1 Phi(T/2) = R X^-1 R X,   X = Phi(T/2),   X^-1 = [[v', -v], [-u', u]]
+ * (det X = u v' - u' v = 1), so M = [[v', v], [u', u]] X and
+ *   tr M = 2 (u v' + u' v),   2 - tr M = -4 u' v,   2 + tr M = 4 u v'
+ * (all at T/2; with u v' - u' v = 1). Each factor is the product of two smooth functions of
+ * half a period's solutions; a zero of u'(T/2) or u(T/2) is where the even solution is periodic
+ * or antiperiodic (Mathieu's a_n), one of v(T/2) or v'(T/2) where the odd one is (b_n). The two
+ * edges of one tongue are simple zeros of two different functions, however close they come
+ * (Mathieu's a_n and b_n differ for q != 0), and half a period costs half a monodromy. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -163,10 +177,12 @@ static double coefficient(const whirl_pivot_path *path, double g, double coef, d
     return coef * (g + accel_z(path, t) + gamma * vel_z(path, t)) - gamma * gamma / 4;
 }
 
-void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, double gamma,
-                          int steps, double m[4])
+/* x (2 x 2, row major) <- the solutions from t = 0 of the identity over span in steps Magnus
+ * steps (file header). */
+static void magnus(const whirl_pivot_path *path, double g, double coef, double gamma, double span,
+                   int steps, double m[4])
 {
-    const double h = whirl_pivot_period(path) / steps;
+    const double h = span / steps;
     const double n1 = (0.5 - sqrt(3) / 6) * h, n2 = (0.5 + sqrt(3) / 6) * h;
     const double comm = sqrt(3) / 12 * h * h;
     double x[4] = {1, 0, 0, 1};
@@ -183,6 +199,17 @@ void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, d
         x[0] = y0, x[1] = y1, x[2] = y2, x[3] = y3;
     }
     for (int i = 0; i < 4; i++) m[i] = x[i];
+}
+
+void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, double gamma,
+                          int steps, double m[4])
+{
+    magnus(path, g, coef, gamma, whirl_pivot_period(path), steps, m);
+}
+
+void chart_mode_half(const whirl_pivot_path *path, double g, double coef, int steps, double x[4])
+{
+    magnus(path, g, coef, 0, whirl_pivot_period(path) / 2, steps, x);
 }
 
 /* The phase of the mode per period at its strongest:

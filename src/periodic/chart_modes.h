@@ -22,6 +22,12 @@ double chart_mode_accel(const whirl_pivot_path *path);
 void chart_mode_monodromy(const whirl_pivot_path *path, double g, double coef, double gamma,
                           int steps, double m[4]);
 
+/* x (2 x 2, row major) <- [[u, v], [u', v']] at T/2: the solutions of the conservative
+ * y'' + coef (g + z''(t)) y = 0 from t = 0 with (u, u') = (1, 0), (v, v') = (0, 1), over half a
+ * period of path in steps Magnus steps (of the same order). For a path even in t the monodromy's
+ * 2 - tr = -4 u' v and 2 + tr = 4 u v' (chart_modes.c). */
+void chart_mode_half(const whirl_pivot_path *path, double g, double coef, int steps, double x[4]);
+
 /* *steps <- requested raised so that a step of the mode coef's monodromy (with gamma, as
  * above) turns its phase by at most 1 / CHART_STEPS_PER_RADIAN at the strongest shaking of both
  * paths (the same vertical terms at two rates); GSL_EINVAL with a message if over 1e8. */

@@ -12,7 +12,8 @@
  *                                                  a state of another drag is refused)
  *   curve I KIND MODE ID ALIVE TIPWARD A1 A0 W1 TIP FILL_TOP   (K of them: the alive curves
  *                                                  and those ended at a tip; none: "none")
- *   tip OMEGA MODE                                  (T of them)
+ *   tip OMEGA MODE TOP0 TOP1                        (T of them; the highest amplitude an edge
+ *                                                  of each function came down from, 0: none)
  * and for the ellipse chart the single line
  *   ellipse columns=J prev=P curve=C failed=F
  * A state read back is checked whole (counts, ranges, finite numbers): GSL_EINVAL with "state
@@ -45,20 +46,25 @@ double chart_grid(double lo, double hi, int columns, int j);
 
 typedef struct chart_curve {
     whirl_floquet_edge kind;
+    int sub;       /* the conservative chart's function of the kind: 0 u'(T/2) (+1) or u(T/2)
+                      (-1), 1 v(T/2) or v'(T/2) (chart.c); always 0 with drag */
     int mode;      /* the mode whose factor's root it is (from 0, by increasing lambda) */
     int id;
     int alive;
     double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
     int found;     /* located at the current rate */
     double w1;     /* the rate of a1 */
-    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined */
-    double tip;    /* that tip's rate (NAN: none) */
+    int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined; (damped
+                      hanging) ended low, a new edge of its family may join it */
+    double tip;    /* that tip's rate; damped: the rate it ended at (NAN: none) */
     double fill_top; /* the highest amplitude of the other edge located from the tip (0: none) */
 } chart_curve;
 
 typedef struct chart_tip {
     double omega;
     int mode;
+    double top[2]; /* per function (sub), the highest amplitude an edge came down from (0:
+                      none) */
 } chart_tip;
 
 typedef struct chart chart;
@@ -69,6 +75,7 @@ typedef struct chart_ws {
     long monodromies;
     int mode;                /* of the root under way */
     whirl_floquet_edge kind; /* of the root under way */
+    int sub;                 /* of the root under way */
     double shift;       /* (f(h/2) - f(h)) / 15 at the last fine evaluation of kind */
     double omega;       /* the rate of the evaluations; NAN: the chart's current rate */
     double amp;         /* the amplitude of fine_rate */
@@ -87,13 +94,53 @@ struct chart {
     int *steps;         /* the coarser monodromy's steps per period, per mode */
     double *freq;       /* the unshaken chain's frequencies sqrt(g lambda_k) (hanging), n */
     int *rescan;        /* per mode: its factors scanned at this rate */
-    double *ends;       /* per mode, the range's two ends: f_+, f_- (4 n) */
+    int subs;           /* functions per kind: 2 (the half period's, conservative), 1 (drag) */
+    double *ends;       /* per mode, the range's two ends: its 2 subs functions each (8 n) */
     chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
     int tips_count, tips_cap;
     double drag;        /* the linear air drag c (whirl_model's), >= 0 */
     double gamma;       /* the modes' decay rate c l_i / m_i (chart_modes.c); 0 without drag */
 };
 
+
+/* chart.c's functions for chart_tips.c: the extrapolated function of ctx's (a chart_ws) mode,
+ * kind and sub at the amplitude amp (its rate s->omega, NAN: the chart's) and at the rate omega
+ * (its amplitude s->amp), whirl_root_fn's; the lowest amplitude of a bracket; 1 if the chart's
+ * edges reach A = 0 at tongues' tips (the conservative hanging chain's). */
+int chart_fine_edge(double amp, void *ctx, double *fx);
+int chart_fine_rate(double omega, void *ctx, double *fx);
+double chart_amp_floor(const chart *ch);
+int chart_has_tips(const chart *ch);
+
+/* ---- the tips (chart_tips.c, its header: why and how) ---- */
+/* The edge cv ended at this rate heading for A = 0, with a tip of its mode's tongues of its kind
+ * between its last rate and two rates on: its points down to the tip; if they reach it and no
+ * edge did before, the tip (2 omega_k / n, 0) and the tongue's other edge from the tip up to the
+ * next rate, all on cv's curve, cv waiting for that edge (tipward). */
+int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
+                         void *row_data);
+/* A new edge cv at this rate joined (*joined 1) to the other function's edge of its family that
+ * ended at a tongue's tip at most two and a half rates before: one curve, cv's points down to
+ * what was located from the tip. */
+int chart_join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn row,
+                      void *row_data, int *joined);
+/* A new edge cv given the number of the neighbouring edge of its family's other function at
+ * this rate when the two bound one tongue there and that number is the edge's alone (hanging,
+ * conservative). */
+int chart_pair(chart *ch, chart_curve *cv);
+/* The damped hanging chart (else nothing): cv ended at this rate not through the top, at its
+ * tongue's lowest point perhaps: it waits (tipward, tip its last rate) two and a half rates for
+ * a new edge of its family (chart_low_window ends the wait, at each rate), which chart_join_low
+ * joins (*joined 1) when the rate between them lies inside the tongue at the higher of their
+ * amplitudes. */
+void chart_low_end(chart *ch, chart_curve *cv);
+void chart_low_window(chart *ch);
+int chart_join_low(chart *ch, chart_curve *cv, int *joined);
+/* 1 if a tip 2 omega_k / n of the mode's tongues lies in (w0, w1] (the chart has tips). */
+int chart_tip_between(const chart *ch, double w0, double w1, int mode);
+/* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
+ * -1, even: +1), the one nearest w1; NAN if none. */
+double chart_tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind);
 
 /* The state of ch after `done` rates into *text (malloc'd). GSL_ENOMEM with a message. */
 int chart_state_write(const chart *ch, int done, char **text);

@@ -40,14 +40,17 @@ int chart_state_write(const chart *ch, int done, char **text)
         if (!cv->alive && !cv->tipward) continue;
         char b[6][32];
         len += (size_t)snprintf(t + len, size - len, "curve %d %d %d %d %d %d %s %s %s %s %s\n",
-                                i, (int)cv->kind, cv->mode, cv->id, cv->alive, cv->tipward,
+                                i, (int)cv->kind + 2 * cv->sub, cv->mode, cv->id, cv->alive,
+                                cv->tipward,
                                 num(b[0], cv->a1), num(b[1], cv->a0), num(b[2], cv->w1),
                                 num(b[3], cv->tip), num(b[4], cv->fill_top));
     }
     for (int i = 0; i < ch->tips_count; i++) {
         char b[32];
-        len += (size_t)snprintf(t + len, size - len, "tip %s %d\n", num(b, ch->tips[i].omega),
-                                ch->tips[i].mode);
+        char b1[32], b2[32];
+        len += (size_t)snprintf(t + len, size - len, "tip %s %d %s %s\n",
+                                num(b, ch->tips[i].omega), ch->tips[i].mode,
+                                num(b1, ch->tips[i].top[0]), num(b2, ch->tips[i].top[1]));
     }
     *text = t;
     return GSL_SUCCESS;
@@ -175,7 +178,8 @@ int chart_state_read(chart *ch, const char *text, int *done)
         }
         const int i = get_int(&r, NULL, prev + 1, count - 1);
         if (r.why == NULL) prev = i;
-        chart_curve cv = {.kind = (whirl_floquet_edge)get_int(&r, NULL, 0, 1)};
+        const int kind = get_int(&r, NULL, 0, 2 * ch->subs - 1); /* + 2 for the second sub */
+        chart_curve cv = {.kind = (whirl_floquet_edge)(kind % 2), .sub = kind / 2};
         cv.mode = get_int(&r, NULL, 0, ch->n - 1);
         cv.id = get_int(&r, NULL, 0, i);
         cv.alive = get_int(&r, NULL, 0, 1);
@@ -199,6 +203,8 @@ int chart_state_read(chart *ch, const char *text, int *done)
         }
         ch->tips[k].omega = get_num(&r, 0, p->omega_max, 0);
         ch->tips[k].mode = get_int(&r, NULL, 0, ch->n - 1);
+        ch->tips[k].top[0] = get_num(&r, 0, p->amp_max, 0);
+        ch->tips[k].top[1] = get_num(&r, 0, p->amp_max, 0);
         line_end(&r);
     }
     ch->tips_count = tips;

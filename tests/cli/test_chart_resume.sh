@@ -114,7 +114,7 @@ crafted "a comment among the rows" "x.csv:$line: a comment among the rows" "${li
 # the state's curves crafted in the finished chart's state (the stopped one has none when the stop
 # fell between two curves), which --resume reads and checks as well
 s="$tmp/full.csv"
-crafted "a mode the chain has not" "the chart's state line 2: an integer out of range: the file cannot be trusted$" '/^# state: curve/{s/^\(# state: curve [0-9]* [01]\) [0-9]*/\1 9/;}'
+crafted "a mode the chain has not" "the chart's state line 2: an integer out of range: the file cannot be trusted$" '/^# state: curve/{s/^\(# state: curve [0-9]* [0-3]\) [0-9]*/\1 9/;}'
 crafted "a NaN in the state" "the chart's state line 2: a number not finite or out of range" '0,/^# state: curve/s/^\(# state: curve\( [^ ]*\)\{6\}\) [^ ]*/\1 nan/'
 s="$tmp/stop.csv"
 crafted "rates beyond the chart in the state" "the chart's state line 1: an integer out of range" 's/^# state: vertical columns=[0-9]*/# state: vertical columns=251/'

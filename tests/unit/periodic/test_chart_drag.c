@@ -147,6 +147,40 @@ static void test_mathieu_damped(void **state)
     whirl_chain_free(c);
 }
 
+/* A sharp lowest point: gamma 0.02 lifts the first tongue to A ~ 0.01 in a V about 0.02 wide
+ * in omega, two rates of the grid (0.5 to 2.5, 200 rates; A <= 0.3, 200 rows): the follower
+ * ends at the bottom (its bend test), the scan finds the rising edge a rate later, and the two
+ * are joined (chart_tips.c): the tongue's -1 edges one curve, with points on both sides of its
+ * lowest, every one on |mu|max = 1 (the direct integration). */
+static void test_sharp_bottom(void **state)
+{
+    (void)state;
+    const double gamma = 0.02;
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    const whirl_chart_params p = {.omega_min = 0.5, .omega_max = 2.5, .columns = 200,
+                                  .amp_max = 0.3, .rows = 200};
+    pts s = {.n = 0};
+    assert_int_equal(whirl_chart_vertical_damped(c, 2, &p, gamma, keep, &s, NULL, NULL),
+                     GSL_SUCCESS);
+    int curve = -1, n = 0, left = 0, right = 0;
+    double worst = 0, low = INFINITY, wlow = 0;
+    for (int i = 0; i < s.n; i++)
+        if (s.p[i].kind == WHIRL_FLOQUET_EDGE_MINUS_ONE && s.p[i].amplitude < low)
+            low = s.p[i].amplitude, wlow = s.p[i].omega, curve = s.p[i].curve;
+    for (int i = 0; i < s.n; i++) {
+        if (s.p[i].kind != WHIRL_FLOQUET_EDGE_MINUS_ONE) continue;
+        assert_int_equal(s.p[i].curve, curve); /* one curve */
+        n++, left += s.p[i].omega < wlow, right += s.p[i].omega > wlow;
+        worst = fmax(worst, fabs(direct_modulus(gamma, s.p[i].omega, s.p[i].amplitude) - 1));
+    }
+    print_message("# sharp bottom, gamma %g: %d points of edge -1 on curve %d, lowest A %.5f at "
+                  "omega %.4f, %d left and %d right of it, worst ||mu|max - 1| %.2g\n", gamma,
+                  n, curve, low, wlow, left, right, worst);
+    assert_true(left >= 10 && right >= 10);
+    assert_true(worst < 1e-9);
+    whirl_chain_free(c);
+}
+
 /* The edge amplitude at omega from the direct integration: Brent-free bisection-secant on
  * |mu|max - 1 in A over [lo, hi] (the modulus grows with A across the tongue's lower edge). */
 static double direct_edge(double gamma, double omega, double lo, double hi)
@@ -355,6 +389,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mathieu_damped),
         cmocka_unit_test(test_threshold),
+        cmocka_unit_test(test_sharp_bottom),
         cmocka_unit_test(test_inverted_damped),
         cmocka_unit_test(test_zero_and_bad),
         cmocka_unit_test(test_three_links),

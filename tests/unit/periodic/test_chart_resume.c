@@ -464,7 +464,7 @@ static void test_bad_states(void **state)
          "state line 2: a curve neither alive nor at a tip"},
         {"vertical columns=1 count=1 curves=1 tips=0\ncurve 0 1 0 0 0 1 0.1 none 1.8 none 0\n",
          "state line 2: a curve at a tip without it"},
-        {"vertical columns=1 count=0 curves=0 tips=1\ntip 2 0 1\n", "state line 2: too many fields"},
+        {"vertical columns=1 count=0 curves=0 tips=1\ntip 2 0 0 0 1\n", "state line 2: too many fields"},
         {"vertical columns=1 count=0 curves=0 tips=0\ntip 2 0\n", "state line 2: a line too many"},
         {"vertical columns=1 count=99999999999 curves=0 tips=0\n",
          "state line 1: an integer out of range"},
