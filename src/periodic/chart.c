@@ -34,14 +34,18 @@
  * does one whose linear extrapolation leaves the range, and one whose root bends more than a
  * smooth curve can between two rates (the second difference in A above the last change or a
  * scan's spacing): that root is another curve's of the same family (a follower would otherwise
- * walk on to it; the tips, where a tongue's two edges meet, chart_tips.c). A mode's factors
- * are scanned for new curves (at `rows` amplitudes, the coarser monodromy alone, each sign change
- * not explained by a followed curve of the family located by Brent) at the first rate; when the
- * parity of a family's edges disagrees with the signs of its factor at the range's ends (a curve
- * entered or left); and, for the hanging chain, when a tip omega = 2 omega_k / n of the mode's
- * tongues (omega_k = sqrt(g lambda_k), the unshaken chain's frequency) lies between the last
- * rate and this one, where a tongue's two edges are born together (the factor's parity could
- * not tell; each half-period function's can, and the scan is kept).
+ * walk on to it; the tips, where a tongue's two edges meet, chart_tips.c). Every mode's
+ * functions are scanned for new curves at every rate (at `rows` amplitudes, the coarser
+ * monodromy alone, each sign change not explained by a followed curve of the family located by
+ * Brent). Cheaper triggers miss edges: a scan only where the parity of a family's edges
+ * disagrees with the signs of its function at the range's ends, or where a tip lies between two
+ * rates, does not see a pair of edges born between two rates where an edge turns back in omega
+ * (Mathieu's a_1(q) and a_2(q) rise to a maximum and fall: the left edges of the first and
+ * second tongues turn back towards higher rates). On the three-link chain over rates 0.5 to 8
+ * and A <= 0.3 those triggers missed mode 3's first tongue from omega = 5.47 up (its left edge
+ * enters and leaves through omega = 8, down to A = 0.005 there) and the upper parts of mode 2's
+ * first and mode 3's second tongues; the scan at every rate costs 3.6 times the processor time
+ * there.
  * The inverted chain's edges have no tips: at A = 0 its modes' multipliers are
  * exp(+-sqrt(g lambda_k) T), real, so f_+k = 2 - 2 cosh(sqrt(g lambda_k) T) < 0 < f_-k and no
  * edge reaches A = 0 (Mathieu's a_k = -4 g lambda_k / omega^2 < 0, below every tongue's tip
@@ -63,9 +67,8 @@
  * gamma^2 / 4) T), or real with a smaller exponent), so f_+-k > 0 there: the hanging chain's
  * tongues lift off the axis and have no tips; a tongue's two edges are one curve A(omega) through
  * the tongue's lowest point (the follower's bend test lets a fall turn into a rise there: the
- * curve's own minimum, as sharp as gamma is small). Without tips to announce them, a hanging
- * mode's factors are scanned at every rate (a pair of edges can appear between two rates where a
- * tongue's lower end bends back in omega, with no change of parity at the range's ends). */
+ * curve's own minimum, as sharp as gamma is small); a pair of edges appears between two rates
+ * where a tongue's lower end bends back in omega, found by the scan at every rate. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -268,9 +271,8 @@ static int scan_row(chart_ws *s, void *data, int i)
     scan_work *sw = data;
     int status = GSL_SUCCESS;
     for (int k = 0; status == GSL_SUCCESS && k < s->ch->n; k++)
-        if (s->ch->rescan[k])
-            status = edge_functions(s, scan_amp(s->ch, sw, i), k, 1,
-                                    &sw->f[(size_t)i * sw->fams + 2 * s->ch->subs * k]);
+        status = edge_functions(s, scan_amp(s->ch, sw, i), k, 1,
+                                &sw->f[(size_t)i * sw->fams + 2 * s->ch->subs * k]);
     return status;
 }
 
@@ -302,7 +304,7 @@ int chart_fine_rate(double omega, void *ctx, double *fx)
     return status;
 }
 
-/* The scan of the modes marked in ch->rescan: every sign change of their f_+ and f_- between
+/* The scan of every mode: every sign change of its functions between
  * the rows' amplitudes that no curve of the family located at this rate lies in is located and
  * starts a new curve. */
 static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
@@ -323,7 +325,7 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
                 const double f0 = sw.f[(size_t)(i - 1) * sw.fams + j];
                 const double f1 = sw.f[(size_t)i * sw.fams + j];
                 const int mode = j / (2 * ch->subs), sub = j / 2 % ch->subs;
-                if (!ch->rescan[mode] || (f0 < 0) == (f1 < 0)) continue;
+                if ((f0 < 0) == (f1 < 0)) continue;
                 int known = 0;
                 for (int q = 0; q < ch->count && !known; q++) {
                     const chart_curve *cv = &ch->curves[q];
@@ -346,6 +348,15 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
     for (int j = 0; status == GSL_SUCCESS && j < count; j++) {
         if (isnan(sw.amp[j])) continue;
         const int fam = sw.cand[j] % sw.fams;
+        /* a root below the first row with a tip of its family within a rate's step is that
+           tongue's edge at its tip (at A within the tolerance of 0: the tip itself, where the
+           functions' signs are round-off): its edges come down to the tip by the descent,
+           chart_tips.c, and a new curve there would be a one-point piece of them */
+        const double dw = (ch->p.omega_max - ch->p.omega_min) / (ch->p.columns - 1);
+        if (chart_has_tips(ch) && sw.amp[j] < sw.step &&
+            !isnan(chart_tip_in(ch, ch->omega - dw, ch->omega + dw, fam / (2 * ch->subs),
+                                (whirl_floquet_edge)(fam % 2))))
+            continue;
         chart_curve *cv = add_curve(ch, fam / (2 * ch->subs), (whirl_floquet_edge)(fam % 2),
                                     fam / 2 % ch->subs);
         if (cv == NULL) status = whirl_fail(GSL_ENOMEM, "out of memory for the chart's curves");
@@ -498,20 +509,6 @@ static void chart_free(chart *ch)
     free(ch->coef);
     free(ch->steps);
     free(ch->freq);
-    free(ch->rescan);
-    free(ch->ends);
-}
-
-/* A mode's functions at the range's ends (item i: mode i / 2, end i % 2) into ch->ends, 2 subs
- * per end. */
-static int range_ends(chart_ws *s, void *data, int i)
-{
-    (void)data;
-    const whirl_chart_params *p = &s->ch->p;
-    double f[4];
-    const int status = edge_functions(s, i % 2 ? p->amp_max : p->amp_min, i / 2, 1, f);
-    for (int e = 0; e < 2 * s->ch->subs; e++) s->ch->ends[2 * s->ch->subs * i + e] = f[e];
-    return status;
 }
 
 double chart_grid(double lo, double hi, int columns, int j)
@@ -537,32 +534,15 @@ static int columns(chart *ch, int start, whirl_chart_row_fn row, void *row_data,
 {
     const whirl_chart_params *p = &ch->p;
     const double spacing = (p->amp_max - p->amp_min) / (p->rows - 1);
-    double last = start > 0 ? chart_grid(p->omega_min, p->omega_max, p->columns, start - 1) : 0;
     int status = save_state(ch, start, save, save_data);
     if (status) return status;
     for (int j = start; j < p->columns; j++) {
         ch->omega = chart_grid(p->omega_min, p->omega_max, p->columns, j);
         status = follow_all(ch, j, spacing, row, row_data);
-        if (status == GSL_SUCCESS) status = parallel_items(ch, 2 * ch->n, range_ends, NULL);
-        /* per family, the parity of its edges against the signs of its factor at the ends */
-        int any = 0;
-        for (int k = 0; status == GSL_SUCCESS && k < ch->n; k++) {
-            /* the damped hanging chain: every rate (no tips to announce new edges) */
-            ch->rescan[k] = j == 0 || chart_tip_between(ch, last, ch->omega, k) ||
-                            (!ch->p.inverted && ch->gamma > 0);
-            const int fpm = 2 * ch->subs; /* a mode's functions */
-            for (int e = 0; e < fpm; e++) {
-                int found = 0;
-                for (int i = 0; i < ch->count; i++)
-                    found += ch->curves[i].found && ch->curves[i].mode == k &&
-                             ch->curves[i].kind == (whirl_floquet_edge)(e % 2) &&
-                             ch->curves[i].sub == e / 2 && ch->curves[i].a1 >= p->amp_min;
-                const double lo = ch->ends[2 * fpm * k + e], hi = ch->ends[2 * fpm * k + fpm + e];
-                if ((found % 2 == 1) != ((lo < 0) != (hi < 0))) ch->rescan[k] = 1;
-            }
-            any |= ch->rescan[k];
-        }
-        if (status == GSL_SUCCESS && any) status = scan(ch, j, row, row_data);
+        /* every mode's functions scanned at every rate (file header: a pair of edges born
+           between two rates, where an edge turns back in omega, changes no count at the
+           range's ends) */
+        if (status == GSL_SUCCESS) status = scan(ch, j, row, row_data);
         for (int i = 0; i < ch->count; i++)
             if (!ch->curves[i].found) ch->curves[i].alive = 0;
         if (status) return status;
@@ -573,7 +553,6 @@ static int columns(chart *ch, int start, whirl_chart_row_fn row, void *row_data,
             tick(tick_data, &pr);
         }
         if ((status = save_state(ch, j + 1, save, save_data))) return status;
-        last = ch->omega;
     }
     return GSL_SUCCESS;
 }
@@ -587,9 +566,7 @@ static int modes(chart *ch)
     ch->coef = malloc(n * sizeof *ch->coef);
     ch->freq = malloc(n * sizeof *ch->freq);
     ch->steps = malloc(n * sizeof *ch->steps);
-    ch->rescan = malloc(n * sizeof *ch->rescan);
-    ch->ends = malloc(8 * n * sizeof *ch->ends);
-    if (!ch->coef || !ch->freq || !ch->steps || !ch->rescan || !ch->ends)
+    if (!ch->coef || !ch->freq || !ch->steps)
         return whirl_fail(GSL_ENOMEM, "out of memory for the chart");
     int status = chart_modes(ch->c, ch->coef);
     whirl_pivot_path slow, fast;

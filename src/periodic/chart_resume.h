@@ -51,7 +51,8 @@ typedef struct chart_curve {
     int mode;      /* the mode whose factor's root it is (from 0, by increasing lambda) */
     int id;
     int alive;
-    double a1, a0; /* the amplitude at the last rate and the one before (NAN: none) */
+    double a1, a0; /* the amplitude at the last rate and the one before (NAN: none; after a tip
+                      the point one rate back on the edge's law, below 0 perhaps: chart_tips.c) */
     int found;     /* located at the current rate */
     double w1;     /* the rate of a1 */
     int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined; (damped
@@ -93,9 +94,7 @@ struct chart {
     double *coef;       /* sigma lambda_k (chart_modes.c), n */
     int *steps;         /* the coarser monodromy's steps per period, per mode */
     double *freq;       /* the unshaken chain's frequencies sqrt(g lambda_k) (hanging), n */
-    int *rescan;        /* per mode: its factors scanned at this rate */
     int subs;           /* functions per kind: 2 (the half period's, conservative), 1 (drag) */
-    double *ends;       /* per mode, the range's two ends: its 2 subs functions each (8 n) */
     chart_tip *tips;    /* the tips reached so far (one curve descends to each) */
     int tips_count, tips_cap;
     double drag;        /* the linear air drag c (whirl_model's), >= 0 */
@@ -136,8 +135,6 @@ int chart_pair(chart *ch, chart_curve *cv);
 void chart_low_end(chart *ch, chart_curve *cv);
 void chart_low_window(chart *ch);
 int chart_join_low(chart *ch, chart_curve *cv, int *joined);
-/* 1 if a tip 2 omega_k / n of the mode's tongues lies in (w0, w1] (the chart has tips). */
-int chart_tip_between(const chart *ch, double w0, double w1, int mode);
 /* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
  * -1, even: +1), the one nearest w1; NAN if none. */
 double chart_tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind);
