@@ -473,7 +473,9 @@ def chart_vertical(omega_min: Any, omega_max: Any, amp_max: Any, links: Union[in
         except KeyboardInterrupt as e:
             stop = e
             del found[saved.count:]  # the rows of the rates finished (their state's)
-    found.sort(key=lambda row: (row[0], row[5]))  # by curve, then rate: the command line's order
+    # by curve, then rate (its column, then omega: a tip's or a fold's points lie between two
+    # rates), then as found: the command line's order
+    found.sort(key=lambda row: (row[0], row[5], row[2]))
     out = np.array([row[:5] for row in found], dtype=CHART_DTYPE)
     out["omega"] *= u.rate
     out["amplitude"] *= u.length

@@ -345,6 +345,7 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
         }
     }
     if (status == GSL_SUCCESS) status = parallel_items(ch, count, scan_locate, &sw);
+    const int first = ch->count; /* the new curves' */
     for (int j = 0; status == GSL_SUCCESS && j < count; j++) {
         if (isnan(sw.amp[j])) continue;
         const int fam = sw.cand[j] % sw.fams;
@@ -371,6 +372,8 @@ static int scan(chart *ch, int column, whirl_chart_row_fn row, void *row_data)
                 status = emit(ch, cv, column, sw.amp[j], sw.err[j], row, row_data);
         }
     }
+    /* the edges that turned back in omega since the last rate: their caps (chart_folds.c) */
+    if (status == GSL_SUCCESS) status = chart_fold_caps(ch, first, column, row, row_data);
     free(sw.f), free(sw.cand), free(sw.amp);
     return status;
 }
@@ -403,15 +406,24 @@ static int follow(chart_ws *s, void *data, int j)
     }
     if (cv->a1 + change > ch->p.amp_max) return GSL_SUCCESS;
     fw->tipward[j] = 1; /* unless found below: an end other than at the top may be at a tip */
-    for (int d = 0; d <= BRACKET_DOUBLINGS; d++, half *= 2) {
-        const double lo = fmax(chart_amp_floor(ch), cv->a1 - half);
-        const double hi = fmin(ch->p.amp_max, cv->a1 + half);
+    /* the brackets: about a1 (try 0), then, where the change is more than a scan's spacing,
+       about the linear prediction a1 + change, half as wide as the change (try 1: it holds the
+       root alone where the curve moves fast next to another root of its function, a fold's
+       two branches, chart_folds.c, which the first may hold too), then about a1 doubled */
+    for (int t = 0, d = 0; d <= BRACKET_DOUBLINGS; t++) {
+        const int predicted = t == 1;
+        if (predicted && !(fabs(change) > spacing)) continue;
+        const double mid = predicted ? cv->a1 + change : cv->a1;
+        const double w = predicted ? fabs(change) / 2 : half;
+        const double lo = fmax(chart_amp_floor(ch), mid - w);
+        const double hi = fmin(ch->p.amp_max, mid + w);
+        if (!predicted) d++, half *= 2;
         double flo, fhi;
-        int status = chart_fine_edge(lo, s, &flo);
-        if (status == GSL_SUCCESS) status = chart_fine_edge(hi, s, &fhi);
+        int status = lo < hi ? chart_fine_edge(lo, s, &flo) : GSL_SUCCESS;
+        if (status == GSL_SUCCESS && lo < hi) status = chart_fine_edge(hi, s, &fhi);
         if (status) return status;
-        if ((flo < 0) == (fhi < 0)) {
-            if (lo == chart_amp_floor(ch) && hi == ch->p.amp_max) break;
+        if (!(lo < hi) || (flo < 0) == (fhi < 0)) {
+            if (!predicted && lo == chart_amp_floor(ch) && hi == ch->p.amp_max) break;
             continue;
         }
         double amp, err;

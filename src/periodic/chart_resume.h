@@ -52,7 +52,8 @@ typedef struct chart_curve {
     int id;
     int alive;
     double a1, a0; /* the amplitude at the last rate and the one before (NAN: none; after a tip
-                      the point one rate back on the edge's law, below 0 perhaps: chart_tips.c) */
+                      or a fold the point one rate back on the edge's law or the fold's cap,
+                      within 2 amp_max of the range: chart_tips.c, chart_folds.c) */
     int found;     /* located at the current rate */
     double w1;     /* the rate of a1 */
     int tipward;   /* (hanging) ended at a tongue's tip, its other edge not yet joined; (damped
@@ -135,6 +136,16 @@ int chart_pair(chart *ch, chart_curve *cv);
 void chart_low_end(chart *ch, chart_curve *cv);
 void chart_low_window(chart *ch);
 int chart_join_low(chart *ch, chart_curve *cv, int *joined);
+/* An edge's points at the amplitudes a, a + da, ... while in (a_lo, a_hi), each located in the
+ * rate between w and tip on cv's function (chart_tips.c); the last amplitude located in *last. */
+int chart_fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
+                    double a, double da, double a_lo, double a_hi, double *last,
+                    whirl_chart_row_fn row, void *row_data);
+/* ---- the folds (chart_folds.c) ---- */
+/* The caps of the edges that turned back in omega between the last rate and this one: among the
+ * curves from first on (this rate's new ones), each pair of neighbouring edges of one function
+ * born there gets the points of its turn, at the rows between them. */
+int chart_fold_caps(chart *ch, int first, int column, whirl_chart_row_fn row, void *row_data);
 /* The tip 2 omega_k / n in (w0, w1] of a tongue of the mode whose edges are of the kind (n odd:
  * -1, even: +1), the one nearest w1; NAN if none. */
 double chart_tip_in(const chart *ch, double w0, double w1, int mode, whirl_floquet_edge kind);

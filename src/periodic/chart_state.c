@@ -185,7 +185,7 @@ int chart_state_read(chart *ch, const char *text, int *done)
         cv.alive = get_int(&r, NULL, 0, 1);
         cv.tipward = get_int(&r, NULL, 0, 1);
         cv.a1 = get_num(&r, amp_lo, p->amp_max, 0);
-        cv.a0 = get_num(&r, amp_lo - 2 * p->amp_max, p->amp_max, 1); /* chart_join_at_tip */
+        cv.a0 = get_num(&r, amp_lo - 2 * p->amp_max, 2 * p->amp_max, 1); /* tips', folds' */
         cv.w1 = get_num(&r, p->omega_min, p->omega_max, 0);
         cv.tip = get_num(&r, 0, p->omega_max, 1);
         cv.fill_top = get_num(&r, 0, p->amp_max, 0);

@@ -67,9 +67,9 @@
  * reach the lowest row. err: the rate's bracket and extrapolation shift times the edge's slope
  * dA/domega from the previous point. Returns the last amplitude located in *last (unchanged if
  * none). */
-static int fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
-                     double a, double da, double a_lo, double a_hi, double *last,
-                     whirl_chart_row_fn row, void *row_data)
+int chart_fill_rows(chart *ch, const chart_curve *cv, int column, double w, double tip,
+                    double a, double da, double a_lo, double a_hi, double *last,
+                    whirl_chart_row_fn row, void *row_data)
 {
     chart_ws *s = &ch->ws[0];
     const double lo = fmin(w, tip), hi = fmax(w, tip);
@@ -122,8 +122,8 @@ int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row
     if (reached && reached->top[cv->sub] >= cv->a1) return GSL_SUCCESS;
     const double da = (ch->p.amp_max - chart_amp_floor(ch)) / (ch->p.rows - 1);
     double low = cv->a1, top = 0;
-    int status = fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da, INFINITY,
-                           &low, row, row_data);
+    int status = chart_fill_rows(ch, cv, column, cv->w1, tip, cv->a1 - da, -da, 1e-3 * da,
+                                 INFINITY, &low, row, row_data);
     /* the edge's own tip: its points go down to the lowest row (a row's step of A = 0; 1e-9
        of it for the rounding of the rows' amplitudes) */
     if (status || low > da * (1 + 1e-9)) return status;
@@ -156,8 +156,8 @@ int chart_descend_to_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row
     chart_curve other = *cv;
     other.sub = 1 - cv->sub;
     if (status == GSL_SUCCESS && next > tip)
-        status = fill_rows(ch, &other, column, next, tip, fmin(da, low), da, 0, ch->p.amp_max,
-                           &top, row, row_data);
+        status = chart_fill_rows(ch, &other, column, next, tip, fmin(da, low), da, 0,
+                                 ch->p.amp_max, &top, row, row_data);
     cv->tipward = 1, cv->tip = tip, cv->fill_top = top;
     return status;
 }
@@ -191,8 +191,8 @@ int chart_join_at_tip(chart *ch, chart_curve *cv, int column, whirl_chart_row_fn
         const double next = fmin(cv->a1 * (order < 1.5 ? r : sqrt(r)), 2 * ch->p.amp_max);
         cv->a0 = 2 * cv->a1 - next;
         double last = 0;
-        return fill_rows(ch, cv, column, ch->omega, old->tip, cv->a1 - da, -da,
-                         old->fill_top + 0.5 * da, INFINITY, &last, row, row_data);
+        return chart_fill_rows(ch, cv, column, ch->omega, old->tip, cv->a1 - da, -da,
+                               old->fill_top + 0.5 * da, INFINITY, &last, row, row_data);
     }
     return GSL_SUCCESS;
 }

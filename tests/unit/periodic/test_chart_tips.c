@@ -198,11 +198,88 @@ static void test_half_period(void **state)
     assert_true(worst_det < 1e-12);
 }
 
+/* By the rate, then the amplitude. */
+static int by_rate(const void *a, const void *b)
+{
+    const whirl_chart_point *p = a, *q = b;
+    if (p->omega != q->omega) return p->omega < q->omega ? -1 : 1;
+    return (p->amplitude > q->amplitude) - (p->amplitude < q->amplitude);
+}
+
+/* a_1(q) peaks (2.5217 at q = 2.880): the first tongue's left edge of the N = 1 chart turns back
+ * in omega at omega_f = 2 / sqrt(max a_1), A_f = q / 2 (chart_folds.c). Over rates 1.2 .. 1.6
+ * (11 rates, 0.04 apart) and A <= 2 (41 rows) the turning point lies between the rates 1.24 and
+ * 1.28: the cap between them must be drawn. Every point on a_1 to 1e-8 in a; the lowest rate of
+ * the points within 1e-3 of omega_f (the rows are 0.05 apart: omega(A) - omega_f ~ (A - A_f)^2)
+ * and not below it (without the cap it is the rate 1.28, 0.02 off); the turning point in both
+ * branches' curves; each branch sorted by the rate without a gap wider than a rate's step and a
+ * row's at once. */
+static void test_fold_cap(void **state)
+{
+    (void)state;
+    whirl_chain *c = whirl_chain_alloc_uniform(1, 0);
+    const whirl_chart_params p = {.omega_min = 1.2, .omega_max = 1.6, .columns = 11,
+                                  .amp_max = 2, .rows = 41};
+    kept k = {0, malloc(MAX_POINTS * sizeof(whirl_chart_point))};
+    assert_non_null(k.p);
+    assert_int_equal(whirl_chart_vertical(c, 2, &p, keep_point, &k, NULL, NULL), GSL_SUCCESS);
+    /* the maximum of a_1 by golden sections on q in [2, 4] (the Hill matrix, not the chart) */
+    double lo = 2, hi = 4;
+    const double r = (sqrt(5) - 1) / 2;
+    while (hi - lo > 1e-9) {
+        const double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+        if (hill(x1, 1, 0) > hill(x2, 1, 0)) hi = x2;
+        else lo = x1;
+    }
+    const double qf = 0.5 * (lo + hi), wf = 2 / sqrt(hill(qf, 1, 0));
+    double worst = 0, wmin = INFINITY;
+    int low = -1;
+    for (int i = 0; i < k.n; i++) {
+        const whirl_chart_point *q = &k.p[i];
+        if (q->kind != WHIRL_FLOQUET_EDGE_MINUS_ONE) continue;
+        const double a = 4 / (q->omega * q->omega), d = fabs(a - hill(2 * q->amplitude, 1, 0));
+        if (d > 1e-6) continue; /* b_1, the tongue's other edge */
+        worst = fmax(worst, d);
+        if (q->omega < wmin) wmin = q->omega, low = i;
+    }
+    assert_true(low >= 0);
+    int curves[2] = {-1, -1}, shared = 0;
+    for (int i = 0; i < k.n; i++)
+        if (k.p[i].omega == k.p[low].omega && k.p[i].amplitude == k.p[low].amplitude) {
+            curves[shared < 2 ? shared : 1] = k.p[i].curve;
+            shared++;
+        }
+    const double dw = (p.omega_max - p.omega_min) / (p.columns - 1), da = p.amp_max / (p.rows - 1);
+    double gap = 0;
+    for (int b = 0; b < 2 && shared == 2; b++) {
+        whirl_chart_point e[MAX_POINTS / 16];
+        int m = 0;
+        for (int i = 0; i < k.n && m < MAX_POINTS / 16; i++)
+            if (k.p[i].curve == curves[b]) e[m++] = k.p[i];
+        qsort(e, (size_t)m, sizeof *e, by_rate);
+        for (int i = 1; i < m; i++)
+            gap = fmax(gap, fmin(fabs(e[i].omega - e[i - 1].omega) / dw,
+                                 fabs(e[i].amplitude - e[i - 1].amplitude) / da));
+    }
+    print_message("# fold of a_1: omega_f = %.9f at A_f = %.6f; the chart's lowest rate %.9f "
+                  "(%.2g above) at A = %.4f, in %d curves (%d and %d); worst |a - a_1| %.2g; "
+                  "largest gap %.3g steps\n", wf, qf / 2, wmin, wmin - wf, k.p[low].amplitude,
+                  shared, curves[0] + 1, curves[1] + 1, worst, gap);
+    assert_true(worst < 1e-8);
+    assert_true(wmin - wf >= -1e-9 && wmin - wf < 1e-3);
+    assert_int_equal(shared, 2);
+    assert_true(curves[0] != curves[1]);
+    assert_true(gap <= 1 + 1e-9); /* a rate's step, to the rounding of the rates */
+    free(k.p);
+    whirl_chain_free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_half_period),
         cmocka_unit_test(test_thin_tongues),
+        cmocka_unit_test(test_fold_cap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
