@@ -10,7 +10,7 @@ extern "C" {
 #endif
 
 #define WHIRL_VERSION_MAJOR 2
-#define WHIRL_VERSION_MINOR 5
+#define WHIRL_VERSION_MINOR 6
 #define WHIRL_VERSION_PATCH 0
 
 #define WHIRL_VERSION_STR_(x) #x
