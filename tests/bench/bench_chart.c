@@ -72,8 +72,8 @@ int main(int argc, char **argv)
            "A <= 0.1; load %.2f\n", amp_max, bench_load_average());
     /* monodromies: the modes' 2 x 2 ones counted by the chart, half a period each without drag */
     printf("# chain         N   points curves  monodromies    cpu [s]   wall [s]  us/mono\n");
-    /* N = 100 (over 25 minutes, hanging and inverted: docs/theory/floquet.md) only when asked
-       for */
+    /* N = 100 (about 4 hours of processor time for the hanging chart: docs/theory/floquet.md)
+       only when asked for */
     static const int defaults[] = {1, 3, 10, 30};
     const char *which = argc > 2 ? argv[2] : "both";
     for (int inverted = 0; inverted < 2; inverted++) {
