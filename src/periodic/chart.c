@@ -255,7 +255,7 @@ typedef struct scan_work {
     double lo, step;
     int fams;           /* the families, 2 subs n: mode k's f[e] (edge_functions) at
                            2 subs k + e */
-    double *f;          /* rows x fams: the coarser factors (the modes scanned only) */
+    double *f;          /* rows x fams: the coarser factors */
     int *cand;          /* a candidate: row i and family j as i fams + j */
     double *amp, *err;  /* per candidate: its edge, or NAN for a sign change of the coarser step
                            alone */
